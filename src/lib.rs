@@ -1,0 +1,2 @@
+//! Topoplex: topological data structures for arbitrary simplicial complexes.
+pub mod io;
