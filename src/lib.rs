@@ -1,2 +1,18 @@
-//! Topoplex: topological data structures for arbitrary simplicial complexes.
+//! Topoplex: compact topological data structures for arbitrary simplicial complexes —
+//! non-manifold, mixed-dimensional, any dimension — behind one relation API
+//! ([`relation::Topology`]) and a C ABI.
+//!
+//! - [`io`] reads files into raw simplex lists; [`complex`] normalises them into a [`Complex`].
+//! - [`structures`] builds any of the family (IG, SIG, IA, IQM, NMIA, TS, PE, LE, DE).
+//! - [`oracle`] answers every relation by brute force, for tests.
+
+pub mod complex;
+pub mod fixtures;
 pub mod io;
+pub mod oracle;
+pub mod relation;
+pub mod structures;
+
+pub use complex::{Complex, ComplexError};
+pub use relation::{QueryError, Storage, StructureKind, Topology};
+pub use structures::{BuildError, build};

@@ -40,7 +40,10 @@ pub struct RawInput {
 
 impl RawInput {
     pub fn new() -> Self {
-        RawInput { offsets: vec![0], ..Default::default() }
+        RawInput {
+            offsets: vec![0],
+            ..Default::default()
+        }
     }
 
     /// Appends one simplex read on `line`.
@@ -85,7 +88,11 @@ pub struct ReadError {
 
 /// Reads a file, choosing the reader by extension.
 pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
-    let err = |line, kind| ReadError { path: path.to_path_buf(), line, kind };
+    let err = |line, kind| ReadError {
+        path: path.to_path_buf(),
+        line,
+        kind,
+    };
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -99,11 +106,17 @@ pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
         _ => return Err(err(0, ReadErrorKind::UnknownExtension)),
     };
     let bytes = std::fs::read(path).map_err(|e| err(0, ReadErrorKind::Io(e.to_string())))?;
-    let text = std::str::from_utf8(&bytes)
-        .map_err(|e| {
-            let line = bytes[..e.valid_up_to()].iter().filter(|&&b| b == b'\n').count() as u32 + 1;
-            err(line, ReadErrorKind::Syntax("file is not valid UTF-8 text".into()))
-        })?;
+    let text = std::str::from_utf8(&bytes).map_err(|e| {
+        let line = bytes[..e.valid_up_to()]
+            .iter()
+            .filter(|&&b| b == b'\n')
+            .count() as u32
+            + 1;
+        err(
+            line,
+            ReadErrorKind::Syntax("file is not valid UTF-8 text".into()),
+        )
+    })?;
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     parse(text).map_err(|(line, kind)| err(line, kind))
 }

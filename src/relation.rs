@@ -1,0 +1,194 @@
+//! The relation API every structure implements.
+//!
+//! For a p-simplex σ of a d-complex, R_{p,q}(σ) is
+//! - `q < p` (boundary): the q-faces of σ;
+//! - `q > p` (co-boundary): the q-simplices in the star of σ, i.e. those having σ as a face;
+//! - `q == p > 0` (adjacency): the p-simplices other than σ sharing a (p−1)-face with σ;
+//! - `q == p == 0`: the vertices sharing an edge with σ.
+//!
+//! A simplex is addressed by its vertex ids. Answers are written to a caller-owned `Vec<u32>`
+//! as rows of `q + 1` ascending vertex ids, each simplex once, in the structure's own order (see
+//! [`sort_rows`] for lexicographic order). Queries take `&self`; structures keep no traversal
+//! state, so one structure answers from many threads at once (each query has its own scratch).
+
+use std::fmt;
+
+use crate::complex::{MAX_DIMENSION, sort_dedup_rows};
+
+/// Storage of a built structure: what the papers count, and what the process really holds.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Storage {
+    /// Integers (references) the papers count for the topological relations.
+    pub integers: u64,
+    /// Bits the papers count (flags).
+    pub bits: u64,
+    /// Heap bytes of every array the structure owns, vertex lists and indexes included.
+    pub bytes: u64,
+}
+
+/// The nine structures of the family, in the order the C ABI numbers them.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum StructureKind {
+    Ig,
+    Sig,
+    Ia,
+    Iqm,
+    Nmia,
+    Ts,
+    Pe,
+    Le,
+    De,
+}
+
+impl StructureKind {
+    pub const ALL: [StructureKind; 9] = [
+        StructureKind::Ig,
+        StructureKind::Sig,
+        StructureKind::Ia,
+        StructureKind::Iqm,
+        StructureKind::Nmia,
+        StructureKind::Ts,
+        StructureKind::Pe,
+        StructureKind::Le,
+        StructureKind::De,
+    ];
+
+    /// The CLI name (`ig`, `sig`, ...).
+    pub fn name(self) -> &'static str {
+        match self {
+            StructureKind::Ig => "ig",
+            StructureKind::Sig => "sig",
+            StructureKind::Ia => "ia",
+            StructureKind::Iqm => "iqm",
+            StructureKind::Nmia => "nmia",
+            StructureKind::Ts => "ts",
+            StructureKind::Pe => "pe",
+            StructureKind::Le => "le",
+            StructureKind::De => "de",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<StructureKind> {
+        StructureKind::ALL.into_iter().find(|k| k.name() == name)
+    }
+}
+
+impl fmt::Display for StructureKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+fn show(ids: &[u32]) -> String {
+    let v: Vec<String> = ids.iter().map(|i| i.to_string()).collect();
+    format!("[{}]", v.join(" "))
+}
+
+/// Why a query has no answer. Each variant names the simplex as given.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum QueryError {
+    #[error("simplex with no vertex")]
+    EmptySimplex,
+    #[error("simplex {} has {} vertices, above the supported maximum dimension {max}", show(.simplex), .simplex.len())]
+    TooManyVertices { simplex: Vec<u32>, max: usize },
+    #[error("simplex {} repeats vertex {vertex}", show(.simplex))]
+    RepeatedVertex { simplex: Vec<u32>, vertex: u32 },
+    #[error("simplex {} uses vertex {vertex}, but the complex has {n} vertices", show(.simplex))]
+    VertexOutOfRange {
+        simplex: Vec<u32>,
+        vertex: u32,
+        n: u32,
+    },
+    #[error("simplex {} is not in the complex", show(.simplex))]
+    NotInComplex { simplex: Vec<u32> },
+    #[error("relation R_{{{p},{q}}}: dimension {q} is above the complex's dimension {dim}")]
+    DimensionOutOfRange { p: usize, q: usize, dim: usize },
+}
+
+/// The relation API. Implementors provide [`Topology::query`] for a validated simplex; callers
+/// use [`Topology::relation`], which validates first.
+pub trait Topology: Send + Sync {
+    fn kind(&self) -> StructureKind;
+
+    /// Dimension d of the complex.
+    fn dimension(&self) -> usize;
+
+    /// Number of vertices n (vertex ids are `0..n`).
+    fn vertex_count(&self) -> u32;
+
+    /// Number of p-simplices n_p (0 for `p > d`).
+    fn count(&self, p: usize) -> usize;
+
+    /// Number of top p-simplices (not a proper face of another).
+    fn top_count(&self, p: usize) -> usize;
+
+    /// Appends every p-simplex, as rows of `p + 1` ascending ids in ascending lexicographic order.
+    fn simplices(&self, p: usize, out: &mut Vec<u32>);
+
+    /// R_{p,q}(σ) for `sigma` with ascending, distinct, in-range ids and `q <= d`, appended to
+    /// `out` (rows of `q + 1` ascending ids, each simplex once). `NotInComplex` if σ is not a
+    /// simplex of the complex.
+    fn query(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Result<(), QueryError>;
+
+    /// Whether `sigma` (ascending, distinct, in range) is a simplex of the complex.
+    fn contains(&self, sigma: &[u32]) -> bool;
+
+    fn storage(&self) -> Storage;
+
+    /// Checks every invariant of the structure; the error names the first broken one.
+    fn validate(&self) -> Result<(), String>;
+
+    /// R_{p,q}(σ) for σ given by vertex ids in any order; p = |σ| − 1. Validates σ (no repeated
+    /// or out-of-range vertex, in the complex) and q, then appends the answer to `out` (cleared
+    /// first) in the structure's order. Cost: the structure's [`Topology::query`] cost.
+    fn relation(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Result<(), QueryError> {
+        out.clear();
+        let sorted = normalize_simplex(sigma, self.vertex_count())?;
+        let d = self.dimension();
+        if q > d {
+            return Err(QueryError::DimensionOutOfRange {
+                p: sorted.len() - 1,
+                q,
+                dim: d,
+            });
+        }
+        self.query(&sorted, q, out)
+    }
+}
+
+/// Sorts a copy of `sigma` and checks it: non-empty, within `MAX_DIMENSION`, no repeated vertex,
+/// every id below `n`.
+pub fn normalize_simplex(sigma: &[u32], n: u32) -> Result<Vec<u32>, QueryError> {
+    if sigma.is_empty() {
+        return Err(QueryError::EmptySimplex);
+    }
+    if sigma.len() > MAX_DIMENSION + 1 {
+        return Err(QueryError::TooManyVertices {
+            simplex: sigma.to_vec(),
+            max: MAX_DIMENSION,
+        });
+    }
+    if let Some(&v) = sigma.iter().find(|&&v| v >= n) {
+        return Err(QueryError::VertexOutOfRange {
+            simplex: sigma.to_vec(),
+            vertex: v,
+            n,
+        });
+    }
+    let mut s = sigma.to_vec();
+    s.sort_unstable();
+    if let Some(w) = s.windows(2).find(|w| w[0] == w[1]) {
+        return Err(QueryError::RepeatedVertex {
+            simplex: sigma.to_vec(),
+            vertex: w[0],
+        });
+    }
+    Ok(s)
+}
+
+/// Sorts rows of `arity` ids into ascending lexicographic order (the `relation` dump order).
+/// Rows must be distinct already; O(k log k).
+pub fn sort_rows(rows: &mut Vec<u32>, arity: usize) {
+    let sorted = sort_dedup_rows(arity, std::mem::take(rows));
+    *rows = sorted;
+}

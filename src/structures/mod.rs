@@ -1,0 +1,34 @@
+//! The structures, one module each, all behind [`crate::relation::Topology`].
+
+use crate::complex::Complex;
+use crate::relation::{StructureKind, Topology};
+
+pub mod ig;
+
+/// Why a structure could not be built for a complex.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum BuildError {
+    #[error("structure `{kind}` is not implemented yet")]
+    NotImplemented { kind: StructureKind },
+    /// The structure's domain excludes this complex; `reason` names the first offending simplex.
+    #[error("structure `{kind}` cannot encode this complex: {reason}")]
+    Unsupported { kind: StructureKind, reason: String },
+    #[error("structure `{kind}`: the complex is too large: {what}")]
+    TooLarge { kind: StructureKind, what: String },
+}
+
+/// Builds a structure of `kind` for `complex`.
+pub fn build(kind: StructureKind, complex: &Complex) -> Result<Box<dyn Topology>, BuildError> {
+    match kind {
+        StructureKind::Ig => Ok(Box::new(ig::IncidenceGraph::build(complex)?)),
+        _ => Err(BuildError::NotImplemented { kind }),
+    }
+}
+
+/// Converts a count to `u32` indexes, or says what overflowed.
+pub(crate) fn to_u32(kind: StructureKind, n: usize, what: &str) -> Result<u32, BuildError> {
+    u32::try_from(n).map_err(|_| BuildError::TooLarge {
+        kind,
+        what: format!("{n} {what} exceed 32-bit indexes"),
+    })
+}

@@ -1,0 +1,69 @@
+//! Shared test support: random non-manifold complexes for property tests, and the real data in
+//! `../shared/data` when present.
+#![allow(dead_code)]
+
+use std::path::PathBuf;
+
+use proptest::prelude::*;
+use topoplex::Complex;
+
+/// A vertex count and a list of simplices (vertex ids in shuffled order, duplicates and faces
+/// of other simplices included) over few vertices, so that simplices collide into non-manifold
+/// vertices and edges, wire edges and isolated vertices; dimension up to `max_dim`.
+pub fn random_input(
+    max_dim: usize,
+    max_vertices: u32,
+    max_simplices: usize,
+) -> impl Strategy<Value = (u32, Vec<Vec<u32>>)> {
+    (1..=max_vertices).prop_flat_map(move |n| {
+        let all: Vec<u32> = (0..n).collect();
+        let simplex =
+            proptest::sample::subsequence(all, 1..=(max_dim + 1).min(n as usize)).prop_shuffle();
+        let list = proptest::collection::vec(simplex, 0..=max_simplices);
+        // Repeat a few simplices to exercise absorption of duplicates.
+        (
+            Just(n),
+            list,
+            proptest::collection::vec(any::<prop::sample::Index>(), 0..3),
+        )
+            .prop_map(|(n, mut list, dups)| {
+                if !list.is_empty() {
+                    for i in dups {
+                        let s = list[i.index(list.len())].clone();
+                        list.push(s);
+                    }
+                }
+                (n, list)
+            })
+    })
+}
+
+pub fn complex_of(n: u32, simplices: &[Vec<u32>]) -> Complex {
+    let refs: Vec<&[u32]> = simplices.iter().map(Vec::as_slice).collect();
+    Complex::from_simplices(n, &refs).expect("generated input is valid")
+}
+
+/// `../shared/data` relative to the crate, if present.
+pub fn shared_data() -> Option<PathBuf> {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data");
+    dir.is_dir().then_some(dir)
+}
+
+/// Every readable complex file under `../shared/data` (files that are documented error cases,
+/// like quad meshes, are returned too: callers decide).
+pub fn shared_files() -> Vec<PathBuf> {
+    let Some(dir) = shared_data() else {
+        eprintln!("../shared/data is absent: skipping real-data checks");
+        return Vec::new();
+    };
+    let mut files = Vec::new();
+    for sub in std::fs::read_dir(&dir).unwrap().flatten() {
+        if sub.path().is_dir() {
+            for f in std::fs::read_dir(sub.path()).unwrap().flatten() {
+                files.push(f.path());
+            }
+        }
+    }
+    files.sort();
+    files
+}
