@@ -22,6 +22,9 @@ fi
 echo "== cargo test"
 cargo test --profile ci --all-targets
 
+echo "== fuzz smoke (differential: readers, every structure vs the oracle)"
+scripts/fuzz-smoke.sh 10
+
 echo "== CLI smoke"
 cargo build --profile ci --bin topoplex
 cli=target/ci/topoplex
