@@ -136,3 +136,25 @@ fn real_data_every_structure_agrees_with_the_ig() {
         }
     }
 }
+
+/// Worst cases for stars: a vertex in 10^5 triangles, an edge in 10^4 triangles, one
+/// 15-simplex. Every structure that accepts them builds and answers with the exact counts (a
+/// quadratic step would not finish within the test run).
+#[test]
+fn worst_case_stars_build_and_answer() {
+    let fan: Vec<Vec<u32>> = (1..=100_000u32).map(|i| vec![0, i, i + 1]).collect();
+    let book: Vec<Vec<u32>> = (2..10_002u32).map(|i| vec![0, 1, i]).collect();
+    let top: Vec<u32> = (0..16).collect();
+    let cases: Vec<(&str, Complex, Vec<u32>, usize, usize)> = vec![
+        ("vertex in 10^5 triangles", common::complex_of(100_002, &fan), vec![0], 2, 100_000),
+        ("edge in 10^4 triangles", common::complex_of(10_002, &book), vec![0, 1], 2, 10_000),
+        ("one 15-simplex", common::complex_of(16, &[top]), vec![3, 9], 8, 3432),
+    ];
+    let mut out = Vec::new();
+    for (what, c, sigma, q, expected) in cases {
+        for s in buildable(&c, what) {
+            s.relation(&sigma, q, &mut out).unwrap();
+            assert_eq!(out.len() / (q + 1), expected, "{what}: {}", s.kind());
+        }
+    }
+}
