@@ -146,9 +146,27 @@ fn worst_case_stars_build_and_answer() {
     let book: Vec<Vec<u32>> = (2..10_002u32).map(|i| vec![0, 1, i]).collect();
     let top: Vec<u32> = (0..16).collect();
     let cases: Vec<(&str, Complex, Vec<u32>, usize, usize)> = vec![
-        ("vertex in 10^5 triangles", common::complex_of(100_002, &fan), vec![0], 2, 100_000),
-        ("edge in 10^4 triangles", common::complex_of(10_002, &book), vec![0, 1], 2, 10_000),
-        ("one 15-simplex", common::complex_of(16, &[top]), vec![3, 9], 8, 3432),
+        (
+            "vertex in 10^5 triangles",
+            common::complex_of(100_002, &fan),
+            vec![0],
+            2,
+            100_000,
+        ),
+        (
+            "edge in 10^4 triangles",
+            common::complex_of(10_002, &book),
+            vec![0, 1],
+            2,
+            10_000,
+        ),
+        (
+            "one 15-simplex",
+            common::complex_of(16, &[top]),
+            vec![3, 9],
+            8,
+            3432,
+        ),
     ];
     let mut out = Vec::new();
     for (what, c, sigma, q, expected) in cases {
