@@ -159,7 +159,11 @@ impl TriTopo for DirectedEdge {
 
     fn star_corners(&self, v: u32, out: &mut Vec<u32>) {
         let m = 3 * self.n_tris;
-        let reps = self.vertex_directed_edges(v).iter().copied().filter(|&x| x < m);
+        let reps = self
+            .vertex_directed_edges(v)
+            .iter()
+            .copied()
+            .filter(|&x| x < m);
         radial::walk_star(self, v, reps, out);
     }
 
@@ -272,22 +276,27 @@ impl Topology for DirectedEdge {
                 return Err(format!("directed edge {x} refers outside the array"));
             }
             if self.de_prev[next as usize] != x {
-                return Err(format!("directed edge {x}: next and previous are not inverse"));
+                return Err(format!(
+                    "directed edge {x}: next and previous are not inverse"
+                ));
             }
             if self.de_end[i] != self.de_start[next as usize] || self.de_start[i] >= self.n {
-                return Err(format!("directed edge {x} does not end where its next starts"));
+                return Err(format!(
+                    "directed edge {x} does not end where its next starts"
+                ));
             }
             let (a, b) = self.ends(x);
             let (c, e) = self.ends(rad);
             if (a.min(b), a.max(b)) != (c.min(e), c.max(e)) || a == b {
-                return Err(format!("directed edge {x}: radial neighbour on another edge"));
+                return Err(format!(
+                    "directed edge {x}: radial neighbour on another edge"
+                ));
             }
             if x < m {
                 if next != x - x % 3 + (x + 1) % 3 || rad >= m {
                     return Err(format!("directed edge {x} leaves triangle {}", x / 3));
                 }
-            } else if next != rad || self.de_next[next as usize] != x || (x - m) % 2 == 1 && a < b
-            {
+            } else if next != rad || self.de_next[next as usize] != x || (x - m) % 2 == 1 && a < b {
                 return Err(format!("wire directed edge {x} is not in a loop of two"));
             }
         }
@@ -310,7 +319,9 @@ impl Topology for DirectedEdge {
                 if x >= m {
                     wires_listed += 1;
                     if self.de_start[x as usize] != v {
-                        return Err(format!("vertex {v} lists wire directed edge {x} of another"));
+                        return Err(format!(
+                            "vertex {v} lists wire directed edge {x} of another"
+                        ));
                     }
                 }
             }

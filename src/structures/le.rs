@@ -96,7 +96,9 @@ impl LoopEdgeUse {
             }
         }
         let m = 3 * n2;
-        let eu_start: Vec<u32> = (0..m).map(|s| row3(tris, s / 3)[(s % 3) as usize]).collect();
+        let eu_start: Vec<u32> = (0..m)
+            .map(|s| row3(tris, s / 3)[(s % 3) as usize])
+            .collect();
         let (off, list) = by_start(parts.n, &eu_start);
         let mut eu_vnext = vec![NONE; m as usize];
         let mut vertex_eu = vec![NONE; parts.n as usize];
@@ -268,13 +270,21 @@ impl Topology for LoopEdgeUse {
         }
         for u in 0..m as u32 {
             let i = u as usize;
-            let (f, fnext, vnext, rnext) =
-                (self.eu_face[i], self.eu_fnext[i], self.eu_vnext[i], self.eu_rnext[i]);
+            let (f, fnext, vnext, rnext) = (
+                self.eu_face[i],
+                self.eu_fnext[i],
+                self.eu_vnext[i],
+                self.eu_rnext[i],
+            );
             if [fnext, vnext, rnext].iter().any(|&x| x as usize >= m) {
                 return Err(format!("edge-use {u} refers outside the array"));
             }
             if f != u / 3 || fnext != 3 * f + (u + 1) % 3 {
-                return Err(format!("edge-use {u} is not slot {} of face {}", u % 3, u / 3));
+                return Err(format!(
+                    "edge-use {u} is not slot {} of face {}",
+                    u % 3,
+                    u / 3
+                ));
             }
             if self.start(vnext) != self.start(u) {
                 return Err(format!("edge-use {u}: vertex ring reaches another vertex"));
@@ -301,7 +311,9 @@ impl Topology for LoopEdgeUse {
         for v in 0..self.n {
             let u = self.vertex_eu[v as usize];
             if u as usize >= m || self.start(u) != v {
-                return Err(format!("vertex {v} refers to an edge-use starting elsewhere"));
+                return Err(format!(
+                    "vertex {v} refers to an edge-use starting elsewhere"
+                ));
             }
             let mut x = u;
             loop {

@@ -94,7 +94,8 @@ impl PartialEntities {
         }
         for s in 0..3 * n2 {
             let t = s / 3;
-            pe.pe_edge.push(tri_edge_id[rad.slot_edge[s as usize] as usize]);
+            pe.pe_edge
+                .push(tri_edge_id[rad.slot_edge[s as usize] as usize]);
             pe.pe_face.push(t);
             pe.pe_fprev.push(3 * t + (s + 2) % 3);
             pe.pe_fnext.push(3 * t + (s + 1) % 3);
@@ -321,14 +322,19 @@ impl Topology for PartialEntities {
                 self.pe_rnext[i],
                 self.pe_rprev[i],
             );
-            if [fnext, fprev, rnext, rprev].iter().any(|&x| x as usize >= pc) {
+            if [fnext, fprev, rnext, rprev]
+                .iter()
+                .any(|&x| x as usize >= pc)
+            {
                 return Err(format!("partial-edge {p} refers outside the array"));
             }
             if self.pe_fprev[fnext as usize] != p || self.pe_rprev[rnext as usize] != p {
                 return Err(format!("partial-edge {p}: next/previous are not inverse"));
             }
             if self.pe_edge[rnext as usize] != self.pe_edge[i] {
-                return Err(format!("partial-edge {p}: radial neighbour on another edge"));
+                return Err(format!(
+                    "partial-edge {p}: radial neighbour on another edge"
+                ));
             }
             let face = self.pe_face[i];
             if face != self.pe_face[fnext as usize] {
@@ -344,16 +350,24 @@ impl Topology for PartialEntities {
                 return Err(format!("partial-edge {p}: ends [{a} {b}] are not its edge"));
             }
             if face == NONE {
-                if (p as usize) < 3 * n2 as usize || fnext != rnext || self.pe_fnext[fnext as usize] != p {
+                if (p as usize) < 3 * n2 as usize
+                    || fnext != rnext
+                    || self.pe_fnext[fnext as usize] != p
+                {
                     return Err(format!("wire partial-edge {p} is not in a loop of two"));
                 }
             } else if face != p / 3 || fnext != 3 * face + (p + 1) % 3 {
-                return Err(format!("partial-edge {p} is not slot {} of face {face}", p % 3));
+                return Err(format!(
+                    "partial-edge {p} is not slot {} of face {face}",
+                    p % 3
+                ));
             }
         }
         for (t, &p) in self.face_pe.iter().enumerate() {
             if self.pe_face.get(p as usize) != Some(&(t as u32)) {
-                return Err(format!("face {t} refers to partial-edge {p} of another face"));
+                return Err(format!(
+                    "face {t} refers to partial-edge {p} of another face"
+                ));
             }
         }
         for e in 0..self.edge_pe.len() as u32 {
@@ -373,7 +387,9 @@ impl Topology for PartialEntities {
                 .iter()
                 .find(|&&p| self.start(p) != v)
             {
-                return Err(format!("vertex {v} lists partial-edge {p}, which starts elsewhere"));
+                return Err(format!(
+                    "vertex {v} lists partial-edge {p}, which starts elsewhere"
+                ));
             }
         }
         radial::validate_common(self, self.n)

@@ -143,10 +143,8 @@ pub(crate) fn radial(tris: &SimplexTable, coords: Option<&Coords>) -> Radial {
             h += 1;
         }
         let group = &mut order[g..h];
-        if group.len() >= 3 {
-            if let Some(c) = coords {
-                sort_by_angle(group, a, b, c, |s| key(s).2);
-            }
+        if let (3.., Some(c)) = (group.len(), coords) {
+            sort_by_angle(group, a, b, c, |s| key(s).2);
         }
         let e = r.edges.len() as u32;
         r.edges.push([a, b]);
@@ -250,7 +248,11 @@ fn find_root(parent: &mut [u32], mut x: u32) -> u32 {
 /// Corner (slot starting at `v`) of `v` in triangle `t` with vertices `tri`.
 #[inline]
 pub(crate) fn corner(t: u32, tri: [u32; 3], v: u32) -> u32 {
-    3 * t + tri.iter().position(|&x| x == v).expect("vertex of the triangle") as u32
+    3 * t
+        + tri
+            .iter()
+            .position(|&x| x == v)
+            .expect("vertex of the triangle") as u32
 }
 
 /// For each corner, the smallest corner of its star component (triangles at the corner's vertex
@@ -668,7 +670,10 @@ pub(crate) fn validate_common<T: TriTopo + ?Sized>(topo: &T, n: u32) -> Result<(
     for t in 0..n2 {
         let tv = topo.tri(t);
         if !(tv[0] < tv[1] && tv[1] < tv[2]) || tv[2] >= n {
-            return Err(format!("triangle {t} {} is not ascending in range", show(&tv)));
+            return Err(format!(
+                "triangle {t} {} is not ascending in range",
+                show(&tv)
+            ));
         }
         if t > 0 && topo.tri(t - 1) >= tv {
             return Err(format!("triangles not in lexicographic order at {t}"));
@@ -755,7 +760,8 @@ pub(crate) fn merge_edges(tri_edges: &[[u32; 2]], wires: &SimplexTable) -> (Vec<
     let (mut i, mut j) = (0, 0);
     let mut id = 0u32;
     while i < tri_edges.len() || j < wires.len() {
-        let take_tri = j == wires.len() || (i < tri_edges.len() && tri_edges[i][..] < *wires.get(j));
+        let take_tri =
+            j == wires.len() || (i < tri_edges.len() && tri_edges[i][..] < *wires.get(j));
         if take_tri {
             te.push(id);
             i += 1;

@@ -38,8 +38,8 @@
 //!
 //! Queries keep no state in the structure: the walks' marks are per-query hash sets.
 
-use super::radial::{self, EdgeAt, EdgeLocator, NONE, TriTopo, row3, slot_ends};
 use super::BuildError;
+use super::radial::{self, EdgeAt, EdgeLocator, NONE, TriTopo, row3, slot_ends};
 use crate::complex::{Complex, SimplexTable};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
