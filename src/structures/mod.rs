@@ -3,7 +3,9 @@
 use crate::complex::Complex;
 use crate::relation::{StructureKind, Topology};
 
+pub mod ia;
 pub mod ig;
+pub mod nmia;
 
 /// Why a structure could not be built for a complex.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -21,6 +23,8 @@ pub enum BuildError {
 pub fn build(kind: StructureKind, complex: &Complex) -> Result<Box<dyn Topology>, BuildError> {
     match kind {
         StructureKind::Ig => Ok(Box::new(ig::IncidenceGraph::build(complex)?)),
+        StructureKind::Ia => Ok(Box::new(ia::IndexedAdjacency::build(complex)?)),
+
         _ => Err(BuildError::NotImplemented { kind }),
     }
 }
