@@ -194,10 +194,7 @@ fn refusals_name_the_first_offending_simplex() {
     let r = refusal(&fixtures::pinched_pie());
     assert!(r.contains("[0 1] is a face of more than two"), "{r}");
     // Through the shared dispatch too.
-    assert!(matches!(
-        topoplex::build(topoplex::StructureKind::Ia, &fixtures::bowtie()),
-        Ok(_)
-    ));
+    assert!(topoplex::build(topoplex::StructureKind::Ia, &fixtures::bowtie()).is_ok());
 }
 
 #[test]

@@ -24,7 +24,7 @@ pub fn build(kind: StructureKind, complex: &Complex) -> Result<Box<dyn Topology>
     match kind {
         StructureKind::Ig => Ok(Box::new(ig::IncidenceGraph::build(complex)?)),
         StructureKind::Ia => Ok(Box::new(ia::IndexedAdjacency::build(complex)?)),
-
+        StructureKind::Nmia => Ok(Box::new(nmia::NonManifoldIa::build(complex)?)),
         _ => Err(BuildError::NotImplemented { kind }),
     }
 }
