@@ -248,7 +248,11 @@ fn random_pseudo_manifold(d: usize, seed: u64) -> (u32, Vec<Vec<u32>>) {
     let mut all: Vec<Vec<u32>> = Vec::new();
     let mut n = 0u32;
     let comps = 1 + rng.below(3);
-    let budget = if d >= 5 { 6 } else { 12 };
+    let budget = match d {
+        5.. => 3,
+        4 => 6,
+        _ => 12,
+    };
     let mut firsts = Vec::new();
     for _ in 0..comps {
         let base = n;
@@ -324,7 +328,7 @@ fn expected_refusal(c: &Complex) -> Option<Vec<u32>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
     #[test]
     fn random_pseudo_manifolds_match_the_oracle(d in 1usize..=6, seed in any::<u64>()) {
         let (n, tops) = random_pseudo_manifold(d, seed);
@@ -359,25 +363,22 @@ fn real_data_matches_the_incidence_graph() {
         let Ok(c) = Complex::from_path(&path) else {
             continue;
         };
+        // Build, validation and comparison walk every star in debug builds: keep to the
+        // files of moderate size (the big ones are for benchmarks).
+        let tops = c.tops(c.dimension()).len();
+        if tops > 15_000 {
+            continue;
+        }
         let Ok(s) = IndexedAdjacency::build(&c) else {
             continue;
         };
         s.validate().unwrap();
-        check_storage_fast(&s, &c);
-        // The full comparison is quadratic in nothing, but walks stars per query: keep it to the
-        // smaller files.
-        if c.tops(c.dimension()).len() > 12_000 {
-            continue;
+        let d = c.dimension();
+        assert_eq!(s.plain_ia_integers(), (2 * (d + 1) * tops) as u64);
+        assert!(s.storage().integers >= s.plain_ia_integers() + c.vertex_count() as u64);
+        if tops <= 6_000 {
+            let g = IncidenceGraph::build(&c).unwrap();
+            compare_structures(&s, &g).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         }
-        let g = IncidenceGraph::build(&c).unwrap();
-        compare_structures(&s, &g).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     }
-}
-
-/// Storage on big inputs: the plain part by formula, references at least one per vertex.
-fn check_storage_fast(s: &IndexedAdjacency, c: &Complex) {
-    let d = c.dimension();
-    let plain = (2 * (d + 1) * c.tops(d).len()) as u64;
-    assert_eq!(s.plain_ia_integers(), plain);
-    assert!(s.storage().integers >= plain + c.vertex_count() as u64);
 }

@@ -885,11 +885,11 @@ impl Topology for NonManifoldIa {
                 ));
             }
         }
-        if self.rings(None).0.len() != self.link_keys.len() {
+        let clusters = self.rings(None).0.len();
+        if clusters != self.link_keys.len() {
             return Err(format!(
-                "{} cluster links for {} edge-based clusters at non-manifold edges",
-                self.link_keys.len(),
-                self.rings(None).0.len()
+                "{} cluster links for {clusters} edge-based clusters at non-manifold edges",
+                self.link_keys.len()
             ));
         }
         let mut reached = 0usize;
