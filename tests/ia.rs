@@ -366,7 +366,7 @@ fn real_data_matches_the_incidence_graph() {
         // Build, validation and comparison walk every star in debug builds: keep to the
         // files of moderate size (the big ones are for benchmarks).
         let tops = c.tops(c.dimension()).len();
-        if tops > 15_000 {
+        if tops > 11_000 {
             continue;
         }
         let Ok(s) = IndexedAdjacency::build(&c) else {
@@ -376,7 +376,7 @@ fn real_data_matches_the_incidence_graph() {
         let d = c.dimension();
         assert_eq!(s.plain_ia_integers(), (2 * (d + 1) * tops) as u64);
         assert!(s.storage().integers >= s.plain_ia_integers() + c.vertex_count() as u64);
-        if tops <= 6_000 {
+        if tops <= 4_000 {
             let g = IncidenceGraph::build(&c).unwrap();
             compare_structures(&s, &g).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         }
