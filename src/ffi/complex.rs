@@ -40,7 +40,7 @@ fn boxed(complex: Complex, out: &mut *mut TpxComplex) {
 /// On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
 /// Errors: NULL_ARGUMENT, INVALID_ARGUMENT (offsets decreasing, `coord_dim == 0` with coords),
 /// INVALID_COMPLEX (message names the offending simplex by its input position), TOO_LARGE.
-/// Cost: O(Σ|simplex| log) for sorting and absorbing faces; memory of the top simplices.
+/// Cost: O(n log n in the total input size n) for sorting and absorbing faces; memory of the top simplices.
 ///
 /// # Safety
 /// Non-NULL pointers must point to arrays of the stated lengths.

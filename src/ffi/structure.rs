@@ -237,11 +237,11 @@ pub unsafe extern "C" fn tpx_structure_simplices(
     })
 }
 
-/// R_{p,q}(σ) for σ = `simplex[0 .. simplex_len]` (vertex ids in any order, p = simplex_len-1):
+/// R_{p,q}(sigma) for sigma = `simplex[0 .. simplex_len]` (vertex ids in any order, p = simplex_len-1):
 /// rows of q+1 ascending vertex ids, in ascending lexicographic order, copied into `buf`;
 /// `*out_len` receives the number of uint32_t written (a multiple of q+1, possibly 0).
 ///
-/// R_{p,q} is the q-faces of σ for q < p, the q-simplices having σ as a face for q > p, the
+/// R_{p,q} is the q-faces of sigma for q < p, the q-simplices having sigma as a face for q > p, the
 /// other p-simplices sharing a (p-1)-face for q == p > 0, and the vertices sharing an edge for
 /// q == p == 0.
 ///
