@@ -5,8 +5,13 @@
 //! - [`io`] reads files into raw simplex lists; [`complex`] normalises them into a [`Complex`].
 //! - [`structures`] builds any of the family (IG, SIG, IA, IQM, NMIA, TS, PE, LE, DE).
 //! - [`oracle`] answers every relation by brute force, for tests.
+//! - [`ffi`] is the C ABI (`include/topoplex.h`), the only module allowed `unsafe` code.
+
+#![deny(unsafe_code)]
 
 pub mod complex;
+#[allow(unsafe_code)]
+pub mod ffi;
 pub mod fixtures;
 pub mod io;
 pub mod oracle;

@@ -1,0 +1,389 @@
+/*
+ * Topoplex C++17 wrapper: header-only, over the C ABI in topoplex.h.
+ *
+ *   topoplex::Complex c = topoplex::Complex::from_file("mesh.off");
+ *   topoplex::Structure s(c, topoplex::Kind::IG);
+ *   for (auto tri : s.relation({2, 3}, 2)) { tri[0]; tri.size(); ... }   // rows of q+1 ids
+ *   topoplex::RelationTable t = s.relation_table(0, 1);
+ *   for (auto edges_of_v : t) for (auto edge : edges_of_v) ...
+ *
+ * Every failing call throws topoplex::Error (status + the library's message). Handles are
+ * move-only RAII owners. A const Structure may be queried from many threads at once.
+ */
+#ifndef TOPOPLEX_HPP
+#define TOPOPLEX_HPP
+
+#include "topoplex.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <initializer_list>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace topoplex {
+
+/* The structure kinds (values of TPX_KIND_*). */
+enum class Kind : std::uint32_t {
+  IG = TPX_KIND_IG,
+  SIG = TPX_KIND_SIG,
+  IA = TPX_KIND_IA,
+  IQM = TPX_KIND_IQM,
+  NMIA = TPX_KIND_NMIA,
+  TS = TPX_KIND_TS,
+  PE = TPX_KIND_PE,
+  LE = TPX_KIND_LE,
+  DE = TPX_KIND_DE,
+};
+
+/* A failed call: the TpxStatus and tpx_last_error_message() at the time of failure. */
+class Error : public std::runtime_error {
+ public:
+  Error(TpxStatus status, const std::string &message)
+      : std::runtime_error(message), status_(status) {}
+  TpxStatus status() const noexcept { return status_; }
+
+ private:
+  TpxStatus status_;
+};
+
+namespace detail {
+inline void check(TpxStatus status) {
+  if (status != TPX_STATUS_OK) {
+    throw Error(status, tpx_last_error_message());
+  }
+}
+}  // namespace detail
+
+/* A non-owning view of one simplex: its ascending vertex ids. */
+class SimplexView {
+ public:
+  SimplexView() = default;
+  SimplexView(const std::uint32_t *ids, std::size_t size) : ids_(ids), size_(size) {}
+  const std::uint32_t *begin() const noexcept { return ids_; }
+  const std::uint32_t *end() const noexcept { return ids_ + size_; }
+  const std::uint32_t *data() const noexcept { return ids_; }
+  std::size_t size() const noexcept { return size_; }
+  std::uint32_t operator[](std::size_t i) const noexcept { return ids_[i]; }
+  std::vector<std::uint32_t> to_vector() const { return {begin(), end()}; }
+
+ private:
+  const std::uint32_t *ids_ = nullptr;
+  std::size_t size_ = 0;
+};
+
+/* A non-owning view of consecutive rows of `arity` ids (a list of simplices). */
+class RowsView {
+ public:
+  class iterator {
+   public:
+    using iterator_category = std::forward_iterator_tag;
+    using value_type = SimplexView;
+    using difference_type = std::ptrdiff_t;
+    using pointer = void;
+    using reference = SimplexView;
+    iterator() = default;
+    iterator(const std::uint32_t *p, std::size_t arity) : p_(p), arity_(arity) {}
+    SimplexView operator*() const noexcept { return SimplexView(p_, arity_); }
+    iterator &operator++() noexcept {
+      p_ += arity_;
+      return *this;
+    }
+    iterator operator++(int) noexcept {
+      iterator old = *this;
+      ++*this;
+      return old;
+    }
+    bool operator==(const iterator &o) const noexcept { return p_ == o.p_; }
+    bool operator!=(const iterator &o) const noexcept { return p_ != o.p_; }
+
+   private:
+    const std::uint32_t *p_ = nullptr;
+    std::size_t arity_ = 1;
+  };
+
+  RowsView() = default;
+  RowsView(const std::uint32_t *ids, std::size_t len, std::size_t arity)
+      : ids_(ids), len_(len), arity_(arity) {}
+  /* Number of simplices. */
+  std::size_t size() const noexcept { return arity_ == 0 ? 0 : len_ / arity_; }
+  bool empty() const noexcept { return len_ == 0; }
+  std::size_t arity() const noexcept { return arity_; }
+  SimplexView operator[](std::size_t i) const noexcept {
+    return SimplexView(ids_ + i * arity_, arity_);
+  }
+  iterator begin() const noexcept { return iterator(ids_, arity_); }
+  iterator end() const noexcept { return iterator(ids_ + len_, arity_); }
+  /* The ids of all rows, concatenated. */
+  const std::uint32_t *data() const noexcept { return ids_; }
+  std::size_t ids_size() const noexcept { return len_; }
+
+ private:
+  const std::uint32_t *ids_ = nullptr;
+  std::size_t len_ = 0;
+  std::size_t arity_ = 1;
+};
+
+/* An owned list of simplices (the answer of one query), viewed as rows. */
+class Rows {
+ public:
+  Rows() = default;
+  Rows(std::vector<std::uint32_t> ids, std::size_t arity) : ids_(std::move(ids)), arity_(arity) {}
+  RowsView view() const noexcept { return RowsView(ids_.data(), ids_.size(), arity_); }
+  std::size_t size() const noexcept { return view().size(); }
+  bool empty() const noexcept { return ids_.empty(); }
+  std::size_t arity() const noexcept { return arity_; }
+  SimplexView operator[](std::size_t i) const noexcept { return view()[i]; }
+  RowsView::iterator begin() const noexcept { return view().begin(); }
+  RowsView::iterator end() const noexcept { return view().end(); }
+  const std::vector<std::uint32_t> &ids() const noexcept { return ids_; }
+
+ private:
+  std::vector<std::uint32_t> ids_;
+  std::size_t arity_ = 1;
+};
+
+/* A normalised simplicial complex (owns a TpxComplex). */
+class Complex {
+ public:
+  /* Simplices as lists of vertex ids in any order over the vertices 0 .. n_vertices-1. */
+  static Complex from_simplices(std::uint32_t n_vertices,
+                                const std::vector<std::vector<std::uint32_t>> &simplices) {
+    std::vector<std::uint32_t> ids;
+    std::vector<std::size_t> offsets{0};
+    for (const auto &s : simplices) {
+      ids.insert(ids.end(), s.begin(), s.end());
+      offsets.push_back(ids.size());
+    }
+    return from_arrays(n_vertices, ids, offsets);
+  }
+
+  /* Simplex i is ids[offsets[i] .. offsets[i+1]]; coords empty or n_vertices * coord_dim. */
+  static Complex from_arrays(std::uint32_t n_vertices, const std::vector<std::uint32_t> &ids,
+                             const std::vector<std::size_t> &offsets,
+                             const std::vector<double> &coords = {},
+                             std::size_t coord_dim = 0) {
+    TpxComplex *c = nullptr;
+    const std::size_t n = offsets.empty() ? 0 : offsets.size() - 1;
+    detail::check(tpx_complex_from_arrays(n_vertices, ids.data(), offsets.data(), n,
+                                          coords.empty() ? nullptr : coords.data(), coord_dim,
+                                          &c));
+    return Complex(c);
+  }
+
+  /* Reads .off, .obj, .mesh or .simplices. */
+  static Complex from_file(const std::string &path) {
+    TpxComplex *c = nullptr;
+    detail::check(tpx_complex_from_file(path.c_str(), &c));
+    return Complex(c);
+  }
+
+  Complex(Complex &&o) noexcept : c_(std::exchange(o.c_, nullptr)) {}
+  Complex &operator=(Complex &&o) noexcept {
+    if (this != &o) {
+      tpx_complex_free(c_);
+      c_ = std::exchange(o.c_, nullptr);
+    }
+    return *this;
+  }
+  Complex(const Complex &) = delete;
+  Complex &operator=(const Complex &) = delete;
+  ~Complex() { tpx_complex_free(c_); }
+
+  std::uint32_t dimension() const {
+    std::uint32_t d = 0;
+    detail::check(tpx_complex_dimension(c_, &d));
+    return d;
+  }
+  std::uint32_t vertex_count() const {
+    std::uint32_t n = 0;
+    detail::check(tpx_complex_vertex_count(c_, &n));
+    return n;
+  }
+  std::size_t top_count(std::uint32_t p) const {
+    std::size_t n = 0;
+    detail::check(tpx_complex_top_count(c_, p, &n));
+    return n;
+  }
+  const TpxComplex *get() const noexcept { return c_; }
+
+ private:
+  explicit Complex(TpxComplex *c) noexcept : c_(c) {}
+  TpxComplex *c_ = nullptr;
+};
+
+/* R_{p,q} of every p-simplex (owns a TpxRelationTable): row i, a RowsView of q+1 ids, belongs
+   to the i-th p-simplex of Structure::simplices(p). */
+class RelationTable {
+ public:
+  class iterator {
+   public:
+    using iterator_category = std::forward_iterator_tag;
+    using value_type = RowsView;
+    using difference_type = std::ptrdiff_t;
+    using pointer = void;
+    using reference = RowsView;
+    iterator() = default;
+    iterator(const RelationTable *t, std::size_t i) : t_(t), i_(i) {}
+    RowsView operator*() const noexcept { return (*t_)[i_]; }
+    iterator &operator++() noexcept {
+      ++i_;
+      return *this;
+    }
+    iterator operator++(int) noexcept {
+      iterator old = *this;
+      ++i_;
+      return old;
+    }
+    bool operator==(const iterator &o) const noexcept { return i_ == o.i_; }
+    bool operator!=(const iterator &o) const noexcept { return i_ != o.i_; }
+
+   private:
+    const RelationTable *t_ = nullptr;
+    std::size_t i_ = 0;
+  };
+
+  RelationTable(RelationTable &&o) noexcept
+      : t_(std::exchange(o.t_, nullptr)),
+        offsets_(o.offsets_),
+        n_offsets_(o.n_offsets_),
+        ids_(o.ids_),
+        n_ids_(o.n_ids_),
+        arity_(o.arity_) {}
+  RelationTable &operator=(RelationTable &&o) noexcept {
+    if (this != &o) {
+      tpx_relation_table_free(t_);
+      t_ = std::exchange(o.t_, nullptr);
+      offsets_ = o.offsets_;
+      n_offsets_ = o.n_offsets_;
+      ids_ = o.ids_;
+      n_ids_ = o.n_ids_;
+      arity_ = o.arity_;
+    }
+    return *this;
+  }
+  RelationTable(const RelationTable &) = delete;
+  RelationTable &operator=(const RelationTable &) = delete;
+  ~RelationTable() { tpx_relation_table_free(t_); }
+
+  /* Number of rows (n_p). */
+  std::size_t size() const noexcept { return n_offsets_ == 0 ? 0 : n_offsets_ - 1; }
+  std::size_t arity() const noexcept { return arity_; }
+  RowsView operator[](std::size_t i) const noexcept {
+    return RowsView(ids_ + offsets_[i], offsets_[i + 1] - offsets_[i], arity_);
+  }
+  iterator begin() const noexcept { return iterator(this, 0); }
+  iterator end() const noexcept { return iterator(this, size()); }
+  /* The CSR arrays as the C ABI gives them. */
+  const std::size_t *offsets() const noexcept { return offsets_; }
+  std::size_t offsets_size() const noexcept { return n_offsets_; }
+  const std::uint32_t *ids() const noexcept { return ids_; }
+  std::size_t ids_size() const noexcept { return n_ids_; }
+
+ private:
+  friend class Structure;
+  RelationTable(TpxRelationTable *t, std::size_t arity) noexcept : t_(t), arity_(arity) {
+    offsets_ = tpx_relation_table_offsets(t_, &n_offsets_);
+    ids_ = tpx_relation_table_ids(t_, &n_ids_);
+  }
+  TpxRelationTable *t_ = nullptr;
+  const std::size_t *offsets_ = nullptr;
+  std::size_t n_offsets_ = 0;
+  const std::uint32_t *ids_ = nullptr;
+  std::size_t n_ids_ = 0;
+  std::size_t arity_ = 1;
+};
+
+/* A built structure (owns a TpxStructure). Independent of the Complex once built. */
+class Structure {
+ public:
+  Structure(const Complex &c, Kind kind) {
+    detail::check(tpx_structure_build(c.get(), static_cast<std::uint32_t>(kind), &s_));
+  }
+  Structure(Structure &&o) noexcept : s_(std::exchange(o.s_, nullptr)) {}
+  Structure &operator=(Structure &&o) noexcept {
+    if (this != &o) {
+      tpx_structure_free(s_);
+      s_ = std::exchange(o.s_, nullptr);
+    }
+    return *this;
+  }
+  Structure(const Structure &) = delete;
+  Structure &operator=(const Structure &) = delete;
+  ~Structure() { tpx_structure_free(s_); }
+
+  Kind kind() const {
+    std::uint32_t k = 0;
+    detail::check(tpx_structure_kind(s_, &k));
+    return static_cast<Kind>(k);
+  }
+  std::uint32_t dimension() const {
+    std::uint32_t d = 0;
+    detail::check(tpx_structure_dimension(s_, &d));
+    return d;
+  }
+  std::size_t count(std::uint32_t p) const {
+    std::size_t n = 0;
+    detail::check(tpx_structure_count(s_, p, &n));
+    return n;
+  }
+  std::size_t top_count(std::uint32_t p) const {
+    std::size_t n = 0;
+    detail::check(tpx_structure_top_count(s_, p, &n));
+    return n;
+  }
+  TpxStorage storage() const {
+    TpxStorage st{0, 0, 0};
+    detail::check(tpx_structure_storage(s_, &st));
+    return st;
+  }
+
+  /* Every p-simplex in ascending lexicographic order. */
+  Rows simplices(std::uint32_t p) const {
+    std::vector<std::uint32_t> buf((p + 1) * count(p));
+    std::size_t len = 0;
+    detail::check(tpx_structure_simplices(s_, p, buf.data(), buf.size(), &len));
+    buf.resize(len);
+    return Rows(std::move(buf), p + 1);
+  }
+
+  /* R_{p,q}(simplex), p = simplex.size() - 1, in ascending lexicographic order. */
+  Rows relation(const std::vector<std::uint32_t> &simplex, std::uint32_t q) const {
+    std::vector<std::uint32_t> buf(16 * (q + 1));
+    std::size_t len = 0;
+    TpxStatus st = tpx_relation(s_, simplex.data(), simplex.size(), q, buf.data(), buf.size(),
+                                &len);
+    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+      // The structure is immutable, so the second call needs exactly `len`.
+      buf.resize(len);
+      st = tpx_relation(s_, simplex.data(), simplex.size(), q, buf.data(), buf.size(), &len);
+    }
+    detail::check(st);
+    buf.resize(len);
+    return Rows(std::move(buf), q + 1);
+  }
+  Rows relation(std::initializer_list<std::uint32_t> simplex, std::uint32_t q) const {
+    return relation(std::vector<std::uint32_t>(simplex), q);
+  }
+
+  /* R_{p,q} of every p-simplex at once. */
+  RelationTable relation_table(std::uint32_t p, std::uint32_t q) const {
+    TpxRelationTable *t = nullptr;
+    detail::check(tpx_relation_table(s_, p, q, &t));
+    return RelationTable(t, q + 1);
+  }
+
+  const TpxStructure *get() const noexcept { return s_; }
+
+ private:
+  TpxStructure *s_ = nullptr;
+};
+
+inline std::string version() { return tpx_version(); }
+
+}  // namespace topoplex
+
+#endif /* TOPOPLEX_HPP */

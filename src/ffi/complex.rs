@@ -1,0 +1,205 @@
+//! `TpxComplex`: a normalised complex (its top simplices), input to every structure.
+
+use std::ffi::{CStr, c_char};
+use std::path::Path;
+
+use super::{Failure, TpxStatus, guard, guard_value, handle, in_slice, out_ptr};
+use crate::complex::{Complex, ComplexError};
+use crate::io::{Coords, ReadErrorKind};
+
+/// A normalised simplicial complex (opaque). Create with `tpx_complex_from_arrays` or
+/// `tpx_complex_from_file`, release with `tpx_complex_free`. Immutable once built.
+pub struct TpxComplex {
+    pub(crate) complex: Complex,
+}
+
+pub(crate) fn complex_failure(e: ComplexError) -> Failure {
+    let status = match &e {
+        ComplexError::Read(r) => match r.kind {
+            ReadErrorKind::Io(_) => TpxStatus::IoError,
+            _ => TpxStatus::ParseError,
+        },
+        _ => TpxStatus::InvalidComplex,
+    };
+    Failure::new(status, e.to_string())
+}
+
+fn boxed(complex: Complex, out: &mut *mut TpxComplex) {
+    *out = Box::into_raw(Box::new(TpxComplex { complex }));
+}
+
+/// Builds a complex from simplices given as arrays: simplex `i` is
+/// `ids[offsets[i] .. offsets[i+1]]` (vertex ids in any order), so `offsets` has
+/// `n_simplices + 1` non-decreasing entries. The complex is the closure of these simplices over
+/// the vertices `0 .. n_vertices` (unused ids are isolated vertices; duplicates and faces of
+/// other listed simplices are absorbed). `ids` and `offsets` may be NULL when `n_simplices == 0`.
+///
+/// `coords` may be NULL (no coordinates; `coord_dim` ignored); otherwise it holds
+/// `n_vertices * coord_dim` doubles, vertex-major, and is copied.
+///
+/// On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
+/// Errors: NULL_ARGUMENT, INVALID_ARGUMENT (offsets decreasing, `coord_dim == 0` with coords),
+/// INVALID_COMPLEX (message names the offending simplex by its input position), TOO_LARGE.
+/// Cost: O(n log n in the total input size n) for sorting and absorbing faces; memory of the top simplices.
+///
+/// # Safety
+/// Non-NULL pointers must point to arrays of the stated lengths.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_from_arrays(
+    n_vertices: u32,
+    ids: *const u32,
+    offsets: *const usize,
+    n_simplices: usize,
+    coords: *const f64,
+    coord_dim: usize,
+    out: *mut *mut TpxComplex,
+) -> TpxStatus {
+    guard(|| {
+        let out = out_ptr(out, "out")?;
+        let offsets: &[usize] = if n_simplices == 0 && offsets.is_null() {
+            &[0]
+        } else {
+            let n = n_simplices.checked_add(1).ok_or_else(|| {
+                Failure::new(TpxStatus::TooLarge, "n_simplices + 1 overflows size_t")
+            })?;
+            in_slice(offsets, n, "offsets")?
+        };
+        if let Some(i) = (1..offsets.len()).find(|&i| offsets[i] < offsets[i - 1]) {
+            return Err(Failure::new(
+                TpxStatus::InvalidArgument,
+                format!(
+                    "offsets decrease at simplex #{}: offsets[{}] = {} < offsets[{}] = {}",
+                    i - 1,
+                    i,
+                    offsets[i],
+                    i - 1,
+                    offsets[i - 1]
+                ),
+            ));
+        }
+        let ids = in_slice(ids, offsets[offsets.len() - 1], "ids")?;
+        let coords = if coords.is_null() {
+            None
+        } else {
+            if coord_dim == 0 {
+                return Err(Failure::new(
+                    TpxStatus::InvalidArgument,
+                    "coordinates given with coord_dim == 0",
+                ));
+            }
+            let len = (n_vertices as usize)
+                .checked_mul(coord_dim)
+                .ok_or_else(|| {
+                    Failure::new(
+                        TpxStatus::TooLarge,
+                        "n_vertices * coord_dim overflows size_t",
+                    )
+                })?;
+            Some(Coords {
+                dim: coord_dim,
+                data: in_slice(coords, len, "coords")?.to_vec(),
+            })
+        };
+        let complex =
+            Complex::from_arrays(n_vertices, ids, offsets, coords).map_err(complex_failure)?;
+        boxed(complex, out);
+        Ok(())
+    })
+}
+
+/// Reads a complex from a file, the format chosen by extension: `.off`, `.obj`, `.mesh`,
+/// `.simplices` (`path` is a NUL-terminated UTF-8 path).
+///
+/// On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
+/// Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8), IO_ERROR (cannot read),
+/// PARSE_ERROR (syntax or unknown extension; message `file:line: what`), INVALID_COMPLEX
+/// (message `file:line: simplex [..] ...`). Cost: linear in the file plus normalisation.
+///
+/// # Safety
+/// `path`, if non-NULL, must be a NUL-terminated string.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_from_file(
+    path: *const c_char,
+    out: *mut *mut TpxComplex,
+) -> TpxStatus {
+    guard(|| {
+        let out = out_ptr(out, "out")?;
+        if path.is_null() {
+            return Err(Failure::null("path"));
+        }
+        // SAFETY: non-NULL `path` is NUL-terminated (documented contract).
+        let path = unsafe { CStr::from_ptr(path) }.to_str().map_err(|e| {
+            Failure::new(
+                TpxStatus::InvalidArgument,
+                format!("path is not valid UTF-8: {e}"),
+            )
+        })?;
+        let complex = Complex::from_path(Path::new(path)).map_err(complex_failure)?;
+        boxed(complex, out);
+        Ok(())
+    })
+}
+
+/// Releases a complex. NULL is a no-op. Structures built from it stay valid (they own their
+/// data).
+///
+/// # Safety
+/// `complex` must be NULL or a live handle from this library, not used afterwards.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_free(complex: *mut TpxComplex) {
+    guard_value((), || {
+        if !complex.is_null() {
+            // SAFETY: the handle came from Box::into_raw in this module and is released once.
+            drop(unsafe { Box::from_raw(complex) });
+        }
+    })
+}
+
+/// Dimension d of the complex (highest dimension of a simplex) into `*out`. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid (a live handle; a writable `uint32_t`).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_dimension(c: *const TpxComplex, out: *mut u32) -> TpxStatus {
+    guard(|| {
+        let c = handle(c, "c")?;
+        let out = out_ptr(out, "out")?;
+        *out = c.complex.dimension() as u32;
+        Ok(())
+    })
+}
+
+/// Number of vertices n into `*out` (vertex ids are `0 .. n`). O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid (a live handle; a writable `uint32_t`).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_vertex_count(
+    c: *const TpxComplex,
+    out: *mut u32,
+) -> TpxStatus {
+    guard(|| {
+        let c = handle(c, "c")?;
+        let out = out_ptr(out, "out")?;
+        *out = c.complex.vertex_count();
+        Ok(())
+    })
+}
+
+/// Number of top p-simplices (not a face of another simplex) into `*out`; 0 for p > d. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid (a live handle; a writable `size_t`).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_top_count(
+    c: *const TpxComplex,
+    p: u32,
+    out: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let c = handle(c, "c")?;
+        let out = out_ptr(out, "out")?;
+        *out = c.complex.tops(p as usize).len();
+        Ok(())
+    })
+}

@@ -1,0 +1,251 @@
+//! The C ABI (`include/topoplex.h` is generated from this module by cbindgen; see
+//! `tests/header.rs`). This is the only module with `unsafe` code.
+//!
+//! # Conventions (every function)
+//! - Fallible functions return a [`TpxStatus`]; `TPX_STATUS_OK` is 0. Numbers are fixed forever:
+//!   a retired status keeps its number and no new status reuses it.
+//! - Every pointer argument is checked for NULL (`TPX_STATUS_NULL_ARGUMENT`).
+//! - Out-parameters are written only on success, except `*out_len` on
+//!   `TPX_STATUS_BUFFER_TOO_SMALL`, which then holds the needed number of `uint32_t`.
+//! - No Rust panic crosses the boundary: each body runs under `catch_unwind` and a panic becomes
+//!   `TPX_STATUS_PANIC` (so the crate must keep `panic = "unwind"`, checked below).
+//! - After each status-returning call, [`tpx_last_error_message`] describes its failure (or is
+//!   empty after success), naming the file, line and simplex where the Rust error does.
+//! - Handles are opaque; functions that only read take `const` pointers, and a `const
+//!   TpxStructure *` may be queried from many threads at once.
+//! - Every handle returned through `out` is owned by the caller and released by the matching
+//!   `tpx_*_free`, which accepts NULL.
+
+use std::cell::RefCell;
+use std::ffi::{CString, c_char};
+use std::panic::{AssertUnwindSafe, catch_unwind};
+
+mod complex;
+mod structure;
+#[cfg(test)]
+mod tests;
+
+pub use complex::*;
+pub use structure::*;
+
+// The panic boundary below relies on unwinding; with `panic = "abort"` a bug would kill the host.
+#[cfg(panic = "abort")]
+compile_error!("topoplex's C ABI requires panic = \"unwind\"");
+
+/// Result of a fallible `tpx_*` call. Values are part of the ABI and never reused.
+#[repr(u32)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TpxStatus {
+    /// Success.
+    Ok = 0,
+    /// A required pointer argument was NULL.
+    NullArgument = 1,
+    /// An argument is malformed: offsets not monotone, coordinate dimension 0, path not UTF-8.
+    InvalidArgument = 2,
+    /// The file cannot be read (missing, permissions).
+    IoError = 3,
+    /// The file is not valid in its format, or its extension is unknown (message: `file:line: what`).
+    ParseError = 4,
+    /// The simplices do not form a complex: repeated vertex, id out of range, dimension above
+    /// 15, empty simplex, no vertices.
+    InvalidComplex = 5,
+    /// The kind number is not one of `TPX_KIND_*`.
+    UnknownKind = 6,
+    /// The kind exists but is not implemented yet.
+    NotImplemented = 7,
+    /// The structure cannot encode this complex (the message names the first offending simplex).
+    UnsupportedComplex = 8,
+    /// The query simplex is not a simplex of the complex.
+    NotInComplex = 9,
+    /// The query simplex is empty, repeats a vertex, has an out-of-range vertex or more than 16
+    /// vertices.
+    InvalidSimplex = 10,
+    /// A dimension argument (p or q) is above the complex's dimension.
+    DimensionOutOfRange = 11,
+    /// The caller's buffer is too short; `*out_len` holds the needed number of `uint32_t`.
+    BufferTooSmall = 12,
+    /// A size does not fit the index types.
+    TooLarge = 13,
+    /// An internal bug was caught at the boundary; the message has the panic text.
+    Panic = 14,
+}
+
+/// Incidence Graph.
+pub const TPX_KIND_IG: u32 = 0;
+/// Simplified Incidence Graph.
+pub const TPX_KIND_SIG: u32 = 1;
+/// Indexed data structure with Adjacencies.
+pub const TPX_KIND_IA: u32 = 2;
+/// Initial Quasi-Manifold structure.
+pub const TPX_KIND_IQM: u32 = 3;
+/// Non-Manifold Indexed data structure with Adjacencies.
+pub const TPX_KIND_NMIA: u32 = 4;
+/// Triangle-Segment structure.
+pub const TPX_KIND_TS: u32 = 5;
+/// Partial Entities (Partial Edge) structure.
+pub const TPX_KIND_PE: u32 = 6;
+/// Loop Edge-use structure.
+pub const TPX_KIND_LE: u32 = 7;
+/// Directed Edge structure.
+pub const TPX_KIND_DE: u32 = 8;
+
+/// A failure on its way to C: the status and the message for `tpx_last_error_message`.
+pub(crate) struct Failure {
+    status: TpxStatus,
+    message: String,
+}
+
+impl Failure {
+    pub(crate) fn new(status: TpxStatus, message: impl Into<String>) -> Self {
+        Failure {
+            status,
+            message: message.into(),
+        }
+    }
+
+    pub(crate) fn null(what: &str) -> Self {
+        Failure::new(TpxStatus::NullArgument, format!("`{what}` is NULL"))
+    }
+}
+
+thread_local! {
+    static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
+}
+
+fn set_last_error(message: &str) {
+    // An interior NUL would truncate nothing useful, but CString refuses it: replace it.
+    let c = CString::new(message.replace('\0', "\\0")).unwrap_or_default();
+    // `try_with`: during thread teardown the slot may be gone; the message is then dropped
+    // rather than panicking outside the panic boundary.
+    let _ = LAST_ERROR.try_with(|e| *e.borrow_mut() = c);
+}
+
+fn clear_last_error() {
+    let _ = LAST_ERROR.try_with(|e| {
+        let mut e = e.borrow_mut();
+        if !e.as_bytes().is_empty() {
+            *e = CString::default();
+        }
+    });
+}
+
+fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
+    if let Some(s) = payload.downcast_ref::<&str>() {
+        (*s).to_string()
+    } else if let Some(s) = payload.downcast_ref::<String>() {
+        s.clone()
+    } else {
+        "non-string panic payload".to_string()
+    }
+}
+
+/// The panic boundary of every status-returning function: runs `body`, records its failure (or
+/// clears the last error), and turns a panic into [`TpxStatus::Panic`].
+pub(crate) fn guard(body: impl FnOnce() -> Result<(), Failure>) -> TpxStatus {
+    match catch_unwind(AssertUnwindSafe(body)) {
+        Ok(Ok(())) => {
+            clear_last_error();
+            TpxStatus::Ok
+        }
+        Ok(Err(f)) => {
+            set_last_error(&f.message);
+            f.status
+        }
+        Err(payload) => {
+            set_last_error(&format!(
+                "internal error (panic): {}",
+                panic_text(payload.as_ref())
+            ));
+            TpxStatus::Panic
+        }
+    }
+}
+
+/// Runs `body` for a function that cannot report a status (getters returning pointers, `free`):
+/// a panic yields `fallback`.
+pub(crate) fn guard_value<T>(fallback: T, body: impl FnOnce() -> T) -> T {
+    catch_unwind(AssertUnwindSafe(body)).unwrap_or(fallback)
+}
+
+/// `Some(&mut *p)` for a non-NULL out-pointer. The caller guarantees that a non-NULL `p` is
+/// valid for writes.
+pub(crate) fn out_ptr<'a, T>(p: *mut T, what: &str) -> Result<&'a mut T, Failure> {
+    // SAFETY: non-NULL pointers passed to the ABI are valid for writes (documented contract).
+    unsafe { p.as_mut() }.ok_or_else(|| Failure::null(what))
+}
+
+/// Shared reference to a handle, or NULL_ARGUMENT.
+pub(crate) fn handle<'a, T>(p: *const T, what: &str) -> Result<&'a T, Failure> {
+    // SAFETY: non-NULL handles come from this library and are alive (documented contract).
+    unsafe { p.as_ref() }.ok_or_else(|| Failure::null(what))
+}
+
+/// `p[0..len]` as a slice; `p` may be NULL only when `len == 0`.
+pub(crate) fn in_slice<'a, T>(p: *const T, len: usize, what: &str) -> Result<&'a [T], Failure> {
+    if len == 0 {
+        return Ok(&[]);
+    }
+    if p.is_null() {
+        return Err(Failure::null(what));
+    }
+    if len > isize::MAX as usize / std::mem::size_of::<T>().max(1) {
+        return Err(Failure::new(
+            TpxStatus::TooLarge,
+            format!("`{what}`: {len} elements exceed the address space"),
+        ));
+    }
+    // SAFETY: the caller guarantees `p` points to `len` readable elements; size checked above.
+    Ok(unsafe { std::slice::from_raw_parts(p, len) })
+}
+
+/// Copies `data` to the caller's buffer: the shared tail of every "fill a buffer" function.
+/// `*out_len` receives `data.len()` on success and on BUFFER_TOO_SMALL.
+pub(crate) fn write_buffer(
+    data: &[u32],
+    buf: *mut u32,
+    buf_len: usize,
+    out_len: &mut usize,
+) -> Result<(), Failure> {
+    if data.len() > buf_len {
+        *out_len = data.len();
+        return Err(Failure::new(
+            TpxStatus::BufferTooSmall,
+            format!(
+                "buffer holds {buf_len} uint32_t, the answer needs {}",
+                data.len()
+            ),
+        ));
+    }
+    if !data.is_empty() {
+        // buf_len >= data.len() > 0, so a NULL `buf` is a caller error.
+        if buf.is_null() {
+            return Err(Failure::null("buf"));
+        }
+        // SAFETY: `buf` is valid for `buf_len >= data.len()` writes (documented contract) and
+        // cannot overlap `data`, which this library owns.
+        unsafe { std::ptr::copy_nonoverlapping(data.as_ptr(), buf, data.len()) };
+    }
+    *out_len = data.len();
+    Ok(())
+}
+
+/// The library version, e.g. `"0.1.0"`: a static NUL-terminated string, never freed.
+#[unsafe(no_mangle)]
+pub extern "C" fn tpx_version() -> *const c_char {
+    concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
+}
+
+/// The message of the most recent status-returning `tpx_*` call on this thread: `""` if it
+/// succeeded. The string belongs to the library and stays valid until the next `tpx_*` call on
+/// this thread; copy it to keep it. Never NULL.
+#[unsafe(no_mangle)]
+pub extern "C" fn tpx_last_error_message() -> *const c_char {
+    static EMPTY: &[u8] = b"\0";
+    guard_value(EMPTY.as_ptr().cast(), || {
+        // The CString's heap buffer does not move when the thread-local is read; it is replaced
+        // (and the old pointer dies) only by the next status-returning call on this thread.
+        LAST_ERROR
+            .try_with(|e| e.borrow().as_ptr())
+            .unwrap_or(EMPTY.as_ptr().cast())
+    })
+}

@@ -1,0 +1,487 @@
+//! The ABI called from Rust as C would call it. No file IO, no FFI to C and small inputs, so
+//! that `cargo +nightly miri test --lib ffi` can check the unsafe code (Stacked Borrows, leaks).
+
+use std::ffi::CStr;
+use std::ptr::{null, null_mut};
+
+use super::*;
+
+fn last_error() -> String {
+    // SAFETY: tpx_last_error_message never returns NULL and the string is NUL-terminated.
+    unsafe { CStr::from_ptr(tpx_last_error_message()) }
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+/// Builds a complex from a list of simplices through the ABI.
+fn complex(n: u32, simplices: &[&[u32]]) -> *mut TpxComplex {
+    let mut ids = Vec::new();
+    let mut offsets = vec![0usize];
+    for s in simplices {
+        ids.extend_from_slice(s);
+        offsets.push(ids.len());
+    }
+    let mut out = null_mut();
+    let st = unsafe {
+        tpx_complex_from_arrays(
+            n,
+            ids.as_ptr(),
+            offsets.as_ptr(),
+            simplices.len(),
+            null(),
+            0,
+            &mut out,
+        )
+    };
+    assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+    assert!(!out.is_null());
+    out
+}
+
+/// A tetrahedron 0123, a dangling triangle 2 3 4 on its edge 2-3, and a wire edge 4-5.
+///
+/// ```text
+///          3 ------ 4 ------ 5
+///         /|\      /
+///        / | \    /
+///       0--|--2--/
+///        \ | /
+///         \|/
+///          1
+/// ```
+fn tet_triangle_wire() -> *mut TpxComplex {
+    complex(6, &[&[0, 1, 2, 3], &[2, 3, 4], &[4, 5]])
+}
+
+fn ig(c: *const TpxComplex) -> *mut TpxStructure {
+    let mut s = null_mut();
+    let st = unsafe { tpx_structure_build(c, TPX_KIND_IG, &mut s) };
+    assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+    s
+}
+
+/// Calls tpx_relation with a buffer of `cap` entries; returns the status, the filled prefix and
+/// `*out_len` (or the sentinel if untouched).
+fn relation(s: *const TpxStructure, sigma: &[u32], q: u32, cap: usize) -> (TpxStatus, Vec<u32>) {
+    let mut buf = vec![u32::MAX; cap];
+    let mut len = 7777usize;
+    let st = unsafe {
+        tpx_relation(
+            s,
+            sigma.as_ptr(),
+            sigma.len(),
+            q,
+            buf.as_mut_ptr(),
+            cap,
+            &mut len,
+        )
+    };
+    if st == TpxStatus::Ok {
+        buf.truncate(len);
+    }
+    (st, buf)
+}
+
+#[test]
+fn status_numbers_are_the_agreed_abi() {
+    use TpxStatus::*;
+    let all = [
+        Ok,
+        NullArgument,
+        InvalidArgument,
+        IoError,
+        ParseError,
+        InvalidComplex,
+        UnknownKind,
+        NotImplemented,
+        UnsupportedComplex,
+        NotInComplex,
+        InvalidSimplex,
+        DimensionOutOfRange,
+        BufferTooSmall,
+        TooLarge,
+        Panic,
+    ];
+    for (i, s) in all.into_iter().enumerate() {
+        assert_eq!(s as u32, i as u32, "{s:?}");
+    }
+    let kinds = crate::relation::StructureKind::ALL;
+    assert_eq!([TPX_KIND_IG, TPX_KIND_DE], [0, kinds.len() as u32 - 1]);
+}
+
+#[test]
+fn version_is_the_crate_version() {
+    let v = unsafe { CStr::from_ptr(tpx_version()) };
+    assert_eq!(v.to_str().unwrap(), env!("CARGO_PKG_VERSION"));
+}
+
+#[test]
+fn lifecycle_of_the_tetrahedron_with_triangle_and_wire() {
+    let c = tet_triangle_wire();
+    let (mut d, mut n, mut tops) = (99u32, 99u32, [99usize; 5]);
+    unsafe {
+        assert_eq!(tpx_complex_dimension(c, &mut d), TpxStatus::Ok);
+        assert_eq!(tpx_complex_vertex_count(c, &mut n), TpxStatus::Ok);
+        for (p, t) in tops.iter_mut().enumerate() {
+            assert_eq!(tpx_complex_top_count(c, p as u32, t), TpxStatus::Ok);
+        }
+    }
+    assert_eq!((d, n, tops), (3, 6, [0, 1, 1, 1, 0]));
+    assert_eq!(last_error(), "");
+
+    let s = ig(c);
+    // The structure owns its data: the complex can go first.
+    unsafe { tpx_complex_free(c) };
+    let (mut kind, mut sd) = (99u32, 99u32);
+    let mut counts = [99usize; 5];
+    let mut top_counts = [99usize; 5];
+    let mut storage = TpxStorage::default();
+    unsafe {
+        assert_eq!(tpx_structure_kind(s, &mut kind), TpxStatus::Ok);
+        assert_eq!(tpx_structure_dimension(s, &mut sd), TpxStatus::Ok);
+        for p in 0..5 {
+            assert_eq!(
+                tpx_structure_count(s, p as u32, &mut counts[p]),
+                TpxStatus::Ok
+            );
+            assert_eq!(
+                tpx_structure_top_count(s, p as u32, &mut top_counts[p]),
+                TpxStatus::Ok
+            );
+        }
+        assert_eq!(tpx_structure_storage(s, &mut storage), TpxStatus::Ok);
+    }
+    assert_eq!((kind, sd), (TPX_KIND_IG, 3));
+    // 6 vertices; 6 tet edges + 2-4, 3-4, 4-5; 4 tet faces + 2 3 4; the tetrahedron.
+    assert_eq!(counts, [6, 9, 5, 1, 0]);
+    assert_eq!(top_counts, [0, 1, 1, 1, 0]);
+    assert!(storage.bytes > 0 && storage.integers > 0);
+
+    // Triangles on edge 2-3, given in the other order.
+    let (st, rows) = relation(s, &[3, 2], 2, 16);
+    assert_eq!(st, TpxStatus::Ok);
+    assert_eq!(rows, [0, 2, 3, 1, 2, 3, 2, 3, 4]);
+    // Edges at vertex 4.
+    assert_eq!(relation(s, &[4], 1, 6).1, [2, 4, 3, 4, 4, 5]);
+    // Boundary vertices of the dangling triangle.
+    assert_eq!(relation(s, &[4, 3, 2], 0, 3).1, [2, 3, 4]);
+    // Vertex 5 is on no triangle: an empty answer, with a NULL buffer.
+    let mut len = 7usize;
+    let st = unsafe { tpx_relation(s, [5u32].as_ptr(), 1, 2, null_mut(), 0, &mut len) };
+    assert_eq!((st, len), (TpxStatus::Ok, 0));
+
+    unsafe { tpx_structure_free(s) };
+}
+
+#[test]
+fn simplices_in_lexicographic_order_and_buffer_too_small() {
+    let c = tet_triangle_wire();
+    let s = ig(c);
+    let mut buf = [u32::MAX; 32];
+    let mut len = 0usize;
+    let st = unsafe { tpx_structure_simplices(s, 2, buf.as_mut_ptr(), buf.len(), &mut len) };
+    assert_eq!(st, TpxStatus::Ok);
+    assert_eq!(&buf[..len], [0, 1, 2, 0, 1, 3, 0, 2, 3, 1, 2, 3, 2, 3, 4]);
+
+    // Size query with a NULL buffer, then too small: only *out_len is written.
+    let mut len = 0usize;
+    let st = unsafe { tpx_structure_simplices(s, 1, null_mut(), 0, &mut len) };
+    assert_eq!((st, len), (TpxStatus::BufferTooSmall, 18));
+    let mut small = [u32::MAX; 4];
+    let mut len = 0usize;
+    let st = unsafe { tpx_structure_simplices(s, 1, small.as_mut_ptr(), 4, &mut len) };
+    assert_eq!((st, len), (TpxStatus::BufferTooSmall, 18));
+    assert_eq!(small, [u32::MAX; 4]);
+    assert!(last_error().contains("18"), "{}", last_error());
+
+    let (st, untouched) = relation(s, &[2, 3], 2, 8);
+    assert_eq!(st, TpxStatus::BufferTooSmall);
+    assert_eq!(untouched, [u32::MAX; 8]);
+    let mut len = 0usize;
+    let st = unsafe { tpx_relation(s, [2u32, 3].as_ptr(), 2, 2, null_mut(), 0, &mut len) };
+    assert_eq!((st, len), (TpxStatus::BufferTooSmall, 9));
+
+    // A non-NULL need with a NULL buffer claiming room is a NULL argument.
+    let st = unsafe { tpx_relation(s, [2u32, 3].as_ptr(), 2, 2, null_mut(), 9, &mut len) };
+    assert_eq!(st, TpxStatus::NullArgument);
+
+    unsafe {
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+#[test]
+fn relation_table_of_edges_at_each_vertex() {
+    let c = tet_triangle_wire();
+    let s = ig(c);
+    let mut t = null_mut();
+    assert_eq!(
+        unsafe { tpx_relation_table(s, 0, 1, &mut t) },
+        TpxStatus::Ok
+    );
+    let (mut no, mut ni) = (0usize, 0usize);
+    let (offsets, ids) = unsafe {
+        let o = tpx_relation_table_offsets(t, &mut no);
+        let i = tpx_relation_table_ids(t, &mut ni);
+        (
+            std::slice::from_raw_parts(o, no).to_vec(),
+            std::slice::from_raw_parts(i, ni).to_vec(),
+        )
+    };
+    assert_eq!(offsets, [0, 6, 12, 20, 28, 34, 36]);
+    #[rustfmt::skip]
+    assert_eq!(ids, [
+        0, 1, 0, 2, 0, 3,        // vertex 0
+        0, 1, 1, 2, 1, 3,        // vertex 1
+        0, 2, 1, 2, 2, 3, 2, 4,  // vertex 2
+        0, 3, 1, 3, 2, 3, 3, 4,  // vertex 3
+        2, 4, 3, 4, 4, 5,        // vertex 4
+        4, 5,                    // vertex 5
+    ]);
+    unsafe {
+        assert!(tpx_relation_table_offsets(null(), &mut no).is_null());
+        assert!(tpx_relation_table_ids(t, null_mut()).is_null());
+        tpx_relation_table_free(t);
+        let mut t = null_mut();
+        assert_eq!(
+            tpx_relation_table(s, 4, 0, &mut t),
+            TpxStatus::DimensionOutOfRange
+        );
+        assert_eq!(
+            tpx_relation_table(s, 0, 4, &mut t),
+            TpxStatus::DimensionOutOfRange
+        );
+        assert!(t.is_null());
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+#[test]
+fn null_arguments_are_refused_and_outputs_untouched() {
+    let c = tet_triangle_wire();
+    let s = ig(c);
+    let mut u = 42u32;
+    let mut z = 42usize;
+    unsafe {
+        assert_eq!(
+            tpx_complex_dimension(null(), &mut u),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(u, 42);
+        assert!(last_error().contains("`c`"), "{}", last_error());
+        assert_eq!(
+            tpx_complex_dimension(c, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_vertex_count(null(), &mut u),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_top_count(c, 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_structure_build(null(), 0, &mut null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_structure_build(c, 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(tpx_structure_kind(null(), &mut u), TpxStatus::NullArgument);
+        assert_eq!(
+            tpx_structure_dimension(s, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_structure_count(null(), 0, &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_structure_top_count(s, 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_structure_storage(s, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_structure_simplices(s, 0, null_mut(), 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_relation(s, null(), 1, 0, null_mut(), 0, &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_relation(null(), [0u32].as_ptr(), 1, 0, null_mut(), 0, &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_relation_table(s, 0, 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_from_file(null(), &mut null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_from_arrays(1, null(), null(), 0, null(), 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_from_arrays(
+                3,
+                null(),
+                [0usize, 2].as_ptr(),
+                1,
+                null(),
+                0,
+                &mut null_mut()
+            ),
+            TpxStatus::NullArgument
+        );
+        assert_eq!((u, z), (42, 42));
+        tpx_complex_free(null_mut());
+        tpx_structure_free(null_mut());
+        tpx_relation_table_free(null_mut());
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+#[test]
+fn complex_errors_map_to_statuses_with_evidence() {
+    let mut out = null_mut();
+    unsafe {
+        // Decreasing offsets.
+        let st = tpx_complex_from_arrays(
+            3,
+            [0u32, 1, 2].as_ptr(),
+            [0usize, 2, 1].as_ptr(),
+            2,
+            null(),
+            0,
+            &mut out,
+        );
+        assert_eq!(st, TpxStatus::InvalidArgument);
+        // Repeated vertex in simplex #1.
+        let st = tpx_complex_from_arrays(
+            3,
+            [0u32, 1, 2, 2].as_ptr(),
+            [0usize, 2, 4].as_ptr(),
+            2,
+            null(),
+            0,
+            &mut out,
+        );
+        assert_eq!(st, TpxStatus::InvalidComplex);
+        assert!(last_error().contains("#1"), "{}", last_error());
+        assert!(last_error().contains("[2 2]"), "{}", last_error());
+        // Vertex 3 of 3.
+        let st = tpx_complex_from_arrays(
+            3,
+            [0u32, 3].as_ptr(),
+            [0usize, 2].as_ptr(),
+            1,
+            null(),
+            0,
+            &mut out,
+        );
+        assert_eq!(st, TpxStatus::InvalidComplex);
+        // No vertices.
+        let st = tpx_complex_from_arrays(0, null(), null(), 0, null(), 0, &mut out);
+        assert_eq!(st, TpxStatus::InvalidComplex);
+        // Coordinates with dimension 0.
+        let st = tpx_complex_from_arrays(1, null(), null(), 0, [0.0].as_ptr(), 0, &mut out);
+        assert_eq!(st, TpxStatus::InvalidArgument);
+        assert!(out.is_null());
+        // Unknown extension: refused before any file access.
+        let st = tpx_complex_from_file(c"mesh.txt".as_ptr(), &mut out);
+        assert_eq!(st, TpxStatus::ParseError);
+        assert!(last_error().contains("mesh.txt"), "{}", last_error());
+        let st = tpx_complex_from_file(c"bad\xff.off".as_ptr(), &mut out);
+        assert_eq!(st, TpxStatus::InvalidArgument);
+        assert!(out.is_null());
+
+        // Isolated vertices only, with coordinates.
+        let st = tpx_complex_from_arrays(2, null(), null(), 0, [0.0, 1.0].as_ptr(), 1, &mut out);
+        assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+        let mut d = 9u32;
+        assert_eq!(tpx_complex_dimension(out, &mut d), TpxStatus::Ok);
+        assert_eq!(d, 0);
+        tpx_complex_free(out);
+    }
+}
+
+#[test]
+fn kinds_and_query_errors_map_to_statuses() {
+    let c = tet_triangle_wire();
+    let mut s = null_mut();
+    unsafe {
+        assert_eq!(tpx_structure_build(c, 9, &mut s), TpxStatus::UnknownKind);
+        assert_eq!(
+            tpx_structure_build(c, u32::MAX, &mut s),
+            TpxStatus::UnknownKind
+        );
+        assert!(s.is_null());
+        for kind in 0..9 {
+            let st = tpx_structure_build(c, kind, &mut s);
+            // Kinds land one by one; each either builds or says so.
+            match st {
+                TpxStatus::Ok => tpx_structure_free(std::mem::replace(&mut s, null_mut())),
+                TpxStatus::NotImplemented | TpxStatus::UnsupportedComplex => {
+                    assert!(!last_error().is_empty());
+                    assert!(s.is_null());
+                }
+                other => panic!("kind {kind}: {other:?} {}", last_error()),
+            }
+        }
+    }
+    let s = ig(c);
+    assert_eq!(relation(s, &[0, 4], 0, 8).0, TpxStatus::NotInComplex);
+    assert!(last_error().contains("[0 4]"), "{}", last_error());
+    assert_eq!(relation(s, &[], 0, 8).0, TpxStatus::InvalidSimplex);
+    assert_eq!(relation(s, &[1, 1], 0, 8).0, TpxStatus::InvalidSimplex);
+    assert_eq!(relation(s, &[6], 0, 8).0, TpxStatus::InvalidSimplex);
+    assert_eq!(relation(s, &[0], 4, 8).0, TpxStatus::DimensionOutOfRange);
+    let mut len = 0usize;
+    let st = unsafe { tpx_structure_simplices(s, 4, null_mut(), 0, &mut len) };
+    assert_eq!((st, len), (TpxStatus::DimensionOutOfRange, 0));
+    // A success clears the message.
+    assert_eq!(relation(s, &[0], 1, 8).0, TpxStatus::Ok);
+    assert_eq!(last_error(), "");
+    unsafe {
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+#[test]
+fn a_panic_becomes_a_status_not_an_unwind() {
+    let st = guard(|| panic!("boom at [1 2]"));
+    assert_eq!(st, TpxStatus::Panic);
+    assert!(last_error().contains("boom at [1 2]"), "{}", last_error());
+    assert_eq!(guard_value(5, || panic!("x")), 5);
+}
+
+#[test]
+fn queries_from_two_threads_share_one_structure() {
+    let c = tet_triangle_wire();
+    let s = ig(c) as usize;
+    let answers: Vec<Vec<u32>> = std::thread::scope(|scope| {
+        let hs: Vec<_> = (0..2u32)
+            .map(|v| scope.spawn(move || relation(s as *const TpxStructure, &[v + 2], 0, 8).1))
+            .collect();
+        hs.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    assert_eq!(answers, [vec![0, 1, 3, 4], vec![0, 1, 2, 4]]);
+    unsafe {
+        tpx_structure_free(s as *mut TpxStructure);
+        tpx_complex_free(c);
+    }
+}
