@@ -1,9 +1,561 @@
-//! Reader stub (to be written).
-use super::{RawInput, ReadErrorKind};
+//! Reader for ASCII MEDIT mesh files (`.mesh`).
+//!
+//! The file must start with `MeshVersionFormatted n` (n = 1 to 4) and `Dimension d` (d = 2 or
+//! 3); a value may be on the keyword's line or a later one, as the reader is token-based (with
+//! the line of every token kept for errors). Then sections, each a keyword, a count and the
+//! entries:
+//!
+//! | section | entry |
+//! |---|---|
+//! | `Vertices` | d coordinates and a reference |
+//! | `Edges`, `Triangles`, `Tetrahedra` | 2, 3, 4 vertex ids (1-based) and a reference |
+//! | `Corners`, `Ridges`, `RequiredVertices`, `RequiredEdges`, `RequiredTriangles` | 1 integer (skipped) |
+//! | `Normals`, `Tangents` | d numbers (skipped) |
+//! | `NormalAtVertices`, `TangentAtVertices` | 2 integers (skipped) |
+//! | `NormalAtTriangleVertices` | 3 integers (skipped) |
+//! | `Identifier`, `Geometry` | no count: one string, the rest of the keyword's line or else the next line (skipped) |
+//! | `Quadrilaterals` | an error ([`ReadErrorKind::Polygon`]`(4)`) unless empty |
+//! | `Hexahedra` | an error ("hexahedra are not simplices") unless empty |
+//!
+//! `End` is optional; nothing but comments may follow it. Keywords are matched in any case.
+//! Any other keyword is an error naming it. `#` starts a comment.
+//!
+//! * Each element is recorded at the line of its first vertex id. Ids must be >= 1 and fit in 32
+//!   bits after conversion to 0-based; a negative id is [`ReadErrorKind::NegativeId`] (with the
+//!   value as written). Ids beyond the vertex count are left to the complex model.
+//! * Coordinates are parsed as `f64`; `nan`, `inf` and `infinity` are accepted, since topology
+//!   does not use coordinates. References must be integers and are ignored.
+//! * Only one `Vertices` section is allowed; element sections may repeat (they add up). Without a
+//!   `Vertices` section the vertex count is 0.
+//! * A section ending before its count is reached is an error naming the file's last line.
 
-pub fn parse(_text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
-    Err((
-        0,
-        ReadErrorKind::Syntax("reader not implemented yet".into()),
-    ))
+use super::{
+    Coords, RawInput, ReadErrorKind, Tokens, capped, check_integer, parse_count, parse_f64,
+    parse_id, parse_integer, syntax,
+};
+
+/// What one number of a section entry is.
+#[derive(Clone, Copy, PartialEq)]
+enum Item {
+    /// 1-based vertex id, kept.
+    Id,
+    /// Coordinate, kept.
+    Coord,
+    /// Reference number: integer, ignored.
+    Ref,
+    /// Other integer, ignored.
+    Int,
+    /// Other real number, ignored.
+    Real,
+}
+
+type Res<T> = Result<T, (u32, ReadErrorKind)>;
+
+struct Reader<'a> {
+    t: Tokens<'a>,
+    text: &'a str,
+}
+
+impl<'a> Reader<'a> {
+    /// The token after `keyword`, or an error naming what was expected.
+    fn value(&mut self, keyword: &str, expected: &str) -> Res<(&'a str, u32)> {
+        self.t.next().ok_or_else(|| {
+            (
+                self.t.eof_line(),
+                syntax(format!("file ends after '{keyword}'; expected {expected}")),
+            )
+        })
+    }
+
+    /// Reads a section's count.
+    fn count(&mut self, keyword: &str) -> Res<u32> {
+        let what = format!("{} count", nouns(keyword).0);
+        let (tok, l) = self.value(keyword, &format!("the {what}"))?;
+        parse_count(tok, &what).map_err(|k| (l, k))
+    }
+
+    /// Reads `count` entries laid out as `items`, calling `entry` with the kept numbers (ids or
+    /// coordinates) and the line of the entry's first number.
+    fn entries(
+        &mut self,
+        keyword: &str,
+        count: u32,
+        items: &[Item],
+        mut entry: impl FnMut(&[u32], &[f64], u32),
+    ) -> Res<()> {
+        let (name, names) = nouns(keyword);
+        let mut ids = Vec::with_capacity(items.len());
+        let mut xs = Vec::with_capacity(items.len());
+        for e in 0..count {
+            ids.clear();
+            xs.clear();
+            let mut first_line = 0;
+            for (j, &item) in items.iter().enumerate() {
+                let Some((tok, l)) = self.t.next() else {
+                    let msg = if j == 0 {
+                        format!("{name} count {count} declared but file ends after {e} {names}")
+                    } else {
+                        format!(
+                            "file ends inside {name} {}: expected {} numbers ({}), found {j}",
+                            e + 1,
+                            items.len(),
+                            layout(items)
+                        )
+                    };
+                    return Err((self.t.eof_line(), syntax(msg)));
+                };
+                if j == 0 {
+                    first_line = l;
+                }
+                let r = match item {
+                    Item::Id => parse_id(tok, true).map(|id| ids.push(id)),
+                    Item::Coord => parse_f64(tok, "a vertex coordinate").map(|x| xs.push(x)),
+                    Item::Ref => check_integer(tok, "reference number"),
+                    Item::Int => check_integer(tok, &format!("{keyword} entry")),
+                    Item::Real => parse_f64(tok, &format!("a {keyword} entry")).map(|_| ()),
+                };
+                r.map_err(|k| (l, k))?;
+            }
+            entry(&ids, &xs, first_line);
+        }
+        Ok(())
+    }
+
+    /// A section of elements that are not simplices: an error at its first entry, if any.
+    fn reject(&mut self, keyword: &str, kind: ReadErrorKind) -> Res<()> {
+        let count = self.count(keyword)?;
+        if count == 0 {
+            return Ok(());
+        }
+        let (name, names) = nouns(keyword);
+        match self.t.next() {
+            Some((_, l)) => Err((l, kind)),
+            None => Err((
+                self.t.eof_line(),
+                syntax(format!(
+                    "{name} count {count} declared but file ends after 0 {names}"
+                )),
+            )),
+        }
+    }
+}
+
+/// Singular and plural nouns for a section's entries, for messages: "triangle", "triangles"
+/// for the simplex and polyhedron sections, "Corners entry", "Corners entries" for the others.
+fn nouns(keyword: &str) -> (String, String) {
+    let (one, many) = match keyword.to_ascii_lowercase().as_str() {
+        "vertices" => ("vertex", "vertices"),
+        "edges" => ("edge", "edges"),
+        "triangles" => ("triangle", "triangles"),
+        "tetrahedra" => ("tetrahedron", "tetrahedra"),
+        "quadrilaterals" => ("quadrilateral", "quadrilaterals"),
+        "hexahedra" => ("hexahedron", "hexahedra"),
+        _ => return (format!("{keyword} entry"), format!("{keyword} entries")),
+    };
+    (one.into(), many.into())
+}
+
+fn layout(items: &[Item]) -> String {
+    let count = |i: Item| items.iter().filter(|&&x| x == i).count();
+    let mut parts = Vec::new();
+    for (item, what) in [
+        (Item::Id, "vertex ids"),
+        (Item::Coord, "coordinates"),
+        (Item::Ref, "reference"),
+        (Item::Int, "integers"),
+        (Item::Real, "numbers"),
+    ] {
+        let n = count(item);
+        if n > 0 {
+            parts.push(format!("{n} {what}"));
+        }
+    }
+    parts.join(", ")
+}
+
+pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
+    let mut r = Reader {
+        t: Tokens::new(text),
+        text,
+    };
+
+    let Some((kw, l)) = r.t.next() else {
+        return Err((
+            r.t.eof_line(),
+            syntax("file is empty; expected 'MeshVersionFormatted'"),
+        ));
+    };
+    if !kw.eq_ignore_ascii_case("MeshVersionFormatted") {
+        return Err((
+            l,
+            syntax(format!(
+                "expected 'MeshVersionFormatted' at the start of the file, found '{kw}'"
+            )),
+        ));
+    }
+    let (tok, l) = r.value(kw, "the version number")?;
+    if !matches!(parse_integer(tok), Ok(1..=4)) {
+        return Err((
+            l,
+            syntax(format!(
+                "unsupported MeshVersionFormatted '{tok}' (expected 1, 2, 3 or 4)"
+            )),
+        ));
+    }
+    let Some((kw, l)) = r.t.next() else {
+        return Err((
+            r.t.eof_line(),
+            syntax("file ends after the version; expected 'Dimension'"),
+        ));
+    };
+    if !kw.eq_ignore_ascii_case("Dimension") {
+        return Err((
+            l,
+            syntax(format!(
+                "expected 'Dimension' after MeshVersionFormatted, found '{kw}'"
+            )),
+        ));
+    }
+    let (tok, l) = r.value(kw, "the dimension")?;
+    let dim = match parse_integer(tok) {
+        Ok(d @ 2..=3) => d as usize,
+        _ => {
+            return Err((
+                l,
+                syntax(format!("Dimension must be 2 or 3, found '{tok}'")),
+            ));
+        }
+    };
+
+    let mut raw = RawInput::new();
+    let mut vertices: Option<(u32, Vec<f64>)> = None;
+    let vertex_items: Vec<Item> = std::iter::repeat_n(Item::Coord, dim)
+        .chain([Item::Ref])
+        .collect();
+    let element = |n: usize| -> Vec<Item> {
+        std::iter::repeat_n(Item::Id, n)
+            .chain([Item::Ref])
+            .collect()
+    };
+
+    while let Some((kw, l)) = r.t.next() {
+        let lower = kw.to_ascii_lowercase();
+        match lower.as_str() {
+            "end" => {
+                if let Some((tok, l)) = r.t.next() {
+                    return Err((l, syntax(format!("unexpected content '{tok}' after End"))));
+                }
+                break;
+            }
+            "vertices" => {
+                if vertices.is_some() {
+                    return Err((l, syntax("second Vertices section")));
+                }
+                let n = r.count(kw)?;
+                let mut data = Vec::with_capacity(capped((n as usize).saturating_mul(dim), r.text));
+                r.entries(kw, n, &vertex_items, |_, xs, _| data.extend_from_slice(xs))?;
+                vertices = Some((n, data));
+            }
+            "edges" | "triangles" | "tetrahedra" => {
+                let k = match lower.as_str() {
+                    "edges" => 2,
+                    "triangles" => 3,
+                    _ => 4,
+                };
+                let n = r.count(kw)?;
+                let cap = capped(n as usize, r.text);
+                raw.ids.reserve(cap.saturating_mul(k).min(r.text.len()));
+                raw.offsets.reserve(cap);
+                raw.lines.reserve(cap);
+                r.entries(kw, n, &element(k), |ids, _, line| raw.push(ids, line))?;
+            }
+            "corners" | "ridges" | "requiredvertices" | "requirededges" | "requiredtriangles" => {
+                let n = r.count(kw)?;
+                r.entries(kw, n, &[Item::Int], |_, _, _| {})?;
+            }
+            "normals" | "tangents" => {
+                let n = r.count(kw)?;
+                r.entries(kw, n, &vec![Item::Real; dim], |_, _, _| {})?;
+            }
+            "normalatvertices" | "tangentatvertices" => {
+                let n = r.count(kw)?;
+                r.entries(kw, n, &[Item::Int; 2], |_, _, _| {})?;
+            }
+            "normalattrianglevertices" => {
+                let n = r.count(kw)?;
+                r.entries(kw, n, &[Item::Int; 3], |_, _, _| {})?;
+            }
+            "identifier" | "geometry" => {
+                // The string is the rest of this line, or else the whole next line.
+                if r.t.rest_of_line(l).is_empty() {
+                    let (_, next) = r.value(kw, "a string")?;
+                    r.t.rest_of_line(next);
+                }
+            }
+            "quadrilaterals" => r.reject(kw, ReadErrorKind::Polygon(4))?,
+            "hexahedra" => r.reject(kw, syntax("hexahedra are not simplices"))?,
+            "meshversionformatted" | "dimension" => {
+                return Err((
+                    l,
+                    syntax(format!("'{kw}' may appear only once, at the start")),
+                ));
+            }
+            _ if parse_f64(kw, "").is_ok() => {
+                return Err((
+                    l,
+                    syntax(format!(
+                        "unexpected number '{kw}' where a section keyword was expected (does the \
+                         previous section hold more entries than its count?)"
+                    )),
+                ));
+            }
+            _ => return Err((l, syntax(format!("unknown MEDIT section keyword '{kw}'")))),
+        }
+    }
+
+    let (n, data) = vertices.unwrap_or_default();
+    raw.vertex_count = Some(n);
+    raw.coords = Some(Coords { dim, data });
+    Ok(raw)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ok(text: &str) -> RawInput {
+        parse(text).unwrap_or_else(|e| panic!("unexpected error {e:?}"))
+    }
+
+    fn err(text: &str, line: u32, needle: &str) {
+        match parse(text) {
+            Ok(r) => panic!("expected an error, got {r:?}"),
+            Err((l, k)) => {
+                let msg = k.to_string();
+                assert_eq!(l, line, "wrong line for error '{msg}'");
+                assert!(msg.contains(needle), "message '{msg}' lacks '{needle}'");
+            }
+        }
+    }
+
+    fn simplices(r: &RawInput) -> Vec<Vec<u32>> {
+        (0..r.simplex_count())
+            .map(|i| r.simplex(i).to_vec())
+            .collect()
+    }
+
+    const HEAD: &str = "MeshVersionFormatted 2\nDimension 3\n";
+
+    #[test]
+    fn all_simplex_sections() {
+        let text = "MeshVersionFormatted 1\n\nDimension\n3\n\
+                    Vertices\n4\n0 0 0 1\n1 0 0 1\n0 1 0 2\n0 0 1 -1\n\
+                    Edges\n1\n1 2 7\n\
+                    Triangles\n2\n1 2 3 0\n2 3 4 0\n\
+                    Tetrahedra\n1\n1 2 3 4 5\n\
+                    End\n";
+        let r = ok(text);
+        assert_eq!(r.vertex_count, Some(4));
+        let c = r.coords.as_ref().unwrap();
+        assert_eq!(c.dim, 3);
+        assert_eq!(c.data[9..], [0., 0., 1.]);
+        assert_eq!(
+            simplices(&r),
+            [vec![0, 1], vec![0, 1, 2], vec![1, 2, 3], vec![0, 1, 2, 3]]
+        );
+        assert_eq!(r.lines, [13, 16, 17, 20]);
+    }
+
+    #[test]
+    fn dimension_2_tokens_across_lines_comments_crlf_tabs_no_end() {
+        let text = "# a square\r\nMeshVersionFormatted\t2\r\nDimension 2\r\n\
+                    Vertices 3 # count on the keyword line\r\n0 0 0\t1 0 0\r\n0 1\r\n0\r\n\
+                    Triangles\r\n1\r\n1 2 3 1";
+        let r = ok(text);
+        assert_eq!(r.coords.as_ref().unwrap().dim, 2);
+        assert_eq!(r.coords.clone().unwrap().data, [0., 0., 1., 0., 0., 1.]);
+        assert_eq!(simplices(&r), [[0, 1, 2]]);
+        assert_eq!(r.lines, [10]);
+    }
+
+    #[test]
+    fn skipped_sections() {
+        let text = format!(
+            "{HEAD}Identifier\n\"my mesh # 1\"\nGeometry \"a.mesh\"\n\
+             Vertices\n3\n0 0 0 0\n1 0 0 0\n0 1 0 0\n\
+             Corners\n1\n1\nRidges\n1\n1\nRequiredVertices\n2\n1 2\n\
+             RequiredEdges\n0\nRequiredTriangles\n1\n1\n\
+             Normals\n1\n0 0 1\nTangents\n1\n1 0 nan\n\
+             NormalAtVertices\n1\n1 1\nTangentAtVertices\n1\n1 1\n\
+             NormalAtTriangleVertices\n1\n1 1 1\n\
+             Quadrilaterals\n0\nHexahedra\n0\n\
+             triangles\n1\n1 2 3 0\nEND\n# trailing comment\n"
+        );
+        let r = ok(&text);
+        assert_eq!(simplices(&r), [[0, 1, 2]]);
+        assert_eq!(r.vertex_count, Some(3));
+    }
+
+    #[test]
+    fn no_vertices_section() {
+        let r = ok(HEAD);
+        assert_eq!(r.vertex_count, Some(0));
+        assert_eq!(r.simplex_count(), 0);
+    }
+
+    #[test]
+    fn empty_file_and_header_errors() {
+        err("", 1, "file is empty");
+        err("# c\n\n", 2, "file is empty");
+        err(
+            "Dimension 3\n",
+            1,
+            "expected 'MeshVersionFormatted' at the start of the file, found 'Dimension'",
+        );
+        err("MeshVersionFormatted\n", 1, "expected the version number");
+        err(
+            "MeshVersionFormatted 7\nDimension 3\n",
+            1,
+            "unsupported MeshVersionFormatted '7'",
+        );
+        err(
+            "MeshVersionFormatted 1\nVertices 0\n",
+            2,
+            "expected 'Dimension' after MeshVersionFormatted",
+        );
+        err(
+            "MeshVersionFormatted 1\nDimension 4\n",
+            2,
+            "Dimension must be 2 or 3, found '4'",
+        );
+        err(&format!("{HEAD}Dimension 3\n"), 3, "may appear only once");
+    }
+
+    #[test]
+    fn truncated_sections() {
+        err(&format!("{HEAD}Vertices\n"), 3, "expected the vertex count");
+        err(
+            &format!("{HEAD}Vertices\n2\n0 0 0 1\n"),
+            5,
+            "vertex count 2 declared but file ends after 1 vertices",
+        );
+        err(
+            &format!("{HEAD}Vertices\n1\n0 0 0\n"),
+            5,
+            "file ends inside vertex 1: expected 4 numbers (3 coordinates, 1 reference), found 3",
+        );
+        err(
+            &format!("{HEAD}Triangles\n10\n1 2 3 0\n"),
+            5,
+            "triangle count 10 declared but file ends after 1 triangles",
+        );
+        err(
+            &format!("{HEAD}Tetrahedra\n1\n1 2 3"),
+            5,
+            "file ends inside tetrahedron 1: expected 5 numbers (4 vertex ids, 1 reference), found 3",
+        );
+        err(&format!("{HEAD}Identifier\n"), 3, "expected a string");
+        err(
+            &format!("{HEAD}RequiredVertices\n3\n1 2\n"),
+            5,
+            "RequiredVertices entry count 3 declared but file ends after 2 RequiredVertices entries",
+        );
+        err(
+            &format!("{HEAD}Quadrilaterals 3\n"),
+            3,
+            "quadrilateral count 3 declared but file ends after 0 quadrilaterals",
+        );
+        err(
+            &format!("{HEAD}Triangles\n4000000000\n"),
+            4,
+            "triangle count 4000000000 declared but file ends after 0 triangles",
+        );
+    }
+
+    #[test]
+    fn bad_numbers() {
+        err(
+            &format!("{HEAD}Vertices\n1\n0 abc 0 1\n"),
+            5,
+            "non-numeric token 'abc' where a vertex coordinate was expected",
+        );
+        err(
+            &format!("{HEAD}Vertices\n1\n0 0 0 1.5\n"),
+            5,
+            "reference number '1.5' is not an integer",
+        );
+        err(
+            &format!("{HEAD}Edges\n1\n1 x 0\n"),
+            5,
+            "non-numeric token 'x' where a vertex id was expected",
+        );
+        err(
+            &format!("{HEAD}Edges\n1\n1 0 0\n"),
+            5,
+            "vertex id 0 is invalid",
+        );
+        err(
+            &format!("{HEAD}Edges\n1\n1 4294967297 0\n"),
+            5,
+            "vertex id 4294967297 does not fit in 32 bits",
+        );
+        err(
+            &format!("{HEAD}Edges\n-1\n"),
+            4,
+            "edge count -1 is negative",
+        );
+        err(
+            &format!("{HEAD}Vertices\n99999999999\n"),
+            4,
+            "vertex count 99999999999 does not fit in 32 bits",
+        );
+        err(
+            &format!("{HEAD}Corners\n1\n1.5\n"),
+            5,
+            "Corners entry '1.5' is not an integer",
+        );
+        assert_eq!(
+            parse(&format!("{HEAD}Edges\n1\n1\n-2 0\n")),
+            Err((6, ReadErrorKind::NegativeId(-2)))
+        );
+        let r = ok(&format!("{HEAD}Edges\n1\n1 4294967296 0\n"));
+        assert_eq!(r.simplex(0), [0, u32::MAX]);
+    }
+
+    #[test]
+    fn non_simplex_sections() {
+        assert_eq!(
+            parse(&format!("{HEAD}Quadrilaterals\n1\n1 2 3 4 0\n")),
+            Err((5, ReadErrorKind::Polygon(4)))
+        );
+        err(
+            &format!("{HEAD}Hexahedra\n1\n\n1 2 3 4 5 6 7 8 0\n"),
+            6,
+            "hexahedra are not simplices",
+        );
+    }
+
+    #[test]
+    fn unknown_section_and_extra_content() {
+        err(
+            &format!("{HEAD}Vertices 0\nPrisms\n1\n"),
+            4,
+            "unknown MEDIT section keyword 'Prisms'",
+        );
+        err(
+            &format!("{HEAD}Edges\n1\n1 2 0 0\n"),
+            5,
+            "unexpected number '0' where a section keyword was expected",
+        );
+        err(
+            &format!("{HEAD}End\n\nVertices 0\n"),
+            5,
+            "unexpected content 'Vertices' after End",
+        );
+        err(
+            &format!("{HEAD}Vertices 0\nVertices 0\n"),
+            4,
+            "second Vertices section",
+        );
+    }
 }

@@ -1,9 +1,189 @@
-//! Reader stub (to be written).
-use super::{RawInput, ReadErrorKind};
+//! Reader for simplex lists (`.simplices`), Topoplex's own line-based format.
+//!
+//! ```text
+//! # a triangle with a dangling edge
+//! v 0 0
+//! v 1 0
+//! v 0 1
+//! v 2 2
+//! s 0 1 2
+//! s 2 3
+//! ```
+//!
+//! * `v x1 .. xk` declares the next vertex with k >= 0 coordinates; every `v` line must have the
+//!   same k. Coordinates are parsed as `f64`; `nan`, `inf` and `infinity` are accepted, since
+//!   topology does not use coordinates.
+//! * `s a b c ...` declares a simplex by at least one 0-based vertex id (ids must fit in 32 bits;
+//!   a negative id is [`ReadErrorKind::NegativeId`]). Each simplex is recorded at its line.
+//! * `v` and `s` lines may be interleaved in any order.
+//! * With `v` lines the vertex count is their number and the coordinates have dimension k (none
+//!   when k = 0). Without `v` lines the vertex count is `None`: the vertices are `0..=max id`.
+//! * `#` starts a comment; blank lines, CRLF, tabs and a missing final newline are fine. Any
+//!   other keyword is an error, and so is a file with no `v` or `s` line at all.
 
-pub fn parse(_text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
-    Err((
-        0,
-        ReadErrorKind::Syntax("reader not implemented yet".into()),
-    ))
+use super::{Coords, RawInput, ReadErrorKind, parse_f64, parse_id, strip_comment, syntax};
+
+pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
+    let mut raw = RawInput::new();
+    let mut data = Vec::new();
+    // (number of coordinates, line) of the first `v` line.
+    let mut first_v: Option<(usize, u32)> = None;
+    let mut vertices: u32 = 0;
+    let mut ids = Vec::new();
+    let mut last_line = 0u32;
+
+    for (content, line) in text.lines().zip(1u32..) {
+        last_line = line;
+        let mut toks = strip_comment(content).split_ascii_whitespace();
+        let Some(keyword) = toks.next() else { continue };
+        let err = |k: ReadErrorKind| (line, k);
+        match keyword {
+            "v" => {
+                let start = data.len();
+                for tok in toks {
+                    data.push(parse_f64(tok, "a vertex coordinate").map_err(err)?);
+                }
+                let k = data.len() - start;
+                match first_v {
+                    None => first_v = Some((k, line)),
+                    Some((k0, l0)) if k != k0 => {
+                        return Err(err(syntax(format!(
+                            "v line has {k} coordinates but the first v line (line {l0}) has {k0}"
+                        ))));
+                    }
+                    Some(_) => {}
+                }
+                vertices = vertices
+                    .checked_add(1)
+                    .ok_or_else(|| err(syntax("more than 4294967295 vertices")))?;
+            }
+            "s" => {
+                ids.clear();
+                for tok in toks {
+                    ids.push(parse_id(tok, false).map_err(err)?);
+                }
+                if ids.is_empty() {
+                    return Err(err(syntax("s line with no vertex ids")));
+                }
+                raw.push(&ids, line);
+            }
+            k => {
+                return Err(err(syntax(format!(
+                    "unknown keyword '{k}' (expected 'v' or 's')"
+                ))));
+            }
+        }
+    }
+
+    match first_v {
+        None if raw.simplex_count() == 0 => Err((
+            last_line.max(1),
+            syntax("file is empty (no `v` or `s` lines)"),
+        )),
+        None => Ok(raw),
+        Some((dim, _)) => {
+            raw.vertex_count = Some(vertices);
+            raw.coords = (dim > 0).then_some(Coords { dim, data });
+            Ok(raw)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ok(text: &str) -> RawInput {
+        parse(text).unwrap_or_else(|e| panic!("unexpected error {e:?}"))
+    }
+
+    fn err(text: &str, line: u32, needle: &str) {
+        match parse(text) {
+            Ok(r) => panic!("expected an error, got {r:?}"),
+            Err((l, k)) => {
+                let msg = k.to_string();
+                assert_eq!(l, line, "wrong line for error '{msg}'");
+                assert!(msg.contains(needle), "message '{msg}' lacks '{needle}'");
+            }
+        }
+    }
+
+    fn simplices(r: &RawInput) -> Vec<Vec<u32>> {
+        (0..r.simplex_count())
+            .map(|i| r.simplex(i).to_vec())
+            .collect()
+    }
+
+    #[test]
+    fn with_v_lines() {
+        let r = ok("# comment\nv 0 0\nv 1 0\n\ns 0 1 # edge\nv 0 1\ns 0 1 2\ns 2\n");
+        assert_eq!(r.vertex_count, Some(3));
+        let c = r.coords.as_ref().unwrap();
+        assert_eq!(c.dim, 2);
+        assert_eq!(c.data, [0., 0., 1., 0., 0., 1.]);
+        assert_eq!(simplices(&r), [vec![0, 1], vec![0, 1, 2], vec![2]]);
+        assert_eq!(r.lines, [5, 7, 8]);
+    }
+
+    #[test]
+    fn v_lines_without_coordinates() {
+        let r = ok("v\nv\ns 0 1\n");
+        assert_eq!(r.vertex_count, Some(2));
+        assert_eq!(r.coords, None);
+    }
+
+    #[test]
+    fn without_v_lines() {
+        let r = ok("s 0 1 2 3 4\ns 7\n");
+        assert_eq!(r.vertex_count, None);
+        assert_eq!(r.coords, None);
+        assert_eq!(simplices(&r), [vec![0, 1, 2, 3, 4], vec![7]]);
+    }
+
+    #[test]
+    fn crlf_tabs_no_final_newline_nan_and_unchecked_topology() {
+        let r = ok("v\t1 nan\r\nv inf 2\r\ns\t1 1\t9");
+        assert_eq!(simplices(&r), [[1, 1, 9]]);
+        assert_eq!(r.lines, [3]);
+        assert!(r.coords.clone().unwrap().data[1].is_nan());
+    }
+
+    #[test]
+    fn empty_file() {
+        err("", 1, "file is empty");
+        err("# nothing\n\n\n", 3, "file is empty");
+    }
+
+    #[test]
+    fn errors() {
+        err(
+            "v 0 0\nv 1 0 0\n",
+            2,
+            "v line has 3 coordinates but the first v line (line 1) has 2",
+        );
+        err("s 0 1\n\nq 1\n", 3, "unknown keyword 'q'");
+        err("s 0 1\nS 1\n", 2, "unknown keyword 'S'");
+        err("s 0 1\ns\n", 2, "s line with no vertex ids");
+        err(
+            "s 0 abc\n",
+            1,
+            "non-numeric token 'abc' where a vertex id was expected",
+        );
+        err("s 0 1.0\n", 1, "vertex id '1.0' is not an integer");
+        err(
+            "s 4294967296\n",
+            1,
+            "vertex id 4294967296 does not fit in 32 bits",
+        );
+        err(
+            "v x\n",
+            1,
+            "non-numeric token 'x' where a vertex coordinate was expected",
+        );
+        assert_eq!(
+            parse("v\ns 0\ns 1 -4\n"),
+            Err((3, ReadErrorKind::NegativeId(-4)))
+        );
+        assert_eq!(ok("s 4294967295\n").simplex(0), [u32::MAX]);
+    }
 }

@@ -1,0 +1,104 @@
+//! The input rules of the complex model: closure, top simplices, absorption, errors.
+
+use topoplex::complex::{ComplexError, MAX_DIMENSION};
+use topoplex::io::RawInput;
+use topoplex::{Complex, fixtures};
+
+#[test]
+fn duplicates_and_faces_are_absorbed_and_counted() {
+    // Triangle 0 1 2 listed twice (once reordered), its edge 1 2 and vertex 0 listed too,
+    // and a wire edge 2 3 whose vertex 3 is also listed.
+    let c = Complex::from_simplices(5, &[&[0, 1, 2], &[2, 1, 0], &[1, 2], &[0], &[2, 3], &[3]])
+        .unwrap();
+    let s = c.stats();
+    assert_eq!(
+        (s.input_simplices, s.absorbed_duplicates, s.absorbed_faces),
+        (6, 1, 3)
+    );
+    // Vertex 4 is used by nothing: an isolated vertex, a top 0-simplex.
+    assert_eq!(c.top_counts(), vec![1, 1, 1]);
+    assert_eq!(c.tops(0).as_flat(), &[4]);
+    assert_eq!(c.tops(1).as_flat(), &[2, 3]);
+    assert_eq!(c.dimension(), 2);
+}
+
+#[test]
+fn closure_lists_every_face_in_lexicographic_order() {
+    let c = fixtures::tetrahedron_with_dangling_triangle_and_wire();
+    let cl = c.closure();
+    let counts: Vec<usize> = cl.iter().map(|t| t.len()).collect();
+    // 6 vertices; 6 tetra edges + 24, 34, 45; 4 tetra faces + 234; 1 tetrahedron.
+    assert_eq!(counts, vec![6, 9, 5, 1]);
+    assert_eq!(
+        cl[2].as_flat(),
+        &[0, 1, 2, 0, 1, 3, 0, 2, 3, 1, 2, 3, 2, 3, 4]
+    );
+}
+
+#[test]
+fn numeric_not_textual_order() {
+    let c = Complex::from_simplices(12, &[&[0, 10, 11], &[0, 9, 10]]).unwrap();
+    assert_eq!(c.tops(2).as_flat(), &[0, 9, 10, 0, 10, 11]);
+}
+
+#[test]
+fn repeated_vertex_names_file_line_and_simplex() {
+    let mut raw = RawInput::new();
+    raw.vertex_count = Some(4);
+    raw.push(&[0, 1, 2], 3);
+    raw.push(&[1, 3, 1], 4);
+    let e = Complex::from_raw(&raw, Some(std::path::Path::new("in.simplices"))).unwrap_err();
+    assert!(matches!(e, ComplexError::RepeatedVertex { .. }));
+    assert_eq!(
+        e.to_string(),
+        "in.simplices:4: simplex [1 3 1] repeats vertex 1"
+    );
+}
+
+#[test]
+fn out_of_range_vertex_names_file_line_and_simplex() {
+    let mut raw = RawInput::new();
+    raw.vertex_count = Some(3);
+    raw.push(&[0, 1, 3], 7);
+    let e = Complex::from_raw(&raw, Some(std::path::Path::new("m.off"))).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "m.off:7: simplex [0 1 3] uses vertex 3, but the complex has 3 vertices (ids 0..3)"
+    );
+}
+
+#[test]
+fn dimension_above_the_maximum_is_refused() {
+    let ids: Vec<u32> = (0..=MAX_DIMENSION as u32 + 1).collect();
+    let e = Complex::from_simplices(ids.len() as u32, &[&ids]).unwrap_err();
+    assert!(
+        e.to_string()
+            .contains("dimension 16, above the supported maximum 15"),
+        "{e}"
+    );
+    let ok: Vec<u32> = (0..=MAX_DIMENSION as u32).collect();
+    assert_eq!(Complex::from_simplices(16, &[&ok]).unwrap().dimension(), 15);
+}
+
+#[test]
+fn array_input_errors_name_the_position() {
+    let e = Complex::from_arrays(3, &[0, 1, 1, 2, 2], &[0, 2, 5], None).unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "input simplex #1: simplex [1 2 2] repeats vertex 2"
+    );
+    assert!(matches!(
+        Complex::from_simplices(0, &[]),
+        Err(ComplexError::NoVertices { .. })
+    ));
+}
+
+#[test]
+fn without_declared_vertices_the_count_is_max_id_plus_one() {
+    let mut raw = RawInput::new();
+    raw.push(&[2, 5], 1);
+    let c = Complex::from_raw(&raw, None).unwrap();
+    assert_eq!(c.vertex_count(), 6);
+    // 0, 1, 3, 4 are isolated.
+    assert_eq!(c.tops(0).as_flat(), &[0, 1, 3, 4]);
+}
