@@ -146,8 +146,8 @@ pub fn gluing_json(
         .iter()
         .enumerate()
         .map(|(a, &v)| {
-            let copies = &dec.split_copies
-                [dec.split_offsets[a] as usize..dec.split_offsets[a + 1] as usize];
+            let copies =
+                &dec.split_copies[dec.split_offsets[a] as usize..dec.split_offsets[a + 1] as usize];
             let copies: Vec<serde_json::Value> = copies
                 .iter()
                 .map(|&c| {

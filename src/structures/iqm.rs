@@ -332,7 +332,8 @@ impl Iqm {
                 .iter()
                 .min_by_key(|&&v| vstar_off[v as usize + 1] - vstar_off[v as usize])
                 .unwrap();
-            let list = &vstar[vstar_off[hub as usize] as usize..vstar_off[hub as usize + 1] as usize];
+            let list =
+                &vstar[vstar_off[hub as usize] as usize..vstar_off[hub as usize + 1] as usize];
             for &g in list {
                 let kg = dim_of(g);
                 if kg <= k {
@@ -447,7 +448,6 @@ impl Iqm {
         }
 
         // Hypergraph.
-        let c_total = copy_vertex.len();
         let mut per_vertex = vec![0u32; n as usize];
         for &v in &copy_vertex {
             per_vertex[v as usize] += 1;
@@ -464,8 +464,8 @@ impl Iqm {
         }
         let mut hfill: Vec<u32> = hyper_offsets[..split_vertices.len()].to_vec();
         let mut hyper_copies = vec![0u32; *hyper_offsets.last().unwrap() as usize];
-        for c in 0..c_total {
-            let v = copy_vertex[c] as usize;
+        for (c, &v) in copy_vertex.iter().enumerate() {
+            let v = v as usize;
             let r = vertex_ref[v];
             if r == NONE {
                 vertex_ref[v] = c as u32;
@@ -560,8 +560,7 @@ impl Iqm {
                 ComponentPiece {
                     dimension: k,
                     tops: flat.iter().map(|&c| c - first).collect(),
-                    original: self.copy_vertex[copies.start as usize..copies.end as usize]
-                        .to_vec(),
+                    original: self.copy_vertex[copies.start as usize..copies.end as usize].to_vec(),
                     first_copy: first,
                 }
             })
@@ -578,8 +577,9 @@ impl Iqm {
     }
 
     /// Visits the top simplices in the star of vertex `v`, every copy in turn, walking each
-    /// copy's star by adjacencies through facets that contain the copy. Calls `f(k, t)`.
-    fn walk_star(&self, v: u32, mut f: impl FnMut(usize, u32)) {
+    /// copy's star by adjacencies through facets that contain the copy. Calls `f(k, t)`, which
+    /// returns `false` to stop the walk.
+    fn walk_star(&self, v: u32, mut f: impl FnMut(usize, u32) -> bool) {
         let mut seen: FxHashSet<u32> = FxHashSet::default();
         let mut stack: Vec<u32> = Vec::new();
         for &c in self.copies_of(v) {
@@ -589,12 +589,17 @@ impl Iqm {
             seen.insert(t0);
             stack.push(t0);
             while let Some(t) = stack.pop() {
-                f(k, t);
+                if !f(k, t) {
+                    return;
+                }
                 if k == 0 {
                     continue;
                 }
                 let row = self.row(k, t);
-                let pos = row.iter().position(|&x| x == c).expect("star walk stays at c");
+                let pos = row
+                    .iter()
+                    .position(|&x| x == c)
+                    .expect("star walk stays at c");
                 let a = &self.adj[k][t as usize * (k + 1)..(t as usize + 1) * (k + 1)];
                 for (j, &u) in a.iter().enumerate() {
                     if j != pos && u != NONE && seen.insert(u) {
@@ -608,26 +613,39 @@ impl Iqm {
     /// Original ids of top k-simplex `t` (ascending by construction).
     fn originals(&self, k: usize, t: u32, buf: &mut Vec<u32>) {
         buf.clear();
-        buf.extend(
-            self.row(k, t)
-                .iter()
-                .map(|&c| self.copy_vertex[c as usize]),
-        );
+        buf.extend(self.row(k, t).iter().map(|&c| self.copy_vertex[c as usize]));
     }
 
-    /// Top simplices (original ids, flat, with their lengths) in the star of `v` for which
-    /// `keep` holds.
-    fn star_tops(&self, v: u32, keep: impl Fn(&[u32]) -> bool) -> Vec<Vec<u32>> {
-        let mut found = Vec::new();
+    /// Appends to `found` the top simplices (original ids) of the star of `v` for which `keep`
+    /// holds, and their vertex counts to `lens`; with `first_only`, stops at the first one.
+    fn star_tops(
+        &self,
+        v: u32,
+        keep: impl Fn(&[u32]) -> bool,
+        first_only: bool,
+        found: &mut Vec<u32>,
+        lens: &mut Vec<usize>,
+    ) {
         let mut buf = Vec::new();
         self.walk_star(v, |k, t| {
             self.originals(k, t, &mut buf);
             if keep(&buf) {
-                found.push(buf.clone());
+                found.extend_from_slice(&buf);
+                lens.push(k + 1);
+                return !first_only;
             }
+            true
         });
-        found
     }
+}
+
+/// Rows of varying length, flat.
+fn rows_of<'a>(flat: &'a [u32], lens: &'a [usize]) -> impl Iterator<Item = &'a [u32]> + 'a {
+    let mut at = 0;
+    lens.iter().map(move |&l| {
+        at += l;
+        &flat[at - l..at]
+    })
 }
 
 impl Topology for Iqm {
@@ -668,21 +686,30 @@ impl Topology for Iqm {
     }
 
     fn contains(&self, sigma: &[u32]) -> bool {
-        let mut hit = false;
-        let mut buf = Vec::new();
-        self.walk_star(sigma[0], |k, t| {
-            if !hit && k + 1 >= sigma.len() {
-                self.originals(k, t, &mut buf);
-                hit = is_subset(sigma, &buf);
-            }
-        });
-        hit
+        let (mut found, mut lens) = (Vec::new(), Vec::new());
+        self.star_tops(
+            sigma[0],
+            |t| is_subset(sigma, t),
+            true,
+            &mut found,
+            &mut lens,
+        );
+        !lens.is_empty()
     }
 
     fn query(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Result<(), QueryError> {
         let p = sigma.len() - 1;
-        let containing = self.star_tops(sigma[0], |t| is_subset(sigma, t));
-        if containing.is_empty() {
+        let (mut found, mut lens) = (Vec::new(), Vec::new());
+        // Locating σ is all a boundary query needs.
+        let first_only = q < p;
+        self.star_tops(
+            sigma[0],
+            |t| is_subset(sigma, t),
+            first_only,
+            &mut found,
+            &mut lens,
+        );
+        if lens.is_empty() {
             return Err(QueryError::NotInComplex {
                 simplex: sigma.to_vec(),
             });
@@ -692,21 +719,22 @@ impl Topology for Iqm {
             push_subsets(sigma, q, out);
             return Ok(());
         } else if q > p {
-            for t in &containing {
+            for t in rows_of(&found, &lens) {
                 push_cofaces(t, sigma, q, &mut rows);
             }
         } else if p == 0 {
-            for t in &containing {
-                rows.extend(t.iter().copied().filter(|&u| u != sigma[0]));
-            }
+            rows.extend(found.iter().copied().filter(|&u| u != sigma[0]));
         } else {
             // Every facet of σ contains σ[0] or σ[1].
             let shares_facet =
                 |t: &[u32]| t.len() > p && sigma.iter().filter(|v| t.contains(v)).count() >= p;
-            let mut near = self.star_tops(sigma[0], shares_facet);
-            near.extend(self.star_tops(sigma[1], shares_facet));
+            found.clear();
+            lens.clear();
+            self.star_tops(sigma[0], shares_facet, false, &mut found, &mut lens);
+            self.star_tops(sigma[1], shares_facet, false, &mut found, &mut lens);
             let mut facet = Vec::with_capacity(p);
-            for t in &near {
+            let mut produced = Vec::new();
+            for t in rows_of(&found, &lens) {
                 for skip in 0..=p {
                     facet.clear();
                     facet.extend(
@@ -717,10 +745,9 @@ impl Topology for Iqm {
                             .map(|(_, &v)| v),
                     );
                     if is_subset(&facet, t) {
-                        let start = rows.len();
-                        push_cofaces(t, &facet, p, &mut rows);
-                        // Drop σ itself among the cofaces of its facet.
-                        let produced = rows.split_off(start);
+                        produced.clear();
+                        push_cofaces(t, &facet, p, &mut produced);
+                        // σ itself is among the cofaces of its facet.
                         for row in produced.chunks_exact(p + 1) {
                             if row != sigma {
                                 rows.extend_from_slice(row);
@@ -811,9 +838,7 @@ impl Topology for Iqm {
                             continue;
                         }
                         if !self.comp_rows(i).contains(&(u as usize)) {
-                            return Err(format!(
-                                "{orig:?}: adjacency {j} leaves component {i}"
-                            ));
+                            return Err(format!("{orig:?}: adjacency {j} leaves component {i}"));
                         }
                         let other = self.row(k, u);
                         let shared = row
@@ -836,7 +861,8 @@ impl Topology for Iqm {
             let comp = self.copy_comp[c] as usize;
             let k = self.comp_dim[comp] as usize;
             let t0 = self.copy_top[c];
-            if !self.comp_rows(comp).contains(&(t0 as usize)) || !self.row(k, t0).contains(&(c as u32))
+            if !self.comp_rows(comp).contains(&(t0 as usize))
+                || !self.row(k, t0).contains(&(c as u32))
             {
                 return Err(format!("copy {c}: its star reference does not contain it"));
             }
@@ -862,7 +888,9 @@ impl Topology for Iqm {
                 ));
             }
             if (copies.len() >= 2) != self.split_vertices.binary_search(&v).is_ok() {
-                return Err(format!("vertex {v}: split status disagrees with its copies"));
+                return Err(format!(
+                    "vertex {v}: split status disagrees with its copies"
+                ));
             }
             for &c in copies {
                 if self.copy_vertex[c as usize] != v {
