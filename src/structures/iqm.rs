@@ -1,13 +1,16 @@
 //! Initial Quasi-Manifold (IQM) data structure — De Floriani, Mesmoudi, Morando and Puppo 2003,
-//! as described in §3.1 and §3.4 of the 2005 survey; decomposition after Morando's thesis
-//! ("Decomposition and Modeling in the Non-Manifold Domain", 2003).
+//! as described in §3.1 and §3.4 of the 2005 survey. The decomposition is the *standard
+//! decomposition* of that paper and of Morando's thesis ("Decomposition and Modeling in the
+//! Non-Manifold Domain", 2003): top simplices pasted along manifold adjacencies, vertices split
+//! where their star is not manifold-connected. The definitions below are this module's precise
+//! reading of it, and the tests check the result against them by brute force.
 //!
 //! # Definitions
 //! - A top h-simplex is a simplex of the complex that is not a proper face of another.
-//! - A *joint* is an (h−1)-simplex τ (h ≥ 1) contained in exactly two simplices of dimension
-//!   above h − 1 that are top, both of dimension h, and in no other top simplex: the two top
-//!   h-simplices σ, σ′ are *manifold-adjacent* through τ. (Points inside τ then have a manifold
-//!   neighbourhood; if τ also lies in a third top simplex of any dimension, they do not.)
+//! - A *joint* is an (h−1)-simplex τ (h ≥ 1) contained in exactly two top simplices σ, σ′ of
+//!   the complex, both of dimension h: σ and σ′ are *manifold-adjacent* through τ. (Points
+//!   inside τ then have a manifold neighbourhood; if a third top simplex of any dimension
+//!   contains τ, they do not.)
 //! - Two top simplices in the star of a vertex v are *manifold-connected around v* when a chain
 //!   of manifold adjacencies joins them through joints that all contain v.
 //! - A regular h-complex is an *initial quasi-manifold* when, for every vertex, every two top
@@ -48,13 +51,20 @@
 //!    lexicographic order), their top simplices in that order, and copies per component in
 //!    order of first appearance; build adjacencies by sorting the facets over copy ids.
 //!
+//! `count(p)` needs n_p, which the decomposition does not hold: the build also counts the
+//! closure once (O(Σ_p (p+1) n_p log n_p), the same as the IG's build) and keeps only the
+//! counts.
+//!
 //! # Layout (flat arrays, ids `u32`, `NONE = u32::MAX`)
 //! - `tops[k]`: the top k-simplices as k + 1 copy ids (entry j is the copy of the simplex's
 //!   j-th smallest vertex), grouped by component: component i owns rows
 //!   `comp_top_start[i]..` up to the next component of the same dimension. This is each
 //!   component's extended IA: R_{k,0} over copies, local id = copy − `comp_copy_start[i]`.
 //! - `adj[k]` (k ≥ 1): k + 1 entries per top k-simplex; entry j is the top k-simplex of the same
-//!   component sharing the facet opposite entry j (R_{k,k}), `NONE` when there is none.
+//!   component sharing the facet opposite entry j (R_{k,k}), `NONE` when there is none. A facet
+//!   over copies that three or more top simplices of one component share would also get
+//!   `NONE` (counted by [`Iqm::crowded_facets`]; never observed). Star walks never need such
+//!   a facet: every joint keeps exactly two cofaces, and joints alone connect a copy's star.
 //! - `copy_top[c]`: one top simplex in the star of copy c (the extension R*_{0,k}).
 //! - `copy_vertex[c]`, `copy_comp[c]`: the vertex copy c stands for, and its component.
 //! - Hypergraph: `split_vertices[a]` with `hyper_offsets`/`hyper_copies` (CSR) listing the
