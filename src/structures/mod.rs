@@ -6,6 +6,7 @@ use crate::relation::{StructureKind, Topology};
 pub mod de;
 pub mod ia;
 pub mod ig;
+pub mod iqm;
 pub mod le;
 pub mod nmia;
 pub mod pe;
@@ -34,6 +35,7 @@ pub fn build(kind: StructureKind, complex: &Complex) -> Result<Box<dyn Topology>
         StructureKind::Pe => Ok(Box::new(pe::PartialEntities::build(complex)?)),
         StructureKind::Le => Ok(Box::new(le::LoopEdgeUse::build(complex)?)),
         StructureKind::De => Ok(Box::new(de::DirectedEdge::build(complex)?)),
+        StructureKind::Iqm => Ok(Box::new(iqm::Iqm::build(complex)?)),
         _ => Err(BuildError::NotImplemented { kind }),
     }
 }
