@@ -146,6 +146,13 @@ typedef uint32_t TpxStatus;
 typedef struct TpxComplex TpxComplex;
 
 /**
+ * The standard decomposition of a complex into initial quasi-manifold components (opaque).
+ * Create with `tpx_decomposition_build`, release with `tpx_decomposition_free`. Immutable;
+ * every array it hands out lives as long as the handle.
+ */
+typedef struct TpxDecomposition TpxDecomposition;
+
+/**
  * R_{p,q} of every p-simplex, in CSR form (opaque). Row i belongs to the i-th p-simplex in
  * `tpx_structure_simplices` order. Release with `tpx_relation_table_free`.
  */
@@ -264,6 +271,86 @@ TpxStatus tpx_complex_vertex_count(const struct TpxComplex *c, uint32_t *out);
  * Non-NULL pointers must be valid (a live handle; a writable `size_t`).
  */
 TpxStatus tpx_complex_top_count(const struct TpxComplex *c, uint32_t p, size_t *out);
+
+/**
+ * Cuts the complex `c` into its IQM components (see `src/structures/iqm.rs` for the
+ * definitions): each component is regular and an initial quasi-manifold, and vertices are
+ * split into one copy per manifold-connected part of their star.
+ *
+ * On success `*out` receives a new handle owned by the caller (free with
+ * `tpx_decomposition_free`); it does not borrow `c`. Errors: NULL_ARGUMENT, TOO_LARGE.
+ * Cost: O(S log S) for S = Σ (dim σ + 1) over top simplices σ, plus one count of the closure.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid (a live complex; a writable handle pointer).
+ */
+TpxStatus tpx_decomposition_build(const struct TpxComplex *c, struct TpxDecomposition **out);
+
+/**
+ * Releases a decomposition. NULL is a no-op.
+ *
+ * # Safety
+ * `d` must be NULL or a live handle from this library, not used afterwards.
+ */
+void tpx_decomposition_free(struct TpxDecomposition *d);
+
+/**
+ * Number of components into `*out`. Components are numbered by dimension, descending, then by
+ * their first top simplex in lexicographic order. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_decomposition_component_count(const struct TpxDecomposition *d, size_t *out);
+
+/**
+ * Component `index`: its dimension k, its top k-simplices as rows of k+1 *local* vertex ids
+ * (`*tops_len` = number of uint32_t), and `original_ids[local]`, the original vertex id of each
+ * local vertex (`*original_len` = number of local vertices; two local vertices of one component
+ * may share an original id where a vertex was split inside the component). Arrays belong to
+ * the handle. Errors: NULL_ARGUMENT, DIMENSION_OUT_OF_RANGE when `index` is not below the
+ * component count. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_decomposition_component(const struct TpxDecomposition *d,
+                                      size_t index,
+                                      uint32_t *dimension,
+                                      const uint32_t **tops,
+                                      size_t *tops_len,
+                                      const uint32_t **original_ids,
+                                      size_t *original_len);
+
+/**
+ * The hypergraph of split vertices (vertices with two or more copies), ascending:
+ * `vertices[a]` has copies `copies[offsets[a] .. offsets[a+1]]` (global copy ids; `offsets`
+ * has `*vertices_len + 1` entries). A global copy id c is local id
+ * `c − first global copy of its component`, and [`tpx_decomposition_copies`] maps it to its
+ * vertex and component. Arrays belong to the handle. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_decomposition_split_vertices(const struct TpxDecomposition *d,
+                                           const uint32_t **vertices,
+                                           size_t *vertices_len,
+                                           const uint32_t **offsets,
+                                           const uint32_t **copies,
+                                           size_t *copies_len);
+
+/**
+ * Every vertex copy (global ids, numbered component after component): `copy_vertex[c]` is the
+ * original vertex and `copy_component[c]` the component of copy c; `*len` = number of copies.
+ * Arrays belong to the handle. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_decomposition_copies(const struct TpxDecomposition *d,
+                                   const uint32_t **copy_vertex,
+                                   const uint32_t **copy_component,
+                                   size_t *len);
 
 /**
  * Builds a structure of `kind` (`TPX_KIND_*`) for the complex `c`.

@@ -22,6 +22,16 @@ fi
 echo "== cargo test"
 cargo test --profile ci --all-targets
 
+echo "== Miri on the FFI layer's unit tests"
+# Needs the nightly toolchain's miri component; rustup fetches it when it can.
+if rustup toolchain list 2>/dev/null | grep -q nightly &&
+   { rustup component list --toolchain nightly --installed 2>/dev/null | grep -q '^miri' ||
+     rustup component add miri rust-src --toolchain nightly >/dev/null 2>&1; }; then
+  cargo +nightly miri test --lib ffi
+else
+  echo "MIRI NOT RUN: no nightly toolchain with the miri component on this machine"
+fi
+
 echo "== fuzz smoke (differential: readers, every structure vs the oracle)"
 scripts/fuzz-smoke.sh 10
 

@@ -138,6 +138,12 @@ pub trait Topology: Send + Sync {
     /// Checks every invariant of the structure; the error names the first broken one.
     fn validate(&self) -> Result<(), String>;
 
+    /// Structure-specific figures for `report` (for example the IQM's component count), as
+    /// (name, value) pairs. None by default.
+    fn summary(&self) -> Vec<(&'static str, u64)> {
+        Vec::new()
+    }
+
     /// R_{p,q}(σ) for σ given by vertex ids in any order; p = |σ| − 1. Validates σ (no repeated
     /// or out-of-range vertex, in the complex) and q, then appends the answer to `out` (cleared
     /// first) in the structure's order. Cost: the structure's [`Topology::query`] cost.

@@ -261,3 +261,53 @@ fn every_structure_dumps_what_the_ig_dumps_on_real_data() {
         }
     }
 }
+
+#[test]
+fn decompose_writes_components_and_gluing() {
+    //   0       3
+    //   | \   / |      bowtie: two triangles pinched at vertex 2, plus a wire edge 4-5
+    //   |  2    |
+    //   | /   \ |
+    //   1       4 --- 5
+    let f = temp_file(
+        "bowtie.simplices",
+        "v 0 0 0\nv 0 1 0\nv 1 0.5 0\nv 2 1 0\nv 2 0 0\nv 3 0 0\ns 0 1 2\ns 2 3 4\ns 4 5\n",
+    );
+    let out = f.with_file_name("bowtie-parts");
+    let o = run(&[
+        "decompose",
+        f.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stdout(&o).starts_with("3 components, 2 split vertices"),
+        "{}",
+        stdout(&o)
+    );
+    let gluing: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("gluing.json")).unwrap()).unwrap();
+    let comps = gluing["components"].as_array().unwrap();
+    assert_eq!(comps.len(), 3);
+    // Every component file loads back, and its original ids cover its part of the complex.
+    let mut tops = Vec::new();
+    for c in comps {
+        let file = out.join(c["file"].as_str().unwrap());
+        let part = topoplex::Complex::from_path(&file).unwrap();
+        let orig: Vec<u32> = c["original_ids"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|v| v.as_u64().unwrap() as u32)
+            .collect();
+        let d = part.dimension();
+        for t in part.tops(d).iter() {
+            let mut g: Vec<u32> = t.iter().map(|&l| orig[l as usize]).collect();
+            g.sort();
+            tops.push(g);
+        }
+    }
+    tops.sort();
+    assert_eq!(tops, vec![vec![0, 1, 2], vec![2, 3, 4], vec![4, 5]]);
+}

@@ -44,6 +44,15 @@ enum Command {
         #[arg(long)]
         simplex: Option<String>,
     },
+    /// Cut the complex into its IQM components (the standard decomposition into initial
+    /// quasi-manifolds) and write each as its own file, plus gluing.json mapping every
+    /// component's local vertex ids back to the original ids.
+    Decompose {
+        file: PathBuf,
+        /// Output directory (created if missing).
+        #[arg(long)]
+        out: PathBuf,
+    },
 }
 
 fn parse_pq(s: &str) -> Result<(usize, usize), String> {
@@ -66,6 +75,7 @@ fn main() -> ExitCode {
             relation,
             simplex,
         } => dump_relation(file, &structure, relation, simplex),
+        Command::Decompose { file, out } => decompose(&file, &out),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -82,7 +92,7 @@ fn load(file: &PathBuf) -> Result<Complex, String> {
 
 struct Row {
     kind: StructureKind,
-    outcome: Result<(topoplex::Storage, f64), String>,
+    outcome: Result<(topoplex::Storage, f64, Vec<(&'static str, u64)>), String>,
 }
 
 fn report(file: Option<PathBuf>, json: bool) -> Result<(), String> {
@@ -97,7 +107,13 @@ fn report(file: Option<PathBuf>, json: bool) -> Result<(), String> {
         .map(|kind| {
             let start = Instant::now();
             let outcome = structures::build(kind, &complex)
-                .map(|s| (s.storage(), start.elapsed().as_secs_f64() * 1e3))
+                .map(|s| {
+                    (
+                        s.storage(),
+                        start.elapsed().as_secs_f64() * 1e3,
+                        s.summary(),
+                    )
+                })
                 .map_err(|e| e.to_string());
             Row { kind, outcome }
         })
@@ -107,10 +123,16 @@ fn report(file: Option<PathBuf>, json: bool) -> Result<(), String> {
         let mut structs = serde_json::Map::new();
         for r in &rows {
             let v = match &r.outcome {
-                Ok((s, ms)) => serde_json::json!({
-                    "integers": s.integers, "bits": s.bits, "bytes": s.bytes, "build_ms": ms,
-                    "bytes_per_simplex": s.bytes as f64 / total as f64,
-                }),
+                Ok((s, ms, extra)) => {
+                    let mut v = serde_json::json!({
+                        "integers": s.integers, "bits": s.bits, "bytes": s.bytes, "build_ms": ms,
+                        "bytes_per_simplex": s.bytes as f64 / total as f64,
+                    });
+                    for (k, x) in extra {
+                        v[*k] = serde_json::json!(x);
+                    }
+                    v
+                }
                 Err(reason) => serde_json::json!({ "unsupported": reason }),
             };
             structs.insert(r.kind.name().to_string(), v);
@@ -153,18 +175,43 @@ fn report(file: Option<PathBuf>, json: bool) -> Result<(), String> {
     );
     for r in &rows {
         match &r.outcome {
-            Ok((s, ms)) => println!(
-                "{:<6} {:>14} {:>12} {:>14} {:>10.1} {:>10.2}",
-                r.kind.name(),
-                s.integers,
-                s.bits,
-                s.bytes,
-                s.bytes as f64 / total as f64,
-                ms
-            ),
+            Ok((s, ms, extra)) => {
+                let extra: Vec<String> = extra
+                    .iter()
+                    .map(|(k, x)| format!("{x} {}", k.replace('_', " ")))
+                    .collect();
+                let line = format!(
+                    "{:<6} {:>14} {:>12} {:>14} {:>10.1} {:>10.2}  {}",
+                    r.kind.name(),
+                    s.integers,
+                    s.bits,
+                    s.bytes,
+                    s.bytes as f64 / total as f64,
+                    ms,
+                    extra.join(", ")
+                );
+                println!("{}", line.trim_end());
+            }
             Err(reason) => println!("{:<6} unsupported: {reason}", r.kind.name()),
         }
     }
+    Ok(())
+}
+
+fn decompose(file: &PathBuf, out: &std::path::Path) -> Result<(), String> {
+    let complex = load(file)?;
+    let iqm = topoplex::structures::iqm::Iqm::build(&complex).map_err(|e| e.to_string())?;
+    let dec = iqm.decomposition();
+    let paths = topoplex::io::write::write_components(&dec, complex.coords(), out)
+        .map_err(|e| e.to_string())?;
+    println!(
+        "{} components, {} split vertices ({} vertex copies in all); wrote {} files to {}",
+        dec.components.len(),
+        dec.split_vertices.len(),
+        dec.copy_vertex.len(),
+        paths.len(),
+        out.display()
+    );
     Ok(())
 }
 

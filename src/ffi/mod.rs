@@ -21,11 +21,13 @@ use std::ffi::{CString, c_char};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
 mod complex;
+mod decomposition;
 mod structure;
 #[cfg(test)]
 mod tests;
 
 pub use complex::*;
+pub use decomposition::*;
 pub use structure::*;
 
 // The panic boundary below relies on unwinding; with `panic = "abort"` a bug would kill the host.

@@ -44,7 +44,7 @@ fn kind_from_u32(kind: u32) -> Result<StructureKind, Failure> {
         })
 }
 
-fn build_failure(e: BuildError) -> Failure {
+pub(crate) fn build_failure(e: BuildError) -> Failure {
     let status = match &e {
         BuildError::NotImplemented { .. } => TpxStatus::NotImplemented,
         BuildError::Unsupported { .. } => TpxStatus::UnsupportedComplex,

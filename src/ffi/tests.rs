@@ -495,3 +495,87 @@ fn queries_from_two_threads_share_one_structure() {
         tpx_complex_free(c);
     }
 }
+
+#[test]
+fn decomposition_of_the_bowtie_splits_its_pinch_vertex() {
+    //   0       3
+    //   | \   / |
+    //   |  2    |     two triangles sharing only vertex 2: two components, vertex 2 split
+    //   | /   \ |
+    //   1       4
+    let c = complex(5, &[&[0, 1, 2], &[2, 3, 4]]);
+    let mut d = null_mut();
+    assert_eq!(unsafe { tpx_decomposition_build(c, &mut d) }, TpxStatus::Ok);
+    let mut count = 0usize;
+    assert_eq!(
+        unsafe { tpx_decomposition_component_count(d, &mut count) },
+        TpxStatus::Ok
+    );
+    assert_eq!(count, 2);
+    let mut originals = Vec::new();
+    for i in 0..count {
+        let (mut dim, mut tops, mut tops_len, mut orig, mut orig_len) =
+            (0u32, null(), 0usize, null(), 0usize);
+        let st = unsafe {
+            tpx_decomposition_component(
+                d,
+                i,
+                &mut dim,
+                &mut tops,
+                &mut tops_len,
+                &mut orig,
+                &mut orig_len,
+            )
+        };
+        assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+        assert_eq!((dim, tops_len, orig_len), (2, 3, 3));
+        let tops = unsafe { std::slice::from_raw_parts(tops, tops_len) };
+        let orig = unsafe { std::slice::from_raw_parts(orig, orig_len) };
+        let mut tri: Vec<u32> = tops.iter().map(|&l| orig[l as usize]).collect();
+        tri.sort();
+        originals.push(tri);
+    }
+    originals.sort();
+    assert_eq!(originals, [vec![0, 1, 2], vec![2, 3, 4]]);
+    let (mut sv, mut sv_len, mut off, mut copies, mut copies_len) =
+        (null(), 0usize, null(), null(), 0usize);
+    assert_eq!(
+        unsafe {
+            tpx_decomposition_split_vertices(
+                d,
+                &mut sv,
+                &mut sv_len,
+                &mut off,
+                &mut copies,
+                &mut copies_len,
+            )
+        },
+        TpxStatus::Ok
+    );
+    assert_eq!(unsafe { std::slice::from_raw_parts(sv, sv_len) }, [2]);
+    assert_eq!(copies_len, 2);
+    let (mut cv, mut cc, mut n) = (null(), null(), 0usize);
+    assert_eq!(
+        unsafe { tpx_decomposition_copies(d, &mut cv, &mut cc, &mut n) },
+        TpxStatus::Ok
+    );
+    assert_eq!(n, 6);
+    let copies = unsafe { std::slice::from_raw_parts(copies, copies_len) };
+    let cv = unsafe { std::slice::from_raw_parts(cv, n) };
+    let cc = unsafe { std::slice::from_raw_parts(cc, n) };
+    assert!(copies.iter().all(|&k| cv[k as usize] == 2));
+    assert_ne!(cc[copies[0] as usize], cc[copies[1] as usize]);
+    let (mut dim, mut p, mut l) = (0u32, null(), 0usize);
+    let st =
+        unsafe { tpx_decomposition_component(d, 2, &mut dim, &mut p, &mut l, &mut null(), &mut 0) };
+    assert_eq!(st, TpxStatus::DimensionOutOfRange);
+    assert_eq!(
+        unsafe { tpx_decomposition_component_count(null(), &mut count) },
+        TpxStatus::NullArgument
+    );
+    unsafe {
+        tpx_decomposition_free(d);
+        tpx_decomposition_free(null_mut());
+        tpx_complex_free(c);
+    }
+}

@@ -808,6 +808,14 @@ impl Topology for Iqm {
         }
     }
 
+    fn summary(&self) -> Vec<(&'static str, u64)> {
+        vec![
+            ("components", self.component_count() as u64),
+            ("split_vertices", self.split_vertices().len() as u64),
+            ("vertex_copies", self.copy_count() as u64),
+        ]
+    }
+
     fn validate(&self) -> Result<(), String> {
         let m = self.component_count();
         let c_total = self.copy_vertex.len();
