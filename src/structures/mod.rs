@@ -4,6 +4,7 @@ use crate::complex::Complex;
 use crate::relation::{StructureKind, Topology};
 
 pub mod ig;
+pub mod sig;
 
 /// Why a structure could not be built for a complex.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -21,6 +22,7 @@ pub enum BuildError {
 pub fn build(kind: StructureKind, complex: &Complex) -> Result<Box<dyn Topology>, BuildError> {
     match kind {
         StructureKind::Ig => Ok(Box::new(ig::IncidenceGraph::build(complex)?)),
+        StructureKind::Sig => Ok(Box::new(sig::Sig::build(complex)?)),
         _ => Err(BuildError::NotImplemented { kind }),
     }
 }
