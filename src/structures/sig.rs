@@ -79,8 +79,9 @@
 //!   Per dimension p, the top simplices above each p-simplex come from enumerating every top
 //!   simplex's p-faces (counting sort into CSR, released after that dimension); clusters are a
 //!   union–find over those top simplices, keyed by the shared (g−1)-faces that contain σ.
-//!   Time O(Σ_τ top Σ_p C(r+1, p+1) · r) after the closure, memory the structure plus one
-//!   dimension's top-incidence CSR.
+//!   After the closure and the boundaries (each facet found by binary search, as in the IG),
+//!   time O(Σ_{τ top} Σ_{p<r} C(r+1, p+1) · r), r = dim τ; extra memory one dimension's
+//!   top-incidence CSR (4 bytes per (face, top simplex) pair) plus per-simplex scratch.
 //!
 //! # Cost of each relation (after locating σ: O(p log n_p) by binary search)
 //! Faces are reached through B_{r,r−1} along one canonical path each (drop vertices from the
