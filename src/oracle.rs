@@ -68,6 +68,51 @@ impl Oracle {
             && self.levels[s.len() - 1].binary_search(&s.to_vec()).is_ok()
     }
 
+    /// The g-clusters of the restricted star of σ (SIG paper §2, as settled by its Algorithm 1):
+    /// the top g-simplices properly containing σ, two in one cluster when linked by a chain of
+    /// top g-simplices, consecutive ones sharing a (g−1)-face that properly contains σ. Each
+    /// cluster ascending, clusters ascending; empty unless p < g ≤ d.
+    pub fn clusters(&self, sigma: &[u32], g: usize) -> Vec<Vec<Vec<u32>>> {
+        let p = sigma.len() - 1;
+        if g <= p || g > self.dimension() {
+            return Vec::new();
+        }
+        let tops: Vec<&Vec<u32>> = self.tops[g]
+            .iter()
+            .filter(|t| is_subset(sigma, t))
+            .collect();
+        let linked = |a: &[u32], b: &[u32]| {
+            let shared: Vec<u32> = a.iter().copied().filter(|v| b.contains(v)).collect();
+            shared.len() == g && shared.len() > sigma.len() && is_subset(sigma, &shared)
+        };
+        let mut label = vec![usize::MAX; tops.len()];
+        let mut clusters = Vec::new();
+        for start in 0..tops.len() {
+            if label[start] != usize::MAX {
+                continue;
+            }
+            let c = clusters.len();
+            label[start] = c;
+            let mut members = vec![start];
+            let mut k = 0;
+            while k < members.len() {
+                let m = members[k];
+                for o in 0..tops.len() {
+                    if label[o] == usize::MAX && linked(tops[m], tops[o]) {
+                        label[o] = c;
+                        members.push(o);
+                    }
+                }
+                k += 1;
+            }
+            let mut cl: Vec<Vec<u32>> = members.iter().map(|&m| tops[m].clone()).collect();
+            cl.sort();
+            clusters.push(cl);
+        }
+        clusters.sort();
+        clusters
+    }
+
     /// R_{p,q}(σ) for σ ascending and in the complex, ascending lexicographic.
     pub fn relation(&self, sigma: &[u32], q: usize) -> Vec<Vec<u32>> {
         let p = sigma.len() - 1;

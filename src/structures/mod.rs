@@ -11,6 +11,7 @@ pub mod le;
 pub mod nmia;
 pub mod pe;
 pub(crate) mod radial;
+pub mod sig;
 pub mod ts;
 
 /// Why a structure could not be built for a complex.
@@ -36,6 +37,7 @@ pub fn build(kind: StructureKind, complex: &Complex) -> Result<Box<dyn Topology>
         StructureKind::Le => Ok(Box::new(le::LoopEdgeUse::build(complex)?)),
         StructureKind::De => Ok(Box::new(de::DirectedEdge::build(complex)?)),
         StructureKind::Iqm => Ok(Box::new(iqm::Iqm::build(complex)?)),
+        StructureKind::Sig => Ok(Box::new(sig::Sig::build(complex)?)),
         _ => Err(BuildError::NotImplemented { kind }),
     }
 }
