@@ -115,11 +115,13 @@ thread_local! {
 fn set_last_error(message: &str) {
     // An interior NUL would truncate nothing useful, but CString refuses it: replace it.
     let c = CString::new(message.replace('\0', "\\0")).unwrap_or_default();
-    LAST_ERROR.with(|e| *e.borrow_mut() = c);
+    // `try_with`: during thread teardown the slot may be gone; the message is then dropped
+    // rather than panicking outside the panic boundary.
+    let _ = LAST_ERROR.try_with(|e| *e.borrow_mut() = c);
 }
 
 fn clear_last_error() {
-    LAST_ERROR.with(|e| {
+    let _ = LAST_ERROR.try_with(|e| {
         let mut e = e.borrow_mut();
         if !e.as_bytes().is_empty() {
             *e = CString::default();
@@ -242,6 +244,8 @@ pub extern "C" fn tpx_last_error_message() -> *const c_char {
     guard_value(EMPTY.as_ptr().cast(), || {
         // The CString's heap buffer does not move when the thread-local is read; it is replaced
         // (and the old pointer dies) only by the next status-returning call on this thread.
-        LAST_ERROR.with(|e| e.borrow().as_ptr())
+        LAST_ERROR
+            .try_with(|e| e.borrow().as_ptr())
+            .unwrap_or(EMPTY.as_ptr().cast())
     })
 }

@@ -1,0 +1,441 @@
+/*
+ * The Topoplex C ABI from plain C99: lifecycle, every reachable status, the buffer protocol,
+ * file loading and the relation table, on one drawn fixture with hand-derived answers.
+ *
+ *          3 ------ 4 ------ 5        tetrahedron 0 1 2 3
+ *         /|\      /                  dangling triangle 2 3 4 on edge 2-3
+ *        / | \    /                   wire edge 4-5
+ *       0--|--2--/
+ *        \ | /
+ *         \|/
+ *          1
+ *
+ * TPX_STATUS_PANIC is not reachable from C without a bug; the Rust unit tests cover the panic
+ * boundary itself.
+ */
+#include "topoplex.h"
+
+#include <stdint.h>
+#include <stdio.h>
+#include <string.h>
+
+static int g_passed = 0;
+static int g_failed = 0;
+
+static void check(int ok, const char *what, const char *file, int line) {
+  if (ok) {
+    ++g_passed;
+  } else {
+    ++g_failed;
+    fprintf(stderr, "%s:%d: FAILED: %s (last error: \"%s\")\n", file, line, what,
+            tpx_last_error_message());
+  }
+}
+
+#define CHECK(cond) check((cond) ? 1 : 0, #cond, __FILE__, __LINE__)
+#define CHECK_STATUS(call, expected) check((call) == (expected), #call " == " #expected, __FILE__, __LINE__)
+
+static int message_contains(const char *needle) {
+  return strstr(tpx_last_error_message(), needle) != NULL;
+}
+
+static int same_u32(const uint32_t *a, const uint32_t *b, size_t n) {
+  size_t i;
+  for (i = 0; i < n; ++i) {
+    if (a[i] != b[i]) return 0;
+  }
+  return 1;
+}
+
+static TpxComplex *fixture(void) {
+  static const uint32_t ids[] = {3, 2, 1, 0, 4, 2, 3, 5, 4};
+  static const size_t offsets[] = {0, 4, 7, 9};
+  TpxComplex *c = NULL;
+  CHECK_STATUS(tpx_complex_from_arrays(6, ids, offsets, 3, NULL, 0, &c), TPX_STATUS_OK);
+  CHECK(c != NULL);
+  return c;
+}
+
+static TpxStructure *build_ig(const TpxComplex *c) {
+  TpxStructure *s = NULL;
+  CHECK_STATUS(tpx_structure_build(c, TPX_KIND_IG, &s), TPX_STATUS_OK);
+  CHECK(s != NULL);
+  return s;
+}
+
+static void test_version(void) {
+  CHECK(strcmp(tpx_version(), TPX_EXPECTED_VERSION) == 0);
+  CHECK(tpx_last_error_message() != NULL);
+}
+
+static void test_complex_lifecycle(void) {
+  static const double coords[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2};
+  static const uint32_t ids[] = {3, 2, 1, 0, 4, 2, 3, 5, 4};
+  static const size_t offsets[] = {0, 4, 7, 9};
+  TpxComplex *c = NULL;
+  uint32_t d = 99, n = 99;
+  size_t tops[5];
+  uint32_t p;
+
+  CHECK_STATUS(tpx_complex_from_arrays(6, ids, offsets, 3, coords, 3, &c), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_dimension(c, &d), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_vertex_count(c, &n), TPX_STATUS_OK);
+  CHECK(d == 3 && n == 6);
+  for (p = 0; p < 5; ++p) {
+    tops[p] = 99;
+    CHECK_STATUS(tpx_complex_top_count(c, p, &tops[p]), TPX_STATUS_OK);
+  }
+  /* One top edge (4-5), one top triangle (2 3 4), one tetrahedron; none above. */
+  CHECK(tops[0] == 0 && tops[1] == 1 && tops[2] == 1 && tops[3] == 1 && tops[4] == 0);
+  CHECK(strcmp(tpx_last_error_message(), "") == 0);
+  tpx_complex_free(c);
+
+  /* Only isolated vertices, no arrays at all. */
+  c = NULL;
+  CHECK_STATUS(tpx_complex_from_arrays(3, NULL, NULL, 0, NULL, 0, &c), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_dimension(c, &d), TPX_STATUS_OK);
+  CHECK(d == 0);
+  tpx_complex_free(c);
+}
+
+static void test_structure_queries(void) {
+  TpxComplex *c = fixture();
+  TpxStructure *s = build_ig(c);
+  uint32_t kind = 99, d = 99;
+  size_t counts[4], len = 0;
+  TpxStorage storage = {0, 0, 0};
+  uint32_t buf[32];
+  uint32_t p;
+  static const uint32_t edge_32[] = {3, 2};
+  static const uint32_t triangles_on_23[] = {0, 2, 3, 1, 2, 3, 2, 3, 4};
+  static const uint32_t v4[] = {4};
+  static const uint32_t edges_at_4[] = {2, 4, 3, 4, 4, 5};
+  static const uint32_t tri_432[] = {4, 3, 2};
+  static const uint32_t edges_of_234[] = {2, 3, 2, 4, 3, 4};
+  static const uint32_t v2[] = {2};
+  static const uint32_t neighbours_of_2[] = {0, 1, 3, 4};
+  static const uint32_t tet[] = {0, 1, 2, 3};
+  static const uint32_t adjacent_to_123[] = {0, 1, 2, 0, 1, 3, 0, 2, 3, 2, 3, 4};
+  static const uint32_t triangles[] = {0, 1, 2, 0, 1, 3, 0, 2, 3, 1, 2, 3, 2, 3, 4};
+
+  /* The structure owns its data: the complex may go first. */
+  tpx_complex_free(c);
+
+  CHECK_STATUS(tpx_structure_kind(s, &kind), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_structure_dimension(s, &d), TPX_STATUS_OK);
+  CHECK(kind == TPX_KIND_IG && d == 3);
+  for (p = 0; p < 4; ++p) {
+    CHECK_STATUS(tpx_structure_count(s, p, &counts[p]), TPX_STATUS_OK);
+  }
+  /* 6 vertices; 6 tetrahedron edges + 2-4, 3-4, 4-5; 4 faces + 2 3 4; one tetrahedron. */
+  CHECK(counts[0] == 6 && counts[1] == 9 && counts[2] == 5 && counts[3] == 1);
+  CHECK_STATUS(tpx_structure_count(s, 7, &len), TPX_STATUS_OK);
+  CHECK(len == 0);
+  CHECK_STATUS(tpx_structure_top_count(s, 2, &len), TPX_STATUS_OK);
+  CHECK(len == 1);
+  CHECK_STATUS(tpx_structure_storage(s, &storage), TPX_STATUS_OK);
+  CHECK(storage.integers > 0 && storage.bytes > 0);
+
+  CHECK_STATUS(tpx_structure_simplices(s, 2, buf, 32, &len), TPX_STATUS_OK);
+  CHECK(len == 15 && same_u32(buf, triangles, 15));
+
+  CHECK_STATUS(tpx_relation(s, edge_32, 2, 2, buf, 32, &len), TPX_STATUS_OK);
+  CHECK(len == 9 && same_u32(buf, triangles_on_23, 9));
+  CHECK_STATUS(tpx_relation(s, v4, 1, 1, buf, 32, &len), TPX_STATUS_OK);
+  CHECK(len == 6 && same_u32(buf, edges_at_4, 6));
+  CHECK_STATUS(tpx_relation(s, tri_432, 3, 1, buf, 32, &len), TPX_STATUS_OK);
+  CHECK(len == 6 && same_u32(buf, edges_of_234, 6));
+  CHECK_STATUS(tpx_relation(s, v2, 1, 0, buf, 32, &len), TPX_STATUS_OK);
+  CHECK(len == 4 && same_u32(buf, neighbours_of_2, 4));
+  /* Triangles sharing an edge with 1 2 3. */
+  CHECK_STATUS(tpx_relation(s, tet + 1, 3, 2, buf, 32, &len), TPX_STATUS_OK);
+  CHECK(len == 12 && same_u32(buf, adjacent_to_123, 12));
+  /* The tetrahedron has no adjacent tetrahedron: an empty answer, NULL buffer allowed. */
+  len = 77;
+  CHECK_STATUS(tpx_relation(s, tet, 4, 3, NULL, 0, &len), TPX_STATUS_OK);
+  CHECK(len == 0);
+
+  tpx_structure_free(s);
+}
+
+static void test_buffer_too_small(void) {
+  TpxComplex *c = fixture();
+  TpxStructure *s = build_ig(c);
+  uint32_t small[4] = {7, 7, 7, 7};
+  size_t len = 0;
+  static const uint32_t edge_23[] = {2, 3};
+
+  /* Size query: NULL buffer of length 0 gives the needed length. */
+  CHECK_STATUS(tpx_relation(s, edge_23, 2, 2, NULL, 0, &len), TPX_STATUS_BUFFER_TOO_SMALL);
+  CHECK(len == 9);
+  len = 0;
+  CHECK_STATUS(tpx_relation(s, edge_23, 2, 2, small, 4, &len), TPX_STATUS_BUFFER_TOO_SMALL);
+  CHECK(len == 9);
+  CHECK(small[0] == 7 && small[1] == 7 && small[2] == 7 && small[3] == 7);
+  CHECK(message_contains("9"));
+  len = 0;
+  CHECK_STATUS(tpx_structure_simplices(s, 1, small, 4, &len), TPX_STATUS_BUFFER_TOO_SMALL);
+  CHECK(len == 18);
+  CHECK(small[0] == 7);
+  /* A NULL buffer that claims room is a NULL argument. */
+  CHECK_STATUS(tpx_relation(s, edge_23, 2, 2, NULL, 9, &len), TPX_STATUS_NULL_ARGUMENT);
+
+  tpx_structure_free(s);
+  tpx_complex_free(c);
+}
+
+static void test_null_arguments(void) {
+  TpxComplex *c = fixture();
+  TpxStructure *s = build_ig(c);
+  TpxComplex *cout = NULL;
+  TpxStructure *sout = NULL;
+  TpxRelationTable *tout = NULL;
+  uint32_t u = 42;
+  size_t z = 42;
+  TpxStorage storage = {1, 2, 3};
+  static const uint32_t v0[] = {0};
+  static const size_t offsets[] = {0, 1};
+
+  CHECK_STATUS(tpx_complex_from_arrays(1, v0, offsets, 1, NULL, 0, NULL), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_complex_from_arrays(1, NULL, offsets, 1, NULL, 0, &cout), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_complex_from_arrays(1, v0, NULL, 1, NULL, 0, &cout), TPX_STATUS_NULL_ARGUMENT);
+  CHECK(message_contains("offsets"));
+  CHECK_STATUS(tpx_complex_from_file(NULL, &cout), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_complex_from_file("x.off", NULL), TPX_STATUS_NULL_ARGUMENT);
+  CHECK(cout == NULL);
+  CHECK_STATUS(tpx_complex_dimension(NULL, &u), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_complex_dimension(c, NULL), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_complex_vertex_count(NULL, &u), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_complex_top_count(NULL, 0, &z), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_structure_build(NULL, TPX_KIND_IG, &sout), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_structure_build(c, TPX_KIND_IG, NULL), TPX_STATUS_NULL_ARGUMENT);
+  CHECK(sout == NULL);
+  CHECK_STATUS(tpx_structure_kind(NULL, &u), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_structure_dimension(s, NULL), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_structure_count(NULL, 0, &z), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_structure_top_count(s, 0, NULL), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_structure_storage(NULL, &storage), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_structure_simplices(s, 0, NULL, 0, NULL), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_relation(NULL, v0, 1, 0, NULL, 0, &z), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_relation(s, NULL, 1, 0, NULL, 0, &z), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_relation(s, v0, 1, 0, NULL, 0, NULL), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_relation_table(NULL, 0, 0, &tout), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_relation_table(s, 0, 0, NULL), TPX_STATUS_NULL_ARGUMENT);
+  CHECK(tout == NULL);
+  CHECK(tpx_relation_table_offsets(NULL, &z) == NULL);
+  CHECK(tpx_relation_table_ids(NULL, &z) == NULL);
+  /* Outputs untouched by every failure above. */
+  CHECK(u == 42 && z == 42 && storage.integers == 1 && storage.bits == 2 && storage.bytes == 3);
+
+  tpx_complex_free(NULL);
+  tpx_structure_free(NULL);
+  tpx_relation_table_free(NULL);
+  tpx_structure_free(s);
+  tpx_complex_free(c);
+}
+
+static void test_invalid_inputs(void) {
+  TpxComplex *c = NULL;
+  static const uint32_t ids[] = {0, 1, 2, 2};
+  static const size_t decreasing[] = {0, 2, 1};
+  static const size_t two[] = {0, 2, 4};
+  static const uint32_t out_of_range[] = {0, 3};
+  static const size_t one[] = {0, 2};
+  static const double coords[] = {0.0, 1.0};
+
+  CHECK_STATUS(tpx_complex_from_arrays(3, ids, decreasing, 2, NULL, 0, &c), TPX_STATUS_INVALID_ARGUMENT);
+  CHECK(message_contains("offsets"));
+  CHECK_STATUS(tpx_complex_from_arrays(2, NULL, NULL, 0, coords, 0, &c), TPX_STATUS_INVALID_ARGUMENT);
+  /* Simplex #1 is [2 2]. */
+  CHECK_STATUS(tpx_complex_from_arrays(3, ids, two, 2, NULL, 0, &c), TPX_STATUS_INVALID_COMPLEX);
+  CHECK(message_contains("#1") && message_contains("[2 2]"));
+  CHECK_STATUS(tpx_complex_from_arrays(3, out_of_range, one, 1, NULL, 0, &c), TPX_STATUS_INVALID_COMPLEX);
+  CHECK(message_contains("[0 3]"));
+  CHECK_STATUS(tpx_complex_from_arrays(0, NULL, NULL, 0, NULL, 0, &c), TPX_STATUS_INVALID_COMPLEX);
+  /* Sizes that cannot be addressed. */
+  CHECK_STATUS(tpx_complex_from_arrays(1, ids, one, SIZE_MAX, NULL, 0, &c), TPX_STATUS_TOO_LARGE);
+  CHECK_STATUS(tpx_complex_from_arrays(UINT32_MAX, NULL, NULL, 0, coords, SIZE_MAX, &c), TPX_STATUS_TOO_LARGE);
+  CHECK(c == NULL);
+}
+
+static void test_kinds(void) {
+  TpxComplex *c = fixture();
+  TpxStructure *ig = build_ig(c);
+  TpxStructure *s = NULL;
+  uint32_t kind, got;
+  unsigned not_implemented = 0, built = 0, unsupported = 0;
+  static const uint32_t edge_23[] = {2, 3};
+  uint32_t want[16], buf[16];
+  size_t want_len = 0, len = 0;
+
+  CHECK_STATUS(tpx_structure_build(c, 9, &s), TPX_STATUS_UNKNOWN_KIND);
+  CHECK_STATUS(tpx_structure_build(c, UINT32_MAX, &s), TPX_STATUS_UNKNOWN_KIND);
+  CHECK(message_contains("9") || message_contains("4294967295"));
+  CHECK(s == NULL);
+
+  CHECK_STATUS(tpx_relation(ig, edge_23, 2, 2, want, 16, &want_len), TPX_STATUS_OK);
+  /* Each kind either builds and answers as the IG does, or says why it cannot. */
+  for (kind = TPX_KIND_IG; kind <= TPX_KIND_DE; ++kind) {
+    TpxStatus st = tpx_structure_build(c, kind, &s);
+    if (st == TPX_STATUS_OK) {
+      ++built;
+      CHECK_STATUS(tpx_structure_kind(s, &got), TPX_STATUS_OK);
+      CHECK(got == kind);
+      CHECK_STATUS(tpx_relation(s, edge_23, 2, 2, buf, 16, &len), TPX_STATUS_OK);
+      CHECK(len == want_len && same_u32(buf, want, len));
+      tpx_structure_free(s);
+      s = NULL;
+    } else if (st == TPX_STATUS_NOT_IMPLEMENTED) {
+      ++not_implemented;
+      CHECK(message_contains("not implemented"));
+      CHECK(s == NULL);
+    } else if (st == TPX_STATUS_UNSUPPORTED_COMPLEX) {
+      ++unsupported;
+      CHECK(message_contains("["));
+      CHECK(s == NULL);
+    } else {
+      check(0, "kind builds, is NOT_IMPLEMENTED or UNSUPPORTED_COMPLEX", __FILE__, __LINE__);
+    }
+  }
+  CHECK(built >= 1);
+  printf("kinds: %u built, %u not implemented, %u unsupported on the fixture\n", built,
+         not_implemented, unsupported);
+
+  tpx_structure_free(ig);
+  tpx_complex_free(c);
+}
+
+static void test_query_errors(void) {
+  TpxComplex *c = fixture();
+  TpxStructure *s = build_ig(c);
+  TpxRelationTable *t = NULL;
+  uint32_t buf[16];
+  size_t len = 55;
+  static const uint32_t not_in[] = {4, 0};
+  static const uint32_t repeated[] = {1, 1};
+  static const uint32_t out_of_range[] = {6};
+  static const uint32_t seventeen[17] = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16};
+  static const uint32_t v0[] = {0};
+
+  CHECK_STATUS(tpx_relation(s, not_in, 2, 0, buf, 16, &len), TPX_STATUS_NOT_IN_COMPLEX);
+  CHECK(message_contains("[0 4]"));
+  CHECK_STATUS(tpx_relation(s, v0, 0, 0, buf, 16, &len), TPX_STATUS_INVALID_SIMPLEX);
+  CHECK_STATUS(tpx_relation(s, repeated, 2, 0, buf, 16, &len), TPX_STATUS_INVALID_SIMPLEX);
+  CHECK(message_contains("repeats vertex 1"));
+  CHECK_STATUS(tpx_relation(s, out_of_range, 1, 0, buf, 16, &len), TPX_STATUS_INVALID_SIMPLEX);
+  CHECK_STATUS(tpx_relation(s, seventeen, 17, 0, buf, 16, &len), TPX_STATUS_INVALID_SIMPLEX);
+  CHECK_STATUS(tpx_relation(s, v0, 1, 4, buf, 16, &len), TPX_STATUS_DIMENSION_OUT_OF_RANGE);
+  CHECK_STATUS(tpx_structure_simplices(s, 4, buf, 16, &len), TPX_STATUS_DIMENSION_OUT_OF_RANGE);
+  CHECK_STATUS(tpx_relation_table(s, 4, 0, &t), TPX_STATUS_DIMENSION_OUT_OF_RANGE);
+  CHECK_STATUS(tpx_relation_table(s, 0, 4, &t), TPX_STATUS_DIMENSION_OUT_OF_RANGE);
+  CHECK(len == 55 && t == NULL);
+  /* A success clears the message. */
+  CHECK_STATUS(tpx_relation(s, v0, 1, 1, buf, 16, &len), TPX_STATUS_OK);
+  CHECK(strcmp(tpx_last_error_message(), "") == 0);
+
+  tpx_structure_free(s);
+  tpx_complex_free(c);
+}
+
+static void test_relation_table(void) {
+  TpxComplex *c = fixture();
+  TpxStructure *s = build_ig(c);
+  TpxRelationTable *t = NULL;
+  const size_t *offsets;
+  const uint32_t *ids;
+  size_t n_offsets = 0, n_ids = 0;
+  /* Edges at each vertex, rows in lexicographic order. */
+  static const size_t want_offsets[] = {0, 6, 12, 20, 28, 34, 36};
+  static const uint32_t want_ids[] = {
+      0, 1, 0, 2, 0, 3,       /* vertex 0 */
+      0, 1, 1, 2, 1, 3,       /* vertex 1 */
+      0, 2, 1, 2, 2, 3, 2, 4, /* vertex 2 */
+      0, 3, 1, 3, 2, 3, 3, 4, /* vertex 3 */
+      2, 4, 3, 4, 4, 5,       /* vertex 4 */
+      4, 5,                   /* vertex 5 */
+  };
+  /* Triangles on each edge (edges in lexicographic order: 01 02 03 12 13 23 24 34 45). */
+  static const size_t want_offsets_12[] = {0, 6, 12, 18, 24, 30, 39, 42, 45, 45};
+  static const uint32_t want_ids_12[] = {
+      0, 1, 2, 0, 1, 3,          /* 0 1 */
+      0, 1, 2, 0, 2, 3,          /* 0 2 */
+      0, 1, 3, 0, 2, 3,          /* 0 3 */
+      0, 1, 2, 1, 2, 3,          /* 1 2 */
+      0, 1, 3, 1, 2, 3,          /* 1 3 */
+      0, 2, 3, 1, 2, 3, 2, 3, 4, /* 2 3 */
+      2, 3, 4,                   /* 2 4 */
+      2, 3, 4,                   /* 3 4 */
+                                 /* 4 5: none */
+  };
+  size_t i;
+  int offsets_ok = 1;
+
+  CHECK_STATUS(tpx_relation_table(s, 0, 1, &t), TPX_STATUS_OK);
+  offsets = tpx_relation_table_offsets(t, &n_offsets);
+  ids = tpx_relation_table_ids(t, &n_ids);
+  CHECK(offsets != NULL && ids != NULL);
+  CHECK(n_offsets == 7 && n_ids == 36);
+  if (n_offsets == 7 && n_ids == 36) {
+    for (i = 0; i < 7; ++i) offsets_ok &= offsets[i] == want_offsets[i];
+    CHECK(offsets_ok);
+    CHECK(same_u32(ids, want_ids, 36));
+  }
+  CHECK(tpx_relation_table_offsets(t, NULL) == NULL);
+  tpx_relation_table_free(t);
+
+  t = NULL;
+  CHECK_STATUS(tpx_relation_table(s, 1, 2, &t), TPX_STATUS_OK);
+  offsets = tpx_relation_table_offsets(t, &n_offsets);
+  ids = tpx_relation_table_ids(t, &n_ids);
+  CHECK(n_offsets == 10 && n_ids == 45);
+  if (n_offsets == 10 && n_ids == 45) {
+    offsets_ok = 1;
+    for (i = 0; i < 10; ++i) offsets_ok &= offsets[i] == want_offsets_12[i];
+    CHECK(offsets_ok);
+    CHECK(same_u32(ids, want_ids_12, 45));
+  }
+  tpx_relation_table_free(t);
+
+  tpx_structure_free(s);
+  tpx_complex_free(c);
+}
+
+static void test_files(void) {
+  TpxComplex *c = NULL;
+  uint32_t d = 0, n = 0;
+  size_t top = 0;
+
+  CHECK_STATUS(tpx_complex_from_file(TPX_TEST_DATA_DIR "/tet_triangle_wire.simplices", &c), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_dimension(c, &d), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_vertex_count(c, &n), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_top_count(c, 1, &top), TPX_STATUS_OK);
+  CHECK(d == 3 && n == 6 && top == 1);
+  tpx_complex_free(c);
+
+  c = NULL;
+  CHECK_STATUS(tpx_complex_from_file(TPX_TEST_DATA_DIR "/does_not_exist.off", &c), TPX_STATUS_IO_ERROR);
+  CHECK(message_contains("does_not_exist.off"));
+  CHECK_STATUS(tpx_complex_from_file(TPX_TEST_DATA_DIR "/garbage.off", &c), TPX_STATUS_PARSE_ERROR);
+  CHECK(message_contains("garbage.off:"));
+  CHECK_STATUS(tpx_complex_from_file(TPX_TEST_DATA_DIR "/mesh.unknown", &c), TPX_STATUS_PARSE_ERROR);
+  /* The repeated vertex is on line 3; the message names file, line and simplex. */
+  CHECK_STATUS(tpx_complex_from_file(TPX_TEST_DATA_DIR "/repeated_vertex.simplices", &c), TPX_STATUS_INVALID_COMPLEX);
+  CHECK(message_contains("repeated_vertex.simplices:3") && message_contains("[0 0 1]"));
+  CHECK_STATUS(tpx_complex_from_file("bad\xff.off", &c), TPX_STATUS_INVALID_ARGUMENT);
+  CHECK(c == NULL);
+}
+
+int main(void) {
+  test_version();
+  test_complex_lifecycle();
+  test_structure_queries();
+  test_buffer_too_small();
+  test_null_arguments();
+  test_invalid_inputs();
+  test_kinds();
+  test_query_errors();
+  test_relation_table();
+  test_files();
+  printf("%d passed, %d failed\n", g_passed, g_failed);
+  return g_failed == 0 ? 0 : 1;
+}

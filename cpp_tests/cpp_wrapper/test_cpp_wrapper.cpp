@@ -1,0 +1,144 @@
+// topoplex.hpp on the drawn fixture (same as test_c_api.c):
+//
+//          3 ------ 4 ------ 5        tetrahedron 0 1 2 3
+//         /|\      /                  dangling triangle 2 3 4 on edge 2-3
+//        / | \    /                   wire edge 4-5
+//       0--|--2--/
+//        \ | /
+//         \|/
+//          1
+#include "topoplex.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <string>
+#include <thread>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using Ids = std::vector<std::uint32_t>;
+using topoplex::Complex;
+using topoplex::Error;
+using topoplex::Kind;
+using topoplex::Structure;
+
+Complex fixture() { return Complex::from_simplices(6, {{3, 2, 1, 0}, {4, 2, 3}, {5, 4}}); }
+
+std::vector<Ids> rows_of(const topoplex::RowsView &v) {
+  std::vector<Ids> out;
+  for (auto s : v) out.push_back(s.to_vector());
+  return out;
+}
+
+template <class F>
+TpxStatus status_of(F &&f) {
+  try {
+    f();
+  } catch (const Error &e) {
+    return e.status();
+  }
+  return TPX_STATUS_OK;
+}
+
+static_assert(!std::is_copy_constructible<Complex>::value, "handles are move-only");
+static_assert(std::is_nothrow_move_constructible<Structure>::value, "handles move cheaply");
+
+TEST(Wrapper, ComplexAndStructureQueries) {
+  Complex c = fixture();
+  EXPECT_EQ(c.dimension(), 3u);
+  EXPECT_EQ(c.vertex_count(), 6u);
+  EXPECT_EQ(c.top_count(1), 1u);
+  Structure s(c, Kind::IG);
+  {
+    // The structure outlives the complex it was built from.
+    Complex gone = std::move(c);
+  }
+  EXPECT_EQ(s.kind(), Kind::IG);
+  EXPECT_EQ(s.dimension(), 3u);
+  EXPECT_EQ(s.count(1), 9u);
+  EXPECT_EQ(s.top_count(3), 1u);
+  EXPECT_GT(s.storage().bytes, 0u);
+
+  topoplex::Rows tris = s.relation({3, 2}, 2);
+  ASSERT_EQ(tris.size(), 3u);
+  EXPECT_EQ(tris.arity(), 3u);
+  EXPECT_EQ(rows_of(tris.view()), (std::vector<Ids>{{0, 2, 3}, {1, 2, 3}, {2, 3, 4}}));
+  EXPECT_EQ(tris[2][2], 4u);
+  EXPECT_TRUE(s.relation({5}, 2).empty());
+  EXPECT_EQ(s.simplices(1).size(), 9u);
+  EXPECT_EQ(rows_of(s.simplices(3).view()), (std::vector<Ids>{{0, 1, 2, 3}}));
+}
+
+TEST(Wrapper, LargeAnswerGrowsTheBuffer) {
+  // A fan of 40 triangles on edge 0-1: more rows than the first guess of 16.
+  std::vector<Ids> fan;
+  for (std::uint32_t v = 2; v < 42; ++v) fan.push_back({0, 1, v});
+  Structure s(Complex::from_simplices(42, fan), Kind::IG);
+  topoplex::Rows r = s.relation({1, 0}, 2);
+  ASSERT_EQ(r.size(), 40u);
+  for (std::size_t i = 0; i < r.size(); ++i) {
+    EXPECT_EQ(r[i].to_vector(), (Ids{0, 1, static_cast<std::uint32_t>(i + 2)}));
+  }
+}
+
+TEST(Wrapper, RelationTableRowsAreViews) {
+  Structure s(fixture(), Kind::IG);
+  topoplex::RelationTable t = s.relation_table(0, 1);
+  ASSERT_EQ(t.size(), 6u);
+  EXPECT_EQ(t.offsets_size(), 7u);
+  EXPECT_EQ(t.ids_size(), 36u);
+  EXPECT_EQ(rows_of(t[4]), (std::vector<Ids>{{2, 4}, {3, 4}, {4, 5}}));
+  EXPECT_EQ(rows_of(t[5]), (std::vector<Ids>{{4, 5}}));
+  std::vector<std::size_t> degrees;
+  for (auto row : t) degrees.push_back(row.size());
+  EXPECT_EQ(degrees, (std::vector<std::size_t>{3, 3, 4, 4, 3, 1}));
+  topoplex::RelationTable moved = std::move(t);
+  EXPECT_EQ(moved.size(), 6u);
+}
+
+TEST(Wrapper, ErrorsCarryStatusAndMessage) {
+  Structure s(fixture(), Kind::IG);
+  try {
+    s.relation({0, 4}, 0);
+    FAIL() << "expected topoplex::Error";
+  } catch (const Error &e) {
+    EXPECT_EQ(e.status(), TPX_STATUS_NOT_IN_COMPLEX);
+    EXPECT_NE(std::string(e.what()).find("[0 4]"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(status_of([&] { s.relation({1, 1}, 0); }), TPX_STATUS_INVALID_SIMPLEX);
+  EXPECT_EQ(status_of([&] { s.relation({}, 0); }), TPX_STATUS_INVALID_SIMPLEX);
+  EXPECT_EQ(status_of([&] { s.relation({0}, 9); }), TPX_STATUS_DIMENSION_OUT_OF_RANGE);
+  EXPECT_EQ(status_of([&] { s.relation_table(0, 9); }), TPX_STATUS_DIMENSION_OUT_OF_RANGE);
+  EXPECT_EQ(status_of([&] { Structure(fixture(), static_cast<Kind>(42)); }),
+            TPX_STATUS_UNKNOWN_KIND);
+  EXPECT_EQ(status_of([] { Complex::from_simplices(2, {{0, 2}}); }), TPX_STATUS_INVALID_COMPLEX);
+  EXPECT_EQ(status_of([] { Complex::from_file(TPX_TEST_DATA_DIR "/does_not_exist.obj"); }),
+            TPX_STATUS_IO_ERROR);
+  EXPECT_EQ(status_of([] { Complex::from_file(TPX_TEST_DATA_DIR "/garbage.off"); }),
+            TPX_STATUS_PARSE_ERROR);
+}
+
+TEST(Wrapper, FileComplexMatchesArrays) {
+  Structure a(Complex::from_file(TPX_TEST_DATA_DIR "/tet_triangle_wire.simplices"), Kind::IG);
+  Structure b(fixture(), Kind::IG);
+  for (std::uint32_t p = 0; p <= 3; ++p) {
+    EXPECT_EQ(a.simplices(p).ids(), b.simplices(p).ids()) << "p = " << p;
+  }
+}
+
+TEST(Wrapper, ConstStructureFromTwoThreads) {
+  const Structure s(fixture(), Kind::IG);
+  std::vector<Ids> got(2);
+  std::thread t0([&] { got[0] = s.relation({2}, 0).ids(); });
+  std::thread t1([&] { got[1] = s.relation({3}, 0).ids(); });
+  t0.join();
+  t1.join();
+  EXPECT_EQ(got[0], (Ids{0, 1, 3, 4}));
+  EXPECT_EQ(got[1], (Ids{0, 1, 2, 4}));
+}
+
+}  // namespace
