@@ -95,6 +95,59 @@ pub fn pinched_pie() -> Complex {
     )
 }
 
+/// A pseudo-manifold that is not an initial quasi-manifold (the survey's Fig. 1b): a strip of
+/// six triangles whose two ends both touch vertex 0. Every edge is in at most two triangles and
+/// the triangles are edge-connected, but the star of 0 is two fans joined only away from 0.
+///
+/// ```text
+///    0 ---- 3 ---- 5 ---- 6        top row
+///   / \    / \    / \    /
+///  /   \  /   \  /   \  /
+/// 1 ---- 2 ---- 4 ---- 0           bottom row: vertex 0 again
+/// ```
+pub fn strip_pinched_at_a_vertex() -> Complex {
+    make(
+        7,
+        &[
+            &[0, 1, 2],
+            &[0, 2, 3],
+            &[2, 3, 4],
+            &[3, 4, 5],
+            &[0, 4, 5],
+            &[0, 5, 6],
+        ],
+    )
+}
+
+/// The star of vertex 0 with four IQM components but two 3-clusters and one 2-cluster (the
+/// survey's Fig. 5): tetrahedra 0123, 0124, 0125 on triangle 012 (a non-manifold triangle),
+/// with 0134 joining 0123 and 0124 through triangles 013 and 014; a tetrahedron 0678 touching
+/// at 0 only; a triangle 0 9 10 touching at 0 only.
+///
+/// ```text
+///              5                  3-cluster {0123, 0124, 0134, 0125}: IQM components
+///              |                  {0123, 0124, 0134} and {0125}
+///      3 ----- 1 ----- 4
+///       \    / \    /             3-cluster {0678}
+///        \  /   \  /   6-7-8     2-cluster {0 9 10}
+///          0 ----- 2     \|/
+///          | \           0        (0 drawn twice)
+///          9--10
+/// ```
+pub fn four_iqm_components_two_clusters() -> Complex {
+    make(
+        11,
+        &[
+            &[0, 1, 2, 3],
+            &[0, 1, 2, 4],
+            &[0, 1, 3, 4],
+            &[0, 1, 2, 5],
+            &[0, 6, 7, 8],
+            &[0, 9, 10],
+        ],
+    )
+}
+
 /// Every fixture by name (tests iterate over them).
 pub fn all() -> Vec<(&'static str, Complex)> {
     vec![
@@ -106,5 +159,10 @@ pub fn all() -> Vec<(&'static str, Complex)> {
             tetrahedron_with_dangling_triangle_and_wire(),
         ),
         ("pinched_pie", pinched_pie()),
+        ("strip_pinched_at_a_vertex", strip_pinched_at_a_vertex()),
+        (
+            "four_iqm_components_two_clusters",
+            four_iqm_components_two_clusters(),
+        ),
     ]
 }

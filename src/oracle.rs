@@ -33,12 +33,24 @@ impl Oracle {
         }
         let levels: Vec<Vec<Vec<u32>>> =
             sets.into_iter().map(|s| s.into_iter().collect()).collect();
-        // A simplex is top when no simplex one dimension up contains it.
+        // A simplex is top when it is not a facet of a simplex one dimension up.
         let tops = (0..=d)
             .map(|p| {
+                let mut facets: BTreeSet<Vec<u32>> = BTreeSet::new();
+                for t in levels.get(p + 1).into_iter().flatten() {
+                    for skip in 0..t.len() {
+                        facets.insert(
+                            t.iter()
+                                .enumerate()
+                                .filter(|&(i, _)| i != skip)
+                                .map(|(_, &v)| v)
+                                .collect(),
+                        );
+                    }
+                }
                 levels[p]
                     .iter()
-                    .filter(|s| p == d || !levels[p + 1].iter().any(|t| is_subset(s, t)))
+                    .filter(|s| !facets.contains(*s))
                     .cloned()
                     .collect()
             })

@@ -324,45 +324,60 @@ impl Complex {
 fn absorb_faces(n: u32, tables: Vec<SimplexTable>, stats: &mut InputStats) -> Vec<SimplexTable> {
     // No listed simplex at all: every vertex is isolated.
     let d = tables.len().max(1) - 1;
-    // star[v]: (dimension, index) of kept simplices of dimension >= 1 containing v.
-    let mut star: Vec<Vec<(u8, u32)>> = vec![Vec::new(); n as usize];
+    // star[v]: (dimension, index) of kept simplices of dimension >= 1 containing v. Only filled
+    // while some lower dimension (>= 1) still has listed simplices to test, so a pure mesh never
+    // pays for it.
+    let mut star: Vec<Vec<(u8, u32)>> = Vec::new();
+    let mut used = vec![false; n as usize];
     let mut kept: Vec<SimplexTable> = vec![SimplexTable::default(); d + 1];
+    let mut tables = tables;
     for p in (1..=d).rev() {
-        let mut rows = Vec::new();
-        let mut count = 0u32;
-        for s in tables[p].iter() {
-            let hub = s
-                .iter()
-                .min_by_key(|&&v| star[v as usize].len())
-                .copied()
-                .unwrap();
-            let absorbed = star[hub as usize]
-                .iter()
-                .any(|&(q, j)| is_subset(s, kept[q as usize].get(j as usize)));
-            if absorbed {
-                stats.absorbed_faces += 1;
-            } else {
-                rows.extend_from_slice(s);
-                count += 1;
+        let table = std::mem::take(&mut tables[p]);
+        let table = if star.is_empty() {
+            table
+        } else {
+            let mut rows = Vec::new();
+            for s in table.iter() {
+                let hub = s
+                    .iter()
+                    .min_by_key(|&&v| star[v as usize].len())
+                    .copied()
+                    .unwrap();
+                let absorbed = star[hub as usize]
+                    .iter()
+                    .any(|&(q, j)| is_subset(s, kept[q as usize].get(j as usize)));
+                if absorbed {
+                    stats.absorbed_faces += 1;
+                } else {
+                    rows.extend_from_slice(s);
+                }
+            }
+            // A subsequence of a sorted table is still sorted.
+            SimplexTable::from_sorted_unique(p + 1, rows)
+        };
+        for s in table.iter() {
+            for &v in s {
+                used[v as usize] = true;
             }
         }
-        // `rows` is a subsequence of a sorted table, so it is still sorted.
-        kept[p] = SimplexTable::from_sorted_unique(p + 1, rows);
-        for j in 0..count {
-            for &v in kept[p].get(j as usize) {
-                star[v as usize].push((p as u8, j));
+        if tables[1..p].iter().any(|t| !t.is_empty()) {
+            star.resize(n as usize, Vec::new());
+            for (j, s) in table.iter().enumerate() {
+                for &v in s {
+                    star[v as usize].push((p as u8, j as u32));
+                }
             }
         }
+        kept[p] = table;
     }
     let listed_vertices = tables.first().map_or(0, SimplexTable::len);
-    let isolated: Vec<u32> = (0..n).filter(|&v| star[v as usize].is_empty()).collect();
-    let listed_isolated = tables.first().map_or(0, |t| {
-        t.iter().filter(|s| star[s[0] as usize].is_empty()).count()
-    });
+    let listed_isolated = tables
+        .first()
+        .map_or(0, |t| t.iter().filter(|s| !used[s[0] as usize]).count());
     stats.absorbed_faces += listed_vertices - listed_isolated;
+    let isolated: Vec<u32> = (0..n).filter(|&v| !used[v as usize]).collect();
     kept[0] = SimplexTable::from_sorted_unique(1, isolated);
-    // Trailing dimensions cannot be empty (the top table of d is non-empty by construction), but
-    // a complex of only isolated vertices has d = 0.
+    // A complex of only isolated vertices has d = 0.
     while kept.len() > 1 && kept.last().unwrap().is_empty() {
         kept.pop();
     }

@@ -471,17 +471,27 @@ fn a_panic_becomes_a_status_not_an_unwind() {
 
 #[test]
 fn queries_from_two_threads_share_one_structure() {
+    // A const handle shared across threads, as the header promises C callers may do.
+    #[derive(Clone, Copy)]
+    struct Shared(*const TpxStructure);
+    unsafe impl Send for Shared {}
     let c = tet_triangle_wire();
-    let s = ig(c) as usize;
+    let s = ig(c);
+    let shared = Shared(s);
     let answers: Vec<Vec<u32>> = std::thread::scope(|scope| {
         let hs: Vec<_> = (0..2u32)
-            .map(|v| scope.spawn(move || relation(s as *const TpxStructure, &[v + 2], 0, 8).1))
+            .map(|v| {
+                scope.spawn(move || {
+                    let shared = shared;
+                    relation(shared.0, &[v + 2], 0, 8).1
+                })
+            })
             .collect();
         hs.into_iter().map(|h| h.join().unwrap()).collect()
     });
     assert_eq!(answers, [vec![0, 1, 3, 4], vec![0, 1, 2, 4]]);
     unsafe {
-        tpx_structure_free(s as *mut TpxStructure);
+        tpx_structure_free(s);
         tpx_complex_free(c);
     }
 }

@@ -14,6 +14,7 @@ pub mod medit;
 pub mod obj;
 pub mod off;
 pub mod simplices;
+pub mod write;
 
 /// Vertex coordinates, `dim` numbers per vertex, vertex-major.
 #[derive(Debug, Clone, PartialEq)]

@@ -3,7 +3,15 @@
 use crate::complex::Complex;
 use crate::relation::{StructureKind, Topology};
 
+pub mod de;
+pub mod ia;
 pub mod ig;
+pub mod iqm;
+pub mod le;
+pub mod nmia;
+pub mod pe;
+pub(crate) mod radial;
+pub mod ts;
 
 /// Why a structure could not be built for a complex.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
@@ -21,6 +29,13 @@ pub enum BuildError {
 pub fn build(kind: StructureKind, complex: &Complex) -> Result<Box<dyn Topology>, BuildError> {
     match kind {
         StructureKind::Ig => Ok(Box::new(ig::IncidenceGraph::build(complex)?)),
+        StructureKind::Ia => Ok(Box::new(ia::IndexedAdjacency::build(complex)?)),
+        StructureKind::Nmia => Ok(Box::new(nmia::NonManifoldIa::build(complex)?)),
+        StructureKind::Ts => Ok(Box::new(ts::TriangleSegment::build(complex)?)),
+        StructureKind::Pe => Ok(Box::new(pe::PartialEntities::build(complex)?)),
+        StructureKind::Le => Ok(Box::new(le::LoopEdgeUse::build(complex)?)),
+        StructureKind::De => Ok(Box::new(de::DirectedEdge::build(complex)?)),
+        StructureKind::Iqm => Ok(Box::new(iqm::Iqm::build(complex)?)),
         _ => Err(BuildError::NotImplemented { kind }),
     }
 }

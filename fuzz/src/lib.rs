@@ -1,0 +1,56 @@
+//! Checks shared by the fuzz targets.
+
+use topoplex::io::RawInput;
+use topoplex::oracle::check_structure;
+use topoplex::structures::{BuildError, build};
+use topoplex::{Complex, StructureKind};
+
+/// Whatever a reader accepted either normalises or is refused with an error; a small complex
+/// then builds every structure, and each answers like the oracle.
+pub fn check_raw(raw: &RawInput) {
+    if raw.simplex_count() > 300 || raw.vertex_count.unwrap_or(0) > 2000 {
+        return;
+    }
+    if let Ok(c) = Complex::from_raw(raw, None) {
+        check_complex(&c);
+    }
+}
+
+/// Every structure that accepts `c` validates and matches the oracle (when the closure is small
+/// enough for the oracle's scans).
+pub fn check_complex(c: &Complex) {
+    let size: usize = c.closure().iter().map(|t| t.len()).sum();
+    if size > 3000 {
+        return;
+    }
+    for kind in StructureKind::ALL {
+        match build(kind, c) {
+            Ok(s) => {
+                if let Err(e) = s.validate() {
+                    panic!("{kind}: validate: {e}");
+                }
+                if let Err(e) = check_structure(s.as_ref(), c) {
+                    panic!("{e}");
+                }
+            }
+            Err(BuildError::NotImplemented { .. } | BuildError::Unsupported { .. }) => {}
+            Err(e) => panic!("{kind}: unexpected build error {e}"),
+        }
+    }
+}
+
+/// Decodes bytes into a vertex count and a list of simplices: byte 0 picks n in 1..=12, then
+/// each simplex is a length byte (1..=7 ids) followed by that many id bytes (mod n + 2, so ids
+/// out of range and repeated ids occur too).
+pub fn decode(data: &[u8]) -> (u32, Vec<Vec<u32>>) {
+    let Some((&first, mut rest)) = data.split_first() else { return (1, Vec::new()) };
+    let n = u32::from(first % 12) + 1;
+    let mut list = Vec::new();
+    while let Some((&len, tail)) = rest.split_first() {
+        let len = usize::from(len % 7) + 1;
+        let take = len.min(tail.len());
+        list.push(tail[..take].iter().map(|&b| u32::from(b) % (n + 2)).collect());
+        rest = &tail[take..];
+    }
+    (n, list)
+}

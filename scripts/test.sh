@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# The whole test suite, as CI runs it (.ci/run calls exactly this). Installs what it needs on a
+# fresh Debian machine, then: Rust tests (unit, property, real data when ../shared/data exists),
+# CLI smoke checks, the CMake package install and the C/C++ cross-checks (plain and under
+# AddressSanitizer + UndefinedBehaviorSanitizer).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+need=(cmake ninja-build pkg-config libopenmesh-dev libcgal-dev libgudhi-dev libgtest-dev libcgal-demo)
+missing=()
+for p in "${need[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "== installing Debian packages: ${missing[*]}"
+  sudo_cmd=""
+  [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq "${missing[@]}"
+fi
+
+echo "== cargo test"
+cargo test --profile ci --all-targets
+
+echo "== fuzz smoke (differential: readers, every structure vs the oracle)"
+scripts/fuzz-smoke.sh 10
+
+echo "== CLI smoke"
+cargo build --profile ci --bin topoplex
+cli=target/ci/topoplex
+"$cli" report >/dev/null
+"$cli" report --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["dimension"] == 3 and "ig" in d["structures"]'
+
+if [ -x scripts/cpp-tests.sh ]; then
+  echo "== C/C++ package and cross-checks"
+  scripts/cpp-tests.sh
+fi
+echo "== all tests passed"

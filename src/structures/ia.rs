@@ -1,0 +1,626 @@
+//! Indexed data structure with Adjacencies (IA) [Nie97, PBCF93] and its extension with vertex
+//! stars, as described in §3 of the 2005 survey — for d-dimensional pseudo-manifolds, d ≥ 0.
+//!
+//! # Domain
+//! Regular complexes (every top simplex has the complex's dimension d; an isolated vertex or any
+//! lower-dimensional top simplex disqualifies) in which every (d−1)-simplex is a face of at most
+//! two d-simplices. Connectedness is not required, and vertex stars may be pinched (several
+//! (d−1)-connected components). Anything else is refused with [`BuildError::Unsupported`] naming
+//! the first offending simplex: first the lowest-dimensional top simplex below d (ascending
+//! lexicographic within a dimension), then the lexicographically first (d−1)-simplex in three or
+//! more d-simplices. d = 0 (isolated vertices only) and d = 1 (graphs whose vertices have at most
+//! two edges) are accepted; at d = 0 the only shared "facet" is the empty simplex, which is not a
+//! simplex of the complex, so every R_{0,0} slot is empty.
+//!
+//! # What it encodes
+//! Only the vertices and the d-simplices; every other simplex is implicit, as a vertex subset of
+//! a d-simplex.
+//! - Plain IA: per d-simplex, R_{d,0} (its d + 1 vertices, ascending) and R_{d,d}: entry `i` is
+//!   the d-simplex across the facet opposite the `i`-th vertex, `u32::MAX` when that facet is on
+//!   the boundary.
+//! - Extended IA (what [`IndexedAdjacency`] is): per vertex, one d-simplex for each
+//!   (d−1)-connected component of its star (two d-simplices at v are in one component when a
+//!   chain of d-simplices at v joins them, consecutive ones sharing a (d−1)-face that contains
+//!   v). On initial quasi-manifolds this is the survey's R*_{0,d}, one reference per vertex; on
+//!   pinched pseudo-manifolds it keeps every vertex star complete. Stored in CSR form, the
+//!   references of one vertex in ascending d-simplex order.
+//!
+//! # Storage
+//! Plain IA: `2(d+1)·n_d` integers ([`IndexedAdjacency::plain_ia_integers`]). Extended IA adds
+//! one integer per component of a vertex star, `C_v = Σ_v c_v` (`= n_0` on initial
+//! quasi-manifolds): `2(d+1)·n_d + C_v` integers, no bits. The CSR offsets (n + 1 integers) and
+//! the per-dimension simplex counts cached at build are in the real bytes, not the paper count.
+//!
+//! # Cost of each relation
+//! n_v is the number of d-simplices in the star of vertex v; σ is a p-simplex, v = σ's lowest
+//! vertex (w its second); "dedup" is a per-query hash set.
+//! - Locating σ: p = d by binary search in the sorted R_{d,0} table, O(d log n_d); p = 0 is
+//!   free; 0 < p < d walks the star of v until a d-simplex containing σ, O(d·n_v).
+//! - R_{p,q}, q < p: the (q+1)-subsets of σ, O(C(p+1, q+1)·(q+1)) — optimal (survey §3).
+//! - R_{d,d}: read directly, O(d) — optimal.
+//! - R_{0,d}: walk the star of v from its component references through R_{d,d} across facets
+//!   containing v: O(d·n_v) — optimal (survey §3: the extension exists for this).
+//! - R_{0,q}, 0 < q < d: the same walk, then the q-faces through v of each d-simplex, dedup:
+//!   O(C(d, q)·n_v), linear in the output up to a factor depending on d only — optimal.
+//! - R_{0,0}: the walk, the other vertices of each d-simplex, dedup: O(d·n_v) — optimal.
+//! - R_{p,q}, 0 < p < q: walk the whole star of v and keep the d-simplices containing σ (the star
+//!   of σ need not be (d−1)-connected through faces containing σ — a pinched edge — so walking
+//!   only those could miss some), then their q-faces through σ, dedup: O(d·n_v + C(d−p, q−p)·s),
+//!   s = d-simplices containing σ — not optimal (depends on n_v, not on the star of σ), as the
+//!   survey states for the IA family.
+//! - R_{p,p}, 0 < p < d: every facet of σ contains v or w, so walk the stars of v and w; each
+//!   d-simplex sharing a facet f of σ gives f ∪ {x} for its vertices x ∉ σ, dedup:
+//!   O(d·(n_v + n_w) + output) — not optimal.
+//! - `count(p)`: cached at build (by enumerating the p-faces of every d-simplex and
+//!   deduplicating, O(n_d·C(d+1, p+1)·log)); `simplices(p)` re-derives the list the same way.
+//!
+//! Queries keep no state in the structure: every walk has its own hash set.
+
+use rustc_hash::FxHashSet;
+
+use super::{BuildError, to_u32};
+use crate::complex::{Complex, SimplexTable, is_subset, sort_dedup_rows};
+use crate::relation::{QueryError, Storage, StructureKind, Topology};
+
+const KIND: StructureKind = StructureKind::Ia;
+/// "No simplex" in adjacency slots.
+pub const NONE: u32 = u32::MAX;
+
+pub(crate) fn show(ids: &[u32]) -> String {
+    let v: Vec<String> = ids.iter().map(|i| i.to_string()).collect();
+    format!("[{}]", v.join(" "))
+}
+
+fn unsupported(reason: String) -> BuildError {
+    BuildError::Unsupported { kind: KIND, reason }
+}
+
+#[derive(Debug, Clone)]
+pub struct IndexedAdjacency {
+    d: usize,
+    n: u32,
+    /// R_{d,0}: the d-simplices, ascending lexicographic (a d-simplex's id is its row).
+    tops: SimplexTable,
+    /// R_{d,d}: d + 1 entries per d-simplex, entry `i` across the facet opposite vertex `i`.
+    adj: Vec<u32>,
+    /// Per vertex, one d-simplex per component of its star (CSR).
+    vstar_off: Vec<u32>,
+    vstar: Vec<u32>,
+    /// n_p for p = 0..=d.
+    counts: Vec<usize>,
+}
+
+/// Calls `f` with every (q+1)-vertex face of `top` (ascending) that contains `sigma` (ascending,
+/// a subset of `top`), in no particular order. O(C(|top|−|σ|, q+1−|σ|)·(q+1)).
+pub(crate) fn faces_containing(top: &[u32], sigma: &[u32], q: usize, mut f: impl FnMut(&[u32])) {
+    if q + 1 < sigma.len() || q + 1 > top.len() {
+        return;
+    }
+    let mut rest = [0u32; 16];
+    let mut r = 0;
+    for &v in top {
+        if sigma.binary_search(&v).is_err() {
+            rest[r] = v;
+            r += 1;
+        }
+    }
+    let k = q + 1 - sigma.len();
+    if k > r {
+        return;
+    }
+    let mut idx = [0usize; 16];
+    for (i, x) in idx.iter_mut().enumerate().take(k) {
+        *x = i;
+    }
+    let mut row = [0u32; 16];
+    loop {
+        // Merge σ with the chosen vertices into an ascending row.
+        let (mut a, mut b, mut o) = (0, 0, 0);
+        while a < sigma.len() || b < k {
+            if b == k || (a < sigma.len() && sigma[a] < rest[idx[b]]) {
+                row[o] = sigma[a];
+                a += 1;
+            } else {
+                row[o] = rest[idx[b]];
+                b += 1;
+            }
+            o += 1;
+        }
+        f(&row[..o]);
+        // Next k-combination of 0..r in lexicographic order.
+        let Some(i) = (0..k).rev().find(|&i| idx[i] < r - k + i) else {
+            return;
+        };
+        idx[i] += 1;
+        for j in i + 1..k {
+            idx[j] = idx[j - 1] + 1;
+        }
+    }
+}
+
+/// Per-query set of rows already emitted.
+#[derive(Default)]
+pub(crate) struct RowSet {
+    small: FxHashSet<u128>,
+    big: FxHashSet<Vec<u32>>,
+}
+
+impl RowSet {
+    pub(crate) fn insert(&mut self, row: &[u32]) -> bool {
+        if row.len() <= 4 {
+            self.small
+                .insert(row.iter().fold(0u128, |acc, &v| (acc << 32) | v as u128))
+        } else {
+            self.big.insert(row.to_vec())
+        }
+    }
+
+    /// Appends `row` to `out` unless it was emitted before.
+    pub(crate) fn emit(&mut self, row: &[u32], out: &mut Vec<u32>) {
+        if self.insert(row) {
+            out.extend_from_slice(row);
+        }
+    }
+}
+
+/// The p-simplices of the closure of `tops` (rows of equal arity), ascending lexicographic.
+pub(crate) fn faces_of_tops<'a>(
+    tops: impl Iterator<Item = &'a [u32]>,
+    p: usize,
+    rows: &mut Vec<u32>,
+) {
+    for t in tops {
+        faces_containing(t, &[], p, |f| rows.extend_from_slice(f));
+    }
+    *rows = sort_dedup_rows(p + 1, std::mem::take(rows));
+}
+
+/// R_{d,d} for sorted d-simplices: `Err((facet, first three d-simplices))` if a facet has more
+/// than two d-simplices (the lexicographically first such facet).
+#[allow(clippy::type_complexity)]
+fn adjacency(tops: &SimplexTable, d: usize) -> Result<Vec<u32>, (Vec<u32>, Vec<u32>)> {
+    let w = d + 1;
+    let mut adj = vec![NONE; tops.len() * w];
+    if d == 0 {
+        return Ok(adj);
+    }
+    let facet = |k: u32| {
+        let (t, i) = (k as usize / w, k as usize % w);
+        tops.get(t)
+            .iter()
+            .enumerate()
+            .filter(move |&(j, _)| j != i)
+            .map(|(_, &v)| v)
+    };
+    let mut order: Vec<u32> = (0..(tops.len() * w) as u32).collect();
+    order.sort_unstable_by(|&a, &b| facet(a).cmp(facet(b)).then(a.cmp(&b)));
+    let mut i = 0;
+    while i < order.len() {
+        let mut j = i + 1;
+        while j < order.len() && facet(order[j]).eq(facet(order[i])) {
+            j += 1;
+        }
+        match j - i {
+            1 => {}
+            2 => {
+                let (a, b) = (order[i], order[i + 1]);
+                adj[a as usize] = b / w as u32;
+                adj[b as usize] = a / w as u32;
+            }
+            _ => {
+                let three = order[i..i + 3]
+                    .iter()
+                    .flat_map(|&k| tops.get(k as usize / w).iter().copied())
+                    .collect();
+                return Err((facet(order[i]).collect(), three));
+            }
+        }
+        i = j;
+    }
+    Ok(adj)
+}
+
+/// Per-vertex star components: (CSR offsets, one d-simplex per component), each vertex's list
+/// ascending. Walks each component once through the adjacencies: O(d²·n_d).
+fn vertex_components(tops: &SimplexTable, adj: &[u32], d: usize, n: u32) -> (Vec<u32>, Vec<u32>) {
+    let w = d + 1;
+    let mut visited = vec![false; tops.len() * w];
+    let mut pairs: Vec<(u32, u32)> = Vec::new();
+    let mut stack = Vec::new();
+    for t in 0..tops.len() {
+        for j in 0..w {
+            if visited[t * w + j] {
+                continue;
+            }
+            let v = tops.get(t)[j];
+            pairs.push((v, t as u32));
+            visited[t * w + j] = true;
+            stack.push((t, j));
+            while let Some((u, pos)) = stack.pop() {
+                for i in (0..w).filter(|&i| i != pos) {
+                    let x = adj[u * w + i];
+                    if x == NONE {
+                        continue;
+                    }
+                    let x = x as usize;
+                    let px = tops.get(x).iter().position(|&y| y == v).unwrap();
+                    if !visited[x * w + px] {
+                        visited[x * w + px] = true;
+                        stack.push((x, px));
+                    }
+                }
+            }
+        }
+    }
+    let mut off = vec![0u32; n as usize + 1];
+    for &(v, _) in &pairs {
+        off[v as usize + 1] += 1;
+    }
+    for i in 0..n as usize {
+        off[i + 1] += off[i];
+    }
+    let mut fill = off.clone();
+    let mut list = vec![0u32; pairs.len()];
+    // `pairs` is in ascending d-simplex order, so each vertex's list comes out ascending.
+    for &(v, t) in &pairs {
+        list[fill[v as usize] as usize] = t;
+        fill[v as usize] += 1;
+    }
+    (off, list)
+}
+
+impl IndexedAdjacency {
+    /// Checks the domain, then builds R_{d,d} by sorting the facets of the d-simplices and the
+    /// vertex references by one walk per star component. O(n_d·d·log n_d) time.
+    pub fn build(complex: &Complex) -> Result<IndexedAdjacency, BuildError> {
+        let d = complex.dimension();
+        let n = complex.vertex_count();
+        for p in 0..d {
+            if let Some(s) = complex.tops(p).iter().next() {
+                let what = if p == 0 {
+                    "an isolated vertex".to_string()
+                } else {
+                    format!("a top {p}-simplex (a face of no {}-simplex)", p + 1)
+                };
+                return Err(unsupported(format!(
+                    "{} is {what}, but IA encodes only regular complexes, whose top simplices \
+                     all have the complex's dimension {d}",
+                    show(s)
+                )));
+            }
+        }
+        let tops = complex.tops(d).clone();
+        to_u32(KIND, tops.len() * (d + 1), "adjacency entries")?;
+        let adj = adjacency(&tops, d).map_err(|(facet, three)| {
+            let three: Vec<String> = three.chunks(d + 1).map(show).collect();
+            unsupported(format!(
+                "{}-simplex {} is a face of more than two {d}-simplices ({}, ...), so the \
+                 complex is not a pseudo-manifold",
+                d - 1,
+                show(&facet),
+                three.join(", ")
+            ))
+        })?;
+        let (vstar_off, vstar) = vertex_components(&tops, &adj, d, n);
+        let mut counts = vec![0; d + 1];
+        counts[0] = n as usize;
+        counts[d] = tops.len();
+        let mut rows = Vec::new();
+        for (p, c) in counts.iter_mut().enumerate().take(d).skip(1) {
+            rows.clear();
+            faces_of_tops(tops.iter(), p, &mut rows);
+            *c = rows.len() / (p + 1);
+        }
+        Ok(IndexedAdjacency {
+            d,
+            n,
+            tops,
+            adj,
+            vstar_off,
+            vstar,
+            counts,
+        })
+    }
+
+    /// Integers of the plain IA (R_{d,0} and R_{d,d} only): `2(d+1)·n_d`.
+    pub fn plain_ia_integers(&self) -> u64 {
+        (2 * (self.d + 1) * self.tops.len()) as u64
+    }
+
+    /// The d-simplices (R_{d,0}), ascending lexicographic; a d-simplex's id is its row.
+    pub fn top_simplices(&self) -> &SimplexTable {
+        &self.tops
+    }
+
+    /// R_{d,d} of d-simplex `t`: entry `i` across the facet opposite vertex `i`, or [`NONE`].
+    pub fn neighbours(&self, t: u32) -> &[u32] {
+        let w = self.d + 1;
+        &self.adj[t as usize * w..(t as usize + 1) * w]
+    }
+
+    /// One d-simplex per (d−1)-connected component of the star of `v`, ascending.
+    pub fn star_components(&self, v: u32) -> &[u32] {
+        &self.vstar[self.vstar_off[v as usize] as usize..self.vstar_off[v as usize + 1] as usize]
+    }
+
+    /// Visits every d-simplex in the star of `v` once, walking from the component references
+    /// through the facets containing `v`; stops early when `visit` returns false (and then
+    /// returns false). `seen` must hold no simplex of the star of `v`.
+    fn walk_star(
+        &self,
+        v: u32,
+        seen: &mut FxHashSet<u32>,
+        visit: impl FnMut(u32, &[u32]) -> bool,
+    ) -> bool {
+        self.walk_from(v, self.star_components(v), seen, visit)
+    }
+
+    /// [`Self::walk_star`] from the given d-simplices at `v` only.
+    fn walk_from(
+        &self,
+        v: u32,
+        starts: &[u32],
+        seen: &mut FxHashSet<u32>,
+        mut visit: impl FnMut(u32, &[u32]) -> bool,
+    ) -> bool {
+        let w = self.d + 1;
+        let mut stack: Vec<u32> = Vec::new();
+        for &r in starts {
+            if seen.insert(r) {
+                stack.push(r);
+            }
+            while let Some(t) = stack.pop() {
+                let verts = self.tops.get(t as usize);
+                if !visit(t, verts) {
+                    return false;
+                }
+                for (i, &x) in verts.iter().enumerate() {
+                    let u = self.adj[t as usize * w + i];
+                    if x != v && u != NONE && seen.insert(u) {
+                        stack.push(u);
+                    }
+                }
+            }
+        }
+        true
+    }
+
+    /// Whether some d-simplex contains σ (ascending, p > 0), by walking the star of σ's first
+    /// vertex.
+    fn in_some_top(&self, sigma: &[u32]) -> bool {
+        let mut seen = FxHashSet::default();
+        !self.walk_star(sigma[0], &mut seen, |_, t| !is_subset(sigma, t))
+    }
+}
+
+impl Topology for IndexedAdjacency {
+    fn kind(&self) -> StructureKind {
+        KIND
+    }
+
+    fn dimension(&self) -> usize {
+        self.d
+    }
+
+    fn vertex_count(&self) -> u32 {
+        self.n
+    }
+
+    fn count(&self, p: usize) -> usize {
+        self.counts.get(p).copied().unwrap_or(0)
+    }
+
+    fn top_count(&self, p: usize) -> usize {
+        if p == self.d { self.tops.len() } else { 0 }
+    }
+
+    fn simplices(&self, p: usize, out: &mut Vec<u32>) {
+        if p > self.d {
+        } else if p == self.d {
+            out.extend_from_slice(self.tops.as_flat());
+        } else if p == 0 {
+            out.extend(0..self.n);
+        } else {
+            let mut rows = Vec::new();
+            faces_of_tops(self.tops.iter(), p, &mut rows);
+            out.extend_from_slice(&rows);
+        }
+    }
+
+    fn contains(&self, sigma: &[u32]) -> bool {
+        let p = sigma.len() - 1;
+        if p == 0 {
+            sigma[0] < self.n
+        } else if p == self.d {
+            self.tops.find(sigma).is_some()
+        } else {
+            p < self.d && self.in_some_top(sigma)
+        }
+    }
+
+    fn query(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Result<(), QueryError> {
+        let p = sigma.len() - 1;
+        let d = self.d;
+        let missing = || QueryError::NotInComplex {
+            simplex: sigma.to_vec(),
+        };
+        if p == d {
+            let t = self.tops.find(sigma).ok_or_else(missing)?;
+            if q == d {
+                for &u in self.neighbours(t) {
+                    if u != NONE {
+                        out.extend_from_slice(self.tops.get(u as usize));
+                    }
+                }
+            } else {
+                faces_containing(sigma, &[], q, |f| out.extend_from_slice(f));
+            }
+            return Ok(());
+        }
+        if p > d {
+            return Err(missing());
+        }
+        let mut set = RowSet::default();
+        let mut seen = FxHashSet::default();
+        if q < p {
+            if !self.in_some_top(sigma) {
+                return Err(missing());
+            }
+            faces_containing(sigma, &[], q, |f| out.extend_from_slice(f));
+        } else if q == p && p == 0 {
+            let v = sigma[0];
+            self.walk_star(v, &mut seen, |_, t| {
+                for &x in t.iter().filter(|&&x| x != v) {
+                    set.emit(&[x], out);
+                }
+                true
+            });
+        } else if q > p {
+            let mut found = false;
+            self.walk_star(sigma[0], &mut seen, |_, t| {
+                if is_subset(sigma, t) {
+                    found = true;
+                    if q == d {
+                        out.extend_from_slice(t);
+                    } else {
+                        faces_containing(t, sigma, q, |f| set.emit(f, out));
+                    }
+                }
+                true
+            });
+            if !found {
+                return Err(missing());
+            }
+        } else {
+            // R_{p,p}, 0 < p < d: every facet of σ contains σ[0] or σ[1].
+            let mut found = false;
+            let mut facet = [0u32; 16];
+            let mut visit = |_: u32, t: &[u32]| {
+                let shared = sigma.iter().filter(|v| t.binary_search(v).is_ok()).count();
+                if shared == p + 1 {
+                    found = true;
+                }
+                if shared >= p {
+                    for skip in 0..=p {
+                        if shared == p && t.binary_search(&sigma[skip]).is_ok() {
+                            continue;
+                        }
+                        let mut k = 0;
+                        for (j, &v) in sigma.iter().enumerate() {
+                            if j != skip {
+                                facet[k] = v;
+                                k += 1;
+                            }
+                        }
+                        for &x in t.iter().filter(|x| sigma.binary_search(x).is_err()) {
+                            let mut row = facet[..p].to_vec();
+                            let at = row.partition_point(|&y| y < x);
+                            row.insert(at, x);
+                            set.emit(&row, out);
+                        }
+                    }
+                }
+                true
+            };
+            // Separate walks: a shared `seen` would stop the second walk at simplices the first
+            // one met, before it reaches the rest of the star of σ[1]. Rows are deduplicated.
+            self.walk_star(sigma[0], &mut seen, &mut visit);
+            self.walk_star(sigma[1], &mut FxHashSet::default(), &mut visit);
+            if !found {
+                out.clear();
+                return Err(missing());
+            }
+        }
+        Ok(())
+    }
+
+    fn storage(&self) -> Storage {
+        let bytes = self.tops.heap_bytes()
+            + 4 * (self.adj.capacity() + self.vstar_off.capacity() + self.vstar.capacity())
+            + 8 * self.counts.capacity();
+        Storage {
+            integers: self.plain_ia_integers() + self.vstar.len() as u64,
+            bits: 0,
+            bytes: bytes as u64,
+        }
+    }
+
+    fn validate(&self) -> Result<(), String> {
+        let (d, w) = (self.d, self.d + 1);
+        if self.tops.arity() != w || self.tops.is_empty() {
+            return Err(format!("R_{{{d},0}} table is empty or not of arity {w}"));
+        }
+        for (t, s) in self.tops.iter().enumerate() {
+            if s.windows(2).any(|p| p[0] >= p[1]) || s[d] >= self.n {
+                return Err(format!(
+                    "{d}-simplex {t} {s:?} not ascending or out of range"
+                ));
+            }
+            if t > 0 && self.tops.get(t - 1) >= s {
+                return Err(format!("R_{{{d},0}} not strictly ascending at {t}"));
+            }
+            for (i, &u) in self.neighbours(t as u32).iter().enumerate() {
+                if u == NONE {
+                    continue;
+                }
+                let other = self.tops.get(u as usize);
+                let shared = s.iter().filter(|v| other.contains(v)).count();
+                if u as usize == t || shared != d || other.contains(&s[i]) {
+                    return Err(format!(
+                        "R_{{{d},{d}}} entry {i} of {s:?} is {other:?}, not across the facet opposite {}",
+                        s[i]
+                    ));
+                }
+                let back = other.iter().position(|v| !s.contains(v)).unwrap();
+                if self.neighbours(u)[back] != t as u32 {
+                    return Err(format!(
+                        "R_{{{d},{d}}} not symmetric between {s:?} and {other:?}"
+                    ));
+                }
+            }
+        }
+        match adjacency(&self.tops, d) {
+            Ok(a) if a == self.adj => {}
+            _ => return Err(format!("R_{{{d},{d}}} misses a shared facet")),
+        }
+        if self.vstar_off.len() != self.n as usize + 1 {
+            return Err("vertex reference offsets have the wrong length".into());
+        }
+        // Walking from every reference must reach every (d-simplex, vertex) incidence exactly
+        // once, and no reference may lie in another reference's component.
+        let mut reached = 0usize;
+        for v in 0..self.n {
+            let refs = self.star_components(v);
+            if refs.is_empty() {
+                return Err(format!("vertex {v} has no star reference"));
+            }
+            for &r in refs {
+                if r as usize >= self.tops.len() || !self.tops.get(r as usize).contains(&v) {
+                    return Err(format!(
+                        "star reference {r} of vertex {v} does not contain it"
+                    ));
+                }
+                let mut component = 0usize;
+                let mut clash = false;
+                self.walk_from(v, &[r], &mut FxHashSet::default(), |t, _| {
+                    component += 1;
+                    clash |= t != r && refs.contains(&t);
+                    true
+                });
+                if clash {
+                    return Err(format!(
+                        "two star references of vertex {v} are in one component"
+                    ));
+                }
+                reached += component;
+            }
+        }
+        if reached != self.tops.len() * w {
+            return Err(format!(
+                "vertex star references reach {reached} of {} incidences",
+                self.tops.len() * w
+            ));
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,263 @@
+//! The `topoplex` binary as a user runs it: output formats, exit codes, one-line errors, and
+//! `relation --structure X` equal to `--structure ig` line by line.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use topoplex::StructureKind;
+
+fn run(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_topoplex"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8(o.stdout.clone()).unwrap()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8(o.stderr.clone()).unwrap()
+}
+
+fn temp_file(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("topoplex-cli-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+#[test]
+fn report_on_the_builtin_example() {
+    let o = run(&["report"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = stdout(&o);
+    assert!(text.contains("dimension: 3"), "{text}");
+    assert!(
+        text.contains("simplices per dimension (n_0..n_d): 10 13 6 1"),
+        "{text}"
+    );
+    assert!(
+        text.contains("top simplices per dimension: 1 2 2 1"),
+        "{text}"
+    );
+    let o = run(&["report", "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    assert_eq!(v["dimension"], 3);
+    assert_eq!(v["simplices"], serde_json::json!([10, 13, 6, 1]));
+    assert_eq!(v["top_simplices"], serde_json::json!([1, 2, 2, 1]));
+    let ig = &v["structures"]["ig"];
+    // 2·(2·13 + 3·6 + 4·1) + (10 + 13 + 6) integers, as the SIG paper counts the IG.
+    assert_eq!(ig["integers"], 2 * (2 * 13 + 3 * 6 + 4) + 29);
+    assert!(ig["bytes"].as_u64().unwrap() > 0 && ig["build_ms"].is_number());
+    for k in StructureKind::ALL {
+        let s = &v["structures"][k.name()];
+        assert!(
+            s["integers"].is_u64() || s["unsupported"].is_string(),
+            "{k}: {s}"
+        );
+    }
+}
+
+#[test]
+fn report_counts_absorbed_input() {
+    let f = temp_file("absorb.simplices", "s 0 1 2\ns 2 1 0\ns 1 2\ns 3\n");
+    let v: serde_json::Value =
+        serde_json::from_slice(&run(&["report", f.to_str().unwrap(), "--json"]).stdout).unwrap();
+    assert_eq!(
+        (
+            v["absorbed_duplicates"].as_u64(),
+            v["absorbed_faces"].as_u64()
+        ),
+        (Some(1), Some(1))
+    );
+    assert_eq!(v["top_simplices"], serde_json::json!([1, 0, 1]));
+}
+
+#[test]
+fn relation_dump_format_is_exact() {
+    // Two triangles on edge 0 10, plus vertex ids that sort differently as text and as numbers.
+    let f = temp_file("two.simplices", "s 0 10 11\ns 0 9 10\n");
+    let o = run(&[
+        "relation",
+        f.to_str().unwrap(),
+        "--structure",
+        "ig",
+        "--relation",
+        "1,2",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let expected = "0 9;0 9 10\n0 10;0 9 10;0 10 11\n0 11;0 10 11\n9 10;0 9 10\n10 11;0 10 11\n";
+    // Vertices 1..8 are isolated and have no edges, so only edges appear.
+    assert_eq!(stdout(&o), expected);
+    let o = run(&[
+        "relation",
+        f.to_str().unwrap(),
+        "--structure",
+        "ig",
+        "--relation",
+        "1,0",
+        "--simplex",
+        "10 0",
+    ]);
+    assert_eq!(stdout(&o), "0 10;0;10\n");
+    let o = run(&[
+        "relation",
+        f.to_str().unwrap(),
+        "--structure",
+        "ig",
+        "--relation",
+        "0,0",
+        "--simplex",
+        "3",
+    ]);
+    assert_eq!(stdout(&o), "3\n");
+}
+
+#[test]
+fn errors_exit_nonzero_with_one_line() {
+    let good = temp_file("g.simplices", "s 0 1 2\n");
+    let bad = temp_file("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n");
+    let quad = temp_file(
+        "quad.obj",
+        "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n",
+    );
+    let txt = good.with_extension("txt");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (
+            vec![
+                "relation",
+                bad.to_str().unwrap(),
+                "--structure",
+                "ig",
+                "--relation",
+                "0,1",
+            ],
+            "bad.off:6: simplex [0 1 1] repeats vertex 1",
+        ),
+        (
+            vec![
+                "relation",
+                quad.to_str().unwrap(),
+                "--structure",
+                "ig",
+                "--relation",
+                "0,1",
+            ],
+            "quad.obj:5: polygon with 4 vertices is not a simplex",
+        ),
+        (
+            vec![
+                "relation",
+                good.to_str().unwrap(),
+                "--structure",
+                "xyz",
+                "--relation",
+                "0,1",
+            ],
+            "unknown structure `xyz`",
+        ),
+        (
+            vec![
+                "relation",
+                good.to_str().unwrap(),
+                "--structure",
+                "ig",
+                "--relation",
+                "0,3",
+            ],
+            "the complex has dimension 2",
+        ),
+        (
+            vec![
+                "relation",
+                good.to_str().unwrap(),
+                "--structure",
+                "ig",
+                "--relation",
+                "1,2",
+                "--simplex",
+                "0 5",
+            ],
+            "uses vertex 5",
+        ),
+        (
+            vec![
+                "relation",
+                good.to_str().unwrap(),
+                "--structure",
+                "ig",
+                "--relation",
+                "1,2",
+                "--simplex",
+                "0",
+            ],
+            "P = 1 needs 2",
+        ),
+        (vec!["report", "/nonexistent/x.off"], "cannot read file"),
+        (
+            vec!["report", txt.to_str().unwrap()],
+            "unknown file extension",
+        ),
+    ];
+    for (args, needle) in cases {
+        let o = run(&args);
+        let err = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.contains(needle), "{args:?}: {err}");
+        assert_eq!(err.trim_end().lines().count(), 1, "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{err}");
+    }
+}
+
+fn dump(file: &Path, kind: &str, p: usize, q: usize) -> Output {
+    run(&[
+        "relation",
+        file.to_str().unwrap(),
+        "--structure",
+        kind,
+        "--relation",
+        &format!("{p},{q}"),
+    ])
+}
+
+#[test]
+fn every_structure_dumps_what_the_ig_dumps_on_real_data() {
+    for path in common::shared_files() {
+        let Ok(c) = topoplex::Complex::from_path(&path) else {
+            continue;
+        };
+        // The dump of every P,Q through every structure is a lot of process output: keep to the
+        // files of moderate size (the library-level comparison covers the rest).
+        if c.closure().iter().map(|t| t.len()).sum::<usize>() > 40_000 {
+            continue;
+        }
+        let d = c.dimension();
+        for kind in StructureKind::ALL.into_iter().skip(1) {
+            if topoplex::build(kind, &c).is_err() {
+                continue;
+            }
+            for p in 0..=d {
+                for q in 0..=d {
+                    let want = dump(&path, "ig", p, q);
+                    let got = dump(&path, kind.name(), p, q);
+                    assert!(
+                        got.status.success(),
+                        "{}: {kind}: {}",
+                        path.display(),
+                        stderr(&got)
+                    );
+                    assert!(
+                        got.stdout == want.stdout,
+                        "{}: {kind} R_{{{p},{q}}} differs from ig",
+                        path.display()
+                    );
+                }
+            }
+        }
+    }
+}
