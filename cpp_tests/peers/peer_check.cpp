@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -237,6 +239,7 @@ KindsReport check_all_kinds(const PeerComplex& cx, std::vector<Relation>& relati
 
   for (uint32_t kind = 0; kind < kKindCount; ++kind) {
     const std::string kname = kKindNames[kind];
+    const auto start = std::chrono::steady_clock::now();
     StructureHandle s;
     st = tpx_structure_build(complex.p, kind, &s.p);
     if (st == TPX_STATUS_NOT_IMPLEMENTED || st == TPX_STATUS_UNSUPPORTED_COMPLEX) {
@@ -274,7 +277,11 @@ KindsReport check_all_kinds(const PeerComplex& cx, std::vector<Relation>& relati
       }
       bad += compare_relation(s.p, where, rel, it->second);
     }
-    report.checked.push_back(kname + (bad ? " (MISMATCHES)" : ""));
+    // Wall time of build + comparison, for the log only (speed belongs in benches).
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    char took[32];
+    std::snprintf(took, sizeof took, " %.2fs", secs);
+    report.checked.push_back(kname + (bad ? " (MISMATCHES)" : "") + took);
   }
 
   std::ostringstream line;
