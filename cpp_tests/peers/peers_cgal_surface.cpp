@@ -1,0 +1,115 @@
+// CGAL's Surface_mesh as the peer on the same manifold triangle meshes as the OpenMesh test
+// (Surface_mesh refuses edges shared by more than two triangles). Its halfedge circulators give
+// VV, VE, VF, EV, EE, EF, FV, FE, FF; compared with R_{p,q} for p, q <= 2 on every kind.
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <CGAL/boost/graph/helpers.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "peer_check.hpp"
+
+namespace {
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Mesh = CGAL::Surface_mesh<K::Point_3>;
+using peers::Ids;
+
+uint32_t id(Mesh::Vertex_index v) { return uint32_t(v.idx()); }
+
+Ids edge_ids(const Mesh& m, Mesh::Edge_index e) { return {id(m.vertex(e, 0)), id(m.vertex(e, 1))}; }
+
+Ids face_ids(const Mesh& m, Mesh::Face_index f) {
+  Ids out;
+  for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) out.push_back(id(v));
+  return out;
+}
+
+class SurfaceMeshPeer : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(SurfaceMeshPeer, EveryRelationOfEveryKindMatches) {
+  PEERS_REQUIRE_DATA(path, GetParam());
+  size_t file_vertices = 0, file_faces = 0;
+  ASSERT_TRUE(peers::off_counts(path, &file_vertices, &file_faces)) << path;
+
+  Mesh m;
+  std::ifstream in(path);
+  ASSERT_TRUE(CGAL::IO::read_OFF(in, m)) << "Surface_mesh refused " << path;
+  // Vertex indices are file positions only if the reader kept every vertex, in order.
+  ASSERT_EQ(m.number_of_vertices(), file_vertices) << path;
+  ASSERT_EQ(m.number_of_faces(), file_faces) << path;
+  ASSERT_FALSE(m.has_garbage());
+  ASSERT_TRUE(CGAL::is_triangle_mesh(m)) << path;
+
+  peers::PeerComplex cx;
+  cx.name = std::string("Surface_mesh ") + GetParam();
+  cx.n_vertices = uint32_t(m.number_of_vertices());
+  size_t isolated = 0;
+  for (auto v : m.vertices()) {
+    const auto& pt = m.point(v);
+    cx.coords.insert(cx.coords.end(), {pt.x(), pt.y(), pt.z()});
+    isolated += m.is_isolated(v) ? 1 : 0;
+  }
+  for (auto f : m.faces()) cx.add(face_ids(m, f));
+  cx.expected_tops = {isolated, 0, m.number_of_faces()};
+
+  std::vector<peers::Relation> rels;
+  rels.emplace_back(0, 0, "Surface_mesh vertices_around_target");
+  rels.emplace_back(0, 1, "Surface_mesh halfedges_around_target");
+  rels.emplace_back(0, 2, "Surface_mesh faces_around_target");
+  rels.emplace_back(1, 0, "Surface_mesh vertex(e, i)");
+  rels.emplace_back(1, 1, "Surface_mesh halfedges_around_target of both ends");
+  rels.emplace_back(1, 2, "Surface_mesh face(halfedge(e)), face(opposite)");
+  rels.emplace_back(2, 0, "Surface_mesh vertices_around_face");
+  rels.emplace_back(2, 1, "Surface_mesh halfedges_around_face");
+  rels.emplace_back(2, 2, "Surface_mesh faces_around_face");
+
+  for (auto v : m.vertices()) {
+    const Ids sigma{id(v)};
+    std::vector<Ids> verts, edges, faces;
+    if (!m.is_isolated(v)) {
+      for (auto u : CGAL::vertices_around_target(m.halfedge(v), m)) verts.push_back({id(u)});
+      for (auto h : CGAL::halfedges_around_target(m.halfedge(v), m)) edges.push_back(edge_ids(m, m.edge(h)));
+      for (auto f : CGAL::faces_around_target(m.halfedge(v), m))
+        if (f != Mesh::null_face()) faces.push_back(face_ids(m, f));
+    }
+    rels[0].add(sigma, verts);
+    rels[1].add(sigma, edges);
+    rels[2].add(sigma, faces);
+  }
+  for (auto e : m.edges()) {
+    const Ids sigma = edge_ids(m, e);
+    std::vector<Ids> verts{{sigma[0]}, {sigma[1]}}, edges, faces;
+    for (int i = 0; i < 2; ++i) {
+      auto h = m.halfedge(e, i);
+      if (!m.is_border(h)) faces.push_back(face_ids(m, m.face(h)));
+      for (auto h2 : CGAL::halfedges_around_target(h, m))
+        if (m.edge(h2) != e) edges.push_back(edge_ids(m, m.edge(h2)));
+    }
+    rels[3].add(sigma, verts);
+    rels[4].add(sigma, edges);
+    rels[5].add(sigma, faces);
+  }
+  for (auto f : m.faces()) {
+    const Ids sigma = face_ids(m, f);
+    std::vector<Ids> verts, edges, faces;
+    for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) verts.push_back({id(v)});
+    for (auto h : CGAL::halfedges_around_face(m.halfedge(f), m)) edges.push_back(edge_ids(m, m.edge(h)));
+    for (auto g : CGAL::faces_around_face(m.halfedge(f), m))
+      if (g != Mesh::null_face()) faces.push_back(face_ids(m, g));
+    rels[6].add(sigma, verts);
+    rels[7].add(sigma, edges);
+    rels[8].add(sigma, faces);
+  }
+
+  const auto report = peers::check_all_kinds(cx, rels);
+  EXPECT_FALSE(report.checked.empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(CgalSampleMeshes, SurfaceMeshPeer,
+                         ::testing::Values("meshes/elephant.off", "meshes/elephant-with-holes.off",
+                                           "meshes/fandisk.off"),
+                         [](const auto& info) { return peers::test_name_of(info.param); });
+
+}  // namespace

@@ -1,0 +1,119 @@
+// OpenMesh as the peer on closed and bounded triangle meshes from CGAL's sample data.
+// OpenMesh's halfedge structure answers VV, VE, VF, EV, EE, EF, FV, FE, FF; Topoplex must give
+// the same sets as R_{0,0}, R_{0,1}, R_{0,2}, R_{1,0}, R_{1,1}, R_{1,2}, R_{2,0}, R_{2,1},
+// R_{2,2} for each structure kind that encodes the mesh. OpenMesh splits vertices at edges
+// shared by more than two triangles, so only manifold meshes are used (checked on load: the
+// vertex and face counts must be the file's).
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+#include <gtest/gtest.h>
+
+#include "peer_check.hpp"
+
+namespace {
+
+using Mesh = OpenMesh::TriMesh_ArrayKernelT<>;
+using peers::Ids;
+
+Ids edge_ids(const Mesh& m, Mesh::EdgeHandle e) {
+  auto h = m.halfedge_handle(e, 0);
+  return {uint32_t(m.from_vertex_handle(h).idx()), uint32_t(m.to_vertex_handle(h).idx())};
+}
+
+Ids face_ids(const Mesh& m, Mesh::FaceHandle f) {
+  Ids out;
+  for (auto v : m.fv_range(f)) out.push_back(uint32_t(v.idx()));
+  return out;
+}
+
+class OpenMeshPeer : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(OpenMeshPeer, EveryRelationOfEveryKindMatches) {
+  PEERS_REQUIRE_DATA(path, GetParam());
+  size_t file_vertices = 0, file_faces = 0;
+  ASSERT_TRUE(peers::off_counts(path, &file_vertices, &file_faces)) << path;
+
+  Mesh m;
+  ASSERT_TRUE(OpenMesh::IO::read_mesh(m, path)) << path;
+  ASSERT_EQ(m.n_vertices(), file_vertices) << "OpenMesh added vertices: " << path << " is not manifold";
+  ASSERT_EQ(m.n_faces(), file_faces) << "OpenMesh dropped faces of " << path;
+
+  peers::PeerComplex cx;
+  cx.name = std::string("OpenMesh ") + GetParam();
+  cx.n_vertices = uint32_t(m.n_vertices());
+  for (auto v : m.vertices()) {
+    const auto& pt = m.point(v);
+    cx.coords.insert(cx.coords.end(), {double(pt[0]), double(pt[1]), double(pt[2])});
+  }
+  size_t isolated = 0;
+  for (auto v : m.vertices()) isolated += m.is_isolated(v) ? 1 : 0;
+  for (auto f : m.faces()) cx.add(face_ids(m, f));
+  // A triangle mesh's tops: its faces and its isolated vertices.
+  cx.expected_tops = {isolated, 0, m.n_faces()};
+
+  std::vector<peers::Relation> rels;
+  rels.emplace_back(0, 0, "OpenMesh VV");
+  rels.emplace_back(0, 1, "OpenMesh VE");
+  rels.emplace_back(0, 2, "OpenMesh VF");
+  rels.emplace_back(1, 0, "OpenMesh EV");
+  rels.emplace_back(1, 1, "OpenMesh EE via VE of both ends");
+  rels.emplace_back(1, 2, "OpenMesh EF");
+  rels.emplace_back(2, 0, "OpenMesh FV");
+  rels.emplace_back(2, 1, "OpenMesh FE");
+  rels.emplace_back(2, 2, "OpenMesh FF");
+  auto& vv = rels[0];
+  auto& ve = rels[1];
+  auto& vf = rels[2];
+  auto& ev = rels[3];
+  auto& ee = rels[4];
+  auto& ef = rels[5];
+  auto& fv = rels[6];
+  auto& fe = rels[7];
+  auto& ff = rels[8];
+
+  for (auto v : m.vertices()) {
+    const Ids sigma{uint32_t(v.idx())};
+    std::vector<Ids> verts, edges, faces;
+    for (auto u : m.vv_range(v)) verts.push_back({uint32_t(u.idx())});
+    for (auto e : m.ve_range(v)) edges.push_back(edge_ids(m, e));
+    for (auto f : m.vf_range(v)) faces.push_back(face_ids(m, f));
+    vv.add(sigma, verts);
+    ve.add(sigma, edges);
+    vf.add(sigma, faces);
+  }
+  for (auto e : m.edges()) {
+    const Ids sigma = edge_ids(m, e);
+    std::vector<Ids> verts{{sigma[0]}, {sigma[1]}}, edges, faces;
+    for (int i = 0; i < 2; ++i) {
+      auto h = m.halfedge_handle(e, i);
+      if (!m.is_boundary(h)) faces.push_back(face_ids(m, m.face_handle(h)));
+      for (auto e2 : m.ve_range(m.to_vertex_handle(h)))
+        if (e2 != e) edges.push_back(edge_ids(m, e2));
+    }
+    ev.add(sigma, verts);
+    ee.add(sigma, edges);
+    ef.add(sigma, faces);
+  }
+  for (auto f : m.faces()) {
+    const Ids sigma = face_ids(m, f);
+    std::vector<Ids> verts, edges, faces;
+    for (auto v : m.fv_range(f)) verts.push_back({uint32_t(v.idx())});
+    for (auto e : m.fe_range(f)) edges.push_back(edge_ids(m, e));
+    for (auto g : m.ff_range(f)) faces.push_back(face_ids(m, g));
+    fv.add(sigma, verts);
+    fe.add(sigma, edges);
+    ff.add(sigma, faces);
+  }
+
+  const auto report = peers::check_all_kinds(cx, rels);
+  EXPECT_FALSE(report.checked.empty());
+}
+
+// elephant: closed genus-3 surface; elephant-with-holes: the same animal with boundary loops
+// (exercises boundary edges with one face); fandisk: CAD part with sharp features.
+INSTANTIATE_TEST_SUITE_P(CgalSampleMeshes, OpenMeshPeer,
+                         ::testing::Values("meshes/elephant.off", "meshes/elephant-with-holes.off",
+                                           "meshes/fandisk.off"),
+                         [](const auto& info) { return peers::test_name_of(info.param); });
+
+}  // namespace
