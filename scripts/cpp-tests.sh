@@ -44,4 +44,13 @@ for sanitize in OFF ON; do
     -DCMAKE_PREFIX_PATH="$prefix" -DTOPOPLEX_SANITIZE="$sanitize"
   cmake --build "$build"
   ctest --test-dir "$build" --output-on-failure
+  if [ "$sanitize" = OFF ]; then
+    # valgrind memcheck on the uninstrumented build: zero errors, zero definite/indirect leaks.
+    echo "== valgrind memcheck"
+    for t in c_api/test_c_api_shared c_api/test_threads; do
+      valgrind -q --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect \
+        "$build/$t" >"$work/valgrind.log" 2>&1 || { cat "$work/valgrind.log"; echo "valgrind: $t failed" >&2; exit 1; }
+      echo "valgrind: $t clean"
+    done
+  fi
 done

@@ -18,51 +18,199 @@ fn cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
         ("empty file", "empty.obj", t("")),
         ("empty file", "empty.mesh", t("")),
         ("empty file", "empty.simplices", t("# nothing\n")),
-        ("truncated file", "truncated.off", t("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1")),
-        ("truncated file", "truncated.mesh", t("MeshVersionFormatted 2\nDimension 3\nVertices\n3\n0 0 0 1\n1 0 0 1\n")),
-        ("truncated file", "truncated.obj", t("v 0 0 0\nv 1 0 0\nf 1 2 \\\n")),
+        (
+            "truncated file",
+            "truncated.off",
+            t("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1"),
+        ),
+        (
+            "truncated file",
+            "truncated.mesh",
+            t("MeshVersionFormatted 2\nDimension 3\nVertices\n3\n0 0 0 1\n1 0 0 1\n"),
+        ),
+        (
+            "truncated file",
+            "truncated.obj",
+            t("v 0 0 0\nv 1 0 0\nf 1 2 \\\n"),
+        ),
         ("wrong header", "header.off", t("OFX\n3 1 0\n")),
-        ("wrong header", "header.mesh", t("Dimension 3\nVertices\n0\n")),
+        (
+            "wrong header",
+            "header.mesh",
+            t("Dimension 3\nVertices\n0\n"),
+        ),
         ("binary OFF", "binary.off", t("OFF BINARY\n")),
         ("unknown statement", "unknown.obj", t("v 0 0 0\nq 1 2\n")),
-        ("unknown section", "unknown.mesh", t("MeshVersionFormatted 2\nDimension 3\nPrisms\n0\n")),
+        (
+            "unknown section",
+            "unknown.mesh",
+            t("MeshVersionFormatted 2\nDimension 3\nPrisms\n0\n"),
+        ),
         ("unknown line", "unknown.simplices", t("s 0 1\nt 1 2\n")),
-        ("counts disagree with content", "fewer-faces.off", t("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n")),
-        ("counts disagree with content", "extra.off", t("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n")),
-        ("counts disagree with content", "fewer.mesh", t("MeshVersionFormatted 2\nDimension 3\nVertices\n3\n0 0 0 1\n1 0 0 1\n0 1 0 1\nTriangles\n2\n1 2 3 0\nEnd\n")),
-        ("count far larger than the file", "huge.off", t("OFF\n4000000000 1 0\n0 0 0\n")),
-        ("count far larger than the file", "huge.mesh", t("MeshVersionFormatted 2\nDimension 3\nVertices\n4000000000\n0 0 0 1\n")),
-        ("count above 32 bits", "overflow-count.off", t("OFF\n99999999999 1 0\n")),
-        ("non-numeric number", "word.off", t("OFF\n3 1 0\n0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n")),
+        (
+            "counts disagree with content",
+            "fewer-faces.off",
+            t("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+        ),
+        (
+            "counts disagree with content",
+            "extra.off",
+            t("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n3 0 1 2\n"),
+        ),
+        (
+            "counts disagree with content",
+            "fewer.mesh",
+            t(
+                "MeshVersionFormatted 2\nDimension 3\nVertices\n3\n0 0 0 1\n1 0 0 1\n0 1 0 1\nTriangles\n2\n1 2 3 0\nEnd\n",
+            ),
+        ),
+        (
+            "count far larger than the file",
+            "huge.off",
+            t("OFF\n4000000000 1 0\n0 0 0\n"),
+        ),
+        (
+            "count far larger than the file",
+            "huge.mesh",
+            t("MeshVersionFormatted 2\nDimension 3\nVertices\n4000000000\n0 0 0 1\n"),
+        ),
+        (
+            "count above 32 bits",
+            "overflow-count.off",
+            t("OFF\n99999999999 1 0\n"),
+        ),
+        (
+            "non-numeric number",
+            "word.off",
+            t("OFF\n3 1 0\n0 0 0\n1 x 0\n0 1 0\n3 0 1 2\n"),
+        ),
         ("non-numeric id", "word.simplices", t("s 0 one\n")),
-        ("overflowing id", "overflow.simplices", t("s 0 99999999999\n")),
-        ("negative id", "negative.off", t("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n")),
+        (
+            "overflowing id",
+            "overflow.simplices",
+            t("s 0 99999999999\n"),
+        ),
+        (
+            "negative id",
+            "negative.off",
+            t("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 -1 2\n"),
+        ),
         ("negative id", "negative.simplices", t("s 0 -2\n")),
-        ("index 0 in a 1-based format", "zero.obj", t("v 0 0 0\nv 1 0 0\nl 0 1\n")),
-        ("relative index before the first vertex", "relative.obj", t("v 0 0 0\nl -1 -2\n")),
-        ("out-of-range vertex id", "range.off", t("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n")),
-        ("out-of-range vertex id", "range.obj", t("v 0 0 0\nv 1 0 0\nf 1 2 3\n")),
-        ("out-of-range vertex id", "range.mesh", t("MeshVersionFormatted 2\nDimension 3\nVertices\n2\n0 0 0 1\n1 0 0 1\nEdges\n1\n1 3 0\n")),
-        ("out-of-range vertex id", "range.simplices", t("v 0\nv 1\ns 0 2\n")),
-        ("repeated vertex in a simplex", "repeat.off", t("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n")),
-        ("repeated vertex in a simplex", "repeat.obj", t("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -2\n")),
-        ("repeated vertex in a simplex", "repeat.mesh", t("MeshVersionFormatted 2\nDimension 3\nVertices\n3\n0 0 0 1\n1 0 0 1\n0 1 0 1\nTriangles\n1\n1 2 2 0\n")),
-        ("repeated vertex in a simplex", "repeat.simplices", t("s 4 2 4\n")),
-        ("polygon that is not a simplex", "quad.off", t("OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")),
-        ("polygon that is not a simplex", "quad.obj", t("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n")),
-        ("polygon that is not a simplex", "quad.mesh", t("MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n1 1 0 1\n0 1 0 1\nQuadrilaterals\n1\n1 2 3 4 0\n")),
-        ("face with 0 vertices", "zero-face.off", t("OFF\n1 1 0\n0 0 0\n0\n")),
-        ("inconsistent coordinate count", "coords.simplices", t("v 0 0\nv 1\ns 0 1\n")),
-        ("dimension above the maximum (15)", "dim16.simplices", big.into_bytes()),
+        (
+            "index 0 in a 1-based format",
+            "zero.obj",
+            t("v 0 0 0\nv 1 0 0\nl 0 1\n"),
+        ),
+        (
+            "relative index before the first vertex",
+            "relative.obj",
+            t("v 0 0 0\nl -1 -2\n"),
+        ),
+        (
+            "out-of-range vertex id",
+            "range.off",
+            t("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n"),
+        ),
+        (
+            "out-of-range vertex id",
+            "range.obj",
+            t("v 0 0 0\nv 1 0 0\nf 1 2 3\n"),
+        ),
+        (
+            "out-of-range vertex id",
+            "range.mesh",
+            t(
+                "MeshVersionFormatted 2\nDimension 3\nVertices\n2\n0 0 0 1\n1 0 0 1\nEdges\n1\n1 3 0\n",
+            ),
+        ),
+        (
+            "out-of-range vertex id",
+            "range.simplices",
+            t("v 0\nv 1\ns 0 2\n"),
+        ),
+        (
+            "repeated vertex in a simplex",
+            "repeat.off",
+            t("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 1\n"),
+        ),
+        (
+            "repeated vertex in a simplex",
+            "repeat.obj",
+            t("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -2\n"),
+        ),
+        (
+            "repeated vertex in a simplex",
+            "repeat.mesh",
+            t(
+                "MeshVersionFormatted 2\nDimension 3\nVertices\n3\n0 0 0 1\n1 0 0 1\n0 1 0 1\nTriangles\n1\n1 2 2 0\n",
+            ),
+        ),
+        (
+            "repeated vertex in a simplex",
+            "repeat.simplices",
+            t("s 4 2 4\n"),
+        ),
+        (
+            "polygon that is not a simplex",
+            "quad.off",
+            t("OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n"),
+        ),
+        (
+            "polygon that is not a simplex",
+            "quad.obj",
+            t("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"),
+        ),
+        (
+            "polygon that is not a simplex",
+            "quad.mesh",
+            t(
+                "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n1 1 0 1\n0 1 0 1\nQuadrilaterals\n1\n1 2 3 4 0\n",
+            ),
+        ),
+        (
+            "face with 0 vertices",
+            "zero-face.off",
+            t("OFF\n1 1 0\n0 0 0\n0\n"),
+        ),
+        (
+            "inconsistent coordinate count",
+            "coords.simplices",
+            t("v 0 0\nv 1\ns 0 1\n"),
+        ),
+        (
+            "dimension above the maximum (15)",
+            "dim16.simplices",
+            big.into_bytes(),
+        ),
         ("no vertices", "novertex.off", t("OFF\n0 0 0\n")),
-        ("binary junk", "junk.obj", vec![0xff, 0xfe, 0x00, 0x13, 0x80, 0x81, b'\n', 0xc3]),
+        (
+            "binary junk",
+            "junk.obj",
+            vec![0xff, 0xfe, 0x00, 0x13, 0x80, 0x81, b'\n', 0xc3],
+        ),
         ("unknown extension", "mesh.ply", t("ply\n")),
         ("missing file", "missing/nothing.off", Vec::new()),
         // Accepted inputs: the decisions the catalogue records.
-        ("NaN / inf coordinates (accepted: topology ignores coordinates)", "nan.off", t("OFF\n3 1 0\nnan 0 0\ninf 0 0\n0 -inf 0\n3 0 1 2\n")),
-        ("CRLF, tabs, no final newline (accepted)", "crlf.off", t("OFF\r\n3\t1 0\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2")),
-        ("UTF-8 byte-order mark (accepted)", "bom.obj", t("\u{feff}v 0 0 0\nv 1 0 0\nl 1 2\n")),
-        ("duplicate and face-of-another simplices (accepted, counted)", "dups.simplices", t("s 0 1 2\ns 2 0 1\ns 0 1\n")),
+        (
+            "NaN / inf coordinates (accepted: topology ignores coordinates)",
+            "nan.off",
+            t("OFF\n3 1 0\nnan 0 0\ninf 0 0\n0 -inf 0\n3 0 1 2\n"),
+        ),
+        (
+            "CRLF, tabs, no final newline (accepted)",
+            "crlf.off",
+            t("OFF\r\n3\t1 0\r\n0 0 0\r\n1 0 0\r\n0 1 0\r\n3 0 1 2"),
+        ),
+        (
+            "UTF-8 byte-order mark (accepted)",
+            "bom.obj",
+            t("\u{feff}v 0 0 0\nv 1 0 0\nl 1 2\n"),
+        ),
+        (
+            "duplicate and face-of-another simplices (accepted, counted)",
+            "dups.simplices",
+            t("s 0 1 2\ns 2 0 1\ns 0 1\n"),
+        ),
     ]
 }
 
@@ -95,20 +243,32 @@ fn every_bad_input_gets_the_catalogued_error() {
         let got = outcome(&dir, name, &content);
         // Every refusal names the file; every line-specific one also the line.
         if !got.starts_with("accepted") {
-            assert!(got.contains(name.rsplit('/').next().unwrap()), "{name}: {got}");
+            assert!(
+                got.contains(name.rsplit('/').next().unwrap()),
+                "{name}: {got}"
+            );
         }
-        rows.push_str(&format!("| {class} | `{name}` | {} |\n", got.replace('|', "\\|")));
+        rows.push_str(&format!(
+            "| {class} | `{name}` | {} |\n",
+            got.replace('|', "\\|")
+        ));
     }
     std::fs::remove_dir_all(&dir).ok();
     let doc_path = format!("{}/docs/bad-input.md", env!("CARGO_MANIFEST_DIR"));
     let doc = std::fs::read_to_string(&doc_path).unwrap_or_default();
     let (begin, end) = ("<!-- readers:begin -->\n", "<!-- readers:end -->");
-    let (Some(a), Some(b)) = (doc.find(begin), doc.find(end)) else { panic!("docs/bad-input.md lacks the readers table markers") };
+    let (Some(a), Some(b)) = (doc.find(begin), doc.find(end)) else {
+        panic!("docs/bad-input.md lacks the readers table markers")
+    };
     let table = format!("| class | file | what `Complex::from_path` says |\n|---|---|---|\n{rows}");
     if std::env::var_os("TOPOPLEX_WRITE_BAD_INPUT_DOC").is_some() {
         let new = format!("{}{begin}{table}{}", &doc[..a], &doc[b..]);
         std::fs::write(&doc_path, new).unwrap();
         return;
     }
-    assert_eq!(&doc[a + begin.len()..b], table, "docs/bad-input.md is stale: TOPOPLEX_WRITE_BAD_INPUT_DOC=1 cargo test --test bad_input");
+    assert_eq!(
+        &doc[a + begin.len()..b],
+        table,
+        "docs/bad-input.md is stale: TOPOPLEX_WRITE_BAD_INPUT_DOC=1 cargo test --test bad_input"
+    );
 }

@@ -100,7 +100,10 @@ pub struct InputStats {
 #[derive(Debug, Clone)]
 pub struct Complex {
     n_vertices: u32,
-    coords: Option<Coords>,
+    /// Always a fully initialised value (`dim` 0 when the input has no coordinates) rather than
+    /// an `Option`: optimised code may read `dim` before testing an `Option`'s niche, which
+    /// valgrind's memcheck then reports as a jump on uninitialised memory.
+    coords: Coords,
     /// `tops[p]`: the top p-simplices, `p = 0..=dimension`.
     tops: Vec<SimplexTable>,
     stats: InputStats,
@@ -250,7 +253,10 @@ impl Complex {
         let tops = absorb_faces(n, tables, &mut stats);
         Ok(Complex {
             n_vertices: n,
-            coords,
+            coords: coords.unwrap_or(Coords {
+                dim: 0,
+                data: Vec::new(),
+            }),
             tops,
             stats,
             source: file.map(Path::to_path_buf),
@@ -267,7 +273,7 @@ impl Complex {
     }
 
     pub fn coords(&self) -> Option<&Coords> {
-        self.coords.as_ref()
+        (self.coords.dim > 0).then_some(&self.coords)
     }
 
     pub fn stats(&self) -> InputStats {
