@@ -33,7 +33,7 @@ else
 fi
 
 echo "== fuzz smoke (differential: readers, every structure vs the oracle)"
-scripts/fuzz-smoke.sh 10
+scripts/fuzz-smoke.sh 5
 
 echo "== CLI smoke"
 cargo build --profile ci --bin topoplex
