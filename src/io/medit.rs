@@ -323,26 +323,7 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
 mod tests {
     use super::*;
 
-    fn ok(text: &str) -> RawInput {
-        parse(text).unwrap_or_else(|e| panic!("unexpected error {e:?}"))
-    }
-
-    fn err(text: &str, line: u32, needle: &str) {
-        match parse(text) {
-            Ok(r) => panic!("expected an error, got {r:?}"),
-            Err((l, k)) => {
-                let msg = k.to_string();
-                assert_eq!(l, line, "wrong line for error '{msg}'");
-                assert!(msg.contains(needle), "message '{msg}' lacks '{needle}'");
-            }
-        }
-    }
-
-    fn simplices(r: &RawInput) -> Vec<Vec<u32>> {
-        (0..r.simplex_count())
-            .map(|i| r.simplex(i).to_vec())
-            .collect()
-    }
+    reader_test_helpers!();
 
     const HEAD: &str = "MeshVersionFormatted 2\nDimension 3\n";
 

@@ -10,6 +10,35 @@
 
 use std::path::{Path, PathBuf};
 
+/// The helpers every reader's unit tests share, bound to the calling module's `parse`: `ok`
+/// (parse or panic), `err` (an error on the given line whose message contains a needle) and
+/// `simplices` (the parsed simplices as vectors).
+#[cfg(test)]
+macro_rules! reader_test_helpers {
+    () => {
+        fn ok(text: &str) -> RawInput {
+            parse(text).unwrap_or_else(|e| panic!("unexpected error {e:?}"))
+        }
+
+        fn err(text: &str, line: u32, needle: &str) {
+            match parse(text) {
+                Ok(r) => panic!("expected an error, got {r:?}"),
+                Err((l, k)) => {
+                    let msg = k.to_string();
+                    assert_eq!(l, line, "wrong line for error '{msg}'");
+                    assert!(msg.contains(needle), "message '{msg}' lacks '{needle}'");
+                }
+            }
+        }
+
+        fn simplices(r: &RawInput) -> Vec<Vec<u32>> {
+            (0..r.simplex_count())
+                .map(|i| r.simplex(i).to_vec())
+                .collect()
+        }
+    };
+}
+
 pub mod medit;
 pub mod obj;
 pub mod off;

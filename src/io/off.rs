@@ -286,27 +286,7 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
 mod tests {
     use super::*;
 
-    fn ok(text: &str) -> RawInput {
-        parse(text).unwrap_or_else(|e| panic!("unexpected error {e:?}"))
-    }
-
-    /// Asserts an error on `line` whose message contains `needle`.
-    fn err(text: &str, line: u32, needle: &str) {
-        match parse(text) {
-            Ok(r) => panic!("expected an error, got {r:?}"),
-            Err((l, k)) => {
-                let msg = k.to_string();
-                assert_eq!(l, line, "wrong line for error '{msg}'");
-                assert!(msg.contains(needle), "message '{msg}' lacks '{needle}'");
-            }
-        }
-    }
-
-    fn simplices(r: &RawInput) -> Vec<Vec<u32>> {
-        (0..r.simplex_count())
-            .map(|i| r.simplex(i).to_vec())
-            .collect()
-    }
+    reader_test_helpers!();
 
     const TETRA: &str =
         "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n3 0 2 3\n3 1 2 3\n";
