@@ -29,7 +29,7 @@ fn grid(n: u32) -> Complex {
 
 fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("iqm_build_grid");
-    for n in [50u32, 100, 200] {
+    for n in [50u32, 100, 200, 400] {
         let complex = grid(n);
         g.bench_with_input(BenchmarkId::from_parameter(n * n), &complex, |b, cx| {
             b.iter(|| Iqm::build(cx).unwrap())
