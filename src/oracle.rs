@@ -63,7 +63,7 @@ impl Oracle {
     }
 
     pub fn contains(&self, s: &[u32]) -> bool {
-        s.len() >= 1
+        !s.is_empty()
             && s.len() <= self.levels.len()
             && self.levels[s.len() - 1].binary_search(&s.to_vec()).is_ok()
     }

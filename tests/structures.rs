@@ -88,10 +88,10 @@ fn eight_threads_query_one_structure_and_agree_with_serial_answers() {
         .map(|(n, c)| (n.to_string(), c))
         .collect();
     for path in common::shared_files() {
-        if let Ok(c) = Complex::from_path(&path) {
-            if c.closure().iter().map(|t| t.len()).sum::<usize>() < 60_000 {
-                complexes.push((path.display().to_string(), c));
-            }
+        if let Ok(c) = Complex::from_path(&path)
+            && c.closure().iter().map(|t| t.len()).sum::<usize>() < 60_000
+        {
+            complexes.push((path.display().to_string(), c));
         }
     }
     for (name, c) in complexes {

@@ -1,7 +1,7 @@
 //! `topoplex`: report on a complex and dump its relations through any structure.
 
 use std::io::{BufWriter, Write};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::time::Instant;
 
@@ -86,13 +86,16 @@ fn main() -> ExitCode {
     }
 }
 
-fn load(file: &PathBuf) -> Result<Complex, String> {
+fn load(file: &Path) -> Result<Complex, String> {
     Complex::from_path(file).map_err(|e| e.to_string())
 }
 
+/// A structure's storage, build time in ms and `summary()` figures, or why it was not built.
+type Outcome = Result<(topoplex::Storage, f64, Vec<(&'static str, u64)>), String>;
+
 struct Row {
     kind: StructureKind,
-    outcome: Result<(topoplex::Storage, f64, Vec<(&'static str, u64)>), String>,
+    outcome: Outcome,
 }
 
 fn report(file: Option<PathBuf>, json: bool) -> Result<(), String> {
@@ -198,7 +201,7 @@ fn report(file: Option<PathBuf>, json: bool) -> Result<(), String> {
     Ok(())
 }
 
-fn decompose(file: &PathBuf, out: &std::path::Path) -> Result<(), String> {
+fn decompose(file: &Path, out: &Path) -> Result<(), String> {
     let complex = load(file)?;
     let iqm = topoplex::structures::iqm::Iqm::build(&complex).map_err(|e| e.to_string())?;
     let dec = iqm.decomposition();

@@ -191,14 +191,14 @@ impl Complex {
                 file: file.map(Path::to_path_buf),
             });
         }
-        if let Some(c) = &coords {
-            if c.data.len() != c.dim * n as usize {
-                return Err(ComplexError::Coordinates(format!(
-                    "{} numbers given for {n} vertices of dimension {}",
-                    c.data.len(),
-                    c.dim
-                )));
-            }
+        if let Some(c) = &coords
+            && c.data.len() != c.dim * n as usize
+        {
+            return Err(ComplexError::Coordinates(format!(
+                "{} numbers given for {n} vertices of dimension {}",
+                c.data.len(),
+                c.dim
+            )));
         }
         // Validate and bucket by dimension; rows are sorted so duplicates become equal rows.
         let mut by_dim: Vec<Vec<u32>> = Vec::new();

@@ -34,7 +34,7 @@ impl SimplexTable {
     /// Sorts and deduplicates `ids` (rows of `arity` already-ascending vertex ids) into a table;
     /// returns it with the number of duplicate rows removed. O(n log n) comparisons.
     pub fn from_rows(arity: usize, ids: Vec<u32>) -> (Self, usize) {
-        assert!(arity > 0 && ids.len() % arity == 0);
+        assert!(arity > 0 && ids.len().is_multiple_of(arity));
         let rows = ids.len() / arity;
         let ids = sort_dedup_rows(arity, ids);
         let table = SimplexTable { arity, ids };
@@ -55,11 +55,7 @@ impl SimplexTable {
     }
 
     pub fn len(&self) -> usize {
-        if self.arity == 0 {
-            0
-        } else {
-            self.ids.len() / self.arity
-        }
+        self.ids.len().checked_div(self.arity).unwrap_or(0)
     }
 
     pub fn is_empty(&self) -> bool {
