@@ -184,6 +184,11 @@ fn cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
         ),
         ("no vertices", "novertex.off", t("OFF\n0 0 0\n")),
         (
+            "huge id implying a vertex count (no `v` lines)",
+            "sparse.simplices",
+            t("s 0 1\ns 0 1000000000 3 8 9\n"),
+        ),
+        (
             "binary junk",
             "junk.obj",
             vec![0xff, 0xfe, 0x00, 0x13, 0x80, 0x81, b'\n', 0xc3],

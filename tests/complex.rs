@@ -102,3 +102,28 @@ fn without_declared_vertices_the_count_is_max_id_plus_one() {
     // 0, 1, 3, 4 are isolated.
     assert_eq!(c.tops(0).as_flat(), &[0, 1, 3, 4]);
 }
+
+/// Regression (found by the `read_simplices` fuzz target): `s 0 1000000000 3 8 9` in a file
+/// without `v` lines implied a billion isolated vertices and exhausted memory.
+#[test]
+fn a_huge_id_without_declared_vertices_is_refused_not_allocated() {
+    let mut raw = RawInput::new();
+    raw.push(&[0, 1], 1);
+    raw.push(&[0, 1_000_000_000, 3, 8, 9], 2);
+    let e = Complex::from_raw(&raw, Some(std::path::Path::new("s.simplices"))).unwrap_err();
+    assert!(matches!(
+        e,
+        ComplexError::ImpliedVertexCount {
+            vertex: 1_000_000_000,
+            ..
+        }
+    ));
+    assert!(e.to_string().starts_with("s.simplices:2: simplex [0 1000000000 3 8 9] uses vertex 1000000000, which would make 1000000001 vertices"), "{e}");
+    // Just below the limit is accepted: the vertices are 0..=max id.
+    let mut raw = RawInput::new();
+    raw.push(&[0, topoplex::complex::MAX_IMPLIED_VERTICES - 1], 1);
+    assert_eq!(
+        Complex::from_raw(&raw, None).unwrap().vertex_count(),
+        topoplex::complex::MAX_IMPLIED_VERTICES
+    );
+}

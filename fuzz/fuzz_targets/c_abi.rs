@@ -12,7 +12,9 @@ struct Bytes<'a>(&'a [u8]);
 
 impl Bytes<'_> {
     fn next(&mut self) -> u8 {
-        let Some((&b, rest)) = self.0.split_first() else { return 0 };
+        let Some((&b, rest)) = self.0.split_first() else {
+            return 0;
+        };
         self.0 = rest;
         b
     }
@@ -29,7 +31,17 @@ fuzz_target!(|data: &[u8]| {
         offsets.push(ids.len());
     }
     let mut complex = null_mut();
-    let st = unsafe { tpx_complex_from_arrays(n, ids.as_ptr(), offsets.as_ptr(), list.len(), null(), 0, &mut complex) };
+    let st = unsafe {
+        tpx_complex_from_arrays(
+            n,
+            ids.as_ptr(),
+            offsets.as_ptr(),
+            list.len(),
+            null(),
+            0,
+            &mut complex,
+        )
+    };
     assert_ne!(st, TpxStatus::Panic);
     if st != TpxStatus::Ok {
         assert!(complex.is_null());
@@ -56,7 +68,17 @@ fuzz_target!(|data: &[u8]| {
             let cap = usize::from(b.next());
             let mut buf = vec![0u32; cap];
             let mut out_len = 0usize;
-            let st = unsafe { tpx_relation(s, sigma.as_ptr(), sigma.len(), q, buf.as_mut_ptr(), cap, &mut out_len) };
+            let st = unsafe {
+                tpx_relation(
+                    s,
+                    sigma.as_ptr(),
+                    sigma.len(),
+                    q,
+                    buf.as_mut_ptr(),
+                    cap,
+                    &mut out_len,
+                )
+            };
             assert_ne!(st, TpxStatus::Panic);
             let mut want = Vec::new();
             let expected = topo.relation(&sigma, q as usize, &mut want);
@@ -83,7 +105,10 @@ fuzz_target!(|data: &[u8]| {
     }
     if !complex.is_null() && b.next() % 3 == 0 {
         let mut d = null_mut();
-        assert_eq!(unsafe { tpx_decomposition_build(complex, &mut d) }, TpxStatus::Ok);
+        assert_eq!(
+            unsafe { tpx_decomposition_build(complex, &mut d) },
+            TpxStatus::Ok
+        );
         let mut count = 0usize;
         unsafe { tpx_decomposition_component_count(d, &mut count) };
         unsafe { tpx_decomposition_free(d) };

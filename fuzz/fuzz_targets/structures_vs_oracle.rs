@@ -9,7 +9,11 @@ fuzz_target!(|data: &[u8]| {
     let refs: Vec<&[u32]> = list.iter().map(Vec::as_slice).collect();
     match Complex::from_simplices(n, &refs) {
         Ok(c) => topoplex_fuzz_support::check_complex(&c),
-        Err(ComplexError::RepeatedVertex { .. } | ComplexError::VertexOutOfRange { .. } | ComplexError::EmptySimplex { .. }) => {}
+        Err(
+            ComplexError::RepeatedVertex { .. }
+            | ComplexError::VertexOutOfRange { .. }
+            | ComplexError::EmptySimplex { .. },
+        ) => {}
         Err(e) => panic!("unexpected complex error {e}"),
     }
 });

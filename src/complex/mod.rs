@@ -10,6 +10,9 @@
 //!   `MAX_DIMENSION + 1` vertices is an error naming the file, line and simplex.
 //! - Every id in `0..n` is a vertex; one that no simplex uses is an isolated vertex (a top
 //!   0-simplex). A complex with no vertex at all is refused.
+//! - Where the input does not declare its vertices (a `.simplices` file without `v` lines), n is
+//!   max id + 1, up to [`MAX_IMPLIED_VERTICES`]; a larger id is an error naming the simplex
+//!   (declare the vertices instead), so a few bytes cannot demand gigabytes.
 //! - Vertex ids are the 0-based position of the vertex in the file.
 //!
 //! # Numbering
@@ -27,6 +30,10 @@ pub use table::{SimplexTable, is_subset, push_facets, sort_dedup_rows};
 /// Highest simplex dimension accepted. The closure of one 15-simplex has 65,535 simplices, which
 /// every incidence-based structure stores; beyond that the count doubles per dimension.
 pub const MAX_DIMENSION: usize = 15;
+
+/// Most vertices a file may imply without declaring them (a `.simplices` file without `v`
+/// lines has vertices 0..=max id, mostly isolated if the ids are sparse).
+pub const MAX_IMPLIED_VERTICES: u32 = 1 << 24;
 
 /// Where a simplex came from: a file line, or its position in an array given through the API.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -77,6 +84,13 @@ pub enum ComplexError {
         dim: usize,
         max: usize,
     },
+    #[error("{origin}: simplex {} uses vertex {vertex}, which would make {} vertices (without `v` lines the vertices are 0..=max id); above {max} vertices, declare them with `v` lines", show(.simplex), *.vertex as u64 + 1)]
+    ImpliedVertexCount {
+        origin: Origin,
+        simplex: Vec<u32>,
+        vertex: u32,
+        max: u32,
+    },
     #[error("{origin}: simplex with no vertex")]
     EmptySimplex { origin: Origin },
     #[error("{}complex has no vertices", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
@@ -126,7 +140,27 @@ impl Complex {
         };
         let n = match raw.vertex_count {
             Some(n) => n,
-            None => raw.ids.iter().max().map_or(0, |&m| m.saturating_add(1)),
+            None => {
+                // The vertices are 0..=max id: a single large id would otherwise make a tiny
+                // file demand gigabytes of isolated vertices.
+                let Some((i, &max)) = (0..raw.simplex_count())
+                    .flat_map(|i| raw.simplex(i).iter().map(move |v| (i, v)))
+                    .max_by_key(|&(_, v)| *v)
+                else {
+                    return Err(ComplexError::NoVertices {
+                        file: file.map(Path::to_path_buf),
+                    });
+                };
+                if max >= MAX_IMPLIED_VERTICES {
+                    return Err(ComplexError::ImpliedVertexCount {
+                        origin: origin(i),
+                        simplex: raw.simplex(i).to_vec(),
+                        vertex: max,
+                        max: MAX_IMPLIED_VERTICES,
+                    });
+                }
+                max + 1
+            }
         };
         Complex::build(
             n,
