@@ -20,7 +20,7 @@
 //! connected components of lk(v) (triangle components plus wire edges); a manifold surface costs
 //! `15 n2 + n0` (2823 for the survey's duck, as in its Table 3). No bits. Real bytes add the CSR
 //! offsets over the vertices and the edge locator (2 n2 integers, see
-//! [`super::radial::EdgeLocator`]).
+//! `radial::EdgeLocator`).
 //!
 //! # Cost of each relation (after locating σ: a triangle by binary search over the ids, its
 //! vertices being the start vertices of its directed edges, O(log n2); an edge through the locator

@@ -10,7 +10,7 @@ pub mod iqm;
 pub mod le;
 pub mod nmia;
 pub mod pe;
-pub(crate) mod radial;
+pub mod radial;
 pub mod sig;
 pub mod ts;
 

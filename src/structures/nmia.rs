@@ -1,4 +1,4 @@
-//! Non-Manifold Indexed data structure with Adjacencies (NMIA) [DH03], as described in §4.1 of
+//! Non-Manifold Indexed data structure with Adjacencies (NMIA) \[DH03\], as described in §4.1 of
 //! the 2005 survey — for simplicial complexes of dimension at most 3 with any mix of
 //! tetrahedra, dangling faces (top triangles), wire edges (top edges) and isolated vertices.
 //!

@@ -1,6 +1,6 @@
 //! What the four 2D structures (TS, PE, LE, DE) share: the domain check, the radial order of the
 //! triangles around an edge, the connected components of a vertex's star, and the relation
-//! retrieval written once against [`TriTopo`].
+//! retrieval written once against `TriTopo` (crate-internal).
 //!
 //! # Slots
 //! Triangle `t` (ascending vertices `v0 < v1 < v2`, triangles numbered in lexicographic order) is

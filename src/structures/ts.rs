@@ -24,7 +24,7 @@
 //! their triangle count (the second reference those triangles need), and C_v = Σ_v the number of
 //! connected components of lk(v) (triangle components plus wire edges). A manifold surface costs
 //! exactly `6 n2 + n0`. No bits are counted. Real bytes add the CSR offsets, the bitset with its
-//! rank words, and the edge locator (2 n2 integers: see [`super::radial::EdgeLocator`]).
+//! rank words, and the edge locator (2 n2 integers: see `radial::EdgeLocator`).
 //!
 //! # Cost of each relation (after locating σ: triangles O(log n2) by binary search in `tris`;
 //! edges O(log n2) through the locator, or O(log deg) in the wire list)
