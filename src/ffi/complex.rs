@@ -3,7 +3,7 @@
 use std::ffi::{CStr, c_char};
 use std::path::Path;
 
-use super::{Failure, TpxStatus, guard, guard_value, handle, in_slice, out_ptr};
+use super::{Failure, TpxStatus, get_into, guard, guard_value, in_slice, out_ptr};
 use crate::complex::{Complex, ComplexError};
 use crate::io::{Coords, ReadErrorKind};
 
@@ -161,12 +161,7 @@ pub unsafe extern "C" fn tpx_complex_free(complex: *mut TpxComplex) {
 /// Non-NULL pointers must be valid (a live handle; a writable `uint32_t`).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_complex_dimension(c: *const TpxComplex, out: *mut u32) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
-        let out = out_ptr(out, "out")?;
-        *out = c.complex.dimension() as u32;
-        Ok(())
-    })
+    get_into(c, "c", out, |c| c.complex.dimension() as u32)
 }
 
 /// Number of vertices n into `*out` (vertex ids are `0 .. n`). O(1).
@@ -178,12 +173,7 @@ pub unsafe extern "C" fn tpx_complex_vertex_count(
     c: *const TpxComplex,
     out: *mut u32,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
-        let out = out_ptr(out, "out")?;
-        *out = c.complex.vertex_count();
-        Ok(())
-    })
+    get_into(c, "c", out, |c| c.complex.vertex_count())
 }
 
 /// Number of top p-simplices (not a face of another simplex) into `*out`; 0 for p > d. O(1).
@@ -196,10 +186,5 @@ pub unsafe extern "C" fn tpx_complex_top_count(
     p: u32,
     out: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
-        let out = out_ptr(out, "out")?;
-        *out = c.complex.tops(p as usize).len();
-        Ok(())
-    })
+    get_into(c, "c", out, |c| c.complex.tops(p as usize).len())
 }

@@ -3,7 +3,7 @@
 
 use super::complex::TpxComplex;
 use super::structure::build_failure;
-use super::{Failure, TpxStatus, guard, guard_value, handle, out_ptr};
+use super::{Failure, TpxStatus, get_into, guard, guard_value, handle, out_ptr};
 use crate::structures::iqm::{Decomposition, Iqm};
 
 /// The standard decomposition of a complex into initial quasi-manifold components (opaque).
@@ -63,11 +63,7 @@ pub unsafe extern "C" fn tpx_decomposition_component_count(
     d: *const TpxDecomposition,
     out: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let d = handle(d, "d")?;
-        *out_ptr(out, "out")? = d.dec.components.len();
-        Ok(())
-    })
+    get_into(d, "d", out, |d| d.dec.components.len())
 }
 
 /// Component `index`: its dimension k, its top k-simplices as rows of k+1 *local* vertex ids

@@ -176,6 +176,21 @@ pub(crate) fn out_ptr<'a, T>(p: *mut T, what: &str) -> Result<&'a mut T, Failure
     unsafe { p.as_mut() }.ok_or_else(|| Failure::null(what))
 }
 
+/// The whole body of a getter that reads one value of a handle into `*out`: both pointers
+/// NULL-checked (`what` names the handle argument), `*out` written only on success.
+pub(crate) fn get_into<H, T>(
+    h: *const H,
+    what: &str,
+    out: *mut T,
+    get: impl FnOnce(&H) -> T,
+) -> TpxStatus {
+    guard(|| {
+        let h = handle(h, what)?;
+        *out_ptr(out, "out")? = get(h);
+        Ok(())
+    })
+}
+
 /// Shared reference to a handle, or NULL_ARGUMENT.
 pub(crate) fn handle<'a, T>(p: *const T, what: &str) -> Result<&'a T, Failure> {
     // SAFETY: non-NULL handles come from this library and are alive (documented contract).

@@ -1,6 +1,8 @@
 //! `TpxStructure` (one of the family behind the relation API) and `TpxRelationTable`.
 
-use super::{Failure, TpxStatus, guard, guard_value, handle, in_slice, out_ptr, write_buffer};
+use super::{
+    Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr, write_buffer,
+};
 use crate::relation::{QueryError, StructureKind, Topology, sort_rows};
 use crate::structures::{BuildError, build};
 
@@ -142,12 +144,7 @@ pub unsafe extern "C" fn tpx_structure_dimension(
     s: *const TpxStructure,
     out: *mut u32,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
-        let out = out_ptr(out, "out")?;
-        *out = s.topo.dimension() as u32;
-        Ok(())
-    })
+    get_into(s, "s", out, |s| s.topo.dimension() as u32)
 }
 
 /// Number n_p of p-simplices into `*out`; 0 for p > d. Cost: the structure's (O(1) for
@@ -161,12 +158,7 @@ pub unsafe extern "C" fn tpx_structure_count(
     p: u32,
     out: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
-        let out = out_ptr(out, "out")?;
-        *out = s.topo.count(p as usize);
-        Ok(())
-    })
+    get_into(s, "s", out, |s| s.topo.count(p as usize))
 }
 
 /// Number of top p-simplices into `*out`; 0 for p > d.
@@ -179,12 +171,7 @@ pub unsafe extern "C" fn tpx_structure_top_count(
     p: u32,
     out: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
-        let out = out_ptr(out, "out")?;
-        *out = s.topo.top_count(p as usize);
-        Ok(())
-    })
+    get_into(s, "s", out, |s| s.topo.top_count(p as usize))
 }
 
 /// Storage of the structure into `*out`.
