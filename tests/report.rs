@@ -56,7 +56,11 @@ fn edges_between_two_dangling_faces(c: &Complex) -> u64 {
     }
     edges.sort();
     let in_higher = |e: &[u32; 2]| {
-        (3..=c.dimension()).any(|p| c.tops(p).iter().any(|s| s.contains(&e[0]) && s.contains(&e[1])))
+        (3..=c.dimension()).any(|p| {
+            c.tops(p)
+                .iter()
+                .any(|s| s.contains(&e[0]) && s.contains(&e[1]))
+        })
     };
     edges
         .chunk_by(|a, b| a == b)
@@ -125,7 +129,11 @@ fn json_for_two_files_is_an_array_with_exact_censuses() {
     let c = &arr[0]["census"];
     assert_eq!(
         (&c["c_e"], &c["c_v_minus_n0"], &c["iqm_components"]),
-        (&serde_json::json!(0), &serde_json::json!(1), &serde_json::json!(2))
+        (
+            &serde_json::json!(0),
+            &serde_json::json!(1),
+            &serde_json::json!(2)
+        )
     );
     assert_eq!(c["non_manifold"], serde_json::json!([1, 0, 0]));
     // Tetrahedron 0123 + dangling triangle 234 + wire 45: edge 2-3 has two clusters.
@@ -146,7 +154,10 @@ fn json_for_two_files_is_an_array_with_exact_censuses() {
             assert!(s["integers"].is_u64() && s["bytes"].is_u64(), "{k}: {s}");
             for f in topoplex::report::Family::ALL {
                 let t = &s["families"][f.name()];
-                assert!(t["queries"].is_u64() && t["elements"].is_u64(), "{k} {f:?}: {t}");
+                assert!(
+                    t["queries"].is_u64() && t["elements"].is_u64(),
+                    "{k} {f:?}: {t}"
+                );
             }
         }
     }
@@ -235,9 +246,17 @@ fn svg_is_well_formed_and_names_every_structure_and_dataset() {
     let svg = std::fs::read_to_string(&out).unwrap();
     assert_xml_ish(&svg);
     for k in StructureKind::ALL {
-        assert!(svg.contains(&format!(">{}</text>", k.name())), "legend lacks {k}");
+        assert!(
+            svg.contains(&format!(">{}</text>", k.name())),
+            "legend lacks {k}"
+        );
     }
-    for name in ["pie.simplices", "strip.simplices", "co-boundary", "bytes per simplex"] {
+    for name in [
+        "pie.simplices",
+        "strip.simplices",
+        "co-boundary",
+        "bytes per simplex",
+    ] {
         assert!(svg.contains(name), "{name}");
     }
     // Two time charts (one per dataset) after the storage chart.
@@ -255,14 +274,22 @@ fn markdown_has_census_storage_and_a_section_per_dataset() {
         "{text}"
     );
     assert!(text.contains("## Storage: heap bytes per simplex"));
-    assert!(text.contains("| ts | — |"), "ts cannot encode a 3-complex: {text}");
+    assert!(
+        text.contains("| ts | — |"),
+        "ts cannot encode a 3-complex: {text}"
+    );
     assert!(text.contains("unsupported: structure `ts` cannot encode this complex"));
 }
 
 #[test]
 fn a_missing_file_is_named_and_nothing_is_printed() {
     let good = write_simplices("ok.simplices", &fixtures::bowtie());
-    let o = run(&["report", good.to_str().unwrap(), "/nonexistent/missing.off", "--json"]);
+    let o = run(&[
+        "report",
+        good.to_str().unwrap(),
+        "/nonexistent/missing.off",
+        "--json",
+    ]);
     assert_eq!(o.status.code(), Some(1));
     let err = stderr(&o);
     assert!(err.contains("/nonexistent/missing.off"), "{err}");
@@ -288,6 +315,6 @@ fn real_data_reports_load_and_count() {
         assert!(o.status.success(), "{rel}: {}", stderr(&o));
         let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
         assert_eq!(v["vertices"], c.vertex_count());
-        assert_eq!(v["census"]["iqm_components"].is_u64(), true, "{rel}");
+        assert!(v["census"]["iqm_components"].is_u64(), "{rel}");
     }
 }

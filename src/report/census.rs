@@ -319,7 +319,12 @@ fn shape(rows: &Rows, verts: &[u32], approximate: &mut bool) -> Shape {
     let mut facets: Vec<u32> = Vec::with_capacity(rows.len() * arity * k);
     for r in rows.iter() {
         for skip in 0..arity {
-            facets.extend(r.iter().enumerate().filter(|&(i, _)| i != skip).map(|(_, &x)| x));
+            facets.extend(
+                r.iter()
+                    .enumerate()
+                    .filter(|&(i, _)| i != skip)
+                    .map(|(_, &x)| x),
+            );
         }
     }
     let facets = counted_rows(k, &facets);
@@ -327,11 +332,28 @@ fn shape(rows: &Rows, verts: &[u32], approximate: &mut bool) -> Shape {
         return Shape::Neither;
     }
     // ... whose vertex links are (k−1)-spheres or balls (a combinatorial manifold) ...
+    // Rows at each vertex (CSR), so a hub vertex's large link is not scanned once per vertex.
+    let mut at_off = vec![0usize; verts.len() + 1];
+    for &x in &rows.ids {
+        at_off[verts.binary_search(&x).unwrap() + 1] += 1;
+    }
+    for i in 0..verts.len() {
+        at_off[i + 1] += at_off[i];
+    }
+    let mut fill = at_off.clone();
+    let mut at = vec![0usize; rows.ids.len()];
+    for (i, r) in rows.iter().enumerate() {
+        for x in r {
+            let w = verts.binary_search(x).unwrap();
+            at[fill[w]] = i;
+            fill[w] += 1;
+        }
+    }
     let mut sub = Rows::default();
-    for &w in verts {
+    for (wi, &w) in verts.iter().enumerate() {
         sub.clear();
-        for r in rows.iter().filter(|r| r.binary_search(&w).is_ok()) {
-            sub.push(r.iter().copied().filter(|&x| x != w));
+        for &i in &at[at_off[wi]..at_off[wi + 1]] {
+            sub.push(rows.row(i).iter().copied().filter(|&x| x != w));
         }
         let a = analyse(&sub);
         *approximate |= a.approximate;
@@ -353,7 +375,7 @@ fn shape(rows: &Rows, verts: &[u32], approximate: &mut bool) -> Shape {
     }
     // k ≥ 3: necessary conditions only (a homology sphere passes).
     *approximate = true;
-    let sphere_chi = if k % 2 == 0 { 2 } else { 0 };
+    let sphere_chi = if k.is_multiple_of(2) { 2 } else { 0 };
     if closed {
         return if chi == sphere_chi {
             Shape::Sphere
@@ -584,7 +606,12 @@ mod tests {
         let torus: Vec<[u32; 3]> = (0..7)
             .flat_map(|i| [[i, (i + 1) % 7, (i + 3) % 7], [i, (i + 2) % 7, (i + 3) % 7]])
             .collect();
-        assert_closed_surface(&sorted(&torus).iter().map(|t| [t[0], t[1], t[2]]).collect::<Vec<_>>());
+        assert_closed_surface(
+            &sorted(&torus)
+                .iter()
+                .map(|t| [t[0], t[1], t[2]])
+                .collect::<Vec<_>>(),
+        );
         let rows = sorted(&torus);
         let refs: Vec<&[u32]> = rows.iter().map(Vec::as_slice).collect();
         assert_eq!(shape_of(&refs), (Neither, false));

@@ -34,7 +34,7 @@ fn ns(x: Option<f64>) -> String {
     }
 }
 
-fn family<'a>(m: &'a Measured, f: Family) -> Option<&'a timing::FamilyTiming> {
+fn family(m: &Measured, f: Family) -> Option<&timing::FamilyTiming> {
     m.families.iter().find(|t| t.family == f)
 }
 
@@ -108,7 +108,13 @@ pub fn markdown(datasets: &[Dataset]) -> String {
                 Err(_) => "—".to_string(),
             })
             .collect();
-        let _ = writeln!(s, "| {} | {} | {} |", cell(&d.name), total, cells.join(" | "));
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} |",
+            cell(&d.name),
+            total,
+            cells.join(" | ")
+        );
     }
     for d in datasets {
         let c = &d.census;
@@ -119,7 +125,11 @@ pub fn markdown(datasets: &[Dataset]) -> String {
             "- simplices per dimension (n_0..n_d): {}",
             join(&c.simplices)
         );
-        let _ = writeln!(s, "- top simplices per dimension: {}", join(&c.top_simplices));
+        let _ = writeln!(
+            s,
+            "- top simplices per dimension: {}",
+            join(&c.top_simplices)
+        );
         let _ = writeln!(
             s,
             "- input: {} simplices listed, {} absorbed as duplicates, {} absorbed as faces of other listed simplices",

@@ -19,12 +19,13 @@ const COLORS: [&str; 10] = [
 
 const PLOT_H: f64 = 260.0;
 const LEFT: f64 = 80.0;
-const TOP: f64 = 50.0;
+const TOP: f64 = 56.0;
 const BOTTOM: f64 = 60.0;
 const LEGEND_W: f64 = 110.0;
 
 struct Chart {
     title: String,
+    subtitle: String,
     y_label: String,
     groups: Vec<String>,
     series: Vec<String>,
@@ -108,7 +109,10 @@ impl Chart {
             let (lo, hi) = if all.is_empty() {
                 (0.0, 1.0)
             } else {
-                (min.log10().floor(), max.log10().ceil().max(min.log10().floor() + 1.0))
+                (
+                    min.log10().floor(),
+                    max.log10().ceil().max(min.log10().floor() + 1.0),
+                )
             };
             let ticks = (lo as i32..=hi as i32).map(|e| 10f64.powi(e)).collect();
             (lo, hi, ticks)
@@ -132,6 +136,13 @@ impl Chart {
             LEFT,
             y0 + 24.0,
             esc(&self.title)
+        );
+        let _ = writeln!(
+            s,
+            r##"<text x="{}" y="{}" font-size="11" fill="#555">{}</text>"##,
+            LEFT,
+            y0 + 40.0,
+            esc(&self.subtitle)
         );
         // Axes, grid and ticks.
         for &t in &ticks {
@@ -231,10 +242,16 @@ impl Chart {
 fn charts(datasets: &[Dataset]) -> Vec<Chart> {
     let series: Vec<String> = datasets
         .first()
-        .map(|d| d.structures.iter().map(|r| r.kind.name().to_string()).collect())
+        .map(|d| {
+            d.structures
+                .iter()
+                .map(|r| r.kind.name().to_string())
+                .collect()
+        })
         .unwrap_or_default();
     let mut out = vec![Chart {
         title: "Storage: heap bytes per simplex".into(),
+        subtitle: "heap bytes of the built structure / number of simplices (all dimensions); n/a: cannot encode".into(),
         y_label: "bytes per simplex".into(),
         groups: datasets.iter().map(|d| short(&d.name)).collect(),
         series: series.clone(),
@@ -250,7 +267,7 @@ fn charts(datasets: &[Dataset]) -> Vec<Chart> {
         log: false,
     }];
     for d in datasets {
-        let mut groups: Vec<String> = vec!["build (per simplex)".into()];
+        let mut groups: Vec<String> = vec!["build (ns per simplex)".into()];
         groups.extend(Family::ALL.iter().map(|f| {
             match f {
                 Family::Boundary => "boundary",
@@ -282,7 +299,11 @@ fn charts(datasets: &[Dataset]) -> Vec<Chart> {
             );
         }
         out.push(Chart {
-            title: format!("Time on {} (ns per retrieved element, log scale)", short(&d.name)),
+            title: format!(
+                "Time on {} (ns per retrieved element, log scale)",
+                short(&d.name)
+            ),
+            subtitle: super::render::sample_text(d),
             y_label: "ns per element".into(),
             groups,
             series: series.clone(),
