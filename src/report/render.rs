@@ -54,10 +54,10 @@ pub fn markdown(datasets: &[Dataset]) -> String {
     let _ = writeln!(s, "# Topoplex report\n");
     let _ = writeln!(
         s,
-        "Census definitions, relation families and how times are taken: `topoplex::report` \
-         (README, section `report`). Times are per retrieved element (one simplex of an answer); \
+        "Census definitions, relation families and how times are taken: the README's CLI \
+         section and the `topoplex::report` module documentation. Times are per retrieved element (one simplex of an answer); \
          at most {} vertices and {} top simplices are queried per dataset, each measurement \
-         repeated until it takes {} ms.\n",
+         repeated for at least {} ms after a warm-up pass.\n",
         timing::SAMPLE,
         timing::SAMPLE,
         timing::MIN_TIME.as_millis()
@@ -91,6 +91,13 @@ pub fn markdown(datasets: &[Dataset]) -> String {
             approx
         );
     }
+    let _ = writeln!(
+        s,
+        "\nd: dimension; V: vertices; WE: wire edges (top edges); DF: dangling faces (top \
+         triangles when d ≥ 3); C_e: link components summed over non-manifold edges; C_v: link \
+         components summed over vertices; non-manifold: simplices whose link is neither a sphere \
+         nor a ball."
+    );
     let _ = writeln!(s, "\n## Storage: heap bytes per simplex\n");
     let kinds: Vec<&str> = datasets
         .first()
