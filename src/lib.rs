@@ -5,6 +5,7 @@
 //! - [`io`] reads files into raw simplex lists; [`complex`] normalises them into a [`Complex`].
 //! - [`structures`] builds any of the family (IG, SIG, IA, IQM, NMIA, TS, PE, LE, DE).
 //! - [`oracle`] answers every relation by brute force, for tests.
+//! - [`report`] is `topoplex report`: census, storage and timings of every structure.
 //! - [`ffi`] is the C ABI (`include/topoplex.h`), the only module allowed `unsafe` code.
 
 #![deny(unsafe_code)]
@@ -16,6 +17,7 @@ pub mod fixtures;
 pub mod io;
 pub mod oracle;
 pub mod relation;
+pub mod report;
 pub mod structures;
 
 pub use complex::{Complex, ComplexError};

@@ -1,11 +1,13 @@
 //! `topoplex`: report on a complex and dump its relations through any structure.
 
-use std::io::{BufWriter, Write};
+use std::io::{BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Instant;
+use std::sync::mpsc;
+use std::time::Duration;
 
 use clap::{Parser, Subcommand};
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use topoplex::relation::sort_rows;
 use topoplex::{Complex, StructureKind, fixtures, structures};
 
@@ -22,14 +24,22 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Dimension, simplex counts, absorbed input, and every structure's storage and build time.
+    /// The survey's comparison tables for each file: census (wire edges, dangling faces, C_e,
+    /// C_v − n_0, IQM components, non-manifold simplices), every structure's storage, build time
+    /// and time per retrieved element for each relation family (sampled queries).
     Report {
-        /// .off, .obj, .mesh or .simplices; without it, a built-in example complex with a wire
-        /// edge, a dangling triangle, a tetrahedron and a non-manifold vertex and edge.
-        file: Option<PathBuf>,
-        /// Print one JSON object instead of text.
-        #[arg(long)]
+        /// .off, .obj, .mesh or .simplices files; without any, a built-in example complex with
+        /// a wire edge, a dangling triangle, a tetrahedron and a non-manifold vertex and edge.
+        files: Vec<PathBuf>,
+        /// Print JSON (one object for one dataset, an array for several) instead of Markdown.
+        #[arg(long, conflicts_with = "csv")]
         json: bool,
+        /// Print CSV, one row per dataset and structure, instead of Markdown.
+        #[arg(long)]
+        csv: bool,
+        /// Also write bar charts of storage and timings to this SVG file.
+        #[arg(long, value_name = "FILE")]
+        svg: Option<PathBuf>,
     },
     /// Print R_{P,Q}: one line per P-simplex, `σ;τ1;τ2...`, all in ascending lexicographic order.
     Relation {
@@ -68,7 +78,12 @@ fn parse_pq(s: &str) -> Result<(usize, usize), String> {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
-        Command::Report { file, json } => report(file, json),
+        Command::Report {
+            files,
+            json,
+            csv,
+            svg,
+        } => report(&files, json, csv, svg.as_deref()),
         Command::Relation {
             file,
             structure,
@@ -90,115 +105,96 @@ fn load(file: &Path) -> Result<Complex, String> {
     Complex::from_path(file).map_err(|e| e.to_string())
 }
 
-/// A structure's storage, build time in ms and `summary()` figures, or why it was not built.
-type Outcome = Result<(topoplex::Storage, f64, Vec<(&'static str, u64)>), String>;
-
-struct Row {
-    kind: StructureKind,
-    outcome: Outcome,
+/// A progress bar on stderr that appears only on a terminal and only once the work has taken
+/// about a second (quick reports print nothing there).
+struct Progress {
+    bar: ProgressBar,
+    watcher: Option<(mpsc::Sender<()>, std::thread::JoinHandle<()>)>,
 }
 
-fn report(file: Option<PathBuf>, json: bool) -> Result<(), String> {
-    let complex = match &file {
-        Some(f) => load(f)?,
-        None => fixtures::builtin_example(),
-    };
-    let counts: Vec<usize> = complex.closure().iter().map(|t| t.len()).collect();
-    let total: usize = counts.iter().sum();
-    let rows: Vec<Row> = StructureKind::ALL
-        .into_iter()
-        .map(|kind| {
-            let start = Instant::now();
-            let outcome = structures::build(kind, &complex)
-                .map(|s| {
-                    (
-                        s.storage(),
-                        start.elapsed().as_secs_f64() * 1e3,
-                        s.summary(),
-                    )
-                })
-                .map_err(|e| e.to_string());
-            Row { kind, outcome }
-        })
-        .collect();
-    let stats = complex.stats();
-    if json {
-        let mut structs = serde_json::Map::new();
-        for r in &rows {
-            let v = match &r.outcome {
-                Ok((s, ms, extra)) => {
-                    let mut v = serde_json::json!({
-                        "integers": s.integers, "bits": s.bits, "bytes": s.bytes, "build_ms": ms,
-                        "bytes_per_simplex": s.bytes as f64 / total as f64,
-                    });
-                    for (k, x) in extra {
-                        v[*k] = serde_json::json!(x);
-                    }
-                    v
+impl Progress {
+    fn new(steps: u64) -> Progress {
+        let bar = ProgressBar::with_draw_target(Some(steps), ProgressDrawTarget::hidden());
+        if let Ok(style) =
+            ProgressStyle::with_template("{spinner} [{elapsed}] {bar:30} {pos}/{len} {wide_msg}")
+        {
+            bar.set_style(style);
+        }
+        let watcher = std::io::stderr().is_terminal().then(|| {
+            let (tx, rx) = mpsc::channel::<()>();
+            let shown = bar.clone();
+            let handle = std::thread::spawn(move || {
+                // Dropping the sender (work done) ends the wait early: nothing is drawn.
+                if let Err(mpsc::RecvTimeoutError::Timeout) =
+                    rx.recv_timeout(Duration::from_secs(1))
+                {
+                    shown.set_draw_target(ProgressDrawTarget::stderr());
+                    shown.enable_steady_tick(Duration::from_millis(120));
                 }
-                Err(reason) => serde_json::json!({ "unsupported": reason }),
-            };
-            structs.insert(r.kind.name().to_string(), v);
-        }
-        let out = serde_json::json!({
-            "file": file.as_ref().map(|f| f.display().to_string()),
-            "dimension": complex.dimension(),
-            "vertices": complex.vertex_count(),
-            "simplices": counts,
-            "top_simplices": complex.top_counts(),
-            "input_simplices": stats.input_simplices,
-            "absorbed_duplicates": stats.absorbed_duplicates,
-            "absorbed_faces": stats.absorbed_faces,
-            "structures": structs,
+            });
+            (tx, handle)
         });
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&out).map_err(|e| e.to_string())?
-        );
-        return Ok(());
+        Progress { bar, watcher }
     }
-    let name = file
-        .as_ref()
-        .map_or("built-in example".to_string(), |f| f.display().to_string());
-    println!("complex: {name}");
-    println!("dimension: {}", complex.dimension());
-    println!("simplices per dimension (n_0..n_d): {}", join(&counts));
-    println!(
-        "top simplices per dimension: {}",
-        join(&complex.top_counts())
-    );
-    println!(
-        "input: {} simplices listed, {} absorbed as duplicates, {} absorbed as faces of other listed simplices",
-        stats.input_simplices, stats.absorbed_duplicates, stats.absorbed_faces
-    );
-    println!();
-    println!(
-        "{:<6} {:>14} {:>12} {:>14} {:>10} {:>10}",
-        "struct", "paper ints", "paper bits", "heap bytes", "B/simplex", "build ms"
-    );
-    for r in &rows {
-        match &r.outcome {
-            Ok((s, ms, extra)) => {
-                let extra: Vec<String> = extra
-                    .iter()
-                    .map(|(k, x)| format!("{x} {}", k.replace('_', " ")))
-                    .collect();
-                let line = format!(
-                    "{:<6} {:>14} {:>12} {:>14} {:>10.1} {:>10.2}  {}",
-                    r.kind.name(),
-                    s.integers,
-                    s.bits,
-                    s.bytes,
-                    s.bytes as f64 / total as f64,
-                    ms,
-                    extra.join(", ")
-                );
-                println!("{}", line.trim_end());
-            }
-            Err(reason) => println!("{:<6} unsupported: {reason}", r.kind.name()),
+
+    fn finish(mut self) {
+        if let Some((tx, handle)) = self.watcher.take() {
+            drop(tx);
+            let _ = handle.join();
         }
+        self.bar.finish_and_clear();
     }
-    Ok(())
+}
+
+fn report(files: &[PathBuf], json: bool, csv: bool, svg: Option<&Path>) -> Result<(), String> {
+    use topoplex::report::{Dataset, render};
+    // Per dataset: reading, the census, and each structure's build and four families.
+    let per_file = 2 + 5 * StructureKind::ALL.len() as u64;
+    let progress = Progress::new(per_file * files.len().max(1) as u64);
+    let mut datasets = Vec::new();
+    let run = |name: &str, file: Option<&str>, complex: &Complex| {
+        let bar = &progress.bar;
+        bar.inc(1);
+        let mut step = |what: &str| {
+            bar.set_message(format!("{name}: {what}"));
+            bar.inc(1);
+        };
+        Dataset::measure(name, file, complex, &mut step)
+    };
+    if files.is_empty() {
+        datasets.push(run("built-in example", None, &fixtures::builtin_example()));
+    }
+    for (i, f) in files.iter().enumerate() {
+        let name = f.display().to_string();
+        progress.bar.set_message(format!("{name}: reading"));
+        let complex = match load(f) {
+            Ok(c) => c,
+            Err(e) => {
+                progress.finish();
+                return Err(e);
+            }
+        };
+        datasets.push(run(&name, Some(&name), &complex));
+        // Unsupported structures skip their timing steps: keep the bar in step per file.
+        progress.bar.set_position((i as u64 + 1) * per_file);
+    }
+    progress.finish();
+    if let Some(path) = svg {
+        std::fs::write(path, topoplex::report::svg::svg(&datasets))
+            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+    }
+    let text = if json {
+        render::json(&datasets)
+    } else if csv {
+        render::csv(&datasets)
+    } else {
+        render::markdown(&datasets)
+    };
+    let stdout = std::io::stdout();
+    let mut w = stdout.lock();
+    w.write_all(text.as_bytes())
+        .and_then(|()| w.flush())
+        .map_err(|e| format!("writing output: {e}"))
 }
 
 fn decompose(file: &Path, out: &Path) -> Result<(), String> {
@@ -216,13 +212,6 @@ fn decompose(file: &Path, out: &Path) -> Result<(), String> {
         out.display()
     );
     Ok(())
-}
-
-fn join(v: &[usize]) -> String {
-    v.iter()
-        .map(|x| x.to_string())
-        .collect::<Vec<_>>()
-        .join(" ")
 }
 
 fn dump_relation(
