@@ -318,6 +318,13 @@ fn closed_manifolds_match_the_manifold_formula() {
     }
     // Octahedron: 2·12 + 3·8 boundary, 18 heads, 12 edges × (2 + stop).
     assert_eq!(sig(&octahedron_surface()).storage().integers, 48 + 18 + 36);
+    // Real bytes: the 48 boundary entries, one triangle per vertex and two per edge, no length
+    // codes (each dimension is uniform), one long-array offset per dimension, the lookup table
+    // (d + 2 = 4 entries) and the top counts (3 × 8 bytes).
+    assert_eq!(
+        sig(&octahedron_surface()).storage().bytes,
+        4 * (48 + 6 + 24 + 2 + 4) + 24
+    );
 }
 
 #[test]

@@ -404,6 +404,7 @@ fn lookup_table(counts: impl Iterator<Item = usize>) -> Result<Vec<u32>, BuildEr
         }
         first.push(total as u32);
     }
+    first.shrink_to_fit();
     Ok(first)
 }
 
