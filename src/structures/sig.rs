@@ -52,10 +52,14 @@
 //! from the boundary instead of a vertex table: the facet opposite the last vertex (entry p) is
 //! the prefix (v_0..v_{p−1}), and the last vertex v_p is reached down the facets opposite vertex
 //! 0 ((v_1..v_p), (v_2..v_p), ..., the vertex v_p): p reads. Lexicographic order of the
-//! p-simplices is the order of (prefix row, last vertex), so σ is found one prefix at a time by
-//! a binary search on that pair over dimension k = 1..p, the prefix read in one access and the
-//! last vertex computed only where the prefix matches. Reading a whole p-simplex's vertex ids
-//! (to output it) costs p(p+1)/2 boundary reads instead of one copy.
+//! p-simplices is the order of (prefix row, last vertex), so σ is found one prefix at a time,
+//! k = 1..p, by a search on that pair over the k-simplices, the prefix read in one access and the
+//! last vertex computed only where the prefix matches. The search first tries a window of 64
+//! rows around where the prefix would sit if prefixes were spread evenly (they nearly are in
+//! meshes), else bisects the whole dimension. At k = d it searches only C*_{d−1,d} of the
+//! prefix, which lists every d-simplex on that facet (each is a cluster of its own) in row
+//! order. Reading a whole p-simplex's vertex ids (to output it) costs p(p+1)/2 boundary reads
+//! instead of one copy.
 //!
 //! # Storage
 //! `storage()`: integers and bits are what the paper's layout (§4.2) holds for this complex —
@@ -66,9 +70,9 @@
 //! every (d−1)-simplex has two d-simplices, which gives §7's
 //! `Σ_{0<p≤d} (p+1) n_p + Σ_{0≤p<d} n_p + 3 n_{d−1}` exactly. Bytes are what is really held
 //! (every array's heap capacity; [`Sig::heap_parts`] splits them):
-//! `4 (Σ_{0<p≤d} (p+1) n_p + Σκ + L + 2 + d) + 24 ⌈n_p / 64⌉` per non-uniform dimension p < d
-//! (+ 8 (d + 1) for the top counts), L being the number of long arrays (3+ clusters) plus one
-//! per dimension. That is the paper's integers minus one head and one stop code per array,
+//! `4 (Σ_{0<p≤d} (p+1) n_p + Σκ + L + 2 + d) + Σ_{p<d, not uniform} 24 ⌈n_p / 64⌉ + 8 (d + 1)`
+//! (the last term: top counts), L being the number of long arrays (3+ clusters) plus one per
+//! dimension. That is the paper's integers minus one head and one stop code per array,
 //! plus the long offsets and 3 bits per simplex of a non-uniform dimension; no vertex table.
 //! On tetrahedral meshes (docs/benchmarks.md) this is ~16 bytes per simplex, of which 11 are the
 //! boundary (4 bytes per entry, (p+1) n_p entries) and ~4.7 the one entry per cluster.
@@ -108,9 +112,9 @@
 //! and keep none of them, so the peak memory of a build is higher than what the SIG holds.
 //!
 //! # Cost of each relation
-//! Locating σ from its vertex ids: O(Σ_{k≤p} (log n_k + k log m_k)), m_k the number of
-//! k-simplices sharing σ's (k−1)-prefix (binary searches, as above); the IG-style vertex table
-//! cost O(p log n_p) comparisons of p + 1 ids. Every simplex output, and every top simplex a
+//! Locating σ from its vertex ids: O(Σ_{k≤p, k<d} (log n_k + k log m_k)) (+ O(d log c) at d),
+//! m_k the number of k-simplices sharing σ's (k−1)-prefix, c the number of d-simplices on its
+//! facet (searches, as above); a vertex table would cost O(p log n_p) comparisons of p + 1 ids. Every simplex output, and every top simplex a
 //! co-boundary walk expands, has its vertex ids read in p(p+1)/2 boundary reads (r(r+1)/2 for
 //! an r-simplex); p ≤ d, so each bound below only grows by a factor of the dimension.
 //! Faces are reached through B_{r,r−1} along one canonical path each (drop vertices from the
@@ -628,7 +632,7 @@ impl Sig {
     }
 
     /// Row of p-simplex `sigma` (ascending ids) in its dimension: the vertex, then each prefix
-    /// (v_0..v_k) in turn, by [`Sig::find_extension`] below dimension d and [`Sig::find_top`]
+    /// (v_0..v_k) in turn, by `find_extension` below dimension d and `find_top`
     /// at d. O(Σ_{k≤p, k<d} (log n_k + k log m_k)) (+ O(d log c) at d), m_k the number of
     /// k-simplices sharing σ's (k−1)-prefix and c the number of d-simplices on its facet.
     pub fn find(&self, sigma: &[u32]) -> Option<u32> {
