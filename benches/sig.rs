@@ -122,7 +122,7 @@ fn run(
     });
 }
 
-/// Baseline: finding the sampled simplices by their vertex ids (binary search), which every
+/// Baseline: finding the sampled simplices by their vertex ids (searches by prefix), which every
 /// query above pays once; throughput counts one element per query.
 fn locate(
     c: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,

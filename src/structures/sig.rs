@@ -28,33 +28,54 @@
 //! computes the same definition by brute force.
 //!
 //! # Layout (§4.2)
-//! - `tables[p]`: the p-simplices as ascending vertex ids, in ascending lexicographic order. The
-//!   paper's global numbering is `first[p] + row`: simplices ordered by dimension, `first` being
-//!   the lookup table of index ranges (d + 2 entries; the paper counts d + 1).
-//! - `boundary[p]` (p ≥ 1): fixed-size, p + 1 row numbers into `tables[p − 1]` per p-simplex;
-//!   entry i is the facet opposite the simplex's i-th vertex.
-//! - `head[p]`, `flag[p]`, `pool[p]` (p < d): the partial co-boundaries. `pool[p]` holds the
-//!   variable-sized arrays, one per p-simplex, each the global ids of C*_{p,g}(σ) for g = d down
-//!   to p + 1 (decreasing g as in the paper, ascending ids within one g) followed by the stop
-//!   code `u32::MAX`; the paper's count of Σκ entries + Σ n_p stop codes maps one to one.
-//!   `head[p][i]` is the paper's "integer pointer": the start of σ's array in `pool[p]` — or,
-//!   when σ's bit in `flag[p]` is set (the manifold shortcut), the global id of the single
-//!   d-simplex that is σ's whole partial co-boundary, with no array in the pool.
+//! The p-simplices are numbered in ascending lexicographic order of their vertex ids (row
+//! numbers per dimension; vertex v is row v). The paper's global numbering is `first[p] + row`:
+//! simplices ordered by dimension, `first` being the lookup table of index ranges (d + 2
+//! entries; the paper counts d + 1).
+//! - `boundary[p]` (p ≥ 1): fixed-size, p + 1 rows of dimension p − 1 per p-simplex; entry i is
+//!   the facet opposite the simplex's i-th vertex. This is the only place vertex ids live: see
+//!   "Finding a simplex by its vertex ids" below.
+//! - `cob[p]` (p < d): the partial co-boundaries. σ's array is the global ids of C*_{p,g}(σ) for
+//!   g = d down to p + 1 (decreasing g as in the paper, ascending ids within one g). The arrays
+//!   are concatenated in row order with neither the paper's heads nor its stop codes: each
+//!   p-simplex has a 2-bit length code — 0, 1 or 2 entries, stored in `short`, or "long" (3 or
+//!   more), stored in `long` with a u32 start per long array (CSR). The codes sit in blocks of
+//!   64 simplices (two 64-bit planes) with the number of short entries and long arrays before
+//!   the block, so σ's array is found in O(1) by two popcounts. When every p-simplex has the
+//!   same code — on a manifold every vertex and edge of a tetrahedral mesh has one cluster —
+//!   there are no blocks and array i starts at i × code.
 //!
-//! Ids are u32; flags are packed 64 to a word; all arrays are flat per dimension (no
-//! per-simplex allocation). The vertex tables are what the relation API needs to find a simplex
-//! by its vertex ids (binary search, as the IG does); the paper does not count them, the real
-//! bytes do.
+//! Ids are u32; all arrays are flat per dimension (no per-simplex allocation).
+//!
+//! ## Finding a simplex by its vertex ids
+//! The relation API names simplices by vertex ids, which the paper does not store. They are read
+//! from the boundary instead of a vertex table: the facet opposite the last vertex (entry p) is
+//! the prefix (v_0..v_{p−1}), and the last vertex v_p is reached down the facets opposite vertex
+//! 0 ((v_1..v_p), (v_2..v_p), ..., the vertex v_p): p reads. Lexicographic order of the
+//! p-simplices is the order of (prefix row, last vertex), so σ is found one prefix at a time,
+//! k = 1..p, by a search on that pair over the k-simplices, the prefix read in one access and the
+//! last vertex computed only where the prefix matches. The search first tries a window of 64
+//! rows around where the prefix would sit if prefixes were spread evenly (they nearly are in
+//! meshes), else bisects the whole dimension. At k = d it searches only C*_{d−1,d} of the
+//! prefix, which lists every d-simplex on that facet (each is a cluster of its own) in row
+//! order. Reading a whole p-simplex's vertex ids (to output it) costs p(p+1)/2 boundary reads
+//! instead of one copy.
 //!
 //! # Storage
-//! `storage()` counts the arrays as built: integers = boundary entries + one head per p-simplex
-//! (p < d) + pool length; bits = one flag per p-simplex (p < d); bytes = every array's heap
-//! capacity, vertex tables included. The paper's closed formula (§4.2) is
-//! `Σ_{p<d} Σ_{g>p} κ^g_p + 2 Σ_{p<d} n_p + Σ_{0<p≤d} (p+1) n_p` integers and `Σ_{p<d} n_p` bits;
-//! it gives every simplex an array. A simplex using the shortcut stores neither its one entry nor
-//! its stop code, so the count here is that formula minus 2 per shortcut simplex. On a closed
-//! manifold every p-simplex with p < d − 1 takes the shortcut and every (d−1)-simplex has two
-//! d-simplices, which gives §7's `Σ_{0<p≤d} (p+1) n_p + Σ_{0≤p<d} n_p + 3 n_{d−1}` exactly.
+//! `storage()`: integers and bits are what the paper's layout (§4.2) holds for this complex —
+//! `Σ_{p<d} Σ_{g>p} κ^g_p + 2 Σ_{p<d} n_p + Σ_{0<p≤d} (p+1) n_p` integers (boundary entries, one
+//! head per p-simplex, each array with its stop code) and `Σ_{p<d} n_p` flag bits, minus 2
+//! integers per simplex taking the manifold shortcut (its one d-simplex is the head; no entry,
+//! no stop code). On a closed manifold every p-simplex with p < d − 1 takes the shortcut and
+//! every (d−1)-simplex has two d-simplices, which gives §7's
+//! `Σ_{0<p≤d} (p+1) n_p + Σ_{0≤p<d} n_p + 3 n_{d−1}` exactly. Bytes are what is really held
+//! (every array's heap capacity; [`Sig::heap_parts`] splits them):
+//! `4 (Σ_{0<p≤d} (p+1) n_p + Σκ + L + 2 + d) + Σ_{p<d, not uniform} 24 ⌈n_p / 64⌉ + 8 (d + 1)`
+//! (the last term: top counts), L being the number of long arrays (3+ clusters) plus one per
+//! dimension. That is the paper's integers minus one head and one stop code per array,
+//! plus the long offsets and 3 bits per simplex of a non-uniform dimension; no vertex table.
+//! On tetrahedral meshes (docs/benchmarks.md) this is ~16 bytes per simplex, of which 11 are the
+//! boundary (4 bytes per entry, (p+1) n_p entries) and ~4.7 the one entry per cluster.
 //!
 //! ## Where the layout differs from the paper, and why
 //! - The paper's per-simplex "visited" bit is not stored (Σ n_p bits fewer): queries take
@@ -62,13 +83,17 @@
 //!   per query a few words per simplex actually visited (hash-set entries, ~8–16 bytes each with
 //!   load factor) instead of one bit per simplex of the complex, plus clearing nothing afterwards
 //!   (the paper must reset every bit it set).
-//! - The paper applies the flag only to p < d − 1 and keeps arrays for every (d−1)-simplex; here
-//!   a (d−1)-simplex with a single d-simplex (a boundary facet) also takes the shortcut, since
-//!   the flag bit is counted for it anyway (Σ_{p<d} n_p bits). Closed manifolds count the same.
+//! - Heads, flags and stop codes are replaced by the length codes: the paper spends a head on
+//!   every simplex and a stop code on every array; here an array of one or two entries (the
+//!   shortcut, an interior facet's two d-simplices) costs its entries only, and the paper's
+//!   shortcut is simply a length-1 array holding a d-simplex. The paper applies the flag only to
+//!   p < d − 1; here a (d−1)-simplex with a single d-simplex (a boundary facet) counts as a
+//!   shortcut too, since the flag bit is counted for it anyway. Closed manifolds count the same.
 //! - Boundary entries are row numbers within their dimension, not global ids: the dimension is
 //!   implied, and it saves an addition per step. Partial co-boundary entries are global ids,
 //!   because one array mixes dimensions and the id must tell which.
-//! - The vertex tables (p + 1 ids per p-simplex) are extra, as in our IG.
+//! - No vertex tables (our IG keeps (p + 1) ids per p-simplex for lookup): vertex ids are read
+//!   through the boundary, as above.
 //!
 //! # Builds
 //! - [`Sig::from_ig`]: §5, Algorithm 1 with RetrieveTopSimplexes (walk C_{p,p+1} up from σ) and
@@ -83,7 +108,15 @@
 //!   time O(Σ_{τ top} Σ_{p<r} C(r+1, p+1) · r), r = dim τ; extra memory one dimension's
 //!   top-incidence CSR (4 bytes per (face, top simplex) pair) plus per-simplex scratch.
 //!
-//! # Cost of each relation (after locating σ: O(p log n_p) by binary search)
+//! Both builds use the closure's vertex tables (the IG's, or `Complex::closure`) while building
+//! and keep none of them, so the peak memory of a build is higher than what the SIG holds.
+//!
+//! # Cost of each relation
+//! Locating σ from its vertex ids: O(Σ_{k≤p, k<d} (log n_k + k log m_k)) (+ O(d log c) at d),
+//! m_k the number of k-simplices sharing σ's (k−1)-prefix, c the number of d-simplices on its
+//! facet (searches, as above); a vertex table would cost O(p log n_p) comparisons of p + 1 ids. Every simplex output, and every top simplex a
+//! co-boundary walk expands, has its vertex ids read in p(p+1)/2 boundary reads (r(r+1)/2 for
+//! an r-simplex); p ≤ d, so each bound below only grows by a factor of the dimension.
 //! Faces are reached through B_{r,r−1} along one canonical path each (drop vertices from the
 //! highest position down), so no face is reached twice and Boundary needs no marks.
 //! - R_{p,q}, q < p (Algorithm 4): O(C(p+1, q+1) · (p − q)).
@@ -98,8 +131,9 @@
 //!   share at most one facet, so results of different facets never repeat.
 //! - R_{0,0}: the other end of every edge in Coboundary(1) of the vertex.
 //!
-//! The "σ ∈ Boundary(G, p, θ)" tests of Algorithms 5–6 are answered from the vertex tables (a
-//! merge of two sorted id lists): the same answer as walking B, cheaper by a constant factor.
+//! The "σ ∈ Boundary(G, p, θ)" tests of Algorithms 5–6 are answered from vertex ids (the
+//! r-simplex's ids read through the boundary, merged with σ's sorted ids): the same answer as
+//! walking B, cheaper by a constant factor.
 
 use rustc_hash::{FxHashMap, FxHashSet};
 
@@ -110,40 +144,106 @@ use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Sig;
 
-/// End of a partial co-boundary array in `pool`.
-const STOP: u32 = u32::MAX;
+/// Global ids are below this (see [`lookup_table`]): one value kept free, as the paper's stop
+/// code needed it, so that ids fit in u32 with room for a sentinel.
+const MAX_IDS: u32 = u32::MAX;
+
+/// Length code of a partial co-boundary array: 0, 1 or 2 = that many entries in `short`;
+/// `LONG` = three or more, in `long`.
+const LONG: u8 = 3;
+
+/// Simplices per [`Block`].
+const BLOCK: usize = 64;
 
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Sig {
-    tables: Vec<SimplexTable>,
     /// Global id of the first p-simplex; `first[d + 1]` = total. The paper's lookup table.
     first: Vec<u32>,
+    /// B_{p,p−1}: p + 1 rows of dimension p − 1 per p-simplex, entry i opposite vertex i.
     boundary: Vec<Vec<u32>>,
-    head: Vec<Vec<u32>>,
-    flag: Vec<Vec<u64>>,
-    pool: Vec<Vec<u32>>,
+    /// The partial co-boundaries of the p-simplices, p < d.
+    cob: Vec<Cob>,
     top_counts: Vec<usize>,
 }
 
-/// One dimension's heads, flags, pool, and its number of top simplices.
-type CobArrays = (Vec<u32>, Vec<u64>, Vec<u32>, usize);
+/// The partial co-boundary arrays of one dimension, concatenated without heads or stop codes:
+/// a 2-bit length code per simplex says where its array is.
+#[derive(Debug, Clone, PartialEq, Eq)]
+struct Cob {
+    /// The code every simplex of the dimension has, when they all have the same (then `blocks`
+    /// is empty and array i starts at i × code in `short`, or is long array i).
+    uniform: Option<u8>,
+    blocks: Vec<Block>,
+    /// The arrays of 1 or 2 entries, in simplex order.
+    short: Vec<u32>,
+    /// Start of each long array in `long`, plus the end: one entry per long simplex + 1.
+    long_start: Vec<u32>,
+    long: Vec<u32>,
+}
+
+/// Codes of 64 consecutive simplices as two bit planes, and the short entries and long arrays
+/// of the simplices before the block: array i is found by two popcounts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+struct Block {
+    lo: u64,
+    hi: u64,
+    short_before: u32,
+    long_before: u32,
+}
+
+impl Cob {
+    /// The array of simplex `i`: O(1).
+    fn get(&self, i: usize) -> &[u32] {
+        let (code, short_at, long_at) = match self.uniform {
+            Some(c) => (c, i * (c as usize % 3), i),
+            None => {
+                let b = &self.blocks[i / BLOCK];
+                let k = i % BLOCK;
+                let below = (1u64 << k) - 1;
+                let (lo, hi) = (b.lo & below, b.hi & below);
+                let code = ((b.lo >> k & 1) | (b.hi >> k & 1) << 1) as u8;
+                let short = (lo & !hi).count_ones() + 2 * (hi & !lo).count_ones();
+                let long = (lo & hi).count_ones();
+                (
+                    code,
+                    (b.short_before + short) as usize,
+                    (b.long_before + long) as usize,
+                )
+            }
+        };
+        if code == LONG {
+            &self.long[self.long_start[long_at] as usize..self.long_start[long_at + 1] as usize]
+        } else {
+            &self.short[short_at..short_at + code as usize]
+        }
+    }
+
+    fn heap_parts(&self) -> [usize; 4] {
+        [
+            self.blocks.capacity() * std::mem::size_of::<Block>(),
+            self.short.capacity() * 4,
+            self.long_start.capacity() * 4,
+            self.long.capacity() * 4,
+        ]
+    }
+}
 
 /// Appends partial co-boundary arrays for the p-simplices in order.
 struct CobWriter {
-    head: Vec<u32>,
-    flag: Vec<u64>,
-    pool: Vec<u32>,
-    first_d: u32,
+    codes: Vec<u8>,
+    short: Vec<u32>,
+    long_start: Vec<u32>,
+    long: Vec<u32>,
     tops: usize,
 }
 
 impl CobWriter {
-    fn new(n: usize, first_d: u32) -> Self {
+    fn new(n: usize) -> Self {
         CobWriter {
-            head: Vec::with_capacity(n),
-            flag: vec![0; n.div_ceil(64)],
-            pool: Vec::new(),
-            first_d,
+            codes: Vec::with_capacity(n),
+            short: Vec::new(),
+            long_start: vec![0],
+            long: Vec::new(),
             tops: 0,
         }
     }
@@ -151,29 +251,74 @@ impl CobWriter {
     /// `reps`: one global id per cluster, any order; reordered to decreasing dimension, then
     /// ascending id.
     fn push(&mut self, reps: &mut [u32], first: &[u32]) {
-        let i = self.head.len();
         if reps.is_empty() {
             self.tops += 1;
         }
-        if reps.len() == 1 && reps[0] >= self.first_d {
-            self.head.push(reps[0]);
-            self.flag[i / 64] |= 1 << (i % 64);
-            return;
-        }
         reps.sort_unstable_by_key(|&e| (std::cmp::Reverse(dim_of(first, e)), e));
-        self.head.push(self.pool.len() as u32);
-        self.pool.extend_from_slice(reps);
-        self.pool.push(STOP);
+        if reps.len() < LONG as usize {
+            self.codes.push(reps.len() as u8);
+            self.short.extend_from_slice(reps);
+        } else {
+            self.codes.push(LONG);
+            self.long.extend_from_slice(reps);
+            self.long_start.push(self.long.len() as u32);
+        }
     }
 
-    fn finish(mut self) -> Result<CobArrays, BuildError> {
-        to_u32(
-            KIND,
-            self.pool.len(),
-            "partial co-boundary entries of one dimension",
-        )?;
-        self.pool.shrink_to_fit();
-        Ok((self.head, self.flag, self.pool, self.tops))
+    fn finish(self) -> Result<(Cob, usize), BuildError> {
+        for (len, what) in [
+            (
+                self.short.len(),
+                "short partial co-boundary entries of one dimension",
+            ),
+            (
+                self.long.len(),
+                "long partial co-boundary entries of one dimension",
+            ),
+        ] {
+            to_u32(KIND, len, what)?;
+        }
+        let uniform = match self.codes.first() {
+            Some(&c) if self.codes.iter().all(|&x| x == c) => Some(c),
+            None => Some(0),
+            _ => None,
+        };
+        let mut blocks = Vec::new();
+        if uniform.is_none() {
+            let (mut short, mut long) = (0u32, 0u32);
+            blocks.reserve_exact(self.codes.len().div_ceil(BLOCK));
+            for chunk in self.codes.chunks(BLOCK) {
+                let mut b = Block {
+                    short_before: short,
+                    long_before: long,
+                    ..Block::default()
+                };
+                for (k, &c) in chunk.iter().enumerate() {
+                    b.lo |= u64::from(c & 1) << k;
+                    b.hi |= u64::from(c >> 1) << k;
+                    if c == LONG {
+                        long += 1;
+                    } else {
+                        short += u32::from(c);
+                    }
+                }
+                blocks.push(b);
+            }
+        }
+        let shrink = |mut v: Vec<u32>| {
+            v.shrink_to_fit();
+            v
+        };
+        Ok((
+            Cob {
+                uniform,
+                blocks,
+                short: shrink(self.short),
+                long_start: shrink(self.long_start),
+                long: shrink(self.long),
+            },
+            self.tops,
+        ))
     }
 }
 
@@ -249,13 +394,13 @@ fn boundaries(tables: &[SimplexTable]) -> Result<Vec<Vec<u32>>, BuildError> {
     Ok(boundary)
 }
 
-fn lookup_table(tables: &[SimplexTable]) -> Result<Vec<u32>, BuildError> {
+fn lookup_table(counts: impl Iterator<Item = usize>) -> Result<Vec<u32>, BuildError> {
     let mut first = vec![0u32];
     let mut total = 0usize;
-    for t in tables {
-        total += t.len();
-        // u32::MAX is the stop code, so it cannot be an id.
-        if total >= STOP as usize {
+    for n in counts {
+        total += n;
+        // u32::MAX stays free, as in the paper's layout where it is the stop code.
+        if total >= MAX_IDS as usize {
             return Err(BuildError::TooLarge {
                 kind: KIND,
                 what: format!("{total} simplices exceed 32-bit global ids"),
@@ -263,6 +408,7 @@ fn lookup_table(tables: &[SimplexTable]) -> Result<Vec<u32>, BuildError> {
         }
         first.push(total as u32);
     }
+    first.shrink_to_fit();
     Ok(first)
 }
 
@@ -280,8 +426,8 @@ impl Sig {
     /// RetrieveTopSimplexes, grouped into clusters by VisitCluster.
     pub fn from_ig(ig: &IncidenceGraph) -> Result<Sig, BuildError> {
         let d = ig.dimension();
-        let tables: Vec<SimplexTable> = (0..=d).map(|p| ig.table(p).clone()).collect();
-        let first = lookup_table(&tables)?;
+        let tables: Vec<&SimplexTable> = (0..=d).map(|p| ig.table(p)).collect();
+        let first = lookup_table(tables.iter().map(|t| t.len()))?;
         let mut boundary = vec![Vec::new(); d + 1];
         for (p, b) in boundary.iter_mut().enumerate().skip(1) {
             *b = (0..tables[p].len() as u32)
@@ -293,7 +439,7 @@ impl Sig {
             let p = dim_of(&first, g);
             (p, g - first[p])
         };
-        let (mut head, mut flag, mut pool) = (Vec::new(), Vec::new(), Vec::new());
+        let mut cob = Vec::with_capacity(d);
         let mut top_counts = vec![0; d + 1];
         top_counts[d] = tables[d].len();
         let mut seen = FxHashSet::default();
@@ -304,7 +450,7 @@ impl Sig {
         let mut stack = Vec::new();
         let mut reps = Vec::new();
         for p in 0..d {
-            let mut w = CobWriter::new(tables[p].len(), first[d]);
+            let mut w = CobWriter::new(tables[p].len());
             for s in 0..tables[p].len() as u32 {
                 // RetrieveTopSimplexes(I, σ).
                 seen.clear();
@@ -361,19 +507,14 @@ impl Sig {
                 }
                 w.push(&mut reps, &first);
             }
-            let (h, f, pl, t) = w.finish()?;
-            head.push(h);
-            flag.push(f);
-            pool.push(pl);
+            let (c, t) = w.finish()?;
+            cob.push(c);
             top_counts[p] = t;
         }
         Ok(Sig {
-            tables,
             first,
             boundary,
-            head,
-            flag,
-            pool,
+            cob,
             top_counts,
         })
     }
@@ -383,7 +524,7 @@ impl Sig {
     pub fn build(complex: &Complex) -> Result<Sig, BuildError> {
         let tables = complex.closure();
         let d = tables.len() - 1;
-        let first = lookup_table(&tables)?;
+        let first = lookup_table(tables.iter().map(SimplexTable::len))?;
         let boundary = boundaries(&tables)?;
         // Top rows per dimension: both tables are sorted, so one merge walk each.
         let mut top_rows: Vec<Vec<u32>> = vec![Vec::new(); d + 1];
@@ -397,7 +538,7 @@ impl Sig {
                 rows.push(i as u32);
             }
         }
-        let (mut head, mut flag, mut pool) = (Vec::new(), Vec::new(), Vec::new());
+        let mut cob = Vec::with_capacity(d);
         let mut top_counts = vec![0; d + 1];
         top_counts[d] = tables[d].len();
         let mut parent: Vec<u32> = Vec::new();
@@ -428,7 +569,7 @@ impl Sig {
                 }
             }
             drop(fill);
-            let mut w = CobWriter::new(n, first[d]);
+            let mut w = CobWriter::new(n);
             for s in 0..n {
                 let sigma = tables[p].get(s);
                 let list = &above[off[s] as usize..off[s + 1] as usize];
@@ -478,40 +619,135 @@ impl Sig {
                 }
                 w.push(&mut reps, &first);
             }
-            let (h, f, pl, t) = w.finish()?;
-            head.push(h);
-            flag.push(f);
-            pool.push(pl);
+            let (c, t) = w.finish()?;
+            cob.push(c);
             top_counts[p] = t;
         }
         Ok(Sig {
-            tables,
             first,
             boundary,
-            head,
-            flag,
-            pool,
+            cob,
             top_counts,
         })
     }
 
-    /// Row of p-simplex `sigma` (ascending ids) in its dimension.
+    /// Row of p-simplex `sigma` (ascending ids) in its dimension: the vertex, then each prefix
+    /// (v_0..v_k) in turn, by `find_extension` below dimension d and `find_top`
+    /// at d. O(Σ_{k≤p, k<d} (log n_k + k log m_k)) (+ O(d log c) at d), m_k the number of
+    /// k-simplices sharing σ's (k−1)-prefix and c the number of d-simplices on its facet.
     pub fn find(&self, sigma: &[u32]) -> Option<u32> {
-        self.tables.get(sigma.len().checked_sub(1)?)?.find(sigma)
+        let p = sigma.len().checked_sub(1)?;
+        let d = self.dimension();
+        if p > d || sigma[0] as usize >= self.count(0) {
+            return None;
+        }
+        let mut row = sigma[0];
+        for (k, &v) in sigma.iter().enumerate().skip(1) {
+            row = if k == d {
+                self.find_top(row, v)?
+            } else {
+                self.find_extension(k, row, v)?
+            };
+        }
+        Some(row)
     }
 
-    fn is_flagged(&self, p: usize, i: u32) -> bool {
-        self.flag[p][i as usize / 64] >> (i % 64) & 1 == 1
+    /// The d-simplex made of (d−1)-simplex row `prefix` and a larger vertex `v`, among the
+    /// d-simplices on `prefix`: each is a cluster of its own, so C*_{d−1,d}(prefix) lists them
+    /// all, by ascending id. Those having `prefix` as prefix are one run of rows, those that do
+    /// not sit before or after it by their own prefix row, so one bisection finds `v`: O(d log c)
+    /// for c d-simplices on the facet (O(d) on a manifold: c ≤ 2).
+    fn find_top(&self, prefix: u32, v: u32) -> Option<u32> {
+        use std::cmp::Ordering::{Equal, Greater, Less};
+        let d = self.dimension();
+        let list = self.cstar(d - 1, prefix);
+        let row = |e: u32| e - self.first[d];
+        let found = list.binary_search_by(|&e| {
+            let r = row(e);
+            match self.boundary[d][r as usize * (d + 1) + d].cmp(&prefix) {
+                Equal => self.last(d, r).cmp(&v),
+                o @ (Less | Greater) => o,
+            }
+        });
+        found.ok().map(|i| row(list[i]))
+    }
+
+    /// The k-simplex made of (k−1)-simplex row `prefix` and a larger vertex `v`. Rows are in
+    /// lexicographic order, which is the order of (prefix row, last vertex): the prefix column
+    /// of the stored boundary is ascending, and the rows sharing `prefix` are one run ordered by
+    /// last vertex. The search looks first in a window of 64 rows around where `prefix` would
+    /// sit if prefixes were spread evenly over the rows (as they nearly are in meshes), else
+    /// bisects the whole dimension: O(log n_k) probes either way, and the last vertex (k reads)
+    /// is computed only on rows of the run.
+    fn find_extension(&self, k: usize, prefix: u32, v: u32) -> Option<u32> {
+        use std::cmp::Ordering::{Equal, Less};
+        let b = &self.boundary[k];
+        let n = b.len() / (k + 1);
+        if n == 0 {
+            return None;
+        }
+        let cmp = |i: usize| {
+            b[i * (k + 1) + k]
+                .cmp(&prefix)
+                .then_with(|| self.last(k, i as u32).cmp(&v))
+        };
+        let guess = (prefix as f64 + 0.5) / self.count(k - 1) as f64 * n as f64;
+        let g = (guess as usize).min(n - 1);
+        // Rows before `lo` are smaller than σ, rows from `hi` on are not. If the window of
+        // 2 × WINDOW rows around the guess does not bracket σ, bisect the whole dimension: its
+        // first probes are the same for every query, so they stay in cache.
+        const WINDOW: usize = 32;
+        let (a, z) = (g.saturating_sub(WINDOW), (g + WINDOW).min(n - 1));
+        let (mut lo, mut hi) = (0, n);
+        if (a == 0 || cmp(a) == Less) && (z == n - 1 || cmp(z) != Less) {
+            (lo, hi) = (
+                if a == 0 { 0 } else { a + 1 },
+                if z == n - 1 { n } else { z + 1 },
+            );
+        }
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            if cmp(mid) == Less {
+                lo = mid + 1;
+            } else {
+                hi = mid;
+            }
+        }
+        (lo < n && cmp(lo) == Equal).then_some(lo as u32)
+    }
+
+    /// The largest vertex of p-simplex row `i`: down the facets opposite vertex 0 (v_1..v_p,
+    /// v_2..v_p, ..., v_p). O(p).
+    fn last(&self, p: usize, i: u32) -> u32 {
+        let mut r = i;
+        for k in (1..=p).rev() {
+            r = self.boundary[k][r as usize * (k + 1)];
+        }
+        r
+    }
+
+    /// Appends the vertex ids of p-simplex row `i`: the last vertex of each prefix, down the
+    /// facets opposite the last vertex. O(p²) boundary reads.
+    fn push_tuple(&self, p: usize, i: u32, out: &mut Vec<u32>) {
+        let start = out.len();
+        out.resize(start + p + 1, 0);
+        let mut r = i;
+        for k in (1..=p).rev() {
+            out[start + k] = self.last(k, r);
+            r = self.boundary[k][r as usize * (k + 1) + k];
+        }
+        out[start] = r;
     }
 
     /// All partial co-boundaries of p-simplex row `i` (p < d), global ids, decreasing dimension.
     fn cstar(&self, p: usize, i: u32) -> &[u32] {
-        let h = &self.head[p][i as usize];
-        if self.is_flagged(p, i) {
-            return std::slice::from_ref(h);
-        }
-        let rest = &self.pool[p][*h as usize..];
-        &rest[..rest.iter().position(|&x| x == STOP).unwrap_or(rest.len())]
+        self.cob[p].get(i as usize)
+    }
+
+    /// The paper's manifold shortcut: σ's whole partial co-boundary is one d-simplex.
+    fn is_shortcut(&self, p: usize, i: u32) -> bool {
+        let d = self.dimension();
+        matches!(self.cstar(p, i), &[e] if e >= self.first[d])
     }
 
     fn dim_of(&self, g: u32) -> usize {
@@ -527,17 +763,43 @@ impl Sig {
         if p < self.dimension() {
             for &e in self.cstar(p, id) {
                 if self.dim_of(e) == g {
-                    out.extend_from_slice(self.tables[g].get((e - self.first[g]) as usize));
+                    self.push_tuple(g, e - self.first[g], &mut out);
                 }
             }
         }
         Some(out)
     }
 
-    /// Whether p-simplex σ stores its partial co-boundary through the manifold shortcut.
+    /// Whether p-simplex σ's partial co-boundary is the paper's manifold shortcut: a single
+    /// d-simplex, which the paper stores in place of the head, with no array.
     pub fn uses_shortcut(&self, sigma: &[u32]) -> bool {
         let p = sigma.len() - 1;
-        p < self.dimension() && self.find(sigma).is_some_and(|i| self.is_flagged(p, i))
+        p < self.dimension() && self.find(sigma).is_some_and(|i| self.is_shortcut(p, i))
+    }
+
+    /// Heap bytes of each array kind, summed over dimensions (their total is
+    /// `storage().bytes`): where the bytes go.
+    pub fn heap_parts(&self) -> Vec<(&'static str, usize)> {
+        let mut cob = [0usize; 4];
+        for c in &self.cob {
+            for (a, b) in cob.iter_mut().zip(c.heap_parts()) {
+                *a += b;
+            }
+        }
+        vec![
+            (
+                "lookup table, top counts",
+                self.first.capacity() * 4 + self.top_counts.capacity() * 8,
+            ),
+            (
+                "boundary",
+                self.boundary.iter().map(|b| b.capacity() * 4).sum(),
+            ),
+            ("co-boundary length codes", cob[0]),
+            ("co-boundary short arrays", cob[1]),
+            ("co-boundary long offsets", cob[2]),
+            ("co-boundary long arrays", cob[3]),
+        ]
     }
 
     /// Algorithm 6, RetrieveCluster: the top r-simplices (rows) in the r-cluster of st(σ) holding
@@ -552,7 +814,9 @@ impl Sig {
             if r == p + 1 {
                 continue;
             }
-            let mask = outside(self.tables[r].get(m as usize), sigma);
+            sc.tuple.clear();
+            self.push_tuple(r, m, &mut sc.tuple);
+            let mask = outside(&sc.tuple, sigma);
             for i in 0..=r {
                 if mask >> i & 1 == 0 {
                     continue;
@@ -602,9 +866,16 @@ impl Sig {
                 sc.cluster.iter().for_each(|&m| emit(m));
                 continue;
             }
-            let Scratch { cluster, found, .. } = sc;
+            let Scratch {
+                cluster,
+                found,
+                tuple,
+                ..
+            } = sc;
             for &m in cluster.iter() {
-                let mask = outside(self.tables[r].get(m as usize), sigma);
+                tuple.clear();
+                self.push_tuple(r, m, tuple);
+                let mask = outside(tuple, sigma);
                 walk_faces(&self.boundary, r, m, r + 1, r - g, mask, &mut |f| {
                     if found.insert(f) {
                         emit(f)
@@ -615,7 +886,7 @@ impl Sig {
     }
 
     fn emit_row(&self, q: usize, i: u32, out: &mut Vec<u32>) {
-        out.extend_from_slice(self.tables[q].get(i as usize));
+        self.push_tuple(q, i, out);
     }
 }
 
@@ -627,6 +898,8 @@ struct Scratch {
     found: FxHashSet<u32>,
     stack: Vec<u32>,
     cluster: Vec<u32>,
+    /// Vertex ids of the simplex being expanded.
+    tuple: Vec<u32>,
 }
 
 impl Topology for Sig {
@@ -635,15 +908,18 @@ impl Topology for Sig {
     }
 
     fn dimension(&self) -> usize {
-        self.tables.len() - 1
+        self.first.len() - 2
     }
 
     fn vertex_count(&self) -> u32 {
-        self.tables[0].len() as u32
+        self.first[1]
     }
 
     fn count(&self, p: usize) -> usize {
-        self.tables.get(p).map_or(0, SimplexTable::len)
+        match (self.first.get(p), self.first.get(p + 1)) {
+            (Some(a), Some(b)) => (b - a) as usize,
+            _ => 0,
+        }
     }
 
     fn top_count(&self, p: usize) -> usize {
@@ -651,8 +927,10 @@ impl Topology for Sig {
     }
 
     fn simplices(&self, p: usize, out: &mut Vec<u32>) {
-        if let Some(t) = self.tables.get(p) {
-            out.extend_from_slice(t.as_flat());
+        let n = self.count(p);
+        out.reserve(n * (p + 1));
+        for i in 0..n as u32 {
+            self.push_tuple(p, i, out);
         }
     }
 
@@ -680,8 +958,9 @@ impl Topology for Sig {
             if self.dimension() > 0 {
                 let v = sigma[0];
                 self.coboundary(0, id, sigma, 1, &mut sc, &mut |e| {
-                    let edge = self.tables[1].get(e as usize);
-                    out.push(if edge[0] == v { edge[1] } else { edge[0] });
+                    // Entry 1 is the facet opposite vertex 1, i.e. vertex 0.
+                    let edge = &self.boundary[1][e as usize * 2..e as usize * 2 + 2];
+                    out.push(if edge[1] == v { edge[0] } else { edge[1] });
                 });
             }
         } else {
@@ -710,134 +989,164 @@ impl Topology for Sig {
     fn storage(&self) -> Storage {
         let d = self.dimension();
         let boundary: usize = self.boundary.iter().map(Vec::len).sum();
-        let heads: usize = self.head.iter().map(Vec::len).sum();
-        let pool: usize = self.pool.iter().map(Vec::len).sum();
-        let flags: usize = (0..d).map(|p| self.tables[p].len()).sum();
-        let words = |v: &Vec<Vec<u32>>| v.iter().map(|a| a.capacity() * 4).sum::<usize>();
-        let bytes = self
-            .tables
-            .iter()
-            .map(SimplexTable::heap_bytes)
-            .sum::<usize>()
-            + self.first.capacity() * 4
-            + words(&self.boundary)
-            + words(&self.head)
-            + words(&self.pool)
-            + self.flag.iter().map(|f| f.capacity() * 8).sum::<usize>();
+        // The paper's layout: a head per p-simplex (p < d) and, unless it takes the shortcut,
+        // an array of its entries and a stop code.
+        let mut cob = 0usize;
+        for p in 0..d {
+            for i in 0..self.count(p) as u32 {
+                cob += 1;
+                if !self.is_shortcut(p, i) {
+                    cob += self.cstar(p, i).len() + 1;
+                }
+            }
+        }
+        let flags: usize = (0..d).map(|p| self.count(p)).sum();
         Storage {
-            integers: (boundary + heads + pool) as u64,
+            integers: (boundary + cob) as u64,
             bits: flags as u64,
-            bytes: bytes as u64,
+            bytes: self.heap_parts().iter().map(|&(_, b)| b).sum::<usize>() as u64,
         }
     }
 
     // p indexes several per-dimension arrays at once.
     #[allow(clippy::needless_range_loop)]
     fn validate(&self) -> Result<(), String> {
-        let d = self.dimension();
-        if self.tables[d].is_empty() {
+        let d = match self.first.len().checked_sub(2) {
+            Some(d) if self.first[0] == 0 => d,
+            _ => return Err("lookup table has the wrong length".into()),
+        };
+        if self.first.windows(2).any(|w| w[0] > w[1]) {
+            return Err("lookup table is not ascending".into());
+        }
+        if self.count(d) == 0 {
             return Err(format!("no {d}-simplex in a {d}-complex"));
         }
-        if self.tables[0]
-            .iter()
-            .enumerate()
-            .any(|(i, v)| v[0] as usize != i)
-        {
-            return Err("vertex table is not 0..n".into());
+        if self.boundary.len() != d + 1 || self.cob.len() != d || self.top_counts.len() != d + 1 {
+            return Err("one boundary per dimension, one co-boundary per dimension below d".into());
         }
-        if self.first.len() != d + 2 || self.first[0] != 0 {
-            return Err("lookup table has the wrong length".into());
-        }
-        for p in 0..=d {
-            let t = &self.tables[p];
-            if t.arity() != p + 1 {
-                return Err(format!("table {p} has arity {}", t.arity()));
+        let mut s = Vec::new();
+        let mut facet = Vec::new();
+        let mut prev = Vec::new();
+        for p in 1..=d {
+            let b = &self.boundary[p];
+            if b.len() != self.count(p) * (p + 1) {
+                return Err(format!("B_{{{p},{}}} has the wrong size", p - 1));
             }
-            if self.first[p + 1] - self.first[p] != t.len() as u32 {
-                return Err(format!("lookup table range of dimension {p} is not n_{p}"));
+            if let Some(i) = b.iter().position(|&f| f as usize >= self.count(p - 1)) {
+                return Err(format!("B_{{{p},{}}} entry {i} is out of range", p - 1));
             }
-            for i in 1..t.len() {
-                if t.get(i - 1) >= t.get(i) {
-                    return Err(format!("table {p} not strictly ascending at row {i}"));
+            // Rows below are checked, entries are in range: tuples can be read. Each row is its
+            // prefix row plus a larger vertex, rows strictly ascending, entries the facets.
+            prev.clear();
+            for i in 0..self.count(p) as u32 {
+                s.clear();
+                self.push_tuple(p, i, &mut s);
+                if s[p] <= s[p - 1] {
+                    return Err(format!("{p}-simplex {i} reads as {s:?}, not ascending"));
                 }
-            }
-            if p > 0 {
-                if self.boundary[p].len() != t.len() * (p + 1) {
-                    return Err(format!("B_{{{p},{}}} has the wrong size", p - 1));
+                if i > 0 && prev >= s {
+                    return Err(format!("{p}-simplices not strictly ascending at {s:?}"));
                 }
-                for (i, s) in t.iter().enumerate() {
-                    for (k, &f) in self.boundary[p][i * (p + 1)..(i + 1) * (p + 1)]
+                for k in 0..=p {
+                    facet.clear();
+                    self.push_tuple(p - 1, b[i as usize * (p + 1) + k], &mut facet);
+                    let want = s
                         .iter()
                         .enumerate()
-                    {
-                        let facet: Vec<u32> = s
-                            .iter()
-                            .enumerate()
-                            .filter(|&(j, _)| j != k)
-                            .map(|(_, &v)| v)
-                            .collect();
-                        if (f as usize) >= self.tables[p - 1].len()
-                            || self.tables[p - 1].get(f as usize) != facet.as_slice()
-                        {
-                            return Err(format!(
-                                "boundary entry {k} of {p}-simplex {s:?} is not the facet {facet:?}"
-                            ));
-                        }
+                        .filter(|&(j, _)| j != k)
+                        .map(|(_, &v)| v);
+                    if !facet.iter().copied().eq(want) {
+                        return Err(format!(
+                            "boundary entry {k} of {p}-simplex {s:?} is {facet:?}"
+                        ));
                     }
                 }
+                std::mem::swap(&mut prev, &mut s);
+            }
+        }
+        for p in 0..d {
+            let c = &self.cob[p];
+            let n = self.count(p);
+            let (mut short, mut long) = (0usize, 0usize);
+            let code_of = |i: usize| match c.uniform {
+                Some(code) => code,
+                None => {
+                    let b = &c.blocks[i / BLOCK];
+                    ((b.lo >> (i % BLOCK) & 1) | (b.hi >> (i % BLOCK) & 1) << 1) as u8
+                }
+            };
+            match c.uniform {
+                Some(code) if code > LONG || !c.blocks.is_empty() => {
+                    return Err(format!("dimension {p}: bad uniform code {code}"));
+                }
+                None if c.blocks.len() != n.div_ceil(BLOCK) => {
+                    return Err(format!(
+                        "dimension {p}: one code block per {BLOCK} simplices"
+                    ));
+                }
+                _ => {}
+            }
+            for i in 0..n {
+                if c.uniform.is_none() && i % BLOCK == 0 {
+                    let b = &c.blocks[i / BLOCK];
+                    if (b.short_before as usize, b.long_before as usize) != (short, long) {
+                        return Err(format!("dimension {p}: block {} counts wrong", i / BLOCK));
+                    }
+                }
+                match code_of(i) {
+                    LONG => long += 1,
+                    code => short += code as usize,
+                }
+            }
+            if let Some(b) = c.blocks.last()
+                && n % BLOCK != 0
+                && (b.lo | b.hi) >> (n % BLOCK) != 0
+            {
+                return Err(format!("dimension {p}: codes past the last simplex"));
+            }
+            if short != c.short.len()
+                || long + 1 != c.long_start.len()
+                || c.long_start[0] != 0
+                || c.long_start[long] as usize != c.long.len()
+                || c.long_start
+                    .windows(2)
+                    .any(|w| w[1] < w[0] + u32::from(LONG))
+            {
+                return Err(format!(
+                    "dimension {p}: arrays do not match the codes (long arrays hold ≥ 3)"
+                ));
             }
         }
         // Every top simplex above each simplex, counted through the faces of the top simplices.
-        let mut above: Vec<Vec<u32>> = (0..d).map(|p| vec![0; self.tables[p].len()]).collect();
+        let mut above: Vec<Vec<u32>> = (0..d).map(|p| vec![0; self.count(p)]).collect();
         let mut is_top: Vec<Vec<bool>> = (0..=d).map(|p| vec![false; self.count(p)]).collect();
         is_top[d].iter_mut().for_each(|t| *t = true);
+        let mut t = Vec::new();
         for p in 0..d {
-            let mut expect_pool = 0usize;
-            if self.head[p].len() != self.tables[p].len() {
-                return Err(format!("dimension {p}: one head per simplex expected"));
-            }
-            for i in 0..self.tables[p].len() as u32 {
-                let s = self.tables[p].get(i as usize);
-                if self.is_flagged(p, i) {
-                    let e = self.head[p][i as usize];
-                    if e < self.first[d] || e >= self.first[d + 1] {
-                        return Err(format!("shortcut of {s:?} is not a {d}-simplex"));
-                    }
-                } else {
-                    if self.head[p][i as usize] as usize != expect_pool {
-                        return Err(format!("array of {s:?} is not where the previous one ends"));
-                    }
-                    let list = self.cstar(p, i);
-                    expect_pool += list.len() + 1;
-                    if expect_pool > self.pool[p].len() {
-                        return Err(format!("array of {s:?} runs past the pool"));
-                    }
-                    if list.len() == 1 && self.dim_of(list[0]) == d {
-                        return Err(format!("{s:?} should use the manifold shortcut"));
-                    }
-                    if list.windows(2).any(|w| {
-                        let (a, b) = (self.dim_of(w[0]), self.dim_of(w[1]));
-                        a < b || (a == b && w[0] >= w[1])
-                    }) {
-                        return Err(format!("array of {s:?} is not in decreasing dimension"));
-                    }
-                    if list.is_empty() {
-                        is_top[p][i as usize] = true;
-                    }
+            for i in 0..self.count(p) as u32 {
+                s.clear();
+                self.push_tuple(p, i, &mut s);
+                let list = self.cstar(p, i);
+                if list.windows(2).any(|w| {
+                    let (a, b) = (self.dim_of(w[0]), self.dim_of(w[1]));
+                    a < b || (a == b && w[0] >= w[1])
+                }) {
+                    return Err(format!("array of {s:?} is not in decreasing dimension"));
                 }
-                for &e in self.cstar(p, i) {
+                if list.is_empty() {
+                    is_top[p][i as usize] = true;
+                }
+                for &e in list {
                     let r = self.dim_of(e);
                     if r <= p || r > d {
                         return Err(format!("C* of {s:?} lists a {r}-simplex"));
                     }
-                    let t = self.tables[r].get((e - self.first[r]) as usize);
-                    if !crate::complex::is_subset(s, t) {
+                    t.clear();
+                    self.push_tuple(r, e - self.first[r], &mut t);
+                    if !crate::complex::is_subset(&s, &t) {
                         return Err(format!("C* of {s:?} lists {t:?}, not in its star"));
                     }
                 }
-            }
-            if expect_pool != self.pool[p].len() {
-                return Err(format!("dimension {p}: pool has unused entries"));
             }
         }
         for (r, tops) in is_top.iter().enumerate() {
@@ -861,8 +1170,9 @@ impl Topology for Sig {
         // The clusters listed at σ partition its top simplices, each led by its smallest.
         let mut sc = Scratch::default();
         for p in 0..d {
-            for i in 0..self.tables[p].len() as u32 {
-                let s = self.tables[p].get(i as usize);
+            for i in 0..self.count(p) as u32 {
+                s.clear();
+                self.push_tuple(p, i, &mut s);
                 sc.visited.clear();
                 sc.expanded.clear();
                 let mut total = 0usize;
@@ -874,7 +1184,7 @@ impl Topology for Sig {
                     if !is_top[r][(e - self.first[r]) as usize] {
                         return Err(format!("C* of {s:?} lists a simplex that is not top"));
                     }
-                    self.retrieve_cluster(p, s, r, e - self.first[r], &mut sc);
+                    self.retrieve_cluster(p, &s, r, e - self.first[r], &mut sc);
                     if sc.cluster.iter().any(|&m| m + self.first[r] < e) {
                         return Err(format!(
                             "C* of {s:?}: a cluster is not led by its smallest simplex"
