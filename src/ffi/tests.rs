@@ -639,6 +639,21 @@ fn answers_are_sorted_in_place_for_every_arity() {
         super::structure::sort_rows_in_place(&mut rows, arity);
         let want: Vec<u32> = (0..5).flat_map(row).collect();
         assert_eq!(rows, want, "arity {arity}");
+        // Rows that differ only in a later id (high ids: no carry between packed ids), and
+        // more rows than are sorted on the stack.
+        for n in [7u32, 200] {
+            let row = |r: u32| {
+                let mut v = vec![u32::MAX - 1; arity];
+                v[arity - 1] = u32::MAX - 1 - (r % 3);
+                v[0] = r / 3;
+                v
+            };
+            let mut rows: Vec<u32> = (0..n).rev().flat_map(row).collect();
+            let mut want: Vec<Vec<u32>> = (0..n).map(row).collect();
+            want.sort();
+            super::structure::sort_rows_in_place(&mut rows, arity);
+            assert_eq!(rows, want.concat(), "arity {arity}, {n} rows");
+        }
     }
 }
 
