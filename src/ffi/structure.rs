@@ -351,7 +351,21 @@ pub(super) fn sort_rows_in_place(rows: &mut Vec<u32>, arity: usize) {
         for (k, row) in keys.iter_mut().zip(chunks.iter()) {
             *k = row.iter().fold(0u128, |acc, &v| (acc << 32) | v as u128);
         }
-        keys.sort_unstable();
+        if keys.len() <= 16 {
+            // A plain insertion sort: the typical answer (a triangle's 3 neighbours, a vertex's
+            // 6 to 20 cofaces) is too short for the general sort's set-up to pay off.
+            for i in 1..keys.len() {
+                let k = keys[i];
+                let mut j = i;
+                while j > 0 && keys[j - 1] > k {
+                    keys[j] = keys[j - 1];
+                    j -= 1;
+                }
+                keys[j] = k;
+            }
+        } else {
+            keys.sort_unstable();
+        }
         for (k, row) in keys.iter().zip(chunks.iter_mut()) {
             for (i, v) in row.iter_mut().enumerate() {
                 *v = (k >> (32 * (N - 1 - i))) as u32;
