@@ -119,7 +119,8 @@ enum TpxStatus
    */
   TPX_STATUS_DIMENSION_OUT_OF_RANGE = 11,
   /**
-   * The caller's buffer is too short; `*out_len` holds the needed number of `uint32_t`.
+   * The caller's buffer is too short; `*out_len` holds the needed number of elements
+   * (`uint32_t`, or `double` for coordinates).
    */
   TPX_STATUS_BUFFER_TOO_SMALL = 12,
   /**
@@ -271,6 +272,52 @@ TpxStatus tpx_complex_vertex_count(const struct TpxComplex *c, uint32_t *out);
  * Non-NULL pointers must be valid (a live handle; a writable `size_t`).
  */
 TpxStatus tpx_complex_top_count(const struct TpxComplex *c, uint32_t p, size_t *out);
+
+/**
+ * Number of coordinates per vertex into `*out`: 0 when the complex has no coordinates (built
+ * from arrays without them, or read from a `.simplices` file without `v` lines). O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid (a live handle; a writable `size_t`).
+ */
+TpxStatus tpx_complex_coord_dim(const struct TpxComplex *c, size_t *out);
+
+/**
+ * The vertex coordinates, vertex-major (`coord_dim` doubles per vertex, vertex ids `0 .. n`),
+ * copied into `buf` (the caller's, `buf_len` doubles); `*out_len` receives the number of
+ * doubles written, `n * coord_dim` (0 without coordinates).
+ *
+ * Errors: NULL_ARGUMENT (`buf` may be NULL only when `buf_len == 0`), BUFFER_TOO_SMALL
+ * (nothing copied; `*out_len` = needed number of doubles, so a call with `buf_len == 0` asks
+ * for the size). Cost: one copy, O(n * coord_dim).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` doubles.
+ */
+TpxStatus tpx_complex_coords(const struct TpxComplex *c,
+                             double *buf,
+                             size_t buf_len,
+                             size_t *out_len);
+
+/**
+ * The top p-simplices (those that are not a face of another simplex) as rows of p+1 ascending
+ * vertex ids in ascending lexicographic order, copied into `buf` (the caller's, `buf_len`
+ * uint32_t); `*out_len` receives the number of uint32_t written, `(p+1) *`
+ * `tpx_complex_top_count(c, p)`. Together with `tpx_complex_vertex_count` this is the whole
+ * complex: its closure is every simplex.
+ *
+ * Errors: NULL_ARGUMENT (`buf` may be NULL only when `buf_len == 0`), DIMENSION_OUT_OF_RANGE
+ * (p > d), BUFFER_TOO_SMALL (nothing copied; `*out_len` = needed length). Cost: one copy,
+ * O((p+1) * number of top p-simplices).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` uint32_t.
+ */
+TpxStatus tpx_complex_top_simplices(const struct TpxComplex *c,
+                                    uint32_t p,
+                                    uint32_t *buf,
+                                    size_t buf_len,
+                                    size_t *out_len);
 
 /**
  * Cuts the complex `c` into its IQM components (see `src/structures/iqm.rs` for the
@@ -447,7 +494,10 @@ TpxStatus tpx_structure_simplices(const struct TpxStructure *s,
  * repeated or out-of-range ids, more than 16 ids), DIMENSION_OUT_OF_RANGE (q > d),
  * NOT_IN_COMPLEX, BUFFER_TOO_SMALL (nothing copied; `*out_len` = needed length, so a call with
  * `buf_len == 0` asks for the size). Cost: the structure's query cost plus O(k log k) to sort
- * the k answers; the answer is recomputed on each call.
+ * the k answers (O(k) when the structure already gives them in order); the answer is
+ * recomputed on each call. Apart from the structure's own query, a call allocates nothing
+ * once a thread has answered a query as large: the answer is assembled in a per-thread buffer
+ * that is kept between calls.
  *
  * # Safety
  * Non-NULL pointers must be valid; `simplex` must hold `simplex_len` ids and `buf` must have

@@ -208,6 +208,28 @@ class Complex {
     detail::check(tpx_complex_top_count(c_, p, &n));
     return n;
   }
+  /* Coordinates per vertex; 0 when the complex has none. */
+  std::size_t coord_dim() const {
+    std::size_t n = 0;
+    detail::check(tpx_complex_coord_dim(c_, &n));
+    return n;
+  }
+  /* The coordinates, vertex-major (coord_dim() per vertex); empty without coordinates. */
+  std::vector<double> coords() const {
+    std::vector<double> buf(coord_dim() * vertex_count());
+    std::size_t len = 0;
+    detail::check(tpx_complex_coords(c_, buf.data(), buf.size(), &len));
+    buf.resize(len);
+    return buf;
+  }
+  /* The top p-simplices in ascending lexicographic order (throws for p > dimension()). */
+  Rows top_simplices(std::uint32_t p) const {
+    std::vector<std::uint32_t> buf((p + 1) * top_count(p));
+    std::size_t len = 0;
+    detail::check(tpx_complex_top_simplices(c_, p, buf.data(), buf.size(), &len));
+    buf.resize(len);
+    return Rows(std::move(buf), p + 1);
+  }
   const TpxComplex *get() const noexcept { return c_; }
 
  private:

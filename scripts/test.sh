@@ -6,7 +6,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-need=(cmake ninja-build pkg-config valgrind libopenmesh-dev libcgal-dev libgudhi-dev libgtest-dev libcgal-demo)
+need=(cmake ninja-build pkg-config valgrind libopenmesh-dev libcgal-dev libgudhi-dev libgtest-dev libcgal-demo libbenchmark-dev)
 missing=()
 for p in "${need[@]}"; do
   dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")

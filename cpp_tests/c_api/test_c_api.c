@@ -98,6 +98,55 @@ static void test_complex_lifecycle(void) {
   tpx_complex_free(c);
 }
 
+/* The complex handed back: top simplices per dimension (sorted rows, sorted lexicographically)
+   and the coordinates as given, with the buffer protocol of the structure queries. */
+static void test_complex_contents(void) {
+  static const double coords[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2};
+  static const uint32_t ids[] = {3, 2, 1, 0, 4, 2, 3, 5, 4};
+  static const size_t offsets[] = {0, 4, 7, 9};
+  static const uint32_t tet[] = {0, 1, 2, 3}, tri[] = {2, 3, 4}, wire[] = {4, 5};
+  TpxComplex *c = NULL;
+  uint32_t buf[8];
+  double xyz[18];
+  size_t len = 99, dim = 99;
+  size_t i;
+
+  CHECK_STATUS(tpx_complex_from_arrays(6, ids, offsets, 3, coords, 3, &c), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_top_simplices(c, 3, buf, 8, &len), TPX_STATUS_OK);
+  CHECK(len == 4 && same_u32(buf, tet, 4));
+  CHECK_STATUS(tpx_complex_top_simplices(c, 2, buf, 8, &len), TPX_STATUS_OK);
+  CHECK(len == 3 && same_u32(buf, tri, 3));
+  CHECK_STATUS(tpx_complex_top_simplices(c, 1, buf, 8, &len), TPX_STATUS_OK);
+  CHECK(len == 2 && same_u32(buf, wire, 2));
+  CHECK_STATUS(tpx_complex_top_simplices(c, 0, NULL, 0, &len), TPX_STATUS_OK);
+  CHECK(len == 0);
+  len = 99;
+  CHECK_STATUS(tpx_complex_top_simplices(c, 3, buf, 3, &len), TPX_STATUS_BUFFER_TOO_SMALL);
+  CHECK(len == 4);
+  len = 99;
+  CHECK_STATUS(tpx_complex_top_simplices(c, 4, buf, 8, &len), TPX_STATUS_DIMENSION_OUT_OF_RANGE);
+  CHECK(len == 99);
+
+  CHECK_STATUS(tpx_complex_coord_dim(c, &dim), TPX_STATUS_OK);
+  CHECK(dim == 3);
+  CHECK_STATUS(tpx_complex_coords(c, NULL, 0, &len), TPX_STATUS_BUFFER_TOO_SMALL);
+  CHECK(len == 18);
+  CHECK_STATUS(tpx_complex_coords(c, xyz, 18, &len), TPX_STATUS_OK);
+  CHECK(len == 18);
+  for (i = 0; i < 18; ++i) CHECK(xyz[i] == coords[i]);
+  CHECK_STATUS(tpx_complex_coords(c, NULL, 0, NULL), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_complex_coord_dim(NULL, &dim), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_complex_top_simplices(NULL, 0, buf, 8, &len), TPX_STATUS_NULL_ARGUMENT);
+  tpx_complex_free(c);
+
+  /* No coordinates: dimension 0, empty answer. */
+  c = fixture();
+  CHECK_STATUS(tpx_complex_coord_dim(c, &dim), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_coords(c, NULL, 0, &len), TPX_STATUS_OK);
+  CHECK(dim == 0 && len == 0);
+  tpx_complex_free(c);
+}
+
 static void test_structure_queries(void) {
   TpxComplex *c = fixture();
   TpxStructure *s = build_ig(c);
@@ -428,6 +477,7 @@ static void test_files(void) {
 int main(void) {
   test_version();
   test_complex_lifecycle();
+  test_complex_contents();
   test_structure_queries();
   test_buffer_too_small();
   test_null_arguments();

@@ -130,6 +130,20 @@ TEST(Wrapper, FileComplexMatchesArrays) {
   }
 }
 
+TEST(Wrapper, ComplexGivesBackTopsAndCoordinates) {
+  const Complex c = Complex::from_arrays(6, {3, 2, 1, 0, 4, 2, 3, 5, 4}, {0, 4, 7, 9},
+                                         {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2}, 3);
+  EXPECT_EQ(rows_of(c.top_simplices(3).view()), (std::vector<Ids>{{0, 1, 2, 3}}));
+  EXPECT_EQ(rows_of(c.top_simplices(2).view()), (std::vector<Ids>{{2, 3, 4}}));
+  EXPECT_EQ(rows_of(c.top_simplices(1).view()), (std::vector<Ids>{{4, 5}}));
+  EXPECT_TRUE(c.top_simplices(0).empty());
+  EXPECT_EQ(status_of([&] { c.top_simplices(4); }), TPX_STATUS_DIMENSION_OUT_OF_RANGE);
+  EXPECT_EQ(c.coord_dim(), 3u);
+  EXPECT_EQ(c.coords(), (std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2}));
+  EXPECT_EQ(fixture().coord_dim(), 0u);
+  EXPECT_TRUE(fixture().coords().empty());
+}
+
 TEST(Wrapper, ConstStructureFromTwoThreads) {
   const Structure s(fixture(), Kind::IG);
   std::vector<Ids> got(2);

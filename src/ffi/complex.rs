@@ -3,7 +3,9 @@
 use std::ffi::{CStr, c_char};
 use std::path::Path;
 
-use super::{Failure, TpxStatus, get_into, guard, guard_value, in_slice, out_ptr};
+use super::{
+    Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr, write_buffer,
+};
 use crate::complex::{Complex, ComplexError};
 use crate::io::{Coords, ReadErrorKind};
 
@@ -187,4 +189,73 @@ pub unsafe extern "C" fn tpx_complex_top_count(
     out: *mut usize,
 ) -> TpxStatus {
     get_into(c, "c", out, |c| c.complex.tops(p as usize).len())
+}
+
+/// Number of coordinates per vertex into `*out`: 0 when the complex has no coordinates (built
+/// from arrays without them, or read from a `.simplices` file without `v` lines). O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid (a live handle; a writable `size_t`).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_coord_dim(c: *const TpxComplex, out: *mut usize) -> TpxStatus {
+    get_into(c, "c", out, |c| c.complex.coords().map_or(0, |x| x.dim))
+}
+
+/// The vertex coordinates, vertex-major (`coord_dim` doubles per vertex, vertex ids `0 .. n`),
+/// copied into `buf` (the caller's, `buf_len` doubles); `*out_len` receives the number of
+/// doubles written, `n * coord_dim` (0 without coordinates).
+///
+/// Errors: NULL_ARGUMENT (`buf` may be NULL only when `buf_len == 0`), BUFFER_TOO_SMALL
+/// (nothing copied; `*out_len` = needed number of doubles, so a call with `buf_len == 0` asks
+/// for the size). Cost: one copy, O(n * coord_dim).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `buf` must have room for `buf_len` doubles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_coords(
+    c: *const TpxComplex,
+    buf: *mut f64,
+    buf_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let c = handle(c, "c")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let data = c.complex.coords().map_or(&[][..], |x| &x.data[..]);
+        write_buffer(data, buf, buf_len, out_len)
+    })
+}
+
+/// The top p-simplices (those that are not a face of another simplex) as rows of p+1 ascending
+/// vertex ids in ascending lexicographic order, copied into `buf` (the caller's, `buf_len`
+/// uint32_t); `*out_len` receives the number of uint32_t written, `(p+1) *`
+/// `tpx_complex_top_count(c, p)`. Together with `tpx_complex_vertex_count` this is the whole
+/// complex: its closure is every simplex.
+///
+/// Errors: NULL_ARGUMENT (`buf` may be NULL only when `buf_len == 0`), DIMENSION_OUT_OF_RANGE
+/// (p > d), BUFFER_TOO_SMALL (nothing copied; `*out_len` = needed length). Cost: one copy,
+/// O((p+1) * number of top p-simplices).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `buf` must have room for `buf_len` uint32_t.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_top_simplices(
+    c: *const TpxComplex,
+    p: u32,
+    buf: *mut u32,
+    buf_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let c = handle(c, "c")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let d = c.complex.dimension();
+        if p as usize > d {
+            return Err(Failure::new(
+                TpxStatus::DimensionOutOfRange,
+                format!("p = {p} is above the complex's dimension {d}"),
+            ));
+        }
+        write_buffer(c.complex.tops(p as usize).as_flat(), buf, buf_len, out_len)
+    })
 }

@@ -6,7 +6,8 @@
 //!   a retired status keeps its number and no new status reuses it.
 //! - Every pointer argument is checked for NULL (`TPX_STATUS_NULL_ARGUMENT`).
 //! - Out-parameters are written only on success, except `*out_len` on
-//!   `TPX_STATUS_BUFFER_TOO_SMALL`, which then holds the needed number of `uint32_t`.
+//!   `TPX_STATUS_BUFFER_TOO_SMALL`, which then holds the needed number of elements (`uint32_t`,
+//!   or `double` for coordinates).
 //! - No Rust panic crosses the boundary: each body runs under `catch_unwind` and a panic becomes
 //!   `TPX_STATUS_PANIC` (so the crate must keep `panic = "unwind"`, checked below).
 //! - After each status-returning call, [`tpx_last_error_message`] describes its failure (or is
@@ -64,7 +65,8 @@ pub enum TpxStatus {
     InvalidSimplex = 10,
     /// A dimension argument (p or q) is above the complex's dimension.
     DimensionOutOfRange = 11,
-    /// The caller's buffer is too short; `*out_len` holds the needed number of `uint32_t`.
+    /// The caller's buffer is too short; `*out_len` holds the needed number of elements
+    /// (`uint32_t`, or `double` for coordinates).
     BufferTooSmall = 12,
     /// A size does not fit the index types.
     TooLarge = 13,
@@ -217,18 +219,20 @@ pub(crate) fn in_slice<'a, T>(p: *const T, len: usize, what: &str) -> Result<&'a
 
 /// Copies `data` to the caller's buffer: the shared tail of every "fill a buffer" function.
 /// `*out_len` receives `data.len()` on success and on BUFFER_TOO_SMALL.
-pub(crate) fn write_buffer(
-    data: &[u32],
-    buf: *mut u32,
+pub(crate) fn write_buffer<T: Copy>(
+    data: &[T],
+    buf: *mut T,
     buf_len: usize,
     out_len: &mut usize,
 ) -> Result<(), Failure> {
     if data.len() > buf_len {
         *out_len = data.len();
+        let what = std::any::type_name::<T>();
         return Err(Failure::new(
             TpxStatus::BufferTooSmall,
             format!(
-                "buffer holds {buf_len} uint32_t, the answer needs {}",
+                "buffer holds {buf_len} {}, the answer needs {}",
+                c_type_name(what),
                 data.len()
             ),
         ));
@@ -244,6 +248,15 @@ pub(crate) fn write_buffer(
     }
     *out_len = data.len();
     Ok(())
+}
+
+/// The C spelling of the element types the buffers carry, for messages.
+fn c_type_name(rust: &str) -> &str {
+    match rust {
+        "u32" => "uint32_t",
+        "f64" => "double",
+        other => other,
+    }
 }
 
 /// The library version, e.g. `"0.1.0"`: a static NUL-terminated string, never freed.

@@ -3,7 +3,10 @@
 use super::{
     Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr, write_buffer,
 };
-use crate::relation::{QueryError, StructureKind, Topology, sort_rows};
+use std::cell::RefCell;
+
+use crate::complex::MAX_DIMENSION;
+use crate::relation::{QueryError, StructureKind, Topology, normalize_simplex, sort_rows};
 use crate::structures::{BuildError, build};
 
 use super::complex::TpxComplex;
@@ -236,7 +239,10 @@ pub unsafe extern "C" fn tpx_structure_simplices(
 /// repeated or out-of-range ids, more than 16 ids), DIMENSION_OUT_OF_RANGE (q > d),
 /// NOT_IN_COMPLEX, BUFFER_TOO_SMALL (nothing copied; `*out_len` = needed length, so a call with
 /// `buf_len == 0` asks for the size). Cost: the structure's query cost plus O(k log k) to sort
-/// the k answers; the answer is recomputed on each call.
+/// the k answers (O(k) when the structure already gives them in order); the answer is
+/// recomputed on each call. Apart from the structure's own query, a call allocates nothing
+/// once a thread has answered a query as large: the answer is assembled in a per-thread buffer
+/// that is kept between calls.
 ///
 /// # Safety
 /// Non-NULL pointers must be valid; `simplex` must hold `simplex_len` ids and `buf` must have
@@ -255,13 +261,128 @@ pub unsafe extern "C" fn tpx_relation(
         let s = handle(s, "s")?;
         let out_len = out_ptr(out_len, "out_len")?;
         let sigma = in_slice(simplex, simplex_len, "simplex")?;
-        let mut rows = Vec::new();
-        s.topo
-            .relation(sigma, q as usize, &mut rows)
-            .map_err(query_failure)?;
-        sort_rows(&mut rows, q as usize + 1);
-        write_buffer(&rows, buf, buf_len, out_len)
+        let topo = s.topo.as_ref();
+        let mut sorted = [0u32; MAX_DIMENSION + 1];
+        let sorted =
+            sorted_simplex(sigma, topo.vertex_count(), &mut sorted).map_err(query_failure)?;
+        let q = q as usize;
+        if q > topo.dimension() {
+            return Err(query_failure(QueryError::DimensionOutOfRange {
+                p: sorted.len() - 1,
+                q,
+                dim: topo.dimension(),
+            }));
+        }
+        with_scratch(|rows| {
+            topo.query(sorted, q, rows).map_err(query_failure)?;
+            sort_rows_in_place(rows, q + 1);
+            write_buffer(rows, buf, buf_len, out_len)
+        })
     })
+}
+
+/// `sigma` sorted into `buf`, checked as `Topology::relation` checks it (same errors), without
+/// allocating on success: this runs once per query of a walk over a whole mesh.
+fn sorted_simplex<'a>(
+    sigma: &[u32],
+    n: u32,
+    buf: &'a mut [u32; MAX_DIMENSION + 1],
+) -> Result<&'a [u32], QueryError> {
+    let k = sigma.len();
+    if k == 0 || k > buf.len() || sigma.iter().any(|&v| v >= n) {
+        return Err(normalize_simplex(sigma, n).expect_err("an invalid simplex"));
+    }
+    let out = &mut buf[..k];
+    out.copy_from_slice(sigma);
+    out.sort_unstable();
+    if out.windows(2).any(|w| w[0] == w[1]) {
+        return Err(normalize_simplex(sigma, n).expect_err("a repeated vertex"));
+    }
+    Ok(out)
+}
+
+thread_local! {
+    /// The answer of the current `tpx_relation` call on this thread, kept between calls so that
+    /// a walk over every simplex does not allocate an answer per call.
+    static SCRATCH: RefCell<Vec<u32>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Runs `f` on this thread's cleared scratch vector (a fresh one during thread teardown or if
+/// the scratch is somehow in use). Capacity above 1 Mi ids is released afterwards, so one huge
+/// answer does not pin its memory for the thread's lifetime.
+fn with_scratch<R>(f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
+    const KEEP: usize = 1 << 20;
+    let mut f = Some(f);
+    let shared = SCRATCH.try_with(|cell| {
+        let mut rows = cell.try_borrow_mut().ok()?;
+        rows.clear();
+        let r = (f.take().expect("called once"))(&mut rows);
+        if rows.capacity() > KEEP {
+            *rows = Vec::new();
+        }
+        Some(r)
+    });
+    match shared {
+        Ok(Some(r)) => r,
+        _ => (f.take().expect("not called yet"))(&mut Vec::new()),
+    }
+}
+
+/// Sorts distinct rows of `arity` ids into ascending lexicographic order in place: a linear
+/// check first (many structures answer in order already), then for rows of 2 to 4 ids a sort of
+/// packed integer keys (one comparison per pair instead of a lexicographic loop: this sort was
+/// a quarter of a vertex-star query), on the stack for the usual small answers.
+pub(super) fn sort_rows_in_place(rows: &mut Vec<u32>, arity: usize) {
+    /// Rows per answer sorted through keys on the stack; longer answers sort the rows directly.
+    const STACK_ROWS: usize = 64;
+    fn sort_fixed<const N: usize>(rows: &mut [u32]) {
+        let (chunks, rest) = rows.as_chunks_mut::<N>();
+        debug_assert!(rest.is_empty());
+        if chunks.is_sorted() {
+            return;
+        }
+        if N == 1 || chunks.len() > STACK_ROWS {
+            chunks.sort_unstable();
+            return;
+        }
+        // Big-endian packing: the integer order of the keys is the lexicographic order.
+        let mut keys = [0u128; STACK_ROWS];
+        let keys = &mut keys[..chunks.len()];
+        for (k, row) in keys.iter_mut().zip(chunks.iter()) {
+            *k = row.iter().fold(0u128, |acc, &v| (acc << 32) | v as u128);
+        }
+        if keys.len() <= 16 {
+            // A plain insertion sort: the typical answer (a triangle's 3 neighbours, a vertex's
+            // 6 to 20 cofaces) is too short for the general sort's set-up to pay off.
+            for i in 1..keys.len() {
+                let k = keys[i];
+                let mut j = i;
+                while j > 0 && keys[j - 1] > k {
+                    keys[j] = keys[j - 1];
+                    j -= 1;
+                }
+                keys[j] = k;
+            }
+        } else {
+            keys.sort_unstable();
+        }
+        for (k, row) in keys.iter().zip(chunks.iter_mut()) {
+            for (i, v) in row.iter_mut().enumerate() {
+                *v = (k >> (32 * (N - 1 - i))) as u32;
+            }
+        }
+    }
+    match arity {
+        1 => sort_fixed::<1>(rows),
+        2 => sort_fixed::<2>(rows),
+        3 => sort_fixed::<3>(rows),
+        4 => sort_fixed::<4>(rows),
+        _ => {
+            if !rows.chunks_exact(arity).is_sorted() {
+                sort_rows(rows, arity);
+            }
+        }
+    }
 }
 
 /// R_{p,q} of every p-simplex at once, as a new table owned by the caller (free with
@@ -297,7 +418,7 @@ pub unsafe extern "C" fn tpx_relation_table(
             rows.clear();
             // `simplices` lists valid, ascending simplices of the complex, as `query` expects.
             topo.query(sigma, q, &mut rows).map_err(query_failure)?;
-            sort_rows(&mut rows, q + 1);
+            sort_rows_in_place(&mut rows, q + 1);
             ids.extend_from_slice(&rows);
             offsets.push(ids.len());
         }

@@ -259,6 +259,103 @@ fn relation_table_of_edges_at_each_vertex() {
     }
 }
 
+/// Calls tpx_complex_top_simplices with a buffer of `cap` entries; returns the status, the
+/// filled prefix (or the untouched buffer) and `*out_len` (7777 if untouched).
+fn top_simplices(c: *const TpxComplex, p: u32, cap: usize) -> (TpxStatus, Vec<u32>, usize) {
+    let mut buf = vec![u32::MAX; cap];
+    let mut len = 7777usize;
+    let st = unsafe { tpx_complex_top_simplices(c, p, buf.as_mut_ptr(), cap, &mut len) };
+    if st == TpxStatus::Ok {
+        buf.truncate(len);
+    }
+    (st, buf, len)
+}
+
+#[test]
+fn top_simplices_and_coordinates_give_back_the_complex() {
+    // Two triangles given unsorted, one a duplicate, plus an isolated vertex 4 and a face of
+    // the first triangle (absorbed).
+    //
+    //   2 ---- 3       4 (isolated)
+    //   | \    |
+    //   |  \   |
+    //   0 ---- 1
+    let ids = [2u32, 1, 0, 1, 3, 2, 0, 2, 1, 0, 1];
+    let offsets = [0usize, 3, 6, 9, 11];
+    #[rustfmt::skip]
+    let coords = [
+        0.0, 0.0, 0.5,
+        1.0, 0.0, 0.5,
+        0.0, 1.0, 0.5,
+        1.0, 1.0, 0.5,
+        9.0, 9.0, 9.0,
+    ];
+    let mut c = null_mut();
+    let st = unsafe {
+        tpx_complex_from_arrays(
+            5,
+            ids.as_ptr(),
+            offsets.as_ptr(),
+            4,
+            coords.as_ptr(),
+            3,
+            &mut c,
+        )
+    };
+    assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+
+    assert_eq!(
+        top_simplices(c, 2, 6),
+        (TpxStatus::Ok, vec![0, 1, 2, 1, 2, 3], 6)
+    );
+    assert_eq!(top_simplices(c, 1, 0), (TpxStatus::Ok, vec![], 0));
+    assert_eq!(top_simplices(c, 0, 1), (TpxStatus::Ok, vec![4], 1));
+    // Too small: nothing copied, the needed length reported; a NULL buffer asks for the size.
+    assert_eq!(
+        top_simplices(c, 2, 5),
+        (TpxStatus::BufferTooSmall, vec![u32::MAX; 5], 6)
+    );
+    let mut len = 0usize;
+    let st = unsafe { tpx_complex_top_simplices(c, 2, null_mut(), 0, &mut len) };
+    assert_eq!((st, len), (TpxStatus::BufferTooSmall, 6));
+    assert_eq!(
+        top_simplices(c, 3, 16),
+        (TpxStatus::DimensionOutOfRange, vec![u32::MAX; 16], 7777)
+    );
+    assert!(last_error().contains("p = 3"), "{}", last_error());
+
+    let mut dim = 99usize;
+    assert_eq!(unsafe { tpx_complex_coord_dim(c, &mut dim) }, TpxStatus::Ok);
+    assert_eq!(dim, 3);
+    let mut buf = [f64::NAN; 15];
+    let mut len = 0usize;
+    let st = unsafe { tpx_complex_coords(c, buf.as_mut_ptr(), 15, &mut len) };
+    assert_eq!((st, len), (TpxStatus::Ok, 15));
+    assert_eq!(buf, coords);
+    let mut small = [f64::NAN; 14];
+    let mut len = 0usize;
+    let st = unsafe { tpx_complex_coords(c, small.as_mut_ptr(), 14, &mut len) };
+    assert_eq!((st, len), (TpxStatus::BufferTooSmall, 15));
+    assert!(small.iter().all(|x| x.is_nan()));
+    assert!(last_error().contains("14 double"), "{}", last_error());
+    unsafe { tpx_complex_free(c) };
+
+    // Without coordinates: dimension 0 and an empty answer, even into a NULL buffer.
+    let c = tet_triangle_wire();
+    let (mut dim, mut len) = (99usize, 99usize);
+    unsafe {
+        assert_eq!(tpx_complex_coord_dim(c, &mut dim), TpxStatus::Ok);
+        assert_eq!(
+            tpx_complex_coords(c, null_mut(), 0, &mut len),
+            TpxStatus::Ok
+        );
+    }
+    assert_eq!((dim, len), (0, 0));
+    assert_eq!(top_simplices(c, 3, 4), (TpxStatus::Ok, vec![0, 1, 2, 3], 4));
+    assert_eq!(top_simplices(c, 1, 2), (TpxStatus::Ok, vec![4, 5], 2));
+    unsafe { tpx_complex_free(c) };
+}
+
 #[test]
 fn null_arguments_are_refused_and_outputs_untouched() {
     let c = tet_triangle_wire();
@@ -282,6 +379,22 @@ fn null_arguments_are_refused_and_outputs_untouched() {
         );
         assert_eq!(
             tpx_complex_top_count(c, 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_coord_dim(null(), &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_coords(c, null_mut(), 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_top_simplices(null(), 0, null_mut(), 0, &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_top_simplices(c, 3, null_mut(), 4, &mut z),
             TpxStatus::NullArgument
         );
         assert_eq!(
@@ -458,6 +571,89 @@ fn kinds_and_query_errors_map_to_statuses() {
     unsafe {
         tpx_structure_free(s);
         tpx_complex_free(c);
+    }
+}
+
+/// tpx_relation validates and sorts on its own (no allocation per call): its answers and error
+/// messages must be those of the Rust API, `Topology::relation` then `sort_rows`, for every
+/// simplex and every q, with answers of all sizes following each other on one thread (the
+/// per-thread answer buffer is reused). A 4-simplex makes rows of 5 ids (the general sort).
+#[test]
+fn relation_matches_the_rust_api_for_every_simplex_and_q() {
+    // A 4-simplex 0..4 sharing vertex 4 with a triangle 4 5 6, and a wire edge 6-7.
+    let c = complex(8, &[&[4, 3, 2, 1, 0], &[6, 5, 4], &[7, 6]]);
+    for kind in [TPX_KIND_IG, TPX_KIND_SIG] {
+        let mut s = null_mut();
+        assert_eq!(
+            unsafe { tpx_structure_build(c, kind, &mut s) },
+            TpxStatus::Ok,
+            "{}",
+            last_error()
+        );
+        let topo = unsafe { &*s }.topo.as_ref();
+        let d = topo.dimension();
+        for p in 0..=d {
+            let mut all = Vec::new();
+            topo.simplices(p, &mut all);
+            for sigma in all.chunks_exact(p + 1) {
+                // Given in descending order, to exercise the sort of the query simplex.
+                let given: Vec<u32> = sigma.iter().rev().copied().collect();
+                for q in 0..=d {
+                    let mut want = Vec::new();
+                    topo.relation(sigma, q, &mut want).unwrap();
+                    crate::relation::sort_rows(&mut want, q + 1);
+                    let (st, got) = relation(s, &given, q as u32, 512);
+                    assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+                    assert_eq!(got, want, "kind {kind} R{p},{q} of {sigma:?}");
+                }
+            }
+        }
+        // Invalid queries: the same message as the Rust API's error.
+        for bad in [&[][..], &[3, 1, 3], &[2, 8], &[0, 5]] {
+            let want = topo
+                .relation(bad, 1, &mut Vec::new())
+                .unwrap_err()
+                .to_string();
+            let (st, _) = relation(s, bad, 1, 8);
+            assert_ne!(st, TpxStatus::Ok);
+            assert_eq!(last_error(), want);
+        }
+        let too_many: Vec<u32> = (0..17).collect();
+        let want = topo
+            .relation(&too_many, 0, &mut Vec::new())
+            .unwrap_err()
+            .to_string();
+        assert_eq!(relation(s, &too_many, 0, 8).0, TpxStatus::InvalidSimplex);
+        assert_eq!(last_error(), want);
+        unsafe { tpx_structure_free(s) };
+    }
+    unsafe { tpx_complex_free(c) };
+}
+
+#[test]
+fn answers_are_sorted_in_place_for_every_arity() {
+    for arity in 1..=6usize {
+        // Rows r = 0..5 of `arity` ids (r, r+1, ...), listed 3 1 4 0 2.
+        let row = |r: u32| (r..r + arity as u32).collect::<Vec<u32>>();
+        let mut rows: Vec<u32> = [3, 1, 4, 0, 2].into_iter().flat_map(row).collect();
+        super::structure::sort_rows_in_place(&mut rows, arity);
+        let want: Vec<u32> = (0..5).flat_map(row).collect();
+        assert_eq!(rows, want, "arity {arity}");
+        // Rows that differ only in a later id (high ids: no carry between packed ids), and
+        // more rows than are sorted on the stack.
+        for n in [7u32, 200] {
+            let row = |r: u32| {
+                let mut v = vec![u32::MAX - 1; arity];
+                v[arity - 1] = u32::MAX - 1 - (r % 3);
+                v[0] = r / 3;
+                v
+            };
+            let mut rows: Vec<u32> = (0..n).rev().flat_map(row).collect();
+            let mut want: Vec<Vec<u32>> = (0..n).map(row).collect();
+            want.sort();
+            super::structure::sort_rows_in_place(&mut rows, arity);
+            assert_eq!(rows, want.concat(), "arity {arity}, {n} rows");
+        }
     }
 }
 

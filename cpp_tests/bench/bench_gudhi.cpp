@@ -1,0 +1,169 @@
+// topoplex_bench_gudhi FILE: any complex Topoplex reads (.off .obj .mesh .simplices), Topoplex
+// next to GUDHI's Simplex_tree (see bench_common.hpp for names, counters and the cross-check).
+//
+// Ops:
+//   build      from the complex's top simplices in memory: Simplex_tree::insert_simplex_and_subfaces
+//              of each; tpx_complex_from_arrays + tpx_structure_build for Topoplex
+//   cofaces_v  the whole star of every vertex: GUDHI cofaces_simplex_range(v, 0); Topoplex
+//              R_{0,q} for q = 1..d (one tpx_relation call per q)
+//   cofaces_e  the whole star of every edge: cofaces_simplex_range(e, 0); R_{1,q}, q = 2..d
+// GUDHI's star includes the simplex itself, which the count leaves out. The tree uses the
+// lightest options GUDHI 3.7 offers (no filtration value, no key stored), so its heap is the
+// tree alone; simplex handles of the vertices and edges are looked up before timing, as
+// Topoplex's edge list is.
+#include <gudhi/Simplex_tree.h>
+
+#include <cstdio>
+
+#include "bench_common.hpp"
+
+namespace {
+
+using namespace tpxbench;
+
+struct LightOptions {
+  typedef Gudhi::linear_indexing_tag Indexing_tag;
+  typedef int Vertex_handle;
+  typedef float Filtration_value;
+  typedef std::uint32_t Simplex_key;
+  static const bool store_key = false;
+  static const bool store_filtration = false;
+  static const bool contiguous_vertices = false;
+};
+using Stree = Gudhi::Simplex_tree<LightOptions>;
+using Sh = Stree::Simplex_handle;
+
+Soup g_soup;
+
+std::unique_ptr<Stree> gudhi_build(const Soup& soup) {
+  auto st = std::make_unique<Stree>();
+  std::vector<int> s;
+  for (size_t i = 0; i < soup.size(); ++i) {
+    s.assign(soup.ids.begin() + long(soup.offsets[i]), soup.ids.begin() + long(soup.offsets[i + 1]));
+    st->insert_simplex_and_subfaces(s);
+  }
+  return st;
+}
+
+struct GudhiWalk {
+  std::unique_ptr<Stree> st;
+  std::vector<Sh> vertices, edges;
+};
+
+uint64_t star_count(Stree& st, const std::vector<Sh>& handles) {
+  uint64_t n = 0;
+  for (Sh sh : handles) {
+    const auto star = st.cofaces_simplex_range(sh, 0);
+    n += star.empty() ? 0 : star.size() - 1;
+  }
+  return n;
+}
+
+struct Built {
+  StructurePtr s;
+  std::vector<uint32_t> vertices, edges;
+  uint32_t d = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string path = init(&argc, argv, "FILE (.off .obj .mesh .simplices)");
+  const auto cx = load_complex(path);
+  g_soup = soup_of(cx.get());
+  uint32_t d = 0;
+  tpx_check(tpx_complex_dimension(cx.get(), &d), "tpx_complex_dimension");
+
+  uint64_t simplices = 0;
+  {
+    TpxStatus st = TPX_STATUS_OK;
+    const auto ig = build_from_soup(g_soup, TPX_KIND_IG, &st);
+    tpx_check(st, "building the IG");
+    simplices = simplex_count(ig.get());
+  }
+  {
+    const auto st = gudhi_build(g_soup);
+    if (st->num_simplices() != simplices) {
+      std::fprintf(stderr, "GUDHI holds %zu simplices, Topoplex %llu\n", size_t(st->num_simplices()),
+                   static_cast<unsigned long long>(simplices));
+      return 1;
+    }
+  }
+
+  std::vector<Kind> kinds;
+  for (const auto& k : kinds_from_env()) {
+    TpxStatus st = TPX_STATUS_OK;
+    if (build_from_soup(g_soup, k.id, &st))
+      kinds.push_back(k);
+    else
+      note("tpx_" + k.name + " skipped: " + tpx_message());
+  }
+
+  add("build", "gudhi", Unit::Build, [simplices](benchmark::State& state) {
+    slot().clear();
+    for (auto _ : state) {
+      auto st = gudhi_build(g_soup);
+      state.PauseTiming();
+      st.reset();
+      state.ResumeTiming();
+    }
+    HeapUse use;
+    auto st = measure_heap([] { return gudhi_build(g_soup); }, &use);
+    set_heap_counters(state, use);
+    set_elements(state, simplices);
+  });
+  for (const auto& k : kinds) add_tpx_build(g_soup, k, simplices);
+
+  const std::function<std::unique_ptr<GudhiWalk>()> gmake = [] {
+    auto w = std::make_unique<GudhiWalk>();
+    w->st = gudhi_build(g_soup);
+    for (uint32_t v = 0; v < g_soup.n_vertices; ++v) w->vertices.push_back(w->st->find(std::vector<int>{int(v)}));
+    for (Sh sh : w->st->skeleton_simplex_range(1))
+      if (w->st->dimension(sh) == 1) w->edges.push_back(sh);
+    return w;
+  };
+  for (const char* op : {"cofaces_v", "cofaces_e"}) {
+    const bool vertices = op[8] == 'v';
+    add(op, "gudhi", Unit::Walk, [=](benchmark::State& state) {
+      GudhiWalk& w = slot().get<GudhiWalk>("gudhi", gmake);
+      uint64_t n = 0;
+      for (auto _ : state) {
+        n = star_count(*w.st, vertices ? w.vertices : w.edges);
+        benchmark::DoNotOptimize(n);
+      }
+      check_count(state, op, "gudhi", n);
+      set_elements(state, n);
+    });
+  }
+
+  for (const auto& k : kinds) {
+    const std::string lib = "tpx_" + k.name;
+    const std::function<std::unique_ptr<Built>()> make = [k] {
+      auto b = std::make_unique<Built>();
+      TpxStatus st = TPX_STATUS_OK;
+      b->s = build_from_soup(g_soup, k.id, &st);
+      tpx_check(st, "tpx_structure_build");
+      tpx_check(tpx_structure_dimension(b->s.get(), &b->d), "tpx_structure_dimension");
+      b->vertices = vertex_rows(g_soup.n_vertices);
+      if (b->d >= 1) b->edges = simplices_of(b->s.get(), 1);
+      return b;
+    };
+    for (const char* op : {"cofaces_v", "cofaces_e"}) {
+      const uint32_t p = op[8] == 'v' ? 0 : 1;
+      add(op, lib, Unit::Walk, [=](benchmark::State& state) {
+        const Built& b = slot().get<Built>(lib, make);
+        std::vector<uint32_t> qs;
+        for (uint32_t q = p + 1; q <= b.d; ++q) qs.push_back(q);
+        Walker w;
+        uint64_t count = 0;
+        for (auto _ : state) {
+          count = walk(state, b.s.get(), p == 0 ? b.vertices : b.edges, p, qs, w);
+          benchmark::DoNotOptimize(count);
+        }
+        check_count(state, op, lib, count);
+        set_elements(state, count);
+      });
+    }
+  }
+  return run();
+}

@@ -1,0 +1,365 @@
+// topoplex_bench_surface FILE.off: triangle meshes, Topoplex next to OpenMesh's TriMesh and
+// CGAL's Surface_mesh (see bench_common.hpp for names, counters and the cross-check).
+//
+// Ops, each over all elements of the mesh:
+//   load   read the file into the library's structure (Topoplex: tpx_complex_from_file +
+//          tpx_structure_build; OpenMesh: IO::read_mesh; CGAL: IO::read_OFF)
+//   build  the structure from the same in-memory triangle soup (the file's faces, oriented):
+//          add_vertex/add_face after reserve() for the peers, tpx_complex_from_arrays +
+//          tpx_structure_build for Topoplex
+//   VF     R_{0,2} of every vertex (OpenMesh vf_range, CGAL faces_around_target)
+//   VV     R_{0,0} of every vertex (vv_range, vertices_around_target)
+//   FF     R_{2,2} of every triangle, the triangles sharing an edge (ff_range, faces_around_face)
+// The peers' heap includes their vertex coordinates (OpenMesh 3 floats, CGAL 3 doubles per
+// vertex; counter `geometry_bytes`), Topoplex's structures hold none.
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Surface_mesh.h>
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "bench_common.hpp"
+
+namespace {
+
+using namespace tpxbench;
+
+using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using SMesh = CGAL::Surface_mesh<K::Point_3>;
+
+// The file's triangles as it orders them (orientation kept, which add_face needs; Topoplex's
+// own top simplices are sorted) and its vertex coordinates. Returns an error text or "".
+std::string read_off_soup(const std::string& path, Soup* soup) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return "cannot open " + path;
+  std::stringstream ss;
+  ss << in.rdbuf();
+  const std::string text = ss.str();
+  std::vector<std::string> lines;
+  {
+    std::istringstream ls(text);
+    std::string line;
+    while (std::getline(ls, line)) {
+      const size_t hash = line.find('#');
+      if (hash != std::string::npos) line.resize(hash);
+      if (line.find_first_not_of(" \t\r") != std::string::npos) lines.push_back(line);
+    }
+  }
+  size_t li = 0;
+  if (lines.empty() || lines[0].compare(0, 3, "OFF") != 0) return path + ": not an OFF file";
+  std::istringstream head(lines[0].substr(3));
+  size_t nv = 0, nf = 0;
+  if (!(head >> nv >> nf)) {
+    if (lines.size() < 2) return path + ": no counts";
+    std::istringstream counts(lines[1]);
+    if (!(counts >> nv >> nf)) return path + ": bad counts";
+    li = 2;
+  } else {
+    li = 1;
+  }
+  if (lines.size() < li + nv + nf) return path + ": truncated";
+  soup->n_vertices = uint32_t(nv);
+  soup->coord_dim = 3;
+  soup->coords.reserve(3 * nv);
+  for (size_t i = 0; i < nv; ++i) {
+    const char* p = lines[li + i].c_str();
+    char* end = nullptr;
+    for (int k = 0; k < 3; ++k) {
+      soup->coords.push_back(std::strtod(p, &end));
+      if (end == p) return path + ": bad vertex line " + std::to_string(i);
+      p = end;
+    }
+  }
+  soup->ids.reserve(3 * nf);
+  for (size_t i = 0; i < nf; ++i) {
+    const char* p = lines[li + nv + i].c_str();
+    char* end = nullptr;
+    const unsigned long n = std::strtoul(p, &end, 10);
+    if (n != 3) return path + ": face " + std::to_string(i) + " is not a triangle";
+    uint32_t t[3];
+    for (int k = 0; k < 3; ++k) {
+      p = end;
+      t[k] = uint32_t(std::strtoul(p, &end, 10));
+      if (end == p || t[k] >= nv) return path + ": bad face line " + std::to_string(i);
+    }
+    soup->add(t, 3);
+  }
+  return "";
+}
+
+std::unique_ptr<OMesh> openmesh_from_soup(const Soup& soup, std::string* why) {
+  auto m = std::make_unique<OMesh>();
+  const size_t nf = soup.size();
+  m->reserve(soup.n_vertices, 3 * nf / 2, nf);
+  std::vector<OMesh::VertexHandle> vh(soup.n_vertices);
+  for (uint32_t i = 0; i < soup.n_vertices; ++i)
+    vh[i] = m->add_vertex(OMesh::Point(float(soup.coords[3 * i]), float(soup.coords[3 * i + 1]),
+                                       float(soup.coords[3 * i + 2])));
+  for (size_t f = 0; f < nf; ++f) {
+    const uint32_t* t = &soup.ids[soup.offsets[f]];
+    if (!m->add_face(vh[t[0]], vh[t[1]], vh[t[2]]).is_valid()) {
+      *why = "OpenMesh add_face refused triangle #" + std::to_string(f) + " (non-manifold or inconsistent orientation)";
+      return nullptr;
+    }
+  }
+  return m;
+}
+
+std::unique_ptr<SMesh> cgal_from_soup(const Soup& soup, std::string* why) {
+  auto m = std::make_unique<SMesh>();
+  const size_t nf = soup.size();
+  m->reserve(SMesh::size_type(soup.n_vertices), SMesh::size_type(3 * nf / 2), SMesh::size_type(nf));
+  std::vector<SMesh::Vertex_index> vh(soup.n_vertices);
+  for (uint32_t i = 0; i < soup.n_vertices; ++i)
+    vh[i] = m->add_vertex(K::Point_3(soup.coords[3 * i], soup.coords[3 * i + 1], soup.coords[3 * i + 2]));
+  for (size_t f = 0; f < nf; ++f) {
+    const uint32_t* t = &soup.ids[soup.offsets[f]];
+    if (m->add_face(vh[t[0]], vh[t[1]], vh[t[2]]) == SMesh::null_face()) {
+      *why = "Surface_mesh add_face refused triangle #" + std::to_string(f) + " (non-manifold or inconsistent orientation)";
+      return nullptr;
+    }
+  }
+  return m;
+}
+
+std::unique_ptr<OMesh> openmesh_load(const std::string& path) {
+  auto m = std::make_unique<OMesh>();
+  if (!OpenMesh::IO::read_mesh(*m, path)) return nullptr;
+  return m;
+}
+
+std::unique_ptr<SMesh> cgal_load(const std::string& path) {
+  auto m = std::make_unique<SMesh>();
+  if (!CGAL::IO::read_OFF(path, *m)) return nullptr;
+  return m;
+}
+
+// The peers' walks. Each counts the elements its circulator yields.
+uint64_t om_vf(const OMesh& m) {
+  uint64_t n = 0;
+  for (auto v : m.vertices())
+    for (auto f : m.vf_range(v)) {
+      (void)f;
+      ++n;
+    }
+  return n;
+}
+uint64_t om_vv(const OMesh& m) {
+  uint64_t n = 0;
+  for (auto v : m.vertices())
+    for (auto u : m.vv_range(v)) {
+      (void)u;
+      ++n;
+    }
+  return n;
+}
+uint64_t om_ff(const OMesh& m) {
+  uint64_t n = 0;
+  for (auto f : m.faces())
+    for (auto g : m.ff_range(f)) {
+      (void)g;
+      ++n;
+    }
+  return n;
+}
+uint64_t sm_vf(const SMesh& m) {
+  uint64_t n = 0;
+  for (auto v : m.vertices()) {
+    const auto h = m.halfedge(v);
+    if (h == SMesh::null_halfedge()) continue;
+    for (auto f : CGAL::faces_around_target(h, m)) n += f != SMesh::null_face() ? 1 : 0;
+  }
+  return n;
+}
+uint64_t sm_vv(const SMesh& m) {
+  uint64_t n = 0;
+  for (auto v : m.vertices()) {
+    const auto h = m.halfedge(v);
+    if (h == SMesh::null_halfedge()) continue;
+    for (auto u : CGAL::vertices_around_target(h, m)) {
+      (void)u;
+      ++n;
+    }
+  }
+  return n;
+}
+uint64_t sm_ff(const SMesh& m) {
+  uint64_t n = 0;
+  for (auto f : m.faces())
+    for (auto g : CGAL::faces_around_face(m.halfedge(f), m)) n += g != SMesh::null_face() ? 1 : 0;
+  return n;
+}
+
+// Times `make` (destruction untimed), then measures one more build's heap.
+template <class T>
+void time_peer_build(benchmark::State& state, uint64_t simplices, const std::function<std::unique_ptr<T>()>& make,
+                     double geometry_bytes) {
+  slot().clear();
+  for (auto _ : state) {
+    auto m = make();
+    if (!m) {
+      fail(state, "the peer failed to build the mesh");
+      return;
+    }
+    state.PauseTiming();
+    m.reset();
+    state.ResumeTiming();
+  }
+  HeapUse use;
+  auto m = measure_heap(make, &use);
+  set_heap_counters(state, use);
+  set_elements(state, simplices);
+  state.counters["geometry_bytes"] = geometry_bytes;
+}
+
+template <class T>
+void add_walk(const std::string& op, const std::string& lib, const std::function<std::unique_ptr<T>()>& make,
+              uint64_t (*walk_fn)(const T&)) {
+  add(op, lib, Unit::Walk, [=](benchmark::State& state) {
+    const T& m = slot().get<T>(lib, make);
+    uint64_t n = 0;
+    for (auto _ : state) {
+      n = walk_fn(m);
+      benchmark::DoNotOptimize(n);
+    }
+    check_count(state, op, lib, n);
+    set_elements(state, n);
+  });
+}
+
+struct Built {
+  StructurePtr s;
+  std::vector<uint32_t> vertices, triangles;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string path = init(&argc, argv, "FILE.off");
+  const auto cx = load_complex(path);
+  uint32_t d = 0, n = 0;
+  tpx_check(tpx_complex_dimension(cx.get(), &d), "tpx_complex_dimension");
+  tpx_check(tpx_complex_vertex_count(cx.get(), &n), "tpx_complex_vertex_count");
+  size_t tris = 0;
+  tpx_check(tpx_complex_top_count(cx.get(), 2, &tris), "tpx_complex_top_count");
+  if (d != 2) {
+    std::fprintf(stderr, "%s: a triangle mesh has dimension 2, this complex has %u\n", path.c_str(), d);
+    return 2;
+  }
+
+  static Soup soup;
+  const std::string bad = read_off_soup(path, &soup);
+  if (!bad.empty()) {
+    std::fprintf(stderr, "%s\n", bad.c_str());
+    return 2;
+  }
+  if (soup.size() != tris || soup.n_vertices != n) {
+    std::fprintf(stderr, "%s: Topoplex reads %u vertices and %zu triangles, the file lists %u and %zu "
+                 "(repeated triangles?): the libraries would not see the same complex\n",
+                 path.c_str(), n, tris, soup.n_vertices, soup.size());
+    return 2;
+  }
+
+  // The number of simplices of all dimensions (the `elements` of load/build), from the IG.
+  uint64_t simplices = 0;
+  {
+    TpxStatus st = TPX_STATUS_OK;
+    const auto ig = build_from_soup(soup, TPX_KIND_IG, &st);
+    tpx_check(st, "building the IG");
+    simplices = simplex_count(ig.get());
+  }
+  const double om_geometry = double(n) * sizeof(OMesh::Point);
+  const double sm_geometry = double(n) * sizeof(K::Point_3);
+
+  // Which peers hold this mesh as the file gives it (manifold, consistently oriented).
+  std::string why;
+  const bool have_om = openmesh_from_soup(soup, &why) != nullptr;
+  if (!have_om) note("openmesh skipped: " + why);
+  const bool have_sm = cgal_from_soup(soup, &why) != nullptr;
+  if (!have_sm) note("cgal_sm skipped: " + why);
+
+  std::vector<Kind> kinds;
+  for (const auto& k : kinds_from_env()) {
+    TpxStatus st = TPX_STATUS_OK;
+    if (build_from_soup(soup, k.id, &st))
+      kinds.push_back(k);
+    else
+      note("tpx_" + k.name + " skipped: " + tpx_message());
+  }
+
+  using OMake = std::function<std::unique_ptr<OMesh>()>;
+  using SMake = std::function<std::unique_ptr<SMesh>()>;
+  const OMake om_build = [] {
+    std::string w;
+    return openmesh_from_soup(soup, &w);
+  };
+  const SMake sm_build = [] {
+    std::string w;
+    return cgal_from_soup(soup, &w);
+  };
+  const OMake om_load = [path] { return openmesh_load(path); };
+  const SMake sm_load = [path] { return cgal_load(path); };
+
+  if (have_om)
+    add("load", "openmesh", Unit::Build,
+        [=](benchmark::State& s) { time_peer_build<OMesh>(s, simplices, om_load, om_geometry); });
+  if (have_sm)
+    add("load", "cgal_sm", Unit::Build,
+        [=](benchmark::State& s) { time_peer_build<SMesh>(s, simplices, sm_load, sm_geometry); });
+  for (const auto& k : kinds) add_tpx_load(path, k, simplices);
+  if (have_om)
+    add("build", "openmesh", Unit::Build,
+        [=](benchmark::State& s) { time_peer_build<OMesh>(s, simplices, om_build, om_geometry); });
+  if (have_sm)
+    add("build", "cgal_sm", Unit::Build,
+        [=](benchmark::State& s) { time_peer_build<SMesh>(s, simplices, sm_build, sm_geometry); });
+  for (const auto& k : kinds) add_tpx_build(soup, k, simplices);
+
+  // Walks, library by library so that each builds its structure once (Slot).
+  if (have_om) {
+    add_walk<OMesh>("VF", "openmesh", om_build, om_vf);
+    add_walk<OMesh>("VV", "openmesh", om_build, om_vv);
+    add_walk<OMesh>("FF", "openmesh", om_build, om_ff);
+  }
+  if (have_sm) {
+    add_walk<SMesh>("VF", "cgal_sm", sm_build, sm_vf);
+    add_walk<SMesh>("VV", "cgal_sm", sm_build, sm_vv);
+    add_walk<SMesh>("FF", "cgal_sm", sm_build, sm_ff);
+  }
+  for (const auto& k : kinds) {
+    const std::string lib = "tpx_" + k.name;
+    const std::function<std::unique_ptr<Built>()> make = [k] {
+      auto b = std::make_unique<Built>();
+      TpxStatus st = TPX_STATUS_OK;
+      b->s = build_from_soup(soup, k.id, &st);
+      tpx_check(st, "tpx_structure_build");
+      b->vertices = vertex_rows(soup.n_vertices);
+      b->triangles = simplices_of(b->s.get(), 2);
+      return b;
+    };
+    struct Op {
+      const char* name;
+      uint32_t p, q;
+    };
+    for (const Op& op : {Op{"VF", 0, 2}, Op{"VV", 0, 0}, Op{"FF", 2, 2}}) {
+      add(op.name, lib, Unit::Walk, [=](benchmark::State& state) {
+        const Built& b = slot().get<Built>(lib, make);
+        const auto& rows = op.p == 0 ? b.vertices : b.triangles;
+        Walker w;
+        uint64_t count = 0;
+        for (auto _ : state) {
+          count = walk(state, b.s.get(), rows, op.p, {op.q}, w);
+          benchmark::DoNotOptimize(count);
+        }
+        check_count(state, op.name, lib, count);
+        set_elements(state, count);
+      });
+    }
+  }
+  return run();
+}
