@@ -99,7 +99,9 @@ def size_of(dataset: str) -> int:
 def fmt_ratio(x: float | None) -> str:
     if x is None or not math.isfinite(x):
         return "—"
-    return f"{x:.2f}" if x < 10 else f"{x:.0f}"
+    if x >= 10:
+        return f"{x:.0f}"
+    return f"{x:.2f}" if x >= 0.1 else f"{x:.2g}"
 
 
 def fmt_ns(x: float | None) -> str:
