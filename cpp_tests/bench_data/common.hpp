@@ -48,7 +48,8 @@ fs::path find_mesh(const Env& env, const std::string& name);
 // CGAL's points_3/FILE.
 fs::path find_points(const Env& env, const std::string& file);
 
-// Writes `text` producers atomically: the caller writes into tmp_path(final), then commit().
+// Files appear atomically (an interrupted run leaves no truncated dataset behind): write into
+// tmp_path(final), then commit().
 fs::path tmp_path(const fs::path& final_path);
 void commit(const fs::path& tmp, const fs::path& final_path);
 
