@@ -6,7 +6,8 @@
 #   3. build the Google Benchmark programs (cpp_tests/bench) against the prefix and run
 #      topoplex_bench_surface on surf-*.off, topoplex_bench_tets on tet-*.mesh and
 #      topoplex_bench_gudhi on every dataset, JSON into the results directory;
-#   4. `cargo bench --bench structures` (criterion, Rust API), if that bench exists;
+#   4. `cargo bench --bench structures` (criterion, Rust API), if that bench exists, and its
+#      tables (benches/structures_table.py) into RESULTS/criterion.md;
 #   5. scripts/bench_table.py: one Markdown table of Topoplex / peer ratios and the aims of
 #      issue 9 part 3, printed and written to RESULTS/table.md.
 #
@@ -28,7 +29,7 @@ results=""
 for arg in "$@"; do
   case "$arg" in
     --quick) quick=1 ;;
-    -h|--help) sed -n "2,26p" "$0"; exit 0 ;;
+    -h|--help) sed -n "2,24p" "$0"; exit 0 ;;
     -*) echo "unknown option $arg" >&2; exit 2 ;;
     *) results=$arg ;;
   esac
@@ -154,6 +155,11 @@ if [ -f "$root/benches/structures.rs" ]; then
     failed+=("cargo bench --bench structures (see criterion.log)")
   fi
   echo "criterion output: $results/criterion.log, reports in $target/criterion"
+  # The criterion bench's own tables (benches/structures_table.py, when that script exists).
+  if [ -f "$root/benches/structures_table.py" ]; then
+    python3 "$root/benches/structures_table.py" "$target/criterion" >"$results/criterion.md" \
+      || failed+=("benches/structures_table.py")
+  fi
 else
   echo "benches/structures.rs not present: skipped"
 fi
@@ -162,6 +168,10 @@ echo "== table"
 python3 "$root/scripts/bench_table.py" "$results" --datasets "$data/datasets.tsv" \
   | tee "$results/table.md" || failed+=("bench_table.py")
 
+if [ -s "$results/criterion.md" ]; then
+  echo
+  echo "== Rust API (criterion): $results/criterion.md"
+fi
 echo
 echo "results: $results"
 if [ ${#failed[@]} -gt 0 ]; then
