@@ -1,0 +1,180 @@
+#!/usr/bin/env bash
+# Topoplex side by side with OpenMesh, CGAL and GUDHI, in one run (issue 9 part 2):
+#   1. build and install Topoplex (release) into a prefix, as scripts/cpp-tests.sh does;
+#   2. build the dataset maker (cpp_tests/bench_data) and make the datasets, cached in
+#      $TOPOPLEX_BENCH_DATA (default: <target dir>/bench-data; existing files are reused);
+#   3. build the Google Benchmark programs (cpp_tests/bench) against the prefix and run
+#      topoplex_bench_surface on surf-*.off, topoplex_bench_tets on tet-*.mesh and
+#      topoplex_bench_gudhi on every dataset, JSON into the results directory;
+#   4. `cargo bench --bench structures` (criterion, Rust API), if that bench exists, and its
+#      tables (benches/structures_table.py) into RESULTS/criterion.md;
+#   5. scripts/bench_table.py: one Markdown table of Topoplex / peer ratios and the aims of
+#      issue 9 part 3, printed and written to RESULTS/table.md.
+#
+# usage: scripts/bench.sh [--quick] [RESULTS_DIR]
+#   --quick      only the ~10^4 and ~10^5 datasets, short minimum times (a smoke run)
+#   RESULTS_DIR  default <target dir>/bench-results/<UTC date-time>
+# Environment: TOPOPLEX_BENCH_DATA (datasets), TOPOPLEX_BENCH_KINDS (ia,ts,...: restrict the
+# Topoplex kinds), TOPOPLEX_BENCH_MIN_TIME (seconds per benchmark; default Google Benchmark's
+# own, 0.05 with --quick), TOPOPLEX_BENCH_GUDHI_COFACES_MAX (GUDHI cofaces only on datasets up
+# to this many top simplices, default 25000: see run() below), CARGO_TARGET_DIR.
+# Needs (Debian): cmake ninja-build g++ libgtest-dev libbenchmark-dev libopenmesh-dev
+# libcgal-dev libcgal-demo libgudhi-dev libboost-dev, python3, cargo. Compiles and dataset
+# generation run under `nice -n 10`; the benchmarks themselves do not (take final numbers on a
+# quiet machine).
+set -euo pipefail
+
+quick=0
+results=""
+for arg in "$@"; do
+  case "$arg" in
+    --quick) quick=1 ;;
+    -h|--help) sed -n "2,24p" "$0"; exit 0 ;;
+    -*) echo "unknown option $arg" >&2; exit 2 ;;
+    *) results=$arg ;;
+  esac
+done
+
+root=$(cd "$(dirname "$0")/.." && pwd)
+target=${CARGO_TARGET_DIR:-$root/target}
+mkdir -p "$target"
+target=$(cd "$target" && pwd)
+data=${TOPOPLEX_BENCH_DATA:-$target/bench-data}
+results=${results:-$target/bench-results/$(date -u +%Y%m%dT%H%M%SZ)}
+mkdir -p "$data" "$results"
+data=$(cd "$data" && pwd)
+results=$(cd "$results" && pwd)
+# Build directories and the install prefix live in the target dir so that a second run
+# recompiles nothing that did not change (the CGAL/GUDHI programs take minutes to compile).
+prefix=$target/bench-prefix
+build=$target/bench-cmake
+min_time=${TOPOPLEX_BENCH_MIN_TIME:-}
+if [ "$quick" = 1 ] && [ -z "$min_time" ]; then min_time=0.05; fi
+failed=()
+
+echo "== machine"
+{
+  echo "date: $(date -u +'%Y-%m-%d %H:%M UTC')"
+  echo "commit: $(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)$(git -C "$root" diff --quiet 2>/dev/null || echo ' (dirty)')"
+  echo "cpu: $(sed -n 's/^model name\s*: //p' /proc/cpuinfo | head -1) ($(nproc) cores)"
+  echo "memory: $(awk '/MemTotal/ {printf "%.1f GiB", $2 / 1048576}' /proc/meminfo)"
+  echo "compilers: $(rustc --version), $(c++ --version | head -1)"
+  echo "command: scripts/bench.sh $*"
+} | tee "$results/machine.txt"
+
+echo "== build and install Topoplex (release) into $prefix"
+nice -n 10 cmake -S "$root" -B "$build/topoplex" -G Ninja \
+  -DTOPOPLEX_CARGO_TARGET_DIR="$target" >/dev/null
+nice -n 10 cmake --build "$build/topoplex"
+cmake --install "$build/topoplex" --prefix "$prefix" >/dev/null
+
+echo "== datasets into $data"
+nice -n 10 cmake -S "$root/cpp_tests/bench_data" -B "$build/bench_data" -G Ninja \
+  -DCMAKE_BUILD_TYPE=Release >/dev/null
+nice -n 10 cmake --build "$build/bench_data"
+maker_args=()
+if [ "$quick" = 1 ]; then maker_args+=(--quick); fi
+nice -n 10 "$build/bench_data/topoplex_bench_data" "${maker_args[@]}" "$data" \
+  || failed+=("dataset maker (some datasets missing)")
+cp "$data/datasets.tsv" "$results/" 2>/dev/null || true
+
+echo "== build the benchmark programs (cpp_tests/bench) against $prefix"
+programs=(topoplex_bench_surface topoplex_bench_tets topoplex_bench_gudhi)
+if [ ! -f "$root/cpp_tests/bench/CMakeLists.txt" ]; then
+  echo "cpp_tests/bench is missing: no side-by-side runs" >&2
+  failed+=("cpp_tests/bench missing")
+  bench_bin=""
+else
+  # cpp_tests/bench is a subdirectory of cpp_tests (it uses the parent's Topoplex package and
+  # CGAL sample data); configure the parent and build only the three programs.
+  nice -n 10 cmake -S "$root/cpp_tests" -B "$build/cpp_tests" -G Ninja \
+    -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release -DTOPOPLEX_SANITIZE=OFF >/dev/null
+  built=()
+  for p in "${programs[@]}"; do
+    if nice -n 10 cmake --build "$build/cpp_tests" --target "$p"; then
+      built+=("$p")
+    else
+      failed+=("$p did not build")
+    fi
+  done
+  bench_bin=$build/cpp_tests/bench
+fi
+
+# Quick runs stay below ~5*10^5 top simplices (the number at the end of each file name).
+datasets() {
+  local f n
+  for f in "$data"/$1; do
+    [ -e "$f" ] || continue
+    n=${f##*-}
+    n=${n%%.*}
+    if [ "$quick" = 1 ] && [ "$n" -ge 500000 ]; then continue; fi
+    echo "$f"
+  done
+}
+
+# GUDHI's cofaces_simplex_range walks the whole Simplex_tree for every query, so cofaces of
+# every vertex / edge is quadratic in the complex (tet-bunny00-108212: ~2 min for the vertices
+# and ~15 min for the edges on 2 busy cores; hours at 10^6). Above this many top simplices the
+# GUDHI side of cofaces_v / cofaces_e is left out (Topoplex's still runs; the table shows —).
+gudhi_cofaces_max=${TOPOPLEX_BENCH_GUDHI_COFACES_MAX:-25000}
+
+run() { # program short-name file
+  local exe=$bench_bin/$1 out="$results/$2__$(basename "$3").json"
+  [ -x "$exe" ] || return 0
+  echo "-- $2 $(basename "$3")"
+  local args=(--benchmark_format=json --benchmark_out="$out")
+  if [ -n "$min_time" ]; then args+=(--benchmark_min_time="$min_time"); fi
+  local n=${3##*-}
+  n=${n%%.*}
+  if [ "$2" = gudhi ] && [ "$n" -gt "$gudhi_cofaces_max" ]; then
+    args+=(--benchmark_filter='-cofaces_./gudhi')
+  fi
+  if ! "$exe" "${args[@]}" "$3" >"$results/$2__$(basename "$3").log" 2>&1; then
+    tail -5 "$results/$2__$(basename "$3").log" >&2
+    failed+=("$2 on $(basename "$3") (see $2__$(basename "$3").log)")
+  fi
+}
+
+if [ -n "$bench_bin" ]; then
+  echo "== side-by-side benchmarks into $results"
+  for f in $(datasets 'surf-*.off'); do run topoplex_bench_surface surface "$f"; done
+  for f in $(datasets 'tet-*.mesh'); do run topoplex_bench_tets tets "$f"; done
+  for f in $(datasets 'surf-*.off') $(datasets 'tet-*.mesh') $(datasets 'alpha-*.simplices') \
+           $(datasets 'rips-*.simplices'); do
+    run topoplex_bench_gudhi gudhi "$f"
+  done
+fi
+
+echo "== cargo bench --bench structures (criterion)"
+if [ -f "$root/benches/structures.rs" ]; then
+  crit_args=(--noplot)
+  if [ "$quick" = 1 ]; then crit_args+=(--quick); fi
+  if ! (cd "$root" && CARGO_TARGET_DIR=$target cargo bench --bench structures -- "${crit_args[@]}") \
+      >"$results/criterion.log" 2>&1; then
+    tail -5 "$results/criterion.log" >&2
+    failed+=("cargo bench --bench structures (see criterion.log)")
+  fi
+  echo "criterion output: $results/criterion.log, reports in $target/criterion"
+  # The criterion bench's own tables (benches/structures_table.py, when that script exists).
+  if [ -f "$root/benches/structures_table.py" ]; then
+    python3 "$root/benches/structures_table.py" "$target/criterion" >"$results/criterion.md" \
+      || failed+=("benches/structures_table.py")
+  fi
+else
+  echo "benches/structures.rs not present: skipped"
+fi
+
+echo "== table"
+python3 "$root/scripts/bench_table.py" "$results" --datasets "$data/datasets.tsv" \
+  | tee "$results/table.md" || failed+=("bench_table.py")
+
+if [ -s "$results/criterion.md" ]; then
+  echo
+  echo "== Rust API (criterion): $results/criterion.md"
+fi
+echo
+echo "results: $results"
+if [ ${#failed[@]} -gt 0 ]; then
+  printf 'FAILED: %s\n' "${failed[@]}" >&2
+  exit 1
+fi
