@@ -236,6 +236,38 @@ pub fn order_by_key(n: usize, key_bits: u32, key: impl Fn(u32) -> u64) -> Option
         let mask = (1u64 << index_bits) - 1;
         return Some(keys.into_iter().map(|k| (k & mask) as u32).collect());
     }
+    let hi = key_bits + index_bits - 64;
+    if hi <= 16 {
+        // Key and index do not fit one word: a counting sort by the key's top `hi` bits (stable,
+        // so indices stay ascending within a bucket), then each bucket, small enough to stay in
+        // cache at 10^6 simplices, by its remaining key bits and the index packed in one word.
+        let lo_bits = key_bits - hi;
+        let lo_mask = (1u64 << lo_bits) - 1;
+        let mut start = vec![0usize; (1 << hi) + 1];
+        for i in 0..n as u32 {
+            start[(key(i) >> lo_bits) as usize + 1] += 1;
+        }
+        for b in 1..start.len() {
+            start[b] += start[b - 1];
+        }
+        let mut fill = start.clone();
+        let mut words = vec![0u64; n];
+        for i in 0..n as u32 {
+            let k = key(i);
+            let b = (k >> lo_bits) as usize;
+            words[fill[b]] = ((k & lo_mask) << index_bits) | i as u64;
+            fill[b] += 1;
+        }
+        let mut bucket = Vec::new();
+        for b in start.windows(2) {
+            bucket.clear();
+            bucket.extend_from_slice(&words[b[0]..b[1]]);
+            radix_sort(&mut bucket, 64);
+            words[b[0]..b[1]].copy_from_slice(&bucket);
+        }
+        let mask = (1u64 << index_bits) - 1;
+        return Some(words.into_iter().map(|w| (w & mask) as u32).collect());
+    }
     // The sort is stable and the pairs start in index order, so equal keys stay by index.
     let mut pairs: Vec<(u64, u32)> = (0..n as u32).map(|i| (key(i), i)).collect();
     radix_sort_by(&mut pairs, key_bits, |&(k, _)| k);
@@ -312,10 +344,18 @@ mod tests {
         want.sort_by_key(|&i| (i % 7 % 3, i));
         assert_eq!(order, want);
         assert!(order_by_key(10, 65, |i| i as u64).is_none());
-        // Keys too wide to share a word with the index: sorted as pairs, still stable.
-        let order = order_by_key(10_000, 62, |i| ((i % 5) as u64) << 60).unwrap();
+        // Keys too wide to share a word with the index: bucketed by their top bits, then
+        // sorted within buckets; still by (key, index).
+        let key = |i: u32| (((i % 5) as u64) << 60) | ((i * 7919) % 1000) as u64;
+        let order = order_by_key(10_000, 63, key).unwrap();
         let mut want: Vec<u32> = (0..10_000).collect();
-        want.sort_by_key(|&i| (i % 5, i));
+        want.sort_by_key(|&i| (key(i), i));
+        assert_eq!(order, want);
+        // Wider still (more than 16 bits left over): sorted as (key, index) pairs.
+        let key = |i: u32| ((i % 3) as u64) << 63 | (i % 11) as u64;
+        let order = order_by_key(100_000, 64, key).unwrap();
+        let mut want: Vec<u32> = (0..100_000).collect();
+        want.sort_by_key(|&i| (key(i), i));
         assert_eq!(order, want);
     }
 
