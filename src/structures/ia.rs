@@ -59,6 +59,7 @@
 use rustc_hash::FxHashSet;
 
 use super::{BuildError, to_u32};
+use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset, sort_dedup_rows};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
@@ -138,21 +139,147 @@ pub(crate) fn faces_containing(top: &[u32], sigma: &[u32], q: usize, mut f: impl
     }
 }
 
-/// Per-query set of rows already emitted.
-#[derive(Default)]
+/// Entries kept inline by the per-query scratch types below: a vertex star of a triangle or
+/// tetrahedral mesh fits, so a typical query allocates nothing and scans a few cache lines
+/// instead of hashing.
+const INLINE: usize = 64;
+
+/// Per-query set of ids (the papers' "visited" marks): an inline array scanned linearly while it
+/// holds at most [`INLINE`] ids, a hash set beyond (so large stars stay linear).
+pub(crate) struct IdSet {
+    /// Ids held inline; `len > INLINE` once they moved to `spill`.
+    len: usize,
+    inline: [u32; INLINE],
+    spill: FxHashSet<u32>,
+}
+
+impl Default for IdSet {
+    fn default() -> Self {
+        IdSet {
+            len: 0,
+            inline: [0; INLINE],
+            spill: FxHashSet::default(),
+        }
+    }
+}
+
+impl IdSet {
+    /// Adds `x`; false if it was there already.
+    #[inline]
+    pub(crate) fn insert(&mut self, x: u32) -> bool {
+        if self.len <= INLINE {
+            if self.inline[..self.len].contains(&x) {
+                return false;
+            }
+            if self.len < INLINE {
+                self.inline[self.len] = x;
+                self.len += 1;
+                return true;
+            }
+            self.spill.extend(self.inline);
+            self.len = INLINE + 1;
+        }
+        self.spill.insert(x)
+    }
+
+    #[inline]
+    pub(crate) fn contains(&self, x: &u32) -> bool {
+        if self.len <= INLINE {
+            self.inline[..self.len].contains(x)
+        } else {
+            self.spill.contains(x)
+        }
+    }
+
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+        self.spill.clear();
+    }
+}
+
+/// Per-query stack of ids: inline up to [`INLINE`] entries, then on the heap.
+pub(crate) struct IdStack {
+    len: usize,
+    inline: [u32; INLINE],
+    spill: Vec<u32>,
+}
+
+impl Default for IdStack {
+    fn default() -> Self {
+        IdStack {
+            len: 0,
+            inline: [0; INLINE],
+            spill: Vec::new(),
+        }
+    }
+}
+
+impl IdStack {
+    #[inline]
+    pub(crate) fn push(&mut self, x: u32) {
+        if self.len < INLINE {
+            self.inline[self.len] = x;
+            self.len += 1;
+        } else {
+            self.spill.push(x);
+        }
+    }
+
+    #[inline]
+    pub(crate) fn pop(&mut self) -> Option<u32> {
+        if let Some(x) = self.spill.pop() {
+            return Some(x);
+        }
+        if self.len == 0 {
+            return None;
+        }
+        self.len -= 1;
+        Some(self.inline[self.len])
+    }
+}
+
+/// Per-query set of rows already emitted: rows of up to four ids as one u128 key, kept inline
+/// and scanned while few (as [`IdSet`]), hashed beyond; longer rows hashed as vectors.
 pub(crate) struct RowSet {
+    len: usize,
+    inline: [u128; RowSet::INLINE],
     small: FxHashSet<u128>,
     big: FxHashSet<Vec<u32>>,
 }
 
-impl RowSet {
-    pub(crate) fn insert(&mut self, row: &[u32]) -> bool {
-        if row.len() <= 4 {
-            self.small
-                .insert(row.iter().fold(0u128, |acc, &v| (acc << 32) | v as u128))
-        } else {
-            self.big.insert(row.to_vec())
+impl Default for RowSet {
+    fn default() -> Self {
+        RowSet {
+            len: 0,
+            inline: [0; RowSet::INLINE],
+            small: FxHashSet::default(),
+            big: FxHashSet::default(),
         }
+    }
+}
+
+impl RowSet {
+    /// Fewer than [`IdSet`]'s: u128 compares cost more and row sets grow faster than stars.
+    const INLINE: usize = 32;
+
+    pub(crate) fn insert(&mut self, row: &[u32]) -> bool {
+        if row.len() > 4 {
+            return self.big.insert(row.to_vec());
+        }
+        let key = row.iter().fold(0u128, |acc, &v| (acc << 32) | v as u128);
+        if self.len <= Self::INLINE {
+            if self.inline[..self.len].contains(&key) {
+                return false;
+            }
+            if self.len < Self::INLINE {
+                self.inline[self.len] = key;
+                self.len += 1;
+                return true;
+            }
+            self.small.extend(self.inline);
+            self.len = Self::INLINE + 1;
+        }
+        self.small.insert(key)
     }
 
     /// Appends `row` to `out` unless it was emitted before.
@@ -192,8 +319,16 @@ fn adjacency(tops: &SimplexTable, d: usize) -> Result<Vec<u32>, (Vec<u32>, Vec<u
             .filter(move |&(j, _)| j != i)
             .map(|(_, &v)| v)
     };
-    let mut order: Vec<u32> = (0..(tops.len() * w) as u32).collect();
-    order.sort_unstable_by(|&a, &b| facet(a).cmp(facet(b)).then(a.cmp(&b)));
+    let max = tops.as_flat().iter().copied().max().unwrap_or(0);
+    let bits = id_bits(max);
+    let order = order_by_key(tops.len() * w, d as u32 * bits, |k| {
+        facet(k).fold(0u64, |acc, v| (acc << bits) | v as u64)
+    })
+    .unwrap_or_else(|| {
+        let mut order: Vec<u32> = (0..(tops.len() * w) as u32).collect();
+        order.sort_unstable_by(|&a, &b| facet(a).cmp(facet(b)).then(a.cmp(&b)));
+        order
+    });
     let mut i = 0;
     while i < order.len() {
         let mut j = i + 1;
@@ -346,12 +481,7 @@ impl IndexedAdjacency {
     /// Visits every d-simplex in the star of `v` once, walking from the component references
     /// through the facets containing `v`; stops early when `visit` returns false (and then
     /// returns false). `seen` must hold no simplex of the star of `v`.
-    fn walk_star(
-        &self,
-        v: u32,
-        seen: &mut FxHashSet<u32>,
-        visit: impl FnMut(u32, &[u32]) -> bool,
-    ) -> bool {
+    fn walk_star(&self, v: u32, seen: &mut IdSet, visit: impl FnMut(u32, &[u32]) -> bool) -> bool {
         self.walk_from(v, self.star_components(v), seen, visit)
     }
 
@@ -360,11 +490,11 @@ impl IndexedAdjacency {
         &self,
         v: u32,
         starts: &[u32],
-        seen: &mut FxHashSet<u32>,
+        seen: &mut IdSet,
         mut visit: impl FnMut(u32, &[u32]) -> bool,
     ) -> bool {
         let w = self.d + 1;
-        let mut stack: Vec<u32> = Vec::new();
+        let mut stack = IdStack::default();
         for &r in starts {
             if seen.insert(r) {
                 stack.push(r);
@@ -388,7 +518,7 @@ impl IndexedAdjacency {
     /// Whether some d-simplex contains σ (ascending, p > 0), by walking the star of σ's first
     /// vertex.
     fn in_some_top(&self, sigma: &[u32]) -> bool {
-        let mut seen = FxHashSet::default();
+        let mut seen = IdSet::default();
         !self.walk_star(sigma[0], &mut seen, |_, t| !is_subset(sigma, t))
     }
 }
@@ -461,17 +591,24 @@ impl Topology for IndexedAdjacency {
             return Err(missing());
         }
         let mut set = RowSet::default();
-        let mut seen = FxHashSet::default();
+        let mut seen = IdSet::default();
         if q < p {
             if !self.in_some_top(sigma) {
                 return Err(missing());
             }
             faces_containing(sigma, &[], q, |f| out.extend_from_slice(f));
-        } else if q == p && p == 0 {
+        } else if p == 0 && q <= 1 {
+            // An edge at v is named by its other end: one id set for R_{0,0} and R_{0,1}.
             let v = sigma[0];
+            let mut others = IdSet::default();
             self.walk_star(v, &mut seen, |_, t| {
                 for &x in t.iter().filter(|&&x| x != v) {
-                    set.emit(&[x], out);
+                    if others.insert(x) {
+                        match q {
+                            0 => out.push(x),
+                            _ => out.extend_from_slice(&[x.min(v), x.max(v)]),
+                        }
+                    }
                 }
                 true
             });
@@ -525,7 +662,7 @@ impl Topology for IndexedAdjacency {
             // Separate walks: a shared `seen` would stop the second walk at simplices the first
             // one met, before it reaches the rest of the star of σ[1]. Rows are deduplicated.
             self.walk_star(sigma[0], &mut seen, &mut visit);
-            self.walk_star(sigma[1], &mut FxHashSet::default(), &mut visit);
+            self.walk_star(sigma[1], &mut IdSet::default(), &mut visit);
             if !found {
                 out.clear();
                 return Err(missing());
@@ -602,7 +739,7 @@ impl Topology for IndexedAdjacency {
                 }
                 let mut component = 0usize;
                 let mut clash = false;
-                self.walk_from(v, &[r], &mut FxHashSet::default(), |t, _| {
+                self.walk_from(v, &[r], &mut IdSet::default(), |t, _| {
                     component += 1;
                     clash |= t != r && refs.contains(&t);
                     true

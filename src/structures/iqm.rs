@@ -107,7 +107,9 @@
 
 use rustc_hash::FxHashSet;
 
+use super::ia::{IdSet, IdStack, faces_containing};
 use super::{BuildError, to_u32};
+use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset, sort_dedup_rows};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
@@ -218,9 +220,15 @@ fn facet_rows(rows: &[u32], arity: usize, sort_each: bool) -> Vec<u32> {
 fn sorted_order(rows: &[u32], width: usize) -> Vec<u32> {
     let n = rows.len() / width;
     let row = |i: u32| &rows[i as usize * width..(i as usize + 1) * width];
-    let mut order: Vec<u32> = (0..n as u32).collect();
-    order.sort_unstable_by(|&a, &b| row(a).cmp(row(b)).then(a.cmp(&b)));
-    order
+    let bits = id_bits(rows.iter().copied().max().unwrap_or(0));
+    order_by_key(n, width as u32 * bits, |i| {
+        row(i).iter().fold(0u64, |acc, &v| (acc << bits) | v as u64)
+    })
+    .unwrap_or_else(|| {
+        let mut order: Vec<u32> = (0..n as u32).collect();
+        order.sort_unstable_by(|&a, &b| row(a).cmp(row(b)).then(a.cmp(&b)));
+        order
+    })
 }
 
 /// Calls `f` with each run of equal rows (as indices in `order`).
@@ -238,65 +246,14 @@ fn for_each_group(rows: &[u32], width: usize, order: &[u32], mut f: impl FnMut(&
 }
 
 /// Appends the q-faces of `top` (ascending) that contain `sigma` (ascending subset of `top`).
+/// No allocation: queries call this once per top simplex of a star.
 fn push_cofaces(top: &[u32], sigma: &[u32], q: usize, out: &mut Vec<u32>) {
-    let p = sigma.len() - 1;
-    if q < p || q >= top.len() {
-        return;
-    }
-    let rest: Vec<u32> = top
-        .iter()
-        .copied()
-        .filter(|v| sigma.binary_search(v).is_err())
-        .collect();
-    let need = q - p;
-    let mut pick: Vec<usize> = (0..need).collect();
-    loop {
-        let start = out.len();
-        out.extend_from_slice(sigma);
-        out.extend(pick.iter().map(|&i| rest[i]));
-        out[start..].sort_unstable();
-        // Next combination of `need` indices out of `rest.len()`.
-        let mut i = need;
-        loop {
-            if i == 0 {
-                return;
-            }
-            i -= 1;
-            if pick[i] < rest.len() - need + i {
-                pick[i] += 1;
-                for j in i + 1..need {
-                    pick[j] = pick[j - 1] + 1;
-                }
-                break;
-            }
-        }
-    }
+    faces_containing(top, sigma, q, |f| out.extend_from_slice(f));
 }
 
-/// Appends every (q+1)-subset of `s` (ascending), in lexicographic order.
+/// Appends every (q+1)-subset of `s` (ascending).
 fn push_subsets(s: &[u32], q: usize, out: &mut Vec<u32>) {
-    let k = q + 1;
-    if k > s.len() {
-        return;
-    }
-    let mut pick: Vec<usize> = (0..k).collect();
-    loop {
-        out.extend(pick.iter().map(|&i| s[i]));
-        let mut i = k;
-        loop {
-            if i == 0 {
-                return;
-            }
-            i -= 1;
-            if pick[i] < s.len() - k + i {
-                pick[i] += 1;
-                for j in i + 1..k {
-                    pick[j] = pick[j - 1] + 1;
-                }
-                break;
-            }
-        }
-    }
+    faces_containing(s, &[], q, |f| out.extend_from_slice(f));
 }
 
 impl Iqm {
@@ -590,8 +547,8 @@ impl Iqm {
     /// copy's star by adjacencies through facets that contain the copy. Calls `f(k, t)`, which
     /// returns `false` to stop the walk.
     fn walk_star(&self, v: u32, mut f: impl FnMut(usize, u32) -> bool) {
-        let mut seen: FxHashSet<u32> = FxHashSet::default();
-        let mut stack: Vec<u32> = Vec::new();
+        let mut seen: IdSet = IdSet::default();
+        let mut stack = IdStack::default();
         for &c in self.copies_of(v) {
             let k = self.comp_dim[self.copy_comp[c as usize] as usize] as usize;
             seen.clear();
@@ -636,7 +593,7 @@ impl Iqm {
         found: &mut Vec<u32>,
         lens: &mut Vec<usize>,
     ) {
-        let mut buf = Vec::new();
+        let mut buf = Vec::with_capacity(self.counts.len());
         self.walk_star(v, |k, t| {
             self.originals(k, t, &mut buf);
             if keep(&buf) {
@@ -696,7 +653,8 @@ impl Topology for Iqm {
     }
 
     fn contains(&self, sigma: &[u32]) -> bool {
-        let (mut found, mut lens) = (Vec::new(), Vec::new());
+        // Sized for a mesh vertex's star, so the walk rarely reallocates.
+        let (mut found, mut lens) = (Vec::with_capacity(256), Vec::with_capacity(64));
         self.star_tops(
             sigma[0],
             |t| is_subset(sigma, t),
@@ -709,7 +667,8 @@ impl Topology for Iqm {
 
     fn query(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Result<(), QueryError> {
         let p = sigma.len() - 1;
-        let (mut found, mut lens) = (Vec::new(), Vec::new());
+        // Sized for a mesh vertex's star, so the walk rarely reallocates.
+        let (mut found, mut lens) = (Vec::with_capacity(256), Vec::with_capacity(64));
         // Locating σ is all a boundary query needs.
         let first_only = q < p;
         self.star_tops(
@@ -724,7 +683,7 @@ impl Topology for Iqm {
                 simplex: sigma.to_vec(),
             });
         }
-        let mut rows = Vec::new();
+        let mut rows = Vec::with_capacity(256);
         if q < p {
             push_subsets(sigma, q, out);
             return Ok(());

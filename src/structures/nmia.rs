@@ -85,12 +85,11 @@
 //!   vertex from the stars of both, O(n_a + n_b) — optimal as in Table 2.
 //! - `count(p)` cached at build; `simplices(p)` derives the list from the top simplices.
 //!
-//! Queries keep no state in the structure: every walk has its own hash set.
+//! Queries keep no state in the structure: every walk has its own set of visited simplices.
 
-use rustc_hash::FxHashSet;
-
-use super::ia::{NONE, RowSet, faces_containing, faces_of_tops, show};
+use super::ia::{IdSet, IdStack, NONE, RowSet, faces_containing, faces_of_tops, show};
 use super::{BuildError, to_u32};
+use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
@@ -142,8 +141,17 @@ fn tet_adjacency(tets: &SimplexTable) -> Result<Vec<u32>, ([u32; 3], Vec<u32>)> 
         f
     };
     let mut adj = vec![NONE; tets.len() * 4];
-    let mut order: Vec<u32> = (0..(tets.len() * 4) as u32).collect();
-    order.sort_unstable_by_key(|&k| (facet(k), k));
+    let bits = id_bits(tets.as_flat().iter().copied().max().unwrap_or(0));
+    let order = order_by_key(tets.len() * 4, 3 * bits, |k| {
+        facet(k)
+            .iter()
+            .fold(0u64, |acc, &v| (acc << bits) | v as u64)
+    })
+    .unwrap_or_else(|| {
+        let mut order: Vec<u32> = (0..(tets.len() * 4) as u32).collect();
+        order.sort_unstable_by_key(|&k| (facet(k), k));
+        order
+    });
     let mut i = 0;
     while i < order.len() {
         let f = facet(order[i]);
@@ -385,14 +393,24 @@ impl NonManifoldIa {
                 }
             }
         }
-        inc.sort_unstable();
+        // By edge, ties by top simplex: `inc` lists the tops in ascending order, so the radix
+        // sort's index tie-break is the same order as sorting the tuples.
+        let bits = id_bits(self.n.saturating_sub(1));
+        if let Some(order) = order_by_key(inc.len(), 2 * bits, |i| {
+            let [a, b] = inc[i as usize].0;
+            (a as u64) << bits | b as u64
+        }) {
+            inc = order.into_iter().map(|i| inc[i as usize]).collect();
+        } else {
+            inc.sort_unstable();
+        }
         let point = |v: u32| {
             let c = coords.unwrap();
             let k = v as usize * 3;
             [c[k], c[k + 1], c[k + 2]]
         };
         let mut links: Vec<(u64, u32)> = Vec::new();
-        let mut seen: FxHashSet<u32> = FxHashSet::default();
+        let mut seen: IdSet = IdSet::default();
         let mut clusters: Vec<Cluster> = Vec::new();
         let mut i = 0;
         while i < inc.len() {
@@ -458,12 +476,21 @@ impl NonManifoldIa {
                 links.push((((from.exit as u64) << 4) | code(a, b), to.entry));
             }
         }
-        links.sort_unstable();
-        links.into_iter().unzip()
+        // (key, target) packed: key = exit top << 4 | edge code, below 2^(tb + 4).
+        let tb = id_bits(self.n_tops());
+        if let Some(order) = order_by_key(links.len(), 2 * tb + 4, |i| {
+            let (k, to) = links[i as usize];
+            k << tb | to as u64
+        }) {
+            order.into_iter().map(|i| links[i as usize]).unzip()
+        } else {
+            links.sort_unstable();
+            links.into_iter().unzip()
+        }
     }
 
     /// The fan of tetrahedra around edge `e` containing tetrahedron `t`, marking its members.
-    fn fan(&self, t: u32, e: [u32; 2], seen: &mut FxHashSet<u32>) -> Cluster {
+    fn fan(&self, t: u32, e: [u32; 2], seen: &mut IdSet) -> Cluster {
         let others = |c: u32| {
             let mut o = self.verts(c).iter().copied().filter(|x| !e.contains(x));
             (o.next().unwrap(), o.next().unwrap())
@@ -525,11 +552,11 @@ impl NonManifoldIa {
         &self,
         v: u32,
         starts: &[u32],
-        seen: &mut FxHashSet<u32>,
+        seen: &mut IdSet,
         mut visit: impl FnMut(u32, &[u32]) -> bool,
     ) -> bool {
         let n3 = self.tets.len() as u32;
-        let mut stack = Vec::new();
+        let mut stack = IdStack::default();
         for &r in starts {
             if seen.insert(r) {
                 stack.push(r);
@@ -562,15 +589,16 @@ impl NonManifoldIa {
     }
 
     fn walk_star(&self, v: u32, visit: impl FnMut(u32, &[u32]) -> bool) -> bool {
-        self.walk_vertex(v, self.vertex_clusters(v), &mut FxHashSet::default(), visit)
+        self.walk_vertex(v, self.vertex_clusters(v), &mut IdSet::default(), visit)
     }
 
     /// Walks the top simplices containing edge `{a, b}` (a < b) from `start`, which contains it.
     fn walk_edge(&self, a: u32, b: u32, start: u32, mut visit: impl FnMut(u32, &[u32])) {
         let n3 = self.tets.len() as u32;
-        let mut seen = FxHashSet::default();
+        let mut seen = IdSet::default();
         seen.insert(start);
-        let mut stack = vec![start];
+        let mut stack = IdStack::default();
+        stack.push(start);
         while let Some(u) = stack.pop() {
             let vs = self.verts(u);
             visit(u, vs);
@@ -630,7 +658,7 @@ impl NonManifoldIa {
                     continue;
                 }
                 pairs.push((v, u));
-                self.walk_vertex(v, &[u], &mut FxHashSet::default(), |t, vs| {
+                self.walk_vertex(v, &[u], &mut IdSet::default(), |t, vs| {
                     visited[base(t) + vs.iter().position(|&x| x == v).unwrap()] = true;
                     true
                 });
@@ -705,11 +733,21 @@ impl Topology for NonManifoldIa {
         let mut set = RowSet::default();
         if p == 0 {
             let v = sigma[0];
+            // An edge at v is named by its other end: one id set for R_{0,0} and R_{0,1}.
+            let mut others = IdSet::default();
             self.walk_star(v, |_, vs| {
-                if q == 0 {
+                if q <= 1 {
                     for &x in vs.iter().filter(|&&x| x != v) {
-                        set.emit(&[x], out);
+                        if others.insert(x) {
+                            match q {
+                                0 => out.push(x),
+                                _ => out.extend_from_slice(&[x.min(v), x.max(v)]),
+                            }
+                        }
                     }
+                } else if vs.len() == q + 1 {
+                    // A top simplex is a face of no other one, and the walk visits it once.
+                    out.extend_from_slice(vs);
                 } else {
                     faces_containing(vs, sigma, q, |f| set.emit(f, out));
                 }
@@ -900,7 +938,7 @@ impl Topology for NonManifoldIa {
                     return Err(format!("R_{{0,clusters}} of {v} lists {r}, not at {v}"));
                 }
                 let mut clash = false;
-                self.walk_vertex(v, &[r], &mut FxHashSet::default(), |t, _| {
+                self.walk_vertex(v, &[r], &mut IdSet::default(), |t, _| {
                     reached += 1;
                     clash |= t != r && refs.contains(&t);
                     true

@@ -21,7 +21,9 @@ use std::f64::consts::TAU;
 
 use rustc_hash::FxHashSet;
 
+use super::ia::IdSet;
 use super::{BuildError, to_u32};
+use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable};
 use crate::io::Coords;
 use crate::relation::{QueryError, StructureKind};
@@ -114,7 +116,7 @@ pub(crate) struct Radial {
     pub edge_first: Vec<u32>,
 }
 
-/// Groups the slots by edge (O(n2 log n2)) and orders each group radially.
+/// Groups the slots by edge (radix sort, O(n2)) and orders each group radially.
 pub(crate) fn radial(tris: &SimplexTable, coords: Option<&Coords>) -> Radial {
     let m = tris.len() * 3;
     let key = |s: u32| {
@@ -123,8 +125,20 @@ pub(crate) fn radial(tris: &SimplexTable, coords: Option<&Coords>) -> Radial {
         let (a, b) = unordered(a, b);
         (a, b, t[((s % 3 + 2) % 3) as usize])
     };
-    let mut order: Vec<u32> = (0..m as u32).collect();
-    order.sort_unstable_by_key(|&s| key(s));
+    // Sorting by the edge alone, ties by slot, gives the same order as by (edge, third vertex):
+    // the triangles on edge {a, b} ascend lexicographically exactly as their third vertices do,
+    // and each has one slot on the edge. Two ids leave room in the 64-bit key for the slot, so
+    // the radix sort stays on its one-word path at 10^6 triangles.
+    let bits = id_bits(tris.as_flat().iter().copied().max().unwrap_or(0));
+    let mut order = order_by_key(m, 2 * bits, |s| {
+        let (a, b, _) = key(s);
+        (a as u64) << bits | b as u64
+    })
+    .unwrap_or_else(|| {
+        let mut order: Vec<u32> = (0..m as u32).collect();
+        order.sort_unstable_by_key(|&s| key(s));
+        order
+    });
     let mut r = Radial {
         next: vec![NONE; m],
         prev: vec![NONE; m],
@@ -465,8 +479,8 @@ pub(crate) fn walk_star<T: TriTopo + ?Sized>(
     out: &mut Vec<u32>,
 ) {
     let start = out.len();
-    let mut seen_tri: FxHashSet<u32> = FxHashSet::default();
-    let mut seen_edge: FxHashSet<u32> = FxHashSet::default();
+    let mut seen_tri: IdSet = IdSet::default();
+    let mut seen_edge: IdSet = IdSet::default();
     for c in reps {
         if seen_tri.insert(c / 3) {
             out.push(c);
@@ -500,16 +514,19 @@ pub(crate) fn walk_star<T: TriTopo + ?Sized>(
 /// Distinct vertices adjacent to `v` (through triangles or wire edges), in discovery order:
 /// O(star of v).
 fn neighbours<T: TriTopo + ?Sized>(topo: &T, v: u32, out: &mut Vec<u32>) {
-    let mut corners = Vec::new();
-    topo.star_corners(v, &mut corners);
-    let mut seen: FxHashSet<u32> = FxHashSet::default();
-    for c in corners {
-        for w in topo.tri(c / 3) {
+    // The corners go to the end of `out` first and are dropped at the end: no allocation.
+    let start = out.len();
+    topo.star_corners(v, out);
+    let k = out.len() - start;
+    let mut seen: IdSet = IdSet::default();
+    for i in start..start + k {
+        for w in topo.tri(out[i] / 3) {
             if w != v && seen.insert(w) {
                 out.push(w);
             }
         }
     }
+    out.drain(start..start + k);
     // A wire neighbour shares no triangle with v.
     topo.wire_neighbours(v, out);
 }
@@ -563,18 +580,27 @@ pub(crate) fn query<T: TriTopo + ?Sized>(
             let v = sigma[0];
             match q {
                 0 => neighbours(topo, v, out),
+                // Both expand in place, from the back, what the walk left at the end of `out`:
+                // row i lands at or after entry i, so no entry is overwritten before it is read.
                 1 => {
-                    let mut nb = Vec::new();
-                    neighbours(topo, v, &mut nb);
-                    for w in nb {
-                        push_edge(out, v, w);
+                    let start = out.len();
+                    neighbours(topo, v, out);
+                    let k = out.len() - start;
+                    out.resize(start + 2 * k, 0);
+                    for i in (0..k).rev() {
+                        let (a, b) = unordered(v, out[start + i]);
+                        out[start + 2 * i] = a;
+                        out[start + 2 * i + 1] = b;
                     }
                 }
                 _ => {
-                    let mut corners = Vec::new();
-                    topo.star_corners(v, &mut corners);
-                    for c in corners {
-                        out.extend_from_slice(&topo.tri(c / 3));
+                    let start = out.len();
+                    topo.star_corners(v, out);
+                    let k = out.len() - start;
+                    out.resize(start + 3 * k, 0);
+                    for i in (0..k).rev() {
+                        let t = topo.tri(out[start + i] / 3);
+                        out[start + 3 * i..start + 3 * i + 3].copy_from_slice(&t);
                     }
                 }
             }
