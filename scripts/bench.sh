@@ -18,8 +18,9 @@
 # Topoplex kinds), TOPOPLEX_BENCH_MIN_TIME (seconds per benchmark; default Google Benchmark's
 # own, 0.05 with --quick), TOPOPLEX_BENCH_GUDHI_COFACES_MAX (GUDHI cofaces only on datasets up
 # to this many top simplices, default 25000: see run() below), CARGO_TARGET_DIR.
-# Needs (Debian): cmake ninja-build g++ libgtest-dev libbenchmark-dev libopenmesh-dev
-# libcgal-dev libcgal-demo libgudhi-dev libboost-dev, python3, cargo. Compiles and dataset
+# Installs, when missing (Debian): cmake ninja-build g++ libgtest-dev libbenchmark-dev
+# libopenmesh-dev libcgal-dev libcgal-demo libgudhi-dev libboost-dev libeigen3-dev python3;
+# needs cargo. Compiles and dataset
 # generation run under `nice -n 10`; the benchmarks themselves do not (take final numbers on a
 # quiet machine).
 set -euo pipefail
@@ -51,6 +52,9 @@ build=$target/bench-cmake
 min_time=${TOPOPLEX_BENCH_MIN_TIME:-}
 if [ "$quick" = 1 ] && [ -z "$min_time" ]; then min_time=0.05; fi
 failed=()
+
+"$root/scripts/install-deps.sh" cmake ninja-build g++ libgtest-dev libbenchmark-dev \
+  libopenmesh-dev libcgal-dev libcgal-demo libgudhi-dev libboost-dev libeigen3-dev python3
 
 echo "== machine"
 {

@@ -6,18 +6,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-need=(cmake ninja-build pkg-config valgrind libopenmesh-dev libcgal-dev libgudhi-dev libgtest-dev libcgal-demo libbenchmark-dev)
-missing=()
-for p in "${need[@]}"; do
-  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "== installing Debian packages: ${missing[*]}"
-  sudo_cmd=""
-  [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
-  $sudo_cmd apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq "${missing[@]}"
-fi
+scripts/install-deps.sh cmake ninja-build pkg-config valgrind libopenmesh-dev libcgal-dev \
+  libgudhi-dev libgtest-dev libcgal-demo libbenchmark-dev
 
 echo "== cargo test"
 cargo test --profile ci --all-targets
