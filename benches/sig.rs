@@ -11,52 +11,8 @@ use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_m
 use topoplex::structures::sig::Sig;
 use topoplex::{Complex, Topology};
 
-/// A k×k grid of squares, each cut into two triangles: (k+1)² vertices, ~6k² simplices.
-fn triangle_grid(k: u32) -> Complex {
-    let id = |i: u32, j: u32| i * (k + 1) + j;
-    let mut tris = Vec::new();
-    for i in 0..k {
-        for j in 0..k {
-            tris.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
-            tris.push(vec![id(i, j), id(i, j + 1), id(i + 1, j + 1)]);
-        }
-    }
-    complex((k + 1) * (k + 1), &tris)
-}
-
-/// A k×k×k grid of cubes, each cut into the six tetrahedra around its main diagonal
-/// (Freudenthal): ~26k³ simplices.
-fn tetrahedral_grid(k: u32) -> Complex {
-    let n = k + 1;
-    let id = |x: u32, y: u32, z: u32| (x * n + y) * n + z;
-    let mut tets = Vec::new();
-    let axes: [[u32; 3]; 3] = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
-    for x in 0..k {
-        for y in 0..k {
-            for z in 0..k {
-                for perm in [
-                    [0, 1, 2],
-                    [0, 2, 1],
-                    [1, 0, 2],
-                    [1, 2, 0],
-                    [2, 0, 1],
-                    [2, 1, 0],
-                ] {
-                    let mut p = [x, y, z];
-                    let mut t = vec![id(p[0], p[1], p[2])];
-                    for a in perm {
-                        for c in 0..3 {
-                            p[c] += axes[a][c];
-                        }
-                        t.push(id(p[0], p[1], p[2]));
-                    }
-                    tets.push(t);
-                }
-            }
-        }
-    }
-    complex(n * n * n, &tets)
-}
+mod common;
+use common::{complex, tetrahedral_grid, triangle_grid};
 
 /// k triangles 0-i-(i+1) around vertex 0 (an open fan).
 fn vertex_fan(k: u32) -> Complex {
@@ -68,11 +24,6 @@ fn vertex_fan(k: u32) -> Complex {
 fn edge_fan(k: u32) -> Complex {
     let tris: Vec<Vec<u32>> = (2..k + 2).map(|i| vec![0, 1, i]).collect();
     complex(k + 2, &tris)
-}
-
-fn complex(n: u32, simplices: &[Vec<u32>]) -> Complex {
-    let refs: Vec<&[u32]> = simplices.iter().map(Vec::as_slice).collect();
-    Complex::from_simplices(n, &refs).unwrap()
 }
 
 /// Up to 512 p-simplices spread evenly over the table.

@@ -1,5 +1,5 @@
-//! Generated complexes shared by the benches: the same grids as benches/sig.rs (copied, not
-//! moved, so that bench keeps its own definitions and results).
+//! Generated complexes shared by the benches (`structures`, `sig`): triangle and tetrahedral
+//! grids.
 
 use topoplex::Complex;
 

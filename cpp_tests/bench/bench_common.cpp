@@ -344,6 +344,18 @@ void add_tpx_load(const std::string& path, const Kind& k, uint64_t simplices) {
   });
 }
 
+std::vector<Kind> kinds_that_build(const Soup& soup) {
+  std::vector<Kind> kinds;
+  for (const auto& k : kinds_from_env()) {
+    TpxStatus st = TPX_STATUS_OK;
+    if (build_from_soup(soup, k.id, &st))
+      kinds.push_back(k);
+    else
+      note("tpx_" + k.name + " skipped: " + tpx_message());
+  }
+  return kinds;
+}
+
 void add_tpx_build(const Soup& soup, const Kind& k, uint64_t simplices) {
   add("build", "tpx_" + k.name, Unit::Build, [&soup, k, simplices](benchmark::State& state) {
     time_build(state, simplices, [&](TpxStatus* st) { return build_from_soup(soup, k.id, st); });

@@ -124,6 +124,8 @@ std::vector<uint32_t> top_simplices(const TpxComplex* c, uint32_t p);
 // freed, so what stays is the structure alone. Coordinates are not passed: no structure keeps
 // geometry. Returns null (status in *st) if the kind refuses the complex.
 StructurePtr build_from_soup(const Soup& soup, uint32_t kind, TpxStatus* st);
+// The kinds of kinds_from_env() that encode `soup`; each refusal is noted on stderr.
+std::vector<Kind> kinds_that_build(const Soup& soup);
 // Topoplex's `load`: tpx_complex_from_file + tpx_structure_build, complex freed.
 StructurePtr load_structure(const std::string& path, uint32_t kind, TpxStatus* st);
 
@@ -205,6 +207,30 @@ void add(const std::string& op, const std::string& lib, Unit unit, std::function
 // Topoplex's `load` and `build` benchmarks for one kind (same in every program).
 void add_tpx_load(const std::string& path, const Kind& k, uint64_t simplices);
 void add_tpx_build(const Soup& soup, const Kind& k, uint64_t simplices);
+
+// A peer's `load` / `build`: times `make` (destruction untimed), then measures one more build's
+// heap. `what` names the peer's object in the failure message; `geometry_bytes` (the peer's
+// coordinate storage) is set as a counter when not negative.
+template <class T>
+void time_peer_build(benchmark::State& state, uint64_t simplices, const std::function<std::unique_ptr<T>()>& make,
+                     const char* what, double geometry_bytes = -1) {
+  slot().clear();
+  for (auto _ : state) {
+    auto m = make();
+    if (!m) {
+      fail(state, std::string("the peer failed to build the ") + what);
+      return;
+    }
+    state.PauseTiming();
+    m.reset();
+    state.ResumeTiming();
+  }
+  HeapUse use;
+  auto m = measure_heap(make, &use);
+  set_heap_counters(state, use);
+  set_elements(state, simplices);
+  if (geometry_bytes >= 0) state.counters["geometry_bytes"] = geometry_bytes;
+}
 
 // Parses the benchmark flags and the one FILE argument; exits with usage otherwise.
 std::string init(int* argc, char** argv, const char* usage);

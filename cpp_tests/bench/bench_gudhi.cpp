@@ -90,27 +90,10 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::vector<Kind> kinds;
-  for (const auto& k : kinds_from_env()) {
-    TpxStatus st = TPX_STATUS_OK;
-    if (build_from_soup(g_soup, k.id, &st))
-      kinds.push_back(k);
-    else
-      note("tpx_" + k.name + " skipped: " + tpx_message());
-  }
+  const std::vector<Kind> kinds = kinds_that_build(g_soup);
 
   add("build", "gudhi", Unit::Build, [simplices](benchmark::State& state) {
-    slot().clear();
-    for (auto _ : state) {
-      auto st = gudhi_build(g_soup);
-      state.PauseTiming();
-      st.reset();
-      state.ResumeTiming();
-    }
-    HeapUse use;
-    auto st = measure_heap([] { return gudhi_build(g_soup); }, &use);
-    set_heap_counters(state, use);
-    set_elements(state, simplices);
+    time_peer_build<Stree>(state, simplices, [] { return gudhi_build(g_soup); }, "simplex tree");
   });
   for (const auto& k : kinds) add_tpx_build(g_soup, k, simplices);
 

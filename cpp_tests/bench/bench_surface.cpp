@@ -195,28 +195,6 @@ uint64_t sm_ff(const SMesh& m) {
   return n;
 }
 
-// Times `make` (destruction untimed), then measures one more build's heap.
-template <class T>
-void time_peer_build(benchmark::State& state, uint64_t simplices, const std::function<std::unique_ptr<T>()>& make,
-                     double geometry_bytes) {
-  slot().clear();
-  for (auto _ : state) {
-    auto m = make();
-    if (!m) {
-      fail(state, "the peer failed to build the mesh");
-      return;
-    }
-    state.PauseTiming();
-    m.reset();
-    state.ResumeTiming();
-  }
-  HeapUse use;
-  auto m = measure_heap(make, &use);
-  set_heap_counters(state, use);
-  set_elements(state, simplices);
-  state.counters["geometry_bytes"] = geometry_bytes;
-}
-
 template <class T>
 void add_walk(const std::string& op, const std::string& lib, const std::function<std::unique_ptr<T>()>& make,
               uint64_t (*walk_fn)(const T&)) {
@@ -283,14 +261,7 @@ int main(int argc, char** argv) {
   const bool have_sm = cgal_from_soup(soup, &why) != nullptr;
   if (!have_sm) note("cgal_sm skipped: " + why);
 
-  std::vector<Kind> kinds;
-  for (const auto& k : kinds_from_env()) {
-    TpxStatus st = TPX_STATUS_OK;
-    if (build_from_soup(soup, k.id, &st))
-      kinds.push_back(k);
-    else
-      note("tpx_" + k.name + " skipped: " + tpx_message());
-  }
+  const std::vector<Kind> kinds = kinds_that_build(soup);
 
   using OMake = std::function<std::unique_ptr<OMesh>()>;
   using SMake = std::function<std::unique_ptr<SMesh>()>;
@@ -307,17 +278,17 @@ int main(int argc, char** argv) {
 
   if (have_om)
     add("load", "openmesh", Unit::Build,
-        [=](benchmark::State& s) { time_peer_build<OMesh>(s, simplices, om_load, om_geometry); });
+        [=](benchmark::State& s) { time_peer_build<OMesh>(s, simplices, om_load, "mesh", om_geometry); });
   if (have_sm)
     add("load", "cgal_sm", Unit::Build,
-        [=](benchmark::State& s) { time_peer_build<SMesh>(s, simplices, sm_load, sm_geometry); });
+        [=](benchmark::State& s) { time_peer_build<SMesh>(s, simplices, sm_load, "mesh", sm_geometry); });
   for (const auto& k : kinds) add_tpx_load(path, k, simplices);
   if (have_om)
     add("build", "openmesh", Unit::Build,
-        [=](benchmark::State& s) { time_peer_build<OMesh>(s, simplices, om_build, om_geometry); });
+        [=](benchmark::State& s) { time_peer_build<OMesh>(s, simplices, om_build, "mesh", om_geometry); });
   if (have_sm)
     add("build", "cgal_sm", Unit::Build,
-        [=](benchmark::State& s) { time_peer_build<SMesh>(s, simplices, sm_build, sm_geometry); });
+        [=](benchmark::State& s) { time_peer_build<SMesh>(s, simplices, sm_build, "mesh", sm_geometry); });
   for (const auto& k : kinds) add_tpx_build(soup, k, simplices);
 
   // Walks, library by library so that each builds its structure once (Slot).

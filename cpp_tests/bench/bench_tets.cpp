@@ -287,32 +287,10 @@ int main(int argc, char** argv) {
   }
   const double t3_geometry = double(tets.n) * sizeof(K::Point_3);
 
-  std::vector<Kind> kinds;
-  for (const auto& k : kinds_from_env()) {
-    TpxStatus st = TPX_STATUS_OK;
-    if (build_from_soup(soup, k.id, &st))
-      kinds.push_back(k);
-    else
-      note("tpx_" + k.name + " skipped: " + tpx_message());
-  }
+  const std::vector<Kind> kinds = kinds_that_build(soup);
 
   auto peer_build = [simplices, t3_geometry](benchmark::State& state, const std::function<std::unique_ptr<T3>()>& make) {
-    slot().clear();
-    for (auto _ : state) {
-      auto tr = make();
-      if (!tr) {
-        fail(state, "the peer failed to build the triangulation");
-        return;
-      }
-      state.PauseTiming();
-      tr.reset();
-      state.ResumeTiming();
-    }
-    HeapUse use;
-    auto tr = measure_heap(make, &use);
-    set_heap_counters(state, use);
-    set_elements(state, simplices);
-    state.counters["geometry_bytes"] = t3_geometry;
+    time_peer_build<T3>(state, simplices, make, "triangulation", t3_geometry);
   };
 
   if (have_t3)
