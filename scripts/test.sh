@@ -27,7 +27,7 @@ scripts/fuzz-smoke.sh 5
 
 echo "== CLI smoke"
 cargo build --profile ci --bin topoplex
-cli=target/ci/topoplex
+cli=${CARGO_TARGET_DIR:-target}/ci/topoplex
 "$cli" report >/dev/null
 "$cli" report --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["dimension"] == 3 and "ig" in d["structures"]'
 
