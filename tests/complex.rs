@@ -127,3 +127,38 @@ fn a_huge_id_without_declared_vertices_is_refused_not_allocated() {
         topoplex::complex::MAX_IMPLIED_VERTICES
     );
 }
+
+#[test]
+fn input_order_and_winding_are_kept() {
+    //   3           Listed: triangle 2 1 0 (clockwise as drawn), its edge 1 2 (absorbed),
+    //   |\          triangle 0 1 2 again (a repeat, absorbed), wire edge 3 1, vertex 4 alone.
+    //   | \         Tops in input order: [2 1 0], [3 1], [4]; top tables stay ascending.
+    //   1--2
+    //   |  /
+    //   0 /
+    let c = Complex::from_simplices(5, &[&[2, 1, 0], &[1, 2], &[0, 1, 2], &[3, 1], &[4]]).unwrap();
+    assert_eq!(c.input_count(), 5);
+    assert_eq!(c.input_simplex(0), &[2, 1, 0]);
+    assert_eq!(c.input_top(0), Some((2, 0)));
+    assert_eq!(c.input_top(1), None);
+    assert_eq!(c.input_top(2), Some((2, 0)));
+    assert_eq!(c.input_top(3), Some((1, 0)));
+    assert_eq!(c.top_listing(2, 0), Some(0));
+    assert_eq!(c.top_oriented(2, 0), &[2, 1, 0]);
+    assert_eq!(c.top_oriented(1, 0), &[3, 1]);
+    assert_eq!(c.tops(1).get(0), &[1, 3]);
+    let given: Vec<(usize, Vec<u32>)> = c
+        .tops_as_given()
+        .map(|(i, _, _, s)| (i, s.to_vec()))
+        .collect();
+    assert_eq!(
+        given,
+        vec![(0, vec![2, 1, 0]), (3, vec![3, 1]), (4, vec![4])]
+    );
+
+    // An isolated vertex nobody lists keeps its ascending row and has no listing.
+    let c = Complex::from_simplices(3, &[&[1, 0]]).unwrap();
+    assert_eq!(c.top_listing(0, 0), None);
+    assert_eq!(c.top_oriented(0, 0), &[2]);
+    assert_eq!(c.tops_as_given().count(), 1);
+}

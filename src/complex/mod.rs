@@ -122,7 +122,33 @@ pub struct Complex {
     tops: Vec<SimplexTable>,
     stats: InputStats,
     source: Option<PathBuf>,
+    /// The simplices as listed: order and vertex order (winding) exactly as given.
+    listing: Listing,
 }
+
+/// The input simplices as given, and (computed on first use) which top simplex each became.
+///
+/// Cost: one copy of the input ids and an offset per listed simplex (held for the complex's
+/// life); the listing ↔ top maps cost 12 bytes per listed simplex more, built on first use in
+/// O(Σ (p+1) log n_p) by binary search in the top tables.
+#[derive(Debug, Clone, Default)]
+struct Listing {
+    ids: Vec<u32>,
+    offsets: Vec<usize>,
+    maps: std::sync::OnceLock<ListingMaps>,
+}
+
+#[derive(Debug, Clone, Default)]
+struct ListingMaps {
+    /// Per listed simplex: its top simplex as (dimension, index), or `NONE_TOP` when absorbed
+    /// as a face of another listed simplex.
+    top: Vec<(u8, u32)>,
+    /// Per dimension p, per top p-simplex: its first listing, `u32::MAX` for an isolated vertex
+    /// that no simplex lists.
+    first: Vec<Vec<u32>>,
+}
+
+const NONE_TOP: (u8, u32) = (u8::MAX, u32::MAX);
 
 impl Complex {
     /// Reads and normalises a file (format by extension).
@@ -285,6 +311,15 @@ impl Complex {
             tables.push(t);
         }
         let tops = absorb_faces(n, tables, &mut stats);
+        let mut listing = Listing {
+            offsets: Vec::with_capacity(count + 1),
+            ..Default::default()
+        };
+        listing.offsets.push(0);
+        for i in 0..count {
+            listing.ids.extend_from_slice(simplex(i));
+            listing.offsets.push(listing.ids.len());
+        }
         Ok(Complex {
             n_vertices: n,
             coords: coords.unwrap_or(Coords {
@@ -294,6 +329,80 @@ impl Complex {
             tops,
             stats,
             source: file.map(Path::to_path_buf),
+            listing,
+        })
+    }
+
+    /// Number of simplices as listed in the input (absorbed ones included).
+    pub fn input_count(&self) -> usize {
+        self.listing.offsets.len().saturating_sub(1)
+    }
+
+    /// Listed simplex `i` exactly as given: its vertex order is the input's winding.
+    pub fn input_simplex(&self, i: usize) -> &[u32] {
+        &self.listing.ids[self.listing.offsets[i]..self.listing.offsets[i + 1]]
+    }
+
+    fn listing_maps(&self) -> &ListingMaps {
+        self.listing.maps.get_or_init(|| {
+            let mut first: Vec<Vec<u32>> =
+                self.tops.iter().map(|t| vec![u32::MAX; t.len()]).collect();
+            let mut top = Vec::with_capacity(self.input_count());
+            let mut sorted = Vec::new();
+            for i in 0..self.input_count() {
+                sorted.clear();
+                sorted.extend_from_slice(self.input_simplex(i));
+                sorted.sort_unstable();
+                let p = sorted.len() - 1;
+                let found = self.tops.get(p).and_then(|t| t.find(&sorted));
+                match found {
+                    Some(j) => {
+                        top.push((p as u8, j));
+                        let f = &mut first[p][j as usize];
+                        if *f == u32::MAX {
+                            *f = i as u32;
+                        }
+                    }
+                    None => top.push(NONE_TOP),
+                }
+            }
+            ListingMaps { top, first }
+        })
+    }
+
+    /// The top simplex that listed simplex `i` is, as (dimension, index in [`Complex::tops`]);
+    /// `None` when it was absorbed as a face of another listed simplex. A repeated listing maps
+    /// to the same top simplex as its first listing. First call: O(Σ (p+1) log n_p).
+    pub fn input_top(&self, i: usize) -> Option<(usize, u32)> {
+        let (p, j) = self.listing_maps().top[i];
+        (p != u8::MAX).then_some((p as usize, j))
+    }
+
+    /// The first listing of top p-simplex `i`; `None` for an isolated vertex no simplex lists.
+    pub fn top_listing(&self, p: usize, i: u32) -> Option<usize> {
+        let f = self.listing_maps().first[p][i as usize];
+        (f != u32::MAX).then_some(f as usize)
+    }
+
+    /// Top p-simplex `i` with its vertices in the order of its first listing (its input
+    /// winding); ascending for an isolated vertex no simplex lists.
+    pub fn top_oriented(&self, p: usize, i: u32) -> &[u32] {
+        match self.top_listing(p, i) {
+            Some(l) => self.input_simplex(l),
+            None => self.tops(p).get(i as usize),
+        }
+    }
+
+    /// The top simplices in input order, each once (at its first listing), vertices in input
+    /// order, as (listing index, dimension, top index, vertices). Absorbed listings and repeats
+    /// are skipped; isolated vertices that no simplex lists are not yielded (every id in
+    /// `0..vertex_count` is a vertex).
+    pub fn tops_as_given(&self) -> impl Iterator<Item = (usize, usize, u32, &[u32])> + '_ {
+        let maps = self.listing_maps();
+        (0..self.input_count()).filter_map(move |i| {
+            let (p, j) = maps.top[i];
+            (p != u8::MAX && maps.first[p as usize][j as usize] as usize == i)
+                .then(|| (i, p as usize, j, self.input_simplex(i)))
         })
     }
 
