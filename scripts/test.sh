@@ -1,13 +1,20 @@
 #!/usr/bin/env bash
 # The whole test suite, as CI runs it (.ci/run calls exactly this). Installs what it needs on a
-# fresh Debian machine, then: Rust tests (unit, property, real data when ../shared/data exists),
-# CLI smoke checks, the CMake package install and the C/C++ cross-checks (plain and under
-# AddressSanitizer + UndefinedBehaviorSanitizer).
+# fresh Debian machine, then: lint gates (fmt, clippy, rustdoc, missing_docs), Rust tests (unit,
+# property, real data when ../shared/data exists), CLI smoke checks, the CMake package install
+# and the C/C++ cross-checks (plain and under AddressSanitizer + UndefinedBehaviorSanitizer).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 scripts/install-deps.sh cmake ninja-build pkg-config valgrind libopenmesh-dev libcgal-dev \
   libgudhi-dev libgtest-dev libcgal-demo libbenchmark-dev
+
+echo "== lint gates: formatting, clippy, docs (missing_docs is denied on the public API)"
+# src/lib.rs has #![warn(missing_docs)]; -D warnings turns it (and every clippy lint) into an
+# error here, as rustls-ffi's and petgraph's CI do.
+cargo fmt --check
+cargo clippy --all-targets -- -D warnings
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps
 
 echo "== cargo test"
 cargo test --profile ci --all-targets

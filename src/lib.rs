@@ -9,6 +9,7 @@
 //! - [`ffi`] is the C ABI (`include/topoplex.h`), the only module allowed `unsafe` code.
 
 #![deny(unsafe_code)]
+#![warn(missing_docs)]
 
 pub mod complex;
 #[allow(unsafe_code)]

@@ -14,6 +14,7 @@ pub struct Oracle {
 }
 
 impl Oracle {
+    /// Enumerates the closure of `complex` (every face of every top simplex).
     pub fn new(complex: &Complex) -> Oracle {
         let d = complex.dimension();
         let mut sets: Vec<BTreeSet<Vec<u32>>> = vec![BTreeSet::new(); d + 1];
@@ -58,10 +59,12 @@ impl Oracle {
         Oracle { levels, tops }
     }
 
+    /// Dimension d of the complex.
     pub fn dimension(&self) -> usize {
         self.levels.len() - 1
     }
 
+    /// Whether `s` (ascending ids) is a simplex of the complex.
     pub fn contains(&self, s: &[u32]) -> bool {
         !s.is_empty()
             && s.len() <= self.levels.len()

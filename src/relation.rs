@@ -29,18 +29,28 @@ pub struct Storage {
 /// The nine structures of the family, in the order the C ABI numbers them.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum StructureKind {
+    /// Incidence Graph.
     Ig,
+    /// Simplified Incidence Graph.
     Sig,
+    /// Indexed data structure with Adjacencies.
     Ia,
+    /// IA Quasi-Manifold data structure (on the standard decomposition).
     Iqm,
+    /// Non-Manifold Indexed data structure with Adjacencies.
     Nmia,
+    /// Triangle-Segment data structure.
     Ts,
+    /// Partial Entity data structure.
     Pe,
+    /// Loop-Edge-use data structure.
     Le,
+    /// Directed-Edge data structure.
     De,
 }
 
 impl StructureKind {
+    /// Every kind, in C ABI order.
     pub const ALL: [StructureKind; 9] = [
         StructureKind::Ig,
         StructureKind::Sig,
@@ -68,6 +78,7 @@ impl StructureKind {
         }
     }
 
+    /// The kind whose CLI name is `name`.
     pub fn from_name(name: &str) -> Option<StructureKind> {
         StructureKind::ALL.into_iter().find(|k| k.name() == name)
     }
@@ -88,26 +99,56 @@ fn show(ids: &[u32]) -> String {
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum QueryError {
     #[error("simplex with no vertex")]
+    /// The query simplex has no vertex.
     EmptySimplex,
     #[error("simplex {} has {} vertices, above the supported maximum dimension {max}", show(.simplex), .simplex.len())]
-    TooManyVertices { simplex: Vec<u32>, max: usize },
-    #[error("simplex {} repeats vertex {vertex}", show(.simplex))]
-    RepeatedVertex { simplex: Vec<u32>, vertex: u32 },
-    #[error("simplex {} uses vertex {vertex}, but the complex has {n} vertices", show(.simplex))]
-    VertexOutOfRange {
+    /// The query simplex has more than `MAX_DIMENSION + 1` vertices.
+    TooManyVertices {
+        /// The simplex as given.
         simplex: Vec<u32>,
+        /// The supported maximum dimension.
+        max: usize,
+    },
+    #[error("simplex {} repeats vertex {vertex}", show(.simplex))]
+    /// The query simplex lists a vertex twice.
+    RepeatedVertex {
+        /// The simplex as given.
+        simplex: Vec<u32>,
+        /// The repeated id.
         vertex: u32,
+    },
+    #[error("simplex {} uses vertex {vertex}, but the complex has {n} vertices", show(.simplex))]
+    /// The query simplex uses a vertex id `>= n`.
+    VertexOutOfRange {
+        /// The simplex as given.
+        simplex: Vec<u32>,
+        /// The out-of-range id.
+        vertex: u32,
+        /// The number of vertices.
         n: u32,
     },
     #[error("simplex {} is not in the complex", show(.simplex))]
-    NotInComplex { simplex: Vec<u32> },
+    /// The simplex is not in the complex.
+    NotInComplex {
+        /// The simplex as given.
+        simplex: Vec<u32>,
+    },
     #[error("relation R_{{{p},{q}}}: dimension {q} is above the complex's dimension {dim}")]
-    DimensionOutOfRange { p: usize, q: usize, dim: usize },
+    /// p or q is above the complex's dimension.
+    DimensionOutOfRange {
+        /// Dimension of the query simplex.
+        p: usize,
+        /// Dimension asked for.
+        q: usize,
+        /// Dimension of the complex.
+        dim: usize,
+    },
 }
 
 /// The relation API. Implementors provide [`Topology::query`] for a validated simplex; callers
 /// use [`Topology::relation`], which validates first.
 pub trait Topology: Send + Sync {
+    /// Which structure this is.
     fn kind(&self) -> StructureKind;
 
     /// Dimension d of the complex.
@@ -133,6 +174,7 @@ pub trait Topology: Send + Sync {
     /// Whether `sigma` (ascending, distinct, in range) is a simplex of the complex.
     fn contains(&self, sigma: &[u32]) -> bool;
 
+    /// The structure's storage (arrays and their bytes).
     fn storage(&self) -> Storage;
 
     /// Checks every invariant of the structure; the error names the first broken one.

@@ -38,6 +38,7 @@ pub const MAX_IMPLIED_VERTICES: u32 = 1 << 24;
 /// Where a simplex came from: a file line, or its position in an array given through the API.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Origin {
+    /// The file the simplex was read from (`None` for arrays).
     pub file: Option<PathBuf>,
     /// 1-based line in `file` (0 when not from a file).
     pub line: u32,
@@ -63,39 +64,68 @@ fn show(ids: &[u32]) -> String {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ComplexError {
     #[error(transparent)]
+    /// The file could not be read or parsed.
     Read(#[from] ReadError),
     #[error("{origin}: simplex {} repeats vertex {vertex}", show(.simplex))]
+    /// A simplex lists one vertex twice.
     RepeatedVertex {
+        /// Where the simplex was given.
         origin: Origin,
+        /// The simplex as given.
         simplex: Vec<u32>,
+        /// The repeated vertex id.
         vertex: u32,
     },
     #[error("{origin}: simplex {} uses vertex {vertex}, but the complex has {n} vertices (ids 0..{n})", show(.simplex))]
+    /// A simplex uses a vertex id `>= n`.
     VertexOutOfRange {
+        /// Where the simplex was given.
         origin: Origin,
+        /// The simplex as given.
         simplex: Vec<u32>,
+        /// The out-of-range id.
         vertex: u32,
+        /// The number of vertices.
         n: u32,
     },
     #[error("{origin}: simplex {} has dimension {dim}, above the supported maximum {max}", show(.simplex))]
+    /// A simplex has more than `MAX_DIMENSION + 1` vertices.
     DimensionTooHigh {
+        /// Where the simplex was given.
         origin: Origin,
+        /// The simplex as given.
         simplex: Vec<u32>,
+        /// Its dimension.
         dim: usize,
+        /// The supported maximum ([`MAX_DIMENSION`]).
         max: usize,
     },
     #[error("{origin}: simplex {} uses vertex {vertex}, which would make {} vertices (without `v` lines the vertices are 0..=max id); above {max} vertices, declare them with `v` lines", show(.simplex), *.vertex as u64 + 1)]
+    /// Without declared vertices, an id would imply more than [`MAX_IMPLIED_VERTICES`] vertices.
     ImpliedVertexCount {
+        /// Where the simplex was given.
         origin: Origin,
+        /// The simplex as given.
         simplex: Vec<u32>,
+        /// The largest id.
         vertex: u32,
+        /// The limit ([`MAX_IMPLIED_VERTICES`]).
         max: u32,
     },
     #[error("{origin}: simplex with no vertex")]
-    EmptySimplex { origin: Origin },
+    /// A simplex with no vertex.
+    EmptySimplex {
+        /// Where the simplex was given.
+        origin: Origin,
+    },
     #[error("{}complex has no vertices", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
-    NoVertices { file: Option<PathBuf> },
+    /// The input has no vertex at all.
+    NoVertices {
+        /// The file, if the input came from one.
+        file: Option<PathBuf>,
+    },
     #[error("coordinates: {0}")]
+    /// The coordinate array does not match the vertex count.
     Coordinates(String),
 }
 
@@ -406,6 +436,7 @@ impl Complex {
         })
     }
 
+    /// Number of vertices n (vertex ids are `0..n`).
     pub fn vertex_count(&self) -> u32 {
         self.n_vertices
     }
@@ -415,14 +446,17 @@ impl Complex {
         self.tops.len() - 1
     }
 
+    /// Vertex coordinates, when the input has them.
     pub fn coords(&self) -> Option<&Coords> {
         (self.coords.dim > 0).then_some(&self.coords)
     }
 
+    /// What normalisation absorbed (duplicates, faces of other listed simplices).
     pub fn stats(&self) -> InputStats {
         self.stats
     }
 
+    /// The file the complex was read from, if any.
     pub fn source(&self) -> Option<&Path> {
         self.source.as_deref()
     }

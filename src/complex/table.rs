@@ -24,6 +24,7 @@ impl SimplexTable {
         t
     }
 
+    /// A table of rows of `arity` ids with no row.
     pub fn empty(arity: usize) -> Self {
         SimplexTable {
             arity,
@@ -50,18 +51,22 @@ impl SimplexTable {
         }
     }
 
+    /// Number of ids per row (p + 1 for p-simplices).
     pub fn arity(&self) -> usize {
         self.arity
     }
 
+    /// Number of rows.
     pub fn len(&self) -> usize {
         self.ids.len().checked_div(self.arity).unwrap_or(0)
     }
 
+    /// Whether the table has no row.
     pub fn is_empty(&self) -> bool {
         self.ids.is_empty()
     }
 
+    /// Row `i` (panics when `i >= len()`).
     pub fn get(&self, i: usize) -> &[u32] {
         &self.ids[i * self.arity..(i + 1) * self.arity]
     }
@@ -71,6 +76,7 @@ impl SimplexTable {
         &self.ids
     }
 
+    /// The rows in order.
     pub fn iter(&self) -> impl ExactSizeIterator<Item = &[u32]> + '_ {
         self.ids.chunks_exact(self.arity.max(1))
     }
@@ -92,6 +98,7 @@ impl SimplexTable {
         None
     }
 
+    /// Heap bytes held by the table.
     pub fn heap_bytes(&self) -> usize {
         self.ids.capacity() * 4
     }

@@ -173,6 +173,7 @@ fn layout(items: &[Item]) -> String {
     parts.join(", ")
 }
 
+/// Parses MEDIT (`.mesh`) text; errors carry the 1-based line.
 pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     let mut r = Reader {
         t: Tokens::new(text),

@@ -48,7 +48,9 @@ pub mod write;
 /// Vertex coordinates, `dim` numbers per vertex, vertex-major.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Coords {
+    /// Numbers per vertex.
     pub dim: usize,
+    /// `dim` numbers per vertex, vertex after vertex.
     pub data: Vec<f64>,
 }
 
@@ -63,12 +65,14 @@ pub struct RawInput {
     /// Simplex vertex ids, concatenated; simplex `i` is `ids[offsets[i]..offsets[i + 1]]`
     /// (so `offsets` has one more entry than there are simplices and starts with 0).
     pub ids: Vec<u32>,
+    /// Simplex boundaries in `ids` (see `ids`).
     pub offsets: Vec<usize>,
     /// 1-based line of each simplex in the file (0 when not from a file).
     pub lines: Vec<u32>,
 }
 
 impl RawInput {
+    /// An empty input (offsets start at 0).
     pub fn new() -> Self {
         RawInput {
             offsets: vec![0],
@@ -83,10 +87,12 @@ impl RawInput {
         self.lines.push(line);
     }
 
+    /// Number of simplices read.
     pub fn simplex_count(&self) -> usize {
         self.offsets.len() - 1
     }
 
+    /// Simplex `i` as read (panics when out of range).
     pub fn simplex(&self, i: usize) -> &[u32] {
         &self.ids[self.offsets[i]..self.offsets[i + 1]]
     }
@@ -96,14 +102,19 @@ impl RawInput {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ReadErrorKind {
     #[error("cannot read file: {0}")]
+    /// The file could not be opened or read.
     Io(String),
     #[error("unknown file extension (expected .off, .obj, .mesh or .simplices)")]
+    /// The extension names no supported format.
     UnknownExtension,
     #[error("{0}")]
+    /// The text does not follow the format.
     Syntax(String),
     #[error("polygon with {0} vertices is not a simplex")]
+    /// A polygon of more than 3 vertices (only simplices are accepted).
     Polygon(usize),
     #[error("negative vertex id {0}")]
+    /// A negative vertex id.
     NegativeId(i64),
 }
 
@@ -111,8 +122,11 @@ pub enum ReadErrorKind {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{}:{line}: {kind}", path.display())]
 pub struct ReadError {
+    /// The file.
     pub path: PathBuf,
+    /// 1-based line (0: the file as a whole).
     pub line: u32,
+    /// What was wrong.
     pub kind: ReadErrorKind,
 }
 

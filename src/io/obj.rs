@@ -135,6 +135,7 @@ fn vertex_index(tok: &str, form: Form, seen: u32) -> Result<u32, ReadErrorKind> 
     }
 }
 
+/// Parses Wavefront OBJ text; errors carry the 1-based line.
 pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     let mut raw = RawInput::new();
     let mut data = Vec::new();

@@ -66,6 +66,7 @@ impl Header {
     }
 }
 
+/// Parses OFF text; errors carry the 1-based line.
 pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     let mut t = Tokens::new(text);
 

@@ -23,6 +23,7 @@
 
 use super::{Coords, RawInput, ReadErrorKind, parse_f64, parse_id, strip_comment, syntax};
 
+/// Parses `.simplices` text (`v` and `s` lines); errors carry the 1-based line.
 pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     let mut raw = RawInput::new();
     let mut data = Vec::new();

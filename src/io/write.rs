@@ -31,7 +31,9 @@ use crate::structures::iqm::{ComponentPiece, Decomposition};
 #[derive(Debug, thiserror::Error)]
 #[error("{}: {source}", path.display())]
 pub struct WriteError {
+    /// The file that could not be written.
     pub path: PathBuf,
+    /// The operating system's error.
     pub source: std::io::Error,
 }
 

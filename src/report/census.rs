@@ -9,6 +9,7 @@ use crate::structures::iqm::Iqm;
 /// What the survey's tables count for one dataset. Definitions: [`super`].
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
 pub struct Census {
+    /// Dimension d of the complex.
     pub dimension: usize,
     /// n_0.
     pub vertices: usize,

@@ -75,8 +75,11 @@ pub struct Dataset {
     pub name: String,
     /// The file, `None` for the built-in example.
     pub file: Option<String>,
+    /// What normalisation absorbed.
     pub input: InputStats,
+    /// The census of the complex.
     pub census: Census,
+    /// The simplices the timings query.
     pub sample: Sample,
     /// One entry per kind, in [`StructureKind::ALL`] order.
     pub structures: Vec<StructureResult>,

@@ -14,6 +14,7 @@ use crate::structures;
 pub const SAMPLE: usize = 1000;
 /// Each measurement repeats until it has taken this long (or [`MAX_PASSES`]).
 pub const MIN_TIME: Duration = Duration::from_millis(20);
+/// Most vertices (and most top simplices) a family queries.
 pub const MAX_PASSES: u32 = 10_000;
 
 /// A relation family: which simplices are asked which relations.
@@ -31,6 +32,7 @@ pub enum Family {
 }
 
 impl Family {
+    /// Every family, in report order.
     pub const ALL: [Family; 4] = [
         Family::Boundary,
         Family::Coboundary,
@@ -64,9 +66,11 @@ impl Family {
 pub struct Sample {
     /// Vertices queried / vertices of the complex.
     pub vertices: usize,
+    /// Vertices of the complex.
     pub vertices_total: usize,
     /// Top simplices of dimension ≥ 1 queried / their number.
     pub tops: usize,
+    /// Top simplices of dimension ≥ 1.
     pub tops_total: usize,
     #[serde(skip)]
     vertex_ids: Vec<u32>,
@@ -76,6 +80,7 @@ pub struct Sample {
 }
 
 impl Sample {
+    /// At most `limit` vertices and `limit` top simplices, spread evenly.
     pub fn of(complex: &Complex, limit: usize) -> Sample {
         let n = complex.vertex_count() as usize;
         let vertex_ids: Vec<u32> = spread(n, limit).map(|i| i as u32).collect();
@@ -135,14 +140,17 @@ fn spread(n: usize, count: usize) -> impl Iterator<Item = usize> {
 /// One family's measurement on one structure.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct FamilyTiming {
+    /// The family measured.
     pub family: Family,
     /// Queries per pass and the rows they retrieve.
     pub queries: usize,
+    /// Rows retrieved per pass.
     pub elements: u64,
     /// Timed passes (after one warm-up pass).
     pub passes: u32,
     /// Mean time per retrieved row; `None` when the family retrieves nothing here.
     pub ns_per_element: Option<f64>,
+    /// Mean time per query.
     pub ns_per_query: Option<f64>,
     /// A query failed (a bug: every queried simplex is in the complex).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -152,21 +160,26 @@ pub struct FamilyTiming {
 /// One structure's figures.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Measured {
+    /// Storage of the structure.
     pub storage: Storage,
     /// Storage bytes / Σ_p n_p.
     pub bytes_per_simplex: f64,
     /// Mean build time (one build when it takes ≥ `MIN_TIME`, else repeated builds after one).
     pub build_ms: f64,
+    /// Mean build time per simplex of the complex.
     pub build_ns_per_simplex: f64,
+    /// Builds timed.
     pub builds: u32,
     /// The structure's own `summary()` figures (IQM: components, split vertices...).
     pub summary: Vec<(String, u64)>,
+    /// The families' timings.
     pub families: Vec<FamilyTiming>,
 }
 
 /// What happened to one structure on one dataset.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StructureResult {
+    /// The structure.
     pub kind: StructureKind,
     /// `Err`: why the structure cannot encode the complex (or could not be built).
     pub outcome: Result<Measured, String>,

@@ -37,6 +37,7 @@ use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::De;
 
+/// The Directed-Edge structure (see the module documentation for what it stores and costs).
 #[derive(Debug, Clone)]
 pub struct DirectedEdge {
     n: u32,

@@ -76,6 +76,7 @@ fn unsupported(reason: String) -> BuildError {
     BuildError::Unsupported { kind: KIND, reason }
 }
 
+/// The Indexed data structure with Adjacencies (see the module documentation for what it stores and costs).
 #[derive(Debug, Clone)]
 pub struct IndexedAdjacency {
     d: usize,

@@ -37,6 +37,7 @@ use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Ig;
 
+/// The Incidence Graph (see the module documentation for what it stores and costs).
 #[derive(Debug, Clone)]
 pub struct IncidenceGraph {
     tables: Vec<SimplexTable>,

@@ -144,6 +144,7 @@ pub struct Iqm {
 /// original vertex id of each local id.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ComponentPiece {
+    /// Dimension of the component (of its top simplices).
     pub dimension: usize,
     /// `dimension + 1` local ids per top simplex; row j's entries follow the ascending order of
     /// the original ids they stand for.
@@ -159,14 +160,18 @@ pub struct ComponentPiece {
 pub struct Decomposition {
     /// Number of vertices of the original complex.
     pub vertex_count: u32,
+    /// Components, one per IQM component.
     pub components: Vec<ComponentPiece>,
     /// For each global copy id: the original vertex and the component.
     pub copy_vertex: Vec<u32>,
+    /// Original vertex of each global copy id.
     pub copy_component: Vec<u32>,
     /// The split vertices (two or more copies), ascending; the copies of `split_vertices[a]` are
     /// `split_copies[split_offsets[a]..split_offsets[a + 1]]`, ascending global copy ids.
     pub split_vertices: Vec<u32>,
+    /// Component of each global copy id.
     pub split_offsets: Vec<u32>,
+    /// Start of each split vertex's copies in `split_copies` (one more entry than split vertices).
     pub split_copies: Vec<u32>,
 }
 

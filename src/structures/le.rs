@@ -43,6 +43,7 @@ use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Le;
 
+/// The Loop-Edge-use structure (see the module documentation for what it stores and costs).
 #[derive(Debug, Clone)]
 pub struct LoopEdgeUse {
     n: u32,

@@ -20,12 +20,26 @@ pub enum BuildError {
     /// Kept for the C ABI's TPX_STATUS_NOT_IMPLEMENTED (numbers are never reused); every kind
     /// is implemented today.
     #[error("structure `{kind}` is not implemented yet")]
-    NotImplemented { kind: StructureKind },
+    NotImplemented {
+        /// The structure asked for.
+        kind: StructureKind,
+    },
     /// The structure's domain excludes this complex; `reason` names the first offending simplex.
     #[error("structure `{kind}` cannot encode this complex: {reason}")]
-    Unsupported { kind: StructureKind, reason: String },
+    Unsupported {
+        /// The structure asked for.
+        kind: StructureKind,
+        /// Why, naming the first offending simplex.
+        reason: String,
+    },
+    /// The structure's arrays would exceed their index range or the memory available.
     #[error("structure `{kind}`: the complex is too large: {what}")]
-    TooLarge { kind: StructureKind, what: String },
+    TooLarge {
+        /// The structure asked for.
+        kind: StructureKind,
+        /// What overflowed.
+        what: String,
+    },
 }
 
 /// Builds a structure of `kind` for `complex`.

@@ -99,6 +99,7 @@ fn unsupported(reason: String) -> BuildError {
     BuildError::Unsupported { kind: KIND, reason }
 }
 
+/// The Non-Manifold IA structure (see the module documentation for what it stores and costs).
 #[derive(Debug, Clone)]
 pub struct NonManifoldIa {
     d: usize,

@@ -42,6 +42,7 @@ use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Pe;
 
+/// The Partial Entity structure (see the module documentation for what it stores and costs).
 #[derive(Debug, Clone)]
 pub struct PartialEntities {
     n: u32,

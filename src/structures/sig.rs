@@ -155,6 +155,7 @@ const LONG: u8 = 3;
 /// Simplices per [`Block`].
 const BLOCK: usize = 64;
 
+/// The Simplified Incidence Graph (see the module documentation for what it stores and costs).
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Sig {
     /// Global id of the first p-simplex; `first[d + 1]` = total. The paper's lookup table.

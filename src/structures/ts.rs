@@ -45,6 +45,7 @@ use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Ts;
 
+/// The Triangle-Segment structure (see the module documentation for what it stores and costs).
 #[derive(Debug, Clone)]
 pub struct TriangleSegment {
     n: u32,
