@@ -98,27 +98,27 @@ fn show(ids: &[u32]) -> String {
 /// Why a query has no answer. Each variant names the simplex as given.
 #[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
 pub enum QueryError {
-    #[error("simplex with no vertex")]
     /// The query simplex has no vertex.
+    #[error("simplex with no vertex")]
     EmptySimplex,
-    #[error("simplex {} has {} vertices, above the supported maximum dimension {max}", show(.simplex), .simplex.len())]
     /// The query simplex has more than `MAX_DIMENSION + 1` vertices.
+    #[error("simplex {} has {} vertices, above the supported maximum dimension {max}", show(.simplex), .simplex.len())]
     TooManyVertices {
         /// The simplex as given.
         simplex: Vec<u32>,
         /// The supported maximum dimension.
         max: usize,
     },
-    #[error("simplex {} repeats vertex {vertex}", show(.simplex))]
     /// The query simplex lists a vertex twice.
+    #[error("simplex {} repeats vertex {vertex}", show(.simplex))]
     RepeatedVertex {
         /// The simplex as given.
         simplex: Vec<u32>,
         /// The repeated id.
         vertex: u32,
     },
-    #[error("simplex {} uses vertex {vertex}, but the complex has {n} vertices", show(.simplex))]
     /// The query simplex uses a vertex id `>= n`.
+    #[error("simplex {} uses vertex {vertex}, but the complex has {n} vertices", show(.simplex))]
     VertexOutOfRange {
         /// The simplex as given.
         simplex: Vec<u32>,
@@ -127,14 +127,14 @@ pub enum QueryError {
         /// The number of vertices.
         n: u32,
     },
-    #[error("simplex {} is not in the complex", show(.simplex))]
     /// The simplex is not in the complex.
+    #[error("simplex {} is not in the complex", show(.simplex))]
     NotInComplex {
         /// The simplex as given.
         simplex: Vec<u32>,
     },
-    #[error("relation R_{{{p},{q}}}: dimension {q} is above the complex's dimension {dim}")]
     /// p or q is above the complex's dimension.
+    #[error("relation R_{{{p},{q}}}: dimension {q} is above the complex's dimension {dim}")]
     DimensionOutOfRange {
         /// Dimension of the query simplex.
         p: usize,

@@ -101,20 +101,20 @@ impl RawInput {
 /// What was wrong, without the location ([`ReadError`] adds file and line).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ReadErrorKind {
-    #[error("cannot read file: {0}")]
     /// The file could not be opened or read.
+    #[error("cannot read file: {0}")]
     Io(String),
-    #[error("unknown file extension (expected .off, .obj, .mesh or .simplices)")]
     /// The extension names no supported format.
+    #[error("unknown file extension (expected .off, .obj, .mesh or .simplices)")]
     UnknownExtension,
-    #[error("{0}")]
     /// The text does not follow the format.
+    #[error("{0}")]
     Syntax(String),
-    #[error("polygon with {0} vertices is not a simplex")]
     /// A polygon of more than 3 vertices (only simplices are accepted).
+    #[error("polygon with {0} vertices is not a simplex")]
     Polygon(usize),
-    #[error("negative vertex id {0}")]
     /// A negative vertex id.
+    #[error("negative vertex id {0}")]
     NegativeId(i64),
 }
 
