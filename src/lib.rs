@@ -6,12 +6,14 @@
 //! - [`structures`] builds any of the family (IG, SIG, IA, IQM, NMIA, TS, PE, LE, DE).
 //! - [`oracle`] answers every relation by brute force, for tests.
 //! - [`report`] is `topoplex report`: census, storage and timings of every structure.
+//! - [`error::one_line`] bounds and escapes every message that leaves the library.
 //! - [`ffi`] is the C ABI (`include/topoplex.h`), the only module allowed `unsafe` code.
 
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 
 pub mod complex;
+pub mod error;
 #[allow(unsafe_code)]
 pub mod ffi;
 pub mod fixtures;
@@ -21,6 +23,6 @@ pub mod relation;
 pub mod report;
 pub mod structures;
 
-pub use complex::{Complex, ComplexError};
+pub use complex::{Budget, Complex, ComplexError};
 pub use relation::{QueryError, Storage, StructureKind, Topology};
 pub use structures::{BuildError, build};

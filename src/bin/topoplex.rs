@@ -1,15 +1,22 @@
 //! `topoplex`: report on a complex and dump its relations through any structure.
+//!
+//! Error contract: every failure — a usage error, an unreadable input, an output that cannot be
+//! written (closed pipe, full disk) — exits 1 with one bounded, escaped line on stderr
+//! (`topoplex: ...`); nothing panics on I/O. A subcommand is a function returning
+//! `Result<(), String>` called from [`run`]; it reads inputs with [`load`] (which applies
+//! `--max-simplices`) and writes stdout with [`print`] or through [`output_error`].
 
 use std::io::{BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::mpsc;
+use std::sync::{OnceLock, mpsc};
 use std::time::Duration;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use topoplex::error::{MESSAGE_MAX_BYTES, one_line};
 use topoplex::relation::sort_rows;
-use topoplex::{Complex, StructureKind, fixtures, structures};
+use topoplex::{Budget, Complex, StructureKind, fixtures, structures};
 
 #[derive(Parser)]
 #[command(
@@ -18,6 +25,11 @@ use topoplex::{Complex, StructureKind, fixtures, structures};
     about = "Topological data structures for arbitrary simplicial complexes"
 )]
 struct Cli {
+    /// Most simplices an input's closure may have (by its upper bound n + faces of every top
+    /// simplex), or `unlimited`. Default: max(2^20, 64 × the input's vertex ids and declared
+    /// vertices), so a few bytes of high-dimensional simplices cannot expand into gigabytes.
+    #[arg(long, global = true, value_name = "N", value_parser = parse_max_simplices)]
+    max_simplices: Option<u64>,
     #[command(subcommand)]
     command: Command,
 }
@@ -59,10 +71,23 @@ enum Command {
     /// component's local vertex ids back to the original ids.
     Decompose {
         file: PathBuf,
-        /// Output directory (created if missing).
+        /// Output directory (created if missing). It must be empty, unless --force.
         #[arg(long)]
         out: PathBuf,
+        /// Write into a non-empty --out directory, first deleting an earlier decomposition's
+        /// files there (component_<i>.off/.mesh/.simplices, gluing.json; other files are kept).
+        /// The input is never overwritten or deleted.
+        #[arg(long)]
+        force: bool,
     },
+}
+
+fn parse_max_simplices(s: &str) -> Result<u64, String> {
+    if s == "unlimited" {
+        return Ok(u64::MAX);
+    }
+    s.parse::<u64>()
+        .map_err(|_| "expected a number of simplices or `unlimited`".to_string())
 }
 
 fn parse_pq(s: &str) -> Result<(usize, usize), String> {
@@ -70,14 +95,31 @@ fn parse_pq(s: &str) -> Result<(usize, usize), String> {
     let num = |t: &str| {
         t.trim()
             .parse::<usize>()
-            .map_err(|_| format!("`{t}` is not a dimension"))
+            .map_err(|_| format!("`{}` is not a dimension", echo(t)))
     };
     Ok((num(p)?, num(q)?))
 }
 
+/// The budget of every input (set once from `--max-simplices`).
+static BUDGET: OnceLock<Budget> = OnceLock::new();
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
-    let result = match cli.command {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => return clap_exit(&e),
+    };
+    let _ = BUDGET.set(Budget {
+        max_simplices: cli.max_simplices,
+    });
+    match run(cli.command) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(msg) => fail(&msg),
+    }
+}
+
+/// One arm per subcommand.
+fn run(command: Command) -> Result<(), String> {
+    match command {
         Command::Report {
             files,
             json,
@@ -90,19 +132,78 @@ fn main() -> ExitCode {
             relation,
             simplex,
         } => dump_relation(file, &structure, relation, simplex),
-        Command::Decompose { file, out } => decompose(&file, &out),
-    };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(msg) => {
-            eprintln!("topoplex: {msg}");
-            ExitCode::FAILURE
-        }
+        Command::Decompose { file, out, force } => decompose(&file, &out, force),
     }
 }
 
+/// Writes `topoplex: <msg>` as one bounded, escaped line on stderr and returns exit status 1.
+/// A stderr that cannot be written (closed, full) is ignored: the status still tells.
+fn fail(msg: &str) -> ExitCode {
+    let line = one_line(msg, MESSAGE_MAX_BYTES);
+    let _ = writeln!(std::io::stderr().lock(), "topoplex: {line}");
+    ExitCode::FAILURE
+}
+
+/// clap's outcome when parsing fails: `--help`/`--version` print to stdout (exit 0, or 1 when
+/// stdout cannot take them); every usage error becomes one line and exit 1 (clap's own is
+/// several lines and exit 2).
+fn clap_exit(e: &clap::Error) -> ExitCode {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
+            print(&e.render().to_string()).map_or_else(|msg| fail(&msg), |()| ExitCode::SUCCESS)
+        }
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let names: Vec<String> = Cli::command()
+                .get_subcommands()
+                .map(|c| c.get_name().to_string())
+                .filter(|n| n != "help")
+                .collect();
+            fail(&format!(
+                "no command given (one of: {}; see topoplex --help)",
+                names.join(", ")
+            ))
+        }
+        _ => fail(&usage_line(&e.render().to_string())),
+    }
+}
+
+/// clap's rendered error as one line: its first paragraph (the error and, for missing
+/// arguments, their list) joined, without the usage block and tips that follow.
+fn usage_line(rendered: &str) -> String {
+    let first = rendered.trim_start().split("\n\n").next().unwrap_or("");
+    let joined: Vec<&str> = first
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .collect();
+    let joined = joined.join(" ");
+    let msg = joined.strip_prefix("error: ").unwrap_or(&joined);
+    format!("{msg} (see topoplex --help)")
+}
+
+/// An argument echoed in a message: at most 200 bytes, escaped.
+fn echo(arg: &str) -> String {
+    one_line(arg, 200)
+}
+
+/// The message for a failed write to stdout (closed pipe, full disk).
+fn output_error(e: std::io::Error) -> String {
+    format!("writing output: {e}")
+}
+
+/// Writes `text` to stdout and flushes, reporting a closed pipe or a full disk as an error.
+fn print(text: &str) -> Result<(), String> {
+    let mut w = std::io::stdout().lock();
+    w.write_all(text.as_bytes())
+        .and_then(|()| w.flush())
+        .map_err(output_error)
+}
+
+/// Reads and normalises `file` under the `--max-simplices` budget.
 fn load(file: &Path) -> Result<Complex, String> {
-    Complex::from_path(file).map_err(|e| e.to_string())
+    let budget = BUDGET.get().copied().unwrap_or_default();
+    Complex::from_path_with(file, budget).map_err(|e| e.to_string())
 }
 
 /// A progress bar on stderr that appears only on a terminal and only once the work has taken
@@ -190,28 +291,84 @@ fn report(files: &[PathBuf], json: bool, csv: bool, svg: Option<&Path>) -> Resul
     } else {
         render::markdown(&datasets)
     };
-    let stdout = std::io::stdout();
-    let mut w = stdout.lock();
-    w.write_all(text.as_bytes())
-        .and_then(|()| w.flush())
-        .map_err(|e| format!("writing output: {e}"))
+    print(&text)
 }
 
-fn decompose(file: &Path, out: &Path) -> Result<(), String> {
+fn decompose(file: &Path, out: &Path, force: bool) -> Result<(), String> {
     let complex = load(file)?;
+    prepare_out_dir(file, out, force)?;
     let iqm = topoplex::structures::iqm::Iqm::build(&complex).map_err(|e| e.to_string())?;
     let dec = iqm.decomposition();
     let paths = topoplex::io::write::write_components(&dec, complex.coords(), out)
         .map_err(|e| e.to_string())?;
-    println!(
-        "{} components, {} split vertices ({} vertex copies in all); wrote {} files to {}",
+    print(&format!(
+        "{} components, {} split vertices ({} vertex copies in all); wrote {} files to {}\n",
         dec.components.len(),
         dec.split_vertices.len(),
         dec.copy_vertex.len(),
         paths.len(),
         out.display()
-    );
+    ))
+}
+
+/// `decompose`'s output directory: missing or empty is fine; otherwise `--force` is needed, and
+/// then an earlier decomposition's files are deleted (so none is left stale) — unless one of
+/// them is the input, which is never overwritten or deleted.
+fn prepare_out_dir(input: &Path, out: &Path, force: bool) -> Result<(), String> {
+    let at = |e: std::io::Error| format!("--out {}: {e}", out.display());
+    let entries = match std::fs::read_dir(out) {
+        Ok(entries) => entries,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
+        Err(e) => return Err(at(e)),
+    };
+    let input_meta = std::fs::metadata(input).map_err(|e| format!("{}: {e}", input.display()))?;
+    let (mut earlier, mut others) = (Vec::new(), 0usize);
+    for entry in entries {
+        let path = entry.map_err(at)?.path();
+        let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
+        if topoplex::io::write::is_decomposition_file(name) {
+            if std::fs::metadata(&path).is_ok_and(|m| same_file(&m, &input_meta)) {
+                return Err(format!(
+                    "--out {}: the input {} would be overwritten (decompose never overwrites its input; choose another directory)",
+                    out.display(),
+                    input.display()
+                ));
+            }
+            earlier.push(path);
+        } else {
+            others += 1;
+        }
+    }
+    if earlier.is_empty() && others == 0 {
+        return Ok(());
+    }
+    if !force {
+        return Err(format!(
+            "--out {}: directory is not empty ({} entries); pass --force to replace an earlier decomposition there",
+            out.display(),
+            earlier.len() + others
+        ));
+    }
+    for path in earlier {
+        std::fs::remove_file(&path)
+            .map_err(|e| format!("{}: cannot delete: {e}", path.display()))?;
+    }
     Ok(())
+}
+
+/// Whether two paths' metadata are one file (hard links and symbolic links included).
+fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::MetadataExt;
+        a.dev() == b.dev() && a.ino() == b.ino()
+    }
+    #[cfg(not(unix))]
+    {
+        a.len() == b.len()
+            && a.modified().ok() == b.modified().ok()
+            && a.created().ok() == b.created().ok()
+    }
 }
 
 fn dump_relation(
@@ -223,7 +380,8 @@ fn dump_relation(
     let kind = StructureKind::from_name(structure).ok_or_else(|| {
         let names: Vec<&str> = StructureKind::ALL.iter().map(|k| k.name()).collect();
         format!(
-            "unknown structure `{structure}` (expected one of: {})",
+            "unknown structure `{}` (expected one of: {})",
+            echo(structure),
             names.join(", ")
         )
     })?;
@@ -241,7 +399,7 @@ fn dump_relation(
                 .split_whitespace()
                 .map(|t| {
                     t.parse::<u32>()
-                        .map_err(|_| format!("--simplex: `{t}` is not a vertex id"))
+                        .map_err(|_| format!("--simplex: `{}` is not a vertex id", echo(t)))
                 })
                 .collect::<Result<Vec<u32>, String>>()?;
             if ids.len() != p + 1 {
@@ -275,10 +433,9 @@ fn dump_relation(
             write_ids(&mut line, tau);
         }
         line.push('\n');
-        w.write_all(line.as_bytes())
-            .map_err(|e| format!("writing output: {e}"))?;
+        w.write_all(line.as_bytes()).map_err(output_error)?;
     }
-    w.flush().map_err(|e| format!("writing output: {e}"))
+    w.flush().map_err(output_error)
 }
 
 fn write_ids(line: &mut String, ids: &[u32]) {

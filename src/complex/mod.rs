@@ -14,6 +14,17 @@
 //!   max id + 1, up to [`MAX_IMPLIED_VERTICES`]; a larger id is an error naming the simplex
 //!   (declare the vertices instead), so a few bytes cannot demand gigabytes.
 //! - Vertex ids are the 0-based position of the vertex in the file.
+//! - The closure may not outgrow the input beyond a [`Budget`]: a few bytes of high-dimensional
+//!   simplices (or a vertex count with nothing behind it) would otherwise expand into gigabytes.
+//!   By default the closure may have `max(2^20, 64 × input size)` simplices, the input size
+//!   being the number of listed vertex ids plus the number of declared vertices (vertices a file
+//!   lists, or given with coordinates through the API). The check uses an upper bound on the
+//!   closure (`n + Σ_top (2^{p+1} − p − 2)`, computed in time linear in the top simplices, before
+//!   anything of closure size is allocated), so every structure built from an accepted complex
+//!   is bounded too: each is linear in the closure. Above it, [`ComplexError::TooLarge`] names
+//!   the bound and the limit; [`Budget::max_simplices`] (CLI `--max-simplices`, C ABI
+//!   `tpx_complex_from_*_budget`) raises or lowers it. Memory that the input's size asks for is
+//!   reserved fallibly: a failed reservation is [`ComplexError::OutOfMemory`], not an abort.
 //!
 //! # Numbering
 //! Top p-simplices are numbered `0..` in ascending lexicographic order of their ascending vertex
@@ -34,6 +45,38 @@ pub const MAX_DIMENSION: usize = 15;
 /// Most vertices a file may imply without declaring them (a `.simplices` file without `v`
 /// lines has vertices 0..=max id, mostly isolated if the ids are sparse).
 pub const MAX_IMPLIED_VERTICES: u32 = 1 << 24;
+
+/// Smallest closure the default [`Budget`] always allows, in simplices (16 disjoint 15-simplices;
+/// every structure stays well under a gigabyte at this size).
+pub const BUDGET_FLOOR: u64 = 1 << 20;
+
+/// Closure simplices the default [`Budget`] allows per unit of input size (a listed vertex id or
+/// a declared vertex). Triangle and tetrahedral meshes need about 1.3 and 2.9 (by the upper
+/// bound); a top p-simplex alone needs `(2^{p+1} − p − 2)/(p + 1)`: 56 at p = 8, 101 at p = 9,
+/// 4,095 at p = 15 — so inputs made mostly of simplices of dimension ≥ 9 need the floor or an
+/// explicit budget.
+pub const BUDGET_RATIO: u64 = 64;
+
+/// How large a complex an input may expand into (see the module documentation).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Budget {
+    /// Most simplices the closure may have (by its upper bound); `None` for the default rule
+    /// `max(BUDGET_FLOOR, BUDGET_RATIO × input size)`.
+    pub max_simplices: Option<u64>,
+}
+
+impl Budget {
+    /// No limit (the caller takes responsibility for the memory).
+    pub const UNLIMITED: Budget = Budget {
+        max_simplices: Some(u64::MAX),
+    };
+
+    /// The limit for an input of `input_size` listed ids and declared vertices.
+    pub fn limit(&self, input_size: u64) -> u64 {
+        self.max_simplices
+            .unwrap_or_else(|| BUDGET_FLOOR.max(BUDGET_RATIO.saturating_mul(input_size)))
+    }
+}
 
 /// Where a simplex came from: a file line, or its position in an array given through the API.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -63,11 +106,11 @@ fn show(ids: &[u32]) -> String {
 /// Why an input could not become a complex. Vertex ids in messages are 0-based positions.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ComplexError {
-    #[error(transparent)]
     /// The file could not be read or parsed.
+    #[error(transparent)]
     Read(#[from] ReadError),
-    #[error("{origin}: simplex {} repeats vertex {vertex}", show(.simplex))]
     /// A simplex lists one vertex twice.
+    #[error("{origin}: simplex {} repeats vertex {vertex}", show(.simplex))]
     RepeatedVertex {
         /// Where the simplex was given.
         origin: Origin,
@@ -76,8 +119,8 @@ pub enum ComplexError {
         /// The repeated vertex id.
         vertex: u32,
     },
-    #[error("{origin}: simplex {} uses vertex {vertex}, but the complex has {n} vertices (ids 0..{n})", show(.simplex))]
     /// A simplex uses a vertex id `>= n`.
+    #[error("{origin}: simplex {} uses vertex {vertex}, but the complex has {n} vertices (ids 0..{n})", show(.simplex))]
     VertexOutOfRange {
         /// Where the simplex was given.
         origin: Origin,
@@ -88,8 +131,8 @@ pub enum ComplexError {
         /// The number of vertices.
         n: u32,
     },
-    #[error("{origin}: simplex {} has dimension {dim}, above the supported maximum {max}", show(.simplex))]
     /// A simplex has more than `MAX_DIMENSION + 1` vertices.
+    #[error("{origin}: simplex {} has dimension {dim}, above the supported maximum {max}", show(.simplex))]
     DimensionTooHigh {
         /// Where the simplex was given.
         origin: Origin,
@@ -100,8 +143,8 @@ pub enum ComplexError {
         /// The supported maximum ([`MAX_DIMENSION`]).
         max: usize,
     },
-    #[error("{origin}: simplex {} uses vertex {vertex}, which would make {} vertices (without `v` lines the vertices are 0..=max id); above {max} vertices, declare them with `v` lines", show(.simplex), *.vertex as u64 + 1)]
     /// Without declared vertices, an id would imply more than [`MAX_IMPLIED_VERTICES`] vertices.
+    #[error("{origin}: simplex {} uses vertex {vertex}, which would make {} vertices (without `v` lines the vertices are 0..=max id); above {max} vertices, declare them with `v` lines", show(.simplex), *.vertex as u64 + 1)]
     ImpliedVertexCount {
         /// Where the simplex was given.
         origin: Origin,
@@ -112,21 +155,44 @@ pub enum ComplexError {
         /// The limit ([`MAX_IMPLIED_VERTICES`]).
         max: u32,
     },
-    #[error("{origin}: simplex with no vertex")]
     /// A simplex with no vertex.
+    #[error("{origin}: simplex with no vertex")]
     EmptySimplex {
         /// Where the simplex was given.
         origin: Origin,
     },
-    #[error("{}complex has no vertices", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
     /// The input has no vertex at all.
+    #[error("{}complex has no vertices", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
     NoVertices {
         /// The file, if the input came from one.
         file: Option<PathBuf>,
     },
-    #[error("coordinates: {0}")]
     /// The coordinate array does not match the vertex count.
+    #[error("coordinates: {0}")]
     Coordinates(String),
+    /// The closure could exceed the [`Budget`].
+    #[error("{}the closure could have up to {bound} simplices, above the budget of {limit} (by default max(2^20, 64 × the input's {input_size} vertex ids and declared vertices)); raise it with --max-simplices (C ABI: tpx_complex_from_*_budget)", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
+    TooLarge {
+        /// The file, if the input came from one.
+        file: Option<PathBuf>,
+        /// Upper bound on the closure's simplices: n + Σ over top p-simplices of their faces
+        /// of dimension ≥ 1.
+        bound: u64,
+        /// The budget's limit for this input.
+        limit: u64,
+        /// Listed vertex ids plus declared vertices.
+        input_size: u64,
+    },
+    /// Memory that the input's size asks for could not be reserved.
+    #[error("{}out of memory: cannot reserve {bytes} bytes for {what}", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
+    OutOfMemory {
+        /// The file, if the input came from one.
+        file: Option<PathBuf>,
+        /// What the memory was for.
+        what: &'static str,
+        /// How much was asked for.
+        bytes: u64,
+    },
 }
 
 /// What normalisation absorbed.
@@ -181,14 +247,29 @@ struct ListingMaps {
 const NONE_TOP: (u8, u32) = (u8::MAX, u32::MAX);
 
 impl Complex {
-    /// Reads and normalises a file (format by extension).
+    /// Reads and normalises a file (format by extension), under the default [`Budget`].
     pub fn from_path(path: &Path) -> Result<Complex, ComplexError> {
-        let raw = crate::io::read_path(path)?;
-        Complex::from_raw(&raw, Some(path))
+        Complex::from_path_with(path, Budget::default())
     }
 
-    /// Normalises reader output; `file` names the source in errors.
+    /// Reads and normalises a file (format by extension) under `budget`.
+    pub fn from_path_with(path: &Path, budget: Budget) -> Result<Complex, ComplexError> {
+        let raw = crate::io::read_path(path)?;
+        Complex::from_raw_with(&raw, Some(path), budget)
+    }
+
+    /// Normalises reader output under the default [`Budget`]; `file` names the source in errors.
     pub fn from_raw(raw: &RawInput, file: Option<&Path>) -> Result<Complex, ComplexError> {
+        Complex::from_raw_with(raw, file, Budget::default())
+    }
+
+    /// Normalises reader output under `budget`; `file` names the source in errors. The input
+    /// size is the listed ids plus the vertices the file declares.
+    pub fn from_raw_with(
+        raw: &RawInput,
+        file: Option<&Path>,
+        budget: Budget,
+    ) -> Result<Complex, ComplexError> {
         let origin = |i: usize| Origin {
             file: file.map(Path::to_path_buf),
             line: raw.lines.get(i).copied().unwrap_or(0),
@@ -218,6 +299,7 @@ impl Complex {
                 max + 1
             }
         };
+        let input_size = raw.ids.len() as u64 + raw.vertex_count.map_or(0, u64::from);
         Complex::build(
             n,
             raw.coords.clone(),
@@ -225,16 +307,37 @@ impl Complex {
             |i| raw.simplex(i),
             origin,
             file,
+            (budget, input_size),
         )
     }
 
-    /// Builds from arrays: simplex `i` is `ids[offsets[i]..offsets[i+1]]`.
+    /// Builds from arrays under the default [`Budget`]: simplex `i` is
+    /// `ids[offsets[i]..offsets[i+1]]`.
     pub fn from_arrays(
         n_vertices: u32,
         ids: &[u32],
         offsets: &[usize],
         coords: Option<Coords>,
     ) -> Result<Complex, ComplexError> {
+        Complex::from_arrays_with(n_vertices, ids, offsets, coords, Budget::default())
+    }
+
+    /// Builds from arrays under `budget`. The input size is the ids plus, when coordinates are
+    /// given, the vertices (a bare vertex count, without coordinates, is not input: a caller
+    /// asking for 2^32 isolated vertices must raise the budget).
+    pub fn from_arrays_with(
+        n_vertices: u32,
+        ids: &[u32],
+        offsets: &[usize],
+        coords: Option<Coords>,
+        budget: Budget,
+    ) -> Result<Complex, ComplexError> {
+        let input_size = ids.len() as u64
+            + if coords.is_some() {
+                u64::from(n_vertices)
+            } else {
+                0
+            };
         let count = offsets.len().saturating_sub(1);
         let origin = |i| Origin {
             file: None,
@@ -248,6 +351,7 @@ impl Complex {
             |i| &ids[offsets[i]..offsets[i + 1]],
             origin,
             None,
+            (budget, input_size),
         )
     }
 
@@ -265,9 +369,12 @@ impl Complex {
             |i| simplices[i],
             origin,
             None,
+            (Budget::UNLIMITED, 0),
         )
     }
 
+    /// Validates, sorts and absorbs. `(budget, input_size)`: the closure's upper bound is
+    /// checked against `budget.limit(input_size)` before anything of closure size is allocated.
     fn build<'a>(
         n: u32,
         coords: Option<Coords>,
@@ -275,7 +382,13 @@ impl Complex {
         simplex: impl Fn(usize) -> &'a [u32],
         origin: impl Fn(usize) -> Origin,
         file: Option<&Path>,
+        (budget, input_size): (Budget, u64),
     ) -> Result<Complex, ComplexError> {
+        let oom = |what: &'static str, bytes: usize| ComplexError::OutOfMemory {
+            file: file.map(Path::to_path_buf),
+            what,
+            bytes: bytes as u64,
+        };
         if n == 0 {
             return Err(ComplexError::NoVertices {
                 file: file.map(Path::to_path_buf),
@@ -328,8 +441,12 @@ impl Complex {
             if by_dim.len() <= p {
                 by_dim.resize(p + 1, Vec::new());
             }
+            by_dim[p]
+                .try_reserve(sorted.len())
+                .map_err(|_| oom("the input simplices", sorted.len() * 4))?;
             by_dim[p].extend_from_slice(&sorted);
         }
+        let id_count: usize = by_dim.iter().map(Vec::len).sum();
         let mut stats = InputStats {
             input_simplices: count,
             ..Default::default()
@@ -340,11 +457,26 @@ impl Complex {
             stats.absorbed_duplicates += dups;
             tables.push(t);
         }
+        let bound = closure_bound(n, &tables);
+        let limit = budget.limit(input_size);
+        if bound > limit {
+            return Err(ComplexError::TooLarge {
+                file: file.map(Path::to_path_buf),
+                bound,
+                limit,
+                input_size,
+            });
+        }
         let tops = absorb_faces(n, tables, &mut stats);
-        let mut listing = Listing {
-            offsets: Vec::with_capacity(count + 1),
-            ..Default::default()
-        };
+        let mut listing = Listing::default();
+        listing
+            .offsets
+            .try_reserve_exact(count + 1)
+            .map_err(|_| oom("the input listing", (count + 1) * 8))?;
+        listing
+            .ids
+            .try_reserve_exact(id_count)
+            .map_err(|_| oom("the input listing", id_count * 4))?;
         listing.offsets.push(0);
         for i in 0..count {
             listing.ids.extend_from_slice(simplex(i));
@@ -498,6 +630,16 @@ impl Complex {
         }
         levels
     }
+}
+
+/// Upper bound on the closure's size: every vertex, and every face of dimension ≥ 1 of every
+/// listed (deduplicated) simplex, as if no face were shared. O(number of listed simplices).
+fn closure_bound(n: u32, tables: &[SimplexTable]) -> u64 {
+    let faces = tables.iter().enumerate().skip(1).map(|(p, t)| {
+        let per = (1u64 << (p + 1)) - p as u64 - 2;
+        (t.len() as u64).saturating_mul(per)
+    });
+    faces.fold(u64::from(n), u64::saturating_add)
 }
 
 /// Drops listed simplices that are faces of higher-dimensional listed ones, and adds the vertices

@@ -171,6 +171,23 @@ pub fn gluing_json(
     })
 }
 
+/// Whether `name` is one of the files [`write_components`] writes: `component_<i>.off`,
+/// `component_<i>.mesh`, `component_<i>.simplices` or `gluing.json`.
+pub fn is_decomposition_file(name: &str) -> bool {
+    if name == "gluing.json" {
+        return true;
+    }
+    let Some((stem, ext)) = name.rsplit_once('.') else {
+        return false;
+    };
+    let Some(i) = stem.strip_prefix("component_") else {
+        return false;
+    };
+    matches!(ext, "off" | "mesh" | "simplices")
+        && !i.is_empty()
+        && i.bytes().all(|b| b.is_ascii_digit())
+}
+
 /// Writes every component of `dec` into `dir` (created if missing) and `gluing.json`; returns
 /// the paths written, components first. `coords` are the original complex's coordinates.
 pub fn write_components(
