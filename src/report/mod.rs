@@ -26,7 +26,12 @@
 //!   dimension ≥ 3 (vertices and edges of complexes of dimension ≥ 4, 5) those conditions are
 //!   necessary only — closed with χ = 1 + (−1)^k, or bounded with a sphere boundary and χ = 1
 //!   — so the count there is a lower bound; how many simplices passed that way is reported as
-//!   `approximated_links`.
+//!   `approximated_links`. Every link test has a work budget linear in the link's size
+//!   ([`census::LINK_WORK_PER_ID`]), so the census is linear in the complex for every dimension
+//!   up to 15: single simplices, boundaries of simplices and cones are recognised exactly at
+//!   once, and a link whose recursive test would exceed the budget (high-dimensional links that
+//!   are none of these) is counted in `unclassified_links` and its simplex listed (first few) in
+//!   `unclassified_examples` — neither manifold nor non-manifold, nor added to C_v or C_e.
 //! - **C_v** = Σ over vertices of the number of components of lk(v) (0 for an isolated vertex),
 //!   reported as C_v − n_0 (0 on a manifold without isolated vertices, negative with isolated
 //!   vertices). The NMIA's and the TS's C_v are exactly this.

@@ -70,11 +70,25 @@ pub fn markdown(datasets: &[Dataset]) -> String {
     let _ = writeln!(s, "|---|--:|--:|--:|--:|---|--:|--:|--:|---|");
     for d in datasets {
         let c = &d.census;
-        let approx = if c.approximated_links > 0 {
+        let mut approx = if c.approximated_links > 0 {
             format!(" (≥; {} links approximated)", c.approximated_links)
         } else {
             String::new()
         };
+        if c.unclassified_links > 0 {
+            let shown: Vec<String> = c
+                .unclassified_examples
+                .iter()
+                .map(|s| format!("[{}]", join(s)))
+                .collect();
+            let more = if c.unclassified_links > shown.len() { ", ..." } else { "" };
+            let _ = write!(
+                approx,
+                " ({} links unclassified, over the work budget: {}{more})",
+                c.unclassified_links,
+                shown.join(" ")
+            );
+        }
         let _ = writeln!(
             s,
             "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {}{} |",
@@ -242,6 +256,8 @@ pub fn json_value(d: &Dataset) -> Value {
         "iqm_components": c.iqm_components.as_ref().ok(),
         "non_manifold": c.non_manifold,
         "approximated_links": c.approximated_links,
+        "unclassified_links": c.unclassified_links,
+        "unclassified_examples": c.unclassified_examples,
     });
     if let Err(e) = &c.iqm_components {
         census["iqm_error"] = json!(e);
