@@ -167,6 +167,24 @@ typedef struct TpxRelationTable TpxRelationTable;
 typedef struct TpxStructure TpxStructure;
 
 /**
+ * What normalising the input absorbed (`TpxComplex`'s input statistics).
+ */
+typedef struct TpxInputStats {
+  /**
+   * Simplices as given, absorbed ones included.
+   */
+  size_t input_simplices;
+  /**
+   * Extra listings of a simplex listed more than once.
+   */
+  size_t absorbed_duplicates;
+  /**
+   * Listed simplices that are a proper face of another listed simplex.
+   */
+  size_t absorbed_faces;
+} TpxInputStats;
+
+/**
  * Storage of a structure: what the papers count and what the process really holds.
  */
 typedef struct TpxStorage {
@@ -212,7 +230,9 @@ const char *tpx_last_error_message(void);
  *
  * On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
  * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (offsets decreasing, `coord_dim == 0` with coords),
- * INVALID_COMPLEX (message names the offending simplex by its input position), TOO_LARGE.
+ * INVALID_COMPLEX (message names the offending simplex by its input position), TOO_LARGE
+ * (sizes that overflow, a closure above the default budget — see
+ * `tpx_complex_from_arrays_budget` — or memory that cannot be allocated: never an abort).
  * Cost: O(n log n in the total input size n) for sorting and absorbing faces; memory of the top simplices.
  *
  * # Safety
@@ -227,18 +247,51 @@ TpxStatus tpx_complex_from_arrays(uint32_t n_vertices,
                                   struct TpxComplex **out);
 
 /**
+ * `tpx_complex_from_arrays` with an explicit closure budget: the complex's closure may have at
+ * most `max_simplices` simplices (by its upper bound n + Σ over top p-simplices of
+ * 2^{p+1} − p − 2); 0 keeps the default, max(2^20, 64 × (ids + vertices given with
+ * coordinates)); `UINT64_MAX` removes the limit. Above it: TOO_LARGE, nothing allocated of
+ * closure size. Same arguments, ownership, errors and cost otherwise.
+ *
+ * # Safety
+ * Non-NULL pointers must point to arrays of the stated lengths.
+ */
+TpxStatus tpx_complex_from_arrays_budget(uint32_t n_vertices,
+                                         const uint32_t *ids,
+                                         const size_t *offsets,
+                                         size_t n_simplices,
+                                         const double *coords,
+                                         size_t coord_dim,
+                                         uint64_t max_simplices,
+                                         struct TpxComplex **out);
+
+/**
  * Reads a complex from a file, the format chosen by extension: `.off`, `.obj`, `.mesh`,
  * `.simplices` (`path` is a NUL-terminated UTF-8 path).
  *
  * On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
  * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8), IO_ERROR (cannot read),
  * PARSE_ERROR (syntax or unknown extension; message `file:line: what`), INVALID_COMPLEX
- * (message `file:line: simplex [..] ...`). Cost: linear in the file plus normalisation.
+ * (message `file:line: simplex [..] ...`), TOO_LARGE (closure above the default budget, see
+ * `tpx_complex_from_file_budget`; memory that cannot be allocated). Cost: linear in the file
+ * plus normalisation.
  *
  * # Safety
  * `path`, if non-NULL, must be a NUL-terminated string.
  */
 TpxStatus tpx_complex_from_file(const char *path, struct TpxComplex **out);
+
+/**
+ * `tpx_complex_from_file` with an explicit closure budget `max_simplices` (0: the default,
+ * max(2^20, 64 × (listed ids + declared vertices)); `UINT64_MAX`: unlimited; see
+ * `tpx_complex_from_arrays_budget`). Same ownership, errors and cost otherwise.
+ *
+ * # Safety
+ * `path`, if non-NULL, must be a NUL-terminated string.
+ */
+TpxStatus tpx_complex_from_file_budget(const char *path,
+                                       uint64_t max_simplices,
+                                       struct TpxComplex **out);
 
 /**
  * Releases a complex. NULL is a no-op. Structures built from it stay valid (they own their
@@ -248,6 +301,15 @@ TpxStatus tpx_complex_from_file(const char *path, struct TpxComplex **out);
  * `complex` must be NULL or a live handle from this library, not used afterwards.
  */
 void tpx_complex_free(struct TpxComplex *complex);
+
+/**
+ * What normalisation absorbed (duplicates and faces of other listed simplices, which are not
+ * errors) into `*out`. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid (a live handle; a writable `TpxInputStats`).
+ */
+TpxStatus tpx_complex_input_stats(const struct TpxComplex *c, struct TpxInputStats *out);
 
 /**
  * Dimension d of the complex (highest dimension of a simplex) into `*out`. O(1).

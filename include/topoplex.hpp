@@ -161,23 +161,25 @@ class Complex {
     return from_arrays(n_vertices, ids, offsets);
   }
 
-  /* Simplex i is ids[offsets[i] .. offsets[i+1]]; coords empty or n_vertices * coord_dim. */
+  /* Simplex i is ids[offsets[i] .. offsets[i+1]]; coords empty or n_vertices * coord_dim.
+   * max_simplices: the closure budget (0: the default, max(2^20, 64 x input size);
+   * UINT64_MAX: unlimited); above it, Error with TPX_STATUS_TOO_LARGE. */
   static Complex from_arrays(std::uint32_t n_vertices, const std::vector<std::uint32_t> &ids,
                              const std::vector<std::size_t> &offsets,
                              const std::vector<double> &coords = {},
-                             std::size_t coord_dim = 0) {
+                             std::size_t coord_dim = 0, std::uint64_t max_simplices = 0) {
     TpxComplex *c = nullptr;
     const std::size_t n = offsets.empty() ? 0 : offsets.size() - 1;
-    detail::check(tpx_complex_from_arrays(n_vertices, ids.data(), offsets.data(), n,
-                                          coords.empty() ? nullptr : coords.data(), coord_dim,
-                                          &c));
+    detail::check(tpx_complex_from_arrays_budget(n_vertices, ids.data(), offsets.data(), n,
+                                                 coords.empty() ? nullptr : coords.data(),
+                                                 coord_dim, max_simplices, &c));
     return Complex(c);
   }
 
-  /* Reads .off, .obj, .mesh or .simplices. */
-  static Complex from_file(const std::string &path) {
+  /* Reads .off, .obj, .mesh or .simplices (max_simplices: as for from_arrays). */
+  static Complex from_file(const std::string &path, std::uint64_t max_simplices = 0) {
     TpxComplex *c = nullptr;
-    detail::check(tpx_complex_from_file(path.c_str(), &c));
+    detail::check(tpx_complex_from_file_budget(path.c_str(), max_simplices, &c));
     return Complex(c);
   }
 
@@ -207,6 +209,12 @@ class Complex {
     std::size_t n = 0;
     detail::check(tpx_complex_top_count(c_, p, &n));
     return n;
+  }
+  /* What normalisation absorbed: simplices as given, extra listings, faces of listed ones. */
+  TpxInputStats input_stats() const {
+    TpxInputStats s{};
+    detail::check(tpx_complex_input_stats(c_, &s));
+    return s;
   }
   /* Coordinates per vertex; 0 when the complex has none. */
   std::size_t coord_dim() const {

@@ -4,9 +4,10 @@ use std::ffi::{CStr, c_char};
 use std::path::Path;
 
 use super::{
-    Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr, write_buffer,
+    Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr, try_copy,
+    write_buffer,
 };
-use crate::complex::{Complex, ComplexError};
+use crate::complex::{Budget, Complex, ComplexError};
 use crate::io::{Coords, ReadErrorKind};
 
 /// A normalised simplicial complex (opaque). Create with `tpx_complex_from_arrays` or
@@ -21,6 +22,7 @@ pub(crate) fn complex_failure(e: ComplexError) -> Failure {
             ReadErrorKind::Io(_) => TpxStatus::IoError,
             _ => TpxStatus::ParseError,
         },
+        ComplexError::TooLarge { .. } | ComplexError::OutOfMemory { .. } => TpxStatus::TooLarge,
         _ => TpxStatus::InvalidComplex,
     };
     Failure::new(status, e.to_string())
@@ -41,7 +43,9 @@ fn boxed(complex: Complex, out: &mut *mut TpxComplex) {
 ///
 /// On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
 /// Errors: NULL_ARGUMENT, INVALID_ARGUMENT (offsets decreasing, `coord_dim == 0` with coords),
-/// INVALID_COMPLEX (message names the offending simplex by its input position), TOO_LARGE.
+/// INVALID_COMPLEX (message names the offending simplex by its input position), TOO_LARGE
+/// (sizes that overflow, a closure above the default budget — see
+/// `tpx_complex_from_arrays_budget` — or memory that cannot be allocated: never an abort).
 /// Cost: O(n log n in the total input size n) for sorting and absorbing faces; memory of the top simplices.
 ///
 /// # Safety
@@ -54,6 +58,49 @@ pub unsafe extern "C" fn tpx_complex_from_arrays(
     n_simplices: usize,
     coords: *const f64,
     coord_dim: usize,
+    out: *mut *mut TpxComplex,
+) -> TpxStatus {
+    // SAFETY: the same contract, passed on.
+    unsafe {
+        tpx_complex_from_arrays_budget(
+            n_vertices,
+            ids,
+            offsets,
+            n_simplices,
+            coords,
+            coord_dim,
+            0,
+            out,
+        )
+    }
+}
+
+/// The budget `max_simplices` stands for: 0 the default rule, anything else a fixed limit
+/// (`UINT64_MAX`: unlimited).
+fn budget(max_simplices: u64) -> Budget {
+    Budget {
+        max_simplices: (max_simplices != 0).then_some(max_simplices),
+    }
+}
+
+/// `tpx_complex_from_arrays` with an explicit closure budget: the complex's closure may have at
+/// most `max_simplices` simplices (by its upper bound n + Σ over top p-simplices of
+/// 2^{p+1} − p − 2); 0 keeps the default, max(2^20, 64 × (ids + vertices given with
+/// coordinates)); `UINT64_MAX` removes the limit. Above it: TOO_LARGE, nothing allocated of
+/// closure size. Same arguments, ownership, errors and cost otherwise.
+///
+/// # Safety
+/// Non-NULL pointers must point to arrays of the stated lengths.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn tpx_complex_from_arrays_budget(
+    n_vertices: u32,
+    ids: *const u32,
+    offsets: *const usize,
+    n_simplices: usize,
+    coords: *const f64,
+    coord_dim: usize,
+    max_simplices: u64,
     out: *mut *mut TpxComplex,
 ) -> TpxStatus {
     guard(|| {
@@ -99,11 +146,12 @@ pub unsafe extern "C" fn tpx_complex_from_arrays(
                 })?;
             Some(Coords {
                 dim: coord_dim,
-                data: in_slice(coords, len, "coords")?.to_vec(),
+                data: try_copy(in_slice(coords, len, "coords")?, "coords")?,
             })
         };
         let complex =
-            Complex::from_arrays(n_vertices, ids, offsets, coords).map_err(complex_failure)?;
+            Complex::from_arrays_with(n_vertices, ids, offsets, coords, budget(max_simplices))
+                .map_err(complex_failure)?;
         boxed(complex, out);
         Ok(())
     })
@@ -115,13 +163,31 @@ pub unsafe extern "C" fn tpx_complex_from_arrays(
 /// On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
 /// Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8), IO_ERROR (cannot read),
 /// PARSE_ERROR (syntax or unknown extension; message `file:line: what`), INVALID_COMPLEX
-/// (message `file:line: simplex [..] ...`). Cost: linear in the file plus normalisation.
+/// (message `file:line: simplex [..] ...`), TOO_LARGE (closure above the default budget, see
+/// `tpx_complex_from_file_budget`; memory that cannot be allocated). Cost: linear in the file
+/// plus normalisation.
 ///
 /// # Safety
 /// `path`, if non-NULL, must be a NUL-terminated string.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_complex_from_file(
     path: *const c_char,
+    out: *mut *mut TpxComplex,
+) -> TpxStatus {
+    // SAFETY: the same contract, passed on.
+    unsafe { tpx_complex_from_file_budget(path, 0, out) }
+}
+
+/// `tpx_complex_from_file` with an explicit closure budget `max_simplices` (0: the default,
+/// max(2^20, 64 × (listed ids + declared vertices)); `UINT64_MAX`: unlimited; see
+/// `tpx_complex_from_arrays_budget`). Same ownership, errors and cost otherwise.
+///
+/// # Safety
+/// `path`, if non-NULL, must be a NUL-terminated string.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_from_file_budget(
+    path: *const c_char,
+    max_simplices: u64,
     out: *mut *mut TpxComplex,
 ) -> TpxStatus {
     guard(|| {
@@ -136,7 +202,8 @@ pub unsafe extern "C" fn tpx_complex_from_file(
                 format!("path is not valid UTF-8: {e}"),
             )
         })?;
-        let complex = Complex::from_path(Path::new(path)).map_err(complex_failure)?;
+        let complex = Complex::from_path_with(Path::new(path), budget(max_simplices))
+            .map_err(complex_failure)?;
         boxed(complex, out);
         Ok(())
     })
@@ -153,6 +220,38 @@ pub unsafe extern "C" fn tpx_complex_free(complex: *mut TpxComplex) {
         if !complex.is_null() {
             // SAFETY: the handle came from Box::into_raw in this module and is released once.
             drop(unsafe { Box::from_raw(complex) });
+        }
+    })
+}
+
+/// What normalising the input absorbed (`TpxComplex`'s input statistics).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TpxInputStats {
+    /// Simplices as given, absorbed ones included.
+    pub input_simplices: usize,
+    /// Extra listings of a simplex listed more than once.
+    pub absorbed_duplicates: usize,
+    /// Listed simplices that are a proper face of another listed simplex.
+    pub absorbed_faces: usize,
+}
+
+/// What normalisation absorbed (duplicates and faces of other listed simplices, which are not
+/// errors) into `*out`. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid (a live handle; a writable `TpxInputStats`).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_input_stats(
+    c: *const TpxComplex,
+    out: *mut TpxInputStats,
+) -> TpxStatus {
+    get_into(c, "c", out, |c| {
+        let s = c.complex.stats();
+        TpxInputStats {
+            input_simplices: s.input_simplices,
+            absorbed_duplicates: s.absorbed_duplicates,
+            absorbed_faces: s.absorbed_faces,
         }
     })
 }

@@ -117,8 +117,10 @@ thread_local! {
 }
 
 fn set_last_error(message: &str) {
-    // An interior NUL would truncate nothing useful, but CString refuses it: replace it.
-    let c = CString::new(message.replace('\0', "\\0")).unwrap_or_default();
+    // One bounded line with control characters escaped (NUL included, which CString refuses):
+    // a 100 MB token in a file must not become a 100 MB message.
+    let line = crate::error::one_line(message, crate::error::MESSAGE_MAX_BYTES);
+    let c = CString::new(line).unwrap_or_default();
     // `try_with`: during thread teardown the slot may be gone; the message is then dropped
     // rather than panicking outside the panic boundary.
     let _ = LAST_ERROR.try_with(|e| *e.borrow_mut() = c);
@@ -199,6 +201,22 @@ pub(crate) fn handle<'a, T>(p: *const T, what: &str) -> Result<&'a T, Failure> {
     unsafe { p.as_ref() }.ok_or_else(|| Failure::null(what))
 }
 
+/// A copy of `data` whose allocation failure is `TooLarge`, not an abort of the host.
+pub(crate) fn try_copy<T: Copy>(data: &[T], what: &str) -> Result<Vec<T>, Failure> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(data.len()).map_err(|_| {
+        Failure::new(
+            TpxStatus::TooLarge,
+            format!(
+                "`{what}`: cannot allocate {} bytes",
+                std::mem::size_of_val(data)
+            ),
+        )
+    })?;
+    v.extend_from_slice(data);
+    Ok(v)
+}
+
 /// `p[0..len]` as a slice; `p` may be NULL only when `len == 0`.
 pub(crate) fn in_slice<'a, T>(p: *const T, len: usize, what: &str) -> Result<&'a [T], Failure> {
     if len == 0 {
@@ -225,6 +243,11 @@ pub(crate) fn write_buffer<T: Copy>(
     buf_len: usize,
     out_len: &mut usize,
 ) -> Result<(), Failure> {
+    // The header promises NULL_ARGUMENT for a NULL buffer with a non-zero length, whatever the
+    // answer's size (an empty answer must not hide the caller's bug).
+    if buf.is_null() && buf_len > 0 {
+        return Err(Failure::null("buf"));
+    }
     if data.len() > buf_len {
         *out_len = data.len();
         let what = std::any::type_name::<T>();
@@ -238,10 +261,6 @@ pub(crate) fn write_buffer<T: Copy>(
         ));
     }
     if !data.is_empty() {
-        // buf_len >= data.len() > 0, so a NULL `buf` is a caller error.
-        if buf.is_null() {
-            return Err(Failure::null("buf"));
-        }
         // SAFETY: `buf` is valid for `buf_len >= data.len()` writes (documented contract) and
         // cannot overlap `data`, which this library owns.
         unsafe { std::ptr::copy_nonoverlapping(data.as_ptr(), buf, data.len()) };

@@ -775,3 +775,122 @@ fn decomposition_of_the_bowtie_splits_its_pinch_vertex() {
         tpx_complex_free(c);
     }
 }
+
+/// Issue 16, class 11: a NULL buffer with a non-zero length is NULL_ARGUMENT even when the
+/// answer is empty (the edge 4-5 has no triangle), as the header promises; `*out_len` untouched.
+#[test]
+fn a_null_buffer_with_a_length_is_refused_even_for_an_empty_answer() {
+    let c = tet_triangle_wire();
+    let s = ig(c);
+    let mut len = 42usize;
+    unsafe {
+        let st = tpx_relation(s, [4u32, 5].as_ptr(), 2, 2, null_mut(), 8, &mut len);
+        assert_eq!((st, len), (TpxStatus::NullArgument, 42));
+        assert!(last_error().contains("`buf`"), "{}", last_error());
+        // Length 0 with NULL still asks for the size.
+        let st = tpx_relation(s, [4u32, 5].as_ptr(), 2, 2, null_mut(), 0, &mut len);
+        assert_eq!((st, len), (TpxStatus::Ok, 0));
+        // The same rule on every buffer-filling export: an empty answer and a NULL buffer.
+        let st = tpx_complex_coords(c, null_mut(), 3, &mut len);
+        assert_eq!(st, TpxStatus::NullArgument);
+        let st = tpx_complex_top_simplices(c, 0, null_mut(), 3, &mut len);
+        assert_eq!(st, TpxStatus::NullArgument);
+        let st = tpx_structure_simplices(s, 0, null_mut(), 100, &mut len);
+        assert_eq!(st, TpxStatus::NullArgument);
+        assert_eq!(len, 0);
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+/// Issue 16, classes 4 and 10: a vertex count with nothing behind it, or a closure above the
+/// budget, is TOO_LARGE before anything of that size is allocated (never an abort); the
+/// budget can be raised; `*out` is untouched.
+#[test]
+fn closure_bombs_are_too_large_and_the_budget_can_be_raised() {
+    let mut out = null_mut();
+    unsafe {
+        let st = tpx_complex_from_arrays(u32::MAX, null(), null(), 0, null(), 0, &mut out);
+        assert_eq!(st, TpxStatus::TooLarge, "{}", last_error());
+        assert!(last_error().contains("4294967295"), "{}", last_error());
+        assert!(out.is_null());
+        // One 4-simplex: 5 + 26 simplices by the bound; a budget of 30 refuses it, 31 takes it.
+        let ids = [0u32, 1, 2, 3, 4];
+        let offsets = [0usize, 5];
+        let build = |max: u64, out: &mut *mut TpxComplex| {
+            tpx_complex_from_arrays_budget(
+                5,
+                ids.as_ptr(),
+                offsets.as_ptr(),
+                1,
+                null(),
+                0,
+                max,
+                out,
+            )
+        };
+        assert_eq!(build(30, &mut out), TpxStatus::TooLarge);
+        assert!(
+            last_error().contains("up to 31 simplices"),
+            "{}",
+            last_error()
+        );
+        assert!(out.is_null());
+        assert_eq!(build(31, &mut out), TpxStatus::Ok, "{}", last_error());
+        tpx_complex_free(std::mem::replace(&mut out, null_mut()));
+        assert_eq!(build(u64::MAX, &mut out), TpxStatus::Ok);
+        tpx_complex_free(out);
+    }
+}
+
+/// Issue 16, class 12: what normalisation absorbed is visible through the C ABI.
+#[test]
+fn input_stats_count_absorbed_duplicates_and_faces() {
+    // 0 1 2 twice (once reversed), its edge 1 2, and the wire 3 4.
+    let c = complex(5, &[&[0, 1, 2], &[2, 1, 0], &[1, 2], &[3, 4]]);
+    let mut st = TpxInputStats {
+        input_simplices: 9,
+        absorbed_duplicates: 9,
+        absorbed_faces: 9,
+    };
+    unsafe {
+        assert_eq!(tpx_complex_input_stats(c, &mut st), TpxStatus::Ok);
+        assert_eq!(
+            st,
+            TpxInputStats {
+                input_simplices: 4,
+                absorbed_duplicates: 1,
+                absorbed_faces: 1,
+            }
+        );
+        assert_eq!(
+            tpx_complex_input_stats(null(), &mut st),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_input_stats(c, null_mut()),
+            TpxStatus::NullArgument
+        );
+        tpx_complex_free(c);
+    }
+}
+
+/// Issue 16, class 6 (C ABI side): the last error message is one bounded line, control
+/// characters escaped, whatever the failure's text.
+#[test]
+fn last_error_message_is_one_bounded_escaped_line() {
+    let long = format!("{}\n\u{b}{}", "x".repeat(100_000), "y".repeat(10));
+    let st = guard(|| Err(Failure::new(TpxStatus::ParseError, long)));
+    assert_eq!(st, TpxStatus::ParseError);
+    let msg = last_error();
+    assert!(
+        msg.len() < crate::error::MESSAGE_MAX_BYTES + 40,
+        "{}",
+        msg.len()
+    );
+    assert!(msg.ends_with("more bytes)"), "{msg}");
+    assert!(!msg.contains('\n') && !msg.contains('\u{b}'));
+    let st = guard(|| Err(Failure::new(TpxStatus::ParseError, "a\nb\u{b}c\0")));
+    assert_eq!(st, TpxStatus::ParseError);
+    assert_eq!(last_error(), "a\\nb\\u{b}c\\0");
+}

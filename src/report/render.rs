@@ -81,7 +81,11 @@ pub fn markdown(datasets: &[Dataset]) -> String {
                 .iter()
                 .map(|s| format!("[{}]", join(s)))
                 .collect();
-            let more = if c.unclassified_links > shown.len() { ", ..." } else { "" };
+            let more = if c.unclassified_links > shown.len() {
+                ", ..."
+            } else {
+                ""
+            };
             let _ = write!(
                 approx,
                 " ({} links unclassified, over the work budget: {}{more})",
