@@ -344,9 +344,8 @@ fn prepare_out_dir(input: &Path, out: &Path, force: bool) -> Result<(), String> 
     }
     if !force {
         return Err(format!(
-            "--out {}: directory is not empty ({} entries); pass --force to replace an earlier decomposition there",
-            out.display(),
-            earlier.len() + others
+            "--out {}: directory is not empty; pass --force to replace an earlier decomposition there",
+            out.display()
         ));
     }
     for path in earlier {

@@ -171,7 +171,7 @@ pub enum ComplexError {
     #[error("coordinates: {0}")]
     Coordinates(String),
     /// The closure could exceed the [`Budget`].
-    #[error("{}the closure could have up to {bound} simplices, above the budget of {limit} (by default max(2^20, 64 × the input's {input_size} vertex ids and declared vertices)); raise it with --max-simplices (C ABI: tpx_complex_from_*_budget)", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
+    #[error("{}the closure could have up to {bound} simplices from an input of size {input_size} (listed vertex ids + declared vertices), above the budget of {limit} (default: max(2^20, 64 × input size)); raise it with --max-simplices (C ABI: tpx_complex_from_*_budget)", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
     TooLarge {
         /// The file, if the input came from one.
         file: Option<PathBuf>,

@@ -1,0 +1,381 @@
+//! The CLI under hostile use (issue 16): closure bombs, closed and full outputs, usage errors,
+//! arguments with control characters, `decompose` into occupied directories. Each case is run
+//! through the `topoplex` binary; every failure must be exit 1 with one line on stderr and no
+//! panic. `docs/bad-input.md` holds the generated table (between `<!-- cli:begin -->` and
+//! `<!-- cli:end -->`); this test fails when it is stale (regenerate:
+//! `TOPOPLEX_WRITE_BAD_INPUT_DOC=1 cargo test --test hardening`).
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+
+fn topoplex() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_topoplex"))
+}
+
+/// A fresh directory for this test run.
+fn scratch() -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("topoplex-hardening-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The outcome as the catalogue shows it: `exit N: <stderr>` (paths made relative to `dir`),
+/// after checking the contract: exit 0 or 1, never a panic, at most one line on stderr.
+fn outcome(dir: &Path, o: &Output) -> String {
+    let err = String::from_utf8_lossy(&o.stderr).to_string();
+    let code = o.status.code();
+    assert!(matches!(code, Some(0 | 1)), "{code:?}: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(err.trim_end().lines().count() <= 1, "{err}");
+    let err = err.trim_end().replace(&format!("{}/", dir.display()), "");
+    match (code, err.is_empty()) {
+        (Some(c), true) => format!("exit {c}"),
+        (Some(c), false) => format!("exit {c}: {err}"),
+        (None, _) => unreachable!(),
+    }
+}
+
+fn run_in(dir: &Path, args: &[&str]) -> Output {
+    topoplex().current_dir(dir).args(args).output().unwrap()
+}
+
+/// `args` with stdout (or stderr) going to `/dev/full`.
+fn run_full(dir: &Path, args: &[&str], stderr_full: bool) -> Output {
+    let full = || {
+        std::fs::OpenOptions::new()
+            .write(true)
+            .open("/dev/full")
+            .unwrap()
+    };
+    let mut cmd = topoplex();
+    cmd.current_dir(dir).args(args);
+    if stderr_full {
+        cmd.stdout(Stdio::null()).stderr(full());
+    } else {
+        cmd.stdout(full()).stderr(Stdio::piped());
+    }
+    cmd.output().unwrap()
+}
+
+/// `args` with stdout a pipe whose reading end is closed before the program writes.
+fn run_closed_pipe(dir: &Path, args: &[&str]) -> Output {
+    let mut child = topoplex()
+        .current_dir(dir)
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    child.wait_with_output().unwrap()
+}
+
+fn write(dir: &Path, name: &str, text: &str) {
+    std::fs::write(dir.join(name), text).unwrap();
+}
+
+/// `count` disjoint k-simplices as `.simplices` text.
+fn disjoint_simplices(count: u32, k: u32) -> String {
+    let mut s = String::new();
+    for i in 0..count {
+        s.push('s');
+        for v in 0..=k {
+            s.push_str(&format!(" {}", i * (k + 1) + v));
+        }
+        s.push('\n');
+    }
+    s
+}
+
+/// (issue 16 class, case, outcome) for every case.
+fn cases(dir: &Path) -> Vec<(&'static str, &'static str, String)> {
+    let mut rows = Vec::new();
+    let mut row = |class, case, out: String| rows.push((class, case, out));
+
+    // Class 1: report's census on one 15-simplex finishes, every link classified.
+    write(dir, "one15.simplices", &disjoint_simplices(1, 15));
+    let o = run_in(dir, &["report", "one15.simplices", "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let census = &v["census"];
+    row(
+        "1 exponential link test",
+        "`report one15.simplices` (one 15-simplex)",
+        format!(
+            "{}; {} simplices, non-manifold {}, unclassified links {}",
+            outcome(dir, &o),
+            v["simplices"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|x| x.as_u64().unwrap())
+                .sum::<u64>(),
+            census["non_manifold"],
+            census["unclassified_links"]
+        ),
+    );
+
+    // Class 4: closure bombs.
+    write(dir, "bomb.simplices", "s 16777215\n");
+    row(
+        "4 closure bomb",
+        "`report bomb.simplices` (11 bytes: `s 16777215`)",
+        outcome(dir, &run_in(dir, &["report", "bomb.simplices"])),
+    );
+    write(dir, "bomb1000.simplices", &disjoint_simplices(1000, 15));
+    row(
+        "4 closure bomb",
+        "`report bomb1000.simplices` (1,000 disjoint 15-simplices, 87 KB)",
+        outcome(dir, &run_in(dir, &["report", "bomb1000.simplices"])),
+    );
+    row(
+        "4 closure bomb",
+        "`relation one15.simplices ... --max-simplices 1000` (budget lowered)",
+        outcome(
+            dir,
+            &run_in(
+                dir,
+                &[
+                    "relation",
+                    "one15.simplices",
+                    "--structure",
+                    "ig",
+                    "--relation",
+                    "0,0",
+                    "--simplex",
+                    "0",
+                    "--max-simplices",
+                    "1000",
+                ],
+            ),
+        ),
+    );
+    let o = run_in(
+        dir,
+        &[
+            "relation",
+            "one15.simplices",
+            "--structure",
+            "ig",
+            "--relation",
+            "0,15",
+            "--simplex",
+            "0",
+            "--max-simplices",
+            "65535",
+        ],
+    );
+    row(
+        "4 closure bomb",
+        "`relation one15.simplices ... --max-simplices 65535` (the closure's exact size)",
+        format!(
+            "{}; {} line(s) out",
+            outcome(dir, &o),
+            o.stdout.iter().filter(|&&b| b == b'\n').count()
+        ),
+    );
+
+    // Class 8: output errors.
+    write(dir, "path.simplices", &{
+        let mut s = String::new();
+        for i in 0..50_000 {
+            s.push_str(&format!("s {i} {}\n", i + 1));
+        }
+        s
+    });
+    let relation01 = [
+        "relation",
+        "path.simplices",
+        "--structure",
+        "ig",
+        "--relation",
+        "0,1",
+    ];
+    row(
+        "8 output errors",
+        "`relation path.simplices ...` into a closed pipe (`| head -0`)",
+        outcome(dir, &run_closed_pipe(dir, &relation01)),
+    );
+    if Path::new("/dev/full").exists() {
+        row(
+            "8 output errors",
+            "`relation path.simplices ... > /dev/full`",
+            outcome(dir, &run_full(dir, &relation01, false)),
+        );
+        row(
+            "8 output errors",
+            "`--help > /dev/full`",
+            outcome(dir, &run_full(dir, &["--help"], false)),
+        );
+        row(
+            "8 output errors",
+            "`report missing.off 2> /dev/full` (error and a full stderr)",
+            outcome(dir, &run_full(dir, &["report", "missing.off"], true)),
+        );
+        row(
+            "8 output errors",
+            "`decompose path.simplices --out parts > /dev/full`",
+            outcome(
+                dir,
+                &run_full(
+                    dir,
+                    &["decompose", "path.simplices", "--out", "parts-full"],
+                    false,
+                ),
+            ),
+        );
+    }
+
+    // Class 9: decompose never overwrites silently.
+    write(dir, "bowtie.simplices", "s 0 1 2\ns 2 3 4\n");
+    std::fs::create_dir_all(dir.join("parts")).unwrap();
+    write(dir, "parts/notes.txt", "mine\n");
+    row(
+        "9 silent overwrites",
+        "`decompose bowtie.simplices --out parts` (parts/ holds notes.txt)",
+        outcome(
+            dir,
+            &run_in(dir, &["decompose", "bowtie.simplices", "--out", "parts"]),
+        ),
+    );
+    write(dir, "parts/component_7.off", "stale\n");
+    let o = run_in(
+        dir,
+        &["decompose", "bowtie.simplices", "--out", "parts", "--force"],
+    );
+    let mut left: Vec<String> = std::fs::read_dir(dir.join("parts"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .collect();
+    left.sort();
+    row(
+        "9 silent overwrites",
+        "`decompose bowtie.simplices --out parts --force` (parts/ holds notes.txt and a stale component_7.off)",
+        format!("{}; parts/ now holds {}", outcome(dir, &o), left.join(", ")),
+    );
+    std::fs::copy(
+        dir.join("bowtie.simplices"),
+        dir.join("parts/component_0.simplices"),
+    )
+    .unwrap();
+    row(
+        "9 silent overwrites",
+        "`decompose parts/component_0.simplices --out parts --force` (the input is an earlier component)",
+        outcome(
+            dir,
+            &run_in(
+                dir,
+                &[
+                    "decompose",
+                    "parts/component_0.simplices",
+                    "--out",
+                    "parts",
+                    "--force",
+                ],
+            ),
+        ),
+    );
+    row(
+        "9 silent overwrites",
+        "`decompose bowtie.simplices --out bowtie.simplices --force` (the input as output directory)",
+        outcome(
+            dir,
+            &run_in(
+                dir,
+                &[
+                    "decompose",
+                    "bowtie.simplices",
+                    "--out",
+                    "bowtie.simplices",
+                    "--force",
+                ],
+            ),
+        ),
+    );
+
+    // Class 13: usage errors.
+    row(
+        "13 usage errors",
+        "`topoplex` (no command)",
+        outcome(dir, &run_in(dir, &[])),
+    );
+    row(
+        "13 usage errors",
+        "`relation` (missing arguments)",
+        outcome(dir, &run_in(dir, &["relation"])),
+    );
+    row(
+        "13 usage errors",
+        "`report --bogus`",
+        outcome(dir, &run_in(dir, &["report", "--bogus"])),
+    );
+    row(
+        "13 usage errors",
+        "`relation f --relation 1;2 ...`",
+        outcome(
+            dir,
+            &run_in(
+                dir,
+                &[
+                    "relation",
+                    "bowtie.simplices",
+                    "--structure",
+                    "ig",
+                    "--relation",
+                    "1;2",
+                ],
+            ),
+        ),
+    );
+
+    // Class 6 (CLI side): echoed arguments are escaped and capped.
+    let long = format!("ig\u{b}\u{feff}{}", "x".repeat(100_000));
+    row(
+        "6 unbounded, unescaped messages",
+        "`relation f --structure $'ig\\v\\ufeff'xxx...` (100 KB)",
+        outcome(
+            dir,
+            &run_in(
+                dir,
+                &[
+                    "relation",
+                    "bowtie.simplices",
+                    "--structure",
+                    &long,
+                    "--relation",
+                    "0,1",
+                ],
+            ),
+        ),
+    );
+    rows
+}
+
+#[test]
+fn every_hostile_cli_case_gets_the_catalogued_outcome() {
+    let dir = scratch();
+    let mut table = String::from("| issue 16 class | case | outcome |\n|---|---|---|\n");
+    for (class, case, out) in cases(&dir) {
+        table.push_str(&format!(
+            "| {class} | {case} | {} |\n",
+            out.replace('|', "\\|")
+        ));
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    let doc_path = format!("{}/docs/bad-input.md", env!("CARGO_MANIFEST_DIR"));
+    let doc = std::fs::read_to_string(&doc_path).unwrap_or_default();
+    let (begin, end) = ("<!-- cli:begin -->\n", "<!-- cli:end -->");
+    let (Some(a), Some(b)) = (doc.find(begin), doc.find(end)) else {
+        panic!("docs/bad-input.md lacks the cli table markers")
+    };
+    if std::env::var_os("TOPOPLEX_WRITE_BAD_INPUT_DOC").is_some() {
+        let new = format!("{}{begin}{table}{}", &doc[..a], &doc[b..]);
+        std::fs::write(&doc_path, new).unwrap();
+        return;
+    }
+    assert_eq!(
+        &doc[a + begin.len()..b],
+        table,
+        "docs/bad-input.md is stale: TOPOPLEX_WRITE_BAD_INPUT_DOC=1 cargo test --test hardening"
+    );
+}
