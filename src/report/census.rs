@@ -796,21 +796,43 @@ mod tests {
             .collect();
         let refs: Vec<&[u32]> = s3.iter().map(Vec::as_slice).collect();
         assert_eq!(shape_of(&refs), (Sphere, false));
-        // ... while two tetrahedra on a triangle pass as a ball by the necessary conditions
-        // only, and two on a vertex are not a manifold.
-        assert_eq!(shape_of(&[&[0, 1, 2, 3], &[1, 2, 3, 4]]), (Ball, true));
+        // ... as are cones: two tetrahedra on a triangle are a ball, two on a vertex (a cone
+        // over two disjoint triangles) are not a manifold ...
+        assert_eq!(shape_of(&[&[0, 1, 2, 3], &[1, 2, 3, 4]]), (Ball, false));
         assert_eq!(shape_of(&[&[0, 1, 2, 3], &[3, 4, 5, 6]]), (Neither, false));
+        // ... while the boundary of the 16-cell (vertices 2i and 2i+1 opposite) passes as a
+        // 3-sphere by the necessary conditions only.
+        let rows = cross_polytope_boundary(3, 0);
+        let refs: Vec<&[u32]> = rows.iter().map(Vec::as_slice).collect();
+        assert_eq!(shape_of(&refs), (Sphere, true));
+    }
+
+    /// The 2^{k+1} facets of the boundary of the (k+1)-dimensional cross-polytope over
+    /// vertices `first + 2i`, `first + 2i + 1` (opposite), i = 0..=k, each row ascending.
+    fn cross_polytope_boundary(k: u32, first: u32) -> Vec<Vec<u32>> {
+        (0u32..(1 << (k + 1)))
+            .map(|choice| {
+                (0..=k)
+                    .map(|i| first + 2 * i + ((choice >> i) & 1))
+                    .collect()
+            })
+            .collect()
     }
 
     #[test]
-    fn two_4_simplices_on_a_tetrahedron_have_approximated_links() {
-        //   0 1 2 3 4 and 1 2 3 4 5 share the tetrahedron 1 2 3 4. Links of 1..4: two
-        //   tetrahedra on a triangle (3-balls by the necessary conditions); of 0, 5: one
-        //   tetrahedron (exact). Nothing is non-manifold.
-        let c = Complex::from_simplices(6, &[&[0, 1, 2, 3, 4], &[1, 2, 3, 4, 5]]).unwrap();
+    fn cone_over_the_16_cell_boundary_has_one_approximated_link() {
+        // v = 0 joined to the 16 tetrahedra of the 16-cell's boundary (vertices 1..=8): lk(v)
+        // is that 3-sphere, tested by the necessary conditions only; every other link is a
+        // cone or of dimension ≤ 2, tested exactly. Nothing is non-manifold.
+        let tops: Vec<Vec<u32>> = cross_polytope_boundary(3, 1)
+            .into_iter()
+            .map(|f| [vec![0], f].concat())
+            .collect();
+        let refs: Vec<&[u32]> = tops.iter().map(Vec::as_slice).collect();
+        let c = Complex::from_simplices(9, &refs).unwrap();
         let got = Census::of(&c);
         assert_eq!(got.non_manifold, vec![0; 5]);
-        assert_eq!(got.approximated_links, 4);
+        assert_eq!(got.approximated_links, 1);
         assert_eq!((got.c_e, got.c_v_minus_n0), (0, 0));
         assert_eq!(got.unclassified_links, 0);
     }
@@ -862,12 +884,10 @@ mod tests {
     fn cone_over_a_cross_polytope_ends_with_unclassified_links_named() {
         let k = 6u32;
         let v = 0;
-        let mut tops: Vec<Vec<u32>> = Vec::new();
-        for choice in 0u32..(1 << (k + 1)) {
-            let mut t = vec![v];
-            t.extend((0..=k).map(|i| 2 * i + 1 + ((choice >> i) & 1)));
-            tops.push(t);
-        }
+        let tops: Vec<Vec<u32>> = cross_polytope_boundary(k, 1)
+            .into_iter()
+            .map(|f| [vec![v], f].concat())
+            .collect();
         let refs: Vec<&[u32]> = tops.iter().map(Vec::as_slice).collect();
         let c = Complex::from_simplices(2 * k + 3, &refs).unwrap();
         let got = Census::of(&c);
