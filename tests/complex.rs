@@ -119,13 +119,76 @@ fn a_huge_id_without_declared_vertices_is_refused_not_allocated() {
         }
     ));
     assert!(e.to_string().starts_with("s.simplices:2: simplex [0 1000000000 3 8 9] uses vertex 1000000000, which would make 1000000001 vertices"), "{e}");
-    // Just below the limit is accepted: the vertices are 0..=max id.
+    // Just below the limit the vertices are 0..=max id: 2^24 vertices from 2 ids, above the
+    // default closure budget (issue 16: `s 16777215` made `report` use 1.2 GB), accepted when
+    // the caller raises the budget.
     let mut raw = RawInput::new();
     raw.push(&[0, topoplex::complex::MAX_IMPLIED_VERTICES - 1], 1);
+    let e = Complex::from_raw(&raw, None).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            ComplexError::TooLarge {
+                bound: 16_777_217,
+                limit: 1_048_576,
+                input_size: 2,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    let big = topoplex::Budget {
+        max_simplices: Some(1 << 25),
+    };
     assert_eq!(
-        Complex::from_raw(&raw, None).unwrap().vertex_count(),
+        Complex::from_raw_with(&raw, None, big)
+            .unwrap()
+            .vertex_count(),
         topoplex::complex::MAX_IMPLIED_VERTICES
     );
+}
+
+/// Issue 16 class 4: the closure budget's default rule and its bound, on drawn inputs.
+#[test]
+fn closure_budget_counts_every_face_of_every_listed_simplex() {
+    // One 15-simplex: 16 vertices + 65,519 faces of dimension >= 1 = 65,535, under the floor.
+    let s: Vec<u32> = (0..16).collect();
+    let ids = s.clone();
+    let offsets = [0, 16];
+    let c = Complex::from_arrays(16, &ids, &offsets, None).unwrap();
+    assert_eq!(c.dimension(), 15);
+    // 17 disjoint 15-simplices: 17 · 65,535 = 1,114,095 > 2^20, and > 64 · 272 ids.
+    let ids: Vec<u32> = (0..17 * 16).collect();
+    let offsets: Vec<usize> = (0..=17).map(|i| i * 16).collect();
+    let e = Complex::from_arrays(17 * 16, &ids, &offsets, None).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            ComplexError::TooLarge {
+                bound: 1_114_095,
+                limit: 1_048_576,
+                input_size: 272,
+                ..
+            }
+        ),
+        "{e:?}"
+    );
+    // A triangle fan of 2^20 triangles is far under 64 per id: the ratio, not the floor, rules.
+    let n = 1u32 << 20;
+    let mut ids = Vec::new();
+    for i in 1..n - 1 {
+        ids.extend_from_slice(&[0, i, i + 1]);
+    }
+    let offsets: Vec<usize> = (0..=ids.len() / 3).map(|i| i * 3).collect();
+    let c = Complex::from_arrays(n, &ids, &offsets, None).unwrap();
+    assert_eq!(c.tops(2).len(), n as usize - 2);
+    // An explicit limit replaces the rule both ways.
+    let tight = topoplex::Budget {
+        max_simplices: Some(100),
+    };
+    let e = Complex::from_arrays_with(16, &s, &[0, 16], None, tight).unwrap_err();
+    assert!(e.to_string().contains("up to 65535 simplices"), "{e}");
+    assert!(e.to_string().contains("--max-simplices"), "{e}");
 }
 
 #[test]

@@ -307,6 +307,55 @@ static void test_invalid_inputs(void) {
   CHECK(c == NULL);
 }
 
+/* Issue 16: closure bombs and absent vertices are TOO_LARGE (never an abort), the budget can be
+ * raised, a NULL buffer with a length is NULL_ARGUMENT even for an empty answer, the absorbed
+ * counts are visible, and messages are bounded. */
+static void test_hardening(void) {
+  static const uint32_t simplex4[] = {0, 1, 2, 3, 4};
+  static const size_t one[] = {0, 5};
+  static const uint32_t dup_ids[] = {0, 1, 2, 2, 1, 0, 1, 2, 3, 4};
+  static const size_t dup_offsets[] = {0, 3, 6, 8, 10};
+  static const uint32_t wire[] = {4, 5};
+  TpxComplex *c = NULL;
+  TpxStructure *s = NULL;
+  TpxInputStats stats;
+  size_t len = 42;
+  char name[600];
+
+  CHECK_STATUS(tpx_complex_from_arrays(UINT32_MAX, NULL, NULL, 0, NULL, 0, &c), TPX_STATUS_TOO_LARGE);
+  CHECK(c == NULL && message_contains("budget"));
+  /* One 4-simplex: 31 simplices by the closure bound. */
+  CHECK_STATUS(tpx_complex_from_arrays_budget(5, simplex4, one, 1, NULL, 0, 30, &c), TPX_STATUS_TOO_LARGE);
+  CHECK(c == NULL);
+  CHECK_STATUS(tpx_complex_from_arrays_budget(5, simplex4, one, 1, NULL, 0, 31, &c), TPX_STATUS_OK);
+  tpx_complex_free(c);
+  c = NULL;
+
+  CHECK_STATUS(tpx_complex_from_arrays(5, dup_ids, dup_offsets, 4, NULL, 0, &c), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_input_stats(c, &stats), TPX_STATUS_OK);
+  CHECK(stats.input_simplices == 4 && stats.absorbed_duplicates == 1 && stats.absorbed_faces == 1);
+  tpx_complex_free(c);
+
+  c = fixture();
+  s = build_ig(c);
+  /* R_{1,2} of the wire edge 4-5 is empty; a NULL buffer with a length is still refused. */
+  CHECK_STATUS(tpx_relation(s, wire, 2, 2, NULL, 8, &len), TPX_STATUS_NULL_ARGUMENT);
+  CHECK(len == 42);
+  CHECK_STATUS(tpx_relation(s, wire, 2, 2, NULL, 0, &len), TPX_STATUS_OK);
+  CHECK(len == 0);
+  tpx_structure_free(s);
+  tpx_complex_free(c);
+
+  /* A long path with a control character: the message is one bounded line. */
+  memset(name, 'x', sizeof name);
+  name[0] = '\v';
+  memcpy(name + sizeof name - 5, ".off", 5);
+  c = NULL;
+  CHECK(tpx_complex_from_file(name, &c) != TPX_STATUS_OK);
+  CHECK(c == NULL && strlen(tpx_last_error_message()) < 500);
+  CHECK(strchr(tpx_last_error_message(), '\v') == NULL && message_contains("\\u{b}"));
+}
+
 static void test_kinds(void) {
   TpxComplex *c = fixture();
   TpxStructure *ig = build_ig(c);
@@ -482,6 +531,7 @@ int main(void) {
   test_buffer_too_small();
   test_null_arguments();
   test_invalid_inputs();
+  test_hardening();
   test_kinds();
   test_query_errors();
   test_relation_table();
