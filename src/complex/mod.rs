@@ -467,7 +467,8 @@ impl Complex {
                 input_size,
             });
         }
-        let tops = absorb_faces(n, tables, &mut stats);
+        let tops =
+            absorb_faces(n, tables, &mut stats).map_err(|bytes| oom("the vertex tables", bytes))?;
         let mut listing = Listing::default();
         listing
             .offsets
@@ -646,14 +647,21 @@ fn closure_bound(n: u32, tables: &[SimplexTable]) -> u64 {
 /// no simplex uses as top 0-simplices. A p-simplex is tested against the higher-dimensional kept
 /// simplices at its vertex with the fewest of them: O(Σ_σ min_{v∈σ} deg(v) · d) in all, near
 /// linear on meshes (the worst case is many low-dimensional simplices all at one hub vertex).
-fn absorb_faces(n: u32, tables: Vec<SimplexTable>, stats: &mut InputStats) -> Vec<SimplexTable> {
+/// Its per-vertex arrays are reserved fallibly: `Err(bytes)` when `n` of them cannot be had.
+fn absorb_faces(
+    n: u32,
+    tables: Vec<SimplexTable>,
+    stats: &mut InputStats,
+) -> Result<Vec<SimplexTable>, usize> {
     // No listed simplex at all: every vertex is isolated.
     let d = tables.len().max(1) - 1;
     // star[v]: (dimension, index) of kept simplices of dimension >= 1 containing v. Only filled
     // while some lower dimension (>= 1) still has listed simplices to test, so a pure mesh never
     // pays for it.
     let mut star: Vec<Vec<(u8, u32)>> = Vec::new();
-    let mut used = vec![false; n as usize];
+    let mut used: Vec<bool> = Vec::new();
+    used.try_reserve_exact(n as usize).map_err(|_| n as usize)?;
+    used.resize(n as usize, false);
     let mut kept: Vec<SimplexTable> = vec![SimplexTable::default(); d + 1];
     let mut tables = tables;
     for p in (1..=d).rev() {
@@ -686,6 +694,8 @@ fn absorb_faces(n: u32, tables: Vec<SimplexTable>, stats: &mut InputStats) -> Ve
             }
         }
         if tables[1..p].iter().any(|t| !t.is_empty()) {
+            star.try_reserve_exact(n as usize)
+                .map_err(|_| n as usize * std::mem::size_of::<Vec<(u8, u32)>>())?;
             star.resize(n as usize, Vec::new());
             for (j, s) in table.iter().enumerate() {
                 for &v in s {
@@ -700,11 +710,14 @@ fn absorb_faces(n: u32, tables: Vec<SimplexTable>, stats: &mut InputStats) -> Ve
         .first()
         .map_or(0, |t| t.iter().filter(|s| !used[s[0] as usize]).count());
     stats.absorbed_faces += listed_vertices - listed_isolated;
-    let isolated: Vec<u32> = (0..n).filter(|&v| !used[v as usize]).collect();
+    let free = used.iter().filter(|&&u| !u).count();
+    let mut isolated: Vec<u32> = Vec::new();
+    isolated.try_reserve_exact(free).map_err(|_| free * 4)?;
+    isolated.extend((0..n).filter(|&v| !used[v as usize]));
     kept[0] = SimplexTable::from_sorted_unique(1, isolated);
     // A complex of only isolated vertices has d = 0.
     while kept.len() > 1 && kept.last().unwrap().is_empty() {
         kept.pop();
     }
-    kept
+    Ok(kept)
 }
