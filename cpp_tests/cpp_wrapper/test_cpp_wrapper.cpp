@@ -122,6 +122,22 @@ TEST(Wrapper, ErrorsCarryStatusAndMessage) {
             TPX_STATUS_PARSE_ERROR);
 }
 
+// Issue 16: absorbed counts are visible, and the closure budget is an argument (one 4-simplex
+// has 31 simplices by the bound).
+TEST(Wrapper, InputStatsAndClosureBudget) {
+  auto c = Complex::from_simplices(5, {{0, 1, 2}, {2, 1, 0}, {1, 2}, {3, 4}});
+  TpxInputStats st = c.input_stats();
+  EXPECT_EQ(st.input_simplices, 4u);
+  EXPECT_EQ(st.absorbed_duplicates, 1u);
+  EXPECT_EQ(st.absorbed_faces, 1u);
+  const Ids four{0, 1, 2, 3, 4};
+  const std::vector<std::size_t> one{0, 5};
+  EXPECT_EQ(status_of([&] { Complex::from_arrays(5, four, one, {}, 0, 30); }),
+            TPX_STATUS_TOO_LARGE);
+  EXPECT_EQ(Complex::from_arrays(5, four, one, {}, 0, 31).dimension(), 4u);
+  EXPECT_EQ(status_of([] { Complex::from_arrays(UINT32_MAX, {}, {}); }), TPX_STATUS_TOO_LARGE);
+}
+
 TEST(Wrapper, FileComplexMatchesArrays) {
   Structure a(Complex::from_file(TPX_TEST_DATA_DIR "/tet_triangle_wire.simplices"), Kind::IG);
   Structure b(fixture(), Kind::IG);
