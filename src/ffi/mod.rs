@@ -12,6 +12,11 @@
 //!   `TPX_STATUS_PANIC` (so the crate must keep `panic = "unwind"`, checked below).
 //! - After each status-returning call, [`tpx_last_error_message`] describes its failure (or is
 //!   empty after success), naming the file, line and simplex where the Rust error does.
+//! - Allocation failure does not abort the host where the input sets the size: making a complex
+//!   reserves its input-sized arrays fallibly and refuses a closure above its budget (both
+//!   `TPX_STATUS_TOO_LARGE`); every later allocation (structures, answers) is linear in that
+//!   closure. Under a raised budget a structure larger than the memory available still aborts
+//!   in Rust's allocator: keep the default budget when running under a tight memory limit.
 //! - Handles are opaque; functions that only read take `const` pointers, and a `const
 //!   TpxStructure *` may be queried from many threads at once.
 //! - Every handle returned through `out` is owned by the caller and released by the matching

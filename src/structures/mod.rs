@@ -1,4 +1,9 @@
 //! The structures, one module each, all behind [`crate::relation::Topology`].
+//!
+//! Every build is linear (up to a log factor) in the closure of its complex, and the closure is
+//! bounded when the complex is made ([`crate::complex::Budget`]: by default `max(2^20, 64 ×
+//! input size)` simplices), so no input of a few bytes can make a build take gigabytes. A
+//! complex made under a raised or unlimited budget builds with the memory its closure needs.
 
 use crate::complex::Complex;
 use crate::relation::{StructureKind, Topology};
