@@ -93,34 +93,66 @@ impl<'a> Reader<'a> {
             xs.clear();
             let mut first_line = 0;
             for (j, &item) in items.iter().enumerate() {
-                let Some((tok, l)) = self.t.token() else {
-                    let msg = if j == 0 {
-                        format!("{name} count {count} declared but file ends after {e} {names}")
-                    } else {
-                        format!(
-                            "file ends inside {name} {}: expected {} numbers ({}), found {j}",
-                            e + 1,
-                            items.len(),
-                            layout(items)
-                        )
-                    };
-                    return Err((self.t.eof_line(), syntax(msg)));
+                let l = match self.fast_item(item, &mut ids, &mut xs) {
+                    Some(r) => r?,
+                    None => {
+                        let Some((tok, l)) = self.t.token() else {
+                            let msg = if j == 0 {
+                                format!(
+                                    "{name} count {count} declared but file ends after {e} {names}"
+                                )
+                            } else {
+                                format!(
+                                    "file ends inside {name} {}: expected {} numbers ({}), found \
+                                     {j}",
+                                    e + 1,
+                                    items.len(),
+                                    layout(items)
+                                )
+                            };
+                            return Err((self.t.eof_line(), syntax(msg)));
+                        };
+                        let r = match item {
+                            Item::Id => scan::id(tok, true).map(|id| ids.push(id)),
+                            Item::Coord => {
+                                parse_f64(tok, "a vertex coordinate").map(|x| xs.push(x))
+                            }
+                            Item::Ref => check_integer(tok, "reference number"),
+                            Item::Int => {
+                                check_integer(tok, "").map_err(|_| int_entry_error(tok, keyword))
+                            }
+                            Item::Real => parse_f64(tok, &format!("a {keyword} entry")).map(|_| ()),
+                        };
+                        r.map_err(|k| (l, k))?;
+                        l
+                    }
                 };
                 if j == 0 {
                     first_line = l;
                 }
-                let r = match item {
-                    Item::Id => scan::id(tok, true).map(|id| ids.push(id)),
-                    Item::Coord => parse_f64(tok, "a vertex coordinate").map(|x| xs.push(x)),
-                    Item::Ref => check_integer(tok, "reference number"),
-                    Item::Int => check_integer(tok, "").map_err(|_| int_entry_error(tok, keyword)),
-                    Item::Real => parse_f64(tok, &format!("a {keyword} entry")).map(|_| ()),
-                };
-                r.map_err(|k| (l, k))?;
             }
             entry(&ids, &xs, first_line);
         }
         Ok(())
+    }
+
+    /// Fast path for one number of an entry (see [`Scanner::digits`]): `None` leaves the token
+    /// to the general path. Returns the number's line.
+    #[inline]
+    fn fast_item(&mut self, item: Item, ids: &mut Vec<u32>, xs: &mut Vec<f64>) -> Option<Res<u32>> {
+        match item {
+            Item::Id => self.t.digits(true).map(|(v, l)| {
+                let id = scan::id_value(v, true).map_err(|k| (l, k))?;
+                ids.push(id);
+                Ok(l)
+            }),
+            Item::Coord => self.t.real(true).map(|(x, l)| {
+                xs.push(x);
+                Ok(l)
+            }),
+            Item::Ref | Item::Int => self.t.digits(true).map(|(_, l)| Ok(l)),
+            Item::Real => self.t.real(true).map(|(_, l)| Ok(l)),
+        }
     }
 
     /// A section of elements that are not simplices: an error at its first entry, if any.

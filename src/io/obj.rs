@@ -225,6 +225,10 @@ fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), R
     match keyword {
         "v" => vertex(s, st),
         "f" => {
+            if let Some(ids) = plain_triangle(s) {
+                st.raw.push(&ids, line);
+                return Ok(());
+            }
             let mut refs = [""; 3];
             let mut k = 0;
             while let Some((tok, _)) = s.token_in_line() {
@@ -286,12 +290,41 @@ fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), R
     }
 }
 
+/// Fast path: `f i j k` with three plain positive indices and nothing else, read as scanned.
+/// `None` (the scanner unmoved) for anything else, which the general path reads.
+#[inline]
+fn plain_triangle(s: &mut Scanner<'_>) -> Option<[u32; 3]> {
+    let saved = s.clone();
+    let mut ids = [0u32; 3];
+    let mut plain = true;
+    for id in &mut ids {
+        match s.digits(false) {
+            Some((v @ 1.., _)) if v <= 1 << 32 => *id = (v - 1) as u32,
+            _ => {
+                plain = false;
+                break;
+            }
+        }
+    }
+    if plain && s.token_in_line().is_none() {
+        return Some(ids);
+    }
+    *s = saved;
+    None
+}
+
 /// `v x y z [w | r g b [a]]`: keeps x y z.
 fn vertex(s: &mut Scanner<'_>, st: &mut State) -> Result<(), ReadErrorKind> {
     let mut xyz = [0.0; 3];
     let mut n = 0;
-    while let Some((tok, _)) = s.token_in_line() {
-        let x = parse_f64(tok, "a vertex coordinate")?;
+    loop {
+        let x = match s.real(false) {
+            Some((x, _)) => x,
+            None => match s.token_in_line() {
+                Some((tok, _)) => parse_f64(tok, "a vertex coordinate")?,
+                None => break,
+            },
+        };
         if let Some(slot) = xyz.get_mut(n) {
             *slot = x;
         }

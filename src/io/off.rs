@@ -236,8 +236,14 @@ fn vertices(t: &mut Scanner<'_>, nv: u32, layout: &Layout) -> Res<(Vec<f64>, usi
     let mut widest = 0;
     for i in 0..nv {
         for j in 0..per_vertex {
-            let Some((tok, l)) = t.token() else {
-                return Err((t.eof_line(), syntax(ends_inside_vertex(nv, i, j, layout))));
+            let (x, l) = match t.real(true) {
+                Some(number) => number,
+                None => {
+                    let Some((tok, l)) = t.token() else {
+                        return Err((t.eof_line(), syntax(ends_inside_vertex(nv, i, j, layout))));
+                    };
+                    (parse_f64(tok, layout.what(j)).map_err(|k| (l, k))?, l)
+                }
             };
             if l != on_line.0 {
                 check_whole_vertices(on_line, layout)?;
@@ -245,7 +251,6 @@ fn vertices(t: &mut Scanner<'_>, nv: u32, layout: &Layout) -> Res<(Vec<f64>, usi
             }
             on_line.1 += 1;
             widest = widest.max(on_line.1);
-            let x = parse_f64(tok, layout.what(j)).map_err(|k| (l, k))?;
             if j < dim {
                 data.push(x);
             }
@@ -340,19 +345,29 @@ fn faces(
 /// Reads face `f` (0-based) of `nf`.
 #[inline]
 fn face(t: &mut Scanner<'_>, f: u32, nf: u32, raw: &mut RawInput) -> Res<()> {
-    let (tok, face_line) = next_or(t, || {
-        format!("face count {nf} declared but file ends after {f} faces")
-    })?;
-    let k = face_size(tok).map_err(|e| (face_line, e))?;
+    let (k, face_line) = match t.digits(true) {
+        Some((k, l)) => (face_size_of(i128::from(k)).map_err(|e| (l, e))?, l),
+        None => {
+            let (tok, l) = next_or(t, || {
+                format!("face count {nf} declared but file ends after {f} faces")
+            })?;
+            (face_size(tok).map_err(|e| (l, e))?, l)
+        }
+    };
     let mut ids = [0u32; 3];
     for (j, id) in ids.iter_mut().take(k).enumerate() {
-        let (tok, l) = next_or(t, || {
-            format!(
-                "file ends inside face {}: expected {k} vertex ids, found {j}",
-                f + 1
-            )
-        })?;
-        *id = scan::id(tok, false).map_err(|e| (l, e))?;
+        *id = match t.digits(true) {
+            Some((v, l)) => scan::id_value(v, false).map_err(|e| (l, e))?,
+            None => {
+                let (tok, l) = next_or(t, || {
+                    format!(
+                        "file ends inside face {}: expected {k} vertex ids, found {j}",
+                        f + 1
+                    )
+                })?;
+                scan::id(tok, false).map_err(|e| (l, e))?
+            }
+        };
     }
     face_colour(t, f, k)?;
     raw.push(&ids[..k], face_line);
@@ -361,9 +376,6 @@ fn face(t: &mut Scanner<'_>, f: u32, nf: u32, raw: &mut RawInput) -> Res<()> {
 
 /// A face's vertex count: 1, 2 or 3.
 fn face_size(tok: &str) -> Result<usize, ReadErrorKind> {
-    if let [d @ b'1'..=b'3'] = tok.as_bytes() {
-        return Ok(usize::from(d - b'0'));
-    }
     let e = || echo(tok);
     let k = match parse_integer(tok) {
         Ok(k) => k,
@@ -383,6 +395,11 @@ fn face_size(tok: &str) -> Result<usize, ReadErrorKind> {
             return Err(syntax(format!("face vertex count {} is out of range", e())));
         }
     };
+    face_size_of(k)
+}
+
+/// A face's vertex count from its value.
+fn face_size_of(k: i128) -> Result<usize, ReadErrorKind> {
     match k {
         ..0 => Err(syntax(format!("face vertex count {k} is negative"))),
         0 => Err(syntax("face with 0 vertices")),

@@ -184,14 +184,92 @@ impl<'a> Scanner<'a> {
     /// The next token, on this line or a later one.
     #[inline]
     pub(crate) fn token(&mut self) -> Option<(&'a str, u32)> {
-        loop {
-            if let Some(t) = self.token_in_line() {
-                return Some(t);
+        self.seek(true);
+        self.token_in_line()
+    }
+
+    /// Moves to the start of the next token, across line ends when `cross` (else only within the
+    /// line); false when there is none.
+    #[inline]
+    fn seek(&mut self, cross: bool) -> bool {
+        // The common cases first: the token is here, or after one space or one `\n`.
+        let b = self.text.as_bytes();
+        let class = |i: usize| b.get(i).map(|&c| CLASS[c as usize]);
+        match class(self.pos) {
+            Some(TOKEN) => return true,
+            Some(BLANK) if class(self.pos + 1) == Some(TOKEN) => {
+                self.pos += 1;
+                return true;
             }
-            if !self.next_line() {
-                return None;
+            Some(NEWLINE)
+                if cross && b[self.pos] == b'\n' && class(self.pos + 1) == Some(TOKEN) =>
+            {
+                self.pos += 1;
+                self.line = self.line.saturating_add(1);
+                return true;
+            }
+            _ => {}
+        }
+        loop {
+            if self.skip_blanks() {
+                return true;
+            }
+            if !cross || !self.next_line() {
+                return false;
             }
         }
+    }
+
+    /// Whether the byte at `i` ends a token for the fast paths (a `\` never does: the general
+    /// path decides whether it continues the line).
+    #[inline]
+    fn ends_token(&self, i: usize) -> bool {
+        self.text
+            .as_bytes()
+            .get(i)
+            .is_none_or(|&c| matches!(CLASS[c as usize], BLANK | NEWLINE | COMMENT))
+    }
+
+    /// Fast path: the next token (across lines when `cross`) when it is 1 to 10 decimal digits,
+    /// parsed as it is scanned, with its line. `None` for anything else, with the cursor at the
+    /// token's start so that [`Scanner::token`] or [`Scanner::token_in_line`] returns it next
+    /// for the general path (and its detailed errors).
+    #[inline]
+    pub(crate) fn digits(&mut self, cross: bool) -> Option<(u64, u32)> {
+        if !self.seek(cross) {
+            return None;
+        }
+        let b = self.text.as_bytes();
+        let start = self.pos;
+        let mut i = start;
+        let mut v = 0u64;
+        while let Some(d) = b.get(i).map(|c| c.wrapping_sub(b'0')).filter(|&d| d <= 9) {
+            // Wraps only past 19 digits, which are refused below.
+            v = v.wrapping_mul(10).wrapping_add(u64::from(d));
+            i += 1;
+        }
+        if i == start || i - start > 10 || !self.ends_token(i) {
+            return None;
+        }
+        self.pos = i;
+        Some((v, self.line))
+    }
+
+    /// Fast path: the next token (across lines when `cross`) when it is a real number that
+    /// [`real`] accepts, parsed straight from the text, with its line. `None` otherwise, with
+    /// the cursor at the token's start (see [`Scanner::digits`]).
+    #[inline]
+    pub(crate) fn real(&mut self, cross: bool) -> Option<(f64, u32)> {
+        if !self.seek(cross) {
+            return None;
+        }
+        let b = &self.text.as_bytes()[self.pos..];
+        let (x, n) = fast_float2::parse_partial::<f64, _>(b).ok()?;
+        if !self.ends_token(self.pos + n) || !in_range(x, &b[..n]) {
+            return None;
+        }
+        self.pos += n;
+        Some((x, self.line))
     }
 
     /// The next token without consuming it.
@@ -220,16 +298,27 @@ pub(crate) enum RealError {
 #[inline]
 pub(crate) fn real(tok: &[u8]) -> Result<f64, RealError> {
     let x: f64 = fast_float2::parse(tok).map_err(|_| RealError::NotNumber)?;
-    if x.is_infinite() && !tok.iter().any(|b| b.eq_ignore_ascii_case(&b'i')) {
-        return Err(RealError::Overflow);
+    if in_range(x, tok) {
+        Ok(x)
+    } else if x == 0.0 {
+        Err(RealError::Underflow)
+    } else {
+        Err(RealError::Overflow)
+    }
+}
+
+/// Whether `x`, parsed from `tok`, is what `tok` says: not infinite unless spelled so, not 0
+/// unless its digits are.
+#[inline]
+fn in_range(x: f64, tok: &[u8]) -> bool {
+    if x.is_infinite() {
+        return tok.iter().any(|b| b.eq_ignore_ascii_case(&b'i'));
     }
     if x == 0.0 {
         let mantissa = tok.split(|b| b.eq_ignore_ascii_case(&b'e')).next();
-        if mantissa.is_some_and(|m| m.iter().any(|b| (b'1'..=b'9').contains(b))) {
-            return Err(RealError::Underflow);
-        }
+        return !mantissa.is_some_and(|m| m.iter().any(|b| (b'1'..=b'9').contains(b)));
     }
-    Ok(x)
+    true
 }
 
 /// Parses a decimal integer with an optional sign.
@@ -285,6 +374,14 @@ pub(crate) fn id(tok: &str, one_based: bool) -> Result<u32, ReadErrorKind> {
         }
     }
     super::parse_id(tok, one_based)
+}
+
+/// A vertex id from the value of its digits (see [`Scanner::digits`]): 0-based, or 1-based when
+/// `one_based`.
+#[inline]
+pub(crate) fn id_value(v: u64, one_based: bool) -> Result<u32, ReadErrorKind> {
+    let id = if one_based { v.wrapping_sub(1) } else { v };
+    u32::try_from(id).or_else(|_| super::parse_id(&v.to_string(), one_based))
 }
 
 /// Parses a real number where `what` was expected (e.g. "a vertex coordinate").
@@ -429,5 +526,30 @@ mod tests {
         assert!(id("4294967296", false).is_err());
         assert!(id("0", true).is_err());
         assert_eq!(id("0001", true), Ok(0));
+    }
+
+    #[test]
+    fn fast_paths_leave_other_tokens_to_the_general_path() {
+        let mut s = Scanner::new("12 \n 4294967296 99999999999 1.5e3 1e309 7x 3#c\n-1");
+        assert_eq!(s.digits(true), Some((12, 1)));
+        assert_eq!(s.digits(false), None);
+        assert_eq!(s.digits(true), Some((4294967296, 2)));
+        assert_eq!(s.digits(true), None);
+        assert_eq!(s.token(), Some(("99999999999", 2)));
+        assert_eq!(s.digits(true), None);
+        assert_eq!(s.real(true), Some((1500.0, 2)));
+        assert_eq!(s.real(true), None);
+        assert_eq!(s.token(), Some(("1e309", 2)));
+        assert_eq!(s.real(true), None);
+        assert_eq!(s.token(), Some(("7x", 2)));
+        assert_eq!(s.real(false), Some((3.0, 2)));
+        assert_eq!(s.digits(false), None);
+        assert_eq!(s.real(true), Some((-1.0, 3)));
+        assert_eq!(s.real(true), None);
+        // A backslash that may continue the line is left to the general path.
+        let mut s = Scanner::with_continuation("1\\\n2");
+        assert_eq!(s.digits(false), None);
+        assert_eq!(s.token_in_line(), Some(("1", 1)));
+        assert_eq!(s.digits(false), Some((2, 2)));
     }
 }

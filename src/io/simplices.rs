@@ -40,8 +40,17 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
             match keyword {
                 "v" => {
                     let start = data.len();
-                    while let Some((tok, _)) = s.token_in_line() {
-                        data.push(parse_f64(tok, "a vertex coordinate").map_err(err)?);
+                    loop {
+                        let x = match s.real(false) {
+                            Some((x, _)) => x,
+                            None => match s.token_in_line() {
+                                Some((tok, _)) => {
+                                    parse_f64(tok, "a vertex coordinate").map_err(err)?
+                                }
+                                None => break,
+                            },
+                        };
+                        data.push(x);
                     }
                     let k = data.len() - start;
                     match first_v {
@@ -60,8 +69,15 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
                 }
                 "s" => {
                     ids.clear();
-                    while let Some((tok, _)) = s.token_in_line() {
-                        ids.push(scan::id(tok, false).map_err(err)?);
+                    loop {
+                        let id = match s.digits(false) {
+                            Some((v, _)) => scan::id_value(v, false),
+                            None => match s.token_in_line() {
+                                Some((tok, _)) => scan::id(tok, false),
+                                None => break,
+                            },
+                        };
+                        ids.push(id.map_err(err)?);
                     }
                     if ids.is_empty() {
                         return Err(err(syntax("s line with no vertex ids")));
