@@ -153,12 +153,30 @@ const NONE_TOP: (u8, u32) = (u8::MAX, u32::MAX);
 impl Complex {
     /// Reads and normalises a file (format by extension).
     pub fn from_path(path: &Path) -> Result<Complex, ComplexError> {
-        let raw = crate::io::read_path(path)?;
-        Complex::from_raw(&raw, Some(path))
+        let mut raw = crate::io::read_path(path)?;
+        // The reader's simplex list becomes the listing and its coordinates the complex's,
+        // moved rather than copied: this keeps reading's peak memory down (docs/bad-input.md,
+        // "Bounded resources").
+        let coords = raw.coords.take();
+        let mut c = Complex::normalise_raw(&raw, Some(path), coords, false)?;
+        c.listing.ids = raw.ids;
+        c.listing.offsets = raw.offsets;
+        Ok(c)
     }
 
     /// Normalises reader output; `file` names the source in errors.
     pub fn from_raw(raw: &RawInput, file: Option<&Path>) -> Result<Complex, ComplexError> {
+        Complex::normalise_raw(raw, file, raw.coords.clone(), true)
+    }
+
+    /// [`Complex::from_raw`] with the coordinates given apart; the listing is left empty unless
+    /// `copy_listing`.
+    fn normalise_raw(
+        raw: &RawInput,
+        file: Option<&Path>,
+        coords: Option<Coords>,
+        copy_listing: bool,
+    ) -> Result<Complex, ComplexError> {
         let origin = |i: usize| Origin {
             file: file.map(Path::to_path_buf),
             line: raw.lines.get(i).copied().unwrap_or(0),
@@ -190,11 +208,12 @@ impl Complex {
         };
         Complex::build(
             n,
-            raw.coords.clone(),
+            coords,
             raw.simplex_count(),
             |i| raw.simplex(i),
             origin,
             file,
+            copy_listing,
         )
     }
 
@@ -218,6 +237,7 @@ impl Complex {
             |i| &ids[offsets[i]..offsets[i + 1]],
             origin,
             None,
+            true,
         )
     }
 
@@ -235,9 +255,13 @@ impl Complex {
             |i| simplices[i],
             origin,
             None,
+            true,
         )
     }
 
+    /// Validates and normalises; the listing is copied from `simplex` when `copy_listing`, else
+    /// left empty for the caller to fill.
+    #[allow(clippy::too_many_arguments)]
     fn build<'a>(
         n: u32,
         coords: Option<Coords>,
@@ -245,6 +269,7 @@ impl Complex {
         simplex: impl Fn(usize) -> &'a [u32],
         origin: impl Fn(usize) -> Origin,
         file: Option<&Path>,
+        copy_listing: bool,
     ) -> Result<Complex, ComplexError> {
         if n == 0 {
             return Err(ComplexError::NoVertices {
@@ -261,7 +286,19 @@ impl Complex {
             )));
         }
         // Validate and bucket by dimension; rows are sorted so duplicates become equal rows.
-        let mut by_dim: Vec<Vec<u32>> = Vec::new();
+        // Exact sizes up front: growing by doubling would hold up to twice the ids (peak memory).
+        let mut totals = [0usize; MAX_DIMENSION + 1];
+        for i in 0..count {
+            let len = simplex(i).len();
+            if (1..=MAX_DIMENSION + 1).contains(&len) {
+                totals[len - 1] += len;
+            }
+        }
+        let highest = totals.iter().rposition(|&t| t > 0).map_or(0, |p| p + 1);
+        let mut by_dim: Vec<Vec<u32>> = totals[..highest]
+            .iter()
+            .map(|&t| Vec::with_capacity(t))
+            .collect();
         let mut sorted = Vec::new();
         for i in 0..count {
             let s = simplex(i);
@@ -311,14 +348,14 @@ impl Complex {
             tables.push(t);
         }
         let tops = absorb_faces(n, tables, &mut stats);
-        let mut listing = Listing {
-            offsets: Vec::with_capacity(count + 1),
-            ..Default::default()
-        };
-        listing.offsets.push(0);
-        for i in 0..count {
-            listing.ids.extend_from_slice(simplex(i));
-            listing.offsets.push(listing.ids.len());
+        let mut listing = Listing::default();
+        if copy_listing {
+            listing.offsets = Vec::with_capacity(count + 1);
+            listing.offsets.push(0);
+            for i in 0..count {
+                listing.ids.extend_from_slice(simplex(i));
+                listing.offsets.push(listing.ids.len());
+            }
         }
         Ok(Complex {
             n_vertices: n,
