@@ -195,6 +195,90 @@ fn cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
         ),
         ("unknown extension", "mesh.ply", t("ply\n")),
         ("missing file", "missing/nothing.off", Vec::new()),
+        // Special files (made by `outcome`): refused before reading, never blocking.
+        ("named pipe with no writer", "special/pipe.off", Vec::new()),
+        (
+            "device that never ends (`/dev/zero`, `/dev/urandom`)",
+            "special/zero.obj",
+            Vec::new(),
+        ),
+        ("directory", "special/dir.mesh", Vec::new()),
+        // Echoed input: capped at 200 bytes and escaped.
+        ("1 MB token", "long.simplices", {
+            let mut v = b"s 0 ".to_vec();
+            v.extend(std::iter::repeat_n(b'x', 1 << 20));
+            v
+        }),
+        (
+            "vertical tab inside a number",
+            "vtab.off",
+            t("OFF\n3 1 0\n0 0 0\n1\u{b}0 0 0\n0 1 0\n3 0 1 2\n"),
+        ),
+        ("NUL byte", "nul.obj", t("v 0 0 0\nv 1 0 0\nl 1 2\0\n")),
+        (
+            "no-break space between numbers",
+            "nbsp.simplices",
+            t("s 0 1\u{a0}2\n"),
+        ),
+        (
+            "byte-order mark in the middle of the file",
+            "bom-inside.mesh",
+            t("MeshVersionFormatted 2\nDimension 3\n\u{feff}Vertices\n0\n"),
+        ),
+        (
+            "binary header",
+            "binary.simplices",
+            b"\x00\x00\x00\x03\x00\x00\x00\x01s 0 1\n".to_vec(),
+        ),
+        // Line numbers.
+        (
+            "OFF header without its edge count (accepted)",
+            "no-edge-count.off",
+            t("OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n"),
+        ),
+        (
+            "OFF vertex colours without the `C` prefix",
+            "colours.off",
+            t("OFF\n3 1 0\n0 0 0 1 0 0 1\n1 0 0 0 1 0 1\n0 1 0 0 0 1 1\n3 0 1 2\n"),
+        ),
+        (
+            "CR-only line ends (error on line 5)",
+            "cr.off",
+            t("OFF\r3 1 0\r0 0 0\r1 0 0\r0 1 x\r3 0 1 2\r"),
+        ),
+        (
+            "CR-only line ends (accepted)",
+            "cr.obj",
+            t("v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r"),
+        ),
+        // Numbers that would change silently.
+        (
+            "coordinate that overflows a double",
+            "overflow.off",
+            t("OFF\n2 1 0\n0 0 0\n1e309 0 0\n2 0 1\n"),
+        ),
+        (
+            "coordinate that underflows to 0",
+            "underflow.obj",
+            t("v 0 0 0\nv 1e-400 0 0\nl 1 2\n"),
+        ),
+        (
+            "OBJ free-form element",
+            "curve.obj",
+            t("v 0 0 0\nv 1 0 0\ncstype bspline\ndeg 1\ncurv 0 1 1 2\nend\n"),
+        ),
+        (
+            "OBJ statement continued over 10^6 lines (accepted, linear time)",
+            "continued.obj",
+            {
+                let mut s = String::from("v 0 0 0\nv 1 0 0\nl 1");
+                for _ in 0..1_000_000 {
+                    s.push_str(" 2 1 \\\n");
+                }
+                s.push('\n');
+                s.into_bytes()
+            },
+        ),
         // Accepted inputs: the decisions the catalogue records.
         (
             "NaN / inf coordinates (accepted: topology ignores coordinates)",
@@ -221,7 +305,10 @@ fn cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
 
 fn outcome(dir: &std::path::Path, name: &str, content: &[u8]) -> String {
     let path = dir.join(name);
-    if !name.starts_with("missing/") {
+    if let Some(special) = name.strip_prefix("special/") {
+        std::fs::create_dir_all(dir.join("special")).unwrap();
+        make_special(&path, special);
+    } else if !name.starts_with("missing/") {
         std::fs::write(&path, content).unwrap();
     }
     match Complex::from_path(&path) {
@@ -236,6 +323,22 @@ fn outcome(dir: &std::path::Path, name: &str, content: &[u8]) -> String {
         }
         // Paths are temporary: show the file name only.
         Err(e) => e.to_string().replace(&format!("{}/", dir.display()), ""),
+    }
+}
+
+/// A named pipe (no writer ever opens it), a link to `/dev/zero`, or a directory.
+fn make_special(path: &std::path::Path, name: &str) {
+    match name {
+        "pipe.off" => {
+            let ok = std::process::Command::new("mkfifo")
+                .arg(path)
+                .status()
+                .is_ok_and(|s| s.success());
+            assert!(ok, "mkfifo failed");
+        }
+        "zero.obj" => std::os::unix::fs::symlink("/dev/zero", path).unwrap(),
+        "dir.mesh" => std::fs::create_dir_all(path).unwrap(),
+        _ => unreachable!("{name}"),
     }
 }
 

@@ -254,8 +254,15 @@ impl Complex {
 
     /// Reads and normalises a file (format by extension) under `budget`.
     pub fn from_path_with(path: &Path, budget: Budget) -> Result<Complex, ComplexError> {
-        let raw = crate::io::read_path(path)?;
-        Complex::from_raw_with(&raw, Some(path), budget)
+        let mut raw = crate::io::read_path(path)?;
+        // The reader's simplex list becomes the listing and its coordinates the complex's,
+        // moved rather than copied: this keeps reading's peak memory down (docs/bad-input.md,
+        // "Bounded resources").
+        let coords = raw.coords.take();
+        let mut c = Complex::normalise_raw(&raw, Some(path), coords, budget, false)?;
+        c.listing.ids = raw.ids;
+        c.listing.offsets = raw.offsets;
+        Ok(c)
     }
 
     /// Normalises reader output under the default [`Budget`]; `file` names the source in errors.
@@ -269,6 +276,18 @@ impl Complex {
         raw: &RawInput,
         file: Option<&Path>,
         budget: Budget,
+    ) -> Result<Complex, ComplexError> {
+        Complex::normalise_raw(raw, file, raw.coords.clone(), budget, true)
+    }
+
+    /// [`Complex::from_raw_with`] with the coordinates given apart; the listing is left empty
+    /// unless `copy_listing`.
+    fn normalise_raw(
+        raw: &RawInput,
+        file: Option<&Path>,
+        coords: Option<Coords>,
+        budget: Budget,
+        copy_listing: bool,
     ) -> Result<Complex, ComplexError> {
         let origin = |i: usize| Origin {
             file: file.map(Path::to_path_buf),
@@ -302,12 +321,13 @@ impl Complex {
         let input_size = raw.ids.len() as u64 + raw.vertex_count.map_or(0, u64::from);
         Complex::build(
             n,
-            raw.coords.clone(),
+            coords,
             raw.simplex_count(),
             |i| raw.simplex(i),
             origin,
             file,
             (budget, input_size),
+            copy_listing,
         )
     }
 
@@ -352,6 +372,7 @@ impl Complex {
             origin,
             None,
             (budget, input_size),
+            true,
         )
     }
 
@@ -370,11 +391,15 @@ impl Complex {
             origin,
             None,
             (Budget::UNLIMITED, 0),
+            true,
         )
     }
 
     /// Validates, sorts and absorbs. `(budget, input_size)`: the closure's upper bound is
     /// checked against `budget.limit(input_size)` before anything of closure size is allocated.
+    /// The listing is copied from `simplex` when `copy_listing`, else left empty for the caller
+    /// to fill.
+    #[allow(clippy::too_many_arguments)]
     fn build<'a>(
         n: u32,
         coords: Option<Coords>,
@@ -383,6 +408,7 @@ impl Complex {
         origin: impl Fn(usize) -> Origin,
         file: Option<&Path>,
         (budget, input_size): (Budget, u64),
+        copy_listing: bool,
     ) -> Result<Complex, ComplexError> {
         let oom = |what: &'static str, bytes: usize| ComplexError::OutOfMemory {
             file: file.map(Path::to_path_buf),
@@ -404,7 +430,19 @@ impl Complex {
             )));
         }
         // Validate and bucket by dimension; rows are sorted so duplicates become equal rows.
-        let mut by_dim: Vec<Vec<u32>> = Vec::new();
+        // Exact sizes up front: growing by doubling would hold up to twice the ids (peak memory).
+        let mut totals = [0usize; MAX_DIMENSION + 1];
+        for i in 0..count {
+            let len = simplex(i).len();
+            if (1..=MAX_DIMENSION + 1).contains(&len) {
+                totals[len - 1] += len;
+            }
+        }
+        let highest = totals.iter().rposition(|&t| t > 0).map_or(0, |p| p + 1);
+        let mut by_dim: Vec<Vec<u32>> = totals[..highest]
+            .iter()
+            .map(|&t| Vec::with_capacity(t))
+            .collect();
         let mut sorted = Vec::new();
         for i in 0..count {
             let s = simplex(i);
@@ -470,18 +508,20 @@ impl Complex {
         let tops =
             absorb_faces(n, tables, &mut stats).map_err(|bytes| oom("the vertex tables", bytes))?;
         let mut listing = Listing::default();
-        listing
-            .offsets
-            .try_reserve_exact(count + 1)
-            .map_err(|_| oom("the input listing", (count + 1) * 8))?;
-        listing
-            .ids
-            .try_reserve_exact(id_count)
-            .map_err(|_| oom("the input listing", id_count * 4))?;
-        listing.offsets.push(0);
-        for i in 0..count {
-            listing.ids.extend_from_slice(simplex(i));
-            listing.offsets.push(listing.ids.len());
+        if copy_listing {
+            listing
+                .offsets
+                .try_reserve_exact(count + 1)
+                .map_err(|_| oom("the input listing", (count + 1) * 8))?;
+            listing
+                .ids
+                .try_reserve_exact(id_count)
+                .map_err(|_| oom("the input listing", id_count * 4))?;
+            listing.offsets.push(0);
+            for i in 0..count {
+                listing.ids.extend_from_slice(simplex(i));
+                listing.offsets.push(listing.ids.len());
+            }
         }
         Ok(Complex {
             n_vertices: n,

@@ -116,6 +116,8 @@ pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
             .chunks_exact(arity)
             .map(|r| r.iter().fold(0u64, |acc, &v| (acc << bits) | v as u64))
             .collect();
+        // The keys hold the rows now: free them before the sort's buffer (peak memory).
+        drop(ids);
         radix_sort(&mut keys, arity as u32 * bits);
         keys.dedup();
         let mask = (1u64 << bits) - 1;

@@ -20,6 +20,7 @@ pub(crate) fn complex_failure(e: ComplexError) -> Failure {
     let status = match &e {
         ComplexError::Read(r) => match r.kind {
             ReadErrorKind::Io(_) => TpxStatus::IoError,
+            ReadErrorKind::TooLarge(_) => TpxStatus::TooLarge,
             _ => TpxStatus::ParseError,
         },
         ComplexError::TooLarge { .. } | ComplexError::OutOfMemory { .. } => TpxStatus::TooLarge,

@@ -29,9 +29,10 @@
 //!   `Vertices` section the vertex count is 0.
 //! * A section ending before its count is reached is an error naming the file's last line.
 
+use super::scan::{self, Scanner};
 use super::{
-    Coords, RawInput, ReadErrorKind, Tokens, capped, check_integer, parse_count, parse_f64,
-    parse_id, parse_integer, syntax,
+    Coords, RawInput, ReadErrorKind, capped, check_integer, echo, parse_count, parse_f64,
+    parse_integer, syntax,
 };
 
 /// What one number of a section entry is.
@@ -52,16 +53,17 @@ enum Item {
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
 struct Reader<'a> {
-    t: Tokens<'a>,
+    t: Scanner<'a>,
     text: &'a str,
 }
 
 impl<'a> Reader<'a> {
     /// The token after `keyword`, or an error naming what was expected.
     fn value(&mut self, keyword: &str, expected: &str) -> Res<(&'a str, u32)> {
-        self.t.next().ok_or_else(|| {
+        let eof = |t: &Scanner| t.eof_line();
+        self.t.token().ok_or_else(|| {
             (
-                self.t.eof_line(),
+                eof(&self.t),
                 syntax(format!("file ends after '{keyword}'; expected {expected}")),
             )
         })
@@ -91,34 +93,66 @@ impl<'a> Reader<'a> {
             xs.clear();
             let mut first_line = 0;
             for (j, &item) in items.iter().enumerate() {
-                let Some((tok, l)) = self.t.next() else {
-                    let msg = if j == 0 {
-                        format!("{name} count {count} declared but file ends after {e} {names}")
-                    } else {
-                        format!(
-                            "file ends inside {name} {}: expected {} numbers ({}), found {j}",
-                            e + 1,
-                            items.len(),
-                            layout(items)
-                        )
-                    };
-                    return Err((self.t.eof_line(), syntax(msg)));
+                let l = match self.fast_item(item, &mut ids, &mut xs) {
+                    Some(r) => r?,
+                    None => {
+                        let Some((tok, l)) = self.t.token() else {
+                            let msg = if j == 0 {
+                                format!(
+                                    "{name} count {count} declared but file ends after {e} {names}"
+                                )
+                            } else {
+                                format!(
+                                    "file ends inside {name} {}: expected {} numbers ({}), found \
+                                     {j}",
+                                    e + 1,
+                                    items.len(),
+                                    layout(items)
+                                )
+                            };
+                            return Err((self.t.eof_line(), syntax(msg)));
+                        };
+                        let r = match item {
+                            Item::Id => scan::id(tok, true).map(|id| ids.push(id)),
+                            Item::Coord => {
+                                parse_f64(tok, "a vertex coordinate").map(|x| xs.push(x))
+                            }
+                            Item::Ref => check_integer(tok, "reference number"),
+                            Item::Int => {
+                                check_integer(tok, "").map_err(|_| int_entry_error(tok, keyword))
+                            }
+                            Item::Real => parse_f64(tok, &format!("a {keyword} entry")).map(|_| ()),
+                        };
+                        r.map_err(|k| (l, k))?;
+                        l
+                    }
                 };
                 if j == 0 {
                     first_line = l;
                 }
-                let r = match item {
-                    Item::Id => parse_id(tok, true).map(|id| ids.push(id)),
-                    Item::Coord => parse_f64(tok, "a vertex coordinate").map(|x| xs.push(x)),
-                    Item::Ref => check_integer(tok, "reference number"),
-                    Item::Int => check_integer(tok, &format!("{keyword} entry")),
-                    Item::Real => parse_f64(tok, &format!("a {keyword} entry")).map(|_| ()),
-                };
-                r.map_err(|k| (l, k))?;
             }
             entry(&ids, &xs, first_line);
         }
         Ok(())
+    }
+
+    /// Fast path for one number of an entry (see [`Scanner::digits`]): `None` leaves the token
+    /// to the general path. Returns the number's line.
+    #[inline]
+    fn fast_item(&mut self, item: Item, ids: &mut Vec<u32>, xs: &mut Vec<f64>) -> Option<Res<u32>> {
+        match item {
+            Item::Id => self.t.digits(true).map(|(v, l)| {
+                let id = scan::id_value(v, true).map_err(|k| (l, k))?;
+                ids.push(id);
+                Ok(l)
+            }),
+            Item::Coord => self.t.real(true).map(|(x, l)| {
+                xs.push(x);
+                Ok(l)
+            }),
+            Item::Ref | Item::Int => self.t.digits(true).map(|(_, l)| Ok(l)),
+            Item::Real => self.t.real(true).map(|(_, l)| Ok(l)),
+        }
     }
 
     /// A section of elements that are not simplices: an error at its first entry, if any.
@@ -128,7 +162,7 @@ impl<'a> Reader<'a> {
             return Ok(());
         }
         let (name, names) = nouns(keyword);
-        match self.t.next() {
+        match self.t.token() {
             Some((_, l)) => Err((l, kind)),
             None => Err((
                 self.t.eof_line(),
@@ -138,6 +172,11 @@ impl<'a> Reader<'a> {
             )),
         }
     }
+}
+
+/// The error for a token of an integer section (`Corners`, ...) that is not an integer.
+fn int_entry_error(tok: &str, keyword: &str) -> ReadErrorKind {
+    check_integer(tok, &format!("{keyword} entry")).unwrap_err()
 }
 
 /// Singular and plural nouns for a section's entries, for messages: "triangle", "triangles"
@@ -176,17 +215,18 @@ fn layout(items: &[Item]) -> String {
 /// Parses MEDIT (`.mesh`) text; errors carry the 1-based line.
 pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     let mut r = Reader {
-        t: Tokens::new(text),
+        t: Scanner::new(text),
         text,
     };
 
-    let Some((kw, l)) = r.t.next() else {
+    let Some((kw, l)) = r.t.token() else {
         return Err((
             r.t.eof_line(),
             syntax("file is empty; expected 'MeshVersionFormatted'"),
         ));
     };
     if !kw.eq_ignore_ascii_case("MeshVersionFormatted") {
+        let kw = echo(kw);
         return Err((
             l,
             syntax(format!(
@@ -196,6 +236,7 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     }
     let (tok, l) = r.value(kw, "the version number")?;
     if !matches!(parse_integer(tok), Ok(1..=4)) {
+        let tok = echo(tok);
         return Err((
             l,
             syntax(format!(
@@ -203,13 +244,14 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
             )),
         ));
     }
-    let Some((kw, l)) = r.t.next() else {
+    let Some((kw, l)) = r.t.token() else {
         return Err((
             r.t.eof_line(),
             syntax("file ends after the version; expected 'Dimension'"),
         ));
     };
     if !kw.eq_ignore_ascii_case("Dimension") {
+        let kw = echo(kw);
         return Err((
             l,
             syntax(format!(
@@ -221,6 +263,7 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     let dim = match parse_integer(tok) {
         Ok(d @ 2..=3) => d as usize,
         _ => {
+            let tok = echo(tok);
             return Err((
                 l,
                 syntax(format!("Dimension must be 2 or 3, found '{tok}'")),
@@ -239,12 +282,15 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
             .collect()
     };
 
-    while let Some((kw, l)) = r.t.next() {
+    while let Some((kw, l)) = r.t.token() {
         let lower = kw.to_ascii_lowercase();
         match lower.as_str() {
             "end" => {
-                if let Some((tok, l)) = r.t.next() {
-                    return Err((l, syntax(format!("unexpected content '{tok}' after End"))));
+                if let Some((tok, l)) = r.t.token() {
+                    return Err((
+                        l,
+                        syntax(format!("unexpected content '{}' after End", echo(tok))),
+                    ));
                 }
                 break;
             }
@@ -288,10 +334,10 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
             }
             "identifier" | "geometry" => {
                 // The string is the rest of this line, or else the whole next line.
-                if r.t.rest_of_line(l).is_empty() {
-                    let (_, next) = r.value(kw, "a string")?;
-                    r.t.rest_of_line(next);
+                if r.t.token_in_line().is_none() {
+                    r.value(kw, "a string")?;
                 }
+                r.t.skip_rest_of_line();
             }
             "quadrilaterals" => r.reject(kw, ReadErrorKind::Polygon(4))?,
             "hexahedra" => r.reject(kw, syntax("hexahedra are not simplices"))?,
@@ -302,6 +348,7 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
                 ));
             }
             _ if parse_f64(kw, "").is_ok() => {
+                let kw = echo(kw);
                 return Err((
                     l,
                     syntax(format!(
@@ -310,7 +357,10 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
                     )),
                 ));
             }
-            _ => return Err((l, syntax(format!("unknown MEDIT section keyword '{kw}'")))),
+            _ => {
+                let kw = echo(kw);
+                return Err((l, syntax(format!("unknown MEDIT section keyword '{kw}'"))));
+            }
         }
     }
 
@@ -538,6 +588,41 @@ mod tests {
             &format!("{HEAD}Vertices 0\nVertices 0\n"),
             4,
             "second Vertices section",
+        );
+    }
+
+    #[test]
+    fn cr_only_line_ends() {
+        let r =
+            ok("MeshVersionFormatted 2\rDimension 2\rVertices\r2\r0 0 0\r1 0 0\rEdges 1\r1 2 0\r");
+        assert_eq!(r.lines, [8]);
+    }
+
+    #[test]
+    fn coordinates_that_do_not_fit_a_double() {
+        err(
+            &format!("{HEAD}Vertices\n1\n0 1e309 0 1\n"),
+            5,
+            "'1e309' is too large for a 64-bit float (a vertex coordinate",
+        );
+        err(
+            &format!("{HEAD}Vertices\n1\n0 0 1e-400 1\n"),
+            5,
+            "'1e-400' is too small",
+        );
+    }
+
+    #[test]
+    fn echoed_tokens_are_escaped() {
+        err(
+            &format!("{HEAD}Tri\u{b}angles\n"),
+            3,
+            "unknown MEDIT section keyword 'Tri\\x0bangles'",
+        );
+        err(
+            &format!("{HEAD}Corners 1\n1\u{0}\n"),
+            4,
+            "non-numeric token '1\\0' where a Corners entry was expected",
         );
     }
 }

@@ -39,11 +39,15 @@ macro_rules! reader_test_helpers {
     };
 }
 
+pub mod echo;
 pub mod medit;
 pub mod obj;
 pub mod off;
+mod scan;
 pub mod simplices;
 pub mod write;
+
+pub use echo::{echo, echo_path};
 
 /// Vertex coordinates, `dim` numbers per vertex, vertex-major.
 #[derive(Debug, Clone, PartialEq)]
@@ -104,6 +108,9 @@ pub enum ReadErrorKind {
     /// The file could not be opened or read.
     #[error("cannot read file: {0}")]
     Io(String),
+    /// The file is larger than the readers' index types allow.
+    #[error("file too large: {0}")]
+    TooLarge(String),
     /// The extension names no supported format.
     #[error("unknown file extension (expected .off, .obj, .mesh or .simplices)")]
     UnknownExtension,
@@ -120,7 +127,7 @@ pub enum ReadErrorKind {
 
 /// A reader error naming the file and the 1-based line (line 0: the file as a whole).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{}:{line}: {kind}", path.display())]
+#[error("{}:{line}: {kind}", echo_path(path))]
 pub struct ReadError {
     /// The file.
     pub path: PathBuf,
@@ -131,6 +138,9 @@ pub struct ReadError {
 }
 
 /// Reads a file, choosing the reader by extension.
+///
+/// Only regular files are read (see [`read_file`]); the text must be UTF-8 (a leading
+/// byte-order mark is skipped). Peak memory: the file's bytes plus the reader's output.
 pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
     let err = |line, kind| ReadError {
         path: path.to_path_buf(),
@@ -149,20 +159,104 @@ pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
         "simplices" => simplices::parse,
         _ => return Err(err(0, ReadErrorKind::UnknownExtension)),
     };
-    let bytes = std::fs::read(path).map_err(|e| err(0, ReadErrorKind::Io(e.to_string())))?;
-    let text = std::str::from_utf8(&bytes).map_err(|e| {
-        let line = bytes[..e.valid_up_to()]
-            .iter()
-            .filter(|&&b| b == b'\n')
-            .count() as u32
-            + 1;
-        err(
-            line,
-            ReadErrorKind::Syntax("file is not valid UTF-8 text".into()),
+    let bytes = read_file(path).map_err(|k| err(0, k))?;
+    let text = utf8_text(&bytes).map_err(|(line, k)| err(line, k))?;
+    parse(text).map_err(|(line, kind)| err(line, kind))
+}
+
+/// Reads a whole regular file with one read into a buffer of its size.
+///
+/// Anything else is refused before it is read, with a message saying what it is: a directory,
+/// a named pipe (which would block until a writer comes), a device such as `/dev/zero` or
+/// `/dev/urandom` (which never ends), a socket. The type is checked on the path before opening
+/// and again on the opened file (the path may change in between); the open is non-blocking so
+/// that a pipe swapped in meanwhile cannot hang it. A buffer that cannot be allocated is
+/// [`ReadErrorKind::TooLarge`].
+pub fn read_file(path: &Path) -> Result<Vec<u8>, ReadErrorKind> {
+    use std::io::Read;
+    let io = |e: std::io::Error| ReadErrorKind::Io(e.to_string());
+    check_regular(&std::fs::metadata(path).map_err(io)?)?;
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(libc::O_NONBLOCK);
+    }
+    let mut file = options.open(path).map_err(io)?;
+    let meta = file.metadata().map_err(io)?;
+    check_regular(&meta)?;
+    let too_large =
+        || ReadErrorKind::TooLarge(format!("{} bytes do not fit in memory", meta.len()));
+    let len = usize::try_from(meta.len()).map_err(|_| too_large())?;
+    let mut bytes = Vec::new();
+    // One byte more than the size, so that read_to_end sees the end without growing the buffer.
+    bytes
+        .try_reserve_exact(len.saturating_add(1))
+        .map_err(|_| too_large())?;
+    file.read_to_end(&mut bytes).map_err(io)?;
+    Ok(bytes)
+}
+
+/// Refuses anything but a regular file, naming what it is.
+fn check_regular(meta: &std::fs::Metadata) -> Result<(), ReadErrorKind> {
+    let t = meta.file_type();
+    if t.is_file() {
+        return Ok(());
+    }
+    let what = if t.is_dir() {
+        "a directory"
+    } else {
+        special_file_kind(&t)
+    };
+    Err(ReadErrorKind::Io(format!(
+        "it is {what}, not a regular file (only regular files are read)"
+    )))
+}
+
+#[cfg(unix)]
+fn special_file_kind(t: &std::fs::FileType) -> &'static str {
+    use std::os::unix::fs::FileTypeExt;
+    if t.is_fifo() {
+        "a named pipe"
+    } else if t.is_char_device() {
+        "a character device (such as /dev/zero)"
+    } else if t.is_block_device() {
+        "a block device"
+    } else if t.is_socket() {
+        "a socket"
+    } else {
+        "a special file"
+    }
+}
+
+#[cfg(not(unix))]
+fn special_file_kind(_: &std::fs::FileType) -> &'static str {
+    "a special file"
+}
+
+/// The file's bytes as text: UTF-8, a leading byte-order mark skipped. The error names the line
+/// of the first invalid byte and shows the bytes, escaped.
+fn utf8_text(bytes: &[u8]) -> Result<&str, (u32, ReadErrorKind)> {
+    let text = std::str::from_utf8(bytes).map_err(|e| {
+        let at = e.valid_up_to();
+        let before = &bytes[..at];
+        let line = before.iter().filter(|&&b| b == b'\n').count()
+            + before
+                .windows(2)
+                .filter(|w| w[0] == b'\r' && w[1] != b'\n')
+                .count()
+            + usize::from(before.last() == Some(&b'\r'));
+        let bad = &bytes[at..bytes.len().min(at + e.error_len().unwrap_or(1))];
+        (
+            u32::try_from(line + 1).unwrap_or(u32::MAX),
+            syntax(format!(
+                "file is not valid UTF-8 text (bad bytes '{}')",
+                echo(bad)
+            )),
         )
     })?;
-    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
-    parse(text).map_err(|(line, kind)| err(line, kind))
+    Ok(text.strip_prefix('\u{feff}').unwrap_or(text))
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -177,52 +271,41 @@ pub(crate) fn syntax(msg: impl Into<String>) -> ReadErrorKind {
 /// number needs at least one character and one separator), so that a huge declared count in a
 /// small file does not allocate.
 pub(crate) fn capped(n: usize, text: &str) -> usize {
-    n.min(text.len() / 2 + 1)
+    capped_len(n, text.len())
 }
 
-/// Whitespace-separated tokens, each with its 1-based line. `#` starts a comment that runs to
-/// the end of its line. Lines end in `\n` or `\r\n`; spaces, tabs and stray `\r` separate tokens.
+/// [`capped`] for a text of `len` bytes.
+pub(crate) fn capped_len(n: usize, len: usize) -> usize {
+    n.min(len / 2 + 1)
+}
+
+/// Whitespace-separated tokens, each with its 1-based line: [`scan::Scanner`] behind the
+/// interface of a peekable iterator. `#` starts a comment that runs to the end of its line; lines
+/// end in `\n`, `\r\n` or a lone `\r`; spaces, tabs and form feeds separate tokens.
+#[cfg_attr(not(test), allow(dead_code))] // the interface other readers share; ours use Scanner
 pub(crate) struct Tokens<'a> {
-    lines: std::str::Lines<'a>,
-    words: std::str::SplitAsciiWhitespace<'a>,
-    line: u32,
-    peeked: Option<Option<(&'a str, u32)>>,
+    scanner: scan::Scanner<'a>,
 }
 
+#[cfg_attr(not(test), allow(dead_code))]
 impl<'a> Tokens<'a> {
     pub(crate) fn new(text: &'a str) -> Self {
         Tokens {
-            lines: text.lines(),
-            words: "".split_ascii_whitespace(),
-            line: 0,
-            peeked: None,
-        }
-    }
-
-    fn advance(&mut self) -> Option<(&'a str, u32)> {
-        loop {
-            if let Some(w) = self.words.next() {
-                return Some((w, self.line));
-            }
-            let l = self.lines.next()?;
-            self.line = self.line.saturating_add(1);
-            self.words = strip_comment(l).split_ascii_whitespace();
+            scanner: scan::Scanner::new(text),
         }
     }
 
     pub(crate) fn peek(&mut self) -> Option<(&'a str, u32)> {
-        if self.peeked.is_none() {
-            self.peeked = Some(self.advance());
-        }
-        self.peeked.unwrap()
+        self.scanner.peek()
     }
 
-    /// Consumes and returns the tokens left on `line`.
+    /// Consumes and returns the tokens left on `line` (the line of the last token returned).
     pub(crate) fn rest_of_line(&mut self, line: u32) -> Vec<(&'a str, u32)> {
         let mut out = Vec::new();
-        while let Some(tok) = self.peek().filter(|&(_, l)| l == line) {
-            out.push(tok);
-            self.next();
+        if self.scanner.line() == line {
+            while let Some(tok) = self.scanner.token_in_line() {
+                out.push(tok);
+            }
         }
         out
     }
@@ -230,7 +313,7 @@ impl<'a> Tokens<'a> {
     /// The line to blame when the file ends early: its last line (at least 1). Meaningful once
     /// [`Iterator::next`] has returned `None`.
     pub(crate) fn eof_line(&self) -> u32 {
-        self.line.max(1)
+        self.scanner.eof_line()
     }
 }
 
@@ -238,14 +321,12 @@ impl<'a> Iterator for Tokens<'a> {
     type Item = (&'a str, u32);
 
     fn next(&mut self) -> Option<(&'a str, u32)> {
-        match self.peeked.take() {
-            Some(p) => p,
-            None => self.advance(),
-        }
+        self.scanner.token()
     }
 }
 
 /// The part of a line before any `#`.
+#[cfg_attr(not(test), allow(dead_code))]
 pub(crate) fn strip_comment(line: &str) -> &str {
     line.find('#').map_or(line, |i| &line[..i])
 }
@@ -263,40 +344,35 @@ pub(crate) enum IntError {
 
 /// Parses a decimal integer with an optional sign.
 pub(crate) fn parse_integer(tok: &str) -> Result<i128, IntError> {
-    let digits = tok.strip_prefix(['+', '-']).unwrap_or(tok);
-    if !digits.is_empty() && digits.bytes().all(|b| b.is_ascii_digit()) {
-        tok.parse::<i128>().map_err(|_| IntError::OutOfRange)
-    } else if tok.parse::<f64>().is_ok() {
-        Err(IntError::NotInteger)
-    } else {
-        Err(IntError::NotNumber)
-    }
+    scan::integer(tok.as_bytes())
 }
 
 /// Parses a vertex id: 0-based, or 1-based when `one_based` (then converted to 0-based).
 /// Negative values are [`ReadErrorKind::NegativeId`] with the value as written.
 pub(crate) fn parse_id(tok: &str, one_based: bool) -> Result<u32, ReadErrorKind> {
+    let e = || echo(tok);
     let v = match parse_integer(tok) {
         Ok(v) => v,
         Err(IntError::NotNumber) => {
             return Err(syntax(format!(
-                "non-numeric token '{tok}' where a vertex id was expected"
+                "non-numeric token '{}' where a vertex id was expected",
+                e()
             )));
         }
         Err(IntError::NotInteger) => {
-            return Err(syntax(format!("vertex id '{tok}' is not an integer")));
+            return Err(syntax(format!("vertex id '{}' is not an integer", e())));
         }
         Err(IntError::OutOfRange) if tok.starts_with('-') => {
-            return Err(syntax(format!("negative vertex id {tok}")));
+            return Err(syntax(format!("negative vertex id {}", e())));
         }
         Err(IntError::OutOfRange) => {
-            return Err(syntax(format!("vertex id {tok} does not fit in 32 bits")));
+            return Err(syntax(format!("vertex id {} does not fit in 32 bits", e())));
         }
     };
     if v < 0 {
         return Err(match i64::try_from(v) {
             Ok(v) => ReadErrorKind::NegativeId(v),
-            Err(_) => syntax(format!("negative vertex id {tok}")),
+            Err(_) => syntax(format!("negative vertex id {}", e())),
         });
     }
     let v = if one_based {
@@ -309,36 +385,35 @@ pub(crate) fn parse_id(tok: &str, one_based: bool) -> Result<u32, ReadErrorKind>
     } else {
         v
     };
-    u32::try_from(v).map_err(|_| syntax(format!("vertex id {tok} does not fit in 32 bits")))
+    u32::try_from(v).map_err(|_| syntax(format!("vertex id {} does not fit in 32 bits", e())))
 }
 
 /// Parses a count declared in the file (`what` names it, e.g. "vertex count"): a non-negative
 /// integer that fits in 32 bits.
 pub(crate) fn parse_count(tok: &str, what: &str) -> Result<u32, ReadErrorKind> {
+    let e = || echo(tok);
     match parse_integer(tok) {
-        Ok(v) if v < 0 => Err(syntax(format!("{what} {tok} is negative"))),
+        Ok(v) if v < 0 => Err(syntax(format!("{what} {} is negative", e()))),
         Ok(v) => {
-            u32::try_from(v).map_err(|_| syntax(format!("{what} {tok} does not fit in 32 bits")))
+            u32::try_from(v).map_err(|_| syntax(format!("{what} {} does not fit in 32 bits", e())))
         }
         Err(IntError::OutOfRange) if tok.starts_with('-') => {
-            Err(syntax(format!("{what} {tok} is negative")))
+            Err(syntax(format!("{what} {} is negative", e())))
         }
-        Err(IntError::OutOfRange) => Err(syntax(format!("{what} {tok} does not fit in 32 bits"))),
-        Err(IntError::NotInteger) => Err(syntax(format!("{what} '{tok}' is not an integer"))),
+        Err(IntError::OutOfRange) => Err(syntax(format!("{what} {} does not fit in 32 bits", e()))),
+        Err(IntError::NotInteger) => Err(syntax(format!("{what} '{}' is not an integer", e()))),
         Err(IntError::NotNumber) => Err(syntax(format!(
-            "non-numeric token '{tok}' where the {what} was expected"
+            "non-numeric token '{}' where the {what} was expected",
+            e()
         ))),
     }
 }
 
 /// Parses a floating-point number (`what` names it, e.g. "a vertex coordinate"). `nan`, `inf`
-/// and `infinity` (any case, optionally signed) are accepted.
+/// and `infinity` (any case, optionally signed) are accepted; a finite number that would become
+/// infinite or 0 in an `f64` (`1e309`, `1e-400`) is an error.
 pub(crate) fn parse_f64(tok: &str, what: &str) -> Result<f64, ReadErrorKind> {
-    tok.parse::<f64>().map_err(|_| {
-        syntax(format!(
-            "non-numeric token '{tok}' where {what} was expected"
-        ))
-    })
+    scan::real_or_err(tok, what)
 }
 
 /// Checks that a token is an integer (`what` names it, e.g. "reference number"); its value is
@@ -346,9 +421,12 @@ pub(crate) fn parse_f64(tok: &str, what: &str) -> Result<f64, ReadErrorKind> {
 pub(crate) fn check_integer(tok: &str, what: &str) -> Result<(), ReadErrorKind> {
     match parse_integer(tok) {
         Ok(_) | Err(IntError::OutOfRange) => Ok(()),
-        Err(IntError::NotInteger) => Err(syntax(format!("{what} '{tok}' is not an integer"))),
+        Err(IntError::NotInteger) => {
+            Err(syntax(format!("{what} '{}' is not an integer", echo(tok))))
+        }
         Err(IntError::NotNumber) => Err(syntax(format!(
-            "non-numeric token '{tok}' where a {what} was expected"
+            "non-numeric token '{}' where a {what} was expected",
+            echo(tok)
         ))),
     }
 }
@@ -420,7 +498,7 @@ mod tests {
         assert_eq!(e.line, 2);
         assert_eq!(
             e.kind,
-            ReadErrorKind::Syntax("file is not valid UTF-8 text".into())
+            ReadErrorKind::Syntax("file is not valid UTF-8 text (bad bytes '\\xe9')".into())
         );
     }
 

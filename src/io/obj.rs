@@ -13,20 +13,27 @@
 //!   Negative indices are relative to the vertices read so far (-1 is the last one); reaching
 //!   before the first vertex is an error. Texture and normal indices are checked to be non-zero
 //!   integers and ignored.
-//! * Ignored statements: `vt vn vp o g s usemtl mtllib cstype deg bmat step curv curv2 surf parm
-//!   trim hole scrv sp end con mg bevel c_interp d_interp lod maplib usemap shadow_obj trace_obj
-//!   ctech stech` (their arguments are not checked). Any other keyword is an error.
-//! * `#` starts a comment; a line ending in `\` continues on the next line (the statement is
-//!   reported at its first line). CRLF, tabs and a missing final newline are fine.
+//! * Free-form elements `curv curv2 surf` are refused (an error naming the statement): they are
+//!   geometry a simplicial complex cannot hold, and dropping them would read the file as less
+//!   than it is.
+//! * Ignored statements: `vt vn vp o g s usemtl mtllib cstype deg bmat step parm trim hole scrv
+//!   sp end con mg bevel c_interp d_interp lod maplib usemap shadow_obj trace_obj ctech stech`
+//!   (their arguments are not checked). Any other keyword is an error.
+//! * `#` starts a comment; a line ending in `\` (blanks and a comment may follow it) continues
+//!   on the next line, in time linear in the statement's length (the statement is reported at
+//!   its first line). Lines end in LF, CRLF or a lone CR; tabs and a missing final newline are
+//!   fine.
 //! * A file with no statements at all is an error.
 //!
 //! `vertex_count` is the number of `v` statements.
 
-use super::{
-    Coords, IntError, RawInput, ReadErrorKind, parse_f64, parse_integer, strip_comment, syntax,
-};
-use std::borrow::Cow;
+use super::scan::{self, Scanner};
+use super::{Coords, IntError, RawInput, ReadErrorKind, echo, parse_f64, parse_integer, syntax};
 
+/// Statements that carry nothing a simplicial complex keeps (texture and normal vertices,
+/// grouping, materials, display attributes, and the free-form attribute and body statements,
+/// which mean nothing without a `curv`, `curv2` or `surf` element). Their arguments are not
+/// checked.
 const IGNORED: &[&str] = &[
     "vt",
     "vn",
@@ -40,9 +47,6 @@ const IGNORED: &[&str] = &[
     "deg",
     "bmat",
     "step",
-    "curv",
-    "curv2",
-    "surf",
     "parm",
     "trim",
     "hole",
@@ -63,6 +67,10 @@ const IGNORED: &[&str] = &[
     "stech",
 ];
 
+/// Free-form elements: geometry that is not simplices. Refused rather than dropped, so that a
+/// file is never read as less than it holds.
+const FREE_FORM: &[&str] = &["curv", "curv2", "surf"];
+
 /// Which `/` forms an element allows for its vertices.
 #[derive(Clone, Copy, PartialEq)]
 enum Form {
@@ -75,44 +83,70 @@ enum Form {
 }
 
 /// Resolves one element vertex to a 0-based id; `seen` is the number of `v` statements so far.
+#[inline]
 fn vertex_index(tok: &str, form: Form, seen: u32) -> Result<u32, ReadErrorKind> {
-    let parts: Vec<&str> = tok.split('/').collect();
+    // The common case: a plain positive index.
+    let b = tok.as_bytes();
+    if !b.is_empty()
+        && b.len() <= 9
+        && b.iter().all(u8::is_ascii_digit)
+        && let Ok(i) = scan::id(tok, true)
+    {
+        return Ok(i);
+    }
+    vertex_index_slow(tok, form, seen)
+}
+
+fn vertex_index_slow(tok: &str, form: Form, seen: u32) -> Result<u32, ReadErrorKind> {
+    let mut parts = tok.split('/');
+    let i = parts.next().unwrap_or_default();
+    let (t, n, extra) = (parts.next(), parts.next(), parts.next().is_some());
     let nonzero_int = |s: &str| parse_integer(s).is_ok_and(|v| v != 0);
-    let well_formed = match (form, parts.as_slice()) {
-        (_, [_]) => true,
-        (Form::Face | Form::Line, [_, t]) => nonzero_int(t),
-        (Form::Face, [_, t, n]) => (t.is_empty() || nonzero_int(t)) && nonzero_int(n),
-        _ => false,
-    };
-    if !well_formed || parts[0].is_empty() {
+    let well_formed = !extra
+        && match (form, t, n) {
+            (_, None, _) => true,
+            (Form::Face | Form::Line, Some(t), None) => nonzero_int(t),
+            (Form::Face, Some(t), Some(n)) => (t.is_empty() || nonzero_int(t)) && nonzero_int(n),
+            _ => false,
+        };
+    if !well_formed || i.is_empty() {
         let forms = match form {
             Form::Face => "i, i/t, i//n or i/t/n",
             Form::Line => "i or i/t",
             Form::Point => "i",
         };
         return Err(syntax(format!(
-            "malformed vertex reference '{tok}' (expected {forms} with non-zero integer indices)"
+            "malformed vertex reference '{}' (expected {forms} with non-zero integer indices)",
+            echo(tok)
         )));
     }
-    let i = parts[0];
+    let before_first = || {
+        syntax(format!(
+            "relative vertex index {} reaches before the first vertex ({seen} vertices read so \
+             far)",
+            echo(i)
+        ))
+    };
     let v = match parse_integer(i) {
         Ok(v) => v,
         Err(IntError::NotNumber) => {
             return Err(syntax(format!(
-                "non-numeric token '{i}' where a vertex index was expected"
+                "non-numeric token '{}' where a vertex index was expected",
+                echo(i)
             )));
         }
         Err(IntError::NotInteger) => {
-            return Err(syntax(format!("vertex index '{i}' is not an integer")));
-        }
-        Err(IntError::OutOfRange) if i.starts_with('-') => {
             return Err(syntax(format!(
-                "relative vertex index {i} reaches before the first vertex ({seen} vertices read \
-                 so far)"
+                "vertex index '{}' is not an integer",
+                echo(i)
             )));
         }
+        Err(IntError::OutOfRange) if i.starts_with('-') => return Err(before_first()),
         Err(IntError::OutOfRange) => {
-            return Err(syntax(format!("vertex index {i} does not fit in 32 bits")));
+            return Err(syntax(format!(
+                "vertex index {} does not fit in 32 bits",
+                echo(i)
+            )));
         }
     };
     if v == 0 {
@@ -123,135 +157,196 @@ fn vertex_index(tok: &str, form: Form, seen: u32) -> Result<u32, ReadErrorKind> 
     }
     if v > 0 {
         u32::try_from(v - 1)
-            .map_err(|_| syntax(format!("vertex index {i} does not fit in 32 bits")))
+            .map_err(|_| syntax(format!("vertex index {} does not fit in 32 bits", echo(i))))
     } else {
-        let id = i128::from(seen) + v;
-        u32::try_from(id).map_err(|_| {
-            syntax(format!(
-                "relative vertex index {i} reaches before the first vertex ({seen} vertices read \
-                 so far)"
-            ))
-        })
+        u32::try_from(i128::from(seen) + v).map_err(|_| before_first())
     }
 }
 
-/// Parses Wavefront OBJ text; errors carry the 1-based line.
+/// What the statements read so far built.
+struct State {
+    raw: RawInput,
+    /// x y z of each `v` statement.
+    data: Vec<f64>,
+    /// `v` statements so far.
+    seen: u32,
+    /// Scratch for the ids of one `l` statement.
+    ids: Vec<u32>,
+}
+
+/// Reads an OBJ file's text.
 pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
-    let mut raw = RawInput::new();
-    let mut data = Vec::new();
-    let mut seen: u32 = 0;
+    let mut s = Scanner::with_continuation(text);
+    let mut st = State {
+        raw: RawInput::new(),
+        data: Vec::new(),
+        seen: 0,
+        ids: Vec::new(),
+    };
     let mut statements = 0usize;
-    let mut ids: Vec<u32> = Vec::new();
-
-    let mut lines = text.lines().zip(1u32..);
-    let mut last_line = 0u32;
-    while let Some((first, line)) = lines.next() {
-        last_line = line;
-        // Join continuation lines (a trailing `\`).
-        let mut stmt = Cow::Borrowed(strip_comment(first));
-        while let Some(head) = stmt.trim_end().strip_suffix('\\') {
-            let head = head.to_owned();
-            let Some((next, l)) = lines.next() else {
-                return Err((
-                    line,
-                    syntax("line continuation '\\' at the end of the file"),
-                ));
-            };
-            last_line = l;
-            stmt = Cow::Owned(format!("{head} {}", strip_comment(next)));
+    loop {
+        // A statement is reported at its first line, continuations included.
+        let line = s.line();
+        let mut result = Ok(());
+        if let Some((keyword, _)) = s.token_in_line() {
+            statements += 1;
+            result = statement(&mut s, keyword, &mut st);
+            if result.is_err() {
+                // A dangling continuation is the first thing wrong with the statement.
+                s.skip_rest_of_line();
+            }
         }
-
-        let mut toks = stmt.split_ascii_whitespace();
-        let Some(keyword) = toks.next() else { continue };
-        statements += 1;
-        let err = |k: ReadErrorKind| (line, k);
-        match keyword {
-            "v" => {
-                let start = data.len();
-                for tok in toks {
-                    data.push(parse_f64(tok, "a vertex coordinate").map_err(err)?);
-                }
-                let n = data.len() - start;
-                match n {
-                    0..=2 => {
-                        return Err(err(syntax(format!(
-                            "expected 3 vertex coordinates, found {n}"
-                        ))));
-                    }
-                    3 | 4 | 6 | 7 => data.truncate(start + 3),
-                    _ => {
-                        return Err(err(syntax(format!(
-                            "v statement with {n} numbers; expected x y z, optionally followed by \
-                             w (4 numbers) or by a colour (6 or 7 numbers)"
-                        ))));
-                    }
-                }
-                seen = seen
-                    .checked_add(1)
-                    .ok_or_else(|| err(syntax("more than 4294967295 vertices")))?;
-            }
-            "f" => {
-                let toks: Vec<&str> = toks.collect();
-                match toks.len() {
-                    0 => return Err(err(syntax("face with no vertices"))),
-                    1 => {
-                        return Err(err(syntax(
-                            "face with 1 vertex; use a `p` line for a point",
-                        )));
-                    }
-                    2 => {
-                        return Err(err(syntax(
-                            "face with 2 vertices; use an `l` line for an edge",
-                        )));
-                    }
-                    3 => {}
-                    k => return Err(err(ReadErrorKind::Polygon(k))),
-                }
-                ids.clear();
-                for tok in toks {
-                    ids.push(vertex_index(tok, Form::Face, seen).map_err(err)?);
-                }
-                raw.push(&ids, line);
-            }
-            "l" => {
-                ids.clear();
-                for tok in toks {
-                    ids.push(vertex_index(tok, Form::Line, seen).map_err(err)?);
-                }
-                if ids.len() < 2 {
-                    return Err(err(syntax(format!(
-                        "line element with {} vertices; an `l` line needs at least 2",
-                        ids.len()
-                    ))));
-                }
-                for pair in ids.windows(2) {
-                    raw.push(pair, line);
-                }
-            }
-            "p" => {
-                let before = raw.simplex_count();
-                for tok in toks {
-                    let id = vertex_index(tok, Form::Point, seen).map_err(err)?;
-                    raw.push(&[id], line);
-                }
-                if raw.simplex_count() == before {
-                    return Err(err(syntax("point element with no vertices")));
-                }
-            }
-            k if IGNORED.contains(&k) => {}
-            k => return Err(err(syntax(format!("unknown OBJ statement '{k}'")))),
+        if s.dangling_continuation() {
+            return Err((
+                line,
+                syntax("line continuation '\\' at the end of the file"),
+            ));
+        }
+        result.map_err(|k| (line, k))?;
+        if !s.next_line() {
+            break;
         }
     }
-
     if statements == 0 {
-        return Err((
-            last_line.max(1),
-            syntax("file is empty (no OBJ statements)"),
-        ));
+        return Err((s.eof_line(), syntax("file is empty (no OBJ statements)")));
     }
-    raw.vertex_count = Some(seen);
-    raw.coords = Some(Coords { dim: 3, data });
+    let mut raw = st.raw;
+    raw.vertex_count = Some(st.seen);
+    raw.coords = Some(Coords {
+        dim: 3,
+        data: st.data,
+    });
     Ok(raw)
+}
+
+/// Reads the rest of one statement (after its keyword, which was on `line`).
+fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), ReadErrorKind> {
+    let line = s.line();
+    match keyword {
+        "v" => vertex(s, st),
+        "f" => {
+            if let Some(ids) = plain_triangle(s) {
+                st.raw.push(&ids, line);
+                return Ok(());
+            }
+            let mut refs = [""; 3];
+            let mut k = 0;
+            while let Some((tok, _)) = s.token_in_line() {
+                if let Some(slot) = refs.get_mut(k) {
+                    *slot = tok;
+                }
+                k += 1;
+            }
+            match k {
+                0 => return Err(syntax("face with no vertices")),
+                1 => return Err(syntax("face with 1 vertex; use a `p` line for a point")),
+                2 => return Err(syntax("face with 2 vertices; use an `l` line for an edge")),
+                3 => {}
+                k => return Err(ReadErrorKind::Polygon(k)),
+            }
+            let mut ids = [0u32; 3];
+            for (id, tok) in ids.iter_mut().zip(refs) {
+                *id = vertex_index(tok, Form::Face, st.seen)?;
+            }
+            st.raw.push(&ids, line);
+            Ok(())
+        }
+        "l" => {
+            st.ids.clear();
+            while let Some((tok, _)) = s.token_in_line() {
+                st.ids.push(vertex_index(tok, Form::Line, st.seen)?);
+            }
+            if st.ids.len() < 2 {
+                return Err(syntax(format!(
+                    "line element with {} vertices; an `l` line needs at least 2",
+                    st.ids.len()
+                )));
+            }
+            for pair in st.ids.windows(2) {
+                st.raw.push(pair, line);
+            }
+            Ok(())
+        }
+        "p" => {
+            let before = st.raw.simplex_count();
+            while let Some((tok, _)) = s.token_in_line() {
+                let id = vertex_index(tok, Form::Point, st.seen)?;
+                st.raw.push(&[id], line);
+            }
+            if st.raw.simplex_count() == before {
+                return Err(syntax("point element with no vertices"));
+            }
+            Ok(())
+        }
+        k if FREE_FORM.contains(&k) => Err(syntax(format!(
+            "free-form element '{k}' (a curve or surface) is not supported: only v, f, l and p \
+             statements make simplices"
+        ))),
+        k if IGNORED.contains(&k) => {
+            s.skip_rest_of_line();
+            Ok(())
+        }
+        k => Err(syntax(format!("unknown OBJ statement '{}'", echo(k)))),
+    }
+}
+
+/// Fast path: `f i j k` with three plain positive indices and nothing else, read as scanned.
+/// `None` (the scanner unmoved) for anything else, which the general path reads.
+#[inline]
+fn plain_triangle(s: &mut Scanner<'_>) -> Option<[u32; 3]> {
+    let saved = s.clone();
+    let mut ids = [0u32; 3];
+    let mut plain = true;
+    for id in &mut ids {
+        match s.digits(false) {
+            Some((v @ 1.., _)) if v <= 1 << 32 => *id = (v - 1) as u32,
+            _ => {
+                plain = false;
+                break;
+            }
+        }
+    }
+    if plain && s.token_in_line().is_none() {
+        return Some(ids);
+    }
+    *s = saved;
+    None
+}
+
+/// `v x y z [w | r g b [a]]`: keeps x y z.
+fn vertex(s: &mut Scanner<'_>, st: &mut State) -> Result<(), ReadErrorKind> {
+    let mut xyz = [0.0; 3];
+    let mut n = 0;
+    loop {
+        let x = match s.real(false) {
+            Some((x, _)) => x,
+            None => match s.token_in_line() {
+                Some((tok, _)) => parse_f64(tok, "a vertex coordinate")?,
+                None => break,
+            },
+        };
+        if let Some(slot) = xyz.get_mut(n) {
+            *slot = x;
+        }
+        n += 1;
+    }
+    match n {
+        0..=2 => {
+            return Err(syntax(format!("expected 3 vertex coordinates, found {n}")));
+        }
+        3 | 4 | 6 | 7 => st.data.extend_from_slice(&xyz),
+        _ => {
+            return Err(syntax(format!(
+                "v statement with {n} numbers; expected x y z, optionally followed by w (4 \
+                 numbers) or by a colour (6 or 7 numbers)"
+            )));
+        }
+    }
+    st.seen = st
+        .seen
+        .checked_add(1)
+        .ok_or_else(|| syntax("more than 4294967295 vertices"))?;
+    Ok(())
 }
 
 #[cfg(test)]
@@ -315,7 +410,7 @@ mod tests {
 
     #[test]
     fn nan_coordinates_and_unchecked_ignored_statements() {
-        let r = ok("v nan inf 0\nvt whatever\ncurv 0 1 1 2\nend\n");
+        let r = ok("v nan inf 0\nvt whatever\ncstype bspline\nend\n");
         assert!(r.coords.clone().unwrap().data[0].is_nan());
     }
 
@@ -426,5 +521,59 @@ mod tests {
         err("v 0 0 0\n\nfoo 1 2\n", 3, "unknown OBJ statement 'foo'");
         err("v 0 0 0\nF 1 1 1\n", 2, "unknown OBJ statement 'F'");
         err("v 0 0 0\nf 1 1 \\", 2, "line continuation");
+    }
+
+    #[test]
+    fn free_form_elements_are_refused() {
+        for kw in ["curv", "curv2", "surf"] {
+            err(
+                &format!("v 0 0 0\ncstype bspline\n{kw} 0 1 1 2\nend\n"),
+                3,
+                &format!("free-form element '{kw}' (a curve or surface) is not supported"),
+            );
+        }
+    }
+
+    #[test]
+    fn continuation_over_a_million_lines() {
+        // Was quadratic (each continuation copied the statement so far).
+        let text = format!(
+            "v 0 0 0\nv 1 0 0\nl 1{}\nl 2 1\n",
+            " 2 1 \\\n".repeat(1_000_000)
+        );
+        let r = ok(&text);
+        assert_eq!(r.simplex_count(), 2_000_001);
+        assert_eq!(r.lines[0], 3);
+        assert_eq!(r.lines[2_000_000], 1_000_004);
+    }
+
+    #[test]
+    fn continuation_with_comment_and_cr_only_lines() {
+        let r = ok("v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 \\ # more\r3\r\rf 1 \\\r\n2 3");
+        assert_eq!(r.lines, [4, 7]);
+        err(
+            "v 0 0 0\rv 0 0\r",
+            2,
+            "expected 3 vertex coordinates, found 2",
+        );
+    }
+
+    #[test]
+    fn coordinates_that_do_not_fit_a_double() {
+        err("v 0 0 0\nv 1e309 0 0\n", 2, "'1e309' is too large");
+        err("v 0 0 0\nv 0 1e-400 0\n", 2, "'1e-400' is too small");
+        // Ignored colour numbers are checked too: no number changes silently.
+        err("v 0 0 0 1 1 1E999\n", 1, "'1E999' is too large");
+    }
+
+    #[test]
+    fn echoed_tokens_are_escaped() {
+        err(
+            "v 0 0 0\n\u{feff}f 1 1 1\n",
+            2,
+            "unknown OBJ statement '\\u{feff}f'",
+        );
+        err("v 0 0 0\nf 1 1 \u{b}1\n", 2, "non-numeric token '\\x0b1'");
+        err("v 0 0 0\nf 1 1 1\u{b}\n", 2, "'1\\x0b'");
     }
 }

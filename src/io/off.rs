@@ -30,8 +30,9 @@
 //!
 //! Ids beyond the vertex count and repeated ids are left to the complex model.
 
+use super::scan::{self, Scanner};
 use super::{
-    Coords, IntError, RawInput, ReadErrorKind, Tokens, capped, parse_count, parse_f64, parse_id,
+    Coords, IntError, RawInput, ReadErrorKind, capped_len, echo, parse_count, parse_f64,
     parse_integer, syntax,
 };
 
@@ -66,11 +67,46 @@ impl Header {
     }
 }
 
-/// Parses OFF text; errors carry the 1-based line.
+/// Reads an OFF file's text.
 pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
-    let mut t = Tokens::new(text);
+    let mut t = Scanner::new(text);
+    let h = header(&mut t)?;
+    let dim = dimension(&mut t, h)?;
+    let (nv, nf) = counts(&mut t)?;
+    let layout = Layout::new(h, dim);
+    let (data, widest) = vertices(&mut t, nv, &layout)?;
+    let mut raw = RawInput::new();
+    raw.vertex_count = Some(nv);
+    raw.coords = Some(Coords { dim, data });
+    faces(&mut t, nf, &mut raw, |(l, k)| {
+        first_face_hint(l, k, widest, &layout)
+    })?;
+    if let Some((tok, l)) = t.token() {
+        return Err((
+            l,
+            syntax(format!(
+                "unexpected content '{}' after the end of the data ({nv} vertices and {nf} \
+                 faces declared)",
+                echo(tok)
+            )),
+        ));
+    }
+    Ok(raw)
+}
 
-    let Some((head, head_line)) = t.next() else {
+type Res<T> = Result<T, (u32, ReadErrorKind)>;
+
+/// The next token, or an "ends early" error with the given message.
+fn next_or<'a>(t: &mut Scanner<'a>, msg: impl FnOnce() -> String) -> Res<(&'a str, u32)> {
+    match t.token() {
+        Some(tok) => Ok(tok),
+        None => Err((t.eof_line(), syntax(msg()))),
+    }
+}
+
+/// The header keyword; `OFF BINARY` is refused.
+fn header(t: &mut Scanner<'_>) -> Res<Header> {
+    let Some((head, head_line)) = t.token() else {
         return Err((
             t.eof_line(),
             syntax("file is empty; expected an OFF header such as 'OFF'"),
@@ -80,207 +116,321 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
         (
             head_line,
             syntax(format!(
-                "expected an OFF header ([ST][C][N][4][n]OFF), found '{head}'"
+                "expected an OFF header ([ST][C][N][4][n]OFF), found '{}'",
+                echo(head)
             )),
         )
     })?;
     if let Some(("BINARY", l)) = t.peek() {
         return Err((l, syntax("binary OFF is not supported")));
     }
+    Ok(h)
+}
 
-    // Next token or an "ends early" error describing what was expected.
-    macro_rules! next_or {
-        ($($msg:tt)*) => {
-            match t.next() {
-                Some(tok) => tok,
-                None => return Err((t.eof_line(), syntax(format!($($msg)*)))),
-            }
-        };
+/// The number of coordinates per vertex: read after `nOFF`, else 3 (4 for `4OFF`).
+fn dimension(t: &mut Scanner<'_>, h: Header) -> Res<usize> {
+    if !h.ndim {
+        return Ok(if h.four { 4 } else { 3 });
     }
+    let (tok, l) = next_or(t, || {
+        "file ends after the nOFF header; expected the dimension".into()
+    })?;
+    let n = parse_count(tok, "nOFF dimension").map_err(|k| (l, k))? as usize;
+    if n == 0 {
+        return Err((l, syntax("nOFF dimension must be at least 1, found 0")));
+    }
+    Ok(n + usize::from(h.four))
+}
 
-    let dim = if h.ndim {
-        let (tok, l) = next_or!("file ends after the nOFF header; expected the dimension");
-        let n = parse_count(tok, "nOFF dimension").map_err(|k| (l, k))? as usize;
-        if n == 0 {
-            return Err((l, syntax("nOFF dimension must be at least 1, found 0")));
-        }
-        n + usize::from(h.four)
-    } else if h.four {
-        4
-    } else {
-        3
-    };
-
-    let (tok, l) = next_or!("file ends after the header; expected the vertex count");
+/// `NVertices NFaces [NEdges]`. The edge count is ignored, and may be left out when the face
+/// count ends its line (many writers omit it); otherwise it must be a non-negative integer.
+fn counts(t: &mut Scanner<'_>) -> Res<(u32, u32)> {
+    let (tok, l) = next_or(t, || {
+        "file ends after the header; expected the vertex count".into()
+    })?;
     let nv = parse_count(tok, "vertex count").map_err(|k| (l, k))?;
-    let (tok, l) = next_or!("file ends after the vertex count; expected the face count");
+    let (tok, l) = next_or(t, || {
+        "file ends after the vertex count; expected the face count".into()
+    })?;
     let nf = parse_count(tok, "face count").map_err(|k| (l, k))?;
-    let (tok, l) = next_or!("file ends after the face count; expected the edge count");
+    let Some((tok, l)) = t.token_in_line() else {
+        return Ok((nv, nf));
+    };
+    let e = || echo(tok);
     match parse_integer(tok) {
-        Ok(v) if v >= 0 => {}
-        Err(IntError::OutOfRange) if !tok.starts_with('-') => {}
+        Ok(v) if v >= 0 => Ok((nv, nf)),
+        Err(IntError::OutOfRange) if !tok.starts_with('-') => Ok((nv, nf)),
         Ok(_) | Err(IntError::OutOfRange) => {
-            return Err((l, syntax(format!("edge count {tok} is negative"))));
+            Err((l, syntax(format!("edge count {} is negative", e()))))
         }
         Err(IntError::NotInteger) => {
-            return Err((l, syntax(format!("edge count '{tok}' is not an integer"))));
+            Err((l, syntax(format!("edge count '{}' is not an integer", e()))))
         }
-        Err(IntError::NotNumber) => {
-            return Err((
-                l,
-                syntax(format!(
-                    "non-numeric token '{tok}' where the edge count was expected"
-                )),
-            ));
+        Err(IntError::NotNumber) => Err((
+            l,
+            syntax(format!(
+                "non-numeric token '{}' where the edge count was expected",
+                e()
+            )),
+        )),
+    }
+}
+
+/// What each number of a vertex is.
+struct Layout {
+    dim: usize,
+    normal: usize,
+    colour: usize,
+    per_vertex: usize,
+    /// The numbers for messages, e.g. "3 coordinates, 4 colour".
+    text: String,
+}
+
+impl Layout {
+    fn new(h: Header, dim: usize) -> Layout {
+        let normal = match (h.normals, h.ndim) {
+            (false, _) => 0,
+            (true, true) => dim,
+            (true, false) => 3,
+        };
+        let colour = if h.colour { 4 } else { 0 };
+        let texture = if h.texture { 2 } else { 0 };
+        let mut text = format!("{dim} coordinates");
+        for (n, what) in [(normal, "normal"), (colour, "colour"), (texture, "texture")] {
+            if n > 0 {
+                text.push_str(&format!(", {n} {what}"));
+            }
+        }
+        Layout {
+            dim,
+            normal,
+            colour,
+            per_vertex: dim + normal + colour + texture,
+            text,
         }
     }
 
-    // Per-vertex layout: what each of the numbers is.
-    let normal_dim = match (h.normals, h.ndim) {
-        (false, _) => 0,
-        (true, true) => dim,
-        (true, false) => 3,
-    };
-    let colour_dim = if h.colour { 4 } else { 0 };
-    let texture_dim = if h.texture { 2 } else { 0 };
-    let per_vertex = dim + normal_dim + colour_dim + texture_dim;
-    let mut layout = format!("{dim} coordinates");
-    for (n, what) in [
-        (normal_dim, "normal"),
-        (colour_dim, "colour"),
-        (texture_dim, "texture"),
-    ] {
-        if n > 0 {
-            layout.push_str(&format!(", {n} {what}"));
+    /// What number `j` of a vertex is, for messages.
+    fn what(&self, j: usize) -> &'static str {
+        if j < self.dim {
+            "a vertex coordinate"
+        } else if j < self.dim + self.normal {
+            "a vertex normal component"
+        } else if j < self.dim + self.normal + self.colour {
+            "a vertex colour component"
+        } else {
+            "a vertex texture coordinate"
         }
     }
+}
 
-    let mut data = Vec::with_capacity(capped((nv as usize).saturating_mul(dim), text));
+/// Reads `nv` vertices, keeping their coordinates. Vertices may share a line, but each line
+/// holds whole vertices: extra numbers on a line (colours or normals without their header
+/// prefix) are an error on that line rather than a shift that surfaces lines later.
+/// Also returns the most vertex numbers one line held.
+fn vertices(t: &mut Scanner<'_>, nv: u32, layout: &Layout) -> Res<(Vec<f64>, usize)> {
+    let (dim, per_vertex) = (layout.dim, layout.per_vertex);
+    let mut data = Vec::with_capacity(capped_len((nv as usize).saturating_mul(dim), t.len()));
+    // (line, numbers read on it) for the line holding the vertex numbers read last.
+    let mut on_line = (0u32, 0usize);
+    let mut widest = 0;
     for i in 0..nv {
         for j in 0..per_vertex {
-            let Some((tok, l)) = t.next() else {
-                let msg = if j == 0 {
-                    format!("vertex count {nv} declared but file ends after {i} vertices")
-                } else if j < dim {
-                    format!(
-                        "file ends inside vertex {}: expected {dim} vertex coordinates, found {j}",
-                        i + 1
-                    )
-                } else {
-                    format!(
-                        "file ends inside vertex {}: expected {per_vertex} numbers ({layout}), \
-                         found {j}",
-                        i + 1
-                    )
-                };
-                return Err((t.eof_line(), syntax(msg)));
+            let (x, l) = match t.real(true) {
+                Some(number) => number,
+                None => {
+                    let Some((tok, l)) = t.token() else {
+                        return Err((t.eof_line(), syntax(ends_inside_vertex(nv, i, j, layout))));
+                    };
+                    (parse_f64(tok, layout.what(j)).map_err(|k| (l, k))?, l)
+                }
             };
-            let what = if j < dim {
-                "a vertex coordinate"
-            } else if j < dim + normal_dim {
-                "a vertex normal component"
-            } else if j < dim + normal_dim + colour_dim {
-                "a vertex colour component"
-            } else {
-                "a vertex texture coordinate"
-            };
-            let x = parse_f64(tok, what).map_err(|k| (l, k))?;
+            if l != on_line.0 {
+                check_whole_vertices(on_line, layout)?;
+                on_line = (l, 0);
+            }
+            on_line.1 += 1;
+            widest = widest.max(on_line.1);
             if j < dim {
                 data.push(x);
             }
         }
     }
+    // The last vertex line must end with its last vertex.
+    if nv > 0 {
+        while t.token_in_line().is_some() {
+            on_line.1 += 1;
+        }
+        check_whole_vertices(on_line, layout)?;
+    }
+    Ok((data, widest.max(on_line.1)))
+}
 
-    let mut raw = RawInput::new();
-    raw.vertex_count = Some(nv);
-    raw.coords = Some(Coords { dim, data });
-    raw.ids
-        .reserve(capped((nf as usize).saturating_mul(3), text));
-    raw.offsets.reserve(capped(nf as usize, text));
-    raw.lines.reserve(capped(nf as usize, text));
+/// An error in the first face when vertex lines held several vertices each: most likely the
+/// vertices have more numbers than the header says (colours without `C`), so the faces were
+/// read from vertex lines. Says so after the error.
+fn first_face_hint(
+    line: u32,
+    kind: ReadErrorKind,
+    widest: usize,
+    layout: &Layout,
+) -> (u32, ReadErrorKind) {
+    let first_face_failed = matches!(&kind, ReadErrorKind::Syntax(_) | ReadErrorKind::Polygon(_));
+    if widest <= layout.per_vertex || !first_face_failed {
+        return (line, kind);
+    }
+    (
+        line,
+        syntax(format!(
+            "{kind} (vertex lines hold up to {widest} numbers where a vertex of this header has \
+             {} ({}); vertex colours need the C header prefix (COFF), normals N)",
+            layout.per_vertex, layout.text
+        )),
+    )
+}
 
-    let mut ids = [0u32; 3];
+fn ends_inside_vertex(nv: u32, i: u32, j: usize, layout: &Layout) -> String {
+    if j == 0 {
+        format!("vertex count {nv} declared but file ends after {i} vertices")
+    } else if j < layout.dim {
+        format!(
+            "file ends inside vertex {}: expected {} vertex coordinates, found {j}",
+            i + 1,
+            layout.dim
+        )
+    } else {
+        format!(
+            "file ends inside vertex {}: expected {} numbers ({}), found {j}",
+            i + 1,
+            layout.per_vertex,
+            layout.text
+        )
+    }
+}
+
+/// Refuses a line holding vertex numbers that are not a whole number of vertices.
+fn check_whole_vertices((line, n): (u32, usize), layout: &Layout) -> Res<()> {
+    if line == 0 || n % layout.per_vertex == 0 {
+        return Ok(());
+    }
+    Err((
+        line,
+        syntax(format!(
+            "line holds {n} vertex numbers, not a whole number of vertices of {} numbers each \
+             ({}); vertex colours need the C header prefix (COFF), normals N, texture \
+             coordinates ST",
+            layout.per_vertex, layout.text
+        )),
+    ))
+}
+
+/// Reads `nf` faces into `raw`, each recorded at the line of its vertex count; `hint` amends an
+/// error in the first face.
+fn faces(
+    t: &mut Scanner<'_>,
+    nf: u32,
+    raw: &mut RawInput,
+    hint: impl Fn((u32, ReadErrorKind)) -> (u32, ReadErrorKind),
+) -> Res<()> {
+    let cap = capped_len(nf as usize, t.len());
+    raw.ids.reserve(cap.saturating_mul(3).min(t.len()));
+    raw.offsets.reserve(cap);
+    raw.lines.reserve(cap);
     for f in 0..nf {
-        let (tok, face_line) = next_or!("face count {nf} declared but file ends after {f} faces");
-        let k = match parse_integer(tok) {
-            Ok(k) => k,
-            Err(IntError::NotNumber) => {
-                return Err((
-                    face_line,
-                    syntax(format!(
-                        "non-numeric token '{tok}' where a face vertex count was expected"
-                    )),
-                ));
-            }
-            Err(IntError::NotInteger) => {
-                return Err((
-                    face_line,
-                    syntax(format!("face vertex count '{tok}' is not an integer")),
-                ));
-            }
-            Err(IntError::OutOfRange) => {
-                return Err((
-                    face_line,
-                    syntax(format!("face vertex count {tok} is out of range")),
-                ));
+        face(t, f, nf, raw).map_err(|e| if f == 0 { hint(e) } else { e })?;
+    }
+    Ok(())
+}
+
+/// Reads face `f` (0-based) of `nf`.
+#[inline]
+fn face(t: &mut Scanner<'_>, f: u32, nf: u32, raw: &mut RawInput) -> Res<()> {
+    let (k, face_line) = match t.digits(true) {
+        Some((k, l)) => (face_size_of(i128::from(k)).map_err(|e| (l, e))?, l),
+        None => {
+            let (tok, l) = next_or(t, || {
+                format!("face count {nf} declared but file ends after {f} faces")
+            })?;
+            (face_size(tok).map_err(|e| (l, e))?, l)
+        }
+    };
+    let mut ids = [0u32; 3];
+    for (j, id) in ids.iter_mut().take(k).enumerate() {
+        *id = match t.digits(true) {
+            Some((v, l)) => scan::id_value(v, false).map_err(|e| (l, e))?,
+            None => {
+                let (tok, l) = next_or(t, || {
+                    format!(
+                        "file ends inside face {}: expected {k} vertex ids, found {j}",
+                        f + 1
+                    )
+                })?;
+                scan::id(tok, false).map_err(|e| (l, e))?
             }
         };
-        if k < 0 {
-            return Err((
-                face_line,
-                syntax(format!("face vertex count {k} is negative")),
-            ));
-        }
-        if k == 0 {
-            return Err((face_line, syntax("face with 0 vertices")));
-        }
-        if k > 3 {
-            return Err((
-                face_line,
-                match usize::try_from(k) {
-                    Ok(k) => ReadErrorKind::Polygon(k),
-                    Err(_) => syntax(format!("face vertex count {k} is out of range")),
-                },
-            ));
-        }
-        let k = k as usize;
-        let mut last_line = face_line;
-        for (j, id) in ids.iter_mut().take(k).enumerate() {
-            let (tok, l) = next_or!(
-                "file ends inside face {}: expected {k} vertex ids, found {j}",
-                f + 1
-            );
-            *id = parse_id(tok, false).map_err(|e| (l, e))?;
-            last_line = l;
-        }
-        let colour = t.rest_of_line(last_line);
-        for &(tok, l) in &colour {
-            parse_f64(tok, "a face colour component").map_err(|e| (l, e))?;
-        }
-        if !matches!(colour.len(), 0 | 1 | 3 | 4) {
-            return Err((
-                last_line,
-                syntax(format!(
-                    "face {} has {} numbers after its {k} vertex ids; a face colour has 0, 1, 3 \
-                     or 4 numbers",
-                    f + 1,
-                    colour.len()
-                )),
-            ));
-        }
-        raw.push(&ids[..k], face_line);
     }
+    face_colour(t, f, k)?;
+    raw.push(&ids[..k], face_line);
+    Ok(())
+}
 
-    if let Some((tok, l)) = t.next() {
+/// A face's vertex count: 1, 2 or 3.
+fn face_size(tok: &str) -> Result<usize, ReadErrorKind> {
+    let e = || echo(tok);
+    let k = match parse_integer(tok) {
+        Ok(k) => k,
+        Err(IntError::NotNumber) => {
+            return Err(syntax(format!(
+                "non-numeric token '{}' where a face vertex count was expected",
+                e()
+            )));
+        }
+        Err(IntError::NotInteger) => {
+            return Err(syntax(format!(
+                "face vertex count '{}' is not an integer",
+                e()
+            )));
+        }
+        Err(IntError::OutOfRange) => {
+            return Err(syntax(format!("face vertex count {} is out of range", e())));
+        }
+    };
+    face_size_of(k)
+}
+
+/// A face's vertex count from its value.
+fn face_size_of(k: i128) -> Result<usize, ReadErrorKind> {
+    match k {
+        ..0 => Err(syntax(format!("face vertex count {k} is negative"))),
+        0 => Err(syntax("face with 0 vertices")),
+        1..=3 => Ok(k as usize),
+        _ => Err(match usize::try_from(k) {
+            Ok(k) => ReadErrorKind::Polygon(k),
+            Err(_) => syntax(format!("face vertex count {k} is out of range")),
+        }),
+    }
+}
+
+/// Checks the optional colour after face `f`'s `k` ids: the rest of the line, 0, 1, 3 or 4
+/// numbers.
+fn face_colour(t: &mut Scanner<'_>, f: u32, k: usize) -> Res<()> {
+    let line = t.line();
+    let mut n = 0;
+    while let Some((tok, l)) = t.token_in_line() {
+        parse_f64(tok, "a face colour component").map_err(|e| (l, e))?;
+        n += 1;
+    }
+    if !matches!(n, 0 | 1 | 3 | 4) {
         return Err((
-            l,
+            line,
             syntax(format!(
-                "unexpected content '{tok}' after the end of the data ({nv} vertices and {nf} \
-                 faces declared)"
+                "face {} has {n} numbers after its {k} vertex ids; a face colour has 0, 1, 3 \
+                 or 4 numbers",
+                f + 1
             )),
         ));
     }
-    Ok(raw)
+    Ok(())
 }
 
 #[cfg(test)]
@@ -469,7 +619,7 @@ mod tests {
     #[test]
     fn missing_counts() {
         err("OFF\n", 1, "expected the vertex count");
-        err("OFF\n3 1\n", 2, "expected the edge count");
+        err("OFF\n3\n", 2, "expected the face count");
         err(
             "OFF\nx 1 0\n",
             2,
@@ -609,5 +759,83 @@ mod tests {
             5,
             "unexpected content 'extra'",
         );
+    }
+
+    #[test]
+    fn header_without_edge_count() {
+        // Many writers leave NEdges out: the face count ending its line is enough.
+        let r = ok("OFF\n3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+        assert_eq!(simplices(&r), [[0, 1, 2]]);
+        assert_eq!(r.lines, [6]);
+        let r = ok("OFF 3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+        assert_eq!(r.lines, [5]);
+    }
+
+    #[test]
+    fn vertex_colours_without_the_c_prefix() {
+        // Line 3 holds 7 numbers where an OFF vertex has 3: refused there, not lines later.
+        err(
+            "OFF\n3 1 0\n0 0 0 1 0 0 1\n1 0 0 0 1 0 1\n0 1 0 0 0 1 1\n3 0 1 2\n",
+            3,
+            "line holds 7 vertex numbers, not a whole number of vertices of 3 numbers each",
+        );
+        // RGB colours (6 numbers a line) read as two vertices a line: the faces then start on
+        // a vertex line, and the message says so.
+        err(
+            "OFF\n4 1 0\n0 0 0 1 0.5 0\n1 0 0 0 1 0\n0 1 0 0 0 1\n0 0 1 1 1 1\n3 0 1 2\n",
+            5,
+            "face with 0 vertices (vertex lines hold up to 6 numbers where a vertex of this \
+             header has 3 (3 coordinates); vertex colours need the C header prefix (COFF)",
+        );
+        // Two vertices on one line are fine.
+        let r = ok("OFF\n2 1 0\n0 0 0 0.5 0 0\n2 0 1\n");
+        assert_eq!(r.coords.unwrap().data, [0., 0., 0., 0.5, 0., 0.]);
+        // The last vertex line must end with the last vertex.
+        err(
+            "OFF\n1 1 0\n0 0 0 9\n1 0\n",
+            3,
+            "line holds 4 vertex numbers",
+        );
+    }
+
+    #[test]
+    fn cr_only_line_ends() {
+        let r = ok("OFF\r3 1 0\r0 0 0\r1 0 0\r0 1 0\r3 0 1 2\r");
+        assert_eq!(r.lines, [6]);
+        err("OFF\r1 1 0\r0 0 0\r\r1 x\r", 5, "non-numeric token 'x'");
+    }
+
+    #[test]
+    fn coordinates_that_do_not_fit_a_double() {
+        err(
+            "OFF\n1 0 0\n0 1e309 0\n",
+            3,
+            "number '1e309' is too large for a 64-bit float (a vertex coordinate; it would \
+             become infinite)",
+        );
+        err(
+            "OFF\n1 0 0\n\n0 0 -1e-400\n",
+            4,
+            "number '-1e-400' is too small for a 64-bit float (a vertex coordinate; it would \
+             become 0)",
+        );
+    }
+
+    #[test]
+    fn echoed_tokens_are_escaped_and_capped() {
+        err(
+            "OFF\n1 1 0\n0 0\u{b}1 0\n1 0\n",
+            3,
+            "non-numeric token '0\\x0b1'",
+        );
+        err("\u{a0}OFF\n", 1, "found '\\u{a0}OFF'");
+        err("OFF\n1 1 0\n0 0 0\n1 0\0\n", 4, "non-numeric token '0\\0'");
+        let long = format!("OFF\n1 1 0\n0 {} 0\n1 0\n", "x".repeat(1_000_000));
+        let Err((3, k)) = parse(&long) else {
+            panic!("expected an error on line 3")
+        };
+        let msg = k.to_string();
+        assert!(msg.len() < 400, "{} bytes", msg.len());
+        assert!(msg.contains("… (1000000 bytes)"), "{msg}");
     }
 }

@@ -18,69 +18,89 @@
 //! * `v` and `s` lines may be interleaved in any order.
 //! * With `v` lines the vertex count is their number and the coordinates have dimension k (none
 //!   when k = 0). Without `v` lines the vertex count is `None`: the vertices are `0..=max id`.
-//! * `#` starts a comment; blank lines, CRLF, tabs and a missing final newline are fine. Any
+//! * `#` starts a comment; blank lines, tabs and a missing final newline are fine; lines end in
+//!   LF, CRLF or a lone CR. Any
 //!   other keyword is an error, and so is a file with no `v` or `s` line at all.
 
-use super::{Coords, RawInput, ReadErrorKind, parse_f64, parse_id, strip_comment, syntax};
+use super::scan::{self, Scanner};
+use super::{Coords, RawInput, ReadErrorKind, echo, parse_f64, syntax};
 
-/// Parses `.simplices` text (`v` and `s` lines); errors carry the 1-based line.
+/// Reads a `.simplices` file's text.
 pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
+    let mut s = Scanner::new(text);
     let mut raw = RawInput::new();
     let mut data = Vec::new();
     // (number of coordinates, line) of the first `v` line.
     let mut first_v: Option<(usize, u32)> = None;
     let mut vertices: u32 = 0;
     let mut ids = Vec::new();
-    let mut last_line = 0u32;
-
-    for (content, line) in text.lines().zip(1u32..) {
-        last_line = line;
-        let mut toks = strip_comment(content).split_ascii_whitespace();
-        let Some(keyword) = toks.next() else { continue };
-        let err = |k: ReadErrorKind| (line, k);
-        match keyword {
-            "v" => {
-                let start = data.len();
-                for tok in toks {
-                    data.push(parse_f64(tok, "a vertex coordinate").map_err(err)?);
-                }
-                let k = data.len() - start;
-                match first_v {
-                    None => first_v = Some((k, line)),
-                    Some((k0, l0)) if k != k0 => {
-                        return Err(err(syntax(format!(
-                            "v line has {k} coordinates but the first v line (line {l0}) has {k0}"
-                        ))));
+    loop {
+        if let Some((keyword, line)) = s.token_in_line() {
+            let err = |k: ReadErrorKind| (line, k);
+            match keyword {
+                "v" => {
+                    let start = data.len();
+                    loop {
+                        let x = match s.real(false) {
+                            Some((x, _)) => x,
+                            None => match s.token_in_line() {
+                                Some((tok, _)) => {
+                                    parse_f64(tok, "a vertex coordinate").map_err(err)?
+                                }
+                                None => break,
+                            },
+                        };
+                        data.push(x);
                     }
-                    Some(_) => {}
+                    let k = data.len() - start;
+                    match first_v {
+                        None => first_v = Some((k, line)),
+                        Some((k0, l0)) if k != k0 => {
+                            return Err(err(syntax(format!(
+                                "v line has {k} coordinates but the first v line (line {l0}) has \
+                                 {k0}"
+                            ))));
+                        }
+                        Some(_) => {}
+                    }
+                    vertices = vertices
+                        .checked_add(1)
+                        .ok_or_else(|| err(syntax("more than 4294967295 vertices")))?;
                 }
-                vertices = vertices
-                    .checked_add(1)
-                    .ok_or_else(|| err(syntax("more than 4294967295 vertices")))?;
-            }
-            "s" => {
-                ids.clear();
-                for tok in toks {
-                    ids.push(parse_id(tok, false).map_err(err)?);
+                "s" => {
+                    ids.clear();
+                    loop {
+                        let id = match s.digits(false) {
+                            Some((v, _)) => scan::id_value(v, false),
+                            None => match s.token_in_line() {
+                                Some((tok, _)) => scan::id(tok, false),
+                                None => break,
+                            },
+                        };
+                        ids.push(id.map_err(err)?);
+                    }
+                    if ids.is_empty() {
+                        return Err(err(syntax("s line with no vertex ids")));
+                    }
+                    raw.push(&ids, line);
                 }
-                if ids.is_empty() {
-                    return Err(err(syntax("s line with no vertex ids")));
+                k => {
+                    return Err(err(syntax(format!(
+                        "unknown keyword '{}' (expected 'v' or 's')",
+                        echo(k)
+                    ))));
                 }
-                raw.push(&ids, line);
             }
-            k => {
-                return Err(err(syntax(format!(
-                    "unknown keyword '{k}' (expected 'v' or 's')"
-                ))));
-            }
+        }
+        if !s.next_line() {
+            break;
         }
     }
 
     match first_v {
-        None if raw.simplex_count() == 0 => Err((
-            last_line.max(1),
-            syntax("file is empty (no `v` or `s` lines)"),
-        )),
+        None if raw.simplex_count() == 0 => {
+            Err((s.eof_line(), syntax("file is empty (no `v` or `s` lines)")))
+        }
         None => Ok(raw),
         Some((dim, _)) => {
             raw.vertex_count = Some(vertices);
@@ -167,5 +187,41 @@ mod tests {
             Err((3, ReadErrorKind::NegativeId(-4)))
         );
         assert_eq!(ok("s 4294967295\n").simplex(0), [u32::MAX]);
+    }
+
+    #[test]
+    fn cr_only_line_ends() {
+        let r = ok("v 0\rv 1\r\rs 0 1\rs 1");
+        assert_eq!(r.lines, [4, 5]);
+        err("s 0 1\rs 1 x\r", 2, "non-numeric token 'x'");
+    }
+
+    #[test]
+    fn coordinates_that_do_not_fit_a_double() {
+        err(
+            "v 0\nv 1e309\n",
+            2,
+            "number '1e309' is too large for a 64-bit float",
+        );
+        err(
+            "v 0\nv 1e-400\n",
+            2,
+            "number '1e-400' is too small for a 64-bit float",
+        );
+    }
+
+    #[test]
+    fn echoed_tokens_are_escaped_and_capped() {
+        err("s 0 1\u{a0}2\n", 1, "non-numeric token '1\\u{a0}2'");
+        let text = format!("s 0 {}\n", "7".repeat(100_000_000));
+        let Err((1, k)) = parse(&text) else {
+            panic!("expected an error on line 1")
+        };
+        let msg = k.to_string();
+        assert!(msg.len() < 300, "{} bytes", msg.len());
+        assert!(
+            msg.ends_with("… (100000000 bytes) does not fit in 32 bits"),
+            "{msg}"
+        );
     }
 }
