@@ -8,6 +8,7 @@ use std::time::Duration;
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use topoplex::io::write::Format;
 use topoplex::relation::sort_rows;
 use topoplex::{Complex, StructureKind, fixtures, structures};
 
@@ -62,6 +63,20 @@ enum Command {
         /// Output directory (created if missing).
         #[arg(long)]
         out: PathBuf,
+        /// Write every component in this format (off, obj, mesh, simplices) instead of by
+        /// dimension; refused, writing nothing, if it cannot hold a component.
+        #[arg(long)]
+        format: Option<String>,
+    },
+    /// Read INPUT and write it to OUTPUT (formats by extension): the top simplices in input
+    /// order and winding, isolated vertices and wire edges kept, coordinates bit for bit. A
+    /// format that cannot hold the complex is refused with the reason.
+    Convert {
+        input: PathBuf,
+        output: PathBuf,
+        /// Output format (off, obj, mesh, simplices) instead of OUTPUT's extension.
+        #[arg(long)]
+        format: Option<String>,
     },
 }
 
@@ -90,7 +105,12 @@ fn main() -> ExitCode {
             relation,
             simplex,
         } => dump_relation(file, &structure, relation, simplex),
-        Command::Decompose { file, out } => decompose(&file, &out),
+        Command::Decompose { file, out, format } => decompose(&file, &out, format.as_deref()),
+        Command::Convert {
+            input,
+            output,
+            format,
+        } => convert(&input, &output, format.as_deref()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -197,12 +217,33 @@ fn report(files: &[PathBuf], json: bool, csv: bool, svg: Option<&Path>) -> Resul
         .map_err(|e| format!("writing output: {e}"))
 }
 
-fn decompose(file: &Path, out: &Path) -> Result<(), String> {
+/// The output format called `name`, or a usage error listing the names.
+fn output_format(name: &str) -> Result<Format, String> {
+    Format::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = Format::ALL.iter().map(|f| f.name()).collect();
+        format!(
+            "unknown format `{name}` (expected one of: {})",
+            names.join(", ")
+        )
+    })
+}
+
+fn convert(input: &Path, output: &Path, format: Option<&str>) -> Result<(), String> {
+    let format = format.map(output_format).transpose()?;
+    let complex = load(input)?;
+    topoplex::io::write::write_complex(&complex, output, format).map_err(|e| e.to_string())
+}
+
+fn decompose(file: &Path, out: &Path, format: Option<&str>) -> Result<(), String> {
+    let format = format.map(output_format).transpose()?;
     let complex = load(file)?;
     let iqm = topoplex::structures::iqm::Iqm::build(&complex).map_err(|e| e.to_string())?;
     let dec = iqm.decomposition();
-    let paths = topoplex::io::write::write_components(&dec, complex.coords(), out)
-        .map_err(|e| e.to_string())?;
+    let paths = match format {
+        None => topoplex::io::write::write_components(&dec, complex.coords(), out),
+        Some(f) => topoplex::io::write::write_components_as(&dec, complex.coords(), out, f),
+    }
+    .map_err(|e| e.to_string())?;
     println!(
         "{} components, {} split vertices ({} vertex copies in all); wrote {} files to {}",
         dec.components.len(),

@@ -6,7 +6,8 @@
 //! duplicates and faces of other simplices are the complex model's business
 //! ([`crate::complex::Complex::from_raw`]), which reports them with the same file and line.
 //!
-//! The format is chosen by file extension: `.off`, `.obj`, `.mesh`, `.simplices`.
+//! The format is chosen by file extension: `.off`, `.obj`, `.mesh`, `.simplices`, `.ply`, `.stl`.
+//! The writers ([`write`]) are their inverse.
 
 use std::path::{Path, PathBuf};
 
@@ -42,7 +43,9 @@ macro_rules! reader_test_helpers {
 pub mod medit;
 pub mod obj;
 pub mod off;
+pub mod ply;
 pub mod simplices;
+pub mod stl;
 pub mod write;
 
 /// Vertex coordinates, `dim` numbers per vertex, vertex-major.
@@ -97,7 +100,7 @@ impl RawInput {
 pub enum ReadErrorKind {
     #[error("cannot read file: {0}")]
     Io(String),
-    #[error("unknown file extension (expected .off, .obj, .mesh or .simplices)")]
+    #[error("unknown file extension (expected .off, .obj, .mesh, .simplices, .ply or .stl)")]
     UnknownExtension,
     #[error("{0}")]
     Syntax(String),
@@ -133,7 +136,7 @@ pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
         "obj" => obj::parse,
         "mesh" => medit::parse,
         "simplices" => simplices::parse,
-        _ => return Err(err(0, ReadErrorKind::UnknownExtension)),
+        _ => return read_binary_capable(path, &ext),
     };
     let bytes = std::fs::read(path).map_err(|e| err(0, ReadErrorKind::Io(e.to_string())))?;
     let text = std::str::from_utf8(&bytes).map_err(|e| {
@@ -149,6 +152,22 @@ pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
     })?;
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     parse(text).map_err(|(line, kind)| err(line, kind))
+}
+
+/// The readers of formats with a binary variant, which parse bytes rather than text.
+fn read_binary_capable(path: &Path, ext: &str) -> Result<RawInput, ReadError> {
+    let err = |line, kind| ReadError {
+        path: path.to_path_buf(),
+        line,
+        kind,
+    };
+    let parse: fn(&[u8]) -> Result<RawInput, (u32, ReadErrorKind)> = match ext {
+        "ply" => ply::parse,
+        "stl" => stl::parse,
+        _ => return Err(err(0, ReadErrorKind::UnknownExtension)),
+    };
+    let bytes = std::fs::read(path).map_err(|e| err(0, ReadErrorKind::Io(e.to_string())))?;
+    parse(&bytes).map_err(|(line, kind)| err(line, kind))
 }
 
 // ---------------------------------------------------------------------------------------------
