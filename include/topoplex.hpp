@@ -51,6 +51,8 @@ enum class Format : std::uint32_t {
   PLYBinary = TPX_FORMAT_PLY_BINARY,
   STL = TPX_FORMAT_STL,
   STLBinary = TPX_FORMAT_STL_BINARY,
+  VTK = TPX_FORMAT_VTK,
+  VTKBinary = TPX_FORMAT_VTK_BINARY,
 };
 
 /* A failed call: the TpxStatus and tpx_last_error_message() at the time of failure. */

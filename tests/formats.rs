@@ -38,7 +38,7 @@ fn capacity(f: Format) -> (usize, usize) {
     match f {
         Format::Off => (3, usize::MAX),
         Format::Obj | Format::Ply | Format::PlyBinary => (3, 3),
-        Format::Medit => (4, 3),
+        Format::Medit | Format::Vtk | Format::VtkBinary => (4, 3),
         Format::Simplices => (16, usize::MAX),
         Format::Stl | Format::StlBinary => (3, 3),
     }
@@ -169,8 +169,11 @@ fn round_trip(c: &Complex, f: Format, dir: &Path, name: &str) -> Result<(), Stri
     let (max_len, max_coords) = capacity(f);
     let fits = (0..=c.dimension()).all(|p| p + 1 <= max_len || c.tops(p).is_empty())
         && c.coords().is_none_or(|x| x.dim <= max_coords)
-        && (!is_stl(f) || stl_holds(c));
-    match write_complex(c, &path, None) {
+        && (!is_stl(f) || stl_holds(c))
+        && (f != Format::Ply
+            || c.coords()
+                .is_none_or(|x| x.data.iter().all(|v| v.is_finite())));
+    match write_complex(c, &path, Some(f)) {
         Err(e) => {
             let WriteErrorKind::CannotHold { .. } = e.kind else {
                 return Err(format!("{f:?}: {e}"));
@@ -346,6 +349,64 @@ fn exact_text_of_each_format() {
     );
 }
 
+#[test]
+fn stl_welds_equal_corners_and_numbers_vertices_by_first_appearance() {
+    //   3 ------ 2      two triangles 3 0 2 and 0 1 2 sharing edge 0-2, listed so that the
+    //   |      / |      first appearances are 3, 0, 2, 1: read back as 0, 1, 2, 3
+    //   |    /   |
+    //   0 ------ 1
+    let xyz = vec![0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.5, 0.0, 1.0, 0.25];
+    let c = Complex::from_arrays(
+        4,
+        &[3, 0, 2, 0, 1, 2],
+        &[0, 3, 6],
+        Some(Coords { dim: 3, data: xyz }),
+    )
+    .unwrap();
+    round_trip_all(&c, "stl-square");
+    let dir = Scratch::new("stl-square-b");
+    for f in [Format::Stl, Format::StlBinary] {
+        let path = dir.0.join("s.stl");
+        write_complex(&c, &path, Some(f)).unwrap();
+        let back = Complex::from_path(&path).unwrap();
+        assert_eq!(back.vertex_count(), 4, "{f:?}: corners welded");
+        assert_eq!(rows(&back), [vec![0, 1, 2], vec![1, 3, 2]], "{f:?}");
+        assert_eq!(back.coords().unwrap().data[..3], [0.0, 1.0, 0.25]);
+    }
+    // 0.1 is not a 32-bit float: refused rather than rounded.
+    let c = Complex::from_arrays(
+        3,
+        &[0, 1, 2],
+        &[0, 3],
+        Some(Coords {
+            dim: 2,
+            data: vec![0.1, 0.0, 1.0, 0.0, 0.0, 1.0],
+        }),
+    )
+    .unwrap();
+    let e = Format::Stl.write(&listing(&c)).unwrap_err().to_string();
+    assert!(
+        e.contains("vertex 0 coordinate 1e-1 is not exactly a 32-bit float"),
+        "{e}"
+    );
+}
+
+/// Distinct coordinates that are exact 32-bit floats, so that every format, STL included, can
+/// hold the complex's geometry.
+fn with_coordinates(c: &Complex) -> Complex {
+    let raw = listing(c);
+    let data = (0..c.vertex_count())
+        .flat_map(|v| [f64::from(v) * 0.5, -f64::from(v), 0.25])
+        .collect();
+    Complex::from_arrays(
+        c.vertex_count(),
+        &raw.ids,
+        &raw.offsets,
+        Some(Coords { dim: 3, data }),
+    )
+    .unwrap()
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
     #[test]
@@ -353,6 +414,21 @@ proptest! {
         let c = common::complex_of(n, &list);
         let dir = Scratch::new("random");
         for f in Format::ALL {
+            prop_assert_eq!(round_trip(&c, f, &dir.0, "random"), Ok(()));
+            prop_assert_eq!(round_trip(&with_coordinates(&c), f, &dir.0, "random-xyz"), Ok(()));
+        }
+    }
+
+    #[test]
+    fn random_triangle_sets_round_trip_through_stl((n, list) in common::random_input(2, 8, 8)) {
+        // Triangles only, every vertex in one: what STL holds.
+        let tris: Vec<Vec<u32>> = list.into_iter().filter(|s| s.len() == 3).collect();
+        let used: std::collections::BTreeSet<u32> = tris.iter().flatten().copied().collect();
+        prop_assume!(!tris.is_empty() && used.len() == n as usize);
+        let c = with_coordinates(&common::complex_of(n, &tris));
+        prop_assert!(stl_holds(&c));
+        let dir = Scratch::new("random-stl");
+        for f in [Format::Stl, Format::StlBinary] {
             prop_assert_eq!(round_trip(&c, f, &dir.0, "random"), Ok(()));
         }
     }

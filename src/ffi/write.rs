@@ -25,6 +25,10 @@ pub const TPX_FORMAT_PLY_BINARY: u32 = 6;
 pub const TPX_FORMAT_STL: u32 = 7;
 /// STL binary.
 pub const TPX_FORMAT_STL_BINARY: u32 = 8;
+/// Legacy VTK unstructured grid, ASCII (`.vtk`): vertices, edges, triangles, tetrahedra.
+pub const TPX_FORMAT_VTK: u32 = 9;
+/// Legacy VTK unstructured grid, BINARY.
+pub const TPX_FORMAT_VTK_BINARY: u32 = 10;
 
 /// The `Format` of a `TPX_FORMAT_*` number (`None` for `TPX_FORMAT_FROM_EXTENSION`).
 pub(crate) fn format_from_u32(format: u32) -> Result<Option<Format>, Failure> {

@@ -6,7 +6,8 @@
 //! duplicates and faces of other simplices are the complex model's business
 //! ([`crate::complex::Complex::from_raw`]), which reports them with the same file and line.
 //!
-//! The format is chosen by file extension: `.off`, `.obj`, `.mesh`, `.simplices`, `.ply`, `.stl`.
+//! The format is chosen by file extension: `.off`, `.obj`, `.mesh`, `.simplices`, `.ply`, `.stl`,
+//! `.vtk`.
 //! The writers ([`write`]) are their inverse.
 
 use std::path::{Path, PathBuf};
@@ -46,6 +47,7 @@ pub mod off;
 pub mod ply;
 pub mod simplices;
 pub mod stl;
+pub mod vtk;
 pub mod write;
 
 /// Vertex coordinates, `dim` numbers per vertex, vertex-major.
@@ -100,7 +102,7 @@ impl RawInput {
 pub enum ReadErrorKind {
     #[error("cannot read file: {0}")]
     Io(String),
-    #[error("unknown file extension (expected .off, .obj, .mesh, .simplices, .ply or .stl)")]
+    #[error("unknown file extension (expected .off, .obj, .mesh, .simplices, .ply, .stl or .vtk)")]
     UnknownExtension,
     #[error("{0}")]
     Syntax(String),
@@ -164,6 +166,7 @@ fn read_binary_capable(path: &Path, ext: &str) -> Result<RawInput, ReadError> {
     let parse: fn(&[u8]) -> Result<RawInput, (u32, ReadErrorKind)> = match ext {
         "ply" => ply::parse,
         "stl" => stl::parse,
+        "vtk" => vtk::parse,
         _ => return Err(err(0, ReadErrorKind::UnknownExtension)),
     };
     let bytes = std::fs::read(path).map_err(|e| err(0, ReadErrorKind::Io(e.to_string())))?;

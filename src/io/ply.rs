@@ -15,7 +15,8 @@
 //! Writing: `vertex` with `double x y z` (fewer coordinates padded with zeros, zeros without
 //! coordinates), `face` with `list uchar int vertex_indices` for the triangles, `edge` with `int
 //! vertex1 vertex2` for the edges, each in listing order. Holds vertices, edges and triangles,
-//! and at most 3 coordinates; listed 0-simplices are left to the vertex count.
+//! and at most 3 coordinates; listed 0-simplices are left to the vertex count. ASCII PLY
+//! refuses non-finite coordinates (PLY readers do not parse `inf` or `nan`); binary keeps them.
 
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{
@@ -84,7 +85,13 @@ pub fn parse(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
         .read_ply(&mut &bytes[..])
         .map_err(|e| {
             let line = e.line().map_or(0, |l| u32::try_from(l).unwrap_or(u32::MAX));
-            (line, syntax(format!("PLY: {e}")))
+            // The parser echoes whole lines: capped and escaped here.
+            let msg = e.to_string();
+            let mut shown: String = msg.chars().take(160).flat_map(char::escape_debug).collect();
+            if msg.chars().count() > 160 {
+                shown.push_str("...");
+            }
+            (line, syntax(format!("PLY: {shown}")))
         })?;
     let at0 = |k| (0, k);
     let mut raw = RawInput::new();
@@ -152,6 +159,16 @@ pub(crate) fn write(raw: &RawInput, binary: bool, out: &mut Vec<u8>) -> Result<(
         "vertices, edges and triangles (use .msh, .vtk or .simplices)",
     )?;
     check_coord_dim(raw, 3)?;
+    if !binary
+        && let Some(c) = &raw.coords
+        && let Some(i) = c.data.iter().position(|x| !x.is_finite())
+    {
+        return Err(format!(
+            "vertex {} has a non-finite coordinate, which PLY readers do not accept in ASCII \
+             (use ply-binary)",
+            i / c.dim
+        ));
+    }
     let mut ply = Ply::<DefaultElement>::new();
     ply.header.encoding = if binary {
         Encoding::BinaryLittleEndian

@@ -68,11 +68,15 @@ pub enum Format {
     Stl,
     /// STL, binary (`.stl`).
     StlBinary,
+    /// Legacy VTK unstructured grid, ASCII (`.vtk`).
+    Vtk,
+    /// Legacy VTK unstructured grid, BINARY (`.vtk`).
+    VtkBinary,
 }
 
 impl Format {
     /// Every format, in the order of their C ABI numbers (`TPX_FORMAT_*`).
-    pub const ALL: [Format; 8] = [
+    pub const ALL: [Format; 10] = [
         Format::Off,
         Format::Obj,
         Format::Medit,
@@ -81,10 +85,12 @@ impl Format {
         Format::PlyBinary,
         Format::Stl,
         Format::StlBinary,
+        Format::Vtk,
+        Format::VtkBinary,
     ];
 
     /// The name used by the CLI's `--format` and in messages (`off`, `obj`, `mesh`,
-    /// `simplices`, `ply`, `ply-binary`, `stl`, `stl-binary`).
+    /// `simplices`, `ply`, `ply-binary`, `stl`, `stl-binary`, `vtk`, `vtk-binary`).
     pub fn name(self) -> &'static str {
         match self {
             Format::Off => "off",
@@ -95,6 +101,8 @@ impl Format {
             Format::PlyBinary => "ply-binary",
             Format::Stl => "stl",
             Format::StlBinary => "stl-binary",
+            Format::Vtk => "vtk",
+            Format::VtkBinary => "vtk-binary",
         }
     }
 
@@ -109,6 +117,7 @@ impl Format {
         match self {
             Format::PlyBinary => "ply",
             Format::StlBinary => "stl",
+            Format::VtkBinary => "vtk",
             f => f.name(),
         }
     }
@@ -139,6 +148,8 @@ impl Format {
             Format::PlyBinary => super::ply::write(raw, true, &mut out),
             Format::Stl => super::stl::write_ascii(raw, &mut out),
             Format::StlBinary => super::stl::write_binary(raw, &mut out),
+            Format::Vtk => super::vtk::write(raw, false, &mut out),
+            Format::VtkBinary => super::vtk::write(raw, true, &mut out),
         }
         .map_err(refuse)?;
         Ok(out)
@@ -152,7 +163,9 @@ pub enum WriteErrorKind {
     #[error("cannot write file: {0}")]
     Io(String),
     /// The extension names no format.
-    #[error("unknown output extension (expected .off, .obj, .mesh, .simplices, .ply or .stl)")]
+    #[error(
+        "unknown output extension (expected .off, .obj, .mesh, .simplices, .ply, .stl or .vtk)"
+    )]
     UnknownExtension,
     /// The format cannot hold the complex; `reason` names the first offending simplex or what
     /// of the coordinates does not fit.
