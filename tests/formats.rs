@@ -103,8 +103,8 @@ fn renumbered_by_first_appearance(c: &Complex) -> Complex {
     let ids: Vec<u32> = raw.ids.iter().map(|&v| new_id[v as usize]).collect();
     let coords = c.coords().map(|x| {
         let mut data = vec![0.0; x.data.len()];
-        for v in 0..c.vertex_count() as usize {
-            let w = new_id[v] as usize;
+        for (v, &w) in new_id.iter().enumerate() {
+            let w = w as usize;
             data[w * x.dim..(w + 1) * x.dim].copy_from_slice(&x.data[v * x.dim..(v + 1) * x.dim]);
         }
         Coords { dim: x.dim, data }
@@ -167,7 +167,7 @@ fn same_coords(a: Option<&Coords>, b: Option<&Coords>, n: usize) -> Result<(), S
 fn round_trip(c: &Complex, f: Format, dir: &Path, name: &str) -> Result<(), String> {
     let path = dir.join(format!("{name}.{}", f.extension()));
     let (max_len, max_coords) = capacity(f);
-    let fits = (0..=c.dimension()).all(|p| p + 1 <= max_len || c.tops(p).is_empty())
+    let fits = (0..=c.dimension()).all(|p| p < max_len || c.tops(p).is_empty())
         && c.coords().is_none_or(|x| x.dim <= max_coords)
         && (!is_stl(f) || stl_holds(c))
         && (f != Format::Ply

@@ -156,6 +156,9 @@ pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
     parse(text).map_err(|(line, kind)| err(line, kind))
 }
 
+/// A reader of bytes: the simplices, or the line (0: unknown) and what is wrong.
+type ByteParser = fn(&[u8]) -> Result<RawInput, (u32, ReadErrorKind)>;
+
 /// The readers of formats with a binary variant, which parse bytes rather than text.
 fn read_binary_capable(path: &Path, ext: &str) -> Result<RawInput, ReadError> {
     let err = |line, kind| ReadError {
@@ -163,7 +166,7 @@ fn read_binary_capable(path: &Path, ext: &str) -> Result<RawInput, ReadError> {
         line,
         kind,
     };
-    let parse: fn(&[u8]) -> Result<RawInput, (u32, ReadErrorKind)> = match ext {
+    let parse: ByteParser = match ext {
         "ply" => ply::parse,
         "stl" => stl::parse,
         "vtk" => vtk::parse,
