@@ -53,6 +53,10 @@ enum class Format : std::uint32_t {
   STLBinary = TPX_FORMAT_STL_BINARY,
   VTK = TPX_FORMAT_VTK,
   VTKBinary = TPX_FORMAT_VTK_BINARY,
+  MSH = TPX_FORMAT_MSH,
+  MSHBinary = TPX_FORMAT_MSH_BINARY,
+  MSH2 = TPX_FORMAT_MSH2,
+  MSH2Binary = TPX_FORMAT_MSH2_BINARY,
 };
 
 /* A failed call: the TpxStatus and tpx_last_error_message() at the time of failure. */

@@ -29,6 +29,14 @@ pub const TPX_FORMAT_STL_BINARY: u32 = 8;
 pub const TPX_FORMAT_VTK: u32 = 9;
 /// Legacy VTK unstructured grid, BINARY.
 pub const TPX_FORMAT_VTK_BINARY: u32 = 10;
+/// Gmsh MSH 4.1 ASCII (`.msh`): points, edges, triangles, tetrahedra.
+pub const TPX_FORMAT_MSH: u32 = 11;
+/// Gmsh MSH 4.1 binary.
+pub const TPX_FORMAT_MSH_BINARY: u32 = 12;
+/// Gmsh MSH 2.2 ASCII.
+pub const TPX_FORMAT_MSH2: u32 = 13;
+/// Gmsh MSH 2.2 binary.
+pub const TPX_FORMAT_MSH2_BINARY: u32 = 14;
 
 /// The `Format` of a `TPX_FORMAT_*` number (`None` for `TPX_FORMAT_FROM_EXTENSION`).
 pub(crate) fn format_from_u32(format: u32) -> Result<Option<Format>, Failure> {

@@ -7,7 +7,7 @@
 //! ([`crate::complex::Complex::from_raw`]), which reports them with the same file and line.
 //!
 //! The format is chosen by file extension: `.off`, `.obj`, `.mesh`, `.simplices`, `.ply`, `.stl`,
-//! `.vtk`.
+//! `.vtk`, `.msh`.
 //! The writers ([`write`]) are their inverse.
 
 use std::path::{Path, PathBuf};
@@ -41,7 +41,9 @@ macro_rules! reader_test_helpers {
     };
 }
 
+mod bytes;
 pub mod medit;
+pub mod msh;
 pub mod obj;
 pub mod off;
 pub mod ply;
@@ -102,7 +104,9 @@ impl RawInput {
 pub enum ReadErrorKind {
     #[error("cannot read file: {0}")]
     Io(String),
-    #[error("unknown file extension (expected .off, .obj, .mesh, .simplices, .ply, .stl or .vtk)")]
+    #[error(
+        "unknown file extension (expected .off, .obj, .mesh, .simplices, .ply, .stl, .vtk or .msh)"
+    )]
     UnknownExtension,
     #[error("{0}")]
     Syntax(String),
@@ -170,6 +174,7 @@ fn read_binary_capable(path: &Path, ext: &str) -> Result<RawInput, ReadError> {
         "ply" => ply::parse,
         "stl" => stl::parse,
         "vtk" => vtk::parse,
+        "msh" => msh::parse,
         _ => return Err(err(0, ReadErrorKind::UnknownExtension)),
     };
     let bytes = std::fs::read(path).map_err(|e| err(0, ReadErrorKind::Io(e.to_string())))?;

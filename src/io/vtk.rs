@@ -31,6 +31,7 @@
 //! edges, triangles, tetrahedra), then the optional point and cell fields as `int` scalars
 //! ([`write_with_fields`]). ASCII numbers are the shortest decimals that read back bit for bit.
 
+use super::bytes::Input;
 use super::write::{check_coord_dim, check_max_len, push_f64, push_ids, vertex_count};
 use super::{Coords, IntError, RawInput, ReadErrorKind, parse_integer, syntax};
 
@@ -68,71 +69,7 @@ fn simplex_len(t: i64) -> Result<usize, &'static str> {
     })
 }
 
-/// A byte cursor that tracks lines.
-struct Input<'a> {
-    b: &'a [u8],
-    pos: usize,
-    line: u32,
-    binary: bool,
-}
-
-impl<'a> Input<'a> {
-    fn skip_space(&mut self) {
-        while let Some(&c) = self.b.get(self.pos) {
-            if c == b'\n' {
-                self.line = self.line.saturating_add(1);
-            } else if !c.is_ascii_whitespace() {
-                break;
-            }
-            self.pos += 1;
-        }
-    }
-
-    /// The next whitespace-separated token and its line.
-    fn token(&mut self) -> Option<(&'a str, u32)> {
-        self.skip_space();
-        let start = self.pos;
-        while self
-            .b
-            .get(self.pos)
-            .is_some_and(|c| !c.is_ascii_whitespace())
-        {
-            self.pos += 1;
-        }
-        (self.pos > start).then(|| {
-            // Non-UTF-8 bytes make a token no keyword or number matches.
-            let t = std::str::from_utf8(&self.b[start..self.pos]).unwrap_or("\u{fffd}");
-            (t, self.line)
-        })
-    }
-
-    fn expect_token(&mut self, what: &str) -> Res<(&'a str, u32)> {
-        self.token().ok_or_else(|| {
-            (
-                self.line.max(1),
-                syntax(format!("file ends early; expected {what}")),
-            )
-        })
-    }
-
-    /// The rest of the current line (without the newline), consuming it.
-    fn rest_of_line(&mut self) -> &'a [u8] {
-        let start = self.pos;
-        while self.b.get(self.pos).is_some_and(|&c| c != b'\n') {
-            self.pos += 1;
-        }
-        let s = &self.b[start..self.pos];
-        if self.pos < self.b.len() {
-            self.pos += 1;
-            self.line = self.line.saturating_add(1);
-        }
-        s
-    }
-
-    fn left(&self) -> usize {
-        self.b.len() - self.pos
-    }
-
+impl Input<'_> {
     /// `n` numbers of `ty` (a VTK data type name): ASCII tokens, or big-endian binary starting
     /// after the newline that ends the keyword line `line`.
     fn numbers(&mut self, n: usize, ty: &str, line: u32, what: &str) -> Res<Vec<f64>> {
@@ -215,21 +152,6 @@ impl<'a> Input<'a> {
         }
         self.pos += bytes;
         Ok(out)
-    }
-
-    /// A count after a keyword.
-    fn count(&mut self, keyword: &str) -> Res<usize> {
-        let (tok, l) = self.expect_token(&format!("the count after {keyword}"))?;
-        match parse_integer(tok) {
-            Ok(v) if v >= 0 => usize::try_from(v)
-                .map_err(|_| (l, syntax(format!("{keyword} count {tok} is too large")))),
-            _ => Err((
-                l,
-                syntax(format!(
-                    "{keyword} count '{tok}' is not a non-negative integer"
-                )),
-            )),
-        }
     }
 }
 
@@ -318,12 +240,7 @@ fn read_cells(inp: &mut Input, version5: bool, line: u32) -> Res<(Vec<Vec<u32>>,
 
 /// Parses a legacy VTK unstructured grid.
 pub fn parse(bytes: &[u8]) -> Res<RawInput> {
-    let mut inp = Input {
-        b: bytes,
-        pos: 0,
-        line: 1,
-        binary: false,
-    };
+    let mut inp = Input::new(bytes);
     let first = inp.rest_of_line();
     let first = String::from_utf8_lossy(first);
     let version = first

@@ -72,11 +72,19 @@ pub enum Format {
     Vtk,
     /// Legacy VTK unstructured grid, BINARY (`.vtk`).
     VtkBinary,
+    /// Gmsh MSH 4.1, ASCII (`.msh`).
+    Msh,
+    /// Gmsh MSH 4.1, binary.
+    MshBinary,
+    /// Gmsh MSH 2.2, ASCII.
+    Msh2,
+    /// Gmsh MSH 2.2, binary.
+    Msh2Binary,
 }
 
 impl Format {
     /// Every format, in the order of their C ABI numbers (`TPX_FORMAT_*`).
-    pub const ALL: [Format; 10] = [
+    pub const ALL: [Format; 14] = [
         Format::Off,
         Format::Obj,
         Format::Medit,
@@ -87,10 +95,15 @@ impl Format {
         Format::StlBinary,
         Format::Vtk,
         Format::VtkBinary,
+        Format::Msh,
+        Format::MshBinary,
+        Format::Msh2,
+        Format::Msh2Binary,
     ];
 
     /// The name used by the CLI's `--format` and in messages (`off`, `obj`, `mesh`,
-    /// `simplices`, `ply`, `ply-binary`, `stl`, `stl-binary`, `vtk`, `vtk-binary`).
+    /// `simplices`, `ply`, `ply-binary`, `stl`, `stl-binary`, `vtk`, `vtk-binary`, `msh` (4.1),
+    /// `msh-binary`, `msh2`, `msh2-binary`).
     pub fn name(self) -> &'static str {
         match self {
             Format::Off => "off",
@@ -103,6 +116,10 @@ impl Format {
             Format::StlBinary => "stl-binary",
             Format::Vtk => "vtk",
             Format::VtkBinary => "vtk-binary",
+            Format::Msh => "msh",
+            Format::MshBinary => "msh-binary",
+            Format::Msh2 => "msh2",
+            Format::Msh2Binary => "msh2-binary",
         }
     }
 
@@ -118,6 +135,7 @@ impl Format {
             Format::PlyBinary => "ply",
             Format::StlBinary => "stl",
             Format::VtkBinary => "vtk",
+            Format::MshBinary | Format::Msh2 | Format::Msh2Binary => "msh",
             f => f.name(),
         }
     }
@@ -150,6 +168,10 @@ impl Format {
             Format::StlBinary => super::stl::write_binary(raw, &mut out),
             Format::Vtk => super::vtk::write(raw, false, &mut out),
             Format::VtkBinary => super::vtk::write(raw, true, &mut out),
+            Format::Msh => super::msh::write(raw, true, false, &mut out),
+            Format::MshBinary => super::msh::write(raw, true, true, &mut out),
+            Format::Msh2 => super::msh::write(raw, false, false, &mut out),
+            Format::Msh2Binary => super::msh::write(raw, false, true, &mut out),
         }
         .map_err(refuse)?;
         Ok(out)
