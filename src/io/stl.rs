@@ -9,6 +9,8 @@
 //! floats, widened to `f64` exactly. Normals are ignored. A facet whose corners weld together is
 //! a simplex that repeats a vertex (refused by the complex model, naming the facet by its
 //! position). `stl_io` reports errors without a line; an empty solid is refused (no vertices).
+//! A file is binary when its size is 84 + 50 × the triangle count at byte 80, whatever its
+//! header says, and ASCII otherwise.
 //!
 //! Writing: refused unless the complex is a set of triangles covering every vertex (no edge,
 //! tetrahedron or isolated vertex), with at most 3 coordinates per vertex that are exactly
@@ -16,6 +18,7 @@
 //! normalised cross product of the winding (zero for a degenerate triangle). ASCII coordinates
 //! are the shortest decimals that read back to the same 32-bit float.
 
+use std::borrow::Cow;
 use std::io::Cursor;
 
 use stl_io::{Normal, Triangle, Vertex};
@@ -23,10 +26,32 @@ use stl_io::{Normal, Triangle, Vertex};
 use super::write::{check_coord_dim, show, vertex_count};
 use super::{Coords, RawInput, ReadErrorKind, syntax};
 
+/// The bytes as `stl_io` tells them apart: it takes any file starting with `solid ` for ASCII
+/// and anything else for binary. A binary file whose 80-byte header starts with `solid` (many
+/// exporters write one) gets a blank header; an ASCII `solid` with no name gets a space.
+fn for_stl_io(bytes: &[u8]) -> Cow<'_, [u8]> {
+    let binary_size = bytes
+        .get(80..84)
+        .map(|c| 84 + 50 * u64::from(u32::from_le_bytes(c.try_into().unwrap())));
+    if binary_size == Some(bytes.len() as u64) {
+        if bytes.starts_with(b"solid") {
+            let mut b = bytes.to_vec();
+            b[..80].fill(0);
+            return Cow::Owned(b);
+        }
+    } else if bytes.starts_with(b"solid") && matches!(bytes.get(5), Some(b'\n' | b'\r')) {
+        let mut b = Vec::with_capacity(bytes.len() + 1);
+        b.extend_from_slice(b"solid ");
+        b.extend_from_slice(&bytes[5..]);
+        return Cow::Owned(b);
+    }
+    Cow::Borrowed(bytes)
+}
+
 /// Parses an STL file, welding exactly equal corners.
 pub fn parse(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
-    let mesh =
-        stl_io::read_stl(&mut Cursor::new(bytes)).map_err(|e| (0, syntax(format!("STL: {e}"))))?;
+    let mesh = stl_io::read_stl(&mut Cursor::new(for_stl_io(bytes)))
+        .map_err(|e| (0, syntax(format!("STL: {e}"))))?;
     let mut raw = RawInput::new();
     let n =
         u32::try_from(mesh.vertices.len()).map_err(|_| (0, syntax("more than 2^32 vertices")))?;
