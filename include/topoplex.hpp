@@ -57,6 +57,7 @@ enum class Format : std::uint32_t {
   MSHBinary = TPX_FORMAT_MSH_BINARY,
   MSH2 = TPX_FORMAT_MSH2,
   MSH2Binary = TPX_FORMAT_MSH2_BINARY,
+  VTU = TPX_FORMAT_VTU,
 };
 
 /* A failed call: the TpxStatus and tpx_last_error_message() at the time of failure. */

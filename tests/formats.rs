@@ -38,7 +38,7 @@ fn capacity(f: Format) -> (usize, usize) {
     match f {
         Format::Off => (3, usize::MAX),
         Format::Obj | Format::Ply | Format::PlyBinary => (3, 3),
-        Format::Medit | Format::Vtk | Format::VtkBinary => (4, 3),
+        Format::Medit | Format::Vtk | Format::VtkBinary | Format::Vtu => (4, 3),
         Format::Msh | Format::MshBinary | Format::Msh2 | Format::Msh2Binary => (4, 3),
         Format::Simplices => (16, usize::MAX),
         Format::Stl | Format::StlBinary => (3, 3),

@@ -145,6 +145,8 @@ const FORMATS: &[(Format, &str, bool)] = &[
     (Format::Medit, "medit", false),
     (Format::Vtk, "vtk", false),
     (Format::VtkBinary, "vtk-binary", false),
+    // meshio's ASCII .vtu rounds coordinates to 11 digits: its binary (zlib) output is used.
+    (Format::Vtu, "vtu-binary", false),
     (Format::Msh, "gmsh", false),
     (Format::MshBinary, "gmsh-binary", false),
     (Format::Msh2, "gmsh22", false),

@@ -37,6 +37,8 @@ pub const TPX_FORMAT_MSH_BINARY: u32 = 12;
 pub const TPX_FORMAT_MSH2: u32 = 13;
 /// Gmsh MSH 2.2 binary.
 pub const TPX_FORMAT_MSH2_BINARY: u32 = 14;
+/// VTK XML unstructured grid (`.vtu`): vertices, edges, triangles, tetrahedra.
+pub const TPX_FORMAT_VTU: u32 = 15;
 
 /// The `Format` of a `TPX_FORMAT_*` number (`None` for `TPX_FORMAT_FROM_EXTENSION`).
 pub(crate) fn format_from_u32(format: u32) -> Result<Option<Format>, Failure> {

@@ -7,7 +7,7 @@
 //! ([`crate::complex::Complex::from_raw`]), which reports them with the same file and line.
 //!
 //! The format is chosen by file extension: `.off`, `.obj`, `.mesh`, `.simplices`, `.ply`, `.stl`,
-//! `.vtk`, `.msh`.
+//! `.vtk`, `.vtu`, `.msh`.
 //! The writers ([`write`]) are their inverse.
 
 use std::path::{Path, PathBuf};
@@ -50,6 +50,7 @@ pub mod ply;
 pub mod simplices;
 pub mod stl;
 pub mod vtk;
+pub mod vtu;
 pub mod write;
 
 /// Vertex coordinates, `dim` numbers per vertex, vertex-major.
@@ -174,6 +175,7 @@ fn read_binary_capable(path: &Path, ext: &str) -> Result<RawInput, ReadError> {
         "ply" => ply::parse,
         "stl" => stl::parse,
         "vtk" => vtk::parse,
+        "vtu" => vtu::parse,
         "msh" => msh::parse,
         _ => return Err(err(0, ReadErrorKind::UnknownExtension)),
     };

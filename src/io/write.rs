@@ -72,6 +72,8 @@ pub enum Format {
     Vtk,
     /// Legacy VTK unstructured grid, BINARY (`.vtk`).
     VtkBinary,
+    /// VTK XML unstructured grid (`.vtu`).
+    Vtu,
     /// Gmsh MSH 4.1, ASCII (`.msh`).
     Msh,
     /// Gmsh MSH 4.1, binary.
@@ -84,7 +86,7 @@ pub enum Format {
 
 impl Format {
     /// Every format, in the order of their C ABI numbers (`TPX_FORMAT_*`).
-    pub const ALL: [Format; 14] = [
+    pub const ALL: [Format; 15] = [
         Format::Off,
         Format::Obj,
         Format::Medit,
@@ -99,11 +101,12 @@ impl Format {
         Format::MshBinary,
         Format::Msh2,
         Format::Msh2Binary,
+        Format::Vtu,
     ];
 
     /// The name used by the CLI's `--format` and in messages (`off`, `obj`, `mesh`,
     /// `simplices`, `ply`, `ply-binary`, `stl`, `stl-binary`, `vtk`, `vtk-binary`, `msh` (4.1),
-    /// `msh-binary`, `msh2`, `msh2-binary`).
+    /// `msh-binary`, `msh2`, `msh2-binary`, `vtu`).
     pub fn name(self) -> &'static str {
         match self {
             Format::Off => "off",
@@ -116,6 +119,7 @@ impl Format {
             Format::StlBinary => "stl-binary",
             Format::Vtk => "vtk",
             Format::VtkBinary => "vtk-binary",
+            Format::Vtu => "vtu",
             Format::Msh => "msh",
             Format::MshBinary => "msh-binary",
             Format::Msh2 => "msh2",
@@ -168,6 +172,7 @@ impl Format {
             Format::StlBinary => super::stl::write_binary(raw, &mut out),
             Format::Vtk => super::vtk::write(raw, false, &mut out),
             Format::VtkBinary => super::vtk::write(raw, true, &mut out),
+            Format::Vtu => super::vtu::write(raw, &mut out),
             Format::Msh => super::msh::write(raw, true, false, &mut out),
             Format::MshBinary => super::msh::write(raw, true, true, &mut out),
             Format::Msh2 => super::msh::write(raw, false, false, &mut out),

@@ -16,7 +16,8 @@ import numpy as np
 
 def dump(mesh):
     points = [[repr(float(x)) for x in p] for p in mesh.points]
-    cells = [[b.type, b.data.tolist()] for b in mesh.cells]
+    # meshio turns UInt64 connectivity (as vtkio writes .vtu) into float64: exact for these ids.
+    cells = [[b.type, b.data.astype(np.int64).tolist()] for b in mesh.cells]
     print(json.dumps({"points": points, "cells": cells}))
 
 
