@@ -401,3 +401,32 @@ fn decompose_writes_components_in_a_chosen_format() {
         ]
     );
 }
+
+#[test]
+fn convert_census_marks_singularities_for_paraview() {
+    //   0       3
+    //   | \   / |      bowtie pinched at vertex 2
+    //   |  2    |
+    //   | /   \ |
+    //   1       4
+    let f = temp_file("bowtie-census.simplices", "s 0 1 2\ns 2 3 4\n");
+    let out = f.with_file_name("bowtie-census.vtk");
+    let o = run(&[
+        "convert",
+        f.to_str().unwrap(),
+        out.to_str().unwrap(),
+        "--census",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        text.contains("SCALARS non_manifold_vertex int 1\nLOOKUP_TABLE default\n0 0 1 0 0\n"),
+        "{text}"
+    );
+    let o = run(&["convert", f.to_str().unwrap(), "x.off", "--census"]);
+    assert!(
+        stderr(&o).contains("--census writes legacy VTK"),
+        "{}",
+        stderr(&o)
+    );
+}

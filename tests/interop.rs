@@ -22,12 +22,11 @@ fn meshio_present() -> bool {
     ok
 }
 
-/// Runs the helper; its JSON output as (points, cells by meshio type in file order).
-fn meshio(
-    mode: &str,
-    path: &Path,
-    format: &str,
-) -> (Vec<[f64; 3]>, BTreeMap<String, Vec<Vec<u32>>>) {
+/// Cells by meshio type name, each type's cells in file order.
+type Cells = BTreeMap<String, Vec<Vec<u32>>>;
+
+/// Runs the helper; its JSON output as (points, cells).
+fn meshio(mode: &str, path: &Path, format: &str) -> (Vec<[f64; 3]>, Cells) {
     let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/interop/meshio_check.py");
     let o = Command::new("python3")
         .args([script, mode, path.to_str().unwrap(), format])
@@ -54,7 +53,7 @@ fn meshio(
             [xs[0], xs[1], xs[2]]
         })
         .collect();
-    let mut cells: BTreeMap<String, Vec<Vec<u32>>> = BTreeMap::new();
+    let mut cells = Cells::new();
     for block in json["cells"].as_array().unwrap() {
         let rows = block[1].as_array().unwrap().iter().map(|r| {
             r.as_array()
@@ -76,9 +75,9 @@ fn meshio_type(len: usize) -> &'static str {
 }
 
 /// The complex's listing by meshio cell type, in listing order.
-fn cells_by_type(c: &Complex) -> BTreeMap<String, Vec<Vec<u32>>> {
+fn cells_by_type(c: &Complex) -> Cells {
     let raw = listing(c);
-    let mut cells: BTreeMap<String, Vec<Vec<u32>>> = BTreeMap::new();
+    let mut cells = Cells::new();
     for i in 0..raw.simplex_count() {
         let s = raw.simplex(i);
         cells

@@ -63,7 +63,7 @@ enum Command {
         /// Output directory (created if missing).
         #[arg(long)]
         out: PathBuf,
-        /// Write every component in this format (off, obj, mesh, simplices) instead of by
+        /// Write every component in this format (any `convert --format` name) instead of by
         /// dimension; refused, writing nothing, if it cannot hold a component.
         #[arg(long)]
         format: Option<String>,
@@ -74,9 +74,15 @@ enum Command {
     Convert {
         input: PathBuf,
         output: PathBuf,
-        /// Output format (off, obj, mesh, simplices) instead of OUTPUT's extension.
-        #[arg(long)]
+        /// Output format (see README: off, obj, mesh, simplices, ply, stl, vtk, vtu, msh, and
+        /// -binary variants) instead of OUTPUT's extension.
+        #[arg(long, conflicts_with = "census")]
         format: Option<String>,
+        /// Write the non-manifold census instead (OUTPUT must end in .vtk): the top simplices
+        /// plus one cell per non-manifold edge and triangle, with fields non_manifold_vertex,
+        /// role and iqm_component for ParaView.
+        #[arg(long)]
+        census: bool,
     },
 }
 
@@ -110,7 +116,8 @@ fn main() -> ExitCode {
             input,
             output,
             format,
-        } => convert(&input, &output, format.as_deref()),
+            census,
+        } => convert(&input, &output, format.as_deref(), census),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -228,9 +235,19 @@ fn output_format(name: &str) -> Result<Format, String> {
     })
 }
 
-fn convert(input: &Path, output: &Path, format: Option<&str>) -> Result<(), String> {
+fn convert(input: &Path, output: &Path, format: Option<&str>, census: bool) -> Result<(), String> {
     let format = format.map(output_format).transpose()?;
+    if census && Format::from_path(output) != Some(Format::Vtk) {
+        return Err(format!(
+            "--census writes legacy VTK: {} must end in .vtk",
+            output.display()
+        ));
+    }
     let complex = load(input)?;
+    if census {
+        return topoplex::report::census_vtk::write_census_vtk(&complex, output)
+            .map_err(|e| e.to_string());
+    }
     topoplex::io::write::write_complex(&complex, output, format).map_err(|e| e.to_string())
 }
 

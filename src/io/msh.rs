@@ -133,7 +133,7 @@ impl<'a> Reader<'a> {
 
     /// A count header line of a section in binary version 2 is ASCII; the binary data starts
     /// after its newline.
-    fn to_binary_block(&mut self) {
+    fn enter_binary_block(&mut self) {
         if self.inp.binary {
             self.inp.rest_of_line();
         }
@@ -154,7 +154,7 @@ impl<'a> Reader<'a> {
         if !self.v4 {
             let n = self.count("the node count", line)?;
             self.reserve(n, 4 + 24);
-            self.to_binary_block();
+            self.enter_binary_block();
             for _ in 0..n {
                 let (tag, l) = self.int(4, "a node tag", line)?;
                 self.node(tag, l)?;
@@ -165,7 +165,7 @@ impl<'a> Reader<'a> {
             }
             return self.end("$EndNodes");
         }
-        self.to_binary_block();
+        self.enter_binary_block();
         let blocks = self.count("the node block count", line)?;
         let n = self.count("the node count", line)?;
         self.count("the minimum node tag", line)?;
@@ -243,7 +243,7 @@ impl<'a> Reader<'a> {
             return self.elements_v4(line);
         }
         let m = self.count("the element count", line)?;
-        self.to_binary_block();
+        self.enter_binary_block();
         let mut nodes = Vec::with_capacity(4);
         let mut read = 0;
         while read < m {
@@ -283,7 +283,7 @@ impl<'a> Reader<'a> {
     }
 
     fn elements_v4(&mut self, line: u32) -> Res<()> {
-        self.to_binary_block();
+        self.enter_binary_block();
         let blocks = self.count("the element block count", line)?;
         for what in [
             "the element count",

@@ -394,8 +394,9 @@ pub(crate) fn write(raw: &RawInput, binary: bool, out: &mut Vec<u8>) -> Result<(
     write_with_fields(raw, binary, &[], &[], out)
 }
 
-/// [`write`] with integer point and cell fields (ParaView colours by them).
-pub(crate) fn write_with_fields(
+/// Writes `raw` as a legacy VTK unstructured grid with integer point and cell fields (ParaView
+/// colours by them); `Err` names what does not fit.
+pub fn write_with_fields(
     raw: &RawInput,
     binary: bool,
     point_fields: &[Field],
