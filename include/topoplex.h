@@ -61,6 +61,86 @@
 #define TPX_KIND_DE 8
 
 /**
+ * The format named by the output file's extension (`tpx_complex_write`).
+ */
+#define TPX_FORMAT_FROM_EXTENSION 0
+
+/**
+ * Geomview OFF (`.off`): vertices, edges, triangles.
+ */
+#define TPX_FORMAT_OFF 1
+
+/**
+ * Wavefront OBJ (`.obj`): points, edges, triangles; at most 3 coordinates.
+ */
+#define TPX_FORMAT_OBJ 2
+
+/**
+ * MEDIT ASCII (`.mesh`): edges, triangles, tetrahedra; 2 or 3 coordinates.
+ */
+#define TPX_FORMAT_MEDIT 3
+
+/**
+ * Topoplex `.simplices`: any complex.
+ */
+#define TPX_FORMAT_SIMPLICES 4
+
+/**
+ * PLY ASCII (`.ply`): edges and triangles; at most 3 coordinates.
+ */
+#define TPX_FORMAT_PLY 5
+
+/**
+ * PLY binary little-endian.
+ */
+#define TPX_FORMAT_PLY_BINARY 6
+
+/**
+ * STL ASCII (`.stl`): triangles covering every vertex, distinct 32-bit float coordinates.
+ */
+#define TPX_FORMAT_STL 7
+
+/**
+ * STL binary.
+ */
+#define TPX_FORMAT_STL_BINARY 8
+
+/**
+ * Legacy VTK unstructured grid, ASCII (`.vtk`): vertices, edges, triangles, tetrahedra.
+ */
+#define TPX_FORMAT_VTK 9
+
+/**
+ * Legacy VTK unstructured grid, BINARY.
+ */
+#define TPX_FORMAT_VTK_BINARY 10
+
+/**
+ * Gmsh MSH 4.1 ASCII (`.msh`): points, edges, triangles, tetrahedra.
+ */
+#define TPX_FORMAT_MSH 11
+
+/**
+ * Gmsh MSH 4.1 binary.
+ */
+#define TPX_FORMAT_MSH_BINARY 12
+
+/**
+ * Gmsh MSH 2.2 ASCII.
+ */
+#define TPX_FORMAT_MSH2 13
+
+/**
+ * Gmsh MSH 2.2 binary.
+ */
+#define TPX_FORMAT_MSH2_BINARY 14
+
+/**
+ * VTK XML unstructured grid (`.vtu`): vertices, edges, triangles, tetrahedra.
+ */
+#define TPX_FORMAT_VTU 15
+
+/**
  * Result of a fallible `tpx_*` call. Values are part of the ABI and never reused.
  */
 enum TpxStatus
@@ -131,6 +211,16 @@ enum TpxStatus
    * An internal bug was caught at the boundary; the message has the panic text.
    */
   TPX_STATUS_PANIC = 14,
+  /**
+   * The output format number is not one of `TPX_FORMAT_*`, or the output file's extension
+   * names no format.
+   */
+  TPX_STATUS_UNKNOWN_FORMAT = 30,
+  /**
+   * The output format cannot hold the complex (a tetrahedron in OFF, an edge in STL); the
+   * message names the first offending simplex. Nothing was written.
+   */
+  TPX_STATUS_FORMAT_CANNOT_HOLD = 31,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -619,6 +709,23 @@ const uint32_t *tpx_relation_table_ids(const struct TpxRelationTable *t, size_t 
  * `t` must be NULL or a live handle from this library, not used afterwards.
  */
 void tpx_relation_table_free(struct TpxRelationTable *t);
+
+/**
+ * Writes the complex `c` to the file `path` (NUL-terminated UTF-8) in `format`
+ * (`TPX_FORMAT_*`; `TPX_FORMAT_FROM_EXTENSION` picks it from the path's extension): its top
+ * simplices in input order with their input vertex order (winding), isolated vertices and wire
+ * edges kept, coordinates in the shortest decimal that reads back bit for bit. Reading the file
+ * back with `tpx_complex_from_file` gives the same complex.
+ *
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8), UNKNOWN_FORMAT (format number or
+ * extension unknown), FORMAT_CANNOT_HOLD (the format cannot hold the complex, e.g. OFF with a
+ * tetrahedron; the message names the first offending simplex; nothing is written), IO_ERROR
+ * (cannot write). Cost: linear in the complex; the file is built in memory, then written.
+ *
+ * # Safety
+ * `c` must be NULL or a live complex; `path` NULL or a NUL-terminated string.
+ */
+TpxStatus tpx_complex_write(const struct TpxComplex *c, const char *path, uint32_t format);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -15,6 +15,7 @@ use std::time::Duration;
 use clap::{CommandFactory, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use topoplex::error::{MESSAGE_MAX_BYTES, one_line};
+use topoplex::io::write::Format;
 use topoplex::relation::sort_rows;
 use topoplex::{Budget, Complex, StructureKind, fixtures, structures};
 
@@ -75,10 +76,30 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
         /// Write into a non-empty --out directory, first deleting an earlier decomposition's
-        /// files there (component_<i>.off/.mesh/.simplices, gluing.json; other files are kept).
+        /// files there (component_<i>.<ext> in any output format, gluing.json; other files are kept).
         /// The input is never overwritten or deleted.
         #[arg(long)]
         force: bool,
+        /// Write every component in this format (any `convert --format` name) instead of by
+        /// dimension; refused, writing nothing, if it cannot hold a component.
+        #[arg(long)]
+        format: Option<String>,
+    },
+    /// Read INPUT and write it to OUTPUT (formats by extension): the top simplices in input
+    /// order and winding, isolated vertices and wire edges kept, coordinates bit for bit. A
+    /// format that cannot hold the complex is refused with the reason.
+    Convert {
+        input: PathBuf,
+        output: PathBuf,
+        /// Output format (see README: off, obj, mesh, simplices, ply, stl, vtk, vtu, msh, and
+        /// -binary variants) instead of OUTPUT's extension.
+        #[arg(long, conflicts_with = "census")]
+        format: Option<String>,
+        /// Write the non-manifold census instead (OUTPUT must end in .vtk): the top simplices
+        /// plus one cell per non-manifold edge and triangle, with fields non_manifold_vertex,
+        /// role and iqm_component for ParaView.
+        #[arg(long)]
+        census: bool,
     },
 }
 
@@ -132,7 +153,18 @@ fn run(command: Command) -> Result<(), String> {
             relation,
             simplex,
         } => dump_relation(file, &structure, relation, simplex),
-        Command::Decompose { file, out, force } => decompose(&file, &out, force),
+        Command::Decompose {
+            file,
+            out,
+            force,
+            format,
+        } => decompose(&file, &out, force, format.as_deref()),
+        Command::Convert {
+            input,
+            output,
+            format,
+            census,
+        } => convert(&input, &output, format.as_deref(), census),
     }
 }
 
@@ -294,13 +326,44 @@ fn report(files: &[PathBuf], json: bool, csv: bool, svg: Option<&Path>) -> Resul
     print(&text)
 }
 
-fn decompose(file: &Path, out: &Path, force: bool) -> Result<(), String> {
+/// The output format called `name`, or a usage error listing the names.
+fn output_format(name: &str) -> Result<Format, String> {
+    Format::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = Format::ALL.iter().map(|f| f.name()).collect();
+        format!(
+            "unknown format `{name}` (expected one of: {})",
+            names.join(", ")
+        )
+    })
+}
+
+fn convert(input: &Path, output: &Path, format: Option<&str>, census: bool) -> Result<(), String> {
+    let format = format.map(output_format).transpose()?;
+    if census && Format::from_path(output) != Some(Format::Vtk) {
+        return Err(format!(
+            "--census writes legacy VTK: {} must end in .vtk",
+            output.display()
+        ));
+    }
+    let complex = load(input)?;
+    if census {
+        return topoplex::report::census_vtk::write_census_vtk(&complex, output)
+            .map_err(|e| e.to_string());
+    }
+    topoplex::io::write::write_complex(&complex, output, format).map_err(|e| e.to_string())
+}
+
+fn decompose(file: &Path, out: &Path, force: bool, format: Option<&str>) -> Result<(), String> {
+    let format = format.map(output_format).transpose()?;
     let complex = load(file)?;
     prepare_out_dir(file, out, force)?;
     let iqm = topoplex::structures::iqm::Iqm::build(&complex).map_err(|e| e.to_string())?;
     let dec = iqm.decomposition();
-    let paths = topoplex::io::write::write_components(&dec, complex.coords(), out)
-        .map_err(|e| e.to_string())?;
+    let paths = match format {
+        None => topoplex::io::write::write_components(&dec, complex.coords(), out),
+        Some(f) => topoplex::io::write::write_components_as(&dec, complex.coords(), out, f),
+    }
+    .map_err(|e| e.to_string())?;
     print(&format!(
         "{} components, {} split vertices ({} vertex copies in all); wrote {} files to {}\n",
         dec.components.len(),

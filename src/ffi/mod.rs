@@ -31,10 +31,12 @@ mod decomposition;
 mod structure;
 #[cfg(test)]
 mod tests;
+mod write;
 
 pub use complex::*;
 pub use decomposition::*;
 pub use structure::*;
+pub use write::*;
 
 // The panic boundary below relies on unwinding; with `panic = "abort"` a bug would kill the host.
 #[cfg(panic = "abort")]
@@ -77,6 +79,12 @@ pub enum TpxStatus {
     TooLarge = 13,
     /// An internal bug was caught at the boundary; the message has the panic text.
     Panic = 14,
+    /// The output format number is not one of `TPX_FORMAT_*`, or the output file's extension
+    /// names no format.
+    UnknownFormat = 30,
+    /// The output format cannot hold the complex (a tetrahedron in OFF, an edge in STL); the
+    /// message names the first offending simplex. Nothing was written.
+    FormatCannotHold = 31,
 }
 
 /// Incidence Graph.

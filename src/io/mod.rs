@@ -6,7 +6,9 @@
 //! duplicates and faces of other simplices are the complex model's business
 //! ([`crate::complex::Complex::from_raw`]), which reports them with the same file and line.
 //!
-//! The format is chosen by file extension: `.off`, `.obj`, `.mesh`, `.simplices`.
+//! The format is chosen by file extension: `.off`, `.obj`, `.mesh`, `.simplices`, `.ply`, `.stl`,
+//! `.vtk`, `.vtu`, `.msh`.
+//! The writers ([`write`]) are their inverse.
 
 use std::path::{Path, PathBuf};
 
@@ -39,12 +41,18 @@ macro_rules! reader_test_helpers {
     };
 }
 
+mod bytes;
 pub mod echo;
 pub mod medit;
+pub mod msh;
 pub mod obj;
 pub mod off;
+pub mod ply;
 mod scan;
 pub mod simplices;
+pub mod stl;
+pub mod vtk;
+pub mod vtu;
 pub mod write;
 
 pub use echo::{echo, echo_path};
@@ -112,7 +120,9 @@ pub enum ReadErrorKind {
     #[error("file too large: {0}")]
     TooLarge(String),
     /// The extension names no supported format.
-    #[error("unknown file extension (expected .off, .obj, .mesh or .simplices)")]
+    #[error(
+        "unknown file extension (expected .off, .obj, .mesh, .simplices, .ply, .stl, .vtk, .vtu or .msh)"
+    )]
     UnknownExtension,
     /// The text does not follow the format.
     #[error("{0}")]
@@ -157,7 +167,7 @@ pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
         "obj" => obj::parse,
         "mesh" => medit::parse,
         "simplices" => simplices::parse,
-        _ => return Err(err(0, ReadErrorKind::UnknownExtension)),
+        _ => return read_binary_capable(path, &ext),
     };
     let bytes = read_file(path).map_err(|k| err(0, k))?;
     let text = utf8_text(&bytes).map_err(|(line, k)| err(line, k))?;
@@ -257,6 +267,28 @@ fn utf8_text(bytes: &[u8]) -> Result<&str, (u32, ReadErrorKind)> {
         )
     })?;
     Ok(text.strip_prefix('\u{feff}').unwrap_or(text))
+}
+
+/// A reader of bytes: the simplices, or the line (0: unknown) and what is wrong.
+type ByteParser = fn(&[u8]) -> Result<RawInput, (u32, ReadErrorKind)>;
+
+/// The readers of formats with a binary variant, which parse bytes rather than text.
+fn read_binary_capable(path: &Path, ext: &str) -> Result<RawInput, ReadError> {
+    let err = |line, kind| ReadError {
+        path: path.to_path_buf(),
+        line,
+        kind,
+    };
+    let parse: ByteParser = match ext {
+        "ply" => ply::parse,
+        "stl" => stl::parse,
+        "vtk" => vtk::parse,
+        "vtu" => vtu::parse,
+        "msh" => msh::parse,
+        _ => return Err(err(0, ReadErrorKind::UnknownExtension)),
+    };
+    let bytes = read_file(path).map_err(|k| err(0, k))?;
+    parse(&bytes).map_err(|(line, kind)| err(line, kind))
 }
 
 // ---------------------------------------------------------------------------------------------

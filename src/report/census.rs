@@ -66,7 +66,7 @@ impl Census {
         let top_simplices = complex.top_counts();
         let simplices: Vec<usize> = complex.closure().iter().map(|t| t.len()).collect();
         let n = complex.vertex_count() as usize;
-        let links = LinkCounts::of(complex);
+        let links = LinkCounts::of(complex, None);
         Census {
             dimension: d,
             vertices: n,
@@ -88,6 +88,17 @@ impl Census {
     }
 }
 
+/// The non-manifold simplices of dimension `0..=max_p`, each as ascending vertex ids, by
+/// dimension (each list in ascending lexicographic order). Same cost as [`Census::of`]'s link
+/// tests.
+pub fn non_manifold_simplices(complex: &Complex, max_p: usize) -> Vec<Vec<Vec<u32>>> {
+    let mut lists = LinkCounts::of(complex, Some(max_p)).listed;
+    for l in &mut lists {
+        l.sort_unstable();
+    }
+    lists
+}
+
 struct LinkCounts {
     c_e: u64,
     c_v: u64,
@@ -95,13 +106,15 @@ struct LinkCounts {
     approximated: usize,
     unclassified: usize,
     unclassified_examples: Vec<Vec<u32>>,
+    /// The non-manifold simplices of dimension up to the limit asked for, by dimension.
+    listed: Vec<Vec<Vec<u32>>>,
 }
 
 impl LinkCounts {
     /// Every simplex σ is visited once, at its lowest vertex v: the top simplices containing σ
     /// are those of the star of v whose part above v contains σ \ {v}, so each top τ ∋ v lists
     /// every subset of its vertices above v and equal subsets are grouped.
-    fn of(complex: &Complex) -> LinkCounts {
+    fn of(complex: &Complex, list_up_to: Option<usize>) -> LinkCounts {
         let d = complex.dimension();
         let n = complex.vertex_count() as usize;
         // Star of each vertex (CSR over the top simplices of dimension ≥ 1).
@@ -134,6 +147,7 @@ impl LinkCounts {
             approximated: 0,
             unclassified: 0,
             unclassified_examples: Vec::new(),
+            listed: vec![Vec::new(); list_up_to.map_or(0, |m| m.min(d) + 1)],
         };
         // Per-vertex scratch: subsets as (start in `keys`, length, top), grouped by sorting.
         let mut keys: Vec<u32> = Vec::new();
@@ -194,6 +208,13 @@ impl LinkCounts {
                 };
                 if a.shape == Shape::Neither {
                     out.non_manifold[p] += 1;
+                    if let Some(list) = out.listed.get_mut(p) {
+                        list.push(
+                            std::iter::once(v as u32)
+                                .chain(rho.iter().copied())
+                                .collect(),
+                        );
+                    }
                 }
                 if a.approximate && a.shape != Shape::Neither {
                     out.approximated += 1;

@@ -64,6 +64,7 @@
 //! the rows it retrieves (ns per element), also given per query.
 
 pub mod census;
+pub mod census_vtk;
 pub mod render;
 pub mod svg;
 pub mod timing;
