@@ -131,6 +131,23 @@ enum TpxStatus
    * An internal bug was caught at the boundary; the message has the panic text.
    */
   TPX_STATUS_PANIC = 14,
+  /**
+   * A handle names no simplex of this structure: index or dimension out of range, `NONE`,
+   * unknown form bits.
+   */
+  TPX_STATUS_INVALID_HANDLE = 15,
+  /**
+   * A handle of a simplex that an edit removed (editable structures only).
+   */
+  TPX_STATUS_STALE_HANDLE = 16,
+  /**
+   * A handle of the wrong kind for the call (an edge where a vertex is needed).
+   */
+  TPX_STATUS_WRONG_HANDLE_KIND = 17,
+  /**
+   * A handle made by another structure (its owner stamp does not match).
+   */
+  TPX_STATUS_FOREIGN_HANDLE = 18,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L

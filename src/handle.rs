@@ -393,6 +393,12 @@ pub trait Navigate: Topology {
     /// (ascending) form.
     fn top_as_given(&self, t: TopId) -> Result<Vertices, QueryError>;
 
+    /// Heap bytes of the handle bookkeeping (windings, tables built on first use), which
+    /// [`Topology::storage`] does not count. 0 by default.
+    fn handle_bytes(&self) -> u64 {
+        0
+    }
+
     // ---- navigation ----
 
     /// Calls `visit` with every simplex of R_{p,q}(h), p = `h.dim()`, in the structure's
@@ -571,9 +577,11 @@ pub trait Navigate: Topology {
     /// Around an edge of a 2-complex: one group, the triangles in the structure's radial order
     /// (TS, PE, LE, DE: by angle about the edge when coordinates are given; otherwise ascending).
     /// Around an edge of a 3-complex: one group per cluster of q-simplices joined through
-    /// (q−1)-faces containing e that bound exactly two of them, each in order; for q = 2, the
-    /// triangles met walking through each cluster of tetrahedra, then the remaining triangles
-    /// one per group. `WrongHandleKind` when e is not an edge.
+    /// (q−1)-faces containing e that bound exactly two of them, each in order. For q = 2 the
+    /// groups are the sweeps through those clusters of tetrahedra (every triangle between two
+    /// consecutive tetrahedra, and the end triangles of an open cluster; a triangle where
+    /// clusters meet is in each of their sweeps), then every remaining triangle as a group of
+    /// its own. `WrongHandleKind` when e is not an edge.
     fn around_edge(&self, e: SimplexHandle, q: usize, out: &mut Fans) -> Result<(), QueryError> {
         crate::structures::cyclic::around_edge(self, e, q, out)
     }

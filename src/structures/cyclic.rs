@@ -134,32 +134,20 @@ fn triangles_of_tet_fans<N: Navigate + ?Sized>(
         };
         let links: Vec<[u32; 2]> = g.iter().map(|&t| link(t)).collect::<Result<_, _>>()?;
         let shared = |a: [u32; 2], b: [u32; 2]| if b.contains(&a[0]) { a[0] } else { a[1] };
-        if g.len() == 1 {
-            seq.push(tri_of(links[0][0])?);
-            seq.push(tri_of(links[0][1])?);
+        let other = |a: [u32; 2], x: u32| if a[0] == x { a[1] } else { a[0] };
+        let m = links.len();
+        let mut xs = Vec::with_capacity(m + 1);
+        if m == 1 {
+            xs.extend(links[0]);
+        } else if tets.closed[k] {
+            xs.extend((0..m).map(|i| shared(links[i], links[(i + 1) % m])));
         } else {
-            let first = shared(links[0], links[1]);
-            let outer = if tets.closed[k] {
-                None
-            } else {
-                Some(if links[0][0] == first {
-                    links[0][1]
-                } else {
-                    links[0][0]
-                })
-            };
-            if let Some(x) = outer {
-                seq.push(tri_of(x)?);
-            }
-            let mut last = outer.unwrap_or(links[0][0] ^ links[0][1] ^ first);
-            for l in &links {
-                let x = if l[0] == last { l[1] } else { l[0] };
-                if tets.closed[k] && seq.len() == g.len() {
-                    break;
-                }
-                seq.push(tri_of(x)?);
-                last = x;
-            }
+            xs.push(other(links[0], shared(links[0], links[1])));
+            xs.extend((0..m - 1).map(|i| shared(links[i], links[i + 1])));
+            xs.push(other(links[m - 1], shared(links[m - 2], links[m - 1])));
+        }
+        for x in xs {
+            seq.push(tri_of(x)?);
         }
         used.extend_from_slice(&seq);
         push_group(out, &seq, tets.closed[k], false);

@@ -58,6 +58,7 @@
 
 use rustc_hash::FxHashSet;
 
+use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset, sort_dedup_rows};
@@ -89,6 +90,8 @@ pub struct IndexedAdjacency {
     vstar: Vec<u32>,
     /// n_p for p = 0..=d.
     counts: Vec<usize>,
+    /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
+    pub(crate) nav: NavIndex,
 }
 
 /// Calls `f` with every (q+1)-vertex face of `top` (ascending) that contains `sigma` (ascending,
@@ -447,6 +450,7 @@ impl IndexedAdjacency {
             *c = rows.len() / (p + 1);
         }
         Ok(IndexedAdjacency {
+            nav: NavIndex::new(complex),
             d,
             n,
             tops,
@@ -523,7 +527,21 @@ impl IndexedAdjacency {
     }
 }
 
+impl NavBase for IndexedAdjacency {
+    fn nav(&self) -> &NavIndex {
+        &self.nav
+    }
+
+    fn stored_table(&self, p: usize) -> Option<&SimplexTable> {
+        (p == self.d).then_some(&self.tops)
+    }
+}
+
 impl Topology for IndexedAdjacency {
+    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
     fn kind(&self) -> StructureKind {
         KIND
     }

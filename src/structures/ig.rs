@@ -30,6 +30,7 @@
 //! Queries keep no state in the structure: the "visited" marks are a per-query set.
 
 use super::ia::{IdSet, faces_containing};
+use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable};
@@ -44,6 +45,8 @@ pub struct IncidenceGraph {
     cob_offsets: Vec<Vec<u32>>,
     cob: Vec<Vec<u32>>,
     top_counts: Vec<usize>,
+    /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
+    pub(crate) nav: NavIndex,
 }
 
 impl IncidenceGraph {
@@ -117,6 +120,7 @@ impl IncidenceGraph {
             })
             .collect();
         Ok(IncidenceGraph {
+            nav: NavIndex::new(complex),
             tables,
             boundary,
             cob_offsets,
@@ -177,7 +181,21 @@ fn invert(n: usize, links: &[u32], width: usize) -> (Vec<u32>, Vec<u32>) {
     (off, list)
 }
 
+impl NavBase for IncidenceGraph {
+    fn nav(&self) -> &NavIndex {
+        &self.nav
+    }
+
+    fn stored_table(&self, p: usize) -> Option<&SimplexTable> {
+        self.tables.get(p)
+    }
+}
+
 impl Topology for IncidenceGraph {
+    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
     fn kind(&self) -> StructureKind {
         KIND
     }

@@ -108,6 +108,7 @@
 use rustc_hash::FxHashSet;
 
 use super::ia::{IdSet, IdStack, faces_containing};
+use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset, sort_dedup_rows};
@@ -138,6 +139,8 @@ pub struct Iqm {
     /// Facets over copies shared by three or more top simplices of one component (left without
     /// adjacency). Kept to report, not to use.
     crowded_facets: usize,
+    /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
+    pub(crate) nav: NavIndex,
 }
 
 /// One IQM component, self-contained: its top simplices over local vertex ids `0..m`, and the
@@ -444,6 +447,7 @@ impl Iqm {
         }
         let counts = complex.closure().iter().map(SimplexTable::len).collect();
         Ok(Iqm {
+            nav: NavIndex::new(complex),
             n,
             counts,
             tops,
@@ -615,7 +619,17 @@ fn rows_of<'a>(flat: &'a [u32], lens: &'a [usize]) -> impl Iterator<Item = &'a [
     })
 }
 
+impl NavBase for Iqm {
+    fn nav(&self) -> &NavIndex {
+        &self.nav
+    }
+}
+
 impl Topology for Iqm {
+    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
     fn kind(&self) -> StructureKind {
         KIND
     }

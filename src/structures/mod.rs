@@ -10,6 +10,7 @@ pub mod ia;
 pub mod ig;
 pub mod iqm;
 pub mod le;
+pub(crate) mod nav;
 pub mod nmia;
 pub mod pe;
 pub mod radial;

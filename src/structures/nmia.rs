@@ -88,6 +88,7 @@
 //! Queries keep no state in the structure: every walk has its own set of visited simplices.
 
 use super::ia::{IdSet, IdStack, NONE, RowSet, faces_containing, faces_of_tops, show};
+use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset};
@@ -117,6 +118,8 @@ pub struct NonManifoldIa {
     vstar_off: Vec<u32>,
     vstar: Vec<u32>,
     counts: Vec<usize>,
+    /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
+    pub(crate) nav: NavIndex,
 }
 
 /// Code of the edge at positions `i < j` of a top simplex.
@@ -277,6 +280,7 @@ impl NonManifoldIa {
             ))
         })?;
         let mut s = NonManifoldIa {
+            nav: NavIndex::new(complex),
             d,
             n,
             tets,
@@ -682,7 +686,17 @@ impl NonManifoldIa {
     }
 }
 
+impl NavBase for NonManifoldIa {
+    fn nav(&self) -> &NavIndex {
+        &self.nav
+    }
+}
+
 impl Topology for NonManifoldIa {
+    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
     fn kind(&self) -> StructureKind {
         KIND
     }
