@@ -62,6 +62,7 @@ use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset, sort_dedup_rows};
+use crate::handle::SimplexHandle;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Ia;
@@ -534,6 +535,51 @@ impl NavBase for IndexedAdjacency {
 
     fn stored_table(&self, p: usize) -> Option<&SimplexTable> {
         (p == self.d).then_some(&self.tops)
+    }
+
+    /// Direct walks (d-simplex `t` is dense d-simplex `t`): R_{d,0}, R_{d,d} O(d); R_{0,d},
+    /// R_{0,0} the star walk, O(d·n_v). Others: the generic path.
+    fn fast_visit(
+        &self,
+        h: SimplexHandle,
+        sigma: &[u32],
+        q: usize,
+        visit: &mut dyn FnMut(SimplexHandle),
+    ) -> Option<Result<(), QueryError>> {
+        let d = self.d;
+        if d == 0 {
+            return None;
+        }
+        match (h.dim(), q) {
+            (p, 0) if p == d => sigma
+                .iter()
+                .for_each(|&x| visit(SimplexHandle::dense(0, x))),
+            (p, q) if p == d && q == d => {
+                for &u in self.neighbours(h.index()).iter().filter(|&&u| u != NONE) {
+                    visit(SimplexHandle::dense(d, u));
+                }
+            }
+            (0, q) if q == d => {
+                let mut seen = IdSet::default();
+                self.walk_star(sigma[0], &mut seen, |t, _| {
+                    visit(SimplexHandle::dense(d, t));
+                    true
+                });
+            }
+            (0, 0) => {
+                let (v, mut seen, mut others) = (sigma[0], IdSet::default(), IdSet::default());
+                self.walk_star(v, &mut seen, |_, t| {
+                    for &x in t.iter().filter(|&&x| x != v) {
+                        if others.insert(x) {
+                            visit(SimplexHandle::dense(0, x));
+                        }
+                    }
+                    true
+                });
+            }
+            _ => return None,
+        }
+        Some(Ok(()))
     }
 }
 

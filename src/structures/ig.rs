@@ -34,6 +34,7 @@ use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable};
+use crate::handle::SimplexHandle;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Ig;
@@ -188,6 +189,34 @@ impl NavBase for IncidenceGraph {
 
     fn stored_table(&self, p: usize) -> Option<&SimplexTable> {
         self.tables.get(p)
+    }
+
+    /// The stored links as handles (row `i` of `tables[p]` is dense p-simplex `i`): R_{p,p−1},
+    /// R_{p,p+1} O(answer); R_{0,0} the other end of each edge at v. Others: the generic path.
+    fn fast_visit(
+        &self,
+        h: SimplexHandle,
+        _sigma: &[u32],
+        q: usize,
+        visit: &mut dyn FnMut(SimplexHandle),
+    ) -> Option<Result<(), QueryError>> {
+        let (p, id) = (h.dim(), h.index());
+        let ids = if q + 1 == p {
+            self.boundary_ids(p, id)
+        } else if q == p + 1 {
+            self.coboundary_ids(p, id)
+        } else if p == 0 && q == 0 {
+            for &e in self.coboundary_ids(0, id) {
+                let ends = self.boundary_ids(1, e);
+                let other = if ends[0] == id { ends[1] } else { ends[0] };
+                visit(SimplexHandle::dense(0, other));
+            }
+            return Some(Ok(()));
+        } else {
+            return None;
+        };
+        ids.iter().for_each(|&x| visit(SimplexHandle::dense(q, x)));
+        Some(Ok(()))
     }
 }
 

@@ -154,6 +154,15 @@ thread_local! {
     static ROWS: RefCell<Vec<u32>> = const { RefCell::new(Vec::new()) };
 }
 
+/// Runs `f` with the per-thread scratch buffer (empty; reentrant: a nested call gets a fresh one).
+pub(crate) fn with_scratch<R>(f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
+    let mut rows = ROWS.with(|r| std::mem::take(&mut *r.borrow_mut()));
+    rows.clear();
+    let r = f(&mut rows);
+    ROWS.with(|c| *c.borrow_mut() = rows);
+    r
+}
+
 /// Dense handle of the simplex with ascending ids `s`, if it is in `t`'s structure.
 fn find<T: NavBase + ?Sized>(t: &T, s: &[u32]) -> Option<SimplexHandle> {
     let p = s.len() - 1;
@@ -266,15 +275,14 @@ impl<T: NavBase> Navigate for T {
         if let Some(r) = self.fast_visit(h, &sigma, q, visit) {
             return r;
         }
-        let mut rows = ROWS.with(|r| std::mem::take(&mut *r.borrow_mut()));
-        rows.clear();
-        let answer = self.query(&sigma, q, &mut rows);
-        if answer.is_ok() {
-            for row in rows.chunks_exact(q + 1) {
-                visit(find(self, row).expect("an answer is a simplex of the complex"));
+        with_scratch(|rows| {
+            let answer = self.query(&sigma, q, rows);
+            if answer.is_ok() {
+                for row in rows.chunks_exact(q + 1) {
+                    visit(find(self, row).expect("an answer is a simplex of the complex"));
+                }
             }
-        }
-        ROWS.with(|r| *r.borrow_mut() = rows);
-        answer
+            answer
+        })
     }
 }

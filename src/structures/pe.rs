@@ -232,6 +232,16 @@ impl NavBase for PartialEntities {
     fn nav(&self) -> &NavIndex {
         &self.nav
     }
+
+    fn fast_visit(
+        &self,
+        h: crate::handle::SimplexHandle,
+        sigma: &[u32],
+        q: usize,
+        visit: &mut dyn FnMut(crate::handle::SimplexHandle),
+    ) -> Option<Result<(), QueryError>> {
+        radial::fast_visit(self, h, sigma, q, visit)
+    }
 }
 
 impl Topology for PartialEntities {

@@ -218,6 +218,16 @@ impl NavBase for TriangleSegment {
         &self.nav
     }
 
+    fn fast_visit(
+        &self,
+        h: crate::handle::SimplexHandle,
+        sigma: &[u32],
+        q: usize,
+        visit: &mut dyn FnMut(crate::handle::SimplexHandle),
+    ) -> Option<Result<(), QueryError>> {
+        radial::fast_visit(self, h, sigma, q, visit)
+    }
+
     fn stored_table(&self, p: usize) -> Option<&SimplexTable> {
         (p == 2).then_some(&self.tris)
     }
