@@ -23,12 +23,14 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 mod complex;
 mod decomposition;
+mod handles;
 mod structure;
 #[cfg(test)]
 mod tests;
 
 pub use complex::*;
 pub use decomposition::*;
+pub use handles::*;
 pub use structure::*;
 
 // The panic boundary below relies on unwinding; with `panic = "abort"` a bug would kill the host.

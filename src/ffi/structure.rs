@@ -16,6 +16,8 @@ use super::complex::TpxComplex;
 /// threads at once.
 pub struct TpxStructure {
     pub(crate) topo: Box<dyn Topology>,
+    /// Owner stamp carried by every `TpxSimplex` this structure makes.
+    pub(crate) stamp: u32,
 }
 
 /// Storage of a structure: what the papers count and what the process really holds.
@@ -58,7 +60,7 @@ pub(crate) fn build_failure(e: BuildError) -> Failure {
     Failure::new(status, e.to_string())
 }
 
-fn query_failure(e: QueryError) -> Failure {
+pub(crate) fn query_failure(e: QueryError) -> Failure {
     let status = match &e {
         QueryError::NotInComplex { .. } => TpxStatus::NotInComplex,
         QueryError::DimensionOutOfRange { .. } => TpxStatus::DimensionOutOfRange,
@@ -106,7 +108,10 @@ pub unsafe extern "C" fn tpx_structure_build(
         let out = out_ptr(out, "out")?;
         let kind = kind_from_u32(kind)?;
         let topo = build(kind, &c.complex).map_err(build_failure)?;
-        *out = Box::into_raw(Box::new(TpxStructure { topo }));
+        *out = Box::into_raw(Box::new(TpxStructure {
+            topo,
+            stamp: super::handles::new_stamp(),
+        }));
         Ok(())
     })
 }

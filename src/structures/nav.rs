@@ -181,8 +181,22 @@ fn invalid(h: SimplexHandle, reason: &'static str) -> QueryError {
 
 impl<T: NavBase> Navigate for T {
     fn locate(&self, sigma: &[u32]) -> Result<SimplexHandle, QueryError> {
-        let s = normalize_simplex(sigma, self.vertex_count())?;
-        find(self, &s).ok_or(QueryError::NotInComplex { simplex: s })
+        // Sorted on the stack: locating allocates nothing unless it fails.
+        let n = self.vertex_count();
+        let k = sigma.len();
+        let mut buf = [0u32; MAX_DIMENSION + 1];
+        if k == 0 || k > buf.len() || sigma.iter().any(|&v| v >= n) {
+            return Err(normalize_simplex(sigma, n).expect_err("an invalid simplex"));
+        }
+        let s = &mut buf[..k];
+        s.copy_from_slice(sigma);
+        s.sort_unstable();
+        if s.windows(2).any(|w| w[0] == w[1]) {
+            return Err(normalize_simplex(sigma, n).expect_err("a repeated vertex"));
+        }
+        find(self, s).ok_or_else(|| QueryError::NotInComplex {
+            simplex: s.to_vec(),
+        })
     }
 
     fn check(&self, h: SimplexHandle) -> Result<(), QueryError> {
