@@ -27,21 +27,33 @@ pub struct Storage {
     pub bytes: u64,
 }
 
-/// The nine structures of the family, in the order the C ABI numbers them.
+/// The nine structures of the family. The discriminants are the C ABI's `TPX_KIND_*` numbers:
+/// fixed, never reused nor renumbered (see [`StructureKind::abi`]).
+#[repr(u32)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum StructureKind {
-    Ig,
-    Sig,
-    Ia,
-    Iqm,
-    Nmia,
-    Ts,
-    Pe,
-    Le,
-    De,
+    /// Incidence Graph.
+    Ig = 0,
+    /// Simplified Incidence Graph.
+    Sig = 1,
+    /// Indexed data structure with Adjacencies (extended with vertex stars).
+    Ia = 2,
+    /// Initial Quasi-Manifold structure.
+    Iqm = 3,
+    /// Non-Manifold Indexed data structure with Adjacencies.
+    Nmia = 4,
+    /// Triangle-Segment structure.
+    Ts = 5,
+    /// Partial Entities structure.
+    Pe = 6,
+    /// Loop Edge-use structure.
+    Le = 7,
+    /// Directed Edge structure.
+    De = 8,
 }
 
 impl StructureKind {
+    /// Every kind, in ABI order.
     pub const ALL: [StructureKind; 9] = [
         StructureKind::Ig,
         StructureKind::Sig,
@@ -53,6 +65,16 @@ impl StructureKind {
         StructureKind::Le,
         StructureKind::De,
     ];
+
+    /// The C ABI number (`TPX_KIND_*`).
+    pub fn abi(self) -> u32 {
+        self as u32
+    }
+
+    /// The kind of C ABI number `n`, if any.
+    pub fn from_abi(n: u32) -> Option<StructureKind> {
+        StructureKind::ALL.into_iter().find(|k| k.abi() == n)
+    }
 
     /// The CLI name (`ig`, `sig`, ...).
     pub fn name(self) -> &'static str {
@@ -69,6 +91,7 @@ impl StructureKind {
         }
     }
 
+    /// The kind of CLI name `name`, if any.
     pub fn from_name(name: &str) -> Option<StructureKind> {
         StructureKind::ALL.into_iter().find(|k| k.name() == name)
     }

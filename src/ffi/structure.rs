@@ -40,15 +40,12 @@ pub struct TpxRelationTable {
 }
 
 fn kind_from_u32(kind: u32) -> Result<StructureKind, Failure> {
-    StructureKind::ALL
-        .get(kind as usize)
-        .copied()
-        .ok_or_else(|| {
-            Failure::new(
-                TpxStatus::UnknownKind,
-                format!("unknown structure kind {kind} (expected 0..=8, TPX_KIND_*)"),
-            )
-        })
+    StructureKind::from_abi(kind).ok_or_else(|| {
+        Failure::new(
+            TpxStatus::UnknownKind,
+            format!("unknown structure kind {kind} (expected 0..=8, TPX_KIND_*)"),
+        )
+    })
 }
 
 pub(crate) fn build_failure(e: BuildError) -> Failure {
@@ -141,7 +138,7 @@ pub unsafe extern "C" fn tpx_structure_kind(s: *const TpxStructure, out: *mut u3
         let s = handle(s, "s")?;
         let out = out_ptr(out, "out")?;
         let kind = s.topo.kind();
-        *out = StructureKind::ALL.iter().position(|&k| k == kind).unwrap() as u32;
+        *out = kind.abi();
         Ok(())
     })
 }

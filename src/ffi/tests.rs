@@ -916,3 +916,24 @@ fn handles_locate_navigate_and_refuse_bad_handles() {
         tpx_complex_free(c);
     }
 }
+
+/// Every kind's ABI number is its TPX_KIND_* constant, in both directions (not only the ends).
+#[test]
+fn kind_numbers_are_the_tpx_kind_constants() {
+    use crate::relation::StructureKind as K;
+    let pairs = [
+        (K::Ig, TPX_KIND_IG),
+        (K::Sig, TPX_KIND_SIG),
+        (K::Ia, TPX_KIND_IA),
+        (K::Iqm, TPX_KIND_IQM),
+        (K::Nmia, TPX_KIND_NMIA),
+        (K::Ts, TPX_KIND_TS),
+        (K::Pe, TPX_KIND_PE),
+        (K::Le, TPX_KIND_LE),
+        (K::De, TPX_KIND_DE),
+    ];
+    for (k, n) in pairs {
+        assert_eq!((k.abi(), K::from_abi(n)), (n, Some(k)));
+    }
+    assert_eq!(K::from_abi(9), None);
+}

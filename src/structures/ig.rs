@@ -29,7 +29,7 @@
 //!
 //! Queries keep no state in the structure: the "visited" marks are a per-query set.
 
-use super::ia::{IdSet, faces_containing};
+use super::common::{IdSet, faces_containing};
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};

@@ -107,7 +107,7 @@
 
 use rustc_hash::FxHashSet;
 
-use super::ia::{IdSet, IdStack, faces_containing};
+use super::common::{IdSet, IdStack, UnionFind, faces_containing};
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
@@ -171,31 +171,6 @@ pub struct Decomposition {
     pub split_vertices: Vec<u32>,
     pub split_offsets: Vec<u32>,
     pub split_copies: Vec<u32>,
-}
-
-struct UnionFind(Vec<u32>);
-
-impl UnionFind {
-    fn new(n: usize) -> Self {
-        UnionFind((0..n as u32).collect())
-    }
-    fn find(&mut self, mut x: u32) -> u32 {
-        while self.0[x as usize] != x {
-            let up = self.0[self.0[x as usize] as usize];
-            self.0[x as usize] = up;
-            x = up;
-        }
-        x
-    }
-    fn union(&mut self, a: u32, b: u32) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        // The smaller root wins so that results do not depend on union order.
-        if ra < rb {
-            self.0[rb as usize] = ra;
-        } else if rb < ra {
-            self.0[ra as usize] = rb;
-        }
-    }
 }
 
 /// Rows of `arity - 1` ids: the facets of every row of `rows` (facet j omits entry j), each

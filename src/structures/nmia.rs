@@ -87,7 +87,8 @@
 //!
 //! Queries keep no state in the structure: every walk has its own set of visited simplices.
 
-use super::ia::{IdSet, IdStack, NONE, RowSet, faces_containing, faces_of_tops, show};
+use super::common::{IdSet, IdStack, RowSet, faces_containing, faces_of_tops, show};
+use super::ia::NONE;
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};

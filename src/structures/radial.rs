@@ -21,7 +21,7 @@ use std::f64::consts::TAU;
 
 use rustc_hash::FxHashSet;
 
-use super::ia::IdSet;
+use super::common::IdSet;
 use super::nav::with_scratch;
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
