@@ -353,17 +353,139 @@ class RelationTable {
   std::size_t arity_ = 1;
 };
 
+
+/* Answer order of navigation calls. */
+enum class Order : std::uint32_t {
+  Natural = TPX_ORDER_NATURAL,             /* the structure's own order (cheapest) */
+  Lexicographic = TPX_ORDER_LEXICOGRAPHIC  /* ascending index = lexicographic */
+};
+
+/* A handle to one simplex of one Structure: 12 bytes, copy freely, nothing to release; valid as
+ * long as its Structure lives. index() is the simplex's dense index among the simplices of its
+ * dimension (a vertex's index is its id), so per-simplex user data is an array indexed by it
+ * (see SimplexData). Two handles of one structure name the same simplex exactly when equal. */
+class Simplex {
+ public:
+  Simplex() = default;
+  explicit Simplex(const TpxSimplex &h) : h_(h) {}
+  std::uint32_t index() const noexcept { return h_.index; }
+  std::uint32_t dim() const noexcept { return h_.meta & 0xffu; }
+  const TpxSimplex &raw() const noexcept { return h_; }
+  bool operator==(const Simplex &o) const noexcept {
+    return h_.index == o.h_.index && h_.meta == o.h_.meta && h_.owner == o.h_.owner;
+  }
+  bool operator!=(const Simplex &o) const noexcept { return !(*this == o); }
+
+ private:
+  TpxSimplex h_{};
+};
+
+/* Handles of one dimension over a borrowed span of dense indices (an answer of related(),
+ * triangles_around(), ...). Iterating yields Simplex values; no allocation. */
+class SimplexSpan {
+ public:
+  class iterator {
+   public:
+    using iterator_category = std::random_access_iterator_tag;
+    using value_type = Simplex;
+    using difference_type = std::ptrdiff_t;
+    using pointer = void;
+    using reference = Simplex;
+    iterator() = default;
+    iterator(const std::uint32_t *p, std::uint32_t dim, std::uint32_t owner)
+        : p_(p), dim_(dim), owner_(owner) {}
+    Simplex operator*() const noexcept { return Simplex(TpxSimplex{*p_, dim_, owner_}); }
+    iterator &operator++() noexcept {
+      ++p_;
+      return *this;
+    }
+    iterator operator++(int) noexcept {
+      iterator t = *this;
+      ++p_;
+      return t;
+    }
+    difference_type operator-(const iterator &o) const noexcept { return p_ - o.p_; }
+    bool operator==(const iterator &o) const noexcept { return p_ == o.p_; }
+    bool operator!=(const iterator &o) const noexcept { return p_ != o.p_; }
+
+   private:
+    const std::uint32_t *p_ = nullptr;
+    std::uint32_t dim_ = 0, owner_ = 0;
+  };
+  SimplexSpan(const std::uint32_t *ids, std::size_t n, std::uint32_t dim, std::uint32_t owner)
+      : ids_(ids), n_(n), dim_(dim), owner_(owner) {}
+  iterator begin() const noexcept { return iterator(ids_, dim_, owner_); }
+  iterator end() const noexcept { return iterator(ids_ + n_, dim_, owner_); }
+  std::size_t size() const noexcept { return n_; }
+  bool empty() const noexcept { return n_ == 0; }
+  Simplex operator[](std::size_t i) const noexcept {
+    return Simplex(TpxSimplex{ids_[i], dim_, owner_});
+  }
+  /* The dense indices themselves. */
+  const std::uint32_t *indices() const noexcept { return ids_; }
+
+ private:
+  const std::uint32_t *ids_;
+  std::size_t n_;
+  std::uint32_t dim_, owner_;
+};
+
+/* An answer that owns its indices (returned by value); iterate it like a SimplexSpan. */
+class SimplexList {
+ public:
+  SimplexList() = default;
+  SimplexList(std::vector<std::uint32_t> ids, std::uint32_t dim, std::uint32_t owner)
+      : ids_(std::move(ids)), dim_(dim), owner_(owner) {}
+  SimplexSpan::iterator begin() const noexcept { return span().begin(); }
+  SimplexSpan::iterator end() const noexcept { return span().end(); }
+  std::size_t size() const noexcept { return ids_.size(); }
+  bool empty() const noexcept { return ids_.empty(); }
+  Simplex operator[](std::size_t i) const noexcept { return span()[i]; }
+  SimplexSpan span() const noexcept { return SimplexSpan(ids_.data(), ids_.size(), dim_, owner_); }
+  const std::vector<std::uint32_t> &indices() const noexcept { return ids_; }
+
+ private:
+  std::vector<std::uint32_t> ids_;
+  std::uint32_t dim_ = 0, owner_ = 0;
+};
+
+/* Cyclically ordered groups (fans around a vertex, radial groups around an edge). Reuse one
+ * object across calls (Structure::fans_around(v, fans)) to avoid allocation. */
+class Fans {
+ public:
+  std::size_t size() const noexcept { return groups_; }
+  /* Group k, in cyclic order. */
+  SimplexSpan operator[](std::size_t k) const noexcept {
+    return SimplexSpan(items_.data() + offsets_[k], offsets_[k + 1] - offsets_[k], dim_, owner_);
+  }
+  bool closed(std::size_t k) const noexcept { return (flags_[k] & TPX_GROUP_CLOSED) != 0; }
+  /* Consistently oriented and counter-clockwise by the input winding. */
+  bool oriented(std::size_t k) const noexcept { return (flags_[k] & TPX_GROUP_ORIENTED) != 0; }
+  /* Every group's simplices, group after group. */
+  SimplexSpan all() const noexcept {
+    return SimplexSpan(items_.data(), items_n_, dim_, owner_);
+  }
+
+ private:
+  friend class Structure;
+  std::vector<std::uint32_t> items_, offsets_, flags_;
+  std::size_t items_n_ = 0, groups_ = 0;
+  std::uint32_t dim_ = 2, owner_ = 0;
+};
+
 /* A built structure (owns a TpxStructure). Independent of the Complex once built. */
 class Structure {
  public:
   Structure(const Complex &c, Kind kind) {
     detail::check(tpx_structure_build(c.get(), static_cast<std::uint32_t>(kind), &s_));
+    detail::check(tpx_structure_stamp(s_, &stamp_));
   }
-  Structure(Structure &&o) noexcept : s_(std::exchange(o.s_, nullptr)) {}
+  Structure(Structure &&o) noexcept : s_(std::exchange(o.s_, nullptr)), stamp_(o.stamp_) {}
   Structure &operator=(Structure &&o) noexcept {
     if (this != &o) {
       tpx_structure_free(s_);
       s_ = std::exchange(o.s_, nullptr);
+      stamp_ = o.stamp_;
     }
     return *this;
   }
@@ -432,10 +554,272 @@ class Structure {
     return RelationTable(t, q + 1);
   }
 
+
+  /* ---- handles: locate once, then navigate (see the Rust `handle` module for costs) ---- */
+
+  /* The handle of the simplex with these vertex ids (any order); throws NOT_IN_COMPLEX. */
+  Simplex locate(const std::uint32_t *ids, std::size_t n) const {
+    TpxSimplex h{};
+    detail::check(tpx_locate(s_, ids, n, &h));
+    return Simplex(h);
+  }
+  Simplex locate(const std::vector<std::uint32_t> &ids) const {
+    return locate(ids.data(), ids.size());
+  }
+  Simplex locate(std::initializer_list<std::uint32_t> ids) const {
+    return locate(ids.begin(), ids.size());
+  }
+  /* The p-simplex of dense index i (checked). vertex(v) = handle(0, v). */
+  Simplex handle(std::uint32_t p, std::uint32_t i) const {
+    TpxSimplex h{};
+    detail::check(tpx_handle(s_, p, i, &h));
+    return Simplex(h);
+  }
+  Simplex vertex(std::uint32_t v) const { return handle(0, v); }
+  /* The owner stamp every handle of this structure carries. */
+  std::uint32_t stamp() const { return stamp_; }
+
+  /* Vertex ids of h, ascending, into `out` (reused). */
+  void vertices(Simplex h, std::vector<std::uint32_t> &out) const {
+    out.resize(16);
+    std::size_t len = 0;
+    detail::check(tpx_simplex_vertices(s_, &h.raw(), out.data(), out.size(), &len));
+    out.resize(len);
+  }
+  std::vector<std::uint32_t> vertices(Simplex h) const {
+    std::vector<std::uint32_t> out;
+    vertices(h, out);
+    return out;
+  }
+
+  /* R_{p,q}(h) as dense indices of q-simplices into `out`, reusing its capacity: after the first
+   * calls, no allocation. */
+  void related(Simplex h, std::uint32_t q, std::vector<std::uint32_t> &out,
+               Order order = Order::Natural) const {
+    if (out.capacity() < 16) out.reserve(16);
+    out.resize(out.capacity());
+    std::size_t len = 0;
+    TpxStatus st = tpx_related(s_, &h.raw(), q, static_cast<std::uint32_t>(order), out.data(),
+                               out.size(), &len);
+    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+      out.resize(len);
+      st = tpx_related(s_, &h.raw(), q, static_cast<std::uint32_t>(order), out.data(),
+                       out.size(), &len);
+    }
+    detail::check(st);
+    out.resize(len);
+  }
+  /* R_{p,q}(h) as a range of handles. */
+  SimplexList related(Simplex h, std::uint32_t q, Order order = Order::Natural) const {
+    std::vector<std::uint32_t> ids;
+    related(h, q, ids, order);
+    return SimplexList(std::move(ids), q, stamp_);
+  }
+  /* Faces, cofaces and neighbours by name. */
+  SimplexList boundary(Simplex h, std::uint32_t q, Order o = Order::Natural) const {
+    return related(h, q, o);
+  }
+  SimplexList coboundary(Simplex h, std::uint32_t q, Order o = Order::Natural) const {
+    return related(h, q, o);
+  }
+  SimplexList adjacent(Simplex h, Order o = Order::Natural) const {
+    return related(h, h.dim(), o);
+  }
+  /* R_{p,q} of the p-simplices of dense indices `indices`, in CSR form: answer i is
+   * ids[offsets[i] .. offsets[i+1]]. Buffers are reused. */
+  void related_batch(std::uint32_t p, const std::vector<std::uint32_t> &indices, std::uint32_t q,
+                     std::vector<std::uint32_t> &offsets, std::vector<std::uint32_t> &ids,
+                     Order order = Order::Natural) const {
+    offsets.resize(indices.size() + 1);
+    if (ids.empty()) ids.resize(indices.size() * 8 + 16);
+    std::size_t len = 0;
+    const auto o = static_cast<std::uint32_t>(order);
+    TpxStatus st = tpx_related_batch(s_, p, indices.data(), indices.size(), q, o,
+                                     offsets.data(), ids.data(), ids.size(), &len);
+    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+      ids.resize(len);
+      st = tpx_related_batch(s_, p, indices.data(), indices.size(), q, o, offsets.data(),
+                             ids.data(), ids.size(), &len);
+    }
+    detail::check(st);
+    ids.resize(len);
+  }
+  /* |R_{p,q}(h)| without writing the answer. */
+  std::size_t degree(Simplex h, std::uint32_t q) const {
+    std::size_t n = 0;
+    detail::check(tpx_degree(s_, &h.raw(), q, &n));
+    return n;
+  }
+  bool is_boundary(Simplex h) const { return test(h, 0); }
+  bool is_manifold(Simplex h) const { return test(h, 1); }
+  /* Star (every simplex having h as a proper face) or link of h, dimension ascending. */
+  std::vector<Simplex> star(Simplex h, Order o = Order::Natural) const { return star_or_link(h, 0, o); }
+  std::vector<Simplex> link(Simplex h, Order o = Order::Natural) const { return star_or_link(h, 1, o); }
+
+  /* Top simplices: ids 0..top_total()-1 (dimension ascending, lexicographic within; the same
+   * for every structure of one complex). */
+  std::uint32_t top_total() const {
+    std::uint32_t n = 0;
+    detail::check(tpx_top_total(s_, &n));
+    return n;
+  }
+  Simplex top(std::uint32_t t) const {
+    TpxSimplex h{};
+    detail::check(tpx_top(s_, t, &h));
+    return Simplex(h);
+  }
+  /* The top id of h, or UINT32_MAX when h is not a top simplex. */
+  std::uint32_t top_id(Simplex h) const {
+    std::uint32_t t = 0;
+    detail::check(tpx_top_id(s_, &h.raw(), &t));
+    return t;
+  }
+  /* Top simplex t with its vertices as given in the input (its winding). */
+  std::vector<std::uint32_t> top_as_given(std::uint32_t t) const {
+    std::vector<std::uint32_t> out(16);
+    std::size_t len = 0;
+    detail::check(tpx_top_as_given(s_, t, out.data(), out.size(), &len));
+    out.resize(len);
+    return out;
+  }
+
+  /* Cyclic order. The manifold fans of triangles around vertex v (a complex of dimension <= 2),
+   * each counter-clockwise by the input winding where oriented; `fans` is reused. */
+  void fans_around(Simplex v, Fans &fans) const { cyclic(v, 0, 2, fans); }
+  Fans fans_around(Simplex v) const {
+    Fans f;
+    fans_around(v, f);
+    return f;
+  }
+  /* Circulator-style: for (auto t : mesh.triangles_around(v)) — every fan's triangles in order,
+   * fan after fan. */
+  SimplexList triangles_around(Simplex v) const {
+    Fans f;
+    fans_around(v, f);
+    auto all = f.all();
+    return SimplexList(std::vector<std::uint32_t>(all.indices(), all.indices() + all.size()), 2,
+                       stamp_);
+  }
+  /* The triangles (q = 2) or tetrahedra (q = 3) around edge e in radial order, grouped. */
+  void around_edge(Simplex e, std::uint32_t q, Fans &fans) const { cyclic(e, q, q, fans); }
+  Fans around_edge(Simplex e, std::uint32_t q) const {
+    Fans f;
+    around_edge(e, q, f);
+    return f;
+  }
+
   const TpxStructure *get() const noexcept { return s_; }
 
  private:
+  bool test(Simplex h, std::uint32_t what) const {
+    std::uint32_t r = 0;
+    detail::check(tpx_simplex_test(s_, &h.raw(), what, &r));
+    return r != 0;
+  }
+  std::vector<Simplex> star_or_link(Simplex h, std::uint32_t link, Order o) const {
+    std::vector<TpxSimplex> buf(64);
+    std::size_t len = 0;
+    const auto ord = static_cast<std::uint32_t>(o);
+    TpxStatus st = tpx_star(s_, &h.raw(), link, ord, buf.data(), buf.size(), &len);
+    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+      buf.resize(len);
+      st = tpx_star(s_, &h.raw(), link, ord, buf.data(), buf.size(), &len);
+    }
+    detail::check(st);
+    std::vector<Simplex> out;
+    out.reserve(len);
+    for (std::size_t i = 0; i < len; ++i) out.emplace_back(buf[i]);
+    return out;
+  }
+  void cyclic(Simplex h, std::uint32_t q, std::uint32_t dim, Fans &f) const {
+    if (f.items_.size() < 16) f.items_.resize(16);
+    if (f.flags_.size() < 4) f.flags_.resize(4);
+    f.offsets_.resize(f.flags_.size() + 1);
+    std::size_t ni = 0, ng = 0;
+    TpxStatus st = tpx_cyclic(s_, &h.raw(), q, f.items_.data(), f.items_.size(),
+                              f.offsets_.data(), f.flags_.data(), f.flags_.size(), &ni, &ng);
+    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+      if (f.items_.size() < ni) f.items_.resize(ni);
+      if (f.flags_.size() < ng) f.flags_.resize(ng);
+      f.offsets_.resize(f.flags_.size() + 1);
+      st = tpx_cyclic(s_, &h.raw(), q, f.items_.data(), f.items_.size(), f.offsets_.data(),
+                      f.flags_.data(), f.flags_.size(), &ni, &ng);
+    }
+    detail::check(st);
+    f.items_n_ = ni;
+    f.groups_ = ng;
+    f.dim_ = dim;
+    f.owner_ = stamp_;
+  }
+
   TpxStructure *s_ = nullptr;
+  std::uint32_t stamp_ = 0;
+};
+
+/* Per-simplex user data for the p-simplices of one structure, indexed by handle (dense index),
+ * as pmp and geometry-central do: a std::vector<T> of count(p) entries. */
+template <class T>
+class SimplexData {
+ public:
+  SimplexData(const Structure &s, std::uint32_t p, const T &init = T())
+      : dim_(p), data_(s.count(p), init) {}
+  T &operator[](Simplex h) { return data_.at(check(h)); }
+  const T &operator[](Simplex h) const { return data_.at(check(h)); }
+  T &operator[](std::uint32_t i) { return data_[i]; }
+  const T &operator[](std::uint32_t i) const { return data_[i]; }
+  std::size_t size() const noexcept { return data_.size(); }
+  std::vector<T> &data() noexcept { return data_; }
+
+ private:
+  std::size_t check(Simplex h) const {
+    if (h.dim() != dim_) throw Error(TPX_STATUS_WRONG_HANDLE_KIND, "handle of another dimension");
+    return h.index();
+  }
+  std::uint32_t dim_;
+  std::vector<T> data_;
+};
+
+/* The standard decomposition into initial quasi-manifold components (owns a TpxDecomposition). */
+class Decomposition {
+ public:
+  /* One component: its dimension, its top simplices over local vertex ids, and the original
+   * vertex of each local vertex. Views into the Decomposition (valid while it lives). */
+  struct Component {
+    std::uint32_t dimension;
+    RowsView tops;
+    const std::uint32_t *original_ids;
+    std::size_t local_vertex_count;
+  };
+  explicit Decomposition(const Complex &c) { detail::check(tpx_decomposition_build(c.get(), &d_)); }
+  Decomposition(Decomposition &&o) noexcept : d_(std::exchange(o.d_, nullptr)) {}
+  Decomposition &operator=(Decomposition &&o) noexcept {
+    if (this != &o) {
+      tpx_decomposition_free(d_);
+      d_ = std::exchange(o.d_, nullptr);
+    }
+    return *this;
+  }
+  Decomposition(const Decomposition &) = delete;
+  Decomposition &operator=(const Decomposition &) = delete;
+  ~Decomposition() { tpx_decomposition_free(d_); }
+
+  std::size_t size() const {
+    std::size_t n = 0;
+    detail::check(tpx_decomposition_component_count(d_, &n));
+    return n;
+  }
+  Component operator[](std::size_t i) const {
+    std::uint32_t dim = 0;
+    const std::uint32_t *tops = nullptr, *orig = nullptr;
+    std::size_t tops_len = 0, orig_len = 0;
+    detail::check(
+        tpx_decomposition_component(d_, i, &dim, &tops, &tops_len, &orig, &orig_len));
+    return Component{dim, RowsView(tops, tops_len, dim + 1), orig, orig_len};
+  }
+  const TpxDecomposition *get() const noexcept { return d_; }
+
+ private:
+  TpxDecomposition *d_ = nullptr;
 };
 
 inline std::string version() { return tpx_version(); }

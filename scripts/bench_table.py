@@ -144,9 +144,12 @@ def main_table(results, kinds: list[str], sizes: dict[str, str]) -> list[str]:
         ops = results[(program, dataset)]
         for op in ops:
             libs = ops[op]
-            peers = [lib for lib in libs if not lib.startswith("tpx_")]
+            # `<op>_batch` (one tpx_related_batch call over every simplex) has no peer run of
+            # its own: compare it with the peers' per-element walk of `<op>`.
+            peer_libs = ops.get(op[: -len("_batch")], {}) if op.endswith("_batch") else libs
+            peers = [lib for lib in peer_libs if not lib.startswith("tpx_")]
             for peer in peers:
-                p = libs[peer]
+                p = peer_libs[peer]
                 cells, best = [], None
                 for k in kinds:
                     t = libs.get(f"tpx_{k}")

@@ -17,6 +17,7 @@ pub mod error;
 #[allow(unsafe_code)]
 pub mod ffi;
 pub mod fixtures;
+pub mod handle;
 pub mod io;
 pub mod oracle;
 pub mod relation;
@@ -24,5 +25,6 @@ pub mod report;
 pub mod structures;
 
 pub use complex::{Budget, Complex, ComplexError};
+pub use handle::{Fans, Navigate, Order, SimplexHandle, TopId, VertexId, Vertices};
 pub use relation::{QueryError, Storage, StructureKind, Topology};
 pub use structures::{BuildError, build};

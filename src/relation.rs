@@ -14,6 +14,7 @@
 use std::fmt;
 
 use crate::complex::{MAX_DIMENSION, sort_dedup_rows};
+use crate::handle::{Navigate, SimplexHandle};
 
 /// Storage of a built structure: what the papers count, and what the process really holds.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
@@ -26,31 +27,33 @@ pub struct Storage {
     pub bytes: u64,
 }
 
-/// The nine structures of the family, in the order the C ABI numbers them.
+/// The nine structures of the family. The discriminants are the C ABI's `TPX_KIND_*` numbers:
+/// fixed, never reused nor renumbered (see [`StructureKind::abi`]).
+#[repr(u32)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum StructureKind {
     /// Incidence Graph.
-    Ig,
+    Ig = 0,
     /// Simplified Incidence Graph.
-    Sig,
-    /// Indexed data structure with Adjacencies.
-    Ia,
-    /// IA Quasi-Manifold data structure (on the standard decomposition).
-    Iqm,
+    Sig = 1,
+    /// Indexed data structure with Adjacencies (extended with vertex stars).
+    Ia = 2,
+    /// Initial Quasi-Manifold structure.
+    Iqm = 3,
     /// Non-Manifold Indexed data structure with Adjacencies.
-    Nmia,
-    /// Triangle-Segment data structure.
-    Ts,
-    /// Partial Entity data structure.
-    Pe,
-    /// Loop-Edge-use data structure.
-    Le,
-    /// Directed-Edge data structure.
-    De,
+    Nmia = 4,
+    /// Triangle-Segment structure.
+    Ts = 5,
+    /// Partial Entities structure.
+    Pe = 6,
+    /// Loop Edge-use structure.
+    Le = 7,
+    /// Directed Edge structure.
+    De = 8,
 }
 
 impl StructureKind {
-    /// Every kind, in C ABI order.
+    /// Every kind, in ABI order.
     pub const ALL: [StructureKind; 9] = [
         StructureKind::Ig,
         StructureKind::Sig,
@@ -62,6 +65,16 @@ impl StructureKind {
         StructureKind::Le,
         StructureKind::De,
     ];
+
+    /// The C ABI number (`TPX_KIND_*`).
+    pub fn abi(self) -> u32 {
+        self as u32
+    }
+
+    /// The kind of C ABI number `n`, if any.
+    pub fn from_abi(n: u32) -> Option<StructureKind> {
+        StructureKind::ALL.into_iter().find(|k| k.abi() == n)
+    }
 
     /// The CLI name (`ig`, `sig`, ...).
     pub fn name(self) -> &'static str {
@@ -143,6 +156,28 @@ pub enum QueryError {
         /// Dimension of the complex.
         dim: usize,
     },
+    /// A handle that names no simplex of this structure (out of range, `NONE`, bad form).
+    #[error("invalid handle {handle}: {reason}")]
+    InvalidHandle {
+        /// The handle as given.
+        handle: SimplexHandle,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// A handle of a simplex that an edit removed.
+    #[error("stale handle {handle}: the simplex was removed")]
+    StaleHandle {
+        /// The handle as given.
+        handle: SimplexHandle,
+    },
+    /// A handle of the wrong kind for the operation (an edge where a vertex is needed).
+    #[error("handle {handle} is not {expected}")]
+    WrongHandleKind {
+        /// The handle as given.
+        handle: SimplexHandle,
+        /// What the operation needs ("a vertex", "an edge").
+        expected: &'static str,
+    },
 }
 
 /// The relation API. Implementors provide [`Topology::query`] for a validated simplex; callers
@@ -184,6 +219,12 @@ pub trait Topology: Send + Sync {
     /// (name, value) pairs. None by default.
     fn summary(&self) -> Vec<(&'static str, u64)> {
         Vec::new()
+    }
+
+    /// This structure's handle navigation ([`Navigate`]), when it has one (every structure of
+    /// this crate does).
+    fn as_navigate(&self) -> Option<&dyn Navigate> {
+        None
     }
 
     /// R_{p,q}(σ) for σ given by vertex ids in any order; p = |σ| − 1. Validates σ (no repeated

@@ -276,10 +276,14 @@ uint64_t walk(benchmark::State& state, const TpxStructure* s, const std::vector<
   uint64_t count = 0;
   bool ok = true;
   const size_t arity = p + 1;
-  const uint32_t* end = simplices.data() + simplices.size();
-  for (const uint32_t* sigma = simplices.data(); sigma != end; sigma += arity)
-    for (uint32_t q : qs) count += w.rows(s, sigma, arity, q, &ok);
-  if (!ok) fail(state, "tpx_relation failed: " + tpx_message());
+  uint32_t stamp = 0;
+  tpx_check(tpx_structure_stamp(s, &stamp), "tpx_structure_stamp");
+  const uint32_t n = uint32_t(simplices.size() / arity);
+  for (uint32_t i = 0; i < n; ++i) {
+    const TpxSimplex h{i, p, stamp};
+    for (uint32_t q : qs) count += w.related(s, h, q, &ok);
+  }
+  if (!ok) fail(state, "tpx_related failed: " + tpx_message());
   return count;
 }
 

@@ -153,14 +153,31 @@ class Walker {
     }
     return out / (q + 1);
   }
+  // Number of simplices of R_{p,q}(h) through the handle API (dense indices into the reused
+  // buffer); 0 with `ok` false on an error.
+  uint64_t related(const TpxStructure* s, const TpxSimplex& h, uint32_t q, bool* ok) {
+    size_t out = 0;
+    TpxStatus st = tpx_related(s, &h, q, TPX_ORDER_NATURAL, buf_.data(), buf_.size(), &out);
+    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+      buf_.resize(2 * out);
+      st = tpx_related(s, &h, q, TPX_ORDER_NATURAL, buf_.data(), buf_.size(), &out);
+    }
+    if (st != TPX_STATUS_OK) {
+      *ok = false;
+      return 0;
+    }
+    return out;
+  }
   const uint32_t* data() const { return buf_.data(); }
 
  private:
   std::vector<uint32_t> buf_;
 };
 
-// Walks R_{p,q} over every simplex of `simplices` (rows of p+1 ids) for each q in `qs`,
-// counting rows; fails the benchmark on a Topoplex error.
+// Walks R_{p,q} over every simplex of `simplices` (rows of p+1 ids, ascending lexicographic, so
+// row i is the simplex of dense index i) for each q in `qs`, through the handle API (one
+// tpx_related per simplex and q, from the handle {i, p, stamp}: no locating), counting the
+// answers; fails the benchmark on a Topoplex error.
 uint64_t walk(benchmark::State& state, const TpxStructure* s, const std::vector<uint32_t>& simplices, uint32_t p,
               const std::vector<uint32_t>& qs, Walker& w);
 

@@ -330,6 +330,26 @@ int main(int argc, char** argv) {
         check_count(state, op.name, lib, count);
         set_elements(state, count);
       });
+      // The same walk as one batch call (tpx_related_batch: CSR over every simplex), buffers
+      // reused across iterations: what a whole-mesh pass costs without per-call overhead.
+      const std::string batch = std::string(op.name) + "_batch";
+      add(batch, lib, Unit::Walk, [=](benchmark::State& state) {
+        const Built& b = slot().get<Built>(lib, make);
+        const uint32_t n = uint32_t((op.p == 0 ? b.vertices.size() : b.triangles.size()) / (op.p + 1));
+        std::vector<uint32_t> idx(n), offsets(n + 1), ids(16 * size_t(n) + 16);
+        for (uint32_t i = 0; i < n; ++i) idx[i] = i;
+        uint64_t count = 0;
+        for (auto _ : state) {
+          size_t len = 0;
+          const TpxStatus st = tpx_related_batch(b.s.get(), op.p, idx.data(), n, op.q, TPX_ORDER_NATURAL,
+                                                 offsets.data(), ids.data(), ids.size(), &len);
+          if (st != TPX_STATUS_OK) fail(state, "tpx_related_batch failed: " + tpx_message());
+          count = len;
+          benchmark::DoNotOptimize(ids.data());
+        }
+        check_count(state, batch, lib, count);
+        set_elements(state, count);
+      });
     }
   }
   return run();

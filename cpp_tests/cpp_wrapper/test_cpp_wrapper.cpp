@@ -192,4 +192,78 @@ TEST(Wrapper, ConstStructureFromTwoThreads) {
   EXPECT_EQ(got[1], (Ids{0, 1, 2, 4}));
 }
 
+
+// Handles: locate once, ranges of handles, buffer-reusing overloads, per-simplex data, tops as
+// given, and bad handles as exceptions with the right status.
+TEST(Wrapper, HandlesNavigateTheFixture) {
+  const Complex c = fixture();
+  const Structure s(c, Kind::NMIA);
+  const topoplex::Simplex e = s.locate({3, 2});
+  EXPECT_EQ(e.dim(), 1u);
+  EXPECT_EQ(s.vertices(e), (Ids{2, 3}));
+  std::vector<Ids> tris;
+  for (auto t : s.related(e, 2, topoplex::Order::Lexicographic)) tris.push_back(s.vertices(t));
+  EXPECT_EQ(tris, (std::vector<Ids>{{0, 2, 3}, {1, 2, 3}, {2, 3, 4}}));
+  EXPECT_EQ(s.degree(e, 3), 1u);
+  EXPECT_FALSE(s.is_manifold(e));
+  Ids buf;
+  s.related(s.vertex(4), 0, buf, topoplex::Order::Lexicographic);
+  EXPECT_EQ(buf, (Ids{2, 3, 5}));
+  Ids offsets, ids;
+  s.related_batch(0, {4, 5}, 0, offsets, ids, topoplex::Order::Lexicographic);
+  EXPECT_EQ(offsets, (Ids{0, 3, 4}));
+  EXPECT_EQ(ids, (Ids{2, 3, 5, 4}));
+  // Tops: 4-5, 2 3 4 (given as 4 2 3), 0 1 2 3 (given as 3 2 1 0).
+  ASSERT_EQ(s.top_total(), 3u);
+  EXPECT_EQ(s.top_as_given(1), (Ids{4, 2, 3}));
+  EXPECT_EQ(s.top_as_given(2), (Ids{3, 2, 1, 0}));
+  EXPECT_EQ(s.top_id(s.top(2)), 2u);
+  topoplex::SimplexData<int> mark(s, 1, 0);
+  mark[e] = 7;
+  EXPECT_EQ(mark[e.index()], 7);
+  EXPECT_EQ(status_of([&] { mark[s.vertex(0)] = 1; }), TPX_STATUS_WRONG_HANDLE_KIND);
+  const Structure other(c, Kind::IG);
+  EXPECT_EQ(status_of([&] { s.degree(other.locate({2, 3}), 2); }), TPX_STATUS_FOREIGN_HANDLE);
+  EXPECT_EQ(status_of([&] { s.handle(1, 999); }), TPX_STATUS_INVALID_HANDLE);
+  // Radial groups around edge 2-3: one tetrahedron, so a sweep 0 2 3 -> 1 2 3, then 2 3 4.
+  const topoplex::Fans f = s.around_edge(e, 2);
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_EQ(f[0].size(), 2u);
+  EXPECT_EQ(s.vertices(f[1][0]), (Ids{2, 3, 4}));
+}
+
+// Circulator over a wound fan: triangles around vertex 0, counter-clockwise by the winding.
+//
+//        3
+//       / \          A = 0 1 2, B given as 2 3 0, C given as 4 1 0: one open fan C, A, B.
+//      0---2
+//      |\ /
+//      4-1
+TEST(Wrapper, TrianglesAroundAVertexComeCounterClockwise) {
+  const Complex c = Complex::from_simplices(5, {{0, 1, 2}, {2, 3, 0}, {4, 1, 0}});
+  for (Kind k : {Kind::TS, Kind::PE, Kind::LE, Kind::DE, Kind::IA, Kind::IG}) {
+    const Structure s(c, k);
+    std::vector<Ids> order;
+    for (auto t : s.triangles_around(s.vertex(0))) order.push_back(s.vertices(t));
+    EXPECT_EQ(order, (std::vector<Ids>{{0, 1, 4}, {0, 1, 2}, {0, 2, 3}}));
+    const topoplex::Fans f = s.fans_around(s.vertex(0));
+    ASSERT_EQ(f.size(), 1u);
+    EXPECT_TRUE(f.oriented(0));
+    EXPECT_FALSE(f.closed(0));
+  }
+}
+
+// The decomposition class: the bowtie splits into two components at its pinch vertex.
+TEST(Wrapper, DecompositionOfTheBowtie) {
+  const Complex c = Complex::from_simplices(5, {{0, 1, 2}, {0, 3, 4}});
+  const topoplex::Decomposition d(c);
+  ASSERT_EQ(d.size(), 2u);
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const auto comp = d[i];
+    EXPECT_EQ(comp.dimension, 2u);
+    EXPECT_EQ(comp.tops.size(), 1u);
+    EXPECT_EQ(comp.local_vertex_count, 3u);
+  }
+}
+
 }  // namespace

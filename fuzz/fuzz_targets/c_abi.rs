@@ -102,6 +102,7 @@ fuzz_target!(|data: &[u8]| {
                 unsafe { tpx_relation_table_free(t) };
             }
         }
+        handle_calls(s, topo.as_ref(), &mut b);
     }
     if !complex.is_null() && b.next() % 3 == 0 {
         let mut d = null_mut();
@@ -118,3 +119,96 @@ fuzz_target!(|data: &[u8]| {
         tpx_complex_free(complex);
     }
 });
+
+/// Handle calls with arbitrary (often bad) handles: located ones, ones built from arbitrary
+/// words, ones with another owner. Successful answers must equal the Rust API's; no panic.
+fn handle_calls(s: *const TpxStructure, topo: &dyn topoplex::Topology, b: &mut Bytes) {
+    let nav = topo.as_navigate().expect("every structure navigates");
+    let mut stamp = 0u32;
+    assert_eq!(unsafe { tpx_structure_stamp(s, &mut stamp) }, TpxStatus::Ok);
+    for _ in 0..8 {
+        let mut h = TpxSimplex::default();
+        let st = match b.next() % 3 {
+            0 => {
+                let len = usize::from(b.next() % 5);
+                let sigma: Vec<u32> = (0..len).map(|_| u32::from(b.next() % 14)).collect();
+                unsafe { tpx_locate(s, sigma.as_ptr(), sigma.len(), &mut h) }
+            }
+            1 => unsafe {
+                tpx_handle(s, u32::from(b.next() % 5), u32::from(b.next() % 40), &mut h)
+            },
+            _ => {
+                h = TpxSimplex {
+                    index: u32::from(b.next()) * 3,
+                    meta: u32::from(b.next() % 20) | u32::from(b.next() % 3) << 8,
+                    owner: if b.next() % 2 == 0 {
+                        stamp
+                    } else {
+                        u32::from(b.next())
+                    },
+                };
+                TpxStatus::Ok
+            }
+        };
+        assert_ne!(st, TpxStatus::Panic);
+        let q = u32::from(b.next() % 5);
+        let order = u32::from(b.next() % 3);
+        let cap = usize::from(b.next() % 64);
+        let mut buf = vec![0u32; cap];
+        let mut len = 0usize;
+        let st = unsafe { tpx_related(s, &h, q, order, buf.as_mut_ptr(), cap, &mut len) };
+        assert_ne!(st, TpxStatus::Panic);
+        if st == TpxStatus::Ok && order == TPX_ORDER_LEXICOGRAPHIC {
+            let sh = nav
+                .handle((h.meta & 0xff) as usize, h.index)
+                .expect("accepted");
+            let mut want = Vec::new();
+            nav.related(sh, q as usize, topoplex::Order::Lexicographic, &mut want)
+                .expect("the ABI answered");
+            let want: Vec<u32> = want.iter().map(|x| x.index()).collect();
+            assert_eq!(&buf[..len], &want[..]);
+        }
+        let mut deg = 0usize;
+        assert_ne!(unsafe { tpx_degree(s, &h, q, &mut deg) }, TpxStatus::Panic);
+        let mut flag = 0u32;
+        let what = u32::from(b.next() % 3);
+        assert_ne!(
+            unsafe { tpx_simplex_test(s, &h, what, &mut flag) },
+            TpxStatus::Panic
+        );
+        let mut stars = vec![TpxSimplex::default(); cap];
+        let st = unsafe {
+            tpx_star(
+                s,
+                &h,
+                u32::from(b.next() % 2),
+                order,
+                stars.as_mut_ptr(),
+                cap,
+                &mut len,
+            )
+        };
+        assert_ne!(st, TpxStatus::Panic);
+        let (mut offsets, mut flags) = (vec![0u32; 9], vec![0u32; 8]);
+        let (mut ni, mut ng) = (0usize, 0usize);
+        let st = unsafe {
+            tpx_cyclic(
+                s,
+                &h,
+                q,
+                buf.as_mut_ptr(),
+                cap,
+                offsets.as_mut_ptr(),
+                flags.as_mut_ptr(),
+                8,
+                &mut ni,
+                &mut ng,
+            )
+        };
+        assert_ne!(st, TpxStatus::Panic);
+        let mut top = u32::MAX;
+        assert_ne!(unsafe { tpx_top_id(s, &h, &mut top) }, TpxStatus::Panic);
+        let st = unsafe { tpx_top_as_given(s, top, buf.as_mut_ptr(), cap, &mut len) };
+        assert_ne!(st, TpxStatus::Panic);
+    }
+}

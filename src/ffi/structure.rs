@@ -16,6 +16,8 @@ use super::complex::TpxComplex;
 /// threads at once.
 pub struct TpxStructure {
     pub(crate) topo: Box<dyn Topology>,
+    /// Owner stamp carried by every `TpxSimplex` this structure makes.
+    pub(crate) stamp: u32,
 }
 
 /// Storage of a structure: what the papers count and what the process really holds.
@@ -38,15 +40,12 @@ pub struct TpxRelationTable {
 }
 
 fn kind_from_u32(kind: u32) -> Result<StructureKind, Failure> {
-    StructureKind::ALL
-        .get(kind as usize)
-        .copied()
-        .ok_or_else(|| {
-            Failure::new(
-                TpxStatus::UnknownKind,
-                format!("unknown structure kind {kind} (expected 0..=8, TPX_KIND_*)"),
-            )
-        })
+    StructureKind::from_abi(kind).ok_or_else(|| {
+        Failure::new(
+            TpxStatus::UnknownKind,
+            format!("unknown structure kind {kind} (expected 0..=8, TPX_KIND_*)"),
+        )
+    })
 }
 
 pub(crate) fn build_failure(e: BuildError) -> Failure {
@@ -58,7 +57,7 @@ pub(crate) fn build_failure(e: BuildError) -> Failure {
     Failure::new(status, e.to_string())
 }
 
-fn query_failure(e: QueryError) -> Failure {
+pub(crate) fn query_failure(e: QueryError) -> Failure {
     let status = match &e {
         QueryError::NotInComplex { .. } => TpxStatus::NotInComplex,
         QueryError::DimensionOutOfRange { .. } => TpxStatus::DimensionOutOfRange,
@@ -66,6 +65,9 @@ fn query_failure(e: QueryError) -> Failure {
         | QueryError::TooManyVertices { .. }
         | QueryError::RepeatedVertex { .. }
         | QueryError::VertexOutOfRange { .. } => TpxStatus::InvalidSimplex,
+        QueryError::InvalidHandle { .. } => TpxStatus::InvalidHandle,
+        QueryError::StaleHandle { .. } => TpxStatus::StaleHandle,
+        QueryError::WrongHandleKind { .. } => TpxStatus::WrongHandleKind,
     };
     Failure::new(status, e.to_string())
 }
@@ -103,7 +105,10 @@ pub unsafe extern "C" fn tpx_structure_build(
         let out = out_ptr(out, "out")?;
         let kind = kind_from_u32(kind)?;
         let topo = build(kind, &c.complex).map_err(build_failure)?;
-        *out = Box::into_raw(Box::new(TpxStructure { topo }));
+        *out = Box::into_raw(Box::new(TpxStructure {
+            topo,
+            stamp: super::handles::new_stamp(),
+        }));
         Ok(())
     })
 }
@@ -133,7 +138,7 @@ pub unsafe extern "C" fn tpx_structure_kind(s: *const TpxStructure, out: *mut u3
         let s = handle(s, "s")?;
         let out = out_ptr(out, "out")?;
         let kind = s.topo.kind();
-        *out = StructureKind::ALL.iter().position(|&k| k == kind).unwrap() as u32;
+        *out = kind.abi();
         Ok(())
     })
 }

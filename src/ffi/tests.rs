@@ -894,3 +894,165 @@ fn last_error_message_is_one_bounded_escaped_line() {
     assert_eq!(st, TpxStatus::ParseError);
     assert_eq!(last_error(), "a\\nb\\u{b}c\\0");
 }
+
+/// Handles through the C ABI on the tetrahedron with a dangling triangle and a wire: locate,
+/// vertices, related (both orders), batch CSR, degree, tops as given, and every bad handle a
+/// clear status with outputs untouched.
+#[test]
+fn handles_locate_navigate_and_refuse_bad_handles() {
+    let c = tet_triangle_wire();
+    let s = ig(c);
+    let mut other = null_mut();
+    assert_eq!(
+        unsafe { tpx_structure_build(c, TPX_KIND_NMIA, &mut other) },
+        TpxStatus::Ok
+    );
+    unsafe {
+        let mut e = TpxSimplex::default();
+        assert_eq!(tpx_locate(s, [3, 2].as_ptr(), 2, &mut e), TpxStatus::Ok);
+        assert_eq!(e.meta & 0xff, 1);
+        let mut v = [0u32; 4];
+        let mut len = 0usize;
+        assert_eq!(
+            tpx_simplex_vertices(s, &e, v.as_mut_ptr(), 4, &mut len),
+            TpxStatus::Ok
+        );
+        assert_eq!(&v[..len], &[2, 3]);
+        // Triangles at edge 2-3: 0 2 3, 1 2 3, 2 3 4, as dense indices of triangles.
+        let mut buf = [0u32; 8];
+        let st = tpx_related(
+            s,
+            &e,
+            2,
+            TPX_ORDER_LEXICOGRAPHIC,
+            buf.as_mut_ptr(),
+            8,
+            &mut len,
+        );
+        assert_eq!(st, TpxStatus::Ok);
+        let mut rows = Vec::new();
+        for &i in &buf[..len] {
+            let mut t = TpxSimplex::default();
+            assert_eq!(tpx_handle(s, 2, i, &mut t), TpxStatus::Ok);
+            let mut w = [0u32; 3];
+            let mut wl = 0;
+            assert_eq!(
+                tpx_simplex_vertices(s, &t, w.as_mut_ptr(), 3, &mut wl),
+                TpxStatus::Ok
+            );
+            rows.push(w.to_vec());
+        }
+        assert_eq!(rows, [vec![0, 2, 3], vec![1, 2, 3], vec![2, 3, 4]]);
+        let mut deg = 0usize;
+        assert_eq!(tpx_degree(s, &e, 2, &mut deg), TpxStatus::Ok);
+        assert_eq!(deg, 3);
+        // Too small: status, needed length, buffer untouched.
+        let mut small = [u32::MAX; 2];
+        let st = tpx_related(s, &e, 2, TPX_ORDER_NATURAL, small.as_mut_ptr(), 2, &mut len);
+        assert_eq!(
+            (st, len, small),
+            (TpxStatus::BufferTooSmall, 3, [u32::MAX; 2])
+        );
+        // Batch: R_{0,0} of vertices 4 and 5 in CSR form.
+        let mut offsets = [9u32; 3];
+        let mut ids = [0u32; 16];
+        let st = tpx_related_batch(
+            s,
+            0,
+            [4, 5].as_ptr(),
+            2,
+            0,
+            TPX_ORDER_LEXICOGRAPHIC,
+            offsets.as_mut_ptr(),
+            ids.as_mut_ptr(),
+            16,
+            &mut len,
+        );
+        assert_eq!(st, TpxStatus::Ok);
+        assert_eq!((offsets, &ids[..len]), ([0, 3, 4], &[2, 3, 5, 4][..]));
+        // Tops: 4-5 (wire), 2 3 4 (dangling), 0 1 2 3; as given and numbered the same.
+        let mut total = 0;
+        assert_eq!(tpx_top_total(s, &mut total), TpxStatus::Ok);
+        assert_eq!(total, 3);
+        let mut t = TpxSimplex::default();
+        assert_eq!(tpx_top(s, 2, &mut t), TpxStatus::Ok);
+        let mut id = 0;
+        assert_eq!(tpx_top_id(s, &t, &mut id), TpxStatus::Ok);
+        assert_eq!(id, 2);
+        assert_eq!(tpx_top_id(s, &e, &mut id), TpxStatus::Ok);
+        assert_eq!(id, u32::MAX);
+        // Bad handles: foreign, out of range, NONE, unknown form, wrong kind; outputs untouched.
+        let mut foreign = TpxSimplex::default();
+        assert_eq!(
+            tpx_locate(other, [3, 2].as_ptr(), 2, &mut foreign),
+            TpxStatus::Ok
+        );
+        deg = 77;
+        assert_eq!(
+            tpx_degree(s, &foreign, 2, &mut deg),
+            TpxStatus::ForeignHandle
+        );
+        let past = TpxSimplex {
+            index: 10,
+            meta: 1,
+            owner: e.owner,
+        };
+        assert_eq!(tpx_degree(s, &past, 2, &mut deg), TpxStatus::InvalidHandle);
+        let none = TpxSimplex {
+            index: u32::MAX,
+            meta: 0,
+            owner: e.owner,
+        };
+        assert_eq!(tpx_degree(s, &none, 0, &mut deg), TpxStatus::InvalidHandle);
+        let form = TpxSimplex {
+            index: 0,
+            meta: 7 << 8,
+            owner: e.owner,
+        };
+        assert_eq!(tpx_degree(s, &form, 0, &mut deg), TpxStatus::InvalidHandle);
+        assert_eq!(deg, 77);
+        let (mut ni, mut ng) = (0usize, 0usize);
+        let st = tpx_cyclic(
+            s,
+            &e,
+            0,
+            buf.as_mut_ptr(),
+            8,
+            offsets.as_mut_ptr(),
+            small.as_mut_ptr(),
+            2,
+            &mut ni,
+            &mut ng,
+        );
+        assert_eq!(st, TpxStatus::WrongHandleKind);
+        assert_eq!(
+            tpx_degree(s, &e, 9, &mut deg),
+            TpxStatus::DimensionOutOfRange
+        );
+        assert_eq!(tpx_degree(s, null(), 0, &mut deg), TpxStatus::NullArgument);
+        tpx_structure_free(other);
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+/// Every kind's ABI number is its TPX_KIND_* constant, in both directions (not only the ends).
+#[test]
+fn kind_numbers_are_the_tpx_kind_constants() {
+    use crate::relation::StructureKind as K;
+    let pairs = [
+        (K::Ig, TPX_KIND_IG),
+        (K::Sig, TPX_KIND_SIG),
+        (K::Ia, TPX_KIND_IA),
+        (K::Iqm, TPX_KIND_IQM),
+        (K::Nmia, TPX_KIND_NMIA),
+        (K::Ts, TPX_KIND_TS),
+        (K::Pe, TPX_KIND_PE),
+        (K::Le, TPX_KIND_LE),
+        (K::De, TPX_KIND_DE),
+    ];
+    for (k, n) in pairs {
+        assert_eq!((k.abi(), K::from_abi(n)), (n, Some(k)));
+    }
+    assert_eq!(K::from_abi(9), None);
+}

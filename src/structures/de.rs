@@ -31,6 +31,7 @@
 //! - R_{2,0}, R_{2,1}: O(1). R_{2,2}(t): the three radial cycles, O(answer + 3).
 
 use super::BuildError;
+use super::nav::{NavBase, NavIndex};
 use super::radial::{self, EdgeAt, EdgeLocator, TriTopo, row3};
 use crate::complex::Complex;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
@@ -54,6 +55,8 @@ pub struct DirectedEdge {
     comp_off: Vec<u32>,
     comp_de: Vec<u32>,
     locator: EdgeLocator,
+    /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
+    pub(crate) nav: NavIndex,
 }
 
 impl DirectedEdge {
@@ -67,6 +70,7 @@ impl DirectedEdge {
         let rad = radial::radial(tris, complex.coords());
         let d = (3 * n2 + 2 * nw) as usize;
         let mut de = DirectedEdge {
+            nav: NavIndex::new(complex),
             n: parts.n,
             dim: parts.dim,
             isolated: parts.isolated,
@@ -191,7 +195,27 @@ impl TriTopo for DirectedEdge {
     }
 }
 
+impl NavBase for DirectedEdge {
+    fn nav(&self) -> &NavIndex {
+        &self.nav
+    }
+
+    fn fast_visit(
+        &self,
+        h: crate::handle::SimplexHandle,
+        sigma: &[u32],
+        q: usize,
+        visit: &mut dyn FnMut(crate::handle::SimplexHandle),
+    ) -> Option<Result<(), QueryError>> {
+        radial::fast_visit(self, h, sigma, q, visit)
+    }
+}
+
 impl Topology for DirectedEdge {
+    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
     fn kind(&self) -> StructureKind {
         KIND
     }

@@ -56,21 +56,20 @@
 //!
 //! Queries keep no state in the structure: every walk has its own hash set.
 
-use rustc_hash::FxHashSet;
-
+use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
-use crate::complex::{Complex, SimplexTable, is_subset, sort_dedup_rows};
+use crate::complex::{Complex, SimplexTable, is_subset};
+use crate::handle::SimplexHandle;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Ia;
 /// "No simplex" in adjacency slots.
 pub const NONE: u32 = u32::MAX;
 
-pub(crate) fn show(ids: &[u32]) -> String {
-    let v: Vec<String> = ids.iter().map(|i| i.to_string()).collect();
-    format!("[{}]", v.join(" "))
-}
+// The shared walking helpers moved to `super::common`; re-exported here for code written
+// against their old home.
+pub(crate) use super::common::{IdSet, IdStack, RowSet, faces_containing, faces_of_tops, show};
 
 fn unsupported(reason: String) -> BuildError {
     BuildError::Unsupported { kind: KIND, reason }
@@ -90,217 +89,8 @@ pub struct IndexedAdjacency {
     vstar: Vec<u32>,
     /// n_p for p = 0..=d.
     counts: Vec<usize>,
-}
-
-/// Calls `f` with every (q+1)-vertex face of `top` (ascending) that contains `sigma` (ascending,
-/// a subset of `top`), in no particular order. O(C(|top|−|σ|, q+1−|σ|)·(q+1)).
-pub(crate) fn faces_containing(top: &[u32], sigma: &[u32], q: usize, mut f: impl FnMut(&[u32])) {
-    if q + 1 < sigma.len() || q + 1 > top.len() {
-        return;
-    }
-    let mut rest = [0u32; 16];
-    let mut r = 0;
-    for &v in top {
-        if sigma.binary_search(&v).is_err() {
-            rest[r] = v;
-            r += 1;
-        }
-    }
-    let k = q + 1 - sigma.len();
-    if k > r {
-        return;
-    }
-    let mut idx = [0usize; 16];
-    for (i, x) in idx.iter_mut().enumerate().take(k) {
-        *x = i;
-    }
-    let mut row = [0u32; 16];
-    loop {
-        // Merge σ with the chosen vertices into an ascending row.
-        let (mut a, mut b, mut o) = (0, 0, 0);
-        while a < sigma.len() || b < k {
-            if b == k || (a < sigma.len() && sigma[a] < rest[idx[b]]) {
-                row[o] = sigma[a];
-                a += 1;
-            } else {
-                row[o] = rest[idx[b]];
-                b += 1;
-            }
-            o += 1;
-        }
-        f(&row[..o]);
-        // Next k-combination of 0..r in lexicographic order.
-        let Some(i) = (0..k).rev().find(|&i| idx[i] < r - k + i) else {
-            return;
-        };
-        idx[i] += 1;
-        for j in i + 1..k {
-            idx[j] = idx[j - 1] + 1;
-        }
-    }
-}
-
-/// Entries kept inline by the per-query scratch types below: a vertex star of a triangle or
-/// tetrahedral mesh fits, so a typical query allocates nothing and scans a few cache lines
-/// instead of hashing.
-const INLINE: usize = 64;
-
-/// Per-query set of ids (the papers' "visited" marks): an inline array scanned linearly while it
-/// holds at most [`INLINE`] ids, a hash set beyond (so large stars stay linear).
-pub(crate) struct IdSet {
-    /// Ids held inline; `len > INLINE` once they moved to `spill`.
-    len: usize,
-    inline: [u32; INLINE],
-    spill: FxHashSet<u32>,
-}
-
-impl Default for IdSet {
-    fn default() -> Self {
-        IdSet {
-            len: 0,
-            inline: [0; INLINE],
-            spill: FxHashSet::default(),
-        }
-    }
-}
-
-impl IdSet {
-    /// Adds `x`; false if it was there already.
-    #[inline]
-    pub(crate) fn insert(&mut self, x: u32) -> bool {
-        if self.len <= INLINE {
-            if self.inline[..self.len].contains(&x) {
-                return false;
-            }
-            if self.len < INLINE {
-                self.inline[self.len] = x;
-                self.len += 1;
-                return true;
-            }
-            self.spill.extend(self.inline);
-            self.len = INLINE + 1;
-        }
-        self.spill.insert(x)
-    }
-
-    #[inline]
-    pub(crate) fn contains(&self, x: &u32) -> bool {
-        if self.len <= INLINE {
-            self.inline[..self.len].contains(x)
-        } else {
-            self.spill.contains(x)
-        }
-    }
-
-    pub(crate) fn clear(&mut self) {
-        self.len = 0;
-        self.spill.clear();
-    }
-}
-
-/// Per-query stack of ids: inline up to [`INLINE`] entries, then on the heap.
-pub(crate) struct IdStack {
-    len: usize,
-    inline: [u32; INLINE],
-    spill: Vec<u32>,
-}
-
-impl Default for IdStack {
-    fn default() -> Self {
-        IdStack {
-            len: 0,
-            inline: [0; INLINE],
-            spill: Vec::new(),
-        }
-    }
-}
-
-impl IdStack {
-    #[inline]
-    pub(crate) fn push(&mut self, x: u32) {
-        if self.len < INLINE {
-            self.inline[self.len] = x;
-            self.len += 1;
-        } else {
-            self.spill.push(x);
-        }
-    }
-
-    #[inline]
-    pub(crate) fn pop(&mut self) -> Option<u32> {
-        if let Some(x) = self.spill.pop() {
-            return Some(x);
-        }
-        if self.len == 0 {
-            return None;
-        }
-        self.len -= 1;
-        Some(self.inline[self.len])
-    }
-}
-
-/// Per-query set of rows already emitted: rows of up to four ids as one u128 key, kept inline
-/// and scanned while few (as [`IdSet`]), hashed beyond; longer rows hashed as vectors.
-pub(crate) struct RowSet {
-    len: usize,
-    inline: [u128; RowSet::INLINE],
-    small: FxHashSet<u128>,
-    big: FxHashSet<Vec<u32>>,
-}
-
-impl Default for RowSet {
-    fn default() -> Self {
-        RowSet {
-            len: 0,
-            inline: [0; RowSet::INLINE],
-            small: FxHashSet::default(),
-            big: FxHashSet::default(),
-        }
-    }
-}
-
-impl RowSet {
-    /// Fewer than [`IdSet`]'s: u128 compares cost more and row sets grow faster than stars.
-    const INLINE: usize = 32;
-
-    pub(crate) fn insert(&mut self, row: &[u32]) -> bool {
-        if row.len() > 4 {
-            return self.big.insert(row.to_vec());
-        }
-        let key = row.iter().fold(0u128, |acc, &v| (acc << 32) | v as u128);
-        if self.len <= Self::INLINE {
-            if self.inline[..self.len].contains(&key) {
-                return false;
-            }
-            if self.len < Self::INLINE {
-                self.inline[self.len] = key;
-                self.len += 1;
-                return true;
-            }
-            self.small.extend(self.inline);
-            self.len = Self::INLINE + 1;
-        }
-        self.small.insert(key)
-    }
-
-    /// Appends `row` to `out` unless it was emitted before.
-    pub(crate) fn emit(&mut self, row: &[u32], out: &mut Vec<u32>) {
-        if self.insert(row) {
-            out.extend_from_slice(row);
-        }
-    }
-}
-
-/// The p-simplices of the closure of `tops` (rows of equal arity), ascending lexicographic.
-pub(crate) fn faces_of_tops<'a>(
-    tops: impl Iterator<Item = &'a [u32]>,
-    p: usize,
-    rows: &mut Vec<u32>,
-) {
-    for t in tops {
-        faces_containing(t, &[], p, |f| rows.extend_from_slice(f));
-    }
-    *rows = sort_dedup_rows(p + 1, std::mem::take(rows));
+    /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
+    pub(crate) nav: NavIndex,
 }
 
 /// R_{d,d} for sorted d-simplices: `Err((facet, first three d-simplices))` if a facet has more
@@ -448,6 +238,7 @@ impl IndexedAdjacency {
             *c = rows.len() / (p + 1);
         }
         Ok(IndexedAdjacency {
+            nav: NavIndex::new(complex),
             d,
             n,
             tops,
@@ -524,7 +315,66 @@ impl IndexedAdjacency {
     }
 }
 
+impl NavBase for IndexedAdjacency {
+    fn nav(&self) -> &NavIndex {
+        &self.nav
+    }
+
+    fn stored_table(&self, p: usize) -> Option<&SimplexTable> {
+        (p == self.d).then_some(&self.tops)
+    }
+
+    /// Direct walks (d-simplex `t` is dense d-simplex `t`): R_{d,0}, R_{d,d} O(d); R_{0,d},
+    /// R_{0,0} the star walk, O(d·n_v). Others: the generic path.
+    fn fast_visit(
+        &self,
+        h: SimplexHandle,
+        sigma: &[u32],
+        q: usize,
+        visit: &mut dyn FnMut(SimplexHandle),
+    ) -> Option<Result<(), QueryError>> {
+        let d = self.d;
+        if d == 0 {
+            return None;
+        }
+        match (h.dim(), q) {
+            (p, 0) if p == d => sigma
+                .iter()
+                .for_each(|&x| visit(SimplexHandle::dense(0, x))),
+            (p, q) if p == d && q == d => {
+                for &u in self.neighbours(h.index()).iter().filter(|&&u| u != NONE) {
+                    visit(SimplexHandle::dense(d, u));
+                }
+            }
+            (0, q) if q == d => {
+                let mut seen = IdSet::default();
+                self.walk_star(sigma[0], &mut seen, |t, _| {
+                    visit(SimplexHandle::dense(d, t));
+                    true
+                });
+            }
+            (0, 0) => {
+                let (v, mut seen, mut others) = (sigma[0], IdSet::default(), IdSet::default());
+                self.walk_star(v, &mut seen, |_, t| {
+                    for &x in t.iter().filter(|&&x| x != v) {
+                        if others.insert(x) {
+                            visit(SimplexHandle::dense(0, x));
+                        }
+                    }
+                    true
+                });
+            }
+            _ => return None,
+        }
+        Some(Ok(()))
+    }
+}
+
 impl Topology for IndexedAdjacency {
+    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
     fn kind(&self) -> StructureKind {
         KIND
     }

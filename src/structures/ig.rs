@@ -29,10 +29,12 @@
 //!
 //! Queries keep no state in the structure: the "visited" marks are a per-query set.
 
-use super::ia::{IdSet, faces_containing};
+use super::common::{IdSet, faces_containing};
+use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable};
+use crate::handle::SimplexHandle;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Ig;
@@ -45,6 +47,8 @@ pub struct IncidenceGraph {
     cob_offsets: Vec<Vec<u32>>,
     cob: Vec<Vec<u32>>,
     top_counts: Vec<usize>,
+    /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
+    pub(crate) nav: NavIndex,
 }
 
 impl IncidenceGraph {
@@ -118,6 +122,7 @@ impl IncidenceGraph {
             })
             .collect();
         Ok(IncidenceGraph {
+            nav: NavIndex::new(complex),
             tables,
             boundary,
             cob_offsets,
@@ -178,7 +183,49 @@ fn invert(n: usize, links: &[u32], width: usize) -> (Vec<u32>, Vec<u32>) {
     (off, list)
 }
 
+impl NavBase for IncidenceGraph {
+    fn nav(&self) -> &NavIndex {
+        &self.nav
+    }
+
+    fn stored_table(&self, p: usize) -> Option<&SimplexTable> {
+        self.tables.get(p)
+    }
+
+    /// The stored links as handles (row `i` of `tables[p]` is dense p-simplex `i`): R_{p,p−1},
+    /// R_{p,p+1} O(answer); R_{0,0} the other end of each edge at v. Others: the generic path.
+    fn fast_visit(
+        &self,
+        h: SimplexHandle,
+        _sigma: &[u32],
+        q: usize,
+        visit: &mut dyn FnMut(SimplexHandle),
+    ) -> Option<Result<(), QueryError>> {
+        let (p, id) = (h.dim(), h.index());
+        let ids = if q + 1 == p {
+            self.boundary_ids(p, id)
+        } else if q == p + 1 {
+            self.coboundary_ids(p, id)
+        } else if p == 0 && q == 0 {
+            for &e in self.coboundary_ids(0, id) {
+                let ends = self.boundary_ids(1, e);
+                let other = if ends[0] == id { ends[1] } else { ends[0] };
+                visit(SimplexHandle::dense(0, other));
+            }
+            return Some(Ok(()));
+        } else {
+            return None;
+        };
+        ids.iter().for_each(|&x| visit(SimplexHandle::dense(q, x)));
+        Some(Ok(()))
+    }
+}
+
 impl Topology for IncidenceGraph {
+    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
     fn kind(&self) -> StructureKind {
         KIND
     }

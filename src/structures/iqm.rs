@@ -107,7 +107,8 @@
 
 use rustc_hash::FxHashSet;
 
-use super::ia::{IdSet, IdStack, faces_containing};
+use super::common::{IdSet, IdStack, UnionFind, faces_containing};
+use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset, sort_dedup_rows};
@@ -138,6 +139,8 @@ pub struct Iqm {
     /// Facets over copies shared by three or more top simplices of one component (left without
     /// adjacency). Kept to report, not to use.
     crowded_facets: usize,
+    /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
+    pub(crate) nav: NavIndex,
 }
 
 /// One IQM component, self-contained: its top simplices over local vertex ids `0..m`, and the
@@ -173,31 +176,6 @@ pub struct Decomposition {
     pub split_offsets: Vec<u32>,
     /// Start of each split vertex's copies in `split_copies` (one more entry than split vertices).
     pub split_copies: Vec<u32>,
-}
-
-struct UnionFind(Vec<u32>);
-
-impl UnionFind {
-    fn new(n: usize) -> Self {
-        UnionFind((0..n as u32).collect())
-    }
-    fn find(&mut self, mut x: u32) -> u32 {
-        while self.0[x as usize] != x {
-            let up = self.0[self.0[x as usize] as usize];
-            self.0[x as usize] = up;
-            x = up;
-        }
-        x
-    }
-    fn union(&mut self, a: u32, b: u32) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        // The smaller root wins so that results do not depend on union order.
-        if ra < rb {
-            self.0[rb as usize] = ra;
-        } else if rb < ra {
-            self.0[ra as usize] = rb;
-        }
-    }
 }
 
 /// Rows of `arity - 1` ids: the facets of every row of `rows` (facet j omits entry j), each
@@ -449,6 +427,7 @@ impl Iqm {
         }
         let counts = complex.closure().iter().map(SimplexTable::len).collect();
         Ok(Iqm {
+            nav: NavIndex::new(complex),
             n,
             counts,
             tops,
@@ -620,7 +599,17 @@ fn rows_of<'a>(flat: &'a [u32], lens: &'a [usize]) -> impl Iterator<Item = &'a [
     })
 }
 
+impl NavBase for Iqm {
+    fn nav(&self) -> &NavIndex {
+        &self.nav
+    }
+}
+
 impl Topology for Iqm {
+    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
     fn kind(&self) -> StructureKind {
         KIND
     }

@@ -36,6 +36,7 @@
 //! - R_{2,0}, R_{2,1}: the face loop, O(1). R_{2,2}(t): the three radial cycles, O(answer + 3).
 
 use super::BuildError;
+use super::nav::{NavBase, NavIndex};
 use super::pe::by_start;
 use super::radial::{self, EdgeAt, NONE, TriTopo, row3, show};
 use crate::complex::Complex;
@@ -57,6 +58,8 @@ pub struct LoopEdgeUse {
     eu_start: Vec<u32>,
     eu_vnext: Vec<u32>,
     vertex_eu: Vec<u32>,
+    /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
+    pub(crate) nav: NavIndex,
 }
 
 impl LoopEdgeUse {
@@ -111,6 +114,7 @@ impl LoopEdgeUse {
             }
         }
         Ok(LoopEdgeUse {
+            nav: NavIndex::new(complex),
             n: parts.n,
             n_tris: n2,
             face_eu: (0..n2).map(|t| 3 * t).collect(),
@@ -188,7 +192,27 @@ impl TriTopo for LoopEdgeUse {
     }
 }
 
+impl NavBase for LoopEdgeUse {
+    fn nav(&self) -> &NavIndex {
+        &self.nav
+    }
+
+    fn fast_visit(
+        &self,
+        h: crate::handle::SimplexHandle,
+        sigma: &[u32],
+        q: usize,
+        visit: &mut dyn FnMut(crate::handle::SimplexHandle),
+    ) -> Option<Result<(), QueryError>> {
+        radial::fast_visit(self, h, sigma, q, visit)
+    }
+}
+
 impl Topology for LoopEdgeUse {
+    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
     fn kind(&self) -> StructureKind {
         KIND
     }

@@ -8,11 +8,14 @@
 use crate::complex::Complex;
 use crate::relation::{StructureKind, Topology};
 
+pub(crate) mod common;
+pub(crate) mod cyclic;
 pub mod de;
 pub mod ia;
 pub mod ig;
 pub mod iqm;
 pub mod le;
+pub(crate) mod nav;
 pub mod nmia;
 pub mod pe;
 pub mod radial;

@@ -87,7 +87,9 @@
 //!
 //! Queries keep no state in the structure: every walk has its own set of visited simplices.
 
-use super::ia::{IdSet, IdStack, NONE, RowSet, faces_containing, faces_of_tops, show};
+use super::common::{IdSet, IdStack, RowSet, faces_containing, faces_of_tops, show};
+use super::ia::NONE;
+use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset};
@@ -118,6 +120,8 @@ pub struct NonManifoldIa {
     vstar_off: Vec<u32>,
     vstar: Vec<u32>,
     counts: Vec<usize>,
+    /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
+    pub(crate) nav: NavIndex,
 }
 
 /// Code of the edge at positions `i < j` of a top simplex.
@@ -278,6 +282,7 @@ impl NonManifoldIa {
             ))
         })?;
         let mut s = NonManifoldIa {
+            nav: NavIndex::new(complex),
             d,
             n,
             tets,
@@ -683,7 +688,17 @@ impl NonManifoldIa {
     }
 }
 
+impl NavBase for NonManifoldIa {
+    fn nav(&self) -> &NavIndex {
+        &self.nav
+    }
+}
+
 impl Topology for NonManifoldIa {
+    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
     fn kind(&self) -> StructureKind {
         KIND
     }

@@ -36,6 +36,7 @@
 //! - R_{2,0}, R_{2,1}: the face loop, O(1). R_{2,2}(t): the three radial cycles, O(answer + 3).
 
 use super::BuildError;
+use super::nav::{NavBase, NavIndex};
 use super::radial::{self, EdgeAt, NONE, TriTopo, row3};
 use crate::complex::Complex;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
@@ -61,6 +62,8 @@ pub struct PartialEntities {
     pe_start: Vec<u32>,
     vertex_off: Vec<u32>,
     vertex_pe: Vec<u32>,
+    /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
+    pub(crate) nav: NavIndex,
 }
 
 impl PartialEntities {
@@ -73,6 +76,7 @@ impl PartialEntities {
         let n1 = rad.edges.len() + parts.wires.len();
         let p_count = 3 * n2 as usize + 2 * parts.wires.len();
         let mut pe = PartialEntities {
+            nav: NavIndex::new(complex),
             n: parts.n,
             dim: parts.dim,
             isolated: parts.isolated,
@@ -225,7 +229,27 @@ impl TriTopo for PartialEntities {
     }
 }
 
+impl NavBase for PartialEntities {
+    fn nav(&self) -> &NavIndex {
+        &self.nav
+    }
+
+    fn fast_visit(
+        &self,
+        h: crate::handle::SimplexHandle,
+        sigma: &[u32],
+        q: usize,
+        visit: &mut dyn FnMut(crate::handle::SimplexHandle),
+    ) -> Option<Result<(), QueryError>> {
+        radial::fast_visit(self, h, sigma, q, visit)
+    }
+}
+
 impl Topology for PartialEntities {
+    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
     fn kind(&self) -> StructureKind {
         KIND
     }

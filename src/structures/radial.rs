@@ -21,10 +21,12 @@ use std::f64::consts::TAU;
 
 use rustc_hash::FxHashSet;
 
-use super::ia::IdSet;
+use super::common::IdSet;
+use super::nav::with_scratch;
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable};
+use crate::handle::SimplexHandle;
 use crate::io::Coords;
 use crate::relation::{QueryError, StructureKind};
 
@@ -509,6 +511,44 @@ pub(crate) fn walk_star<T: TriTopo + ?Sized>(
             }
         }
     }
+}
+
+/// The handle walks the primitives give directly (triangle `t` is dense 2-simplex `t`):
+/// R_{0,0}, R_{0,2}: O(star of v); R_{2,0}: O(1); R_{2,2}: the three radial cycles. Other
+/// relations: `None` (the generic path). `sigma` is the checked handle `h`'s vertices.
+pub(crate) fn fast_visit<T: TriTopo + ?Sized>(
+    topo: &T,
+    h: SimplexHandle,
+    sigma: &[u32],
+    q: usize,
+    visit: &mut dyn FnMut(SimplexHandle),
+) -> Option<Result<(), QueryError>> {
+    match (sigma.len() - 1, q) {
+        (0, 0) => with_scratch(|buf| {
+            neighbours(topo, sigma[0], buf);
+            buf.iter().for_each(|&x| visit(SimplexHandle::dense(0, x)));
+        }),
+        (0, 2) => with_scratch(|buf| {
+            topo.star_corners(sigma[0], buf);
+            buf.iter()
+                .for_each(|&c| visit(SimplexHandle::dense(2, c / 3)));
+        }),
+        (2, 0) => sigma
+            .iter()
+            .for_each(|&x| visit(SimplexHandle::dense(0, x))),
+        (2, 2) => {
+            let t = h.index();
+            for s in 3 * t..3 * t + 3 {
+                let mut r = topo.radial_next(s);
+                while r != s {
+                    visit(SimplexHandle::dense(2, r / 3));
+                    r = topo.radial_next(r);
+                }
+            }
+        }
+        _ => return None,
+    }
+    Some(Ok(()))
 }
 
 /// Distinct vertices adjacent to `v` (through triangles or wire edges), in discovery order:

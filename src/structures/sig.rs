@@ -138,6 +138,7 @@
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::ig::IncidenceGraph;
+use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::{Complex, SimplexTable};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
@@ -165,6 +166,8 @@ pub struct Sig {
     /// The partial co-boundaries of the p-simplices, p < d.
     cob: Vec<Cob>,
     top_counts: Vec<usize>,
+    /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
+    pub(crate) nav: NavIndex,
 }
 
 /// The partial co-boundary arrays of one dimension, concatenated without heads or stop codes:
@@ -513,6 +516,7 @@ impl Sig {
             top_counts[p] = t;
         }
         Ok(Sig {
+            nav: ig.nav.without_caches(),
             first,
             boundary,
             cob,
@@ -625,6 +629,7 @@ impl Sig {
             top_counts[p] = t;
         }
         Ok(Sig {
+            nav: NavIndex::new(complex),
             first,
             boundary,
             cob,
@@ -903,7 +908,17 @@ struct Scratch {
     tuple: Vec<u32>,
 }
 
+impl NavBase for Sig {
+    fn nav(&self) -> &NavIndex {
+        &self.nav
+    }
+}
+
 impl Topology for Sig {
+    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
     fn kind(&self) -> StructureKind {
         KIND
     }

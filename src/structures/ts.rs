@@ -39,6 +39,7 @@
 //! Queries keep no state in the structure: the walks' marks are per-query hash sets.
 
 use super::BuildError;
+use super::nav::{NavBase, NavIndex};
 use super::radial::{self, EdgeAt, EdgeLocator, NONE, TriTopo, row3, slot_ends};
 use crate::complex::{Complex, SimplexTable};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
@@ -63,6 +64,8 @@ pub struct TriangleSegment {
     wire_off: Vec<u32>,
     wire_nbr: Vec<u32>,
     locator: EdgeLocator,
+    /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
+    pub(crate) nav: NavIndex,
 }
 
 impl TriangleSegment {
@@ -98,6 +101,7 @@ impl TriangleSegment {
         let (wire_off, wire_nbr) = radial::wire_lists(parts.n, &parts.wires);
         let locator = EdgeLocator::build(&tris);
         Ok(TriangleSegment {
+            nav: NavIndex::new(complex),
             n: parts.n,
             dim: parts.dim,
             n_edges: rad.edges.len() + parts.wires.len(),
@@ -210,7 +214,31 @@ impl TriTopo for TriangleSegment {
     }
 }
 
+impl NavBase for TriangleSegment {
+    fn nav(&self) -> &NavIndex {
+        &self.nav
+    }
+
+    fn fast_visit(
+        &self,
+        h: crate::handle::SimplexHandle,
+        sigma: &[u32],
+        q: usize,
+        visit: &mut dyn FnMut(crate::handle::SimplexHandle),
+    ) -> Option<Result<(), QueryError>> {
+        radial::fast_visit(self, h, sigma, q, visit)
+    }
+
+    fn stored_table(&self, p: usize) -> Option<&SimplexTable> {
+        (p == 2).then_some(&self.tris)
+    }
+}
+
 impl Topology for TriangleSegment {
+    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
     fn kind(&self) -> StructureKind {
         KIND
     }

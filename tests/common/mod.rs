@@ -43,9 +43,13 @@ pub fn complex_of(n: u32, simplices: &[Vec<u32>]) -> Complex {
     Complex::from_simplices(n, &refs).expect("generated input is valid")
 }
 
-/// `../shared/data` relative to the crate, if present.
+/// `../shared/data` relative to the crate (or `$TOPOPLEX_SHARED_DATA` when set, for a checkout
+/// elsewhere), if present.
 pub fn shared_data() -> Option<PathBuf> {
-    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data");
+    let dir = match std::env::var_os("TOPOPLEX_SHARED_DATA") {
+        Some(d) => PathBuf::from(d),
+        None => PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../shared/data"),
+    };
     dir.is_dir().then_some(dir)
 }
 

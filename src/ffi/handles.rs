@@ -1,0 +1,570 @@
+//! Handles through the C ABI: `TpxSimplex` and the `tpx_*` functions that locate once and then
+//! navigate from handles (see `crate::handle` for what a handle is and what it costs).
+//!
+//! Every function checks its handles before use: a handle from another structure is
+//! FOREIGN_HANDLE (its `owner` stamp differs), an index or dimension out of range INVALID_HANDLE,
+//! a handle of the wrong dimension for the call WRONG_HANDLE_KIND — never undefined behaviour.
+//! Answers of one dimension are written as dense indices (`uint32_t`): the q-simplex of index i
+//! is the handle `{i, q, owner}` (`tpx_handle` builds it checked).
+
+use std::cell::RefCell;
+use std::sync::atomic::{AtomicU32, Ordering as AtomicOrdering};
+
+use super::structure::{TpxStructure, query_failure};
+use super::{Failure, TpxStatus, guard, handle, in_slice, out_ptr, write_buffer};
+use crate::complex::MAX_DIMENSION;
+use crate::handle::{Fans, Navigate, Order, SimplexHandle, TopId};
+
+/// A handle to one simplex of one structure (12 bytes, plain data; copy freely).
+///
+/// `index` is the simplex's dense index among the simplices of its dimension (lexicographic
+/// rank; a vertex's index is its id; the caller's per-dimension arrays can be indexed by it).
+/// `meta` holds the dimension in its low 8 bits (`meta & 0xff`); the other bits are 0 for every
+/// structure of this library. `owner` is the stamp of the structure that made it. A handle stays
+/// valid as long as its structure lives; copying it is free, nothing needs releasing.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct TpxSimplex {
+    /// Dense index among the simplices of its dimension.
+    pub index: u32,
+    /// Dimension in bits 0..8; form and local bits above (0 here).
+    pub meta: u32,
+    /// Stamp of the owning structure (`tpx_structure_stamp`).
+    pub owner: u32,
+}
+
+/// Answer order of the navigation functions: the structure's natural order.
+pub const TPX_ORDER_NATURAL: u32 = 0;
+/// Answer order of the navigation functions: ascending lexicographic (ascending index).
+pub const TPX_ORDER_LEXICOGRAPHIC: u32 = 1;
+/// Flag bit of a group written by `tpx_fans_around` / `tpx_around_edge`: the group closes.
+pub const TPX_GROUP_CLOSED: u32 = 1;
+/// Flag bit of a group: consistently oriented and counter-clockwise by the input winding.
+pub const TPX_GROUP_ORIENTED: u32 = 2;
+
+static NEXT_STAMP: AtomicU32 = AtomicU32::new(1);
+
+/// A fresh owner stamp (never 0, so a zeroed `TpxSimplex` is foreign to every structure).
+pub(crate) fn new_stamp() -> u32 {
+    loop {
+        let s = NEXT_STAMP.fetch_add(1, AtomicOrdering::Relaxed);
+        if s != 0 {
+            return s;
+        }
+    }
+}
+
+fn nav(s: &TpxStructure) -> Result<&dyn Navigate, Failure> {
+    s.topo.as_navigate().ok_or_else(|| {
+        Failure::new(
+            TpxStatus::NotImplemented,
+            "this structure has no handle navigation",
+        )
+    })
+}
+
+fn wrap(s: &TpxStructure, h: SimplexHandle) -> TpxSimplex {
+    let (index, meta) = h.to_words();
+    TpxSimplex {
+        index,
+        meta,
+        owner: s.stamp,
+    }
+}
+
+/// The structure's handle for `h`, checked: FOREIGN_HANDLE, INVALID_HANDLE.
+fn unwrap(s: &TpxStructure, n: &dyn Navigate, h: &TpxSimplex) -> Result<SimplexHandle, Failure> {
+    if h.owner != s.stamp {
+        return Err(Failure::new(
+            TpxStatus::ForeignHandle,
+            format!(
+                "handle {{index {}, meta {:#x}}} belongs to structure {}, not to this one ({})",
+                h.index, h.meta, h.owner, s.stamp
+            ),
+        ));
+    }
+    let sh = SimplexHandle::from_words(h.index, h.meta).ok_or_else(|| {
+        Failure::new(
+            TpxStatus::InvalidHandle,
+            format!("handle meta {:#x}: unknown form or dimension", h.meta),
+        )
+    })?;
+    n.check(sh).map_err(query_failure)?;
+    Ok(sh)
+}
+
+fn order_arg(order: u32) -> Result<Order, Failure> {
+    match order {
+        TPX_ORDER_NATURAL => Ok(Order::Natural),
+        TPX_ORDER_LEXICOGRAPHIC => Ok(Order::Lexicographic),
+        _ => Err(Failure::new(
+            TpxStatus::InvalidArgument,
+            format!("order {order} is not TPX_ORDER_NATURAL (0) or TPX_ORDER_LEXICOGRAPHIC (1)"),
+        )),
+    }
+}
+
+thread_local! {
+    static HANDLES: RefCell<Vec<SimplexHandle>> = const { RefCell::new(Vec::new()) };
+    static IDS: RefCell<Vec<u32>> = const { RefCell::new(Vec::new()) };
+    static FANS: RefCell<Fans> = RefCell::new(Fans::default());
+}
+
+/// Runs `f` with this thread's kept buffer from `key` (a fresh one when it is in use).
+fn with_kept<T: Default, R>(
+    key: &'static std::thread::LocalKey<RefCell<T>>,
+    f: impl FnOnce(&mut T) -> R,
+) -> R {
+    let mut v = key
+        .try_with(|c| std::mem::take(&mut *c.borrow_mut()))
+        .unwrap_or_default();
+    let r = f(&mut v);
+    let _ = key.try_with(|c| *c.borrow_mut() = v);
+    r
+}
+
+/// The owner stamp of structure `s` into `*out`: every handle it makes carries it. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_structure_stamp(s: *const TpxStructure, out: *mut u32) -> TpxStatus {
+    super::get_into(s, "s", out, |s| s.stamp)
+}
+
+/// Locates the simplex with vertex ids `simplex[0 .. simplex_len]` (any order) and writes its
+/// handle to `*out`. Errors: NULL_ARGUMENT, INVALID_SIMPLEX, NOT_IN_COMPLEX. Cost: O(p log n_p)
+/// (a binary search; for dimensions a structure stores only implicitly, the first call builds
+/// that dimension's table once, see the Rust `handle` module). No allocation otherwise.
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `simplex` must hold `simplex_len` ids.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_locate(
+    s: *const TpxStructure,
+    simplex: *const u32,
+    simplex_len: usize,
+    out: *mut TpxSimplex,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let out = out_ptr(out, "out")?;
+        let sigma = in_slice(simplex, simplex_len, "simplex")?;
+        let h = nav(s)?.locate(sigma).map_err(query_failure)?;
+        *out = wrap(s, h);
+        Ok(())
+    })
+}
+
+/// The handle of the p-simplex of dense index `index` into `*out` (for a vertex: p = 0, index =
+/// its id). Errors: INVALID_HANDLE (p > d or index >= n_p). O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_handle(
+    s: *const TpxStructure,
+    p: u32,
+    index: u32,
+    out: *mut TpxSimplex,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let out = out_ptr(out, "out")?;
+        let h = nav(s)?
+            .handle(p.min(255) as usize, index)
+            .map_err(query_failure)?;
+        *out = wrap(s, h);
+        Ok(())
+    })
+}
+
+/// The vertex ids of `*h`, ascending, into `buf` (p + 1 of them; `*out_len` = p + 1).
+/// Errors: NULL_ARGUMENT, FOREIGN_HANDLE, INVALID_HANDLE, BUFFER_TOO_SMALL. O(p).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_simplex_vertices(
+    s: *const TpxStructure,
+    h: *const TpxSimplex,
+    buf: *mut u32,
+    buf_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let h = handle(h, "h")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let n = nav(s)?;
+        let v = n.vertices_of(unwrap(s, n, h)?).map_err(query_failure)?;
+        write_buffer(&v, buf, buf_len, out_len)
+    })
+}
+
+/// Number of top simplices over all dimensions into `*out` (top ids are `0 .. *out`). O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_top_total(s: *const TpxStructure, out: *mut u32) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let out = out_ptr(out, "out")?;
+        *out = nav(s)?.top_total();
+        Ok(())
+    })
+}
+
+/// The handle of top simplex `top` (top ids: dimension ascending, lexicographic within; the same
+/// for every structure built from one complex) into `*out`. Errors: INVALID_HANDLE (out of
+/// range). O(1) for top d-simplices, O(p log n) below.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_top(
+    s: *const TpxStructure,
+    top: u32,
+    out: *mut TpxSimplex,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let out = out_ptr(out, "out")?;
+        let h = nav(s)?.top(TopId(top)).map_err(query_failure)?;
+        *out = wrap(s, h);
+        Ok(())
+    })
+}
+
+/// The top id of `*h` into `*out`, or `UINT32_MAX` when it is not a top simplex. Errors:
+/// FOREIGN_HANDLE, INVALID_HANDLE. O(1) for d-simplices, O(p log n) below.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_top_id(
+    s: *const TpxStructure,
+    h: *const TpxSimplex,
+    out: *mut u32,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let h = handle(h, "h")?;
+        let out = out_ptr(out, "out")?;
+        let n = nav(s)?;
+        let t = n.top_id(unwrap(s, n, h)?).map_err(query_failure)?;
+        *out = t.map_or(u32::MAX, |t| t.0);
+        Ok(())
+    })
+}
+
+/// Top simplex `top` as given in the input (its first listing's vertex order, hence its
+/// winding) into `buf`; `*out_len` = its vertex count. `tpx_simplex_vertices` of `tpx_top`
+/// gives the normalised (ascending) form. Errors: INVALID_HANDLE, BUFFER_TOO_SMALL. O(p).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_top_as_given(
+    s: *const TpxStructure,
+    top: u32,
+    buf: *mut u32,
+    buf_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let v = nav(s)?.top_as_given(TopId(top)).map_err(query_failure)?;
+        write_buffer(&v, buf, buf_len, out_len)
+    })
+}
+
+/// R_{p,q}(*h) (p = the handle's dimension) as dense indices of q-simplices into `buf`, in
+/// `order` (`TPX_ORDER_*`); `*out_len` = the number written. Errors: FOREIGN_HANDLE,
+/// INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), BUFFER_TOO_SMALL
+/// (nothing written; `*out_len` = needed). Cost: the structure's walk (module docs), plus a sort
+/// for lexicographic order. Allocation-free once this thread's buffer has grown to the answer.
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_related(
+    s: *const TpxStructure,
+    h: *const TpxSimplex,
+    q: u32,
+    order: u32,
+    buf: *mut u32,
+    buf_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let h = handle(h, "h")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let order = order_arg(order)?;
+        let n = nav(s)?;
+        let sh = unwrap(s, n, h)?;
+        with_kept(&IDS, |ids| {
+            ids.clear();
+            n.visit(sh, q as usize, &mut |x| ids.push(x.index()))
+                .map_err(query_failure)?;
+            if order == Order::Lexicographic {
+                ids.sort_unstable();
+            }
+            write_buffer(ids, buf, buf_len, out_len)
+        })
+    })
+}
+
+fn too_small(need: usize, have: usize, out_len: &mut usize) -> Result<(), Failure> {
+    *out_len = need;
+    Err(Failure::new(
+        TpxStatus::BufferTooSmall,
+        format!("buffer holds {have} entries, the answer needs {need}"),
+    ))
+}
+
+/// R_{p,q} for many p-simplices at once, in CSR form: for the dense p-indices
+/// `indices[0 .. count]`, `offsets[0 .. count + 1]` receives the start of each answer in `buf`
+/// (`offsets[count]` = total) and `buf` the dense q-indices, each answer in `order`.
+/// Errors: INVALID_HANDLE (p > d or an index out of range), DIMENSION_OUT_OF_RANGE,
+/// BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`.
+/// `offsets` must hold `count + 1` entries. Cost: one walk per index; allocation-free once this
+/// thread's buffer has grown to the total.
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `indices` holds `count` ids, `offsets` room for `count + 1`,
+/// `buf` room for `buf_len`.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn tpx_related_batch(
+    s: *const TpxStructure,
+    p: u32,
+    indices: *const u32,
+    count: usize,
+    q: u32,
+    order: u32,
+    offsets: *mut u32,
+    buf: *mut u32,
+    buf_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let indices = in_slice(indices, count, "indices")?;
+        if offsets.is_null() {
+            return Err(Failure::null("offsets"));
+        }
+        let order = order_arg(order)?;
+        let n = nav(s)?;
+        let p = (p as usize).min(MAX_DIMENSION + 1);
+        with_kept(&IDS, |ids| {
+            ids.clear();
+            // Offsets are written only on success: keep them after the ids, then copy.
+            let mut ends = Vec::new();
+            ends.try_reserve(count + 1)
+                .map_err(|_| Failure::new(TpxStatus::TooLarge, "offsets do not fit in memory"))?;
+            ends.push(0u32);
+            for &i in indices {
+                let h = n.handle(p, i).map_err(query_failure)?;
+                let start = ids.len();
+                n.visit(h, q as usize, &mut |x| ids.push(x.index()))
+                    .map_err(query_failure)?;
+                if order == Order::Lexicographic {
+                    ids[start..].sort_unstable();
+                }
+                let end = u32::try_from(ids.len())
+                    .map_err(|_| Failure::new(TpxStatus::TooLarge, "answers exceed 2^32 ids"))?;
+                ends.push(end);
+            }
+            write_buffer(ids, buf, buf_len, out_len)?;
+            // SAFETY: `offsets` has room for `count + 1` entries (documented contract).
+            unsafe { std::ptr::copy_nonoverlapping(ends.as_ptr(), offsets, ends.len()) };
+            Ok(())
+        })
+    })
+}
+
+/// |R_{p,q}(*h)| into `*out`, without writing the answer. Same errors and cost as `tpx_related`;
+/// no allocation.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_degree(
+    s: *const TpxStructure,
+    h: *const TpxSimplex,
+    q: u32,
+    out: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let h = handle(h, "h")?;
+        let out = out_ptr(out, "out")?;
+        let n = nav(s)?;
+        *out = n
+            .degree(unwrap(s, n, h)?, q as usize)
+            .map_err(query_failure)?;
+        Ok(())
+    })
+}
+
+/// The star (every simplex having `*h` as a proper face, dimension ascending) or, with `link`
+/// non-zero, the link (τ ∖ h for each such τ) of `*h`, as handles into `buf`, each dimension in
+/// `order`. Errors as `tpx_related`. Cost: the star's walks (the link also locates each face).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `buf` must have room for `buf_len` handles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_star(
+    s: *const TpxStructure,
+    h: *const TpxSimplex,
+    link: u32,
+    order: u32,
+    buf: *mut TpxSimplex,
+    buf_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let h = handle(h, "h")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let order = order_arg(order)?;
+        let n = nav(s)?;
+        let sh = unwrap(s, n, h)?;
+        with_kept(&HANDLES, |hs| {
+            if link != 0 {
+                n.link(sh, order, hs)
+            } else {
+                n.star(sh, order, hs)
+            }
+            .map_err(query_failure)?;
+            if hs.len() > buf_len {
+                return too_small(hs.len(), buf_len, out_len);
+            }
+            if !hs.is_empty() && buf.is_null() {
+                return Err(Failure::null("buf"));
+            }
+            for (i, &x) in hs.iter().enumerate() {
+                // SAFETY: `buf` has room for `buf_len >= hs.len()` handles.
+                unsafe { *buf.add(i) = wrap(s, x) };
+            }
+            *out_len = hs.len();
+            Ok(())
+        })
+    })
+}
+
+/// Whether `*h` is on the boundary (`what` = 0) or a manifold simplex (`what` = 1), as 0 or 1
+/// into `*out` (definitions: `Navigate::is_boundary`, `Navigate::is_manifold`). Errors as
+/// `tpx_related`, INVALID_ARGUMENT for another `what`. Cost: the star of h.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_simplex_test(
+    s: *const TpxStructure,
+    h: *const TpxSimplex,
+    what: u32,
+    out: *mut u32,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let h = handle(h, "h")?;
+        let out = out_ptr(out, "out")?;
+        let n = nav(s)?;
+        let sh = unwrap(s, n, h)?;
+        let r = match what {
+            0 => n.is_boundary(sh),
+            1 => n.is_manifold(sh),
+            _ => {
+                return Err(Failure::new(
+                    TpxStatus::InvalidArgument,
+                    format!("test {what} is not 0 (boundary) or 1 (manifold)"),
+                ));
+            }
+        };
+        *out = u32::from(r.map_err(query_failure)?);
+        Ok(())
+    })
+}
+
+/// Cyclic order: with `q` = 0, the manifold fans of triangles around vertex `*h` (a complex of
+/// dimension ≤ 2; counter-clockwise by the input winding where oriented); with `q` = 2 or 3,
+/// the triangles / tetrahedra around edge `*h` in radial order. Group k is
+/// `items[offsets[k] .. offsets[k+1]]` (dense indices of triangles, or of tetrahedra for q = 3),
+/// `flags[k]` has `TPX_GROUP_CLOSED` and `TPX_GROUP_ORIENTED`; `*out_items` and `*out_groups`
+/// receive the counts. `offsets` needs `groups + 1` entries. Errors: WRONG_HANDLE_KIND (not a
+/// vertex / not an edge), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL (nothing written; the needed
+/// counts in `*out_items` and `*out_groups`). Cost: the star of the vertex or edge.
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `items` has room for `items_len`, `offsets` for
+/// `groups_len + 1` and `flags` for `groups_len` entries.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn tpx_cyclic(
+    s: *const TpxStructure,
+    h: *const TpxSimplex,
+    q: u32,
+    items: *mut u32,
+    items_len: usize,
+    offsets: *mut u32,
+    flags: *mut u32,
+    groups_len: usize,
+    out_items: *mut usize,
+    out_groups: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let h = handle(h, "h")?;
+        let out_items = out_ptr(out_items, "out_items")?;
+        let out_groups = out_ptr(out_groups, "out_groups")?;
+        let n = nav(s)?;
+        let sh = unwrap(s, n, h)?;
+        with_kept(&FANS, |fans| {
+            match q {
+                0 => n.fans_around(sh, fans),
+                _ => n.around_edge(sh, q as usize, fans),
+            }
+            .map_err(query_failure)?;
+            let (ni, ng) = (fans.items.len(), fans.len());
+            if ni > items_len || ng > groups_len {
+                *out_items = ni;
+                *out_groups = ng;
+                return Err(Failure::new(
+                    TpxStatus::BufferTooSmall,
+                    format!("the answer needs {ni} items and {ng} groups"),
+                ));
+            }
+            if (ni > 0 && items.is_null()) || offsets.is_null() || (ng > 0 && flags.is_null()) {
+                return Err(Failure::null("items, offsets or flags"));
+            }
+            for (i, x) in fans.items.iter().enumerate() {
+                // SAFETY: room for items_len >= ni entries.
+                unsafe { *items.add(i) = x.index() };
+            }
+            for k in 0..=ng {
+                // SAFETY: room for groups_len + 1 >= ng + 1 offsets.
+                unsafe { *offsets.add(k) = fans.offsets.get(k).copied().unwrap_or(0) };
+            }
+            for k in 0..ng {
+                let closed = if fans.closed[k] { TPX_GROUP_CLOSED } else { 0 };
+                let f = closed
+                    | if fans.oriented[k] {
+                        TPX_GROUP_ORIENTED
+                    } else {
+                        0
+                    };
+                // SAFETY: room for groups_len >= ng flags.
+                unsafe { *flags.add(k) = f };
+            }
+            *out_items = ni;
+            *out_groups = ng;
+            Ok(())
+        })
+    })
+}

@@ -1,0 +1,255 @@
+//! Helpers several structures share: per-query scratch sets and stacks for walks ([`IdSet`],
+//! [`IdStack`], [`RowSet`]), face enumeration ([`faces_containing`], [`faces_of_tops`]), the
+//! union–find and [`show`] for messages.
+
+use rustc_hash::FxHashSet;
+
+use crate::complex::sort_dedup_rows;
+
+/// `[a b c]`, for messages naming a simplex.
+pub(crate) fn show(ids: &[u32]) -> String {
+    let v: Vec<String> = ids.iter().map(|i| i.to_string()).collect();
+    format!("[{}]", v.join(" "))
+}
+
+/// Union–find over `0..n` with path halving; the smaller root wins, so the classes' roots do not
+/// depend on the order of the unions.
+pub(crate) struct UnionFind(Vec<u32>);
+
+impl UnionFind {
+    /// `n` singletons.
+    pub(crate) fn new(n: usize) -> Self {
+        UnionFind((0..n as u32).collect())
+    }
+
+    /// The root of `x`'s class.
+    pub(crate) fn find(&mut self, mut x: u32) -> u32 {
+        while self.0[x as usize] != x {
+            let up = self.0[self.0[x as usize] as usize];
+            self.0[x as usize] = up;
+            x = up;
+        }
+        x
+    }
+
+    /// Merges the classes of `a` and `b`.
+    pub(crate) fn union(&mut self, a: u32, b: u32) {
+        let (ra, rb) = (self.find(a), self.find(b));
+        if ra < rb {
+            self.0[rb as usize] = ra;
+        } else if rb < ra {
+            self.0[ra as usize] = rb;
+        }
+    }
+}
+
+/// Calls `f` with every (q+1)-vertex face of `top` (ascending) that contains `sigma` (ascending,
+/// a subset of `top`), in no particular order. O(C(|top|−|σ|, q+1−|σ|)·(q+1)).
+pub(crate) fn faces_containing(top: &[u32], sigma: &[u32], q: usize, mut f: impl FnMut(&[u32])) {
+    if q + 1 < sigma.len() || q + 1 > top.len() {
+        return;
+    }
+    let mut rest = [0u32; 16];
+    let mut r = 0;
+    for &v in top {
+        if sigma.binary_search(&v).is_err() {
+            rest[r] = v;
+            r += 1;
+        }
+    }
+    let k = q + 1 - sigma.len();
+    if k > r {
+        return;
+    }
+    let mut idx = [0usize; 16];
+    for (i, x) in idx.iter_mut().enumerate().take(k) {
+        *x = i;
+    }
+    let mut row = [0u32; 16];
+    loop {
+        // Merge σ with the chosen vertices into an ascending row.
+        let (mut a, mut b, mut o) = (0, 0, 0);
+        while a < sigma.len() || b < k {
+            if b == k || (a < sigma.len() && sigma[a] < rest[idx[b]]) {
+                row[o] = sigma[a];
+                a += 1;
+            } else {
+                row[o] = rest[idx[b]];
+                b += 1;
+            }
+            o += 1;
+        }
+        f(&row[..o]);
+        // Next k-combination of 0..r in lexicographic order.
+        let Some(i) = (0..k).rev().find(|&i| idx[i] < r - k + i) else {
+            return;
+        };
+        idx[i] += 1;
+        for j in i + 1..k {
+            idx[j] = idx[j - 1] + 1;
+        }
+    }
+}
+
+/// Entries kept inline by the per-query scratch types below: a vertex star of a triangle or
+/// tetrahedral mesh fits, so a typical query allocates nothing and scans a few cache lines
+/// instead of hashing.
+const INLINE: usize = 64;
+
+/// Per-query set of ids (the papers' "visited" marks): an inline array scanned linearly while it
+/// holds at most [`INLINE`] ids, a hash set beyond (so large stars stay linear).
+pub(crate) struct IdSet {
+    /// Ids held inline; `len > INLINE` once they moved to `spill`.
+    len: usize,
+    inline: [u32; INLINE],
+    spill: FxHashSet<u32>,
+}
+
+impl Default for IdSet {
+    fn default() -> Self {
+        IdSet {
+            len: 0,
+            inline: [0; INLINE],
+            spill: FxHashSet::default(),
+        }
+    }
+}
+
+impl IdSet {
+    /// Adds `x`; false if it was there already.
+    #[inline]
+    pub(crate) fn insert(&mut self, x: u32) -> bool {
+        if self.len <= INLINE {
+            if self.inline[..self.len].contains(&x) {
+                return false;
+            }
+            if self.len < INLINE {
+                self.inline[self.len] = x;
+                self.len += 1;
+                return true;
+            }
+            self.spill.extend(self.inline);
+            self.len = INLINE + 1;
+        }
+        self.spill.insert(x)
+    }
+
+    #[inline]
+    pub(crate) fn contains(&self, x: &u32) -> bool {
+        if self.len <= INLINE {
+            self.inline[..self.len].contains(x)
+        } else {
+            self.spill.contains(x)
+        }
+    }
+
+    pub(crate) fn clear(&mut self) {
+        self.len = 0;
+        self.spill.clear();
+    }
+}
+
+/// Per-query stack of ids: inline up to [`INLINE`] entries, then on the heap.
+pub(crate) struct IdStack {
+    len: usize,
+    inline: [u32; INLINE],
+    spill: Vec<u32>,
+}
+
+impl Default for IdStack {
+    fn default() -> Self {
+        IdStack {
+            len: 0,
+            inline: [0; INLINE],
+            spill: Vec::new(),
+        }
+    }
+}
+
+impl IdStack {
+    #[inline]
+    pub(crate) fn push(&mut self, x: u32) {
+        if self.len < INLINE {
+            self.inline[self.len] = x;
+            self.len += 1;
+        } else {
+            self.spill.push(x);
+        }
+    }
+
+    #[inline]
+    pub(crate) fn pop(&mut self) -> Option<u32> {
+        if let Some(x) = self.spill.pop() {
+            return Some(x);
+        }
+        if self.len == 0 {
+            return None;
+        }
+        self.len -= 1;
+        Some(self.inline[self.len])
+    }
+}
+
+/// Per-query set of rows already emitted: rows of up to four ids as one u128 key, kept inline
+/// and scanned while few (as [`IdSet`]), hashed beyond; longer rows hashed as vectors.
+pub(crate) struct RowSet {
+    len: usize,
+    inline: [u128; RowSet::INLINE],
+    small: FxHashSet<u128>,
+    big: FxHashSet<Vec<u32>>,
+}
+
+impl Default for RowSet {
+    fn default() -> Self {
+        RowSet {
+            len: 0,
+            inline: [0; RowSet::INLINE],
+            small: FxHashSet::default(),
+            big: FxHashSet::default(),
+        }
+    }
+}
+
+impl RowSet {
+    /// Fewer than [`IdSet`]'s: u128 compares cost more and row sets grow faster than stars.
+    const INLINE: usize = 32;
+
+    pub(crate) fn insert(&mut self, row: &[u32]) -> bool {
+        if row.len() > 4 {
+            return self.big.insert(row.to_vec());
+        }
+        let key = row.iter().fold(0u128, |acc, &v| (acc << 32) | v as u128);
+        if self.len <= Self::INLINE {
+            if self.inline[..self.len].contains(&key) {
+                return false;
+            }
+            if self.len < Self::INLINE {
+                self.inline[self.len] = key;
+                self.len += 1;
+                return true;
+            }
+            self.small.extend(self.inline);
+            self.len = Self::INLINE + 1;
+        }
+        self.small.insert(key)
+    }
+
+    /// Appends `row` to `out` unless it was emitted before.
+    pub(crate) fn emit(&mut self, row: &[u32], out: &mut Vec<u32>) {
+        if self.insert(row) {
+            out.extend_from_slice(row);
+        }
+    }
+}
+
+/// The p-simplices of the closure of `tops` (rows of equal arity), ascending lexicographic.
+pub(crate) fn faces_of_tops<'a>(
+    tops: impl Iterator<Item = &'a [u32]>,
+    p: usize,
+    rows: &mut Vec<u32>,
+) {
+    for t in tops {
+        faces_containing(t, &[], p, |f| rows.extend_from_slice(f));
+    }
+    *rows = sort_dedup_rows(p + 1, std::mem::take(rows));
+}

@@ -1,0 +1,302 @@
+//! [`Navigate`] written once for the nine structures, over dense handles (see
+//! [`crate::handle`]): what each structure adds is [`NavBase`] — where its [`NavIndex`] lives,
+//! which dimensions it stores as a lexicographic table, and optional fast walks.
+//!
+//! # What the index holds, and its cost
+//! - the winding of every top simplex: the permutation from its ascending vertices to its first
+//!   listing in the input, 4 bits per vertex in one `u64` per top simplex (8 bytes each);
+//! - the top simplices below the complex's dimension d (wire edges, dangling faces, isolated
+//!   vertices), as a lexicographic table per dimension, to tell top simplices from others and
+//!   to number them; top d-simplices are the d-simplices, so need no table;
+//! - lazily, per dimension p the structure does not store, the lexicographic table of the
+//!   p-simplices (built from [`Topology::simplices`] on the first request that needs it:
+//!   O(n_p log n_p) time, (p + 1)·n_p integers).
+//!
+//! # Cost of each operation (on top of the structure's own relation cost)
+//! - `locate`: validation, then binary search in the p-table: O(p log n_p); vertices O(1).
+//! - `vertices_of`: O(p) (a table row). `top`, `top_id`: O(1) for d-simplices, O(p log t_p)
+//!   below d (t_p top p-simplices).
+//! - `visit`: a structure's fast walk when it has one (answers are handles directly); otherwise
+//!   the structure's vertex-id relation into a per-thread scratch buffer, then each answer row
+//!   located in its table, O(q log n_q) per answer. No allocation once the scratch is warm.
+
+use std::cell::RefCell;
+use std::sync::OnceLock;
+
+use crate::complex::{Complex, MAX_DIMENSION, SimplexTable};
+use crate::handle::{HandleForm, Navigate, SimplexHandle, TopId, Vertices};
+use crate::relation::{QueryError, Topology, normalize_simplex};
+
+/// The handle bookkeeping one structure owns (see the module doc).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct NavIndex {
+    /// `TopId` of the first top p-simplex, per p, plus the total.
+    top_first: Vec<u32>,
+    /// Winding of each top simplex: nibble i is the rank, among its ascending vertices, of the
+    /// i-th vertex of its first listing.
+    windings: Vec<u64>,
+    /// Top p-simplices for p < d, lexicographic.
+    low_tops: Vec<SimplexTable>,
+    /// Lexicographic p-tables of the dimensions the structure does not store.
+    lazy: [OnceLock<SimplexTable>; MAX_DIMENSION + 1],
+}
+
+impl NavIndex {
+    /// The index of `complex`: windings of its top simplices and its tops below dimension d.
+    /// O(Σ top sizes · log) time.
+    pub(crate) fn new(complex: &Complex) -> NavIndex {
+        let d = complex.dimension();
+        let mut top_first = Vec::with_capacity(d + 2);
+        let mut windings = Vec::new();
+        let mut total = 0u32;
+        for p in 0..=d {
+            top_first.push(total);
+            let tops = complex.tops(p);
+            for i in 0..tops.len() {
+                windings.push(winding(tops.get(i), complex.top_oriented(p, i as u32)));
+            }
+            total += tops.len() as u32;
+        }
+        top_first.push(total);
+        let low_tops = (0..d).map(|p| complex.tops(p).clone()).collect();
+        NavIndex {
+            top_first,
+            windings,
+            low_tops,
+            lazy: Default::default(),
+        }
+    }
+
+    /// The same index with no lazily built table (for a structure derived from another).
+    pub(crate) fn without_caches(&self) -> NavIndex {
+        NavIndex {
+            top_first: self.top_first.clone(),
+            windings: self.windings.clone(),
+            low_tops: self.low_tops.clone(),
+            lazy: Default::default(),
+        }
+    }
+
+    /// Heap bytes held, lazily built tables included.
+    pub(crate) fn heap_bytes(&self) -> usize {
+        self.top_first.capacity() * 4
+            + self.windings.capacity() * 8
+            + self
+                .low_tops
+                .iter()
+                .map(SimplexTable::heap_bytes)
+                .sum::<usize>()
+            + self
+                .lazy
+                .iter()
+                .filter_map(OnceLock::get)
+                .map(SimplexTable::heap_bytes)
+                .sum::<usize>()
+    }
+}
+
+/// Equal when the complexes' windings and top simplices are; lazily built tables are caches.
+impl PartialEq for NavIndex {
+    fn eq(&self, other: &NavIndex) -> bool {
+        (&self.top_first, &self.windings, &self.low_tops)
+            == (&other.top_first, &other.windings, &other.low_tops)
+    }
+}
+
+impl Eq for NavIndex {}
+
+/// Nibble-packed ranks of `given`'s vertices within `sorted`.
+fn winding(sorted: &[u32], given: &[u32]) -> u64 {
+    given.iter().enumerate().fold(0u64, |w, (i, v)| {
+        let rank = sorted.binary_search(v).expect("same vertex set") as u64;
+        w | rank << (4 * i)
+    })
+}
+
+/// What a structure provides to get [`Navigate`].
+pub(crate) trait NavBase: Topology {
+    /// The structure's handle bookkeeping.
+    fn nav(&self) -> &NavIndex;
+
+    /// The structure's own lexicographic table of p-simplices (p ≥ 1), if it stores one.
+    fn stored_table(&self, _p: usize) -> Option<&SimplexTable> {
+        None
+    }
+
+    /// R_{p,q}(h) straight from the structure's arrays, when it has a walk for this (p, q); `h`
+    /// is checked and has vertices `sigma`. `None`: fall back to the vertex-id relation.
+    fn fast_visit(
+        &self,
+        _h: SimplexHandle,
+        _sigma: &[u32],
+        _q: usize,
+        _visit: &mut dyn FnMut(SimplexHandle),
+    ) -> Option<Result<(), QueryError>> {
+        None
+    }
+
+    /// The lexicographic table of the p-simplices (p ≥ 1): stored, or built on first use.
+    fn table(&self, p: usize) -> &SimplexTable {
+        if let Some(t) = self.stored_table(p) {
+            return t;
+        }
+        self.nav().lazy[p].get_or_init(|| {
+            let mut rows = Vec::new();
+            self.simplices(p, &mut rows);
+            SimplexTable::from_sorted_unique(p + 1, rows)
+        })
+    }
+}
+
+thread_local! {
+    /// Answer rows of the vertex-id relation, reused across calls (taken out while in use, so
+    /// a visitor may navigate again).
+    static ROWS: RefCell<Vec<u32>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Runs `f` with the per-thread scratch buffer (empty; reentrant: a nested call gets a fresh one).
+pub(crate) fn with_scratch<R>(f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
+    let mut rows = ROWS.with(|r| std::mem::take(&mut *r.borrow_mut()));
+    rows.clear();
+    let r = f(&mut rows);
+    ROWS.with(|c| *c.borrow_mut() = rows);
+    r
+}
+
+/// Dense handle of the simplex with ascending ids `s`, if it is in `t`'s structure.
+fn find<T: NavBase + ?Sized>(t: &T, s: &[u32]) -> Option<SimplexHandle> {
+    let p = s.len() - 1;
+    if p == 0 {
+        return (s[0] < t.vertex_count()).then(|| SimplexHandle::dense(0, s[0]));
+    }
+    if p > t.dimension() {
+        return None;
+    }
+    t.table(p).find(s).map(|i| SimplexHandle::dense(p, i))
+}
+
+fn invalid(h: SimplexHandle, reason: &'static str) -> QueryError {
+    QueryError::InvalidHandle { handle: h, reason }
+}
+
+impl<T: NavBase> Navigate for T {
+    fn locate(&self, sigma: &[u32]) -> Result<SimplexHandle, QueryError> {
+        // Sorted on the stack: locating allocates nothing unless it fails.
+        let n = self.vertex_count();
+        let k = sigma.len();
+        let mut buf = [0u32; MAX_DIMENSION + 1];
+        if k == 0 || k > buf.len() || sigma.iter().any(|&v| v >= n) {
+            return Err(normalize_simplex(sigma, n).expect_err("an invalid simplex"));
+        }
+        let s = &mut buf[..k];
+        s.copy_from_slice(sigma);
+        s.sort_unstable();
+        if s.windows(2).any(|w| w[0] == w[1]) {
+            return Err(normalize_simplex(sigma, n).expect_err("a repeated vertex"));
+        }
+        find(self, s).ok_or_else(|| QueryError::NotInComplex {
+            simplex: s.to_vec(),
+        })
+    }
+
+    fn check(&self, h: SimplexHandle) -> Result<(), QueryError> {
+        if h.form() != HandleForm::Dense {
+            return Err(invalid(h, "not a dense handle of this structure"));
+        }
+        if h.is_none() {
+            return Err(invalid(h, "the NONE handle"));
+        }
+        if h.dim() > self.dimension() {
+            return Err(invalid(h, "dimension above the complex's"));
+        }
+        if h.index() as usize >= self.count(h.dim()) {
+            return Err(invalid(h, "index beyond the simplices of its dimension"));
+        }
+        Ok(())
+    }
+
+    fn vertices_of(&self, h: SimplexHandle) -> Result<Vertices, QueryError> {
+        self.check(h)?;
+        Ok(match h.dim() {
+            0 => Vertices::from_slice(&[h.index()]),
+            p => Vertices::from_slice(self.table(p).get(h.index() as usize)),
+        })
+    }
+
+    fn handle_bytes(&self) -> u64 {
+        self.nav().heap_bytes() as u64
+    }
+
+    fn top_total(&self) -> u32 {
+        *self.nav().top_first.last().unwrap_or(&0)
+    }
+
+    fn top(&self, t: TopId) -> Result<SimplexHandle, QueryError> {
+        let nav = self.nav();
+        if t.0 >= self.top_total() {
+            return Err(invalid(
+                SimplexHandle::top_face(t, 0),
+                "top simplex id out of range",
+            ));
+        }
+        let p = nav.top_first.partition_point(|&f| f <= t.0) - 1;
+        let i = t.0 - nav.top_first[p];
+        if p == self.dimension() {
+            return Ok(SimplexHandle::dense(p, i));
+        }
+        let s = nav.low_tops[p].get(i as usize);
+        Ok(find(self, s).expect("a top simplex is in the complex"))
+    }
+
+    fn top_id(&self, h: SimplexHandle) -> Result<Option<TopId>, QueryError> {
+        self.check(h)?;
+        let nav = self.nav();
+        let p = h.dim();
+        if p == self.dimension() {
+            return Ok(Some(TopId(nav.top_first[p] + h.index())));
+        }
+        let v = self.vertices_of(h)?;
+        Ok(nav.low_tops[p]
+            .find(&v)
+            .map(|i| TopId(nav.top_first[p] + i)))
+    }
+
+    fn top_as_given(&self, t: TopId) -> Result<Vertices, QueryError> {
+        let sorted = self.vertices_of(self.top(t)?)?;
+        let w = self.nav().windings[t.index()];
+        let mut given = [0u32; MAX_DIMENSION + 1];
+        for (i, g) in given.iter_mut().enumerate().take(sorted.len()) {
+            *g = sorted[((w >> (4 * i)) & 0xf) as usize];
+        }
+        Ok(Vertices::from_slice(&given[..sorted.len()]))
+    }
+
+    fn visit(
+        &self,
+        h: SimplexHandle,
+        q: usize,
+        visit: &mut dyn FnMut(SimplexHandle),
+    ) -> Result<(), QueryError> {
+        let sigma = self.vertices_of(h)?;
+        let d = self.dimension();
+        if q > d {
+            return Err(QueryError::DimensionOutOfRange {
+                p: h.dim(),
+                q,
+                dim: d,
+            });
+        }
+        if let Some(r) = self.fast_visit(h, &sigma, q, visit) {
+            return r;
+        }
+        with_scratch(|rows| {
+            let answer = self.query(&sigma, q, rows);
+            if answer.is_ok() {
+                for row in rows.chunks_exact(q + 1) {
+                    visit(find(self, row).expect("an answer is a simplex of the complex"));
+                }
+            }
+            answer
+        })
+    }
+}
