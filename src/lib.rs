@@ -6,6 +6,7 @@
 //! - [`structures`] builds any of the family (IG, SIG, IA, IQM, NMIA, TS, PE, LE, DE).
 //! - [`oracle`] answers every relation by brute force, for tests.
 //! - [`report`] is `topoplex report`: census, storage and timings of every structure.
+//! - [`store`] saves the complex and a structure as `.tpx` and maps them back zero-copy.
 //! - [`ffi`] is the C ABI (`include/topoplex.h`), the only module allowed `unsafe` code.
 
 #![deny(unsafe_code)]
@@ -18,6 +19,7 @@ pub mod io;
 pub mod oracle;
 pub mod relation;
 pub mod report;
+pub mod store;
 pub mod structures;
 
 pub use complex::{Complex, ComplexError};

@@ -107,7 +107,8 @@ pub enum QueryError {
 
 /// The relation API. Implementors provide [`Topology::query`] for a validated simplex; callers
 /// use [`Topology::relation`], which validates first.
-pub trait Topology: Send + Sync {
+/// `Any` lets the saved format ([`crate::store`]) find a structure's concrete type.
+pub trait Topology: Send + Sync + std::any::Any {
     fn kind(&self) -> StructureKind;
 
     /// Dimension d of the complex.

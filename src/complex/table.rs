@@ -1,25 +1,30 @@
 //! Flat, sorted tables of p-simplices: the one representation of "a set of simplices" shared by
 //! the complex model, the oracle and the incidence-based structures.
 
+use crate::store::Arr;
+
 /// The p-simplices of some set, each as `arity = p + 1` ascending vertex ids, concatenated, in
 /// ascending lexicographic order, without duplicates. Simplex `i` of the table is its `i`-th
 /// entry, so the table itself is the dense numbering of those simplices.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct SimplexTable {
     arity: usize,
-    ids: Vec<u32>,
+    ids: Arr<u32>,
 }
 
 impl SimplexTable {
     /// An empty table of vertices, usable in statics.
     pub const EMPTY: SimplexTable = SimplexTable {
         arity: 1,
-        ids: Vec::new(),
+        ids: Arr::new(),
     };
 
     /// Wraps rows the caller knows are ascending and distinct (checked in debug builds).
     pub fn from_sorted_unique(arity: usize, ids: Vec<u32>) -> Self {
-        let t = SimplexTable { arity, ids };
+        let t = SimplexTable {
+            arity,
+            ids: ids.into(),
+        };
         debug_assert!((1..t.len()).all(|i| t.get(i - 1) < t.get(i)));
         t
     }
@@ -27,7 +32,7 @@ impl SimplexTable {
     pub fn empty(arity: usize) -> Self {
         SimplexTable {
             arity,
-            ids: Vec::new(),
+            ids: Arr::new(),
         }
     }
 
@@ -37,7 +42,10 @@ impl SimplexTable {
         assert!(arity > 0 && ids.len().is_multiple_of(arity));
         let rows = ids.len() / arity;
         let ids = sort_dedup_rows(arity, ids);
-        let table = SimplexTable { arity, ids };
+        let table = SimplexTable {
+            arity,
+            ids: ids.into(),
+        };
         let dups = rows - table.len();
         (table, dups)
     }
@@ -48,6 +56,13 @@ impl SimplexTable {
             arity: 1,
             ids: (0..n).collect(),
         }
+    }
+
+    /// Wraps an array of rows read from a saved file; their order is the saver's invariant,
+    /// checked by the owning structure's `validate()`. `ids.len()` must be a multiple of `arity`.
+    pub fn from_arr(arity: usize, ids: Arr<u32>) -> Self {
+        assert!(arity > 0 && ids.len().is_multiple_of(arity));
+        SimplexTable { arity, ids }
     }
 
     pub fn arity(&self) -> usize {

@@ -56,6 +56,7 @@
 //!
 //! Queries keep no state in the structure: every walk has its own hash set.
 
+use crate::store::Arr;
 use rustc_hash::FxHashSet;
 
 use super::{BuildError, to_u32};
@@ -83,10 +84,10 @@ pub struct IndexedAdjacency {
     /// R_{d,0}: the d-simplices, ascending lexicographic (a d-simplex's id is its row).
     tops: SimplexTable,
     /// R_{d,d}: d + 1 entries per d-simplex, entry `i` across the facet opposite vertex `i`.
-    adj: Vec<u32>,
+    adj: Arr<u32>,
     /// Per vertex, one d-simplex per component of its star (CSR).
-    vstar_off: Vec<u32>,
-    vstar: Vec<u32>,
+    vstar_off: Arr<u32>,
+    vstar: Arr<u32>,
     /// n_p for p = 0..=d.
     counts: Vec<usize>,
 }
@@ -450,9 +451,9 @@ impl IndexedAdjacency {
             d,
             n,
             tops,
-            adj,
-            vstar_off,
-            vstar,
+            adj: adj.into(),
+            vstar_off: vstar_off.into(),
+            vstar: vstar.into(),
             counts,
         })
     }
@@ -761,3 +762,14 @@ impl Topology for IndexedAdjacency {
         Ok(())
     }
 }
+
+crate::persist_fields!(IndexedAdjacency { d, n, tops, adj, vstar_off, vstar, counts } check |s| {
+    let d = s.d;
+    if s.tops.arity() != d + 1 || s.adj.len() != (d + 1) * s.tops.len() || s.counts.len() != d + 1 {
+        return Err(format!("top table, adjacency or counts do not fit dimension {d}"));
+    }
+    if s.vstar_off.len() != s.n as usize + 1 || s.vstar_off.last() != Some(&(s.vstar.len() as u32)) {
+        return Err("vertex star offsets do not fit the vertices".into());
+    }
+    Ok(())
+});

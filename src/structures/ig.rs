@@ -34,15 +34,16 @@ use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::store::Arr;
 
 const KIND: StructureKind = StructureKind::Ig;
 
 #[derive(Debug, Clone)]
 pub struct IncidenceGraph {
     tables: Vec<SimplexTable>,
-    boundary: Vec<Vec<u32>>,
-    cob_offsets: Vec<Vec<u32>>,
-    cob: Vec<Vec<u32>>,
+    boundary: Vec<Arr<u32>>,
+    cob_offsets: Vec<Arr<u32>>,
+    cob: Vec<Arr<u32>>,
     top_counts: Vec<usize>,
 }
 
@@ -118,9 +119,9 @@ impl IncidenceGraph {
             .collect();
         Ok(IncidenceGraph {
             tables,
-            boundary,
-            cob_offsets,
-            cob,
+            boundary: boundary.into_iter().map(Arr::from).collect(),
+            cob_offsets: cob_offsets.into_iter().map(Arr::from).collect(),
+            cob: cob.into_iter().map(Arr::from).collect(),
             top_counts,
         })
     }
@@ -259,8 +260,8 @@ impl Topology for IncidenceGraph {
     }
 
     fn storage(&self) -> Storage {
-        let links: usize = self.boundary.iter().map(Vec::len).sum::<usize>()
-            + self.cob.iter().map(Vec::len).sum::<usize>();
+        let links: usize = self.boundary.iter().map(|b| b.len()).sum::<usize>()
+            + self.cob.iter().map(|c| c.len()).sum::<usize>();
         let arrays: usize = self.tables[..self.tables.len() - 1]
             .iter()
             .map(SimplexTable::len)
@@ -352,3 +353,11 @@ impl Topology for IncidenceGraph {
         Ok(())
     }
 }
+
+crate::persist_fields!(IncidenceGraph { tables, boundary, cob_offsets, cob, top_counts } check |s| {
+    let levels = s.tables.len();
+    if levels == 0 || s.boundary.len() != levels || s.cob_offsets.len() + 1 != levels || s.cob.len() + 1 != levels || s.top_counts.len() != levels {
+        return Err("per-dimension tables of different lengths".into());
+    }
+    Ok(())
+});
