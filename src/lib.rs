@@ -17,6 +17,7 @@ pub mod ffi;
 pub mod fixtures;
 pub mod io;
 pub mod oracle;
+pub mod parallel;
 pub mod relation;
 pub mod report;
 pub mod store;

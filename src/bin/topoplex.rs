@@ -9,7 +9,8 @@ use std::time::Duration;
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use topoplex::relation::sort_rows;
-use topoplex::{Complex, StructureKind, fixtures, structures};
+use topoplex::store::Saved;
+use topoplex::{Complex, StructureKind, Topology, fixtures, structures};
 
 #[derive(Parser)]
 #[command(
@@ -18,6 +19,9 @@ use topoplex::{Complex, StructureKind, fixtures, structures};
     about = "Topological data structures for arbitrary simplicial complexes"
 )]
 struct Cli {
+    /// Threads for building structures (default: TOPOPLEX_THREADS, else every core).
+    #[arg(long, global = true, value_name = "N")]
+    threads: Option<usize>,
     #[command(subcommand)]
     command: Command,
 }
@@ -28,7 +32,7 @@ enum Command {
     /// C_v − n_0, IQM components, non-manifold simplices), every structure's storage, build time
     /// and time per retrieved element for each relation family (sampled queries).
     Report {
-        /// .off, .obj, .mesh or .simplices files; without any, a built-in example complex with
+        /// .off, .obj, .mesh, .simplices or .tpx files; without any, a built-in example complex with
         /// a wire edge, a dangling triangle, a tetrahedron and a non-manifold vertex and edge.
         files: Vec<PathBuf>,
         /// Print JSON (one object for one dataset, an array for several) instead of Markdown.
@@ -54,6 +58,23 @@ enum Command {
         #[arg(long)]
         simplex: Option<String>,
     },
+    /// Build a structure and save it with its complex as a .tpx file, which every command takes
+    /// as input and opens by memory mapping (no parsing, no build).
+    Save {
+        /// .off, .obj, .mesh, .simplices or .tpx input.
+        file: PathBuf,
+        /// ig, sig, ia, iqm, nmia, ts, pe, le, de; without it, only the complex is saved.
+        #[arg(long)]
+        structure: Option<String>,
+        /// The .tpx file to write.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Check a .tpx file fully: every section's checksum and the saved structure's invariants.
+    Verify {
+        /// The .tpx file.
+        file: PathBuf,
+    },
     /// Cut the complex into its IQM components (the standard decomposition into initial
     /// quasi-manifolds) and write each as its own file, plus gluing.json mapping every
     /// component's local vertex ids back to the original ids.
@@ -77,6 +98,13 @@ fn parse_pq(s: &str) -> Result<(usize, usize), String> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    if let Some(n) = cli.threads {
+        if n == 0 {
+            eprintln!("topoplex: --threads must be at least 1");
+            return ExitCode::FAILURE;
+        }
+        topoplex::parallel::set_threads(n);
+    }
     let result = match cli.command {
         Command::Report {
             files,
@@ -91,6 +119,12 @@ fn main() -> ExitCode {
             simplex,
         } => dump_relation(file, &structure, relation, simplex),
         Command::Decompose { file, out } => decompose(&file, &out),
+        Command::Save {
+            file,
+            structure,
+            out,
+        } => save(&file, structure.as_deref(), &out),
+        Command::Verify { file } => verify(&file),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -102,7 +136,52 @@ fn main() -> ExitCode {
 }
 
 fn load(file: &Path) -> Result<Complex, String> {
+    if topoplex::store::is_saved_path(file) {
+        let saved = Saved::open(file).map_err(|e| e.to_string())?;
+        return saved.complex().map_err(|e| e.to_string());
+    }
     Complex::from_path(file).map_err(|e| e.to_string())
+}
+
+/// The structure of `kind` for `file`: a saved one is mapped, not rebuilt.
+fn load_structure(file: &Path, kind: StructureKind) -> Result<Box<dyn Topology>, String> {
+    if topoplex::store::is_saved_path(file) {
+        let saved = Saved::open(file).map_err(|e| e.to_string())?;
+        return saved.structure_of(kind).map_err(|e| e.to_string());
+    }
+    let complex = load(file)?;
+    structures::build(kind, &complex).map_err(|e| e.to_string())
+}
+
+fn parse_kind(structure: &str) -> Result<StructureKind, String> {
+    StructureKind::from_name(structure).ok_or_else(|| {
+        let names: Vec<&str> = StructureKind::ALL.iter().map(|k| k.name()).collect();
+        format!(
+            "unknown structure `{structure}` (expected one of: {})",
+            names.join(", ")
+        )
+    })
+}
+
+fn save(file: &Path, structure: Option<&str>, out: &Path) -> Result<(), String> {
+    let kind = structure.map(parse_kind).transpose()?;
+    let complex = load(file)?;
+    let built = match kind {
+        Some(k) if topoplex::store::is_saved_path(file) => Some(load_structure(file, k)?),
+        Some(k) => Some(structures::build(k, &complex).map_err(|e| e.to_string())?),
+        None => None,
+    };
+    topoplex::store::save(out, &complex, built.as_deref()).map_err(|e| e.to_string())
+}
+
+fn verify(file: &Path) -> Result<(), String> {
+    let saved = Saved::open(file).map_err(|e| e.to_string())?;
+    saved.verify().map_err(|e| e.to_string())?;
+    let what = saved
+        .kind()
+        .map_or("complex".to_string(), |k| format!("complex and {k}"));
+    println!("{}: {what}: {} bytes verified", file.display(), saved.len());
+    Ok(())
 }
 
 /// A progress bar on stderr that appears only on a terminal and only once the work has taken
@@ -220,15 +299,8 @@ fn dump_relation(
     (p, q): (usize, usize),
     simplex: Option<String>,
 ) -> Result<(), String> {
-    let kind = StructureKind::from_name(structure).ok_or_else(|| {
-        let names: Vec<&str> = StructureKind::ALL.iter().map(|k| k.name()).collect();
-        format!(
-            "unknown structure `{structure}` (expected one of: {})",
-            names.join(", ")
-        )
-    })?;
-    let complex = load(&file)?;
-    let topo = structures::build(kind, &complex).map_err(|e| e.to_string())?;
+    let kind = parse_kind(structure)?;
+    let topo = load_structure(&file, kind)?;
     let d = topo.dimension();
     if p > d || q > d {
         return Err(format!(

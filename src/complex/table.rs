@@ -120,20 +120,14 @@ pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
     // the closure costs the same per simplex at 10^4 and 10^6 simplices.
     let bits = id_bits(ids.iter().copied().max().unwrap_or(0));
     if arity >= 2 && arity as u32 * bits <= 64 {
-        let mut keys: Vec<u64> = ids
-            .chunks_exact(arity)
-            .map(|r| r.iter().fold(0u64, |acc, &v| (acc << bits) | v as u64))
-            .collect();
+        let mut keys: Vec<u64> = crate::parallel::map_collect(ids.len() / arity, |r| {
+            let row = &ids[r * arity..(r + 1) * arity];
+            row.iter().fold(0u64, |acc, &v| (acc << bits) | v as u64)
+        });
+        drop(ids);
         radix_sort(&mut keys, arity as u32 * bits);
         keys.dedup();
-        let mask = (1u64 << bits) - 1;
-        let mut out = Vec::with_capacity(keys.len() * arity);
-        for k in keys {
-            for i in (0..arity).rev() {
-                out.push(((k >> (bits * i as u32)) & mask) as u32);
-            }
-        }
-        return out;
+        return unpack_keys(&keys, arity, bits);
     }
     fn packed<K: Ord + Copy>(
         arity: usize,
@@ -188,6 +182,27 @@ pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
     }
 }
 
+/// Rows of `arity` ids of `bits` bits each from their packed keys (split between threads; each
+/// row's place is fixed by its key's index).
+fn unpack_keys(keys: &[u64], arity: usize, bits: u32) -> Vec<u32> {
+    let mask = (1u64 << bits) - 1;
+    let mut out = vec![0u32; keys.len() * arity];
+    let unpack = |(row, &k): (&mut [u32], &u64)| {
+        for (i, v) in row.iter_mut().enumerate() {
+            *v = ((k >> (bits * (arity - 1 - i) as u32)) & mask) as u32;
+        }
+    };
+    if crate::parallel::threads() > 1 && keys.len() >= crate::parallel::MIN_PARALLEL {
+        use rayon::prelude::*;
+        crate::parallel::install(|| {
+            out.par_chunks_mut(arity).zip(keys.par_iter()).for_each(unpack);
+        });
+    } else {
+        out.chunks_mut(arity).zip(keys.iter()).for_each(unpack);
+    }
+    out
+}
+
 /// Bits needed to write `max` (at least 1).
 pub fn id_bits(max: u32) -> u32 {
     (32 - max.leading_zeros()).max(1)
@@ -195,7 +210,13 @@ pub fn id_bits(max: u32) -> u32 {
 
 /// Sorts keys whose set bits all lie below `bits` (≤ 64): LSD radix sort by 11-bit digits,
 /// O(n·bits/11), skipping digits on which every key agrees. Small inputs use `sort_unstable`.
+/// With several threads ([`crate::parallel`]), chunks are sorted on their own threads and
+/// merged: the same result.
 pub fn radix_sort(keys: &mut Vec<u64>, bits: u32) {
+    crate::parallel::sort_keys(keys, bits, radix_sort_serial);
+}
+
+fn radix_sort_serial(keys: &mut Vec<u64>, bits: u32) {
     if keys.len() < 4096 {
         keys.sort_unstable();
         return;
@@ -237,19 +258,22 @@ fn radix_sort_by<T: Copy + Default>(items: &mut Vec<T>, bits: u32, key: impl Fn(
 
 /// The indices `0..n` sorted by `(key(i), i)`, when every key is below `2^key_bits` (≤ 64):
 /// radix sort, linear; `None` for wider keys, for callers to fall back to a comparison sort.
-pub fn order_by_key(n: usize, key_bits: u32, key: impl Fn(u32) -> u64) -> Option<Vec<u32>> {
+pub fn order_by_key(
+    n: usize,
+    key_bits: u32,
+    key: impl Fn(u32) -> u64 + Sync + Send,
+) -> Option<Vec<u32>> {
     let index_bits = id_bits(n.saturating_sub(1).try_into().ok()?);
     if key_bits > 64 {
         return None;
     }
     if key_bits + index_bits <= 64 {
         // Key and index packed in one word: half the memory traffic of pairs.
-        let mut keys: Vec<u64> = (0..n as u32)
-            .map(|i| (key(i) << index_bits) | i as u64)
-            .collect();
+        let mut keys: Vec<u64> =
+            crate::parallel::map_collect(n, |i| (key(i as u32) << index_bits) | i as u64);
         radix_sort(&mut keys, key_bits + index_bits);
         let mask = (1u64 << index_bits) - 1;
-        return Some(keys.into_iter().map(|k| (k & mask) as u32).collect());
+        return Some(crate::parallel::map_collect(n, |i| (keys[i] & mask) as u32));
     }
     let hi = key_bits + index_bits - 64;
     if hi <= 16 {
