@@ -61,6 +61,12 @@
 #define TPX_KIND_DE 8
 
 /**
+ * `tpx_structure_open` flag: check every section's checksum and the structure's invariants
+ * before returning (reads the whole file).
+ */
+#define TPX_OPEN_VERIFY 1
+
+/**
  * Result of a fallible `tpx_*` call. Values are part of the ABI and never reused.
  */
 enum TpxStatus
@@ -131,6 +137,27 @@ enum TpxStatus
    * An internal bug was caught at the boundary; the message has the panic text.
    */
   TPX_STATUS_PANIC = 14,
+  /**
+   * A saved file (`.tpx`) is corrupt: a checksum, offset or length is wrong (the message
+   * names the file and the first inconsistency).
+   */
+  TPX_STATUS_SAVED_FILE_CORRUPT = 40,
+  /**
+   * A saved file is shorter than its header says.
+   */
+  TPX_STATUS_SAVED_FILE_TRUNCATED = 41,
+  /**
+   * A saved file was written by another format version.
+   */
+  TPX_STATUS_SAVED_FILE_WRONG_VERSION = 42,
+  /**
+   * The file is not a saved file (wrong magic number).
+   */
+  TPX_STATUS_SAVED_FILE_FOREIGN = 43,
+  /**
+   * A saved file was written on a host of the other byte order.
+   */
+  TPX_STATUS_SAVED_FILE_WRONG_ENDIANNESS = 44,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -398,6 +425,58 @@ TpxStatus tpx_decomposition_copies(const struct TpxDecomposition *d,
                                    const uint32_t **copy_vertex,
                                    const uint32_t **copy_component,
                                    size_t *len);
+
+/**
+ * Saves the complex `c` and, unless `s` is NULL, the structure `s` built from it, to `path`
+ * (a `.tpx` file: written beside it under a temporary name, then renamed).
+ *
+ * Errors: NULL_ARGUMENT (`c` or `path`), INVALID_ARGUMENT (path not UTF-8), IO_ERROR. Cost:
+ * one pass over the complex's listing and the structure's arrays.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid (live handles; a NUL-terminated path). `s` must have been
+ * built from `c` (or opened from a file saved with it): the file pairs them.
+ */
+TpxStatus tpx_save(const struct TpxComplex *c, const struct TpxStructure *s, const char *path);
+
+/**
+ * Opens the structure of `kind` (`TPX_KIND_*`) saved in `path` by memory mapping it: the
+ * structure's arrays are read from the file as queries touch them. If the file holds another
+ * kind or only a complex, the structure is built from the saved complex instead. With
+ * `flags & TPX_OPEN_VERIFY`, every checksum and the structure's invariants are checked first.
+ *
+ * On success `*out` receives a new structure owned by the caller (free with
+ * `tpx_structure_free`; the mapping lives until then). Errors: NULL_ARGUMENT,
+ * INVALID_ARGUMENT (path not UTF-8, unknown flag), UNKNOWN_KIND, IO_ERROR,
+ * SAVED_FILE_CORRUPT, SAVED_FILE_TRUNCATED, SAVED_FILE_WRONG_VERSION, SAVED_FILE_FOREIGN,
+ * SAVED_FILE_WRONG_ENDIANNESS, and the build errors of `tpx_structure_build` when building.
+ * Cost: O(sections) without VERIFY; O(file size) with it.
+ *
+ * # Safety
+ * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+ */
+TpxStatus tpx_structure_open(const char *path,
+                             uint32_t kind,
+                             uint32_t flags,
+                             struct TpxStructure **out);
+
+/**
+ * Opens the complex saved in `path`, rebuilt from its saved listing (validated like any
+ * input). On success `*out` receives a new complex owned by the caller (free with
+ * `tpx_complex_free`). Errors: as `tpx_structure_open`, plus INVALID_COMPLEX. Cost: a
+ * normalisation of the saved listing.
+ *
+ * # Safety
+ * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+ */
+TpxStatus tpx_complex_open(const char *path, struct TpxComplex **out);
+
+/**
+ * Sets the number of threads later builds use (`0` is INVALID_ARGUMENT). Without a call, the
+ * `TOPOPLEX_THREADS` environment variable, else every core. Builds give the same structure
+ * whatever the count. O(1).
+ */
+TpxStatus tpx_set_threads(uint32_t threads);
 
 /**
  * Builds a structure of `kind` (`TPX_KIND_*`) for the complex `c`.

@@ -216,3 +216,53 @@ fn query_everything(s: &dyn Topology) {
         }
     }
 }
+
+#[test]
+fn the_c_abi_saves_opens_and_names_bad_files_by_status() {
+    use std::ffi::CString;
+    use std::ptr::{null, null_mut};
+    use topoplex::ffi::*;
+    let c = fixtures::builtin_example();
+    let path = temp_path("abi.tpx");
+    let cpath = CString::new(path.to_str().unwrap()).unwrap();
+    let fresh = build(StructureKind::Sig, &c).unwrap();
+    save(&path, &c, Some(fresh.as_ref())).unwrap();
+    unsafe {
+        let mut s = null_mut();
+        let st = tpx_structure_open(cpath.as_ptr(), TPX_KIND_SIG, TPX_OPEN_VERIFY, &mut s);
+        assert_eq!(st, TpxStatus::Ok);
+        let (mut buf, mut len) = ([0u32; 64], 0usize);
+        let st = tpx_relation(s, [0u32].as_ptr(), 1, 1, buf.as_mut_ptr(), 64, &mut len);
+        assert_eq!(st, TpxStatus::Ok);
+        let mut want = Vec::new();
+        fresh.relation(&[0], 1, &mut want).unwrap();
+        topoplex::relation::sort_rows(&mut want, 2);
+        let mut got = buf[..len].to_vec();
+        topoplex::relation::sort_rows(&mut got, 2);
+        assert_eq!(got, want);
+        // Saved again through the ABI from the mapped structure, then opened as a complex.
+        let mut cx = null_mut();
+        assert_eq!(tpx_complex_open(cpath.as_ptr(), &mut cx), TpxStatus::Ok);
+        let again = temp_path("abi-again.tpx");
+        let cagain = CString::new(again.to_str().unwrap()).unwrap();
+        assert_eq!(tpx_save(cx, s, cagain.as_ptr()), TpxStatus::Ok);
+        assert_eq!(tpx_save(cx, null(), cagain.as_ptr()), TpxStatus::Ok);
+        tpx_structure_free(s);
+        tpx_complex_free(cx);
+        // A foreign file, a truncated one, and an unknown flag.
+        std::fs::write(&again, b"OFF\n").unwrap();
+        let mut s = null_mut();
+        let st = tpx_structure_open(cagain.as_ptr(), TPX_KIND_SIG, 0, &mut s);
+        assert_eq!(st, TpxStatus::SavedFileForeign);
+        let bytes = std::fs::read(&path).unwrap();
+        std::fs::write(&again, &bytes[..bytes.len() / 2]).unwrap();
+        let st = tpx_structure_open(cagain.as_ptr(), TPX_KIND_SIG, 0, &mut s);
+        assert_eq!(st, TpxStatus::SavedFileTruncated);
+        assert!(s.is_null());
+        let st = tpx_structure_open(cpath.as_ptr(), TPX_KIND_SIG, 6, &mut s);
+        assert_eq!(st, TpxStatus::InvalidArgument);
+        assert_eq!(tpx_set_threads(0), TpxStatus::InvalidArgument);
+        std::fs::remove_file(&again).unwrap();
+    }
+    std::fs::remove_file(&path).unwrap();
+}

@@ -195,7 +195,9 @@ fn unpack_keys(keys: &[u64], arity: usize, bits: u32) -> Vec<u32> {
     if crate::parallel::threads() > 1 && keys.len() >= crate::parallel::MIN_PARALLEL {
         use rayon::prelude::*;
         crate::parallel::install(|| {
-            out.par_chunks_mut(arity).zip(keys.par_iter()).for_each(unpack);
+            out.par_chunks_mut(arity)
+                .zip(keys.par_iter())
+                .for_each(unpack);
         });
     } else {
         out.chunks_mut(arity).zip(keys.iter()).for_each(unpack);

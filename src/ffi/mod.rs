@@ -23,12 +23,14 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 mod complex;
 mod decomposition;
+mod store;
 mod structure;
 #[cfg(test)]
 mod tests;
 
 pub use complex::*;
 pub use decomposition::*;
+pub use store::*;
 pub use structure::*;
 
 // The panic boundary below relies on unwinding; with `panic = "abort"` a bug would kill the host.
@@ -72,6 +74,17 @@ pub enum TpxStatus {
     TooLarge = 13,
     /// An internal bug was caught at the boundary; the message has the panic text.
     Panic = 14,
+    /// A saved file (`.tpx`) is corrupt: a checksum, offset or length is wrong (the message
+    /// names the file and the first inconsistency).
+    SavedFileCorrupt = 40,
+    /// A saved file is shorter than its header says.
+    SavedFileTruncated = 41,
+    /// A saved file was written by another format version.
+    SavedFileWrongVersion = 42,
+    /// The file is not a saved file (wrong magic number).
+    SavedFileForeign = 43,
+    /// A saved file was written on a host of the other byte order.
+    SavedFileWrongEndianness = 44,
 }
 
 /// Incidence Graph.

@@ -37,7 +37,7 @@ pub struct TpxRelationTable {
     ids: Vec<u32>,
 }
 
-fn kind_from_u32(kind: u32) -> Result<StructureKind, Failure> {
+pub(crate) fn kind_from_u32(kind: u32) -> Result<StructureKind, Failure> {
     StructureKind::ALL
         .get(kind as usize)
         .copied()
