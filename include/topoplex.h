@@ -61,24 +61,10 @@
 #define TPX_KIND_DE 8
 
 /**
- * Answer order of the navigation functions: the structure's natural order.
+ * `tpx_structure_open` flag: check every section's checksum and the structure's invariants
+ * before returning (reads the whole file).
  */
-#define TPX_ORDER_NATURAL 0
-
-/**
- * Answer order of the navigation functions: ascending lexicographic (ascending index).
- */
-#define TPX_ORDER_LEXICOGRAPHIC 1
-
-/**
- * Flag bit of a group written by `tpx_fans_around` / `tpx_around_edge`: the group closes.
- */
-#define TPX_GROUP_CLOSED 1
-
-/**
- * Flag bit of a group: consistently oriented and counter-clockwise by the input winding.
- */
-#define TPX_GROUP_ORIENTED 2
+#define TPX_OPEN_VERIFY 1
 
 /**
  * Result of a fallible `tpx_*` call. Values are part of the ABI and never reused.
@@ -152,22 +138,26 @@ enum TpxStatus
    */
   TPX_STATUS_PANIC = 14,
   /**
-   * A handle names no simplex of this structure: index or dimension out of range, `NONE`,
-   * unknown form bits.
+   * A saved file (`.tpx`) is corrupt: a checksum, offset or length is wrong (the message
+   * names the file and the first inconsistency).
    */
-  TPX_STATUS_INVALID_HANDLE = 15,
+  TPX_STATUS_SAVED_FILE_CORRUPT = 40,
   /**
-   * A handle of a simplex that an edit removed (editable structures only).
+   * A saved file is shorter than its header says.
    */
-  TPX_STATUS_STALE_HANDLE = 16,
+  TPX_STATUS_SAVED_FILE_TRUNCATED = 41,
   /**
-   * A handle of the wrong kind for the call (an edge where a vertex is needed).
+   * A saved file was written by another format version.
    */
-  TPX_STATUS_WRONG_HANDLE_KIND = 17,
+  TPX_STATUS_SAVED_FILE_WRONG_VERSION = 42,
   /**
-   * A handle made by another structure (its owner stamp does not match).
+   * The file is not a saved file (wrong magic number).
    */
-  TPX_STATUS_FOREIGN_HANDLE = 18,
+  TPX_STATUS_SAVED_FILE_FOREIGN = 43,
+  /**
+   * A saved file was written on a host of the other byte order.
+   */
+  TPX_STATUS_SAVED_FILE_WRONG_ENDIANNESS = 44,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -202,30 +192,6 @@ typedef struct TpxRelationTable TpxRelationTable;
  * threads at once.
  */
 typedef struct TpxStructure TpxStructure;
-
-/**
- * A handle to one simplex of one structure (12 bytes, plain data; copy freely).
- *
- * `index` is the simplex's dense index among the simplices of its dimension (lexicographic
- * rank; a vertex's index is its id; the caller's per-dimension arrays can be indexed by it).
- * `meta` holds the dimension in its low 8 bits (`meta & 0xff`); the other bits are 0 for every
- * structure of this library. `owner` is the stamp of the structure that made it. A handle stays
- * valid as long as its structure lives; copying it is free, nothing needs releasing.
- */
-typedef struct TpxSimplex {
-  /**
-   * Dense index among the simplices of its dimension.
-   */
-  uint32_t index;
-  /**
-   * Dimension in bits 0..8; form and local bits above (0 here).
-   */
-  uint32_t meta;
-  /**
-   * Stamp of the owning structure (`tpx_structure_stamp`).
-   */
-  uint32_t owner;
-} TpxSimplex;
 
 /**
  * Storage of a structure: what the papers count and what the process really holds.
@@ -461,200 +427,56 @@ TpxStatus tpx_decomposition_copies(const struct TpxDecomposition *d,
                                    size_t *len);
 
 /**
- * The owner stamp of structure `s` into `*out`: every handle it makes carries it. O(1).
+ * Saves the complex `c` and, unless `s` is NULL, the structure `s` built from it, to `path`
+ * (a `.tpx` file: written beside it under a temporary name, then renamed).
+ *
+ * Errors: NULL_ARGUMENT (`c` or `path`), INVALID_ARGUMENT (path not UTF-8), IO_ERROR. Cost:
+ * one pass over the complex's listing and the structure's arrays.
  *
  * # Safety
- * Non-NULL pointers must be valid.
+ * Non-NULL pointers must be valid (live handles; a NUL-terminated path). `s` must have been
+ * built from `c` (or opened from a file saved with it): the file pairs them.
  */
-TpxStatus tpx_structure_stamp(const struct TpxStructure *s, uint32_t *out);
+TpxStatus tpx_save(const struct TpxComplex *c, const struct TpxStructure *s, const char *path);
 
 /**
- * Locates the simplex with vertex ids `simplex[0 .. simplex_len]` (any order) and writes its
- * handle to `*out`. Errors: NULL_ARGUMENT, INVALID_SIMPLEX, NOT_IN_COMPLEX. Cost: O(p log n_p)
- * (a binary search; for dimensions a structure stores only implicitly, the first call builds
- * that dimension's table once, see the Rust `handle` module). No allocation otherwise.
+ * Opens the structure of `kind` (`TPX_KIND_*`) saved in `path` by memory mapping it: the
+ * structure's arrays are read from the file as queries touch them. If the file holds another
+ * kind or only a complex, the structure is built from the saved complex instead. With
+ * `flags & TPX_OPEN_VERIFY`, every checksum and the structure's invariants are checked first.
+ *
+ * On success `*out` receives a new structure owned by the caller (free with
+ * `tpx_structure_free`; the mapping lives until then). Errors: NULL_ARGUMENT,
+ * INVALID_ARGUMENT (path not UTF-8, unknown flag), UNKNOWN_KIND, IO_ERROR,
+ * SAVED_FILE_CORRUPT, SAVED_FILE_TRUNCATED, SAVED_FILE_WRONG_VERSION, SAVED_FILE_FOREIGN,
+ * SAVED_FILE_WRONG_ENDIANNESS, and the build errors of `tpx_structure_build` when building.
+ * Cost: O(sections) without VERIFY; O(file size) with it.
  *
  * # Safety
- * Non-NULL pointers must be valid; `simplex` must hold `simplex_len` ids.
+ * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
  */
-TpxStatus tpx_locate(const struct TpxStructure *s,
-                     const uint32_t *simplex,
-                     size_t simplex_len,
-                     struct TpxSimplex *out);
+TpxStatus tpx_structure_open(const char *path,
+                             uint32_t kind,
+                             uint32_t flags,
+                             struct TpxStructure **out);
 
 /**
- * The handle of the p-simplex of dense index `index` into `*out` (for a vertex: p = 0, index =
- * its id). Errors: INVALID_HANDLE (p > d or index >= n_p). O(1).
+ * Opens the complex saved in `path`, rebuilt from its saved listing (validated like any
+ * input). On success `*out` receives a new complex owned by the caller (free with
+ * `tpx_complex_free`). Errors: as `tpx_structure_open`, plus INVALID_COMPLEX. Cost: a
+ * normalisation of the saved listing.
  *
  * # Safety
- * Non-NULL pointers must be valid.
+ * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
  */
-TpxStatus tpx_handle(const struct TpxStructure *s,
-                     uint32_t p,
-                     uint32_t index,
-                     struct TpxSimplex *out);
+TpxStatus tpx_complex_open(const char *path, struct TpxComplex **out);
 
 /**
- * The vertex ids of `*h`, ascending, into `buf` (p + 1 of them; `*out_len` = p + 1).
- * Errors: NULL_ARGUMENT, FOREIGN_HANDLE, INVALID_HANDLE, BUFFER_TOO_SMALL. O(p).
- *
- * # Safety
- * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
+ * Sets the number of threads later builds use (`0` is INVALID_ARGUMENT). Without a call, the
+ * `TOPOPLEX_THREADS` environment variable, else every core. Builds give the same structure
+ * whatever the count. O(1).
  */
-TpxStatus tpx_simplex_vertices(const struct TpxStructure *s,
-                               const struct TpxSimplex *h,
-                               uint32_t *buf,
-                               size_t buf_len,
-                               size_t *out_len);
-
-/**
- * Number of top simplices over all dimensions into `*out` (top ids are `0 .. *out`). O(1).
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_top_total(const struct TpxStructure *s, uint32_t *out);
-
-/**
- * The handle of top simplex `top` (top ids: dimension ascending, lexicographic within; the same
- * for every structure built from one complex) into `*out`. Errors: INVALID_HANDLE (out of
- * range). O(1) for top d-simplices, O(p log n) below.
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_top(const struct TpxStructure *s, uint32_t top, struct TpxSimplex *out);
-
-/**
- * The top id of `*h` into `*out`, or `UINT32_MAX` when it is not a top simplex. Errors:
- * FOREIGN_HANDLE, INVALID_HANDLE. O(1) for d-simplices, O(p log n) below.
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_top_id(const struct TpxStructure *s, const struct TpxSimplex *h, uint32_t *out);
-
-/**
- * Top simplex `top` as given in the input (its first listing's vertex order, hence its
- * winding) into `buf`; `*out_len` = its vertex count. `tpx_simplex_vertices` of `tpx_top`
- * gives the normalised (ascending) form. Errors: INVALID_HANDLE, BUFFER_TOO_SMALL. O(p).
- *
- * # Safety
- * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
- */
-TpxStatus tpx_top_as_given(const struct TpxStructure *s,
-                           uint32_t top,
-                           uint32_t *buf,
-                           size_t buf_len,
-                           size_t *out_len);
-
-/**
- * R_{p,q}(*h) (p = the handle's dimension) as dense indices of q-simplices into `buf`, in
- * `order` (`TPX_ORDER_*`); `*out_len` = the number written. Errors: FOREIGN_HANDLE,
- * INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), BUFFER_TOO_SMALL
- * (nothing written; `*out_len` = needed). Cost: the structure's walk (module docs), plus a sort
- * for lexicographic order. Allocation-free once this thread's buffer has grown to the answer.
- *
- * # Safety
- * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
- */
-TpxStatus tpx_related(const struct TpxStructure *s,
-                      const struct TpxSimplex *h,
-                      uint32_t q,
-                      uint32_t order,
-                      uint32_t *buf,
-                      size_t buf_len,
-                      size_t *out_len);
-
-/**
- * R_{p,q} for many p-simplices at once, in CSR form: for the dense p-indices
- * `indices[0 .. count]`, `offsets[0 .. count + 1]` receives the start of each answer in `buf`
- * (`offsets[count]` = total) and `buf` the dense q-indices, each answer in `order`.
- * Errors: INVALID_HANDLE (p > d or an index out of range), DIMENSION_OUT_OF_RANGE,
- * BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`.
- * `offsets` must hold `count + 1` entries. Cost: one walk per index; allocation-free once this
- * thread's buffer has grown to the total.
- *
- * # Safety
- * Non-NULL pointers must be valid; `indices` holds `count` ids, `offsets` room for `count + 1`,
- * `buf` room for `buf_len`.
- */
-TpxStatus tpx_related_batch(const struct TpxStructure *s,
-                            uint32_t p,
-                            const uint32_t *indices,
-                            size_t count,
-                            uint32_t q,
-                            uint32_t order,
-                            uint32_t *offsets,
-                            uint32_t *buf,
-                            size_t buf_len,
-                            size_t *out_len);
-
-/**
- * |R_{p,q}(*h)| into `*out`, without writing the answer. Same errors and cost as `tpx_related`;
- * no allocation.
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_degree(const struct TpxStructure *s,
-                     const struct TpxSimplex *h,
-                     uint32_t q,
-                     size_t *out);
-
-/**
- * The star (every simplex having `*h` as a proper face, dimension ascending) or, with `link`
- * non-zero, the link (τ ∖ h for each such τ) of `*h`, as handles into `buf`, each dimension in
- * `order`. Errors as `tpx_related`. Cost: the star's walks (the link also locates each face).
- *
- * # Safety
- * Non-NULL pointers must be valid; `buf` must have room for `buf_len` handles.
- */
-TpxStatus tpx_star(const struct TpxStructure *s,
-                   const struct TpxSimplex *h,
-                   uint32_t link,
-                   uint32_t order,
-                   struct TpxSimplex *buf,
-                   size_t buf_len,
-                   size_t *out_len);
-
-/**
- * Whether `*h` is on the boundary (`what` = 0) or a manifold simplex (`what` = 1), as 0 or 1
- * into `*out` (definitions: `Navigate::is_boundary`, `Navigate::is_manifold`). Errors as
- * `tpx_related`, INVALID_ARGUMENT for another `what`. Cost: the star of h.
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_simplex_test(const struct TpxStructure *s,
-                           const struct TpxSimplex *h,
-                           uint32_t what,
-                           uint32_t *out);
-
-/**
- * Cyclic order: with `q` = 0, the manifold fans of triangles around vertex `*h` (a complex of
- * dimension ≤ 2; counter-clockwise by the input winding where oriented); with `q` = 2 or 3,
- * the triangles / tetrahedra around edge `*h` in radial order. Group k is
- * `items[offsets[k] .. offsets[k+1]]` (dense indices of triangles, or of tetrahedra for q = 3),
- * `flags[k]` has `TPX_GROUP_CLOSED` and `TPX_GROUP_ORIENTED`; `*out_items` and `*out_groups`
- * receive the counts. `offsets` needs `groups + 1` entries. Errors: WRONG_HANDLE_KIND (not a
- * vertex / not an edge), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL (nothing written; the needed
- * counts in `*out_items` and `*out_groups`). Cost: the star of the vertex or edge.
- *
- * # Safety
- * Non-NULL pointers must be valid; `items` has room for `items_len`, `offsets` for
- * `groups_len + 1` and `flags` for `groups_len` entries.
- */
-TpxStatus tpx_cyclic(const struct TpxStructure *s,
-                     const struct TpxSimplex *h,
-                     uint32_t q,
-                     uint32_t *items,
-                     size_t items_len,
-                     uint32_t *offsets,
-                     uint32_t *flags,
-                     size_t groups_len,
-                     size_t *out_items,
-                     size_t *out_groups);
+TpxStatus tpx_set_threads(uint32_t threads);
 
 /**
  * Builds a structure of `kind` (`TPX_KIND_*`) for the complex `c`.

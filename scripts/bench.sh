@@ -12,7 +12,11 @@
 #      issue 9 part 3, printed and written to RESULTS/table.md.
 #
 # usage: scripts/bench.sh [--quick] [RESULTS_DIR]
+#        scripts/bench.sh --large [--huge] [RESULTS_DIR]
 #   --quick      only the ~10^4 and ~10^5 datasets, short minimum times (a smoke run)
+#   --large      instead, the generated 10^7-simplex datasets of issue 17 (scripts/bench_large.sh:
+#                parse, build with 1 and 2 threads, save, open, walks, peak memory); with
+#                --huge, the 10^8-simplex tetrahedral grid
 #   RESULTS_DIR  default <target dir>/bench-results/<UTC date-time>
 # Environment: TOPOPLEX_BENCH_DATA (datasets), TOPOPLEX_BENCH_KINDS (ia,ts,...: restrict the
 # Topoplex kinds), TOPOPLEX_BENCH_MIN_TIME (seconds per benchmark; default Google Benchmark's
@@ -25,12 +29,15 @@
 # quiet machine).
 set -euo pipefail
 
+case " $* " in
+  *" --large "*) exec "$(dirname "$0")/bench_large.sh" "$@" ;;
+esac
 quick=0
 results=""
 for arg in "$@"; do
   case "$arg" in
     --quick) quick=1 ;;
-    -h|--help) sed -n "2,24p" "$0"; exit 0 ;;
+    -h|--help) sed -n "2,28p" "$0"; exit 0 ;;
     -*) echo "unknown option $arg" >&2; exit 2 ;;
     *) results=$arg ;;
   esac

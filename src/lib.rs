@@ -7,6 +7,7 @@
 //! - [`oracle`] answers every relation by brute force, for tests.
 //! - [`report`] is `topoplex report`: census, storage and timings of every structure.
 //! - [`error::one_line`] bounds and escapes every message that leaves the library.
+//! - [`store`] saves the complex and a structure as `.tpx` and maps them back zero-copy.
 //! - [`ffi`] is the C ABI (`include/topoplex.h`), the only module allowed `unsafe` code.
 
 #![deny(unsafe_code)]
@@ -20,8 +21,10 @@ pub mod fixtures;
 pub mod handle;
 pub mod io;
 pub mod oracle;
+pub mod parallel;
 pub mod relation;
 pub mod report;
+pub mod store;
 pub mod structures;
 
 pub use complex::{Budget, Complex, ComplexError};

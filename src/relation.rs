@@ -182,7 +182,8 @@ pub enum QueryError {
 
 /// The relation API. Implementors provide [`Topology::query`] for a validated simplex; callers
 /// use [`Topology::relation`], which validates first.
-pub trait Topology: Send + Sync {
+/// `Any` lets the saved format ([`crate::store`]) find a structure's concrete type.
+pub trait Topology: Send + Sync + std::any::Any {
     /// Which structure this is.
     fn kind(&self) -> StructureKind;
 

@@ -17,7 +17,8 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use topoplex::error::{MESSAGE_MAX_BYTES, one_line};
 use topoplex::io::write::Format;
 use topoplex::relation::sort_rows;
-use topoplex::{Budget, Complex, StructureKind, fixtures, structures};
+use topoplex::store::Saved;
+use topoplex::{Budget, Complex, StructureKind, Topology, fixtures, structures};
 
 #[derive(Parser)]
 #[command(
@@ -31,6 +32,9 @@ struct Cli {
     /// vertices), so a few bytes of high-dimensional simplices cannot expand into gigabytes.
     #[arg(long, global = true, value_name = "N", value_parser = parse_max_simplices)]
     max_simplices: Option<u64>,
+    /// Threads for building structures (default: TOPOPLEX_THREADS, else every core).
+    #[arg(long, global = true, value_name = "N")]
+    threads: Option<usize>,
     #[command(subcommand)]
     command: Command,
 }
@@ -41,7 +45,7 @@ enum Command {
     /// C_v − n_0, IQM components, non-manifold simplices), every structure's storage, build time
     /// and time per retrieved element for each relation family (sampled queries).
     Report {
-        /// .off, .obj, .mesh or .simplices files; without any, a built-in example complex with
+        /// .off, .obj, .mesh, .simplices or .tpx files; without any, a built-in example complex with
         /// a wire edge, a dangling triangle, a tetrahedron and a non-manifold vertex and edge.
         files: Vec<PathBuf>,
         /// Print JSON (one object for one dataset, an array for several) instead of Markdown.
@@ -66,6 +70,23 @@ enum Command {
         /// Only this P-simplex, given as vertex ids ("V0 V1 ...").
         #[arg(long)]
         simplex: Option<String>,
+    },
+    /// Build a structure and save it with its complex as a .tpx file, which every command takes
+    /// as input and opens by memory mapping (no parsing, no build).
+    Save {
+        /// .off, .obj, .mesh, .simplices or .tpx input.
+        file: PathBuf,
+        /// ig, sig, ia, iqm, nmia, ts, pe, le, de; without it, only the complex is saved.
+        #[arg(long)]
+        structure: Option<String>,
+        /// The .tpx file to write.
+        #[arg(long)]
+        out: PathBuf,
+    },
+    /// Check a .tpx file fully: every section's checksum and the saved structure's invariants.
+    Verify {
+        /// The .tpx file.
+        file: PathBuf,
     },
     /// Cut the complex into its IQM components (the standard decomposition into initial
     /// quasi-manifolds) and write each as its own file, plus gluing.json mapping every
@@ -132,6 +153,12 @@ fn main() -> ExitCode {
     let _ = BUDGET.set(Budget {
         max_simplices: cli.max_simplices,
     });
+    if let Some(n) = cli.threads {
+        if n == 0 {
+            return fail("--threads must be at least 1");
+        }
+        topoplex::parallel::set_threads(n);
+    }
     match run(cli.command) {
         Ok(()) => ExitCode::SUCCESS,
         Err(msg) => fail(&msg),
@@ -165,6 +192,12 @@ fn run(command: Command) -> Result<(), String> {
             format,
             census,
         } => convert(&input, &output, format.as_deref(), census),
+        Command::Save {
+            file,
+            structure,
+            out,
+        } => save(&file, structure.as_deref(), &out),
+        Command::Verify { file } => verify(&file),
     }
 }
 
@@ -234,8 +267,66 @@ fn print(text: &str) -> Result<(), String> {
 
 /// Reads and normalises `file` under the `--max-simplices` budget.
 fn load(file: &Path) -> Result<Complex, String> {
+    if topoplex::store::is_saved_path(file) {
+        let saved = Saved::open(file).map_err(|e| e.to_string())?;
+        return saved.complex().map_err(|e| e.to_string());
+    }
     let budget = BUDGET.get().copied().unwrap_or_default();
     Complex::from_path_with(file, budget).map_err(|e| e.to_string())
+}
+
+/// The structure of `kind` for `file`: a saved one is mapped, not rebuilt.
+fn load_structure(file: &Path, kind: StructureKind) -> Result<Box<dyn Topology>, String> {
+    if topoplex::store::is_saved_path(file) {
+        let saved = Saved::open(file).map_err(|e| e.to_string())?;
+        return saved.structure_of(kind).map_err(|e| e.to_string());
+    }
+    let complex = load(file)?;
+    structures::build(kind, &complex).map_err(|e| e.to_string())
+}
+
+fn parse_kind(structure: &str) -> Result<StructureKind, String> {
+    StructureKind::from_name(structure).ok_or_else(|| {
+        let names: Vec<&str> = StructureKind::ALL.iter().map(|k| k.name()).collect();
+        format!(
+            "unknown structure `{}` (expected one of: {})",
+            echo(structure),
+            names.join(", ")
+        )
+    })
+}
+
+fn save(file: &Path, structure: Option<&str>, out: &Path) -> Result<(), String> {
+    let kind = structure.map(parse_kind).transpose()?;
+    // Writing over the input would truncate it under its own memory map (a .tpx input).
+    if let (Ok(a), Ok(b)) = (std::fs::metadata(file), std::fs::metadata(out))
+        && same_file(&a, &b)
+    {
+        return Err(format!(
+            "--out {} is the input file; choose another path",
+            topoplex::io::echo_path(out)
+        ));
+    }
+    let complex = load(file)?;
+    let built = match kind {
+        Some(k) if topoplex::store::is_saved_path(file) => Some(load_structure(file, k)?),
+        Some(k) => Some(structures::build(k, &complex).map_err(|e| e.to_string())?),
+        None => None,
+    };
+    topoplex::store::save(out, &complex, built.as_deref()).map_err(|e| e.to_string())
+}
+
+fn verify(file: &Path) -> Result<(), String> {
+    let saved = Saved::open(file).map_err(|e| e.to_string())?;
+    saved.verify().map_err(|e| e.to_string())?;
+    let what = saved
+        .kind()
+        .map_or("complex".to_string(), |k| format!("complex and {k}"));
+    print(&format!(
+        "{}: {what}: {} bytes verified\n",
+        file.display(),
+        saved.len()
+    ))
 }
 
 /// A progress bar on stderr that appears only on a terminal and only once the work has taken
@@ -439,16 +530,8 @@ fn dump_relation(
     (p, q): (usize, usize),
     simplex: Option<String>,
 ) -> Result<(), String> {
-    let kind = StructureKind::from_name(structure).ok_or_else(|| {
-        let names: Vec<&str> = StructureKind::ALL.iter().map(|k| k.name()).collect();
-        format!(
-            "unknown structure `{}` (expected one of: {})",
-            echo(structure),
-            names.join(", ")
-        )
-    })?;
-    let complex = load(&file)?;
-    let topo = structures::build(kind, &complex).map_err(|e| e.to_string())?;
+    let kind = parse_kind(structure)?;
+    let topo = load_structure(&file, kind)?;
     let d = topo.dimension();
     if p > d || q > d {
         return Err(format!(

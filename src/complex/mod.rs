@@ -536,6 +536,17 @@ impl Complex {
         })
     }
 
+    /// The listing's arrays: simplex `i` as given is `ids[offsets[i]..offsets[i + 1]]` (saved
+    /// files keep them so that the complex is rebuilt exactly).
+    pub(crate) fn listing_arrays(&self) -> (&[u32], &[usize]) {
+        (&self.listing.ids, &self.listing.offsets)
+    }
+
+    /// Names the file the complex came from (a reopened saved complex names its first source).
+    pub(crate) fn set_source(&mut self, source: Option<PathBuf>) {
+        self.source = source;
+    }
+
     /// Number of simplices as listed in the input (absorbed ones included).
     pub fn input_count(&self) -> usize {
         self.listing.offsets.len().saturating_sub(1)

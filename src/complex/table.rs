@@ -1,25 +1,30 @@
 //! Flat, sorted tables of p-simplices: the one representation of "a set of simplices" shared by
 //! the complex model, the oracle and the incidence-based structures.
 
+use crate::store::Arr;
+
 /// The p-simplices of some set, each as `arity = p + 1` ascending vertex ids, concatenated, in
 /// ascending lexicographic order, without duplicates. Simplex `i` of the table is its `i`-th
 /// entry, so the table itself is the dense numbering of those simplices.
 #[derive(Debug, Clone, Default, PartialEq, Eq)]
 pub struct SimplexTable {
     arity: usize,
-    ids: Vec<u32>,
+    ids: Arr<u32>,
 }
 
 impl SimplexTable {
     /// An empty table of vertices, usable in statics.
     pub const EMPTY: SimplexTable = SimplexTable {
         arity: 1,
-        ids: Vec::new(),
+        ids: Arr::new(),
     };
 
     /// Wraps rows the caller knows are ascending and distinct (checked in debug builds).
     pub fn from_sorted_unique(arity: usize, ids: Vec<u32>) -> Self {
-        let t = SimplexTable { arity, ids };
+        let t = SimplexTable {
+            arity,
+            ids: ids.into(),
+        };
         debug_assert!((1..t.len()).all(|i| t.get(i - 1) < t.get(i)));
         t
     }
@@ -28,7 +33,7 @@ impl SimplexTable {
     pub fn empty(arity: usize) -> Self {
         SimplexTable {
             arity,
-            ids: Vec::new(),
+            ids: Arr::new(),
         }
     }
 
@@ -38,7 +43,10 @@ impl SimplexTable {
         assert!(arity > 0 && ids.len().is_multiple_of(arity));
         let rows = ids.len() / arity;
         let ids = sort_dedup_rows(arity, ids);
-        let table = SimplexTable { arity, ids };
+        let table = SimplexTable {
+            arity,
+            ids: ids.into(),
+        };
         let dups = rows - table.len();
         (table, dups)
     }
@@ -49,6 +57,13 @@ impl SimplexTable {
             arity: 1,
             ids: (0..n).collect(),
         }
+    }
+
+    /// Wraps an array of rows read from a saved file; their order is the saver's invariant,
+    /// checked by the owning structure's `validate()`. `ids.len()` must be a multiple of `arity`.
+    pub fn from_arr(arity: usize, ids: Arr<u32>) -> Self {
+        assert!(arity > 0 && ids.len().is_multiple_of(arity));
+        SimplexTable { arity, ids }
     }
 
     /// Number of ids per row (p + 1 for p-simplices).
@@ -112,22 +127,15 @@ pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
     // the closure costs the same per simplex at 10^4 and 10^6 simplices.
     let bits = id_bits(ids.iter().copied().max().unwrap_or(0));
     if arity >= 2 && arity as u32 * bits <= 64 {
-        let mut keys: Vec<u64> = ids
-            .chunks_exact(arity)
-            .map(|r| r.iter().fold(0u64, |acc, &v| (acc << bits) | v as u64))
-            .collect();
+        let mut keys: Vec<u64> = crate::parallel::map_collect(ids.len() / arity, |r| {
+            let row = &ids[r * arity..(r + 1) * arity];
+            row.iter().fold(0u64, |acc, &v| (acc << bits) | v as u64)
+        });
         // The keys hold the rows now: free them before the sort's buffer (peak memory).
         drop(ids);
         radix_sort(&mut keys, arity as u32 * bits);
         keys.dedup();
-        let mask = (1u64 << bits) - 1;
-        let mut out = Vec::with_capacity(keys.len() * arity);
-        for k in keys {
-            for i in (0..arity).rev() {
-                out.push(((k >> (bits * i as u32)) & mask) as u32);
-            }
-        }
-        return out;
+        return unpack_keys(&keys, arity, bits);
     }
     fn packed<K: Ord + Copy>(
         arity: usize,
@@ -182,6 +190,29 @@ pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
     }
 }
 
+/// Rows of `arity` ids of `bits` bits each from their packed keys (split between threads; each
+/// row's place is fixed by its key's index).
+fn unpack_keys(keys: &[u64], arity: usize, bits: u32) -> Vec<u32> {
+    let mask = (1u64 << bits) - 1;
+    let mut out = vec![0u32; keys.len() * arity];
+    let unpack = |(row, &k): (&mut [u32], &u64)| {
+        for (i, v) in row.iter_mut().enumerate() {
+            *v = ((k >> (bits * (arity - 1 - i) as u32)) & mask) as u32;
+        }
+    };
+    if crate::parallel::threads() > 1 && keys.len() >= crate::parallel::MIN_PARALLEL {
+        use rayon::prelude::*;
+        crate::parallel::install(|| {
+            out.par_chunks_mut(arity)
+                .zip(keys.par_iter())
+                .for_each(unpack);
+        });
+    } else {
+        out.chunks_mut(arity).zip(keys.iter()).for_each(unpack);
+    }
+    out
+}
+
 /// Bits needed to write `max` (at least 1).
 pub fn id_bits(max: u32) -> u32 {
     (32 - max.leading_zeros()).max(1)
@@ -189,7 +220,13 @@ pub fn id_bits(max: u32) -> u32 {
 
 /// Sorts keys whose set bits all lie below `bits` (≤ 64): LSD radix sort by 11-bit digits,
 /// O(n·bits/11), skipping digits on which every key agrees. Small inputs use `sort_unstable`.
+/// With several threads ([`crate::parallel`]), chunks are sorted on their own threads and
+/// merged: the same result.
 pub fn radix_sort(keys: &mut Vec<u64>, bits: u32) {
+    crate::parallel::sort_keys(keys, bits, radix_sort_serial);
+}
+
+fn radix_sort_serial(keys: &mut Vec<u64>, bits: u32) {
     if keys.len() < 4096 {
         keys.sort_unstable();
         return;
@@ -231,19 +268,22 @@ fn radix_sort_by<T: Copy + Default>(items: &mut Vec<T>, bits: u32, key: impl Fn(
 
 /// The indices `0..n` sorted by `(key(i), i)`, when every key is below `2^key_bits` (≤ 64):
 /// radix sort, linear; `None` for wider keys, for callers to fall back to a comparison sort.
-pub fn order_by_key(n: usize, key_bits: u32, key: impl Fn(u32) -> u64) -> Option<Vec<u32>> {
+pub fn order_by_key(
+    n: usize,
+    key_bits: u32,
+    key: impl Fn(u32) -> u64 + Sync + Send,
+) -> Option<Vec<u32>> {
     let index_bits = id_bits(n.saturating_sub(1).try_into().ok()?);
     if key_bits > 64 {
         return None;
     }
     if key_bits + index_bits <= 64 {
         // Key and index packed in one word: half the memory traffic of pairs.
-        let mut keys: Vec<u64> = (0..n as u32)
-            .map(|i| (key(i) << index_bits) | i as u64)
-            .collect();
+        let mut keys: Vec<u64> =
+            crate::parallel::map_collect(n, |i| (key(i as u32) << index_bits) | i as u64);
         radix_sort(&mut keys, key_bits + index_bits);
         let mask = (1u64 << index_bits) - 1;
-        return Some(keys.into_iter().map(|k| (k & mask) as u32).collect());
+        return Some(crate::parallel::map_collect(n, |i| (keys[i] & mask) as u32));
     }
     let hi = key_bits + index_bits - 64;
     if hi <= 16 {

@@ -29,6 +29,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 mod complex;
 mod decomposition;
 mod handles;
+mod store;
 mod structure;
 #[cfg(test)]
 mod tests;
@@ -37,6 +38,7 @@ mod write;
 pub use complex::*;
 pub use decomposition::*;
 pub use handles::*;
+pub use store::*;
 pub use structure::*;
 pub use write::*;
 
@@ -96,6 +98,17 @@ pub enum TpxStatus {
     /// The output format cannot hold the complex (a tetrahedron in OFF, an edge in STL); the
     /// message names the first offending simplex. Nothing was written.
     FormatCannotHold = 31,
+    /// A saved file (`.tpx`) is corrupt: a checksum, offset or length is wrong (the message
+    /// names the file and the first inconsistency).
+    SavedFileCorrupt = 40,
+    /// A saved file is shorter than its header says.
+    SavedFileTruncated = 41,
+    /// A saved file was written by another format version.
+    SavedFileWrongVersion = 42,
+    /// The file is not a saved file (wrong magic number).
+    SavedFileForeign = 43,
+    /// A saved file was written on a host of the other byte order.
+    SavedFileWrongEndianness = 44,
 }
 
 /// Incidence Graph.

@@ -39,7 +39,7 @@ pub struct TpxRelationTable {
     ids: Vec<u32>,
 }
 
-fn kind_from_u32(kind: u32) -> Result<StructureKind, Failure> {
+pub(crate) fn kind_from_u32(kind: u32) -> Result<StructureKind, Failure> {
     StructureKind::from_abi(kind).ok_or_else(|| {
         Failure::new(
             TpxStatus::UnknownKind,

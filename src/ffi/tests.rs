@@ -106,6 +106,17 @@ fn status_numbers_are_the_agreed_abi() {
     for (i, s) in all.into_iter().enumerate() {
         assert_eq!(s as u32, i as u32, "{s:?}");
     }
+    // Saved files: 40..=44.
+    let saved = [
+        SavedFileCorrupt,
+        SavedFileTruncated,
+        SavedFileWrongVersion,
+        SavedFileForeign,
+        SavedFileWrongEndianness,
+    ];
+    for (i, s) in saved.into_iter().enumerate() {
+        assert_eq!(s as u32, 40 + i as u32, "{s:?}");
+    }
     let kinds = crate::relation::StructureKind::ALL;
     assert_eq!([TPX_KIND_IG, TPX_KIND_DE], [0, kinds.len() as u32 - 1]);
 }

@@ -35,6 +35,7 @@ use super::nav::{NavBase, NavIndex};
 use super::radial::{self, EdgeAt, EdgeLocator, TriTopo, row3};
 use crate::complex::Complex;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::store::Arr;
 
 const KIND: StructureKind = StructureKind::De;
 
@@ -47,13 +48,13 @@ pub struct DirectedEdge {
     n_tris: u32,
     n_wires: u32,
     n_edges: usize,
-    de_start: Vec<u32>,
-    de_end: Vec<u32>,
-    de_radial: Vec<u32>,
-    de_prev: Vec<u32>,
-    de_next: Vec<u32>,
-    comp_off: Vec<u32>,
-    comp_de: Vec<u32>,
+    de_start: Arr<u32>,
+    de_end: Arr<u32>,
+    de_radial: Arr<u32>,
+    de_prev: Arr<u32>,
+    de_next: Arr<u32>,
+    comp_off: Arr<u32>,
+    comp_de: Arr<u32>,
     locator: EdgeLocator,
     /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
     pub(crate) nav: NavIndex,
@@ -77,13 +78,13 @@ impl DirectedEdge {
             n_tris: n2,
             n_wires: nw,
             n_edges: rad.edges.len() + nw as usize,
-            de_start: Vec::with_capacity(d),
-            de_end: Vec::with_capacity(d),
-            de_radial: rad.next.clone(),
-            de_prev: Vec::with_capacity(d),
-            de_next: Vec::with_capacity(d),
-            comp_off: Vec::new(),
-            comp_de: Vec::new(),
+            de_start: Arr::from(Vec::with_capacity(d)),
+            de_end: Arr::from(Vec::with_capacity(d)),
+            de_radial: Arr::from(rad.next.clone()),
+            de_prev: Arr::from(Vec::with_capacity(d)),
+            de_next: Arr::from(Vec::with_capacity(d)),
+            comp_off: Arr::from(Vec::new()),
+            comp_de: Arr::from(Vec::new()),
             locator: EdgeLocator::build(tris),
         };
         de.de_radial.reserve_exact(2 * nw as usize);
@@ -123,8 +124,8 @@ impl DirectedEdge {
             }
             comp_off[v + 1] = comp_de.len() as u32;
         }
-        de.comp_off = comp_off;
-        de.comp_de = comp_de;
+        de.comp_off = comp_off.into();
+        de.comp_de = comp_de.into();
         Ok(de)
     }
 
@@ -357,3 +358,25 @@ impl Topology for DirectedEdge {
         self.locator.validate(self.n_tris, |t| self.tri(t))
     }
 }
+
+crate::persist_fields!(DirectedEdge {
+    n,
+    dim,
+    isolated,
+    n_tris,
+    n_wires,
+    n_edges,
+    de_start,
+    de_end,
+    de_radial,
+    de_prev,
+    de_next,
+    comp_off,
+    comp_de,
+    locator, nav
+} check |s| {
+    if s.de_start.len() != s.de_end.len() || s.de_next.len() != s.de_start.len() {
+        return Err("directed-edge arrays of different lengths".into());
+    }
+    Ok(())
+});

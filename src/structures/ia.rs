@@ -57,6 +57,9 @@
 //! Queries keep no state in the structure: every walk has its own hash set.
 
 use super::nav::{NavBase, NavIndex};
+use crate::store::Arr;
+use rustc_hash::FxHashSet;
+
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset};
@@ -83,10 +86,10 @@ pub struct IndexedAdjacency {
     /// R_{d,0}: the d-simplices, ascending lexicographic (a d-simplex's id is its row).
     tops: SimplexTable,
     /// R_{d,d}: d + 1 entries per d-simplex, entry `i` across the facet opposite vertex `i`.
-    adj: Vec<u32>,
+    adj: Arr<u32>,
     /// Per vertex, one d-simplex per component of its star (CSR).
-    vstar_off: Vec<u32>,
-    vstar: Vec<u32>,
+    vstar_off: Arr<u32>,
+    vstar: Arr<u32>,
     /// n_p for p = 0..=d.
     counts: Vec<usize>,
     /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
@@ -144,6 +147,176 @@ fn adjacency(tops: &SimplexTable, d: usize) -> Result<Vec<u32>, (Vec<u32>, Vec<u
         i = j;
     }
     Ok(adj)
+}
+
+/// R_{d,d} like [`adjacency`], with the facet slots bucketed by their facet's smallest vertex
+/// (a counting sort: 4 bytes per slot) and each bucket sorted on its own, so no key wider than
+/// a word is ever needed and buckets are matched on [`crate::parallel::threads`] threads. The
+/// result (and the facet named in an error: the lexicographically first with three or more
+/// d-simplices) is the same whatever the thread count. O(n_d·d·(1 + log b)) for buckets of b.
+#[allow(clippy::type_complexity)]
+fn adjacency_by_vertex(
+    tops: &SimplexTable,
+    d: usize,
+    n: u32,
+) -> Result<Vec<u32>, (Vec<u32>, Vec<u32>)> {
+    let w = d + 1;
+    let slots = tops.len() * w;
+    let mut adj = vec![NONE; slots];
+    if d == 0 {
+        return Ok(adj);
+    }
+    // Slot k = (top k / w, facet opposite vertex k % w); its facet's smallest vertex is the
+    // top's first vertex unless that is the one left out.
+    let low = |k: usize| tops.get(k / w)[usize::from(k % w == 0)];
+    let mut start = vec![0u32; n as usize + 1];
+    for k in 0..slots {
+        start[low(k) as usize + 1] += 1;
+    }
+    for v in 0..n as usize {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut order = vec![0u32; slots];
+    for k in 0..slots {
+        let v = low(k) as usize;
+        order[fill[v] as usize] = k as u32;
+        fill[v] += 1;
+    }
+    drop(fill);
+    let facet = |k: u32| {
+        let (t, i) = (k as usize / w, k as usize % w);
+        let mut f = [0u32; 16];
+        let row = tops.get(t);
+        f[..i].copy_from_slice(&row[..i]);
+        f[i..d].copy_from_slice(&row[i + 1..]);
+        f
+    };
+    // Buckets in chunks of vertices; each chunk yields its matched pairs and its first error.
+    let chunks = (n as usize).div_ceil(4096).max(1);
+    let per_chunk = |c: usize| {
+        let (v0, v1) = (c * 4096, ((c + 1) * 4096).min(n as usize));
+        let mut pairs = Vec::new();
+        let mut bucket: Vec<([u32; 16], u32)> = Vec::new();
+        for v in v0..v1 {
+            bucket.clear();
+            let range = start[v] as usize..start[v + 1] as usize;
+            bucket.extend(order[range].iter().map(|&k| (facet(k), k)));
+            bucket.sort_unstable();
+            let mut i = 0;
+            while i < bucket.len() {
+                let mut j = i + 1;
+                while j < bucket.len() && bucket[j].0 == bucket[i].0 {
+                    j += 1;
+                }
+                match j - i {
+                    1 => {}
+                    2 => pairs.push((bucket[i].1, bucket[i + 1].1)),
+                    _ => {
+                        return (
+                            pairs,
+                            Some((bucket[i].0, [bucket[i].1, bucket[i + 1].1, bucket[i + 2].1])),
+                        );
+                    }
+                }
+                i = j;
+            }
+        }
+        (pairs, None)
+    };
+    let results = crate::parallel::map_collect(chunks, per_chunk);
+    for (pairs, error) in results {
+        if let Some((f, three)) = error {
+            let three = three
+                .iter()
+                .flat_map(|&k| tops.get(k as usize / w).iter().copied())
+                .collect();
+            return Err((f[..d].to_vec(), three));
+        }
+        for (a, b) in pairs {
+            adj[a as usize] = b / w as u32;
+            adj[b as usize] = a / w as u32;
+        }
+    }
+    Ok(adj)
+}
+
+/// n_p for p = 0..=d without listing the faces: n_{d−1} from the adjacencies (a facet is on
+/// one or two d-simplices), and for 0 < p < d − 1 the p-faces counted at their smallest vertex
+/// v, from a walk of v's star (its components' seeds in `vstar`), split between threads by
+/// vertex. Memory: one star at a time per thread. O(Σ_v |star(v)|·C(d, p)·log).
+fn face_counts(
+    tops: &SimplexTable,
+    adj: &[u32],
+    vstar_off: &[u32],
+    vstar: &[u32],
+    d: usize,
+    n: u32,
+) -> Vec<usize> {
+    let w = d + 1;
+    let mut counts = vec![0; d + 1];
+    counts[0] = n as usize;
+    counts[d] = tops.len();
+    if d >= 2 {
+        let open = adj.iter().filter(|&&a| a == NONE).count();
+        counts[d - 1] = open + (adj.len() - open) / 2;
+    }
+    if d < 3 {
+        return counts;
+    }
+    let per_chunk = |c: usize| {
+        let mut sums = vec![0usize; d];
+        let (mut seen, mut stack, mut faces) = (FxHashSet::default(), Vec::new(), Vec::new());
+        let mut upper = Vec::with_capacity(w);
+        for v in (c * 4096) as u32..(((c + 1) * 4096) as u32).min(n) {
+            seen.clear();
+            let seeds = &vstar[vstar_off[v as usize] as usize..vstar_off[v as usize + 1] as usize];
+            stack.extend_from_slice(seeds);
+            seen.extend(seeds.iter().copied());
+            let mut star = Vec::new();
+            while let Some(x) = stack.pop() {
+                star.push(x);
+                let row = tops.get(x as usize);
+                for (i, &u) in row.iter().enumerate() {
+                    let y = adj[x as usize * w + i];
+                    if u != v && y != NONE && seen.insert(y) {
+                        stack.push(y);
+                    }
+                }
+            }
+            for (p, sum) in sums.iter_mut().enumerate().take(d - 1).skip(1) {
+                faces.clear();
+                for &x in &star {
+                    upper.clear();
+                    upper.extend(tops.get(x as usize).iter().copied().filter(|&u| u > v));
+                    for mask in 0u32..1 << upper.len() {
+                        if mask.count_ones() as usize == p {
+                            let mut f = [0u32; 16];
+                            let mut j = 0;
+                            for (b, &u) in upper.iter().enumerate() {
+                                if mask >> b & 1 == 1 {
+                                    f[j] = u;
+                                    j += 1;
+                                }
+                            }
+                            faces.push(f);
+                        }
+                    }
+                }
+                faces.sort_unstable();
+                faces.dedup();
+                *sum += faces.len();
+            }
+        }
+        sums
+    };
+    let chunks = (n as usize).div_ceil(4096);
+    for sums in crate::parallel::map_collect(chunks, per_chunk) {
+        for p in 1..d - 1 {
+            counts[p] += sums[p];
+        }
+    }
+    counts
 }
 
 /// Per-vertex star components: (CSR offsets, one d-simplex per component), each vertex's list
@@ -217,7 +390,7 @@ impl IndexedAdjacency {
         }
         let tops = complex.tops(d).clone();
         to_u32(KIND, tops.len() * (d + 1), "adjacency entries")?;
-        let adj = adjacency(&tops, d).map_err(|(facet, three)| {
+        let adj = adjacency_by_vertex(&tops, d, n).map_err(|(facet, three)| {
             let three: Vec<String> = three.chunks(d + 1).map(show).collect();
             unsupported(format!(
                 "{}-simplex {} is a face of more than two {d}-simplices ({}, ...), so the \
@@ -228,23 +401,15 @@ impl IndexedAdjacency {
             ))
         })?;
         let (vstar_off, vstar) = vertex_components(&tops, &adj, d, n);
-        let mut counts = vec![0; d + 1];
-        counts[0] = n as usize;
-        counts[d] = tops.len();
-        let mut rows = Vec::new();
-        for (p, c) in counts.iter_mut().enumerate().take(d).skip(1) {
-            rows.clear();
-            faces_of_tops(tops.iter(), p, &mut rows);
-            *c = rows.len() / (p + 1);
-        }
+        let counts = face_counts(&tops, &adj, &vstar_off, &vstar, d, n);
         Ok(IndexedAdjacency {
             nav: NavIndex::new(complex),
             d,
             n,
             tops,
-            adj,
-            vstar_off,
-            vstar,
+            adj: adj.into(),
+            vstar_off: vstar_off.into(),
+            vstar: vstar.into(),
             counts,
         })
     }
@@ -612,3 +777,14 @@ impl Topology for IndexedAdjacency {
         Ok(())
     }
 }
+
+crate::persist_fields!(IndexedAdjacency { d, n, tops, adj, vstar_off, vstar, counts, nav } check |s| {
+    let d = s.d;
+    if s.tops.arity() != d + 1 || s.adj.len() != (d + 1) * s.tops.len() || s.counts.len() != d + 1 {
+        return Err(format!("top table, adjacency or counts do not fit dimension {d}"));
+    }
+    if s.vstar_off.len() != s.n as usize + 1 || s.vstar_off.last() != Some(&(s.vstar.len() as u32)) {
+        return Err("vertex star offsets do not fit the vertices".into());
+    }
+    Ok(())
+});

@@ -36,6 +36,7 @@ use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable};
 use crate::handle::SimplexHandle;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::store::Arr;
 
 const KIND: StructureKind = StructureKind::Ig;
 
@@ -43,9 +44,9 @@ const KIND: StructureKind = StructureKind::Ig;
 #[derive(Debug, Clone)]
 pub struct IncidenceGraph {
     tables: Vec<SimplexTable>,
-    boundary: Vec<Vec<u32>>,
-    cob_offsets: Vec<Vec<u32>>,
-    cob: Vec<Vec<u32>>,
+    boundary: Vec<Arr<u32>>,
+    cob_offsets: Vec<Arr<u32>>,
+    cob: Vec<Arr<u32>>,
     top_counts: Vec<usize>,
     /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
     pub(crate) nav: NavIndex,
@@ -124,9 +125,9 @@ impl IncidenceGraph {
         Ok(IncidenceGraph {
             nav: NavIndex::new(complex),
             tables,
-            boundary,
-            cob_offsets,
-            cob,
+            boundary: boundary.into_iter().map(Arr::from).collect(),
+            cob_offsets: cob_offsets.into_iter().map(Arr::from).collect(),
+            cob: cob.into_iter().map(Arr::from).collect(),
             top_counts,
         })
     }
@@ -307,8 +308,8 @@ impl Topology for IncidenceGraph {
     }
 
     fn storage(&self) -> Storage {
-        let links: usize = self.boundary.iter().map(Vec::len).sum::<usize>()
-            + self.cob.iter().map(Vec::len).sum::<usize>();
+        let links: usize = self.boundary.iter().map(|b| b.len()).sum::<usize>()
+            + self.cob.iter().map(|c| c.len()).sum::<usize>();
         let arrays: usize = self.tables[..self.tables.len() - 1]
             .iter()
             .map(SimplexTable::len)
@@ -400,3 +401,11 @@ impl Topology for IncidenceGraph {
         Ok(())
     }
 }
+
+crate::persist_fields!(IncidenceGraph { tables, boundary, cob_offsets, cob, top_counts, nav } check |s| {
+    let levels = s.tables.len();
+    if levels == 0 || s.boundary.len() != levels || s.cob_offsets.len() + 1 != levels || s.cob.len() + 1 != levels || s.top_counts.len() != levels {
+        return Err("per-dimension tables of different lengths".into());
+    }
+    Ok(())
+});

@@ -105,6 +105,7 @@
 //!
 //! Queries keep no state in the structure: "visited" marks are a per-query hash set.
 
+use crate::store::Arr;
 use rustc_hash::FxHashSet;
 
 use super::common::{IdSet, IdStack, UnionFind, faces_containing};
@@ -124,18 +125,18 @@ const SPLIT: u32 = 1 << 31;
 pub struct Iqm {
     n: u32,
     counts: Vec<usize>,
-    tops: Vec<Vec<u32>>,
-    adj: Vec<Vec<u32>>,
-    comp_dim: Vec<u8>,
-    comp_top_start: Vec<u32>,
-    comp_copy_start: Vec<u32>,
-    copy_vertex: Vec<u32>,
-    copy_comp: Vec<u32>,
-    copy_top: Vec<u32>,
-    vertex_ref: Vec<u32>,
-    split_vertices: Vec<u32>,
-    hyper_offsets: Vec<u32>,
-    hyper_copies: Vec<u32>,
+    tops: Vec<Arr<u32>>,
+    adj: Vec<Arr<u32>>,
+    comp_dim: Arr<u8>,
+    comp_top_start: Arr<u32>,
+    comp_copy_start: Arr<u32>,
+    copy_vertex: Arr<u32>,
+    copy_comp: Arr<u32>,
+    copy_top: Arr<u32>,
+    vertex_ref: Arr<u32>,
+    split_vertices: Arr<u32>,
+    hyper_offsets: Arr<u32>,
+    hyper_copies: Arr<u32>,
     /// Facets over copies shared by three or more top simplices of one component (left without
     /// adjacency). Kept to report, not to use.
     crowded_facets: usize,
@@ -430,18 +431,18 @@ impl Iqm {
             nav: NavIndex::new(complex),
             n,
             counts,
-            tops,
-            adj,
-            comp_dim,
-            comp_top_start,
-            comp_copy_start,
-            copy_vertex,
-            copy_comp,
-            copy_top,
-            vertex_ref,
-            split_vertices,
-            hyper_offsets,
-            hyper_copies,
+            tops: tops.into_iter().map(Arr::from).collect(),
+            adj: adj.into_iter().map(Arr::from).collect(),
+            comp_dim: comp_dim.into(),
+            comp_top_start: comp_top_start.into(),
+            comp_copy_start: comp_copy_start.into(),
+            copy_vertex: copy_vertex.into(),
+            copy_comp: copy_comp.into(),
+            copy_top: copy_top.into(),
+            vertex_ref: vertex_ref.into(),
+            split_vertices: split_vertices.into(),
+            hyper_offsets: hyper_offsets.into(),
+            hyper_copies: hyper_copies.into(),
             crowded_facets,
         })
     }
@@ -519,11 +520,11 @@ impl Iqm {
         Decomposition {
             vertex_count: self.n,
             components,
-            copy_vertex: self.copy_vertex.clone(),
-            copy_component: self.copy_comp.clone(),
-            split_vertices: self.split_vertices.clone(),
-            split_offsets: self.hyper_offsets.clone(),
-            split_copies: self.hyper_copies.clone(),
+            copy_vertex: self.copy_vertex.to_vec(),
+            copy_component: self.copy_comp.to_vec(),
+            split_vertices: self.split_vertices.to_vec(),
+            split_offsets: self.hyper_offsets.to_vec(),
+            split_copies: self.hyper_copies.to_vec(),
         }
     }
 
@@ -903,3 +904,26 @@ impl Topology for Iqm {
         Ok(())
     }
 }
+
+crate::persist_fields!(Iqm {
+    n,
+    counts,
+    tops,
+    adj,
+    comp_dim,
+    comp_top_start,
+    comp_copy_start,
+    copy_vertex,
+    copy_comp,
+    copy_top,
+    vertex_ref,
+    split_vertices,
+    hyper_offsets,
+    hyper_copies,
+    crowded_facets, nav
+} check |s| {
+    if s.counts.is_empty() || s.tops.len() != s.adj.len() || s.vertex_ref.len() != s.n as usize {
+        return Err("per-dimension or per-vertex arrays of the wrong length".into());
+    }
+    Ok(())
+});

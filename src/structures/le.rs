@@ -41,6 +41,7 @@ use super::pe::by_start;
 use super::radial::{self, EdgeAt, NONE, TriTopo, row3, show};
 use crate::complex::Complex;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::store::Arr;
 
 const KIND: StructureKind = StructureKind::Le;
 
@@ -49,15 +50,15 @@ const KIND: StructureKind = StructureKind::Le;
 pub struct LoopEdgeUse {
     n: u32,
     n_tris: u32,
-    face_eu: Vec<u32>,
-    edge_eu: Vec<u32>,
-    eu_face: Vec<u32>,
-    eu_edge: Vec<u32>,
-    eu_rnext: Vec<u32>,
-    eu_fnext: Vec<u32>,
-    eu_start: Vec<u32>,
-    eu_vnext: Vec<u32>,
-    vertex_eu: Vec<u32>,
+    face_eu: Arr<u32>,
+    edge_eu: Arr<u32>,
+    eu_face: Arr<u32>,
+    eu_edge: Arr<u32>,
+    eu_rnext: Arr<u32>,
+    eu_fnext: Arr<u32>,
+    eu_start: Arr<u32>,
+    eu_vnext: Arr<u32>,
+    vertex_eu: Arr<u32>,
     /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
     pub(crate) nav: NavIndex,
 }
@@ -118,14 +119,14 @@ impl LoopEdgeUse {
             n: parts.n,
             n_tris: n2,
             face_eu: (0..n2).map(|t| 3 * t).collect(),
-            edge_eu: rad.edge_first.clone(),
+            edge_eu: Arr::from(rad.edge_first.clone()),
             eu_face: (0..m).map(|s| s / 3).collect(),
-            eu_edge: rad.slot_edge.clone(),
-            eu_rnext: rad.next.clone(),
+            eu_edge: Arr::from(rad.slot_edge.clone()),
+            eu_rnext: Arr::from(rad.next.clone()),
             eu_fnext: (0..m).map(|s| s - s % 3 + (s + 1) % 3).collect(),
-            eu_start,
-            eu_vnext,
-            vertex_eu,
+            eu_start: eu_start.into(),
+            eu_vnext: eu_vnext.into(),
+            vertex_eu: vertex_eu.into(),
         })
     }
 
@@ -356,3 +357,22 @@ impl Topology for LoopEdgeUse {
         radial::validate_components(self, self.n, |v| vec![self.vertex_eu[v as usize]])
     }
 }
+
+crate::persist_fields!(LoopEdgeUse {
+    n,
+    n_tris,
+    face_eu,
+    edge_eu,
+    eu_face,
+    eu_edge,
+    eu_rnext,
+    eu_fnext,
+    eu_start,
+    eu_vnext,
+    vertex_eu, nav
+} check |s| {
+    if s.face_eu.len() != s.n_tris as usize || s.vertex_eu.len() != s.n as usize || s.eu_face.len() != 3 * s.n_tris as usize {
+        return Err("arrays of the wrong length for the triangles and vertices".into());
+    }
+    Ok(())
+});

@@ -24,8 +24,42 @@ use std::cell::RefCell;
 use std::sync::OnceLock;
 
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable};
+use crate::store::{Arr, Field};
 use crate::handle::{HandleForm, Navigate, SimplexHandle, TopId, Vertices};
 use crate::relation::{QueryError, Topology, normalize_simplex};
+
+// Saved with its structure (`.tpx`): the windings are mapped back, the lazy tables rebuilt on use.
+impl crate::store::Field for NavIndex {
+    fn put(&self, w: &mut crate::store::Writer) {
+        self.top_first.put(w);
+        self.windings.put(w);
+        self.low_tops.put(w);
+    }
+    fn get(r: &mut crate::store::Reader) -> Result<Self, crate::store::StoreError> {
+        let nav = NavIndex {
+            top_first: Field::get(r)?,
+            windings: Field::get(r)?,
+            low_tops: Field::get(r)?,
+            lazy: Default::default(),
+        };
+        // The shape every handle lookup indexes by, checked before anything trusts it.
+        let t = &nav.top_first;
+        let consistent = t.len() >= 2
+            && t.windows(2).all(|w| w[0] <= w[1])
+            && t[0] == 0
+            && nav.windings.len() == t[t.len() - 1] as usize
+            && nav.low_tops.len() == t.len() - 2
+            && nav
+                .low_tops
+                .iter()
+                .enumerate()
+                .all(|(p, tab)| tab.arity() == p + 1 && tab.len() == (t[p + 1] - t[p]) as usize);
+        if !consistent {
+            return Err(r.corrupt("handle index: top counts, windings and low tops disagree"));
+        }
+        Ok(nav)
+    }
+}
 
 /// The handle bookkeeping one structure owns (see the module doc).
 #[derive(Debug, Clone, Default)]
@@ -34,7 +68,7 @@ pub(crate) struct NavIndex {
     top_first: Vec<u32>,
     /// Winding of each top simplex: nibble i is the rank, among its ascending vertices, of the
     /// i-th vertex of its first listing.
-    windings: Vec<u64>,
+    windings: Arr<u64>,
     /// Top p-simplices for p < d, lexicographic.
     low_tops: Vec<SimplexTable>,
     /// Lexicographic p-tables of the dimensions the structure does not store.
@@ -61,7 +95,7 @@ impl NavIndex {
         let low_tops = (0..d).map(|p| complex.tops(p).clone()).collect();
         NavIndex {
             top_first,
-            windings,
+            windings: windings.into(),
             low_tops,
             lazy: Default::default(),
         }

@@ -94,6 +94,7 @@ use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::store::Arr;
 
 const KIND: StructureKind = StructureKind::Nmia;
 
@@ -108,17 +109,17 @@ pub struct NonManifoldIa {
     n: u32,
     tets: SimplexTable,
     /// R_{3,3}: 4 entries per tetrahedron.
-    adj: Vec<u32>,
+    adj: Arr<u32>,
     faces: SimplexTable,
     wires: SimplexTable,
     isolated: usize,
     /// `(top id << 4) | local edge code`, ascending; `link_next[i]` is the entry of the cluster
     /// succeeding the one whose exit is that top, around that edge.
-    link_keys: Vec<u64>,
-    link_next: Vec<u32>,
+    link_keys: Arr<u64>,
+    link_next: Arr<u32>,
     /// R_{0,clusters} in CSR form.
-    vstar_off: Vec<u32>,
-    vstar: Vec<u32>,
+    vstar_off: Arr<u32>,
+    vstar: Arr<u32>,
     counts: Vec<usize>,
     /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
     pub(crate) nav: NavIndex,
@@ -286,14 +287,14 @@ impl NonManifoldIa {
             d,
             n,
             tets,
-            adj,
+            adj: adj.into(),
             faces,
             wires,
             isolated: complex.tops(0).len(),
-            link_keys: Vec::new(),
-            link_next: Vec::new(),
-            vstar_off: Vec::new(),
-            vstar: Vec::new(),
+            link_keys: Arr::new(),
+            link_next: Arr::new(),
+            vstar_off: Arr::new(),
+            vstar: Arr::new(),
             counts: Vec::new(),
         };
         let coords = complex
@@ -301,11 +302,11 @@ impl NonManifoldIa {
             .filter(|c| c.dim == 3)
             .map(|c| c.data.as_slice());
         let (keys, next) = s.rings(coords);
-        s.link_keys = keys;
-        s.link_next = next;
+        s.link_keys = keys.into();
+        s.link_next = Arr::from(next);
         let (off, list) = s.vertex_components();
-        s.vstar_off = off;
-        s.vstar = list;
+        s.vstar_off = Arr::from(off);
+        s.vstar = Arr::from(list);
         let mut counts = vec![0; d + 1];
         counts[0] = n as usize;
         let mut rows = Vec::new();
@@ -895,7 +896,7 @@ impl Topology for NonManifoldIa {
                 }
             }
         }
-        if tet_adjacency(&self.tets).ok().as_ref() != Some(&self.adj) {
+        if tet_adjacency(&self.tets).ok().as_deref() != Some(&*self.adj) {
             return Err("R_{3,3} misses a shared triangle".into());
         }
         // Every link joins two top simplices at the same edge.
@@ -975,3 +976,26 @@ impl Topology for NonManifoldIa {
         Ok(())
     }
 }
+
+crate::persist_fields!(NonManifoldIa {
+    d,
+    n,
+    tets,
+    adj,
+    faces,
+    wires,
+    isolated,
+    link_keys,
+    link_next,
+    vstar_off,
+    vstar,
+    counts, nav
+} check |s| {
+    if s.counts.len() != s.d + 1 || s.adj.len() != 4 * s.tets.len() || s.link_keys.len() != s.link_next.len() {
+        return Err("arrays of the wrong length for the simplex counts".into());
+    }
+    if s.vstar_off.len() != s.n as usize + 1 || s.vstar_off.last() != Some(&(s.vstar.len() as u32)) {
+        return Err("vertex star offsets do not fit the vertices".into());
+    }
+    Ok(())
+});

@@ -40,6 +40,7 @@ use super::nav::{NavBase, NavIndex};
 use super::radial::{self, EdgeAt, NONE, TriTopo, row3};
 use crate::complex::Complex;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::store::Arr;
 
 const KIND: StructureKind = StructureKind::Pe;
 
@@ -51,17 +52,17 @@ pub struct PartialEntities {
     isolated: usize,
     n_tris: u32,
     n_wires: usize,
-    face_pe: Vec<u32>,
-    edge_pe: Vec<u32>,
-    pe_edge: Vec<u32>,
-    pe_face: Vec<u32>,
-    pe_rprev: Vec<u32>,
-    pe_rnext: Vec<u32>,
-    pe_fprev: Vec<u32>,
-    pe_fnext: Vec<u32>,
-    pe_start: Vec<u32>,
-    vertex_off: Vec<u32>,
-    vertex_pe: Vec<u32>,
+    face_pe: Arr<u32>,
+    edge_pe: Arr<u32>,
+    pe_edge: Arr<u32>,
+    pe_face: Arr<u32>,
+    pe_rprev: Arr<u32>,
+    pe_rnext: Arr<u32>,
+    pe_fprev: Arr<u32>,
+    pe_fnext: Arr<u32>,
+    pe_start: Arr<u32>,
+    vertex_off: Arr<u32>,
+    vertex_pe: Arr<u32>,
     /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
     pub(crate) nav: NavIndex,
 }
@@ -83,16 +84,16 @@ impl PartialEntities {
             n_tris: n2,
             n_wires: parts.wires.len(),
             face_pe: (0..n2).map(|t| 3 * t).collect(),
-            edge_pe: vec![NONE; n1],
-            pe_edge: Vec::with_capacity(p_count),
-            pe_face: Vec::with_capacity(p_count),
-            pe_rprev: rad.prev.clone(),
-            pe_rnext: rad.next.clone(),
-            pe_fprev: Vec::with_capacity(p_count),
-            pe_fnext: Vec::with_capacity(p_count),
-            pe_start: Vec::with_capacity(p_count),
-            vertex_off: Vec::new(),
-            vertex_pe: Vec::new(),
+            edge_pe: Arr::from(vec![NONE; n1]),
+            pe_edge: Arr::from(Vec::with_capacity(p_count)),
+            pe_face: Arr::from(Vec::with_capacity(p_count)),
+            pe_rprev: Arr::from(rad.prev.clone()),
+            pe_rnext: Arr::from(rad.next.clone()),
+            pe_fprev: Arr::from(Vec::with_capacity(p_count)),
+            pe_fnext: Arr::from(Vec::with_capacity(p_count)),
+            pe_start: Arr::from(Vec::with_capacity(p_count)),
+            vertex_off: Arr::from(Vec::new()),
+            vertex_pe: Arr::from(Vec::new()),
         };
         for (e, &first) in rad.edge_first.iter().enumerate() {
             pe.edge_pe[tri_edge_id[e] as usize] = first;
@@ -121,8 +122,8 @@ impl PartialEntities {
             }
         }
         let (off, list) = by_start(parts.n, &pe.pe_start);
-        pe.vertex_off = off;
-        pe.vertex_pe = list;
+        pe.vertex_off = Arr::from(off);
+        pe.vertex_pe = Arr::from(list);
         Ok(pe)
     }
 
@@ -420,3 +421,27 @@ impl Topology for PartialEntities {
         radial::validate_common(self, self.n)
     }
 }
+
+crate::persist_fields!(PartialEntities {
+    n,
+    dim,
+    isolated,
+    n_tris,
+    n_wires,
+    face_pe,
+    edge_pe,
+    pe_edge,
+    pe_face,
+    pe_rprev,
+    pe_rnext,
+    pe_fprev,
+    pe_fnext,
+    pe_start,
+    vertex_off,
+    vertex_pe, nav
+} check |s| {
+    if s.face_pe.len() != s.n_tris as usize || s.vertex_off.len() != s.n as usize + 1 {
+        return Err("arrays of the wrong length for the triangles and vertices".into());
+    }
+    Ok(())
+});

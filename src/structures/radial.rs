@@ -17,6 +17,7 @@
 //! coordinates (none, another dimension, non-finite values, a zero-length edge): ascending
 //! third-vertex id, which is also ascending triangle id.
 
+use crate::store::Arr;
 use std::f64::consts::TAU;
 
 use rustc_hash::FxHashSet;
@@ -360,8 +361,8 @@ pub(crate) fn wire_lists(n: u32, wires: &SimplexTable) -> (Vec<u32>, Vec<u32>) {
 /// the relation API addresses it by its vertices).
 #[derive(Debug, Clone)]
 pub(crate) struct EdgeLocator {
-    by02: Vec<u32>,
-    by12: Vec<u32>,
+    by02: Arr<u32>,
+    by12: Arr<u32>,
 }
 
 impl EdgeLocator {
@@ -377,7 +378,10 @@ impl EdgeLocator {
             let r = tris.get(t as usize);
             (r[1], r[2], t)
         });
-        EdgeLocator { by02, by12 }
+        EdgeLocator {
+            by02: by02.into(),
+            by12: by12.into(),
+        }
     }
 
     /// A slot on edge {a, b} (a < b), or `None`: three binary searches, O(log n2).
@@ -839,3 +843,5 @@ pub(crate) fn merge_edges(tri_edges: &[[u32; 2]], wires: &SimplexTable) -> (Vec<
     }
     (te, we)
 }
+
+crate::persist_fields!(EdgeLocator { by02, by12 });

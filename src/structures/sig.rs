@@ -135,6 +135,7 @@
 //! r-simplex's ids read through the boundary, merged with σ's sorted ids): the same answer as
 //! walking B, cheaper by a constant factor.
 
+use crate::store::Arr;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::ig::IncidenceGraph;
@@ -162,7 +163,7 @@ pub struct Sig {
     /// Global id of the first p-simplex; `first[d + 1]` = total. The paper's lookup table.
     first: Vec<u32>,
     /// B_{p,p−1}: p + 1 rows of dimension p − 1 per p-simplex, entry i opposite vertex i.
-    boundary: Vec<Vec<u32>>,
+    boundary: Vec<Arr<u32>>,
     /// The partial co-boundaries of the p-simplices, p < d.
     cob: Vec<Cob>,
     top_counts: Vec<usize>,
@@ -173,22 +174,25 @@ pub struct Sig {
 /// The partial co-boundary arrays of one dimension, concatenated without heads or stop codes:
 /// a 2-bit length code per simplex says where its array is.
 #[derive(Debug, Clone, PartialEq, Eq)]
-struct Cob {
+pub(crate) struct Cob {
     /// The code every simplex of the dimension has, when they all have the same (then `blocks`
     /// is empty and array i starts at i × code in `short`, or is long array i).
     uniform: Option<u8>,
-    blocks: Vec<Block>,
+    blocks: Arr<Block>,
     /// The arrays of 1 or 2 entries, in simplex order.
-    short: Vec<u32>,
+    short: Arr<u32>,
     /// Start of each long array in `long`, plus the end: one entry per long simplex + 1.
-    long_start: Vec<u32>,
-    long: Vec<u32>,
+    long_start: Arr<u32>,
+    long: Arr<u32>,
 }
 
 /// Codes of 64 consecutive simplices as two bit planes, and the short entries and long arrays
 /// of the simplices before the block: array i is found by two popcounts.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-struct Block {
+/// `repr(C)` and `Pod` (no padding: two u64 then two u32) so a saved file's blocks are viewed
+/// in place.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
+pub(crate) struct Block {
     lo: u64,
     hi: u64,
     short_before: u32,
@@ -316,10 +320,10 @@ impl CobWriter {
         Ok((
             Cob {
                 uniform,
-                blocks,
-                short: shrink(self.short),
-                long_start: shrink(self.long_start),
-                long: shrink(self.long),
+                blocks: blocks.into(),
+                short: shrink(self.short).into(),
+                long_start: shrink(self.long_start).into(),
+                long: shrink(self.long).into(),
             },
             self.tops,
         ))
@@ -347,8 +351,8 @@ fn outside(tau: &[u32], sigma: &[u32]) -> u32 {
 /// The faces of r-simplex `id` obtained by dropping `drops` of the positions in `allowed`,
 /// through `boundary`, each reached once: positions are dropped from the highest down, so a
 /// position not yet dropped keeps its index in every face on the way.
-fn walk_faces(
-    boundary: &[Vec<u32>],
+fn walk_faces<B: std::ops::Deref<Target = [u32]>>(
+    boundary: &[B],
     r: usize,
     id: u32,
     below: usize,
@@ -518,7 +522,7 @@ impl Sig {
         Ok(Sig {
             nav: ig.nav.without_caches(),
             first,
-            boundary,
+            boundary: boundary.into_iter().map(Arr::from).collect(),
             cob,
             top_counts,
         })
@@ -631,7 +635,7 @@ impl Sig {
         Ok(Sig {
             nav: NavIndex::new(complex),
             first,
-            boundary,
+            boundary: boundary.into_iter().map(Arr::from).collect(),
             cob,
             top_counts,
         })
@@ -1004,7 +1008,7 @@ impl Topology for Sig {
 
     fn storage(&self) -> Storage {
         let d = self.dimension();
-        let boundary: usize = self.boundary.iter().map(Vec::len).sum();
+        let boundary: usize = self.boundary.iter().map(|b| b.len()).sum();
         // The paper's layout: a head per p-simplex (p < d) and, unless it takes the shortcut,
         // an array of its entries and a stop code.
         let mut cob = 0usize;
@@ -1219,3 +1223,32 @@ impl Topology for Sig {
         Ok(())
     }
 }
+
+crate::persist_fields!(Cob {
+    uniform,
+    blocks,
+    short,
+    long_start,
+    long
+});
+
+impl crate::store::Field for Vec<Cob> {
+    fn put(&self, w: &mut crate::store::Writer) {
+        w.scalar(self.len() as u64);
+        for c in self {
+            crate::store::Field::put(c, w);
+        }
+    }
+    fn get(r: &mut crate::store::Reader) -> Result<Self, crate::store::StoreError> {
+        let n = r.bounded(crate::complex::MAX_DIMENSION as u64 + 1, "dimensions")?;
+        (0..n).map(|_| crate::store::Field::get(r)).collect()
+    }
+}
+
+crate::persist_fields!(Sig { first, boundary, cob, top_counts, nav } check |s| {
+    let d = s.top_counts.len().checked_sub(1).ok_or("no dimension")?;
+    if s.first.len() != d + 2 || s.boundary.len() != d + 1 || s.cob.len() != d {
+        return Err(format!("tables of {} dimensions for dimension {d}", s.first.len()));
+    }
+    Ok(())
+});

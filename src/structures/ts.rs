@@ -43,6 +43,7 @@ use super::nav::{NavBase, NavIndex};
 use super::radial::{self, EdgeAt, EdgeLocator, NONE, TriTopo, row3, slot_ends};
 use crate::complex::{Complex, SimplexTable};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::store::Arr;
 
 const KIND: StructureKind = StructureKind::Ts;
 
@@ -55,14 +56,14 @@ pub struct TriangleSegment {
     isolated: usize,
     n_wires: usize,
     tris: SimplexTable,
-    next: Vec<u32>,
-    nonmanifold: Vec<u64>,
-    nonmanifold_rank: Vec<u32>,
-    prev: Vec<u32>,
-    comp_off: Vec<u32>,
-    comp_tri: Vec<u32>,
-    wire_off: Vec<u32>,
-    wire_nbr: Vec<u32>,
+    next: Arr<u32>,
+    nonmanifold: Arr<u64>,
+    nonmanifold_rank: Arr<u32>,
+    prev: Arr<u32>,
+    comp_off: Arr<u32>,
+    comp_tri: Arr<u32>,
+    wire_off: Arr<u32>,
+    wire_nbr: Arr<u32>,
     locator: EdgeLocator,
     /// Handle bookkeeping: windings, top simplices below d, lazy tables ([`super::nav`]).
     pub(crate) nav: NavIndex,
@@ -97,7 +98,7 @@ impl TriangleSegment {
         let nonmanifold_rank = ranks(&nonmanifold);
         let (comp_off, corners) =
             radial::vertex_components(parts.n, n2, |t| row3(&tris, t), |s| rad.next[s as usize]);
-        let comp_tri = corners.into_iter().map(|c| c / 3).collect();
+        let comp_tri: Vec<u32> = corners.into_iter().map(|c| c / 3).collect();
         let (wire_off, wire_nbr) = radial::wire_lists(parts.n, &parts.wires);
         let locator = EdgeLocator::build(&tris);
         Ok(TriangleSegment {
@@ -108,14 +109,14 @@ impl TriangleSegment {
             isolated: parts.isolated,
             n_wires: parts.wires.len(),
             tris,
-            next,
-            nonmanifold,
-            nonmanifold_rank,
-            prev,
-            comp_off,
-            comp_tri,
-            wire_off,
-            wire_nbr,
+            next: next.into(),
+            nonmanifold: nonmanifold.into(),
+            nonmanifold_rank: nonmanifold_rank.into(),
+            prev: prev.into(),
+            comp_off: comp_off.into(),
+            comp_tri: comp_tri.into(),
+            wire_off: wire_off.into(),
+            wire_nbr: wire_nbr.into(),
             locator,
         })
     }
@@ -374,3 +375,26 @@ impl Topology for TriangleSegment {
         self.locator.validate(n2, |t| self.tri(t))
     }
 }
+
+crate::persist_fields!(TriangleSegment {
+    n,
+    dim,
+    n_edges,
+    isolated,
+    n_wires,
+    tris,
+    next,
+    nonmanifold,
+    nonmanifold_rank,
+    prev,
+    comp_off,
+    comp_tri,
+    wire_off,
+    wire_nbr,
+    locator, nav
+} check |s| {
+    if s.next.len() != 3 * s.tris.len() || s.wire_off.len() != s.n as usize + 1 {
+        return Err("arrays of the wrong length for the triangles and vertices".into());
+    }
+    Ok(())
+});

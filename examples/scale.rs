@@ -1,0 +1,283 @@
+//! The large benchmark's driver (`scripts/bench.sh --large`): writes generated datasets and
+//! times each phase of reading, building, saving and opening them.
+//!
+//! - `scale grid K OUT.mesh`: a K×K×K Freudenthal tetrahedral grid (~26K³ simplices) as MEDIT;
+//! - `scale loop L OUT.off`: an icosahedron Loop-subdivided L times (20·4^L triangles) as OFF;
+//! - `scale rips N DIM OUT.simplices`: the Rips complex of N random points in the unit square
+//!   at the radius giving ~12 neighbours, up to dimension DIM, as `.simplices`;
+//! - `scale phases FILE KIND THREADS TPX`: parse, build (THREADS threads), save to TPX, open,
+//!   vertex-star walks on the opened structure; one `phase seconds peak_rss_mib` line each.
+//!
+//! Generated data is never committed; the numbers go to docs/benchmarks.md.
+
+use std::io::{BufWriter, Write};
+use std::path::Path;
+use std::time::Instant;
+
+use topoplex::StructureKind;
+use topoplex::store::Saved;
+
+fn peak_mib() -> f64 {
+    let status = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    status
+        .lines()
+        .find_map(|l| l.strip_prefix("VmHWM:"))
+        .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<f64>().ok())
+        .map_or(0.0, |kb| kb / 1024.0)
+}
+
+fn grid(k: u32, out: &Path) -> std::io::Result<()> {
+    let n = k + 1;
+    let mut w = BufWriter::with_capacity(1 << 20, std::fs::File::create(out)?);
+    writeln!(
+        w,
+        "MeshVersionFormatted 1\nDimension 3\nVertices\n{}",
+        n * n * n
+    )?;
+    for x in 0..n {
+        for y in 0..n {
+            for z in 0..n {
+                writeln!(w, "{x} {y} {z} 0")?;
+            }
+        }
+    }
+    writeln!(w, "Tetrahedra\n{}", 6 * (k as u64).pow(3))?;
+    let id = |p: [u32; 3]| (p[0] * n + p[1]) * n + p[2] + 1;
+    for x in 0..k {
+        for y in 0..k {
+            for z in 0..k {
+                for perm in [
+                    [0, 1, 2],
+                    [0, 2, 1],
+                    [1, 0, 2],
+                    [1, 2, 0],
+                    [2, 0, 1],
+                    [2, 1, 0],
+                ] {
+                    let mut p = [x, y, z];
+                    let mut t = [id(p); 4];
+                    for (i, a) in perm.into_iter().enumerate() {
+                        p[a] += 1;
+                        t[i + 1] = id(p);
+                    }
+                    writeln!(w, "{} {} {} {} 0", t[0], t[1], t[2], t[3])?;
+                }
+            }
+        }
+    }
+    writeln!(w, "End")?;
+    w.flush()
+}
+
+fn loop_surface(levels: u32, out: &Path) -> std::io::Result<()> {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let mut pts: Vec<[f64; 3]> = vec![
+        [-1., t, 0.],
+        [1., t, 0.],
+        [-1., -t, 0.],
+        [1., -t, 0.],
+        [0., -1., t],
+        [0., 1., t],
+        [0., -1., -t],
+        [0., 1., -t],
+        [t, 0., -1.],
+        [t, 0., 1.],
+        [-t, 0., -1.],
+        [-t, 0., 1.],
+    ];
+    let mut tris: Vec<[u32; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..levels {
+        // Midpoint subdivision (the connectivity of Loop's scheme; positions are not smoothed,
+        // which does not change the topology the benchmark measures).
+        let mut mid = std::collections::HashMap::new();
+        let mut next = Vec::with_capacity(tris.len() * 4);
+        let mut m = |a: u32, b: u32, pts: &mut Vec<[f64; 3]>| {
+            *mid.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                let (p, q) = (pts[a as usize], pts[b as usize]);
+                pts.push([(p[0] + q[0]) / 2., (p[1] + q[1]) / 2., (p[2] + q[2]) / 2.]);
+                pts.len() as u32 - 1
+            })
+        };
+        for [a, b, c] in tris {
+            let (ab, bc, ca) = (m(a, b, &mut pts), m(b, c, &mut pts), m(c, a, &mut pts));
+            next.extend_from_slice(&[[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        tris = next;
+    }
+    let mut w = BufWriter::with_capacity(1 << 20, std::fs::File::create(out)?);
+    writeln!(w, "OFF\n{} {} 0", pts.len(), tris.len())?;
+    for p in &pts {
+        writeln!(w, "{} {} {}", p[0], p[1], p[2])?;
+    }
+    for [a, b, c] in &tris {
+        writeln!(w, "3 {a} {b} {c}")?;
+    }
+    w.flush()
+}
+
+fn rips(n: u32, dim: usize, out: &Path) -> std::io::Result<()> {
+    let mut x = 0x2545_f491_4f6c_dd1du64;
+    let mut rnd = || {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        (x >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let pts: Vec<[f64; 2]> = (0..n).map(|_| [rnd(), rnd()]).collect();
+    let r = (12.0 / (std::f64::consts::PI * n as f64)).sqrt();
+    let cells = (1.0 / r).floor().max(1.0) as usize;
+    let cell = |p: [f64; 2]| {
+        let c = |v: f64| ((v * cells as f64) as usize).min(cells - 1);
+        (c(p[0]), c(p[1]))
+    };
+    let mut grid = vec![Vec::new(); cells * cells];
+    for (i, &p) in pts.iter().enumerate() {
+        let (a, b) = cell(p);
+        grid[a * cells + b].push(i as u32);
+    }
+    let close = |i: u32, j: u32| {
+        let (p, q) = (pts[i as usize], pts[j as usize]);
+        (p[0] - q[0]).powi(2) + (p[1] - q[1]).powi(2) <= r * r
+    };
+    let mut nbrs: Vec<Vec<u32>> = vec![Vec::new(); n as usize];
+    for (i, &p) in pts.iter().enumerate() {
+        let (a, b) = cell(p);
+        for da in a.saturating_sub(1)..=(a + 1).min(cells - 1) {
+            for db in b.saturating_sub(1)..=(b + 1).min(cells - 1) {
+                for &j in &grid[da * cells + db] {
+                    if j > i as u32 && close(i as u32, j) {
+                        nbrs[i].push(j);
+                    }
+                }
+            }
+        }
+        nbrs[i].sort_unstable();
+    }
+    // Maximal cliques are not needed: listing every simplex up to `dim` (faces are absorbed).
+    let mut w = BufWriter::with_capacity(1 << 20, std::fs::File::create(out)?);
+    let mut stack = Vec::new();
+    for v in 0..n {
+        writeln!(w, "{v}")?;
+        stack.clear();
+        stack.push((vec![v], nbrs[v as usize].clone()));
+        while let Some((s, cand)) = stack.pop() {
+            for (k, &c) in cand.iter().enumerate() {
+                let mut t = s.clone();
+                t.push(c);
+                if t.len() == dim + 1 {
+                    let line: Vec<String> = t.iter().map(u32::to_string).collect();
+                    writeln!(w, "{}", line.join(" "))?;
+                } else {
+                    let rest: Vec<u32> = cand[k + 1..]
+                        .iter()
+                        .copied()
+                        .filter(|&u| close(c, u))
+                        .collect();
+                    if rest.is_empty() {
+                        let line: Vec<String> = t.iter().map(u32::to_string).collect();
+                        writeln!(w, "{}", line.join(" "))?;
+                    } else {
+                        stack.push((t, rest));
+                    }
+                }
+            }
+        }
+    }
+    w.flush()
+}
+
+fn phases(file: &Path, kind: StructureKind, threads: usize, tpx: &Path) {
+    let line = |what: &str, t: Instant| {
+        println!("{what} {:.3} {:.0}", t.elapsed().as_secs_f64(), peak_mib());
+    };
+    let t = Instant::now();
+    let raw = topoplex::io::read_path(file).expect("read");
+    line("parse", t);
+    let t = Instant::now();
+    let complex = topoplex::Complex::from_raw(&raw, Some(file)).expect("complex");
+    drop(raw);
+    line("complex", t);
+    topoplex::parallel::set_threads(threads);
+    let t = Instant::now();
+    let s = topoplex::structures::build(kind, &complex).expect("build");
+    line("build", t);
+    let simplices: usize = (0..=s.dimension()).map(|p| s.count(p)).sum();
+    println!("simplices {simplices} {:.0}", peak_mib());
+    println!("bytes_retained {} {:.0}", s.storage().bytes, peak_mib());
+    let t = Instant::now();
+    topoplex::store::save(tpx, &complex, Some(s.as_ref())).expect("save");
+    line("save", t);
+    drop(s);
+    drop(complex);
+    let t = Instant::now();
+    let saved = Saved::open(tpx).expect("open");
+    let opened = saved.structure().expect("structure").expect("saved");
+    let mut out = Vec::new();
+    opened
+        .relation(&[0], opened.dimension(), &mut out)
+        .expect("query");
+    line("open+query", t);
+    let t = Instant::now();
+    let n = opened.vertex_count();
+    let mut found = 0usize;
+    let step = (n / 100_000).max(1);
+    let mut walks = 0;
+    for v in (0..n).step_by(step as usize) {
+        opened
+            .relation(&[v], opened.dimension(), &mut out)
+            .expect("walk");
+        found += out.len();
+        walks += 1;
+    }
+    println!(
+        "walks {:.3} {:.0} ({walks} vertex stars, {found} ids)",
+        t.elapsed().as_secs_f64(),
+        peak_mib()
+    );
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let a: Vec<&str> = args.iter().map(String::as_str).collect();
+    let done = match a.as_slice() {
+        ["grid", k, out] => grid(k.parse().unwrap(), Path::new(out)),
+        ["loop", l, out] => loop_surface(l.parse().unwrap(), Path::new(out)),
+        ["rips", n, d, out] => rips(n.parse().unwrap(), d.parse().unwrap(), Path::new(out)),
+        ["phases", file, kind, threads, tpx] => {
+            let kind = StructureKind::from_name(kind).expect("structure name");
+            phases(
+                Path::new(file),
+                kind,
+                threads.parse().unwrap(),
+                Path::new(tpx),
+            );
+            Ok(())
+        }
+        _ => {
+            eprintln!("usage: see the module doc of examples/scale.rs");
+            std::process::exit(2);
+        }
+    };
+    done.expect("writing the dataset");
+}

@@ -1,0 +1,193 @@
+//! Threads for the build steps, and the parallel primitives they use.
+//!
+//! Every parallel step is deterministic: it either sorts (the sorted output does not depend on
+//! how the work was split) or writes each result to a position fixed before the split, so a
+//! structure built with any number of threads is the same, byte for byte, as the serial one.
+//!
+//! The thread count is [`set_threads`] (the CLI's `--threads`, the C ABI's `tpx_set_threads`),
+//! else the `TOPOPLEX_THREADS` environment variable, else every core.
+
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+
+/// 0: not set, read the environment.
+static THREADS: AtomicUsize = AtomicUsize::new(0);
+
+/// Below this many items a step runs serially: splitting costs more than it saves.
+pub(crate) const MIN_PARALLEL: usize = 1 << 16;
+
+/// Sets the number of threads later builds use (at least 1).
+pub fn set_threads(n: usize) {
+    THREADS.store(n.max(1), Ordering::Relaxed);
+}
+
+/// The number of threads builds use: [`set_threads`], else `TOPOPLEX_THREADS`, else the
+/// number of cores.
+pub fn threads() -> usize {
+    match THREADS.load(Ordering::Relaxed) {
+        0 => std::env::var("TOPOPLEX_THREADS")
+            .ok()
+            .and_then(|v| v.trim().parse::<usize>().ok())
+            .filter(|&n| n > 0)
+            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
+        n => n,
+    }
+}
+
+/// The pool for `n` threads, built on first use and kept (one per count asked for).
+fn pool(n: usize) -> Arc<rayon::ThreadPool> {
+    static POOLS: Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>> = Mutex::new(Vec::new());
+    let mut pools = POOLS.lock().unwrap_or_else(|e| e.into_inner());
+    if let Some((_, p)) = pools.iter().find(|(k, _)| *k == n) {
+        return Arc::clone(p);
+    }
+    let p = Arc::new(
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .thread_name(|i| format!("topoplex-{i}"))
+            .build()
+            .expect("a thread pool"),
+    );
+    pools.push((n, Arc::clone(&p)));
+    p
+}
+
+/// Runs `f` in the pool of [`threads`] threads (directly when that is 1), so rayon calls inside
+/// use that many threads.
+pub(crate) fn install<R: Send>(f: impl FnOnce() -> R + Send) -> R {
+    match threads() {
+        1 => f(),
+        n => pool(n).install(f),
+    }
+}
+
+/// Sorts `keys` (set bits below `bits`) in ascending order: with one thread or few keys, the
+/// serial radix sort; else each of [`threads`] chunks is radix sorted on its own thread and the
+/// sorted runs are merged, every merge split between threads at a co-ranked position.
+pub(crate) fn sort_keys(keys: &mut Vec<u64>, bits: u32, serial: fn(&mut Vec<u64>, u32)) {
+    let t = threads();
+    if t == 1 || keys.len() < MIN_PARALLEL {
+        serial(keys, bits);
+        return;
+    }
+    install(|| {
+        let runs = t.next_power_of_two();
+        let chunk = keys.len().div_ceil(runs);
+        rayon::scope(|s| {
+            for part in keys.chunks_mut(chunk) {
+                s.spawn(move |_| {
+                    let mut v = part.to_vec();
+                    serial(&mut v, bits);
+                    part.copy_from_slice(&v);
+                });
+            }
+        });
+        // Merge runs pairwise, doubling their width each round.
+        let mut tmp = vec![0u64; keys.len()];
+        let mut width = chunk;
+        while width < keys.len() {
+            merge_round(keys, &mut tmp, width);
+            std::mem::swap(keys, &mut tmp);
+            width *= 2;
+        }
+    });
+}
+
+/// Merges each pair of adjacent sorted runs of `width` from `src` into `dst`.
+fn merge_round(src: &[u64], dst: &mut [u64], width: usize) {
+    rayon::scope(|s| {
+        for (pair, out) in src.chunks(2 * width).zip(dst.chunks_mut(2 * width)) {
+            s.spawn(move |_| {
+                let (a, b) = pair.split_at(width.min(pair.len()));
+                par_merge(a, b, out);
+            });
+        }
+    });
+}
+
+/// Merges sorted `a` and `b` into `out`, splitting large merges in two halves that rayon may
+/// run on two threads: the first half of `out` takes the smallest elements (co-ranking).
+fn par_merge(a: &[u64], b: &[u64], out: &mut [u64]) {
+    if out.len() < MIN_PARALLEL {
+        merge(a, b, out);
+        return;
+    }
+    let half = out.len() / 2;
+    // i elements from a and half - i from b form the smallest half.
+    let (mut lo, mut hi) = (half.saturating_sub(b.len()), half.min(a.len()));
+    while lo < hi {
+        let i = (lo + hi) / 2;
+        if a[i] < b[half - i - 1] {
+            lo = i + 1;
+        } else {
+            hi = i;
+        }
+    }
+    let (a1, a2) = a.split_at(lo);
+    let (b1, b2) = b.split_at(half - lo);
+    let (o1, o2) = out.split_at_mut(half);
+    rayon::join(|| par_merge(a1, b1, o1), || par_merge(a2, b2, o2));
+}
+
+fn merge(a: &[u64], b: &[u64], out: &mut [u64]) {
+    let (mut i, mut j) = (0, 0);
+    for o in out.iter_mut() {
+        if j == b.len() || (i < a.len() && a[i] <= b[j]) {
+            *o = a[i];
+            i += 1;
+        } else {
+            *o = b[j];
+            j += 1;
+        }
+    }
+}
+
+/// `f(i)` for every `i` in `0..n`, collected in index order: split in [`threads`] ranges when
+/// `n` is large, so the result does not depend on the thread count.
+pub(crate) fn map_collect<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
+    use rayon::prelude::*;
+    if threads() == 1 || n < MIN_PARALLEL {
+        return (0..n).map(f).collect();
+    }
+    install(|| (0..n).into_par_iter().map(f).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn merging_sorted_runs_matches_a_serial_sort() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        for n in [0, 1, 5, MIN_PARALLEL - 1, 3 * MIN_PARALLEL + 17] {
+            let keys: Vec<u64> = (0..n)
+                .map(|_| {
+                    x ^= x << 13;
+                    x ^= x >> 7;
+                    x ^= x << 17;
+                    x % 1000 // many equal keys
+                })
+                .collect();
+            let mut want = keys.clone();
+            want.sort_unstable();
+            for t in [2, 3, 4] {
+                let mut got = keys.clone();
+                pool(t).install(|| {
+                    let runs = t.next_power_of_two();
+                    let chunk = got.len().div_ceil(runs).max(1);
+                    for part in got.chunks_mut(chunk) {
+                        part.sort_unstable();
+                    }
+                    let mut tmp = vec![0u64; got.len()];
+                    let mut width = chunk;
+                    while width < got.len() {
+                        merge_round(&got, &mut tmp, width);
+                        std::mem::swap(&mut got, &mut tmp);
+                        width *= 2;
+                    }
+                });
+                assert_eq!(got, want, "n = {n}, {t} threads");
+            }
+        }
+    }
+}

@@ -1,0 +1,768 @@
+//! The saved format `.tpx`: a complex and, optionally, one structure built on it, opened back
+//! zero-copy by memory mapping.
+//!
+//! # Layout (version 1)
+//! All integers are in the byte order named by the header (the writer's; every platform we ship
+//! is little-endian) and vertex/simplex ids are 32 bits wide.
+//!
+//! | bytes | what |
+//! |---|---|
+//! | 0..8 | magic `\x89TPX\r\n\x1a\n` (the high byte and the line endings expose text-mode transfers) |
+//! | 8..12 | byte-order mark `0x01020304` as written by the writer |
+//! | 12..16 | format version (1) |
+//! | 16..20 | id width in bits (32) |
+//! | 20..24 | content: 0 = complex only, 1 + `TPX_KIND_*` = complex and that structure |
+//! | 24..28 | number of sections |
+//! | 28..32 | index of the structure's first section (= the number of sections without one) |
+//! | 32..40 | file length in bytes |
+//! | 40..48 | offset of the section table |
+//! | 48..56 | XXH3-64 of bytes 0..48 followed by the section table |
+//! | 56..64 | zero |
+//!
+//! Each section holds one array: 64-byte aligned, described in the table by 32 bytes (offset,
+//! element count, element size in bytes (1..=64), zero, XXH3-64 of its bytes); padding is zero. The complex comes first (its
+//! vertex count, coordinates and the simplices as listed), then the structure's arrays in the
+//! order its `save` wrote them.
+//!
+//! # Checksums and validation: what opening costs
+//! Opening reads and checks the header and the section table (their checksum, then every
+//! section's offset, length and alignment against the file's length), so no array view can
+//! point outside the file whatever its bytes. The structure's arrays are then views into the
+//! mapped file: opening touches a few pages, whatever the file's size. Section checksums are
+//! *not* read on open, since that would read the whole file; [`Saved::verify`] checks them all
+//! and then runs the structure's `validate()`. Until then a file whose header is intact but
+//! whose arrays were altered gives wrong answers or a query error, never an out-of-bounds read
+//! (every access is bounds-checked; the C ABI turns a panic into `TPX_STATUS_PANIC`). The
+//! complex is rebuilt from its listing when asked for ([`Saved::complex`]), which validates it
+//! fully.
+
+use std::fs::File;
+use std::io::{self, BufWriter, Seek, SeekFrom, Write};
+use std::marker::PhantomData;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use crate::complex::{Complex, ComplexError, SimplexTable};
+use crate::io::Coords;
+use crate::relation::{StructureKind, Topology};
+use crate::structures::BuildError;
+
+mod arr;
+mod field;
+mod persist;
+pub use arr::Arr;
+pub use field::Field;
+
+/// First bytes of every `.tpx` file.
+pub const MAGIC: [u8; 8] = *b"\x89TPX\r\n\x1a\n";
+/// The format version this build writes and reads.
+pub const VERSION: u32 = 1;
+/// Written as a native `u32`; read back swapped on a host of the other byte order.
+const BYTE_ORDER_MARK: u32 = 0x0102_0304;
+const HEADER_LEN: usize = 64;
+const ENTRY_LEN: usize = 32;
+const ALIGN: u64 = 64;
+/// More sections than any structure writes: bounds the table a hostile header can demand.
+const MAX_SECTIONS: u64 = 1 << 16;
+
+/// Why a `.tpx` file could not be written, opened or verified. Each names the file.
+#[derive(Debug, thiserror::Error)]
+pub enum StoreError {
+    /// The file cannot be read or written.
+    #[error("{}: {message}", .path.display())]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The system's message.
+        message: String,
+    },
+    /// The file is not a `.tpx` file (its first bytes are not the magic number).
+    #[error("{}: not a topoplex saved file (.tpx): wrong magic number", .path.display())]
+    Foreign {
+        /// The file.
+        path: PathBuf,
+    },
+    /// The file is shorter than its header says.
+    #[error("{}: truncated saved file: {what}", .path.display())]
+    Truncated {
+        /// The file.
+        path: PathBuf,
+        /// What is missing.
+        what: String,
+    },
+    /// The file was written by another format version.
+    #[error("{}: saved file format version {found}, this build reads version {supported}", .path.display())]
+    WrongVersion {
+        /// The file.
+        path: PathBuf,
+        /// The file's version.
+        found: u32,
+        /// The version this build reads.
+        supported: u32,
+    },
+    /// The file was written on a host of the other byte order.
+    #[error("{}: saved file written in the other byte order (big- vs little-endian); save it again on this machine", .path.display())]
+    WrongEndianness {
+        /// The file.
+        path: PathBuf,
+    },
+    /// A checksum, offset, length or value is wrong.
+    #[error("{}: corrupt saved file: {what}", .path.display())]
+    Corrupt {
+        /// The file.
+        path: PathBuf,
+        /// The first inconsistency found.
+        what: String,
+    },
+    /// The saved complex is not a valid complex.
+    #[error("{}: saved complex: {source}", .path.display())]
+    Complex {
+        /// The file.
+        path: PathBuf,
+        /// What the complex model refused.
+        source: ComplexError,
+    },
+    /// The requested structure could not be built from the saved complex.
+    #[error("{}: {source}", .path.display())]
+    Build {
+        /// The file.
+        path: PathBuf,
+        /// Why the build failed.
+        source: BuildError,
+    },
+}
+
+/// The bytes of an opened file: mapped, or (for [`Saved::from_bytes`]) an aligned heap copy.
+pub enum Backing {
+    /// A memory-mapped file.
+    Map(memmap2::Mmap),
+    /// Bytes held in 8-byte words (so every section's start is aligned), and their length.
+    Heap(Vec<u64>, usize),
+}
+
+impl Backing {
+    /// All bytes of the file.
+    pub fn bytes(&self) -> &[u8] {
+        match self {
+            Backing::Map(m) => m,
+            Backing::Heap(words, len) => &bytemuck::cast_slice(words)[..*len],
+        }
+    }
+}
+
+/// What a section's elements are (their size in bytes).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Entry {
+    offset: u64,
+    count: u64,
+    size: u32,
+    checksum: u64,
+}
+
+/// Writes the sections of a `.tpx` file in order. Each call appends one array; the first write
+/// error is kept and returned by [`Writer::finish`], so `save` implementations stay linear.
+pub struct Writer {
+    out: BufWriter<File>,
+    pos: u64,
+    entries: Vec<Entry>,
+    error: Option<io::Error>,
+}
+
+impl Writer {
+    fn create(file: File) -> Writer {
+        let mut w = Writer {
+            out: BufWriter::with_capacity(1 << 20, file),
+            pos: 0,
+            entries: Vec::new(),
+            error: None,
+        };
+        // The header is written last, once the table's place and checksum are known.
+        w.write_raw(&[0u8; HEADER_LEN]);
+        w
+    }
+
+    fn write_raw(&mut self, bytes: &[u8]) {
+        if self.error.is_none()
+            && let Err(e) = self.out.write_all(bytes)
+        {
+            self.error = Some(e);
+        }
+        self.pos += bytes.len() as u64;
+    }
+
+    fn pad_to(&mut self, align: u64) {
+        let pad = self.pos.next_multiple_of(align) - self.pos;
+        self.write_raw(&[0u8; ALIGN as usize][..pad as usize]);
+    }
+
+    /// Appends an array of any plain element type.
+    pub fn section<T: bytemuck::Pod>(&mut self, items: &[T]) {
+        self.pad_to(ALIGN);
+        let bytes: &[u8] = bytemuck::cast_slice(items);
+        self.entries.push(Entry {
+            offset: self.pos,
+            count: items.len() as u64,
+            size: size_of::<T>() as u32,
+            checksum: xxhash_rust::xxh3::xxh3_64(bytes),
+        });
+        self.write_raw(bytes);
+    }
+
+    /// Appends an array of bytes.
+    pub fn u8s(&mut self, items: &[u8]) {
+        self.section(items);
+    }
+
+    /// Appends an array of 32-bit integers.
+    pub fn u32s(&mut self, items: &[u32]) {
+        self.section(items);
+    }
+
+    /// Appends an array of 64-bit integers.
+    pub fn u64s(&mut self, items: &[u64]) {
+        self.section(items);
+    }
+
+    /// Appends an array of `usize`, widened to 64 bits.
+    pub fn usizes(&mut self, items: &[usize]) {
+        let wide: Vec<u64> = items.iter().map(|&x| x as u64).collect();
+        self.section(&wide);
+    }
+
+    /// Appends one number (a one-element 64-bit section).
+    pub fn scalar(&mut self, x: u64) {
+        self.section(&[x]);
+    }
+
+    /// Appends a simplex table: its arity, then its rows.
+    pub fn table(&mut self, t: &SimplexTable) {
+        self.scalar(t.arity() as u64);
+        self.u32s(t.as_flat());
+    }
+
+    fn finish(mut self, kind: u32, structure_first: u32) -> io::Result<()> {
+        self.pad_to(8);
+        let table_offset = self.pos;
+        let mut table = Vec::with_capacity(self.entries.len() * ENTRY_LEN);
+        for e in &self.entries {
+            table.extend_from_slice(&e.offset.to_ne_bytes());
+            table.extend_from_slice(&e.count.to_ne_bytes());
+            table.extend_from_slice(&e.size.to_ne_bytes());
+            table.extend_from_slice(&0u32.to_ne_bytes());
+            table.extend_from_slice(&e.checksum.to_ne_bytes());
+        }
+        self.write_raw(&table);
+        let file_len = self.pos;
+        let mut header = [0u8; HEADER_LEN];
+        header[0..8].copy_from_slice(&MAGIC);
+        header[8..12].copy_from_slice(&BYTE_ORDER_MARK.to_ne_bytes());
+        header[12..16].copy_from_slice(&VERSION.to_ne_bytes());
+        header[16..20].copy_from_slice(&32u32.to_ne_bytes());
+        header[20..24].copy_from_slice(&kind.to_ne_bytes());
+        header[24..28].copy_from_slice(&(self.entries.len() as u32).to_ne_bytes());
+        header[28..32].copy_from_slice(&structure_first.to_ne_bytes());
+        header[32..40].copy_from_slice(&file_len.to_ne_bytes());
+        header[40..48].copy_from_slice(&table_offset.to_ne_bytes());
+        let sum = head_checksum(&header[..48], &table);
+        header[48..56].copy_from_slice(&sum.to_ne_bytes());
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        let mut file = self.out.into_inner().map_err(|e| e.into_error())?;
+        file.seek(SeekFrom::Start(0))?;
+        file.write_all(&header)?;
+        file.sync_all()
+    }
+}
+
+fn head_checksum(header48: &[u8], table: &[u8]) -> u64 {
+    let mut h = xxhash_rust::xxh3::Xxh3::new();
+    h.update(header48);
+    h.update(table);
+    h.digest()
+}
+
+/// Reads the sections of an opened file in the order they were written, as views (arrays) or
+/// numbers; every shape error names the file.
+pub struct Reader<'a> {
+    saved: &'a Saved,
+    next: usize,
+}
+
+impl Reader<'_> {
+    /// A `Corrupt` error naming the file.
+    pub fn corrupt(&self, what: impl Into<String>) -> StoreError {
+        StoreError::Corrupt {
+            path: self.saved.path.clone(),
+            what: what.into(),
+        }
+    }
+
+    fn entry(&mut self, size: u32) -> Result<Entry, StoreError> {
+        let i = self.next;
+        let e = *self
+            .saved
+            .entries
+            .get(i)
+            .ok_or_else(|| self.corrupt(format!("section {i} is missing")))?;
+        if e.size != size {
+            return Err(self.corrupt(format!(
+                "section {i} has {}-byte elements where {size}-byte ones were expected",
+                e.size
+            )));
+        }
+        self.next += 1;
+        Ok(e)
+    }
+
+    /// The next section, an array of any plain element type of the saved element size.
+    pub fn arr<T: bytemuck::Pod>(&mut self) -> Result<Arr<T>, StoreError> {
+        let e = self.entry(size_of::<T>() as u32)?;
+        // Offsets, lengths and alignment were checked against the file on open.
+        Ok(Arr::Mapped {
+            backing: Arc::clone(&self.saved.backing),
+            start: e.offset as usize,
+            len: e.count as usize,
+            _t: PhantomData,
+        })
+    }
+
+    /// The next section, an array of bytes.
+    pub fn u8s(&mut self) -> Result<Arr<u8>, StoreError> {
+        self.arr()
+    }
+
+    /// The next section, an array of 32-bit integers.
+    pub fn u32s(&mut self) -> Result<Arr<u32>, StoreError> {
+        self.arr()
+    }
+
+    /// The next section, an array of 64-bit integers.
+    pub fn u64s(&mut self) -> Result<Arr<u64>, StoreError> {
+        self.arr()
+    }
+
+    /// The next section, 64-bit integers as `usize` (copied; refused if one does not fit).
+    pub fn usizes(&mut self) -> Result<Vec<usize>, StoreError> {
+        let wide = self.u64s()?;
+        wide.iter()
+            .map(|&x| usize::try_from(x).map_err(|_| self.corrupt(format!("{x} overflows usize"))))
+            .collect()
+    }
+
+    /// The next section, one number.
+    pub fn scalar(&mut self) -> Result<u64, StoreError> {
+        let a = self.u64s()?;
+        match *a {
+            [x] => Ok(x),
+            _ => Err(self.corrupt(format!(
+                "section {} should hold one number, holds {}",
+                self.next - 1,
+                a.len()
+            ))),
+        }
+    }
+
+    /// The next number, which must be at most `max`.
+    pub fn bounded(&mut self, max: u64, what: &str) -> Result<u64, StoreError> {
+        let x = self.scalar()?;
+        if x > max {
+            return Err(self.corrupt(format!("{what} is {x}, above {max}")));
+        }
+        Ok(x)
+    }
+
+    /// The next number as a `u32`.
+    pub fn u32(&mut self, what: &str) -> Result<u32, StoreError> {
+        Ok(self.bounded(u32::MAX as u64, what)? as u32)
+    }
+
+    /// The next number as a `usize`.
+    pub fn usize(&mut self, what: &str) -> Result<usize, StoreError> {
+        Ok(self.bounded(usize::MAX as u64, what)? as usize)
+    }
+
+    /// A simplex table written by [`Writer::table`]: arity 1..=16, length a multiple of it.
+    /// Row order is the structure's invariant, checked by `verify`.
+    pub fn table(&mut self) -> Result<SimplexTable, StoreError> {
+        let arity = self.bounded(crate::complex::MAX_DIMENSION as u64 + 1, "table arity")?;
+        if arity == 0 {
+            return Err(self.corrupt("table arity is 0"));
+        }
+        let ids = self.u32s()?;
+        if ids.len() % arity as usize != 0 {
+            return Err(self.corrupt(format!(
+                "table of {} ids is not made of rows of {arity}",
+                ids.len()
+            )));
+        }
+        Ok(SimplexTable::from_arr(arity as usize, ids))
+    }
+
+    /// Checks that `len` is `want`, naming the array.
+    pub fn expect_len(&self, what: &str, len: usize, want: usize) -> Result<(), StoreError> {
+        if len != want {
+            return Err(self.corrupt(format!("{what} has {len} entries, expected {want}")));
+        }
+        Ok(())
+    }
+
+    fn done(&self) -> Result<(), StoreError> {
+        let left = self.saved.entries.len() - self.next;
+        if left != 0 {
+            return Err(self.corrupt(format!("{left} sections left unread")));
+        }
+        Ok(())
+    }
+}
+
+/// What a structure writes to and reads back from a saved file.
+pub trait Persist: Sized {
+    /// Appends the structure's arrays and numbers.
+    fn save(&self, w: &mut Writer);
+    /// Reads them back in the same order. Checks the shapes it needs (array lengths against
+    /// counts), not the invariants `validate()` checks.
+    fn load(r: &mut Reader) -> Result<Self, StoreError>;
+}
+
+/// An opened `.tpx` file: checked header and section table over mapped bytes.
+pub struct Saved {
+    path: PathBuf,
+    backing: Arc<Backing>,
+    entries: Vec<Entry>,
+    kind: Option<StructureKind>,
+    structure_first: usize,
+}
+
+/// Saves `complex` and, when given, a structure built on it, to `path` (written to a temporary
+/// file beside it, then renamed, so a failed save leaves no half file under the name). Cost:
+/// one pass over the structure's arrays.
+pub fn save(
+    path: &Path,
+    complex: &Complex,
+    structure: Option<&dyn Topology>,
+) -> Result<(), StoreError> {
+    let io_err = |e: io::Error| StoreError::Io {
+        path: path.to_path_buf(),
+        message: e.to_string(),
+    };
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".partial");
+    let tmp = PathBuf::from(tmp);
+    let file = File::create(&tmp).map_err(io_err)?;
+    let mut w = Writer::create(file);
+    w.u8s(&MAGIC);
+    persist::save_complex(complex, &mut w);
+    let first = w.entries.len() as u32;
+    let kind = match structure {
+        Some(s) => {
+            persist::save_structure(s, &mut w);
+            s.kind() as u32 + 1
+        }
+        None => 0,
+    };
+    let done = w
+        .finish(kind, first)
+        .and_then(|()| std::fs::rename(&tmp, path));
+    if let Err(e) = done {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(io_err(e));
+    }
+    Ok(())
+}
+
+/// Whether `path` names a saved file (by extension `.tpx`).
+pub fn is_saved_path(path: &Path) -> bool {
+    path.extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("tpx"))
+}
+
+impl Saved {
+    /// Opens a saved file by memory mapping it. Checks the header and section table (see the
+    /// module doc); reads no array. Cost: O(sections), a few pages.
+    pub fn open(path: &Path) -> Result<Saved, StoreError> {
+        let io_err = |e: io::Error| StoreError::Io {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        };
+        let file = File::open(path).map_err(io_err)?;
+        let map = map_file(&file).map_err(io_err)?;
+        Saved::from_backing(path, Backing::Map(map))
+    }
+
+    /// Opens saved bytes held in memory (copied into aligned words); `name` stands for the file
+    /// in errors. Same checks as [`Saved::open`].
+    pub fn from_bytes(name: &Path, bytes: &[u8]) -> Result<Saved, StoreError> {
+        let mut words = vec![0u64; bytes.len().div_ceil(8)];
+        bytemuck::cast_slice_mut::<u64, u8>(&mut words)[..bytes.len()].copy_from_slice(bytes);
+        Saved::from_backing(name, Backing::Heap(words, bytes.len()))
+    }
+
+    fn from_backing(path: &Path, backing: Backing) -> Result<Saved, StoreError> {
+        let (entries, kind, structure_first) = check_head(path, backing.bytes())?;
+        Ok(Saved {
+            path: path.to_path_buf(),
+            backing: Arc::new(backing),
+            entries,
+            kind,
+            structure_first,
+        })
+    }
+
+    /// The structure saved in the file, if any.
+    pub fn kind(&self) -> Option<StructureKind> {
+        self.kind
+    }
+
+    /// The file's length in bytes.
+    pub fn len(&self) -> usize {
+        self.backing.bytes().len()
+    }
+
+    /// Whether the file is empty (never, once opened).
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    fn reader(&self, first: usize) -> Reader<'_> {
+        Reader {
+            saved: self,
+            next: first,
+        }
+    }
+
+    /// The saved complex, rebuilt from its saved listing (so validated like any input): the
+    /// same complex, numbering and statistics as the one saved. Cost: a normalisation.
+    pub fn complex(&self) -> Result<Complex, StoreError> {
+        let mut r = self.reader(1);
+        let c = persist::load_complex(&mut r)?;
+        if r.next != self.structure_first {
+            return Err(r.corrupt("the complex's sections do not end where the structure's begin"));
+        }
+        Ok(c)
+    }
+
+    /// The saved structure, its arrays viewing the mapped file; `None` for a file holding only
+    /// a complex. Cost: O(sections) plus the structure's small tables (copied).
+    pub fn structure(&self) -> Result<Option<Box<dyn Topology>>, StoreError> {
+        let Some(kind) = self.kind else {
+            return Ok(None);
+        };
+        let mut r = self.reader(self.structure_first);
+        let s = persist::load_structure(kind, &mut r)?;
+        r.done()?;
+        Ok(Some(s))
+    }
+
+    /// A structure of `kind`: the saved one when it is of that kind, else built from the saved
+    /// complex.
+    pub fn structure_of(&self, kind: StructureKind) -> Result<Box<dyn Topology>, StoreError> {
+        if self.kind == Some(kind)
+            && let Some(s) = self.structure()?
+        {
+            return Ok(s);
+        }
+        let complex = self.complex()?;
+        crate::structures::build(kind, &complex).map_err(|source| StoreError::Build {
+            path: self.path.clone(),
+            source,
+        })
+    }
+
+    /// Checks every section's checksum (reads the whole file), then the saved structure's
+    /// invariants (`validate()`). Cost: O(file size) plus the structure's validation.
+    pub fn verify(&self) -> Result<(), StoreError> {
+        let bytes = self.backing.bytes();
+        // Padding between sections must be zero, so that every byte of the file is checked.
+        let mut covered = HEADER_LEN;
+        for (i, e) in self.entries.iter().enumerate() {
+            let start = e.offset as usize;
+            let end = start + (e.count * e.size as u64) as usize;
+            if start >= covered && bytes[covered..start].iter().any(|&b| b != 0) {
+                return Err(self.corrupt(format!("non-zero padding before section {i}")));
+            }
+            if xxhash_rust::xxh3::xxh3_64(&bytes[start..end]) != e.checksum {
+                return Err(self.corrupt(format!("section {i}: checksum mismatch")));
+            }
+            covered = covered.max(end);
+        }
+        let table = u64::from_ne_bytes(bytes[40..48].try_into().unwrap()) as usize;
+        if bytes[covered.min(table)..table].iter().any(|&b| b != 0) {
+            return Err(self.corrupt("non-zero padding before the section table"));
+        }
+        if let Some(s) = self.structure()? {
+            // A hostile file whose checksums were recomputed may still break an invariant that
+            // `validate` indexes through: its panic is an answer here, not a crash.
+            let checked = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| s.validate()));
+            match checked {
+                Ok(Ok(())) => {}
+                Ok(Err(e)) => return Err(self.corrupt(format!("saved {}: {e}", s.kind()))),
+                Err(_) => {
+                    return Err(self.corrupt(format!("saved {}: inconsistent arrays", s.kind())));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn corrupt(&self, what: impl Into<String>) -> StoreError {
+        StoreError::Corrupt {
+            path: self.path.clone(),
+            what: what.into(),
+        }
+    }
+}
+
+/// Maps `file` read-only.
+#[allow(unsafe_code)]
+fn map_file(file: &File) -> io::Result<memmap2::Mmap> {
+    // SAFETY: the map is read-only and every view into it is bounds-checked against its length.
+    // Another process truncating or rewriting the file while it is mapped is the documented
+    // hazard of every mmap (`save` writes a new file and renames it, so our own saves never
+    // rewrite a mapped file in place).
+    unsafe { memmap2::Mmap::map(file) }
+}
+
+type Head = (Vec<Entry>, Option<StructureKind>, usize);
+
+/// Checks the header and the section table of `bytes` (see the module doc).
+fn check_head(path: &Path, bytes: &[u8]) -> Result<Head, StoreError> {
+    let corrupt = |what: String| StoreError::Corrupt {
+        path: path.to_path_buf(),
+        what,
+    };
+    let truncated = |what: String| StoreError::Truncated {
+        path: path.to_path_buf(),
+        what,
+    };
+    if bytes.len() < MAGIC.len() || bytes[..MAGIC.len()] != MAGIC {
+        return Err(StoreError::Foreign {
+            path: path.to_path_buf(),
+        });
+    }
+    if bytes.len() < HEADER_LEN {
+        return Err(truncated(format!(
+            "{} bytes, shorter than the {HEADER_LEN}-byte header",
+            bytes.len()
+        )));
+    }
+    let u32_at = |o: usize| u32::from_ne_bytes(bytes[o..o + 4].try_into().unwrap());
+    let u64_at = |o: usize| u64::from_ne_bytes(bytes[o..o + 8].try_into().unwrap());
+    match u32_at(8) {
+        BYTE_ORDER_MARK => {}
+        m if m == BYTE_ORDER_MARK.swap_bytes() => {
+            return Err(StoreError::WrongEndianness {
+                path: path.to_path_buf(),
+            });
+        }
+        m => return Err(corrupt(format!("byte-order mark {m:#010x}"))),
+    }
+    if u32_at(12) != VERSION {
+        return Err(StoreError::WrongVersion {
+            path: path.to_path_buf(),
+            found: u32_at(12),
+            supported: VERSION,
+        });
+    }
+    if u64_at(56) != 0 {
+        return Err(corrupt(format!(
+            "reserved header bytes hold {:#x}",
+            u64_at(56)
+        )));
+    }
+    if u32_at(16) != 32 {
+        return Err(corrupt(format!(
+            "id width {} bits, expected 32",
+            u32_at(16)
+        )));
+    }
+    let (kind_code, n_sections, first) = (u32_at(20), u32_at(24) as u64, u32_at(28) as usize);
+    let (file_len, table_offset, sum) = (u64_at(32), u64_at(40), u64_at(48));
+    if file_len > bytes.len() as u64 {
+        return Err(truncated(format!(
+            "{} bytes of the {file_len} the header states",
+            bytes.len()
+        )));
+    }
+    if file_len < bytes.len() as u64 {
+        return Err(corrupt(format!(
+            "{} bytes where the header states {file_len}",
+            bytes.len()
+        )));
+    }
+    if n_sections > MAX_SECTIONS {
+        return Err(corrupt(format!("{n_sections} sections")));
+    }
+    let table_end = table_offset
+        .checked_add(n_sections * ENTRY_LEN as u64)
+        .filter(|&end| table_offset >= HEADER_LEN as u64 && end == file_len)
+        .ok_or_else(|| {
+            corrupt(format!(
+                "section table at {table_offset} for {n_sections} sections in {file_len} bytes"
+            ))
+        })?;
+    let table = &bytes[table_offset as usize..table_end as usize];
+    if head_checksum(&bytes[..48], table) != sum {
+        return Err(corrupt("header checksum mismatch".into()));
+    }
+    let kind = match kind_code {
+        0 => None,
+        k => Some(
+            *StructureKind::ALL
+                .get(k as usize - 1)
+                .ok_or_else(|| corrupt(format!("unknown content code {k}")))?,
+        ),
+    };
+    if first > n_sections as usize || (kind.is_none() && first != n_sections as usize) {
+        return Err(corrupt(format!(
+            "structure starts at section {first} of {n_sections}"
+        )));
+    }
+    let entries = parse_table(table, table_offset, &corrupt)?;
+    Ok((entries, kind, first))
+}
+
+fn parse_table(
+    table: &[u8],
+    table_offset: u64,
+    corrupt: &dyn Fn(String) -> StoreError,
+) -> Result<Vec<Entry>, StoreError> {
+    let mut entries = Vec::with_capacity(table.len() / ENTRY_LEN);
+    for (i, raw) in table.chunks_exact(ENTRY_LEN).enumerate() {
+        let u64_at = |o: usize| u64::from_ne_bytes(raw[o..o + 8].try_into().unwrap());
+        let e = Entry {
+            offset: u64_at(0),
+            count: u64_at(8),
+            size: u32::from_ne_bytes(raw[16..20].try_into().unwrap()),
+            checksum: u64_at(24),
+        };
+        if !(1..=64).contains(&e.size) {
+            return Err(corrupt(format!("section {i}: element size {}", e.size)));
+        }
+        let end = e
+            .count
+            .checked_mul(e.size as u64)
+            .and_then(|n| n.checked_add(e.offset));
+        let fits = end.is_some_and(|end| end <= table_offset);
+        if !fits || e.offset < HEADER_LEN as u64 || !e.offset.is_multiple_of(ALIGN) {
+            return Err(corrupt(format!(
+                "section {i}: {} elements of {} bytes at offset {} do not fit before the table at {table_offset}",
+                e.count, e.size, e.offset
+            )));
+        }
+        entries.push(e);
+    }
+    // Section 0 repeats the magic number: a cheap check that offsets mean what they say.
+    match entries.first() {
+        Some(e) if e.size == 1 && e.count == MAGIC.len() as u64 => Ok(entries),
+        _ => Err(corrupt("section 0 is not the magic number".into())),
+    }
+}
+
+/// Coordinates as saved: dimension, then the numbers.
+fn coords_of(c: &Complex) -> (u64, &[f64]) {
+    match c.coords() {
+        Some(Coords { dim, data }) => (*dim as u64, data),
+        None => (0, &[]),
+    }
+}
