@@ -72,6 +72,15 @@ pub enum TpxStatus {
     TooLarge = 13,
     /// An internal bug was caught at the boundary; the message has the panic text.
     Panic = 14,
+    /// A handle names no simplex of this structure: index or dimension out of range, `NONE`,
+    /// unknown form bits.
+    InvalidHandle = 15,
+    /// A handle of a simplex that an edit removed (editable structures only).
+    StaleHandle = 16,
+    /// A handle of the wrong kind for the call (an edge where a vertex is needed).
+    WrongHandleKind = 17,
+    /// A handle made by another structure (its owner stamp does not match).
+    ForeignHandle = 18,
 }
 
 /// Incidence Graph.

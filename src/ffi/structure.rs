@@ -66,6 +66,9 @@ fn query_failure(e: QueryError) -> Failure {
         | QueryError::TooManyVertices { .. }
         | QueryError::RepeatedVertex { .. }
         | QueryError::VertexOutOfRange { .. } => TpxStatus::InvalidSimplex,
+        QueryError::InvalidHandle { .. } => TpxStatus::InvalidHandle,
+        QueryError::StaleHandle { .. } => TpxStatus::StaleHandle,
+        QueryError::WrongHandleKind { .. } => TpxStatus::WrongHandleKind,
     };
     Failure::new(status, e.to_string())
 }
