@@ -23,12 +23,14 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 mod complex;
 mod decomposition;
+mod live;
 mod structure;
 #[cfg(test)]
 mod tests;
 
 pub use complex::*;
 pub use decomposition::*;
+pub use live::*;
 pub use structure::*;
 
 // The panic boundary below relies on unwinding; with `panic = "abort"` a bug would kill the host.
@@ -81,6 +83,20 @@ pub enum TpxStatus {
     WrongHandleKind = 17,
     /// A handle made by another structure (its owner stamp does not match).
     ForeignHandle = 18,
+    /// Live complex: a topology-preserving contraction of two vertices that are not an edge.
+    NotAnEdge = 20,
+    /// Live complex: the link condition Lk(a) ∩ Lk(b) = Lk(ab) fails; the message names the
+    /// dimension and a lowest-dimensional offending link simplex.
+    LinkConditionFails = 21,
+    /// Live complex: inserting a simplex that is already in the complex (top or face).
+    SimplexAlreadyPresent = 22,
+    /// Live complex: removing a simplex that is a proper face of another (message: a coface).
+    NotATopSimplex = 23,
+    /// Live complex: a vertex id out of range or of a removed (contracted, deleted) vertex.
+    DeadVertex = 24,
+    /// Live complex: an undo record from before `tpx_live_compact`, applied already, or whose
+    /// contraction's result later edits changed (the message says which).
+    StaleUndo = 25,
 }
 
 /// Incidence Graph.

@@ -81,16 +81,9 @@ const NONE: u32 = u32::MAX;
 const SLOT_BITS: u32 = 28;
 const SLOT_MASK: u32 = (1 << SLOT_BITS) - 1;
 
-/// A vertex of a [`LiveComplex`]: its slot, stable until [`LiveComplex::compact`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct VertexId(pub u32);
-
-impl VertexId {
-    /// The slot as an index.
-    pub fn index(self) -> usize {
-        self.0 as usize
-    }
-}
+/// A vertex of a [`LiveComplex`]: the crate's vertex handle; its slot, stable until
+/// [`LiveComplex::compact`].
+pub use crate::handle::VertexId;
 
 /// A top simplex of a [`LiveComplex`]: its dimension and slot, and the compaction epoch it was
 /// issued in (so a handle from before [`LiveComplex::compact`] is refused, not misread).
