@@ -529,3 +529,193 @@ proptest! {
         prop_assert_eq!(check_structure(&live, &c), Ok(()));
     }
 }
+
+/// The README's C++ example, through the C ABI it wraps: a non-manifold edge and a hollow
+/// triangle; each status the example relies on.
+#[test]
+fn readme_example_contracts_edges_on_a_non_manifold_mesh_through_the_c_abi() {
+    use topoplex::ffi::*;
+    let ids = [1u32, 2, 3, 1, 2, 4, 1, 2, 5, 0, 1, 0, 2];
+    let offsets = [0usize, 3, 6, 9, 11, 13];
+    let (mut c, mut l, mut u) = (
+        std::ptr::null_mut(),
+        std::ptr::null_mut(),
+        std::ptr::null_mut(),
+    );
+    let mut count = 0usize;
+    // SAFETY: arrays of the stated lengths; handles from this library, freed once.
+    unsafe {
+        let st = tpx_complex_from_arrays(
+            6,
+            ids.as_ptr(),
+            offsets.as_ptr(),
+            5,
+            std::ptr::null(),
+            0,
+            &mut c,
+        );
+        assert_eq!(st, TpxStatus::Ok);
+        assert_eq!(tpx_live_from_complex(c, &mut l), TpxStatus::Ok);
+        assert_eq!(
+            tpx_live_link_condition(l, 1, 2),
+            TpxStatus::LinkConditionFails
+        );
+        assert_eq!(
+            tpx_live_contract(
+                l,
+                1,
+                2,
+                TPX_CONTRACT_PRESERVE_TOPOLOGY,
+                std::ptr::null(),
+                0,
+                &mut u
+            ),
+            TpxStatus::LinkConditionFails
+        );
+        assert!(u.is_null());
+        assert_eq!(
+            tpx_live_contract(
+                l,
+                1,
+                3,
+                TPX_CONTRACT_PRESERVE_TOPOLOGY,
+                std::ptr::null(),
+                0,
+                &mut u
+            ),
+            TpxStatus::Ok
+        );
+        assert_eq!(tpx_live_top_count(l, 2, &mut count), TpxStatus::Ok);
+        assert_eq!(count, 2);
+        assert_eq!(tpx_live_split(l, u), TpxStatus::Ok);
+        assert_eq!(tpx_live_split(l, u), TpxStatus::StaleUndo);
+        assert_eq!(tpx_live_top_count(l, 2, &mut count), TpxStatus::Ok);
+        assert_eq!(count, 3);
+        assert_eq!(
+            tpx_live_contract(
+                l,
+                0,
+                3,
+                TPX_CONTRACT_PRESERVE_TOPOLOGY,
+                std::ptr::null(),
+                0,
+                std::ptr::null_mut()
+            ),
+            TpxStatus::NotAnEdge
+        );
+        assert_eq!(
+            tpx_live_contract(
+                l,
+                0,
+                3,
+                TPX_CONTRACT_FREE,
+                std::ptr::null(),
+                0,
+                std::ptr::null_mut()
+            ),
+            TpxStatus::Ok
+        );
+        assert_eq!(tpx_live_top_count(l, 2, &mut count), TpxStatus::Ok);
+        assert_eq!(count, 3);
+        assert_eq!(tpx_live_top_count(l, 1, &mut count), TpxStatus::Ok);
+        assert_eq!(count, 0);
+        assert_eq!(
+            tpx_live_insert_top(l, [0u32, 1].as_ptr(), 2),
+            TpxStatus::SimplexAlreadyPresent
+        );
+        assert_eq!(
+            tpx_live_remove_top(l, [0u32, 1].as_ptr(), 2),
+            TpxStatus::NotATopSimplex
+        );
+        assert_eq!(
+            tpx_live_remove_top(l, [3u32, 1].as_ptr(), 2),
+            TpxStatus::DeadVertex
+        );
+        assert_eq!(
+            tpx_live_insert_top(l, [4u32, 4].as_ptr(), 2),
+            TpxStatus::InvalidSimplex
+        );
+        let mut map = [0u32; 6];
+        assert_eq!(
+            tpx_live_compact(l, map.as_mut_ptr(), 6, &mut count),
+            TpxStatus::Ok
+        );
+        assert_eq!(map, [0, 1, 2, u32::MAX, 3, 4]);
+        assert_eq!(tpx_live_split(l, u), TpxStatus::StaleUndo);
+        assert_eq!(tpx_live_validate(l), TpxStatus::Ok);
+        tpx_undo_free(u);
+        tpx_live_free(l);
+        tpx_complex_free(c);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+    /// The C ABI and the Rust API agree on the outcome of every edit of a random sequence, and
+    /// the C side's frozen copy equals the Rust side's.
+    #[test]
+    fn c_abi_edits_agree_with_the_rust_api(
+        (n, list) in common::random_input(4, 8, 6),
+        ops in proptest::collection::vec((0u8..5, 0u32..9, 0u32..9, 0u32..9, 1usize..4), 1..16),
+    ) {
+        use topoplex::ffi::*;
+        let c = common::complex_of(n, &list);
+        let mut rust = LiveComplex::from_complex(&c);
+        let ids: Vec<u32> = list.iter().flatten().copied().collect();
+        let mut offsets = vec![0usize];
+        for s in &list {
+            offsets.push(offsets.last().unwrap() + s.len());
+        }
+        let (mut tc, mut l) = (std::ptr::null_mut(), std::ptr::null_mut());
+        let mut undos = Vec::new();
+        // SAFETY: arrays of the stated lengths; handles from this library, freed once.
+        unsafe {
+            prop_assert_eq!(tpx_complex_from_arrays(n, ids.as_ptr(), offsets.as_ptr(), list.len(), std::ptr::null(), 0, &mut tc), TpxStatus::Ok);
+            prop_assert_eq!(tpx_live_from_complex(tc, &mut l), TpxStatus::Ok);
+            tpx_complex_free(tc);
+            for (kind, a, b, x, len) in ops {
+                let sigma = [a, b, x][..len].to_vec();
+                let (st, ok) = match kind {
+                    0 => (tpx_live_insert_top(l, sigma.as_ptr(), len), rust.insert_top(&sigma).is_ok()),
+                    1 => (tpx_live_remove_top(l, sigma.as_ptr(), len), rust.remove_top(&sigma).is_ok()),
+                    2 | 3 => {
+                        let (mode, m) = if kind == 2 { (TPX_CONTRACT_PRESERVE_TOPOLOGY, ContractMode::PreserveTopology) } else { (TPX_CONTRACT_FREE, ContractMode::Free) };
+                        let mut u = std::ptr::null_mut();
+                        let st = tpx_live_contract(l, a, b, mode, std::ptr::null(), 0, &mut u);
+                        let r = rust.contract(VertexId(a), VertexId(b), m, None);
+                        let ok = r.is_ok();
+                        if let Ok(rec) = r { undos.push((u, rec)); }
+                        (st, ok)
+                    }
+                    _ => match undos.pop() {
+                        Some((u, rec)) => {
+                            let st = tpx_live_split(l, u);
+                            tpx_undo_free(u);
+                            (st, rust.split(&rec).is_ok())
+                        }
+                        None => continue,
+                    },
+                };
+                prop_assert_eq!(st == TpxStatus::Ok, ok, "status {:?}", st);
+                prop_assert_eq!(tpx_live_validate(l), TpxStatus::Ok);
+            }
+            let mut frozen = std::ptr::null_mut();
+            prop_assert_eq!(tpx_live_to_complex(l, &mut frozen), TpxStatus::Ok);
+            let mut ig = std::ptr::null_mut();
+            prop_assert_eq!(tpx_structure_build(frozen, TPX_KIND_IG, &mut ig), TpxStatus::Ok);
+            let want = rust.to_complex();
+            let mut nv = 0u32;
+            prop_assert_eq!(tpx_complex_vertex_count(frozen, &mut nv), TpxStatus::Ok);
+            prop_assert_eq!(nv, want.vertex_count());
+            for p in 0..=want.dimension() {
+                let mut k = 0usize;
+                prop_assert_eq!(tpx_complex_top_count(frozen, p as u32, &mut k), TpxStatus::Ok);
+                prop_assert_eq!(k, want.tops(p).len());
+            }
+            for (u, _) in undos { tpx_undo_free(u); }
+            tpx_structure_free(ig);
+            tpx_complex_free(frozen);
+            tpx_live_free(l);
+        }
+    }
+}
