@@ -10,13 +10,9 @@
 use super::complex::TpxComplex;
 use super::structure::sort_rows_in_place;
 use super::{Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr};
-use super::{TPX_KIND_DE, write_buffer};
+use super::write_buffer;
 use crate::live::{ContractMode, LiveComplex, Refusal, UndoRecord, VertexId};
 use crate::relation::{QueryError, Topology};
-
-/// The live complex's kind number (`tpx_structure_kind` never returns it: a live complex is a
-/// `TpxLive`, not a `TpxStructure`; it names the structure in messages and reports).
-pub const TPX_KIND_IASTAR: u32 = TPX_KIND_DE + 1;
 
 /// `tpx_live_contract` mode: only an edge satisfying the link condition (topology preserved).
 pub const TPX_CONTRACT_PRESERVE_TOPOLOGY: u32 = 0;
