@@ -9,8 +9,8 @@
 
 use super::complex::TpxComplex;
 use super::structure::sort_rows_in_place;
-use super::{Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr};
 use super::write_buffer;
+use super::{Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr};
 use crate::live::{ContractMode, LiveComplex, Refusal, UndoRecord, VertexId};
 use crate::relation::{QueryError, Topology};
 
