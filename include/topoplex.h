@@ -61,10 +61,10 @@
 #define TPX_KIND_DE 8
 
 /**
- * The live complex's kind number (`tpx_structure_kind` never returns it: a live complex is a
- * `TpxLive`, not a `TpxStructure`; it names the structure in messages and reports).
+ * The live complex (`TpxLive`, IA*-like and updatable). `tpx_structure_build` does not take it:
+ * a live complex is built with `tpx_live_from_complex`; the number names it in messages.
  */
-#define TPX_KIND_IASTAR (TPX_KIND_DE + 1)
+#define TPX_KIND_IASTAR 9
 
 /**
  * `tpx_live_contract` mode: only an edge satisfying the link condition (topology preserved).
