@@ -7,6 +7,7 @@ mod common;
 use std::collections::BTreeSet;
 
 use proptest::prelude::*;
+use topoplex::live::link::OMEGA;
 use topoplex::live::{ContractMode, LiveComplex, Refusal, VertexId};
 use topoplex::oracle::check_structure;
 use topoplex::{Complex, Topology};
@@ -112,6 +113,32 @@ impl Model {
             .filter(|t| sigma.iter().all(|v| t.contains(v)) && t.len() > sigma.len())
             .map(|t| t.iter().copied().filter(|v| !sigma.contains(v)).collect())
             .collect()
+    }
+
+    /// The complex coned over its boundary (simplices with exactly one proper coface) from
+    /// the vertex `OMEGA`.
+    fn coned(&self) -> Model {
+        let all: Vec<Vec<u32>> = self
+            .verts
+            .iter()
+            .map(|&v| vec![v])
+            .chain(self.simplices.iter().cloned())
+            .collect();
+        let mut k = self.clone();
+        k.verts.insert(OMEGA);
+        for f in &all {
+            let cofaces = self
+                .simplices
+                .iter()
+                .filter(|t| t.len() > f.len() && f.iter().all(|v| t.contains(v)))
+                .count();
+            if cofaces == 1 {
+                let mut cone = f.clone();
+                cone.push(OMEGA);
+                k.add(&cone);
+            }
+        }
+        k
     }
 
     /// Brute-force link condition: `None` when it holds, else the lowest dimension failing
@@ -383,7 +410,7 @@ fn insert_absorbs_faces_and_remove_keeps_vertices() {
 enum Op {
     Insert(Vec<u32>),
     Remove(prop::sample::Index, Vec<u32>),
-    Contract(prop::sample::Index, prop::sample::Index, bool),
+    Contract(prop::sample::Index, prop::sample::Index, u8),
     Split,
 }
 
@@ -392,8 +419,8 @@ fn op() -> impl Strategy<Value = Op> {
     prop_oneof![
         2 => simplex.clone().prop_map(Op::Insert),
         2 => (any::<prop::sample::Index>(), simplex).prop_map(|(i, s)| Op::Remove(i, s)),
-        4 => (any::<prop::sample::Index>(), any::<prop::sample::Index>(), any::<bool>())
-            .prop_map(|(a, b, free)| Op::Contract(a, b, free)),
+        4 => (any::<prop::sample::Index>(), any::<prop::sample::Index>(), 0u8..3)
+            .prop_map(|(a, b, mode)| Op::Contract(a, b, mode)),
         2 => Just(Op::Split),
     ]
 }
@@ -448,12 +475,29 @@ fn step(
                 Err(e) => panic!("remove {s:?}: {e}"),
             }
         }
-        Op::Contract(i, j, free) => {
+        Op::Contract(i, j, mode) => {
             let (a, b) = (verts[i.index(verts.len())], verts[j.index(verts.len())]);
-            let brute = m.link_failure(a, b);
+            let brute_plain = m.link_failure(a, b);
+            let brute_coned = m.coned().link_failure(a, b);
+            if a != b {
+                let got = live.link_condition_with_boundary(VertexId(a), VertexId(b));
+                // The plain condition is checked first (its failure implies the coned one's).
+                match (&got, brute_plain.or(brute_coned)) {
+                    (Ok(()), None) => {}
+                    (Err(Refusal::NotAnEdge { .. }), Some(usize::MAX)) => {}
+                    (Err(Refusal::LinkCondition { dim, .. }), Some(d)) => assert_eq!(*dim, d),
+                    other => panic!("coned link condition of {a} {b}: {other:?}"),
+                }
+            }
+            let brute = if *mode == 2 {
+                brute_coned.or(brute_plain)
+            } else {
+                brute_plain
+            };
+            let free = &(*mode == 1);
             let checked = live.link_condition(VertexId(a), VertexId(b));
             if a != b {
-                match (&checked, brute) {
+                match (&checked, brute_plain) {
                     (Ok(()), None) => {}
                     (Err(Refusal::NotAnEdge { .. }), Some(usize::MAX)) => {}
                     (Err(Refusal::LinkCondition { dim, simplex, .. }), Some(d)) => {
@@ -466,10 +510,10 @@ fn step(
                     other => panic!("link condition of {a} {b}: {other:?}"),
                 }
             }
-            let mode = if *free {
-                ContractMode::Free
-            } else {
-                ContractMode::PreserveTopology
+            let mode = match mode {
+                0 => ContractMode::PreserveTopology,
+                1 => ContractMode::Free,
+                _ => ContractMode::PreserveManifold,
             };
             let before = live.clone();
             match live.contract(VertexId(a), VertexId(b), mode, None) {
@@ -718,4 +762,44 @@ proptest! {
             tpx_live_free(l);
         }
     }
+}
+
+/// ```text
+///   0 ---- 1 ---- 2      a strip of four triangles (a disk); edge 1-4 joins the two
+///   |    / |    / |      boundary vertices 1 and 4 through the interior; coned over the
+///   |  /   |  /   |      boundary, ω ∈ Lk(1) ∩ Lk(4) but ω ∉ Lk(14) (1-4 is interior)
+///   3 ---- 4 ---- 5
+/// ```
+/// Triangles 0 1 3, 1 3 4, 1 2 4, 2 4 5: Lk(1) ∩ Lk(4) = {2, 3} = Lk(14), so contracting 1-4
+/// keeps the homotopy type, but it pinches the disk at the merged vertex: refused by
+/// `PreserveManifold` with ω in dimension 0.
+#[test]
+fn strip_interior_edge_between_boundary_vertices_is_refused_by_preserve_manifold() {
+    let c = Complex::from_simplices(6, &[&[0, 1, 3], &[1, 3, 4], &[1, 2, 4], &[2, 4, 5]]).unwrap();
+    let mut live = LiveComplex::from_complex(&c);
+    live.link_condition(VertexId(1), VertexId(4)).unwrap();
+    assert_eq!(
+        live.contract(
+            VertexId(1),
+            VertexId(4),
+            ContractMode::PreserveManifold,
+            None
+        ),
+        Err(Refusal::LinkCondition {
+            a: 1,
+            b: 4,
+            dim: 0,
+            simplex: vec![OMEGA]
+        })
+    );
+    // A boundary edge (0-1) passes both, and the result is still a disk.
+    live.contract(
+        VertexId(0),
+        VertexId(1),
+        ContractMode::PreserveManifold,
+        None,
+    )
+    .unwrap();
+    live.validate().unwrap();
+    assert_eq!(live.top_count(2), 3);
 }

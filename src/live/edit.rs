@@ -16,6 +16,11 @@ pub enum ContractMode {
     PreserveTopology,
     /// Any two live vertices, edge or not (Popović and Hoppe's vertex unification, 1997).
     Free,
+    /// [`ContractMode::PreserveTopology`] plus the boundary: the link condition on the complex
+    /// coned over its boundary ([`LiveComplex::link_condition_with_boundary`]), which on 2- and
+    /// 3-manifolds with boundary also keeps the result a manifold with the same boundary
+    /// topology.
+    PreserveManifold,
 }
 
 /// What [`LiveComplex::split`] needs to undo a contraction exactly (same ids, same slots, same
@@ -196,8 +201,10 @@ impl LiveComplex {
                 why: "repeated vertex",
             });
         }
-        if mode == ContractMode::PreserveTopology {
-            self.link_condition(a, b)?;
+        match mode {
+            ContractMode::PreserveTopology => self.link_condition(a, b)?,
+            ContractMode::PreserveManifold => self.link_condition_with_boundary(a, b)?,
+            ContractMode::Free => {}
         }
         Ok(())
     }
