@@ -803,3 +803,111 @@ fn strip_interior_edge_between_boundary_vertices_is_refused_by_preserve_manifold
     live.validate().unwrap();
     assert_eq!(live.top_count(2), 3);
 }
+
+/// χ = Σ (−1)^p n_p.
+fn euler(live: &LiveComplex) -> i64 {
+    (0..=live.dimension())
+        .map(|p| if p % 2 == 0 { 1 } else { -1 } * live.count(p) as i64)
+        .sum()
+}
+
+/// Connected components (over edges; isolated vertices count).
+fn components(live: &LiveComplex) -> usize {
+    let n = live.vertex_slots() as usize;
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn find(p: &mut [usize], x: usize) -> usize {
+        let mut x = x;
+        while p[x] != x {
+            p[x] = p[p[x]];
+            x = p[x];
+        }
+        x
+    }
+    for [a, b] in live.edges() {
+        let (ra, rb) = (find(&mut parent, a as usize), find(&mut parent, b as usize));
+        parent[ra] = rb;
+    }
+    live.vertices()
+        .filter(|v| find(&mut parent, v.index()) == v.index())
+        .count()
+}
+
+/// Real data (../shared/data, skipped when absent): up to 1500 link-checked contractions per
+/// file keep χ and the component count; the result is valid, answers like an IG built from its
+/// frozen copy, and with `PreserveManifold` every (d−1)-simplex of a pure mesh stays in at
+/// most two d-simplices.
+#[test]
+fn real_data_contractions_keep_euler_characteristic_and_components() {
+    // TOPOPLEX_SHARED_DATA: the data directory for a worktree that is not next to ../shared.
+    let env = std::env::var_os("TOPOPLEX_SHARED_DATA").map(std::path::PathBuf::from);
+    let Some(dir) = common::shared_data().or(env) else {
+        eprintln!("../shared/data is absent: skipping");
+        return;
+    };
+    let files = [
+        ("nonmanifold/fan3.obj", ContractMode::PreserveTopology),
+        (
+            "nonmanifold/hourglass_ico.obj",
+            ContractMode::PreserveTopology,
+        ),
+        ("nonmanifold/moebius.obj", ContractMode::PreserveManifold),
+        (
+            "nonmanifold/triple_vierbein.obj",
+            ContractMode::PreserveTopology,
+        ),
+        ("nonmanifold/truck.obj", ContractMode::PreserveTopology),
+        (
+            "mixed/gmsh_baffles_wire.mesh",
+            ContractMode::PreserveTopology,
+        ),
+        (
+            "tetrahedral/octopus-low.mesh",
+            ContractMode::PreserveManifold,
+        ),
+        ("surfaces/elephant.off", ContractMode::PreserveManifold),
+    ];
+    for (name, mode) in files {
+        let path = dir.join(name);
+        let Ok(c) = Complex::from_path(&path) else {
+            eprintln!("{name}: does not load, skipped");
+            continue;
+        };
+        let mut live = LiveComplex::from_complex(&c);
+        let (chi, comps) = (euler(&live), components(&live));
+        let edges = live.edges();
+        let step = (edges.len() / 1500).max(1);
+        let mut done = 0;
+        for &[a, b] in edges.iter().step_by(step) {
+            if live.is_live(VertexId(a)) && live.is_live(VertexId(b)) {
+                done += live.contract(VertexId(a), VertexId(b), mode, None).is_ok() as usize;
+            }
+        }
+        live.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(done > 0, "{name}: no contraction passed");
+        assert_eq!(
+            euler(&live),
+            chi,
+            "{name}: χ changed after {done} contractions"
+        );
+        assert_eq!(components(&live), comps, "{name}: components changed");
+        if mode == ContractMode::PreserveManifold {
+            let d = live.dimension();
+            let mut facets = Vec::new();
+            live.simplices(d - 1, &mut facets);
+            let mut out = Vec::new();
+            for f in facets.chunks_exact(d) {
+                live.relation(f, d, &mut out).unwrap();
+                assert!(
+                    out.len() <= 2 * (d + 1),
+                    "{name}: {f:?} in more than two {d}-simplices"
+                );
+            }
+        }
+        let mut dense = live.clone();
+        dense.compact();
+        let ig = topoplex::build(topoplex::StructureKind::Ig, &live.to_complex()).unwrap();
+        topoplex::oracle::compare_structures(&dense, ig.as_ref())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        eprintln!("{name}: {done} contractions, χ = {chi}, {comps} components kept");
+    }
+}
