@@ -216,6 +216,8 @@ pub struct LiveComplex {
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct Image {
     len: u8,
+    /// From a top through both a and b (b dropped, one dimension lower).
+    degenerate: bool,
     ids: [u32; MAX_DIMENSION + 1],
 }
 
