@@ -4,6 +4,7 @@
 //!
 //! - [`io`] reads files into raw simplex lists; [`complex`] normalises them into a [`Complex`].
 //! - [`structures`] builds any of the family (IG, SIG, IA, IQM, NMIA, TS, PE, LE, DE).
+//! - [`live`] is the updatable complex: insertion, removal, edge contraction, vertex split.
 //! - [`oracle`] answers every relation by brute force, for tests.
 //! - [`report`] is `topoplex report`: census, storage and timings of every structure.
 //! - [`error::one_line`] bounds and escapes every message that leaves the library.
@@ -20,6 +21,7 @@ pub mod ffi;
 pub mod fixtures;
 pub mod handle;
 pub mod io;
+pub mod live;
 pub mod oracle;
 pub mod parallel;
 pub mod relation;

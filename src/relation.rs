@@ -50,6 +50,9 @@ pub enum StructureKind {
     Le = 7,
     /// Directed Edge structure.
     De = 8,
+    /// The live complex ([`crate::live::LiveComplex`]): updatable, IA*-like; not in
+    /// [`StructureKind::ALL`] (the nine frozen structures), C ABI kind 9.
+    IaStar = 9,
 }
 
 impl StructureKind {
@@ -88,6 +91,7 @@ impl StructureKind {
             StructureKind::Pe => "pe",
             StructureKind::Le => "le",
             StructureKind::De => "de",
+            StructureKind::IaStar => "iastar",
         }
     }
 

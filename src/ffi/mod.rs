@@ -30,6 +30,7 @@ mod complex;
 mod decomposition;
 mod handles;
 mod store;
+mod live;
 mod structure;
 #[cfg(test)]
 mod tests;
@@ -39,6 +40,7 @@ pub use complex::*;
 pub use decomposition::*;
 pub use handles::*;
 pub use store::*;
+pub use live::*;
 pub use structure::*;
 pub use write::*;
 
@@ -92,6 +94,20 @@ pub enum TpxStatus {
     WrongHandleKind = 17,
     /// A handle made by another structure (its owner stamp does not match).
     ForeignHandle = 18,
+    /// Live complex: a topology-preserving contraction of two vertices that are not an edge.
+    NotAnEdge = 20,
+    /// Live complex: the link condition Lk(a) ∩ Lk(b) = Lk(ab) fails; the message names the
+    /// dimension and a lowest-dimensional offending link simplex.
+    LinkConditionFails = 21,
+    /// Live complex: inserting a simplex that is already in the complex (top or face).
+    SimplexAlreadyPresent = 22,
+    /// Live complex: removing a simplex that is a proper face of another (message: a coface).
+    NotATopSimplex = 23,
+    /// Live complex: a vertex id out of range or of a removed (contracted, deleted) vertex.
+    DeadVertex = 24,
+    /// Live complex: an undo record from before `tpx_live_compact`, applied already, or whose
+    /// contraction's result later edits changed (the message says which).
+    StaleUndo = 25,
     /// The output format number is not one of `TPX_FORMAT_*`, or the output file's extension
     /// names no format.
     UnknownFormat = 30,
@@ -129,6 +145,9 @@ pub const TPX_KIND_PE: u32 = 6;
 pub const TPX_KIND_LE: u32 = 7;
 /// Directed Edge structure.
 pub const TPX_KIND_DE: u32 = 8;
+/// The live complex (`TpxLive`, IA*-like and updatable). `tpx_structure_build` does not take it:
+/// a live complex is built with `tpx_live_from_complex`; the number names it in messages.
+pub const TPX_KIND_IASTAR: u32 = 9;
 
 /// A failure on its way to C: the status and the message for `tpx_last_error_message`.
 pub(crate) struct Failure {

@@ -446,6 +446,16 @@ pub fn save(
         path: path.to_path_buf(),
         message: e.to_string(),
     };
+    if let Some(s) = structure
+        && s.kind() == StructureKind::IaStar
+    {
+        return Err(StoreError::Io {
+            path: path.to_path_buf(),
+            message: "the live complex is not saved as a structure yet: save its complex \
+                      (to_complex) and build it again after opening"
+                .into(),
+        });
+    }
     let mut tmp = path.as_os_str().to_owned();
     tmp.push(".partial");
     let tmp = PathBuf::from(tmp);

@@ -91,5 +91,7 @@ pub(super) fn load_structure(
         StructureKind::Pe => go::<pe::PartialEntities>(r),
         StructureKind::Le => go::<le::LoopEdgeUse>(r),
         StructureKind::De => go::<de::DirectedEdge>(r),
+        // `save` refuses the live complex, so no honest file names it.
+        StructureKind::IaStar => Err(r.corrupt("structure kind 9 (the live complex) is never saved")),
     }
 }

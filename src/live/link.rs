@@ -1,0 +1,360 @@
+//! The link condition Lk(a) ∩ Lk(b) = Lk(ab) for an edge {a, b} (Dey, Edelsbrunner, Guha,
+//! Nekhayev 1999), checked in every dimension at once.
+//!
+//! Lk(ab) ⊆ Lk(a) ∩ Lk(b) always holds, so only the other inclusion is checked. With
+//! F_a = {t \ {a} : t ∈ St*(a), b ∉ t}, F_b likewise, and F_ab = {t \ {a, b} : t ∈ St*(a), b ∈ t},
+//! Lk(a) ∩ Lk(b) is the closure of {x ∩ y : x ∈ F_a, y ∈ F_b} (faces of a top through both a and
+//! b are in Lk(ab) anyway), and Lk(ab) the closure of F_ab. So the condition holds iff every
+//! non-empty x ∩ y is inside some z ∈ F_ab. The vertices that can occur in x ∩ y are the common
+//! ones C = V(F_a) ∩ V(F_b), found with per-vertex stamps (one pass over each star, no sort);
+//! with |C| ≤ 64 each set becomes one word and each test two word operations:
+//! O(d·(k_a + k_b) + |F_a|·|F_b|·|F_ab|) after duplicate and non-maximal words are dropped.
+//! Past 64 common vertices, sorted id lists do the same work. The stamps are per-thread scratch
+//! of 8 bytes per vertex (not part of the structure's storage), so the test takes `&self` and
+//! allocates nothing once warm.
+//!
+//! On failure the reported simplex is a lowest-dimensional one of Lk(a) ∩ Lk(b) outside Lk(ab).
+
+use std::cell::RefCell;
+
+use super::{LiveComplex, Refusal, VertexId, subset};
+
+impl LiveComplex {
+    /// Whether {a, b} is an edge satisfying the link condition. `Err(NotAnEdge)` for a non-edge,
+    /// `Err(LinkCondition { dim, simplex })` naming a lowest-dimensional simplex of
+    /// Lk(a) ∩ Lk(b) not in Lk(ab). Read-only; allocates nothing after a thread's first calls
+    /// (per-thread scratch). Cost: module doc of [`crate::live::link`].
+    pub fn link_condition(&self, a: VertexId, b: VertexId) -> Result<(), Refusal> {
+        self.check_vertex(a.0)?;
+        self.check_vertex(b.0)?;
+        let (a, b) = (a.0, b.0);
+        if a == b
+            || !self.star[a as usize]
+                .iter()
+                .any(|&r| self.top_raw(r).contains(&b))
+        {
+            return Err(Refusal::NotAnEdge { a, b });
+        }
+        let found = SCRATCH.with(|s| match s.try_borrow_mut() {
+            Ok(mut s) => self.first_violation(a, b, &mut s),
+            Err(_) => self.first_violation(a, b, &mut Scratch::default()),
+        });
+        match found {
+            None => Ok(()),
+            Some(simplex) => Err(Refusal::LinkCondition {
+                a,
+                b,
+                dim: simplex.len() - 1,
+                simplex,
+            }),
+        }
+    }
+
+    /// The common vertices C, then the word or list test (module doc).
+    fn first_violation(&self, a: u32, b: u32, s: &mut Scratch) -> Option<Vec<u32>> {
+        let fa = || self.star[a as usize].iter().map(|&r| self.top_raw(r));
+        let fb = || self.star[b as usize].iter().map(|&r| self.top_raw(r));
+        common_vertices(fa(), fb(), a, b, self.star.len(), s);
+        if s.common.is_empty() {
+            return None;
+        }
+        if s.common.len() > 64 {
+            s.common.sort_unstable();
+            let fa: Vec<&[u32]> = fa().filter(|t| !t.contains(&b)).collect();
+            let fab: Vec<&[u32]> = self.star[a as usize]
+                .iter()
+                .map(|&r| self.top_raw(r))
+                .filter(|t| t.contains(&b))
+                .collect();
+            let fb: Vec<&[u32]> = fb().filter(|t| !t.contains(&a)).collect();
+            return lists::first_violation(&s.common, &fa, &fb, &fab);
+        }
+        let Scratch {
+            common,
+            ma,
+            mb,
+            mz,
+            stamp,
+            index,
+            epoch,
+            ..
+        } = s;
+        let mask = |t: &[u32]| {
+            t.iter()
+                .filter(|&&v| stamp[v as usize] == *epoch)
+                .fold(0u64, |m, &v| m | 1 << index[v as usize])
+        };
+        ma.clear();
+        mb.clear();
+        mz.clear();
+        for t in fa() {
+            let m = mask(t);
+            if t.contains(&b) {
+                mz.push(m);
+            } else {
+                ma.push(m);
+            }
+        }
+        for t in fb().filter(|t| !t.contains(&a)) {
+            mb.push(mask(t));
+        }
+        maximal(ma);
+        maximal(mb);
+        words::first_violation(common, ma, mb, mz)
+    }
+}
+
+/// Per-thread buffers of the link test, so that a check allocates nothing once warm.
+#[derive(Default)]
+struct Scratch {
+    /// Per vertex: `epoch - 1` when in a top of St(a), `epoch` when common too.
+    stamp: Vec<u32>,
+    /// Per common vertex: its bit.
+    index: Vec<u32>,
+    epoch: u32,
+    common: Vec<u32>,
+    ma: Vec<u64>,
+    mb: Vec<u64>,
+    mz: Vec<u64>,
+}
+
+thread_local! {
+    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
+}
+
+/// Vertices other than a and b in a top of St(a) and in a top of St(b), into `s.common`
+/// (a superset of V(F_a) ∩ V(F_b), which changes no x ∩ y), numbered in `s.index` in order of
+/// discovery: one pass over each star with per-vertex stamps, no sort.
+fn common_vertices<'a>(
+    fa: impl Iterator<Item = &'a [u32]>,
+    fb: impl Iterator<Item = &'a [u32]>,
+    a: u32,
+    b: u32,
+    n: usize,
+    s: &mut Scratch,
+) {
+    if s.stamp.len() < n {
+        s.stamp.resize(n, 0);
+        s.index.resize(n, 0);
+    }
+    if s.epoch >= u32::MAX - 2 {
+        s.stamp.iter_mut().for_each(|x| *x = 0);
+        s.epoch = 0;
+    }
+    s.epoch += 2;
+    let (in_a, common) = (s.epoch - 1, s.epoch);
+    for t in fa {
+        for &v in t {
+            s.stamp[v as usize] = in_a;
+        }
+    }
+    s.stamp[a as usize] = 0;
+    s.stamp[b as usize] = 0;
+    s.common.clear();
+    for t in fb {
+        for &v in t {
+            if s.stamp[v as usize] == in_a {
+                s.stamp[v as usize] = common;
+                s.index[v as usize] = s.common.len() as u32;
+                s.common.push(v);
+            }
+        }
+    }
+}
+
+/// Keeps the maximal sets of a family of words (drops zero, duplicates and subsets), in place.
+fn maximal(masks: &mut Vec<u64>) {
+    masks.retain(|&m| m != 0);
+    masks.sort_unstable_by(|x, y| y.count_ones().cmp(&x.count_ones()).then(x.cmp(y)));
+    masks.dedup();
+    let mut kept = 0;
+    for i in 0..masks.len() {
+        let m = masks[i];
+        if !masks[..kept].iter().any(|&k| m & !k == 0) {
+            masks[kept] = m;
+            kept += 1;
+        }
+    }
+    masks.truncate(kept);
+}
+
+/// The common vertices as bits of one word.
+mod words {
+    /// A lowest-dimensional x ∩ y (x ∈ ma, y ∈ mb) face not under any z ∈ mz, as vertex ids.
+    pub(super) fn first_violation(
+        common: &[u32],
+        ma: &[u64],
+        mb: &[u64],
+        mz: &[u64],
+    ) -> Option<Vec<u32>> {
+        let covered = |w: u64| mz.iter().any(|&z| w & !z == 0);
+        let mut best: Option<u64> = None;
+        for &x in ma {
+            for &y in mb {
+                let w = x & y;
+                if w == 0 || covered(w) {
+                    continue;
+                }
+                let m = smallest_uncovered(w, &covered);
+                if best.is_none_or(|b| m.count_ones() < b.count_ones()) {
+                    best = Some(m);
+                }
+            }
+        }
+        best.map(|m| {
+            let mut v: Vec<u32> = (0..64)
+                .filter(|i| m >> i & 1 == 1)
+                .map(|i| common[i])
+                .collect();
+            v.sort_unstable();
+            v
+        })
+    }
+
+    /// A submask of `w` with the fewest bits that no z covers (w itself is uncovered).
+    fn smallest_uncovered(w: u64, covered: &impl Fn(u64) -> bool) -> u64 {
+        let mut best = w;
+        let mut s = w;
+        while s != 0 {
+            if s.count_ones() < best.count_ones() && !covered(s) {
+                best = s;
+            }
+            s = (s - 1) & w;
+        }
+        best
+    }
+}
+
+/// Sorted id lists, for more than 64 common vertices.
+mod lists {
+    use super::subset;
+
+    pub(super) fn first_violation(
+        common: &[u32],
+        fa: &[&[u32]],
+        fb: &[&[u32]],
+        fab: &[&[u32]],
+    ) -> Option<Vec<u32>> {
+        let restrict = |t: &[u32]| -> Vec<u32> {
+            let mut v: Vec<u32> = t
+                .iter()
+                .copied()
+                .filter(|v| common.binary_search(v).is_ok())
+                .collect();
+            v.sort_unstable();
+            v
+        };
+        let xa: Vec<Vec<u32>> = fa.iter().map(|t| restrict(t)).collect();
+        let xb: Vec<Vec<u32>> = fb.iter().map(|t| restrict(t)).collect();
+        let covered = |w: &[u32]| fab.iter().any(|z| subset(w, z));
+        let mut best: Option<Vec<u32>> = None;
+        for x in &xa {
+            for y in &xb {
+                let w: Vec<u32> = x.iter().copied().filter(|v| y.contains(v)).collect();
+                if w.is_empty() || covered(&w) {
+                    continue;
+                }
+                // Subsets of w by increasing size (|w| ≤ 15).
+                let mut m = (0..1u32 << w.len()).collect::<Vec<_>>();
+                m.sort_by_key(|s| s.count_ones());
+                let first = m
+                    .into_iter()
+                    .skip(1)
+                    .map(|s| {
+                        (0..w.len())
+                            .filter(|i| s >> i & 1 == 1)
+                            .map(|i| w[i])
+                            .collect::<Vec<u32>>()
+                    })
+                    .find(|s| !covered(s))
+                    .unwrap_or(w);
+                if best.as_ref().is_none_or(|b| first.len() < b.len()) {
+                    best = Some(first);
+                }
+            }
+        }
+        best
+    }
+}
+
+/// The cone vertex ω of [`LiveComplex::link_condition_with_boundary`] in reported simplices.
+pub const OMEGA: u32 = u32::MAX - 1;
+
+impl LiveComplex {
+    /// The link condition on the complex coned over its boundary (DEGN 1999's dummy vertex ω):
+    /// a boundary facet is a simplex that is a facet of exactly one simplex (a top simplex), and
+    /// ω ∗ f is added for each. On 2- and 3-manifolds with boundary this is what keeps a
+    /// contraction from pinching the boundary (joining two boundary vertices through the
+    /// interior), so contractions that pass it keep manifoldness and the boundary's topology;
+    /// on any complex it implies [`LiveComplex::link_condition`]. A failure naming ω reports it
+    /// as [`OMEGA`]. Cost: O(d²·k_a² + d²·k_b²) for the boundary facets, then as the plain test.
+    pub fn link_condition_with_boundary(&self, a: VertexId, b: VertexId) -> Result<(), Refusal> {
+        self.link_condition(a, b)?;
+        let (a, b) = (a.0, b.0);
+        let (mut fa, mut fab) = (Vec::new(), Vec::new());
+        for t in self.star[a as usize].iter().map(|&r| self.top_raw(r)) {
+            let set = t.iter().copied().filter(|&v| v != a && v != b).collect();
+            if t.contains(&b) {
+                fab.push(set)
+            } else {
+                fa.push(set)
+            }
+        }
+        for f in self.boundary_facets(a) {
+            let mut set: Vec<u32> = f.iter().copied().filter(|&v| v != a && v != b).collect();
+            set.push(OMEGA);
+            if f.contains(&b) {
+                fab.push(set)
+            } else {
+                fa.push(set)
+            }
+        }
+        let mut fb: Vec<Vec<u32>> = self.star[b as usize]
+            .iter()
+            .map(|&r| self.top_raw(r))
+            .filter(|t| !t.contains(&a))
+            .map(|t| t.iter().copied().filter(|&v| v != b).collect())
+            .collect();
+        for f in self.boundary_facets(b).filter(|f| !f.contains(&a)) {
+            let mut set: Vec<u32> = f.iter().copied().filter(|&v| v != b).collect();
+            set.push(OMEGA);
+            fb.push(set);
+        }
+        let vs = |f: &[Vec<u32>]| {
+            let mut v: Vec<u32> = f.iter().flatten().copied().collect();
+            v.sort_unstable();
+            v.dedup();
+            v
+        };
+        let vb = vs(&fb);
+        let common: Vec<u32> = vs(&fa)
+            .into_iter()
+            .filter(|v| vb.binary_search(v).is_ok())
+            .collect();
+        match lists::first_violation(&common, &refs(&fa), &refs(&fb), &refs(&fab)) {
+            None => Ok(()),
+            Some(simplex) => Err(Refusal::LinkCondition {
+                a,
+                b,
+                dim: simplex.len() - 1,
+                simplex,
+            }),
+        }
+    }
+
+    /// The boundary facets through v: facets f ∋ v of a top t ∈ St*(v) that no other top holds.
+    fn boundary_facets(&self, v: u32) -> impl Iterator<Item = Vec<u32>> + '_ {
+        let star = &self.star[v as usize];
+        star.iter().flat_map(move |&raw| {
+            let t = self.top_raw(raw);
+            t.iter()
+                .filter(move |&&x| x != v)
+                .map(move |&x| t.iter().copied().filter(|&y| y != x).collect::<Vec<u32>>())
+                .filter(move |f| !star.iter().any(|&o| o != raw && subset(f, self.top_raw(o))))
+        })
+    }
+}
+
+fn refs(f: &[Vec<u32>]) -> Vec<&[u32]> {
+    f.iter().map(Vec::as_slice).collect()
+}
