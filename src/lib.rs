@@ -18,6 +18,7 @@ pub mod io;
 pub mod oracle;
 pub mod relation;
 pub mod report;
+pub mod simplify;
 pub mod structures;
 
 pub use complex::{Complex, ComplexError};

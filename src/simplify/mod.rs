@@ -1,0 +1,3 @@
+//! Quadric-error edge-contraction simplification of any simplicial complex.
+
+pub mod quadric;
