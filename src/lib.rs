@@ -4,6 +4,7 @@
 //!
 //! - [`io`] reads files into raw simplex lists; [`complex`] normalises them into a [`Complex`].
 //! - [`structures`] builds any of the family (IG, SIG, IA, IQM, NMIA, TS, PE, LE, DE).
+//! - [`live`] is the updatable complex: insertion, removal, edge contraction, vertex split.
 //! - [`oracle`] answers every relation by brute force, for tests.
 //! - [`report`] is `topoplex report`: census, storage and timings of every structure.
 //! - [`ffi`] is the C ABI (`include/topoplex.h`), the only module allowed `unsafe` code.
@@ -15,6 +16,7 @@ pub mod complex;
 pub mod ffi;
 pub mod fixtures;
 pub mod io;
+pub mod live;
 pub mod oracle;
 pub mod relation;
 pub mod report;

@@ -38,6 +38,9 @@ pub enum StructureKind {
     Pe,
     Le,
     De,
+    /// The live complex ([`crate::live::LiveComplex`]): updatable, IA*-like; not in
+    /// [`StructureKind::ALL`] (the nine frozen structures), C ABI kind 9.
+    IaStar,
 }
 
 impl StructureKind {
@@ -65,6 +68,7 @@ impl StructureKind {
             StructureKind::Pe => "pe",
             StructureKind::Le => "le",
             StructureKind::De => "de",
+            StructureKind::IaStar => "iastar",
         }
     }
 

@@ -1,0 +1,419 @@
+//! The edits of a [`LiveComplex`]: insertion and removal of top simplices, edge contraction and
+//! its undo (vertex split), compaction. Each checks everything first and refuses with the
+//! structure unchanged, then mutates.
+
+use super::{
+    Key, LiveComplex, NONE, Refusal, SLOT_MASK, TopId, VertexId, pack, show, subset, unpack,
+};
+use crate::complex::MAX_DIMENSION;
+
+/// How [`LiveComplex::contract`] decides whether it may unify two vertices.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContractMode {
+    /// Only an edge {a, b} satisfying the link condition Lk(a) ∩ Lk(b) = Lk(ab) in every
+    /// dimension (Dey, Edelsbrunner, Guha, Nekhayev 1999): the result is homotopy equivalent to
+    /// the input (and homeomorphic on closed manifolds).
+    PreserveTopology,
+    /// Any two live vertices, edge or not (Popović and Hoppe's vertex unification, 1997).
+    Free,
+}
+
+/// What [`LiveComplex::split`] needs to undo a contraction exactly (same ids, same slots, same
+/// winding, same coordinates).
+#[derive(Debug, Clone, PartialEq)]
+pub struct UndoRecord {
+    /// The surviving vertex.
+    pub a: VertexId,
+    /// The vertex removed by the contraction (revived by the split).
+    pub b: VertexId,
+    epoch: u32,
+    a_coords: Vec<f64>,
+    b_coords: Vec<f64>,
+    /// Top simplices the contraction retired: packed id and vertices (winding as stored).
+    removed: Vec<(u32, Vec<u32>)>,
+    /// Top simplices the contraction created: packed id and vertices.
+    inserted: Vec<(u32, Vec<u32>)>,
+}
+
+impl UndoRecord {
+    /// Top simplices the contraction removed (those of St(b), and those of St(a) that became
+    /// faces of an image), with their vertices before the contraction.
+    pub fn removed_tops(&self) -> impl Iterator<Item = &[u32]> + '_ {
+        self.removed.iter().map(|(_, s)| s.as_slice())
+    }
+
+    /// Top simplices the contraction created (images of St(b) with b replaced by a).
+    pub fn inserted_tops(&self) -> impl Iterator<Item = TopId> + '_ {
+        self.inserted.iter().map(|&(raw, _)| TopId {
+            raw,
+            epoch: self.epoch,
+        })
+    }
+}
+
+/// Old → new ids after [`LiveComplex::compact`]; `u32::MAX` marks a removed vertex or slot.
+#[derive(Debug, Clone, PartialEq, Eq, Default)]
+pub struct CompactMaps {
+    /// `vertices[old]` = new vertex id.
+    pub vertices: Vec<u32>,
+    /// `tops[p][old slot]` = new slot of the top p-simplex (`tops[0]` is empty).
+    pub tops: Vec<Vec<u32>>,
+}
+
+impl LiveComplex {
+    /// Checks a simplex given by the caller: 1..=16 distinct live vertices; returns it sorted.
+    fn check_simplex(&self, sigma: &[u32]) -> Result<Key, Refusal> {
+        let bad = |why| Refusal::InvalidSimplex {
+            simplex: sigma.to_vec(),
+            why,
+        };
+        if sigma.is_empty() {
+            return Err(bad("no vertex"));
+        }
+        if sigma.len() > MAX_DIMENSION + 1 {
+            return Err(bad("more than 16 vertices"));
+        }
+        for &v in sigma {
+            self.check_vertex(v)?;
+        }
+        let k = Key::new(sigma);
+        if k.as_slice().windows(2).any(|w| w[0] == w[1]) {
+            return Err(bad("repeated vertex"));
+        }
+        Ok(k)
+    }
+
+    /// Inserts σ (vertices in the winding to keep) as a top simplex, with its faces. Top
+    /// simplices that σ contains stop being top (they become its faces). Refused: invalid
+    /// simplex, a vertex not live, σ already in the complex (as a top simplex or a face), or a
+    /// single vertex (vertices are added by [`LiveComplex::add_vertex`]). Cost: module doc.
+    pub fn insert_top(&mut self, sigma: &[u32]) -> Result<TopId, Refusal> {
+        self.check_simplex(sigma)?;
+        if self.holds(sigma) {
+            return Err(Refusal::AlreadyPresent {
+                simplex: sigma.to_vec(),
+            });
+        }
+        let mut absorbed: Vec<u32> = Vec::new();
+        for &v in sigma {
+            for &raw in &self.star[v as usize] {
+                if !absorbed.contains(&raw) && subset(self.top_raw(raw), sigma) {
+                    absorbed.push(raw);
+                }
+            }
+        }
+        for raw in absorbed {
+            let (p, slot) = unpack(raw);
+            self.detach(p, slot as u32);
+        }
+        let slot = self.push_top(sigma);
+        Ok(self.handle(pack(sigma.len() - 1, slot)))
+    }
+
+    /// Removes the top simplex σ (vertices in any order). Its faces that no other top simplex
+    /// holds go with it; its vertices stay (as isolated vertices if nothing else holds them).
+    /// For a single isolated vertex, removes the vertex. Refused: invalid simplex, a vertex not
+    /// live, σ not in the complex, σ a proper face of another simplex. Cost: module doc.
+    pub fn remove_top(&mut self, sigma: &[u32]) -> Result<(), Refusal> {
+        let k = self.check_simplex(sigma)?;
+        if let Some(raw) = self.find_top(k.as_slice()) {
+            let (p, slot) = unpack(raw);
+            self.detach(p, slot as u32);
+            return Ok(());
+        }
+        if let Some(raw) = self.top_containing(sigma) {
+            return Err(Refusal::NotTop {
+                simplex: sigma.to_vec(),
+                coface: self.top_raw(raw).to_vec(),
+            });
+        }
+        if sigma.len() == 1 {
+            // A live vertex with an empty star: an isolated vertex.
+            self.alive[sigma[0] as usize] = false;
+            self.live_vertices -= 1;
+            if self.live_vertices == 0 {
+                // A complex keeps at least one vertex.
+                self.alive[sigma[0] as usize] = true;
+                self.live_vertices = 1;
+                return Err(Refusal::InvalidSimplex {
+                    simplex: sigma.to_vec(),
+                    why: "the last vertex of the complex cannot be removed",
+                });
+            }
+            return Ok(());
+        }
+        Err(Refusal::NotInComplex {
+            simplex: sigma.to_vec(),
+        })
+    }
+
+    /// Removes the top simplex `t` (see [`LiveComplex::remove_top`]). Refused: a handle from
+    /// before `compact()` or of a removed top simplex.
+    pub fn remove_top_id(&mut self, t: TopId) -> Result<(), Refusal> {
+        self.check_top(t)?;
+        let (p, slot) = unpack(t.raw);
+        self.detach(p, slot as u32);
+        Ok(())
+    }
+
+    /// Whether contracting {a, b} is allowed in `mode`, without changing anything: both live and
+    /// distinct, and in [`ContractMode::PreserveTopology`] an edge satisfying the link condition.
+    pub fn can_contract(
+        &self,
+        a: VertexId,
+        b: VertexId,
+        mode: ContractMode,
+    ) -> Result<(), Refusal> {
+        self.check_vertex(a.0)?;
+        self.check_vertex(b.0)?;
+        if a == b {
+            return Err(Refusal::InvalidSimplex {
+                simplex: vec![a.0, b.0],
+                why: "repeated vertex",
+            });
+        }
+        if mode == ContractMode::PreserveTopology {
+            self.link_condition(a, b)?;
+        }
+        Ok(())
+    }
+
+    /// Contracts b into a: every top simplex through b gets a in b's place (one through both
+    /// loses b), images that became a face of another simplex or a duplicate are dropped, top
+    /// simplices of St(a) that became a face of an image are retired, b is removed, and a moves
+    /// to `new_position` when given. Returns the record [`LiveComplex::split`] needs to undo it.
+    /// Refused (unchanged): a or b not live, a == b, coordinates of the wrong length, and in
+    /// [`ContractMode::PreserveTopology`] a non-edge or a failing link condition (with the
+    /// dimension). Cost: module doc.
+    pub fn contract(
+        &mut self,
+        a: VertexId,
+        b: VertexId,
+        mode: ContractMode,
+        new_position: Option<&[f64]>,
+    ) -> Result<UndoRecord, Refusal> {
+        self.can_contract(a, b, mode)?;
+        if let Some(xyz) = new_position {
+            self.check_coords(xyz)?;
+        }
+        let k = self.coord_dim;
+        let mut undo = UndoRecord {
+            a,
+            b,
+            epoch: self.epoch,
+            a_coords: self.coords[a.index() * k..(a.index() + 1) * k].to_vec(),
+            b_coords: self.coords[b.index() * k..(b.index() + 1) * k].to_vec(),
+            removed: Vec::new(),
+            inserted: Vec::new(),
+        };
+        let images = self.retire_star_of_b(a.0, b.0, &mut undo);
+        self.place_images(a.0, images, &mut undo);
+        self.alive[b.index()] = false;
+        self.live_vertices -= 1;
+        if let Some(xyz) = new_position {
+            self.coords[a.index() * k..(a.index() + 1) * k].copy_from_slice(xyz);
+        }
+        Ok(undo)
+    }
+
+    /// Step 1 of a contraction: detaches every top simplex of St(b) and returns their images
+    /// (b replaced by a in place, or dropped where a is already there), deduplicated.
+    fn retire_star_of_b(&mut self, a: u32, b: u32, undo: &mut UndoRecord) -> Vec<Vec<u32>> {
+        let star_b = std::mem::take(&mut self.star[b as usize]);
+        let mut images: Vec<Vec<u32>> = Vec::with_capacity(star_b.len());
+        for &raw in &star_b {
+            let t = self.top_raw(raw);
+            let image: Vec<u32> = if t.contains(&a) {
+                t.iter().copied().filter(|&v| v != b).collect()
+            } else {
+                t.iter().map(|&v| if v == b { a } else { v }).collect()
+            };
+            if image.len() > 1 && !images.iter().any(|s| same_set(s, &image)) {
+                images.push(image);
+            }
+        }
+        // Restore b's star so `detach` finds its entries, then detach in star order.
+        self.star[b as usize] = star_b.clone();
+        for &raw in &star_b {
+            let (p, slot) = unpack(raw);
+            let s = self.detach(p, slot as u32);
+            undo.removed.push((raw, s));
+        }
+        images
+    }
+
+    /// Step 2 of a contraction: inserts the images that are still top simplices (not a face of
+    /// another image or of a top of St(a)) and retires the tops of St(a) they absorb.
+    fn place_images(&mut self, a: u32, images: Vec<Vec<u32>>, undo: &mut UndoRecord) {
+        let keep: Vec<bool> = images
+            .iter()
+            .enumerate()
+            .map(|(i, img)| {
+                let under_image = images
+                    .iter()
+                    .enumerate()
+                    .any(|(j, o)| j != i && o.len() > img.len() && subset(img, o));
+                let under_top = self.star[a as usize]
+                    .iter()
+                    .any(|&raw| subset(img, self.top_raw(raw)));
+                !under_image && !under_top
+            })
+            .collect();
+        let kept: Vec<&Vec<u32>> = images
+            .iter()
+            .zip(&keep)
+            .filter(|(_, k)| **k)
+            .map(|(s, _)| s)
+            .collect();
+        let absorbed: Vec<u32> = self.star[a as usize]
+            .iter()
+            .copied()
+            .filter(|&raw| {
+                let t = self.top_raw(raw);
+                kept.iter().any(|img| img.len() > t.len() && subset(t, img))
+            })
+            .collect();
+        for raw in absorbed {
+            let (p, slot) = unpack(raw);
+            let s = self.detach(p, slot as u32);
+            undo.removed.push((raw, s));
+        }
+        for img in kept {
+            let slot = self.push_top(img);
+            undo.inserted.push((pack(img.len() - 1, slot), img.clone()));
+        }
+    }
+
+    /// Undoes the contraction that returned `undo` (vertex split): b is revived with its
+    /// coordinates, the created top simplices are removed and the retired ones restored in
+    /// their slots, a gets its coordinates back. Splits must come in reverse order of the
+    /// contractions where they touch the same simplices. Refused (unchanged) when `undo` is from
+    /// before a `compact()`, was applied already, or later edits changed what it would restore
+    /// (a created top simplex removed or a restored one now a face of another simplex).
+    pub fn split(&mut self, undo: &UndoRecord) -> Result<(), Refusal> {
+        self.check_undo(undo)?;
+        for &(raw, _) in &undo.inserted {
+            let (p, slot) = unpack(raw);
+            self.detach(p, slot as u32);
+        }
+        let b = undo.b.index();
+        self.alive[b] = true;
+        self.live_vertices += 1;
+        for (raw, s) in &undo.removed {
+            let (p, slot) = unpack(*raw);
+            let w = p + 1;
+            self.tops[p][slot * w..(slot + 1) * w].copy_from_slice(s);
+            self.attach(p, slot as u32);
+        }
+        let k = self.coord_dim;
+        self.coords[undo.a.index() * k..(undo.a.index() + 1) * k].copy_from_slice(&undo.a_coords);
+        self.coords[b * k..(b + 1) * k].copy_from_slice(&undo.b_coords);
+        Ok(())
+    }
+
+    /// Every precondition of [`LiveComplex::split`], checked before anything changes.
+    fn check_undo(&self, undo: &UndoRecord) -> Result<(), Refusal> {
+        let stale = |why: String| Err(Refusal::StaleHandle(why));
+        if undo.epoch != self.epoch {
+            return stale("undo record from before a compaction".into());
+        }
+        let (a, b) = (undo.a.index(), undo.b.index());
+        if b >= self.alive.len() || self.alive[b] || !self.alive.get(a).copied().unwrap_or(false) {
+            return stale(format!(
+                "vertex {b} is live or vertex {a} is not: split already applied or out of order",
+            ));
+        }
+        for (raw, s) in &undo.inserted {
+            let (p, slot) = unpack(*raw);
+            if self.tops[p].get(slot * (p + 1)) == Some(&NONE) || self.top_raw(*raw) != &s[..] {
+                return stale(format!("created top simplex {} was edited since", show(s)));
+            }
+        }
+        let inserted: Vec<u32> = undo.inserted.iter().map(|&(raw, _)| raw).collect();
+        for (raw, s) in &undo.removed {
+            let (p, slot) = unpack(*raw);
+            if self.tops[p][slot * (p + 1)] != NONE {
+                return stale(format!("slot of {} is in use", show(s)));
+            }
+            if let Some(&v) = s
+                .iter()
+                .find(|&&v| v as usize != b && !self.alive[v as usize])
+            {
+                return stale(format!("vertex {v} of {} was removed since", show(s)));
+            }
+            self.check_restorable(s, undo.b.0, &inserted)?;
+        }
+        Ok(())
+    }
+
+    /// A restored top simplex `s` must not be a face of, equal to, or a coface of a live top
+    /// simplex that the split keeps.
+    fn check_restorable(&self, s: &[u32], b: u32, inserted: &[u32]) -> Result<(), Refusal> {
+        for &v in s.iter().filter(|&&v| v != b) {
+            for &raw in &self.star[v as usize] {
+                let t = self.top_raw(raw);
+                if !inserted.contains(&raw) && (subset(s, t) || subset(t, s)) {
+                    return Err(Refusal::StaleHandle(format!(
+                        "restoring {} conflicts with top simplex {} added since",
+                        show(s),
+                        show(t)
+                    )));
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Drops tombstones: live vertices and top slots are renumbered densely in ascending old
+    /// order (the numbering of [`LiveComplex::to_complex`]). Every [`TopId`] and [`UndoRecord`]
+    /// issued before is refused afterwards; vertex ids must be mapped by the caller. O(size).
+    pub fn compact(&mut self) -> CompactMaps {
+        let (vmap, n) = self.vertex_map();
+        let mut maps = CompactMaps {
+            vertices: vmap,
+            tops: vec![Vec::new(); MAX_DIMENSION + 1],
+        };
+        for p in 1..=MAX_DIMENSION {
+            let w = p + 1;
+            let old = std::mem::take(&mut self.tops[p]);
+            let mut next = 0u32;
+            let mut table = Vec::with_capacity(self.live_tops[p] * w);
+            maps.tops[p] = old
+                .chunks_exact(w)
+                .map(|s| {
+                    if s[0] == NONE {
+                        return NONE;
+                    }
+                    table.extend(s.iter().map(|&v| maps.vertices[v as usize]));
+                    next += 1;
+                    next - 1
+                })
+                .collect();
+            self.tops[p] = table;
+        }
+        let k = self.coord_dim;
+        let mut coords = Vec::with_capacity(n as usize * k);
+        let mut star = Vec::with_capacity(n as usize);
+        for v in 0..self.alive.len() {
+            if self.alive[v] {
+                coords.extend_from_slice(&self.coords[v * k..(v + 1) * k]);
+                let mut st = std::mem::take(&mut self.star[v]);
+                for raw in st.iter_mut() {
+                    let (p, slot) = unpack(*raw);
+                    *raw = pack(p, maps.tops[p][slot]);
+                }
+                star.push(st);
+            }
+        }
+        self.coords = coords;
+        self.star = star;
+        self.alive = vec![true; n as usize];
+        self.epoch = self.epoch.wrapping_add(1);
+        debug_assert!(self.tops.iter().all(|t| t.len() <= SLOT_MASK as usize * 16));
+        maps
+    }
+}
+
+fn same_set(a: &[u32], b: &[u32]) -> bool {
+    a.len() == b.len() && subset(a, b)
+}
