@@ -63,6 +63,22 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
+    /// Quadric-error edge-contraction simplification (Garland–Heckbert, any dimension) down to
+    /// about RATIO × the input's top simplices; the output format follows its extension (.off,
+    /// .obj, .mesh, .simplices).
+    Simplify {
+        input: PathBuf,
+        /// Output file.
+        #[arg(long)]
+        out: PathBuf,
+        /// Fraction of the top simplices to keep, in (0, 1].
+        #[arg(long)]
+        ratio: f64,
+        /// Contract only edges satisfying the link condition: Betti numbers and manifoldness
+        /// are kept.
+        #[arg(long)]
+        preserve_topology: bool,
+    },
 }
 
 fn parse_pq(s: &str) -> Result<(usize, usize), String> {
@@ -91,6 +107,12 @@ fn main() -> ExitCode {
             simplex,
         } => dump_relation(file, &structure, relation, simplex),
         Command::Decompose { file, out } => decompose(&file, &out),
+        Command::Simplify {
+            input,
+            out,
+            ratio,
+            preserve_topology,
+        } => simplify(&input, &out, ratio, preserve_topology),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -212,6 +234,65 @@ fn decompose(file: &Path, out: &Path) -> Result<(), String> {
         out.display()
     );
     Ok(())
+}
+
+fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Result<(), String> {
+    use topoplex::io::complex_writer::{check_output, write_complex};
+    use topoplex::simplify::{Options, simplify};
+    let options = Options {
+        ratio,
+        preserve_topology,
+    };
+    if !(ratio > 0.0 && ratio <= 1.0) {
+        return Err(format!("--ratio {ratio} is outside (0, 1]"));
+    }
+    let complex = load(input)?;
+    let coord_dim = complex.coords().map_or(0, |c| c.dim);
+    check_output(out, complex.dimension(), coord_dim).map_err(|e| e.to_string())?;
+    // Refuse an unwritable output before the work, not after it.
+    let existed = out.exists();
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(out)
+        .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
+    let progress = Progress::new(1);
+    progress.bar.set_message("contracting edges");
+    let result = simplify(&complex, &options, &mut |done, total| {
+        progress.bar.set_length(total as u64);
+        progress.bar.set_position(done as u64);
+    });
+    progress.finish();
+    let written = result.map_err(|e| e.to_string()).and_then(|s| {
+        write_complex(&s.complex, out)
+            .map(|()| s)
+            .map_err(|e| e.to_string())
+    });
+    match written {
+        Ok(s) => {
+            let st = s.stats;
+            println!(
+                "{} -> {} top simplices (target {}), {} contractions{}; wrote {}",
+                st.input_tops,
+                st.output_tops,
+                st.target_tops,
+                st.contractions,
+                if preserve_topology {
+                    format!(", {} refused by the link condition", st.refused)
+                } else {
+                    String::new()
+                },
+                out.display()
+            );
+            Ok(())
+        }
+        Err(e) => {
+            if !existed {
+                let _ = std::fs::remove_file(out);
+            }
+            Err(e)
+        }
+    }
 }
 
 fn dump_relation(

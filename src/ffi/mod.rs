@@ -23,12 +23,14 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 mod complex;
 mod decomposition;
+mod simplify;
 mod structure;
 #[cfg(test)]
 mod tests;
 
 pub use complex::*;
 pub use decomposition::*;
+pub use simplify::*;
 pub use structure::*;
 
 // The panic boundary below relies on unwinding; with `panic = "abort"` a bug would kill the host.
@@ -72,6 +74,14 @@ pub enum TpxStatus {
     TooLarge = 13,
     /// An internal bug was caught at the boundary; the message has the panic text.
     Panic = 14,
+    /// `tpx_simplify*`: the ratio is not in (0, 1] (NaN included).
+    InvalidRatio = 27,
+    /// `tpx_simplify_file`: the output cannot be written (unknown extension, a format that
+    /// cannot hold the result, or the file system refused).
+    WriteError = 28,
+    /// `tpx_simplify*`: the complex cannot be simplified: no vertex coordinates, a non-finite
+    /// coordinate, or more top simplices of one dimension than the live complex numbers.
+    CannotSimplify = 29,
 }
 
 /// Incidence Graph.

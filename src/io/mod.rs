@@ -39,6 +39,7 @@ macro_rules! reader_test_helpers {
     };
 }
 
+pub mod complex_writer;
 pub mod medit;
 pub mod obj;
 pub mod off;

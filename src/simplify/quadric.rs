@@ -9,9 +9,9 @@
 //! spanning all of R^n (a tetrahedron in R^3) has `A = 0`: its quadric is zero and only the
 //! quadrics of its boundary facets hold the shape (see [`super`]).
 //!
-//! Quadrics add: a vertex's quadric is the sum of its simplices' quadrics, each weighted by
-//! the simplex's k-volume (a vertex: weight 1), as OpenMesh's ModQuadric and Garland and
-//! Heckbert weight by area. Storage: `(n + 1)(n + 2) / 2` numbers per quadric (10 in R^3): the
+//! Quadrics add: a vertex's quadric is the sum of its simplices' quadrics, each weighted by a
+//! function of the simplex's k-volume that the caller chooses (OpenMesh's ModQuadric and
+//! Garland and Heckbert weight by area). Storage: `(n + 1)(n + 2) / 2` numbers per quadric (10 in R^3): the
 //! upper triangle of A row by row, then b, then c.
 
 /// The layout of quadrics in R^n: packs and unpacks the `(n + 1)(n + 2) / 2` numbers.
@@ -58,10 +58,16 @@ impl QuadricSpace {
         self.len() - 1
     }
 
-    /// Adds `weight` × the squared distance to the affine hull of `points` (k + 1 points of n
-    /// numbers each, flat) into `q`; returns the simplex's k-volume. `scratch` is reused so
-    /// that no call allocates once it has grown.
-    pub fn add_simplex(&self, q: &mut [f64], points: &[f64], scratch: &mut Vec<f64>) -> f64 {
+    /// Adds `weight(vol)` × the squared distance to the affine hull of `points` (k + 1 points
+    /// of n numbers each, flat) into `q`, `vol` being the simplex's k-volume (1 for a point);
+    /// returns `vol`. `scratch` is reused so that no call allocates once it has grown.
+    pub fn add_simplex(
+        &self,
+        q: &mut [f64],
+        points: &[f64],
+        scratch: &mut Vec<f64>,
+        weight: impl FnOnce(f64) -> f64,
+    ) -> f64 {
         let n = self.n;
         let k = points.len() / n - 1;
         let p0 = &points[..n];
@@ -95,7 +101,7 @@ impl QuadricSpace {
             }
             rank += 1;
         }
-        let weight = if k == 0 { 1.0 } else { volume };
+        let weight = weight(volume);
         if weight == 0.0 {
             return volume;
         }
@@ -245,7 +251,7 @@ mod tests {
         let mut scratch = Vec::new();
         let mut vol = 0.0;
         for pts in simplices {
-            vol += s.add_simplex(&mut q, pts, &mut scratch);
+            vol += s.add_simplex(&mut q, pts, &mut scratch, |v| v);
         }
         (s, q, vol)
     }
