@@ -278,7 +278,10 @@ fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Re
                 st.target_tops,
                 st.contractions,
                 if preserve_topology {
-                    format!(", {} refused by the link condition", st.refused)
+                    format!(
+                        ", {} refused by the link condition ({} retry rounds)",
+                        st.refused, st.refills
+                    )
                 } else {
                     String::new()
                 },

@@ -19,8 +19,9 @@
 //!    it (into the vertex with the larger star, which then moves to the minimiser), add the
 //!    quadrics, bump the survivor's version and push its edges with their new costs. With
 //!    `preserve_topology` the contraction is link-checked in every dimension and a refused edge
-//!    is dropped until its neighbourhood changes; when the queue runs dry before the target,
-//!    the queue is refilled from all live edges and the loop goes on while that still helps.
+//!    is parked; when the queue runs dry before the target, the parked edges whose endpoints'
+//!    neighbourhoods changed since (a contraction touched the survivor and its ring) are queued
+//!    again, and the loop ends when none did.
 //!    It stops once the live top simplices are at most `ceil(ratio × input top simplices)`.
 //! 4. [`LiveComplex::to_complex`], for any writer or any of the nine structures.
 //!
@@ -106,7 +107,8 @@ pub struct Stats {
     pub contractions: usize,
     /// Contractions refused by the link condition (with `preserve_topology`).
     pub refused: usize,
-    /// Times the queue was refilled from all live edges after running dry.
+    /// Times the queue ran dry and the refused edges whose neighbourhood had changed since were
+    /// queued again.
     pub refills: usize,
 }
 
@@ -212,6 +214,12 @@ struct State<'a> {
     queue: BinaryHeap<Entry>,
     /// Queue length above which stale entries are dropped.
     queue_limit: usize,
+    /// Per vertex: bumped whenever a contraction changes its neighbourhood (it is the survivor
+    /// or in the survivor's ring), which may change the link condition of its edges.
+    touch: Vec<u32>,
+    /// Entries refused by the link condition, with the sum of their vertices' touches then:
+    /// retried once that changes ([`unpark`]).
+    parked: Vec<(Entry, u32)>,
     /// Live top simplices now.
     tops: usize,
     stats: Stats,
@@ -248,6 +256,8 @@ impl<'a> State<'a> {
             version: vec![0; slots],
             queue: BinaryHeap::new(),
             queue_limit: 0,
+            touch: vec![0; slots],
+            parked: Vec::new(),
             tops,
             stats: Stats::default(),
             scratch: Scratch {
@@ -300,6 +310,10 @@ impl<'a> State<'a> {
         };
         let stamp = self.version[a as usize].wrapping_add(self.version[b as usize]);
         self.queue.push(Reverse((bits, a, b, stamp)));
+    }
+
+    fn touched(&self, a: u32, b: u32) -> u32 {
+        self.touch[a as usize].wrapping_add(self.touch[b as usize])
     }
 
     fn is_current(&self, a: u32, b: u32, stamp: u32) -> bool {
@@ -452,22 +466,20 @@ fn contract_loop(state: &mut State, progress: &mut dyn FnMut(usize, usize)) {
     let target = state.stats.target_tops;
     let total = state.tops.saturating_sub(target);
     let mut last_report = 0;
-    let mut at_last_refill = usize::MAX;
     while state.tops > target {
-        let Some(Reverse((_, a, b, stamp))) = state.queue.pop() else {
-            // Dry: refill while the previous refill still led to contractions.
-            if state.stats.contractions == at_last_refill {
+        let Some(entry) = state.queue.pop() else {
+            // Dry: retry the refused edges whose neighbourhood changed since, if any.
+            if !unpark(state) {
                 break;
             }
-            at_last_refill = state.stats.contractions;
             state.stats.refills += 1;
-            fill_queue(state);
             continue;
         };
+        let Reverse((_, a, b, stamp)) = entry;
         if !state.is_current(a, b, stamp) {
             continue;
         }
-        if contract_edge(state, a, b) {
+        if contract_edge(state, entry) {
             let done = total - state.tops.saturating_sub(target);
             if done - last_report >= 1024 {
                 last_report = done;
@@ -481,8 +493,10 @@ fn contract_loop(state: &mut State, progress: &mut dyn FnMut(usize, usize)) {
     progress(total - state.tops.saturating_sub(target), total);
 }
 
-/// Contracts {a, b} into the vertex with the larger star, at the minimiser; false if refused.
-fn contract_edge(state: &mut State, a: u32, b: u32) -> bool {
+/// Contracts {a, b} into the vertex with the larger star, at the minimiser; false if refused
+/// (then the entry is parked).
+fn contract_edge(state: &mut State, entry: Entry) -> bool {
+    let Reverse((_, a, b, _)) = entry;
     let star = |v: u32| {
         state
             .live
@@ -491,6 +505,12 @@ fn contract_edge(state: &mut State, a: u32, b: u32) -> bool {
             .unwrap_or(0)
     };
     let (keep, gone) = if star(a) >= star(b) { (a, b) } else { (b, a) };
+    if state.mode == ContractMode::PreserveTopology && !boundary_link_condition(state.live, a, b) {
+        state.stats.refused += 1;
+        let touched = state.touched(a, b);
+        state.parked.push((entry, touched));
+        return false;
+    }
     state.cost(keep, gone);
     let x = std::mem::take(&mut state.scratch.x);
     let result = state
@@ -501,6 +521,8 @@ fn contract_edge(state: &mut State, a: u32, b: u32) -> bool {
         Ok(undo) => undo,
         Err(Refusal::LinkCondition { .. } | Refusal::NotAnEdge { .. }) => {
             state.stats.refused += 1;
+            let touched = state.touched(a, b);
+            state.parked.push((entry, touched));
             return false;
         }
         Err(e) => panic!("contracting live edge {{{keep}, {gone}}}: {e}"),
@@ -519,11 +541,98 @@ fn contract_edge(state: &mut State, a: u32, b: u32) -> bool {
     state.version[gone as usize] = state.version[gone as usize].wrapping_add(1);
     state.ring(keep);
     let ring = std::mem::take(&mut state.scratch.ring);
+    state.touch[keep as usize] = state.touch[keep as usize].wrapping_add(1);
     for &u in &ring {
+        state.touch[u as usize] = state.touch[u as usize].wrapping_add(1);
         state.push(keep, u);
     }
     state.scratch.ring = ring;
     true
+}
+
+/// The boundary half of the link condition for manifolds with boundary (Dey, Edelsbrunner,
+/// Guha, Nekhayev 1999: the link condition in K ∪ ω·∂K, ω a vertex coned over the boundary).
+/// ∂K is made of the *boundary facets*, facets of top simplices that no other top simplex
+/// holds. When a and b both lie on ∂K, {a, b} must be an edge of ∂K satisfying the link
+/// condition within ∂K; otherwise contracting it would pinch the boundary (a disk into two disks
+/// sharing a vertex: same Betti numbers, no longer a manifold). Costs O(k² d²) for the stars of
+/// a and b, and a small live complex of their boundary facets when both are on ∂K.
+fn boundary_link_condition(live: &LiveComplex, a: u32, b: u32) -> bool {
+    let fa = boundary_facets_at(live, a);
+    if fa.is_empty() {
+        return true;
+    }
+    let fb = boundary_facets_at(live, b);
+    if fb.is_empty() {
+        return true;
+    }
+    if !fa.iter().any(|f| f.contains(&b)) {
+        return false;
+    }
+    // The boundary around a and b as its own complex, over local ids.
+    let mut ids: Vec<u32> = fa.iter().chain(&fb).flatten().copied().collect();
+    ids.sort_unstable();
+    ids.dedup();
+    let local = |v: u32| ids.binary_search(&v).map_or(u32::MAX, |i| i as u32);
+    let facets: Vec<Vec<u32>> = fa
+        .iter()
+        .chain(&fb)
+        .map(|f| f.iter().map(|&v| local(v)).collect())
+        .collect();
+    let refs: Vec<&[u32]> = facets.iter().map(Vec::as_slice).collect();
+    let Ok(c) = Complex::from_simplices(ids.len() as u32, &refs) else {
+        return false;
+    };
+    LiveComplex::from_complex(&c)
+        .link_condition(VertexId(local(a)), VertexId(local(b)))
+        .is_ok()
+}
+
+/// The boundary facets (see [`boundary_link_condition`]) through `v`, each once, sorted.
+fn boundary_facets_at(live: &LiveComplex, v: u32) -> Vec<Vec<u32>> {
+    let mut out: Vec<Vec<u32>> = Vec::new();
+    let Ok(star) = live.vertex_star(VertexId(v)) else {
+        return out;
+    };
+    for t in star {
+        let verts = live.top_vertices(t).unwrap_or(&[]);
+        for skip in 0..verts.len() {
+            if verts[skip] == v {
+                continue;
+            }
+            let mut f: Vec<u32> = verts
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| i != skip)
+                .map(|(_, &u)| u)
+                .collect();
+            f.sort_unstable();
+            if !out.contains(&f) && is_boundary_facet(live, &f) {
+                out.push(f);
+            }
+        }
+    }
+    out
+}
+
+/// Moves the parked entries whose vertices' neighbourhoods changed back into the queue and
+/// drops the stale ones; false when none moved (no refused edge can have become legal).
+fn unpark(state: &mut State) -> bool {
+    let parked = std::mem::take(&mut state.parked);
+    let mut moved = false;
+    for (entry, touched) in parked {
+        let Reverse((_, a, b, stamp)) = entry;
+        if !state.is_current(a, b, stamp) {
+            continue;
+        }
+        if state.touched(a, b) != touched {
+            state.queue.push(entry);
+            moved = true;
+        } else {
+            state.parked.push((entry, touched));
+        }
+    }
+    moved
 }
 
 /// Rebuilds the queue without stale entries and resets the limit.
