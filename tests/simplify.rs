@@ -645,3 +645,142 @@ fn tempdir(name: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&d).unwrap();
     d
 }
+
+// ---------------------------------------------------------------------------------------------
+// The C ABI.
+
+mod ffi {
+    use std::ffi::{CStr, CString};
+    use std::ptr::{null, null_mut};
+
+    use topoplex::ffi::*;
+
+    fn last_error() -> String {
+        // SAFETY: never NULL, NUL-terminated.
+        unsafe { CStr::from_ptr(tpx_last_error_message()) }
+            .to_string_lossy()
+            .into_owned()
+    }
+
+    fn octahedron() -> *mut TpxComplex {
+        let c = super::octahedron();
+        let mut ids = Vec::new();
+        let mut offsets = vec![0usize];
+        for (_, _, _, t) in c.tops_as_given() {
+            ids.extend_from_slice(t);
+            offsets.push(ids.len());
+        }
+        let xyz = &c.coords().unwrap().data;
+        let mut out = null_mut();
+        let st = unsafe {
+            tpx_complex_from_arrays(
+                6,
+                ids.as_ptr(),
+                offsets.as_ptr(),
+                8,
+                xyz.as_ptr(),
+                3,
+                &mut out,
+            )
+        };
+        assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+        out
+    }
+
+    #[test]
+    fn status_numbers_of_simplify_are_27_to_29() {
+        assert_eq!(TpxStatus::InvalidRatio as u32, 27);
+        assert_eq!(TpxStatus::WriteError as u32, 28);
+        assert_eq!(TpxStatus::CannotSimplify as u32, 29);
+    }
+
+    #[test]
+    fn simplify_through_the_abi_and_its_refusals() {
+        let c = octahedron();
+        let mut out = null_mut();
+        let st = unsafe { tpx_simplify(c, 0.01, true, &mut out) };
+        assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+        let mut n = 0usize;
+        assert_eq!(
+            unsafe { tpx_complex_top_count(out, 2, &mut n) },
+            TpxStatus::Ok
+        );
+        assert_eq!(n, 4);
+        unsafe { tpx_complex_free(out) };
+        // Refusals leave *out untouched.
+        let sentinel = 0x1 as *mut TpxComplex;
+        for bad in [0.0, 1.01, f64::NAN, -1.0] {
+            let mut out = sentinel;
+            assert_eq!(
+                unsafe { tpx_simplify(c, bad, false, &mut out) },
+                TpxStatus::InvalidRatio
+            );
+            assert!(last_error().contains("outside (0, 1]"), "{}", last_error());
+            assert_eq!(out, sentinel);
+        }
+        let mut out = sentinel;
+        assert_eq!(
+            unsafe { tpx_simplify(null(), 0.5, false, &mut out) },
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            unsafe { tpx_simplify(c, 0.5, false, null_mut()) },
+            TpxStatus::NullArgument
+        );
+        assert_eq!(out, sentinel);
+        unsafe { tpx_complex_free(c) };
+        // No coordinates.
+        let (ids, offsets) = ([0u32, 1, 2], [0usize, 3]);
+        let mut bare = null_mut();
+        let st = unsafe {
+            tpx_complex_from_arrays(3, ids.as_ptr(), offsets.as_ptr(), 1, null(), 0, &mut bare)
+        };
+        assert_eq!(st, TpxStatus::Ok);
+        let mut out = sentinel;
+        assert_eq!(
+            unsafe { tpx_simplify(bare, 0.5, false, &mut out) },
+            TpxStatus::CannotSimplify
+        );
+        assert!(
+            last_error().contains("no vertex coordinates"),
+            "{}",
+            last_error()
+        );
+        assert_eq!(out, sentinel);
+        unsafe { tpx_complex_free(bare) };
+    }
+
+    #[test]
+    fn simplify_file_writes_or_refuses_before_the_work() {
+        let dir = super::tempdir("ffi");
+        let input = dir.join("octa.off");
+        std::fs::write(&input, super::octahedron_off()).unwrap();
+        let input = CString::new(input.to_str().unwrap()).unwrap();
+        let good = dir.join("out.obj");
+        let out = CString::new(good.to_str().unwrap()).unwrap();
+        let st = unsafe { tpx_simplify_file(input.as_ptr(), out.as_ptr(), 0.5, true) };
+        assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+        let back = topoplex::Complex::from_path(&good).unwrap();
+        assert_eq!(back.top_counts(), vec![0, 0, 4]);
+        for (path, status, needle) in [
+            (
+                "/nonexistent-dir/out.off",
+                TpxStatus::WriteError,
+                "cannot write",
+            ),
+            ("out.xyz", TpxStatus::WriteError, "unknown output extension"),
+        ] {
+            let p = CString::new(path).unwrap();
+            let st = unsafe { tpx_simplify_file(input.as_ptr(), p.as_ptr(), 0.5, false) };
+            assert_eq!(st, status, "{path}");
+            assert!(last_error().contains(needle), "{}", last_error());
+        }
+        let missing = CString::new("/nonexistent-dir/in.off").unwrap();
+        let st = unsafe { tpx_simplify_file(missing.as_ptr(), out.as_ptr(), 0.5, false) };
+        assert_eq!(st, TpxStatus::IoError);
+        let st = unsafe { tpx_simplify_file(input.as_ptr(), out.as_ptr(), 2.0, false) };
+        assert_eq!(st, TpxStatus::InvalidRatio);
+        let st = unsafe { tpx_simplify_file(null(), out.as_ptr(), 0.5, false) };
+        assert_eq!(st, TpxStatus::NullArgument);
+    }
+}
