@@ -437,6 +437,20 @@ TpxStatus tpx_simplify(const struct TpxComplex *complex,
                        struct TpxComplex **out);
 
 /**
+ * Simplifies `complex` in place, as `tpx_simplify` does: its content is replaced by the
+ * result. The input is released as soon as the editable copy is built, so the peak memory
+ * holds one copy of it, not two (use this when the input is no longer needed).
+ *
+ * Errors (the complex is then unchanged): NULL_ARGUMENT, INVALID_RATIO, CANNOT_SIMPLIFY.
+ * After PANIC (an internal bug) the complex holds a single isolated vertex. Cost: as
+ * `tpx_simplify`.
+ *
+ * # Safety
+ * `complex` must be NULL or a live `TpxComplex` that no other thread uses during the call.
+ */
+TpxStatus tpx_simplify_in_place(struct TpxComplex *complex, double ratio, bool preserve_topology);
+
+/**
  * Reads `input`, simplifies it as `tpx_simplify` does and writes the result to `output`, the
  * format chosen by its extension (`.off`, `.obj`: dimension ≤ 2; `.mesh`: dimension ≤ 3 and
  * 2 or 3 coordinates; `.simplices`: any). Both paths are NUL-terminated UTF-8. The output's

@@ -728,6 +728,31 @@ mod ffi {
             TpxStatus::NullArgument
         );
         assert_eq!(out, sentinel);
+        // In place: the same result, and refusals leave the complex as it was.
+        let c2 = octahedron();
+        assert_eq!(
+            unsafe { tpx_simplify_in_place(c2, 1.5, true) },
+            TpxStatus::InvalidRatio
+        );
+        assert_eq!(
+            unsafe { tpx_complex_top_count(c2, 2, &mut n) },
+            TpxStatus::Ok
+        );
+        assert_eq!(n, 8);
+        assert_eq!(
+            unsafe { tpx_simplify_in_place(c2, 0.01, true) },
+            TpxStatus::Ok
+        );
+        assert_eq!(
+            unsafe { tpx_complex_top_count(c2, 2, &mut n) },
+            TpxStatus::Ok
+        );
+        assert_eq!(n, 4);
+        assert_eq!(
+            unsafe { tpx_simplify_in_place(null_mut(), 0.5, true) },
+            TpxStatus::NullArgument
+        );
+        unsafe { tpx_complex_free(c2) };
         unsafe { tpx_complex_free(c) };
         // No coordinates.
         let (ids, offsets) = ([0u32, 1, 2], [0usize, 3]);

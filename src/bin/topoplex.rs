@@ -238,7 +238,7 @@ fn decompose(file: &Path, out: &Path) -> Result<(), String> {
 
 fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Result<(), String> {
     use topoplex::io::complex_writer::{check_output, write_complex};
-    use topoplex::simplify::{Options, simplify};
+    use topoplex::simplify::{Options, simplify_owned};
     let options = Options {
         ratio,
         preserve_topology,
@@ -258,7 +258,7 @@ fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Re
         .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
     let progress = Progress::new(1);
     progress.bar.set_message("contracting edges");
-    let result = simplify(&complex, &options, &mut |done, total| {
+    let result = simplify_owned(complex, &options, &mut |done, total| {
         progress.bar.set_length(total as u64);
         progress.bar.set_position(done as u64);
     });

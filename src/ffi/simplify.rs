@@ -8,7 +8,7 @@ use super::complex::complex_failure;
 use super::{Failure, TpxComplex, TpxStatus, guard, handle, out_ptr};
 use crate::complex::Complex;
 use crate::io::complex_writer::{check_output, write_complex};
-use crate::simplify::{Options, SimplifyError, simplify};
+use crate::simplify::{Options, SimplifyError, check, simplify, simplify_owned};
 
 fn simplify_failure(e: SimplifyError) -> Failure {
     let status = match e {
@@ -76,6 +76,39 @@ pub unsafe extern "C" fn tpx_simplify(
     })
 }
 
+/// Simplifies `complex` in place, as `tpx_simplify` does: its content is replaced by the
+/// result. The input is released as soon as the editable copy is built, so the peak memory
+/// holds one copy of it, not two (use this when the input is no longer needed).
+///
+/// Errors (the complex is then unchanged): NULL_ARGUMENT, INVALID_RATIO, CANNOT_SIMPLIFY.
+/// After PANIC (an internal bug) the complex holds a single isolated vertex. Cost: as
+/// `tpx_simplify`.
+///
+/// # Safety
+/// `complex` must be NULL or a live `TpxComplex` that no other thread uses during the call.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_simplify_in_place(
+    complex: *mut TpxComplex,
+    ratio: f64,
+    preserve_topology: bool,
+) -> TpxStatus {
+    guard(|| {
+        let c = out_ptr(complex, "complex")?;
+        let options = options(ratio, preserve_topology)?;
+        check(&c.complex, &options).map_err(simplify_failure)?;
+        let placeholder = Complex::from_simplices(1, &[]).expect("one isolated vertex");
+        let input = std::mem::replace(&mut c.complex, placeholder);
+        match simplify_owned(input, &options, &mut |_, _| {}) {
+            Ok(done) => {
+                c.complex = done.complex;
+                Ok(())
+            }
+            // `check` passed, so this is a bug: the input is gone, report it as such.
+            Err(e) => Err(Failure::new(TpxStatus::Panic, e.to_string())),
+        }
+    })
+}
+
 /// Reads `input`, simplifies it as `tpx_simplify` does and writes the result to `output`, the
 /// format chosen by its extension (`.off`, `.obj`: dimension ≤ 2; `.mesh`: dimension ≤ 3 and
 /// 2 or 3 coordinates; `.simplices`: any). Both paths are NUL-terminated UTF-8. The output's
@@ -110,7 +143,7 @@ pub unsafe extern "C" fn tpx_simplify_file(
             complex.coords().map_or(0, |c| c.dim),
         )
         .map_err(write_failure)?;
-        let done = simplify(&complex, &options, &mut |_, _| {}).map_err(simplify_failure)?;
+        let done = simplify_owned(complex, &options, &mut |_, _| {}).map_err(simplify_failure)?;
         write_complex(&done.complex, output).map_err(write_failure)
     })
 }

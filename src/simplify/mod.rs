@@ -137,6 +137,23 @@ pub fn simplify(
     })
 }
 
+/// [`simplify`] taking the complex by value: it is dropped as soon as the live complex is
+/// built, so the peak memory holds one copy of the input, not two.
+pub fn simplify_owned(
+    complex: Complex,
+    options: &Options,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Simplified, SimplifyError> {
+    check(&complex, options)?;
+    let mut live = LiveComplex::from_complex(&complex);
+    drop(complex);
+    let stats = simplify_live(&mut live, options, progress)?;
+    Ok(Simplified {
+        complex: live.to_complex(),
+        stats,
+    })
+}
+
 /// The same on a live complex, in place (its coordinates must be finite; see [`simplify`]).
 pub fn simplify_live(
     live: &mut LiveComplex,
@@ -160,8 +177,9 @@ pub fn simplify_live(
     Ok(state.stats)
 }
 
-/// Refuses what [`simplify`] cannot do, before any work.
-fn check(complex: &Complex, options: &Options) -> Result<(), SimplifyError> {
+/// Refuses what [`simplify`] cannot do, before any work: a ratio outside (0, 1], no or
+/// non-finite coordinates, too many top simplices.
+pub fn check(complex: &Complex, options: &Options) -> Result<(), SimplifyError> {
     if !(options.ratio > 0.0 && options.ratio <= 1.0) {
         return Err(SimplifyError::Ratio(options.ratio));
     }
@@ -450,13 +468,20 @@ fn is_boundary_facet(live: &LiveComplex, facet: &[u32]) -> bool {
     .is_none()
 }
 
-/// Step 2: every live edge with its cost.
+/// Step 2: every live edge with its cost, found as the ring of each vertex (no edge list is
+/// materialised: the queue is the only thing this step allocates).
 fn fill_queue(state: &mut State) {
     state.queue.clear();
-    let edges = state.live.edges();
-    state.queue.reserve(edges.len());
-    for [a, b] in edges {
-        state.push(a, b);
+    for v in 0..state.live.vertex_slots() {
+        if !state.live.is_live(VertexId(v)) {
+            continue;
+        }
+        state.ring(v);
+        let ring = std::mem::take(&mut state.scratch.ring);
+        for &u in ring.iter().filter(|&&u| u > v) {
+            state.push(v, u);
+        }
+        state.scratch.ring = ring;
     }
     state.queue_limit = (2 * state.queue.len()).max(1024);
 }
