@@ -11,7 +11,7 @@
 //   simplify/cgal_sm       Surface_mesh add_vertex/add_face, edge_collapse with
 //                          GarlandHeckbert_plane_policies (cost and optimal placement) and a
 //                          stop predicate on the face count
-//   simplify/tpx           tpx_complex_from_arrays (with coordinates) + tpx_simplify(ratio)
+//   simplify/tpx           tpx_complex_from_arrays (with coordinates) + tpx_simplify_in_place
 //   simplify/tpx_preserve  the same with the link condition checked on every contraction
 // Counters: `elements` = input triangles, `faces_out` = triangles left, and `heap_bytes` /
 // `peak_heap_bytes` of one more untimed run (peak: the highest live heap during build +
@@ -157,16 +157,16 @@ size_t tpx_run(const Soup& soup, double ratio, bool preserve, std::string* why) 
     *why = tpx_message();
     return 0;
   }
-  TpxComplex* out = nullptr;
-  st = tpx_simplify(in, ratio, preserve, &out);
-  tpx_complex_free(in);
+  // In place, as the peers decimate their meshes in place.
+  st = tpx_simplify_in_place(in, ratio, preserve);
   if (st != TPX_STATUS_OK) {
     *why = tpx_message();
+    tpx_complex_free(in);
     return 0;
   }
   size_t n = 0;
-  tpx_complex_top_count(out, 2, &n);
-  tpx_complex_free(out);
+  tpx_complex_top_count(in, 2, &n);
+  tpx_complex_free(in);
   return n;
 }
 
