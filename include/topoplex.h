@@ -61,6 +61,22 @@
 #define TPX_KIND_DE 8
 
 /**
+ * The live complex (`TpxLive`, IA*-like and updatable). `tpx_structure_build` does not take it:
+ * a live complex is built with `tpx_live_from_complex`; the number names it in messages.
+ */
+#define TPX_KIND_IASTAR 9
+
+/**
+ * `tpx_live_contract` mode: only an edge satisfying the link condition (topology preserved).
+ */
+#define TPX_CONTRACT_PRESERVE_TOPOLOGY 0
+
+/**
+ * `tpx_live_contract` mode: any two live vertices (vertex unification).
+ */
+#define TPX_CONTRACT_FREE 1
+
+/**
  * Result of a fallible `tpx_*` call. Values are part of the ABI and never reused.
  */
 enum TpxStatus
@@ -132,6 +148,49 @@ enum TpxStatus
    */
   TPX_STATUS_PANIC = 14,
   /**
+   * A handle names no simplex of this structure: index or dimension out of range, `NONE`,
+   * unknown form bits.
+   */
+  TPX_STATUS_INVALID_HANDLE = 15,
+  /**
+   * A handle of a simplex that an edit removed (editable structures only).
+   */
+  TPX_STATUS_STALE_HANDLE = 16,
+  /**
+   * A handle of the wrong kind for the call (an edge where a vertex is needed).
+   */
+  TPX_STATUS_WRONG_HANDLE_KIND = 17,
+  /**
+   * A handle made by another structure (its owner stamp does not match).
+   */
+  TPX_STATUS_FOREIGN_HANDLE = 18,
+  /**
+   * Live complex: a topology-preserving contraction of two vertices that are not an edge.
+   */
+  TPX_STATUS_NOT_AN_EDGE = 20,
+  /**
+   * Live complex: the link condition Lk(a) ∩ Lk(b) = Lk(ab) fails; the message names the
+   * dimension and a lowest-dimensional offending link simplex.
+   */
+  TPX_STATUS_LINK_CONDITION_FAILS = 21,
+  /**
+   * Live complex: inserting a simplex that is already in the complex (top or face).
+   */
+  TPX_STATUS_SIMPLEX_ALREADY_PRESENT = 22,
+  /**
+   * Live complex: removing a simplex that is a proper face of another (message: a coface).
+   */
+  TPX_STATUS_NOT_A_TOP_SIMPLEX = 23,
+  /**
+   * Live complex: a vertex id out of range or of a removed (contracted, deleted) vertex.
+   */
+  TPX_STATUS_DEAD_VERTEX = 24,
+  /**
+   * Live complex: an undo record from before `tpx_live_compact`, applied already, or whose
+   * contraction's result later edits changed (the message says which).
+   */
+  TPX_STATUS_STALE_UNDO = 25,
+  /**
    * `tpx_simplify*`: the ratio is not in (0, 1] (NaN included).
    */
   TPX_STATUS_INVALID_RATIO = 27,
@@ -168,6 +227,12 @@ typedef struct TpxComplex TpxComplex;
 typedef struct TpxDecomposition TpxDecomposition;
 
 /**
+ * An updatable simplicial complex (opaque): any dimension, non-manifold, mixed-dimensional.
+ * Create with `tpx_live_from_complex`, release with `tpx_live_free`.
+ */
+typedef struct TpxLive TpxLive;
+
+/**
  * R_{p,q} of every p-simplex, in CSR form (opaque). Row i belongs to the i-th p-simplex in
  * `tpx_structure_simplices` order. Release with `tpx_relation_table_free`.
  */
@@ -179,6 +244,12 @@ typedef struct TpxRelationTable TpxRelationTable;
  * threads at once.
  */
 typedef struct TpxStructure TpxStructure;
+
+/**
+ * The undo record of one contraction (opaque), for `tpx_live_split`. Release with
+ * `tpx_undo_free`; it does not borrow the live complex.
+ */
+typedef struct TpxUndo TpxUndo;
 
 /**
  * Storage of a structure: what the papers count and what the process really holds.
@@ -412,6 +483,244 @@ TpxStatus tpx_decomposition_copies(const struct TpxDecomposition *d,
                                    const uint32_t **copy_vertex,
                                    const uint32_t **copy_component,
                                    size_t *len);
+
+/**
+ * Builds a live complex from `c`: the same vertex ids, every top simplex with its input
+ * winding, the coordinates copied. `*out` receives a new handle owned by the caller (free with
+ * `tpx_live_free`); it does not borrow `c`. Errors: NULL_ARGUMENT. Cost: O(size of the top
+ * simplices).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_from_complex(const struct TpxComplex *c, struct TpxLive **out);
+
+/**
+ * Releases a live complex. NULL is a no-op.
+ *
+ * # Safety
+ * `l` must be NULL or a live handle from this library, not used afterwards.
+ */
+void tpx_live_free(struct TpxLive *l);
+
+/**
+ * Releases an undo record. NULL is a no-op.
+ *
+ * # Safety
+ * `u` must be NULL or a handle from `tpx_live_contract`, not used afterwards.
+ */
+void tpx_undo_free(struct TpxUndo *u);
+
+/**
+ * Number of vertex slots into `*out`: vertex ids are `0 .. slots`, some of them removed
+ * (contracted away or deleted) until `tpx_live_compact`. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_vertex_slots(const struct TpxLive *l, uint32_t *out);
+
+/**
+ * Number of live vertices into `*out`. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_vertex_count(const struct TpxLive *l, uint32_t *out);
+
+/**
+ * Whether vertex `v` is live (1) or removed / out of range (0), into `*out`. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_is_vertex(const struct TpxLive *l, uint32_t v, uint32_t *out);
+
+/**
+ * Dimension of the complex (highest live top simplex) into `*out`. O(d).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_dimension(const struct TpxLive *l, uint32_t *out);
+
+/**
+ * Number of live top p-simplices into `*out` (p = 0: isolated vertices). O(1) for p ≥ 1,
+ * O(vertices) for p = 0.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_top_count(const struct TpxLive *l, uint32_t p, size_t *out);
+
+/**
+ * The live top p-simplices (p ≥ 1) as rows of p+1 vertex ids in their stored order (input
+ * winding, b replaced by a in place after contractions), in slot order, into `buf`;
+ * `*out_len` receives the number of uint32_t. Errors: NULL_ARGUMENT, BUFFER_TOO_SMALL (nothing
+ * copied, `*out_len` = needed length). Cost: O(slots of dimension p).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` uint32_t.
+ */
+TpxStatus tpx_live_top_simplices(const struct TpxLive *l,
+                                 uint32_t p,
+                                 uint32_t *buf,
+                                 size_t buf_len,
+                                 size_t *out_len);
+
+/**
+ * R_{p,q}(σ) for σ given by vertex ids in any order (p = simplex_len − 1), as rows of q+1
+ * ascending ids in ascending lexicographic order, into `buf`; `*out_len` receives the number
+ * of uint32_t. Errors: NULL_ARGUMENT, INVALID_SIMPLEX, NOT_IN_COMPLEX (also for a removed
+ * vertex), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL. Cost: module doc of `live` (linear in the
+ * stars of σ's vertices).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `simplex` has `simplex_len` ids, `buf` room for `buf_len`.
+ */
+TpxStatus tpx_live_relation(const struct TpxLive *l,
+                            const uint32_t *simplex,
+                            size_t simplex_len,
+                            uint32_t q,
+                            uint32_t *buf,
+                            size_t buf_len,
+                            size_t *out_len);
+
+/**
+ * The coordinates of live vertex `v` (`tpx_live_coord_dim` doubles) into `buf`; `*out_len`
+ * receives their number. Errors: NULL_ARGUMENT, DEAD_VERTEX, BUFFER_TOO_SMALL. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` doubles.
+ */
+TpxStatus tpx_live_coords(const struct TpxLive *l,
+                          uint32_t v,
+                          double *buf,
+                          size_t buf_len,
+                          size_t *out_len);
+
+/**
+ * Coordinates per vertex into `*out` (0 when the complex has none). O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_coord_dim(const struct TpxLive *l, size_t *out);
+
+/**
+ * Sets the coordinates of live vertex `v` from `xyz[0 .. len]` (`len` must be the coordinate
+ * dimension). Errors: NULL_ARGUMENT, DEAD_VERTEX, INVALID_ARGUMENT (wrong length). O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `xyz` has `len` doubles.
+ */
+TpxStatus tpx_live_set_coords(struct TpxLive *l, uint32_t v, const double *xyz, size_t len);
+
+/**
+ * Adds an isolated vertex at `xyz[0 .. len]`; its id into `*out`. Errors: NULL_ARGUMENT,
+ * INVALID_ARGUMENT (wrong length). Amortised O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `xyz` has `len` doubles.
+ */
+TpxStatus tpx_live_add_vertex(struct TpxLive *l, const double *xyz, size_t len, uint32_t *out);
+
+/**
+ * Inserts the simplex `ids[0 .. len]` (its vertex order is kept as its winding) as a top
+ * simplex; top simplices it contains become its faces. Errors: NULL_ARGUMENT, INVALID_SIMPLEX
+ * (empty, repeated vertex, more than 16), DEAD_VERTEX, SIMPLEX_ALREADY_PRESENT (also for a
+ * single vertex: add vertices with `tpx_live_add_vertex`). Cost: O(d² Σ_{v∈σ} |St(v)|).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `ids` has `len` ids.
+ */
+TpxStatus tpx_live_insert_top(struct TpxLive *l, const uint32_t *ids, size_t len);
+
+/**
+ * Removes the top simplex `ids[0 .. len]` (any order). Its faces that no other top simplex
+ * holds go too, except its vertices, which stay (isolated if nothing else holds them); a
+ * single isolated vertex is removed itself. Errors: NULL_ARGUMENT, INVALID_SIMPLEX,
+ * DEAD_VERTEX, NOT_IN_COMPLEX, NOT_A_TOP_SIMPLEX. Cost: O(Σ_{v∈σ} |St(v)|).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `ids` has `len` ids.
+ */
+TpxStatus tpx_live_remove_top(struct TpxLive *l, const uint32_t *ids, size_t len);
+
+/**
+ * Checks the link condition for edge {a, b} without changing anything: OK, NOT_AN_EDGE, or
+ * LINK_CONDITION_FAILS (message: the dimension and an offending link simplex); DEAD_VERTEX.
+ * Cost: O(d (|St(a)| + |St(b)|)) on meshes.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_link_condition(const struct TpxLive *l, uint32_t a, uint32_t b);
+
+/**
+ * Contracts b into a (`mode`: `TPX_CONTRACT_PRESERVE_TOPOLOGY` or `TPX_CONTRACT_FREE`), moving
+ * a to `position[0 .. position_len]` when `position` is not NULL. When `out_undo` is not NULL
+ * it receives a new undo record (owned by the caller, free with `tpx_undo_free`) for
+ * `tpx_live_split`. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (unknown mode, wrong coordinate
+ * count), INVALID_SIMPLEX (a == b), DEAD_VERTEX, and in topology-preserving mode NOT_AN_EDGE
+ * or LINK_CONDITION_FAILS. Refused contractions change nothing. Cost: O(d (|St(a)| + |St(b)|))
+ * per top simplex of St(b) on meshes.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `position` has `position_len` doubles.
+ */
+TpxStatus tpx_live_contract(struct TpxLive *l,
+                            uint32_t a,
+                            uint32_t b,
+                            uint32_t mode,
+                            const double *position,
+                            size_t position_len,
+                            struct TpxUndo **out_undo);
+
+/**
+ * Undoes the contraction that produced `u` (vertex split): same ids, slots, winding and
+ * coordinates as before it. `u` stays owned by the caller. Errors: NULL_ARGUMENT, STALE_UNDO
+ * (from before `tpx_live_compact`, applied already, or later edits changed what it restores).
+ * Cost: that of the contraction.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_split(struct TpxLive *l, const struct TpxUndo *u);
+
+/**
+ * Drops removed vertices and top slots, renumbering the live ones densely in ascending order.
+ * When `vertex_map` is not NULL it receives, for each old vertex id, its new id (`UINT32_MAX`
+ * for a removed vertex): `*out_len` = old `tpx_live_vertex_slots`; with a buffer too short
+ * nothing is compacted (BUFFER_TOO_SMALL, `*out_len` = needed length). Undo records issued
+ * before are refused afterwards (STALE_UNDO). Cost: O(size).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `vertex_map` has room for `map_len` uint32_t.
+ */
+TpxStatus tpx_live_compact(struct TpxLive *l,
+                           uint32_t *vertex_map,
+                           size_t map_len,
+                           size_t *out_len);
+
+/**
+ * The live complex as a new `TpxComplex` (live vertices renumbered densely in ascending order,
+ * as `tpx_live_compact` would; windings and coordinates kept), owned by the caller: freeze it
+ * into any structure with `tpx_structure_build`. Errors: NULL_ARGUMENT. Cost: O(size).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_to_complex(const struct TpxLive *l, struct TpxComplex **out);
+
+/**
+ * Checks every invariant of the live complex: OK, or PANIC with the broken invariant in the
+ * message (a library bug). Cost: O(d² Σ_v |St(v)|²) — for tests.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_validate(const struct TpxLive *l);
 
 /**
  * Simplifies `complex` by quadric-error edge contraction (Garland–Heckbert, generalised to

@@ -147,6 +147,8 @@ class Rows {
 };
 
 /* A normalised simplicial complex (owns a TpxComplex). */
+class Live;
+
 class Complex {
  public:
   /* Simplices as lists of vertex ids in any order over the vertices 0 .. n_vertices-1. */
@@ -233,6 +235,7 @@ class Complex {
   const TpxComplex *get() const noexcept { return c_; }
 
  private:
+  friend class Live;
   explicit Complex(TpxComplex *c) noexcept : c_(c) {}
   TpxComplex *c_ = nullptr;
 };
@@ -402,6 +405,169 @@ class Structure {
 
  private:
   TpxStructure *s_ = nullptr;
+};
+
+/* What Live::contract may unify (values of TPX_CONTRACT_*). */
+enum class ContractMode : std::uint32_t {
+  PreserveTopology = TPX_CONTRACT_PRESERVE_TOPOLOGY,
+  Free = TPX_CONTRACT_FREE,
+};
+
+/* The undo record of one contraction, for Live::split. Move-only owner. */
+class Undo {
+ public:
+  Undo() = default;
+  explicit Undo(TpxUndo *u) noexcept : u_(u) {}
+  Undo(Undo &&o) noexcept : u_(std::exchange(o.u_, nullptr)) {}
+  Undo &operator=(Undo &&o) noexcept {
+    if (this != &o) {
+      tpx_undo_free(u_);
+      u_ = std::exchange(o.u_, nullptr);
+    }
+    return *this;
+  }
+  Undo(const Undo &) = delete;
+  Undo &operator=(const Undo &) = delete;
+  ~Undo() { tpx_undo_free(u_); }
+  const TpxUndo *get() const noexcept { return u_; }
+
+ private:
+  TpxUndo *u_ = nullptr;
+};
+
+/* An updatable complex (any dimension, non-manifold): insert/remove top simplices, contract
+ * edges (link-checked or free), split (undo), move vertices. Edits need exclusive access; a
+ * refused edit throws Error (status says why: TPX_STATUS_NOT_AN_EDGE,
+ * TPX_STATUS_LINK_CONDITION_FAILS, ...) and leaves the complex unchanged. */
+class Live {
+ public:
+  explicit Live(const Complex &c) { detail::check(tpx_live_from_complex(c.get(), &l_)); }
+  Live(Live &&o) noexcept : l_(std::exchange(o.l_, nullptr)) {}
+  Live &operator=(Live &&o) noexcept {
+    if (this != &o) {
+      tpx_live_free(l_);
+      l_ = std::exchange(o.l_, nullptr);
+    }
+    return *this;
+  }
+  Live(const Live &) = delete;
+  Live &operator=(const Live &) = delete;
+  ~Live() { tpx_live_free(l_); }
+
+  std::uint32_t vertex_slots() const {
+    std::uint32_t n = 0;
+    detail::check(tpx_live_vertex_slots(l_, &n));
+    return n;
+  }
+  std::uint32_t vertex_count() const {
+    std::uint32_t n = 0;
+    detail::check(tpx_live_vertex_count(l_, &n));
+    return n;
+  }
+  bool is_vertex(std::uint32_t v) const {
+    std::uint32_t b = 0;
+    detail::check(tpx_live_is_vertex(l_, v, &b));
+    return b != 0;
+  }
+  std::uint32_t dimension() const {
+    std::uint32_t d = 0;
+    detail::check(tpx_live_dimension(l_, &d));
+    return d;
+  }
+  std::size_t top_count(std::uint32_t p) const {
+    std::size_t n = 0;
+    detail::check(tpx_live_top_count(l_, p, &n));
+    return n;
+  }
+  /* Live top p-simplices (p >= 1), vertices in stored (winding) order. */
+  Rows top_simplices(std::uint32_t p) const {
+    std::size_t len = 0;
+    TpxStatus st = tpx_live_top_simplices(l_, p, nullptr, 0, &len);
+    std::vector<std::uint32_t> buf(len);
+    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+      st = tpx_live_top_simplices(l_, p, buf.data(), buf.size(), &len);
+    }
+    detail::check(st);
+    buf.resize(len);
+    return Rows(std::move(buf), p + 1);
+  }
+  /* R_{p,q}(simplex), rows of q+1 ascending ids, lexicographic. */
+  Rows relation(const std::vector<std::uint32_t> &simplex, std::uint32_t q) const {
+    std::vector<std::uint32_t> buf(64);
+    std::size_t len = 0;
+    TpxStatus st = tpx_live_relation(l_, simplex.data(), simplex.size(), q, buf.data(),
+                                     buf.size(), &len);
+    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+      buf.resize(len);
+      st = tpx_live_relation(l_, simplex.data(), simplex.size(), q, buf.data(), buf.size(), &len);
+    }
+    detail::check(st);
+    buf.resize(len);
+    return Rows(std::move(buf), q + 1);
+  }
+  std::vector<double> coords(std::uint32_t v) const {
+    std::size_t k = 0;
+    detail::check(tpx_live_coord_dim(l_, &k));
+    std::vector<double> xyz(k);
+    std::size_t len = 0;
+    detail::check(tpx_live_coords(l_, v, xyz.data(), xyz.size(), &len));
+    return xyz;
+  }
+  void set_coords(std::uint32_t v, const std::vector<double> &xyz) {
+    detail::check(tpx_live_set_coords(l_, v, xyz.data(), xyz.size()));
+  }
+  std::uint32_t add_vertex(const std::vector<double> &xyz) {
+    std::uint32_t v = 0;
+    detail::check(tpx_live_add_vertex(l_, xyz.data(), xyz.size(), &v));
+    return v;
+  }
+  void insert_top(const std::vector<std::uint32_t> &simplex) {
+    detail::check(tpx_live_insert_top(l_, simplex.data(), simplex.size()));
+  }
+  void remove_top(const std::vector<std::uint32_t> &simplex) {
+    detail::check(tpx_live_remove_top(l_, simplex.data(), simplex.size()));
+  }
+  /* Whether {a, b} is an edge satisfying the link condition (no exception). */
+  bool link_condition(std::uint32_t a, std::uint32_t b) const {
+    TpxStatus st = tpx_live_link_condition(l_, a, b);
+    if (st == TPX_STATUS_NOT_AN_EDGE || st == TPX_STATUS_LINK_CONDITION_FAILS) {
+      return false;
+    }
+    detail::check(st);
+    return true;
+  }
+  /* Contracts b into a (a moves to `position` when not empty); returns the undo record. */
+  Undo contract(std::uint32_t a, std::uint32_t b,
+                ContractMode mode = ContractMode::PreserveTopology,
+                const std::vector<double> &position = {}) {
+    TpxUndo *u = nullptr;
+    detail::check(tpx_live_contract(l_, a, b, static_cast<std::uint32_t>(mode),
+                                    position.empty() ? nullptr : position.data(),
+                                    position.size(), &u));
+    return Undo(u);
+  }
+  /* Undoes a contraction (vertex split). */
+  void split(const Undo &u) { detail::check(tpx_live_split(l_, u.get())); }
+  /* Drops removed vertices and slots; returns old -> new vertex ids (UINT32_MAX: removed). */
+  std::vector<std::uint32_t> compact() {
+    std::vector<std::uint32_t> map(vertex_slots());
+    std::size_t len = 0;
+    detail::check(tpx_live_compact(l_, map.data(), map.size(), &len));
+    map.resize(len);
+    return map;
+  }
+  /* A frozen copy, to build any Structure from. */
+  Complex to_complex() const {
+    TpxComplex *c = nullptr;
+    detail::check(tpx_live_to_complex(l_, &c));
+    return Complex(c);
+  }
+  void validate() const { detail::check(tpx_live_validate(l_)); }
+
+  const TpxLive *get() const noexcept { return l_; }
+
+ private:
+  TpxLive *l_ = nullptr;
 };
 
 inline std::string version() { return tpx_version(); }

@@ -15,6 +15,7 @@ pub mod complex;
 #[allow(unsafe_code)]
 pub mod ffi;
 pub mod fixtures;
+pub mod handle;
 pub mod io;
 pub mod live;
 pub mod oracle;
@@ -24,5 +25,6 @@ pub mod simplify;
 pub mod structures;
 
 pub use complex::{Complex, ComplexError};
+pub use handle::{Fans, Navigate, Order, SimplexHandle, TopId, VertexId, Vertices};
 pub use relation::{QueryError, Storage, StructureKind, Topology};
 pub use structures::{BuildError, build};

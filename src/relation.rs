@@ -14,6 +14,7 @@
 use std::fmt;
 
 use crate::complex::{MAX_DIMENSION, sort_dedup_rows};
+use crate::handle::{Navigate, SimplexHandle};
 
 /// Storage of a built structure: what the papers count, and what the process really holds.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
@@ -107,6 +108,28 @@ pub enum QueryError {
     NotInComplex { simplex: Vec<u32> },
     #[error("relation R_{{{p},{q}}}: dimension {q} is above the complex's dimension {dim}")]
     DimensionOutOfRange { p: usize, q: usize, dim: usize },
+    /// A handle that names no simplex of this structure (out of range, `NONE`, bad form).
+    #[error("invalid handle {handle}: {reason}")]
+    InvalidHandle {
+        /// The handle as given.
+        handle: SimplexHandle,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// A handle of a simplex that an edit removed.
+    #[error("stale handle {handle}: the simplex was removed")]
+    StaleHandle {
+        /// The handle as given.
+        handle: SimplexHandle,
+    },
+    /// A handle of the wrong kind for the operation (an edge where a vertex is needed).
+    #[error("handle {handle} is not {expected}")]
+    WrongHandleKind {
+        /// The handle as given.
+        handle: SimplexHandle,
+        /// What the operation needs ("a vertex", "an edge").
+        expected: &'static str,
+    },
 }
 
 /// The relation API. Implementors provide [`Topology::query`] for a validated simplex; callers
@@ -146,6 +169,12 @@ pub trait Topology: Send + Sync {
     /// (name, value) pairs. None by default.
     fn summary(&self) -> Vec<(&'static str, u64)> {
         Vec::new()
+    }
+
+    /// This structure's handle navigation ([`Navigate`]), when it has one (every structure of
+    /// this crate does).
+    fn as_navigate(&self) -> Option<&dyn Navigate> {
+        None
     }
 
     /// R_{p,q}(σ) for σ given by vertex ids in any order; p = |σ| − 1. Validates σ (no repeated

@@ -23,6 +23,7 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 
 mod complex;
 mod decomposition;
+mod live;
 mod simplify;
 mod structure;
 #[cfg(test)]
@@ -30,6 +31,7 @@ mod tests;
 
 pub use complex::*;
 pub use decomposition::*;
+pub use live::*;
 pub use simplify::*;
 pub use structure::*;
 
@@ -74,6 +76,29 @@ pub enum TpxStatus {
     TooLarge = 13,
     /// An internal bug was caught at the boundary; the message has the panic text.
     Panic = 14,
+    /// A handle names no simplex of this structure: index or dimension out of range, `NONE`,
+    /// unknown form bits.
+    InvalidHandle = 15,
+    /// A handle of a simplex that an edit removed (editable structures only).
+    StaleHandle = 16,
+    /// A handle of the wrong kind for the call (an edge where a vertex is needed).
+    WrongHandleKind = 17,
+    /// A handle made by another structure (its owner stamp does not match).
+    ForeignHandle = 18,
+    /// Live complex: a topology-preserving contraction of two vertices that are not an edge.
+    NotAnEdge = 20,
+    /// Live complex: the link condition Lk(a) ∩ Lk(b) = Lk(ab) fails; the message names the
+    /// dimension and a lowest-dimensional offending link simplex.
+    LinkConditionFails = 21,
+    /// Live complex: inserting a simplex that is already in the complex (top or face).
+    SimplexAlreadyPresent = 22,
+    /// Live complex: removing a simplex that is a proper face of another (message: a coface).
+    NotATopSimplex = 23,
+    /// Live complex: a vertex id out of range or of a removed (contracted, deleted) vertex.
+    DeadVertex = 24,
+    /// Live complex: an undo record from before `tpx_live_compact`, applied already, or whose
+    /// contraction's result later edits changed (the message says which).
+    StaleUndo = 25,
     /// `tpx_simplify*`: the ratio is not in (0, 1] (NaN included).
     InvalidRatio = 27,
     /// `tpx_simplify_file`: the output cannot be written (unknown extension, a format that
@@ -102,6 +127,9 @@ pub const TPX_KIND_PE: u32 = 6;
 pub const TPX_KIND_LE: u32 = 7;
 /// Directed Edge structure.
 pub const TPX_KIND_DE: u32 = 8;
+/// The live complex (`TpxLive`, IA*-like and updatable). `tpx_structure_build` does not take it:
+/// a live complex is built with `tpx_live_from_complex`; the number names it in messages.
+pub const TPX_KIND_IASTAR: u32 = 9;
 
 /// A failure on its way to C: the status and the message for `tpx_last_error_message`.
 pub(crate) struct Failure {

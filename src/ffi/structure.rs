@@ -66,6 +66,9 @@ fn query_failure(e: QueryError) -> Failure {
         | QueryError::TooManyVertices { .. }
         | QueryError::RepeatedVertex { .. }
         | QueryError::VertexOutOfRange { .. } => TpxStatus::InvalidSimplex,
+        QueryError::InvalidHandle { .. } => TpxStatus::InvalidHandle,
+        QueryError::StaleHandle { .. } => TpxStatus::StaleHandle,
+        QueryError::WrongHandleKind { .. } => TpxStatus::WrongHandleKind,
     };
     Failure::new(status, e.to_string())
 }
@@ -332,7 +335,7 @@ fn with_scratch<R>(f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
 /// check first (many structures answer in order already), then for rows of 2 to 4 ids a sort of
 /// packed integer keys (one comparison per pair instead of a lexicographic loop: this sort was
 /// a quarter of a vertex-star query), on the stack for the usual small answers.
-pub(super) fn sort_rows_in_place(rows: &mut Vec<u32>, arity: usize) {
+pub(crate) fn sort_rows_in_place(rows: &mut Vec<u32>, arity: usize) {
     /// Rows per answer sorted through keys on the stack; longer answers sort the rows directly.
     const STACK_ROWS: usize = 64;
     fn sort_fixed<const N: usize>(rows: &mut [u32]) {

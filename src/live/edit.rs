@@ -3,7 +3,7 @@
 //! structure unchanged, then mutates.
 
 use super::{
-    Key, LiveComplex, NONE, Refusal, SLOT_MASK, TopId, VertexId, pack, show, subset, unpack,
+    Image, Key, LiveComplex, NONE, Refusal, SLOT_MASK, TopId, VertexId, pack, show, subset, unpack,
 };
 use crate::complex::MAX_DIMENSION;
 
@@ -27,24 +27,48 @@ pub struct UndoRecord {
     /// The vertex removed by the contraction (revived by the split).
     pub b: VertexId,
     epoch: u32,
-    a_coords: Vec<f64>,
-    b_coords: Vec<f64>,
-    /// Top simplices the contraction retired: packed id and vertices (winding as stored).
-    removed: Vec<(u32, Vec<u32>)>,
-    /// Top simplices the contraction created: packed id and vertices.
-    inserted: Vec<(u32, Vec<u32>)>,
+    /// a's then b's coordinates before the contraction.
+    coords: Vec<f64>,
+    /// Top simplices the contraction retired (winding as stored).
+    removed: TopList,
+    /// Top simplices the contraction created.
+    inserted: TopList,
+}
+
+/// Top simplices as packed ids and their vertices, in two flat arrays (a contraction's undo
+/// record allocates three arrays, not one per simplex).
+#[derive(Debug, Clone, Default, PartialEq)]
+struct TopList {
+    raw: Vec<u32>,
+    ids: Vec<u32>,
+}
+
+impl TopList {
+    fn push(&mut self, raw: u32, s: &[u32]) {
+        self.raw.push(raw);
+        self.ids.extend_from_slice(s);
+    }
+
+    fn iter(&self) -> impl Iterator<Item = (u32, &[u32])> + '_ {
+        let mut at = 0;
+        self.raw.iter().map(move |&raw| {
+            let w = unpack(raw).0 + 1;
+            at += w;
+            (raw, &self.ids[at - w..at])
+        })
+    }
 }
 
 impl UndoRecord {
     /// Top simplices the contraction removed (those of St(b), and those of St(a) that became
     /// faces of an image), with their vertices before the contraction.
     pub fn removed_tops(&self) -> impl Iterator<Item = &[u32]> + '_ {
-        self.removed.iter().map(|(_, s)| s.as_slice())
+        self.removed.iter().map(|(_, s)| s)
     }
 
     /// Top simplices the contraction created (images of St(b) with b replaced by a).
     pub fn inserted_tops(&self) -> impl Iterator<Item = TopId> + '_ {
-        self.inserted.iter().map(|&(raw, _)| TopId {
+        self.inserted.raw.iter().map(|&raw| TopId {
             raw,
             epoch: self.epoch,
         })
@@ -201,13 +225,16 @@ impl LiveComplex {
             a,
             b,
             epoch: self.epoch,
-            a_coords: self.coords[a.index() * k..(a.index() + 1) * k].to_vec(),
-            b_coords: self.coords[b.index() * k..(b.index() + 1) * k].to_vec(),
-            removed: Vec::new(),
-            inserted: Vec::new(),
+            coords: [a, b]
+                .iter()
+                .flat_map(|v| &self.coords[v.index() * k..(v.index() + 1) * k])
+                .copied()
+                .collect(),
+            removed: TopList::default(),
+            inserted: TopList::default(),
         };
-        let images = self.retire_star_of_b(a.0, b.0, &mut undo);
-        self.place_images(a.0, images, &mut undo);
+        self.retire_star_of_b(a.0, b.0, &mut undo);
+        self.place_images(a.0, &mut undo);
         self.alive[b.index()] = false;
         self.live_vertices -= 1;
         if let Some(xyz) = new_position {
@@ -216,72 +243,85 @@ impl LiveComplex {
         Ok(undo)
     }
 
-    /// Step 1 of a contraction: detaches every top simplex of St(b) and returns their images
-    /// (b replaced by a in place, or dropped where a is already there), deduplicated.
-    fn retire_star_of_b(&mut self, a: u32, b: u32, undo: &mut UndoRecord) -> Vec<Vec<u32>> {
+    /// Step 1 of a contraction: detaches every top simplex of St(b) and leaves their images
+    /// (b replaced by a in place, or dropped where a is already there), deduplicated, in
+    /// `self.images`.
+    fn retire_star_of_b(&mut self, a: u32, b: u32, undo: &mut UndoRecord) {
         let star_b = std::mem::take(&mut self.star[b as usize]);
-        let mut images: Vec<Vec<u32>> = Vec::with_capacity(star_b.len());
-        for &raw in &star_b {
-            let t = self.top_raw(raw);
-            let image: Vec<u32> = if t.contains(&a) {
-                t.iter().copied().filter(|&v| v != b).collect()
-            } else {
-                t.iter().map(|&v| if v == b { a } else { v }).collect()
-            };
-            if image.len() > 1 && !images.iter().any(|s| same_set(s, &image)) {
-                images.push(image);
-            }
-        }
-        // Restore b's star so `detach` finds its entries, then detach in star order.
-        self.star[b as usize] = star_b.clone();
+        let mut images = std::mem::take(&mut self.images);
+        images.clear();
         for &raw in &star_b {
             let (p, slot) = unpack(raw);
-            let s = self.detach(p, slot as u32);
-            undo.removed.push((raw, s));
+            let t = &self.tops[p][slot * (p + 1)..(slot + 1) * (p + 1)];
+            let mut img = Image::default();
+            let has_a = t.contains(&a);
+            for &v in t {
+                if v != b {
+                    img.push(v);
+                } else if !has_a {
+                    img.push(a);
+                }
+            }
+            if img.len > 1
+                && !images
+                    .iter()
+                    .any(|o| same_set(o.as_slice(), img.as_slice()))
+            {
+                images.push(img);
+            }
+            undo.removed.push(raw, t);
+            self.detach_except(p, slot as u32, b);
         }
-        images
+        self.images = images;
+        // Keep b's (now empty) star allocation for a later split.
+        self.star[b as usize] = star_b;
+        self.star[b as usize].clear();
     }
 
     /// Step 2 of a contraction: inserts the images that are still top simplices (not a face of
     /// another image or of a top of St(a)) and retires the tops of St(a) they absorb.
-    fn place_images(&mut self, a: u32, images: Vec<Vec<u32>>, undo: &mut UndoRecord) {
-        let keep: Vec<bool> = images
-            .iter()
-            .enumerate()
-            .map(|(i, img)| {
-                let under_image = images
-                    .iter()
-                    .enumerate()
-                    .any(|(j, o)| j != i && o.len() > img.len() && subset(img, o));
-                let under_top = self.star[a as usize]
-                    .iter()
-                    .any(|&raw| subset(img, self.top_raw(raw)));
-                !under_image && !under_top
-            })
-            .collect();
-        let kept: Vec<&Vec<u32>> = images
-            .iter()
-            .zip(&keep)
-            .filter(|(_, k)| **k)
-            .map(|(s, _)| s)
-            .collect();
-        let absorbed: Vec<u32> = self.star[a as usize]
-            .iter()
-            .copied()
-            .filter(|&raw| {
-                let t = self.top_raw(raw);
-                kept.iter().any(|img| img.len() > t.len() && subset(t, img))
-            })
-            .collect();
-        for raw in absorbed {
-            let (p, slot) = unpack(raw);
-            let s = self.detach(p, slot as u32);
-            undo.removed.push((raw, s));
+    fn place_images(&mut self, a: u32, undo: &mut UndoRecord) {
+        let mut images = std::mem::take(&mut self.images);
+        // An image under another image or under a top of St(a) is a face, not a top.
+        let n = images.len();
+        let mut keep = 0;
+        for i in 0..n {
+            let img = images[i];
+            let under_image = (0..n).any(|j| {
+                j != i && images[j].len > img.len && subset(img.as_slice(), images[j].as_slice())
+            });
+            // A top holding the image is in the star of each of its vertices: scan the smallest.
+            let hub = self.smallest_star(img.as_slice());
+            let under_top = self.star[hub as usize]
+                .iter()
+                .any(|&raw| subset(img.as_slice(), self.top_raw(raw)));
+            if !under_image && !under_top {
+                images.swap(keep, i);
+                keep += 1;
+            }
         }
-        for img in kept {
-            let slot = self.push_top(img);
-            undo.inserted.push((pack(img.len() - 1, slot), img.clone()));
+        images.truncate(keep);
+        let mut k = 0;
+        while k < self.star[a as usize].len() {
+            let raw = self.star[a as usize][k];
+            let t = self.top_raw(raw);
+            if images
+                .iter()
+                .any(|img| img.len as usize > t.len() && subset(t, img.as_slice()))
+            {
+                let (p, slot) = unpack(raw);
+                undo.removed.push(raw, t);
+                self.detach(p, slot as u32);
+            } else {
+                k += 1;
+            }
         }
+        for img in &images {
+            let slot = self.push_top(img.as_slice());
+            undo.inserted
+                .push(pack(img.len as usize - 1, slot), img.as_slice());
+        }
+        self.images = images;
     }
 
     /// Undoes the contraction that returned `undo` (vertex split): b is revived with its
@@ -292,22 +332,23 @@ impl LiveComplex {
     /// (a created top simplex removed or a restored one now a face of another simplex).
     pub fn split(&mut self, undo: &UndoRecord) -> Result<(), Refusal> {
         self.check_undo(undo)?;
-        for &(raw, _) in &undo.inserted {
+        for &raw in &undo.inserted.raw {
             let (p, slot) = unpack(raw);
             self.detach(p, slot as u32);
         }
         let b = undo.b.index();
         self.alive[b] = true;
         self.live_vertices += 1;
-        for (raw, s) in &undo.removed {
-            let (p, slot) = unpack(*raw);
+        for (raw, s) in undo.removed.iter() {
+            let (p, slot) = unpack(raw);
             let w = p + 1;
             self.tops[p][slot * w..(slot + 1) * w].copy_from_slice(s);
             self.attach(p, slot as u32);
         }
         let k = self.coord_dim;
-        self.coords[undo.a.index() * k..(undo.a.index() + 1) * k].copy_from_slice(&undo.a_coords);
-        self.coords[b * k..(b + 1) * k].copy_from_slice(&undo.b_coords);
+        self.coords[undo.a.index() * k..(undo.a.index() + 1) * k]
+            .copy_from_slice(&undo.coords[..k]);
+        self.coords[b * k..(b + 1) * k].copy_from_slice(&undo.coords[k..]);
         Ok(())
     }
 
@@ -323,15 +364,15 @@ impl LiveComplex {
                 "vertex {b} is live or vertex {a} is not: split already applied or out of order",
             ));
         }
-        for (raw, s) in &undo.inserted {
-            let (p, slot) = unpack(*raw);
-            if self.tops[p].get(slot * (p + 1)) == Some(&NONE) || self.top_raw(*raw) != &s[..] {
+        for (raw, s) in undo.inserted.iter() {
+            let (p, slot) = unpack(raw);
+            if self.tops[p].get(slot * (p + 1)) == Some(&NONE) || self.top_raw(raw) != s {
                 return stale(format!("created top simplex {} was edited since", show(s)));
             }
         }
-        let inserted: Vec<u32> = undo.inserted.iter().map(|&(raw, _)| raw).collect();
-        for (raw, s) in &undo.removed {
-            let (p, slot) = unpack(*raw);
+        let inserted = &undo.inserted.raw;
+        for (raw, s) in undo.removed.iter() {
+            let (p, slot) = unpack(raw);
             if self.tops[p][slot * (p + 1)] != NONE {
                 return stale(format!("slot of {} is in use", show(s)));
             }
@@ -341,7 +382,7 @@ impl LiveComplex {
             {
                 return stale(format!("vertex {v} of {} was removed since", show(s)));
             }
-            self.check_restorable(s, undo.b.0, &inserted)?;
+            self.check_restorable(s, undo.b.0, inserted)?;
         }
         Ok(())
     }

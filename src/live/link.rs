@@ -12,43 +12,30 @@
 //!
 //! On failure the reported simplex is a lowest-dimensional one of Lk(a) ∩ Lk(b) outside Lk(ab).
 
+use std::cell::RefCell;
+
 use super::{LiveComplex, Refusal, VertexId, subset};
 
 impl LiveComplex {
     /// Whether {a, b} is an edge satisfying the link condition. `Err(NotAnEdge)` for a non-edge,
     /// `Err(LinkCondition { dim, simplex })` naming a lowest-dimensional simplex of
-    /// Lk(a) ∩ Lk(b) not in Lk(ab). Read-only. Cost: module doc of [`crate::live::link`].
+    /// Lk(a) ∩ Lk(b) not in Lk(ab). Read-only; allocates nothing after a thread's first calls
+    /// (per-thread scratch). Cost: module doc of [`crate::live::link`].
     pub fn link_condition(&self, a: VertexId, b: VertexId) -> Result<(), Refusal> {
         self.check_vertex(a.0)?;
         self.check_vertex(b.0)?;
         let (a, b) = (a.0, b.0);
-        let mut fa: Vec<&[u32]> = Vec::new();
-        let mut fab: Vec<&[u32]> = Vec::new();
-        for &raw in &self.star[a as usize] {
-            let t = self.top_raw(raw);
-            if t.contains(&b) {
-                fab.push(t);
-            } else {
-                fa.push(t);
-            }
-        }
-        if fab.is_empty() || a == b {
+        if a == b
+            || !self.star[a as usize]
+                .iter()
+                .any(|&r| self.top_raw(r).contains(&b))
+        {
             return Err(Refusal::NotAnEdge { a, b });
         }
-        let fb: Vec<&[u32]> = self.star[b as usize]
-            .iter()
-            .map(|&raw| self.top_raw(raw))
-            .filter(|t| !t.contains(&a))
-            .collect();
-        let common = common_vertices(&fa, &fb, a, b);
-        if common.is_empty() {
-            return Ok(());
-        }
-        let found = if common.len() <= 64 {
-            words::first_violation(&common, &fa, &fb, &fab)
-        } else {
-            lists::first_violation(&common, &fa, &fb, &fab)
-        };
+        let found = SCRATCH.with(|s| match s.try_borrow_mut() {
+            Ok(mut s) => self.first_violation(a, b, &mut s),
+            Err(_) => self.first_violation(a, b, &mut Scratch::default()),
+        });
         match found {
             None => Ok(()),
             Some(simplex) => Err(Refusal::LinkCondition {
@@ -59,64 +46,133 @@ impl LiveComplex {
             }),
         }
     }
+
+    /// The common vertices C, then the word or list test (module doc).
+    fn first_violation(&self, a: u32, b: u32, s: &mut Scratch) -> Option<Vec<u32>> {
+        let fa = || self.star[a as usize].iter().map(|&r| self.top_raw(r));
+        let fb = || self.star[b as usize].iter().map(|&r| self.top_raw(r));
+        common_vertices(fa(), fb(), a, b, s);
+        if s.common.is_empty() {
+            return None;
+        }
+        if s.common.len() > 64 {
+            let fa: Vec<&[u32]> = fa().filter(|t| !t.contains(&b)).collect();
+            let fab: Vec<&[u32]> = self.star[a as usize]
+                .iter()
+                .map(|&r| self.top_raw(r))
+                .filter(|t| t.contains(&b))
+                .collect();
+            let fb: Vec<&[u32]> = fb().filter(|t| !t.contains(&a)).collect();
+            return lists::first_violation(&s.common, &fa, &fb, &fab);
+        }
+        let Scratch {
+            common, ma, mb, mz, ..
+        } = s;
+        ma.clear();
+        mb.clear();
+        mz.clear();
+        for t in fa() {
+            let m = words::mask(common, t);
+            if t.contains(&b) {
+                mz.push(m);
+            } else {
+                ma.push(m);
+            }
+        }
+        for t in fb().filter(|t| !t.contains(&a)) {
+            mb.push(words::mask(common, t));
+        }
+        maximal(ma);
+        maximal(mb);
+        words::first_violation(common, ma, mb, mz)
+    }
 }
 
-/// Vertices other than a and b in both some top of `fa` and some top of `fb`, ascending.
-fn common_vertices(fa: &[&[u32]], fb: &[&[u32]], a: u32, b: u32) -> Vec<u32> {
-    let collect = |f: &[&[u32]]| {
-        let mut v: Vec<u32> = f
-            .iter()
-            .flat_map(|t| t.iter().copied())
-            .filter(|&v| v != a && v != b)
-            .collect();
+/// Per-thread buffers of the link test, so that a check allocates nothing once warm.
+#[derive(Default)]
+struct Scratch {
+    va: Vec<u32>,
+    vb: Vec<u32>,
+    common: Vec<u32>,
+    ma: Vec<u64>,
+    mb: Vec<u64>,
+    mz: Vec<u64>,
+}
+
+thread_local! {
+    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
+}
+
+/// Vertices other than a and b in a top of St(a) and in a top of St(b), ascending, into
+/// `s.common` (a superset of V(F_a) ∩ V(F_b), which changes no x ∩ y).
+fn common_vertices<'a>(
+    fa: impl Iterator<Item = &'a [u32]>,
+    fb: impl Iterator<Item = &'a [u32]>,
+    a: u32,
+    b: u32,
+    s: &mut Scratch,
+) {
+    let collect = |f: &mut dyn Iterator<Item = &'a [u32]>, v: &mut Vec<u32>| {
+        v.clear();
+        for t in f {
+            v.extend(t.iter().copied().filter(|&x| x != a && x != b));
+        }
         v.sort_unstable();
         v.dedup();
-        v
     };
-    let va = collect(fa);
-    let vb = collect(fb);
-    va.into_iter()
-        .filter(|v| vb.binary_search(v).is_ok())
-        .collect()
+    collect(&mut { fa }, &mut s.va);
+    collect(&mut { fb }, &mut s.vb);
+    s.common.clear();
+    let (mut i, mut j) = (0, 0);
+    while i < s.va.len() && j < s.vb.len() {
+        match s.va[i].cmp(&s.vb[j]) {
+            std::cmp::Ordering::Less => i += 1,
+            std::cmp::Ordering::Greater => j += 1,
+            std::cmp::Ordering::Equal => {
+                s.common.push(s.va[i]);
+                i += 1;
+                j += 1;
+            }
+        }
+    }
 }
 
-/// Keeps the maximal sets of a family of words (drops zero, duplicates and subsets).
-fn maximal(mut masks: Vec<u64>) -> Vec<u64> {
+/// Keeps the maximal sets of a family of words (drops zero, duplicates and subsets), in place.
+fn maximal(masks: &mut Vec<u64>) {
     masks.retain(|&m| m != 0);
     masks.sort_unstable_by(|x, y| y.count_ones().cmp(&x.count_ones()).then(x.cmp(y)));
     masks.dedup();
-    let mut kept: Vec<u64> = Vec::with_capacity(masks.len());
-    for m in masks {
-        if !kept.iter().any(|&k| m & !k == 0) {
-            kept.push(m);
+    let mut kept = 0;
+    for i in 0..masks.len() {
+        let m = masks[i];
+        if !masks[..kept].iter().any(|&k| m & !k == 0) {
+            masks[kept] = m;
+            kept += 1;
         }
     }
-    kept
+    masks.truncate(kept);
 }
 
 /// The common vertices as bits of one word.
 mod words {
-    use super::maximal;
-
-    fn mask(common: &[u32], t: &[u32]) -> u64 {
+    /// The bits of `t ∩ common`.
+    pub(super) fn mask(common: &[u32], t: &[u32]) -> u64 {
         t.iter()
             .filter_map(|v| common.binary_search(v).ok())
             .fold(0u64, |m, i| m | 1 << i)
     }
 
+    /// A lowest-dimensional x ∩ y (x ∈ ma, y ∈ mb) face not under any z ∈ mz, as vertex ids.
     pub(super) fn first_violation(
         common: &[u32],
-        fa: &[&[u32]],
-        fb: &[&[u32]],
-        fab: &[&[u32]],
+        ma: &[u64],
+        mb: &[u64],
+        mz: &[u64],
     ) -> Option<Vec<u32>> {
-        let ma = maximal(fa.iter().map(|t| mask(common, t)).collect());
-        let mb = maximal(fb.iter().map(|t| mask(common, t)).collect());
-        let mz: Vec<u64> = fab.iter().map(|t| mask(common, t)).collect();
         let covered = |w: u64| mz.iter().any(|&z| w & !z == 0);
         let mut best: Option<u64> = None;
-        for &x in &ma {
-            for &y in &mb {
+        for &x in ma {
+            for &y in mb {
                 let w = x & y;
                 if w == 0 || covered(w) {
                     continue;

@@ -81,16 +81,9 @@ const NONE: u32 = u32::MAX;
 const SLOT_BITS: u32 = 28;
 const SLOT_MASK: u32 = (1 << SLOT_BITS) - 1;
 
-/// A vertex of a [`LiveComplex`]: its slot, stable until [`LiveComplex::compact`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
-pub struct VertexId(pub u32);
-
-impl VertexId {
-    /// The slot as an index.
-    pub fn index(self) -> usize {
-        self.0 as usize
-    }
-}
+/// A vertex of a [`LiveComplex`]: the crate's vertex handle; its slot, stable until
+/// [`LiveComplex::compact`].
+pub use crate::handle::VertexId;
 
 /// A top simplex of a [`LiveComplex`]: its dimension and slot, and the compaction epoch it was
 /// issued in (so a handle from before [`LiveComplex::compact`] is refused, not misread).
@@ -215,6 +208,26 @@ pub struct LiveComplex {
     coords: Vec<f64>,
     /// Bumped by `compact()`; handles and undo records carry it.
     epoch: u32,
+    /// Contraction scratch: the images of St(b), kept between edits to avoid allocating.
+    images: Vec<Image>,
+}
+
+/// A top simplex's image under a contraction: at most 16 ids inline, in stored order.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Image {
+    len: u8,
+    ids: [u32; MAX_DIMENSION + 1],
+}
+
+impl Image {
+    fn push(&mut self, v: u32) {
+        self.ids[self.len as usize] = v;
+        self.len += 1;
+    }
+
+    fn as_slice(&self) -> &[u32] {
+        &self.ids[..self.len as usize]
+    }
 }
 
 /// `small ⊆ big` for unsorted vertex lists of at most 16 ids.
@@ -286,6 +299,7 @@ impl LiveComplex {
             coord_dim,
             coords,
             epoch: 0,
+            images: Vec::new(),
         };
         for (_, p, _, s) in complex.tops_as_given() {
             if p > 0 {
@@ -330,6 +344,22 @@ impl LiveComplex {
         self.tops[p][slot as usize * w] = NONE;
         self.live_tops[p] -= 1;
         s
+    }
+
+    /// Like [`LiveComplex::detach`], leaving the star of `skip` alone (the caller has taken it).
+    fn detach_except(&mut self, p: usize, slot: u32, skip: u32) {
+        let raw = pack(p, slot);
+        let w = p + 1;
+        for i in 0..w {
+            let v = self.tops[p][slot as usize * w + i];
+            if v != skip {
+                let st = &mut self.star[v as usize];
+                let k = st.iter().position(|&x| x == raw).expect("star entry");
+                st.swap_remove(k);
+            }
+        }
+        self.tops[p][slot as usize * w] = NONE;
+        self.live_tops[p] -= 1;
     }
 
     /// Vertices of the top with packed id `raw`, in stored (winding) order.

@@ -3,6 +3,8 @@
 use crate::complex::Complex;
 use crate::relation::{StructureKind, Topology};
 
+pub(crate) mod common;
+pub(crate) mod cyclic;
 pub mod de;
 pub mod ia;
 pub mod ig;

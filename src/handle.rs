@@ -1,0 +1,621 @@
+//! Handles: typed ids for vertices, top simplices and any simplex, and the navigation trait
+//! [`Navigate`] that answers relations from handles to handles.
+//!
+//! Locate once, then navigate: [`Navigate::locate`] turns vertex ids into a [`SimplexHandle`]
+//! (validating them, as [`Topology::relation`] does); every other operation takes and returns
+//! handles, writes into caller-owned buffers or calls a visitor, and keeps no state in the
+//! structure (one structure answers from many threads at once).
+//!
+//! # Ids
+//! - [`VertexId`]: a vertex, `0..n` (the complex's vertex ids).
+//! - [`TopId`]: a top simplex (a simplex that is no proper face of another), numbered densely
+//!   over the whole complex: dimension ascending, then ascending lexicographic order of the
+//!   sorted vertex ids within a dimension. The numbering depends only on the complex, so every
+//!   structure built from one complex gives a top simplex the same `TopId`.
+//! - [`SimplexHandle`]: any simplex. In the nine structures of this crate it is *dense*: `(p,
+//!   index)` where `index` is the simplex's rank among the p-simplices in ascending lexicographic
+//!   order (`0..count(p)`; a vertex's index is its id). So the caller's per-dimension arrays can
+//!   be indexed by `handle.index()` (as pmp and geometry-central do with their handles), two
+//!   handles of one structure name the same simplex exactly when they are equal, and sorting
+//!   handles by index is lexicographic order.
+//!
+//! A structure that stores a dimension explicitly (the IG and SIG every dimension, the IA its
+//! d-simplices, the 2D structures their triangles) answers from its own arrays. Simplices it
+//! stores only implicitly (the IA's edges of a tetrahedral mesh, for instance) get their dense
+//! index from a lexicographic table of that dimension built once, on the first request that
+//! needs it (O(n_p log n_p) time, (p + 1)·n_p integers, then O(p log n_p) per handle lookup);
+//! a caller that never asks for that dimension never pays for it. [`HandleForm::TopFace`] (a
+//! top simplex plus a bit mask of its vertices) is reserved for structures that prefer not to
+//! number implicit simplices (an editable structure, for instance); none of the nine uses it.
+//!
+//! `u32::MAX` means "none" for every id ([`VertexId::NONE`], [`TopId::NONE`],
+//! [`SimplexHandle::NONE`]).
+//!
+//! # Invalidation
+//! The nine structures are immutable: a handle stays valid as long as the structure lives. A
+//! handle used with another structure, or out of range, is refused with
+//! [`QueryError::InvalidHandle`] when its index or dimension is out of range; one in range names
+//! whatever simplex has that index there (the C ABI adds an owner stamp to catch that case, see
+//! `tpx_locate`). Editable structures report handles of removed simplices as
+//! [`QueryError::StaleHandle`].
+
+use std::fmt;
+use std::ops::Deref;
+
+use crate::complex::MAX_DIMENSION;
+use crate::relation::{QueryError, Topology};
+
+/// A vertex id, `0..n`. `VertexId::NONE` (`u32::MAX`) is no vertex.
+#[repr(transparent)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+pub struct VertexId(pub u32);
+
+/// A top simplex id: dense over the complex's top simplices, dimension ascending, then
+/// lexicographic within a dimension. `TopId::NONE` (`u32::MAX`) is no top simplex.
+#[repr(transparent)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+pub struct TopId(pub u32);
+
+macro_rules! id_methods {
+    ($t:ident) => {
+        impl $t {
+            /// No element (`u32::MAX`).
+            pub const NONE: $t = $t(u32::MAX);
+
+            /// The id as an array index.
+            #[inline]
+            pub fn index(self) -> usize {
+                self.0 as usize
+            }
+
+            /// Whether this is [`Self::NONE`].
+            #[inline]
+            pub fn is_none(self) -> bool {
+                self.0 == u32::MAX
+            }
+        }
+
+        impl From<u32> for $t {
+            fn from(i: u32) -> Self {
+                $t(i)
+            }
+        }
+
+        impl fmt::Display for $t {
+            fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                write!(f, "{}", self.0)
+            }
+        }
+    };
+}
+id_methods!(VertexId);
+id_methods!(TopId);
+
+/// How a [`SimplexHandle`] addresses its simplex.
+#[repr(u8)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum HandleForm {
+    /// `index` is the simplex's rank among the p-simplices, lexicographic (what the nine
+    /// structures use).
+    Dense = 0,
+    /// `index` is a [`TopId`] and `local` a bit mask of that top simplex's vertices (bit i: its
+    /// i-th smallest vertex), `p + 1` bits set. Reserved for structures that do not number
+    /// implicit simplices.
+    TopFace = 1,
+}
+
+/// A handle to one simplex of one structure: 8 bytes, `Copy`, ordered by (dimension, index).
+///
+/// Build handles with [`Navigate::locate`], [`Navigate::handle`], [`Navigate::vertex`] or
+/// [`Navigate::top`], or take them from navigation answers. See the module doc for what the
+/// index means and when two handles name the same simplex.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct SimplexHandle {
+    index: u32,
+    dim: u8,
+    form: HandleForm,
+    local: u16,
+}
+
+impl PartialOrd for SimplexHandle {
+    fn partial_cmp(&self, other: &Self) -> Option<std::cmp::Ordering> {
+        Some(self.cmp(other))
+    }
+}
+
+impl Ord for SimplexHandle {
+    fn cmp(&self, other: &Self) -> std::cmp::Ordering {
+        (self.dim, self.form, self.index, self.local).cmp(&(
+            other.dim,
+            other.form,
+            other.index,
+            other.local,
+        ))
+    }
+}
+
+impl SimplexHandle {
+    /// No simplex: index `u32::MAX`.
+    pub const NONE: SimplexHandle = SimplexHandle {
+        index: u32::MAX,
+        dim: 0,
+        form: HandleForm::Dense,
+        local: 0,
+    };
+
+    /// The dense handle of the p-simplex of rank `index` (not checked against a structure; see
+    /// [`Navigate::handle`] for the checked form).
+    #[inline]
+    pub const fn dense(p: usize, index: u32) -> SimplexHandle {
+        SimplexHandle {
+            index,
+            dim: p as u8,
+            form: HandleForm::Dense,
+            local: 0,
+        }
+    }
+
+    /// The face of top simplex `top` made of the vertices selected by `mask` (bit i: the top
+    /// simplex's i-th smallest vertex); p = popcount − 1. Not checked.
+    #[inline]
+    pub const fn top_face(top: TopId, mask: u16) -> SimplexHandle {
+        SimplexHandle {
+            index: top.0,
+            dim: (mask.count_ones() as u8).saturating_sub(1),
+            form: HandleForm::TopFace,
+            local: mask,
+        }
+    }
+
+    /// Dimension p of the simplex.
+    #[inline]
+    pub fn dim(self) -> usize {
+        self.dim as usize
+    }
+
+    /// Dense index among the p-simplices (for [`HandleForm::Dense`]); the [`TopId`] for
+    /// [`HandleForm::TopFace`].
+    #[inline]
+    pub fn index(self) -> u32 {
+        self.index
+    }
+
+    /// How the handle addresses its simplex.
+    #[inline]
+    pub fn form(self) -> HandleForm {
+        self.form
+    }
+
+    /// The vertex mask of a [`HandleForm::TopFace`] handle (0 for dense handles).
+    #[inline]
+    pub fn local(self) -> u16 {
+        self.local
+    }
+
+    /// Whether this is [`Self::NONE`].
+    #[inline]
+    pub fn is_none(self) -> bool {
+        self.index == u32::MAX
+    }
+
+    /// The vertex id, when this is a dense handle of a vertex.
+    #[inline]
+    pub fn as_vertex(self) -> Option<VertexId> {
+        (self.dim == 0 && self.form == HandleForm::Dense).then_some(VertexId(self.index))
+    }
+
+    /// The handle as the C ABI's three words `(index, dim | form << 8 | local << 16)`.
+    #[inline]
+    pub fn to_words(self) -> (u32, u32) {
+        (
+            self.index,
+            self.dim as u32 | (self.form as u32) << 8 | (self.local as u32) << 16,
+        )
+    }
+
+    /// The inverse of [`Self::to_words`]; `None` when the form byte is unknown or the dimension
+    /// is above [`MAX_DIMENSION`].
+    pub fn from_words(index: u32, meta: u32) -> Option<SimplexHandle> {
+        let dim = (meta & 0xff) as u8;
+        let form = match (meta >> 8) & 0xff {
+            0 => HandleForm::Dense,
+            1 => HandleForm::TopFace,
+            _ => return None,
+        };
+        if dim as usize > MAX_DIMENSION {
+            return None;
+        }
+        Some(SimplexHandle {
+            index,
+            dim,
+            form,
+            local: (meta >> 16) as u16,
+        })
+    }
+}
+
+impl fmt::Display for SimplexHandle {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.form {
+            HandleForm::Dense => write!(f, "{}-simplex #{}", self.dim, self.index),
+            HandleForm::TopFace => write!(
+                f,
+                "{}-face {:#06x} of top simplex #{}",
+                self.dim, self.local, self.index
+            ),
+        }
+    }
+}
+
+/// The vertex ids of one simplex, by value (no allocation): up to 16 ids.
+#[derive(Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Vertices {
+    len: u8,
+    ids: [u32; MAX_DIMENSION + 1],
+}
+
+impl Vertices {
+    /// Copies `ids` (at most 16).
+    pub fn from_slice(ids: &[u32]) -> Vertices {
+        let mut v = Vertices {
+            len: ids.len() as u8,
+            ids: [0; MAX_DIMENSION + 1],
+        };
+        v.ids[..ids.len()].copy_from_slice(ids);
+        v
+    }
+}
+
+impl Deref for Vertices {
+    type Target = [u32];
+    fn deref(&self) -> &[u32] {
+        &self.ids[..self.len as usize]
+    }
+}
+
+impl fmt::Debug for Vertices {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+/// Order of a navigation answer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Order {
+    /// The structure's own order (what its walk produces; cheapest).
+    #[default]
+    Natural,
+    /// Ascending lexicographic order of the sorted vertex ids (for dense handles: ascending
+    /// index). Costs a sort of the answer.
+    Lexicographic,
+}
+
+/// Cyclically ordered groups of simplices, written by [`Navigate::fans_around`] and
+/// [`Navigate::around_edge`]. Group k is `items[offsets[k]..offsets[k + 1]]`. Reuse one value
+/// across calls to avoid allocation.
+#[derive(Debug, Clone, Default, PartialEq, Eq)]
+pub struct Fans {
+    /// The simplices of every group, group after group, each group in cyclic order.
+    pub items: Vec<SimplexHandle>,
+    /// Start of each group in `items`, plus one final entry `items.len()`.
+    pub offsets: Vec<u32>,
+    /// Whether each group closes (its last simplex is adjacent to its first).
+    pub closed: Vec<bool>,
+    /// Whether each group is consistently oriented by the input winding and listed
+    /// counter-clockwise by it (always false around an edge and where no winding applies).
+    pub oriented: Vec<bool>,
+}
+
+impl Fans {
+    /// Empties every array, keeping the allocations.
+    pub fn clear(&mut self) {
+        self.items.clear();
+        self.offsets.clear();
+        self.closed.clear();
+        self.oriented.clear();
+    }
+
+    /// Number of groups.
+    pub fn len(&self) -> usize {
+        self.closed.len()
+    }
+
+    /// Whether there is no group.
+    pub fn is_empty(&self) -> bool {
+        self.closed.is_empty()
+    }
+
+    /// The simplices of group `k`, in order.
+    pub fn group(&self, k: usize) -> &[SimplexHandle] {
+        &self.items[self.offsets[k] as usize..self.offsets[k + 1] as usize]
+    }
+}
+
+/// Navigation from handles to handles: locate once, then answer without re-locating.
+///
+/// Object-safe, and implemented by every structure of this crate; `Box<dyn Topology>` reaches it
+/// through [`Topology::as_navigate`]. The required methods are the locating and reading
+/// primitives and [`Navigate::visit`]; everything else has a default written on top of them,
+/// which a structure may override with a faster walk (answers must stay the same).
+///
+/// Every answer holds each simplex once. Answers are handles of the same structure; for the
+/// nine structures they are dense, so equal handles name equal simplices.
+pub trait Navigate: Topology {
+    // ---- locating and reading ----
+
+    /// The handle of the simplex with vertex ids `sigma` (any order). Validates as
+    /// [`Topology::relation`] does: `EmptySimplex`, `TooManyVertices`, `RepeatedVertex`,
+    /// `VertexOutOfRange`, `NotInComplex`. Cost: the structure's locate cost (module doc).
+    fn locate(&self, sigma: &[u32]) -> Result<SimplexHandle, QueryError>;
+
+    /// The dense handle of the p-simplex of rank `index`, checked: `InvalidHandle` when p is
+    /// above the dimension or `index >= count(p)`. O(1).
+    fn handle(&self, p: usize, index: u32) -> Result<SimplexHandle, QueryError> {
+        let h = SimplexHandle::dense(p.min(MAX_DIMENSION), index);
+        if p > MAX_DIMENSION {
+            return Err(QueryError::InvalidHandle {
+                handle: h,
+                reason: "dimension above the complex's",
+            });
+        }
+        self.check(h).map(|_| h)
+    }
+
+    /// Checks that `h` names a simplex of this structure: `InvalidHandle` (out of range, bad
+    /// form, `NONE`), `StaleHandle` (removed by an edit), `WrongHandleKind`. O(1).
+    fn check(&self, h: SimplexHandle) -> Result<(), QueryError>;
+
+    /// The handle of vertex `v` (`InvalidHandle` when `v >= n`). O(1).
+    fn vertex(&self, v: VertexId) -> Result<SimplexHandle, QueryError> {
+        self.handle(0, v.0)
+    }
+
+    /// The vertex ids of `h`, ascending. O(p) for dimensions the structure stores, O(p + log
+    /// n_p) otherwise (see the module doc).
+    fn vertices_of(&self, h: SimplexHandle) -> Result<Vertices, QueryError>;
+
+    /// Number of top simplices, all dimensions (`TopId`s are `0..top_total()`).
+    fn top_total(&self) -> u32 {
+        (0..=self.dimension())
+            .map(|p| self.top_count(p) as u32)
+            .sum()
+    }
+
+    /// The handle of top simplex `t` (`InvalidHandle` when out of range).
+    fn top(&self, t: TopId) -> Result<SimplexHandle, QueryError>;
+
+    /// The [`TopId`] of `h` when it names a top simplex, else `None`.
+    fn top_id(&self, h: SimplexHandle) -> Result<Option<TopId>, QueryError>;
+
+    /// Top simplex `t` as given in the input: its vertex order, hence its winding (the first
+    /// listing when the input repeated it). Use [`Navigate::vertices_of`] for the normalised
+    /// (ascending) form.
+    fn top_as_given(&self, t: TopId) -> Result<Vertices, QueryError>;
+
+    // ---- navigation ----
+
+    /// Calls `visit` with every simplex of R_{p,q}(h), p = `h.dim()`, in the structure's
+    /// natural order, each once. `DimensionOutOfRange` when q is above the complex's dimension.
+    /// No allocation once the structure's scratch is warm (the cost is the structure's
+    /// relation cost plus, for implicit dimensions, O(log n_q) per answer).
+    fn visit(
+        &self,
+        h: SimplexHandle,
+        q: usize,
+        visit: &mut dyn FnMut(SimplexHandle),
+    ) -> Result<(), QueryError>;
+
+    /// R_{p,q}(h) written into `out` (cleared first; no allocation when its capacity
+    /// suffices), in `order`.
+    fn related(
+        &self,
+        h: SimplexHandle,
+        q: usize,
+        order: Order,
+        out: &mut Vec<SimplexHandle>,
+    ) -> Result<(), QueryError> {
+        out.clear();
+        self.visit(h, q, &mut |x| out.push(x))?;
+        if order == Order::Lexicographic {
+            out.sort_unstable();
+        }
+        Ok(())
+    }
+
+    /// The q-faces of h, q < p (`DimensionOutOfRange` otherwise); see [`Navigate::related`].
+    fn boundary(
+        &self,
+        h: SimplexHandle,
+        q: usize,
+        order: Order,
+        out: &mut Vec<SimplexHandle>,
+    ) -> Result<(), QueryError> {
+        if q >= h.dim() {
+            return Err(out_of_range(h.dim(), q, h.dim().saturating_sub(1)));
+        }
+        self.related(h, q, order, out)
+    }
+
+    /// The q-simplices having h as a face, q > p (`DimensionOutOfRange` otherwise).
+    fn coboundary(
+        &self,
+        h: SimplexHandle,
+        q: usize,
+        order: Order,
+        out: &mut Vec<SimplexHandle>,
+    ) -> Result<(), QueryError> {
+        if q <= h.dim() || q > self.dimension() {
+            return Err(out_of_range(h.dim(), q, self.dimension()));
+        }
+        self.related(h, q, order, out)
+    }
+
+    /// The p-simplices adjacent to h (sharing a (p−1)-face; for a vertex, sharing an edge).
+    fn adjacent(
+        &self,
+        h: SimplexHandle,
+        order: Order,
+        out: &mut Vec<SimplexHandle>,
+    ) -> Result<(), QueryError> {
+        self.related(h, h.dim(), order, out)
+    }
+
+    /// The star of h without h: every simplex having h as a proper face, dimension ascending,
+    /// each dimension in `order`.
+    fn star(
+        &self,
+        h: SimplexHandle,
+        order: Order,
+        out: &mut Vec<SimplexHandle>,
+    ) -> Result<(), QueryError> {
+        out.clear();
+        self.check(h)?;
+        for q in h.dim() + 1..=self.dimension() {
+            let start = out.len();
+            self.visit(h, q, &mut |x| out.push(x))?;
+            if order == Order::Lexicographic {
+                out[start..].sort_unstable();
+            }
+        }
+        Ok(())
+    }
+
+    /// The link of h: for every τ in the star of h, the face τ ∖ h; dimension ascending, each
+    /// dimension in `order`. Cost: the star, plus locating each link simplex.
+    fn link(
+        &self,
+        h: SimplexHandle,
+        order: Order,
+        out: &mut Vec<SimplexHandle>,
+    ) -> Result<(), QueryError> {
+        let sigma = self.vertices_of(h)?;
+        let mut star = Vec::new();
+        self.star(h, Order::Natural, &mut star)?;
+        out.clear();
+        let mut rest = Vec::with_capacity(MAX_DIMENSION + 1);
+        for tau in star {
+            let t = self.vertices_of(tau)?;
+            rest.clear();
+            rest.extend(t.iter().filter(|v| !sigma.contains(v)));
+            out.push(self.locate(&rest)?);
+        }
+        // Simplices of the star map to distinct link simplices (τ ↦ τ ∖ σ is injective on
+        // the star), already grouped by dimension.
+        if order == Order::Lexicographic {
+            out.sort_unstable();
+        }
+        Ok(())
+    }
+
+    /// |R_{p,q}(h)|: the number of q-simplices related to h. Same cost as [`Navigate::visit`],
+    /// no allocation.
+    fn degree(&self, h: SimplexHandle, q: usize) -> Result<usize, QueryError> {
+        let mut k = 0;
+        self.visit(h, q, &mut |_| k += 1)?;
+        Ok(k)
+    }
+
+    /// Whether h lies on the boundary: h, or a simplex of its star, is a non-top simplex with
+    /// exactly one coface one dimension up (a surface's boundary edges, their vertices and
+    /// triangles; a dangling end of a wire). Cost: the star of h and one degree per simplex.
+    fn is_boundary(&self, h: SimplexHandle) -> Result<bool, QueryError> {
+        let mut star = vec![h];
+        let mut rest = Vec::new();
+        self.star(h, Order::Natural, &mut rest)?;
+        star.extend(rest);
+        for tau in star {
+            let p = tau.dim();
+            if p < self.dimension() && self.top_id(tau)?.is_none() && self.degree(tau, p + 1)? == 1
+            {
+                return Ok(true);
+            }
+        }
+        Ok(false)
+    }
+
+    /// Whether h is a manifold simplex: its star is pure (every top simplex containing h has
+    /// one dimension k + p + 1) and its link is a connected k-pseudo-manifold — for k = 0 one or
+    /// two points; for k ≥ 1 every (k−1)-face of the link in one or two of its k-simplices, and
+    /// the k-simplices joined through them. On surfaces and tetrahedral meshes this is exact for
+    /// edges and for vertices of surfaces (link a path or a cycle); a vertex of a 3-complex is
+    /// called manifold when its link is a connected pseudo-surface. A top simplex is manifold.
+    fn is_manifold(&self, h: SimplexHandle) -> Result<bool, QueryError> {
+        let sigma = self.vertices_of(h)?;
+        let mut star = Vec::new();
+        self.star(h, Order::Natural, &mut star)?;
+        let mut link: Vec<Vec<u32>> = Vec::new();
+        for tau in star {
+            if self.top_id(tau)?.is_some() {
+                let t = self.vertices_of(tau)?;
+                link.push(t.iter().copied().filter(|v| !sigma.contains(v)).collect());
+            }
+        }
+        Ok(link_is_pseudo_manifold(&link))
+    }
+
+    // ---- cyclic order ----
+
+    /// The triangles around vertex `v` of a complex of dimension ≤ 2, grouped into manifold
+    /// fans (triangles joined through edges at v that bound exactly two triangles), each in
+    /// cyclic order, counter-clockwise by the input winding where the fan is consistently
+    /// oriented (`oriented[k]`), else from its lowest triangle. An open fan starts at a
+    /// triangle on a fan end. Fans are listed by their first triangle. `InvalidHandle` when `v`
+    /// is not a vertex; `DimensionOutOfRange` for complexes of dimension above 2. Cost: the
+    /// star of v and the triangle degree of each edge at v.
+    fn fans_around(&self, v: SimplexHandle, out: &mut Fans) -> Result<(), QueryError> {
+        crate::structures::cyclic::fans_around(self, v, out)
+    }
+
+    /// The q-simplices around edge `e` in radial order, q = 2 (triangles) or 3 (tetrahedra).
+    /// Around an edge of a 2-complex: one group, the triangles in the structure's radial order
+    /// (TS, PE, LE, DE: by angle about the edge when coordinates are given; otherwise ascending).
+    /// Around an edge of a 3-complex: one group per cluster of q-simplices joined through
+    /// (q−1)-faces containing e that bound exactly two of them, each in order; for q = 2, the
+    /// triangles met walking through each cluster of tetrahedra, then the remaining triangles
+    /// one per group. `WrongHandleKind` when e is not an edge.
+    fn around_edge(&self, e: SimplexHandle, q: usize, out: &mut Fans) -> Result<(), QueryError> {
+        crate::structures::cyclic::around_edge(self, e, q, out)
+    }
+}
+
+fn out_of_range(p: usize, q: usize, dim: usize) -> QueryError {
+    QueryError::DimensionOutOfRange { p, q, dim }
+}
+
+/// Whether the k-simplices `link` (all of one arity) form a connected pseudo-manifold (see
+/// [`Navigate::is_manifold`]). Empty: true (the link of a top simplex).
+pub(crate) fn link_is_pseudo_manifold(link: &[Vec<u32>]) -> bool {
+    let Some(first) = link.first() else {
+        return true;
+    };
+    let arity = first.len();
+    if link.iter().any(|r| r.len() != arity) {
+        return false;
+    }
+    if arity == 1 {
+        return link.len() <= 2;
+    }
+    // (k−1)-faces with the link simplices containing them.
+    let mut facets: Vec<(Vec<u32>, usize)> = Vec::new();
+    for (i, r) in link.iter().enumerate() {
+        for skip in 0..arity {
+            let mut f = r.clone();
+            f.sort_unstable();
+            f.remove(skip);
+            facets.push((f, i));
+        }
+    }
+    facets.sort();
+    let mut uf = crate::structures::common::UnionFind::new(link.len());
+    for group in facets.chunk_by(|a, b| a.0 == b.0) {
+        if group.len() > 2 {
+            return false;
+        }
+        if let [a, b] = group {
+            uf.union(a.1 as u32, b.1 as u32);
+        }
+    }
+    let root = uf.find(0);
+    (1..link.len() as u32).all(|i| uf.find(i) == root)
+}

@@ -1,0 +1,313 @@
+//! Cyclic order written once over [`Navigate`]: the manifold fans of triangles around a vertex
+//! (counter-clockwise by the input winding) and the clusters of triangles or tetrahedra around an
+//! edge. Structures with a stored radial order (TS, PE, LE, DE) override the 2-complex case.
+//!
+//! Both walks look only at the star of the vertex or edge: every triangle containing an edge vx
+//! contains v, so the star of v alone says which edges at v bound exactly two triangles.
+
+use crate::handle::{Fans, Navigate, SimplexHandle};
+use crate::relation::QueryError;
+
+/// One simplex of a star with the two "sides" it can be joined through (the link vertices of a
+/// triangle around a vertex, or of a tetrahedron around an edge), `prev` before `next` in the
+/// input winding when there is one.
+#[derive(Clone, Copy)]
+struct Piece {
+    handle: SimplexHandle,
+    prev: u32,
+    next: u32,
+}
+
+/// See [`Navigate::fans_around`].
+pub(crate) fn fans_around<N: Navigate + ?Sized>(
+    nav: &N,
+    v: SimplexHandle,
+    out: &mut Fans,
+) -> Result<(), QueryError> {
+    out.clear();
+    let Some(vid) = v.as_vertex() else {
+        return Err(QueryError::WrongHandleKind {
+            handle: v,
+            expected: "a vertex",
+        });
+    };
+    nav.check(v)?;
+    if nav.dimension() > 2 {
+        return Err(QueryError::DimensionOutOfRange {
+            p: 0,
+            q: 2,
+            dim: nav.dimension(),
+        });
+    }
+    if nav.dimension() < 2 {
+        return Ok(());
+    }
+    let mut pieces = Vec::new();
+    nav.visit(v, 2, &mut |t| {
+        pieces.push(Piece {
+            handle: t,
+            prev: 0,
+            next: 0,
+        })
+    })?;
+    for p in &mut pieces {
+        let t = nav
+            .top_id(p.handle)?
+            .expect("a triangle of a 2-complex is top");
+        let w = nav.top_as_given(t)?;
+        let at = w
+            .iter()
+            .position(|&x| x == vid.0)
+            .expect("v is in its star");
+        (p.prev, p.next) = (w[(at + 1) % 3], w[(at + 2) % 3]);
+    }
+    chains(&mut pieces, true, out);
+    Ok(())
+}
+
+/// See [`Navigate::around_edge`].
+pub(crate) fn around_edge<N: Navigate + ?Sized>(
+    nav: &N,
+    e: SimplexHandle,
+    q: usize,
+    out: &mut Fans,
+) -> Result<(), QueryError> {
+    out.clear();
+    if e.dim() != 1 {
+        return Err(QueryError::WrongHandleKind {
+            handle: e,
+            expected: "an edge",
+        });
+    }
+    nav.check(e)?;
+    let d = nav.dimension();
+    if !(2..=3).contains(&q) || q > d {
+        return Err(QueryError::DimensionOutOfRange { p: 1, q, dim: d });
+    }
+    let ends = nav.vertices_of(e)?;
+    let mut tris = Vec::new();
+    nav.visit(e, 2, &mut |t| tris.push(t))?;
+    if d == 2 {
+        // No tetrahedra: the triangles in the structure's natural order, one cyclic group.
+        push_group(out, &tris, tris.len() >= 2, false);
+        return Ok(());
+    }
+    let mut pieces = Vec::new();
+    nav.visit(e, 3, &mut |t| {
+        pieces.push(Piece {
+            handle: t,
+            prev: 0,
+            next: 0,
+        })
+    })?;
+    for p in &mut pieces {
+        let w = nav.vertices_of(p.handle)?;
+        let mut rest = w.iter().copied().filter(|x| !ends.contains(x));
+        (p.prev, p.next) = (rest.next().unwrap(), rest.next().unwrap());
+    }
+    chains(&mut pieces, false, out);
+    if q == 3 {
+        return Ok(());
+    }
+    triangles_of_tet_fans(nav, &ends, &tris, out)
+}
+
+/// Replaces the tetrahedron groups in `out` by the triangles met walking each one, then adds
+/// every other triangle at the edge as a group of its own.
+fn triangles_of_tet_fans<N: Navigate + ?Sized>(
+    nav: &N,
+    ends: &[u32],
+    tris: &[SimplexHandle],
+    out: &mut Fans,
+) -> Result<(), QueryError> {
+    let tets = std::mem::take(out);
+    let tri_of = |x: u32| nav.locate(&[ends[0], ends[1], x]);
+    let mut used = Vec::new();
+    for k in 0..tets.len() {
+        let g = tets.group(k);
+        let mut seq = Vec::with_capacity(g.len() + 1);
+        // Consecutive tetrahedra share the triangle e ∪ {x}, x their common link vertex.
+        let link = |t: SimplexHandle| -> Result<[u32; 2], QueryError> {
+            let w = nav.vertices_of(t)?;
+            let mut r = w.iter().copied().filter(|x| !ends.contains(x));
+            Ok([r.next().unwrap(), r.next().unwrap()])
+        };
+        let links: Vec<[u32; 2]> = g.iter().map(|&t| link(t)).collect::<Result<_, _>>()?;
+        let shared = |a: [u32; 2], b: [u32; 2]| if b.contains(&a[0]) { a[0] } else { a[1] };
+        if g.len() == 1 {
+            seq.push(tri_of(links[0][0])?);
+            seq.push(tri_of(links[0][1])?);
+        } else {
+            let first = shared(links[0], links[1]);
+            let outer = if tets.closed[k] {
+                None
+            } else {
+                Some(if links[0][0] == first {
+                    links[0][1]
+                } else {
+                    links[0][0]
+                })
+            };
+            if let Some(x) = outer {
+                seq.push(tri_of(x)?);
+            }
+            let mut last = outer.unwrap_or(links[0][0] ^ links[0][1] ^ first);
+            for l in &links {
+                let x = if l[0] == last { l[1] } else { l[0] };
+                if tets.closed[k] && seq.len() == g.len() {
+                    break;
+                }
+                seq.push(tri_of(x)?);
+                last = x;
+            }
+        }
+        used.extend_from_slice(&seq);
+        push_group(out, &seq, tets.closed[k], false);
+    }
+    used.sort_unstable();
+    for &t in tris {
+        if used.binary_search(&t).is_err() {
+            push_group(out, &[t], false, false);
+        }
+    }
+    Ok(())
+}
+
+fn push_group(out: &mut Fans, items: &[SimplexHandle], closed: bool, oriented: bool) {
+    if out.offsets.is_empty() {
+        out.offsets.push(0);
+    }
+    out.items.extend_from_slice(items);
+    out.offsets.push(out.items.len() as u32);
+    out.closed.push(closed);
+    out.oriented.push(oriented);
+}
+
+/// Groups `pieces` into chains joined through sides shared by exactly two pieces, each chain in
+/// order, and appends them to `out` by ascending lowest handle. With `wound`, a chain whose
+/// pieces agree with the winding (each piece's `next` side is the following piece's `prev`
+/// side) is listed in that direction and marked oriented.
+fn chains(pieces: &mut [Piece], wound: bool, out: &mut Fans) {
+    pieces.sort_unstable_by_key(|p| p.handle);
+    // Side vertex -> pieces having it.
+    let mut sides: Vec<(u32, u32)> = pieces
+        .iter()
+        .enumerate()
+        .flat_map(|(i, p)| [(p.prev, i as u32), (p.next, i as u32)])
+        .collect();
+    sides.sort_unstable();
+    let joined = |i: usize, x: u32| -> Option<usize> {
+        let lo = sides.partition_point(|s| s.0 < x);
+        let hi = sides.partition_point(|s| s.0 <= x);
+        if hi - lo != 2 {
+            return None;
+        }
+        let (a, b) = (sides[lo].1 as usize, sides[lo + 1].1 as usize);
+        Some(if a == i { b } else { a })
+    };
+    let mut seen = vec![false; pieces.len()];
+    for start in 0..pieces.len() {
+        if seen[start] {
+            continue;
+        }
+        let chain = walk_chain(pieces, start, &joined, &mut seen);
+        let closed = chain.len() >= 3
+            && joined(chain[0], pieces[chain[0]].prev).is_some()
+            && joined(chain[0], pieces[chain[0]].next).is_some();
+        let (order, oriented) = orient(pieces, chain, closed, wound);
+        let items: Vec<SimplexHandle> = order.iter().map(|&i| pieces[i].handle).collect();
+        push_group(out, &items, closed, oriented);
+    }
+    if out.offsets.is_empty() {
+        out.offsets.push(0);
+    }
+}
+
+/// The chain containing `start`, from one end (or from `start` on a cycle), marking it seen.
+fn walk_chain(
+    pieces: &[Piece],
+    start: usize,
+    joined: &dyn Fn(usize, u32) -> Option<usize>,
+    seen: &mut [bool],
+) -> Vec<usize> {
+    // From `cur`, entered through side `arrived`, leave through its other side.
+    let step = |cur: usize, arrived: u32| -> (u32, Option<usize>) {
+        let p = pieces[cur];
+        let side = if p.prev == arrived { p.next } else { p.prev };
+        (side, joined(cur, side))
+    };
+    // Walk back to an end; coming back to `start` means a cycle.
+    let (mut first, mut arrived) = (start, pieces[start].next);
+    loop {
+        match step(first, arrived) {
+            (_, None) => break,
+            (_, Some(j)) if j == start => break,
+            (side, Some(j)) => {
+                // Both pieces have the shared side vertex.
+                arrived = side;
+                first = j;
+            }
+        }
+    }
+    // Walk forward from `first`, leaving through the side other than the open one (an end) or
+    // through `next` (a cycle).
+    let open_side = {
+        let p = pieces[first];
+        if joined(first, p.prev).is_none() {
+            p.prev
+        } else {
+            p.next
+        }
+    };
+    let mut chain = vec![first];
+    seen[first] = true;
+    let (mut cur, mut came) = (first, open_side);
+    while let (side, Some(j)) = step(cur, came) {
+        if seen[j] {
+            break;
+        }
+        seen[j] = true;
+        chain.push(j);
+        cur = j;
+        came = side;
+    }
+    chain
+}
+
+/// Puts a chain in winding order when it has one: rotates a cycle to start at its lowest
+/// piece, and reverses the chain when its pieces follow the winding backwards.
+fn orient(
+    pieces: &[Piece],
+    mut chain: Vec<usize>,
+    closed: bool,
+    wound: bool,
+) -> (Vec<usize>, bool) {
+    if closed {
+        let low = (0..chain.len()).min_by_key(|&i| chain[i]).unwrap();
+        chain.rotate_left(low);
+    }
+    if !wound {
+        return (chain, false);
+    }
+    let forward = |c: &[usize]| {
+        let n = c.len();
+        let steps = if closed { n } else { n.saturating_sub(1) };
+        (0..steps).all(|i| {
+            let (a, b) = (pieces[c[i]], pieces[c[(i + 1) % n]]);
+            a.next == b.prev
+        })
+    };
+    if forward(&chain) {
+        return (chain, true);
+    }
+    let mut rev = chain.clone();
+    if closed {
+        rev[1..].reverse();
+    } else {
+        rev.reverse();
+    }
+    if forward(&rev) {
+        return (rev, true);
+    }
+    (chain, false)
+}

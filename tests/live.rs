@@ -1,0 +1,721 @@
+//! The live complex (`topoplex::live`): fixtures with exact answers, and random edit sequences
+//! on random non-manifold complexes checked after every step against a set-of-simplices model,
+//! a rebuild from scratch, the oracle, and a brute-force link condition.
+
+mod common;
+
+use std::collections::BTreeSet;
+
+use proptest::prelude::*;
+use topoplex::live::{ContractMode, LiveComplex, Refusal, VertexId};
+use topoplex::oracle::check_structure;
+use topoplex::{Complex, Topology};
+
+/// The closure of a complex as plain sets: the reference semantics of every edit.
+#[derive(Debug, Clone)]
+struct Model {
+    verts: BTreeSet<u32>,
+    /// Every simplex of dimension ≥ 1, ascending ids.
+    simplices: BTreeSet<Vec<u32>>,
+}
+
+fn sorted(s: &[u32]) -> Vec<u32> {
+    let mut v = s.to_vec();
+    v.sort_unstable();
+    v
+}
+
+impl Model {
+    fn of(live: &LiveComplex) -> Model {
+        let mut m = Model {
+            verts: live.vertices().map(|v| v.0).collect(),
+            simplices: BTreeSet::new(),
+        };
+        for (_, t) in live.tops() {
+            m.add(t);
+        }
+        m
+    }
+
+    fn add(&mut self, s: &[u32]) {
+        let s = sorted(s);
+        for mask in 1u32..1 << s.len() {
+            if mask.count_ones() >= 2 {
+                let f: Vec<u32> = (0..s.len())
+                    .filter(|i| mask >> i & 1 == 1)
+                    .map(|i| s[i])
+                    .collect();
+                self.simplices.insert(f);
+            }
+        }
+    }
+
+    fn contains(&self, s: &[u32]) -> bool {
+        if s.len() == 1 {
+            self.verts.contains(&s[0])
+        } else {
+            self.simplices.contains(&sorted(s))
+        }
+    }
+
+    /// Top simplices of dimension ≥ 1.
+    fn tops(&self) -> Vec<Vec<u32>> {
+        self.simplices
+            .iter()
+            .filter(|s| {
+                !self
+                    .simplices
+                    .iter()
+                    .any(|t| t.len() == s.len() + 1 && s.iter().all(|v| t.contains(v)))
+            })
+            .cloned()
+            .collect()
+    }
+
+    fn is_top(&self, s: &[u32]) -> bool {
+        if s.len() == 1 {
+            return self.verts.contains(&s[0]) && !self.simplices.iter().any(|t| t.contains(&s[0]));
+        }
+        self.tops().contains(&sorted(s))
+    }
+
+    fn remove_top(&mut self, s: &[u32]) {
+        if s.len() == 1 {
+            self.verts.remove(&s[0]);
+            return;
+        }
+        let s = sorted(s);
+        let rest: Vec<Vec<u32>> = self.tops().into_iter().filter(|t| *t != s).collect();
+        self.simplices.clear();
+        for t in rest {
+            self.add(&t);
+        }
+    }
+
+    fn contract(&mut self, a: u32, b: u32) {
+        let old = std::mem::take(&mut self.simplices);
+        for s in old {
+            let mut img: Vec<u32> = s.iter().map(|&v| if v == b { a } else { v }).collect();
+            img.sort_unstable();
+            img.dedup();
+            if img.len() >= 2 {
+                self.simplices.insert(img);
+            }
+        }
+        self.verts.remove(&b);
+    }
+
+    /// Lk(σ) without the empty simplex.
+    fn link(&self, sigma: &[u32]) -> BTreeSet<Vec<u32>> {
+        self.simplices
+            .iter()
+            .filter(|t| sigma.iter().all(|v| t.contains(v)) && t.len() > sigma.len())
+            .map(|t| t.iter().copied().filter(|v| !sigma.contains(v)).collect())
+            .collect()
+    }
+
+    /// Brute-force link condition: `None` when it holds, else the lowest dimension failing
+    /// (`Some(usize::MAX)` for a non-edge).
+    fn link_failure(&self, a: u32, b: u32) -> Option<usize> {
+        if !self.contains(&[a, b]) {
+            return Some(usize::MAX);
+        }
+        let (la, lb, lab) = (self.link(&[a]), self.link(&[b]), self.link(&[a, b]));
+        la.intersection(&lb)
+            .filter(|t| !lab.contains(*t))
+            .map(|t| t.len() - 1)
+            .min()
+    }
+}
+
+/// Every p-simplex of the live complex equals the model's, for every p.
+fn assert_matches_model(live: &LiveComplex, m: &Model) {
+    live.validate().unwrap();
+    let mut out = Vec::new();
+    live.simplices(0, &mut out);
+    assert_eq!(out, m.verts.iter().copied().collect::<Vec<_>>());
+    for p in 1..=7 {
+        out.clear();
+        live.simplices(p, &mut out);
+        let want: Vec<u32> = m
+            .simplices
+            .iter()
+            .filter(|s| s.len() == p + 1)
+            .flatten()
+            .copied()
+            .collect();
+        assert_eq!(out, want, "{p}-simplices");
+    }
+}
+
+/// A compacted copy answers every relation like the oracle on its own `to_complex()`, and a
+/// rebuild from that complex has the same top simplices with the same winding.
+fn assert_matches_oracle_and_rebuild(live: &LiveComplex) {
+    let mut dense = live.clone();
+    dense.compact();
+    dense.validate().unwrap();
+    let c = live.to_complex();
+    check_structure(&dense, &c).unwrap();
+    let rebuilt = LiveComplex::from_complex(&c);
+    rebuilt.validate().unwrap();
+    let oriented = |l: &LiveComplex| {
+        let mut v: Vec<Vec<u32>> = l.tops().map(|(_, s)| s.to_vec()).collect();
+        v.sort_by_key(|s| sorted(s));
+        v
+    };
+    assert_eq!(oriented(&dense), oriented(&rebuilt));
+    assert_eq!(dense.live_vertex_count(), rebuilt.live_vertex_count());
+    for v in dense.vertices() {
+        assert_eq!(dense.coords(v).unwrap(), rebuilt.coords(v).unwrap());
+    }
+}
+
+/// Slots, vertices and coordinates all equal (what split ∘ contract must give back).
+fn assert_same_state(x: &LiveComplex, y: &LiveComplex) {
+    let tops = |l: &LiveComplex| l.tops().map(|(t, s)| (t, s.to_vec())).collect::<Vec<_>>();
+    assert_eq!(tops(x), tops(y));
+    assert_eq!(
+        x.vertices().collect::<Vec<_>>(),
+        y.vertices().collect::<Vec<_>>()
+    );
+    for v in x.vertices() {
+        assert_eq!(x.coords(v).unwrap(), y.coords(v).unwrap());
+        let mut sx: Vec<_> = x.vertex_star(v).unwrap().collect::<Vec<_>>();
+        let mut sy: Vec<_> = y.vertex_star(v).unwrap().collect::<Vec<_>>();
+        sx.sort_by_key(|t| (t.dim(), t.slot()));
+        sy.sort_by_key(|t| (t.dim(), t.slot()));
+        assert_eq!(sx, sy);
+    }
+}
+
+fn with_coords(n: u32, list: &[Vec<u32>]) -> Complex {
+    let mut ids = Vec::new();
+    let mut offsets = vec![0];
+    for s in list {
+        ids.extend_from_slice(s);
+        offsets.push(ids.len());
+    }
+    let data = (0..n).flat_map(|v| [v as f64, (v * v) as f64]).collect();
+    Complex::from_arrays(
+        n,
+        &ids,
+        &offsets,
+        Some(topoplex::io::Coords { dim: 2, data }),
+    )
+    .unwrap()
+}
+
+/// ```text
+///   0           3        a bowtie: triangles 012 and 234 pinched at 2,
+///   | \       / |        plus the wire edge 4-5 and the isolated vertex 6
+///   |   2 --- ? |        (no edge 2-? : the two triangles share only vertex 2)
+///   | /       \ |
+///   1           4 --- 5      6
+/// ```
+fn bowtie() -> LiveComplex {
+    LiveComplex::from_complex(&with_coords(7, &[vec![0, 1, 2], vec![2, 3, 4], vec![4, 5]]))
+}
+
+#[test]
+fn bowtie_contraction_in_a_triangle_keeps_the_pinch_and_the_winding() {
+    let mut live = bowtie();
+    live.validate().unwrap();
+    // Lk(0) = {1, 2, 12}, Lk(1) = {0, 2, 02}, Lk(01) = {2}: holds.
+    live.link_condition(VertexId(0), VertexId(1)).unwrap();
+    let undo = live
+        .contract(
+            VertexId(0),
+            VertexId(1),
+            ContractMode::PreserveTopology,
+            Some(&[0.5, 0.5]),
+        )
+        .unwrap();
+    live.validate().unwrap();
+    let tops: Vec<Vec<u32>> = live.tops().map(|(_, s)| s.to_vec()).collect();
+    assert_eq!(tops, vec![vec![4, 5], vec![0, 2], vec![2, 3, 4]]);
+    assert_eq!(live.coords(VertexId(0)).unwrap(), &[0.5, 0.5]);
+    assert!(!live.is_live(VertexId(1)));
+    let before = bowtie();
+    live.split(&undo).unwrap();
+    assert_same_state(&live, &before);
+}
+
+#[test]
+fn bowtie_contraction_across_the_pinch_is_refused_unless_free() {
+    let mut live = bowtie();
+    // 0 and 3 are not adjacent.
+    assert_eq!(
+        live.contract(
+            VertexId(0),
+            VertexId(3),
+            ContractMode::PreserveTopology,
+            None
+        ),
+        Err(Refusal::NotAnEdge { a: 0, b: 3 })
+    );
+    // Edge 2-3: Lk(2) ∋ 4, Lk(3) ∋ 4, Lk(23) = {4}: holds. Edge 2-4 likewise. But contracting
+    // 1 into 3 after ... keep it simple: free mode unifies 0 and 3, gluing the two triangles
+    // at the edge 0-2 ~ 3-2.
+    let undo = live
+        .contract(VertexId(0), VertexId(3), ContractMode::Free, None)
+        .unwrap();
+    live.validate().unwrap();
+    let mut tops: Vec<Vec<u32>> = live.tops().map(|(_, s)| sorted(s)).collect();
+    tops.sort();
+    assert_eq!(tops, vec![vec![0, 1, 2], vec![0, 2, 4], vec![4, 5]]);
+    live.split(&undo).unwrap();
+    assert_same_state(&live, &bowtie());
+}
+
+/// ```text
+///   2 ----- 3      the boundary of a triangle 0 1 2 plus triangle 1 2 3:
+///   | \     |      contracting edge 1-2 would pinch the empty triangle 0 1 2
+///   |   \   |      into an edge: Lk(1) ∩ Lk(2) ∋ 0 but 0 ∉ Lk(12) = {3}.
+///   0 --- 1 |
+///         \ |
+/// ```
+#[test]
+fn hollow_triangle_edge_fails_the_link_condition_in_dimension_0() {
+    let c = Complex::from_simplices(4, &[&[0, 1], &[0, 2], &[1, 2, 3]]).unwrap();
+    let mut live = LiveComplex::from_complex(&c);
+    let refusal = live
+        .contract(
+            VertexId(1),
+            VertexId(2),
+            ContractMode::PreserveTopology,
+            None,
+        )
+        .unwrap_err();
+    assert_eq!(
+        refusal,
+        Refusal::LinkCondition {
+            a: 1,
+            b: 2,
+            dim: 0,
+            simplex: vec![0]
+        }
+    );
+    assert_eq!(live.to_complex().top_counts(), vec![0, 2, 1]);
+}
+
+#[test]
+fn bad_requests_are_refused_and_change_nothing() {
+    let mut live = bowtie();
+    let before = live.clone();
+    assert!(matches!(
+        live.insert_top(&[0, 1]),
+        Err(Refusal::AlreadyPresent { .. })
+    ));
+    assert!(matches!(
+        live.insert_top(&[0, 0, 3]),
+        Err(Refusal::InvalidSimplex { .. })
+    ));
+    assert!(matches!(
+        live.insert_top(&[0, 9]),
+        Err(Refusal::UnknownVertex { vertex: 9, .. })
+    ));
+    assert!(matches!(
+        live.insert_top(&[]),
+        Err(Refusal::InvalidSimplex { .. })
+    ));
+    assert!(matches!(
+        live.remove_top(&[0, 1]),
+        Err(Refusal::NotTop { .. })
+    ));
+    assert!(matches!(
+        live.remove_top(&[0, 3]),
+        Err(Refusal::NotInComplex { .. })
+    ));
+    assert!(matches!(live.remove_top(&[2]), Err(Refusal::NotTop { .. })));
+    assert!(matches!(
+        live.contract(VertexId(0), VertexId(0), ContractMode::Free, None),
+        Err(Refusal::InvalidSimplex { .. })
+    ));
+    assert!(matches!(
+        live.contract(VertexId(0), VertexId(1), ContractMode::Free, Some(&[1.0])),
+        Err(Refusal::CoordinateDimension { given: 1, dim: 2 })
+    ));
+    assert!(matches!(
+        live.set_coords(VertexId(0), &[1.0, 2.0, 3.0]),
+        Err(Refusal::CoordinateDimension { .. })
+    ));
+    assert_same_state(&live, &before);
+    // Stale handles and undo records after compact().
+    let undo = live
+        .contract(
+            VertexId(4),
+            VertexId(5),
+            ContractMode::PreserveTopology,
+            None,
+        )
+        .unwrap();
+    let t = live.tops().next().unwrap().0;
+    let maps = live.compact();
+    assert_eq!(maps.vertices, vec![0, 1, 2, 3, 4, u32::MAX, 5]);
+    assert!(matches!(live.split(&undo), Err(Refusal::StaleHandle(_))));
+    assert!(matches!(
+        live.remove_top_id(t),
+        Err(Refusal::StaleHandle(_))
+    ));
+    assert!(matches!(live.top_vertices(t), Err(Refusal::StaleHandle(_))));
+    live.validate().unwrap();
+}
+
+#[test]
+fn insert_absorbs_faces_and_remove_keeps_vertices() {
+    let mut live = bowtie();
+    // Triangle 4 5 6 makes the wire edge 4-5 and the isolated vertex 6 its faces.
+    live.insert_top(&[6, 4, 5]).unwrap();
+    live.validate().unwrap();
+    assert_eq!(live.top_count(1), 0);
+    assert_eq!(live.top_count(0), 0);
+    live.remove_top(&[4, 5, 6]).unwrap();
+    live.validate().unwrap();
+    // Its edges go, its vertices stay: 5 and 6 are isolated, 4 is still in triangle 2 3 4.
+    assert_eq!(live.top_count(0), 2);
+    assert_eq!(live.count(1), 6);
+    live.remove_top(&[6]).unwrap();
+    assert!(!live.is_live(VertexId(6)));
+    live.validate().unwrap();
+}
+
+#[derive(Debug, Clone)]
+enum Op {
+    Insert(Vec<u32>),
+    Remove(prop::sample::Index, Vec<u32>),
+    Contract(prop::sample::Index, prop::sample::Index, bool),
+    Split,
+}
+
+fn op() -> impl Strategy<Value = Op> {
+    let simplex = proptest::collection::vec(0u32..10, 1..=7);
+    prop_oneof![
+        2 => simplex.clone().prop_map(Op::Insert),
+        2 => (any::<prop::sample::Index>(), simplex).prop_map(|(i, s)| Op::Remove(i, s)),
+        4 => (any::<prop::sample::Index>(), any::<prop::sample::Index>(), any::<bool>())
+            .prop_map(|(a, b, free)| Op::Contract(a, b, free)),
+        2 => Just(Op::Split),
+    ]
+}
+
+/// Applies one op to `live` and to the model, checking the outcome agrees.
+fn step(
+    live: &mut LiveComplex,
+    m: &mut Model,
+    undos: &mut Vec<(topoplex::live::UndoRecord, Model, LiveComplex)>,
+    op: &Op,
+) {
+    let verts: Vec<u32> = m.verts.iter().copied().collect();
+    match op {
+        Op::Insert(s) => {
+            let distinct = sorted(s).windows(2).all(|w| w[0] != w[1]);
+            let known = s.iter().all(|v| m.verts.contains(v));
+            match live.insert_top(s) {
+                Ok(_) => {
+                    assert!(distinct && known && !m.contains(s) && s.len() > 1);
+                    m.add(s);
+                    undos.clear();
+                }
+                Err(Refusal::AlreadyPresent { .. }) => assert!(m.contains(s)),
+                Err(Refusal::InvalidSimplex { .. }) => assert!(!distinct),
+                Err(Refusal::UnknownVertex { .. }) => assert!(!known),
+                Err(e) => panic!("insert {s:?}: {e}"),
+            }
+        }
+        Op::Remove(i, s) => {
+            // Half the time a real top simplex (or isolated vertex), else the random one.
+            let mut tops = m.tops();
+            tops.extend(verts.iter().filter(|&&v| m.is_top(&[v])).map(|&v| vec![v]));
+            let s = if !tops.is_empty() && s.len() % 2 == 0 {
+                tops[i.index(tops.len())].clone()
+            } else {
+                s.clone()
+            };
+            match live.remove_top(&s) {
+                Ok(()) => {
+                    assert!(m.is_top(&s), "removed non-top {s:?}");
+                    m.remove_top(&s);
+                    undos.clear();
+                }
+                Err(Refusal::NotTop { .. }) => assert!(m.contains(&s) && !m.is_top(&s)),
+                Err(Refusal::NotInComplex { .. }) => assert!(!m.contains(&s)),
+                Err(Refusal::InvalidSimplex { .. }) => {
+                    assert!(sorted(&s).windows(2).any(|w| w[0] == w[1]) || m.verts.len() == 1)
+                }
+                Err(Refusal::UnknownVertex { .. }) => {
+                    assert!(s.iter().any(|v| !m.verts.contains(v)))
+                }
+                Err(e) => panic!("remove {s:?}: {e}"),
+            }
+        }
+        Op::Contract(i, j, free) => {
+            let (a, b) = (verts[i.index(verts.len())], verts[j.index(verts.len())]);
+            let brute = m.link_failure(a, b);
+            let checked = live.link_condition(VertexId(a), VertexId(b));
+            if a != b {
+                match (&checked, brute) {
+                    (Ok(()), None) => {}
+                    (Err(Refusal::NotAnEdge { .. }), Some(usize::MAX)) => {}
+                    (Err(Refusal::LinkCondition { dim, simplex, .. }), Some(d)) => {
+                        assert_eq!(*dim, d);
+                        let (la, lb, lab) = (m.link(&[a]), m.link(&[b]), m.link(&[a, b]));
+                        assert!(
+                            la.contains(simplex) && lb.contains(simplex) && !lab.contains(simplex)
+                        );
+                    }
+                    other => panic!("link condition of {a} {b}: {other:?}"),
+                }
+            }
+            let mode = if *free {
+                ContractMode::Free
+            } else {
+                ContractMode::PreserveTopology
+            };
+            let before = live.clone();
+            match live.contract(VertexId(a), VertexId(b), mode, None) {
+                Ok(undo) => {
+                    assert!(a != b && (*free || brute.is_none()));
+                    undos.push((undo, m.clone(), before));
+                    m.contract(a, b);
+                }
+                Err(e) => {
+                    assert!(a == b || (!*free && brute.is_some()), "{e}");
+                    assert_same_state(live, &before);
+                }
+            }
+        }
+        Op::Split => {
+            if let Some((undo, old_m, old_live)) = undos.pop() {
+                live.split(&undo).unwrap();
+                assert_same_state(live, &old_live);
+                *m = old_m;
+            }
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+    #[test]
+    fn random_edit_sequences_match_the_model_the_oracle_and_a_rebuild(
+        (n, list) in common::random_input(6, 9, 8),
+        ops in proptest::collection::vec(op(), 1..14),
+    ) {
+        let c = with_coords(n, &list);
+        let mut live = LiveComplex::from_complex(&c);
+        let mut m = Model::of(&live);
+        assert_matches_model(&live, &m);
+        let mut undos = Vec::new();
+        for (k, op) in ops.iter().enumerate() {
+            step(&mut live, &mut m, &mut undos, op);
+            assert_matches_model(&live, &m);
+            if k % 3 == 2 || k + 1 == ops.len() {
+                assert_matches_oracle_and_rebuild(&live);
+            }
+            // Splits that still apply undo everything back to the start.
+        }
+        while let Some((undo, old_m, old_live)) = undos.pop() {
+            live.split(&undo).unwrap();
+            assert_same_state(&live, &old_live);
+            assert_matches_model(&live, &old_m);
+        }
+    }
+
+    #[test]
+    fn freshly_built_live_complexes_match_the_oracle((n, list) in common::random_input(6, 9, 8)) {
+        let c = common::complex_of(n, &list);
+        let live = LiveComplex::from_complex(&c);
+        prop_assert_eq!(live.validate(), Ok(()));
+        prop_assert_eq!(check_structure(&live, &c), Ok(()));
+    }
+}
+
+/// The README's C++ example, through the C ABI it wraps: a non-manifold edge and a hollow
+/// triangle; each status the example relies on.
+#[test]
+fn readme_example_contracts_edges_on_a_non_manifold_mesh_through_the_c_abi() {
+    use topoplex::ffi::*;
+    let ids = [1u32, 2, 3, 1, 2, 4, 1, 2, 5, 0, 1, 0, 2];
+    let offsets = [0usize, 3, 6, 9, 11, 13];
+    let (mut c, mut l, mut u) = (
+        std::ptr::null_mut(),
+        std::ptr::null_mut(),
+        std::ptr::null_mut(),
+    );
+    let mut count = 0usize;
+    // SAFETY: arrays of the stated lengths; handles from this library, freed once.
+    unsafe {
+        let st = tpx_complex_from_arrays(
+            6,
+            ids.as_ptr(),
+            offsets.as_ptr(),
+            5,
+            std::ptr::null(),
+            0,
+            &mut c,
+        );
+        assert_eq!(st, TpxStatus::Ok);
+        assert_eq!(tpx_live_from_complex(c, &mut l), TpxStatus::Ok);
+        assert_eq!(
+            tpx_live_link_condition(l, 1, 2),
+            TpxStatus::LinkConditionFails
+        );
+        assert_eq!(
+            tpx_live_contract(
+                l,
+                1,
+                2,
+                TPX_CONTRACT_PRESERVE_TOPOLOGY,
+                std::ptr::null(),
+                0,
+                &mut u
+            ),
+            TpxStatus::LinkConditionFails
+        );
+        assert!(u.is_null());
+        assert_eq!(
+            tpx_live_contract(
+                l,
+                1,
+                3,
+                TPX_CONTRACT_PRESERVE_TOPOLOGY,
+                std::ptr::null(),
+                0,
+                &mut u
+            ),
+            TpxStatus::Ok
+        );
+        assert_eq!(tpx_live_top_count(l, 2, &mut count), TpxStatus::Ok);
+        assert_eq!(count, 2);
+        assert_eq!(tpx_live_split(l, u), TpxStatus::Ok);
+        assert_eq!(tpx_live_split(l, u), TpxStatus::StaleUndo);
+        assert_eq!(tpx_live_top_count(l, 2, &mut count), TpxStatus::Ok);
+        assert_eq!(count, 3);
+        assert_eq!(
+            tpx_live_contract(
+                l,
+                0,
+                3,
+                TPX_CONTRACT_PRESERVE_TOPOLOGY,
+                std::ptr::null(),
+                0,
+                std::ptr::null_mut()
+            ),
+            TpxStatus::NotAnEdge
+        );
+        assert_eq!(
+            tpx_live_contract(
+                l,
+                0,
+                3,
+                TPX_CONTRACT_FREE,
+                std::ptr::null(),
+                0,
+                std::ptr::null_mut()
+            ),
+            TpxStatus::Ok
+        );
+        assert_eq!(tpx_live_top_count(l, 2, &mut count), TpxStatus::Ok);
+        assert_eq!(count, 3);
+        assert_eq!(tpx_live_top_count(l, 1, &mut count), TpxStatus::Ok);
+        assert_eq!(count, 0);
+        assert_eq!(
+            tpx_live_insert_top(l, [0u32, 1].as_ptr(), 2),
+            TpxStatus::SimplexAlreadyPresent
+        );
+        assert_eq!(
+            tpx_live_remove_top(l, [0u32, 1].as_ptr(), 2),
+            TpxStatus::NotATopSimplex
+        );
+        assert_eq!(
+            tpx_live_remove_top(l, [3u32, 1].as_ptr(), 2),
+            TpxStatus::DeadVertex
+        );
+        assert_eq!(
+            tpx_live_insert_top(l, [4u32, 4].as_ptr(), 2),
+            TpxStatus::InvalidSimplex
+        );
+        let mut map = [0u32; 6];
+        assert_eq!(
+            tpx_live_compact(l, map.as_mut_ptr(), 6, &mut count),
+            TpxStatus::Ok
+        );
+        assert_eq!(map, [0, 1, 2, u32::MAX, 3, 4]);
+        assert_eq!(tpx_live_split(l, u), TpxStatus::StaleUndo);
+        assert_eq!(tpx_live_validate(l), TpxStatus::Ok);
+        tpx_undo_free(u);
+        tpx_live_free(l);
+        tpx_complex_free(c);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+    /// The C ABI and the Rust API agree on the outcome of every edit of a random sequence, and
+    /// the C side's frozen copy equals the Rust side's.
+    #[test]
+    fn c_abi_edits_agree_with_the_rust_api(
+        (n, list) in common::random_input(4, 8, 6),
+        ops in proptest::collection::vec((0u8..5, 0u32..9, 0u32..9, 0u32..9, 1usize..4), 1..16),
+    ) {
+        use topoplex::ffi::*;
+        let c = common::complex_of(n, &list);
+        let mut rust = LiveComplex::from_complex(&c);
+        let ids: Vec<u32> = list.iter().flatten().copied().collect();
+        let mut offsets = vec![0usize];
+        for s in &list {
+            offsets.push(offsets.last().unwrap() + s.len());
+        }
+        let (mut tc, mut l) = (std::ptr::null_mut(), std::ptr::null_mut());
+        let mut undos = Vec::new();
+        // SAFETY: arrays of the stated lengths; handles from this library, freed once.
+        unsafe {
+            prop_assert_eq!(tpx_complex_from_arrays(n, ids.as_ptr(), offsets.as_ptr(), list.len(), std::ptr::null(), 0, &mut tc), TpxStatus::Ok);
+            prop_assert_eq!(tpx_live_from_complex(tc, &mut l), TpxStatus::Ok);
+            tpx_complex_free(tc);
+            for (kind, a, b, x, len) in ops {
+                let sigma = [a, b, x][..len].to_vec();
+                let (st, ok) = match kind {
+                    0 => (tpx_live_insert_top(l, sigma.as_ptr(), len), rust.insert_top(&sigma).is_ok()),
+                    1 => (tpx_live_remove_top(l, sigma.as_ptr(), len), rust.remove_top(&sigma).is_ok()),
+                    2 | 3 => {
+                        let (mode, m) = if kind == 2 { (TPX_CONTRACT_PRESERVE_TOPOLOGY, ContractMode::PreserveTopology) } else { (TPX_CONTRACT_FREE, ContractMode::Free) };
+                        let mut u = std::ptr::null_mut();
+                        let st = tpx_live_contract(l, a, b, mode, std::ptr::null(), 0, &mut u);
+                        let r = rust.contract(VertexId(a), VertexId(b), m, None);
+                        let ok = r.is_ok();
+                        if let Ok(rec) = r { undos.push((u, rec)); }
+                        (st, ok)
+                    }
+                    _ => match undos.pop() {
+                        Some((u, rec)) => {
+                            let st = tpx_live_split(l, u);
+                            tpx_undo_free(u);
+                            (st, rust.split(&rec).is_ok())
+                        }
+                        None => continue,
+                    },
+                };
+                prop_assert_eq!(st == TpxStatus::Ok, ok, "status {:?}", st);
+                prop_assert_eq!(tpx_live_validate(l), TpxStatus::Ok);
+            }
+            let mut frozen = std::ptr::null_mut();
+            prop_assert_eq!(tpx_live_to_complex(l, &mut frozen), TpxStatus::Ok);
+            let mut ig = std::ptr::null_mut();
+            prop_assert_eq!(tpx_structure_build(frozen, TPX_KIND_IG, &mut ig), TpxStatus::Ok);
+            let want = rust.to_complex();
+            let mut nv = 0u32;
+            prop_assert_eq!(tpx_complex_vertex_count(frozen, &mut nv), TpxStatus::Ok);
+            prop_assert_eq!(nv, want.vertex_count());
+            for p in 0..=want.dimension() {
+                let mut k = 0usize;
+                prop_assert_eq!(tpx_complex_top_count(frozen, p as u32, &mut k), TpxStatus::Ok);
+                prop_assert_eq!(k, want.tops(p).len());
+            }
+            for (u, _) in undos { tpx_undo_free(u); }
+            tpx_structure_free(ig);
+            tpx_complex_free(frozen);
+            tpx_live_free(l);
+        }
+    }
+}
