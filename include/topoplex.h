@@ -197,6 +197,20 @@ enum TpxStatus
    * contraction's result later edits changed (the message says which).
    */
   TPX_STATUS_STALE_UNDO = 25,
+  /**
+   * `tpx_simplify*`: the ratio is not in (0, 1] (NaN included).
+   */
+  TPX_STATUS_INVALID_RATIO = 27,
+  /**
+   * `tpx_simplify_file`: the output cannot be written (unknown extension, a format that
+   * cannot hold the result, or the file system refused).
+   */
+  TPX_STATUS_WRITE_ERROR = 28,
+  /**
+   * `tpx_simplify*`: the complex cannot be simplified: no vertex coordinates, a non-finite
+   * coordinate, or more top simplices of one dimension than the live complex numbers.
+   */
+  TPX_STATUS_CANNOT_SIMPLIFY = 29,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -726,6 +740,63 @@ TpxStatus tpx_live_to_complex(const struct TpxLive *l, struct TpxComplex **out);
  * Non-NULL pointers must be valid.
  */
 TpxStatus tpx_live_validate(const struct TpxLive *l);
+
+/**
+ * Simplifies `complex` by quadric-error edge contraction (Garland–Heckbert, generalised to
+ * simplices of any dimension in any coordinate dimension) until about `ratio` × its top
+ * simplices remain (`ceil(ratio × count)`, or fewer contractions when no edge is left, or,
+ * with `preserve_topology`, none satisfies the link condition). With `preserve_topology`
+ * every contraction satisfies the link condition in every dimension, so the Betti numbers and
+ * 2-/3-manifoldness are kept. `complex` is not changed.
+ *
+ * On success `*out` receives a new complex owned by the caller (free with
+ * `tpx_complex_free`), with coordinates, vertices renumbered densely in ascending old id
+ * order. Errors: NULL_ARGUMENT, INVALID_RATIO (`ratio` not in (0, 1]), CANNOT_SIMPLIFY (no
+ * coordinates, a non-finite coordinate, too many top simplices). Cost: O(E log E) for E edges
+ * plus the contractions (see the `simplify` module documentation); memory about the live
+ * complex plus (n + 1)(n + 2) / 2 doubles per vertex for n coordinates.
+ *
+ * # Safety
+ * `complex` must be NULL or a live `TpxComplex`; `out` NULL or valid for a write.
+ */
+TpxStatus tpx_simplify(const struct TpxComplex *complex,
+                       double ratio,
+                       bool preserve_topology,
+                       struct TpxComplex **out);
+
+/**
+ * Simplifies `complex` in place, as `tpx_simplify` does: its content is replaced by the
+ * result. The input is released as soon as the editable copy is built, so the peak memory
+ * holds one copy of it, not two (use this when the input is no longer needed).
+ *
+ * Errors (the complex is then unchanged): NULL_ARGUMENT, INVALID_RATIO, CANNOT_SIMPLIFY.
+ * After PANIC (an internal bug) the complex holds a single isolated vertex. Cost: as
+ * `tpx_simplify`.
+ *
+ * # Safety
+ * `complex` must be NULL or a live `TpxComplex` that no other thread uses during the call.
+ */
+TpxStatus tpx_simplify_in_place(struct TpxComplex *complex, double ratio, bool preserve_topology);
+
+/**
+ * Reads `input`, simplifies it as `tpx_simplify` does and writes the result to `output`, the
+ * format chosen by its extension (`.off`, `.obj`: dimension ≤ 2; `.mesh`: dimension ≤ 3 and
+ * 2 or 3 coordinates; `.simplices`: any). Both paths are NUL-terminated UTF-8. The output's
+ * extension and format are checked before any work; nothing is written on failure.
+ *
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (a path not UTF-8), INVALID_RATIO, IO_ERROR /
+ * PARSE_ERROR / INVALID_COMPLEX (reading `input`, as `tpx_complex_from_file`),
+ * CANNOT_SIMPLIFY, WRITE_ERROR (unknown extension, a format that cannot hold the complex, or
+ * the file system refused; the message names the path). Cost: `tpx_simplify` plus reading and
+ * writing.
+ *
+ * # Safety
+ * `input` and `output` must be NULL or NUL-terminated strings.
+ */
+TpxStatus tpx_simplify_file(const char *input,
+                            const char *output,
+                            double ratio,
+                            bool preserve_topology);
 
 /**
  * Builds a structure of `kind` (`TPX_KIND_*`) for the complex `c`.

@@ -4,12 +4,14 @@
 #   2. build the dataset maker (cpp_tests/bench_data) and make the datasets, cached in
 #      $TOPOPLEX_BENCH_DATA (default: <target dir>/bench-data; existing files are reused);
 #   3. build the Google Benchmark programs (cpp_tests/bench) against the prefix and run
-#      topoplex_bench_surface on surf-*.off, topoplex_bench_tets on tet-*.mesh and
-#      topoplex_bench_gudhi on every dataset, JSON into the results directory;
+#      topoplex_bench_surface and topoplex_bench_simplify (issue 14: quadric simplification to
+#      1%) on surf-*.off, topoplex_bench_tets on tet-*.mesh and topoplex_bench_gudhi on every
+#      dataset, JSON into the results directory;
 #   4. `cargo bench --bench structures` (criterion, Rust API), if that bench exists, and its
 #      tables (benches/structures_table.py) into RESULTS/criterion.md;
 #   5. scripts/bench_table.py: one Markdown table of Topoplex / peer ratios and the aims of
-#      issue 9 part 3, printed and written to RESULTS/table.md.
+#      issue 9 part 3, and the simplification table of issue 14, printed and written to
+#      RESULTS/table.md.
 #
 # usage: scripts/bench.sh [--quick] [RESULTS_DIR]
 #        scripts/bench.sh --large [--huge] [RESULTS_DIR]
@@ -21,7 +23,8 @@
 # Environment: TOPOPLEX_BENCH_DATA (datasets), TOPOPLEX_BENCH_KINDS (ia,ts,...: restrict the
 # Topoplex kinds), TOPOPLEX_BENCH_MIN_TIME (seconds per benchmark; default Google Benchmark's
 # own, 0.05 with --quick), TOPOPLEX_BENCH_GUDHI_COFACES_MAX (GUDHI cofaces only on datasets up
-# to this many top simplices, default 25000: see run() below), CARGO_TARGET_DIR.
+# to this many top simplices, default 25000: see run() below), TOPOPLEX_BENCH_SIMPLIFY_RATIO
+# (fraction of the triangles topoplex_bench_simplify keeps, default 0.01), CARGO_TARGET_DIR.
 # Installs, when missing (Debian): cmake ninja-build g++ libgtest-dev libbenchmark-dev
 # libopenmesh-dev libcgal-dev libcgal-demo libgudhi-dev libboost-dev libeigen3-dev python3;
 # needs cargo. Compiles and dataset
@@ -90,7 +93,7 @@ nice -n 10 "$build/bench_data/topoplex_bench_data" "${maker_args[@]}" "$data" \
 cp "$data/datasets.tsv" "$results/" 2>/dev/null || true
 
 echo "== build the benchmark programs (cpp_tests/bench) against $prefix"
-programs=(topoplex_bench_surface topoplex_bench_tets topoplex_bench_gudhi)
+programs=(topoplex_bench_surface topoplex_bench_tets topoplex_bench_gudhi topoplex_bench_simplify)
 if [ ! -f "$root/cpp_tests/bench/CMakeLists.txt" ]; then
   echo "cpp_tests/bench is missing: no side-by-side runs" >&2
   failed+=("cpp_tests/bench missing")
@@ -150,6 +153,8 @@ if [ -n "$bench_bin" ]; then
   echo "== side-by-side benchmarks into $results"
   for f in $(datasets 'surf-*.off'); do run topoplex_bench_surface surface "$f"; done
   for f in $(datasets 'tet-*.mesh'); do run topoplex_bench_tets tets "$f"; done
+  # Issue 14: simplification to 1% next to OpenMesh's Decimater and CGAL's SMS.
+  for f in $(datasets 'surf-*.off'); do run topoplex_bench_simplify simplify "$f"; done
   for f in $(datasets 'surf-*.off') $(datasets 'tet-*.mesh') $(datasets 'alpha-*.simplices') \
            $(datasets 'rips-*.simplices'); do
     run topoplex_bench_gudhi gudhi "$f"

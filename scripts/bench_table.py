@@ -28,7 +28,7 @@ import sys
 from collections import defaultdict
 from pathlib import Path
 
-PROGRAMS = ("surface", "tets", "gudhi")
+PROGRAMS = ("surface", "tets", "gudhi", "simplify")
 UNIT_NS = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}
 # Which kinds the aims call "top-simplex structures" on a tetrahedral mesh: they store the top
 # simplices and their adjacencies (IA, its non-manifold extension NMIA, and the IQM).
@@ -58,6 +58,7 @@ class Run:
             self.ns_per_elem = None
         self.heap = med("heap_bytes")
         self.peak = med("peak_heap_bytes")
+        self.faces_out = med("faces_out")
         if self.peak is not None and self.peak < 0:
             self.peak = None
 
@@ -141,6 +142,8 @@ def main_table(results, kinds: list[str], sizes: dict[str, str]) -> list[str]:
     ]
     keys = sorted(results, key=lambda k: (family(k[1]), size_of(k[1]), k[1], PROGRAMS.index(k[0]) if k[0] in PROGRAMS else 9))
     for program, dataset in keys:
+        if program == "simplify":
+            continue  # its own table (simplify_table)
         ops = results[(program, dataset)]
         for op in ops:
             libs = ops[op]
@@ -171,6 +174,56 @@ def main_table(results, kinds: list[str], sizes: dict[str, str]) -> list[str]:
                     f"| {fmt_ns(p.ns_per_elem)} | " + " | ".join(cells) + f" | {best_s} |"
                 )
     return lines
+
+
+def simplify_table(results) -> list[str]:
+    """Issue 14: simplification to 1% next to OpenMesh's Decimater and CGAL's SMS."""
+    keys = sorted((k for k in results if k[0] == "simplify"), key=lambda k: (size_of(k[1]), k[1]))
+    if not keys:
+        return []
+    out = [
+        "",
+        "## Simplification (issue 14): quadric-error edge contraction to 1% of the triangles",
+        "",
+        "Whole job from the same in-memory soup: build the mesh, simplify, as the peer does. "
+        "Cells: Topoplex / peer for time and peak heap (below 1: Topoplex better); "
+        "`tpx` free contraction, `tpx_preserve` link-checked.",
+        "",
+        "| dataset | triangles | peer | peer ms | peer peak MB | faces left (peer / tpx) | tpx time | tpx peak | tpx_preserve time | tpx_preserve peak |",
+        "|---|---:|---|---:|---:|---|---:|---:|---:|---:|",
+    ]
+    worst = {}
+    for _, dataset in keys:
+        libs = results[("simplify", dataset)].get("simplify", {})
+        for peer in ("openmesh", "cgal_sm"):
+            p = libs.get(peer)
+            if p is None:
+                continue
+            cells = []
+            for lib in ("tpx", "tpx_preserve"):
+                t = libs.get(lib)
+                rt = ratio(t.ns_per_elem, p.ns_per_elem) if t else None
+                rm = ratio(t.peak, p.peak) if t else None
+                cells += [fmt_ratio(rt), fmt_ratio(rm)]
+                if lib == "tpx" and rt is not None and rm is not None:
+                    w = worst.setdefault(peer, [0.0, 0.0])
+                    w[0], w[1] = max(w[0], rt), max(w[1], rm)
+            ms = p.ns_per_elem * p.elements / 1e6 if p.ns_per_elem and p.elements else None
+            t = libs.get("tpx")
+            faces = f"{p.faces_out:,.0f} / {t.faces_out:,.0f}" if t and p.faces_out and t.faces_out else "—"
+            peak_mb = f"{p.peak / 2**20:.0f}" if p.peak else "—"
+            out.append(
+                f"| {dataset} | {p.elements:,.0f} | {peer} | {fmt_ns(ms)} | {peak_mb} | {faces} | "
+                + " | ".join(cells)
+                + " |"
+            )
+    out.append("")
+    for peer, (rt, rm) in worst.items():
+        out.append(
+            f"- aim ≤ 1.0× the time and peak memory of {peer} (worst over the datasets: time {fmt_ratio(rt)}, "
+            f"peak {fmt_ratio(rm)}): {verdict(rt <= 1.0 and rm <= 1.0)}"
+        )
+    return out
 
 
 def verdict(ok: bool | None) -> str:
@@ -306,6 +359,7 @@ def main() -> int:
                 sizes[f[0]] = f"{int(f[2]):,} ({f[3]})"
     lines = main_table(results, kinds_in(results), sizes)
     lines += aims(results)
+    lines += simplify_table(results)
     print("\n".join(lines))
     return 0
 

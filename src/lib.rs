@@ -26,6 +26,7 @@ pub mod oracle;
 pub mod parallel;
 pub mod relation;
 pub mod report;
+pub mod simplify;
 pub mod store;
 pub mod structures;
 

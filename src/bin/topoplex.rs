@@ -122,6 +122,22 @@ enum Command {
         #[arg(long)]
         census: bool,
     },
+    /// Quadric-error edge-contraction simplification (Garland–Heckbert, any dimension) down to
+    /// about RATIO × the input's top simplices; the output format follows its extension (any
+    /// format `convert` writes).
+    Simplify {
+        input: PathBuf,
+        /// Output file.
+        #[arg(long)]
+        out: PathBuf,
+        /// Fraction of the top simplices to keep, in (0, 1].
+        #[arg(long)]
+        ratio: f64,
+        /// Contract only edges satisfying the link condition: Betti numbers and manifoldness
+        /// are kept.
+        #[arg(long)]
+        preserve_topology: bool,
+    },
 }
 
 fn parse_max_simplices(s: &str) -> Result<u64, String> {
@@ -198,6 +214,12 @@ fn run(command: Command) -> Result<(), String> {
             out,
         } => save(&file, structure.as_deref(), &out),
         Command::Verify { file } => verify(&file),
+        Command::Simplify {
+            input,
+            out,
+            ratio,
+            preserve_topology,
+        } => simplify(&input, &out, ratio, preserve_topology),
     }
 }
 
@@ -522,6 +544,73 @@ fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
             && a.modified().ok() == b.modified().ok()
             && a.created().ok() == b.created().ok()
     }
+}
+
+fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Result<(), String> {
+    use topoplex::io::write::{check_can_hold, write_complex};
+    use topoplex::simplify::{Options, simplify_owned};
+    if !(ratio > 0.0 && ratio <= 1.0) {
+        return Err(format!("--ratio {ratio} is outside (0, 1]"));
+    }
+    let options = Options {
+        ratio,
+        preserve_topology,
+    };
+    if let (Ok(a), Ok(b)) = (std::fs::metadata(input), std::fs::metadata(out))
+        && same_file(&a, &b)
+    {
+        return Err(format!(
+            "--out {} is the input file; choose another path",
+            topoplex::io::echo_path(out)
+        ));
+    }
+    let complex = load(input)?;
+    // Refuse an output that cannot hold the result, or cannot be written, before the work.
+    let format = check_can_hold(&complex, out, None).map_err(|e| e.to_string())?;
+    let existed = out.exists();
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(out)
+        .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
+    let progress = Progress::new(1);
+    progress.bar.set_message("contracting edges");
+    let result = simplify_owned(complex, &options, &mut |done, total| {
+        progress.bar.set_length(total as u64);
+        progress.bar.set_position(done as u64);
+    });
+    progress.finish();
+    let written = result.map_err(|e| e.to_string()).and_then(|s| {
+        write_complex(&s.complex, out, Some(format))
+            .map(|()| s)
+            .map_err(|e| e.to_string())
+    });
+    let s = match written {
+        Ok(s) => s,
+        Err(e) => {
+            if !existed {
+                let _ = std::fs::remove_file(out);
+            }
+            return Err(e);
+        }
+    };
+    let st = s.stats;
+    let refused = if preserve_topology {
+        format!(
+            ", {} refused by the link condition ({} retry rounds)",
+            st.refused, st.refills
+        )
+    } else {
+        String::new()
+    };
+    print(&format!(
+        "{} -> {} top simplices (target {}), {} contractions{refused}; wrote {}\n",
+        st.input_tops,
+        st.output_tops,
+        st.target_tops,
+        st.contractions,
+        out.display()
+    ))
 }
 
 fn dump_relation(

@@ -29,8 +29,9 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 mod complex;
 mod decomposition;
 mod handles;
-mod store;
 mod live;
+mod simplify;
+mod store;
 mod structure;
 #[cfg(test)]
 mod tests;
@@ -39,8 +40,9 @@ mod write;
 pub use complex::*;
 pub use decomposition::*;
 pub use handles::*;
-pub use store::*;
 pub use live::*;
+pub use simplify::*;
+pub use store::*;
 pub use structure::*;
 pub use write::*;
 
@@ -108,6 +110,14 @@ pub enum TpxStatus {
     /// Live complex: an undo record from before `tpx_live_compact`, applied already, or whose
     /// contraction's result later edits changed (the message says which).
     StaleUndo = 25,
+    /// `tpx_simplify*`: the ratio is not in (0, 1] (NaN included).
+    InvalidRatio = 27,
+    /// `tpx_simplify_file`: the output cannot be written (unknown extension, a format that
+    /// cannot hold the result, or the file system refused).
+    WriteError = 28,
+    /// `tpx_simplify*`: the complex cannot be simplified: no vertex coordinates, a non-finite
+    /// coordinate, or more top simplices of one dimension than the live complex numbers.
+    CannotSimplify = 29,
     /// The output format number is not one of `TPX_FORMAT_*`, or the output file's extension
     /// names no format.
     UnknownFormat = 30,

@@ -92,6 +92,8 @@ pub(super) fn load_structure(
         StructureKind::Le => go::<le::LoopEdgeUse>(r),
         StructureKind::De => go::<de::DirectedEdge>(r),
         // `save` refuses the live complex, so no honest file names it.
-        StructureKind::IaStar => Err(r.corrupt("structure kind 9 (the live complex) is never saved")),
+        StructureKind::IaStar => {
+            Err(r.corrupt("structure kind 9 (the live complex) is never saved"))
+        }
     }
 }

@@ -24,9 +24,9 @@ use std::cell::RefCell;
 use std::sync::OnceLock;
 
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable};
-use crate::store::{Arr, Field};
 use crate::handle::{HandleForm, Navigate, SimplexHandle, TopId, Vertices};
 use crate::relation::{QueryError, Topology, normalize_simplex};
+use crate::store::{Arr, Field};
 
 // Saved with its structure (`.tpx`): the windings are mapped back, the lazy tables rebuilt on use.
 impl crate::store::Field for NavIndex {
@@ -44,16 +44,15 @@ impl crate::store::Field for NavIndex {
         };
         // The shape every handle lookup indexes by, checked before anything trusts it.
         let t = &nav.top_first;
-        let consistent = t.len() >= 2
-            && t.windows(2).all(|w| w[0] <= w[1])
-            && t[0] == 0
-            && nav.windings.len() == t[t.len() - 1] as usize
-            && nav.low_tops.len() == t.len() - 2
-            && nav
-                .low_tops
-                .iter()
-                .enumerate()
-                .all(|(p, tab)| tab.arity() == p + 1 && tab.len() == (t[p + 1] - t[p]) as usize);
+        let consistent =
+            t.len() >= 2
+                && t.windows(2).all(|w| w[0] <= w[1])
+                && t[0] == 0
+                && nav.windings.len() == t[t.len() - 1] as usize
+                && nav.low_tops.len() == t.len() - 2
+                && nav.low_tops.iter().enumerate().all(|(p, tab)| {
+                    tab.arity() == p + 1 && tab.len() == (t[p + 1] - t[p]) as usize
+                });
         if !consistent {
             return Err(r.corrupt("handle index: top counts, windings and low tops disagree"));
         }

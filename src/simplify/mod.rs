@@ -1,0 +1,670 @@
+//! Quadric-error edge-contraction simplification of any simplicial complex: triangle and
+//! tetrahedral meshes, mixed-dimensional and non-manifold complexes, any dimension (Garland and
+//! Heckbert 1997, generalised to k-simplices in R^n by Garland and Zhou 2005), on the
+//! [`LiveComplex`].
+//!
+//! # Steps ([`simplify`])
+//! 1. [`init_quadrics`]: every vertex gets the sum of the quadrics of the top simplices around
+//!    it — the squared distance to each top k-simplex's affine hull in the coordinate space
+//!    R^n, weighted by `vol_k(σ)^(2/k)` (area for a triangle, length² for an edge, so simplices
+//!    of different dimensions weigh in the same unit) — plus, for every *boundary facet* of a
+//!    top simplex (a facet no other top simplex holds), the quadric of the facet's hull with
+//!    its owner's weight. The latter keeps open borders of surfaces and, for simplices that
+//!    span R^n (tetrahedra in R^3, whose own quadric is zero), the boundary surface.
+//! 2. [`fill_queue`]: every edge {a, b} with its cost `min_x (Q_a + Q_b)(x)`; the minimiser
+//!    solves `A x = −b`, and where A is singular or the solution lies more than 4 edge lengths
+//!    from the edge's midpoint, the best point of the segment [a, b] is taken instead.
+//! 3. [`contract_loop`]: pop the cheapest edge; entries carry the sum of their two vertices'
+//!    versions and are skipped when it changed (lazy invalidation, no decrease-key); contract
+//!    it (into the vertex with the larger star, which then moves to the minimiser), add the
+//!    quadrics, bump the survivor's version and push its edges with their new costs. With
+//!    `preserve_topology` the contraction is link-checked in every dimension and a refused edge
+//!    is parked; when the queue runs dry before the target, the parked edges whose endpoints'
+//!    neighbourhoods changed since (a contraction touched the survivor and its ring) are queued
+//!    again, and the loop ends when none did.
+//!    It stops once the live top simplices are at most `ceil(ratio × input top simplices)`.
+//! 4. [`LiveComplex::to_complex`], for any writer or any of the nine structures.
+//!
+//! # Cost
+//! Step 1 O(Σ_σ d² (n² + d·k_v)), step 2 O(E (n³ + log E)), step 3 per contraction the
+//! [`LiveComplex::contract`] cost plus O(deg(a) (n³ + log E)) for the new costs. Memory beyond
+//! the live complex: `(n + 1)(n + 2) / 2` doubles and a version per vertex, 16 bytes per queue
+//! entry (the queue is rebuilt without its stale entries when it doubles).
+
+pub mod quadric;
+
+use std::cmp::Reverse;
+use std::collections::BinaryHeap;
+
+use crate::complex::Complex;
+use crate::live::{ContractMode, LiveComplex, Refusal, VertexId};
+use quadric::{QuadricSpace, sum_into};
+
+/// Most top simplices of one dimension the live complex's handles can number (2^28) halved:
+/// contractions append the images of the tops they move before old slots are reused.
+pub const MAX_TOPS_PER_DIMENSION: usize = 1 << 27;
+
+/// What to simplify to.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Options {
+    /// Fraction of the input's top simplices to keep, in (0, 1].
+    pub ratio: f64,
+    /// Contract only edges satisfying the link condition in every dimension: the Betti numbers
+    /// are kept, and a 2- or 3-manifold stays one.
+    pub preserve_topology: bool,
+}
+
+/// Why a complex was not simplified.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SimplifyError {
+    /// The ratio is not in (0, 1].
+    #[error("ratio {0} is outside (0, 1]")]
+    Ratio(f64),
+    /// The complex has no vertex coordinates: quadrics need geometry.
+    #[error("{}the complex has no vertex coordinates; simplification measures distances", source_prefix(.file))]
+    NoCoordinates {
+        /// The input file, when known.
+        file: Option<std::path::PathBuf>,
+    },
+    /// A coordinate is NaN or infinite.
+    #[error("{}vertex {vertex} has a non-finite coordinate", source_prefix(.file))]
+    NonFinite {
+        /// The input file, when known.
+        file: Option<std::path::PathBuf>,
+        /// The first vertex with a non-finite coordinate.
+        vertex: u32,
+    },
+    /// More top simplices of one dimension than the live complex can number.
+    #[error("{}{count} top {dim}-simplices, above the {max} simplification can hold", source_prefix(.file))]
+    TooLarge {
+        /// The input file, when known.
+        file: Option<std::path::PathBuf>,
+        /// The dimension.
+        dim: usize,
+        /// Top simplices of that dimension.
+        count: usize,
+        /// [`MAX_TOPS_PER_DIMENSION`].
+        max: usize,
+    },
+}
+
+fn source_prefix(file: &Option<std::path::PathBuf>) -> String {
+    file.as_ref()
+        .map(|p| format!("{}: ", p.display()))
+        .unwrap_or_default()
+}
+
+/// What a simplification did.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Stats {
+    /// Top simplices of the input (all dimensions, isolated vertices included).
+    pub input_tops: usize,
+    /// The target: `ceil(ratio × input_tops)`.
+    pub target_tops: usize,
+    /// Top simplices of the result.
+    pub output_tops: usize,
+    /// Contractions made.
+    pub contractions: usize,
+    /// Contractions refused by the link condition (with `preserve_topology`).
+    pub refused: usize,
+    /// Times the queue ran dry and the refused edges whose neighbourhood had changed since were
+    /// queued again.
+    pub refills: usize,
+}
+
+/// The simplified complex and what it took.
+#[derive(Debug, Clone)]
+pub struct Simplified {
+    /// The result, vertices renumbered densely (see [`LiveComplex::to_complex`]).
+    pub complex: Complex,
+    /// Counts.
+    pub stats: Stats,
+}
+
+/// Simplifies `complex` to about `options.ratio` × its top simplices; `progress(done, total)`
+/// is called now and then with top simplices removed so far and to remove in all.
+pub fn simplify(
+    complex: &Complex,
+    options: &Options,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Simplified, SimplifyError> {
+    check(complex, options)?;
+    let mut live = LiveComplex::from_complex(complex);
+    let stats = simplify_live(&mut live, options, progress)?;
+    Ok(Simplified {
+        complex: live.to_complex(),
+        stats,
+    })
+}
+
+/// [`simplify`] taking the complex by value: it is dropped as soon as the live complex is
+/// built, so the peak memory holds one copy of the input, not two.
+pub fn simplify_owned(
+    complex: Complex,
+    options: &Options,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Simplified, SimplifyError> {
+    check(&complex, options)?;
+    let mut live = LiveComplex::from_complex(&complex);
+    drop(complex);
+    let stats = simplify_live(&mut live, options, progress)?;
+    Ok(Simplified {
+        complex: live.to_complex(),
+        stats,
+    })
+}
+
+/// The same on a live complex, in place (its coordinates must be finite; see [`simplify`]).
+pub fn simplify_live(
+    live: &mut LiveComplex,
+    options: &Options,
+    progress: &mut dyn FnMut(usize, usize),
+) -> Result<Stats, SimplifyError> {
+    if !(options.ratio > 0.0 && options.ratio <= 1.0) {
+        return Err(SimplifyError::Ratio(options.ratio));
+    }
+    if live.coord_dim() == 0 {
+        return Err(SimplifyError::NoCoordinates { file: None });
+    }
+    let input_tops = top_count(live);
+    let mut state = State::new(live, options);
+    state.stats.input_tops = input_tops;
+    state.stats.target_tops = ((options.ratio * input_tops as f64).ceil() as usize).max(1);
+    init_quadrics(&mut state);
+    fill_queue(&mut state);
+    contract_loop(&mut state, progress);
+    state.stats.output_tops = state.tops;
+    Ok(state.stats)
+}
+
+/// Refuses what [`simplify`] cannot do, before any work: a ratio outside (0, 1], no or
+/// non-finite coordinates, too many top simplices.
+pub fn check(complex: &Complex, options: &Options) -> Result<(), SimplifyError> {
+    if !(options.ratio > 0.0 && options.ratio <= 1.0) {
+        return Err(SimplifyError::Ratio(options.ratio));
+    }
+    let file = complex.source().map(std::path::Path::to_path_buf);
+    let Some(coords) = complex.coords() else {
+        return Err(SimplifyError::NoCoordinates { file });
+    };
+    if let Some(i) = coords.data.iter().position(|x| !x.is_finite()) {
+        return Err(SimplifyError::NonFinite {
+            file,
+            vertex: (i / coords.dim) as u32,
+        });
+    }
+    for (dim, &count) in complex.top_counts().iter().enumerate() {
+        if count > MAX_TOPS_PER_DIMENSION {
+            return Err(SimplifyError::TooLarge {
+                file,
+                dim,
+                count,
+                max: MAX_TOPS_PER_DIMENSION,
+            });
+        }
+    }
+    Ok(())
+}
+
+/// Live top simplices: those of dimension ≥ 1 and the isolated vertices.
+fn top_count(live: &LiveComplex) -> usize {
+    live.tops().count() + live.vertices().filter(|&v| is_isolated(live, v)).count()
+}
+
+fn is_isolated(live: &LiveComplex, v: VertexId) -> bool {
+    live.vertex_star(v)
+        .map(|mut s| s.next().is_none())
+        .unwrap_or(false)
+}
+
+/// A queue entry: cost bits (a non-negative f32's bits order as the float does), the two
+/// vertices, and the sum of their versions when the cost was computed.
+type Entry = Reverse<(u32, u32, u32, u32)>;
+
+/// The simplification's working state around the live complex.
+struct State<'a> {
+    live: &'a mut LiveComplex,
+    mode: ContractMode,
+    space: QuadricSpace,
+    /// `space.len()` numbers per vertex slot.
+    quadrics: Vec<f64>,
+    version: Vec<u32>,
+    queue: BinaryHeap<Entry>,
+    /// Queue length above which stale entries are dropped.
+    queue_limit: usize,
+    /// Per vertex: bumped whenever a contraction changes its neighbourhood (it is the survivor
+    /// or in the survivor's ring), which may change the link condition of its edges.
+    touch: Vec<u32>,
+    /// Entries refused by the link condition, with the sum of their vertices' touches then:
+    /// retried once that changes ([`unpark`]).
+    parked: Vec<(Entry, u32)>,
+    /// Live top simplices now.
+    tops: usize,
+    stats: Stats,
+    scratch: Scratch,
+}
+
+/// Buffers reused by every cost evaluation and quadric construction.
+#[derive(Default)]
+struct Scratch {
+    q: Vec<f64>,
+    x: Vec<f64>,
+    solve: Vec<f64>,
+    points: Vec<f64>,
+    basis: Vec<f64>,
+    mark: Vec<u32>,
+    mark_stamp: u32,
+    ring: Vec<u32>,
+}
+
+impl<'a> State<'a> {
+    fn new(live: &'a mut LiveComplex, options: &Options) -> State<'a> {
+        let n = live.coord_dim();
+        let space = QuadricSpace::new(n);
+        let slots = live.vertex_slots() as usize;
+        let tops = top_count(live);
+        State {
+            mode: if options.preserve_topology {
+                ContractMode::PreserveTopology
+            } else {
+                ContractMode::Free
+            },
+            space,
+            quadrics: vec![0.0; slots * space.len()],
+            version: vec![0; slots],
+            queue: BinaryHeap::new(),
+            queue_limit: 0,
+            touch: vec![0; slots],
+            parked: Vec::new(),
+            tops,
+            stats: Stats::default(),
+            scratch: Scratch {
+                q: vec![0.0; space.len()],
+                x: vec![0.0; n],
+                mark: vec![0; slots],
+                ..Default::default()
+            },
+            live,
+        }
+    }
+
+    fn quadric(&self, v: u32) -> &[f64] {
+        let m = self.space.len();
+        &self.quadrics[v as usize * m..(v as usize + 1) * m]
+    }
+
+    fn point(&self, v: u32) -> &[f64] {
+        self.live.coords(VertexId(v)).unwrap_or(&[])
+    }
+
+    /// The cost of contracting {a, b} and, in `scratch.x`, where the survivor goes.
+    fn cost(&mut self, a: u32, b: u32) -> f64 {
+        let m = self.space.len();
+        let mut q = std::mem::take(&mut self.scratch.q);
+        let mut x = std::mem::take(&mut self.scratch.x);
+        let mut solve = std::mem::take(&mut self.scratch.solve);
+        sum_into(self.quadric(a), self.quadric(b), &mut q[..m]);
+        let (pa, pb) = (self.point(a), self.point(b));
+        let ok = self.space.minimiser(&q, &mut x, &mut solve) && near_segment(&x, pa, pb);
+        if !ok {
+            self.space.segment_minimiser(&q, pa, pb, &mut x);
+        }
+        let c = self.space.eval(&q, &x);
+        self.scratch = Scratch {
+            q,
+            x,
+            solve,
+            ..std::mem::take(&mut self.scratch)
+        };
+        c
+    }
+
+    fn push(&mut self, a: u32, b: u32) {
+        let c = self.cost(a, b) as f32;
+        let bits = if c.is_finite() {
+            c.max(0.0).to_bits()
+        } else {
+            f32::MAX.to_bits()
+        };
+        let stamp = self.version[a as usize].wrapping_add(self.version[b as usize]);
+        self.queue.push(Reverse((bits, a, b, stamp)));
+    }
+
+    fn touched(&self, a: u32, b: u32) -> u32 {
+        self.touch[a as usize].wrapping_add(self.touch[b as usize])
+    }
+
+    fn is_current(&self, a: u32, b: u32, stamp: u32) -> bool {
+        self.live.is_live(VertexId(a))
+            && self.live.is_live(VertexId(b))
+            && self.version[a as usize].wrapping_add(self.version[b as usize]) == stamp
+    }
+
+    /// The other vertices of the top simplices around `v`, each once, into `scratch.ring`.
+    fn ring(&mut self, v: u32) {
+        let s = &mut self.scratch;
+        s.mark_stamp = s.mark_stamp.wrapping_add(1);
+        if s.mark_stamp == 0 {
+            s.mark.fill(0);
+            s.mark_stamp = 1;
+        }
+        s.ring.clear();
+        let Ok(star) = self.live.vertex_star(VertexId(v)) else {
+            return;
+        };
+        for t in star {
+            for &u in self.live.top_vertices(t).unwrap_or(&[]) {
+                if u != v && s.mark[u as usize] != s.mark_stamp {
+                    s.mark[u as usize] = s.mark_stamp;
+                    s.ring.push(u);
+                }
+            }
+        }
+    }
+}
+
+/// Whether the minimiser x lies within 4 edge lengths of the edge's midpoint (else a nearly
+/// singular system threw it far off, and the segment's best point is used).
+fn near_segment(x: &[f64], a: &[f64], b: &[f64]) -> bool {
+    let mut len2 = 0.0;
+    let mut off2 = 0.0;
+    for i in 0..x.len() {
+        len2 += (a[i] - b[i]).powi(2);
+        off2 += (x[i] - 0.5 * (a[i] + b[i])).powi(2);
+    }
+    off2 <= 16.0 * len2
+}
+
+/// Step 1: the quadric of every vertex (module doc).
+fn init_quadrics(state: &mut State) {
+    let n = state.space.dim();
+    let m = state.space.len();
+    let tops: Vec<_> = state.live.tops().map(|(t, _)| t).collect();
+    let mut facet = Vec::with_capacity(16);
+    for t in tops {
+        let verts: Vec<u32> = state.live.top_vertices(t).unwrap_or(&[]).to_vec();
+        let k = verts.len() - 1;
+        gather(state, &verts, None);
+        // The owner's weight: vol_k^(2/k), a squared length for every k.
+        let mut basis = std::mem::take(&mut state.scratch.basis);
+        let mut q = std::mem::take(&mut state.scratch.q);
+        q.fill(0.0);
+        let mut weight = 0.0;
+        state
+            .space
+            .add_simplex(&mut q, &state.scratch.points, &mut basis, |vol| {
+                weight = vol.powf(2.0 / k as f64);
+                if k < n { weight } else { 0.0 }
+            });
+        for &v in &verts {
+            add_into(
+                &mut state.quadrics[v as usize * m..(v as usize + 1) * m],
+                &q,
+            );
+        }
+        // Boundary facets: hull quadric with the owner's weight, to each facet vertex.
+        for skip in 0..verts.len() {
+            facet.clear();
+            facet.extend(
+                verts
+                    .iter()
+                    .enumerate()
+                    .filter(|&(i, _)| i != skip)
+                    .map(|(_, &v)| v),
+            );
+            if weight == 0.0 || !is_boundary_facet(state.live, &facet) {
+                continue;
+            }
+            gather(state, &facet, None);
+            q.fill(0.0);
+            state
+                .space
+                .add_simplex(&mut q, &state.scratch.points, &mut basis, |_| weight);
+            for &v in &facet {
+                add_into(
+                    &mut state.quadrics[v as usize * m..(v as usize + 1) * m],
+                    &q,
+                );
+            }
+        }
+        state.scratch.basis = basis;
+        state.scratch.q = q;
+    }
+}
+
+/// The coordinates of `verts` into `scratch.points`, flat.
+fn gather(state: &mut State, verts: &[u32], _: Option<()>) {
+    let mut pts = std::mem::take(&mut state.scratch.points);
+    pts.clear();
+    for &v in verts {
+        pts.extend_from_slice(state.point(v));
+    }
+    state.scratch.points = pts;
+}
+
+fn add_into(acc: &mut [f64], q: &[f64]) {
+    for (a, x) in acc.iter_mut().zip(q) {
+        *a += x;
+    }
+}
+
+/// Whether exactly one live top simplex holds `facet` (the one it was taken from).
+fn is_boundary_facet(live: &LiveComplex, facet: &[u32]) -> bool {
+    let Some(&v) = facet.iter().min_by_key(|&&v| {
+        live.vertex_star(VertexId(v))
+            .map(|s| s.count())
+            .unwrap_or(0)
+    }) else {
+        return false;
+    };
+    let Ok(star) = live.vertex_star(VertexId(v)) else {
+        return false;
+    };
+    star.filter(|&t| {
+        live.top_vertices(t)
+            .is_ok_and(|s| facet.iter().all(|u| s.contains(u)))
+    })
+    .nth(1)
+    .is_none()
+}
+
+/// Step 2: every live edge with its cost, found as the ring of each vertex (no edge list is
+/// materialised: the queue is the only thing this step allocates).
+fn fill_queue(state: &mut State) {
+    state.queue.clear();
+    for v in 0..state.live.vertex_slots() {
+        if !state.live.is_live(VertexId(v)) {
+            continue;
+        }
+        state.ring(v);
+        let ring = std::mem::take(&mut state.scratch.ring);
+        for &u in ring.iter().filter(|&&u| u > v) {
+            state.push(v, u);
+        }
+        state.scratch.ring = ring;
+    }
+    state.queue_limit = (2 * state.queue.len()).max(1024);
+}
+
+/// Step 3: contract the cheapest edges until the target (module doc).
+fn contract_loop(state: &mut State, progress: &mut dyn FnMut(usize, usize)) {
+    let target = state.stats.target_tops;
+    let total = state.tops.saturating_sub(target);
+    let mut last_report = 0;
+    while state.tops > target {
+        let Some(entry) = state.queue.pop() else {
+            // Dry: retry the refused edges whose neighbourhood changed since, if any.
+            if !unpark(state) {
+                break;
+            }
+            state.stats.refills += 1;
+            continue;
+        };
+        let Reverse((_, a, b, stamp)) = entry;
+        if !state.is_current(a, b, stamp) {
+            continue;
+        }
+        if contract_edge(state, entry) {
+            let done = total - state.tops.saturating_sub(target);
+            if done - last_report >= 1024 {
+                last_report = done;
+                progress(done, total);
+            }
+        }
+        if state.queue.len() > state.queue_limit {
+            drop_stale(state);
+        }
+    }
+    progress(total - state.tops.saturating_sub(target), total);
+}
+
+/// Contracts {a, b} into the vertex with the larger star, at the minimiser; false if refused
+/// (then the entry is parked).
+fn contract_edge(state: &mut State, entry: Entry) -> bool {
+    let Reverse((_, a, b, _)) = entry;
+    let star = |v: u32| {
+        state
+            .live
+            .vertex_star(VertexId(v))
+            .map(|s| s.count())
+            .unwrap_or(0)
+    };
+    let (keep, gone) = if star(a) >= star(b) { (a, b) } else { (b, a) };
+    if state.mode == ContractMode::PreserveTopology && !boundary_link_condition(state.live, a, b) {
+        state.stats.refused += 1;
+        let touched = state.touched(a, b);
+        state.parked.push((entry, touched));
+        return false;
+    }
+    state.cost(keep, gone);
+    let x = std::mem::take(&mut state.scratch.x);
+    let result = state
+        .live
+        .contract(VertexId(keep), VertexId(gone), state.mode, Some(&x));
+    state.scratch.x = x;
+    let undo = match result {
+        Ok(undo) => undo,
+        Err(Refusal::LinkCondition { .. } | Refusal::NotAnEdge { .. }) => {
+            state.stats.refused += 1;
+            let touched = state.touched(a, b);
+            state.parked.push((entry, touched));
+            return false;
+        }
+        Err(e) => panic!("contracting live edge {{{keep}, {gone}}}: {e}"),
+    };
+    let removed = undo.removed_tops().count();
+    let inserted = undo.inserted_tops().count();
+    state.tops =
+        state.tops + inserted + usize::from(is_isolated(state.live, VertexId(keep))) - removed;
+    state.stats.contractions += 1;
+    let m = state.space.len();
+    let (k, g) = (keep as usize * m, gone as usize * m);
+    for i in 0..m {
+        state.quadrics[k + i] += state.quadrics[g + i];
+    }
+    state.version[keep as usize] = state.version[keep as usize].wrapping_add(1);
+    state.version[gone as usize] = state.version[gone as usize].wrapping_add(1);
+    state.ring(keep);
+    let ring = std::mem::take(&mut state.scratch.ring);
+    state.touch[keep as usize] = state.touch[keep as usize].wrapping_add(1);
+    for &u in &ring {
+        state.touch[u as usize] = state.touch[u as usize].wrapping_add(1);
+        state.push(keep, u);
+    }
+    state.scratch.ring = ring;
+    true
+}
+
+/// The boundary half of the link condition for manifolds with boundary (Dey, Edelsbrunner,
+/// Guha, Nekhayev 1999: the link condition in K ∪ ω·∂K, ω a vertex coned over the boundary).
+/// ∂K is made of the *boundary facets*, facets of top simplices that no other top simplex
+/// holds. When a and b both lie on ∂K, {a, b} must be an edge of ∂K satisfying the link
+/// condition within ∂K; otherwise contracting it would pinch the boundary (a disk into two disks
+/// sharing a vertex: same Betti numbers, no longer a manifold). Costs O(k² d²) for the stars of
+/// a and b, and a small live complex of their boundary facets when both are on ∂K.
+fn boundary_link_condition(live: &LiveComplex, a: u32, b: u32) -> bool {
+    let fa = boundary_facets_at(live, a);
+    if fa.is_empty() {
+        return true;
+    }
+    let fb = boundary_facets_at(live, b);
+    if fb.is_empty() {
+        return true;
+    }
+    if !fa.iter().any(|f| f.contains(&b)) {
+        return false;
+    }
+    // The boundary around a and b as its own complex, over local ids.
+    let mut ids: Vec<u32> = fa.iter().chain(&fb).flatten().copied().collect();
+    ids.sort_unstable();
+    ids.dedup();
+    let local = |v: u32| ids.binary_search(&v).map_or(u32::MAX, |i| i as u32);
+    let facets: Vec<Vec<u32>> = fa
+        .iter()
+        .chain(&fb)
+        .map(|f| f.iter().map(|&v| local(v)).collect())
+        .collect();
+    let refs: Vec<&[u32]> = facets.iter().map(Vec::as_slice).collect();
+    let Ok(c) = Complex::from_simplices(ids.len() as u32, &refs) else {
+        return false;
+    };
+    LiveComplex::from_complex(&c)
+        .link_condition(VertexId(local(a)), VertexId(local(b)))
+        .is_ok()
+}
+
+/// The boundary facets (see [`boundary_link_condition`]) through `v`, each once, sorted.
+fn boundary_facets_at(live: &LiveComplex, v: u32) -> Vec<Vec<u32>> {
+    let mut out: Vec<Vec<u32>> = Vec::new();
+    let Ok(star) = live.vertex_star(VertexId(v)) else {
+        return out;
+    };
+    for t in star {
+        let verts = live.top_vertices(t).unwrap_or(&[]);
+        for skip in 0..verts.len() {
+            if verts[skip] == v {
+                continue;
+            }
+            let mut f: Vec<u32> = verts
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| i != skip)
+                .map(|(_, &u)| u)
+                .collect();
+            f.sort_unstable();
+            if !out.contains(&f) && is_boundary_facet(live, &f) {
+                out.push(f);
+            }
+        }
+    }
+    out
+}
+
+/// Moves the parked entries whose vertices' neighbourhoods changed back into the queue and
+/// drops the stale ones; false when none moved (no refused edge can have become legal).
+fn unpark(state: &mut State) -> bool {
+    let parked = std::mem::take(&mut state.parked);
+    let mut moved = false;
+    for (entry, touched) in parked {
+        let Reverse((_, a, b, stamp)) = entry;
+        if !state.is_current(a, b, stamp) {
+            continue;
+        }
+        if state.touched(a, b) != touched {
+            state.queue.push(entry);
+            moved = true;
+        } else {
+            state.parked.push((entry, touched));
+        }
+    }
+    moved
+}
+
+/// Rebuilds the queue without stale entries and resets the limit.
+fn drop_stale(state: &mut State) {
+    let queue = std::mem::take(&mut state.queue);
+    let mut entries = queue.into_vec();
+    entries.retain(|&Reverse((_, a, b, stamp))| state.is_current(a, b, stamp));
+    state.queue = BinaryHeap::from(entries);
+    state.queue_limit = (2 * state.queue.len()).max(1024);
+}
