@@ -708,7 +708,7 @@ mod ffi {
         assert_eq!(n, 4);
         unsafe { tpx_complex_free(out) };
         // Refusals leave *out untouched.
-        let sentinel = 0x1 as *mut TpxComplex;
+        let sentinel = std::ptr::dangling_mut::<TpxComplex>();
         for bad in [0.0, 1.01, f64::NAN, -1.0] {
             let mut out = sentinel;
             assert_eq!(

@@ -8,7 +8,7 @@
 //!
 //! The format is chosen by file extension: `.off`, `.obj`, `.mesh`, `.simplices`, `.ply`, `.stl`,
 //! `.vtk`, `.vtu`, `.msh`.
-//! The writers ([`write`]) are their inverse.
+//! The writers ([`mod@write`]) are their inverse.
 
 use std::path::{Path, PathBuf};
 
@@ -341,12 +341,6 @@ impl<'a> Tokens<'a> {
         }
         out
     }
-
-    /// The line to blame when the file ends early: its last line (at least 1). Meaningful once
-    /// [`Iterator::next`] has returned `None`.
-    pub(crate) fn eof_line(&self) -> u32 {
-        self.scanner.eof_line()
-    }
 }
 
 impl<'a> Iterator for Tokens<'a> {
@@ -355,12 +349,6 @@ impl<'a> Iterator for Tokens<'a> {
     fn next(&mut self) -> Option<(&'a str, u32)> {
         self.scanner.token()
     }
-}
-
-/// The part of a line before any `#`.
-#[cfg_attr(not(test), allow(dead_code))]
-pub(crate) fn strip_comment(line: &str) -> &str {
-    line.find('#').map_or(line, |i| &line[..i])
 }
 
 /// Why a token is not an integer.

@@ -4,17 +4,17 @@
 //! [`LiveComplex`].
 //!
 //! # Steps ([`simplify`])
-//! 1. [`init_quadrics`]: every vertex gets the sum of the quadrics of the top simplices around
+//! 1. `init_quadrics`: every vertex gets the sum of the quadrics of the top simplices around
 //!    it — the squared distance to each top k-simplex's affine hull in the coordinate space
 //!    R^n, weighted by `vol_k(σ)^(2/k)` (area for a triangle, length² for an edge, so simplices
 //!    of different dimensions weigh in the same unit) — plus, for every *boundary facet* of a
 //!    top simplex (a facet no other top simplex holds), the quadric of the facet's hull with
 //!    its owner's weight. The latter keeps open borders of surfaces and, for simplices that
 //!    span R^n (tetrahedra in R^3, whose own quadric is zero), the boundary surface.
-//! 2. [`fill_queue`]: every edge {a, b} with its cost `min_x (Q_a + Q_b)(x)`; the minimiser
+//! 2. `fill_queue`: every edge {a, b} with its cost `min_x (Q_a + Q_b)(x)`; the minimiser
 //!    solves `A x = −b`, and where A is singular or the solution lies more than 4 edge lengths
 //!    from the edge's midpoint, the best point of the segment [a, b] is taken instead.
-//! 3. [`contract_loop`]: pop the cheapest edge; entries carry the sum of their two vertices'
+//! 3. `contract_loop`: pop the cheapest edge; entries carry the sum of their two vertices'
 //!    versions and are skipped when it changed (lazy invalidation, no decrease-key); contract
 //!    it (into the vertex with the larger star, which then moves to the minimiser), add the
 //!    quadrics, bump the survivor's version and push its edges with their new costs. With

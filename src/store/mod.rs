@@ -160,7 +160,7 @@ struct Entry {
 }
 
 /// Writes the sections of a `.tpx` file in order. Each call appends one array; the first write
-/// error is kept and returned by [`Writer::finish`], so `save` implementations stay linear.
+/// error is kept and returned by `Writer::finish`, so `save` implementations stay linear.
 pub struct Writer {
     out: BufWriter<File>,
     pos: u64,
