@@ -182,6 +182,39 @@ fn closure_budget_counts_every_face_of_every_listed_simplex() {
     let offsets: Vec<usize> = (0..=ids.len() / 3).map(|i| i * 3).collect();
     let c = Complex::from_arrays(n, &ids, &offsets, None).unwrap();
     assert_eq!(c.tops(2).len(), n as usize - 2);
+    // Shared faces: v = 0 joined to the 2^11 facets of the boundary of the 11-dimensional
+    // cross-polytope (vertices 2i+1, 2i+2 opposite). The bound, 23 + 2^11 · (2^12 − 13) =
+    // 8,361,983, is above the default limit (2^20 + 2^19 for 24,576 ids), but the closure has
+    // 2 · 3^11 − 1 = 354,293 simplices (the faces of the sphere, 3^11 − 1, each with and
+    // without 0, and 0 itself): counted exactly, accepted.
+    let k = 10u32;
+    let mut ids = Vec::new();
+    for choice in 0u32..(1 << (k + 1)) {
+        ids.push(0);
+        ids.extend((0..=k).map(|i| 2 * i + 1 + ((choice >> i) & 1)));
+    }
+    let offsets: Vec<usize> = (0..=1usize << (k + 1))
+        .map(|i| i * (k as usize + 2))
+        .collect();
+    let c = Complex::from_arrays(2 * k + 3, &ids, &offsets, None).unwrap();
+    assert_eq!(c.tops(11).len(), 2048);
+    let closure: usize = c.closure().iter().map(|t| t.len()).sum();
+    assert_eq!(closure, 2 * 3usize.pow(11) - 1);
+    // The exact count is tried only while the bound is within 16 times the limit: under a
+    // limit of 500,000 (16× = 8,000,000 < the bound) it is refused, under 600,000 counted.
+    let limit = |m| topoplex::Budget {
+        max_simplices: Some(m),
+    };
+    let e = Complex::from_arrays_with(2 * k + 3, &ids, &offsets, None, limit(500_000));
+    assert!(matches!(e, Err(ComplexError::TooLarge { .. })), "{e:?}");
+    assert!(Complex::from_arrays_with(2 * k + 3, &ids, &offsets, None, limit(600_000)).is_ok());
+    // The count itself refuses: one 15-simplex (65,535 simplices, bound exact) under 65,534.
+    let e = Complex::from_arrays_with(16, &s, &[0, 16], None, limit(65_534));
+    assert!(
+        matches!(e, Err(ComplexError::TooLarge { bound: 65_535, .. })),
+        "{e:?}"
+    );
+    assert!(Complex::from_arrays_with(16, &s, &[0, 16], None, limit(65_535)).is_ok());
     // An explicit limit replaces the rule both ways.
     let tight = topoplex::Budget {
         max_simplices: Some(100),

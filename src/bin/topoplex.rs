@@ -27,8 +27,8 @@ use topoplex::{Budget, Complex, StructureKind, Topology, fixtures, structures};
     about = "Topological data structures for arbitrary simplicial complexes"
 )]
 struct Cli {
-    /// Most simplices an input's closure may have (by its upper bound n + faces of every top
-    /// simplex), or `unlimited`. Default: max(2^20, 64 × the input's vertex ids and declared
+    /// Most simplices an input's closure may have (by an upper bound, or an exact count when
+    /// the bound is within 16 times the limit), or `unlimited`. Default: max(2^20, 64 × the input's vertex ids and declared
     /// vertices), so a few bytes of high-dimensional simplices cannot expand into gigabytes.
     #[arg(long, global = true, value_name = "N", value_parser = parse_max_simplices)]
     max_simplices: Option<u64>,

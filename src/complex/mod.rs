@@ -20,8 +20,11 @@
 //!   being the number of listed vertex ids plus the number of declared vertices (vertices a file
 //!   lists, or given with coordinates through the API). The check uses an upper bound on the
 //!   closure (`n + Σ_top (2^{p+1} − p − 2)`, computed in time linear in the top simplices, before
-//!   anything of closure size is allocated), so every structure built from an accepted complex
-//!   is bounded too: each is linear in the closure. Above it, [`ComplexError::TooLarge`] names
+//!   anything of closure size is allocated); when that bound is above the limit but within 16
+//!   times it, the closure's faces are counted exactly (work: the bound; memory: the faces at
+//!   one vertex), so heavily shared high-dimensional inputs are not refused for faces they do
+//!   not have. Every structure built from an accepted complex is bounded too: each is linear in
+//!   the closure. Above it, [`ComplexError::TooLarge`] names
 //!   the bound and the limit; [`Budget::max_simplices`] (CLI `--max-simplices`, C ABI
 //!   `tpx_complex_from_*_budget`) raises or lowers it. Memory that the input's size asks for is
 //!   reserved fallibly: a failed reservation is [`ComplexError::OutOfMemory`], not an abort.
@@ -60,7 +63,8 @@ pub const BUDGET_RATIO: u64 = 64;
 /// How large a complex an input may expand into (see the module documentation).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct Budget {
-    /// Most simplices the closure may have (by its upper bound); `None` for the default rule
+    /// Most simplices the closure may have (see the module documentation for how it is
+    /// checked); `None` for the default rule
     /// `max(BUDGET_FLOOR, BUDGET_RATIO × input size)`.
     pub max_simplices: Option<u64>,
 }
@@ -497,7 +501,11 @@ impl Complex {
         }
         let bound = closure_bound(n, &tables);
         let limit = budget.limit(input_size);
-        if bound > limit {
+        // The bound ignores shared faces; when it is not far above the limit, count exactly.
+        if bound > limit
+            && (bound > limit.saturating_mul(EXACT_COUNT_FACTOR)
+                || closure_count(n, &tables, limit).is_none())
+        {
             return Err(ComplexError::TooLarge {
                 file: file.map(Path::to_path_buf),
                 bound,
@@ -692,6 +700,71 @@ fn closure_bound(n: u32, tables: &[SimplexTable]) -> u64 {
         (t.len() as u64).saturating_mul(per)
     });
     faces.fold(u64::from(n), u64::saturating_add)
+}
+
+/// How far above the budget's limit the closure bound may be for [`closure_count`] to be tried
+/// (its work is the bound).
+const EXACT_COUNT_FACTOR: u64 = 16;
+
+/// The closure's exact size (every vertex and every distinct face of dimension ≥ 1 of a listed
+/// simplex), or `None` once it passes `limit`. Each face is counted at its lowest vertex v: the
+/// listed simplices at v give every subset of their vertices above v, told apart by a 64-bit
+/// hash of the ids (a collision could only undercount by one in ~2^64). Work: the
+/// [`closure_bound`]; memory: the faces at one vertex, plus one entry per listed id.
+fn closure_count(n: u32, tables: &[SimplexTable], limit: u64) -> Option<u64> {
+    use std::hash::{BuildHasher, Hash, Hasher};
+    if u64::from(n) > limit {
+        return None;
+    }
+    // at[v]: (dimension, row) of every listed simplex of dimension ≥ 1 whose vertex v is.
+    // Reserved fallibly: under a raised limit n may be large (then the input is refused).
+    let mut off: Vec<usize> = Vec::new();
+    off.try_reserve_exact(n as usize + 1).ok()?;
+    off.resize(n as usize + 1, 0);
+    for t in tables.iter().skip(1) {
+        for &v in t.as_flat() {
+            off[v as usize + 1] += 1;
+        }
+    }
+    for v in 0..n as usize {
+        off[v + 1] += off[v];
+    }
+    let mut fill = off.clone();
+    let mut at: Vec<(u8, u32)> = Vec::new();
+    at.try_reserve_exact(off[n as usize]).ok()?;
+    at.resize(off[n as usize], (0, 0));
+    for (p, t) in tables.iter().enumerate().skip(1) {
+        for (j, row) in t.iter().enumerate() {
+            for &v in row {
+                at[fill[v as usize]] = (p as u8, j as u32);
+                fill[v as usize] += 1;
+            }
+        }
+    }
+    let hasher = rustc_hash::FxBuildHasher;
+    let mut faces: rustc_hash::FxHashSet<u64> = Default::default();
+    let mut count = u64::from(n);
+    for v in 0..n as usize {
+        faces.clear();
+        for &(p, j) in &at[off[v]..off[v + 1]] {
+            let row = tables[p as usize].get(j as usize);
+            let above = &row[row.iter().position(|&x| x as usize == v)? + 1..];
+            for mask in 1u32..(1 << above.len()) {
+                let mut h = hasher.build_hasher();
+                for (i, x) in above.iter().enumerate() {
+                    if mask & (1 << i) != 0 {
+                        x.hash(&mut h);
+                    }
+                }
+                faces.insert(h.finish());
+            }
+        }
+        count += faces.len() as u64;
+        if count > limit {
+            return None;
+        }
+    }
+    Some(count)
 }
 
 /// Drops listed simplices that are faces of higher-dimensional listed ones, and adds the vertices

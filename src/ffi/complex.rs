@@ -86,7 +86,7 @@ fn budget(max_simplices: u64) -> Budget {
 
 /// `tpx_complex_from_arrays` with an explicit closure budget: the complex's closure may have at
 /// most `max_simplices` simplices (by its upper bound n + Σ over top p-simplices of
-/// 2^{p+1} − p − 2); 0 keeps the default, max(2^20, 64 × (ids + vertices given with
+/// 2^{p+1} − p − 2, or by an exact count when that bound is within 16 times the limit); 0 keeps the default, max(2^20, 64 × (ids + vertices given with
 /// coordinates)); `UINT64_MAX` removes the limit. Above it: TOO_LARGE, nothing allocated of
 /// closure size. Same arguments, ownership, errors and cost otherwise.
 ///
