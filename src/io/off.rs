@@ -258,8 +258,21 @@ fn vertices(t: &mut Scanner<'_>, nv: u32, layout: &Layout) -> Res<(Vec<f64>, usi
     }
     // The last vertex line must end with its last vertex.
     if nv > 0 {
+        let mut extra = 0;
         while t.token_in_line().is_some() {
-            on_line.1 += 1;
+            extra += 1;
+        }
+        if extra > 0 {
+            // Even a whole number of extra vertices: they would be read as faces.
+            return Err((
+                on_line.0,
+                syntax(format!(
+                    "line holds {} numbers after the last vertex ({} numbers each: {}); \
+                     vertex colours need the C header prefix (COFF), normals N, texture \
+                     coordinates ST",
+                    extra, layout.per_vertex, layout.text
+                )),
+            ));
         }
         check_whole_vertices(on_line, layout)?;
     }
@@ -794,7 +807,12 @@ mod tests {
         err(
             "OFF\n1 1 0\n0 0 0 9\n1 0\n",
             3,
-            "line holds 4 vertex numbers",
+            "line holds 1 numbers after the last vertex",
+        );
+        err(
+            "OFF\n2 1 0\n0 0 0\n1 0 0 3 0 1\n1 0\n",
+            4,
+            "line holds 3 numbers after the last vertex",
         );
     }
 
