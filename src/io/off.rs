@@ -5,25 +5,29 @@
 //! ```text
 //! [ST][C][N][4][n]OFF        header keyword
 //! [Ndim]                     only for nOFF: the embedding dimension
-//! NVertices NFaces NEdges    NEdges must be present (a non-negative integer) but is ignored
+//! NVertices NFaces [NEdges]  NEdges is ignored; it may be left out when NFaces ends its line
 //! vertices                   coordinates, then normal (N), colour (C), texture (ST)
 //! faces                      k i1 .. ik [colour]
 //! ```
 //!
 //! * The reader is token-based: items may share a line or spread over several lines (the header
-//!   may be followed by the counts on the same line). The one exception is a face colour, which
+//!   may be followed by the counts on the same line). The exceptions: a face colour, which
 //!   Geomview defines as the rest of the line holding the face's last vertex id: it must be 0,
-//!   1, 3 or 4 numbers (integers or floats), which are checked to be numbers and then ignored.
+//!   1, 3 or 4 numbers (integers or floats), which are checked to be numbers and then ignored;
+//!   the edge count, which is optional at the end of the counts' line; and vertex lines, which
+//!   must each hold whole vertices, the last vertex ending its line (so that colours or normals
+//!   without their header prefix are refused on the line that shows them, not lines later).
 //! * Vertex coordinates: 3 per vertex; 4 for `4OFF`; `Ndim` for `nOFF`; `Ndim + 1` for `4nOFF`
 //!   (the homogeneous component is kept as read). Normals (`N`) have 3 numbers, or as many as
 //!   the vertex coordinates for `nOFF`; colours (`C`) 4 numbers; texture coordinates (`ST`) 2.
 //!   Only the coordinates are kept.
 //! * Numbers are parsed as `f64`; `nan`, `inf` and `infinity` are accepted, since topology does
-//!   not use coordinates.
+//!   not use coordinates, but a finite number that would become infinite or 0 is an error.
 //! * A face with k = 1, 2, 3 ids is a vertex, an edge, a triangle. k > 3 is
 //!   [`ReadErrorKind::Polygon`], k = 0 an error. Ids are 0-based and must fit in 32 bits; a
 //!   negative id is [`ReadErrorKind::NegativeId`]. Each face is recorded at the line of its k.
-//! * `#` starts a comment anywhere; blank lines, tabs, CRLF and a missing final newline are fine.
+//! * `#` starts a comment anywhere; blank lines, tabs, a missing final newline and LF, CRLF or
+//!   lone-CR line ends are fine.
 //! * Errors: missing or unknown header, `OFF BINARY`, non-numeric or overflowing numbers, files
 //!   ending before the declared vertices or faces, and any non-comment content after the last
 //!   face. When the file ends early the error names the file's last line.
