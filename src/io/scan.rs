@@ -408,7 +408,7 @@ pub(crate) fn real_error(e: RealError, tok: &str, what: &str) -> ReadErrorKind {
 mod tests {
     use super::*;
 
-    fn tokens(mut s: Scanner) -> Vec<(&str, u32)> {
+    fn tokens(mut s: Scanner<'_>) -> Vec<(&str, u32)> {
         std::iter::from_fn(|| s.token()).collect()
     }
 
