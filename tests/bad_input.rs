@@ -184,6 +184,17 @@ fn cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
         ),
         ("no vertices", "novertex.off", t("OFF\n0 0 0\n")),
         (
+            "simplex of 100,000 vertices (message cut)",
+            "wide.simplices",
+            {
+                let mut s = String::from("s");
+                for i in 0..100_000 {
+                    s.push_str(&format!(" {i}"));
+                }
+                s.into_bytes()
+            },
+        ),
+        (
             "huge id implying a vertex count (no `v` lines)",
             "sparse.simplices",
             t("s 0 1\ns 0 1000000000 3 8 9\n"),

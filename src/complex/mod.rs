@@ -103,8 +103,15 @@ impl fmt::Display for Origin {
 }
 
 fn show(ids: &[u32]) -> String {
-    let v: Vec<String> = ids.iter().map(|i| i.to_string()).collect();
-    format!("[{}]", v.join(" "))
+    // A simplex has at most 16 vertices; a longer list comes from the input and is cut, so that
+    // a million-id line does not make a megabyte message (docs/bad-input.md).
+    const SHOWN: usize = MAX_DIMENSION + 2;
+    let v: Vec<String> = ids.iter().take(SHOWN).map(|i| i.to_string()).collect();
+    if ids.len() > SHOWN {
+        format!("[{} … ({} ids)]", v.join(" "), ids.len())
+    } else {
+        format!("[{}]", v.join(" "))
+    }
 }
 
 /// Why an input could not become a complex. Vertex ids in messages are 0-based positions.

@@ -24,7 +24,9 @@
 //!   bits after conversion to 0-based; a negative id is [`ReadErrorKind::NegativeId`] (with the
 //!   value as written). Ids beyond the vertex count are left to the complex model.
 //! * Coordinates are parsed as `f64`; `nan`, `inf` and `infinity` are accepted, since topology
-//!   does not use coordinates. References must be integers and are ignored.
+//!   does not use coordinates, but a finite number that would become infinite or 0 (`1e309`,
+//!   `1e-400`) is an error. References must be integers and are ignored. Lines end in LF, CRLF
+//!   or a lone CR.
 //! * Only one `Vertices` section is allowed; element sections may repeat (they add up). Without a
 //!   `Vertices` section the vertex count is 0.
 //! * A section ending before its count is reached is an error naming the file's last line.

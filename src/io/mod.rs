@@ -116,7 +116,7 @@ pub enum ReadErrorKind {
     /// The file could not be opened or read.
     #[error("cannot read file: {0}")]
     Io(String),
-    /// The file is larger than the readers' index types allow.
+    /// The file does not fit in memory (`TPX_STATUS_TOO_LARGE` through the C ABI).
     #[error("file too large: {0}")]
     TooLarge(String),
     /// The extension names no supported format.
@@ -314,12 +314,12 @@ pub(crate) fn capped_len(n: usize, len: usize) -> usize {
 /// Whitespace-separated tokens, each with its 1-based line: [`scan::Scanner`] behind the
 /// interface of a peekable iterator. `#` starts a comment that runs to the end of its line; lines
 /// end in `\n`, `\r\n` or a lone `\r`; spaces, tabs and form feeds separate tokens.
-#[cfg_attr(not(test), allow(dead_code))] // the interface other readers share; ours use Scanner
+#[allow(dead_code)] // the interface other readers share; ours use Scanner
 pub(crate) struct Tokens<'a> {
     scanner: scan::Scanner<'a>,
 }
 
-#[cfg_attr(not(test), allow(dead_code))]
+#[allow(dead_code)]
 impl<'a> Tokens<'a> {
     pub(crate) fn new(text: &'a str) -> Self {
         Tokens {

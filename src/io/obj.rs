@@ -3,7 +3,8 @@
 //! * `v x y z` declares a vertex; a homogeneous `w` (4 numbers) or a vertex colour `r g b`
 //!   (6 numbers, or 7) may follow and is ignored. Fewer than 3 numbers, or 5, or more than 7,
 //!   are errors. Coordinates have dimension 3. Numbers are parsed as `f64`; `nan`, `inf` and
-//!   `infinity` are accepted, since topology does not use coordinates.
+//!   `infinity` are accepted, since topology does not use coordinates, but a finite number that
+//!   would become infinite or 0 (`1e309`, `1e-400`) is an error.
 //! * `f` with vertices written `i`, `i/t`, `i//n` or `i/t/n` is a triangle; more than 3
 //!   vertices is [`ReadErrorKind::Polygon`], fewer is an error (use `l` or `p`).
 //! * `l i j k ...` (also `i/t`) gives one edge per consecutive pair; it needs at least 2 vertices.

@@ -5,25 +5,29 @@
 //! ```text
 //! [ST][C][N][4][n]OFF        header keyword
 //! [Ndim]                     only for nOFF: the embedding dimension
-//! NVertices NFaces NEdges    NEdges must be present (a non-negative integer) but is ignored
+//! NVertices NFaces [NEdges]  NEdges is ignored; it may be left out when NFaces ends its line
 //! vertices                   coordinates, then normal (N), colour (C), texture (ST)
 //! faces                      k i1 .. ik [colour]
 //! ```
 //!
 //! * The reader is token-based: items may share a line or spread over several lines (the header
-//!   may be followed by the counts on the same line). The one exception is a face colour, which
+//!   may be followed by the counts on the same line). The exceptions: a face colour, which
 //!   Geomview defines as the rest of the line holding the face's last vertex id: it must be 0,
-//!   1, 3 or 4 numbers (integers or floats), which are checked to be numbers and then ignored.
+//!   1, 3 or 4 numbers (integers or floats), which are checked to be numbers and then ignored;
+//!   the edge count, which is optional at the end of the counts' line; and vertex lines, which
+//!   must each hold whole vertices, the last vertex ending its line (so that colours or normals
+//!   without their header prefix are refused on the line that shows them, not lines later).
 //! * Vertex coordinates: 3 per vertex; 4 for `4OFF`; `Ndim` for `nOFF`; `Ndim + 1` for `4nOFF`
 //!   (the homogeneous component is kept as read). Normals (`N`) have 3 numbers, or as many as
 //!   the vertex coordinates for `nOFF`; colours (`C`) 4 numbers; texture coordinates (`ST`) 2.
 //!   Only the coordinates are kept.
 //! * Numbers are parsed as `f64`; `nan`, `inf` and `infinity` are accepted, since topology does
-//!   not use coordinates.
+//!   not use coordinates, but a finite number that would become infinite or 0 is an error.
 //! * A face with k = 1, 2, 3 ids is a vertex, an edge, a triangle. k > 3 is
 //!   [`ReadErrorKind::Polygon`], k = 0 an error. Ids are 0-based and must fit in 32 bits; a
 //!   negative id is [`ReadErrorKind::NegativeId`]. Each face is recorded at the line of its k.
-//! * `#` starts a comment anywhere; blank lines, tabs, CRLF and a missing final newline are fine.
+//! * `#` starts a comment anywhere; blank lines, tabs, a missing final newline and LF, CRLF or
+//!   lone-CR line ends are fine.
 //! * Errors: missing or unknown header, `OFF BINARY`, non-numeric or overflowing numbers, files
 //!   ending before the declared vertices or faces, and any non-comment content after the last
 //!   face. When the file ends early the error names the file's last line.
@@ -258,8 +262,21 @@ fn vertices(t: &mut Scanner<'_>, nv: u32, layout: &Layout) -> Res<(Vec<f64>, usi
     }
     // The last vertex line must end with its last vertex.
     if nv > 0 {
+        let mut extra = 0;
         while t.token_in_line().is_some() {
-            on_line.1 += 1;
+            extra += 1;
+        }
+        if extra > 0 {
+            // Even a whole number of extra vertices: they would be read as faces.
+            return Err((
+                on_line.0,
+                syntax(format!(
+                    "line holds {} numbers after the last vertex ({} numbers each: {}); \
+                     vertex colours need the C header prefix (COFF), normals N, texture \
+                     coordinates ST",
+                    extra, layout.per_vertex, layout.text
+                )),
+            ));
         }
         check_whole_vertices(on_line, layout)?;
     }
@@ -794,7 +811,12 @@ mod tests {
         err(
             "OFF\n1 1 0\n0 0 0 9\n1 0\n",
             3,
-            "line holds 4 vertex numbers",
+            "line holds 1 numbers after the last vertex",
+        );
+        err(
+            "OFF\n2 1 0\n0 0 0\n1 0 0 3 0 1\n1 0\n",
+            4,
+            "line holds 3 numbers after the last vertex",
         );
     }
 

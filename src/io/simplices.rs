@@ -12,15 +12,16 @@
 //!
 //! * `v x1 .. xk` declares the next vertex with k >= 0 coordinates; every `v` line must have the
 //!   same k. Coordinates are parsed as `f64`; `nan`, `inf` and `infinity` are accepted, since
-//!   topology does not use coordinates.
+//!   topology does not use coordinates, but a finite number that would become infinite or 0
+//!   (`1e309`, `1e-400`) is an error.
 //! * `s a b c ...` declares a simplex by at least one 0-based vertex id (ids must fit in 32 bits;
 //!   a negative id is [`ReadErrorKind::NegativeId`]). Each simplex is recorded at its line.
 //! * `v` and `s` lines may be interleaved in any order.
 //! * With `v` lines the vertex count is their number and the coordinates have dimension k (none
 //!   when k = 0). Without `v` lines the vertex count is `None`: the vertices are `0..=max id`.
 //! * `#` starts a comment; blank lines, tabs and a missing final newline are fine; lines end in
-//!   LF, CRLF or a lone CR. Any
-//!   other keyword is an error, and so is a file with no `v` or `s` line at all.
+//!   LF, CRLF or a lone CR. Any other keyword is an error, and so is a file with no `v` or `s`
+//!   line at all.
 
 use super::scan::{self, Scanner};
 use super::{Coords, RawInput, ReadErrorKind, echo, parse_f64, syntax};
