@@ -106,7 +106,7 @@ pub enum ReadErrorKind {
     #[error("cannot read file: {0}")]
     Io(String),
     #[error(
-        "unknown file extension (expected .off, .obj, .mesh, .simplices, .ply, .stl, .vtk or .msh)"
+        "unknown file extension (expected .off, .obj, .mesh, .simplices, .ply, .stl, .vtk, .vtu or .msh)"
     )]
     UnknownExtension,
     #[error("{0}")]
