@@ -8,7 +8,7 @@
 //!
 //! The format is chosen by file extension: `.off`, `.obj`, `.mesh`, `.simplices`, `.ply`, `.stl`,
 //! `.vtk`, `.vtu`, `.msh`.
-//! The writers ([`write`]) are their inverse.
+//! The writers ([`mod@write`]) are their inverse.
 
 use std::path::{Path, PathBuf};
 
