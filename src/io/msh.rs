@@ -176,7 +176,6 @@ impl<'a> Reader<'a> {
             self.int(4, "an entity tag", line)?;
             let (parametric, l) = self.int(4, "the parametric flag", line)?;
             let k = self.count("the block's node count", line)?;
-            let mut first = self.tags.len();
             for _ in 0..k {
                 let (tag, l) = self.int(8, "a node tag", line)?;
                 self.node(tag, l)?;
@@ -194,9 +193,7 @@ impl<'a> Reader<'a> {
                 for _ in 0..extra {
                     self.real(line)?;
                 }
-                first += 1;
             }
-            debug_assert_eq!(first, self.tags.len());
         }
         self.end("$EndNodes")
     }
