@@ -13,7 +13,7 @@ fn cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
     for i in 0..17 {
         big.push_str(&format!(" {i}"));
     }
-    vec![
+    let mut cases = vec![
         ("empty file", "empty.off", t("")),
         ("empty file", "empty.obj", t("")),
         ("empty file", "empty.mesh", t("")),
@@ -204,7 +204,7 @@ fn cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             "junk.obj",
             vec![0xff, 0xfe, 0x00, 0x13, 0x80, 0x81, b'\n', 0xc3],
         ),
-        ("unknown extension", "mesh.ply", t("ply\n")),
+        ("unknown extension", "mesh.dxf", t("0\nSECTION\n")),
         ("missing file", "missing/nothing.off", Vec::new()),
         // Special files (made by `outcome`): refused before reading, never blocking.
         ("named pipe with no writer", "special/pipe.off", Vec::new()),
@@ -310,6 +310,158 @@ fn cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             "duplicate and face-of-another simplices (accepted, counted)",
             "dups.simplices",
             t("s 0 1 2\ns 2 0 1\ns 0 1\n"),
+        ),
+    ];
+    cases.extend(new_format_cases());
+    cases
+}
+
+/// The readers of the formats issue 15 added (PLY, STL, legacy VTK, VTU, Gmsh MSH).
+fn new_format_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
+    let t = |s: &str| s.as_bytes().to_vec();
+    let ply = |body: &str| format!("ply\nformat ascii 1.0\n{body}").into_bytes();
+    let vtk = |body: &str| {
+        format!("# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n{body}")
+            .into_bytes()
+    };
+    let msh2 = |body: &str| format!("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n{body}").into_bytes();
+    let msh4 = |body: &str| format!("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n{body}").into_bytes();
+    let nodes2 = "$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n$EndNodes\n";
+    // A binary STL header declaring 10^9 triangles, with one.
+    let mut stl_huge = vec![0u8; 80];
+    stl_huge.extend_from_slice(&1_000_000_000u32.to_le_bytes());
+    stl_huge.extend_from_slice(&[0u8; 50]);
+    // One binary STL facet whose corners are all the same point.
+    let mut stl_flat = vec![0u8; 80];
+    stl_flat.extend_from_slice(&1u32.to_le_bytes());
+    stl_flat.extend_from_slice(&[0u8; 50]);
+    vec![
+        ("empty file", "empty.ply", t("")),
+        ("empty file", "empty.stl", t("")),
+        ("empty file", "empty.vtk", t("")),
+        ("empty file", "empty.vtu", t("")),
+        ("empty file", "empty.msh", t("")),
+        (
+            "wrong header",
+            "header.ply",
+            t("PLY\nformat ascii 1.0\nend_header\n"),
+        ),
+        (
+            "wrong header",
+            "header.vtk",
+            t("# vtk DataFile\nt\nASCII\n"),
+        ),
+        (
+            "wrong header",
+            "header.msh",
+            t("$MeshFormat\n3.0 0 8\n$EndMeshFormat\n"),
+        ),
+        (
+            "wrong header",
+            "header.vtu",
+            t("<VTKFile type=\"PolyData\"></VTKFile>\n"),
+        ),
+        (
+            "truncated file",
+            "truncated.ply",
+            ply("element vertex 2\nproperty float x\nproperty float y\nend_header\n0 0\n"),
+        ),
+        (
+            "truncated file",
+            "truncated.stl",
+            t("solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\n"),
+        ),
+        (
+            "truncated file",
+            "truncated.vtk",
+            vtk("POINTS 3 double\n0 0 0 1 0 0\n"),
+        ),
+        (
+            "truncated file",
+            "truncated.msh",
+            msh2("$Nodes\n3\n1 0 0 0\n"),
+        ),
+        (
+            "count far larger than the file",
+            "huge.ply",
+            ply("element vertex 4000000000\nproperty float x\nproperty float y\nend_header\n0 0\n"),
+        ),
+        ("count far larger than the file", "huge.stl", stl_huge),
+        (
+            "count far larger than the file",
+            "huge.vtk",
+            vtk("POINTS 4000000000 double\n0 0 0\n"),
+        ),
+        (
+            "count far larger than the file",
+            "huge.msh",
+            msh4("$Nodes\n1 4000000000 1 4000000000\n"),
+        ),
+        (
+            "polygon that is not a simplex",
+            "quad.ply",
+            ply(
+                "element vertex 4\nproperty float x\nproperty float y\nelement face 1\n\
+                 property list uchar int vertex_indices\nend_header\n0 0\n1 0\n1 1\n0 1\n4 0 1 2 3\n",
+            ),
+        ),
+        (
+            "polygon that is not a simplex",
+            "quad.vtk",
+            vtk(
+                "POINTS 4 double\n0 0 0 1 0 0 1 1 0 0 1 0\nCELLS 1 5\n4 0 1 2 3\nCELL_TYPES 1\n9\n",
+            ),
+        ),
+        (
+            "polygon that is not a simplex",
+            "quad.msh",
+            msh2(&format!(
+                "{nodes2}$Elements\n1\n1 3 2 0 1 1 2 3 3\n$EndElements\n"
+            )),
+        ),
+        (
+            "polygon that is not a simplex",
+            "hex.vtu",
+            t(
+                "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\"><UnstructuredGrid>\
+               <Piece NumberOfPoints=\"1\" NumberOfCells=\"1\"><Points>\
+               <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">0 0 0</DataArray>\
+               </Points><Cells><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0 0 0 0 0 0 0 0</DataArray>\
+               <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">8</DataArray>\
+               <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">12</DataArray>\
+               </Cells></Piece></UnstructuredGrid></VTKFile>\n",
+            ),
+        ),
+        (
+            "negative id",
+            "negative.vtk",
+            vtk("POINTS 2 double\n0 0 0 1 0 0\nCELLS 1 3\n2 0 -1\nCELL_TYPES 1\n3\n"),
+        ),
+        (
+            "out-of-range vertex id",
+            "range.ply",
+            ply(
+                "element vertex 2\nproperty float x\nproperty float y\nelement edge 1\n\
+                 property int vertex1\nproperty int vertex2\nend_header\n0 0\n1 0\n0 7\n",
+            ),
+        ),
+        (
+            "out-of-range vertex id",
+            "range.msh",
+            msh2(&format!(
+                "{nodes2}$Elements\n1\n1 1 2 0 1 1 9\n$EndElements\n"
+            )),
+        ),
+        ("repeated vertex in a simplex", "flat.stl", stl_flat),
+        (
+            "only DATASET UNSTRUCTURED_GRID",
+            "polydata.vtk",
+            t("# vtk DataFile Version 4.2\nt\nASCII\nDATASET POLYDATA\nPOINTS 0 float\n"),
+        ),
+        (
+            "binary MSH in the other byte order",
+            "big-endian.msh",
+            b"$MeshFormat\n4.1 1 8\n\x00\x00\x00\x01\n$EndMeshFormat\n".to_vec(),
         ),
     ]
 }

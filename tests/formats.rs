@@ -504,3 +504,50 @@ fn c_abi_writes_by_extension_or_format_constant() {
     assert_eq!(st, TpxStatus::NullArgument);
     unsafe { tpx_complex_free(c) };
 }
+
+#[test]
+fn mutated_seed_files_are_refused_or_read_never_panic() {
+    // Random byte edits (xorshift, fixed seed) of the fuzz corpus seeds of the byte readers.
+    type Parse = fn(&[u8]) -> Result<topoplex::io::RawInput, (u32, topoplex::io::ReadErrorKind)>;
+    let readers: [(&str, Parse); 5] = [
+        ("read_ply", topoplex::io::ply::parse),
+        ("read_stl", topoplex::io::stl::parse),
+        ("read_vtk", topoplex::io::vtk::parse),
+        ("read_vtu", topoplex::io::vtu::parse),
+        ("read_msh", topoplex::io::msh::parse),
+    ];
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut rnd = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state
+    };
+    for (dir, parse) in readers {
+        let corpus = concat!(env!("CARGO_MANIFEST_DIR"), "/fuzz/corpus");
+        let seeds: Vec<Vec<u8>> = std::fs::read_dir(format!("{corpus}/{dir}"))
+            .unwrap()
+            .map(|e| std::fs::read(e.unwrap().path()).unwrap())
+            .collect();
+        for i in 0..1500 {
+            let mut b = seeds[i % seeds.len()].clone();
+            for _ in 0..1 + rnd() % 4 {
+                if b.is_empty() {
+                    break;
+                }
+                let p = rnd() as usize % b.len();
+                match rnd() % 4 {
+                    0 => b[p] = rnd() as u8,
+                    1 => b.truncate(p),
+                    2 => {
+                        b.remove(p);
+                    }
+                    _ => b.insert(p, b"0123456789 -.\n$e"[(rnd() % 16) as usize]),
+                }
+            }
+            if let Ok(raw) = parse(&b) {
+                let _ = Complex::from_raw(&raw, None);
+            }
+        }
+    }
+}

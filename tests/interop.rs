@@ -4,7 +4,7 @@
 //! note on stderr) when `python3 -c "import meshio"` fails; scripts/test.sh installs meshio.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::Command;
 
 use topoplex::Complex;
@@ -25,20 +25,42 @@ fn meshio_present() -> bool {
 /// Cells by meshio type name, each type's cells in file order.
 type Cells = BTreeMap<String, Vec<Vec<u32>>>;
 
-/// Runs the helper; its JSON output as (points, cells).
-fn meshio(mode: &str, path: &Path, format: &str) -> (Vec<[f64; 3]>, Cells) {
+/// Runs the helper once for all `jobs` (mode, file, meshio format); per job, its JSON output
+/// as (points, cells).
+fn meshio(jobs: &[(&str, PathBuf, &str)]) -> Vec<(Vec<[f64; 3]>, Cells)> {
+    use std::io::Write;
     let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/interop/meshio_check.py");
-    let o = Command::new("python3")
-        .args([script, mode, path.to_str().unwrap(), format])
-        .output()
+    let mut child = Command::new("python3")
+        .arg(script)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
         .unwrap();
+    let mut input = String::new();
+    for (mode, path, format) in jobs {
+        input.push_str(&format!("{mode} {} {format}\n", path.display()));
+    }
+    child
+        .stdin
+        .take()
+        .unwrap()
+        .write_all(input.as_bytes())
+        .unwrap();
+    let o = child.wait_with_output().unwrap();
     assert!(
         o.status.success(),
-        "meshio {mode} {format} {}: {}",
-        path.display(),
+        "meshio: {}",
         String::from_utf8_lossy(&o.stderr)
     );
-    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let text = String::from_utf8(o.stdout).unwrap();
+    let answers: Vec<_> = text.lines().map(parse_answer).collect();
+    assert_eq!(answers.len(), jobs.len());
+    answers
+}
+
+fn parse_answer(line: &str) -> (Vec<[f64; 3]>, Cells) {
+    let json: serde_json::Value = serde_json::from_str(line).unwrap();
     let points = json["points"]
         .as_array()
         .unwrap()
@@ -176,11 +198,15 @@ fn meshio_reads_what_topoplex_writes() {
         return;
     }
     let dir = scratch("ours");
+    let mut jobs = Vec::new();
     for &(format, name, triangles_only) in FORMATS {
-        let c = our_complex(triangles_only);
         let path = dir.0.join(format!("ours-{name}.{}", format.extension()));
-        write_complex(&c, &path, Some(format)).unwrap();
-        let (points, cells) = meshio("read", &path, name);
+        write_complex(&our_complex(triangles_only), &path, Some(format)).unwrap();
+        jobs.push(("read", path, name));
+    }
+    let answers = meshio(&jobs);
+    for (&(format, name, triangles_only), (points, cells)) in FORMATS.iter().zip(answers) {
+        let c = our_complex(triangles_only);
         let want = cells_by_type(&c);
         if matches!(format, Format::Stl | Format::StlBinary) {
             assert_eq!(
@@ -201,10 +227,18 @@ fn topoplex_reads_what_meshio_writes() {
         return;
     }
     let dir = scratch("theirs");
-    for &(format, name, _) in FORMATS {
-        let path = dir.0.join(format!("theirs-{name}.{}", format.extension()));
-        let (points, cells) = meshio("write", &path, name);
-        let c = Complex::from_path(&path).unwrap_or_else(|e| panic!("{name}: {e}"));
+    let jobs: Vec<_> = FORMATS
+        .iter()
+        .map(|&(format, name, _)| {
+            let path = dir.0.join(format!("theirs-{name}.{}", format.extension()));
+            ("write", path, name)
+        })
+        .collect();
+    let answers = meshio(&jobs);
+    for ((&(format, name, _), (points, cells)), (_, path, _)) in
+        FORMATS.iter().zip(answers).zip(&jobs)
+    {
+        let c = Complex::from_path(path).unwrap_or_else(|e| panic!("{name}: {e}"));
         let got = cells_by_type(&c);
         if matches!(format, Format::Stl | Format::StlBinary) {
             assert_eq!(

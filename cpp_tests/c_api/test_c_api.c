@@ -523,6 +523,33 @@ static void test_files(void) {
   CHECK(c == NULL);
 }
 
+/* tpx_complex_write: the fixture written as Gmsh (format from the extension) reads back with the
+ * same top simplices; OFF cannot hold its tetrahedron and writes nothing. */
+static void test_write(void) {
+  TpxComplex *c = fixture();
+  TpxComplex *back = NULL;
+  uint32_t buf[8];
+  size_t len = 0, n = 0;
+  FILE *f;
+  CHECK_STATUS(tpx_complex_write(c, "tpx_c_write.msh", TPX_FORMAT_FROM_EXTENSION), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_from_file("tpx_c_write.msh", &back), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_top_simplices(back, 3, buf, 8, &len), TPX_STATUS_OK);
+  CHECK(len == 4 && buf[0] == 0 && buf[1] == 1 && buf[2] == 2 && buf[3] == 3);
+  CHECK_STATUS(tpx_complex_top_count(back, 1, &n), TPX_STATUS_OK);
+  CHECK(n == 1);
+  CHECK_STATUS(tpx_complex_write(c, "tpx_c_write.off", TPX_FORMAT_FROM_EXTENSION),
+               TPX_STATUS_FORMAT_CANNOT_HOLD);
+  CHECK(message_contains("simplex #0 [3 2 1 0] has dimension 3"));
+  f = fopen("tpx_c_write.off", "r");
+  CHECK(f == NULL);
+  if (f) fclose(f);
+  CHECK_STATUS(tpx_complex_write(c, "tpx_c_write.txt", 999), TPX_STATUS_UNKNOWN_FORMAT);
+  CHECK_STATUS(tpx_complex_write(c, NULL, TPX_FORMAT_VTK), TPX_STATUS_NULL_ARGUMENT);
+  remove("tpx_c_write.msh");
+  tpx_complex_free(back);
+  tpx_complex_free(c);
+}
+
 int main(void) {
   test_version();
   test_complex_lifecycle();
@@ -536,6 +563,7 @@ int main(void) {
   test_query_errors();
   test_relation_table();
   test_files();
+  test_write();
   printf("%d passed, %d failed\n", g_passed, g_failed);
   return g_failed == 0 ? 0 : 1;
 }

@@ -505,7 +505,7 @@ mod tests {
 
     #[test]
     fn unknown_extension_and_missing_file() {
-        let e = read_path(Path::new("x.ply")).unwrap_err();
+        let e = read_path(Path::new("x.dxf")).unwrap_err();
         assert_eq!((e.line, e.kind), (0, ReadErrorKind::UnknownExtension));
         let e = read_path(Path::new("no-such-dir-topoplex/x.off")).unwrap_err();
         assert!(matches!(e.kind, ReadErrorKind::Io(_)));

@@ -176,7 +176,6 @@ impl<'a> Reader<'a> {
             self.int(4, "an entity tag", line)?;
             let (parametric, l) = self.int(4, "the parametric flag", line)?;
             let k = self.count("the block's node count", line)?;
-            let mut first = self.tags.len();
             for _ in 0..k {
                 let (tag, l) = self.int(8, "a node tag", line)?;
                 self.node(tag, l)?;
@@ -194,9 +193,7 @@ impl<'a> Reader<'a> {
                 for _ in 0..extra {
                     self.real(line)?;
                 }
-                first += 1;
             }
-            debug_assert_eq!(first, self.tags.len());
         }
         self.end("$EndNodes")
     }
@@ -591,5 +588,60 @@ impl Writer<'_> {
         if self.binary {
             self.out.push(b'\n');
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn simplices(r: &RawInput) -> Vec<Vec<u32>> {
+        (0..r.simplex_count())
+            .map(|i| r.simplex(i).to_vec())
+            .collect()
+    }
+
+    #[test]
+    fn version_2_sparse_node_tags_map_to_file_order() {
+        //   node tags 10, 30, 20 are vertices 0, 1, 2; triangle 10 20 30 is [0 2 1], and the
+        //   point element on node 30 is [1]
+        let text = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n2 1 \"x\"\n\
+                    $EndPhysicalNames\n$Nodes\n3\n10 0 0 0\n30 1 0 0\n20 0 1 0\n$EndNodes\n\
+                    $Elements\n2\n1 2 2 0 1 10 20 30\n2 15 2 0 1 30\n$EndElements\n";
+        let r = parse(text.as_bytes()).unwrap();
+        assert_eq!(r.vertex_count, Some(3));
+        assert_eq!(simplices(&r), [vec![0, 2, 1], vec![1]]);
+        assert_eq!(r.lines, [16, 17]);
+        assert_eq!(r.coords.unwrap().data[3..6], [1.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn version_4_skips_parametric_coordinates() {
+        //   one block of 2 parametric nodes on a curve (1 parameter each), one line element
+        let text = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 2 5 6\n1 1 1 2\n5\n6\n\
+                    0 0 0 0.25\n1 0 0 0.75\n$EndNodes\n$Elements\n1 1 1 1\n1 1 1 1\n1 6 5\n\
+                    $EndElements\n";
+        let r = parse(text.as_bytes()).unwrap();
+        assert_eq!(simplices(&r), [vec![1, 0]]);
+        assert_eq!(r.coords.unwrap().data, [0.0, 0.0, 0.0, 1.0, 0.0, 0.0]);
+    }
+
+    #[test]
+    fn errors_name_the_element_and_its_line() {
+        let nodes = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n1\n1 0 0 0\n$EndNodes\n";
+        let e =
+            parse(format!("{nodes}$Elements\n1\n7 5 0 1 1 1 1 1 1 1 1\n$EndElements\n").as_bytes())
+                .unwrap_err();
+        assert_eq!(e.0, 10);
+        assert_eq!(
+            e.1.to_string(),
+            "element 7 is a hexahedron, which is not a simplex"
+        );
+        let e = parse(b"$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Elements\n0\n$EndElements\n")
+            .unwrap_err();
+        assert_eq!(
+            (e.0, e.1.to_string()),
+            (4, "$Elements before $Nodes".to_string())
+        );
     }
 }

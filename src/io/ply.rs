@@ -85,10 +85,21 @@ pub fn parse(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
         .read_ply(&mut &bytes[..])
         .map_err(|e| {
             let line = e.line().map_or(0, |l| u32::try_from(l).unwrap_or(u32::MAX));
-            // The parser echoes whole lines: capped and escaped here.
+            // The parser's message goes on with the offending line and its grammar's state: the
+            // first line is kept, without its "Line N: " (the line is reported), capped and
+            // escaped.
             let msg = e.to_string();
-            let mut shown: String = msg.chars().take(160).flat_map(char::escape_debug).collect();
-            if msg.chars().count() > 160 {
+            let first = msg.lines().next().unwrap_or("");
+            let first = match first.split_once(": ") {
+                Some((l, rest)) if l.starts_with("Line ") => rest,
+                _ => first,
+            };
+            let mut shown: String = first
+                .chars()
+                .take(160)
+                .flat_map(char::escape_debug)
+                .collect();
+            if first.chars().count() > 160 {
                 shown.push_str("...");
             }
             (line, syntax(format!("PLY: {shown}")))

@@ -50,6 +50,15 @@ fn for_stl_io(bytes: &[u8]) -> Cow<'_, [u8]> {
 
 /// Parses an STL file, welding exactly equal corners.
 pub fn parse(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
+    if bytes.len() < 84 && !bytes.starts_with(b"solid") {
+        return Err((
+            0,
+            syntax(format!(
+                "{} bytes: too short for binary STL (84-byte header) and no ASCII 'solid'",
+                bytes.len()
+            )),
+        ));
+    }
     let mesh = stl_io::read_stl(&mut Cursor::new(for_stl_io(bytes)))
         .map_err(|e| (0, syntax(format!("STL: {e}"))))?;
     let mut raw = RawInput::new();

@@ -1,8 +1,9 @@
 //! Legacy VTK (`.vtk`) unstructured grids, ASCII and BINARY, read and written here.
 //!
-//! Own code rather than the `vtkio` crate: vtkio's legacy parser (nom 3) reserves memory from
-//! the counts a header declares (`POINTS 4000000000 double` aborts the process) and its errors
-//! carry no line; this reader caps every reservation by the bytes left and names lines.
+//! Own code rather than the `vtkio` crate (used for `.vtu`): vtkio 0.6's legacy parser (nom 3)
+//! reserves memory from the counts a header declares (`POINTS 4000000000 double` aborts the
+//! process), and its errors carry no line; this reader caps every reservation by the bytes left
+//! and names lines.
 //!
 //! Reading (`# vtk DataFile Version` 2.0 to 5.1):
 //! ```text

@@ -6,7 +6,8 @@
 //! (vertex), 3 (line), 5 (triangle) and 10 (tetrahedron) are simplices; any other (quad,
 //! polygon, hexahedron, wedge, higher order...) is refused naming the cell's index, and so is a
 //! cell whose id count does not match its type. vtkio reports XML errors without a line.
-//! Pieces stored in other files (parallel formats) are not read.
+//! Pieces stored in other files (parallel formats) are not read. vtkio panics on some malformed
+//! binary arrays; the panic is caught and reported as an error.
 //!
 //! Writing: one piece, `Float64` points (3 per vertex, fewer padded with zeros, zeros without
 //! coordinates), `connectivity`, `offsets` and `types` in listing order, as vtkio encodes them
@@ -114,7 +115,12 @@ fn add_piece(
 
 /// Parses a `.vtu` file.
 pub fn parse(bytes: &[u8]) -> Res<RawInput> {
-    let vtk = Vtk::parse_xml(bytes).map_err(|e| {
+    // vtkio 0.7.0-rc2 slices out of range on some malformed binary arrays (found by fuzzing):
+    // its panic is caught here and reported as a parse error (the panic message still reaches
+    // the process's panic hook, by default stderr).
+    let parsed = std::panic::catch_unwind(|| Vtk::parse_xml(bytes))
+        .map_err(|_| err("VTU: malformed data array (the vtkio crate panicked on it)"))?;
+    let vtk = parsed.map_err(|e| {
         let msg = e.to_string();
         let shown: String = msg.chars().take(200).flat_map(char::escape_debug).collect();
         err(format!("VTU: {shown}"))

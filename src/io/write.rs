@@ -15,6 +15,10 @@
 //! | OBJ | 0..=2 (`p`, `l`, `f`), in listing order | at most 3 |
 //! | MEDIT | 1..=3, grouped by dimension (sections) | 2 (`Dimension 2`) or 3 |
 //! | `.simplices` | any | any |
+//! | PLY ([`super::ply`]) | 1..=2, triangles then edges | at most 3 (`double`); finite in ASCII |
+//! | STL ([`super::stl`]) | 2 only, covering every vertex | at most 3, distinct, exactly `f32` |
+//! | VTK ([`super::vtk`]), VTU ([`super::vtu`]) | 0..=3, in listing order | at most 3 |
+//! | Gmsh MSH ([`super::msh`]) | 0..=3, in listing order | at most 3 |
 //!
 //! Formats that need coordinates get zeros when the complex has none, and fewer than 3 numbers
 //! per vertex are padded with zeros (MEDIT keeps 2). Listed 0-simplices are isolated vertices,

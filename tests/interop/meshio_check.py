@@ -1,7 +1,8 @@
 """Independent reader and writer for tests/interop.rs: Python meshio.
 
-usage: meshio_check.py read FILE FORMAT      prints the mesh meshio reads, as JSON
-       meshio_check.py write FILE FORMAT     writes the test mesh for FORMAT, prints it as JSON
+usage: meshio_check.py < JOBS, one job a line (one Python start for all of them):
+       read FILE FORMAT      prints the mesh meshio reads, as one JSON line
+       write FILE FORMAT     writes the test mesh for FORMAT, prints it as one JSON line
 
 FORMAT is a meshio format name, optionally suffixed with "-binary". Points are printed as
 repr() strings so that the Rust side parses them exactly; cells as [type, [[ids...]...]] blocks
@@ -18,7 +19,7 @@ def dump(mesh):
     points = [[repr(float(x)) for x in p] for p in mesh.points]
     # meshio turns UInt64 connectivity (as vtkio writes .vtu) into float64: exact for these ids.
     cells = [[b.type, b.data.astype(np.int64).tolist()] for b in mesh.cells]
-    print(json.dumps({"points": points, "cells": cells}))
+    print(json.dumps({"points": points, "cells": cells}), flush=True)
 
 
 def test_mesh(fmt):
@@ -42,8 +43,7 @@ def test_mesh(fmt):
     )
 
 
-def main():
-    mode, path, fmt = sys.argv[1:4]
+def job(mode, path, fmt):
     binary = fmt.endswith("-binary")
     name = fmt.removesuffix("-binary")
     if mode == "read":
@@ -57,4 +57,6 @@ def main():
         dump(mesh)
 
 
-main()
+for line in sys.stdin:
+    if line.strip():
+        job(*line.split())
