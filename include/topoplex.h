@@ -228,6 +228,24 @@ typedef struct TpxSimplex {
 } TpxSimplex;
 
 /**
+ * What normalising the input absorbed (see `tpx_complex_input_stats`).
+ */
+typedef struct TpxInputStats {
+  /**
+   * Simplices as listed in the input, absorbed ones included.
+   */
+  size_t input_simplices;
+  /**
+   * Extra listings of a simplex listed before (each counts one).
+   */
+  size_t absorbed_duplicates;
+  /**
+   * Listed simplices that are a proper face of another listed simplex.
+   */
+  size_t absorbed_faces;
+} TpxInputStats;
+
+/**
  * Storage of a structure: what the papers count and what the process really holds.
  */
 typedef struct TpxStorage {
@@ -655,6 +673,33 @@ TpxStatus tpx_cyclic(const struct TpxStructure *s,
                      size_t groups_len,
                      size_t *out_items,
                      size_t *out_groups);
+
+/**
+ * What normalisation absorbed from the input of complex `c` into `*out`. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_complex_input_stats(const struct TpxComplex *c, struct TpxInputStats *out);
+
+/**
+ * Listed simplex `i` of the input (`0 .. input_simplices`) exactly as given (order and
+ * winding) into `buf`, and into `*top` the top id it became (as `tpx_top` numbers them, the same
+ * in every structure of `c`), or `UINT32_MAX` when it was absorbed as a face of another listed
+ * simplex (a repeated listing maps to the same top as its first). Writing the tops back in
+ * input order: `i` ascending, skipping absorbed and repeated ones. Errors: INVALID_ARGUMENT (`i`
+ * out of range), BUFFER_TOO_SMALL. O(p) (the first call builds the listing map,
+ * O(Σ (p+1) log n_p)).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
+ */
+TpxStatus tpx_complex_input_simplex(const struct TpxComplex *c,
+                                    size_t i,
+                                    uint32_t *buf,
+                                    size_t buf_len,
+                                    size_t *out_len,
+                                    uint32_t *top);
 
 /**
  * Builds a structure of `kind` (`TPX_KIND_*`) for the complex `c`.
