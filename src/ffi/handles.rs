@@ -110,17 +110,21 @@ thread_local! {
     static FANS: RefCell<Fans> = RefCell::new(Fans::default());
 }
 
-/// Runs `f` with this thread's kept buffer from `key` (a fresh one when it is in use).
+/// Runs `f` with this thread's kept buffer from `key` (a fresh one during thread teardown or
+/// while it is in use).
 fn with_kept<T: Default, R>(
     key: &'static std::thread::LocalKey<RefCell<T>>,
     f: impl FnOnce(&mut T) -> R,
 ) -> R {
-    let mut v = key
-        .try_with(|c| std::mem::take(&mut *c.borrow_mut()))
-        .unwrap_or_default();
-    let r = f(&mut v);
-    let _ = key.try_with(|c| *c.borrow_mut() = v);
-    r
+    let mut f = Some(f);
+    let kept = key.try_with(|cell| {
+        let mut v = cell.try_borrow_mut().ok()?;
+        Some((f.take().expect("called once"))(&mut v))
+    });
+    match kept {
+        Ok(Some(r)) => r,
+        _ => (f.take().expect("not called yet"))(&mut T::default()),
+    }
 }
 
 /// The owner stamp of structure `s` into `*out`: every handle it makes carries it. O(1).
