@@ -61,12 +61,6 @@
 #define TPX_KIND_DE 8
 
 /**
- * The live complex (`TpxLive`, IA*-like and updatable). `tpx_structure_build` does not take it:
- * a live complex is built with `tpx_live_from_complex`; the number names it in messages.
- */
-#define TPX_KIND_IASTAR 9
-
-/**
  * Answer order of the navigation functions: the structure's natural order.
  */
 #define TPX_ORDER_NATURAL 0
@@ -85,109 +79,6 @@
  * Flag bit of a group: consistently oriented and counter-clockwise by the input winding.
  */
 #define TPX_GROUP_ORIENTED 2
-
-/**
- * `tpx_live_contract` mode: only an edge satisfying the link condition (topology preserved).
- */
-#define TPX_CONTRACT_PRESERVE_TOPOLOGY 0
-
-/**
- * `tpx_live_contract` mode: any two live vertices (vertex unification).
- */
-#define TPX_CONTRACT_FREE 1
-
-/**
- * `tpx_live_contract` mode: the link condition on the complex coned over its boundary
- * (`tpx_live_link_condition_with_boundary`): also keeps 2- and 3-manifolds with boundary
- * manifolds.
- */
-#define TPX_CONTRACT_PRESERVE_MANIFOLD 2
-
-/**
- * `tpx_structure_open` flag: check every section's checksum and the structure's invariants
- * before returning (reads the whole file).
- */
-#define TPX_OPEN_VERIFY 1
-
-/**
- * The format named by the output file's extension (`tpx_complex_write`).
- */
-#define TPX_FORMAT_FROM_EXTENSION 0
-
-/**
- * Geomview OFF (`.off`): vertices, edges, triangles.
- */
-#define TPX_FORMAT_OFF 1
-
-/**
- * Wavefront OBJ (`.obj`): points, edges, triangles; at most 3 coordinates.
- */
-#define TPX_FORMAT_OBJ 2
-
-/**
- * MEDIT ASCII (`.mesh`): edges, triangles, tetrahedra; 2 or 3 coordinates.
- */
-#define TPX_FORMAT_MEDIT 3
-
-/**
- * Topoplex `.simplices`: any complex.
- */
-#define TPX_FORMAT_SIMPLICES 4
-
-/**
- * PLY ASCII (`.ply`): edges and triangles; at most 3 coordinates.
- */
-#define TPX_FORMAT_PLY 5
-
-/**
- * PLY binary little-endian.
- */
-#define TPX_FORMAT_PLY_BINARY 6
-
-/**
- * STL ASCII (`.stl`): triangles covering every vertex, distinct 32-bit float coordinates.
- */
-#define TPX_FORMAT_STL 7
-
-/**
- * STL binary.
- */
-#define TPX_FORMAT_STL_BINARY 8
-
-/**
- * Legacy VTK unstructured grid, ASCII (`.vtk`): vertices, edges, triangles, tetrahedra.
- */
-#define TPX_FORMAT_VTK 9
-
-/**
- * Legacy VTK unstructured grid, BINARY.
- */
-#define TPX_FORMAT_VTK_BINARY 10
-
-/**
- * Gmsh MSH 4.1 ASCII (`.msh`): points, edges, triangles, tetrahedra.
- */
-#define TPX_FORMAT_MSH 11
-
-/**
- * Gmsh MSH 4.1 binary.
- */
-#define TPX_FORMAT_MSH_BINARY 12
-
-/**
- * Gmsh MSH 2.2 ASCII.
- */
-#define TPX_FORMAT_MSH2 13
-
-/**
- * Gmsh MSH 2.2 binary.
- */
-#define TPX_FORMAT_MSH2_BINARY 14
-
-/**
- * VTK XML unstructured grid (`.vtu`): vertices, edges, triangles, tetrahedra.
- */
-#define TPX_FORMAT_VTU 15
 
 /**
  * Result of a fallible `tpx_*` call. Values are part of the ABI and never reused.
@@ -277,77 +168,6 @@ enum TpxStatus
    * A handle made by another structure (its owner stamp does not match).
    */
   TPX_STATUS_FOREIGN_HANDLE = 18,
-  /**
-   * Live complex: a topology-preserving contraction of two vertices that are not an edge.
-   */
-  TPX_STATUS_NOT_AN_EDGE = 20,
-  /**
-   * Live complex: the link condition Lk(a) ∩ Lk(b) = Lk(ab) fails; the message names the
-   * dimension and a lowest-dimensional offending link simplex.
-   */
-  TPX_STATUS_LINK_CONDITION_FAILS = 21,
-  /**
-   * Live complex: inserting a simplex that is already in the complex (top or face).
-   */
-  TPX_STATUS_SIMPLEX_ALREADY_PRESENT = 22,
-  /**
-   * Live complex: removing a simplex that is a proper face of another (message: a coface).
-   */
-  TPX_STATUS_NOT_A_TOP_SIMPLEX = 23,
-  /**
-   * Live complex: a vertex id out of range or of a removed (contracted, deleted) vertex.
-   */
-  TPX_STATUS_DEAD_VERTEX = 24,
-  /**
-   * Live complex: an undo record from before `tpx_live_compact`, applied already, or whose
-   * contraction's result later edits changed (the message says which).
-   */
-  TPX_STATUS_STALE_UNDO = 25,
-  /**
-   * `tpx_simplify*`: the ratio is not in (0, 1] (NaN included).
-   */
-  TPX_STATUS_INVALID_RATIO = 27,
-  /**
-   * `tpx_simplify_file`: the output cannot be written (unknown extension, a format that
-   * cannot hold the result, or the file system refused).
-   */
-  TPX_STATUS_WRITE_ERROR = 28,
-  /**
-   * `tpx_simplify*`: the complex cannot be simplified: no vertex coordinates, a non-finite
-   * coordinate, or more top simplices of one dimension than the live complex numbers.
-   */
-  TPX_STATUS_CANNOT_SIMPLIFY = 29,
-  /**
-   * The output format number is not one of `TPX_FORMAT_*`, or the output file's extension
-   * names no format.
-   */
-  TPX_STATUS_UNKNOWN_FORMAT = 30,
-  /**
-   * The output format cannot hold the complex (a tetrahedron in OFF, an edge in STL); the
-   * message names the first offending simplex. Nothing was written.
-   */
-  TPX_STATUS_FORMAT_CANNOT_HOLD = 31,
-  /**
-   * A saved file (`.tpx`) is corrupt: a checksum, offset or length is wrong (the message
-   * names the file and the first inconsistency).
-   */
-  TPX_STATUS_SAVED_FILE_CORRUPT = 40,
-  /**
-   * A saved file is shorter than its header says.
-   */
-  TPX_STATUS_SAVED_FILE_TRUNCATED = 41,
-  /**
-   * A saved file was written by another format version.
-   */
-  TPX_STATUS_SAVED_FILE_WRONG_VERSION = 42,
-  /**
-   * The file is not a saved file (wrong magic number).
-   */
-  TPX_STATUS_SAVED_FILE_FOREIGN = 43,
-  /**
-   * A saved file was written on a host of the other byte order.
-   */
-  TPX_STATUS_SAVED_FILE_WRONG_ENDIANNESS = 44,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -371,12 +191,6 @@ typedef struct TpxComplex TpxComplex;
 typedef struct TpxDecomposition TpxDecomposition;
 
 /**
- * An updatable simplicial complex (opaque): any dimension, non-manifold, mixed-dimensional.
- * Create with `tpx_live_from_complex`, release with `tpx_live_free`.
- */
-typedef struct TpxLive TpxLive;
-
-/**
  * R_{p,q} of every p-simplex, in CSR form (opaque). Row i belongs to the i-th p-simplex in
  * `tpx_structure_simplices` order. Release with `tpx_relation_table_free`.
  */
@@ -388,30 +202,6 @@ typedef struct TpxRelationTable TpxRelationTable;
  * threads at once.
  */
 typedef struct TpxStructure TpxStructure;
-
-/**
- * The undo record of one contraction (opaque), for `tpx_live_split`. Release with
- * `tpx_undo_free`; it does not borrow the live complex.
- */
-typedef struct TpxUndo TpxUndo;
-
-/**
- * What normalising the input absorbed (`TpxComplex`'s input statistics).
- */
-typedef struct TpxInputStats {
-  /**
-   * Simplices as given, absorbed ones included.
-   */
-  size_t input_simplices;
-  /**
-   * Extra listings of a simplex listed more than once.
-   */
-  size_t absorbed_duplicates;
-  /**
-   * Listed simplices that are a proper face of another listed simplex.
-   */
-  size_t absorbed_faces;
-} TpxInputStats;
 
 /**
  * A handle to one simplex of one structure (12 bytes, plain data; copy freely).
@@ -436,6 +226,24 @@ typedef struct TpxSimplex {
    */
   uint32_t owner;
 } TpxSimplex;
+
+/**
+ * What normalising the input absorbed (see `tpx_complex_input_stats`).
+ */
+typedef struct TpxInputStats {
+  /**
+   * Simplices as listed in the input, absorbed ones included.
+   */
+  size_t input_simplices;
+  /**
+   * Extra listings of a simplex listed before (each counts one).
+   */
+  size_t absorbed_duplicates;
+  /**
+   * Listed simplices that are a proper face of another listed simplex.
+   */
+  size_t absorbed_faces;
+} TpxInputStats;
 
 /**
  * Storage of a structure: what the papers count and what the process really holds.
@@ -483,9 +291,7 @@ const char *tpx_last_error_message(void);
  *
  * On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
  * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (offsets decreasing, `coord_dim == 0` with coords),
- * INVALID_COMPLEX (message names the offending simplex by its input position), TOO_LARGE
- * (sizes that overflow, a closure above the default budget — see
- * `tpx_complex_from_arrays_budget` — or memory that cannot be allocated: never an abort).
+ * INVALID_COMPLEX (message names the offending simplex by its input position), TOO_LARGE.
  * Cost: O(n log n in the total input size n) for sorting and absorbing faces; memory of the top simplices.
  *
  * # Safety
@@ -500,51 +306,18 @@ TpxStatus tpx_complex_from_arrays(uint32_t n_vertices,
                                   struct TpxComplex **out);
 
 /**
- * `tpx_complex_from_arrays` with an explicit closure budget: the complex's closure may have at
- * most `max_simplices` simplices (by its upper bound n + Σ over top p-simplices of
- * 2^{p+1} − p − 2, or by an exact count when that bound is within 16 times the limit); 0 keeps the default, max(2^20, 64 × (ids + vertices given with
- * coordinates)); `UINT64_MAX` removes the limit. Above it: TOO_LARGE, nothing allocated of
- * closure size. Same arguments, ownership, errors and cost otherwise.
- *
- * # Safety
- * Non-NULL pointers must point to arrays of the stated lengths.
- */
-TpxStatus tpx_complex_from_arrays_budget(uint32_t n_vertices,
-                                         const uint32_t *ids,
-                                         const size_t *offsets,
-                                         size_t n_simplices,
-                                         const double *coords,
-                                         size_t coord_dim,
-                                         uint64_t max_simplices,
-                                         struct TpxComplex **out);
-
-/**
  * Reads a complex from a file, the format chosen by extension: `.off`, `.obj`, `.mesh`,
  * `.simplices` (`path` is a NUL-terminated UTF-8 path).
  *
  * On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
  * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8), IO_ERROR (cannot read),
  * PARSE_ERROR (syntax or unknown extension; message `file:line: what`), INVALID_COMPLEX
- * (message `file:line: simplex [..] ...`), TOO_LARGE (closure above the default budget, see
- * `tpx_complex_from_file_budget`; memory that cannot be allocated). Cost: linear in the file
- * plus normalisation.
+ * (message `file:line: simplex [..] ...`). Cost: linear in the file plus normalisation.
  *
  * # Safety
  * `path`, if non-NULL, must be a NUL-terminated string.
  */
 TpxStatus tpx_complex_from_file(const char *path, struct TpxComplex **out);
-
-/**
- * `tpx_complex_from_file` with an explicit closure budget `max_simplices` (0: the default,
- * max(2^20, 64 × (listed ids + declared vertices)); `UINT64_MAX`: unlimited; see
- * `tpx_complex_from_arrays_budget`). Same ownership, errors and cost otherwise.
- *
- * # Safety
- * `path`, if non-NULL, must be a NUL-terminated string.
- */
-TpxStatus tpx_complex_from_file_budget(const char *path,
-                                       uint64_t max_simplices,
-                                       struct TpxComplex **out);
 
 /**
  * Releases a complex. NULL is a no-op. Structures built from it stay valid (they own their
@@ -554,15 +327,6 @@ TpxStatus tpx_complex_from_file_budget(const char *path,
  * `complex` must be NULL or a live handle from this library, not used afterwards.
  */
 void tpx_complex_free(struct TpxComplex *complex);
-
-/**
- * What normalisation absorbed (duplicates and faces of other listed simplices, which are not
- * errors) into `*out`. O(1).
- *
- * # Safety
- * Non-NULL pointers must be valid (a live handle; a writable `TpxInputStats`).
- */
-TpxStatus tpx_complex_input_stats(const struct TpxComplex *c, struct TpxInputStats *out);
 
 /**
  * Dimension d of the complex (highest dimension of a simplex) into `*out`. O(1).
@@ -911,363 +675,31 @@ TpxStatus tpx_cyclic(const struct TpxStructure *s,
                      size_t *out_groups);
 
 /**
- * Builds a live complex from `c`: the same vertex ids, every top simplex with its input
- * winding, the coordinates copied. `*out` receives a new handle owned by the caller (free with
- * `tpx_live_free`); it does not borrow `c`. Errors: NULL_ARGUMENT. Cost: O(size of the top
- * simplices).
+ * What normalisation absorbed from the input of complex `c` into `*out`. O(1).
  *
  * # Safety
  * Non-NULL pointers must be valid.
  */
-TpxStatus tpx_live_from_complex(const struct TpxComplex *c, struct TpxLive **out);
+TpxStatus tpx_complex_input_stats(const struct TpxComplex *c, struct TpxInputStats *out);
 
 /**
- * Releases a live complex. NULL is a no-op.
+ * Listed simplex `i` of the input (`0 .. input_simplices`) exactly as given (order and
+ * winding) into `buf`, and into `*top` the top id it became (as `tpx_top` numbers them, the same
+ * in every structure of `c`), or `UINT32_MAX` when it was absorbed as a face of another listed
+ * simplex (a repeated listing maps to the same top as its first). Writing the tops back in
+ * input order: `i` ascending, skipping absorbed and repeated ones. Errors: INVALID_ARGUMENT (`i`
+ * out of range), BUFFER_TOO_SMALL. O(p) (the first call builds the listing map,
+ * O(Σ (p+1) log n_p)).
  *
  * # Safety
- * `l` must be NULL or a live handle from this library, not used afterwards.
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
  */
-void tpx_live_free(struct TpxLive *l);
-
-/**
- * Releases an undo record. NULL is a no-op.
- *
- * # Safety
- * `u` must be NULL or a handle from `tpx_live_contract`, not used afterwards.
- */
-void tpx_undo_free(struct TpxUndo *u);
-
-/**
- * Number of vertex slots into `*out`: vertex ids are `0 .. slots`, some of them removed
- * (contracted away or deleted) until `tpx_live_compact`. O(1).
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_live_vertex_slots(const struct TpxLive *l, uint32_t *out);
-
-/**
- * Number of live vertices into `*out`. O(1).
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_live_vertex_count(const struct TpxLive *l, uint32_t *out);
-
-/**
- * Whether vertex `v` is live (1) or removed / out of range (0), into `*out`. O(1).
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_live_is_vertex(const struct TpxLive *l, uint32_t v, uint32_t *out);
-
-/**
- * Dimension of the complex (highest live top simplex) into `*out`. O(d).
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_live_dimension(const struct TpxLive *l, uint32_t *out);
-
-/**
- * Number of live top p-simplices into `*out` (p = 0: isolated vertices). O(1) for p ≥ 1,
- * O(vertices) for p = 0.
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_live_top_count(const struct TpxLive *l, uint32_t p, size_t *out);
-
-/**
- * The live top p-simplices (p ≥ 1) as rows of p+1 vertex ids in their stored order (input
- * winding, b replaced by a in place after contractions), in slot order, into `buf`;
- * `*out_len` receives the number of uint32_t. Errors: NULL_ARGUMENT, BUFFER_TOO_SMALL (nothing
- * copied, `*out_len` = needed length). Cost: O(slots of dimension p).
- *
- * # Safety
- * Non-NULL pointers must be valid; `buf` must have room for `buf_len` uint32_t.
- */
-TpxStatus tpx_live_top_simplices(const struct TpxLive *l,
-                                 uint32_t p,
-                                 uint32_t *buf,
-                                 size_t buf_len,
-                                 size_t *out_len);
-
-/**
- * R_{p,q}(σ) for σ given by vertex ids in any order (p = simplex_len − 1), as rows of q+1
- * ascending ids in ascending lexicographic order, into `buf`; `*out_len` receives the number
- * of uint32_t. Errors: NULL_ARGUMENT, INVALID_SIMPLEX, NOT_IN_COMPLEX (also for a removed
- * vertex), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL. Cost: module doc of `live` (linear in the
- * stars of σ's vertices).
- *
- * # Safety
- * Non-NULL pointers must be valid; `simplex` has `simplex_len` ids, `buf` room for `buf_len`.
- */
-TpxStatus tpx_live_relation(const struct TpxLive *l,
-                            const uint32_t *simplex,
-                            size_t simplex_len,
-                            uint32_t q,
-                            uint32_t *buf,
-                            size_t buf_len,
-                            size_t *out_len);
-
-/**
- * The coordinates of live vertex `v` (`tpx_live_coord_dim` doubles) into `buf`; `*out_len`
- * receives their number. Errors: NULL_ARGUMENT, DEAD_VERTEX, BUFFER_TOO_SMALL. O(1).
- *
- * # Safety
- * Non-NULL pointers must be valid; `buf` must have room for `buf_len` doubles.
- */
-TpxStatus tpx_live_coords(const struct TpxLive *l,
-                          uint32_t v,
-                          double *buf,
-                          size_t buf_len,
-                          size_t *out_len);
-
-/**
- * Coordinates per vertex into `*out` (0 when the complex has none). O(1).
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_live_coord_dim(const struct TpxLive *l, size_t *out);
-
-/**
- * Sets the coordinates of live vertex `v` from `xyz[0 .. len]` (`len` must be the coordinate
- * dimension). Errors: NULL_ARGUMENT, DEAD_VERTEX, INVALID_ARGUMENT (wrong length). O(1).
- *
- * # Safety
- * Non-NULL pointers must be valid; `xyz` has `len` doubles.
- */
-TpxStatus tpx_live_set_coords(struct TpxLive *l, uint32_t v, const double *xyz, size_t len);
-
-/**
- * Adds an isolated vertex at `xyz[0 .. len]`; its id into `*out`. Errors: NULL_ARGUMENT,
- * INVALID_ARGUMENT (wrong length). Amortised O(1).
- *
- * # Safety
- * Non-NULL pointers must be valid; `xyz` has `len` doubles.
- */
-TpxStatus tpx_live_add_vertex(struct TpxLive *l, const double *xyz, size_t len, uint32_t *out);
-
-/**
- * Inserts the simplex `ids[0 .. len]` (its vertex order is kept as its winding) as a top
- * simplex; top simplices it contains become its faces. Errors: NULL_ARGUMENT, INVALID_SIMPLEX
- * (empty, repeated vertex, more than 16), DEAD_VERTEX, SIMPLEX_ALREADY_PRESENT (also for a
- * single vertex: add vertices with `tpx_live_add_vertex`). Cost: O(d² Σ_{v∈σ} |St(v)|).
- *
- * # Safety
- * Non-NULL pointers must be valid; `ids` has `len` ids.
- */
-TpxStatus tpx_live_insert_top(struct TpxLive *l, const uint32_t *ids, size_t len);
-
-/**
- * Removes the top simplex `ids[0 .. len]` (any order). Its faces that no other top simplex
- * holds go too, except its vertices, which stay (isolated if nothing else holds them); a
- * single isolated vertex is removed itself. Errors: NULL_ARGUMENT, INVALID_SIMPLEX,
- * DEAD_VERTEX, NOT_IN_COMPLEX, NOT_A_TOP_SIMPLEX. Cost: O(Σ_{v∈σ} |St(v)|).
- *
- * # Safety
- * Non-NULL pointers must be valid; `ids` has `len` ids.
- */
-TpxStatus tpx_live_remove_top(struct TpxLive *l, const uint32_t *ids, size_t len);
-
-/**
- * Checks the link condition for edge {a, b} without changing anything: OK, NOT_AN_EDGE, or
- * LINK_CONDITION_FAILS (message: the dimension and an offending link simplex); DEAD_VERTEX.
- * Cost: O(d (|St(a)| + |St(b)|)) on meshes.
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_live_link_condition(const struct TpxLive *l, uint32_t a, uint32_t b);
-
-/**
- * The link condition on the complex coned over its boundary by a dummy vertex ω (Dey,
- * Edelsbrunner, Guha, Nekhayev 1999): a boundary facet is a simplex that is a facet of exactly
- * one simplex. OK, NOT_AN_EDGE or LINK_CONDITION_FAILS (message: dimension and simplex, ω
- * written as 4294967294); DEAD_VERTEX. Cost: O(d² (|St(a)|² + |St(b)|²)).
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_live_link_condition_with_boundary(const struct TpxLive *l, uint32_t a, uint32_t b);
-
-/**
- * Contracts b into a (`mode`: `TPX_CONTRACT_PRESERVE_TOPOLOGY`, `TPX_CONTRACT_FREE` or
- * `TPX_CONTRACT_PRESERVE_MANIFOLD`), moving
- * a to `position[0 .. position_len]` when `position` is not NULL. When `out_undo` is not NULL
- * it receives a new undo record (owned by the caller, free with `tpx_undo_free`) for
- * `tpx_live_split`. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (unknown mode, wrong coordinate
- * count), INVALID_SIMPLEX (a == b), DEAD_VERTEX, and in topology-preserving mode NOT_AN_EDGE
- * or LINK_CONDITION_FAILS. Refused contractions change nothing. Cost: O(d (|St(a)| + |St(b)|))
- * per top simplex of St(b) on meshes.
- *
- * # Safety
- * Non-NULL pointers must be valid; `position` has `position_len` doubles.
- */
-TpxStatus tpx_live_contract(struct TpxLive *l,
-                            uint32_t a,
-                            uint32_t b,
-                            uint32_t mode,
-                            const double *position,
-                            size_t position_len,
-                            struct TpxUndo **out_undo);
-
-/**
- * Undoes the contraction that produced `u` (vertex split): same ids, slots, winding and
- * coordinates as before it. `u` stays owned by the caller. Errors: NULL_ARGUMENT, STALE_UNDO
- * (from before `tpx_live_compact`, applied already, or later edits changed what it restores).
- * Cost: that of the contraction.
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_live_split(struct TpxLive *l, const struct TpxUndo *u);
-
-/**
- * Drops removed vertices and top slots, renumbering the live ones densely in ascending order.
- * When `vertex_map` is not NULL it receives, for each old vertex id, its new id (`UINT32_MAX`
- * for a removed vertex): `*out_len` = old `tpx_live_vertex_slots`; with a buffer too short
- * nothing is compacted (BUFFER_TOO_SMALL, `*out_len` = needed length). Undo records issued
- * before are refused afterwards (STALE_UNDO). Cost: O(size).
- *
- * # Safety
- * Non-NULL pointers must be valid; `vertex_map` has room for `map_len` uint32_t.
- */
-TpxStatus tpx_live_compact(struct TpxLive *l,
-                           uint32_t *vertex_map,
-                           size_t map_len,
-                           size_t *out_len);
-
-/**
- * The live complex as a new `TpxComplex` (live vertices renumbered densely in ascending order,
- * as `tpx_live_compact` would; windings and coordinates kept), owned by the caller: freeze it
- * into any structure with `tpx_structure_build`. Errors: NULL_ARGUMENT. Cost: O(size).
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_live_to_complex(const struct TpxLive *l, struct TpxComplex **out);
-
-/**
- * Checks every invariant of the live complex: OK, or PANIC with the broken invariant in the
- * message (a library bug). Cost: O(d² Σ_v |St(v)|²) — for tests.
- *
- * # Safety
- * Non-NULL pointers must be valid.
- */
-TpxStatus tpx_live_validate(const struct TpxLive *l);
-
-/**
- * Simplifies `complex` by quadric-error edge contraction (Garland–Heckbert, generalised to
- * simplices of any dimension in any coordinate dimension) until about `ratio` × its top
- * simplices remain (`ceil(ratio × count)`, or fewer contractions when no edge is left, or,
- * with `preserve_topology`, none satisfies the link condition). With `preserve_topology`
- * every contraction satisfies the link condition in every dimension, so the Betti numbers and
- * 2-/3-manifoldness are kept. `complex` is not changed.
- *
- * On success `*out` receives a new complex owned by the caller (free with
- * `tpx_complex_free`), with coordinates, vertices renumbered densely in ascending old id
- * order. Errors: NULL_ARGUMENT, INVALID_RATIO (`ratio` not in (0, 1]), CANNOT_SIMPLIFY (no
- * coordinates, a non-finite coordinate, too many top simplices). Cost: O(E log E) for E edges
- * plus the contractions (see the `simplify` module documentation); memory about the live
- * complex plus (n + 1)(n + 2) / 2 doubles per vertex for n coordinates.
- *
- * # Safety
- * `complex` must be NULL or a live `TpxComplex`; `out` NULL or valid for a write.
- */
-TpxStatus tpx_simplify(const struct TpxComplex *complex,
-                       double ratio,
-                       bool preserve_topology,
-                       struct TpxComplex **out);
-
-/**
- * Simplifies `complex` in place, as `tpx_simplify` does: its content is replaced by the
- * result. The input is released as soon as the editable copy is built, so the peak memory
- * holds one copy of it, not two (use this when the input is no longer needed).
- *
- * Errors (the complex is then unchanged): NULL_ARGUMENT, INVALID_RATIO, CANNOT_SIMPLIFY.
- * After PANIC (an internal bug) the complex holds a single isolated vertex. Cost: as
- * `tpx_simplify`.
- *
- * # Safety
- * `complex` must be NULL or a live `TpxComplex` that no other thread uses during the call.
- */
-TpxStatus tpx_simplify_in_place(struct TpxComplex *complex, double ratio, bool preserve_topology);
-
-/**
- * Reads `input`, simplifies it as `tpx_simplify` does and writes the result to `output`, the
- * format chosen by its extension (`.off`, `.obj`: dimension ≤ 2; `.mesh`: dimension ≤ 3 and
- * 2 or 3 coordinates; `.simplices`: any). Both paths are NUL-terminated UTF-8. The output's
- * extension and format are checked before any work; nothing is written on failure.
- *
- * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (a path not UTF-8), INVALID_RATIO, IO_ERROR /
- * PARSE_ERROR / INVALID_COMPLEX (reading `input`, as `tpx_complex_from_file`),
- * CANNOT_SIMPLIFY, WRITE_ERROR (unknown extension, a format that cannot hold the complex, or
- * the file system refused; the message names the path). Cost: `tpx_simplify` plus reading and
- * writing.
- *
- * # Safety
- * `input` and `output` must be NULL or NUL-terminated strings.
- */
-TpxStatus tpx_simplify_file(const char *input,
-                            const char *output,
-                            double ratio,
-                            bool preserve_topology);
-
-/**
- * Saves the complex `c` and, unless `s` is NULL, the structure `s` built from it, to `path`
- * (a `.tpx` file: written beside it under a temporary name, then renamed).
- *
- * Errors: NULL_ARGUMENT (`c` or `path`), INVALID_ARGUMENT (path not UTF-8), IO_ERROR. Cost:
- * one pass over the complex's listing and the structure's arrays.
- *
- * # Safety
- * Non-NULL pointers must be valid (live handles; a NUL-terminated path). `s` must have been
- * built from `c` (or opened from a file saved with it): the file pairs them.
- */
-TpxStatus tpx_save(const struct TpxComplex *c, const struct TpxStructure *s, const char *path);
-
-/**
- * Opens the structure of `kind` (`TPX_KIND_*`) saved in `path` by memory mapping it: the
- * structure's arrays are read from the file as queries touch them. If the file holds another
- * kind or only a complex, the structure is built from the saved complex instead. With
- * `flags & TPX_OPEN_VERIFY`, every checksum and the structure's invariants are checked first.
- *
- * On success `*out` receives a new structure owned by the caller (free with
- * `tpx_structure_free`; the mapping lives until then). Errors: NULL_ARGUMENT,
- * INVALID_ARGUMENT (path not UTF-8, unknown flag), UNKNOWN_KIND, IO_ERROR,
- * SAVED_FILE_CORRUPT, SAVED_FILE_TRUNCATED, SAVED_FILE_WRONG_VERSION, SAVED_FILE_FOREIGN,
- * SAVED_FILE_WRONG_ENDIANNESS, and the build errors of `tpx_structure_build` when building.
- * Cost: O(sections) without VERIFY; O(file size) with it.
- *
- * # Safety
- * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
- */
-TpxStatus tpx_structure_open(const char *path,
-                             uint32_t kind,
-                             uint32_t flags,
-                             struct TpxStructure **out);
-
-/**
- * Opens the complex saved in `path`, rebuilt from its saved listing (validated like any
- * input). On success `*out` receives a new complex owned by the caller (free with
- * `tpx_complex_free`). Errors: as `tpx_structure_open`, plus INVALID_COMPLEX. Cost: a
- * normalisation of the saved listing.
- *
- * # Safety
- * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
- */
-TpxStatus tpx_complex_open(const char *path, struct TpxComplex **out);
-
-/**
- * Sets the number of threads later builds use (`0` is INVALID_ARGUMENT). Without a call, the
- * `TOPOPLEX_THREADS` environment variable, else every core. Builds give the same structure
- * whatever the count. O(1).
- */
-TpxStatus tpx_set_threads(uint32_t threads);
+TpxStatus tpx_complex_input_simplex(const struct TpxComplex *c,
+                                    size_t i,
+                                    uint32_t *buf,
+                                    size_t buf_len,
+                                    size_t *out_len,
+                                    uint32_t *top);
 
 /**
  * Builds a structure of `kind` (`TPX_KIND_*`) for the complex `c`.
@@ -1427,23 +859,6 @@ const uint32_t *tpx_relation_table_ids(const struct TpxRelationTable *t, size_t 
  * `t` must be NULL or a live handle from this library, not used afterwards.
  */
 void tpx_relation_table_free(struct TpxRelationTable *t);
-
-/**
- * Writes the complex `c` to the file `path` (NUL-terminated UTF-8) in `format`
- * (`TPX_FORMAT_*`; `TPX_FORMAT_FROM_EXTENSION` picks it from the path's extension): its top
- * simplices in input order with their input vertex order (winding), isolated vertices and wire
- * edges kept, coordinates in the shortest decimal that reads back bit for bit. Reading the file
- * back with `tpx_complex_from_file` gives the same complex.
- *
- * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8), UNKNOWN_FORMAT (format number or
- * extension unknown), FORMAT_CANNOT_HOLD (the format cannot hold the complex, e.g. OFF with a
- * tetrahedron; the message names the first offending simplex; nothing is written), IO_ERROR
- * (cannot write). Cost: linear in the complex; the file is built in memory, then written.
- *
- * # Safety
- * `c` must be NULL or a live complex; `path` NULL or a NUL-terminated string.
- */
-TpxStatus tpx_complex_write(const struct TpxComplex *c, const char *path, uint32_t format);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -245,6 +245,22 @@ class Complex {
     detail::check(tpx_complex_coord_dim(c_, &n));
     return n;
   }
+  /* What normalisation absorbed (input simplices, duplicates, faces of other simplices). */
+  TpxInputStats input_stats() const {
+    TpxInputStats st{};
+    detail::check(tpx_complex_input_stats(c_, &st));
+    return st;
+  }
+  /* Listed simplex i exactly as given; `top` receives its top id (as Structure::top numbers
+   * them) or UINT32_MAX when it was absorbed as a face of another listed simplex. */
+  std::vector<std::uint32_t> input_simplex(std::size_t i, std::uint32_t &top) const {
+    std::vector<std::uint32_t> out(16);
+    std::size_t len = 0;
+    detail::check(tpx_complex_input_simplex(c_, i, out.data(), out.size(), &len, &top));
+    out.resize(len);
+    return out;
+  }
+
   /* The coordinates, vertex-major (coord_dim() per vertex); empty without coordinates. */
   std::vector<double> coords() const {
     std::vector<double> buf(coord_dim() * vertex_count());

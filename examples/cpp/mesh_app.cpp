@@ -70,7 +70,8 @@ int main(int argc, char **argv) {
     for (const auto &kv : valence) std::printf(" %zu:%zu", kv.first, kv.second);
     std::printf("\n");
 
-    // Write back: every triangle as given in the input (winding kept), in top-id order.
+    // Write back: every face as given in the input (winding kept), in input order, each top
+    // simplex once (absorbed and repeated listings skipped).
     if (argc > 2) {
       std::FILE *out = std::fopen(argv[2], "w");
       if (!out) throw std::runtime_error("cannot write output");
@@ -79,10 +80,14 @@ int main(int argc, char **argv) {
         for (std::size_t k = 0; k < dim; ++k) std::fprintf(out, "%.17g ", xyz[v * dim + k]);
         std::fprintf(out, "\n");
       }
-      for (std::uint32_t t = 0; t < mesh.top_total(); ++t) {
-        const std::vector<std::uint32_t> tri = mesh.top_as_given(t);
-        std::fprintf(out, "%zu", tri.size());
-        for (std::uint32_t v : tri) std::fprintf(out, " %u", v);
+      std::vector<bool> written(mesh.top_total(), false);
+      for (std::size_t i = 0; i < complex.input_stats().input_simplices; ++i) {
+        std::uint32_t top = 0;
+        const std::vector<std::uint32_t> face = complex.input_simplex(i, top);
+        if (top == UINT32_MAX || written[top]) continue;
+        written[top] = true;
+        std::fprintf(out, "%zu", face.size());
+        for (std::uint32_t v : face) std::fprintf(out, " %u", v);
         std::fprintf(out, "\n");
       }
       std::fclose(out);

@@ -110,17 +110,21 @@ thread_local! {
     static FANS: RefCell<Fans> = RefCell::new(Fans::default());
 }
 
-/// Runs `f` with this thread's kept buffer from `key` (a fresh one when it is in use).
+/// Runs `f` with this thread's kept buffer from `key` (a fresh one during thread teardown or
+/// while it is in use).
 fn with_kept<T: Default, R>(
     key: &'static std::thread::LocalKey<RefCell<T>>,
     f: impl FnOnce(&mut T) -> R,
 ) -> R {
-    let mut v = key
-        .try_with(|c| std::mem::take(&mut *c.borrow_mut()))
-        .unwrap_or_default();
-    let r = f(&mut v);
-    let _ = key.try_with(|c| *c.borrow_mut() = v);
-    r
+    let mut f = Some(f);
+    let kept = key.try_with(|cell| {
+        let mut v = cell.try_borrow_mut().ok()?;
+        Some((f.take().expect("called once"))(&mut v))
+    });
+    match kept {
+        Ok(Some(r)) => r,
+        _ => (f.take().expect("not called yet"))(&mut T::default()),
+    }
 }
 
 /// The owner stamp of structure `s` into `*out`: every handle it makes carries it. O(1).
@@ -566,5 +570,74 @@ pub unsafe extern "C" fn tpx_cyclic(
             *out_groups = ng;
             Ok(())
         })
+    })
+}
+
+/// What normalising the input absorbed (see `tpx_complex_input_stats`).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct TpxInputStats {
+    /// Simplices as listed in the input, absorbed ones included.
+    pub input_simplices: usize,
+    /// Extra listings of a simplex listed before (each counts one).
+    pub absorbed_duplicates: usize,
+    /// Listed simplices that are a proper face of another listed simplex.
+    pub absorbed_faces: usize,
+}
+
+/// What normalisation absorbed from the input of complex `c` into `*out`. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_input_stats(
+    c: *const super::TpxComplex,
+    out: *mut TpxInputStats,
+) -> TpxStatus {
+    super::get_into(c, "c", out, |c| {
+        let st = c.complex.stats();
+        TpxInputStats {
+            input_simplices: st.input_simplices,
+            absorbed_duplicates: st.absorbed_duplicates,
+            absorbed_faces: st.absorbed_faces,
+        }
+    })
+}
+
+/// Listed simplex `i` of the input (`0 .. input_simplices`) exactly as given (order and
+/// winding) into `buf`, and into `*top` the top id it became (as `tpx_top` numbers them, the same
+/// in every structure of `c`), or `UINT32_MAX` when it was absorbed as a face of another listed
+/// simplex (a repeated listing maps to the same top as its first). Writing the tops back in
+/// input order: `i` ascending, skipping absorbed and repeated ones. Errors: INVALID_ARGUMENT (`i`
+/// out of range), BUFFER_TOO_SMALL. O(p) (the first call builds the listing map,
+/// O(Σ (p+1) log n_p)).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_input_simplex(
+    c: *const super::TpxComplex,
+    i: usize,
+    buf: *mut u32,
+    buf_len: usize,
+    out_len: *mut usize,
+    top: *mut u32,
+) -> TpxStatus {
+    guard(|| {
+        let c = &handle(c, "c")?.complex;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let top = out_ptr(top, "top")?;
+        if i >= c.input_count() {
+            return Err(Failure::new(
+                TpxStatus::InvalidArgument,
+                format!("listed simplex {i}: the input lists {}", c.input_count()),
+            ));
+        }
+        let t = c.input_top(i).map_or(u32::MAX, |(p, j)| {
+            (0..p).map(|q| c.tops(q).len() as u32).sum::<u32>() + j
+        });
+        write_buffer(c.input_simplex(i), buf, buf_len, out_len)?;
+        *top = t;
+        Ok(())
     })
 }

@@ -1067,3 +1067,47 @@ fn kind_numbers_are_the_tpx_kind_constants() {
     }
     assert_eq!(K::from_abi(9), None);
 }
+
+/// The input listing through the C ABI: a repeated triangle and an absorbed edge are counted,
+/// each listing comes back as given with the top id it became.
+///
+/// ```text
+///   listed: (2 1 0), (0 1) absorbed face, (1 2 0) repeat of the first, (3 2)
+///   tops:   id 0 = 2-3 (edge), id 1 = 0 1 2 (triangle)
+/// ```
+#[test]
+fn input_listing_and_stats_come_back_as_given() {
+    let c = complex(4, &[&[2, 1, 0], &[0, 1], &[1, 2, 0], &[3, 2]]);
+    unsafe {
+        let mut st = TpxInputStats::default();
+        assert_eq!(tpx_complex_input_stats(c, &mut st), TpxStatus::Ok);
+        assert_eq!(
+            (
+                st.input_simplices,
+                st.absorbed_duplicates,
+                st.absorbed_faces
+            ),
+            (4, 1, 1)
+        );
+        let mut got = Vec::new();
+        for i in 0..4 {
+            let (mut buf, mut len, mut top) = ([0u32; 4], 0usize, 0u32);
+            let s = tpx_complex_input_simplex(c, i, buf.as_mut_ptr(), 4, &mut len, &mut top);
+            assert_eq!(s, TpxStatus::Ok);
+            got.push((buf[..len].to_vec(), top));
+        }
+        assert_eq!(
+            got,
+            [
+                (vec![2, 1, 0], 1),
+                (vec![0, 1], u32::MAX),
+                (vec![1, 2, 0], 1),
+                (vec![3, 2], 0)
+            ]
+        );
+        let (mut buf, mut len, mut top) = ([0u32; 4], 0usize, 7u32);
+        let s = tpx_complex_input_simplex(c, 4, buf.as_mut_ptr(), 4, &mut len, &mut top);
+        assert_eq!((s, top), (TpxStatus::InvalidArgument, 7));
+        tpx_complex_free(c);
+    }
+}

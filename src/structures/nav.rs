@@ -187,13 +187,19 @@ thread_local! {
     static ROWS: RefCell<Vec<u32>> = const { RefCell::new(Vec::new()) };
 }
 
-/// Runs `f` with the per-thread scratch buffer (empty; reentrant: a nested call gets a fresh one).
+/// Runs `f` with the per-thread scratch buffer, cleared (reentrant: while it is in use, a
+/// nested call — a visitor navigating again — gets a fresh one).
 pub(crate) fn with_scratch<R>(f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
-    let mut rows = ROWS.with(|r| std::mem::take(&mut *r.borrow_mut()));
-    rows.clear();
-    let r = f(&mut rows);
-    ROWS.with(|c| *c.borrow_mut() = rows);
-    r
+    let mut f = Some(f);
+    let kept = ROWS.try_with(|cell| {
+        let mut rows = cell.try_borrow_mut().ok()?;
+        rows.clear();
+        Some((f.take().expect("called once"))(&mut rows))
+    });
+    match kept {
+        Ok(Some(r)) => r,
+        _ => (f.take().expect("not called yet"))(&mut Vec::new()),
+    }
 }
 
 /// Dense handle of the simplex with ascending ids `s`, if it is in `t`'s structure.
@@ -310,7 +316,13 @@ impl<T: NavBase> Navigate for T {
         q: usize,
         visit: &mut dyn FnMut(SimplexHandle),
     ) -> Result<(), QueryError> {
-        let sigma = self.vertices_of(h)?;
+        self.check(h)?;
+        // σ's ids borrowed from its table (no copy): this runs once per simplex of a walk.
+        let vertex = [h.index()];
+        let sigma: &[u32] = match h.dim() {
+            0 => &vertex,
+            p => self.table(p).get(h.index() as usize),
+        };
         let d = self.dimension();
         if q > d {
             return Err(QueryError::DimensionOutOfRange {
@@ -319,11 +331,11 @@ impl<T: NavBase> Navigate for T {
                 dim: d,
             });
         }
-        if let Some(r) = self.fast_visit(h, &sigma, q, visit) {
+        if let Some(r) = self.fast_visit(h, sigma, q, visit) {
             return r;
         }
         with_scratch(|rows| {
-            let answer = self.query(&sigma, q, rows);
+            let answer = self.query(sigma, q, rows);
             if answer.is_ok() {
                 for row in rows.chunks_exact(q + 1) {
                     visit(find(self, row).expect("an answer is a simplex of the complex"));
