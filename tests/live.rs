@@ -911,3 +911,82 @@ fn real_data_contractions_keep_euler_characteristic_and_components() {
         eprintln!("{name}: {done} contractions, χ = {chi}, {comps} components kept");
     }
 }
+
+/// Every `tpx_live_*` export refuses NULL handles and out-pointers with NULL_ARGUMENT, and the
+/// frees accept NULL.
+#[test]
+fn c_abi_live_functions_refuse_null() {
+    use std::ptr::{null, null_mut};
+    use topoplex::ffi::*;
+    let mut u = 0u32;
+    let mut z = 0usize;
+    // SAFETY: every pointer is NULL or valid; NULL handles must be refused, not read.
+    unsafe {
+        tpx_live_free(null_mut());
+        tpx_undo_free(null_mut());
+        assert_eq!(
+            tpx_live_from_complex(null(), null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_vertex_slots(null(), &mut u),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_vertex_count(null(), &mut u),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(tpx_live_dimension(null(), &mut u), TpxStatus::NullArgument);
+        assert_eq!(
+            tpx_live_top_count(null(), 1, &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_insert_top(null_mut(), [0u32, 1].as_ptr(), 2),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_remove_top(null_mut(), [0u32, 1].as_ptr(), 2),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_link_condition(null(), 0, 1),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_contract(null_mut(), 0, 1, 0, null(), 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(tpx_live_split(null_mut(), null()), TpxStatus::NullArgument);
+        assert_eq!(
+            tpx_live_compact(null_mut(), null_mut(), 0, &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_to_complex(null(), null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(tpx_live_validate(null()), TpxStatus::NullArgument);
+        // A live handle with NULL out-pointers.
+        let (mut c, mut l) = (null_mut(), null_mut());
+        let ids = [0u32, 1];
+        let offsets = [0usize, 2];
+        assert_eq!(
+            tpx_complex_from_arrays(2, ids.as_ptr(), offsets.as_ptr(), 1, null(), 0, &mut c),
+            TpxStatus::Ok
+        );
+        assert_eq!(tpx_live_from_complex(c, &mut l), TpxStatus::Ok);
+        assert_eq!(
+            tpx_live_vertex_slots(l, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(tpx_live_insert_top(l, null(), 2), TpxStatus::NullArgument);
+        assert_eq!(
+            tpx_live_contract(l, 0, 1, 7, null(), 0, null_mut()),
+            TpxStatus::InvalidArgument
+        );
+        assert_eq!(tpx_live_validate(l), TpxStatus::Ok);
+        tpx_live_free(l);
+        tpx_complex_free(c);
+    }
+}

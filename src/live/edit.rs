@@ -2,9 +2,7 @@
 //! its undo (vertex split), compaction. Each checks everything first and refuses with the
 //! structure unchanged, then mutates.
 
-use super::{
-    Image, Key, LiveComplex, NONE, Refusal, SLOT_MASK, TopId, VertexId, pack, show, subset, unpack,
-};
+use super::{Image, Key, LiveComplex, NONE, Refusal, TopId, VertexId, pack, show, subset, unpack};
 use crate::complex::MAX_DIMENSION;
 
 /// How [`LiveComplex::contract`] decides whether it may unify two vertices.
@@ -474,7 +472,6 @@ impl LiveComplex {
         self.star = star;
         self.alive = vec![true; n as usize];
         self.epoch = self.epoch.wrapping_add(1);
-        debug_assert!(self.tops.iter().all(|t| t.len() <= SLOT_MASK as usize * 16));
         maps
     }
 }
