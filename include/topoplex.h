@@ -77,6 +77,86 @@
 #define TPX_CONTRACT_FREE 1
 
 /**
+ * The format named by the output file's extension (`tpx_complex_write`).
+ */
+#define TPX_FORMAT_FROM_EXTENSION 0
+
+/**
+ * Geomview OFF (`.off`): vertices, edges, triangles.
+ */
+#define TPX_FORMAT_OFF 1
+
+/**
+ * Wavefront OBJ (`.obj`): points, edges, triangles; at most 3 coordinates.
+ */
+#define TPX_FORMAT_OBJ 2
+
+/**
+ * MEDIT ASCII (`.mesh`): edges, triangles, tetrahedra; 2 or 3 coordinates.
+ */
+#define TPX_FORMAT_MEDIT 3
+
+/**
+ * Topoplex `.simplices`: any complex.
+ */
+#define TPX_FORMAT_SIMPLICES 4
+
+/**
+ * PLY ASCII (`.ply`): edges and triangles; at most 3 coordinates.
+ */
+#define TPX_FORMAT_PLY 5
+
+/**
+ * PLY binary little-endian.
+ */
+#define TPX_FORMAT_PLY_BINARY 6
+
+/**
+ * STL ASCII (`.stl`): triangles covering every vertex, distinct 32-bit float coordinates.
+ */
+#define TPX_FORMAT_STL 7
+
+/**
+ * STL binary.
+ */
+#define TPX_FORMAT_STL_BINARY 8
+
+/**
+ * Legacy VTK unstructured grid, ASCII (`.vtk`): vertices, edges, triangles, tetrahedra.
+ */
+#define TPX_FORMAT_VTK 9
+
+/**
+ * Legacy VTK unstructured grid, BINARY.
+ */
+#define TPX_FORMAT_VTK_BINARY 10
+
+/**
+ * Gmsh MSH 4.1 ASCII (`.msh`): points, edges, triangles, tetrahedra.
+ */
+#define TPX_FORMAT_MSH 11
+
+/**
+ * Gmsh MSH 4.1 binary.
+ */
+#define TPX_FORMAT_MSH_BINARY 12
+
+/**
+ * Gmsh MSH 2.2 ASCII.
+ */
+#define TPX_FORMAT_MSH2 13
+
+/**
+ * Gmsh MSH 2.2 binary.
+ */
+#define TPX_FORMAT_MSH2_BINARY 14
+
+/**
+ * VTK XML unstructured grid (`.vtu`): vertices, edges, triangles, tetrahedra.
+ */
+#define TPX_FORMAT_VTU 15
+
+/**
  * Result of a fallible `tpx_*` call. Values are part of the ABI and never reused.
  */
 enum TpxStatus
@@ -195,8 +275,7 @@ enum TpxStatus
    */
   TPX_STATUS_INVALID_RATIO = 27,
   /**
-   * `tpx_simplify_file`: the output cannot be written (unknown extension, a format that
-   * cannot hold the result, or the file system refused).
+   * `tpx_simplify_file`: the file system refused to write the output file.
    */
   TPX_STATUS_WRITE_ERROR = 28,
   /**
@@ -204,6 +283,16 @@ enum TpxStatus
    * coordinate, or more top simplices of one dimension than the live complex numbers.
    */
   TPX_STATUS_CANNOT_SIMPLIFY = 29,
+  /**
+   * The output format number is not one of `TPX_FORMAT_*`, or the output file's extension
+   * names no format.
+   */
+  TPX_STATUS_UNKNOWN_FORMAT = 30,
+  /**
+   * The output format cannot hold the complex (a tetrahedron in OFF, an edge in STL); the
+   * message names the first offending simplex. Nothing was written.
+   */
+  TPX_STATUS_FORMAT_CANNOT_HOLD = 31,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -761,15 +850,16 @@ TpxStatus tpx_simplify_in_place(struct TpxComplex *complex, double ratio, bool p
 
 /**
  * Reads `input`, simplifies it as `tpx_simplify` does and writes the result to `output`, the
- * format chosen by its extension (`.off`, `.obj`: dimension ≤ 2; `.mesh`: dimension ≤ 3 and
- * 2 or 3 coordinates; `.simplices`: any). Both paths are NUL-terminated UTF-8. The output's
- * extension and format are checked before any work; nothing is written on failure.
+ * format chosen by its extension (any format the writers know: `.off`, `.obj`, `.mesh`,
+ * `.simplices`, ...). Both paths are NUL-terminated UTF-8. The output's format and
+ * writability are checked before any work; on failure no new file is left behind.
  *
  * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (a path not UTF-8), INVALID_RATIO, IO_ERROR /
  * PARSE_ERROR / INVALID_COMPLEX (reading `input`, as `tpx_complex_from_file`),
- * CANNOT_SIMPLIFY, WRITE_ERROR (unknown extension, a format that cannot hold the complex, or
- * the file system refused; the message names the path). Cost: `tpx_simplify` plus reading and
- * writing.
+ * CANNOT_SIMPLIFY, UNKNOWN_FORMAT (the output's extension names no format),
+ * FORMAT_CANNOT_HOLD (the format cannot hold a complex of the input's dimension or
+ * coordinates), WRITE_ERROR (the file system refused the output; the message names the path).
+ * Cost: `tpx_simplify` plus reading and writing.
  *
  * # Safety
  * `input` and `output` must be NULL or NUL-terminated strings.
@@ -937,6 +1027,23 @@ const uint32_t *tpx_relation_table_ids(const struct TpxRelationTable *t, size_t 
  * `t` must be NULL or a live handle from this library, not used afterwards.
  */
 void tpx_relation_table_free(struct TpxRelationTable *t);
+
+/**
+ * Writes the complex `c` to the file `path` (NUL-terminated UTF-8) in `format`
+ * (`TPX_FORMAT_*`; `TPX_FORMAT_FROM_EXTENSION` picks it from the path's extension): its top
+ * simplices in input order with their input vertex order (winding), isolated vertices and wire
+ * edges kept, coordinates in the shortest decimal that reads back bit for bit. Reading the file
+ * back with `tpx_complex_from_file` gives the same complex.
+ *
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8), UNKNOWN_FORMAT (format number or
+ * extension unknown), FORMAT_CANNOT_HOLD (the format cannot hold the complex, e.g. OFF with a
+ * tetrahedron; the message names the first offending simplex; nothing is written), IO_ERROR
+ * (cannot write). Cost: linear in the complex; the file is built in memory, then written.
+ *
+ * # Safety
+ * `c` must be NULL or a live complex; `path` NULL or a NUL-terminated string.
+ */
+TpxStatus tpx_complex_write(const struct TpxComplex *c, const char *path, uint32_t format);
 
 #ifdef __cplusplus
 }  // extern "C"

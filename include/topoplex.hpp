@@ -2,6 +2,7 @@
  * Topoplex C++17 wrapper: header-only, over the C ABI in topoplex.h.
  *
  *   topoplex::Complex c = topoplex::Complex::from_file("mesh.off");
+ *   c.write("mesh.mesh");                                    // format from the extension
  *   topoplex::Structure s(c, topoplex::Kind::IG);
  *   for (auto tri : s.relation({2, 3}, 2)) { tri[0]; tri.size(); ... }   // rows of q+1 ids
  *   topoplex::RelationTable t = s.relation_table(0, 1);
@@ -37,6 +38,26 @@ enum class Kind : std::uint32_t {
   PE = TPX_KIND_PE,
   LE = TPX_KIND_LE,
   DE = TPX_KIND_DE,
+};
+
+/* Output formats (values of TPX_FORMAT_*); FromExtension picks one from the file name. */
+enum class Format : std::uint32_t {
+  FromExtension = TPX_FORMAT_FROM_EXTENSION,
+  OFF = TPX_FORMAT_OFF,
+  OBJ = TPX_FORMAT_OBJ,
+  MEDIT = TPX_FORMAT_MEDIT,
+  Simplices = TPX_FORMAT_SIMPLICES,
+  PLY = TPX_FORMAT_PLY,
+  PLYBinary = TPX_FORMAT_PLY_BINARY,
+  STL = TPX_FORMAT_STL,
+  STLBinary = TPX_FORMAT_STL_BINARY,
+  VTK = TPX_FORMAT_VTK,
+  VTKBinary = TPX_FORMAT_VTK_BINARY,
+  MSH = TPX_FORMAT_MSH,
+  MSHBinary = TPX_FORMAT_MSH_BINARY,
+  MSH2 = TPX_FORMAT_MSH2,
+  MSH2Binary = TPX_FORMAT_MSH2_BINARY,
+  VTU = TPX_FORMAT_VTU,
 };
 
 /* A failed call: the TpxStatus and tpx_last_error_message() at the time of failure. */
@@ -231,6 +252,11 @@ class Complex {
     detail::check(tpx_complex_top_simplices(c_, p, buf.data(), buf.size(), &len));
     buf.resize(len);
     return Rows(std::move(buf), p + 1);
+  }
+  /* Writes the complex (top simplices in input order and winding, coordinates bit for bit);
+   * throws TPX_STATUS_FORMAT_CANNOT_HOLD, naming the simplex, if the format cannot hold it. */
+  void write(const std::string &path, Format format = Format::FromExtension) const {
+    detail::check(tpx_complex_write(c_, path.c_str(), static_cast<std::uint32_t>(format)));
   }
   const TpxComplex *get() const noexcept { return c_; }
 

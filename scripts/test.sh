@@ -8,6 +8,10 @@ cd "$(dirname "$0")/.."
 
 scripts/install-deps.sh cmake ninja-build pkg-config valgrind libopenmesh-dev libcgal-dev \
   libgudhi-dev libgtest-dev libcgal-demo libbenchmark-dev
+# Python meshio: the independent reader and writer of tests/interop.rs (skipped without it).
+python3 -c "import meshio" 2>/dev/null || python3 -m pip install --quiet meshio ||
+  python3 -m pip install --quiet --break-system-packages meshio ||
+  echo "meshio not installed: tests/interop.rs will skip its checks"
 
 echo "== cargo test"
 cargo test --profile ci --all-targets

@@ -311,3 +311,93 @@ fn decompose_writes_components_and_gluing() {
     tops.sort();
     assert_eq!(tops, vec![vec![0, 1, 2], vec![2, 3, 4], vec![4, 5]]);
 }
+
+#[test]
+fn convert_keeps_order_winding_and_coordinates() {
+    //   0 --- 1      triangle wound 1 0 2, then a wire edge 2 3, vertex 4 isolated
+    //    \   /
+    //      2 --- 3   4
+    let f = temp_file(
+        "convert.simplices",
+        "v 0 0.1 0\nv 1 0 0\nv 0.3 1 0\nv 2 1 1e-300\nv 5 5 5\ns 1 0 2\ns 2 3\n",
+    );
+    let out = f.with_file_name("converted.off");
+    let o = run(&["convert", f.to_str().unwrap(), out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(&out).unwrap(),
+        "OFF\n5 2 0\n0 0.1 0\n1 0 0\n0.3 1 0\n2 1 1e-300\n5 5 5\n3 1 0 2\n2 2 3\n"
+    );
+    // Back to .simplices: the same text as the input.
+    let back = f.with_file_name("back.txt");
+    let o = run(&[
+        "convert",
+        out.to_str().unwrap(),
+        back.to_str().unwrap(),
+        "--format",
+        "simplices",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        std::fs::read_to_string(&back).unwrap(),
+        std::fs::read_to_string(&f).unwrap()
+    );
+}
+
+#[test]
+fn convert_refuses_what_the_format_cannot_hold() {
+    let f = temp_file("tet.simplices", "s 0 1 2 3\n");
+    let out = f.with_file_name("tet-refused.off");
+    let o = run(&["convert", f.to_str().unwrap(), out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("the off format cannot hold this complex: simplex #0 [0 1 2 3]"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!out.exists());
+    let o = run(&["convert", f.to_str().unwrap(), "x.unknown"]);
+    assert!(
+        stderr(&o).contains("unknown output extension"),
+        "{}",
+        stderr(&o)
+    );
+    let o = run(&["convert", f.to_str().unwrap(), "x.off", "--format", "dxf"]);
+    assert!(
+        stderr(&o).contains("unknown format `dxf`"),
+        "{}",
+        stderr(&o)
+    );
+}
+
+#[test]
+fn decompose_writes_components_in_a_chosen_format() {
+    let f = temp_file(
+        "bowtie-fmt.simplices",
+        "v 0 0 0\nv 0 1 0\nv 1 0.5 0\nv 2 1 0\nv 2 0 0\nv 3 0 0\ns 0 1 2\ns 2 3 4\ns 4 5\n",
+    );
+    let out = f.with_file_name("bowtie-obj");
+    let o = run(&[
+        "decompose",
+        f.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+        "--format",
+        "obj",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        [
+            "component_0.obj",
+            "component_1.obj",
+            "component_2.obj",
+            "gluing.json"
+        ]
+    );
+}

@@ -12,6 +12,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdint>
+#include <fstream>
 #include <string>
 #include <thread>
 #include <type_traits>
@@ -142,6 +143,26 @@ TEST(Wrapper, ComplexGivesBackTopsAndCoordinates) {
   EXPECT_EQ(c.coords(), (std::vector<double>{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2}));
   EXPECT_EQ(fixture().coord_dim(), 0u);
   EXPECT_TRUE(fixture().coords().empty());
+}
+
+TEST(Wrapper, WriteRoundTripsAndRefuses) {
+  // The fixture with coordinates, written as .simplices (format from the extension) and read back.
+  const std::vector<double> xyz{0, 0, 0, 0.1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1, 2, 2, 1e-300};
+  const Complex c = Complex::from_arrays(6, {3, 2, 1, 0, 4, 2, 3, 5, 4}, {0, 4, 7, 9}, xyz, 3);
+  const std::string path = testing::TempDir() + "topoplex_wrapper_write.simplices";
+  c.write(path);
+  const Complex back = Complex::from_file(path);
+  EXPECT_EQ(back.coords(), xyz);
+  EXPECT_EQ(rows_of(back.top_simplices(3).view()), (std::vector<Ids>{{0, 1, 2, 3}}));
+  // OFF cannot hold the tetrahedron; an explicit format overrides the extension.
+  EXPECT_EQ(status_of([&] { c.write(testing::TempDir() + "t.off"); }),
+            TPX_STATUS_FORMAT_CANNOT_HOLD);
+  EXPECT_EQ(status_of([&] { c.write(testing::TempDir() + "t.xyz"); }), TPX_STATUS_UNKNOWN_FORMAT);
+  c.write(testing::TempDir() + "t.xyz", topoplex::Format::MEDIT);
+  std::ifstream f(testing::TempDir() + "t.xyz");
+  std::string first;
+  std::getline(f, first);
+  EXPECT_EQ(first, "MeshVersionFormatted 2");
 }
 
 TEST(Wrapper, ConstStructureFromTwoThreads) {

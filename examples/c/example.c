@@ -27,7 +27,11 @@ int main(void) {
     printf("topoplex %s: edge 0-1 is in %zu triangles:", tpx_version(), len / 3);
     for (size_t i = 0; i < len; i += 3) printf(" {%u %u %u}", out[i], out[i + 1], out[i + 2]);
     printf("\n");
+    /* Write the complex as OFF (format from the extension): triangles in input order and
+     * winding; without coordinates the vertices are written at the origin. */
+    TpxStatus written = tpx_complex_write(complex, "fan.off", TPX_FORMAT_FROM_EXTENSION);
+    if (written != TPX_STATUS_OK) fprintf(stderr, "topoplex: %s\n", tpx_last_error_message());
     tpx_structure_free(ig);
     tpx_complex_free(complex);
-    return len == 9 ? 0 : 1;
+    return len == 9 && written == TPX_STATUS_OK ? 0 : 1;
 }

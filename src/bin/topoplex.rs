@@ -8,6 +8,7 @@ use std::time::Duration;
 
 use clap::{Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use topoplex::io::write::Format;
 use topoplex::relation::sort_rows;
 use topoplex::{Complex, StructureKind, fixtures, structures};
 
@@ -62,6 +63,20 @@ enum Command {
         /// Output directory (created if missing).
         #[arg(long)]
         out: PathBuf,
+        /// Write every component in this format (off, obj, mesh, simplices) instead of by
+        /// dimension; refused, writing nothing, if it cannot hold a component.
+        #[arg(long)]
+        format: Option<String>,
+    },
+    /// Read INPUT and write it to OUTPUT (formats by extension): the top simplices in input
+    /// order and winding, isolated vertices and wire edges kept, coordinates bit for bit. A
+    /// format that cannot hold the complex is refused with the reason.
+    Convert {
+        input: PathBuf,
+        output: PathBuf,
+        /// Output format (off, obj, mesh, simplices) instead of OUTPUT's extension.
+        #[arg(long)]
+        format: Option<String>,
     },
     /// Quadric-error edge-contraction simplification (Garland–Heckbert, any dimension) down to
     /// about RATIO × the input's top simplices; the output format follows its extension (.off,
@@ -106,7 +121,12 @@ fn main() -> ExitCode {
             relation,
             simplex,
         } => dump_relation(file, &structure, relation, simplex),
-        Command::Decompose { file, out } => decompose(&file, &out),
+        Command::Decompose { file, out, format } => decompose(&file, &out, format.as_deref()),
+        Command::Convert {
+            input,
+            output,
+            format,
+        } => convert(&input, &output, format.as_deref()),
         Command::Simplify {
             input,
             out,
@@ -219,12 +239,33 @@ fn report(files: &[PathBuf], json: bool, csv: bool, svg: Option<&Path>) -> Resul
         .map_err(|e| format!("writing output: {e}"))
 }
 
-fn decompose(file: &Path, out: &Path) -> Result<(), String> {
+/// The output format called `name`, or a usage error listing the names.
+fn output_format(name: &str) -> Result<Format, String> {
+    Format::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = Format::ALL.iter().map(|f| f.name()).collect();
+        format!(
+            "unknown format `{name}` (expected one of: {})",
+            names.join(", ")
+        )
+    })
+}
+
+fn convert(input: &Path, output: &Path, format: Option<&str>) -> Result<(), String> {
+    let format = format.map(output_format).transpose()?;
+    let complex = load(input)?;
+    topoplex::io::write::write_complex(&complex, output, format).map_err(|e| e.to_string())
+}
+
+fn decompose(file: &Path, out: &Path, format: Option<&str>) -> Result<(), String> {
+    let format = format.map(output_format).transpose()?;
     let complex = load(file)?;
     let iqm = topoplex::structures::iqm::Iqm::build(&complex).map_err(|e| e.to_string())?;
     let dec = iqm.decomposition();
-    let paths = topoplex::io::write::write_components(&dec, complex.coords(), out)
-        .map_err(|e| e.to_string())?;
+    let paths = match format {
+        None => topoplex::io::write::write_components(&dec, complex.coords(), out),
+        Some(f) => topoplex::io::write::write_components_as(&dec, complex.coords(), out, f),
+    }
+    .map_err(|e| e.to_string())?;
     println!(
         "{} components, {} split vertices ({} vertex copies in all); wrote {} files to {}",
         dec.components.len(),
@@ -237,8 +278,8 @@ fn decompose(file: &Path, out: &Path) -> Result<(), String> {
 }
 
 fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Result<(), String> {
-    use topoplex::io::complex_writer::{check_output, write_complex};
-    use topoplex::simplify::{Options, simplify_owned};
+    use topoplex::io::write::write_complex;
+    use topoplex::simplify::{Options, check_output, simplify_owned};
     let options = Options {
         ratio,
         preserve_topology,
@@ -247,15 +288,9 @@ fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Re
         return Err(format!("--ratio {ratio} is outside (0, 1]"));
     }
     let complex = load(input)?;
-    let coord_dim = complex.coords().map_or(0, |c| c.dim);
-    check_output(out, complex.dimension(), coord_dim).map_err(|e| e.to_string())?;
-    // Refuse an unwritable output before the work, not after it.
+    // Refuse an unknown or unfit format and an unwritable output before the work, not after.
     let existed = out.exists();
-    std::fs::OpenOptions::new()
-        .append(true)
-        .create(true)
-        .open(out)
-        .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
+    check_output(out, &complex).map_err(|e| e.to_string())?;
     let progress = Progress::new(1);
     progress.bar.set_message("contracting edges");
     let result = simplify_owned(complex, &options, &mut |done, total| {
@@ -264,7 +299,7 @@ fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Re
     });
     progress.finish();
     let written = result.map_err(|e| e.to_string()).and_then(|s| {
-        write_complex(&s.complex, out)
+        write_complex(&s.complex, out, None)
             .map(|()| s)
             .map_err(|e| e.to_string())
     });

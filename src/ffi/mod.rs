@@ -28,12 +28,14 @@ mod simplify;
 mod structure;
 #[cfg(test)]
 mod tests;
+mod write;
 
 pub use complex::*;
 pub use decomposition::*;
 pub use live::*;
 pub use simplify::*;
 pub use structure::*;
+pub use write::*;
 
 // The panic boundary below relies on unwinding; with `panic = "abort"` a bug would kill the host.
 #[cfg(panic = "abort")]
@@ -101,12 +103,17 @@ pub enum TpxStatus {
     StaleUndo = 25,
     /// `tpx_simplify*`: the ratio is not in (0, 1] (NaN included).
     InvalidRatio = 27,
-    /// `tpx_simplify_file`: the output cannot be written (unknown extension, a format that
-    /// cannot hold the result, or the file system refused).
+    /// `tpx_simplify_file`: the file system refused to write the output file.
     WriteError = 28,
     /// `tpx_simplify*`: the complex cannot be simplified: no vertex coordinates, a non-finite
     /// coordinate, or more top simplices of one dimension than the live complex numbers.
     CannotSimplify = 29,
+    /// The output format number is not one of `TPX_FORMAT_*`, or the output file's extension
+    /// names no format.
+    UnknownFormat = 30,
+    /// The output format cannot hold the complex (a tetrahedron in OFF, an edge in STL); the
+    /// message names the first offending simplex. Nothing was written.
+    FormatCannotHold = 31,
 }
 
 /// Incidence Graph.

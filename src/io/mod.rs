@@ -6,7 +6,9 @@
 //! duplicates and faces of other simplices are the complex model's business
 //! ([`crate::complex::Complex::from_raw`]), which reports them with the same file and line.
 //!
-//! The format is chosen by file extension: `.off`, `.obj`, `.mesh`, `.simplices`.
+//! The format is chosen by file extension: `.off`, `.obj`, `.mesh`, `.simplices`, `.ply`, `.stl`,
+//! `.vtk`, `.vtu`, `.msh`.
+//! The writers ([`write`]) are their inverse.
 
 use std::path::{Path, PathBuf};
 
@@ -39,11 +41,16 @@ macro_rules! reader_test_helpers {
     };
 }
 
-pub mod complex_writer;
+mod bytes;
 pub mod medit;
+pub mod msh;
 pub mod obj;
 pub mod off;
+pub mod ply;
 pub mod simplices;
+pub mod stl;
+pub mod vtk;
+pub mod vtu;
 pub mod write;
 
 /// Vertex coordinates, `dim` numbers per vertex, vertex-major.
@@ -98,7 +105,9 @@ impl RawInput {
 pub enum ReadErrorKind {
     #[error("cannot read file: {0}")]
     Io(String),
-    #[error("unknown file extension (expected .off, .obj, .mesh or .simplices)")]
+    #[error(
+        "unknown file extension (expected .off, .obj, .mesh, .simplices, .ply, .stl, .vtk or .msh)"
+    )]
     UnknownExtension,
     #[error("{0}")]
     Syntax(String),
@@ -134,7 +143,7 @@ pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
         "obj" => obj::parse,
         "mesh" => medit::parse,
         "simplices" => simplices::parse,
-        _ => return Err(err(0, ReadErrorKind::UnknownExtension)),
+        _ => return read_binary_capable(path, &ext),
     };
     let bytes = std::fs::read(path).map_err(|e| err(0, ReadErrorKind::Io(e.to_string())))?;
     let text = std::str::from_utf8(&bytes).map_err(|e| {
@@ -150,6 +159,28 @@ pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
     })?;
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     parse(text).map_err(|(line, kind)| err(line, kind))
+}
+
+/// A reader of bytes: the simplices, or the line (0: unknown) and what is wrong.
+type ByteParser = fn(&[u8]) -> Result<RawInput, (u32, ReadErrorKind)>;
+
+/// The readers of formats with a binary variant, which parse bytes rather than text.
+fn read_binary_capable(path: &Path, ext: &str) -> Result<RawInput, ReadError> {
+    let err = |line, kind| ReadError {
+        path: path.to_path_buf(),
+        line,
+        kind,
+    };
+    let parse: ByteParser = match ext {
+        "ply" => ply::parse,
+        "stl" => stl::parse,
+        "vtk" => vtk::parse,
+        "vtu" => vtu::parse,
+        "msh" => msh::parse,
+        _ => return Err(err(0, ReadErrorKind::UnknownExtension)),
+    };
+    let bytes = std::fs::read(path).map_err(|e| err(0, ReadErrorKind::Io(e.to_string())))?;
+    parse(&bytes).map_err(|(line, kind)| err(line, kind))
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -36,7 +36,11 @@ pub mod quadric;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
+use std::path::Path;
+
 use crate::complex::Complex;
+use crate::io::write::{Format, WriteError, WriteErrorKind};
+use crate::io::{Coords, RawInput};
 use crate::live::{ContractMode, LiveComplex, Refusal, VertexId};
 use quadric::{QuadricSpace, sum_into};
 
@@ -175,6 +179,38 @@ pub fn simplify_live(
     contract_loop(&mut state, progress);
     state.stats.output_tops = state.tops;
     Ok(state.stats)
+}
+
+/// Checks before any work that the result can be written to `path`: its extension names a
+/// format ([`crate::io::write::Format::from_path`]), that format holds a complex of `complex`'s
+/// dimension and coordinates (a simplification never raises either; probed by writing one
+/// simplex of that dimension to memory), and the file can be opened for writing (it is created
+/// empty if missing: remove it if the work then fails).
+pub fn check_output(path: &Path, complex: &Complex) -> Result<(), WriteError> {
+    let err = |kind| WriteError {
+        path: path.to_path_buf(),
+        kind,
+    };
+    let format = Format::from_path(path).ok_or_else(|| err(WriteErrorKind::UnknownExtension))?;
+    let d = complex.dimension() as u32;
+    let mut probe = RawInput::new();
+    probe.vertex_count = Some(d + 1);
+    // Distinct points (formats such as STL refuse coincident vertices).
+    probe.coords = complex.coords().map(|c| {
+        let mut data = vec![0.0; c.dim * (d as usize + 1)];
+        for i in 1..=d as usize {
+            data[i * c.dim + (i - 1) % c.dim] = 1.0 + ((i - 1) / c.dim) as f64;
+        }
+        Coords { dim: c.dim, data }
+    });
+    probe.push(&(0..=d).collect::<Vec<u32>>(), 0);
+    format.write(&probe).map_err(err)?;
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)
+        .map(drop)
+        .map_err(|e| err(WriteErrorKind::Io(e.to_string())))
 }
 
 /// Refuses what [`simplify`] cannot do, before any work: a ratio outside (0, 1], no or

@@ -315,7 +315,7 @@ mod tests {
 
     #[test]
     fn tetrahedron_in_r3_spans_the_space_and_has_zero_quadric() {
-        let (s, q, vol) = quadric(3, &[&[0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.]]);
+        let (_, q, vol) = quadric(3, &[&[0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.]]);
         assert!(close(vol, 1.0 / 6.0));
         assert!(q.iter().all(|&v| v.abs() < 1e-15), "{q:?}");
     }

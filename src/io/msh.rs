@@ -1,0 +1,595 @@
+//! Gmsh MSH (`.msh`) versions 2.2 and 4.1, ASCII and binary, read and written here.
+//!
+//! Own code rather than the `mshio` crate: mshio reads version 4.1 only, writes nothing and
+//! reports errors without a line; one reader for both versions, sharing the byte cursor of the
+//! VTK reader, is smaller than mshio plus a version 2 reader and a writer.
+//!
+//! Reading:
+//! * `$MeshFormat` gives the version (2.x or 4.1), ASCII (0) or binary (1), and the data size
+//!   (8). Binary files must be little-endian (the `1` after the header reads as 1).
+//! * `$Nodes` numbers the vertices in file order; node tags (any positive integers, sparse or
+//!   unordered) are mapped to those positions. Coordinates have dimension 3. In version 4,
+//!   parametric coordinates are skipped.
+//! * `$Elements`: types 15 (point), 1 (line), 2 (triangle), 4 (tetrahedron) are simplices;
+//!   any other type (quadrangle 3, hexahedron 5, prism 6, pyramid 7, higher-order elements) is
+//!   refused naming the element's tag and line. Tags (physical, elementary) are ignored. A node
+//!   tag not in `$Nodes` is an error naming the element.
+//! * Other sections (`$Entities`, `$PhysicalNames`, `$NodeData`, ...) are skipped to their
+//!   `$End` line. Counts allocate at most what the bytes left could hold.
+//! * Errors in a binary block name the line of its section keyword.
+//!
+//! Writing: nodes tagged 1..=n in vertex order (3 coordinates, fewer padded with zeros, zeros
+//! without coordinates), elements tagged 1..=m in listing order. Version 2.2 gives each
+//! element physical tag 0 and elementary tag 1; version 4.1 puts all nodes in one block of a
+//! 3-dimensional entity and the elements in one block per run of equal type (entity tag 1 of
+//! that dimension), so the listing order is kept across dimensions; no `$Entities` section.
+//! Holds points, edges, triangles and tetrahedra, and at most 3 coordinates.
+
+use rustc_hash::FxHashMap;
+
+use super::bytes::Input;
+use super::write::{check_coord_dim, check_max_len, push_f64, vertex_count};
+use super::{Coords, RawInput, ReadErrorKind, parse_integer, syntax};
+
+type Res<T> = Result<T, (u32, ReadErrorKind)>;
+
+/// Gmsh's element type of a simplex with `len` vertices.
+fn element_type(len: usize) -> i32 {
+    match len {
+        1 => 15,
+        2 => 1,
+        3 => 2,
+        _ => 4,
+    }
+}
+
+/// The vertex count of a simplex element type, or the type's name for refusals.
+fn simplex_len(t: i64) -> Result<usize, String> {
+    Ok(match t {
+        15 => 1,
+        1 => 2,
+        2 => 3,
+        4 => 4,
+        3 => return Err("quadrangle".into()),
+        5 => return Err("hexahedron".into()),
+        6 => return Err("prism".into()),
+        7 => return Err("pyramid".into()),
+        _ => return Err(format!("type {t}, not a first-order simplex")),
+    })
+}
+
+/// Version, binary, and the reading state.
+struct Reader<'a> {
+    inp: Input<'a>,
+    v4: bool,
+    /// Node tag → vertex id.
+    tags: FxHashMap<u64, u32>,
+    coords: Vec<f64>,
+    raw: RawInput,
+}
+
+impl<'a> Reader<'a> {
+    /// An integer: an ASCII token, or `size` little-endian bytes (4: int, 8: size_t).
+    fn int(&mut self, size: usize, what: &str, line: u32) -> Res<(i64, u32)> {
+        if self.inp.binary {
+            let b = self.inp.take(size).ok_or_else(|| {
+                (
+                    line,
+                    syntax(format!("file ends inside binary data; expected {what}")),
+                )
+            })?;
+            let v = if size == 4 {
+                i64::from(i32::from_le_bytes(b.try_into().unwrap()))
+            } else {
+                u64::from_le_bytes(b.try_into().unwrap()).min(i64::MAX as u64) as i64
+            };
+            return Ok((v, line));
+        }
+        let (tok, l) = self.inp.expect_token(what)?;
+        match parse_integer(tok) {
+            Ok(v) => Ok((v.clamp(i64::MIN.into(), i64::MAX.into()) as i64, l)),
+            Err(_) => Err((
+                l,
+                syntax(format!("'{tok}' where {what} (an integer) was expected")),
+            )),
+        }
+    }
+
+    /// A count: size_t in version 4; an ASCII line in version 2, binary or not.
+    fn count(&mut self, what: &str, line: u32) -> Res<usize> {
+        let binary = self.inp.binary;
+        self.inp.binary &= self.v4;
+        let r = self.int(8, what, line);
+        self.inp.binary = binary;
+        let (v, l) = r?;
+        usize::try_from(v).map_err(|_| (l, syntax(format!("{what} {v} is negative"))))
+    }
+
+    fn real(&mut self, line: u32) -> Res<f64> {
+        if self.inp.binary {
+            let b = self
+                .inp
+                .take(8)
+                .ok_or_else(|| (line, syntax("file ends inside binary node coordinates")))?;
+            return Ok(f64::from_le_bytes(b.try_into().unwrap()));
+        }
+        let (tok, l) = self.inp.expect_token("a node coordinate")?;
+        tok.parse().map_err(|_| {
+            (
+                l,
+                syntax(format!("'{tok}' where a node coordinate was expected")),
+            )
+        })
+    }
+
+    /// After a binary block: the newline before the `$End` keyword.
+    fn end(&mut self, keyword: &str) -> Res<()> {
+        let (tok, l) = self.inp.expect_token(keyword)?;
+        if tok != keyword {
+            return Err((l, syntax(format!("expected {keyword}, found '{tok}'"))));
+        }
+        Ok(())
+    }
+
+    /// A count header line of a section in binary version 2 is ASCII; the binary data starts
+    /// after its newline.
+    fn to_binary_block(&mut self) {
+        if self.inp.binary {
+            self.inp.rest_of_line();
+        }
+    }
+
+    fn node(&mut self, tag: i64, line: u32) -> Res<()> {
+        let id =
+            u32::try_from(self.tags.len()).map_err(|_| (line, syntax("more than 2^32 nodes")))?;
+        let tag = u64::try_from(tag)
+            .map_err(|_| (line, syntax(format!("node tag {tag} is negative"))))?;
+        if self.tags.insert(tag, id).is_some() {
+            return Err((line, syntax(format!("node tag {tag} appears twice"))));
+        }
+        Ok(())
+    }
+
+    fn nodes(&mut self, line: u32) -> Res<()> {
+        if !self.v4 {
+            let n = self.count("the node count", line)?;
+            self.reserve(n, 4 + 24);
+            self.to_binary_block();
+            for _ in 0..n {
+                let (tag, l) = self.int(4, "a node tag", line)?;
+                self.node(tag, l)?;
+                for _ in 0..3 {
+                    let x = self.real(line)?;
+                    self.coords.push(x);
+                }
+            }
+            return self.end("$EndNodes");
+        }
+        self.to_binary_block();
+        let blocks = self.count("the node block count", line)?;
+        let n = self.count("the node count", line)?;
+        self.count("the minimum node tag", line)?;
+        self.count("the maximum node tag", line)?;
+        self.reserve(n, 8 + 24);
+        for _ in 0..blocks {
+            let (dim, _) = self.int(4, "an entity dimension", line)?;
+            self.int(4, "an entity tag", line)?;
+            let (parametric, l) = self.int(4, "the parametric flag", line)?;
+            let k = self.count("the block's node count", line)?;
+            let mut first = self.tags.len();
+            for _ in 0..k {
+                let (tag, l) = self.int(8, "a node tag", line)?;
+                self.node(tag, l)?;
+            }
+            let extra = if parametric == 1 {
+                usize::try_from(dim).map_err(|_| (l, syntax("negative entity dimension")))?
+            } else {
+                0
+            };
+            for _ in 0..k {
+                for _ in 0..3 {
+                    let x = self.real(line)?;
+                    self.coords.push(x);
+                }
+                for _ in 0..extra {
+                    self.real(line)?;
+                }
+                first += 1;
+            }
+            debug_assert_eq!(first, self.tags.len());
+        }
+        self.end("$EndNodes")
+    }
+
+    /// Reserves for `n` items of at least `bytes` bytes each (2 in ASCII), capped by the input.
+    fn reserve(&mut self, n: usize, bytes: usize) {
+        let per = if self.inp.binary { bytes } else { 2 };
+        let n = n.min(self.inp.left() / per + 1);
+        self.tags.reserve(n);
+        self.coords.reserve(n * 3);
+    }
+
+    /// One element: its node tags mapped to vertex ids.
+    fn element(&mut self, tag: i64, t: i64, nodes: &[i64], line: u32) -> Res<()> {
+        let mut ids = [0u32; 4];
+        for (id, &node) in ids.iter_mut().zip(nodes) {
+            *id = u64::try_from(node)
+                .ok()
+                .and_then(|n| self.tags.get(&n).copied())
+                .ok_or_else(|| {
+                    (
+                        line,
+                        syntax(format!(
+                            "element {tag} (type {t}) uses node {node}, which $Nodes does not list"
+                        )),
+                    )
+                })?;
+        }
+        self.raw.push(&ids[..nodes.len()], line);
+        Ok(())
+    }
+
+    fn simplex_len(&self, tag: i64, t: i64, line: u32) -> Res<usize> {
+        simplex_len(t).map_err(|name| {
+            (
+                line,
+                syntax(format!("element {tag} is a {name}, which is not a simplex")),
+            )
+        })
+    }
+
+    fn elements(&mut self, line: u32) -> Res<()> {
+        if self.v4 {
+            return self.elements_v4(line);
+        }
+        let m = self.count("the element count", line)?;
+        self.to_binary_block();
+        let mut nodes = Vec::with_capacity(4);
+        let mut read = 0;
+        while read < m {
+            // Binary version 2: blocks of one type; ASCII: one element per line.
+            let (t, ntags, count) = if self.inp.binary {
+                let (t, _) = self.int(4, "an element type", line)?;
+                let (k, _) = self.int(4, "the block's element count", line)?;
+                let (ntags, _) = self.int(4, "the tag count", line)?;
+                let k = usize::try_from(k).map_err(|_| (line, syntax("negative element count")))?;
+                (t, ntags, k.min(m - read))
+            } else {
+                (0, 0, 1)
+            };
+            for _ in 0..count {
+                let (tag, l) = self.int(4, "an element tag", line)?;
+                let (t, ntags) = if self.inp.binary {
+                    (t, ntags)
+                } else {
+                    (
+                        self.int(4, "an element type", l)?.0,
+                        self.int(4, "the tag count", l)?.0,
+                    )
+                };
+                let len = self.simplex_len(tag, t, l)?;
+                for _ in 0..ntags.max(0) {
+                    self.int(4, "an element tag", l)?;
+                }
+                nodes.clear();
+                for _ in 0..len {
+                    nodes.push(self.int(4, "a node tag", l)?.0);
+                }
+                self.element(tag, t, &nodes, l)?;
+            }
+            read += count.max(1);
+        }
+        self.end("$EndElements")
+    }
+
+    fn elements_v4(&mut self, line: u32) -> Res<()> {
+        self.to_binary_block();
+        let blocks = self.count("the element block count", line)?;
+        for what in [
+            "the element count",
+            "the minimum element tag",
+            "the maximum element tag",
+        ] {
+            self.count(what, line)?;
+        }
+        let mut nodes = Vec::with_capacity(4);
+        for _ in 0..blocks {
+            self.int(4, "an entity dimension", line)?;
+            self.int(4, "an entity tag", line)?;
+            let (t, l) = self.int(4, "an element type", line)?;
+            let k = self.count("the block's element count", line)?;
+            for _ in 0..k {
+                let (tag, l) = self.int(8, "an element tag", l)?;
+                let len = self.simplex_len(tag, t, l)?;
+                nodes.clear();
+                for _ in 0..len {
+                    nodes.push(self.int(8, "a node tag", l)?.0);
+                }
+                self.element(tag, t, &nodes, l)?;
+            }
+        }
+        self.end("$EndElements")
+    }
+
+    /// Skips a section to its `$End...` keyword.
+    fn skip(&mut self, keyword: &str, line: u32) -> Res<()> {
+        let end = format!("$End{}", &keyword[1..]);
+        let rest = &self.inp.b[self.inp.pos..];
+        let at = rest
+            .windows(end.len())
+            .position(|w| w == end.as_bytes())
+            .ok_or_else(|| (line, syntax(format!("{keyword} has no {end}"))))?;
+        // Lines are not counted across a skipped section that may hold binary data; count the
+        // newlines anyway so that later ASCII errors stay close.
+        let skipped = &rest[..at + end.len()];
+        let newlines = skipped.iter().filter(|&&b| b == b'\n').count();
+        self.inp.line = self.inp.line.saturating_add(newlines as u32);
+        self.inp.pos += skipped.len();
+        Ok(())
+    }
+}
+
+/// Parses a Gmsh MSH file, version 2.2 or 4.1, ASCII or binary.
+pub fn parse(bytes: &[u8]) -> Res<RawInput> {
+    let mut inp = Input::new(bytes);
+    let (kw, l) = inp.expect_token("$MeshFormat")?;
+    if kw != "$MeshFormat" {
+        return Err((l, syntax(format!("expected $MeshFormat, found '{kw}'"))));
+    }
+    let (version, l) = inp.expect_token("the version")?;
+    let v4 = match version {
+        "4.1" => true,
+        v if v.starts_with("2.") => false,
+        v => {
+            return Err((
+                l,
+                syntax(format!(
+                    "unsupported MSH version '{v}' (2.x and 4.1 are read)"
+                )),
+            ));
+        }
+    };
+    let (ft, l) = inp.expect_token("the file type")?;
+    let (ds, _) = inp.expect_token("the data size")?;
+    inp.binary = match ft {
+        "0" => false,
+        "1" => true,
+        _ => {
+            return Err((
+                l,
+                syntax(format!("file type '{ft}' is neither 0 (ASCII) nor 1")),
+            ));
+        }
+    };
+    if ds != "8" {
+        return Err((l, syntax(format!("data size '{ds}' is not 8"))));
+    }
+    if inp.binary {
+        inp.rest_of_line();
+        if inp.take(4) != Some(&1i32.to_le_bytes()[..]) {
+            return Err((
+                l + 1,
+                syntax("binary MSH is not little-endian (or is truncated)"),
+            ));
+        }
+    }
+    let mut r = Reader {
+        inp,
+        v4,
+        tags: FxHashMap::default(),
+        coords: Vec::new(),
+        raw: RawInput::new(),
+    };
+    r.end("$EndMeshFormat")?;
+    let mut seen_nodes = false;
+    while let Some((kw, l)) = r.inp.token() {
+        match kw {
+            "$Nodes" if seen_nodes => return Err((l, syntax("a second $Nodes section"))),
+            "$Nodes" => {
+                r.nodes(l)?;
+                seen_nodes = true;
+            }
+            "$Elements" if !seen_nodes => {
+                return Err((l, syntax("$Elements before $Nodes")));
+            }
+            "$Elements" => r.elements(l)?,
+            k if k.starts_with('$') && !k.starts_with("$End") && k.len() > 1 => {
+                let k = k.to_string();
+                r.skip(&k, l)?;
+            }
+            k => return Err((l, syntax(format!("unexpected '{k}' between sections")))),
+        }
+    }
+    let n = u32::try_from(r.tags.len()).map_err(|_| (0, syntax("more than 2^32 nodes")))?;
+    r.raw.vertex_count = Some(n);
+    r.raw.coords = Some(Coords {
+        dim: 3,
+        data: r.coords,
+    });
+    Ok(r.raw)
+}
+
+/// Writes `raw` as MSH 2.2 or 4.1, ASCII or binary (little-endian).
+pub(crate) fn write(
+    raw: &RawInput,
+    v4: bool,
+    binary: bool,
+    out: &mut Vec<u8>,
+) -> Result<(), String> {
+    check_max_len(
+        raw,
+        4,
+        "points, edges, triangles and tetrahedra (use .simplices)",
+    )?;
+    check_coord_dim(raw, 3)?;
+    let n = vertex_count(raw);
+    let m = raw.simplex_count();
+    if !v4 && (n > i32::MAX as usize || m > i32::MAX as usize) {
+        return Err("more than 2^31 nodes or elements (use version 4.1)".into());
+    }
+    let w = Writer { out, binary };
+    let version = if v4 { "4.1" } else { "2.2" };
+    w.out
+        .extend_from_slice(format!("$MeshFormat\n{version} {} 8\n", u8::from(binary)).as_bytes());
+    if binary {
+        w.out.extend_from_slice(&1i32.to_le_bytes());
+        w.out.push(b'\n');
+    }
+    w.out.extend_from_slice(b"$EndMeshFormat\n$Nodes\n");
+    let mut w = w;
+    if v4 {
+        w.sizes(&[1, n as u64, 1, n as u64]);
+        w.ints(&[3, 1, 0]);
+        w.sizes(&[n as u64]);
+        for v in 0..n {
+            w.sizes(&[v as u64 + 1]);
+        }
+    } else {
+        w.out.extend_from_slice(format!("{n}\n").as_bytes());
+    }
+    let coords = raw.coords.as_ref();
+    for v in 0..n {
+        if !v4 {
+            w.ints_open(&[v as i64 + 1]);
+        }
+        let p: Vec<f64> = (0..3)
+            .map(|k| {
+                coords
+                    .filter(|c| k < c.dim)
+                    .map_or(0.0, |c| c.data[v * c.dim + k])
+            })
+            .collect();
+        w.reals(&p);
+    }
+    w.close_block();
+    w.out.extend_from_slice(b"$EndNodes\n$Elements\n");
+    // Runs of equal length: one block each (version 4, binary version 2).
+    let mut runs: Vec<(usize, usize)> = Vec::new();
+    for i in 0..m {
+        match runs.last_mut() {
+            Some((start, end)) if raw.simplex(*start).len() == raw.simplex(i).len() => *end = i + 1,
+            _ => runs.push((i, i + 1)),
+        }
+    }
+    if v4 {
+        w.sizes(&[runs.len() as u64, m as u64, 1, m as u64]);
+    } else {
+        w.out.extend_from_slice(format!("{m}\n").as_bytes());
+    }
+    for &(start, end) in &runs {
+        let len = raw.simplex(start).len();
+        let t = element_type(len);
+        if v4 {
+            w.ints(&[len as i32 - 1, 1, t]);
+            w.sizes(&[(end - start) as u64]);
+        } else if binary {
+            w.ints(&[t, (end - start) as i32, 2]);
+        }
+        for i in start..end {
+            let ids = raw.simplex(i).iter().map(|&v| u64::from(v) + 1);
+            if v4 {
+                let row: Vec<u64> = std::iter::once(i as u64 + 1).chain(ids).collect();
+                w.sizes(&row);
+            } else {
+                // Tags: physical 0, elementary 1; the type is in the block header in binary.
+                let head: &[i64] = if binary {
+                    &[0, 1]
+                } else {
+                    &[i64::from(t), 2, 0, 1]
+                };
+                let row: Vec<i64> = std::iter::once(i as i64 + 1)
+                    .chain(head.iter().copied())
+                    .chain(ids.map(|x| x as i64))
+                    .collect();
+                w.ints_open(&row);
+                w.line();
+            }
+        }
+    }
+    w.close_block();
+    w.out.extend_from_slice(b"$EndElements\n");
+    Ok(())
+}
+
+/// Numbers in ASCII (space-separated, one record per line) or little-endian binary.
+struct Writer<'a> {
+    out: &'a mut Vec<u8>,
+    binary: bool,
+}
+
+impl Writer<'_> {
+    /// A record of size_t values (a whole line in ASCII).
+    fn sizes(&mut self, xs: &[u64]) {
+        for (i, x) in xs.iter().enumerate() {
+            if self.binary {
+                self.out.extend_from_slice(&x.to_le_bytes());
+            } else {
+                if i > 0 {
+                    self.out.push(b' ');
+                }
+                self.out.extend_from_slice(x.to_string().as_bytes());
+            }
+        }
+        self.line();
+    }
+
+    /// A record of ints, then a size_t follows on the same line in ASCII.
+    fn ints(&mut self, xs: &[i32]) {
+        for x in xs {
+            if self.binary {
+                self.out.extend_from_slice(&x.to_le_bytes());
+            } else {
+                self.out.extend_from_slice(x.to_string().as_bytes());
+                self.out.push(b' ');
+            }
+        }
+    }
+
+    /// Ints (version 2) that more numbers follow on the same ASCII line.
+    fn ints_open(&mut self, xs: &[i64]) {
+        for (i, &x) in xs.iter().enumerate() {
+            if self.binary {
+                self.out.extend_from_slice(&(x as i32).to_le_bytes());
+            } else {
+                if i > 0 {
+                    self.out.push(b' ');
+                }
+                self.out.extend_from_slice(x.to_string().as_bytes());
+            }
+        }
+        if !self.binary {
+            self.out.push(b' ');
+        }
+    }
+
+    /// Node coordinates: a whole line in ASCII.
+    fn reals(&mut self, xs: &[f64]) {
+        for (i, &x) in xs.iter().enumerate() {
+            if self.binary {
+                self.out.extend_from_slice(&x.to_le_bytes());
+            } else {
+                if i > 0 {
+                    self.out.push(b' ');
+                }
+                push_f64(self.out, x);
+            }
+        }
+        self.line();
+    }
+
+    fn line(&mut self) {
+        if !self.binary {
+            if self.out.last() == Some(&b' ') {
+                self.out.pop();
+            }
+            self.out.push(b'\n');
+        }
+    }
+
+    /// The newline that ends a binary block before its `$End` keyword.
+    fn close_block(&mut self) {
+        if self.binary {
+            self.out.push(b'\n');
+        }
+    }
+}

@@ -1,0 +1,234 @@
+//! PLY (`.ply`, ASCII and binary, either byte order), read and written with the `ply-rs-bw`
+//! crate; this module maps its elements to simplices.
+//!
+//! Reading:
+//! * `vertex` elements give the vertices; their `x`, `y` and optional `z` properties (any
+//!   numeric type) the coordinates (dimension 3, or 2 without `z`). Other properties are ignored.
+//! * `face` elements with a `vertex_indices` (or `vertex_index`) list of 1, 2 or 3 ids are a
+//!   vertex, an edge, a triangle; more is [`ReadErrorKind::Polygon`], none an error. Ids are
+//!   0-based; a negative id is [`ReadErrorKind::NegativeId`].
+//! * `edge` elements with `vertex1` and `vertex2` are edges.
+//! * Other elements are ignored. Faces come before edges in the listing.
+//! * Errors carry the line where the parser knows it (ASCII); otherwise the message names the
+//!   element and its index. Declared counts allocate at most what the parser caps them to.
+//!
+//! Writing: `vertex` with `double x y z` (fewer coordinates padded with zeros, zeros without
+//! coordinates), `face` with `list uchar int vertex_indices` for the triangles, `edge` with `int
+//! vertex1 vertex2` for the edges, each in listing order. Holds vertices, edges and triangles,
+//! and at most 3 coordinates; listed 0-simplices are left to the vertex count. ASCII PLY
+//! refuses non-finite coordinates (PLY readers do not parse `inf` or `nan`); binary keeps them.
+
+use ply_rs_bw::parser::Parser;
+use ply_rs_bw::ply::{
+    Addable, DefaultElement, ElementDef, Encoding, Ply, Property, PropertyDef, PropertyType,
+    ScalarType,
+};
+use ply_rs_bw::writer::Writer;
+
+use super::write::{check_coord_dim, check_max_len, vertex_count};
+use super::{Coords, RawInput, ReadErrorKind, syntax};
+
+/// A property as a float, when it is a number.
+fn number(p: &Property) -> Option<f64> {
+    Some(match *p {
+        Property::Char(x) => x.into(),
+        Property::UChar(x) => x.into(),
+        Property::Short(x) => x.into(),
+        Property::UShort(x) => x.into(),
+        Property::Int(x) => x.into(),
+        Property::UInt(x) => x.into(),
+        Property::Float(x) => x.into(),
+        Property::Double(x) => x,
+        _ => return None,
+    })
+}
+
+/// A vertex id property (scalar or list entry), checked to be a non-negative integer.
+fn id(x: i64, what: &str) -> Result<u32, ReadErrorKind> {
+    if x < 0 {
+        return Err(ReadErrorKind::NegativeId(x));
+    }
+    u32::try_from(x).map_err(|_| syntax(format!("{what}: vertex id {x} does not fit in 32 bits")))
+}
+
+/// A list property of vertex ids.
+fn id_list(p: &Property, what: &str) -> Result<Vec<u32>, ReadErrorKind> {
+    let ids: Vec<i64> = match p {
+        Property::ListChar(v) => v.iter().map(|&x| x.into()).collect(),
+        Property::ListUChar(v) => v.iter().map(|&x| x.into()).collect(),
+        Property::ListShort(v) => v.iter().map(|&x| x.into()).collect(),
+        Property::ListUShort(v) => v.iter().map(|&x| x.into()).collect(),
+        Property::ListInt(v) => v.iter().map(|&x| x.into()).collect(),
+        Property::ListUInt(v) => v.iter().map(|&x| x.into()).collect(),
+        _ => {
+            return Err(syntax(format!(
+                "{what}: vertex_indices is not a list of integers"
+            )));
+        }
+    };
+    ids.into_iter().map(|x| id(x, what)).collect()
+}
+
+fn scalar_id(e: &DefaultElement, key: &str, what: &str) -> Result<u32, ReadErrorKind> {
+    let p = e
+        .get(key)
+        .ok_or_else(|| syntax(format!("{what} has no `{key}` property")))?;
+    match number(p) {
+        Some(x) if x.fract() == 0.0 && x.abs() < 1e18 => id(x as i64, what),
+        _ => Err(syntax(format!("{what}: `{key}` is not an integer"))),
+    }
+}
+
+/// Parses a PLY file. Errors are `(line, kind)` with line 0 when only an element index is known.
+pub fn parse(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
+    let ply = Parser::<DefaultElement>::new()
+        .read_ply(&mut &bytes[..])
+        .map_err(|e| {
+            let line = e.line().map_or(0, |l| u32::try_from(l).unwrap_or(u32::MAX));
+            // The parser echoes whole lines: capped and escaped here.
+            let msg = e.to_string();
+            let mut shown: String = msg.chars().take(160).flat_map(char::escape_debug).collect();
+            if msg.chars().count() > 160 {
+                shown.push_str("...");
+            }
+            (line, syntax(format!("PLY: {shown}")))
+        })?;
+    let at0 = |k| (0, k);
+    let mut raw = RawInput::new();
+    let vertices: &[DefaultElement] = ply.payload.get("vertex").map_or(&[], Vec::as_slice);
+    raw.vertex_count =
+        Some(u32::try_from(vertices.len()).map_err(|_| at0(syntax("more than 2^32 vertices")))?);
+    let dim = match vertices.first() {
+        Some(v) if v.contains_key("z") => 3,
+        Some(_) => 2,
+        None => 3,
+    };
+    let mut data = Vec::with_capacity(vertices.len() * dim);
+    for (i, v) in vertices.iter().enumerate() {
+        for key in &["x", "y", "z"][..dim] {
+            let x = v.get(*key).and_then(number).ok_or_else(|| {
+                at0(syntax(format!(
+                    "vertex #{i} has no numeric `{key}` property"
+                )))
+            })?;
+            data.push(x);
+        }
+    }
+    raw.coords = Some(Coords { dim, data });
+    for (i, f) in ply.payload.get("face").into_iter().flatten().enumerate() {
+        let what = format!("face #{i}");
+        let list = f
+            .get("vertex_indices")
+            .or_else(|| f.get("vertex_index"))
+            .ok_or_else(|| at0(syntax(format!("{what} has no vertex_indices list"))))?;
+        let ids = id_list(list, &what).map_err(at0)?;
+        match ids.len() {
+            0 => return Err(at0(syntax(format!("{what} has no vertex")))),
+            1..=3 => raw.push(&ids, 0),
+            k => {
+                return Err(at0(syntax(format!(
+                    "{what}: {}",
+                    ReadErrorKind::Polygon(k)
+                ))));
+            }
+        }
+    }
+    for (i, e) in ply.payload.get("edge").into_iter().flatten().enumerate() {
+        let what = format!("edge #{i}");
+        let a = scalar_id(e, "vertex1", &what).map_err(at0)?;
+        let b = scalar_id(e, "vertex2", &what).map_err(at0)?;
+        raw.push(&[a, b], 0);
+    }
+    Ok(raw)
+}
+
+fn element(name: &str, count: usize, props: &[(&str, PropertyType)]) -> ElementDef {
+    let mut e = ElementDef::new(name.to_string());
+    e.count = count;
+    for (p, t) in props {
+        e.properties.add(PropertyDef::new(p.to_string(), t.clone()));
+    }
+    e
+}
+
+/// Writes `raw` as PLY, ASCII or binary little-endian.
+pub(crate) fn write(raw: &RawInput, binary: bool, out: &mut Vec<u8>) -> Result<(), String> {
+    check_max_len(
+        raw,
+        3,
+        "vertices, edges and triangles (use .msh, .vtk or .simplices)",
+    )?;
+    check_coord_dim(raw, 3)?;
+    if !binary
+        && let Some(c) = &raw.coords
+        && let Some(i) = c.data.iter().position(|x| !x.is_finite())
+    {
+        return Err(format!(
+            "vertex {} has a non-finite coordinate, which PLY readers do not accept in ASCII \
+             (use ply-binary)",
+            i / c.dim
+        ));
+    }
+    let mut ply = Ply::<DefaultElement>::new();
+    ply.header.encoding = if binary {
+        Encoding::BinaryLittleEndian
+    } else {
+        Encoding::Ascii
+    };
+    ply.header.comments.push("written by topoplex".to_string());
+    let double = PropertyType::Scalar(ScalarType::Double);
+    let int = PropertyType::Scalar(ScalarType::Int);
+    let n = vertex_count(raw);
+    let rows = |len: usize| (0..raw.simplex_count()).filter(move |&i| raw.simplex(i).len() == len);
+    let id = |v: u32| i32::try_from(v).map_err(|_| format!("vertex id {v} does not fit PLY's int"));
+
+    let coords = raw.coords.as_ref();
+    let mut vertices = Vec::with_capacity(n);
+    for v in 0..n {
+        let mut e = DefaultElement::new();
+        for (k, key) in ["x", "y", "z"].into_iter().enumerate() {
+            let x = coords
+                .filter(|c| k < c.dim)
+                .map_or(0.0, |c| c.data[v * c.dim + k]);
+            e.insert(key.to_string(), Property::Double(x));
+        }
+        vertices.push(e);
+    }
+    let mut faces = Vec::new();
+    for i in rows(3) {
+        let mut e = DefaultElement::new();
+        let ids = raw
+            .simplex(i)
+            .iter()
+            .map(|&v| id(v))
+            .collect::<Result<_, _>>()?;
+        e.insert("vertex_indices".to_string(), Property::ListInt(ids));
+        faces.push(e);
+    }
+    let mut edges = Vec::new();
+    for i in rows(2) {
+        let mut e = DefaultElement::new();
+        e.insert("vertex1".to_string(), Property::Int(id(raw.simplex(i)[0])?));
+        e.insert("vertex2".to_string(), Property::Int(id(raw.simplex(i)[1])?));
+        edges.push(e);
+    }
+    let xyz = [("x", double.clone()), ("y", double.clone()), ("z", double)];
+    ply.header.elements.add(element("vertex", n, &xyz));
+    ply.payload.insert("vertex".to_string(), vertices);
+    if !faces.is_empty() {
+        let list = PropertyType::List(ScalarType::UChar, ScalarType::Int);
+        ply.header
+            .elements
+            .add(element("face", faces.len(), &[("vertex_indices", list)]));
+        ply.payload.insert("face".to_string(), faces);
+    }
+    if !edges.is_empty() {
+        let ends = [("vertex1", int.clone()), ("vertex2", int)];
+        ply.header.elements.add(element("edge", edges.len(), &ends));
+        ply.payload.insert("edge".to_string(), edges);
+    }
+    Writer::new()
+        .write_ply(out, &mut ply)
+        .map_err(|e| format!("PLY writer: {e}"))?;
+    Ok(())
+}

@@ -1,0 +1,494 @@
+//! Legacy VTK (`.vtk`) unstructured grids, ASCII and BINARY, read and written here.
+//!
+//! Own code rather than the `vtkio` crate: vtkio's legacy parser (nom 3) reserves memory from
+//! the counts a header declares (`POINTS 4000000000 double` aborts the process) and its errors
+//! carry no line; this reader caps every reservation by the bytes left and names lines.
+//!
+//! Reading (`# vtk DataFile Version` 2.0 to 5.1):
+//! ```text
+//! # vtk DataFile Version 4.2
+//! any title
+//! ASCII | BINARY
+//! DATASET UNSTRUCTURED_GRID
+//! POINTS n float|double          3n numbers (z is kept, so coordinates have dimension 3)
+//! CELLS m size                   m lists "k id ... id" (up to version 4)
+//! CELLS m+1 c                    version 5: OFFSETS <type> (m+1 ints), CONNECTIVITY <type> (c ints)
+//! CELL_TYPES m                   m ints
+//! ```
+//! * `METADATA` blocks (up to a blank line) are skipped; anything after `CELL_TYPES` (point and
+//!   cell data, fields) is ignored.
+//! * Cell types 1 (vertex), 3 (line), 5 (triangle) and 10 (tetrahedron) are simplices; any other
+//!   type (quad, polygon, hexahedron, wedge, quadratic cells...) is refused naming the cell's
+//!   index and line, and so is a cell whose id count does not match its type.
+//! * BINARY data is big-endian (`float`, `double`, `int`, `vtktypeint32`, `vtktypeint64`, ...),
+//!   each block starting after the newline of its keyword line; errors inside a binary block name
+//!   that keyword's line.
+//! * Ids are 0-based; negative ids are [`ReadErrorKind::NegativeId`]. Only `DATASET
+//!   UNSTRUCTURED_GRID` is read.
+//!
+//! Writing: version 4.2 layout, `POINTS n double` (3 per vertex, fewer padded with zeros, zeros
+//! without coordinates), `CELLS`, `CELL_TYPES`, every simplex in listing order (vertices,
+//! edges, triangles, tetrahedra), then the optional point and cell fields as `int` scalars
+//! ([`write_with_fields`]). ASCII numbers are the shortest decimals that read back bit for bit.
+
+use super::bytes::Input;
+use super::write::{check_coord_dim, check_max_len, push_f64, push_ids, vertex_count};
+use super::{Coords, IntError, RawInput, ReadErrorKind, parse_integer, syntax};
+
+type Res<T> = Result<T, (u32, ReadErrorKind)>;
+
+/// VTK's cell type of a simplex with `len` vertices.
+fn cell_type(len: usize) -> u8 {
+    match len {
+        1 => 1,
+        2 => 3,
+        3 => 5,
+        _ => 10,
+    }
+}
+
+/// The number of vertices of a simplex cell type, or the type's name for refusals.
+fn simplex_len(t: i64) -> Result<usize, &'static str> {
+    Ok(match t {
+        1 => 1,
+        3 => 2,
+        5 => 3,
+        10 => 4,
+        2 => return Err("poly-vertex"),
+        4 => return Err("poly-line"),
+        6 => return Err("triangle strip"),
+        7 => return Err("polygon"),
+        8 => return Err("pixel"),
+        9 => return Err("quad"),
+        11 => return Err("voxel"),
+        12 => return Err("hexahedron"),
+        13 => return Err("wedge"),
+        14 => return Err("pyramid"),
+        21..=37 => return Err("quadratic or higher-order cell"),
+        _ => return Err("unknown type"),
+    })
+}
+
+impl Input<'_> {
+    /// `n` numbers of `ty` (a VTK data type name): ASCII tokens, or big-endian binary starting
+    /// after the newline that ends the keyword line `line`.
+    fn numbers(&mut self, n: usize, ty: &str, line: u32, what: &str) -> Res<Vec<f64>> {
+        let (size, float) = match ty.to_ascii_lowercase().as_str() {
+            "float" => (4, true),
+            "double" => (8, true),
+            "char" | "unsigned_char" | "bit" => (1, false),
+            "short" | "unsigned_short" => (2, false),
+            "int" | "unsigned_int" | "vtktypeint32" | "vtktypeuint32" => (4, false),
+            "long" | "unsigned_long" | "vtktypeint64" | "vtktypeuint64" | "vtkidtype" => (8, false),
+            _ => return Err((line, syntax(format!("unknown VTK data type '{ty}'")))),
+        };
+        let mut out = Vec::with_capacity(n.min(self.left() / size.min(2) + 1));
+        if self.binary {
+            return self.binary_numbers(n, ty, size, float, line, what, out);
+        }
+        for i in 0..n {
+            let Some((tok, l)) = self.token() else {
+                return Err((
+                    self.line.max(1),
+                    syntax(format!("file ends after {i} of the {n} {what}")),
+                ));
+            };
+            let x = if float {
+                tok.parse::<f64>().ok()
+            } else {
+                match parse_integer(tok) {
+                    Ok(v) => Some(v as f64),
+                    Err(IntError::OutOfRange) => Some(f64::INFINITY),
+                    Err(_) => None,
+                }
+            };
+            out.push(
+                x.ok_or_else(|| (l, syntax(format!("'{tok}' is not a {ty} among the {what}"))))?,
+            );
+        }
+        Ok(out)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn binary_numbers(
+        &mut self,
+        n: usize,
+        ty: &str,
+        size: usize,
+        float: bool,
+        line: u32,
+        what: &str,
+        mut out: Vec<f64>,
+    ) -> Res<Vec<f64>> {
+        // The block starts after the keyword line's newline.
+        self.rest_of_line();
+        let bytes = n
+            .checked_mul(size)
+            .filter(|&b| b <= self.left())
+            .ok_or_else(|| {
+                (
+                    line,
+                    syntax(format!(
+                        "{n} binary {ty} {what} declared but only {} bytes are left",
+                        self.left()
+                    )),
+                )
+            })?;
+        let signed = !ty.starts_with("unsigned") && !ty.contains("uint");
+        for c in self.b[self.pos..self.pos + bytes].chunks_exact(size) {
+            let x = match (size, float) {
+                (4, true) => f64::from(f32::from_be_bytes(c.try_into().unwrap())),
+                (8, true) => f64::from_be_bytes(c.try_into().unwrap()),
+                (1, _) if signed => f64::from(c[0] as i8),
+                (1, _) => f64::from(c[0]),
+                (2, _) if signed => f64::from(i16::from_be_bytes(c.try_into().unwrap())),
+                (2, _) => f64::from(u16::from_be_bytes(c.try_into().unwrap())),
+                (4, _) if signed => f64::from(i32::from_be_bytes(c.try_into().unwrap())),
+                (4, _) => f64::from(u32::from_be_bytes(c.try_into().unwrap())),
+                (_, _) if signed => i64::from_be_bytes(c.try_into().unwrap()) as f64,
+                (_, _) => u64::from_be_bytes(c.try_into().unwrap()) as f64,
+            };
+            out.push(x);
+        }
+        self.pos += bytes;
+        Ok(out)
+    }
+}
+
+/// An id read as a number, as a vertex id.
+fn vertex_id(x: f64, line: u32) -> Res<u32> {
+    if x < 0.0 {
+        return Err((line, ReadErrorKind::NegativeId(x as i64)));
+    }
+    if x.fract() != 0.0 || x > f64::from(u32::MAX) {
+        return Err((
+            line,
+            syntax(format!("vertex id {x} does not fit in 32 bits")),
+        ));
+    }
+    Ok(x as u32)
+}
+
+/// The cells as (ids per cell) from the version 4 `CELLS m size` layout, or version 5's.
+fn read_cells(inp: &mut Input, version5: bool, line: u32) -> Res<(Vec<Vec<u32>>, u32)> {
+    let a = inp.count("CELLS")?;
+    let b = inp.count("CELLS")?;
+    let mut cells = Vec::new();
+    if version5 {
+        let (kw, l) = inp.expect_token("OFFSETS")?;
+        if !kw.eq_ignore_ascii_case("OFFSETS") {
+            return Err((
+                l,
+                syntax(format!("expected OFFSETS after CELLS, found '{kw}'")),
+            ));
+        }
+        let (ty, _) = inp.expect_token("the OFFSETS data type")?;
+        let offsets = inp.numbers(a, ty, l, "offsets")?;
+        let (kw, l2) = inp.expect_token("CONNECTIVITY")?;
+        if !kw.eq_ignore_ascii_case("CONNECTIVITY") {
+            return Err((l2, syntax(format!("expected CONNECTIVITY, found '{kw}'"))));
+        }
+        let (ty, _) = inp.expect_token("the CONNECTIVITY data type")?;
+        let conn = inp.numbers(b, ty, l2, "connectivity entries")?;
+        for (i, w) in offsets.windows(2).enumerate() {
+            let (s, e) = (w[0], w[1]);
+            if !(0.0 <= s && s <= e && e <= conn.len() as f64) {
+                return Err((
+                    l,
+                    syntax(format!("cell #{i}: offsets {s}..{e} out of order or range")),
+                ));
+            }
+            let ids = conn[s as usize..e as usize]
+                .iter()
+                .map(|&x| vertex_id(x, l2))
+                .collect::<Res<Vec<u32>>>()?;
+            cells.push(ids);
+        }
+    } else {
+        let flat = inp.numbers(b, "int", line, "CELLS entries")?;
+        let mut k = 0;
+        for i in 0..a {
+            let Some(&len) = flat.get(k) else {
+                return Err((
+                    line,
+                    syntax(format!("CELLS size {b} ends inside cell #{i}")),
+                ));
+            };
+            let len = len.max(0.0) as usize;
+            let ids = flat.get(k + 1..k + 1 + len).ok_or_else(|| {
+                (
+                    line,
+                    syntax(format!("CELLS size {b} ends inside cell #{i}")),
+                )
+            })?;
+            cells.push(
+                ids.iter()
+                    .map(|&x| vertex_id(x, line))
+                    .collect::<Res<Vec<u32>>>()?,
+            );
+            k += 1 + len;
+        }
+        if k != flat.len() {
+            return Err((
+                line,
+                syntax(format!("CELLS size {b} but the {a} cells use {k}")),
+            ));
+        }
+    }
+    Ok((cells, line))
+}
+
+/// Parses a legacy VTK unstructured grid.
+pub fn parse(bytes: &[u8]) -> Res<RawInput> {
+    let mut inp = Input::new(bytes);
+    let first = inp.rest_of_line();
+    let first = String::from_utf8_lossy(first);
+    let version = first
+        .trim()
+        .strip_prefix("# vtk DataFile Version")
+        .map(str::trim)
+        .ok_or_else(|| {
+            (
+                1,
+                syntax("expected '# vtk DataFile Version x.y' on the first line"),
+            )
+        })?;
+    let version5 = version
+        .split('.')
+        .next()
+        .and_then(|m| m.parse::<u32>().ok())
+        >= Some(5);
+    inp.rest_of_line(); // title
+    let (mode, l) = inp.expect_token("ASCII or BINARY")?;
+    inp.binary = match mode.to_ascii_uppercase().as_str() {
+        "ASCII" => false,
+        "BINARY" => true,
+        _ => {
+            return Err((
+                l,
+                syntax(format!("expected ASCII or BINARY, found '{mode}'")),
+            ));
+        }
+    };
+    let (kw, l) = inp.expect_token("DATASET")?;
+    let (ds, _) = inp.expect_token("the dataset type")?;
+    if !kw.eq_ignore_ascii_case("DATASET") || !ds.eq_ignore_ascii_case("UNSTRUCTURED_GRID") {
+        return Err((
+            l,
+            syntax(format!(
+                "expected 'DATASET UNSTRUCTURED_GRID', found '{kw} {ds}' (only unstructured grids are read)"
+            )),
+        ));
+    }
+    let mut points: Option<Vec<f64>> = None;
+    let mut cells: Option<(Vec<Vec<u32>>, u32)> = None;
+    let types = loop {
+        let (kw, l) = inp.expect_token("POINTS, CELLS or CELL_TYPES")?;
+        match kw.to_ascii_uppercase().as_str() {
+            "POINTS" => {
+                let n = inp.count("POINTS")?;
+                let (ty, _) = inp.expect_token("the POINTS data type")?;
+                let n3 = n
+                    .checked_mul(3)
+                    .ok_or((l, syntax("POINTS count too large")))?;
+                points = Some(inp.numbers(n3, ty, l, "point coordinates")?);
+            }
+            "METADATA" => {
+                // Skipped up to the blank line that ends it.
+                inp.rest_of_line();
+                while inp.left() > 0 && !inp.rest_of_line().trim_ascii().is_empty() {}
+            }
+            "CELLS" => cells = Some(read_cells(&mut inp, version5, l)?),
+            "CELL_TYPES" => {
+                let m = inp.count("CELL_TYPES")?;
+                break (inp.numbers(m, "int", l, "cell types")?, l);
+            }
+            "FIELD" => {
+                return Err((l, syntax("FIELD data before CELL_TYPES is not supported")));
+            }
+            _ => {
+                return Err((
+                    l,
+                    syntax(format!(
+                        "unexpected '{kw}' (expected POINTS, CELLS or CELL_TYPES)"
+                    )),
+                ));
+            }
+        }
+    };
+    let points = points.ok_or((types.1, syntax("no POINTS section")))?;
+    let (cells, cells_line) = cells.ok_or((types.1, syntax("CELL_TYPES without CELLS")))?;
+    let (types, types_line) = types;
+    if types.len() != cells.len() {
+        return Err((
+            types_line,
+            syntax(format!(
+                "{} cell types for {} cells",
+                types.len(),
+                cells.len()
+            )),
+        ));
+    }
+    let mut raw = RawInput::new();
+    raw.vertex_count =
+        Some(u32::try_from(points.len() / 3).map_err(|_| (0, syntax("more than 2^32 points")))?);
+    raw.coords = Some(Coords {
+        dim: 3,
+        data: points,
+    });
+    for (i, (ids, &t)) in cells.iter().zip(&types).enumerate() {
+        let len = simplex_len(t as i64).map_err(|name| {
+            (
+                types_line,
+                syntax(format!(
+                    "cell #{i} has VTK type {t} ({name}), which is not a simplex"
+                )),
+            )
+        })?;
+        if ids.len() != len {
+            return Err((
+                cells_line,
+                syntax(format!(
+                    "cell #{i} of VTK type {t} has {} ids, expected {len}",
+                    ids.len()
+                )),
+            ));
+        }
+        raw.push(ids, cells_line);
+    }
+    Ok(raw)
+}
+
+/// A named integer field: one value per point or per cell.
+pub struct Field<'a> {
+    /// The field's name (no whitespace).
+    pub name: &'a str,
+    /// One value per point (point data) or per listed simplex (cell data).
+    pub values: &'a [i32],
+}
+
+fn push_number(out: &mut Vec<u8>, binary: bool, x: f64) {
+    if binary {
+        out.extend_from_slice(&x.to_be_bytes());
+    } else {
+        push_f64(out, x);
+    }
+}
+
+fn push_ints(out: &mut Vec<u8>, binary: bool, xs: impl Iterator<Item = i64>) {
+    for (i, x) in xs.enumerate() {
+        if binary {
+            out.extend_from_slice(&(x as i32).to_be_bytes());
+        } else {
+            if i > 0 {
+                out.push(b' ');
+            }
+            out.extend_from_slice(x.to_string().as_bytes());
+        }
+    }
+    out.push(b'\n');
+}
+
+/// Writes `raw` as a legacy VTK unstructured grid, ASCII or BINARY.
+pub(crate) fn write(raw: &RawInput, binary: bool, out: &mut Vec<u8>) -> Result<(), String> {
+    write_with_fields(raw, binary, &[], &[], out)
+}
+
+/// [`write`] with integer point and cell fields (ParaView colours by them).
+pub(crate) fn write_with_fields(
+    raw: &RawInput,
+    binary: bool,
+    point_fields: &[Field],
+    cell_fields: &[Field],
+    out: &mut Vec<u8>,
+) -> Result<(), String> {
+    check_max_len(
+        raw,
+        4,
+        "vertices, edges, triangles and tetrahedra (use .simplices)",
+    )?;
+    check_coord_dim(raw, 3)?;
+    if let Some(&v) = raw.ids.iter().find(|&&v| v > i32::MAX as u32) {
+        return Err(format!("vertex id {v} does not fit VTK's int"));
+    }
+    let n = vertex_count(raw);
+    let m = raw.simplex_count();
+    let mode = if binary { "BINARY" } else { "ASCII" };
+    out.extend_from_slice(
+        format!(
+            "# vtk DataFile Version 4.2\nwritten by topoplex\n{mode}\nDATASET UNSTRUCTURED_GRID\n\
+             POINTS {n} double\n"
+        )
+        .as_bytes(),
+    );
+    let coords = raw.coords.as_ref();
+    for v in 0..n {
+        for k in 0..3 {
+            if k > 0 && !binary {
+                out.push(b' ');
+            }
+            let x = coords
+                .filter(|c| k < c.dim)
+                .map_or(0.0, |c| c.data[v * c.dim + k]);
+            push_number(out, binary, x);
+        }
+        if !binary {
+            out.push(b'\n');
+        }
+    }
+    if binary {
+        out.push(b'\n');
+    }
+    let size = m + raw.ids.len();
+    out.extend_from_slice(format!("CELLS {m} {size}\n").as_bytes());
+    for i in 0..m {
+        let s = raw.simplex(i);
+        if binary {
+            out.extend_from_slice(&(s.len() as i32).to_be_bytes());
+            for &v in s {
+                out.extend_from_slice(&(v as i32).to_be_bytes());
+            }
+        } else {
+            out.extend_from_slice(format!("{} ", s.len()).as_bytes());
+            push_ids(out, s, 0);
+            out.push(b'\n');
+        }
+    }
+    if binary {
+        out.push(b'\n');
+    }
+    out.extend_from_slice(format!("CELL_TYPES {m}\n").as_bytes());
+    push_ints(
+        out,
+        binary,
+        (0..m).map(|i| i64::from(cell_type(raw.simplex(i).len()))),
+    );
+    for (keyword, count, fields) in [
+        ("POINT_DATA", n, point_fields),
+        ("CELL_DATA", m, cell_fields),
+    ] {
+        if fields.is_empty() {
+            continue;
+        }
+        out.extend_from_slice(format!("{keyword} {count}\n").as_bytes());
+        for f in fields {
+            if f.values.len() != count {
+                return Err(format!(
+                    "field {} has {} values for {count} {}",
+                    f.name,
+                    f.values.len(),
+                    if keyword == "POINT_DATA" {
+                        "points"
+                    } else {
+                        "cells"
+                    }
+                ));
+            }
+            out.extend_from_slice(
+                format!("SCALARS {} int 1\nLOOKUP_TABLE default\n", f.name).as_bytes(),
+            );
+            push_ints(out, binary, f.values.iter().map(|&x| i64::from(x)));
+        }
+    }
+    Ok(())
+}

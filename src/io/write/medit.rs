@@ -1,0 +1,43 @@
+//! MEDIT writer: `MeshVersionFormatted 2`, `Dimension 2` (2 coordinates per vertex) or `3`
+//! (fewer padded with zeros, zeros without coordinates), `Vertices` with reference 0, then
+//! `Edges`, `Triangles`, `Tetrahedra` (1-based ids, reference 0), each in listing order, and
+//! `End`. Listed 0-simplices are left to the vertex count (MEDIT has no point element).
+
+use super::{RawInput, check_coord_dim, check_max_len, push_ids, push_point, vertex_count};
+
+pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
+    check_max_len(
+        raw,
+        4,
+        "edges, triangles and tetrahedra (use .msh, .vtk or .simplices)",
+    )?;
+    check_coord_dim(raw, 3)?;
+    let coords = raw.coords.as_ref();
+    let width = if coords.is_some_and(|c| c.dim == 2) {
+        2
+    } else {
+        3
+    };
+    let n = vertex_count(raw);
+    out.extend_from_slice(
+        format!("MeshVersionFormatted 2\nDimension {width}\nVertices\n{n}\n").as_bytes(),
+    );
+    for v in 0..n {
+        push_point(out, coords, v, width);
+        out.extend_from_slice(b" 0\n");
+    }
+    for (len, keyword) in [(2, "Edges"), (3, "Triangles"), (4, "Tetrahedra")] {
+        let rows = (0..raw.simplex_count()).filter(|&i| raw.simplex(i).len() == len);
+        let count = rows.clone().count();
+        if count == 0 {
+            continue;
+        }
+        out.extend_from_slice(format!("{keyword}\n{count}\n").as_bytes());
+        for i in rows {
+            push_ids(out, raw.simplex(i), 1);
+            out.extend_from_slice(b" 0\n");
+        }
+    }
+    out.extend_from_slice(b"End\n");
+    Ok(())
+}
