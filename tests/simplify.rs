@@ -793,7 +793,11 @@ mod ffi {
                 TpxStatus::WriteError,
                 "cannot write",
             ),
-            ("out.xyz", TpxStatus::UnknownFormat, "unknown output extension"),
+            (
+                "out.xyz",
+                TpxStatus::UnknownFormat,
+                "unknown output extension",
+            ),
         ] {
             let p = CString::new(path).unwrap();
             let st = unsafe { tpx_simplify_file(input.as_ptr(), p.as_ptr(), 0.5, false) };

@@ -566,7 +566,12 @@ fn contract_edge(state: &mut State, entry: Entry) -> bool {
             .unwrap_or(0)
     };
     let (keep, gone) = if star(a) >= star(b) { (a, b) } else { (b, a) };
-    if state.mode == ContractMode::PreserveTopology && !boundary_link_condition(state.live, a, b) {
+    // Link condition first (cheaper, and most refusals), then its boundary half; the
+    // contraction itself then need not check again.
+    if state.mode == ContractMode::PreserveTopology
+        && (state.live.link_condition(VertexId(a), VertexId(b)).is_err()
+            || !boundary_link_condition(state.live, a, b))
+    {
         state.stats.refused += 1;
         let touched = state.touched(a, b);
         state.parked.push((entry, touched));
@@ -576,7 +581,7 @@ fn contract_edge(state: &mut State, entry: Entry) -> bool {
     let x = std::mem::take(&mut state.scratch.x);
     let result = state
         .live
-        .contract(VertexId(keep), VertexId(gone), state.mode, Some(&x));
+        .contract(VertexId(keep), VertexId(gone), ContractMode::Free, Some(&x));
     state.scratch.x = x;
     let undo = match result {
         Ok(undo) => undo,
@@ -649,29 +654,54 @@ fn boundary_link_condition(live: &LiveComplex, a: u32, b: u32) -> bool {
         .is_ok()
 }
 
-/// The boundary facets (see [`boundary_link_condition`]) through `v`, each once, sorted.
+/// The boundary facets (see [`boundary_link_condition`]) through `v`, each once, sorted. Every
+/// top simplex holding a facet through v is in St(v), so St(v) alone decides: a facet of top t
+/// is a boundary facet when no other top of St(v) has it as a facet and no higher-dimensional
+/// one contains it. O(k d log(k d)) for k = |St(v)|, plus the containment scan on mixed stars.
 fn boundary_facets_at(live: &LiveComplex, v: u32) -> Vec<Vec<u32>> {
-    let mut out: Vec<Vec<u32>> = Vec::new();
     let Ok(star) = live.vertex_star(VertexId(v)) else {
-        return out;
+        return Vec::new();
     };
-    for t in star {
-        let verts = live.top_vertices(t).unwrap_or(&[]);
-        for skip in 0..verts.len() {
-            if verts[skip] == v {
+    let tops: Vec<&[u32]> = star.filter_map(|t| live.top_vertices(t).ok()).collect();
+    // (facet as a sorted inline key, dimension of its top)
+    let mut facets: Vec<([u32; 16], u8, u8)> = Vec::new();
+    for t in &tops {
+        for (skip, &u) in t.iter().enumerate() {
+            if u == v {
                 continue;
             }
-            let mut f: Vec<u32> = verts
-                .iter()
-                .enumerate()
-                .filter(|&(i, _)| i != skip)
-                .map(|(_, &u)| u)
-                .collect();
-            f.sort_unstable();
-            if !out.contains(&f) && is_boundary_facet(live, &f) {
-                out.push(f);
+            let mut key = [u32::MAX; 16];
+            let mut len = 0;
+            for (i, &w) in t.iter().enumerate() {
+                if i != skip {
+                    key[len] = w;
+                    len += 1;
+                }
             }
+            key[..len].sort_unstable();
+            facets.push((key, len as u8, (t.len() - 1) as u8));
         }
+    }
+    facets.sort_unstable();
+    let max_dim = tops.iter().map(|t| t.len() - 1).max().unwrap_or(0) as u8;
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < facets.len() {
+        let mut j = i + 1;
+        while j < facets.len() && facets[j].0 == facets[i].0 {
+            j += 1;
+        }
+        let (key, len, dim) = facets[i];
+        let f = &key[..len as usize];
+        let alone = j == i + 1
+            && (dim == max_dim
+                || !tops
+                    .iter()
+                    .any(|t| t.len() - 1 > dim as usize && f.iter().all(|u| t.contains(u))));
+        if alone {
+            out.push(f.to_vec());
+        }
+        i = j;
     }
     out
 }
