@@ -77,6 +77,13 @@
 #define TPX_CONTRACT_FREE 1
 
 /**
+ * `tpx_live_contract` mode: the link condition on the complex coned over its boundary
+ * (`tpx_live_link_condition_with_boundary`): also keeps 2- and 3-manifolds with boundary
+ * manifolds.
+ */
+#define TPX_CONTRACT_PRESERVE_MANIFOLD 2
+
+/**
  * The format named by the output file's extension (`tpx_complex_write`).
  */
 #define TPX_FORMAT_FROM_EXTENSION 0
@@ -747,7 +754,19 @@ TpxStatus tpx_live_remove_top(struct TpxLive *l, const uint32_t *ids, size_t len
 TpxStatus tpx_live_link_condition(const struct TpxLive *l, uint32_t a, uint32_t b);
 
 /**
- * Contracts b into a (`mode`: `TPX_CONTRACT_PRESERVE_TOPOLOGY` or `TPX_CONTRACT_FREE`), moving
+ * The link condition on the complex coned over its boundary by a dummy vertex ω (Dey,
+ * Edelsbrunner, Guha, Nekhayev 1999): a boundary facet is a simplex that is a facet of exactly
+ * one simplex. OK, NOT_AN_EDGE or LINK_CONDITION_FAILS (message: dimension and simplex, ω
+ * written as 4294967294); DEAD_VERTEX. Cost: O(d² (|St(a)|² + |St(b)|²)).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_link_condition_with_boundary(const struct TpxLive *l, uint32_t a, uint32_t b);
+
+/**
+ * Contracts b into a (`mode`: `TPX_CONTRACT_PRESERVE_TOPOLOGY`, `TPX_CONTRACT_FREE` or
+ * `TPX_CONTRACT_PRESERVE_MANIFOLD`), moving
  * a to `position[0 .. position_len]` when `position` is not NULL. When `out_undo` is not NULL
  * it receives a new undo record (owned by the caller, free with `tpx_undo_free`) for
  * `tpx_live_split`. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (unknown mode, wrong coordinate

@@ -437,6 +437,7 @@ class Structure {
 enum class ContractMode : std::uint32_t {
   PreserveTopology = TPX_CONTRACT_PRESERVE_TOPOLOGY,
   Free = TPX_CONTRACT_FREE,
+  PreserveManifold = TPX_CONTRACT_PRESERVE_MANIFOLD,
 };
 
 /* The undo record of one contraction, for Live::split. Move-only owner. */
@@ -556,6 +557,15 @@ class Live {
   /* Whether {a, b} is an edge satisfying the link condition (no exception). */
   bool link_condition(std::uint32_t a, std::uint32_t b) const {
     TpxStatus st = tpx_live_link_condition(l_, a, b);
+    if (st == TPX_STATUS_NOT_AN_EDGE || st == TPX_STATUS_LINK_CONDITION_FAILS) {
+      return false;
+    }
+    detail::check(st);
+    return true;
+  }
+  /* The link condition on the complex coned over its boundary (what PreserveManifold checks). */
+  bool link_condition_with_boundary(std::uint32_t a, std::uint32_t b) const {
+    TpxStatus st = tpx_live_link_condition_with_boundary(l_, a, b);
     if (st == TPX_STATUS_NOT_AN_EDGE || st == TPX_STATUS_LINK_CONDITION_FAILS) {
       return false;
     }

@@ -8,7 +8,9 @@
 #      1%) on surf-*.off, topoplex_bench_tets on tet-*.mesh and topoplex_bench_gudhi on every
 #      dataset, JSON into the results directory;
 #   4. `cargo bench --bench structures` (criterion, Rust API), if that bench exists, and its
-#      tables (benches/structures_table.py) into RESULTS/criterion.md;
+#      tables (benches/structures_table.py) into RESULTS/criterion.md; then `cargo bench --bench
+#      live` (the live complex: link-checked contractions per second, storage vs the IA) into
+#      RESULTS/live.log;
 #   5. scripts/bench_table.py: one Markdown table of Topoplex / peer ratios and the aims of
 #      issue 9 part 3, and the simplification table of issue 14, printed and written to
 #      RESULTS/table.md.
@@ -171,6 +173,18 @@ if [ -f "$root/benches/structures.rs" ]; then
   fi
 else
   echo "benches/structures.rs not present: skipped"
+fi
+
+echo "== cargo bench --bench live (criterion: link-checked contractions, storage vs the IA)"
+if [ -f "$root/benches/live.rs" ]; then
+  live_args=(--noplot)
+  if [ "$quick" = 1 ]; then live_args+=(--quick); fi
+  if ! (cd "$root" && CARGO_TARGET_DIR=$target cargo bench --bench live -- "${live_args[@]}") \
+      >"$results/live.log" 2>&1; then
+    tail -5 "$results/live.log" >&2
+    failed+=("cargo bench --bench live (see live.log)")
+  fi
+  grep -E '^(storage|contract) |live/(link|contract) +time|thrpt' "$results/live.log" || true
 fi
 
 echo "== table"

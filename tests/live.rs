@@ -7,6 +7,7 @@ mod common;
 use std::collections::BTreeSet;
 
 use proptest::prelude::*;
+use topoplex::live::link::OMEGA;
 use topoplex::live::{ContractMode, LiveComplex, Refusal, VertexId};
 use topoplex::oracle::check_structure;
 use topoplex::{Complex, Topology};
@@ -112,6 +113,32 @@ impl Model {
             .filter(|t| sigma.iter().all(|v| t.contains(v)) && t.len() > sigma.len())
             .map(|t| t.iter().copied().filter(|v| !sigma.contains(v)).collect())
             .collect()
+    }
+
+    /// The complex coned over its boundary (simplices with exactly one proper coface) from
+    /// the vertex `OMEGA`.
+    fn coned(&self) -> Model {
+        let all: Vec<Vec<u32>> = self
+            .verts
+            .iter()
+            .map(|&v| vec![v])
+            .chain(self.simplices.iter().cloned())
+            .collect();
+        let mut k = self.clone();
+        k.verts.insert(OMEGA);
+        for f in &all {
+            let cofaces = self
+                .simplices
+                .iter()
+                .filter(|t| t.len() > f.len() && f.iter().all(|v| t.contains(v)))
+                .count();
+            if cofaces == 1 {
+                let mut cone = f.clone();
+                cone.push(OMEGA);
+                k.add(&cone);
+            }
+        }
+        k
     }
 
     /// Brute-force link condition: `None` when it holds, else the lowest dimension failing
@@ -383,7 +410,7 @@ fn insert_absorbs_faces_and_remove_keeps_vertices() {
 enum Op {
     Insert(Vec<u32>),
     Remove(prop::sample::Index, Vec<u32>),
-    Contract(prop::sample::Index, prop::sample::Index, bool),
+    Contract(prop::sample::Index, prop::sample::Index, u8),
     Split,
 }
 
@@ -392,8 +419,8 @@ fn op() -> impl Strategy<Value = Op> {
     prop_oneof![
         2 => simplex.clone().prop_map(Op::Insert),
         2 => (any::<prop::sample::Index>(), simplex).prop_map(|(i, s)| Op::Remove(i, s)),
-        4 => (any::<prop::sample::Index>(), any::<prop::sample::Index>(), any::<bool>())
-            .prop_map(|(a, b, free)| Op::Contract(a, b, free)),
+        4 => (any::<prop::sample::Index>(), any::<prop::sample::Index>(), 0u8..3)
+            .prop_map(|(a, b, mode)| Op::Contract(a, b, mode)),
         2 => Just(Op::Split),
     ]
 }
@@ -448,12 +475,29 @@ fn step(
                 Err(e) => panic!("remove {s:?}: {e}"),
             }
         }
-        Op::Contract(i, j, free) => {
+        Op::Contract(i, j, mode) => {
             let (a, b) = (verts[i.index(verts.len())], verts[j.index(verts.len())]);
-            let brute = m.link_failure(a, b);
+            let brute_plain = m.link_failure(a, b);
+            let brute_coned = m.coned().link_failure(a, b);
+            if a != b {
+                let got = live.link_condition_with_boundary(VertexId(a), VertexId(b));
+                // The plain condition is checked first (its failure implies the coned one's).
+                match (&got, brute_plain.or(brute_coned)) {
+                    (Ok(()), None) => {}
+                    (Err(Refusal::NotAnEdge { .. }), Some(usize::MAX)) => {}
+                    (Err(Refusal::LinkCondition { dim, .. }), Some(d)) => assert_eq!(*dim, d),
+                    other => panic!("coned link condition of {a} {b}: {other:?}"),
+                }
+            }
+            let brute = if *mode == 2 {
+                brute_coned.or(brute_plain)
+            } else {
+                brute_plain
+            };
+            let free = &(*mode == 1);
             let checked = live.link_condition(VertexId(a), VertexId(b));
             if a != b {
-                match (&checked, brute) {
+                match (&checked, brute_plain) {
                     (Ok(()), None) => {}
                     (Err(Refusal::NotAnEdge { .. }), Some(usize::MAX)) => {}
                     (Err(Refusal::LinkCondition { dim, simplex, .. }), Some(d)) => {
@@ -466,10 +510,10 @@ fn step(
                     other => panic!("link condition of {a} {b}: {other:?}"),
                 }
             }
-            let mode = if *free {
-                ContractMode::Free
-            } else {
-                ContractMode::PreserveTopology
+            let mode = match mode {
+                0 => ContractMode::PreserveTopology,
+                1 => ContractMode::Free,
+                _ => ContractMode::PreserveManifold,
             };
             let before = live.clone();
             match live.contract(VertexId(a), VertexId(b), mode, None) {
@@ -717,5 +761,232 @@ proptest! {
             tpx_complex_free(frozen);
             tpx_live_free(l);
         }
+    }
+}
+
+/// ```text
+///   0 ---- 1 ---- 2      a strip of four triangles (a disk); edge 1-4 joins the two
+///   |    / |    / |      boundary vertices 1 and 4 through the interior; coned over the
+///   |  /   |  /   |      boundary, ω ∈ Lk(1) ∩ Lk(4) but ω ∉ Lk(14) (1-4 is interior)
+///   3 ---- 4 ---- 5
+/// ```
+/// Triangles 0 1 3, 1 3 4, 1 2 4, 2 4 5: Lk(1) ∩ Lk(4) = {2, 3} = Lk(14), so contracting 1-4
+/// keeps the homotopy type, but it pinches the disk at the merged vertex: refused by
+/// `PreserveManifold` with ω in dimension 0.
+#[test]
+fn strip_interior_edge_between_boundary_vertices_is_refused_by_preserve_manifold() {
+    let c = Complex::from_simplices(6, &[&[0, 1, 3], &[1, 3, 4], &[1, 2, 4], &[2, 4, 5]]).unwrap();
+    let mut live = LiveComplex::from_complex(&c);
+    live.link_condition(VertexId(1), VertexId(4)).unwrap();
+    assert_eq!(
+        live.contract(
+            VertexId(1),
+            VertexId(4),
+            ContractMode::PreserveManifold,
+            None
+        ),
+        Err(Refusal::LinkCondition {
+            a: 1,
+            b: 4,
+            dim: 0,
+            simplex: vec![OMEGA]
+        })
+    );
+    // A boundary edge (0-1) passes both, and the result is still a disk.
+    live.contract(
+        VertexId(0),
+        VertexId(1),
+        ContractMode::PreserveManifold,
+        None,
+    )
+    .unwrap();
+    live.validate().unwrap();
+    assert_eq!(live.top_count(2), 3);
+}
+
+/// χ = Σ (−1)^p n_p.
+fn euler(live: &LiveComplex) -> i64 {
+    (0..=live.dimension())
+        .map(|p| if p % 2 == 0 { 1 } else { -1 } * live.count(p) as i64)
+        .sum()
+}
+
+/// Connected components (over edges; isolated vertices count).
+fn components(live: &LiveComplex) -> usize {
+    let n = live.vertex_slots() as usize;
+    let mut parent: Vec<usize> = (0..n).collect();
+    fn find(p: &mut [usize], x: usize) -> usize {
+        let mut x = x;
+        while p[x] != x {
+            p[x] = p[p[x]];
+            x = p[x];
+        }
+        x
+    }
+    for [a, b] in live.edges() {
+        let (ra, rb) = (find(&mut parent, a as usize), find(&mut parent, b as usize));
+        parent[ra] = rb;
+    }
+    live.vertices()
+        .filter(|v| find(&mut parent, v.index()) == v.index())
+        .count()
+}
+
+/// Real data (../shared/data, skipped when absent): up to 1500 link-checked contractions per
+/// file keep χ and the component count; the result is valid, answers like an IG built from its
+/// frozen copy, and with `PreserveManifold` every (d−1)-simplex of a pure mesh stays in at
+/// most two d-simplices.
+#[test]
+fn real_data_contractions_keep_euler_characteristic_and_components() {
+    // TOPOPLEX_SHARED_DATA: the data directory for a worktree that is not next to ../shared.
+    let env = std::env::var_os("TOPOPLEX_SHARED_DATA").map(std::path::PathBuf::from);
+    let Some(dir) = common::shared_data().or(env) else {
+        eprintln!("../shared/data is absent: skipping");
+        return;
+    };
+    let files = [
+        ("nonmanifold/fan3.obj", ContractMode::PreserveTopology),
+        (
+            "nonmanifold/hourglass_ico.obj",
+            ContractMode::PreserveTopology,
+        ),
+        ("nonmanifold/moebius.obj", ContractMode::PreserveManifold),
+        (
+            "nonmanifold/triple_vierbein.obj",
+            ContractMode::PreserveTopology,
+        ),
+        ("nonmanifold/truck.obj", ContractMode::PreserveTopology),
+        (
+            "mixed/gmsh_baffles_wire.mesh",
+            ContractMode::PreserveTopology,
+        ),
+        (
+            "tetrahedral/octopus-low.mesh",
+            ContractMode::PreserveManifold,
+        ),
+        ("surfaces/elephant.off", ContractMode::PreserveManifold),
+    ];
+    for (name, mode) in files {
+        let path = dir.join(name);
+        let Ok(c) = Complex::from_path(&path) else {
+            eprintln!("{name}: does not load, skipped");
+            continue;
+        };
+        let mut live = LiveComplex::from_complex(&c);
+        let (chi, comps) = (euler(&live), components(&live));
+        let edges = live.edges();
+        let step = (edges.len() / 1500).max(1);
+        let mut done = 0;
+        for &[a, b] in edges.iter().step_by(step) {
+            if live.is_live(VertexId(a)) && live.is_live(VertexId(b)) {
+                done += live.contract(VertexId(a), VertexId(b), mode, None).is_ok() as usize;
+            }
+        }
+        live.validate().unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(done > 0, "{name}: no contraction passed");
+        assert_eq!(
+            euler(&live),
+            chi,
+            "{name}: χ changed after {done} contractions"
+        );
+        assert_eq!(components(&live), comps, "{name}: components changed");
+        if mode == ContractMode::PreserveManifold {
+            let d = live.dimension();
+            let mut facets = Vec::new();
+            live.simplices(d - 1, &mut facets);
+            let mut out = Vec::new();
+            for f in facets.chunks_exact(d) {
+                live.relation(f, d, &mut out).unwrap();
+                assert!(
+                    out.len() <= 2 * (d + 1),
+                    "{name}: {f:?} in more than two {d}-simplices"
+                );
+            }
+        }
+        let mut dense = live.clone();
+        dense.compact();
+        let ig = topoplex::build(topoplex::StructureKind::Ig, &live.to_complex()).unwrap();
+        topoplex::oracle::compare_structures(&dense, ig.as_ref())
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        eprintln!("{name}: {done} contractions, χ = {chi}, {comps} components kept");
+    }
+}
+
+/// Every `tpx_live_*` export refuses NULL handles and out-pointers with NULL_ARGUMENT, and the
+/// frees accept NULL.
+#[test]
+fn c_abi_live_functions_refuse_null() {
+    use std::ptr::{null, null_mut};
+    use topoplex::ffi::*;
+    let mut u = 0u32;
+    let mut z = 0usize;
+    // SAFETY: every pointer is NULL or valid; NULL handles must be refused, not read.
+    unsafe {
+        tpx_live_free(null_mut());
+        tpx_undo_free(null_mut());
+        assert_eq!(
+            tpx_live_from_complex(null(), null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_vertex_slots(null(), &mut u),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_vertex_count(null(), &mut u),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(tpx_live_dimension(null(), &mut u), TpxStatus::NullArgument);
+        assert_eq!(
+            tpx_live_top_count(null(), 1, &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_insert_top(null_mut(), [0u32, 1].as_ptr(), 2),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_remove_top(null_mut(), [0u32, 1].as_ptr(), 2),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_link_condition(null(), 0, 1),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_contract(null_mut(), 0, 1, 0, null(), 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(tpx_live_split(null_mut(), null()), TpxStatus::NullArgument);
+        assert_eq!(
+            tpx_live_compact(null_mut(), null_mut(), 0, &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_live_to_complex(null(), null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(tpx_live_validate(null()), TpxStatus::NullArgument);
+        // A live handle with NULL out-pointers.
+        let (mut c, mut l) = (null_mut(), null_mut());
+        let ids = [0u32, 1];
+        let offsets = [0usize, 2];
+        assert_eq!(
+            tpx_complex_from_arrays(2, ids.as_ptr(), offsets.as_ptr(), 1, null(), 0, &mut c),
+            TpxStatus::Ok
+        );
+        assert_eq!(tpx_live_from_complex(c, &mut l), TpxStatus::Ok);
+        assert_eq!(
+            tpx_live_vertex_slots(l, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(tpx_live_insert_top(l, null(), 2), TpxStatus::NullArgument);
+        assert_eq!(
+            tpx_live_contract(l, 0, 1, 7, null(), 0, null_mut()),
+            TpxStatus::InvalidArgument
+        );
+        assert_eq!(tpx_live_validate(l), TpxStatus::Ok);
+        tpx_live_free(l);
+        tpx_complex_free(c);
     }
 }

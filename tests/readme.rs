@@ -16,3 +16,20 @@ fn readme_c_example_is_examples_c_example_c() {
         "README's C block differs from examples/c/example.c"
     );
 }
+
+#[test]
+fn readme_cpp_live_example_is_examples_cpp_live_cpp() {
+    let root = env!("CARGO_MANIFEST_DIR");
+    let readme = std::fs::read_to_string(format!("{root}/README.md")).unwrap();
+    let example = std::fs::read_to_string(format!("{root}/examples/cpp/live.cpp")).unwrap();
+    let block = readme
+        .split("```cpp\n")
+        .nth(1)
+        .and_then(|b| b.split("\n```").next())
+        .expect("a ```cpp block in the README");
+    assert_eq!(
+        block,
+        example.trim_end(),
+        "README's C++ block differs from examples/cpp/live.cpp"
+    );
+}

@@ -18,6 +18,10 @@ use crate::relation::{QueryError, Topology};
 pub const TPX_CONTRACT_PRESERVE_TOPOLOGY: u32 = 0;
 /// `tpx_live_contract` mode: any two live vertices (vertex unification).
 pub const TPX_CONTRACT_FREE: u32 = 1;
+/// `tpx_live_contract` mode: the link condition on the complex coned over its boundary
+/// (`tpx_live_link_condition_with_boundary`): also keeps 2- and 3-manifolds with boundary
+/// manifolds.
+pub const TPX_CONTRACT_PRESERVE_MANIFOLD: u32 = 2;
 
 /// An updatable simplicial complex (opaque): any dimension, non-manifold, mixed-dimensional.
 /// Create with `tpx_live_from_complex`, release with `tpx_live_free`.
@@ -340,7 +344,29 @@ pub unsafe extern "C" fn tpx_live_link_condition(l: *const TpxLive, a: u32, b: u
     })
 }
 
-/// Contracts b into a (`mode`: `TPX_CONTRACT_PRESERVE_TOPOLOGY` or `TPX_CONTRACT_FREE`), moving
+/// The link condition on the complex coned over its boundary by a dummy vertex ω (Dey,
+/// Edelsbrunner, Guha, Nekhayev 1999): a boundary facet is a simplex that is a facet of exactly
+/// one simplex. OK, NOT_AN_EDGE or LINK_CONDITION_FAILS (message: dimension and simplex, ω
+/// written as 4294967294); DEAD_VERTEX. Cost: O(d² (|St(a)|² + |St(b)|²)).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_link_condition_with_boundary(
+    l: *const TpxLive,
+    a: u32,
+    b: u32,
+) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        l.live
+            .link_condition_with_boundary(VertexId(a), VertexId(b))
+            .map_err(refusal)
+    })
+}
+
+/// Contracts b into a (`mode`: `TPX_CONTRACT_PRESERVE_TOPOLOGY`, `TPX_CONTRACT_FREE` or
+/// `TPX_CONTRACT_PRESERVE_MANIFOLD`), moving
 /// a to `position[0 .. position_len]` when `position` is not NULL. When `out_undo` is not NULL
 /// it receives a new undo record (owned by the caller, free with `tpx_undo_free`) for
 /// `tpx_live_split`. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (unknown mode, wrong coordinate
@@ -365,6 +391,7 @@ pub unsafe extern "C" fn tpx_live_contract(
         let mode = match mode {
             TPX_CONTRACT_PRESERVE_TOPOLOGY => ContractMode::PreserveTopology,
             TPX_CONTRACT_FREE => ContractMode::Free,
+            TPX_CONTRACT_PRESERVE_MANIFOLD => ContractMode::PreserveManifold,
             m => {
                 return Err(Failure::new(
                     TpxStatus::InvalidArgument,

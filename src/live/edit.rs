@@ -2,9 +2,7 @@
 //! its undo (vertex split), compaction. Each checks everything first and refuses with the
 //! structure unchanged, then mutates.
 
-use super::{
-    Image, Key, LiveComplex, NONE, Refusal, SLOT_MASK, TopId, VertexId, pack, show, subset, unpack,
-};
+use super::{Image, Key, LiveComplex, NONE, Refusal, TopId, VertexId, pack, show, subset, unpack};
 use crate::complex::MAX_DIMENSION;
 
 /// How [`LiveComplex::contract`] decides whether it may unify two vertices.
@@ -16,6 +14,11 @@ pub enum ContractMode {
     PreserveTopology,
     /// Any two live vertices, edge or not (Popović and Hoppe's vertex unification, 1997).
     Free,
+    /// [`ContractMode::PreserveTopology`] plus the boundary: the link condition on the complex
+    /// coned over its boundary ([`LiveComplex::link_condition_with_boundary`]), which on 2- and
+    /// 3-manifolds with boundary also keeps the result a manifold with the same boundary
+    /// topology.
+    PreserveManifold,
 }
 
 /// What [`LiveComplex::split`] needs to undo a contraction exactly (same ids, same slots, same
@@ -196,8 +199,10 @@ impl LiveComplex {
                 why: "repeated vertex",
             });
         }
-        if mode == ContractMode::PreserveTopology {
-            self.link_condition(a, b)?;
+        match mode {
+            ContractMode::PreserveTopology => self.link_condition(a, b)?,
+            ContractMode::PreserveManifold => self.link_condition_with_boundary(a, b)?,
+            ContractMode::Free => {}
         }
         Ok(())
     }
@@ -233,8 +238,9 @@ impl LiveComplex {
             removed: TopList::default(),
             inserted: TopList::default(),
         };
-        self.retire_star_of_b(a.0, b.0, &mut undo);
-        self.place_images(a.0, &mut undo);
+        let linked = mode != ContractMode::Free;
+        self.retire_star_of_b(a.0, b.0, linked, &mut undo);
+        self.place_images(a.0, linked, &mut undo);
         self.alive[b.index()] = false;
         self.live_vertices -= 1;
         if let Some(xyz) = new_position {
@@ -246,15 +252,18 @@ impl LiveComplex {
     /// Step 1 of a contraction: detaches every top simplex of St(b) and leaves their images
     /// (b replaced by a in place, or dropped where a is already there), deduplicated, in
     /// `self.images`.
-    fn retire_star_of_b(&mut self, a: u32, b: u32, undo: &mut UndoRecord) {
+    fn retire_star_of_b(&mut self, a: u32, b: u32, linked: bool, undo: &mut UndoRecord) {
         let star_b = std::mem::take(&mut self.star[b as usize]);
         let mut images = std::mem::take(&mut self.images);
         images.clear();
         for &raw in &star_b {
             let (p, slot) = unpack(raw);
             let t = &self.tops[p][slot * (p + 1)..(slot + 1) * (p + 1)];
-            let mut img = Image::default();
             let has_a = t.contains(&a);
+            let mut img = Image {
+                degenerate: has_a,
+                ..Image::default()
+            };
             for &v in t {
                 if v != b {
                     img.push(v);
@@ -262,10 +271,12 @@ impl LiveComplex {
                     img.push(a);
                 }
             }
+            // Under the link condition no two images coincide (see `place_images`).
             if img.len > 1
-                && !images
-                    .iter()
-                    .any(|o| same_set(o.as_slice(), img.as_slice()))
+                && (linked
+                    || !images
+                        .iter()
+                        .any(|o| same_set(o.as_slice(), img.as_slice())))
             {
                 images.push(img);
             }
@@ -280,13 +291,24 @@ impl LiveComplex {
 
     /// Step 2 of a contraction: inserts the images that are still top simplices (not a face of
     /// another image or of a top of St(a)) and retires the tops of St(a) they absorb.
-    fn place_images(&mut self, a: u32, undo: &mut UndoRecord) {
+    ///
+    /// When the link condition holds (`linked`), only the degenerate images need the tests: an
+    /// image t − b + a of a top t ∌ a inside a top T ∈ St(a) would put τ = t − b in
+    /// Lk(a) ∩ Lk(b), hence in Lk(ab), making t ∪ {a} a simplex and t no top; and a top T ∈ St(a)
+    /// inside such an image would likewise make T ∪ {b} a simplex. Two images never coincide:
+    /// t1 − b + a = t2 − b would make t1 a face of t2.
+    fn place_images(&mut self, a: u32, linked: bool, undo: &mut UndoRecord) {
         let mut images = std::mem::take(&mut self.images);
         // An image under another image or under a top of St(a) is a face, not a top.
         let n = images.len();
         let mut keep = 0;
         for i in 0..n {
             let img = images[i];
+            if linked && !img.degenerate {
+                images.swap(keep, i);
+                keep += 1;
+                continue;
+            }
             let under_image = (0..n).any(|j| {
                 j != i && images[j].len > img.len && subset(img.as_slice(), images[j].as_slice())
             });
@@ -302,7 +324,7 @@ impl LiveComplex {
         }
         images.truncate(keep);
         let mut k = 0;
-        while k < self.star[a as usize].len() {
+        while !linked && k < self.star[a as usize].len() {
             let raw = self.star[a as usize][k];
             let t = self.top_raw(raw);
             if images
@@ -450,7 +472,6 @@ impl LiveComplex {
         self.star = star;
         self.alive = vec![true; n as usize];
         self.epoch = self.epoch.wrapping_add(1);
-        debug_assert!(self.tops.iter().all(|t| t.len() <= SLOT_MASK as usize * 16));
         maps
     }
 }

@@ -6,9 +6,12 @@
 //! Lk(a) ∩ Lk(b) is the closure of {x ∩ y : x ∈ F_a, y ∈ F_b} (faces of a top through both a and
 //! b are in Lk(ab) anyway), and Lk(ab) the closure of F_ab. So the condition holds iff every
 //! non-empty x ∩ y is inside some z ∈ F_ab. The vertices that can occur in x ∩ y are the common
-//! ones C = V(F_a) ∩ V(F_b); with |C| ≤ 64 each set becomes one word and each test two word
-//! operations: O(d·(k_a + k_b) log + |F_a|·|F_b|·|F_ab|) with duplicate and non-maximal words
-//! dropped first. Past 64 common vertices, sorted id lists do the same work.
+//! ones C = V(F_a) ∩ V(F_b), found with per-vertex stamps (one pass over each star, no sort);
+//! with |C| ≤ 64 each set becomes one word and each test two word operations:
+//! O(d·(k_a + k_b) + |F_a|·|F_b|·|F_ab|) after duplicate and non-maximal words are dropped.
+//! Past 64 common vertices, sorted id lists do the same work. The stamps are per-thread scratch
+//! of 8 bytes per vertex (not part of the structure's storage), so the test takes `&self` and
+//! allocates nothing once warm.
 //!
 //! On failure the reported simplex is a lowest-dimensional one of Lk(a) ∩ Lk(b) outside Lk(ab).
 
@@ -51,11 +54,12 @@ impl LiveComplex {
     fn first_violation(&self, a: u32, b: u32, s: &mut Scratch) -> Option<Vec<u32>> {
         let fa = || self.star[a as usize].iter().map(|&r| self.top_raw(r));
         let fb = || self.star[b as usize].iter().map(|&r| self.top_raw(r));
-        common_vertices(fa(), fb(), a, b, s);
+        common_vertices(fa(), fb(), a, b, self.star.len(), s);
         if s.common.is_empty() {
             return None;
         }
         if s.common.len() > 64 {
+            s.common.sort_unstable();
             let fa: Vec<&[u32]> = fa().filter(|t| !t.contains(&b)).collect();
             let fab: Vec<&[u32]> = self.star[a as usize]
                 .iter()
@@ -66,13 +70,25 @@ impl LiveComplex {
             return lists::first_violation(&s.common, &fa, &fb, &fab);
         }
         let Scratch {
-            common, ma, mb, mz, ..
+            common,
+            ma,
+            mb,
+            mz,
+            stamp,
+            index,
+            epoch,
+            ..
         } = s;
+        let mask = |t: &[u32]| {
+            t.iter()
+                .filter(|&&v| stamp[v as usize] == *epoch)
+                .fold(0u64, |m, &v| m | 1 << index[v as usize])
+        };
         ma.clear();
         mb.clear();
         mz.clear();
         for t in fa() {
-            let m = words::mask(common, t);
+            let m = mask(t);
             if t.contains(&b) {
                 mz.push(m);
             } else {
@@ -80,7 +96,7 @@ impl LiveComplex {
             }
         }
         for t in fb().filter(|t| !t.contains(&a)) {
-            mb.push(words::mask(common, t));
+            mb.push(mask(t));
         }
         maximal(ma);
         maximal(mb);
@@ -91,8 +107,11 @@ impl LiveComplex {
 /// Per-thread buffers of the link test, so that a check allocates nothing once warm.
 #[derive(Default)]
 struct Scratch {
-    va: Vec<u32>,
-    vb: Vec<u32>,
+    /// Per vertex: `epoch - 1` when in a top of St(a), `epoch` when common too.
+    stamp: Vec<u32>,
+    /// Per common vertex: its bit.
+    index: Vec<u32>,
+    epoch: u32,
     common: Vec<u32>,
     ma: Vec<u64>,
     mb: Vec<u64>,
@@ -103,35 +122,41 @@ thread_local! {
     static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::default());
 }
 
-/// Vertices other than a and b in a top of St(a) and in a top of St(b), ascending, into
-/// `s.common` (a superset of V(F_a) ∩ V(F_b), which changes no x ∩ y).
+/// Vertices other than a and b in a top of St(a) and in a top of St(b), into `s.common`
+/// (a superset of V(F_a) ∩ V(F_b), which changes no x ∩ y), numbered in `s.index` in order of
+/// discovery: one pass over each star with per-vertex stamps, no sort.
 fn common_vertices<'a>(
     fa: impl Iterator<Item = &'a [u32]>,
     fb: impl Iterator<Item = &'a [u32]>,
     a: u32,
     b: u32,
+    n: usize,
     s: &mut Scratch,
 ) {
-    let collect = |f: &mut dyn Iterator<Item = &'a [u32]>, v: &mut Vec<u32>| {
-        v.clear();
-        for t in f {
-            v.extend(t.iter().copied().filter(|&x| x != a && x != b));
+    if s.stamp.len() < n {
+        s.stamp.resize(n, 0);
+        s.index.resize(n, 0);
+    }
+    if s.epoch >= u32::MAX - 2 {
+        s.stamp.iter_mut().for_each(|x| *x = 0);
+        s.epoch = 0;
+    }
+    s.epoch += 2;
+    let (in_a, common) = (s.epoch - 1, s.epoch);
+    for t in fa {
+        for &v in t {
+            s.stamp[v as usize] = in_a;
         }
-        v.sort_unstable();
-        v.dedup();
-    };
-    collect(&mut { fa }, &mut s.va);
-    collect(&mut { fb }, &mut s.vb);
+    }
+    s.stamp[a as usize] = 0;
+    s.stamp[b as usize] = 0;
     s.common.clear();
-    let (mut i, mut j) = (0, 0);
-    while i < s.va.len() && j < s.vb.len() {
-        match s.va[i].cmp(&s.vb[j]) {
-            std::cmp::Ordering::Less => i += 1,
-            std::cmp::Ordering::Greater => j += 1,
-            std::cmp::Ordering::Equal => {
-                s.common.push(s.va[i]);
-                i += 1;
-                j += 1;
+    for t in fb {
+        for &v in t {
+            if s.stamp[v as usize] == in_a {
+                s.stamp[v as usize] = common;
+                s.index[v as usize] = s.common.len() as u32;
+                s.common.push(v);
             }
         }
     }
@@ -155,13 +180,6 @@ fn maximal(masks: &mut Vec<u64>) {
 
 /// The common vertices as bits of one word.
 mod words {
-    /// The bits of `t ∩ common`.
-    pub(super) fn mask(common: &[u32], t: &[u32]) -> u64 {
-        t.iter()
-            .filter_map(|v| common.binary_search(v).ok())
-            .fold(0u64, |m, i| m | 1 << i)
-    }
-
     /// A lowest-dimensional x ∩ y (x ∈ ma, y ∈ mb) face not under any z ∈ mz, as vertex ids.
     pub(super) fn first_violation(
         common: &[u32],
@@ -184,10 +202,12 @@ mod words {
             }
         }
         best.map(|m| {
-            (0..64)
+            let mut v: Vec<u32> = (0..64)
                 .filter(|i| m >> i & 1 == 1)
                 .map(|i| common[i])
-                .collect()
+                .collect();
+            v.sort_unstable();
+            v
         })
     }
 
@@ -255,4 +275,86 @@ mod lists {
         }
         best
     }
+}
+
+/// The cone vertex ω of [`LiveComplex::link_condition_with_boundary`] in reported simplices.
+pub const OMEGA: u32 = u32::MAX - 1;
+
+impl LiveComplex {
+    /// The link condition on the complex coned over its boundary (DEGN 1999's dummy vertex ω):
+    /// a boundary facet is a simplex that is a facet of exactly one simplex (a top simplex), and
+    /// ω ∗ f is added for each. On 2- and 3-manifolds with boundary this is what keeps a
+    /// contraction from pinching the boundary (joining two boundary vertices through the
+    /// interior), so contractions that pass it keep manifoldness and the boundary's topology;
+    /// on any complex it implies [`LiveComplex::link_condition`]. A failure naming ω reports it
+    /// as [`OMEGA`]. Cost: O(d²·k_a² + d²·k_b²) for the boundary facets, then as the plain test.
+    pub fn link_condition_with_boundary(&self, a: VertexId, b: VertexId) -> Result<(), Refusal> {
+        self.link_condition(a, b)?;
+        let (a, b) = (a.0, b.0);
+        let (mut fa, mut fab) = (Vec::new(), Vec::new());
+        for t in self.star[a as usize].iter().map(|&r| self.top_raw(r)) {
+            let set = t.iter().copied().filter(|&v| v != a && v != b).collect();
+            if t.contains(&b) {
+                fab.push(set)
+            } else {
+                fa.push(set)
+            }
+        }
+        for f in self.boundary_facets(a) {
+            let mut set: Vec<u32> = f.iter().copied().filter(|&v| v != a && v != b).collect();
+            set.push(OMEGA);
+            if f.contains(&b) {
+                fab.push(set)
+            } else {
+                fa.push(set)
+            }
+        }
+        let mut fb: Vec<Vec<u32>> = self.star[b as usize]
+            .iter()
+            .map(|&r| self.top_raw(r))
+            .filter(|t| !t.contains(&a))
+            .map(|t| t.iter().copied().filter(|&v| v != b).collect())
+            .collect();
+        for f in self.boundary_facets(b).filter(|f| !f.contains(&a)) {
+            let mut set: Vec<u32> = f.iter().copied().filter(|&v| v != b).collect();
+            set.push(OMEGA);
+            fb.push(set);
+        }
+        let vs = |f: &[Vec<u32>]| {
+            let mut v: Vec<u32> = f.iter().flatten().copied().collect();
+            v.sort_unstable();
+            v.dedup();
+            v
+        };
+        let vb = vs(&fb);
+        let common: Vec<u32> = vs(&fa)
+            .into_iter()
+            .filter(|v| vb.binary_search(v).is_ok())
+            .collect();
+        match lists::first_violation(&common, &refs(&fa), &refs(&fb), &refs(&fab)) {
+            None => Ok(()),
+            Some(simplex) => Err(Refusal::LinkCondition {
+                a,
+                b,
+                dim: simplex.len() - 1,
+                simplex,
+            }),
+        }
+    }
+
+    /// The boundary facets through v: facets f ∋ v of a top t ∈ St*(v) that no other top holds.
+    fn boundary_facets(&self, v: u32) -> impl Iterator<Item = Vec<u32>> + '_ {
+        let star = &self.star[v as usize];
+        star.iter().flat_map(move |&raw| {
+            let t = self.top_raw(raw);
+            t.iter()
+                .filter(move |&&x| x != v)
+                .map(move |&x| t.iter().copied().filter(|&y| y != x).collect::<Vec<u32>>())
+                .filter(move |f| !star.iter().any(|&o| o != raw && subset(f, self.top_raw(o))))
+        })
+    }
+}
+
+fn refs(f: &[Vec<u32>]) -> Vec<&[u32]> {
+    f.iter().map(Vec::as_slice).collect()
 }

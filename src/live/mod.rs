@@ -54,8 +54,12 @@
 //!   0-simplex) removes the vertex.
 //! - [`LiveComplex::link_condition`] {a, b}: O(d·(k_a + k_b) + |F_a|·|F_b|·|F_ab|) word
 //!   operations (see [`link`]).
-//! - [`LiveComplex::contract`] {a, b} → a: O(d²·k_a·k_b) worst case (each image of a top
-//!   simplex of St(b) is checked against St*(a)); on meshes O(d·(k_a + k_b)) per top.
+//! - [`LiveComplex::contract`] {a, b} → a: the link test, then O(d·k_b·k_max) to detach St(b)
+//!   (each star entry is found by a scan of its vertex's star) and insert the images. When the
+//!   link condition holds no image can be a face of another simplex or absorb one, except the
+//!   images of tops through both a and b (proof at `place_images`), so only those O(k_ab) are
+//!   tested, each against the smallest star of its vertices; in [`ContractMode::Free`] every
+//!   image is: O(d²·k_b·(k_b + k_min)) worst case.
 //! - [`LiveComplex::split`]: the same order as the contraction it undoes.
 //! - [`LiveComplex::compact`]: O(size), renumbers vertices and slots densely and returns the maps.
 //!
@@ -216,6 +220,8 @@ pub struct LiveComplex {
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct Image {
     len: u8,
+    /// From a top through both a and b (b dropped, one dimension lower).
+    degenerate: bool,
     ids: [u32; MAX_DIMENSION + 1],
 }
 

@@ -18,7 +18,9 @@
 //!    versions and are skipped when it changed (lazy invalidation, no decrease-key); contract
 //!    it (into the vertex with the larger star, which then moves to the minimiser), add the
 //!    quadrics, bump the survivor's version and push its edges with their new costs. With
-//!    `preserve_topology` the contraction is link-checked in every dimension and a refused edge
+//!    `preserve_topology` the contraction is link-checked in every dimension, on the complex
+//!    coned over its boundary ([`ContractMode::PreserveManifold`]: manifolds with boundary
+//!    stay manifolds), and a refused edge
 //!    is parked; when the queue runs dry before the target, the parked edges whose endpoints'
 //!    neighbourhoods changed since (a contraction touched the survivor and its ring) are queued
 //!    again, and the loop ends when none did.
@@ -301,7 +303,7 @@ impl<'a> State<'a> {
         let tops = top_count(live);
         State {
             mode: if options.preserve_topology {
-                ContractMode::PreserveTopology
+                ContractMode::PreserveManifold
             } else {
                 ContractMode::Free
             },
@@ -566,22 +568,11 @@ fn contract_edge(state: &mut State, entry: Entry) -> bool {
             .unwrap_or(0)
     };
     let (keep, gone) = if star(a) >= star(b) { (a, b) } else { (b, a) };
-    // Link condition first (cheaper, and most refusals), then its boundary half; the
-    // contraction itself then need not check again.
-    if state.mode == ContractMode::PreserveTopology
-        && (state.live.link_condition(VertexId(a), VertexId(b)).is_err()
-            || !boundary_link_condition(state.live, a, b))
-    {
-        state.stats.refused += 1;
-        let touched = state.touched(a, b);
-        state.parked.push((entry, touched));
-        return false;
-    }
     state.cost(keep, gone);
     let x = std::mem::take(&mut state.scratch.x);
     let result = state
         .live
-        .contract(VertexId(keep), VertexId(gone), ContractMode::Free, Some(&x));
+        .contract(VertexId(keep), VertexId(gone), state.mode, Some(&x));
     state.scratch.x = x;
     let undo = match result {
         Ok(undo) => undo,
@@ -614,96 +605,6 @@ fn contract_edge(state: &mut State, entry: Entry) -> bool {
     }
     state.scratch.ring = ring;
     true
-}
-
-/// The boundary half of the link condition for manifolds with boundary (Dey, Edelsbrunner,
-/// Guha, Nekhayev 1999: the link condition in K ∪ ω·∂K, ω a vertex coned over the boundary).
-/// ∂K is made of the *boundary facets*, facets of top simplices that no other top simplex
-/// holds. When a and b both lie on ∂K, {a, b} must be an edge of ∂K satisfying the link
-/// condition within ∂K; otherwise contracting it would pinch the boundary (a disk into two disks
-/// sharing a vertex: same Betti numbers, no longer a manifold). Costs O(k² d²) for the stars of
-/// a and b, and a small live complex of their boundary facets when both are on ∂K.
-fn boundary_link_condition(live: &LiveComplex, a: u32, b: u32) -> bool {
-    let fa = boundary_facets_at(live, a);
-    if fa.is_empty() {
-        return true;
-    }
-    let fb = boundary_facets_at(live, b);
-    if fb.is_empty() {
-        return true;
-    }
-    if !fa.iter().any(|f| f.contains(&b)) {
-        return false;
-    }
-    // The boundary around a and b as its own complex, over local ids.
-    let mut ids: Vec<u32> = fa.iter().chain(&fb).flatten().copied().collect();
-    ids.sort_unstable();
-    ids.dedup();
-    let local = |v: u32| ids.binary_search(&v).map_or(u32::MAX, |i| i as u32);
-    let facets: Vec<Vec<u32>> = fa
-        .iter()
-        .chain(&fb)
-        .map(|f| f.iter().map(|&v| local(v)).collect())
-        .collect();
-    let refs: Vec<&[u32]> = facets.iter().map(Vec::as_slice).collect();
-    let Ok(c) = Complex::from_simplices(ids.len() as u32, &refs) else {
-        return false;
-    };
-    LiveComplex::from_complex(&c)
-        .link_condition(VertexId(local(a)), VertexId(local(b)))
-        .is_ok()
-}
-
-/// The boundary facets (see [`boundary_link_condition`]) through `v`, each once, sorted. Every
-/// top simplex holding a facet through v is in St(v), so St(v) alone decides: a facet of top t
-/// is a boundary facet when no other top of St(v) has it as a facet and no higher-dimensional
-/// one contains it. O(k d log(k d)) for k = |St(v)|, plus the containment scan on mixed stars.
-fn boundary_facets_at(live: &LiveComplex, v: u32) -> Vec<Vec<u32>> {
-    let Ok(star) = live.vertex_star(VertexId(v)) else {
-        return Vec::new();
-    };
-    let tops: Vec<&[u32]> = star.filter_map(|t| live.top_vertices(t).ok()).collect();
-    // (facet as a sorted inline key, dimension of its top)
-    let mut facets: Vec<([u32; 16], u8, u8)> = Vec::new();
-    for t in &tops {
-        for (skip, &u) in t.iter().enumerate() {
-            if u == v {
-                continue;
-            }
-            let mut key = [u32::MAX; 16];
-            let mut len = 0;
-            for (i, &w) in t.iter().enumerate() {
-                if i != skip {
-                    key[len] = w;
-                    len += 1;
-                }
-            }
-            key[..len].sort_unstable();
-            facets.push((key, len as u8, (t.len() - 1) as u8));
-        }
-    }
-    facets.sort_unstable();
-    let max_dim = tops.iter().map(|t| t.len() - 1).max().unwrap_or(0) as u8;
-    let mut out = Vec::new();
-    let mut i = 0;
-    while i < facets.len() {
-        let mut j = i + 1;
-        while j < facets.len() && facets[j].0 == facets[i].0 {
-            j += 1;
-        }
-        let (key, len, dim) = facets[i];
-        let f = &key[..len as usize];
-        let alone = j == i + 1
-            && (dim == max_dim
-                || !tops
-                    .iter()
-                    .any(|t| t.len() - 1 > dim as usize && f.iter().all(|u| t.contains(u))));
-        if alone {
-            out.push(f.to_vec());
-        }
-        i = j;
-    }
-    out
 }
 
 /// Moves the parked entries whose vertices' neighbourhoods changed back into the queue and
