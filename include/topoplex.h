@@ -61,24 +61,107 @@
 #define TPX_KIND_DE 8
 
 /**
- * Answer order of the navigation functions: the structure's natural order.
+ * The live complex (`TpxLive`, IA*-like and updatable). `tpx_structure_build` does not take it:
+ * a live complex is built with `tpx_live_from_complex`; the number names it in messages.
  */
-#define TPX_ORDER_NATURAL 0
+#define TPX_KIND_IASTAR 9
 
 /**
- * Answer order of the navigation functions: ascending lexicographic (ascending index).
+ * `tpx_live_contract` mode: only an edge satisfying the link condition (topology preserved).
  */
-#define TPX_ORDER_LEXICOGRAPHIC 1
+#define TPX_CONTRACT_PRESERVE_TOPOLOGY 0
 
 /**
- * Flag bit of a group written by `tpx_fans_around` / `tpx_around_edge`: the group closes.
+ * `tpx_live_contract` mode: any two live vertices (vertex unification).
  */
-#define TPX_GROUP_CLOSED 1
+#define TPX_CONTRACT_FREE 1
 
 /**
- * Flag bit of a group: consistently oriented and counter-clockwise by the input winding.
+ * `tpx_live_contract` mode: the link condition on the complex coned over its boundary
+ * (`tpx_live_link_condition_with_boundary`): also keeps 2- and 3-manifolds with boundary
+ * manifolds.
  */
-#define TPX_GROUP_ORIENTED 2
+#define TPX_CONTRACT_PRESERVE_MANIFOLD 2
+
+/**
+ * The format named by the output file's extension (`tpx_complex_write`).
+ */
+#define TPX_FORMAT_FROM_EXTENSION 0
+
+/**
+ * Geomview OFF (`.off`): vertices, edges, triangles.
+ */
+#define TPX_FORMAT_OFF 1
+
+/**
+ * Wavefront OBJ (`.obj`): points, edges, triangles; at most 3 coordinates.
+ */
+#define TPX_FORMAT_OBJ 2
+
+/**
+ * MEDIT ASCII (`.mesh`): edges, triangles, tetrahedra; 2 or 3 coordinates.
+ */
+#define TPX_FORMAT_MEDIT 3
+
+/**
+ * Topoplex `.simplices`: any complex.
+ */
+#define TPX_FORMAT_SIMPLICES 4
+
+/**
+ * PLY ASCII (`.ply`): edges and triangles; at most 3 coordinates.
+ */
+#define TPX_FORMAT_PLY 5
+
+/**
+ * PLY binary little-endian.
+ */
+#define TPX_FORMAT_PLY_BINARY 6
+
+/**
+ * STL ASCII (`.stl`): triangles covering every vertex, distinct 32-bit float coordinates.
+ */
+#define TPX_FORMAT_STL 7
+
+/**
+ * STL binary.
+ */
+#define TPX_FORMAT_STL_BINARY 8
+
+/**
+ * Legacy VTK unstructured grid, ASCII (`.vtk`): vertices, edges, triangles, tetrahedra.
+ */
+#define TPX_FORMAT_VTK 9
+
+/**
+ * Legacy VTK unstructured grid, BINARY.
+ */
+#define TPX_FORMAT_VTK_BINARY 10
+
+/**
+ * Gmsh MSH 4.1 ASCII (`.msh`): points, edges, triangles, tetrahedra.
+ */
+#define TPX_FORMAT_MSH 11
+
+/**
+ * Gmsh MSH 4.1 binary.
+ */
+#define TPX_FORMAT_MSH_BINARY 12
+
+/**
+ * Gmsh MSH 2.2 ASCII.
+ */
+#define TPX_FORMAT_MSH2 13
+
+/**
+ * Gmsh MSH 2.2 binary.
+ */
+#define TPX_FORMAT_MSH2_BINARY 14
+
+/**
+ * VTK XML unstructured grid (`.vtu`): vertices, edges, triangles, tetrahedra.
+ */
+#define TPX_FORMAT_VTU 15
 
 /**
  * Result of a fallible `tpx_*` call. Values are part of the ABI and never reused.
@@ -168,6 +251,55 @@ enum TpxStatus
    * A handle made by another structure (its owner stamp does not match).
    */
   TPX_STATUS_FOREIGN_HANDLE = 18,
+  /**
+   * Live complex: a topology-preserving contraction of two vertices that are not an edge.
+   */
+  TPX_STATUS_NOT_AN_EDGE = 20,
+  /**
+   * Live complex: the link condition Lk(a) ∩ Lk(b) = Lk(ab) fails; the message names the
+   * dimension and a lowest-dimensional offending link simplex.
+   */
+  TPX_STATUS_LINK_CONDITION_FAILS = 21,
+  /**
+   * Live complex: inserting a simplex that is already in the complex (top or face).
+   */
+  TPX_STATUS_SIMPLEX_ALREADY_PRESENT = 22,
+  /**
+   * Live complex: removing a simplex that is a proper face of another (message: a coface).
+   */
+  TPX_STATUS_NOT_A_TOP_SIMPLEX = 23,
+  /**
+   * Live complex: a vertex id out of range or of a removed (contracted, deleted) vertex.
+   */
+  TPX_STATUS_DEAD_VERTEX = 24,
+  /**
+   * Live complex: an undo record from before `tpx_live_compact`, applied already, or whose
+   * contraction's result later edits changed (the message says which).
+   */
+  TPX_STATUS_STALE_UNDO = 25,
+  /**
+   * `tpx_simplify*`: the ratio is not in (0, 1] (NaN included).
+   */
+  TPX_STATUS_INVALID_RATIO = 27,
+  /**
+   * `tpx_simplify_file`: the file system refused to write the output file.
+   */
+  TPX_STATUS_WRITE_ERROR = 28,
+  /**
+   * `tpx_simplify*`: the complex cannot be simplified: no vertex coordinates, a non-finite
+   * coordinate, or more top simplices of one dimension than the live complex numbers.
+   */
+  TPX_STATUS_CANNOT_SIMPLIFY = 29,
+  /**
+   * The output format number is not one of `TPX_FORMAT_*`, or the output file's extension
+   * names no format.
+   */
+  TPX_STATUS_UNKNOWN_FORMAT = 30,
+  /**
+   * The output format cannot hold the complex (a tetrahedron in OFF, an edge in STL); the
+   * message names the first offending simplex. Nothing was written.
+   */
+  TPX_STATUS_FORMAT_CANNOT_HOLD = 31,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -191,6 +323,12 @@ typedef struct TpxComplex TpxComplex;
 typedef struct TpxDecomposition TpxDecomposition;
 
 /**
+ * An updatable simplicial complex (opaque): any dimension, non-manifold, mixed-dimensional.
+ * Create with `tpx_live_from_complex`, release with `tpx_live_free`.
+ */
+typedef struct TpxLive TpxLive;
+
+/**
  * R_{p,q} of every p-simplex, in CSR form (opaque). Row i belongs to the i-th p-simplex in
  * `tpx_structure_simplices` order. Release with `tpx_relation_table_free`.
  */
@@ -204,46 +342,10 @@ typedef struct TpxRelationTable TpxRelationTable;
 typedef struct TpxStructure TpxStructure;
 
 /**
- * A handle to one simplex of one structure (12 bytes, plain data; copy freely).
- *
- * `index` is the simplex's dense index among the simplices of its dimension (lexicographic
- * rank; a vertex's index is its id; the caller's per-dimension arrays can be indexed by it).
- * `meta` holds the dimension in its low 8 bits (`meta & 0xff`); the other bits are 0 for every
- * structure of this library. `owner` is the stamp of the structure that made it. A handle stays
- * valid as long as its structure lives; copying it is free, nothing needs releasing.
+ * The undo record of one contraction (opaque), for `tpx_live_split`. Release with
+ * `tpx_undo_free`; it does not borrow the live complex.
  */
-typedef struct TpxSimplex {
-  /**
-   * Dense index among the simplices of its dimension.
-   */
-  uint32_t index;
-  /**
-   * Dimension in bits 0..8; form and local bits above (0 here).
-   */
-  uint32_t meta;
-  /**
-   * Stamp of the owning structure (`tpx_structure_stamp`).
-   */
-  uint32_t owner;
-} TpxSimplex;
-
-/**
- * What normalising the input absorbed (see `tpx_complex_input_stats`).
- */
-typedef struct TpxInputStats {
-  /**
-   * Simplices as listed in the input, absorbed ones included.
-   */
-  size_t input_simplices;
-  /**
-   * Extra listings of a simplex listed before (each counts one).
-   */
-  size_t absorbed_duplicates;
-  /**
-   * Listed simplices that are a proper face of another listed simplex.
-   */
-  size_t absorbed_faces;
-} TpxInputStats;
+typedef struct TpxUndo TpxUndo;
 
 /**
  * Storage of a structure: what the papers count and what the process really holds.
@@ -479,227 +581,312 @@ TpxStatus tpx_decomposition_copies(const struct TpxDecomposition *d,
                                    size_t *len);
 
 /**
- * The owner stamp of structure `s` into `*out`: every handle it makes carries it. O(1).
+ * Builds a live complex from `c`: the same vertex ids, every top simplex with its input
+ * winding, the coordinates copied. `*out` receives a new handle owned by the caller (free with
+ * `tpx_live_free`); it does not borrow `c`. Errors: NULL_ARGUMENT. Cost: O(size of the top
+ * simplices).
  *
  * # Safety
  * Non-NULL pointers must be valid.
  */
-TpxStatus tpx_structure_stamp(const struct TpxStructure *s, uint32_t *out);
+TpxStatus tpx_live_from_complex(const struct TpxComplex *c, struct TpxLive **out);
 
 /**
- * Locates the simplex with vertex ids `simplex[0 .. simplex_len]` (any order) and writes its
- * handle to `*out`. Errors: NULL_ARGUMENT, INVALID_SIMPLEX, NOT_IN_COMPLEX. Cost: O(p log n_p)
- * (a binary search; for dimensions a structure stores only implicitly, the first call builds
- * that dimension's table once, see the Rust `handle` module). No allocation otherwise.
+ * Releases a live complex. NULL is a no-op.
  *
  * # Safety
- * Non-NULL pointers must be valid; `simplex` must hold `simplex_len` ids.
+ * `l` must be NULL or a live handle from this library, not used afterwards.
  */
-TpxStatus tpx_locate(const struct TpxStructure *s,
-                     const uint32_t *simplex,
-                     size_t simplex_len,
-                     struct TpxSimplex *out);
+void tpx_live_free(struct TpxLive *l);
 
 /**
- * The handle of the p-simplex of dense index `index` into `*out` (for a vertex: p = 0, index =
- * its id). Errors: INVALID_HANDLE (p > d or index >= n_p). O(1).
+ * Releases an undo record. NULL is a no-op.
  *
  * # Safety
- * Non-NULL pointers must be valid.
+ * `u` must be NULL or a handle from `tpx_live_contract`, not used afterwards.
  */
-TpxStatus tpx_handle(const struct TpxStructure *s,
-                     uint32_t p,
-                     uint32_t index,
-                     struct TpxSimplex *out);
+void tpx_undo_free(struct TpxUndo *u);
 
 /**
- * The vertex ids of `*h`, ascending, into `buf` (p + 1 of them; `*out_len` = p + 1).
- * Errors: NULL_ARGUMENT, FOREIGN_HANDLE, INVALID_HANDLE, BUFFER_TOO_SMALL. O(p).
- *
- * # Safety
- * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
- */
-TpxStatus tpx_simplex_vertices(const struct TpxStructure *s,
-                               const struct TpxSimplex *h,
-                               uint32_t *buf,
-                               size_t buf_len,
-                               size_t *out_len);
-
-/**
- * Number of top simplices over all dimensions into `*out` (top ids are `0 .. *out`). O(1).
+ * Number of vertex slots into `*out`: vertex ids are `0 .. slots`, some of them removed
+ * (contracted away or deleted) until `tpx_live_compact`. O(1).
  *
  * # Safety
  * Non-NULL pointers must be valid.
  */
-TpxStatus tpx_top_total(const struct TpxStructure *s, uint32_t *out);
+TpxStatus tpx_live_vertex_slots(const struct TpxLive *l, uint32_t *out);
 
 /**
- * The handle of top simplex `top` (top ids: dimension ascending, lexicographic within; the same
- * for every structure built from one complex) into `*out`. Errors: INVALID_HANDLE (out of
- * range). O(1) for top d-simplices, O(p log n) below.
+ * Number of live vertices into `*out`. O(1).
  *
  * # Safety
  * Non-NULL pointers must be valid.
  */
-TpxStatus tpx_top(const struct TpxStructure *s, uint32_t top, struct TpxSimplex *out);
+TpxStatus tpx_live_vertex_count(const struct TpxLive *l, uint32_t *out);
 
 /**
- * The top id of `*h` into `*out`, or `UINT32_MAX` when it is not a top simplex. Errors:
- * FOREIGN_HANDLE, INVALID_HANDLE. O(1) for d-simplices, O(p log n) below.
+ * Whether vertex `v` is live (1) or removed / out of range (0), into `*out`. O(1).
  *
  * # Safety
  * Non-NULL pointers must be valid.
  */
-TpxStatus tpx_top_id(const struct TpxStructure *s, const struct TpxSimplex *h, uint32_t *out);
+TpxStatus tpx_live_is_vertex(const struct TpxLive *l, uint32_t v, uint32_t *out);
 
 /**
- * Top simplex `top` as given in the input (its first listing's vertex order, hence its
- * winding) into `buf`; `*out_len` = its vertex count. `tpx_simplex_vertices` of `tpx_top`
- * gives the normalised (ascending) form. Errors: INVALID_HANDLE, BUFFER_TOO_SMALL. O(p).
+ * Dimension of the complex (highest live top simplex) into `*out`. O(d).
  *
  * # Safety
- * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
+ * Non-NULL pointers must be valid.
  */
-TpxStatus tpx_top_as_given(const struct TpxStructure *s,
-                           uint32_t top,
-                           uint32_t *buf,
-                           size_t buf_len,
-                           size_t *out_len);
+TpxStatus tpx_live_dimension(const struct TpxLive *l, uint32_t *out);
 
 /**
- * R_{p,q}(*h) (p = the handle's dimension) as dense indices of q-simplices into `buf`, in
- * `order` (`TPX_ORDER_*`); `*out_len` = the number written. Errors: FOREIGN_HANDLE,
- * INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), BUFFER_TOO_SMALL
- * (nothing written; `*out_len` = needed). Cost: the structure's walk (module docs), plus a sort
- * for lexicographic order. Allocation-free once this thread's buffer has grown to the answer.
+ * Number of live top p-simplices into `*out` (p = 0: isolated vertices). O(1) for p ≥ 1,
+ * O(vertices) for p = 0.
  *
  * # Safety
- * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
+ * Non-NULL pointers must be valid.
  */
-TpxStatus tpx_related(const struct TpxStructure *s,
-                      const struct TpxSimplex *h,
-                      uint32_t q,
-                      uint32_t order,
-                      uint32_t *buf,
-                      size_t buf_len,
-                      size_t *out_len);
+TpxStatus tpx_live_top_count(const struct TpxLive *l, uint32_t p, size_t *out);
 
 /**
- * R_{p,q} for many p-simplices at once, in CSR form: for the dense p-indices
- * `indices[0 .. count]`, `offsets[0 .. count + 1]` receives the start of each answer in `buf`
- * (`offsets[count]` = total) and `buf` the dense q-indices, each answer in `order`.
- * Errors: INVALID_HANDLE (p > d or an index out of range), DIMENSION_OUT_OF_RANGE,
- * BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`.
- * `offsets` must hold `count + 1` entries. Cost: one walk per index; allocation-free once this
- * thread's buffer has grown to the total.
+ * The live top p-simplices (p ≥ 1) as rows of p+1 vertex ids in their stored order (input
+ * winding, b replaced by a in place after contractions), in slot order, into `buf`;
+ * `*out_len` receives the number of uint32_t. Errors: NULL_ARGUMENT, BUFFER_TOO_SMALL (nothing
+ * copied, `*out_len` = needed length). Cost: O(slots of dimension p).
  *
  * # Safety
- * Non-NULL pointers must be valid; `indices` holds `count` ids, `offsets` room for `count + 1`,
- * `buf` room for `buf_len`.
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` uint32_t.
  */
-TpxStatus tpx_related_batch(const struct TpxStructure *s,
-                            uint32_t p,
-                            const uint32_t *indices,
-                            size_t count,
+TpxStatus tpx_live_top_simplices(const struct TpxLive *l,
+                                 uint32_t p,
+                                 uint32_t *buf,
+                                 size_t buf_len,
+                                 size_t *out_len);
+
+/**
+ * R_{p,q}(σ) for σ given by vertex ids in any order (p = simplex_len − 1), as rows of q+1
+ * ascending ids in ascending lexicographic order, into `buf`; `*out_len` receives the number
+ * of uint32_t. Errors: NULL_ARGUMENT, INVALID_SIMPLEX, NOT_IN_COMPLEX (also for a removed
+ * vertex), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL. Cost: module doc of `live` (linear in the
+ * stars of σ's vertices).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `simplex` has `simplex_len` ids, `buf` room for `buf_len`.
+ */
+TpxStatus tpx_live_relation(const struct TpxLive *l,
+                            const uint32_t *simplex,
+                            size_t simplex_len,
                             uint32_t q,
-                            uint32_t order,
-                            uint32_t *offsets,
                             uint32_t *buf,
                             size_t buf_len,
                             size_t *out_len);
 
 /**
- * |R_{p,q}(*h)| into `*out`, without writing the answer. Same errors and cost as `tpx_related`;
- * no allocation.
+ * The coordinates of live vertex `v` (`tpx_live_coord_dim` doubles) into `buf`; `*out_len`
+ * receives their number. Errors: NULL_ARGUMENT, DEAD_VERTEX, BUFFER_TOO_SMALL. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` doubles.
+ */
+TpxStatus tpx_live_coords(const struct TpxLive *l,
+                          uint32_t v,
+                          double *buf,
+                          size_t buf_len,
+                          size_t *out_len);
+
+/**
+ * Coordinates per vertex into `*out` (0 when the complex has none). O(1).
  *
  * # Safety
  * Non-NULL pointers must be valid.
  */
-TpxStatus tpx_degree(const struct TpxStructure *s,
-                     const struct TpxSimplex *h,
-                     uint32_t q,
-                     size_t *out);
+TpxStatus tpx_live_coord_dim(const struct TpxLive *l, size_t *out);
 
 /**
- * The star (every simplex having `*h` as a proper face, dimension ascending) or, with `link`
- * non-zero, the link (τ ∖ h for each such τ) of `*h`, as handles into `buf`, each dimension in
- * `order`. Errors as `tpx_related`. Cost: the star's walks (the link also locates each face).
+ * Sets the coordinates of live vertex `v` from `xyz[0 .. len]` (`len` must be the coordinate
+ * dimension). Errors: NULL_ARGUMENT, DEAD_VERTEX, INVALID_ARGUMENT (wrong length). O(1).
  *
  * # Safety
- * Non-NULL pointers must be valid; `buf` must have room for `buf_len` handles.
+ * Non-NULL pointers must be valid; `xyz` has `len` doubles.
  */
-TpxStatus tpx_star(const struct TpxStructure *s,
-                   const struct TpxSimplex *h,
-                   uint32_t link,
-                   uint32_t order,
-                   struct TpxSimplex *buf,
-                   size_t buf_len,
-                   size_t *out_len);
+TpxStatus tpx_live_set_coords(struct TpxLive *l, uint32_t v, const double *xyz, size_t len);
 
 /**
- * Whether `*h` is on the boundary (`what` = 0) or a manifold simplex (`what` = 1), as 0 or 1
- * into `*out` (definitions: `Navigate::is_boundary`, `Navigate::is_manifold`). Errors as
- * `tpx_related`, INVALID_ARGUMENT for another `what`. Cost: the star of h.
+ * Adds an isolated vertex at `xyz[0 .. len]`; its id into `*out`. Errors: NULL_ARGUMENT,
+ * INVALID_ARGUMENT (wrong length). Amortised O(1).
  *
  * # Safety
- * Non-NULL pointers must be valid.
+ * Non-NULL pointers must be valid; `xyz` has `len` doubles.
  */
-TpxStatus tpx_simplex_test(const struct TpxStructure *s,
-                           const struct TpxSimplex *h,
-                           uint32_t what,
-                           uint32_t *out);
+TpxStatus tpx_live_add_vertex(struct TpxLive *l, const double *xyz, size_t len, uint32_t *out);
 
 /**
- * Cyclic order: with `q` = 0, the manifold fans of triangles around vertex `*h` (a complex of
- * dimension ≤ 2; counter-clockwise by the input winding where oriented); with `q` = 2 or 3,
- * the triangles / tetrahedra around edge `*h` in radial order. Group k is
- * `items[offsets[k] .. offsets[k+1]]` (dense indices of triangles, or of tetrahedra for q = 3),
- * `flags[k]` has `TPX_GROUP_CLOSED` and `TPX_GROUP_ORIENTED`; `*out_items` and `*out_groups`
- * receive the counts. `offsets` needs `groups + 1` entries. Errors: WRONG_HANDLE_KIND (not a
- * vertex / not an edge), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL (nothing written; the needed
- * counts in `*out_items` and `*out_groups`). Cost: the star of the vertex or edge.
+ * Inserts the simplex `ids[0 .. len]` (its vertex order is kept as its winding) as a top
+ * simplex; top simplices it contains become its faces. Errors: NULL_ARGUMENT, INVALID_SIMPLEX
+ * (empty, repeated vertex, more than 16), DEAD_VERTEX, SIMPLEX_ALREADY_PRESENT (also for a
+ * single vertex: add vertices with `tpx_live_add_vertex`). Cost: O(d² Σ_{v∈σ} |St(v)|).
  *
  * # Safety
- * Non-NULL pointers must be valid; `items` has room for `items_len`, `offsets` for
- * `groups_len + 1` and `flags` for `groups_len` entries.
+ * Non-NULL pointers must be valid; `ids` has `len` ids.
  */
-TpxStatus tpx_cyclic(const struct TpxStructure *s,
-                     const struct TpxSimplex *h,
-                     uint32_t q,
-                     uint32_t *items,
-                     size_t items_len,
-                     uint32_t *offsets,
-                     uint32_t *flags,
-                     size_t groups_len,
-                     size_t *out_items,
-                     size_t *out_groups);
+TpxStatus tpx_live_insert_top(struct TpxLive *l, const uint32_t *ids, size_t len);
 
 /**
- * What normalisation absorbed from the input of complex `c` into `*out`. O(1).
+ * Removes the top simplex `ids[0 .. len]` (any order). Its faces that no other top simplex
+ * holds go too, except its vertices, which stay (isolated if nothing else holds them); a
+ * single isolated vertex is removed itself. Errors: NULL_ARGUMENT, INVALID_SIMPLEX,
+ * DEAD_VERTEX, NOT_IN_COMPLEX, NOT_A_TOP_SIMPLEX. Cost: O(Σ_{v∈σ} |St(v)|).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `ids` has `len` ids.
+ */
+TpxStatus tpx_live_remove_top(struct TpxLive *l, const uint32_t *ids, size_t len);
+
+/**
+ * Checks the link condition for edge {a, b} without changing anything: OK, NOT_AN_EDGE, or
+ * LINK_CONDITION_FAILS (message: the dimension and an offending link simplex); DEAD_VERTEX.
+ * Cost: O(d (|St(a)| + |St(b)|)) on meshes.
  *
  * # Safety
  * Non-NULL pointers must be valid.
  */
-TpxStatus tpx_complex_input_stats(const struct TpxComplex *c, struct TpxInputStats *out);
+TpxStatus tpx_live_link_condition(const struct TpxLive *l, uint32_t a, uint32_t b);
 
 /**
- * Listed simplex `i` of the input (`0 .. input_simplices`) exactly as given (order and
- * winding) into `buf`, and into `*top` the top id it became (as `tpx_top` numbers them, the same
- * in every structure of `c`), or `UINT32_MAX` when it was absorbed as a face of another listed
- * simplex (a repeated listing maps to the same top as its first). Writing the tops back in
- * input order: `i` ascending, skipping absorbed and repeated ones. Errors: INVALID_ARGUMENT (`i`
- * out of range), BUFFER_TOO_SMALL. O(p) (the first call builds the listing map,
- * O(Σ (p+1) log n_p)).
+ * The link condition on the complex coned over its boundary by a dummy vertex ω (Dey,
+ * Edelsbrunner, Guha, Nekhayev 1999): a boundary facet is a simplex that is a facet of exactly
+ * one simplex. OK, NOT_AN_EDGE or LINK_CONDITION_FAILS (message: dimension and simplex, ω
+ * written as 4294967294); DEAD_VERTEX. Cost: O(d² (|St(a)|² + |St(b)|²)).
  *
  * # Safety
- * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
+ * Non-NULL pointers must be valid.
  */
-TpxStatus tpx_complex_input_simplex(const struct TpxComplex *c,
-                                    size_t i,
-                                    uint32_t *buf,
-                                    size_t buf_len,
-                                    size_t *out_len,
-                                    uint32_t *top);
+TpxStatus tpx_live_link_condition_with_boundary(const struct TpxLive *l, uint32_t a, uint32_t b);
+
+/**
+ * Contracts b into a (`mode`: `TPX_CONTRACT_PRESERVE_TOPOLOGY`, `TPX_CONTRACT_FREE` or
+ * `TPX_CONTRACT_PRESERVE_MANIFOLD`), moving
+ * a to `position[0 .. position_len]` when `position` is not NULL. When `out_undo` is not NULL
+ * it receives a new undo record (owned by the caller, free with `tpx_undo_free`) for
+ * `tpx_live_split`. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (unknown mode, wrong coordinate
+ * count), INVALID_SIMPLEX (a == b), DEAD_VERTEX, and in topology-preserving mode NOT_AN_EDGE
+ * or LINK_CONDITION_FAILS. Refused contractions change nothing. Cost: O(d (|St(a)| + |St(b)|))
+ * per top simplex of St(b) on meshes.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `position` has `position_len` doubles.
+ */
+TpxStatus tpx_live_contract(struct TpxLive *l,
+                            uint32_t a,
+                            uint32_t b,
+                            uint32_t mode,
+                            const double *position,
+                            size_t position_len,
+                            struct TpxUndo **out_undo);
+
+/**
+ * Undoes the contraction that produced `u` (vertex split): same ids, slots, winding and
+ * coordinates as before it. `u` stays owned by the caller. Errors: NULL_ARGUMENT, STALE_UNDO
+ * (from before `tpx_live_compact`, applied already, or later edits changed what it restores).
+ * Cost: that of the contraction.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_split(struct TpxLive *l, const struct TpxUndo *u);
+
+/**
+ * Drops removed vertices and top slots, renumbering the live ones densely in ascending order.
+ * When `vertex_map` is not NULL it receives, for each old vertex id, its new id (`UINT32_MAX`
+ * for a removed vertex): `*out_len` = old `tpx_live_vertex_slots`; with a buffer too short
+ * nothing is compacted (BUFFER_TOO_SMALL, `*out_len` = needed length). Undo records issued
+ * before are refused afterwards (STALE_UNDO). Cost: O(size).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `vertex_map` has room for `map_len` uint32_t.
+ */
+TpxStatus tpx_live_compact(struct TpxLive *l,
+                           uint32_t *vertex_map,
+                           size_t map_len,
+                           size_t *out_len);
+
+/**
+ * The live complex as a new `TpxComplex` (live vertices renumbered densely in ascending order,
+ * as `tpx_live_compact` would; windings and coordinates kept), owned by the caller: freeze it
+ * into any structure with `tpx_structure_build`. Errors: NULL_ARGUMENT. Cost: O(size).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_to_complex(const struct TpxLive *l, struct TpxComplex **out);
+
+/**
+ * Checks every invariant of the live complex: OK, or PANIC with the broken invariant in the
+ * message (a library bug). Cost: O(d² Σ_v |St(v)|²) — for tests.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_validate(const struct TpxLive *l);
+
+/**
+ * Simplifies `complex` by quadric-error edge contraction (Garland–Heckbert, generalised to
+ * simplices of any dimension in any coordinate dimension) until about `ratio` × its top
+ * simplices remain (`ceil(ratio × count)`, or fewer contractions when no edge is left, or,
+ * with `preserve_topology`, none satisfies the link condition). With `preserve_topology`
+ * every contraction satisfies the link condition in every dimension, so the Betti numbers and
+ * 2-/3-manifoldness are kept. `complex` is not changed.
+ *
+ * On success `*out` receives a new complex owned by the caller (free with
+ * `tpx_complex_free`), with coordinates, vertices renumbered densely in ascending old id
+ * order. Errors: NULL_ARGUMENT, INVALID_RATIO (`ratio` not in (0, 1]), CANNOT_SIMPLIFY (no
+ * coordinates, a non-finite coordinate, too many top simplices). Cost: O(E log E) for E edges
+ * plus the contractions (see the `simplify` module documentation); memory about the live
+ * complex plus (n + 1)(n + 2) / 2 doubles per vertex for n coordinates.
+ *
+ * # Safety
+ * `complex` must be NULL or a live `TpxComplex`; `out` NULL or valid for a write.
+ */
+TpxStatus tpx_simplify(const struct TpxComplex *complex,
+                       double ratio,
+                       bool preserve_topology,
+                       struct TpxComplex **out);
+
+/**
+ * Simplifies `complex` in place, as `tpx_simplify` does: its content is replaced by the
+ * result. The input is released as soon as the editable copy is built, so the peak memory
+ * holds one copy of it, not two (use this when the input is no longer needed).
+ *
+ * Errors (the complex is then unchanged): NULL_ARGUMENT, INVALID_RATIO, CANNOT_SIMPLIFY.
+ * After PANIC (an internal bug) the complex holds a single isolated vertex. Cost: as
+ * `tpx_simplify`.
+ *
+ * # Safety
+ * `complex` must be NULL or a live `TpxComplex` that no other thread uses during the call.
+ */
+TpxStatus tpx_simplify_in_place(struct TpxComplex *complex, double ratio, bool preserve_topology);
+
+/**
+ * Reads `input`, simplifies it as `tpx_simplify` does and writes the result to `output`, the
+ * format chosen by its extension (any format the writers know: `.off`, `.obj`, `.mesh`,
+ * `.simplices`, ...). Both paths are NUL-terminated UTF-8. The output's format and
+ * writability are checked before any work; on failure no new file is left behind.
+ *
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (a path not UTF-8), INVALID_RATIO, IO_ERROR /
+ * PARSE_ERROR / INVALID_COMPLEX (reading `input`, as `tpx_complex_from_file`),
+ * CANNOT_SIMPLIFY, UNKNOWN_FORMAT (the output's extension names no format),
+ * FORMAT_CANNOT_HOLD (the format cannot hold a complex of the input's dimension or
+ * coordinates), WRITE_ERROR (the file system refused the output; the message names the path).
+ * Cost: `tpx_simplify` plus reading and writing.
+ *
+ * # Safety
+ * `input` and `output` must be NULL or NUL-terminated strings.
+ */
+TpxStatus tpx_simplify_file(const char *input,
+                            const char *output,
+                            double ratio,
+                            bool preserve_topology);
 
 /**
  * Builds a structure of `kind` (`TPX_KIND_*`) for the complex `c`.
@@ -859,6 +1046,23 @@ const uint32_t *tpx_relation_table_ids(const struct TpxRelationTable *t, size_t 
  * `t` must be NULL or a live handle from this library, not used afterwards.
  */
 void tpx_relation_table_free(struct TpxRelationTable *t);
+
+/**
+ * Writes the complex `c` to the file `path` (NUL-terminated UTF-8) in `format`
+ * (`TPX_FORMAT_*`; `TPX_FORMAT_FROM_EXTENSION` picks it from the path's extension): its top
+ * simplices in input order with their input vertex order (winding), isolated vertices and wire
+ * edges kept, coordinates in the shortest decimal that reads back bit for bit. Reading the file
+ * back with `tpx_complex_from_file` gives the same complex.
+ *
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8), UNKNOWN_FORMAT (format number or
+ * extension unknown), FORMAT_CANNOT_HOLD (the format cannot hold the complex, e.g. OFF with a
+ * tetrahedron; the message names the first offending simplex; nothing is written), IO_ERROR
+ * (cannot write). Cost: linear in the complex; the file is built in memory, then written.
+ *
+ * # Safety
+ * `c` must be NULL or a live complex; `path` NULL or a NUL-terminated string.
+ */
+TpxStatus tpx_complex_write(const struct TpxComplex *c, const char *path, uint32_t format);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -793,13 +793,34 @@ mod ffi {
                 TpxStatus::WriteError,
                 "cannot write",
             ),
-            ("out.xyz", TpxStatus::WriteError, "unknown output extension"),
+            (
+                "out.xyz",
+                TpxStatus::UnknownFormat,
+                "unknown output extension",
+            ),
         ] {
             let p = CString::new(path).unwrap();
             let st = unsafe { tpx_simplify_file(input.as_ptr(), p.as_ptr(), 0.5, false) };
             assert_eq!(st, status, "{path}");
             assert!(last_error().contains(needle), "{}", last_error());
         }
+        // A tetrahedron cannot go to OFF: refused before the work, nothing left behind.
+        let tet = dir.join("tet.simplices");
+        std::fs::write(&tet, "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\ns 0 1 2 3\n").unwrap();
+        let tet = CString::new(tet.to_str().unwrap()).unwrap();
+        let off = dir.join("tet.off");
+        let off_c = CString::new(off.to_str().unwrap()).unwrap();
+        let st = unsafe { tpx_simplify_file(tet.as_ptr(), off_c.as_ptr(), 0.5, false) };
+        assert_eq!(st, TpxStatus::FormatCannotHold, "{}", last_error());
+        assert!(!off.exists());
+        let stl = dir.join("out.stl");
+        let stl_c = CString::new(stl.to_str().unwrap()).unwrap();
+        // STL takes triangles but only 32-bit floats: the moved vertices are refused after the
+        // work, and the file it had created is removed.
+        let st = unsafe { tpx_simplify_file(input.as_ptr(), stl_c.as_ptr(), 0.5, false) };
+        assert_eq!(st, TpxStatus::FormatCannotHold, "{}", last_error());
+        assert!(last_error().contains("32-bit float"), "{}", last_error());
+        assert!(!stl.exists());
         let missing = CString::new("/nonexistent-dir/in.off").unwrap();
         let st = unsafe { tpx_simplify_file(missing.as_ptr(), out.as_ptr(), 0.5, false) };
         assert_eq!(st, TpxStatus::IoError);

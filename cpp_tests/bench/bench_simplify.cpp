@@ -40,6 +40,7 @@
 #include <cstring>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include "bench_common.hpp"
@@ -65,6 +66,7 @@ std::string read_off_soup(const std::string& path, Soup* soup) {
   std::string head;
   in >> head;
   if (head != "OFF") return path + ": not a plain OFF file";
+  while (in >> std::ws && in.peek() == '#') in.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
   size_t nv = 0, nf = 0, ne = 0;
   if (!(in >> nv >> nf >> ne)) return path + ": bad counts";
   soup->n_vertices = uint32_t(nv);

@@ -547,8 +547,8 @@ fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
 }
 
 fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Result<(), String> {
-    use topoplex::io::write::{check_can_hold, write_complex};
-    use topoplex::simplify::{Options, simplify_owned};
+    use topoplex::io::write::write_complex;
+    use topoplex::simplify::{Options, check_output, simplify_owned};
     if !(ratio > 0.0 && ratio <= 1.0) {
         return Err(format!("--ratio {ratio} is outside (0, 1]"));
     }
@@ -565,14 +565,9 @@ fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Re
         ));
     }
     let complex = load(input)?;
-    // Refuse an output that cannot hold the result, or cannot be written, before the work.
-    let format = check_can_hold(&complex, out, None).map_err(|e| e.to_string())?;
+    // Refuse an unknown or unfit format and an unwritable output before the work, not after.
     let existed = out.exists();
-    std::fs::OpenOptions::new()
-        .append(true)
-        .create(true)
-        .open(out)
-        .map_err(|e| format!("{}: cannot write: {e}", out.display()))?;
+    check_output(out, &complex).map_err(|e| e.to_string())?;
     let progress = Progress::new(1);
     progress.bar.set_message("contracting edges");
     let result = simplify_owned(complex, &options, &mut |done, total| {
@@ -581,7 +576,7 @@ fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Re
     });
     progress.finish();
     let written = result.map_err(|e| e.to_string()).and_then(|s| {
-        write_complex(&s.complex, out, Some(format))
+        write_complex(&s.complex, out, None)
             .map(|()| s)
             .map_err(|e| e.to_string())
     });

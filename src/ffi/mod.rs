@@ -112,8 +112,7 @@ pub enum TpxStatus {
     StaleUndo = 25,
     /// `tpx_simplify*`: the ratio is not in (0, 1] (NaN included).
     InvalidRatio = 27,
-    /// `tpx_simplify_file`: the output cannot be written (unknown extension, a format that
-    /// cannot hold the result, or the file system refused).
+    /// `tpx_simplify_file`: the file system refused to write the output file.
     WriteError = 28,
     /// `tpx_simplify*`: the complex cannot be simplified: no vertex coordinates, a non-finite
     /// coordinate, or more top simplices of one dimension than the live complex numbers.

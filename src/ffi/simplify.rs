@@ -7,8 +7,8 @@ use std::path::Path;
 use super::complex::complex_failure;
 use super::{Failure, TpxComplex, TpxStatus, guard, handle, out_ptr};
 use crate::complex::Complex;
-use crate::io::write::{check_can_hold, write_complex};
-use crate::simplify::{Options, SimplifyError, check, simplify, simplify_owned};
+use crate::io::write::{WriteError, WriteErrorKind, write_complex};
+use crate::simplify::{Options, SimplifyError, check, check_output, simplify, simplify_owned};
 
 fn simplify_failure(e: SimplifyError) -> Failure {
     let status = match e {
@@ -110,15 +110,16 @@ pub unsafe extern "C" fn tpx_simplify_in_place(
 }
 
 /// Reads `input`, simplifies it as `tpx_simplify` does and writes the result to `output`, the
-/// format chosen by its extension (`.off`, `.obj`: dimension ≤ 2; `.mesh`: dimension ≤ 3 and
-/// 2 or 3 coordinates; `.simplices`: any). Both paths are NUL-terminated UTF-8. The output's
-/// extension and format are checked before any work; nothing is written on failure.
+/// format chosen by its extension (any format the writers know: `.off`, `.obj`, `.mesh`,
+/// `.simplices`, ...). Both paths are NUL-terminated UTF-8. The output's format and
+/// writability are checked before any work; on failure no new file is left behind.
 ///
 /// Errors: NULL_ARGUMENT, INVALID_ARGUMENT (a path not UTF-8), INVALID_RATIO, IO_ERROR /
 /// PARSE_ERROR / INVALID_COMPLEX (reading `input`, as `tpx_complex_from_file`),
-/// CANNOT_SIMPLIFY, WRITE_ERROR (unknown extension, a format that cannot hold the complex, or
-/// the file system refused; the message names the path). Cost: `tpx_simplify` plus reading and
-/// writing.
+/// CANNOT_SIMPLIFY, UNKNOWN_FORMAT (the output's extension names no format),
+/// FORMAT_CANNOT_HOLD (the format cannot hold a complex of the input's dimension or
+/// coordinates), WRITE_ERROR (the file system refused the output; the message names the path).
+/// Cost: `tpx_simplify` plus reading and writing.
 ///
 /// # Safety
 /// `input` and `output` must be NULL or NUL-terminated strings.
@@ -134,10 +135,23 @@ pub unsafe extern "C" fn tpx_simplify_file(
         let output = Path::new(path_arg(output, "output")?);
         let options = options(ratio, preserve_topology)?;
         let complex = Complex::from_path(Path::new(input)).map_err(complex_failure)?;
-        let write_failure =
-            |e: crate::io::write::WriteError| Failure::new(TpxStatus::WriteError, e.to_string());
-        let format = check_can_hold(&complex, output, None).map_err(write_failure)?;
-        let done = simplify_owned(complex, &options, &mut |_, _| {}).map_err(simplify_failure)?;
-        write_complex(&done.complex, output, Some(format)).map_err(write_failure)
+        let write_failure = |e: WriteError| {
+            let status = match e.kind {
+                WriteErrorKind::Io(_) => TpxStatus::WriteError,
+                WriteErrorKind::UnknownExtension => TpxStatus::UnknownFormat,
+                WriteErrorKind::CannotHold { .. } => TpxStatus::FormatCannotHold,
+            };
+            Failure::new(status, e.to_string())
+        };
+        let existed = output.exists();
+        check_output(output, &complex).map_err(write_failure)?;
+        let done = simplify_owned(complex, &options, &mut |_, _| {});
+        let written = done
+            .map_err(simplify_failure)
+            .and_then(|d| write_complex(&d.complex, output, None).map_err(write_failure));
+        if written.is_err() && !existed {
+            let _ = std::fs::remove_file(output);
+        }
+        written
     })
 }

@@ -247,47 +247,6 @@ pub fn write_complex(c: &Complex, path: &Path, format: Option<Format>) -> Result
     write_raw(&listing(c), path, format)
 }
 
-/// Checks before any work that `path` names a format (or `format` is given) that can hold
-/// complexes like `c`: one top simplex of each of its dimensions, with its coordinates, is
-/// written to memory. Returns the format. Cost: O(d²). What only the real data can show (a
-/// non-finite coordinate) is still refused by the write itself.
-pub fn check_can_hold(
-    c: &Complex,
-    path: &Path,
-    format: Option<Format>,
-) -> Result<Format, WriteError> {
-    let err = |kind| WriteError {
-        path: path.to_path_buf(),
-        kind,
-    };
-    let format = format
-        .or_else(|| Format::from_path(path))
-        .ok_or_else(|| err(WriteErrorKind::UnknownExtension))?;
-    let mut probe = RawInput::new();
-    let mut coords = c.coords().map(|k| Coords {
-        dim: k.dim,
-        data: Vec::new(),
-    });
-    let mut n = 0u32;
-    for p in 0..=c.dimension() {
-        let Some(first) = c.tops(p).iter().next() else {
-            continue;
-        };
-        let local: Vec<u32> = (n..n + first.len() as u32).collect();
-        if let (Some(out), Some(k)) = (coords.as_mut(), c.coords()) {
-            for &v in first {
-                let at = v as usize * k.dim;
-                out.data.extend_from_slice(&k.data[at..at + k.dim]);
-            }
-        }
-        n += local.len() as u32;
-        probe.push(&local, 0);
-    }
-    probe.vertex_count = Some(n);
-    probe.coords = coords;
-    format.write(&probe).map(|_| format).map_err(err)
-}
-
 /// Writes a listing to `path` in `format` (by default the one its extension names).
 pub fn write_raw(raw: &RawInput, path: &Path, format: Option<Format>) -> Result<(), WriteError> {
     let err = |kind| WriteError {

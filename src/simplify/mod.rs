@@ -18,7 +18,9 @@
 //!    versions and are skipped when it changed (lazy invalidation, no decrease-key); contract
 //!    it (into the vertex with the larger star, which then moves to the minimiser), add the
 //!    quadrics, bump the survivor's version and push its edges with their new costs. With
-//!    `preserve_topology` the contraction is link-checked in every dimension and a refused edge
+//!    `preserve_topology` the contraction is link-checked in every dimension, on the complex
+//!    coned over its boundary ([`ContractMode::PreserveManifold`]: manifolds with boundary
+//!    stay manifolds), and a refused edge
 //!    is parked; when the queue runs dry before the target, the parked edges whose endpoints'
 //!    neighbourhoods changed since (a contraction touched the survivor and its ring) are queued
 //!    again, and the loop ends when none did.
@@ -36,7 +38,11 @@ pub mod quadric;
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
+use std::path::Path;
+
 use crate::complex::Complex;
+use crate::io::write::{Format, WriteError, WriteErrorKind};
+use crate::io::{Coords, RawInput};
 use crate::live::{ContractMode, LiveComplex, Refusal, VertexId};
 use quadric::{QuadricSpace, sum_into};
 
@@ -177,6 +183,38 @@ pub fn simplify_live(
     Ok(state.stats)
 }
 
+/// Checks before any work that the result can be written to `path`: its extension names a
+/// format ([`crate::io::write::Format::from_path`]), that format holds a complex of `complex`'s
+/// dimension and coordinates (a simplification never raises either; probed by writing one
+/// simplex of that dimension to memory), and the file can be opened for writing (it is created
+/// empty if missing: remove it if the work then fails).
+pub fn check_output(path: &Path, complex: &Complex) -> Result<(), WriteError> {
+    let err = |kind| WriteError {
+        path: path.to_path_buf(),
+        kind,
+    };
+    let format = Format::from_path(path).ok_or_else(|| err(WriteErrorKind::UnknownExtension))?;
+    let d = complex.dimension() as u32;
+    let mut probe = RawInput::new();
+    probe.vertex_count = Some(d + 1);
+    // Distinct points (formats such as STL refuse coincident vertices).
+    probe.coords = complex.coords().map(|c| {
+        let mut data = vec![0.0; c.dim * (d as usize + 1)];
+        for i in 1..=d as usize {
+            data[i * c.dim + (i - 1) % c.dim] = 1.0 + ((i - 1) / c.dim) as f64;
+        }
+        Coords { dim: c.dim, data }
+    });
+    probe.push(&(0..=d).collect::<Vec<u32>>(), 0);
+    format.write(&probe).map_err(err)?;
+    std::fs::OpenOptions::new()
+        .append(true)
+        .create(true)
+        .open(path)
+        .map(drop)
+        .map_err(|e| err(WriteErrorKind::Io(e.to_string())))
+}
+
 /// Refuses what [`simplify`] cannot do, before any work: a ratio outside (0, 1], no or
 /// non-finite coordinates, too many top simplices.
 pub fn check(complex: &Complex, options: &Options) -> Result<(), SimplifyError> {
@@ -265,7 +303,7 @@ impl<'a> State<'a> {
         let tops = top_count(live);
         State {
             mode: if options.preserve_topology {
-                ContractMode::PreserveTopology
+                ContractMode::PreserveManifold
             } else {
                 ContractMode::Free
             },
@@ -530,12 +568,6 @@ fn contract_edge(state: &mut State, entry: Entry) -> bool {
             .unwrap_or(0)
     };
     let (keep, gone) = if star(a) >= star(b) { (a, b) } else { (b, a) };
-    if state.mode == ContractMode::PreserveTopology && !boundary_link_condition(state.live, a, b) {
-        state.stats.refused += 1;
-        let touched = state.touched(a, b);
-        state.parked.push((entry, touched));
-        return false;
-    }
     state.cost(keep, gone);
     let x = std::mem::take(&mut state.scratch.x);
     let result = state
@@ -573,71 +605,6 @@ fn contract_edge(state: &mut State, entry: Entry) -> bool {
     }
     state.scratch.ring = ring;
     true
-}
-
-/// The boundary half of the link condition for manifolds with boundary (Dey, Edelsbrunner,
-/// Guha, Nekhayev 1999: the link condition in K ∪ ω·∂K, ω a vertex coned over the boundary).
-/// ∂K is made of the *boundary facets*, facets of top simplices that no other top simplex
-/// holds. When a and b both lie on ∂K, {a, b} must be an edge of ∂K satisfying the link
-/// condition within ∂K; otherwise contracting it would pinch the boundary (a disk into two disks
-/// sharing a vertex: same Betti numbers, no longer a manifold). Costs O(k² d²) for the stars of
-/// a and b, and a small live complex of their boundary facets when both are on ∂K.
-fn boundary_link_condition(live: &LiveComplex, a: u32, b: u32) -> bool {
-    let fa = boundary_facets_at(live, a);
-    if fa.is_empty() {
-        return true;
-    }
-    let fb = boundary_facets_at(live, b);
-    if fb.is_empty() {
-        return true;
-    }
-    if !fa.iter().any(|f| f.contains(&b)) {
-        return false;
-    }
-    // The boundary around a and b as its own complex, over local ids.
-    let mut ids: Vec<u32> = fa.iter().chain(&fb).flatten().copied().collect();
-    ids.sort_unstable();
-    ids.dedup();
-    let local = |v: u32| ids.binary_search(&v).map_or(u32::MAX, |i| i as u32);
-    let facets: Vec<Vec<u32>> = fa
-        .iter()
-        .chain(&fb)
-        .map(|f| f.iter().map(|&v| local(v)).collect())
-        .collect();
-    let refs: Vec<&[u32]> = facets.iter().map(Vec::as_slice).collect();
-    let Ok(c) = Complex::from_simplices(ids.len() as u32, &refs) else {
-        return false;
-    };
-    LiveComplex::from_complex(&c)
-        .link_condition(VertexId(local(a)), VertexId(local(b)))
-        .is_ok()
-}
-
-/// The boundary facets (see [`boundary_link_condition`]) through `v`, each once, sorted.
-fn boundary_facets_at(live: &LiveComplex, v: u32) -> Vec<Vec<u32>> {
-    let mut out: Vec<Vec<u32>> = Vec::new();
-    let Ok(star) = live.vertex_star(VertexId(v)) else {
-        return out;
-    };
-    for t in star {
-        let verts = live.top_vertices(t).unwrap_or(&[]);
-        for skip in 0..verts.len() {
-            if verts[skip] == v {
-                continue;
-            }
-            let mut f: Vec<u32> = verts
-                .iter()
-                .enumerate()
-                .filter(|&(i, _)| i != skip)
-                .map(|(_, &u)| u)
-                .collect();
-            f.sort_unstable();
-            if !out.contains(&f) && is_boundary_facet(live, &f) {
-                out.push(f);
-            }
-        }
-    }
-    out
 }
 
 /// Moves the parked entries whose vertices' neighbourhoods changed back into the queue and
