@@ -375,7 +375,7 @@ fn adjacency_by_vertex(
     }
     // Slot k = (top k / w, facet opposite vertex k % w); its facet's smallest vertex is the
     // top's first vertex unless that is the one left out.
-    let low = |k: usize| tops.get(k / w)[usize::from(k % w == 0)];
+    let low = |k: usize| tops.get(k / w)[usize::from(k.is_multiple_of(w))];
     let mut start = vec![0u32; n as usize + 1];
     for k in 0..slots {
         start[low(k) as usize + 1] += 1;
