@@ -178,7 +178,7 @@ fn rips(n: u32, dim: usize, out: &Path) -> std::io::Result<()> {
     let mut w = BufWriter::with_capacity(1 << 20, std::fs::File::create(out)?);
     let mut stack = Vec::new();
     for v in 0..n {
-        writeln!(w, "{v}")?;
+        writeln!(w, "s {v}")?;
         stack.clear();
         stack.push((vec![v], nbrs[v as usize].clone()));
         while let Some((s, cand)) = stack.pop() {
@@ -187,7 +187,7 @@ fn rips(n: u32, dim: usize, out: &Path) -> std::io::Result<()> {
                 t.push(c);
                 if t.len() == dim + 1 {
                     let line: Vec<String> = t.iter().map(u32::to_string).collect();
-                    writeln!(w, "{}", line.join(" "))?;
+                    writeln!(w, "s {}", line.join(" "))?;
                 } else {
                     let rest: Vec<u32> = cand[k + 1..]
                         .iter()
@@ -196,7 +196,7 @@ fn rips(n: u32, dim: usize, out: &Path) -> std::io::Result<()> {
                         .collect();
                     if rest.is_empty() {
                         let line: Vec<String> = t.iter().map(u32::to_string).collect();
-                        writeln!(w, "{}", line.join(" "))?;
+                        writeln!(w, "s {}", line.join(" "))?;
                     } else {
                         stack.push((t, rest));
                     }

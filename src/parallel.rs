@@ -152,6 +152,16 @@ pub(crate) fn map_collect<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Sen
     install(|| (0..n).into_par_iter().map(f).collect())
 }
 
+/// `f(c)` for each of `chunks` chunks of work the caller sized, in chunk order: on
+/// [`threads`] threads whenever there are several chunks.
+pub(crate) fn map_chunks<T: Send>(chunks: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
+    use rayon::prelude::*;
+    if threads() == 1 || chunks < 2 {
+        return (0..chunks).map(f).collect();
+    }
+    install(|| (0..chunks).into_par_iter().map(f).collect())
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

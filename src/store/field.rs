@@ -39,12 +39,14 @@ impl Field for u64 {
     }
 }
 
+/// Counts and dimensions: bounded by 2^48 so that the shape checks' arithmetic on a hostile
+/// value cannot overflow.
 impl Field for usize {
     fn put(&self, w: &mut Writer) {
         w.scalar(*self as u64);
     }
     fn get(r: &mut Reader) -> Result<Self, StoreError> {
-        r.usize("a count")
+        Ok(r.bounded(1 << 48, "a count")? as usize)
     }
 }
 

@@ -193,9 +193,9 @@ fn adjacency_by_vertex(
         f
     };
     // Buckets in chunks of vertices; each chunk yields its matched pairs and its first error.
-    let chunks = (n as usize).div_ceil(4096).max(1);
+    let chunks = (n as usize).div_ceil(1024).max(1);
     let per_chunk = |c: usize| {
-        let (v0, v1) = (c * 4096, ((c + 1) * 4096).min(n as usize));
+        let (v0, v1) = (c * 1024, ((c + 1) * 1024).min(n as usize));
         let mut pairs = Vec::new();
         let mut bucket: Vec<([u32; 16], u32)> = Vec::new();
         for v in v0..v1 {
@@ -224,7 +224,7 @@ fn adjacency_by_vertex(
         }
         (pairs, None)
     };
-    let results = crate::parallel::map_collect(chunks, per_chunk);
+    let results = crate::parallel::map_chunks(chunks, per_chunk);
     for (pairs, error) in results {
         if let Some((f, three)) = error {
             let three = three
@@ -268,7 +268,7 @@ fn face_counts(
         let mut sums = vec![0usize; d];
         let (mut seen, mut stack, mut faces) = (FxHashSet::default(), Vec::new(), Vec::new());
         let mut upper = Vec::with_capacity(w);
-        for v in (c * 4096) as u32..(((c + 1) * 4096) as u32).min(n) {
+        for v in (c * 1024) as u32..(((c + 1) * 1024) as u32).min(n) {
             seen.clear();
             let seeds = &vstar[vstar_off[v as usize] as usize..vstar_off[v as usize + 1] as usize];
             stack.extend_from_slice(seeds);
@@ -310,8 +310,8 @@ fn face_counts(
         }
         sums
     };
-    let chunks = (n as usize).div_ceil(4096);
-    for sums in crate::parallel::map_collect(chunks, per_chunk) {
+    let chunks = (n as usize).div_ceil(1024);
+    for sums in crate::parallel::map_chunks(chunks, per_chunk) {
         for p in 1..d - 1 {
             counts[p] += sums[p];
         }
