@@ -245,12 +245,6 @@ class Complex {
     detail::check(tpx_complex_coord_dim(c_, &n));
     return n;
   }
-  /* What normalisation absorbed (input simplices, duplicates, faces of other simplices). */
-  TpxInputStats input_stats() const {
-    TpxInputStats st{};
-    detail::check(tpx_complex_input_stats(c_, &st));
-    return st;
-  }
   /* Listed simplex i exactly as given; `top` receives its top id (as Structure::top numbers
    * them) or UINT32_MAX when it was absorbed as a face of another listed simplex. */
   std::vector<std::uint32_t> input_simplex(std::size_t i, std::uint32_t &top) const {

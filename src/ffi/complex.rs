@@ -227,7 +227,7 @@ pub unsafe extern "C" fn tpx_complex_free(complex: *mut TpxComplex) {
 
 /// What normalising the input absorbed (`TpxComplex`'s input statistics).
 #[repr(C)]
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct TpxInputStats {
     /// Simplices as given, absorbed ones included.
     pub input_simplices: usize,

@@ -573,37 +573,6 @@ pub unsafe extern "C" fn tpx_cyclic(
     })
 }
 
-/// What normalising the input absorbed (see `tpx_complex_input_stats`).
-#[repr(C)]
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct TpxInputStats {
-    /// Simplices as listed in the input, absorbed ones included.
-    pub input_simplices: usize,
-    /// Extra listings of a simplex listed before (each counts one).
-    pub absorbed_duplicates: usize,
-    /// Listed simplices that are a proper face of another listed simplex.
-    pub absorbed_faces: usize,
-}
-
-/// What normalisation absorbed from the input of complex `c` into `*out`. O(1).
-///
-/// # Safety
-/// Non-NULL pointers must be valid.
-#[unsafe(no_mangle)]
-pub unsafe extern "C" fn tpx_complex_input_stats(
-    c: *const super::TpxComplex,
-    out: *mut TpxInputStats,
-) -> TpxStatus {
-    super::get_into(c, "c", out, |c| {
-        let st = c.complex.stats();
-        TpxInputStats {
-            input_simplices: st.input_simplices,
-            absorbed_duplicates: st.absorbed_duplicates,
-            absorbed_faces: st.absorbed_faces,
-        }
-    })
-}
-
 /// Listed simplex `i` of the input (`0 .. input_simplices`) exactly as given (order and
 /// winding) into `buf`, and into `*top` the top id it became (as `tpx_top` numbers them, the same
 /// in every structure of `c`), or `UINT32_MAX` when it was absorbed as a face of another listed
