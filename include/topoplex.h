@@ -67,6 +67,26 @@
 #define TPX_KIND_IASTAR 9
 
 /**
+ * Answer order of the navigation functions: the structure's natural order.
+ */
+#define TPX_ORDER_NATURAL 0
+
+/**
+ * Answer order of the navigation functions: ascending lexicographic (ascending index).
+ */
+#define TPX_ORDER_LEXICOGRAPHIC 1
+
+/**
+ * Flag bit of a group written by `tpx_fans_around` / `tpx_around_edge`: the group closes.
+ */
+#define TPX_GROUP_CLOSED 1
+
+/**
+ * Flag bit of a group: consistently oriented and counter-clockwise by the input winding.
+ */
+#define TPX_GROUP_ORIENTED 2
+
+/**
  * `tpx_live_contract` mode: only an edge satisfying the link condition (topology preserved).
  */
 #define TPX_CONTRACT_PRESERVE_TOPOLOGY 0
@@ -82,6 +102,12 @@
  * manifolds.
  */
 #define TPX_CONTRACT_PRESERVE_MANIFOLD 2
+
+/**
+ * `tpx_structure_open` flag: check every section's checksum and the structure's invariants
+ * before returning (reads the whole file).
+ */
+#define TPX_OPEN_VERIFY 1
 
 /**
  * The format named by the output file's extension (`tpx_complex_write`).
@@ -300,6 +326,27 @@ enum TpxStatus
    * message names the first offending simplex. Nothing was written.
    */
   TPX_STATUS_FORMAT_CANNOT_HOLD = 31,
+  /**
+   * A saved file (`.tpx`) is corrupt: a checksum, offset or length is wrong (the message
+   * names the file and the first inconsistency).
+   */
+  TPX_STATUS_SAVED_FILE_CORRUPT = 40,
+  /**
+   * A saved file is shorter than its header says.
+   */
+  TPX_STATUS_SAVED_FILE_TRUNCATED = 41,
+  /**
+   * A saved file was written by another format version.
+   */
+  TPX_STATUS_SAVED_FILE_WRONG_VERSION = 42,
+  /**
+   * The file is not a saved file (wrong magic number).
+   */
+  TPX_STATUS_SAVED_FILE_FOREIGN = 43,
+  /**
+   * A saved file was written on a host of the other byte order.
+   */
+  TPX_STATUS_SAVED_FILE_WRONG_ENDIANNESS = 44,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -348,6 +395,48 @@ typedef struct TpxStructure TpxStructure;
 typedef struct TpxUndo TpxUndo;
 
 /**
+ * What normalising the input absorbed (`TpxComplex`'s input statistics).
+ */
+typedef struct TpxInputStats {
+  /**
+   * Simplices as given, absorbed ones included.
+   */
+  size_t input_simplices;
+  /**
+   * Extra listings of a simplex listed more than once.
+   */
+  size_t absorbed_duplicates;
+  /**
+   * Listed simplices that are a proper face of another listed simplex.
+   */
+  size_t absorbed_faces;
+} TpxInputStats;
+
+/**
+ * A handle to one simplex of one structure (12 bytes, plain data; copy freely).
+ *
+ * `index` is the simplex's dense index among the simplices of its dimension (lexicographic
+ * rank; a vertex's index is its id; the caller's per-dimension arrays can be indexed by it).
+ * `meta` holds the dimension in its low 8 bits (`meta & 0xff`); the other bits are 0 for every
+ * structure of this library. `owner` is the stamp of the structure that made it. A handle stays
+ * valid as long as its structure lives; copying it is free, nothing needs releasing.
+ */
+typedef struct TpxSimplex {
+  /**
+   * Dense index among the simplices of its dimension.
+   */
+  uint32_t index;
+  /**
+   * Dimension in bits 0..8; form and local bits above (0 here).
+   */
+  uint32_t meta;
+  /**
+   * Stamp of the owning structure (`tpx_structure_stamp`).
+   */
+  uint32_t owner;
+} TpxSimplex;
+
+/**
  * Storage of a structure: what the papers count and what the process really holds.
  */
 typedef struct TpxStorage {
@@ -393,7 +482,9 @@ const char *tpx_last_error_message(void);
  *
  * On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
  * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (offsets decreasing, `coord_dim == 0` with coords),
- * INVALID_COMPLEX (message names the offending simplex by its input position), TOO_LARGE.
+ * INVALID_COMPLEX (message names the offending simplex by its input position), TOO_LARGE
+ * (sizes that overflow, a closure above the default budget — see
+ * `tpx_complex_from_arrays_budget` — or memory that cannot be allocated: never an abort).
  * Cost: O(n log n in the total input size n) for sorting and absorbing faces; memory of the top simplices.
  *
  * # Safety
@@ -408,18 +499,51 @@ TpxStatus tpx_complex_from_arrays(uint32_t n_vertices,
                                   struct TpxComplex **out);
 
 /**
+ * `tpx_complex_from_arrays` with an explicit closure budget: the complex's closure may have at
+ * most `max_simplices` simplices (by its upper bound n + Σ over top p-simplices of
+ * 2^{p+1} − p − 2, or by an exact count when that bound is within 16 times the limit); 0 keeps the default, max(2^20, 64 × (ids + vertices given with
+ * coordinates)); `UINT64_MAX` removes the limit. Above it: TOO_LARGE, nothing allocated of
+ * closure size. Same arguments, ownership, errors and cost otherwise.
+ *
+ * # Safety
+ * Non-NULL pointers must point to arrays of the stated lengths.
+ */
+TpxStatus tpx_complex_from_arrays_budget(uint32_t n_vertices,
+                                         const uint32_t *ids,
+                                         const size_t *offsets,
+                                         size_t n_simplices,
+                                         const double *coords,
+                                         size_t coord_dim,
+                                         uint64_t max_simplices,
+                                         struct TpxComplex **out);
+
+/**
  * Reads a complex from a file, the format chosen by extension: `.off`, `.obj`, `.mesh`,
  * `.simplices` (`path` is a NUL-terminated UTF-8 path).
  *
  * On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
  * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8), IO_ERROR (cannot read),
  * PARSE_ERROR (syntax or unknown extension; message `file:line: what`), INVALID_COMPLEX
- * (message `file:line: simplex [..] ...`). Cost: linear in the file plus normalisation.
+ * (message `file:line: simplex [..] ...`), TOO_LARGE (closure above the default budget, see
+ * `tpx_complex_from_file_budget`; memory that cannot be allocated). Cost: linear in the file
+ * plus normalisation.
  *
  * # Safety
  * `path`, if non-NULL, must be a NUL-terminated string.
  */
 TpxStatus tpx_complex_from_file(const char *path, struct TpxComplex **out);
+
+/**
+ * `tpx_complex_from_file` with an explicit closure budget `max_simplices` (0: the default,
+ * max(2^20, 64 × (listed ids + declared vertices)); `UINT64_MAX`: unlimited; see
+ * `tpx_complex_from_arrays_budget`). Same ownership, errors and cost otherwise.
+ *
+ * # Safety
+ * `path`, if non-NULL, must be a NUL-terminated string.
+ */
+TpxStatus tpx_complex_from_file_budget(const char *path,
+                                       uint64_t max_simplices,
+                                       struct TpxComplex **out);
 
 /**
  * Releases a complex. NULL is a no-op. Structures built from it stay valid (they own their
@@ -429,6 +553,15 @@ TpxStatus tpx_complex_from_file(const char *path, struct TpxComplex **out);
  * `complex` must be NULL or a live handle from this library, not used afterwards.
  */
 void tpx_complex_free(struct TpxComplex *complex);
+
+/**
+ * What normalisation absorbed (duplicates and faces of other listed simplices, which are not
+ * errors) into `*out`. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid (a live handle; a writable `TpxInputStats`).
+ */
+TpxStatus tpx_complex_input_stats(const struct TpxComplex *c, struct TpxInputStats *out);
 
 /**
  * Dimension d of the complex (highest dimension of a simplex) into `*out`. O(1).
@@ -579,6 +712,221 @@ TpxStatus tpx_decomposition_copies(const struct TpxDecomposition *d,
                                    const uint32_t **copy_vertex,
                                    const uint32_t **copy_component,
                                    size_t *len);
+
+/**
+ * The owner stamp of structure `s` into `*out`: every handle it makes carries it. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_structure_stamp(const struct TpxStructure *s, uint32_t *out);
+
+/**
+ * Locates the simplex with vertex ids `simplex[0 .. simplex_len]` (any order) and writes its
+ * handle to `*out`. Errors: NULL_ARGUMENT, INVALID_SIMPLEX, NOT_IN_COMPLEX. Cost: O(p log n_p)
+ * (a binary search; for dimensions a structure stores only implicitly, the first call builds
+ * that dimension's table once, see the Rust `handle` module). No allocation otherwise.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `simplex` must hold `simplex_len` ids.
+ */
+TpxStatus tpx_locate(const struct TpxStructure *s,
+                     const uint32_t *simplex,
+                     size_t simplex_len,
+                     struct TpxSimplex *out);
+
+/**
+ * The handle of the p-simplex of dense index `index` into `*out` (for a vertex: p = 0, index =
+ * its id). Errors: INVALID_HANDLE (p > d or index >= n_p). O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_handle(const struct TpxStructure *s,
+                     uint32_t p,
+                     uint32_t index,
+                     struct TpxSimplex *out);
+
+/**
+ * The vertex ids of `*h`, ascending, into `buf` (p + 1 of them; `*out_len` = p + 1).
+ * Errors: NULL_ARGUMENT, FOREIGN_HANDLE, INVALID_HANDLE, BUFFER_TOO_SMALL. O(p).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
+ */
+TpxStatus tpx_simplex_vertices(const struct TpxStructure *s,
+                               const struct TpxSimplex *h,
+                               uint32_t *buf,
+                               size_t buf_len,
+                               size_t *out_len);
+
+/**
+ * Number of top simplices over all dimensions into `*out` (top ids are `0 .. *out`). O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_top_total(const struct TpxStructure *s, uint32_t *out);
+
+/**
+ * The handle of top simplex `top` (top ids: dimension ascending, lexicographic within; the same
+ * for every structure built from one complex) into `*out`. Errors: INVALID_HANDLE (out of
+ * range). O(1) for top d-simplices, O(p log n) below.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_top(const struct TpxStructure *s, uint32_t top, struct TpxSimplex *out);
+
+/**
+ * The top id of `*h` into `*out`, or `UINT32_MAX` when it is not a top simplex. Errors:
+ * FOREIGN_HANDLE, INVALID_HANDLE. O(1) for d-simplices, O(p log n) below.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_top_id(const struct TpxStructure *s, const struct TpxSimplex *h, uint32_t *out);
+
+/**
+ * Top simplex `top` as given in the input (its first listing's vertex order, hence its
+ * winding) into `buf`; `*out_len` = its vertex count. `tpx_simplex_vertices` of `tpx_top`
+ * gives the normalised (ascending) form. Errors: INVALID_HANDLE, BUFFER_TOO_SMALL. O(p).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
+ */
+TpxStatus tpx_top_as_given(const struct TpxStructure *s,
+                           uint32_t top,
+                           uint32_t *buf,
+                           size_t buf_len,
+                           size_t *out_len);
+
+/**
+ * R_{p,q}(*h) (p = the handle's dimension) as dense indices of q-simplices into `buf`, in
+ * `order` (`TPX_ORDER_*`); `*out_len` = the number written. Errors: FOREIGN_HANDLE,
+ * INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), BUFFER_TOO_SMALL
+ * (nothing written; `*out_len` = needed). Cost: the structure's walk (module docs), plus a sort
+ * for lexicographic order. Allocation-free once this thread's buffer has grown to the answer.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
+ */
+TpxStatus tpx_related(const struct TpxStructure *s,
+                      const struct TpxSimplex *h,
+                      uint32_t q,
+                      uint32_t order,
+                      uint32_t *buf,
+                      size_t buf_len,
+                      size_t *out_len);
+
+/**
+ * R_{p,q} for many p-simplices at once, in CSR form: for the dense p-indices
+ * `indices[0 .. count]`, `offsets[0 .. count + 1]` receives the start of each answer in `buf`
+ * (`offsets[count]` = total) and `buf` the dense q-indices, each answer in `order`.
+ * Errors: INVALID_HANDLE (p > d or an index out of range), DIMENSION_OUT_OF_RANGE,
+ * BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`.
+ * `offsets` must hold `count + 1` entries. Cost: one walk per index; allocation-free once this
+ * thread's buffer has grown to the total.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `indices` holds `count` ids, `offsets` room for `count + 1`,
+ * `buf` room for `buf_len`.
+ */
+TpxStatus tpx_related_batch(const struct TpxStructure *s,
+                            uint32_t p,
+                            const uint32_t *indices,
+                            size_t count,
+                            uint32_t q,
+                            uint32_t order,
+                            uint32_t *offsets,
+                            uint32_t *buf,
+                            size_t buf_len,
+                            size_t *out_len);
+
+/**
+ * |R_{p,q}(*h)| into `*out`, without writing the answer. Same errors and cost as `tpx_related`;
+ * no allocation.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_degree(const struct TpxStructure *s,
+                     const struct TpxSimplex *h,
+                     uint32_t q,
+                     size_t *out);
+
+/**
+ * The star (every simplex having `*h` as a proper face, dimension ascending) or, with `link`
+ * non-zero, the link (τ ∖ h for each such τ) of `*h`, as handles into `buf`, each dimension in
+ * `order`. Errors as `tpx_related`. Cost: the star's walks (the link also locates each face).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` handles.
+ */
+TpxStatus tpx_star(const struct TpxStructure *s,
+                   const struct TpxSimplex *h,
+                   uint32_t link,
+                   uint32_t order,
+                   struct TpxSimplex *buf,
+                   size_t buf_len,
+                   size_t *out_len);
+
+/**
+ * Whether `*h` is on the boundary (`what` = 0) or a manifold simplex (`what` = 1), as 0 or 1
+ * into `*out` (definitions: `Navigate::is_boundary`, `Navigate::is_manifold`). Errors as
+ * `tpx_related`, INVALID_ARGUMENT for another `what`. Cost: the star of h.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_simplex_test(const struct TpxStructure *s,
+                           const struct TpxSimplex *h,
+                           uint32_t what,
+                           uint32_t *out);
+
+/**
+ * Cyclic order: with `q` = 0, the manifold fans of triangles around vertex `*h` (a complex of
+ * dimension ≤ 2; counter-clockwise by the input winding where oriented); with `q` = 2 or 3,
+ * the triangles / tetrahedra around edge `*h` in radial order. Group k is
+ * `items[offsets[k] .. offsets[k+1]]` (dense indices of triangles, or of tetrahedra for q = 3),
+ * `flags[k]` has `TPX_GROUP_CLOSED` and `TPX_GROUP_ORIENTED`; `*out_items` and `*out_groups`
+ * receive the counts. `offsets` needs `groups + 1` entries. Errors: WRONG_HANDLE_KIND (not a
+ * vertex / not an edge), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL (nothing written; the needed
+ * counts in `*out_items` and `*out_groups`). Cost: the star of the vertex or edge.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `items` has room for `items_len`, `offsets` for
+ * `groups_len + 1` and `flags` for `groups_len` entries.
+ */
+TpxStatus tpx_cyclic(const struct TpxStructure *s,
+                     const struct TpxSimplex *h,
+                     uint32_t q,
+                     uint32_t *items,
+                     size_t items_len,
+                     uint32_t *offsets,
+                     uint32_t *flags,
+                     size_t groups_len,
+                     size_t *out_items,
+                     size_t *out_groups);
+
+/**
+ * Listed simplex `i` of the input (`0 .. input_simplices`) exactly as given (order and
+ * winding) into `buf`, and into `*top` the top id it became (as `tpx_top` numbers them, the same
+ * in every structure of `c`), or `UINT32_MAX` when it was absorbed as a face of another listed
+ * simplex (a repeated listing maps to the same top as its first). Writing the tops back in
+ * input order: `i` ascending, skipping absorbed and repeated ones. Errors: INVALID_ARGUMENT (`i`
+ * out of range), BUFFER_TOO_SMALL. O(p) (the first call builds the listing map,
+ * O(Σ (p+1) log n_p)).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
+ */
+TpxStatus tpx_complex_input_simplex(const struct TpxComplex *c,
+                                    size_t i,
+                                    uint32_t *buf,
+                                    size_t buf_len,
+                                    size_t *out_len,
+                                    uint32_t *top);
 
 /**
  * Builds a live complex from `c`: the same vertex ids, every top simplex with its input
@@ -887,6 +1235,58 @@ TpxStatus tpx_simplify_file(const char *input,
                             const char *output,
                             double ratio,
                             bool preserve_topology);
+
+/**
+ * Saves the complex `c` and, unless `s` is NULL, the structure `s` built from it, to `path`
+ * (a `.tpx` file: written beside it under a temporary name, then renamed).
+ *
+ * Errors: NULL_ARGUMENT (`c` or `path`), INVALID_ARGUMENT (path not UTF-8), IO_ERROR. Cost:
+ * one pass over the complex's listing and the structure's arrays.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid (live handles; a NUL-terminated path). `s` must have been
+ * built from `c` (or opened from a file saved with it): the file pairs them.
+ */
+TpxStatus tpx_save(const struct TpxComplex *c, const struct TpxStructure *s, const char *path);
+
+/**
+ * Opens the structure of `kind` (`TPX_KIND_*`) saved in `path` by memory mapping it: the
+ * structure's arrays are read from the file as queries touch them. If the file holds another
+ * kind or only a complex, the structure is built from the saved complex instead. With
+ * `flags & TPX_OPEN_VERIFY`, every checksum and the structure's invariants are checked first.
+ *
+ * On success `*out` receives a new structure owned by the caller (free with
+ * `tpx_structure_free`; the mapping lives until then). Errors: NULL_ARGUMENT,
+ * INVALID_ARGUMENT (path not UTF-8, unknown flag), UNKNOWN_KIND, IO_ERROR,
+ * SAVED_FILE_CORRUPT, SAVED_FILE_TRUNCATED, SAVED_FILE_WRONG_VERSION, SAVED_FILE_FOREIGN,
+ * SAVED_FILE_WRONG_ENDIANNESS, and the build errors of `tpx_structure_build` when building.
+ * Cost: O(sections) without VERIFY; O(file size) with it.
+ *
+ * # Safety
+ * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+ */
+TpxStatus tpx_structure_open(const char *path,
+                             uint32_t kind,
+                             uint32_t flags,
+                             struct TpxStructure **out);
+
+/**
+ * Opens the complex saved in `path`, rebuilt from its saved listing (validated like any
+ * input). On success `*out` receives a new complex owned by the caller (free with
+ * `tpx_complex_free`). Errors: as `tpx_structure_open`, plus INVALID_COMPLEX. Cost: a
+ * normalisation of the saved listing.
+ *
+ * # Safety
+ * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+ */
+TpxStatus tpx_complex_open(const char *path, struct TpxComplex **out);
+
+/**
+ * Sets the number of threads later builds use (`0` is INVALID_ARGUMENT). Without a call, the
+ * `TOPOPLEX_THREADS` environment variable, else every core. Builds give the same structure
+ * whatever the count. O(1).
+ */
+TpxStatus tpx_set_threads(uint32_t threads);
 
 /**
  * Builds a structure of `kind` (`TPX_KIND_*`) for the complex `c`.
