@@ -838,9 +838,7 @@ fn components(live: &LiveComplex) -> usize {
 /// most two d-simplices.
 #[test]
 fn real_data_contractions_keep_euler_characteristic_and_components() {
-    // TOPOPLEX_SHARED_DATA: the data directory for a worktree that is not next to ../shared.
-    let env = std::env::var_os("TOPOPLEX_SHARED_DATA").map(std::path::PathBuf::from);
-    let Some(dir) = common::shared_data().or(env) else {
+    let Some(dir) = common::shared_data() else {
         eprintln!("../shared/data is absent: skipping");
         return;
     };

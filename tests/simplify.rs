@@ -505,10 +505,7 @@ fn refusals_name_the_problem() {
 
 #[test]
 fn real_data_preserving_topology_keeps_betti_numbers_and_manifoldness() {
-    // TOPOPLEX_SHARED_DATA stands in for ../shared/data when the crate is checked out elsewhere.
-    let dir = common::shared_data()
-        .or_else(|| std::env::var_os("TOPOPLEX_SHARED_DATA").map(std::path::PathBuf::from));
-    let Some(dir) = dir else {
+    let Some(dir) = common::shared_data() else {
         eprintln!("../shared/data is absent: skipping");
         return;
     };
