@@ -12,6 +12,7 @@
 #ifndef TOPOPLEX_H
 #define TOPOPLEX_H
 
+#include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
 

@@ -24,12 +24,17 @@ pub fn set_threads(n: usize) {
 /// The number of threads builds use: [`set_threads`], else `TOPOPLEX_THREADS`, else the
 /// number of cores.
 pub fn threads() -> usize {
+    // Read once: `available_parallelism` reads cgroup files on every call, and small sorts on
+    // query paths ask for the thread count.
+    static DEFAULT: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
     match THREADS.load(Ordering::Relaxed) {
-        0 => std::env::var("TOPOPLEX_THREADS")
-            .ok()
-            .and_then(|v| v.trim().parse::<usize>().ok())
-            .filter(|&n| n > 0)
-            .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get())),
+        0 => *DEFAULT.get_or_init(|| {
+            std::env::var("TOPOPLEX_THREADS")
+                .ok()
+                .and_then(|v| v.trim().parse::<usize>().ok())
+                .filter(|&n| n > 0)
+                .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+        }),
         n => n,
     }
 }

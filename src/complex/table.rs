@@ -200,7 +200,7 @@ fn unpack_keys(keys: &[u64], arity: usize, bits: u32) -> Vec<u32> {
             *v = ((k >> (bits * (arity - 1 - i) as u32)) & mask) as u32;
         }
     };
-    if crate::parallel::threads() > 1 && keys.len() >= crate::parallel::MIN_PARALLEL {
+    if keys.len() >= crate::parallel::MIN_PARALLEL && crate::parallel::threads() > 1 {
         use rayon::prelude::*;
         crate::parallel::install(|| {
             out.par_chunks_mut(arity)
