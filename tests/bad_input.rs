@@ -2,6 +2,8 @@
 //! it gets. `docs/bad-input.md` holds the generated table; this test fails when the table is
 //! stale (regenerate: `TOPOPLEX_WRITE_BAD_INPUT_DOC=1 cargo test --test bad_input`).
 
+mod common;
+
 use std::path::PathBuf;
 
 use topoplex::Complex;
@@ -525,21 +527,6 @@ fn every_bad_input_gets_the_catalogued_error() {
         ));
     }
     std::fs::remove_dir_all(&dir).ok();
-    let doc_path = format!("{}/docs/bad-input.md", env!("CARGO_MANIFEST_DIR"));
-    let doc = std::fs::read_to_string(&doc_path).unwrap_or_default();
-    let (begin, end) = ("<!-- readers:begin -->\n", "<!-- readers:end -->");
-    let (Some(a), Some(b)) = (doc.find(begin), doc.find(end)) else {
-        panic!("docs/bad-input.md lacks the readers table markers")
-    };
     let table = format!("| class | file | what `Complex::from_path` says |\n|---|---|---|\n{rows}");
-    if std::env::var_os("TOPOPLEX_WRITE_BAD_INPUT_DOC").is_some() {
-        let new = format!("{}{begin}{table}{}", &doc[..a], &doc[b..]);
-        std::fs::write(&doc_path, new).unwrap();
-        return;
-    }
-    assert_eq!(
-        &doc[a + begin.len()..b],
-        table,
-        "docs/bad-input.md is stale: TOPOPLEX_WRITE_BAD_INPUT_DOC=1 cargo test --test bad_input"
-    );
+    common::check_bad_input_doc("readers", &table, "bad_input");
 }

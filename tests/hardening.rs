@@ -5,6 +5,8 @@
 //! `<!-- cli:end -->`); this test fails when it is stale (regenerate:
 //! `TOPOPLEX_WRITE_BAD_INPUT_DOC=1 cargo test --test hardening`).
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
@@ -362,20 +364,5 @@ fn every_hostile_cli_case_gets_the_catalogued_outcome() {
         ));
     }
     std::fs::remove_dir_all(&dir).ok();
-    let doc_path = format!("{}/docs/bad-input.md", env!("CARGO_MANIFEST_DIR"));
-    let doc = std::fs::read_to_string(&doc_path).unwrap_or_default();
-    let (begin, end) = ("<!-- cli:begin -->\n", "<!-- cli:end -->");
-    let (Some(a), Some(b)) = (doc.find(begin), doc.find(end)) else {
-        panic!("docs/bad-input.md lacks the cli table markers")
-    };
-    if std::env::var_os("TOPOPLEX_WRITE_BAD_INPUT_DOC").is_some() {
-        let new = format!("{}{begin}{table}{}", &doc[..a], &doc[b..]);
-        std::fs::write(&doc_path, new).unwrap();
-        return;
-    }
-    assert_eq!(
-        &doc[a + begin.len()..b],
-        table,
-        "docs/bad-input.md is stale: TOPOPLEX_WRITE_BAD_INPUT_DOC=1 cargo test --test hardening"
-    );
+    common::check_bad_input_doc("cli", &table, "hardening");
 }

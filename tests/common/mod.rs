@@ -71,3 +71,28 @@ pub fn shared_files() -> Vec<PathBuf> {
     files.sort();
     files
 }
+
+/// Checks that the generated `table` stands between `<!-- {section}:begin -->` and
+/// `<!-- {section}:end -->` in docs/bad-input.md, or writes it there when
+/// `TOPOPLEX_WRITE_BAD_INPUT_DOC` is set. `test` names the test target that regenerates it.
+pub fn check_bad_input_doc(section: &str, table: &str, test: &str) {
+    let doc_path = format!("{}/docs/bad-input.md", env!("CARGO_MANIFEST_DIR"));
+    let doc = std::fs::read_to_string(&doc_path).unwrap_or_default();
+    let (begin, end) = (
+        format!("<!-- {section}:begin -->\n"),
+        format!("<!-- {section}:end -->"),
+    );
+    let (Some(a), Some(b)) = (doc.find(&begin), doc.find(&end)) else {
+        panic!("docs/bad-input.md lacks the {section} table markers")
+    };
+    if std::env::var_os("TOPOPLEX_WRITE_BAD_INPUT_DOC").is_some() {
+        let new = format!("{}{begin}{table}{}", &doc[..a], &doc[b..]);
+        std::fs::write(&doc_path, new).unwrap();
+        return;
+    }
+    assert_eq!(
+        &doc[a + begin.len()..b],
+        table,
+        "docs/bad-input.md is stale: TOPOPLEX_WRITE_BAD_INPUT_DOC=1 cargo test --test {test}"
+    );
+}
