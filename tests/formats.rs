@@ -551,3 +551,14 @@ fn mutated_seed_files_are_refused_or_read_never_panic() {
         }
     }
 }
+
+/// Fuzz find: a legacy VTK cell whose length is a 40-digit number is a CELLS error, not an
+/// overflow in the length arithmetic.
+#[test]
+fn vtk_cell_length_beyond_usize_is_an_error() {
+    let text = "# vtk DataFile Version 4.2\nwritten by topoplex\nASCII\nDATASET UNSTRUCTURED_GRID\n\
+                POINTS 5 double\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n2 2 2\nCELLS 2 8\n4 0 1 2 3\n\
+                9999999999999999999999999999999999999999 0 1\nCELL_TYPES 2\n10\n3\n";
+    let e = topoplex::io::vtk::parse(text.as_bytes()).unwrap_err();
+    assert!(e.1.to_string().contains("ends inside cell #1"), "{}", e.1);
+}

@@ -215,8 +215,10 @@ fn read_cells(inp: &mut Input, version5: bool, line: u32) -> Res<(Vec<Vec<u32>>,
                     syntax(format!("CELLS size {b} ends inside cell #{i}")),
                 ));
             };
+            // A huge or non-finite length saturates; the end must not overflow past it.
             let len = len.max(0.0) as usize;
-            let ids = flat.get(k + 1..k + 1 + len).ok_or_else(|| {
+            let end = (k + 1).saturating_add(len);
+            let ids = flat.get(k + 1..end).ok_or_else(|| {
                 (
                     line,
                     syntax(format!("CELLS size {b} ends inside cell #{i}")),
@@ -227,7 +229,7 @@ fn read_cells(inp: &mut Input, version5: bool, line: u32) -> Res<(Vec<Vec<u32>>,
                     .map(|&x| vertex_id(x, line))
                     .collect::<Res<Vec<u32>>>()?,
             );
-            k += 1 + len;
+            k = end;
         }
         if k != flat.len() {
             return Err((
