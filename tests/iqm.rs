@@ -198,7 +198,8 @@ fn assert_glues_back(dec: &Decomposition, c: &Complex) -> Result<(), String> {
     let mut glued = Vec::new();
     for piece in &dec.components {
         for row in piece.tops.chunks_exact(piece.dimension + 1) {
-            let t = original_row(piece, row);
+            let mut t = original_row(piece, row);
+            t.sort_unstable();
             if t.windows(2).any(|w| w[0] >= w[1]) {
                 return Err(format!(
                     "top simplex {t:?}: not ascending or repeats a vertex"
@@ -231,11 +232,33 @@ fn assert_glues_back(dec: &Decomposition, c: &Complex) -> Result<(), String> {
     Ok(())
 }
 
+/// Every component's top simplex, read through its local ids as given, is the complex's top
+/// simplex in its input winding (the vertex order of its first listing).
+fn assert_winding_kept(dec: &Decomposition, c: &Complex) -> Result<(), String> {
+    for piece in &dec.components {
+        let k = piece.dimension;
+        for row in piece.tops.chunks_exact(k + 1) {
+            let given = original_row(piece, row);
+            let mut sorted = given.clone();
+            sorted.sort_unstable();
+            let Some(i) = c.tops(k).find(&sorted) else {
+                return Err(format!("{given:?} is no top simplex of the complex"));
+            };
+            let want = c.top_oriented(k, i);
+            if given != want {
+                return Err(format!("component row {given:?}, input winding {want:?}"));
+            }
+        }
+    }
+    Ok(())
+}
+
 fn check_decomposition(c: &Complex) -> Result<(), String> {
     let s = iqm(c);
     let dec = s.decomposition();
     assert_initial_quasi_manifolds(&dec)?;
     assert_glues_back(&dec, c)?;
+    assert_winding_kept(&dec, c)?;
     let (_, copies) = canon(&dec, |v| v);
     let want = brute_force_copies(c);
     if copies != want {
@@ -388,6 +411,31 @@ fn builtin_example_components() {
     assert_eq!(dec.split_vertices, vec![0, 1, 2, 3]);
     // The wire is pasted at 4: one copy shared by both edges.
     assert_eq!(dec.components[3].original, vec![3, 4, 5]);
+}
+
+#[test]
+fn bowtie_listed_clockwise_keeps_its_winding_in_each_component() {
+    //   0       3
+    //   | \   / |      triangle 2-1-0 listed clockwise, 2-3-4 counter-clockwise: the
+    //   |  2    |      two components (split at 2) give them back exactly as listed
+    //   | /   \ |
+    //   1       4
+    let c = Complex::from_simplices(5, &[&[2, 1, 0], &[2, 3, 4]]).unwrap();
+    let dec = iqm(&c).decomposition();
+    let rows: Vec<Vec<u32>> = dec
+        .components
+        .iter()
+        .flat_map(|p| {
+            p.tops
+                .chunks_exact(p.dimension + 1)
+                .map(|r| original_row(p, r))
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    assert_eq!(rows, vec![vec![2, 1, 0], vec![2, 3, 4]]);
+    // Local ids still number copies in order of first appearance in the ascending rows.
+    assert_eq!(dec.components[0].tops, vec![2, 1, 0]);
+    assert_eq!(dec.components[0].original, vec![0, 1, 2]);
 }
 
 #[test]

@@ -67,7 +67,8 @@ pub unsafe extern "C" fn tpx_decomposition_component_count(
 }
 
 /// Component `index`: its dimension k, its top k-simplices as rows of k+1 *local* vertex ids
-/// (`*tops_len` = number of uint32_t), and `original_ids[local]`, the original vertex id of each
+/// (`*tops_len` = number of uint32_t; each row in the vertex order of the top simplex's first
+/// listing in the input, so its winding is kept), and `original_ids[local]`, the original vertex id of each
 /// local vertex (`*original_len` = number of local vertices; two local vertices of one component
 /// may share an original id where a vertex was split inside the component). Arrays belong to
 /// the handle. Errors: NULL_ARGUMENT, DIMENSION_OUT_OF_RANGE when `index` is not below the

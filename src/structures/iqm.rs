@@ -60,6 +60,9 @@
 //!   j-th smallest vertex), grouped by component: component i owns rows
 //!   `comp_top_start[i]..` up to the next component of the same dimension. This is each
 //!   component's extended IA: R_{k,0} over copies, local id = copy − `comp_copy_start[i]`.
+//!   Rows are kept ascending (the queries test subsets by merging); the input winding of each
+//!   top simplex lives in the handle index, and [`Iqm::decomposition`] writes every component's
+//!   rows in it, so a component written to a file keeps the input's orientation.
 //! - `adj[k]` (k ≥ 1): k + 1 entries per top k-simplex; entry j is the top k-simplex of the same
 //!   component sharing the facet opposite entry j (R_{k,k}), `NONE` when there is none. A facet
 //!   over copies that three or more top simplices of one component share would also get
@@ -150,8 +153,9 @@ pub struct Iqm {
 pub struct ComponentPiece {
     /// Dimension of the component (of its top simplices).
     pub dimension: usize,
-    /// `dimension + 1` local ids per top simplex; row j's entries follow the ascending order of
-    /// the original ids they stand for.
+    /// `dimension + 1` local ids per top simplex, each row in the vertex order of the top
+    /// simplex's first listing in the input (its winding); rows in lexicographic order of their
+    /// original ids.
     pub tops: Vec<u32>,
     /// `original[local]`: the original vertex id of each local vertex (a vertex copy).
     pub original: Vec<u32>,
@@ -507,11 +511,16 @@ impl Iqm {
                 let k = self.comp_dim[i] as usize;
                 let first = self.comp_copy_start[i];
                 let copies = first..self.comp_copy_start[i + 1];
-                let rows = self.comp_rows(i);
-                let flat = &self.tops[k][rows.start * (k + 1)..rows.end * (k + 1)];
+                let mut tops = Vec::with_capacity(self.comp_rows(i).len() * (k + 1));
+                for t in self.comp_rows(i) {
+                    self.push_row_as_given(k, t as u32, &mut tops);
+                }
+                for c in &mut tops {
+                    *c -= first;
+                }
                 ComponentPiece {
                     dimension: k,
-                    tops: flat.iter().map(|&c| c - first).collect(),
+                    tops,
                     original: self.copy_vertex[copies.start as usize..copies.end as usize].to_vec(),
                     first_copy: first,
                 }
@@ -525,6 +534,34 @@ impl Iqm {
             split_vertices: self.split_vertices.to_vec(),
             split_offsets: self.hyper_offsets.to_vec(),
             split_copies: self.hyper_copies.to_vec(),
+        }
+    }
+
+    /// Appends the copies of top k-simplex `t` in the vertex order of its first listing (its
+    /// winding): the stored row follows ascending original ids, the handle index keeps the
+    /// permutation to the input. O(k log n_k) (locating the row's top id).
+    fn push_row_as_given(&self, k: usize, t: u32, out: &mut Vec<u32>) {
+        use crate::handle::Navigate;
+        let row = self.row(k, t);
+        let mut orig = [0u32; crate::complex::MAX_DIMENSION + 1];
+        for (o, &c) in orig.iter_mut().zip(row) {
+            *o = self.copy_vertex[c as usize];
+        }
+        let orig = &orig[..row.len()];
+        let given = self
+            .locate(orig)
+            .and_then(|h| self.top_id(h))
+            .ok()
+            .flatten()
+            .and_then(|id| self.top_as_given(id).ok());
+        match given {
+            Some(given) => out.extend(
+                given
+                    .iter()
+                    .map(|v| row[orig.binary_search(v).expect("same vertex set")]),
+            ),
+            // Unreachable for a validated structure: every row is a top simplex of the complex.
+            None => out.extend_from_slice(row),
         }
     }
 
