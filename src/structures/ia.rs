@@ -62,7 +62,7 @@ use rustc_hash::FxHashSet;
 
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
-use crate::complex::{Complex, SimplexTable, is_subset};
+use crate::complex::{Complex, MAX_DIMENSION, SimplexTable, is_subset};
 use crate::handle::SimplexHandle;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
@@ -535,6 +535,104 @@ impl NavBase for IndexedAdjacency {
     }
 }
 
+/// The cases of [`IndexedAdjacency`]'s `query`; each returns whether σ is in the complex.
+impl IndexedAdjacency {
+    /// σ a d-simplex: its facet neighbours (q = d) or its q-faces. `None` when σ is not one.
+    fn query_top(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Option<()> {
+        let t = self.tops.find(sigma)?;
+        if q == self.d {
+            for &u in self.neighbours(t) {
+                if u != NONE {
+                    out.extend_from_slice(self.tops.get(u as usize));
+                }
+            }
+        } else {
+            faces_containing(sigma, &[], q, |f| out.extend_from_slice(f));
+        }
+        Some(())
+    }
+
+    /// R_{0,0} (q = 0) or R_{0,1} of vertex v: an edge at v is named by its other end, so one
+    /// id set serves both.
+    fn query_vertex_edges(&self, v: u32, q: usize, out: &mut Vec<u32>) {
+        let (mut seen, mut others) = (IdSet::default(), IdSet::default());
+        self.walk_star(v, &mut seen, |_, t| {
+            for &x in t.iter().filter(|&&x| x != v) {
+                if others.insert(x) {
+                    match q {
+                        0 => out.push(x),
+                        _ => out.extend_from_slice(&[x.min(v), x.max(v)]),
+                    }
+                }
+            }
+            true
+        });
+    }
+
+    /// R_{p,q}, p < q: the q-faces containing σ of the top simplices around σ\[0\].
+    fn query_coboundary(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> bool {
+        let (mut set, mut seen) = (RowSet::default(), IdSet::default());
+        let mut found = false;
+        self.walk_star(sigma[0], &mut seen, |_, t| {
+            if is_subset(sigma, t) {
+                found = true;
+                if q == self.d {
+                    out.extend_from_slice(t);
+                } else {
+                    faces_containing(t, sigma, q, |f| set.emit(f, out));
+                }
+            }
+            true
+        });
+        found
+    }
+
+    /// R_{p,p}, 0 < p < d: every facet of σ contains σ\[0\] or σ\[1\], so the stars of those
+    /// two vertices hold every p-simplex sharing a facet with σ.
+    fn query_adjacency(&self, sigma: &[u32], out: &mut Vec<u32>) -> bool {
+        let p = sigma.len() - 1;
+        let mut set = RowSet::default();
+        let mut found = false;
+        let mut facet = [0u32; MAX_DIMENSION + 1];
+        let mut row = [0u32; MAX_DIMENSION + 1];
+        let mut visit = |_: u32, t: &[u32]| {
+            let shared = sigma.iter().filter(|v| t.binary_search(v).is_ok()).count();
+            if shared == p + 1 {
+                found = true;
+            }
+            if shared < p {
+                return true;
+            }
+            for skip in 0..=p {
+                if shared == p && t.binary_search(&sigma[skip]).is_ok() {
+                    continue;
+                }
+                let mut k = 0;
+                for (j, &v) in sigma.iter().enumerate() {
+                    if j != skip {
+                        facet[k] = v;
+                        k += 1;
+                    }
+                }
+                for &x in t.iter().filter(|x| sigma.binary_search(x).is_err()) {
+                    // The facet with x inserted in order, on the stack.
+                    let at = facet[..p].partition_point(|&y| y < x);
+                    row[..at].copy_from_slice(&facet[..at]);
+                    row[at] = x;
+                    row[at + 1..=p].copy_from_slice(&facet[at..p]);
+                    set.emit(&row[..=p], out);
+                }
+            }
+            true
+        };
+        // Separate walks: a shared `seen` would stop the second walk at simplices the first
+        // one met, before it reaches the rest of the star of σ[1]. Rows are deduplicated.
+        self.walk_star(sigma[0], &mut IdSet::default(), &mut visit);
+        self.walk_star(sigma[1], &mut IdSet::default(), &mut visit);
+        found
+    }
+}
+
 impl Topology for IndexedAdjacency {
     fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
         Some(self)
@@ -586,105 +684,34 @@ impl Topology for IndexedAdjacency {
 
     fn query(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Result<(), QueryError> {
         let p = sigma.len() - 1;
-        let d = self.d;
         let missing = || QueryError::NotInComplex {
             simplex: sigma.to_vec(),
         };
-        if p == d {
-            let t = self.tops.find(sigma).ok_or_else(missing)?;
-            if q == d {
-                for &u in self.neighbours(t) {
-                    if u != NONE {
-                        out.extend_from_slice(self.tops.get(u as usize));
-                    }
-                }
-            } else {
+        if p == self.d {
+            return self.query_top(sigma, q, out).ok_or_else(missing);
+        }
+        let found = if p > self.d {
+            false
+        } else if q < p {
+            let found = self.in_some_top(sigma);
+            if found {
                 faces_containing(sigma, &[], q, |f| out.extend_from_slice(f));
             }
-            return Ok(());
-        }
-        if p > d {
-            return Err(missing());
-        }
-        let mut set = RowSet::default();
-        let mut seen = IdSet::default();
-        if q < p {
-            if !self.in_some_top(sigma) {
-                return Err(missing());
-            }
-            faces_containing(sigma, &[], q, |f| out.extend_from_slice(f));
+            found
         } else if p == 0 && q <= 1 {
-            // An edge at v is named by its other end: one id set for R_{0,0} and R_{0,1}.
-            let v = sigma[0];
-            let mut others = IdSet::default();
-            self.walk_star(v, &mut seen, |_, t| {
-                for &x in t.iter().filter(|&&x| x != v) {
-                    if others.insert(x) {
-                        match q {
-                            0 => out.push(x),
-                            _ => out.extend_from_slice(&[x.min(v), x.max(v)]),
-                        }
-                    }
-                }
-                true
-            });
+            self.query_vertex_edges(sigma[0], q, out);
+            true
         } else if q > p {
-            let mut found = false;
-            self.walk_star(sigma[0], &mut seen, |_, t| {
-                if is_subset(sigma, t) {
-                    found = true;
-                    if q == d {
-                        out.extend_from_slice(t);
-                    } else {
-                        faces_containing(t, sigma, q, |f| set.emit(f, out));
-                    }
-                }
-                true
-            });
-            if !found {
-                return Err(missing());
-            }
+            self.query_coboundary(sigma, q, out)
         } else {
-            // R_{p,p}, 0 < p < d: every facet of σ contains σ[0] or σ[1].
-            let mut found = false;
-            let mut facet = [0u32; 16];
-            let mut visit = |_: u32, t: &[u32]| {
-                let shared = sigma.iter().filter(|v| t.binary_search(v).is_ok()).count();
-                if shared == p + 1 {
-                    found = true;
-                }
-                if shared >= p {
-                    for skip in 0..=p {
-                        if shared == p && t.binary_search(&sigma[skip]).is_ok() {
-                            continue;
-                        }
-                        let mut k = 0;
-                        for (j, &v) in sigma.iter().enumerate() {
-                            if j != skip {
-                                facet[k] = v;
-                                k += 1;
-                            }
-                        }
-                        for &x in t.iter().filter(|x| sigma.binary_search(x).is_err()) {
-                            let mut row = facet[..p].to_vec();
-                            let at = row.partition_point(|&y| y < x);
-                            row.insert(at, x);
-                            set.emit(&row, out);
-                        }
-                    }
-                }
-                true
-            };
-            // Separate walks: a shared `seen` would stop the second walk at simplices the first
-            // one met, before it reaches the rest of the star of σ[1]. Rows are deduplicated.
-            self.walk_star(sigma[0], &mut seen, &mut visit);
-            self.walk_star(sigma[1], &mut IdSet::default(), &mut visit);
+            let start = out.len();
+            let found = self.query_adjacency(sigma, out);
             if !found {
-                out.clear();
-                return Err(missing());
+                out.truncate(start);
             }
-        }
-        Ok(())
+            found
+        };
+        if found { Ok(()) } else { Err(missing()) }
     }
 
     fn storage(&self) -> Storage {

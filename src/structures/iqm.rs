@@ -109,7 +109,6 @@
 //! Queries keep no state in the structure: "visited" marks are a per-query hash set.
 
 use crate::store::Arr;
-use rustc_hash::FxHashSet;
 
 use super::common::{IdSet, IdStack, UnionFind, faces_containing};
 use super::nav::{NavBase, NavIndex};
@@ -244,11 +243,16 @@ fn push_subsets(s: &[u32], q: usize, out: &mut Vec<u32>) {
     faces_containing(s, &[], q, |f| out.extend_from_slice(f));
 }
 
-impl Iqm {
-    /// Computes the standard decomposition and encodes it (see the module doc for the
-    /// algorithm). O(S log S) for S slots, plus the joint test.
-    pub fn build(complex: &Complex) -> Result<Iqm, BuildError> {
-        let n = complex.vertex_count();
+/// The top simplices of the complex, exploded: top k-simplex i is global top
+/// `top_base[k] + i`, and its j-th vertex (ascending) is slot `slot_base[k] + i·(k+1) + j`.
+struct Exploded<'a> {
+    tables: Vec<&'a SimplexTable>,
+    slot_base: Vec<usize>,
+    top_base: Vec<usize>,
+}
+
+impl<'a> Exploded<'a> {
+    fn new(complex: &'a Complex) -> Exploded<'a> {
         let d = complex.dimension();
         let tables: Vec<&SimplexTable> = (0..=d).map(|k| complex.tops(k)).collect();
         let mut slot_base = vec![0usize; d + 2];
@@ -257,196 +261,290 @@ impl Iqm {
             slot_base[k + 1] = slot_base[k] + tables[k].len() * (k + 1);
             top_base[k + 1] = top_base[k] + tables[k].len();
         }
-        // Copies get the `SPLIT` bit free; slots bound the copies.
-        to_u32(KIND, slot_base[d + 1] * 2, "vertex slots (twice)")?;
-        let dim_of = |g: u32| (0..=d).rfind(|&k| top_base[k] <= g as usize).unwrap();
+        Exploded {
+            tables,
+            slot_base,
+            top_base,
+        }
+    }
 
-        // vstar: top simplices of dimension >= 2 at each vertex, dimension descending, for the
-        // test "is this facet of an h-simplex inside a higher-dimensional top simplex".
-        let mut vstar_off = vec![0u32; n as usize + 1];
-        for t in tables.iter().skip(2) {
+    fn dimension(&self) -> usize {
+        self.tables.len() - 1
+    }
+
+    fn slots(&self) -> usize {
+        self.slot_base[self.dimension() + 1]
+    }
+
+    fn top_total(&self) -> usize {
+        self.top_base[self.dimension() + 1]
+    }
+
+    /// Dimension of global top `g`.
+    fn dim_of(&self, g: u32) -> usize {
+        (0..=self.dimension())
+            .rfind(|&k| self.top_base[k] <= g as usize)
+            .unwrap()
+    }
+}
+
+/// Step 2 of the algorithm: for each vertex, the top simplices of dimension ≥ 2 at it,
+/// dimension descending (CSR), to tell whether a facet of a top h-simplex lies in a top simplex
+/// of higher dimension.
+struct HigherTops {
+    offsets: Vec<u32>,
+    tops: Vec<u32>,
+}
+
+impl HigherTops {
+    fn new(x: &Exploded, n: u32) -> HigherTops {
+        let mut offsets = vec![0u32; n as usize + 1];
+        for t in x.tables.iter().skip(2) {
             for &v in t.as_flat() {
-                vstar_off[v as usize + 1] += 1;
+                offsets[v as usize + 1] += 1;
             }
         }
         for v in 0..n as usize {
-            vstar_off[v + 1] += vstar_off[v];
+            offsets[v + 1] += offsets[v];
         }
-        let mut fill = vstar_off.clone();
-        let mut vstar = vec![0u32; vstar_off[n as usize] as usize];
-        for k in (2..=d).rev() {
-            for (i, s) in tables[k].iter().enumerate() {
+        let mut fill = offsets.clone();
+        let mut tops = vec![0u32; offsets[n as usize] as usize];
+        for k in (2..=x.dimension()).rev() {
+            for (i, s) in x.tables[k].iter().enumerate() {
                 for &v in s {
-                    vstar[fill[v as usize] as usize] = (top_base[k] + i) as u32;
+                    tops[fill[v as usize] as usize] = (x.top_base[k] + i) as u32;
                     fill[v as usize] += 1;
                 }
             }
         }
-        let in_higher_top = |tau: &[u32], k: usize| -> bool {
-            let hub = *tau
-                .iter()
-                .min_by_key(|&&v| vstar_off[v as usize + 1] - vstar_off[v as usize])
-                .unwrap();
-            let list =
-                &vstar[vstar_off[hub as usize] as usize..vstar_off[hub as usize + 1] as usize];
-            for &g in list {
-                let kg = dim_of(g);
-                if kg <= k {
-                    break;
-                }
-                if is_subset(tau, tables[kg].get(g as usize - top_base[kg])) {
-                    return true;
-                }
-            }
-            false
-        };
+        HigherTops { offsets, tops }
+    }
 
-        let mut slots = UnionFind::new(slot_base[d + 1]);
-        let mut tops_uf = UnionFind::new(top_base[d + 1]);
-        for k in 1..=d {
-            let w = k + 1;
-            let facets = facet_rows(tables[k].as_flat(), w, false);
-            let order = sorted_order(&facets, k);
-            for_each_group(&facets, k, &order, |group| {
-                if group.len() != 2 {
-                    return;
+    /// Whether `tau`, a facet of a top k-simplex, is a face of a top simplex of dimension
+    /// above k: scans the higher tops at the vertex of `tau` having fewest.
+    fn contain(&self, x: &Exploded, tau: &[u32], k: usize) -> bool {
+        let at = |v: u32| self.offsets[v as usize] as usize..self.offsets[v as usize + 1] as usize;
+        let hub = *tau.iter().min_by_key(|&&v| at(v).len()).unwrap();
+        for &g in &self.tops[at(hub)] {
+            let kg = x.dim_of(g);
+            if kg <= k {
+                break;
+            }
+            if is_subset(tau, x.tables[kg].get(g as usize - x.top_base[kg])) {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// Steps 1–3: pastes top simplices along joints. Returns the union-finds over slots and over
+/// global tops.
+fn paste_joints(x: &Exploded, higher: &HigherTops) -> (UnionFind, UnionFind) {
+    let mut slots = UnionFind::new(x.slots());
+    let mut tops_uf = UnionFind::new(x.top_total());
+    for k in 1..=x.dimension() {
+        let w = k + 1;
+        let facets = facet_rows(x.tables[k].as_flat(), w, false);
+        let order = sorted_order(&facets, k);
+        for_each_group(&facets, k, &order, |group| {
+            if group.len() != 2 {
+                return;
+            }
+            let (r1, r2) = (group[0] as usize, group[1] as usize);
+            if higher.contain(x, &facets[r1 * k..(r1 + 1) * k], k) {
+                return;
+            }
+            let (i1, j1, i2, j2) = (r1 / w, r1 % w, r2 / w, r2 % w);
+            tops_uf.union((x.top_base[k] + i1) as u32, (x.top_base[k] + i2) as u32);
+            // Both rows are ascending, so the shared vertices come in the same order.
+            let a = (0..w).filter(|&j| j != j1);
+            let b = (0..w).filter(|&j| j != j2);
+            for (ja, jb) in a.zip(b) {
+                slots.union(
+                    (x.slot_base[k] + i1 * w + ja) as u32,
+                    (x.slot_base[k] + i2 * w + jb) as u32,
+                );
+            }
+        });
+    }
+    (slots, tops_uf)
+}
+
+/// Step 4a: numbers the components, dimension descending, then by first top simplex. Returns
+/// each component's dimension and, per dimension, the component of each top simplex.
+fn number_components(x: &Exploded, tops_uf: &mut UnionFind) -> (Vec<u8>, Vec<Vec<u32>>) {
+    let d = x.dimension();
+    let mut comp_of_root = vec![NONE; x.top_total()];
+    let mut comp_dim: Vec<u8> = Vec::new();
+    let mut top_comp: Vec<Vec<u32>> = vec![Vec::new(); d + 1];
+    for k in (0..=d).rev() {
+        for i in 0..x.tables[k].len() {
+            let r = tops_uf.find((x.top_base[k] + i) as u32) as usize;
+            if comp_of_root[r] == NONE {
+                comp_of_root[r] = comp_dim.len() as u32;
+                comp_dim.push(k as u8);
+            }
+            top_comp[k].push(comp_of_root[r]);
+        }
+    }
+    (comp_dim, top_comp)
+}
+
+/// Step 4b's output: top simplices over copy ids, grouped by component, and the copies.
+#[derive(Default)]
+struct Copies {
+    tops: Vec<Vec<u32>>,
+    comp_top_start: Vec<u32>,
+    comp_copy_start: Vec<u32>,
+    copy_vertex: Vec<u32>,
+    copy_comp: Vec<u32>,
+    copy_top: Vec<u32>,
+}
+
+/// Step 4b: rows of each dimension grouped by component (lexicographic within one), each slot
+/// class numbered as a copy in order of first appearance.
+fn number_copies(x: &Exploded, slots: &mut UnionFind, top_comp: &[Vec<u32>], m: usize) -> Copies {
+    let d = x.dimension();
+    let mut out = Copies {
+        tops: vec![Vec::new(); d + 1],
+        comp_top_start: vec![0u32; m],
+        comp_copy_start: vec![0u32; m + 1],
+        ..Copies::default()
+    };
+    let mut copy_of_root = vec![NONE; x.slots()];
+    let mut last_comp = NONE;
+    for k in (0..=d).rev() {
+        let w = k + 1;
+        let mut order: Vec<u32> = (0..x.tables[k].len() as u32).collect();
+        order.sort_by_key(|&i| top_comp[k][i as usize]);
+        let mut rows = Vec::with_capacity(x.tables[k].len() * w);
+        for (new_i, &i) in order.iter().enumerate() {
+            let comp = top_comp[k][i as usize];
+            if comp != last_comp {
+                out.comp_top_start[comp as usize] = new_i as u32;
+                out.comp_copy_start[comp as usize] = out.copy_vertex.len() as u32;
+                last_comp = comp;
+            }
+            for (j, &v) in x.tables[k].get(i as usize).iter().enumerate() {
+                let r = slots.find((x.slot_base[k] + i as usize * w + j) as u32) as usize;
+                if copy_of_root[r] == NONE {
+                    copy_of_root[r] = out.copy_vertex.len() as u32;
+                    out.copy_vertex.push(v);
+                    out.copy_comp.push(comp);
+                    out.copy_top.push(new_i as u32);
                 }
+                rows.push(copy_of_root[r]);
+            }
+        }
+        out.tops[k] = rows;
+    }
+    out.comp_copy_start[m] = out.copy_vertex.len() as u32;
+    out
+}
+
+/// Step 4c: adjacency inside components, from the facets over copy ids. Returns the adjacency
+/// per dimension and the number of crowded facets.
+fn component_adjacency(tops: &[Vec<u32>]) -> (Vec<Vec<u32>>, usize) {
+    let mut adj: Vec<Vec<u32>> = vec![Vec::new(); tops.len()];
+    let mut crowded_facets = 0;
+    for k in 1..tops.len() {
+        let w = k + 1;
+        let facets = facet_rows(&tops[k], w, true);
+        let order = sorted_order(&facets, k);
+        let mut a = vec![NONE; tops[k].len()];
+        for_each_group(&facets, k, &order, |group| match group.len() {
+            1 => {}
+            2 => {
                 let (r1, r2) = (group[0] as usize, group[1] as usize);
-                if in_higher_top(&facets[r1 * k..(r1 + 1) * k], k) {
-                    return;
-                }
-                let (i1, j1, i2, j2) = (r1 / w, r1 % w, r2 / w, r2 % w);
-                tops_uf.union((top_base[k] + i1) as u32, (top_base[k] + i2) as u32);
-                // Both rows are ascending, so the shared vertices come in the same order.
-                let a = (0..w).filter(|&j| j != j1);
-                let b = (0..w).filter(|&j| j != j2);
-                for (ja, jb) in a.zip(b) {
-                    slots.union(
-                        (slot_base[k] + i1 * w + ja) as u32,
-                        (slot_base[k] + i2 * w + jb) as u32,
-                    );
-                }
-            });
-        }
-
-        // Components: dimension descending, then by first top simplex.
-        let mut comp_of_root = vec![NONE; top_base[d + 1]];
-        let mut comp_dim: Vec<u8> = Vec::new();
-        let mut top_comp: Vec<Vec<u32>> = vec![Vec::new(); d + 1];
-        for k in (0..=d).rev() {
-            for i in 0..tables[k].len() {
-                let r = tops_uf.find((top_base[k] + i) as u32) as usize;
-                if comp_of_root[r] == NONE {
-                    comp_of_root[r] = comp_dim.len() as u32;
-                    comp_dim.push(k as u8);
-                }
-                top_comp[k].push(comp_of_root[r]);
+                a[r1] = (r2 / w) as u32;
+                a[r2] = (r1 / w) as u32;
             }
+            _ => crowded_facets += 1,
+        });
+        adj[k] = a;
+    }
+    (adj, crowded_facets)
+}
+
+/// The hypergraph: `vertex_ref`, split vertices and the CSR of their copies.
+struct Hypergraph {
+    vertex_ref: Vec<u32>,
+    split_vertices: Vec<u32>,
+    offsets: Vec<u32>,
+    copies: Vec<u32>,
+}
+
+/// Step 4d: the hypergraph of split vertices from the copies' vertices.
+fn hypergraph(n: u32, copy_vertex: &[u32]) -> Hypergraph {
+    let mut per_vertex = vec![0u32; n as usize];
+    for &v in copy_vertex {
+        per_vertex[v as usize] += 1;
+    }
+    let mut vertex_ref = vec![NONE; n as usize];
+    let mut split_vertices = Vec::new();
+    let mut offsets = vec![0u32];
+    for v in 0..n {
+        if per_vertex[v as usize] >= 2 {
+            vertex_ref[v as usize] = SPLIT | split_vertices.len() as u32;
+            split_vertices.push(v);
+            offsets.push(offsets.last().unwrap() + per_vertex[v as usize]);
         }
+    }
+    let mut fill: Vec<u32> = offsets[..split_vertices.len()].to_vec();
+    let mut copies = vec![0u32; *offsets.last().unwrap() as usize];
+    for (c, &v) in copy_vertex.iter().enumerate() {
+        let v = v as usize;
+        let r = vertex_ref[v];
+        if r == NONE {
+            vertex_ref[v] = c as u32;
+        } else if r & SPLIT != 0 {
+            let a = (r & !SPLIT) as usize;
+            copies[fill[a] as usize] = c as u32;
+            fill[a] += 1;
+        }
+    }
+    Hypergraph {
+        vertex_ref,
+        split_vertices,
+        offsets,
+        copies,
+    }
+}
+
+impl Iqm {
+    /// Computes the standard decomposition and encodes it (see the module doc for the
+    /// algorithm). O(S log S) for S slots, plus the joint test.
+    pub fn build(complex: &Complex) -> Result<Iqm, BuildError> {
+        let n = complex.vertex_count();
+        let x = Exploded::new(complex);
+        // Copies get the `SPLIT` bit free; slots bound the copies.
+        to_u32(KIND, x.slots() * 2, "vertex slots (twice)")?;
+        let higher = HigherTops::new(&x, n);
+        let (mut slots, mut tops_uf) = paste_joints(&x, &higher);
+        let (comp_dim, top_comp) = number_components(&x, &mut tops_uf);
         let m = comp_dim.len();
         to_u32(KIND, m, "components")?;
-
-        let mut tops: Vec<Vec<u32>> = vec![Vec::new(); d + 1];
-        let mut comp_top_start = vec![0u32; m];
-        let mut comp_copy_start = vec![0u32; m + 1];
-        let mut copy_of_root = vec![NONE; slot_base[d + 1]];
-        let mut copy_vertex: Vec<u32> = Vec::new();
-        let mut copy_comp: Vec<u32> = Vec::new();
-        let mut copy_top: Vec<u32> = Vec::new();
-        let mut last_comp = NONE;
-        for k in (0..=d).rev() {
-            let w = k + 1;
-            let mut order: Vec<u32> = (0..tables[k].len() as u32).collect();
-            order.sort_by_key(|&i| top_comp[k][i as usize]);
-            let mut rows = Vec::with_capacity(tables[k].len() * w);
-            for (new_i, &i) in order.iter().enumerate() {
-                let comp = top_comp[k][i as usize];
-                if comp != last_comp {
-                    comp_top_start[comp as usize] = new_i as u32;
-                    comp_copy_start[comp as usize] = copy_vertex.len() as u32;
-                    last_comp = comp;
-                }
-                let s = tables[k].get(i as usize);
-                for (j, &v) in s.iter().enumerate() {
-                    let r = slots.find((slot_base[k] + i as usize * w + j) as u32) as usize;
-                    if copy_of_root[r] == NONE {
-                        copy_of_root[r] = copy_vertex.len() as u32;
-                        copy_vertex.push(v);
-                        copy_comp.push(comp);
-                        copy_top.push(new_i as u32);
-                    }
-                    rows.push(copy_of_root[r]);
-                }
-            }
-            tops[k] = rows;
-        }
-        comp_copy_start[m] = copy_vertex.len() as u32;
-
-        // Adjacency inside components, from facets over copy ids.
-        let mut adj: Vec<Vec<u32>> = vec![Vec::new(); d + 1];
-        let mut crowded_facets = 0;
-        for k in 1..=d {
-            let w = k + 1;
-            let facets = facet_rows(&tops[k], w, true);
-            let order = sorted_order(&facets, k);
-            let mut a = vec![NONE; tops[k].len()];
-            for_each_group(&facets, k, &order, |group| match group.len() {
-                1 => {}
-                2 => {
-                    let (r1, r2) = (group[0] as usize, group[1] as usize);
-                    a[r1] = (r2 / w) as u32;
-                    a[r2] = (r1 / w) as u32;
-                }
-                _ => crowded_facets += 1,
-            });
-            adj[k] = a;
-        }
-
-        // Hypergraph.
-        let mut per_vertex = vec![0u32; n as usize];
-        for &v in &copy_vertex {
-            per_vertex[v as usize] += 1;
-        }
-        let mut vertex_ref = vec![NONE; n as usize];
-        let mut split_vertices = Vec::new();
-        let mut hyper_offsets = vec![0u32];
-        for v in 0..n {
-            if per_vertex[v as usize] >= 2 {
-                vertex_ref[v as usize] = SPLIT | split_vertices.len() as u32;
-                split_vertices.push(v);
-                hyper_offsets.push(hyper_offsets.last().unwrap() + per_vertex[v as usize]);
-            }
-        }
-        let mut hfill: Vec<u32> = hyper_offsets[..split_vertices.len()].to_vec();
-        let mut hyper_copies = vec![0u32; *hyper_offsets.last().unwrap() as usize];
-        for (c, &v) in copy_vertex.iter().enumerate() {
-            let v = v as usize;
-            let r = vertex_ref[v];
-            if r == NONE {
-                vertex_ref[v] = c as u32;
-            } else if r & SPLIT != 0 {
-                let a = (r & !SPLIT) as usize;
-                hyper_copies[hfill[a] as usize] = c as u32;
-                hfill[a] += 1;
-            }
-        }
+        let copies = number_copies(&x, &mut slots, &top_comp, m);
+        let (adj, crowded_facets) = component_adjacency(&copies.tops);
+        let hyper = hypergraph(n, &copies.copy_vertex);
         let counts = complex.closure().iter().map(SimplexTable::len).collect();
         Ok(Iqm {
             nav: NavIndex::new(complex),
             n,
             counts,
-            tops: tops.into_iter().map(Arr::from).collect(),
+            tops: copies.tops.into_iter().map(Arr::from).collect(),
             adj: adj.into_iter().map(Arr::from).collect(),
             comp_dim: comp_dim.into(),
-            comp_top_start: comp_top_start.into(),
-            comp_copy_start: comp_copy_start.into(),
-            copy_vertex: copy_vertex.into(),
-            copy_comp: copy_comp.into(),
-            copy_top: copy_top.into(),
-            vertex_ref: vertex_ref.into(),
-            split_vertices: split_vertices.into(),
-            hyper_offsets: hyper_offsets.into(),
-            hyper_copies: hyper_copies.into(),
+            comp_top_start: copies.comp_top_start.into(),
+            comp_copy_start: copies.comp_copy_start.into(),
+            copy_vertex: copies.copy_vertex.into(),
+            copy_comp: copies.copy_comp.into(),
+            copy_top: copies.copy_top.into(),
+            vertex_ref: hyper.vertex_ref.into(),
+            split_vertices: hyper.split_vertices.into(),
+            hyper_offsets: hyper.offsets.into(),
+            hyper_copies: hyper.copies.into(),
             crowded_facets,
         })
     }
@@ -572,31 +670,47 @@ impl Iqm {
         let mut seen: IdSet = IdSet::default();
         let mut stack = IdStack::default();
         for &c in self.copies_of(v) {
-            let k = self.comp_dim[self.copy_comp[c as usize] as usize] as usize;
-            seen.clear();
-            let t0 = self.copy_top[c as usize];
-            seen.insert(t0);
-            stack.push(t0);
-            while let Some(t) = stack.pop() {
-                if !f(k, t) {
-                    return;
-                }
-                if k == 0 {
-                    continue;
-                }
-                let row = self.row(k, t);
-                let pos = row
-                    .iter()
-                    .position(|&x| x == c)
-                    .expect("star walk stays at c");
-                let a = &self.adj[k][t as usize * (k + 1)..(t as usize + 1) * (k + 1)];
-                for (j, &u) in a.iter().enumerate() {
-                    if j != pos && u != NONE && seen.insert(u) {
-                        stack.push(u);
-                    }
+            if !self.walk_copy_star(c, &mut seen, &mut stack, &mut f) {
+                return;
+            }
+        }
+    }
+
+    /// Visits the top simplices in the star of copy `c` from `copy_top[c]`, by adjacencies
+    /// through facets containing `c`; `false` when `f` stopped the walk.
+    fn walk_copy_star(
+        &self,
+        c: u32,
+        seen: &mut IdSet,
+        stack: &mut IdStack,
+        f: &mut impl FnMut(usize, u32) -> bool,
+    ) -> bool {
+        let k = self.comp_dim[self.copy_comp[c as usize] as usize] as usize;
+        seen.clear();
+        let t0 = self.copy_top[c as usize];
+        seen.insert(t0);
+        stack.push(t0);
+        while let Some(t) = stack.pop() {
+            if !f(k, t) {
+                while stack.pop().is_some() {}
+                return false;
+            }
+            if k == 0 {
+                continue;
+            }
+            let row = self.row(k, t);
+            let pos = row
+                .iter()
+                .position(|&x| x == c)
+                .expect("star walk stays at c");
+            let a = &self.adj[k][t as usize * (k + 1)..(t as usize + 1) * (k + 1)];
+            for (j, &u) in a.iter().enumerate() {
+                if j != pos && u != NONE && seen.insert(u) {
+                    stack.push(u);
                 }
             }
         }
+        true
     }
 
     /// Original ids of top k-simplex `t` (ascending by construction).
@@ -808,65 +922,91 @@ impl Topology for Iqm {
     }
 
     fn validate(&self) -> Result<(), String> {
-        let m = self.component_count();
         let c_total = self.copy_vertex.len();
         if self.copy_comp.len() != c_total || self.copy_top.len() != c_total {
             return Err("copy arrays differ in length".into());
         }
         // Occurrences of each copy among top simplices, to compare with its star walk.
         let mut occurrences = vec![0u32; c_total];
-        for i in 0..m {
-            let k = self.comp_dim[i] as usize;
-            let copies = self.comp_copy_start[i]..self.comp_copy_start[i + 1];
-            if copies.is_empty() {
-                return Err(format!("component {i} has no vertex"));
+        for i in 0..self.component_count() {
+            self.check_component(i, &mut occurrences)?;
+        }
+        self.check_copy_references()?;
+        self.check_hypergraph(&occurrences)?;
+        if self.counts.first().copied() != Some(self.n as usize) {
+            return Err("vertex count disagrees with n_0".into());
+        }
+        Ok(())
+    }
+}
+
+/// The steps of [`Iqm::validate`].
+impl Iqm {
+    /// Component `i`: ascending rows over its own copies, symmetric facet adjacencies inside
+    /// it. Counts each copy's occurrences.
+    fn check_component(&self, i: usize, occurrences: &mut [u32]) -> Result<(), String> {
+        let k = self.comp_dim[i] as usize;
+        let copies = self.comp_copy_start[i]..self.comp_copy_start[i + 1];
+        if copies.is_empty() {
+            return Err(format!("component {i} has no vertex"));
+        }
+        for t in self.comp_rows(i) {
+            let row = self.row(k, t as u32);
+            let orig: Vec<u32> = row.iter().map(|&c| self.copy_vertex[c as usize]).collect();
+            if orig.windows(2).any(|w| w[0] >= w[1]) {
+                return Err(format!(
+                    "top {k}-simplex {orig:?} of component {i}: vertices not ascending"
+                ));
             }
-            for t in self.comp_rows(i) {
-                let row = self.row(k, t as u32);
-                let orig: Vec<u32> = row.iter().map(|&c| self.copy_vertex[c as usize]).collect();
-                if orig.windows(2).any(|w| w[0] >= w[1]) {
+            for &c in row {
+                if !copies.contains(&c) {
                     return Err(format!(
-                        "top {k}-simplex {orig:?} of component {i}: vertices not ascending"
+                        "top {k}-simplex {orig:?} of component {i} uses copy {c} of another component"
                     ));
                 }
-                for &c in row {
-                    if !copies.contains(&c) {
-                        return Err(format!(
-                            "top {k}-simplex {orig:?} of component {i} uses copy {c} of another component"
-                        ));
-                    }
-                    if self.copy_comp[c as usize] as usize != i {
-                        return Err(format!("copy {c} does not name component {i}"));
-                    }
-                    occurrences[c as usize] += 1;
+                if self.copy_comp[c as usize] as usize != i {
+                    return Err(format!("copy {c} does not name component {i}"));
                 }
-                if k >= 1 {
-                    let a = &self.adj[k][t * (k + 1)..(t + 1) * (k + 1)];
-                    for (j, &u) in a.iter().enumerate() {
-                        if u == NONE {
-                            continue;
-                        }
-                        if !self.comp_rows(i).contains(&(u as usize)) {
-                            return Err(format!("{orig:?}: adjacency {j} leaves component {i}"));
-                        }
-                        let other = self.row(k, u);
-                        let shared = row
-                            .iter()
-                            .enumerate()
-                            .filter(|&(jj, _)| jj != j)
-                            .all(|(_, c)| other.contains(c));
-                        let back = self.adj[k][u as usize * (k + 1)..(u as usize + 1) * (k + 1)]
-                            .contains(&(t as u32));
-                        if !shared || !back || u as usize == t {
-                            return Err(format!(
-                                "{orig:?}: adjacency {j} is not a symmetric facet neighbour"
-                            ));
-                        }
-                    }
-                }
+                occurrences[c as usize] += 1;
+            }
+            if k >= 1 {
+                self.check_adjacency(i, k, t, &orig)?;
             }
         }
-        for c in 0..c_total {
+        Ok(())
+    }
+
+    /// The adjacency entries of top k-simplex `t` of component `i` (original ids `orig`).
+    fn check_adjacency(&self, i: usize, k: usize, t: usize, orig: &[u32]) -> Result<(), String> {
+        let row = self.row(k, t as u32);
+        let a = &self.adj[k][t * (k + 1)..(t + 1) * (k + 1)];
+        for (j, &u) in a.iter().enumerate() {
+            if u == NONE {
+                continue;
+            }
+            if !self.comp_rows(i).contains(&(u as usize)) {
+                return Err(format!("{orig:?}: adjacency {j} leaves component {i}"));
+            }
+            let other = self.row(k, u);
+            let shared = row
+                .iter()
+                .enumerate()
+                .filter(|&(jj, _)| jj != j)
+                .all(|(_, c)| other.contains(c));
+            let back =
+                self.adj[k][u as usize * (k + 1)..(u as usize + 1) * (k + 1)].contains(&(t as u32));
+            if !shared || !back || u as usize == t {
+                return Err(format!(
+                    "{orig:?}: adjacency {j} is not a symmetric facet neighbour"
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Each copy's star reference is a top simplex of its component holding it.
+    fn check_copy_references(&self) -> Result<(), String> {
+        for c in 0..self.copy_vertex.len() {
             let comp = self.copy_comp[c] as usize;
             let k = self.comp_dim[comp] as usize;
             let t0 = self.copy_top[c];
@@ -876,14 +1016,20 @@ impl Topology for Iqm {
                 return Err(format!("copy {c}: its star reference does not contain it"));
             }
         }
+        Ok(())
+    }
+
+    /// Every vertex has its copies listed by the hypergraph (split exactly when two or more),
+    /// and each copy's star walk reaches every top simplex holding it.
+    fn check_hypergraph(&self, occurrences: &[u32]) -> Result<(), String> {
         let mut per_vertex = vec![0u32; self.n as usize];
-        for &v in &self.copy_vertex {
+        for &v in self.copy_vertex.iter() {
             if v >= self.n {
                 return Err(format!("copy of vertex {v} out of range"));
             }
             per_vertex[v as usize] += 1;
         }
-        let mut walked = vec![0u32; c_total];
+        let (mut seen, mut stack) = (IdSet::default(), IdStack::default());
         for v in 0..self.n {
             if per_vertex[v as usize] == 0 {
                 return Err(format!("vertex {v} has no copy"));
@@ -905,38 +1051,18 @@ impl Topology for Iqm {
                 if self.copy_vertex[c as usize] != v {
                     return Err(format!("vertex {v} lists copy {c} of another vertex"));
                 }
-            }
-            for &c in copies {
-                let k = self.comp_dim[self.copy_comp[c as usize] as usize] as usize;
-                let mut count = 0;
-                let mut seen = FxHashSet::default();
-                seen.insert(self.copy_top[c as usize]);
-                let mut stack = vec![self.copy_top[c as usize]];
-                while let Some(t) = stack.pop() {
-                    count += 1;
-                    if k == 0 {
-                        continue;
-                    }
-                    let row = self.row(k, t);
-                    let pos = row.iter().position(|&x| x == c).unwrap();
-                    let a = &self.adj[k][t as usize * (k + 1)..(t as usize + 1) * (k + 1)];
-                    for (j, &u) in a.iter().enumerate() {
-                        if j != pos && u != NONE && seen.insert(u) {
-                            stack.push(u);
-                        }
-                    }
+                let mut walked = 0;
+                self.walk_copy_star(c, &mut seen, &mut stack, &mut |_, _| {
+                    walked += 1;
+                    true
+                });
+                if walked != occurrences[c as usize] {
+                    return Err(format!(
+                        "copy {c} of vertex {v}: {} top simplices hold it, its star walk reaches {walked}",
+                        occurrences[c as usize]
+                    ));
                 }
-                walked[c as usize] = count;
             }
-        }
-        if let Some(c) = (0..c_total).find(|&c| walked[c] != occurrences[c]) {
-            return Err(format!(
-                "copy {c} of vertex {}: {} top simplices hold it, its star walk reaches {}",
-                self.copy_vertex[c], occurrences[c], walked[c]
-            ));
-        }
-        if self.counts.first().copied() != Some(self.n as usize) {
-            return Err("vertex count disagrees with n_0".into());
         }
         Ok(())
     }

@@ -861,6 +861,17 @@ impl Topology for NonManifoldIa {
         if self.d > 3 {
             return Err(format!("dimension {} above 3", self.d));
         }
+        self.check_tables()?;
+        self.check_adjacency()?;
+        self.check_rings()?;
+        self.check_vertex_clusters()
+    }
+}
+
+/// The steps of [`NonManifoldIa::validate`].
+impl NonManifoldIa {
+    /// Tetrahedra, dangling faces and wire edges: ascending rows, in range, strictly ascending.
+    fn check_tables(&self) -> Result<(), String> {
         for (name, t, arity) in [
             ("tetrahedra", &self.tets, 4),
             ("dangling faces", &self.faces, 3),
@@ -880,6 +891,11 @@ impl Topology for NonManifoldIa {
                 }
             }
         }
+        Ok(())
+    }
+
+    /// R_{3,3}: symmetric, across a shared triangle, and complete.
+    fn check_adjacency(&self) -> Result<(), String> {
         for t in 0..self.tets.len() as u32 {
             let s = self.verts(t);
             for (i, &u) in self.neighbours(t).iter().enumerate() {
@@ -899,6 +915,11 @@ impl Topology for NonManifoldIa {
         if tet_adjacency(&self.tets).ok().as_deref() != Some(&*self.adj) {
             return Err("R_{3,3} misses a shared triangle".into());
         }
+        Ok(())
+    }
+
+    /// The cluster links join top simplices at one edge, and each ring is complete.
+    fn check_rings(&self) -> Result<(), String> {
         // Every link joins two top simplices at the same edge.
         for (k, (&key, &to)) in self.link_keys.iter().zip(&self.link_next).enumerate() {
             let (u, c) = ((key >> 4) as u32, (key & 15) as usize);
@@ -947,6 +968,12 @@ impl Topology for NonManifoldIa {
                 self.link_keys.len()
             ));
         }
+        Ok(())
+    }
+
+    /// R_{0,clusters}: one reference per restricted-star component of each vertex, the walks
+    /// from them reaching every vertex incidence once.
+    fn check_vertex_clusters(&self) -> Result<(), String> {
         let mut reached = 0usize;
         for v in 0..self.n {
             let refs = self.vertex_clusters(v);

@@ -1028,9 +1028,22 @@ impl Topology for Sig {
         }
     }
 
-    // p indexes several per-dimension arrays at once.
-    #[allow(clippy::needless_range_loop)]
     fn validate(&self) -> Result<(), String> {
+        let d = self.check_lookup()?;
+        self.check_boundaries(d)?;
+        for p in 0..d {
+            self.check_codes(p)?;
+        }
+        let is_top = self.check_cstars(d)?;
+        let above = self.count_tops_above(d, &is_top)?;
+        self.check_clusters(d, &is_top, &above)
+    }
+}
+
+/// The steps of [`Sig::validate`].
+impl Sig {
+    /// The lookup table and the per-dimension array counts; returns the dimension d.
+    fn check_lookup(&self) -> Result<usize, String> {
         let d = match self.first.len().checked_sub(2) {
             Some(d) if self.first[0] == 0 => d,
             _ => return Err("lookup table has the wrong length".into()),
@@ -1044,6 +1057,11 @@ impl Topology for Sig {
         if self.boundary.len() != d + 1 || self.cob.len() != d || self.top_counts.len() != d + 1 {
             return Err("one boundary per dimension, one co-boundary per dimension below d".into());
         }
+        Ok(d)
+    }
+
+    /// Each boundary array: sized, in range, rows strictly ascending, entries the facets.
+    fn check_boundaries(&self, d: usize) -> Result<(), String> {
         let mut s = Vec::new();
         let mut facet = Vec::new();
         let mut prev = Vec::new();
@@ -1084,64 +1102,74 @@ impl Topology for Sig {
                 std::mem::swap(&mut prev, &mut s);
             }
         }
-        for p in 0..d {
-            let c = &self.cob[p];
-            let n = self.count(p);
-            let (mut short, mut long) = (0usize, 0usize);
-            let code_of = |i: usize| match c.uniform {
-                Some(code) => code,
-                None => {
-                    let b = &c.blocks[i / BLOCK];
-                    ((b.lo >> (i % BLOCK) & 1) | (b.hi >> (i % BLOCK) & 1) << 1) as u8
-                }
-            };
-            match c.uniform {
-                Some(code) if code > LONG || !c.blocks.is_empty() => {
-                    return Err(format!("dimension {p}: bad uniform code {code}"));
-                }
-                None if c.blocks.len() != n.div_ceil(BLOCK) => {
-                    return Err(format!(
-                        "dimension {p}: one code block per {BLOCK} simplices"
-                    ));
-                }
-                _ => {}
+        Ok(())
+    }
+
+    /// The co-boundary codes of dimension p: uniform or one block per `BLOCK` simplices with
+    /// running counts, and short/long arrays of the sizes the codes say.
+    fn check_codes(&self, p: usize) -> Result<(), String> {
+        let c = &self.cob[p];
+        let n = self.count(p);
+        let (mut short, mut long) = (0usize, 0usize);
+        let code_of = |i: usize| match c.uniform {
+            Some(code) => code,
+            None => {
+                let b = &c.blocks[i / BLOCK];
+                ((b.lo >> (i % BLOCK) & 1) | (b.hi >> (i % BLOCK) & 1) << 1) as u8
             }
-            for i in 0..n {
-                if c.uniform.is_none() && i % BLOCK == 0 {
-                    let b = &c.blocks[i / BLOCK];
-                    if (b.short_before as usize, b.long_before as usize) != (short, long) {
-                        return Err(format!("dimension {p}: block {} counts wrong", i / BLOCK));
-                    }
-                }
-                match code_of(i) {
-                    LONG => long += 1,
-                    code => short += code as usize,
-                }
+        };
+        match c.uniform {
+            Some(code) if code > LONG || !c.blocks.is_empty() => {
+                return Err(format!("dimension {p}: bad uniform code {code}"));
             }
-            if let Some(b) = c.blocks.last()
-                && n % BLOCK != 0
-                && (b.lo | b.hi) >> (n % BLOCK) != 0
-            {
-                return Err(format!("dimension {p}: codes past the last simplex"));
-            }
-            if short != c.short.len()
-                || long + 1 != c.long_start.len()
-                || c.long_start[0] != 0
-                || c.long_start[long] as usize != c.long.len()
-                || c.long_start
-                    .windows(2)
-                    .any(|w| w[1] < w[0] + u32::from(LONG))
-            {
+            None if c.blocks.len() != n.div_ceil(BLOCK) => {
                 return Err(format!(
-                    "dimension {p}: arrays do not match the codes (long arrays hold ≥ 3)"
+                    "dimension {p}: one code block per {BLOCK} simplices"
                 ));
             }
+            _ => {}
         }
-        // Every top simplex above each simplex, counted through the faces of the top simplices.
-        let mut above: Vec<Vec<u32>> = (0..d).map(|p| vec![0; self.count(p)]).collect();
+        for i in 0..n {
+            if c.uniform.is_none() && i % BLOCK == 0 {
+                let b = &c.blocks[i / BLOCK];
+                if (b.short_before as usize, b.long_before as usize) != (short, long) {
+                    return Err(format!("dimension {p}: block {} counts wrong", i / BLOCK));
+                }
+            }
+            match code_of(i) {
+                LONG => long += 1,
+                code => short += code as usize,
+            }
+        }
+        if let Some(b) = c.blocks.last()
+            && !n.is_multiple_of(BLOCK)
+            && (b.lo | b.hi) >> (n % BLOCK) != 0
+        {
+            return Err(format!("dimension {p}: codes past the last simplex"));
+        }
+        if short != c.short.len()
+            || long + 1 != c.long_start.len()
+            || c.long_start[0] != 0
+            || c.long_start[long] as usize != c.long.len()
+            || c.long_start
+                .windows(2)
+                .any(|w| w[1] < w[0] + u32::from(LONG))
+        {
+            return Err(format!(
+                "dimension {p}: arrays do not match the codes (long arrays hold ≥ 3)"
+            ));
+        }
+        Ok(())
+    }
+
+    /// Each C* array lists simplices of its star in decreasing dimension; returns which
+    /// simplices are top (an empty C* below d, every d-simplex).
+    // p indexes several per-dimension arrays at once.
+    #[allow(clippy::needless_range_loop)]
+    fn check_cstars(&self, d: usize) -> Result<Vec<Vec<bool>>, String> {
         let mut is_top: Vec<Vec<bool>> = (0..=d).map(|p| vec![false; self.count(p)]).collect();
         is_top[d].iter_mut().for_each(|t| *t = true);
-        let mut t = Vec::new();
+        let (mut s, mut t) = (Vec::new(), Vec::new());
         for p in 0..d {
             for i in 0..self.count(p) as u32 {
                 s.clear();
@@ -1169,6 +1197,13 @@ impl Topology for Sig {
                 }
             }
         }
+        Ok(is_top)
+    }
+
+    /// Checks the top counts and returns, per simplex below d, the number of top simplices
+    /// above it (counted through the faces of the top simplices).
+    fn count_tops_above(&self, d: usize, is_top: &[Vec<bool>]) -> Result<Vec<Vec<u32>>, String> {
+        let mut above: Vec<Vec<u32>> = (0..d).map(|p| vec![0; self.count(p)]).collect();
         for (r, tops) in is_top.iter().enumerate() {
             if tops.iter().filter(|&&t| t).count() != self.top_counts[r] {
                 return Err(format!("top count of dimension {r} is wrong"));
@@ -1187,8 +1222,21 @@ impl Topology for Sig {
                 }
             }
         }
-        // The clusters listed at σ partition its top simplices, each led by its smallest.
+        Ok(above)
+    }
+
+    /// The clusters listed at each simplex partition its top simplices, each led by its
+    /// smallest.
+    // p indexes several per-dimension arrays at once.
+    #[allow(clippy::needless_range_loop)]
+    fn check_clusters(
+        &self,
+        d: usize,
+        is_top: &[Vec<bool>],
+        above: &[Vec<u32>],
+    ) -> Result<(), String> {
         let mut sc = Scratch::default();
+        let mut s = Vec::new();
         for p in 0..d {
             for i in 0..self.count(p) as u32 {
                 s.clear();
