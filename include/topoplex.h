@@ -808,7 +808,7 @@ TpxStatus tpx_top_as_given(const struct TpxStructure *s,
  * `order` (`TPX_ORDER_*`); `*out_len` = the number written. Errors: FOREIGN_HANDLE,
  * INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), BUFFER_TOO_SMALL
  * (nothing written; `*out_len` = needed). Cost: the structure's walk (module docs), plus a sort
- * for lexicographic order. Allocation-free once this thread's buffer has grown to the answer.
+ * for lexicographic order. No allocation once this thread's buffers have grown to the answer.
  *
  * # Safety
  * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
@@ -861,6 +861,7 @@ TpxStatus tpx_degree(const struct TpxStructure *s,
  * The star (every simplex having `*h` as a proper face, dimension ascending) or, with `link`
  * non-zero, the link (τ ∖ h for each such τ) of `*h`, as handles into `buf`, each dimension in
  * `order`. Errors as `tpx_related`. Cost: the star's walks (the link also locates each face).
+ * No allocation once this thread's buffers are warm.
  *
  * # Safety
  * Non-NULL pointers must be valid; `buf` must have room for `buf_len` handles.
@@ -876,7 +877,8 @@ TpxStatus tpx_star(const struct TpxStructure *s,
 /**
  * Whether `*h` is on the boundary (`what` = 0) or a manifold simplex (`what` = 1), as 0 or 1
  * into `*out` (definitions: `Navigate::is_boundary`, `Navigate::is_manifold`). Errors as
- * `tpx_related`, INVALID_ARGUMENT for another `what`. Cost: the star of h.
+ * `tpx_related`, INVALID_ARGUMENT for another `what`. Cost: the star of h (for the manifold
+ * test, plus a sort of the link's facets). No allocation once this thread's buffers are warm.
  *
  * # Safety
  * Non-NULL pointers must be valid.
@@ -894,7 +896,8 @@ TpxStatus tpx_simplex_test(const struct TpxStructure *s,
  * `flags[k]` has `TPX_GROUP_CLOSED` and `TPX_GROUP_ORIENTED`; `*out_items` and `*out_groups`
  * receive the counts. `offsets` needs `groups + 1` entries. Errors: WRONG_HANDLE_KIND (not a
  * vertex / not an edge), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL (nothing written; the needed
- * counts in `*out_items` and `*out_groups`). Cost: the star of the vertex or edge.
+ * counts in `*out_items` and `*out_groups`). Cost: the star of the vertex or edge. No
+ * allocation once this thread's buffers are warm.
  *
  * # Safety
  * Non-NULL pointers must be valid; `items` has room for `items_len`, `offsets` for

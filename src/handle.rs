@@ -44,6 +44,7 @@ use std::ops::Deref;
 
 use crate::complex::MAX_DIMENSION;
 use crate::relation::{QueryError, Topology};
+use crate::structures::common::{Scratch, UnionFind};
 
 /// A vertex id, `0..n`. `VertexId::NONE` (`u32::MAX`) is no vertex.
 #[repr(transparent)]
@@ -316,6 +317,15 @@ impl Fans {
         self.oriented.clear();
     }
 
+    /// Makes this a copy of `other`, reusing the allocations.
+    pub fn copy_from(&mut self, other: &Fans) {
+        self.clear();
+        self.items.extend_from_slice(&other.items);
+        self.offsets.extend_from_slice(&other.offsets);
+        self.closed.extend_from_slice(&other.closed);
+        self.oriented.extend_from_slice(&other.oriented);
+    }
+
     /// Number of groups.
     pub fn len(&self) -> usize {
         self.closed.len()
@@ -488,7 +498,8 @@ pub trait Navigate: Topology {
     }
 
     /// The link of h: for every τ in the star of h, the face τ ∖ h; dimension ascending, each
-    /// dimension in `order`. Cost: the star, plus locating each link simplex.
+    /// dimension in `order`. Cost: the star, plus locating each link simplex. No allocation
+    /// beyond `out` once this thread's scratch buffers are warm.
     fn link(
         &self,
         h: SimplexHandle,
@@ -496,15 +507,14 @@ pub trait Navigate: Topology {
         out: &mut Vec<SimplexHandle>,
     ) -> Result<(), QueryError> {
         let sigma = self.vertices_of(h)?;
-        let mut star = Vec::new();
+        let mut star = Scratch::<Vec<SimplexHandle>>::take();
         self.star(h, Order::Natural, &mut star)?;
         out.clear();
-        let mut rest = Vec::with_capacity(MAX_DIMENSION + 1);
-        for tau in star {
+        let mut rest = [0u32; MAX_DIMENSION + 1];
+        for &tau in star.iter() {
             let t = self.vertices_of(tau)?;
-            rest.clear();
-            rest.extend(t.iter().filter(|v| !sigma.contains(v)));
-            out.push(self.locate(&rest)?);
+            let k = minus(&t, &sigma, &mut rest);
+            out.push(self.locate(&rest[..k])?);
         }
         // Simplices of the star map to distinct link simplices (τ ↦ τ ∖ σ is injective on
         // the star), already grouped by dimension.
@@ -526,11 +536,9 @@ pub trait Navigate: Topology {
     /// exactly one coface one dimension up (a surface's boundary edges, their vertices and
     /// triangles; a dangling end of a wire). Cost: the star of h and one degree per simplex.
     fn is_boundary(&self, h: SimplexHandle) -> Result<bool, QueryError> {
-        let mut star = vec![h];
-        let mut rest = Vec::new();
-        self.star(h, Order::Natural, &mut rest)?;
-        star.extend(rest);
-        for tau in star {
+        let mut star = Scratch::<Vec<SimplexHandle>>::take();
+        self.star(h, Order::Natural, &mut star)?;
+        for &tau in std::iter::once(&h).chain(star.iter()) {
             let p = tau.dim();
             if p < self.dimension() && self.top_id(tau)?.is_none() && self.degree(tau, p + 1)? == 1
             {
@@ -546,18 +554,25 @@ pub trait Navigate: Topology {
     /// the k-simplices joined through them. On surfaces and tetrahedral meshes this is exact for
     /// edges and for vertices of surfaces (link a path or a cycle); a vertex of a 3-complex is
     /// called manifold when its link is a connected pseudo-surface. A top simplex is manifold.
+    /// Cost: the star of h, plus a sort of the link's facets.
     fn is_manifold(&self, h: SimplexHandle) -> Result<bool, QueryError> {
         let sigma = self.vertices_of(h)?;
-        let mut star = Vec::new();
+        let mut star = Scratch::<Vec<SimplexHandle>>::take();
         self.star(h, Order::Natural, &mut star)?;
-        let mut link: Vec<Vec<u32>> = Vec::new();
-        for tau in star {
+        // The link of the top simplices of the star, rows of one arity, flat.
+        let mut rows = Scratch::<Vec<u32>>::take();
+        let mut arity = None;
+        let mut rest = [0u32; MAX_DIMENSION + 1];
+        for &tau in star.iter() {
             if self.top_id(tau)?.is_some() {
-                let t = self.vertices_of(tau)?;
-                link.push(t.iter().copied().filter(|v| !sigma.contains(v)).collect());
+                let k = minus(&self.vertices_of(tau)?, &sigma, &mut rest);
+                if *arity.get_or_insert(k) != k {
+                    return Ok(false);
+                }
+                rows.extend_from_slice(&rest[..k]);
             }
         }
-        Ok(link_is_pseudo_manifold(&link))
+        Ok(arity.is_none_or(|a| link_is_pseudo_manifold(&rows, a)))
     }
 
     // ---- cyclic order ----
@@ -591,39 +606,54 @@ fn out_of_range(p: usize, q: usize, dim: usize) -> QueryError {
     QueryError::DimensionOutOfRange { p, q, dim }
 }
 
-/// Whether the k-simplices `link` (all of one arity) form a connected pseudo-manifold (see
-/// [`Navigate::is_manifold`]). Empty: true (the link of a top simplex).
-pub(crate) fn link_is_pseudo_manifold(link: &[Vec<u32>]) -> bool {
-    let Some(first) = link.first() else {
+/// Writes the ids of `t` that are not in `sigma` (both ascending) to `out`; returns how many.
+fn minus(t: &[u32], sigma: &[u32], out: &mut [u32; MAX_DIMENSION + 1]) -> usize {
+    let mut k = 0;
+    for &v in t.iter().filter(|v| !sigma.contains(v)) {
+        out[k] = v;
+        k += 1;
+    }
+    k
+}
+
+/// Whether the k-simplices `rows` (flat, `arity` ascending ids each, arity ≥ 1) form a connected
+/// pseudo-manifold (see [`Navigate::is_manifold`]). Empty: true (the link of a top simplex).
+/// Works in this thread's scratch buffers: no allocation once they are warm.
+pub(crate) fn link_is_pseudo_manifold(rows: &[u32], arity: usize) -> bool {
+    let m = rows.len() / arity;
+    if m == 0 {
         return true;
-    };
-    let arity = first.len();
-    if link.iter().any(|r| r.len() != arity) {
-        return false;
     }
     if arity == 1 {
-        return link.len() <= 2;
+        return m <= 2;
     }
-    // (k−1)-faces with the link simplices containing them.
-    let mut facets: Vec<(Vec<u32>, usize)> = Vec::new();
-    for (i, r) in link.iter().enumerate() {
-        for skip in 0..arity {
-            let mut f = r.clone();
-            f.sort_unstable();
-            f.remove(skip);
-            facets.push((f, i));
-        }
-    }
-    facets.sort();
-    let mut uf = crate::structures::common::UnionFind::new(link.len());
-    for group in facets.chunk_by(|a, b| a.0 == b.0) {
-        if group.len() > 2 {
-            return false;
-        }
-        if let [a, b] = group {
-            uf.union(a.1 as u32, b.1 as u32);
+    // Facet f = (row f / arity without its entry f % arity), still ascending; sorted by content.
+    let facet = |f: u32| {
+        let (i, skip) = (f as usize / arity, f as usize % arity);
+        rows[i * arity..(i + 1) * arity]
+            .iter()
+            .enumerate()
+            .filter(move |&(j, _)| j != skip)
+            .map(|(_, &v)| v)
+    };
+    let mut facets = Scratch::<Vec<u32>>::take();
+    facets.extend(0..(m * arity) as u32);
+    facets.sort_unstable_by(|&a, &b| facet(a).cmp(facet(b)).then(a.cmp(&b)));
+    let mut parents = Scratch::<Vec<u32>>::take();
+    let mut uf = UnionFind::reusing(std::mem::take(&mut *parents), m);
+    let mut ok = true;
+    for group in facets.chunk_by(|&a, &b| facet(a).eq(facet(b))) {
+        match group {
+            [_] => {}
+            [a, b] => uf.union(a / arity as u32, b / arity as u32),
+            _ => {
+                ok = false;
+                break;
+            }
         }
     }
     let root = uf.find(0);
-    (1..link.len() as u32).all(|i| uf.find(i) == root)
+    ok = ok && (1..m as u32).all(|i| uf.find(i) == root);
+    *parents = uf.into_inner();
+    ok
 }

@@ -10,6 +10,11 @@
 //   VF     R_{0,2} of every vertex (OpenMesh vf_range, CGAL faces_around_target)
 //   VV     R_{0,0} of every vertex (vv_range, vertices_around_target)
 //   FF     R_{2,2} of every triangle, the triangles sharing an edge (ff_range, faces_around_face)
+//   stats  whole-mesh pass (issue 13): valence histogram + boundary and non-manifold edge lists
+//          (OpenMesh valence/is_boundary; Topoplex tpx_degree per handle, or `stats_batch`: two
+//          tpx_related_batch calls)
+//   FF_index  whole-mesh pass: every face's neighbour faces as indices (ff_range + idx();
+//          tpx_related per face handle)
 // The peers' heap includes their vertex coordinates (OpenMesh 3 floats, CGAL 3 doubles per
 // vertex; counter `geometry_bytes`), Topoplex's structures hold none.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -195,6 +200,39 @@ uint64_t sm_ff(const SMesh& m) {
   return n;
 }
 
+// Whole-mesh passes of issue 13, as an application writes them. `stats`: the valence histogram,
+// the boundary edges (one triangle) and the non-manifold edges (three or more) as index lists;
+// `FF_index`: every face's neighbour faces as indices, summed. Each returns a checksum of what
+// every library must agree on (counts, not indices: the libraries number faces differently).
+uint64_t stats_checksum(const std::vector<uint32_t>& hist, size_t boundary, size_t nonmanifold) {
+  uint64_t c = 1000003ull * boundary + 7919ull * nonmanifold;
+  for (size_t k = 0; k < hist.size(); ++k) c += uint64_t(hist[k]) * (k + 1) * (k + 7);
+  return c;
+}
+uint64_t om_stats(const OMesh& m) {
+  std::vector<uint32_t> hist(64, 0);
+  std::vector<uint32_t> boundary, nonmanifold;  // OpenMesh holds no non-manifold edge
+  for (auto v : m.vertices()) {
+    const size_t k = m.valence(v);
+    if (k >= hist.size()) hist.resize(k + 1, 0);
+    ++hist[k];
+  }
+  for (auto e : m.edges())
+    if (m.is_boundary(e)) boundary.push_back(uint32_t(e.idx()));
+  benchmark::DoNotOptimize(boundary.data());
+  return stats_checksum(hist, boundary.size(), nonmanifold.size());
+}
+uint64_t om_ff_index(const OMesh& m) {
+  uint64_t n = 0, sum = 0;
+  for (auto f : m.faces())
+    for (auto g : m.ff_range(f)) {
+      sum += uint32_t(g.idx());
+      ++n;
+    }
+  benchmark::DoNotOptimize(sum);
+  return n;
+}
+
 template <class T>
 void add_walk(const std::string& op, const std::string& lib, const std::function<std::unique_ptr<T>()>& make,
               uint64_t (*walk_fn)(const T&)) {
@@ -297,6 +335,10 @@ int main(int argc, char** argv) {
     add_walk<OMesh>("VV", "openmesh", om_build, om_vv);
     add_walk<OMesh>("FF", "openmesh", om_build, om_ff);
   }
+  if (have_om) {
+    add_walk<OMesh>("stats", "openmesh", om_build, om_stats);
+    add_walk<OMesh>("FF_index", "openmesh", om_build, om_ff_index);
+  }
   if (have_sm) {
     add_walk<SMesh>("VF", "cgal_sm", sm_build, sm_vf);
     add_walk<SMesh>("VV", "cgal_sm", sm_build, sm_vv);
@@ -351,6 +393,108 @@ int main(int argc, char** argv) {
         set_elements(state, count);
       });
     }
+  }
+  // The whole-mesh passes through the handle API: one tpx_degree / tpx_related per handle
+  // (`stats`, `FF_index`), and the same with one tpx_related_batch per relation (`_batch`).
+  for (const auto& k : kinds) {
+    const std::string lib = "tpx_" + k.name;
+    const std::function<std::unique_ptr<Built>()> make = [k] {
+      auto b = std::make_unique<Built>();
+      TpxStatus st = TPX_STATUS_OK;
+      b->s = build_from_soup(soup, k.id, &st);
+      tpx_check(st, "tpx_structure_build");
+      return b;
+    };
+    add("stats", lib, Unit::Walk, [=](benchmark::State& state) {
+      const Built& b = slot().get<Built>(lib + "_whole", make);
+      size_t nv = 0, ne = 0;
+      tpx_check(tpx_structure_count(b.s.get(), 0, &nv), "tpx_structure_count");
+      tpx_check(tpx_structure_count(b.s.get(), 1, &ne), "tpx_structure_count");
+      std::vector<uint32_t> hist(64, 0), boundary, nonmanifold;
+      uint64_t sum = 0;
+      for (auto _ : state) {
+        std::fill(hist.begin(), hist.end(), 0);
+        boundary.clear();
+        nonmanifold.clear();
+        TpxSimplex h;
+        size_t deg = 0;
+        for (uint32_t i = 0; i < nv; ++i) {
+          if (tpx_handle(b.s.get(), 0, i, &h) != TPX_STATUS_OK || tpx_degree(b.s.get(), &h, 0, &deg) != TPX_STATUS_OK)
+            fail(state, "tpx_degree failed: " + tpx_message());
+          if (deg >= hist.size()) hist.resize(deg + 1, 0);
+          ++hist[deg];
+        }
+        for (uint32_t i = 0; i < ne; ++i) {
+          if (tpx_handle(b.s.get(), 1, i, &h) != TPX_STATUS_OK || tpx_degree(b.s.get(), &h, 2, &deg) != TPX_STATUS_OK)
+            fail(state, "tpx_degree failed: " + tpx_message());
+          if (deg == 1) boundary.push_back(i);
+          if (deg > 2) nonmanifold.push_back(i);
+        }
+        sum = stats_checksum(hist, boundary.size(), nonmanifold.size());
+        benchmark::DoNotOptimize(sum);
+      }
+      check_count(state, "stats", lib, sum);
+      set_elements(state, nv + ne);
+    });
+    add("stats_batch", lib, Unit::Walk, [=](benchmark::State& state) {
+      const Built& b = slot().get<Built>(lib + "_whole", make);
+      size_t nv = 0, ne = 0;
+      tpx_check(tpx_structure_count(b.s.get(), 0, &nv), "tpx_structure_count");
+      tpx_check(tpx_structure_count(b.s.get(), 1, &ne), "tpx_structure_count");
+      std::vector<uint32_t> vi(nv), ei(ne), off(std::max(nv, ne) + 1), ids(16 * std::max(nv, ne) + 16);
+      for (uint32_t i = 0; i < nv; ++i) vi[i] = i;
+      for (uint32_t i = 0; i < ne; ++i) ei[i] = i;
+      std::vector<uint32_t> hist(64, 0), boundary, nonmanifold;
+      uint64_t sum = 0;
+      for (auto _ : state) {
+        std::fill(hist.begin(), hist.end(), 0);
+        boundary.clear();
+        nonmanifold.clear();
+        size_t len = 0;
+        if (tpx_related_batch(b.s.get(), 0, vi.data(), nv, 0, TPX_ORDER_NATURAL, off.data(), ids.data(), ids.size(),
+                              &len) != TPX_STATUS_OK)
+          fail(state, "tpx_related_batch failed: " + tpx_message());
+        for (size_t i = 0; i < nv; ++i) {
+          const uint32_t deg = off[i + 1] - off[i];
+          if (deg >= hist.size()) hist.resize(deg + 1, 0);
+          ++hist[deg];
+        }
+        if (tpx_related_batch(b.s.get(), 1, ei.data(), ne, 2, TPX_ORDER_NATURAL, off.data(), ids.data(), ids.size(),
+                              &len) != TPX_STATUS_OK)
+          fail(state, "tpx_related_batch failed: " + tpx_message());
+        for (uint32_t i = 0; i < ne; ++i) {
+          const uint32_t deg = off[i + 1] - off[i];
+          if (deg == 1) boundary.push_back(i);
+          if (deg > 2) nonmanifold.push_back(i);
+        }
+        sum = stats_checksum(hist, boundary.size(), nonmanifold.size());
+        benchmark::DoNotOptimize(sum);
+      }
+      check_count(state, "stats_batch", lib, sum);
+      set_elements(state, nv + ne);
+    });
+    add("FF_index", lib, Unit::Walk, [=](benchmark::State& state) {
+      const Built& b = slot().get<Built>(lib + "_whole", make);
+      size_t nf = 0;
+      tpx_check(tpx_structure_count(b.s.get(), 2, &nf), "tpx_structure_count");
+      std::vector<uint32_t> buf(256);
+      uint64_t n = 0, sum = 0;
+      for (auto _ : state) {
+        n = 0;
+        TpxSimplex h;
+        size_t len = 0;
+        for (uint32_t i = 0; i < nf; ++i) {
+          if (tpx_handle(b.s.get(), 2, i, &h) != TPX_STATUS_OK ||
+              tpx_related(b.s.get(), &h, 2, TPX_ORDER_NATURAL, buf.data(), buf.size(), &len) != TPX_STATUS_OK)
+            fail(state, "tpx_related failed: " + tpx_message());
+          for (size_t j = 0; j < len; ++j) sum += buf[j];
+          n += len;
+        }
+        benchmark::DoNotOptimize(sum);
+      }
+      check_count(state, "FF_index", lib, n);
+      set_elements(state, n);
+    });
   }
   return run();
 }

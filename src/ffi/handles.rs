@@ -6,6 +6,12 @@
 //! a handle of the wrong dimension for the call WRONG_HANDLE_KIND — never undefined behaviour.
 //! Answers of one dimension are written as dense indices (`uint32_t`): the q-simplex of index i
 //! is the handle `{i, q, owner}` (`tpx_handle` builds it checked).
+//!
+//! No allocation on the query path: every function here, on success, allocates nothing once
+//! this thread's buffers have grown to the answers asked (answer buffers and walk scratch are
+//! kept per thread, never in the structure; lazily built dimension tables are built by the first
+//! call that needs them). `tests/alloc_free.rs` checks it with a counting allocator for every
+//! function and the nine structures. An error allocates its message.
 
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicU32, Ordering as AtomicOrdering};
@@ -14,6 +20,7 @@ use super::structure::{TpxStructure, query_failure};
 use super::{Failure, TpxStatus, guard, handle, in_slice, out_ptr, write_buffer};
 use crate::complex::MAX_DIMENSION;
 use crate::handle::{Fans, Navigate, Order, SimplexHandle, TopId};
+use crate::structures::common::Scratch;
 
 /// A handle to one simplex of one structure (12 bytes, plain data; copy freely).
 ///
@@ -289,7 +296,7 @@ pub unsafe extern "C" fn tpx_top_as_given(
 /// `order` (`TPX_ORDER_*`); `*out_len` = the number written. Errors: FOREIGN_HANDLE,
 /// INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), BUFFER_TOO_SMALL
 /// (nothing written; `*out_len` = needed). Cost: the structure's walk (module docs), plus a sort
-/// for lexicographic order. Allocation-free once this thread's buffer has grown to the answer.
+/// for lexicographic order. No allocation once this thread's buffers have grown to the answer.
 ///
 /// # Safety
 /// Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
@@ -368,7 +375,7 @@ pub unsafe extern "C" fn tpx_related_batch(
         with_kept(&IDS, |ids| {
             ids.clear();
             // Offsets are written only on success: keep them after the ids, then copy.
-            let mut ends = Vec::new();
+            let mut ends = Scratch::<Vec<u32>>::take();
             ends.try_reserve(count + 1)
                 .map_err(|_| Failure::new(TpxStatus::TooLarge, "offsets do not fit in memory"))?;
             ends.push(0u32);
@@ -419,6 +426,7 @@ pub unsafe extern "C" fn tpx_degree(
 /// The star (every simplex having `*h` as a proper face, dimension ascending) or, with `link`
 /// non-zero, the link (τ ∖ h for each such τ) of `*h`, as handles into `buf`, each dimension in
 /// `order`. Errors as `tpx_related`. Cost: the star's walks (the link also locates each face).
+/// No allocation once this thread's buffers are warm.
 ///
 /// # Safety
 /// Non-NULL pointers must be valid; `buf` must have room for `buf_len` handles.
@@ -464,7 +472,8 @@ pub unsafe extern "C" fn tpx_star(
 
 /// Whether `*h` is on the boundary (`what` = 0) or a manifold simplex (`what` = 1), as 0 or 1
 /// into `*out` (definitions: `Navigate::is_boundary`, `Navigate::is_manifold`). Errors as
-/// `tpx_related`, INVALID_ARGUMENT for another `what`. Cost: the star of h.
+/// `tpx_related`, INVALID_ARGUMENT for another `what`. Cost: the star of h (for the manifold
+/// test, plus a sort of the link's facets). No allocation once this thread's buffers are warm.
 ///
 /// # Safety
 /// Non-NULL pointers must be valid.
@@ -503,7 +512,8 @@ pub unsafe extern "C" fn tpx_simplex_test(
 /// `flags[k]` has `TPX_GROUP_CLOSED` and `TPX_GROUP_ORIENTED`; `*out_items` and `*out_groups`
 /// receive the counts. `offsets` needs `groups + 1` entries. Errors: WRONG_HANDLE_KIND (not a
 /// vertex / not an edge), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL (nothing written; the needed
-/// counts in `*out_items` and `*out_groups`). Cost: the star of the vertex or edge.
+/// counts in `*out_items` and `*out_groups`). Cost: the star of the vertex or edge. No
+/// allocation once this thread's buffers are warm.
 ///
 /// # Safety
 /// Non-NULL pointers must be valid; `items` has room for `items_len`, `offsets` for

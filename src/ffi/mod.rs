@@ -178,7 +178,8 @@ impl Failure {
 }
 
 thread_local! {
-    static LAST_ERROR: RefCell<CString> = RefCell::new(CString::default());
+    /// `None` after a success: clearing must not allocate (`CString::default()` would).
+    static LAST_ERROR: RefCell<Option<CString>> = const { RefCell::new(None) };
 }
 
 fn set_last_error(message: &str) {
@@ -188,16 +189,11 @@ fn set_last_error(message: &str) {
     let c = CString::new(line).unwrap_or_default();
     // `try_with`: during thread teardown the slot may be gone; the message is then dropped
     // rather than panicking outside the panic boundary.
-    let _ = LAST_ERROR.try_with(|e| *e.borrow_mut() = c);
+    let _ = LAST_ERROR.try_with(|e| *e.borrow_mut() = Some(c));
 }
 
 fn clear_last_error() {
-    let _ = LAST_ERROR.try_with(|e| {
-        let mut e = e.borrow_mut();
-        if !e.as_bytes().is_empty() {
-            *e = CString::default();
-        }
-    });
+    let _ = LAST_ERROR.try_with(|e| e.borrow_mut().take());
 }
 
 fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
@@ -359,7 +355,11 @@ pub extern "C" fn tpx_last_error_message() -> *const c_char {
         // The CString's heap buffer does not move when the thread-local is read; it is replaced
         // (and the old pointer dies) only by the next status-returning call on this thread.
         LAST_ERROR
-            .try_with(|e| e.borrow().as_ptr())
+            .try_with(|e| {
+                e.borrow()
+                    .as_ref()
+                    .map_or(EMPTY.as_ptr().cast(), |c| c.as_ptr())
+            })
             .unwrap_or(EMPTY.as_ptr().cast())
     })
 }

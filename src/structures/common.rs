@@ -1,10 +1,114 @@
 //! Helpers several structures share: per-query scratch sets and stacks for walks ([`IdSet`],
 //! [`IdStack`], [`RowSet`]), face enumeration ([`faces_containing`], [`faces_of_tops`]), the
-//! union–find and [`show`] for messages.
+//! union–find, per-thread pooled scratch buffers ([`Scratch`]) and [`show`] for messages.
+
+use std::cell::RefCell;
+use std::thread::LocalKey;
 
 use rustc_hash::FxHashSet;
 
 use crate::complex::sort_dedup_rows;
+
+/// A buffer that is reset and handed back between uses: the per-thread pools of [`Scratch`].
+pub(crate) trait Pooled: Default + 'static {
+    /// This type's pool on the current thread.
+    fn pool() -> &'static LocalKey<RefCell<Vec<Self>>>;
+    /// Empties the buffer, keeping its allocation.
+    fn reset(&mut self);
+    /// The allocation size kept (what the pool sorts by).
+    fn capacity(&self) -> usize;
+}
+
+/// Buffers a thread keeps per type; more than this are dropped on return.
+const POOL_CAP: usize = 32;
+
+/// A scratch buffer taken from this thread's pool and returned to it on drop, so that queries
+/// (which take `&self` and keep no state in the structure) reuse the same allocations call after
+/// call: after a first call of a given size, the same call allocates nothing. Reentrant: a nested
+/// query takes another buffer from the pool (or a fresh one).
+pub(crate) struct Scratch<T: Pooled>(Option<T>);
+
+impl<T: Pooled> Scratch<T> {
+    /// An empty buffer from the pool.
+    pub(crate) fn take() -> Scratch<T> {
+        let kept = T::pool()
+            .try_with(|p| p.try_borrow_mut().ok().and_then(|mut p| p.pop()))
+            .ok()
+            .flatten();
+        Scratch(Some(kept.unwrap_or_default()))
+    }
+}
+
+impl<T: Pooled> Drop for Scratch<T> {
+    fn drop(&mut self) {
+        if let Some(mut v) = self.0.take() {
+            v.reset();
+            // During thread teardown or while the pool is borrowed, the buffer is just freed.
+            let _ = T::pool().try_with(|p| {
+                // Kept by ascending capacity and taken from the top: a query nested k deep
+                // gets the k-th largest buffer, so sizes settle after one pass.
+                if let Ok(mut p) = p.try_borrow_mut()
+                    && p.len() < POOL_CAP
+                {
+                    let at = p.partition_point(|x| x.capacity() <= v.capacity());
+                    p.insert(at, v);
+                }
+            });
+        }
+    }
+}
+
+impl<T: Pooled> std::ops::Deref for Scratch<T> {
+    type Target = T;
+    fn deref(&self) -> &T {
+        self.0.as_ref().expect("held until drop")
+    }
+}
+
+impl<T: Pooled> std::ops::DerefMut for Scratch<T> {
+    fn deref_mut(&mut self) -> &mut T {
+        self.0.as_mut().expect("held until drop")
+    }
+}
+
+/// Implements [`Pooled`] for `Vec<T>` with a thread-local pool per element type.
+macro_rules! pooled_vec {
+    ($($t:ty),*) => {$(
+        impl $crate::structures::common::Pooled for Vec<$t> {
+            fn pool() -> &'static ::std::thread::LocalKey<::std::cell::RefCell<Vec<Self>>> {
+                thread_local! {
+                    static POOL: ::std::cell::RefCell<Vec<Vec<$t>>> =
+                        const { ::std::cell::RefCell::new(Vec::new()) };
+                }
+                &POOL
+            }
+            fn reset(&mut self) {
+                self.clear();
+            }
+            fn capacity(&self) -> usize {
+                Vec::capacity(self)
+            }
+        }
+    )*};
+}
+pub(crate) use pooled_vec;
+
+pooled_vec!(u32, usize, bool, (u32, u32), crate::handle::SimplexHandle);
+
+impl Pooled for crate::handle::Fans {
+    fn pool() -> &'static LocalKey<RefCell<Vec<Self>>> {
+        thread_local! {
+            static POOL: RefCell<Vec<crate::handle::Fans>> = const { RefCell::new(Vec::new()) };
+        }
+        &POOL
+    }
+    fn reset(&mut self) {
+        self.clear();
+    }
+    fn capacity(&self) -> usize {
+        self.items.capacity()
+    }
+}
 
 /// `[a b c]`, for messages naming a simplex.
 pub(crate) fn show(ids: &[u32]) -> String {
@@ -17,6 +121,19 @@ pub(crate) fn show(ids: &[u32]) -> String {
 pub(crate) struct UnionFind(Vec<u32>);
 
 impl UnionFind {
+    /// `n` singletons in `buf`'s allocation (cleared first); [`UnionFind::into_inner`] gives
+    /// it back.
+    pub(crate) fn reusing(mut buf: Vec<u32>, n: usize) -> Self {
+        buf.clear();
+        buf.extend(0..n as u32);
+        UnionFind(buf)
+    }
+
+    /// The parent array, to reuse its allocation.
+    pub(crate) fn into_inner(self) -> Vec<u32> {
+        self.0
+    }
+
     /// `n` singletons.
     pub(crate) fn new(n: usize) -> Self {
         UnionFind((0..n as u32).collect())

@@ -5,8 +5,12 @@
 //! Both walks look only at the star of the vertex or edge: every triangle containing an edge vx
 //! contains v, so the star of v alone says which edges at v bound exactly two triangles.
 
+use super::common::{Scratch, pooled_vec};
 use crate::handle::{Fans, Navigate, SimplexHandle};
 use crate::relation::QueryError;
+
+// Walks keep their lists in this thread's pooled buffers: no allocation once they are warm.
+pooled_vec!(Piece, [u32; 2]);
 
 /// One simplex of a star with the two "sides" it can be joined through (the link vertices of a
 /// triangle around a vertex, or of a tetrahedron around an edge), `prev` before `next` in the
@@ -42,7 +46,7 @@ pub(crate) fn fans_around<N: Navigate + ?Sized>(
     if nav.dimension() < 2 {
         return Ok(());
     }
-    let mut pieces = Vec::new();
+    let mut pieces = Scratch::<Vec<Piece>>::take();
     nav.visit(v, 2, &mut |t| {
         pieces.push(Piece {
             handle: t,
@@ -50,7 +54,7 @@ pub(crate) fn fans_around<N: Navigate + ?Sized>(
             next: 0,
         })
     })?;
-    for p in &mut pieces {
+    for p in pieces.iter_mut() {
         let t = nav
             .top_id(p.handle)?
             .expect("a triangle of a 2-complex is top");
@@ -85,14 +89,14 @@ pub(crate) fn around_edge<N: Navigate + ?Sized>(
         return Err(QueryError::DimensionOutOfRange { p: 1, q, dim: d });
     }
     let ends = nav.vertices_of(e)?;
-    let mut tris = Vec::new();
+    let mut tris = Scratch::<Vec<SimplexHandle>>::take();
     nav.visit(e, 2, &mut |t| tris.push(t))?;
     if d == 2 {
         // No tetrahedra: the triangles in the structure's natural order, one cyclic group.
         push_group(out, &tris, tris.len() >= 2, false);
         return Ok(());
     }
-    let mut pieces = Vec::new();
+    let mut pieces = Scratch::<Vec<Piece>>::take();
     nav.visit(e, 3, &mut |t| {
         pieces.push(Piece {
             handle: t,
@@ -100,7 +104,7 @@ pub(crate) fn around_edge<N: Navigate + ?Sized>(
             next: 0,
         })
     })?;
-    for p in &mut pieces {
+    for p in pieces.iter_mut() {
         let w = nav.vertices_of(p.handle)?;
         let mut rest = w.iter().copied().filter(|x| !ends.contains(x));
         (p.prev, p.next) = (rest.next().unwrap(), rest.next().unwrap());
@@ -120,23 +124,29 @@ fn triangles_of_tet_fans<N: Navigate + ?Sized>(
     tris: &[SimplexHandle],
     out: &mut Fans,
 ) -> Result<(), QueryError> {
-    let tets = std::mem::take(out);
+    let mut tets = Scratch::<Fans>::take();
+    tets.copy_from(out);
+    out.clear();
     let tri_of = |x: u32| nav.locate(&[ends[0], ends[1], x]);
-    let mut used = Vec::new();
+    let mut used = Scratch::<Vec<SimplexHandle>>::take();
+    let mut seq = Scratch::<Vec<SimplexHandle>>::take();
+    let mut links = Scratch::<Vec<[u32; 2]>>::take();
+    let mut xs = Scratch::<Vec<u32>>::take();
+    // Consecutive tetrahedra share the triangle e ∪ {x}, x their common link vertex.
+    let link = |t: SimplexHandle| -> Result<[u32; 2], QueryError> {
+        let w = nav.vertices_of(t)?;
+        let mut r = w.iter().copied().filter(|x| !ends.contains(x));
+        Ok([r.next().unwrap(), r.next().unwrap()])
+    };
+    let shared = |a: [u32; 2], b: [u32; 2]| if b.contains(&a[0]) { a[0] } else { a[1] };
+    let other = |a: [u32; 2], x: u32| if a[0] == x { a[1] } else { a[0] };
     for k in 0..tets.len() {
-        let g = tets.group(k);
-        let mut seq = Vec::with_capacity(g.len() + 1);
-        // Consecutive tetrahedra share the triangle e ∪ {x}, x their common link vertex.
-        let link = |t: SimplexHandle| -> Result<[u32; 2], QueryError> {
-            let w = nav.vertices_of(t)?;
-            let mut r = w.iter().copied().filter(|x| !ends.contains(x));
-            Ok([r.next().unwrap(), r.next().unwrap()])
-        };
-        let links: Vec<[u32; 2]> = g.iter().map(|&t| link(t)).collect::<Result<_, _>>()?;
-        let shared = |a: [u32; 2], b: [u32; 2]| if b.contains(&a[0]) { a[0] } else { a[1] };
-        let other = |a: [u32; 2], x: u32| if a[0] == x { a[1] } else { a[0] };
+        links.clear();
+        for &t in tets.group(k) {
+            links.push(link(t)?);
+        }
         let m = links.len();
-        let mut xs = Vec::with_capacity(m + 1);
+        xs.clear();
         if m == 1 {
             xs.extend(links[0]);
         } else if tets.closed[k] {
@@ -146,7 +156,8 @@ fn triangles_of_tet_fans<N: Navigate + ?Sized>(
             xs.extend((0..m - 1).map(|i| shared(links[i], links[i + 1])));
             xs.push(other(links[m - 1], shared(links[m - 2], links[m - 1])));
         }
-        for x in xs {
+        seq.clear();
+        for &x in xs.iter() {
             seq.push(tri_of(x)?);
         }
         used.extend_from_slice(&seq);
@@ -178,11 +189,10 @@ fn push_group(out: &mut Fans, items: &[SimplexHandle], closed: bool, oriented: b
 fn chains(pieces: &mut [Piece], wound: bool, out: &mut Fans) {
     pieces.sort_unstable_by_key(|p| p.handle);
     // Side vertex -> pieces having it.
-    let mut sides: Vec<(u32, u32)> = pieces
-        .iter()
-        .enumerate()
-        .flat_map(|(i, p)| [(p.prev, i as u32), (p.next, i as u32)])
-        .collect();
+    let mut sides = Scratch::<Vec<(u32, u32)>>::take();
+    for (i, p) in pieces.iter().enumerate() {
+        sides.extend([(p.prev, i as u32), (p.next, i as u32)]);
+    }
     sides.sort_unstable();
     let joined = |i: usize, x: u32| -> Option<usize> {
         let lo = sides.partition_point(|s| s.0 < x);
@@ -193,31 +203,40 @@ fn chains(pieces: &mut [Piece], wound: bool, out: &mut Fans) {
         let (a, b) = (sides[lo].1 as usize, sides[lo + 1].1 as usize);
         Some(if a == i { b } else { a })
     };
-    let mut seen = vec![false; pieces.len()];
+    let mut seen = Scratch::<Vec<bool>>::take();
+    seen.resize(pieces.len(), false);
+    let mut chain = Scratch::<Vec<usize>>::take();
     for start in 0..pieces.len() {
         if seen[start] {
             continue;
         }
-        let chain = walk_chain(pieces, start, &joined, &mut seen);
+        walk_chain(pieces, start, &joined, &mut seen, &mut chain);
         let closed = chain.len() >= 3
             && joined(chain[0], pieces[chain[0]].prev).is_some()
             && joined(chain[0], pieces[chain[0]].next).is_some();
-        let (order, oriented) = orient(pieces, chain, closed, wound);
-        let items: Vec<SimplexHandle> = order.iter().map(|&i| pieces[i].handle).collect();
-        push_group(out, &items, closed, oriented);
+        let oriented = orient(pieces, &mut chain, closed, wound);
+        if out.offsets.is_empty() {
+            out.offsets.push(0);
+        }
+        out.items.extend(chain.iter().map(|&i| pieces[i].handle));
+        out.offsets.push(out.items.len() as u32);
+        out.closed.push(closed);
+        out.oriented.push(oriented);
     }
     if out.offsets.is_empty() {
         out.offsets.push(0);
     }
 }
 
-/// The chain containing `start`, from one end (or from `start` on a cycle), marking it seen.
+/// The chain containing `start` into `chain`, from one end (or from `start` on a cycle),
+/// marking it seen.
 fn walk_chain(
     pieces: &[Piece],
     start: usize,
     joined: &dyn Fn(usize, u32) -> Option<usize>,
     seen: &mut [bool],
-) -> Vec<usize> {
+    chain: &mut Vec<usize>,
+) {
     // From `cur`, entered through side `arrived`, leave through its other side.
     let step = |cur: usize, arrived: u32| -> (u32, Option<usize>) {
         let p = pieces[cur];
@@ -247,7 +266,8 @@ fn walk_chain(
             p.next
         }
     };
-    let mut chain = vec![first];
+    chain.clear();
+    chain.push(first);
     seen[first] = true;
     let (mut cur, mut came) = (first, open_side);
     while let (side, Some(j)) = step(cur, came) {
@@ -259,23 +279,18 @@ fn walk_chain(
         cur = j;
         came = side;
     }
-    chain
 }
 
 /// Puts a chain in winding order when it has one: rotates a cycle to start at its lowest
-/// piece, and reverses the chain when its pieces follow the winding backwards.
-fn orient(
-    pieces: &[Piece],
-    mut chain: Vec<usize>,
-    closed: bool,
-    wound: bool,
-) -> (Vec<usize>, bool) {
+/// piece, and reverses the chain when its pieces follow the winding backwards. Returns whether
+/// the chain is oriented.
+fn orient(pieces: &[Piece], chain: &mut [usize], closed: bool, wound: bool) -> bool {
     if closed {
         let low = (0..chain.len()).min_by_key(|&i| chain[i]).unwrap();
         chain.rotate_left(low);
     }
     if !wound {
-        return (chain, false);
+        return false;
     }
     let forward = |c: &[usize]| {
         let n = c.len();
@@ -285,17 +300,20 @@ fn orient(
             a.next == b.prev
         })
     };
-    if forward(&chain) {
-        return (chain, true);
+    if forward(chain) {
+        return true;
     }
-    let mut rev = chain.clone();
-    if closed {
-        rev[1..].reverse();
-    } else {
-        rev.reverse();
+    let reverse = |c: &mut [usize]| {
+        if closed {
+            c[1..].reverse();
+        } else {
+            c.reverse();
+        }
+    };
+    reverse(chain);
+    if forward(chain) {
+        return true;
     }
-    if forward(&rev) {
-        return (rev, true);
-    }
-    (chain, false)
+    reverse(chain);
+    false
 }

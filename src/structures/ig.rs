@@ -29,8 +29,8 @@
 //!
 //! Queries keep no state in the structure: the "visited" marks are a per-query set.
 
-use super::common::{IdSet, faces_containing};
-use super::nav::{NavBase, NavIndex};
+use super::common::{IdSet, Scratch, faces_containing};
+use super::nav::{NavBase, NavIndex, with_scratch};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable};
@@ -213,6 +213,36 @@ impl NavBase for IncidenceGraph {
                 let other = if ends[0] == id { ends[1] } else { ends[0] };
                 visit(SimplexHandle::dense(0, other));
             }
+            return Some(Ok(()));
+        } else if q != p {
+            // Several steps up or down: one step at a time, each level sorted and deduplicated
+            // (so the natural order here is ascending), in this thread's scratch buffers.
+            with_scratch(|level| {
+                let up = q > p;
+                let step = |r: usize, x: u32| {
+                    if up {
+                        self.coboundary_ids(r, x)
+                    } else {
+                        self.boundary_ids(r, x)
+                    }
+                };
+                level.push(id);
+                let mut next = Scratch::<Vec<u32>>::take();
+                let mut r = p;
+                while r != q {
+                    next.clear();
+                    for &x in level.iter() {
+                        next.extend_from_slice(step(r, x));
+                    }
+                    next.sort_unstable();
+                    next.dedup();
+                    std::mem::swap(level, &mut *next);
+                    r = if up { r + 1 } else { r - 1 };
+                }
+                level
+                    .iter()
+                    .for_each(|&x| visit(SimplexHandle::dense(q, x)));
+            });
             return Some(Ok(()));
         } else {
             return None;

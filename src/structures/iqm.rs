@@ -110,7 +110,7 @@
 
 use crate::store::Arr;
 
-use super::common::{IdSet, IdStack, UnionFind, faces_containing};
+use super::common::{IdSet, IdStack, Scratch, UnionFind, faces_containing};
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
@@ -729,16 +729,35 @@ impl Iqm {
         found: &mut Vec<u32>,
         lens: &mut Vec<usize>,
     ) {
-        let mut buf = Vec::with_capacity(self.counts.len());
+        let mut buf = [0u32; crate::complex::MAX_DIMENSION + 1];
         self.walk_star(v, |k, t| {
-            self.originals(k, t, &mut buf);
-            if keep(&buf) {
-                found.extend_from_slice(&buf);
+            let buf = &mut buf[..k + 1];
+            for (b, &c) in buf.iter_mut().zip(self.row(k, t)) {
+                *b = self.copy_vertex[c as usize];
+            }
+            if keep(buf) {
+                found.extend_from_slice(buf);
                 lens.push(k + 1);
                 return !first_only;
             }
             true
         });
+    }
+}
+
+/// Appends the distinct rows of `rows` (width `w`) to `out`, in lexicographic order. Sorts
+/// row indices in this thread's scratch: no allocation once it is warm.
+fn sort_dedup_rows_into(w: usize, rows: &[u32], out: &mut Vec<u32>) {
+    let row = |i: u32| &rows[i as usize * w..(i as usize + 1) * w];
+    let mut order = Scratch::<Vec<u32>>::take();
+    order.extend(0..(rows.len() / w) as u32);
+    order.sort_unstable_by(|&a, &b| row(a).cmp(row(b)));
+    let mut last: Option<&[u32]> = None;
+    for &i in order.iter() {
+        if last != Some(row(i)) {
+            out.extend_from_slice(row(i));
+            last = Some(row(i));
+        }
     }
 }
 
@@ -799,8 +818,7 @@ impl Topology for Iqm {
     }
 
     fn contains(&self, sigma: &[u32]) -> bool {
-        // Sized for a mesh vertex's star, so the walk rarely reallocates.
-        let (mut found, mut lens) = (Vec::with_capacity(256), Vec::with_capacity(64));
+        let (mut found, mut lens) = (Scratch::<Vec<u32>>::take(), Scratch::<Vec<usize>>::take());
         self.star_tops(
             sigma[0],
             |t| is_subset(sigma, t),
@@ -813,8 +831,8 @@ impl Topology for Iqm {
 
     fn query(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Result<(), QueryError> {
         let p = sigma.len() - 1;
-        // Sized for a mesh vertex's star, so the walk rarely reallocates.
-        let (mut found, mut lens) = (Vec::with_capacity(256), Vec::with_capacity(64));
+        // This thread's pooled buffers: no allocation once they are warm.
+        let (mut found, mut lens) = (Scratch::<Vec<u32>>::take(), Scratch::<Vec<usize>>::take());
         // Locating σ is all a boundary query needs.
         let first_only = q < p;
         self.star_tops(
@@ -829,7 +847,7 @@ impl Topology for Iqm {
                 simplex: sigma.to_vec(),
             });
         }
-        let mut rows = Vec::with_capacity(256);
+        let mut rows = Scratch::<Vec<u32>>::take();
         if q < p {
             push_subsets(sigma, q, out);
             return Ok(());
@@ -847,8 +865,8 @@ impl Topology for Iqm {
             lens.clear();
             self.star_tops(sigma[0], shares_facet, false, &mut found, &mut lens);
             self.star_tops(sigma[1], shares_facet, false, &mut found, &mut lens);
-            let mut facet = Vec::with_capacity(p);
-            let mut produced = Vec::new();
+            let mut facet = Scratch::<Vec<u32>>::take();
+            let mut produced = Scratch::<Vec<u32>>::take();
             for t in rows_of(&found, &lens) {
                 for skip in 0..=p {
                     facet.clear();
@@ -872,7 +890,7 @@ impl Topology for Iqm {
                 }
             }
         }
-        out.extend(sort_dedup_rows(q + 1, rows));
+        sort_dedup_rows_into(q + 1, &rows, out);
         Ok(())
     }
 

@@ -20,9 +20,9 @@
 //!   the structure's vertex-id relation into a per-thread scratch buffer, then each answer row
 //!   located in its table, O(q log n_q) per answer. No allocation once the scratch is warm.
 
-use std::cell::RefCell;
 use std::sync::OnceLock;
 
+use super::common::Scratch;
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable};
 use crate::handle::{HandleForm, Navigate, SimplexHandle, TopId, Vertices};
 use crate::relation::{QueryError, Topology, normalize_simplex};
@@ -181,25 +181,11 @@ pub(crate) trait NavBase: Topology {
     }
 }
 
-thread_local! {
-    /// Answer rows of the vertex-id relation, reused across calls (taken out while in use, so
-    /// a visitor may navigate again).
-    static ROWS: RefCell<Vec<u32>> = const { RefCell::new(Vec::new()) };
-}
-
-/// Runs `f` with the per-thread scratch buffer, cleared (reentrant: while it is in use, a
-/// nested call — a visitor navigating again — gets a fresh one).
+/// Runs `f` with a scratch buffer from this thread's pool, empty (reentrant: a visitor that
+/// navigates again gets another buffer).
 pub(crate) fn with_scratch<R>(f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
-    let mut f = Some(f);
-    let kept = ROWS.try_with(|cell| {
-        let mut rows = cell.try_borrow_mut().ok()?;
-        rows.clear();
-        Some((f.take().expect("called once"))(&mut rows))
-    });
-    match kept {
-        Ok(Some(r)) => r,
-        _ => (f.take().expect("not called yet"))(&mut Vec::new()),
-    }
+    let mut rows = Scratch::<Vec<u32>>::take();
+    f(&mut rows)
 }
 
 /// Dense handle of the simplex with ascending ids `s`, if it is in `t`'s structure.

@@ -22,7 +22,7 @@ use std::f64::consts::TAU;
 
 use rustc_hash::FxHashSet;
 
-use super::common::IdSet;
+use super::common::{IdSet, Scratch};
 use super::nav::with_scratch;
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
@@ -518,8 +518,8 @@ pub(crate) fn walk_star<T: TriTopo + ?Sized>(
 }
 
 /// The handle walks the primitives give directly (triangle `t` is dense 2-simplex `t`):
-/// R_{0,0}, R_{0,2}: O(star of v); R_{2,0}: O(1); R_{2,2}: the three radial cycles. Other
-/// relations: `None` (the generic path). `sigma` is the checked handle `h`'s vertices.
+/// R_{0,0}, R_{0,2}: O(star of v); R_{1,2}: the radial cycle; R_{2,0}: O(1); R_{2,2}: the three
+/// radial cycles. Other relations: `None` (the generic path). `sigma` is the checked handle `h`'s vertices.
 pub(crate) fn fast_visit<T: TriTopo + ?Sized>(
     topo: &T,
     h: SimplexHandle,
@@ -537,6 +537,17 @@ pub(crate) fn fast_visit<T: TriTopo + ?Sized>(
             buf.iter()
                 .for_each(|&c| visit(SimplexHandle::dense(2, c / 3)));
         }),
+        (1, 2) => {
+            // A wire edge has no triangle (and a checked handle always finds its edge).
+            if let Some(EdgeAt::Slot(s)) = topo.find_edge(sigma[0], sigma[1]) {
+                with_scratch(|slots| {
+                    cycle(topo, s, slots);
+                    slots
+                        .iter()
+                        .for_each(|&r| visit(SimplexHandle::dense(2, r / 3)));
+                });
+            }
+        }
         (2, 0) => sigma
             .iter()
             .for_each(|&x| visit(SimplexHandle::dense(0, x))),
@@ -655,11 +666,11 @@ pub(crate) fn query<T: TriTopo + ?Sized>(
             match q {
                 0 => out.extend_from_slice(&[a, b]),
                 1 => {
-                    let mut nb = Vec::new();
+                    let mut nb = Scratch::<Vec<u32>>::take();
                     for (x, y) in [(a, b), (b, a)] {
                         nb.clear();
                         neighbours(topo, x, &mut nb);
-                        for &w in &nb {
+                        for &w in nb.iter() {
                             if w != y {
                                 push_edge(out, x, w);
                             }
@@ -668,9 +679,9 @@ pub(crate) fn query<T: TriTopo + ?Sized>(
                 }
                 _ => {
                     if let EdgeAt::Slot(s) = at {
-                        let mut slots = Vec::new();
+                        let mut slots = Scratch::<Vec<u32>>::take();
                         cycle(topo, s, &mut slots);
-                        for r in slots {
+                        for &r in slots.iter() {
                             out.extend_from_slice(&topo.tri(r / 3));
                         }
                     }

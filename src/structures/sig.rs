@@ -142,6 +142,7 @@ use super::ig::IncidenceGraph;
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::{Complex, SimplexTable};
+use crate::handle::SimplexHandle;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Sig;
@@ -912,9 +913,89 @@ struct Scratch {
     tuple: Vec<u32>,
 }
 
+impl crate::structures::common::Pooled for Scratch {
+    fn pool() -> &'static std::thread::LocalKey<std::cell::RefCell<Vec<Self>>> {
+        thread_local! {
+            static POOL: std::cell::RefCell<Vec<Scratch>> = const { std::cell::RefCell::new(Vec::new()) };
+        }
+        &POOL
+    }
+    fn reset(&mut self) {
+        self.visited.clear();
+        self.expanded.clear();
+        self.found.clear();
+        self.stack.clear();
+        self.cluster.clear();
+        self.tuple.clear();
+    }
+    fn capacity(&self) -> usize {
+        self.visited.capacity() + self.found.capacity() + self.stack.capacity()
+    }
+}
+
+impl Sig {
+    /// R_{p,q} of the p-simplex `id` with vertex ids `sigma`, as q-simplex ids (for q = 0 the
+    /// vertex ids), each once, in the order of the paper's algorithms. Marks live in this
+    /// thread's pooled [`Scratch`]: no allocation once it is warm.
+    fn related_ids(&self, id: u32, sigma: &[u32], q: usize, emit: &mut impl FnMut(u32)) {
+        let p = sigma.len() - 1;
+        if q < p {
+            // Algorithm 4, each face along its one canonical path.
+            walk_faces(&self.boundary, p, id, p + 1, p - q, u32::MAX, emit);
+            return;
+        }
+        let mut sc = crate::structures::common::Scratch::<Scratch>::take();
+        if q > p {
+            self.coboundary(p, id, sigma, q, &mut sc, emit);
+        } else if p == 0 {
+            // Algorithm 7 on a vertex: the other end of each edge.
+            if self.dimension() > 0 {
+                let v = sigma[0];
+                self.coboundary(0, id, sigma, 1, &mut sc, &mut |e| {
+                    // Entry 1 is the facet opposite vertex 1, i.e. vertex 0.
+                    let edge = &self.boundary[1][e as usize * 2..e as usize * 2 + 2];
+                    emit(if edge[1] == v { edge[0] } else { edge[1] });
+                });
+            }
+        } else {
+            // Algorithm 7: Coboundary(p) at each facet, minus σ.
+            let mut facet = [0u32; crate::complex::MAX_DIMENSION + 1];
+            for k in 0..=p {
+                let mut j = 0;
+                for (i, &v) in sigma.iter().enumerate() {
+                    if i != k {
+                        facet[j] = v;
+                        j += 1;
+                    }
+                }
+                let f = self.boundary[p][id as usize * (p + 1) + k];
+                self.coboundary(p - 1, f, &facet[..p], p, &mut sc, &mut |t| {
+                    if t != id {
+                        emit(t)
+                    }
+                });
+            }
+        }
+    }
+}
+
 impl NavBase for Sig {
     fn nav(&self) -> &NavIndex {
         &self.nav
+    }
+
+    // Ids of one dimension are lexicographic ranks: every answer is a dense handle as is.
+    fn fast_visit(
+        &self,
+        h: SimplexHandle,
+        sigma: &[u32],
+        q: usize,
+        visit: &mut dyn FnMut(SimplexHandle),
+    ) -> Option<Result<(), QueryError>> {
+        self.related_ids(h.index(), sigma, q, &mut |f| {
+            visit(SimplexHandle::dense(q, f))
+        });
+        Some(Ok(()))
     }
 }
 
@@ -959,50 +1040,10 @@ impl Topology for Sig {
     }
 
     fn query(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Result<(), QueryError> {
-        let p = sigma.len() - 1;
         let id = self.find(sigma).ok_or_else(|| QueryError::NotInComplex {
             simplex: sigma.to_vec(),
         })?;
-        if q < p {
-            // Algorithm 4, each face along its one canonical path.
-            walk_faces(&self.boundary, p, id, p + 1, p - q, u32::MAX, &mut |f| {
-                self.emit_row(q, f, out)
-            });
-            return Ok(());
-        }
-        let mut sc = Scratch::default();
-        if q > p {
-            self.coboundary(p, id, sigma, q, &mut sc, &mut |f| self.emit_row(q, f, out));
-        } else if p == 0 {
-            // Algorithm 7 on a vertex: the other end of each edge.
-            if self.dimension() > 0 {
-                let v = sigma[0];
-                self.coboundary(0, id, sigma, 1, &mut sc, &mut |e| {
-                    // Entry 1 is the facet opposite vertex 1, i.e. vertex 0.
-                    let edge = &self.boundary[1][e as usize * 2..e as usize * 2 + 2];
-                    out.push(if edge[1] == v { edge[0] } else { edge[1] });
-                });
-            }
-        } else {
-            // Algorithm 7: Coboundary(p) at each facet, minus σ.
-            let mut facet = Vec::with_capacity(p);
-            for k in 0..=p {
-                facet.clear();
-                facet.extend(
-                    sigma
-                        .iter()
-                        .enumerate()
-                        .filter(|&(j, _)| j != k)
-                        .map(|(_, &v)| v),
-                );
-                let f = self.boundary[p][id as usize * (p + 1) + k];
-                self.coboundary(p - 1, f, &facet, p, &mut sc, &mut |t| {
-                    if t != id {
-                        self.emit_row(p, t, out)
-                    }
-                });
-            }
-        }
+        self.related_ids(id, sigma, q, &mut |f| self.emit_row(q, f, out));
         Ok(())
     }
 
