@@ -96,7 +96,7 @@ pub struct Origin {
 impl fmt::Display for Origin {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match &self.file {
-            Some(p) => write!(f, "{}:{}", p.display(), self.line),
+            Some(p) => write!(f, "{}:{}", crate::error::echo_path(p), self.line),
             None => write!(f, "input simplex #{}", self.index),
         }
     }
@@ -173,7 +173,7 @@ pub enum ComplexError {
         origin: Origin,
     },
     /// The input has no vertex at all.
-    #[error("{}complex has no vertices", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
+    #[error("{}complex has no vertices", .file.as_ref().map(|p| format!("{}: ", crate::error::echo_path(p))).unwrap_or_default())]
     NoVertices {
         /// The file, if the input came from one.
         file: Option<PathBuf>,
@@ -182,7 +182,7 @@ pub enum ComplexError {
     #[error("coordinates: {0}")]
     Coordinates(String),
     /// The closure could exceed the [`Budget`].
-    #[error("{}the closure could have up to {bound} simplices from an input of size {input_size} (listed vertex ids + declared vertices), above the budget of {limit} (default: max(2^20, 64 × input size)); raise it with --max-simplices (C ABI: tpx_complex_from_*_budget)", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
+    #[error("{}the closure could have up to {bound} simplices from an input of size {input_size} (listed vertex ids + declared vertices), above the budget of {limit} (default: max(2^20, 64 × input size)); raise it with --max-simplices (C ABI: tpx_complex_from_*_budget)", .file.as_ref().map(|p| format!("{}: ", crate::error::echo_path(p))).unwrap_or_default())]
     TooLarge {
         /// The file, if the input came from one.
         file: Option<PathBuf>,
@@ -195,7 +195,7 @@ pub enum ComplexError {
         input_size: u64,
     },
     /// Memory that the input's size asks for could not be reserved.
-    #[error("{}out of memory: cannot reserve {bytes} bytes for {what}", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
+    #[error("{}out of memory: cannot reserve {bytes} bytes for {what}", .file.as_ref().map(|p| format!("{}: ", crate::error::echo_path(p))).unwrap_or_default())]
     OutOfMemory {
         /// The file, if the input came from one.
         file: Option<PathBuf>,
