@@ -109,9 +109,12 @@ use crate::store::Arr;
 use rustc_hash::FxHashSet;
 
 use super::common::{IdSet, IdStack, UnionFind, faces_containing};
+use super::common::{
+    try_closure, try_copy, try_iota, try_order, try_push, try_vec, try_with_capacity,
+};
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
-use crate::complex::table::{id_bits, order_by_key};
+use crate::complex::table::id_bits;
 use crate::complex::{Complex, SimplexTable, is_subset, sort_dedup_rows};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
@@ -181,8 +184,8 @@ pub struct Decomposition {
 
 /// Rows of `arity - 1` ids: the facets of every row of `rows` (facet j omits entry j), each
 /// sorted ascending.
-fn facet_rows(rows: &[u32], arity: usize, sort_each: bool) -> Vec<u32> {
-    let mut out = Vec::with_capacity(rows.len() * (arity - 1));
+fn facet_rows(rows: &[u32], arity: usize, sort_each: bool) -> Result<Vec<u32>, BuildError> {
+    let mut out = try_with_capacity(KIND, rows.len() * (arity - 1), "facet rows")?;
     for r in rows.chunks_exact(arity) {
         for skip in 0..arity {
             let start = out.len();
@@ -197,21 +200,24 @@ fn facet_rows(rows: &[u32], arity: usize, sort_each: bool) -> Vec<u32> {
             }
         }
     }
-    out
+    Ok(out)
 }
 
 /// Row indices of `rows` (fixed `width`, `width >= 1`) in lexicographic order of the rows.
-fn sorted_order(rows: &[u32], width: usize) -> Vec<u32> {
+fn sorted_order(rows: &[u32], width: usize) -> Result<Vec<u32>, BuildError> {
     let n = rows.len() / width;
     let row = |i: u32| &rows[i as usize * width..(i as usize + 1) * width];
     let bits = id_bits(rows.iter().copied().max().unwrap_or(0));
-    order_by_key(n, width as u32 * bits, |i| {
+    let order = try_order(KIND, n, width as u32 * bits, |i| {
         row(i).iter().fold(0u64, |acc, &v| (acc << bits) | v as u64)
-    })
-    .unwrap_or_else(|| {
-        let mut order: Vec<u32> = (0..n as u32).collect();
-        order.sort_unstable_by(|&a, &b| row(a).cmp(row(b)).then(a.cmp(&b)));
-        order
+    })?;
+    Ok(match order {
+        Some(order) => order,
+        None => {
+            let mut order = try_iota(KIND, n, "rows")?;
+            order.sort_unstable_by(|&a, &b| row(a).cmp(row(b)).then(a.cmp(&b)));
+            order
+        }
     })
 }
 
@@ -259,7 +265,7 @@ impl Iqm {
 
         // vstar: top simplices of dimension >= 2 at each vertex, dimension descending, for the
         // test "is this facet of an h-simplex inside a higher-dimensional top simplex".
-        let mut vstar_off = vec![0u32; n as usize + 1];
+        let mut vstar_off = try_vec(KIND, 0u32, n as usize + 1, "vertex star offsets")?;
         for t in tables.iter().skip(2) {
             for &v in t.as_flat() {
                 vstar_off[v as usize + 1] += 1;
@@ -268,8 +274,8 @@ impl Iqm {
         for v in 0..n as usize {
             vstar_off[v + 1] += vstar_off[v];
         }
-        let mut fill = vstar_off.clone();
-        let mut vstar = vec![0u32; vstar_off[n as usize] as usize];
+        let mut fill = try_copy(KIND, &vstar_off, "vertex star offsets")?;
+        let mut vstar = try_vec(KIND, 0u32, vstar_off[n as usize] as usize, "vertex stars")?;
         for k in (2..=d).rev() {
             for (i, s) in tables[k].iter().enumerate() {
                 for &v in s {
@@ -297,12 +303,12 @@ impl Iqm {
             false
         };
 
-        let mut slots = UnionFind::new(slot_base[d + 1]);
-        let mut tops_uf = UnionFind::new(top_base[d + 1]);
+        let mut slots = UnionFind::try_new(KIND, slot_base[d + 1], "vertex slots")?;
+        let mut tops_uf = UnionFind::try_new(KIND, top_base[d + 1], "top simplices")?;
         for k in 1..=d {
             let w = k + 1;
-            let facets = facet_rows(tables[k].as_flat(), w, false);
-            let order = sorted_order(&facets, k);
+            let facets = facet_rows(tables[k].as_flat(), w, false)?;
+            let order = sorted_order(&facets, k)?;
             for_each_group(&facets, k, &order, |group| {
                 if group.len() != 2 {
                     return;
@@ -326,7 +332,7 @@ impl Iqm {
         }
 
         // Components: dimension descending, then by first top simplex.
-        let mut comp_of_root = vec![NONE; top_base[d + 1]];
+        let mut comp_of_root = try_vec(KIND, NONE, top_base[d + 1], "component roots")?;
         let mut comp_dim: Vec<u8> = Vec::new();
         let mut top_comp: Vec<Vec<u32>> = vec![Vec::new(); d + 1];
         for k in (0..=d).rev() {
@@ -336,7 +342,7 @@ impl Iqm {
                     comp_of_root[r] = comp_dim.len() as u32;
                     comp_dim.push(k as u8);
                 }
-                top_comp[k].push(comp_of_root[r]);
+                try_push(KIND, &mut top_comp[k], comp_of_root[r], "top components")?;
             }
         }
         let m = comp_dim.len();
@@ -345,16 +351,16 @@ impl Iqm {
         let mut tops: Vec<Vec<u32>> = vec![Vec::new(); d + 1];
         let mut comp_top_start = vec![0u32; m];
         let mut comp_copy_start = vec![0u32; m + 1];
-        let mut copy_of_root = vec![NONE; slot_base[d + 1]];
+        let mut copy_of_root = try_vec(KIND, NONE, slot_base[d + 1], "vertex copies")?;
         let mut copy_vertex: Vec<u32> = Vec::new();
         let mut copy_comp: Vec<u32> = Vec::new();
         let mut copy_top: Vec<u32> = Vec::new();
         let mut last_comp = NONE;
         for k in (0..=d).rev() {
             let w = k + 1;
-            let mut order: Vec<u32> = (0..tables[k].len() as u32).collect();
+            let mut order = try_iota(KIND, tables[k].len(), "top simplices")?;
             order.sort_by_key(|&i| top_comp[k][i as usize]);
-            let mut rows = Vec::with_capacity(tables[k].len() * w);
+            let mut rows = try_with_capacity(KIND, tables[k].len() * w, "component rows")?;
             for (new_i, &i) in order.iter().enumerate() {
                 let comp = top_comp[k][i as usize];
                 if comp != last_comp {
@@ -367,9 +373,9 @@ impl Iqm {
                     let r = slots.find((slot_base[k] + i as usize * w + j) as u32) as usize;
                     if copy_of_root[r] == NONE {
                         copy_of_root[r] = copy_vertex.len() as u32;
-                        copy_vertex.push(v);
-                        copy_comp.push(comp);
-                        copy_top.push(new_i as u32);
+                        try_push(KIND, &mut copy_vertex, v, "vertex copies")?;
+                        try_push(KIND, &mut copy_comp, comp, "vertex copies")?;
+                        try_push(KIND, &mut copy_top, new_i as u32, "vertex copies")?;
                     }
                     rows.push(copy_of_root[r]);
                 }
@@ -383,9 +389,9 @@ impl Iqm {
         let mut crowded_facets = 0;
         for k in 1..=d {
             let w = k + 1;
-            let facets = facet_rows(&tops[k], w, true);
-            let order = sorted_order(&facets, k);
-            let mut a = vec![NONE; tops[k].len()];
+            let facets = facet_rows(&tops[k], w, true)?;
+            let order = sorted_order(&facets, k)?;
+            let mut a = try_vec(KIND, NONE, tops[k].len(), "adjacencies")?;
             for_each_group(&facets, k, &order, |group| match group.len() {
                 1 => {}
                 2 => {
@@ -399,11 +405,11 @@ impl Iqm {
         }
 
         // Hypergraph.
-        let mut per_vertex = vec![0u32; n as usize];
+        let mut per_vertex = try_vec(KIND, 0u32, n as usize, "vertex copy counts")?;
         for &v in &copy_vertex {
             per_vertex[v as usize] += 1;
         }
-        let mut vertex_ref = vec![NONE; n as usize];
+        let mut vertex_ref = try_vec(KIND, NONE, n as usize, "vertex references")?;
         let mut split_vertices = Vec::new();
         let mut hyper_offsets = vec![0u32];
         for v in 0..n {
@@ -414,7 +420,8 @@ impl Iqm {
             }
         }
         let mut hfill: Vec<u32> = hyper_offsets[..split_vertices.len()].to_vec();
-        let mut hyper_copies = vec![0u32; *hyper_offsets.last().unwrap() as usize];
+        let hyper_len = *hyper_offsets.last().unwrap() as usize;
+        let mut hyper_copies = try_vec(KIND, 0u32, hyper_len, "split vertex copies")?;
         for (c, &v) in copy_vertex.iter().enumerate() {
             let v = v as usize;
             let r = vertex_ref[v];
@@ -426,9 +433,12 @@ impl Iqm {
                 hfill[a] += 1;
             }
         }
-        let counts = complex.closure().iter().map(SimplexTable::len).collect();
+        let counts = try_closure(KIND, complex)?
+            .iter()
+            .map(SimplexTable::len)
+            .collect();
         Ok(Iqm {
-            nav: NavIndex::new(complex),
+            nav: NavIndex::new(KIND, complex)?,
             n,
             counts,
             tops: tops.into_iter().map(Arr::from).collect(),
