@@ -1,96 +1,172 @@
 //! The one rule for text that leaves the library as a message (the CLI's stderr line,
-//! `tpx_last_error_message`): a single line, bounded, with nothing invisible.
+//! `tpx_last_error_message`, every reader's error): a single line, bounded, with nothing
+//! invisible.
 //!
 //! Messages echo input (file paths, tokens, CLI arguments). A hostile input could otherwise make
 //! a 100 MB message, a message spread over several lines, or one whose meaning hides in control
 //! characters, a byte-order mark or a no-break space ("non-numeric token '01'" that is really
-//! `'0<VT>1'`). [`one_line`] escapes those and caps the length.
+//! `'0<VT>1'`). [`escape`] is the only escaper: [`echo`] applies it to a piece of input quoted in
+//! a message (200 bytes), [`one_line`] to the whole message as it leaves (400 bytes).
+//!
+//! Escapes: `\0 \t \n \r`; `\xNN` for the other ASCII control bytes and for bytes that are not
+//! UTF-8; `\u{N}` for every other control, whitespace-like or invisible character (no-break and
+//! zero-width spaces, byte-order mark, bidirectional controls, line and paragraph separators,
+//! variation selectors, private use). The backslash itself is not escaped, so escaping is
+//! idempotent: a message built from echoed pieces passes [`one_line`] unchanged.
 
 use std::fmt::Write as _;
 
+/// Most bytes of escaped input [`echo`] shows before cutting it.
+pub const ECHO_MAX_BYTES: usize = 200;
+
 /// Most bytes of a message [`one_line`] keeps before cutting it (each error echoes at most
-/// ~200 bytes of input; the rest is the file name and the explanation).
+/// [`ECHO_MAX_BYTES`] of input; the rest is the file name and the explanation).
 pub const MESSAGE_MAX_BYTES: usize = 400;
 
-/// `text` as one line of at most `max_bytes` bytes (plus a short "… (N more bytes)" note when
-/// cut): control characters (`\n`, `\t`, NUL, …), invisible and space-like format characters
-/// (no-break and zero-width spaces, byte-order mark, bidirectional controls, line and paragraph
-/// separators) are written as escapes (`\n`, `\t`, `\u{feff}`), so what is shown is what was
-/// there. The cut falls on a character boundary, never inside an escape.
-pub fn one_line(text: &str, max_bytes: usize) -> String {
-    let mut out = String::with_capacity(text.len().min(max_bytes) + 32);
-    for (i, c) in text.char_indices() {
-        let before = out.len();
-        match c {
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            '\0' => out.push_str("\\0"),
-            c if is_hidden(c) => {
-                let _ = write!(out, "\\u{{{:x}}}", c as u32);
+/// `text` escaped (see the module doc) and cut to at most `max_bytes` bytes, followed by
+/// `… (N more bytes)` when cut, N counting the input bytes left out. The cut falls on a
+/// character boundary, never inside an escape. Bytes that are not UTF-8 are shown as `\xNN`.
+pub fn escape(text: impl AsRef<[u8]>, max_bytes: usize) -> String {
+    let text = text.as_ref();
+    let mut out = String::with_capacity(text.len().min(max_bytes) + 24);
+    let mut consumed = 0;
+    for chunk in text.utf8_chunks() {
+        for c in chunk.valid().chars() {
+            let before = out.len();
+            push_escaped(&mut out, c);
+            if out.len() > max_bytes {
+                out.truncate(before);
+                return cut(out, text.len() - consumed);
             }
-            c => out.push(c),
+            consumed += c.len_utf8();
         }
-        if out.len() > max_bytes {
-            out.truncate(before);
-            let _ = write!(out, "… ({} more bytes)", text.len() - i);
-            break;
+        for &b in chunk.invalid() {
+            if out.len() + 4 > max_bytes {
+                return cut(out, text.len() - consumed);
+            }
+            let _ = write!(out, "\\x{b:02x}");
+            consumed += 1;
         }
     }
     out
 }
 
-/// Control characters and characters that print as nothing or as a plain space.
-fn is_hidden(c: char) -> bool {
-    c.is_control()
-        || matches!(
-            c,
-            '\u{00a0}' // no-break space
-                | '\u{00ad}' // soft hyphen
-                | '\u{034f}'
-                | '\u{061c}'
-                | '\u{115f}'
-                | '\u{1160}'
-                | '\u{1680}'
-                | '\u{180e}'
-                | '\u{2000}'..='\u{200f}' // spaces of every width, zero-width, LRM/RLM
-                | '\u{2028}'..='\u{202f}' // separators, bidi embeddings, narrow no-break space
-                | '\u{205f}'..='\u{206f}' // math space, word joiner, invisible operators
-                | '\u{3000}'
-                | '\u{3164}'
-                | '\u{fe00}'..='\u{fe0f}' // variation selectors
-                | '\u{feff}' // byte-order mark
-                | '\u{ffa0}'
-                | '\u{fff9}'..='\u{fffb}'
-        )
+/// A piece of input (token, keyword, argument, path) as a message quotes it: [`escape`]d and cut
+/// to [`ECHO_MAX_BYTES`].
+pub fn echo(input: impl AsRef<[u8]>) -> String {
+    escape(input, ECHO_MAX_BYTES)
+}
+
+/// A path as a message names it: its bytes (not a lossy conversion) [`echo`]ed.
+pub fn echo_path(path: &std::path::Path) -> String {
+    echo(path.as_os_str().as_encoded_bytes())
+}
+
+/// A whole message as it leaves the library (stderr line, last error): [`escape`]d and cut to
+/// [`MESSAGE_MAX_BYTES`]. Pieces already [`echo`]ed pass unchanged.
+pub fn one_line(message: &str) -> String {
+    escape(message, MESSAGE_MAX_BYTES)
+}
+
+fn cut(mut out: String, left: usize) -> String {
+    let _ = write!(out, "… ({left} more bytes)");
+    out
+}
+
+fn push_escaped(out: &mut String, c: char) {
+    match c {
+        '\0' => out.push_str("\\0"),
+        '\t' => out.push_str("\\t"),
+        '\n' => out.push_str("\\n"),
+        '\r' => out.push_str("\\r"),
+        ' ' => out.push(' '),
+        c if c.is_ascii_control() => {
+            let _ = write!(out, "\\x{:02x}", c as u32);
+        }
+        c if c.is_control() || c.is_whitespace() || invisible(c) => {
+            let _ = write!(out, "\\u{{{:x}}}", c as u32);
+        }
+        c => out.push(c),
+    }
+}
+
+/// Characters that print as nothing (or as something else): format characters, fillers,
+/// variation selectors, tags, private use and noncharacters.
+fn invisible(c: char) -> bool {
+    matches!(c as u32,
+        0xad | 0x34f | 0x61c | 0x115f | 0x1160 | 0x17b4 | 0x17b5 | 0x180b..=0x180f
+        | 0x200b..=0x200f | 0x202a..=0x202e | 0x2060..=0x206f | 0x3164 | 0xfe00..=0xfe0f
+        | 0xfeff | 0xffa0 | 0xfff0..=0xfffb | 0xe000..=0xf8ff | 0xe0000..=0xe0fff
+        | 0xf0000..=0x10ffff)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::Path;
 
     #[test]
-    fn controls_and_invisible_characters_are_escaped() {
+    fn plain_text_is_unchanged() {
         assert_eq!(
-            one_line("token '0\u{b}1' at\nline\t2\0", 100),
-            "token '0\\u{b}1' at\\nline\\t2\\0"
+            echo("abc 1.5e3 café 漢字 it's a\\b"),
+            "abc 1.5e3 café 漢字 it's a\\b"
         );
-        assert_eq!(
-            one_line("\u{feff}a\u{a0}b\u{200b}c\u{202e}", 100),
-            "\\u{feff}a\\u{a0}b\\u{200b}c\\u{202e}"
-        );
-        // Printable text, accents and CJK included, is kept as is.
-        assert_eq!(one_line("é 漢字 ok", 100), "é 漢字 ok");
     }
 
     #[test]
-    fn long_text_is_cut_on_a_character_boundary_with_the_rest_counted() {
-        let long = "é".repeat(1000); // 2000 bytes
-        let got = one_line(&long, 11);
-        assert_eq!(got, format!("{}… (1990 more bytes)", "é".repeat(5)));
+    fn control_and_invisible_characters_are_escaped() {
+        assert_eq!(echo("0\u{b}1"), "0\\x0b1");
+        assert_eq!(echo("a\0b\tc\r\n"), "a\\0b\\tc\\r\\n");
+        assert_eq!(echo("1\u{a0}2"), "1\\u{a0}2");
+        assert_eq!(echo("\u{feff}OFF"), "\\u{feff}OFF");
+        assert_eq!(
+            echo("a\u{202e}b\u{200b}\u{2028}"),
+            "a\\u{202e}b\\u{200b}\\u{2028}"
+        );
+        assert_eq!(echo("\u{7f}\u{85}\u{3000}"), "\\x7f\\u{85}\\u{3000}");
+    }
+
+    #[test]
+    fn invalid_bytes_are_escaped() {
+        assert_eq!(echo(b"ply\xff\xfe\x00\x01"), "ply\\xff\\xfe\\0\\x01");
+        assert_eq!(echo(b"caf\xe9"), "caf\\xe9");
+    }
+
+    #[test]
+    fn long_input_is_cut_on_a_character_boundary_with_the_rest_counted() {
+        let long = "9".repeat(100_000_000);
+        assert_eq!(
+            echo(&long),
+            format!("{}… (99999800 more bytes)", "9".repeat(ECHO_MAX_BYTES))
+        );
+        // Escapes count towards the cap.
+        let e = echo(vec![0xffu8; 1000]);
+        assert_eq!(e, format!("{}… (950 more bytes)", "\\xff".repeat(50)));
+        let e = echo("é".repeat(300));
+        assert_eq!(e, format!("{}… (400 more bytes)", "é".repeat(100)));
         // An escape is never cut in half.
-        let got = one_line("abc\n\n\n", 5);
-        assert_eq!(got, "abc\\n… (2 more bytes)");
-        assert_eq!(one_line("short", 5), "short");
+        assert_eq!(escape("abc\n\n\n", 5), "abc\\n… (2 more bytes)");
+        assert_eq!(escape("short", 5), "short");
+    }
+
+    #[test]
+    fn a_message_of_echoed_pieces_passes_one_line_unchanged() {
+        let nasty = b"\xef\xbb\xbf0\x0b1\xff\n\xe2\x80\xae".repeat(40);
+        let msg = format!(
+            "f.off:3: token '{}' in {}",
+            echo(&nasty),
+            echo_path(Path::new("a\tb"))
+        );
+        assert_eq!(one_line(&msg), msg);
+        let e = echo(&nasty);
+        assert_eq!(escape(&e, usize::MAX), e);
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn paths_are_echoed_from_their_bytes() {
+        use std::os::unix::ffi::OsStrExt;
+        let p = Path::new(std::ffi::OsStr::from_bytes(b"/tmp/a\nb's\xff.off"));
+        assert_eq!(echo_path(p), "/tmp/a\\nb's\\xff.off");
     }
 }

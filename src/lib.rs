@@ -7,7 +7,8 @@
 //! - [`live`] is the updatable complex: insertion, removal, edge contraction, vertex split.
 //! - [`oracle`] answers every relation by brute force, for tests.
 //! - [`report`] is `topoplex report`: census, storage and timings of every structure.
-//! - [`error::one_line`] bounds and escapes every message that leaves the library.
+//! - [`error::escape`] is the one escaper: every message that leaves the library is bounded
+//!   and escaped by it ([`error::echo`] for quoted input, [`error::one_line`] for the message).
 //! - [`store`] saves the complex and a structure as `.tpx` and maps them back zero-copy.
 //! - [`ffi`] is the C ABI (`include/topoplex.h`), the only module allowed `unsafe` code.
 

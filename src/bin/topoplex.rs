@@ -14,7 +14,7 @@ use std::time::Duration;
 
 use clap::{CommandFactory, Parser, Subcommand};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use topoplex::error::{MESSAGE_MAX_BYTES, one_line};
+use topoplex::error::{echo, echo_path, one_line};
 use topoplex::io::write::Format;
 use topoplex::relation::sort_rows;
 use topoplex::store::Saved;
@@ -226,7 +226,7 @@ fn run(command: Command) -> Result<(), String> {
 /// Writes `topoplex: <msg>` as one bounded, escaped line on stderr and returns exit status 1.
 /// A stderr that cannot be written (closed, full) is ignored: the status still tells.
 fn fail(msg: &str) -> ExitCode {
-    let line = one_line(msg, MESSAGE_MAX_BYTES);
+    let line = one_line(msg);
     let _ = writeln!(std::io::stderr().lock(), "topoplex: {line}");
     ExitCode::FAILURE
 }
@@ -267,11 +267,6 @@ fn usage_line(rendered: &str) -> String {
     let joined = joined.join(" ");
     let msg = joined.strip_prefix("error: ").unwrap_or(&joined);
     format!("{msg} (see topoplex --help)")
-}
-
-/// An argument echoed in a message: at most 200 bytes, escaped.
-fn echo(arg: &str) -> String {
-    one_line(arg, 200)
 }
 
 /// The message for a failed write to stdout (closed pipe, full disk).
@@ -326,7 +321,7 @@ fn save(file: &Path, structure: Option<&str>, out: &Path) -> Result<(), String> 
     {
         return Err(format!(
             "--out {} is the input file; choose another path",
-            topoplex::io::echo_path(out)
+            echo_path(out)
         ));
     }
     let complex = load(file)?;
@@ -427,7 +422,7 @@ fn report(files: &[PathBuf], json: bool, csv: bool, svg: Option<&Path>) -> Resul
     progress.finish();
     if let Some(path) = svg {
         std::fs::write(path, topoplex::report::svg::svg(&datasets))
-            .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
+            .map_err(|e| format!("{}: cannot write: {e}", echo_path(path)))?;
     }
     let text = if json {
         render::json(&datasets)
@@ -455,7 +450,7 @@ fn convert(input: &Path, output: &Path, format: Option<&str>, census: bool) -> R
     if census && Format::from_path(output) != Some(Format::Vtk) {
         return Err(format!(
             "--census writes legacy VTK: {} must end in .vtk",
-            output.display()
+            echo_path(output)
         ));
     }
     let complex = load(input)?;
@@ -483,7 +478,7 @@ fn decompose(file: &Path, out: &Path, force: bool, format: Option<&str>) -> Resu
         dec.split_vertices.len(),
         dec.copy_vertex.len(),
         paths.len(),
-        out.display()
+        echo_path(out)
     ))
 }
 
@@ -491,13 +486,13 @@ fn decompose(file: &Path, out: &Path, force: bool, format: Option<&str>) -> Resu
 /// then an earlier decomposition's files are deleted (so none is left stale) — unless one of
 /// them is the input, which is never overwritten or deleted.
 fn prepare_out_dir(input: &Path, out: &Path, force: bool) -> Result<(), String> {
-    let at = |e: std::io::Error| format!("--out {}: {e}", out.display());
+    let at = |e: std::io::Error| format!("--out {}: {e}", echo_path(out));
     let entries = match std::fs::read_dir(out) {
         Ok(entries) => entries,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(()),
         Err(e) => return Err(at(e)),
     };
-    let input_meta = std::fs::metadata(input).map_err(|e| format!("{}: {e}", input.display()))?;
+    let input_meta = std::fs::metadata(input).map_err(|e| format!("{}: {e}", echo_path(input)))?;
     let (mut earlier, mut others) = (Vec::new(), 0usize);
     for entry in entries {
         let path = entry.map_err(at)?.path();
@@ -506,8 +501,8 @@ fn prepare_out_dir(input: &Path, out: &Path, force: bool) -> Result<(), String> 
             if std::fs::metadata(&path).is_ok_and(|m| same_file(&m, &input_meta)) {
                 return Err(format!(
                     "--out {}: the input {} would be overwritten (decompose never overwrites its input; choose another directory)",
-                    out.display(),
-                    input.display()
+                    echo_path(out),
+                    echo_path(input)
                 ));
             }
             earlier.push(path);
@@ -521,12 +516,12 @@ fn prepare_out_dir(input: &Path, out: &Path, force: bool) -> Result<(), String> 
     if !force {
         return Err(format!(
             "--out {}: directory is not empty; pass --force to replace an earlier decomposition there",
-            out.display()
+            echo_path(out)
         ));
     }
     for path in earlier {
         std::fs::remove_file(&path)
-            .map_err(|e| format!("{}: cannot delete: {e}", path.display()))?;
+            .map_err(|e| format!("{}: cannot delete: {e}", echo_path(&path)))?;
     }
     Ok(())
 }
@@ -561,7 +556,7 @@ fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Re
     {
         return Err(format!(
             "--out {} is the input file; choose another path",
-            topoplex::io::echo_path(out)
+            echo_path(out)
         ));
     }
     let complex = load(input)?;
@@ -604,7 +599,7 @@ fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Re
         st.output_tops,
         st.target_tops,
         st.contractions,
-        out.display()
+        echo_path(out)
     ))
 }
 

@@ -96,7 +96,7 @@ pub struct Origin {
 impl fmt::Display for Origin {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match &self.file {
-            Some(p) => write!(f, "{}:{}", p.display(), self.line),
+            Some(p) => write!(f, "{}:{}", crate::error::echo_path(p), self.line),
             None => write!(f, "input simplex #{}", self.index),
         }
     }
@@ -173,7 +173,7 @@ pub enum ComplexError {
         origin: Origin,
     },
     /// The input has no vertex at all.
-    #[error("{}complex has no vertices", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
+    #[error("{}complex has no vertices", .file.as_ref().map(|p| format!("{}: ", crate::error::echo_path(p))).unwrap_or_default())]
     NoVertices {
         /// The file, if the input came from one.
         file: Option<PathBuf>,
@@ -182,7 +182,7 @@ pub enum ComplexError {
     #[error("coordinates: {0}")]
     Coordinates(String),
     /// The closure could exceed the [`Budget`].
-    #[error("{}the closure could have up to {bound} simplices from an input of size {input_size} (listed vertex ids + declared vertices), above the budget of {limit} (default: max(2^20, 64 × input size)); raise it with --max-simplices (C ABI: tpx_complex_from_*_budget)", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
+    #[error("{}the closure could have up to {bound} simplices from an input of size {input_size} (listed vertex ids + declared vertices), above the budget of {limit} (default: max(2^20, 64 × input size)); raise it with --max-simplices (C ABI: tpx_complex_from_*_budget)", .file.as_ref().map(|p| format!("{}: ", crate::error::echo_path(p))).unwrap_or_default())]
     TooLarge {
         /// The file, if the input came from one.
         file: Option<PathBuf>,
@@ -195,7 +195,7 @@ pub enum ComplexError {
         input_size: u64,
     },
     /// Memory that the input's size asks for could not be reserved.
-    #[error("{}out of memory: cannot reserve {bytes} bytes for {what}", .file.as_ref().map(|p| format!("{}: ", p.display())).unwrap_or_default())]
+    #[error("{}out of memory: cannot reserve {bytes} bytes for {what}", .file.as_ref().map(|p| format!("{}: ", crate::error::echo_path(p))).unwrap_or_default())]
     OutOfMemory {
         /// The file, if the input came from one.
         file: Option<PathBuf>,
@@ -572,6 +572,17 @@ impl Complex {
         &self.listing.ids[self.listing.offsets[i]..self.listing.offsets[i + 1]]
     }
 
+    /// Builds the listing ↔ top maps now if their memory (8 bytes a listing, 4 a top simplex)
+    /// can be had: `Err(bytes)` otherwise, where the first use would abort.
+    pub(crate) fn try_listing_maps(&self) -> Result<(), usize> {
+        if self.listing.maps.get().is_none() {
+            let tops: usize = self.tops.iter().map(SimplexTable::len).sum();
+            table::headroom(self.input_count() * 8 + tops * 4)?;
+            self.listing_maps();
+        }
+        Ok(())
+    }
+
     fn listing_maps(&self) -> &ListingMaps {
         self.listing.maps.get_or_init(|| {
             let mut first: Vec<Vec<u32>> =
@@ -675,27 +686,38 @@ impl Complex {
     /// order (so the p-simplices are numbered by their position). Built level by level from the
     /// facets of the level above: O(Σ_p (p+1) n_p log n_p) time, the closure's size in memory.
     pub fn closure(&self) -> Vec<SimplexTable> {
+        self.try_closure().unwrap_or_else(|bytes| {
+            std::alloc::handle_alloc_error(
+                std::alloc::Layout::array::<u8>(bytes).unwrap_or(std::alloc::Layout::new::<u8>()),
+            )
+        })
+    }
+
+    /// [`Self::closure`] with its memory reserved fallibly: `Err(bytes)` names the reservation
+    /// that could not be had (structure builds turn it into `TooLarge`, not an abort).
+    pub fn try_closure(&self) -> Result<Vec<SimplexTable>, usize> {
         let d = self.dimension();
         let mut levels: Vec<SimplexTable> = vec![SimplexTable::default(); d + 1];
-        levels[d] = self.tops[d].clone();
+        levels[d] = self.tops[d].try_clone()?;
         for p in (0..d).rev() {
             if p == 0 {
-                levels[0] = SimplexTable::vertices(self.n_vertices);
+                levels[0] = SimplexTable::try_vertices(self.n_vertices)?;
                 break;
             }
             let above = &levels[p + 1];
-            let mut rows =
-                Vec::with_capacity(above.len() * (p + 2) * (p + 1) + self.tops[p].as_flat().len());
+            let len = above.len() * (p + 2) * (p + 1) + self.tops[p].as_flat().len();
+            let mut rows = Vec::new();
+            rows.try_reserve_exact(len).map_err(|_| len * 4)?;
             for s in above.iter() {
                 push_facets(s, &mut rows);
             }
             rows.extend_from_slice(self.tops[p].as_flat());
-            levels[p] = SimplexTable::from_rows(p + 1, rows).0;
+            levels[p] = SimplexTable::try_from_rows(p + 1, rows)?.0;
         }
         if d == 0 {
-            levels[0] = SimplexTable::vertices(self.n_vertices);
+            levels[0] = SimplexTable::try_vertices(self.n_vertices)?;
         }
-        levels
+        Ok(levels)
     }
 }
 

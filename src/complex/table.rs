@@ -51,6 +51,37 @@ impl SimplexTable {
         (table, dups)
     }
 
+    /// [`Self::from_rows`] whose memory is checked first: `Err(bytes)` when the sort's peak
+    /// (two 8-byte keys per row and the rows out) cannot be reserved, instead of an abort.
+    pub fn try_from_rows(arity: usize, ids: Vec<u32>) -> Result<(Self, usize), usize> {
+        let rows = ids.len() / arity.max(1);
+        headroom(
+            rows.saturating_mul(16)
+                .saturating_add(ids.len().saturating_mul(4)),
+        )?;
+        Ok(Self::from_rows(arity, ids))
+    }
+
+    /// A copy whose memory is reserved fallibly: `Err(bytes)` when it cannot be had.
+    pub fn try_clone(&self) -> Result<Self, usize> {
+        Ok(SimplexTable {
+            arity: self.arity,
+            ids: self.ids.try_clone()?,
+        })
+    }
+
+    /// [`Self::vertices`] reserved fallibly: `Err(bytes)` when it cannot be had.
+    pub fn try_vertices(n: u32) -> Result<Self, usize> {
+        let mut ids = Vec::new();
+        ids.try_reserve_exact(n as usize)
+            .map_err(|_| n as usize * 4)?;
+        ids.extend(0..n);
+        Ok(SimplexTable {
+            arity: 1,
+            ids: ids.into(),
+        })
+    }
+
     /// The vertices `0..n` as a table of 0-simplices.
     pub fn vertices(n: u32) -> Self {
         SimplexTable {
@@ -321,6 +352,14 @@ pub fn order_by_key(
     let mut pairs: Vec<(u64, u32)> = (0..n as u32).map(|i| (key(i), i)).collect();
     radix_sort_by(&mut pairs, key_bits, |&(k, _)| k);
     Some(pairs.into_iter().map(|(_, i)| i).collect())
+}
+
+/// Whether `bytes` more can be allocated now: reserved and released at once (address space,
+/// not pages), so a step whose peak is known but whose buffers are made infallibly (a sort's
+/// keys and scratch) fails with `Err(bytes)` before it starts rather than aborting half way.
+pub fn headroom(bytes: usize) -> Result<(), usize> {
+    let mut probe: Vec<u8> = Vec::new();
+    probe.try_reserve_exact(bytes).map_err(|_| bytes)
 }
 
 /// Appends to `out` the facets of `simplex` (ascending ids): facet `i` omits vertex `i`, so the

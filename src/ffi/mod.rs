@@ -185,7 +185,7 @@ thread_local! {
 fn set_last_error(message: &str) {
     // One bounded line with control characters escaped (NUL included, which CString refuses):
     // a 100 MB token in a file must not become a 100 MB message.
-    let line = crate::error::one_line(message, crate::error::MESSAGE_MAX_BYTES);
+    let line = crate::error::one_line(message);
     let c = CString::new(line).unwrap_or_default();
     // `try_with`: during thread teardown the slot may be gone; the message is then dropped
     // rather than panicking outside the panic boundary.

@@ -903,7 +903,7 @@ fn last_error_message_is_one_bounded_escaped_line() {
     assert!(!msg.contains('\n') && !msg.contains('\u{b}'));
     let st = guard(|| Err(Failure::new(TpxStatus::ParseError, "a\nb\u{b}c\0")));
     assert_eq!(st, TpxStatus::ParseError);
-    assert_eq!(last_error(), "a\\nb\\u{b}c\\0");
+    assert_eq!(last_error(), "a\\nb\\x0bc\\0");
 }
 
 /// Handles through the C ABI on the tetrahedron with a dangling triangle and a wire: locate,

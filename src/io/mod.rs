@@ -42,7 +42,6 @@ macro_rules! reader_test_helpers {
 }
 
 mod bytes;
-pub mod echo;
 pub mod medit;
 pub mod msh;
 pub mod obj;
@@ -55,7 +54,7 @@ pub mod vtk;
 pub mod vtu;
 pub mod write;
 
-pub use echo::{echo, echo_path};
+use crate::error::{echo, echo_path};
 
 /// Vertex coordinates, `dim` numbers per vertex, vertex-major.
 #[derive(Debug, Clone, PartialEq)]

@@ -858,6 +858,6 @@ mod tests {
         };
         let msg = k.to_string();
         assert!(msg.len() < 400, "{} bytes", msg.len());
-        assert!(msg.contains("… (1000000 bytes)"), "{msg}");
+        assert!(msg.contains("… (999800 more bytes)"), "{msg}");
     }
 }

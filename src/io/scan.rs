@@ -6,7 +6,7 @@
 //! digit loop. Lines end in `\n`, `\r\n` or a lone `\r` (old Mac files), so line numbers are
 //! right for all three. Spaces, tabs and form feeds separate tokens; `#` starts a comment that
 //! runs to the end of its line. Any other byte (a vertical tab, a NUL, a no-break space) is part
-//! of a token, so it shows up, escaped by [`super::echo`], in the error about that token.
+//! of a token, so it shows up, escaped by [`crate::error::echo`], in the error about that token.
 
 use super::{IntError, ReadErrorKind, echo, syntax};
 

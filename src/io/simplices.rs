@@ -221,7 +221,7 @@ mod tests {
         let msg = k.to_string();
         assert!(msg.len() < 300, "{} bytes", msg.len());
         assert!(
-            msg.ends_with("… (100000000 bytes) does not fit in 32 bits"),
+            msg.ends_with("… (99999800 more bytes) does not fit in 32 bits"),
             "{msg}"
         );
     }

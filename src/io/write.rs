@@ -211,7 +211,7 @@ pub enum WriteErrorKind {
 
 /// A file that could not be written.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{}: {kind}", path.display())]
+#[error("{}: {kind}", crate::error::echo_path(path))]
 pub struct WriteError {
     /// The file (or directory) being written.
     pub path: PathBuf,

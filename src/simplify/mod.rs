@@ -96,7 +96,7 @@ pub enum SimplifyError {
 
 fn source_prefix(file: &Option<std::path::PathBuf>) -> String {
     file.as_ref()
-        .map(|p| format!("{}: ", p.display()))
+        .map(|p| format!("{}: ", crate::error::echo_path(p)))
         .unwrap_or_default()
 }
 

@@ -123,6 +123,23 @@ impl<T: bytemuck::Pod> Default for Arr<T> {
     }
 }
 
+impl<T: bytemuck::Pod> Arr<T> {
+    /// A clone whose copy (of an owned array) is reserved fallibly: `Err(bytes)` when it cannot
+    /// be had. A mapped array is shared, never copied.
+    pub fn try_clone(&self) -> Result<Self, usize> {
+        match self {
+            Arr::Owned(v) => {
+                let mut c = Vec::new();
+                c.try_reserve_exact(v.len())
+                    .map_err(|_| v.len().saturating_mul(size_of::<T>()))?;
+                c.extend_from_slice(v);
+                Ok(Arr::Owned(c))
+            }
+            mapped => Ok(mapped.clone()),
+        }
+    }
+}
+
 impl<T: bytemuck::Pod> Clone for Arr<T> {
     fn clone(&self) -> Self {
         match self {

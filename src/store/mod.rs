@@ -69,7 +69,7 @@ const MAX_SECTIONS: u64 = 1 << 16;
 #[derive(Debug, thiserror::Error)]
 pub enum StoreError {
     /// The file cannot be read or written.
-    #[error("{}: {message}", .path.display())]
+    #[error("{}: {message}", crate::error::echo_path(.path))]
     Io {
         /// The file.
         path: PathBuf,
@@ -77,13 +77,13 @@ pub enum StoreError {
         message: String,
     },
     /// The file is not a `.tpx` file (its first bytes are not the magic number).
-    #[error("{}: not a topoplex saved file (.tpx): wrong magic number", .path.display())]
+    #[error("{}: not a topoplex saved file (.tpx): wrong magic number", crate::error::echo_path(.path))]
     Foreign {
         /// The file.
         path: PathBuf,
     },
     /// The file is shorter than its header says.
-    #[error("{}: truncated saved file: {what}", .path.display())]
+    #[error("{}: truncated saved file: {what}", crate::error::echo_path(.path))]
     Truncated {
         /// The file.
         path: PathBuf,
@@ -91,7 +91,7 @@ pub enum StoreError {
         what: String,
     },
     /// The file was written by another format version.
-    #[error("{}: saved file format version {found}, this build reads version {supported}", .path.display())]
+    #[error("{}: saved file format version {found}, this build reads version {supported}", crate::error::echo_path(.path))]
     WrongVersion {
         /// The file.
         path: PathBuf,
@@ -101,13 +101,13 @@ pub enum StoreError {
         supported: u32,
     },
     /// The file was written on a host of the other byte order.
-    #[error("{}: saved file written in the other byte order (big- vs little-endian); save it again on this machine", .path.display())]
+    #[error("{}: saved file written in the other byte order (big- vs little-endian); save it again on this machine", crate::error::echo_path(.path))]
     WrongEndianness {
         /// The file.
         path: PathBuf,
     },
     /// A checksum, offset, length or value is wrong.
-    #[error("{}: corrupt saved file: {what}", .path.display())]
+    #[error("{}: corrupt saved file: {what}", crate::error::echo_path(.path))]
     Corrupt {
         /// The file.
         path: PathBuf,
@@ -115,7 +115,7 @@ pub enum StoreError {
         what: String,
     },
     /// The saved complex is not a valid complex.
-    #[error("{}: saved complex: {source}", .path.display())]
+    #[error("{}: saved complex: {source}", crate::error::echo_path(.path))]
     Complex {
         /// The file.
         path: PathBuf,
@@ -123,7 +123,7 @@ pub enum StoreError {
         source: ComplexError,
     },
     /// The requested structure could not be built from the saved complex.
-    #[error("{}: {source}", .path.display())]
+    #[error("{}: {source}", crate::error::echo_path(.path))]
     Build {
         /// The file.
         path: PathBuf,

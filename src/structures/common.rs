@@ -1,13 +1,135 @@
 //! Helpers several structures share: per-query scratch sets and stacks for walks ([`IdSet`],
 //! [`IdStack`], [`RowSet`]), face enumeration ([`faces_containing`], [`faces_of_tops`]), the
-//! union–find, per-thread pooled scratch buffers ([`Scratch`]) and [`show`] for messages.
+//! union–find, per-thread pooled scratch buffers ([`Scratch`]), [`show`] for messages, and the
+//! fallible allocations of input-sized arrays ([`try_vec`], [`try_with_capacity`], [`try_iota`],
+//! [`try_reserve`]).
 
 use std::cell::RefCell;
 use std::thread::LocalKey;
 
 use rustc_hash::FxHashSet;
 
-use crate::complex::sort_dedup_rows;
+use super::BuildError;
+use crate::complex::table::{headroom, order_by_key};
+use crate::complex::{Complex, SimplexTable, sort_dedup_rows};
+use crate::relation::StructureKind;
+
+/// The error for an array of `n` elements of `T` (named by `what`) that cannot be had: a build
+/// under a raised budget must report `TooLarge`, never abort the host on allocation failure.
+fn no_room<T>(kind: StructureKind, n: usize, what: &str) -> BuildError {
+    too_large(
+        kind,
+        n.saturating_mul(size_of::<T>()),
+        &format!("{n} {what}"),
+    )
+}
+
+/// `vec![value; n]`, or `TooLarge` when the memory cannot be had.
+pub(crate) fn try_vec<T: Clone>(
+    kind: StructureKind,
+    value: T,
+    n: usize,
+    what: &str,
+) -> Result<Vec<T>, BuildError> {
+    let mut v = try_with_capacity(kind, n, what)?;
+    v.resize(n, value);
+    Ok(v)
+}
+
+/// `Vec::with_capacity(n)`, or `TooLarge` when the memory cannot be had.
+pub(crate) fn try_with_capacity<T>(
+    kind: StructureKind,
+    n: usize,
+    what: &str,
+) -> Result<Vec<T>, BuildError> {
+    let mut v = Vec::new();
+    try_reserve(kind, &mut v, n, what)?;
+    Ok(v)
+}
+
+/// `v.reserve_exact(extra)`, or `TooLarge` when the memory cannot be had.
+pub(crate) fn try_reserve<T>(
+    kind: StructureKind,
+    v: &mut Vec<T>,
+    extra: usize,
+    what: &str,
+) -> Result<(), BuildError> {
+    v.try_reserve_exact(extra)
+        .map_err(|_| no_room::<T>(kind, extra, what))
+}
+
+/// `items.to_vec()`, or `TooLarge` when the memory cannot be had.
+pub(crate) fn try_copy<T: Clone>(
+    kind: StructureKind,
+    items: &[T],
+    what: &str,
+) -> Result<Vec<T>, BuildError> {
+    let mut v = try_with_capacity(kind, items.len(), what)?;
+    v.extend_from_slice(items);
+    Ok(v)
+}
+
+/// A copy of `table`, or `TooLarge` when the memory cannot be had.
+pub(crate) fn try_table(
+    kind: StructureKind,
+    table: &SimplexTable,
+) -> Result<SimplexTable, BuildError> {
+    table
+        .try_clone()
+        .map_err(|bytes| too_large(kind, bytes, "a copy of a simplex table"))
+}
+
+/// The complex's closure ([`Complex::try_closure`]), or `TooLarge`.
+pub(crate) fn try_closure(
+    kind: StructureKind,
+    complex: &Complex,
+) -> Result<Vec<SimplexTable>, BuildError> {
+    complex
+        .try_closure()
+        .map_err(|bytes| too_large(kind, bytes, "the closure"))
+}
+
+/// `TooLarge` for `bytes` that could not be had for `what`.
+pub(crate) fn too_large(kind: StructureKind, bytes: usize, what: &str) -> BuildError {
+    BuildError::TooLarge {
+        kind,
+        what: format!("cannot allocate {bytes} bytes for {what}"),
+    }
+}
+
+/// [`order_by_key`] after checking that its peak (packed keys, the radix sort's scratch and
+/// the order: 20 bytes an element) can be had, else `TooLarge`.
+pub(crate) fn try_order(
+    kind: StructureKind,
+    n: usize,
+    key_bits: u32,
+    key: impl Fn(u32) -> u64 + Sync + Send,
+) -> Result<Option<Vec<u32>>, BuildError> {
+    headroom(n.saturating_mul(20)).map_err(|bytes| too_large(kind, bytes, "a sort"))?;
+    Ok(order_by_key(n, key_bits, key))
+}
+
+/// `v.push(x)` whose growth (doubling) is reserved fallibly, for arrays whose final length the
+/// input decides but no count gives in advance.
+pub(crate) fn try_push<T>(
+    kind: StructureKind,
+    v: &mut Vec<T>,
+    x: T,
+    what: &str,
+) -> Result<(), BuildError> {
+    if v.len() == v.capacity() {
+        try_reserve(kind, v, v.len().max(64), what)?;
+    }
+    v.push(x);
+    Ok(())
+}
+
+/// `(0..n as u32).collect()`, or `TooLarge` when the memory cannot be had.
+pub(crate) fn try_iota(kind: StructureKind, n: usize, what: &str) -> Result<Vec<u32>, BuildError> {
+    let mut v = try_with_capacity(kind, n, what)?;
+    v.extend(0..n as u32);
+    Ok(v)
+}
 
 /// A buffer that is reset and handed back between uses: the per-thread pools of [`Scratch`].
 pub(crate) trait Pooled: Default + 'static {
@@ -134,9 +256,9 @@ impl UnionFind {
         self.0
     }
 
-    /// `n` singletons.
-    pub(crate) fn new(n: usize) -> Self {
-        UnionFind((0..n as u32).collect())
+    /// `n` singletons, or `TooLarge` when the memory cannot be had.
+    pub(crate) fn try_new(kind: StructureKind, n: usize, what: &str) -> Result<Self, BuildError> {
+        Ok(UnionFind(try_iota(kind, n, what)?))
     }
 
     /// The root of `x`'s class.

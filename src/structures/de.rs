@@ -31,6 +31,7 @@
 //! - R_{2,0}, R_{2,1}: O(1). R_{2,2}(t): the three radial cycles, O(answer + 3).
 
 use super::BuildError;
+use super::common::{try_copy, try_with_capacity};
 use super::nav::{NavBase, NavIndex};
 use super::radial::{self, EdgeAt, EdgeLocator, TriTopo, row3};
 use crate::complex::Complex;
@@ -68,21 +69,21 @@ impl DirectedEdge {
         let tris = &parts.tris;
         let n2 = tris.len() as u32;
         let nw = parts.wires.len() as u32;
-        let rad = radial::radial(tris, complex.coords());
+        let rad = radial::radial(KIND, tris, complex.coords())?;
         let d = (3 * n2 + 2 * nw) as usize;
         let mut de = DirectedEdge {
-            nav: NavIndex::new(complex),
+            nav: NavIndex::new(KIND, complex)?,
             n: parts.n,
             dim: parts.dim,
             isolated: parts.isolated,
             n_tris: n2,
             n_wires: nw,
             n_edges: rad.edges.len() + nw as usize,
-            de_start: Arr::from(Vec::with_capacity(d)),
-            de_end: Arr::from(Vec::with_capacity(d)),
-            de_radial: Arr::from(rad.next.clone()),
-            de_prev: Arr::from(Vec::with_capacity(d)),
-            de_next: Arr::from(Vec::with_capacity(d)),
+            de_start: Arr::from(try_with_capacity(KIND, d, "edge uses")?),
+            de_end: Arr::from(try_with_capacity(KIND, d, "edge uses")?),
+            de_radial: Arr::from(try_copy(KIND, &rad.next, "radial links")?),
+            de_prev: Arr::from(try_with_capacity(KIND, d, "edge uses")?),
+            de_next: Arr::from(try_with_capacity(KIND, d, "edge uses")?),
             comp_off: Arr::from(Vec::new()),
             comp_de: Arr::from(Vec::new()),
             locator: EdgeLocator::build(tris),
@@ -106,6 +107,7 @@ impl DirectedEdge {
                 de.de_next.push(other);
             }
         }
+        radial::components_headroom(KIND, parts.n, tris.len(), parts.wires.len())?;
         let (off, corners) =
             radial::vertex_components(parts.n, n2, |t| row3(tris, t), |s| rad.next[s as usize]);
         // Append each vertex's wire directed edges after its triangle components.

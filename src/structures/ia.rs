@@ -60,6 +60,7 @@ use super::nav::{NavBase, NavIndex};
 use crate::store::Arr;
 use rustc_hash::FxHashSet;
 
+use super::common::{try_copy, try_table, try_vec, try_with_capacity};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable, is_subset};
@@ -154,30 +155,31 @@ fn adjacency(tops: &SimplexTable, d: usize) -> Result<Vec<u32>, (Vec<u32>, Vec<u
 /// a word is ever needed and buckets are matched on [`crate::parallel::threads`] threads. The
 /// result (and the facet named in an error: the lexicographically first with three or more
 /// d-simplices) is the same whatever the thread count. O(n_d·d·(1 + log b)) for buckets of b.
+/// The outer `Err` is `TooLarge`: an array that cannot be had.
 #[allow(clippy::type_complexity)]
 fn adjacency_by_vertex(
     tops: &SimplexTable,
     d: usize,
     n: u32,
-) -> Result<Vec<u32>, (Vec<u32>, Vec<u32>)> {
+) -> Result<Result<Vec<u32>, (Vec<u32>, Vec<u32>)>, BuildError> {
     let w = d + 1;
     let slots = tops.len() * w;
-    let mut adj = vec![NONE; slots];
+    let mut adj = try_vec(KIND, NONE, slots, "adjacencies")?;
     if d == 0 {
-        return Ok(adj);
+        return Ok(Ok(adj));
     }
     // Slot k = (top k / w, facet opposite vertex k % w); its facet's smallest vertex is the
     // top's first vertex unless that is the one left out.
     let low = |k: usize| tops.get(k / w)[usize::from(k.is_multiple_of(w))];
-    let mut start = vec![0u32; n as usize + 1];
+    let mut start = try_vec(KIND, 0u32, n as usize + 1, "bucket offsets")?;
     for k in 0..slots {
         start[low(k) as usize + 1] += 1;
     }
     for v in 0..n as usize {
         start[v + 1] += start[v];
     }
-    let mut fill = start.clone();
-    let mut order = vec![0u32; slots];
+    let mut fill = try_copy(KIND, &start, "bucket offsets")?;
+    let mut order = try_vec(KIND, 0u32, slots, "facet slots")?;
     for k in 0..slots {
         let v = low(k) as usize;
         order[fill[v] as usize] = k as u32;
@@ -231,14 +233,14 @@ fn adjacency_by_vertex(
                 .iter()
                 .flat_map(|&k| tops.get(k as usize / w).iter().copied())
                 .collect();
-            return Err((f[..d].to_vec(), three));
+            return Ok(Err((f[..d].to_vec(), three)));
         }
         for (a, b) in pairs {
             adj[a as usize] = b / w as u32;
             adj[b as usize] = a / w as u32;
         }
     }
-    Ok(adj)
+    Ok(Ok(adj))
 }
 
 /// n_p for p = 0..=d without listing the faces: n_{d−1} from the adjacencies (a facet is on
@@ -321,10 +323,16 @@ fn face_counts(
 
 /// Per-vertex star components: (CSR offsets, one d-simplex per component), each vertex's list
 /// ascending. Walks each component once through the adjacencies: O(d²·n_d).
-fn vertex_components(tops: &SimplexTable, adj: &[u32], d: usize, n: u32) -> (Vec<u32>, Vec<u32>) {
+fn vertex_components(
+    tops: &SimplexTable,
+    adj: &[u32],
+    d: usize,
+    n: u32,
+) -> Result<(Vec<u32>, Vec<u32>), BuildError> {
     let w = d + 1;
-    let mut visited = vec![false; tops.len() * w];
-    let mut pairs: Vec<(u32, u32)> = Vec::new();
+    let mut visited = try_vec(KIND, false, tops.len() * w, "visit marks")?;
+    // At most one (vertex, component) pair per slot.
+    let mut pairs: Vec<(u32, u32)> = try_with_capacity(KIND, tops.len() * w, "star components")?;
     let mut stack = Vec::new();
     for t in 0..tops.len() {
         for j in 0..w {
@@ -351,21 +359,21 @@ fn vertex_components(tops: &SimplexTable, adj: &[u32], d: usize, n: u32) -> (Vec
             }
         }
     }
-    let mut off = vec![0u32; n as usize + 1];
+    let mut off = try_vec(KIND, 0u32, n as usize + 1, "star offsets")?;
     for &(v, _) in &pairs {
         off[v as usize + 1] += 1;
     }
     for i in 0..n as usize {
         off[i + 1] += off[i];
     }
-    let mut fill = off.clone();
-    let mut list = vec![0u32; pairs.len()];
+    let mut fill = try_copy(KIND, &off, "star offsets")?;
+    let mut list = try_vec(KIND, 0u32, pairs.len(), "star components")?;
     // `pairs` is in ascending d-simplex order, so each vertex's list comes out ascending.
     for &(v, t) in &pairs {
         list[fill[v as usize] as usize] = t;
         fill[v as usize] += 1;
     }
-    (off, list)
+    Ok((off, list))
 }
 
 impl IndexedAdjacency {
@@ -388,9 +396,9 @@ impl IndexedAdjacency {
                 )));
             }
         }
-        let tops = complex.tops(d).clone();
+        let tops = try_table(KIND, complex.tops(d))?;
         to_u32(KIND, tops.len() * (d + 1), "adjacency entries")?;
-        let adj = adjacency_by_vertex(&tops, d, n).map_err(|(facet, three)| {
+        let adj = adjacency_by_vertex(&tops, d, n)?.map_err(|(facet, three)| {
             let three: Vec<String> = three.chunks(d + 1).map(show).collect();
             unsupported(format!(
                 "{}-simplex {} is a face of more than two {d}-simplices ({}, ...), so the \
@@ -400,10 +408,10 @@ impl IndexedAdjacency {
                 three.join(", ")
             ))
         })?;
-        let (vstar_off, vstar) = vertex_components(&tops, &adj, d, n);
+        let (vstar_off, vstar) = vertex_components(&tops, &adj, d, n)?;
         let counts = face_counts(&tops, &adj, &vstar_off, &vstar, d, n);
         Ok(IndexedAdjacency {
-            nav: NavIndex::new(complex),
+            nav: NavIndex::new(KIND, complex)?,
             d,
             n,
             tops,

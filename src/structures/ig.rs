@@ -29,6 +29,7 @@
 //!
 //! Queries keep no state in the structure: the "visited" marks are a per-query set.
 
+use super::common::try_closure;
 use super::common::{IdSet, Scratch, faces_containing};
 use super::nav::{NavBase, NavIndex, with_scratch};
 use super::{BuildError, to_u32};
@@ -58,7 +59,7 @@ impl IncidenceGraph {
     /// boundaries. O(Σ_p (p+1) n_p · p) time when p facet ids fit in 64 bits (else a binary
     /// search per facet, O(Σ_p (p+1) n_p · p log n_p)).
     pub fn build(complex: &Complex) -> Result<IncidenceGraph, BuildError> {
-        let tables = complex.closure();
+        let tables = try_closure(KIND, complex)?;
         for t in &tables {
             to_u32(KIND, t.len(), "simplices of one dimension")?;
         }
@@ -123,7 +124,7 @@ impl IncidenceGraph {
             })
             .collect();
         Ok(IncidenceGraph {
-            nav: NavIndex::new(complex),
+            nav: NavIndex::new(KIND, complex)?,
             tables,
             boundary: boundary.into_iter().map(Arr::from).collect(),
             cob_offsets: cob_offsets.into_iter().map(Arr::from).collect(),

@@ -111,9 +111,12 @@
 use crate::store::Arr;
 
 use super::common::{IdSet, IdStack, Scratch, UnionFind, faces_containing};
+use super::common::{
+    try_closure, try_copy, try_iota, try_order, try_push, try_vec, try_with_capacity,
+};
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
-use crate::complex::table::{id_bits, order_by_key};
+use crate::complex::table::id_bits;
 use crate::complex::{Complex, SimplexTable, is_subset, sort_dedup_rows};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
@@ -184,8 +187,8 @@ pub struct Decomposition {
 
 /// Rows of `arity - 1` ids: the facets of every row of `rows` (facet j omits entry j), each
 /// sorted ascending.
-fn facet_rows(rows: &[u32], arity: usize, sort_each: bool) -> Vec<u32> {
-    let mut out = Vec::with_capacity(rows.len() * (arity - 1));
+fn facet_rows(rows: &[u32], arity: usize, sort_each: bool) -> Result<Vec<u32>, BuildError> {
+    let mut out = try_with_capacity(KIND, rows.len() * (arity - 1), "facet rows")?;
     for r in rows.chunks_exact(arity) {
         for skip in 0..arity {
             let start = out.len();
@@ -200,21 +203,24 @@ fn facet_rows(rows: &[u32], arity: usize, sort_each: bool) -> Vec<u32> {
             }
         }
     }
-    out
+    Ok(out)
 }
 
 /// Row indices of `rows` (fixed `width`, `width >= 1`) in lexicographic order of the rows.
-fn sorted_order(rows: &[u32], width: usize) -> Vec<u32> {
+fn sorted_order(rows: &[u32], width: usize) -> Result<Vec<u32>, BuildError> {
     let n = rows.len() / width;
     let row = |i: u32| &rows[i as usize * width..(i as usize + 1) * width];
     let bits = id_bits(rows.iter().copied().max().unwrap_or(0));
-    order_by_key(n, width as u32 * bits, |i| {
+    let order = try_order(KIND, n, width as u32 * bits, |i| {
         row(i).iter().fold(0u64, |acc, &v| (acc << bits) | v as u64)
-    })
-    .unwrap_or_else(|| {
-        let mut order: Vec<u32> = (0..n as u32).collect();
-        order.sort_unstable_by(|&a, &b| row(a).cmp(row(b)).then(a.cmp(&b)));
-        order
+    })?;
+    Ok(match order {
+        Some(order) => order,
+        None => {
+            let mut order = try_iota(KIND, n, "rows")?;
+            order.sort_unstable_by(|&a, &b| row(a).cmp(row(b)).then(a.cmp(&b)));
+            order
+        }
     })
 }
 
@@ -297,8 +303,8 @@ struct HigherTops {
 }
 
 impl HigherTops {
-    fn new(x: &Exploded, n: u32) -> HigherTops {
-        let mut offsets = vec![0u32; n as usize + 1];
+    fn new(x: &Exploded, n: u32) -> Result<HigherTops, BuildError> {
+        let mut offsets = try_vec(KIND, 0u32, n as usize + 1, "vertex star offsets")?;
         for t in x.tables.iter().skip(2) {
             for &v in t.as_flat() {
                 offsets[v as usize + 1] += 1;
@@ -307,8 +313,8 @@ impl HigherTops {
         for v in 0..n as usize {
             offsets[v + 1] += offsets[v];
         }
-        let mut fill = offsets.clone();
-        let mut tops = vec![0u32; offsets[n as usize] as usize];
+        let mut fill = try_copy(KIND, &offsets, "vertex star offsets")?;
+        let mut tops = try_vec(KIND, 0u32, offsets[n as usize] as usize, "vertex stars")?;
         for k in (2..=x.dimension()).rev() {
             for (i, s) in x.tables[k].iter().enumerate() {
                 for &v in s {
@@ -317,7 +323,7 @@ impl HigherTops {
                 }
             }
         }
-        HigherTops { offsets, tops }
+        Ok(HigherTops { offsets, tops })
     }
 
     /// Whether `tau`, a facet of a top k-simplex, is a face of a top simplex of dimension
@@ -340,13 +346,13 @@ impl HigherTops {
 
 /// Steps 1–3: pastes top simplices along joints. Returns the union-finds over slots and over
 /// global tops.
-fn paste_joints(x: &Exploded, higher: &HigherTops) -> (UnionFind, UnionFind) {
-    let mut slots = UnionFind::new(x.slots());
-    let mut tops_uf = UnionFind::new(x.top_total());
+fn paste_joints(x: &Exploded, higher: &HigherTops) -> Result<(UnionFind, UnionFind), BuildError> {
+    let mut slots = UnionFind::try_new(KIND, x.slots(), "vertex slots")?;
+    let mut tops_uf = UnionFind::try_new(KIND, x.top_total(), "top simplices")?;
     for k in 1..=x.dimension() {
         let w = k + 1;
-        let facets = facet_rows(x.tables[k].as_flat(), w, false);
-        let order = sorted_order(&facets, k);
+        let facets = facet_rows(x.tables[k].as_flat(), w, false)?;
+        let order = sorted_order(&facets, k)?;
         for_each_group(&facets, k, &order, |group| {
             if group.len() != 2 {
                 return;
@@ -368,14 +374,17 @@ fn paste_joints(x: &Exploded, higher: &HigherTops) -> (UnionFind, UnionFind) {
             }
         });
     }
-    (slots, tops_uf)
+    Ok((slots, tops_uf))
 }
 
 /// Step 4a: numbers the components, dimension descending, then by first top simplex. Returns
 /// each component's dimension and, per dimension, the component of each top simplex.
-fn number_components(x: &Exploded, tops_uf: &mut UnionFind) -> (Vec<u8>, Vec<Vec<u32>>) {
+fn number_components(
+    x: &Exploded,
+    tops_uf: &mut UnionFind,
+) -> Result<(Vec<u8>, Vec<Vec<u32>>), BuildError> {
     let d = x.dimension();
-    let mut comp_of_root = vec![NONE; x.top_total()];
+    let mut comp_of_root = try_vec(KIND, NONE, x.top_total(), "component roots")?;
     let mut comp_dim: Vec<u8> = Vec::new();
     let mut top_comp: Vec<Vec<u32>> = vec![Vec::new(); d + 1];
     for k in (0..=d).rev() {
@@ -385,10 +394,10 @@ fn number_components(x: &Exploded, tops_uf: &mut UnionFind) -> (Vec<u8>, Vec<Vec
                 comp_of_root[r] = comp_dim.len() as u32;
                 comp_dim.push(k as u8);
             }
-            top_comp[k].push(comp_of_root[r]);
+            try_push(KIND, &mut top_comp[k], comp_of_root[r], "top components")?;
         }
     }
-    (comp_dim, top_comp)
+    Ok((comp_dim, top_comp))
 }
 
 /// Step 4b's output: top simplices over copy ids, grouped by component, and the copies.
@@ -404,7 +413,12 @@ struct Copies {
 
 /// Step 4b: rows of each dimension grouped by component (lexicographic within one), each slot
 /// class numbered as a copy in order of first appearance.
-fn number_copies(x: &Exploded, slots: &mut UnionFind, top_comp: &[Vec<u32>], m: usize) -> Copies {
+fn number_copies(
+    x: &Exploded,
+    slots: &mut UnionFind,
+    top_comp: &[Vec<u32>],
+    m: usize,
+) -> Result<Copies, BuildError> {
     let d = x.dimension();
     let mut out = Copies {
         tops: vec![Vec::new(); d + 1],
@@ -412,13 +426,13 @@ fn number_copies(x: &Exploded, slots: &mut UnionFind, top_comp: &[Vec<u32>], m: 
         comp_copy_start: vec![0u32; m + 1],
         ..Copies::default()
     };
-    let mut copy_of_root = vec![NONE; x.slots()];
+    let mut copy_of_root = try_vec(KIND, NONE, x.slots(), "vertex copies")?;
     let mut last_comp = NONE;
     for k in (0..=d).rev() {
         let w = k + 1;
-        let mut order: Vec<u32> = (0..x.tables[k].len() as u32).collect();
+        let mut order = try_iota(KIND, x.tables[k].len(), "top simplices")?;
         order.sort_by_key(|&i| top_comp[k][i as usize]);
-        let mut rows = Vec::with_capacity(x.tables[k].len() * w);
+        let mut rows = try_with_capacity(KIND, x.tables[k].len() * w, "component rows")?;
         for (new_i, &i) in order.iter().enumerate() {
             let comp = top_comp[k][i as usize];
             if comp != last_comp {
@@ -430,9 +444,9 @@ fn number_copies(x: &Exploded, slots: &mut UnionFind, top_comp: &[Vec<u32>], m: 
                 let r = slots.find((x.slot_base[k] + i as usize * w + j) as u32) as usize;
                 if copy_of_root[r] == NONE {
                     copy_of_root[r] = out.copy_vertex.len() as u32;
-                    out.copy_vertex.push(v);
-                    out.copy_comp.push(comp);
-                    out.copy_top.push(new_i as u32);
+                    try_push(KIND, &mut out.copy_vertex, v, "vertex copies")?;
+                    try_push(KIND, &mut out.copy_comp, comp, "vertex copies")?;
+                    try_push(KIND, &mut out.copy_top, new_i as u32, "vertex copies")?;
                 }
                 rows.push(copy_of_root[r]);
             }
@@ -440,19 +454,19 @@ fn number_copies(x: &Exploded, slots: &mut UnionFind, top_comp: &[Vec<u32>], m: 
         out.tops[k] = rows;
     }
     out.comp_copy_start[m] = out.copy_vertex.len() as u32;
-    out
+    Ok(out)
 }
 
 /// Step 4c: adjacency inside components, from the facets over copy ids. Returns the adjacency
 /// per dimension and the number of crowded facets.
-fn component_adjacency(tops: &[Vec<u32>]) -> (Vec<Vec<u32>>, usize) {
+fn component_adjacency(tops: &[Vec<u32>]) -> Result<(Vec<Vec<u32>>, usize), BuildError> {
     let mut adj: Vec<Vec<u32>> = vec![Vec::new(); tops.len()];
     let mut crowded_facets = 0;
     for k in 1..tops.len() {
         let w = k + 1;
-        let facets = facet_rows(&tops[k], w, true);
-        let order = sorted_order(&facets, k);
-        let mut a = vec![NONE; tops[k].len()];
+        let facets = facet_rows(&tops[k], w, true)?;
+        let order = sorted_order(&facets, k)?;
+        let mut a = try_vec(KIND, NONE, tops[k].len(), "adjacencies")?;
         for_each_group(&facets, k, &order, |group| match group.len() {
             1 => {}
             2 => {
@@ -464,7 +478,7 @@ fn component_adjacency(tops: &[Vec<u32>]) -> (Vec<Vec<u32>>, usize) {
         });
         adj[k] = a;
     }
-    (adj, crowded_facets)
+    Ok((adj, crowded_facets))
 }
 
 /// The hypergraph: `vertex_ref`, split vertices and the CSR of their copies.
@@ -476,12 +490,12 @@ struct Hypergraph {
 }
 
 /// Step 4d: the hypergraph of split vertices from the copies' vertices.
-fn hypergraph(n: u32, copy_vertex: &[u32]) -> Hypergraph {
-    let mut per_vertex = vec![0u32; n as usize];
+fn hypergraph(n: u32, copy_vertex: &[u32]) -> Result<Hypergraph, BuildError> {
+    let mut per_vertex = try_vec(KIND, 0u32, n as usize, "vertex copy counts")?;
     for &v in copy_vertex {
         per_vertex[v as usize] += 1;
     }
-    let mut vertex_ref = vec![NONE; n as usize];
+    let mut vertex_ref = try_vec(KIND, NONE, n as usize, "vertex references")?;
     let mut split_vertices = Vec::new();
     let mut offsets = vec![0u32];
     for v in 0..n {
@@ -492,7 +506,8 @@ fn hypergraph(n: u32, copy_vertex: &[u32]) -> Hypergraph {
         }
     }
     let mut fill: Vec<u32> = offsets[..split_vertices.len()].to_vec();
-    let mut copies = vec![0u32; *offsets.last().unwrap() as usize];
+    let copies_len = *offsets.last().unwrap() as usize;
+    let mut copies = try_vec(KIND, 0u32, copies_len, "split vertex copies")?;
     for (c, &v) in copy_vertex.iter().enumerate() {
         let v = v as usize;
         let r = vertex_ref[v];
@@ -504,12 +519,12 @@ fn hypergraph(n: u32, copy_vertex: &[u32]) -> Hypergraph {
             fill[a] += 1;
         }
     }
-    Hypergraph {
+    Ok(Hypergraph {
         vertex_ref,
         split_vertices,
         offsets,
         copies,
-    }
+    })
 }
 
 impl Iqm {
@@ -520,17 +535,20 @@ impl Iqm {
         let x = Exploded::new(complex);
         // Copies get the `SPLIT` bit free; slots bound the copies.
         to_u32(KIND, x.slots() * 2, "vertex slots (twice)")?;
-        let higher = HigherTops::new(&x, n);
-        let (mut slots, mut tops_uf) = paste_joints(&x, &higher);
-        let (comp_dim, top_comp) = number_components(&x, &mut tops_uf);
+        let higher = HigherTops::new(&x, n)?;
+        let (mut slots, mut tops_uf) = paste_joints(&x, &higher)?;
+        let (comp_dim, top_comp) = number_components(&x, &mut tops_uf)?;
         let m = comp_dim.len();
         to_u32(KIND, m, "components")?;
-        let copies = number_copies(&x, &mut slots, &top_comp, m);
-        let (adj, crowded_facets) = component_adjacency(&copies.tops);
-        let hyper = hypergraph(n, &copies.copy_vertex);
-        let counts = complex.closure().iter().map(SimplexTable::len).collect();
+        let copies = number_copies(&x, &mut slots, &top_comp, m)?;
+        let (adj, crowded_facets) = component_adjacency(&copies.tops)?;
+        let hyper = hypergraph(n, &copies.copy_vertex)?;
+        let counts = try_closure(KIND, complex)?
+            .iter()
+            .map(SimplexTable::len)
+            .collect();
         Ok(Iqm {
-            nav: NavIndex::new(complex),
+            nav: NavIndex::new(KIND, complex)?,
             n,
             counts,
             tops: copies.tops.into_iter().map(Arr::from).collect(),

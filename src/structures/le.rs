@@ -36,6 +36,7 @@
 //! - R_{2,0}, R_{2,1}: the face loop, O(1). R_{2,2}(t): the three radial cycles, O(answer + 3).
 
 use super::BuildError;
+use super::common::try_copy;
 use super::nav::{NavBase, NavIndex};
 use super::pe::by_start;
 use super::radial::{self, EdgeAt, NONE, TriTopo, row3, show};
@@ -69,7 +70,8 @@ impl LoopEdgeUse {
         let parts = radial::parts(KIND, complex)?;
         let n2 = parts.tris.len() as u32;
         let tris = &parts.tris;
-        let rad = radial::radial(tris, complex.coords());
+        let rad = radial::radial(KIND, tris, complex.coords())?;
+        radial::components_headroom(KIND, parts.n, tris.len(), parts.wires.len())?;
         let (comp_off, comps) =
             radial::vertex_components(parts.n, n2, |t| row3(tris, t), |s| rad.next[s as usize]);
         let (wire_off, wire_nbr) = radial::wire_lists(parts.n, &parts.wires);
@@ -115,14 +117,14 @@ impl LoopEdgeUse {
             }
         }
         Ok(LoopEdgeUse {
-            nav: NavIndex::new(complex),
+            nav: NavIndex::new(KIND, complex)?,
             n: parts.n,
             n_tris: n2,
             face_eu: (0..n2).map(|t| 3 * t).collect(),
-            edge_eu: Arr::from(rad.edge_first.clone()),
+            edge_eu: Arr::from(try_copy(KIND, &rad.edge_first, "radial links")?),
             eu_face: (0..m).map(|s| s / 3).collect(),
-            eu_edge: Arr::from(rad.slot_edge.clone()),
-            eu_rnext: Arr::from(rad.next.clone()),
+            eu_edge: Arr::from(try_copy(KIND, &rad.slot_edge, "radial links")?),
+            eu_rnext: Arr::from(try_copy(KIND, &rad.next, "radial links")?),
             eu_fnext: (0..m).map(|s| s - s % 3 + (s + 1) % 3).collect(),
             eu_start: eu_start.into(),
             eu_vnext: eu_vnext.into(),

@@ -22,10 +22,11 @@
 
 use std::sync::OnceLock;
 
-use super::common::Scratch;
+use super::BuildError;
+use super::common::{Scratch, try_table, try_with_capacity};
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable};
 use crate::handle::{HandleForm, Navigate, SimplexHandle, TopId, Vertices};
-use crate::relation::{QueryError, Topology, normalize_simplex};
+use crate::relation::{QueryError, StructureKind, Topology, normalize_simplex};
 use crate::store::{Arr, Field};
 
 // Saved with its structure (`.tpx`): the windings are mapped back, the lazy tables rebuilt on use.
@@ -77,10 +78,14 @@ pub(crate) struct NavIndex {
 impl NavIndex {
     /// The index of `complex`: windings of its top simplices and its tops below dimension d.
     /// O(Σ top sizes · log) time.
-    pub(crate) fn new(complex: &Complex) -> NavIndex {
+    pub(crate) fn new(kind: StructureKind, complex: &Complex) -> Result<NavIndex, BuildError> {
         let d = complex.dimension();
+        complex
+            .try_listing_maps()
+            .map_err(|bytes| super::common::too_large(kind, bytes, "the listing maps"))?;
         let mut top_first = Vec::with_capacity(d + 2);
-        let mut windings = Vec::new();
+        let tops: usize = (0..=d).map(|p| complex.tops(p).len()).sum();
+        let mut windings = try_with_capacity(kind, tops, "top windings")?;
         let mut total = 0u32;
         for p in 0..=d {
             top_first.push(total);
@@ -91,13 +96,15 @@ impl NavIndex {
             total += tops.len() as u32;
         }
         top_first.push(total);
-        let low_tops = (0..d).map(|p| complex.tops(p).clone()).collect();
-        NavIndex {
+        let low_tops = (0..d)
+            .map(|p| try_table(kind, complex.tops(p)))
+            .collect::<Result<_, _>>()?;
+        Ok(NavIndex {
             top_first,
             windings: windings.into(),
             low_tops,
             lazy: Default::default(),
-        }
+        })
     }
 
     /// The same index with no lazily built table (for a structure derived from another).

@@ -88,6 +88,7 @@
 //! Queries keep no state in the structure: every walk has its own set of visited simplices.
 
 use super::common::{IdSet, IdStack, RowSet, faces_containing, faces_of_tops, show};
+use super::common::{try_iota, try_order, try_table, try_vec};
 use super::ia::NONE;
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
@@ -130,9 +131,12 @@ fn code(i: usize, j: usize) -> u64 {
     (i * 4 + j) as u64
 }
 
-/// Adjacency across triangles, or the first triangle with three or more tetrahedra (and them).
+/// Adjacency across triangles, or the first triangle with three or more tetrahedra (and them);
+/// the outer `Err` is `TooLarge`: an array that cannot be had.
 #[allow(clippy::type_complexity)]
-fn tet_adjacency(tets: &SimplexTable) -> Result<Vec<u32>, ([u32; 3], Vec<u32>)> {
+fn tet_adjacency(
+    tets: &SimplexTable,
+) -> Result<Result<Vec<u32>, ([u32; 3], Vec<u32>)>, BuildError> {
     let facet = |k: u32| {
         let (t, i) = (k as usize / 4, k as usize % 4);
         let s = tets.get(t);
@@ -146,18 +150,21 @@ fn tet_adjacency(tets: &SimplexTable) -> Result<Vec<u32>, ([u32; 3], Vec<u32>)> 
         }
         f
     };
-    let mut adj = vec![NONE; tets.len() * 4];
+    let mut adj = try_vec(KIND, NONE, tets.len() * 4, "adjacencies")?;
     let bits = id_bits(tets.as_flat().iter().copied().max().unwrap_or(0));
-    let order = order_by_key(tets.len() * 4, 3 * bits, |k| {
+    let order = try_order(KIND, tets.len() * 4, 3 * bits, |k| {
         facet(k)
             .iter()
             .fold(0u64, |acc, &v| (acc << bits) | v as u64)
-    })
-    .unwrap_or_else(|| {
-        let mut order: Vec<u32> = (0..(tets.len() * 4) as u32).collect();
-        order.sort_unstable_by_key(|&k| (facet(k), k));
-        order
-    });
+    })?;
+    let order = match order {
+        Some(order) => order,
+        None => {
+            let mut order = try_iota(KIND, tets.len() * 4, "facet slots")?;
+            order.sort_unstable_by_key(|&k| (facet(k), k));
+            order
+        }
+    };
     let mut i = 0;
     while i < order.len() {
         let f = facet(order[i]);
@@ -177,12 +184,12 @@ fn tet_adjacency(tets: &SimplexTable) -> Result<Vec<u32>, ([u32; 3], Vec<u32>)> 
                     .iter()
                     .flat_map(|&k| tets.get(k as usize / 4).iter().copied())
                     .collect();
-                return Err((f, three));
+                return Ok(Err((f, three)));
             }
         }
         i = j;
     }
-    Ok(adj)
+    Ok(Ok(adj))
 }
 
 /// A plane basis around an edge, for angles.
@@ -261,9 +268,9 @@ impl NonManifoldIa {
             }
         }
         let n = complex.vertex_count();
-        let tets = complex.tops(3).clone();
-        let faces = complex.tops(2).clone();
-        let wires = complex.tops(1).clone();
+        let tets = try_table(KIND, complex.tops(3))?;
+        let faces = try_table(KIND, complex.tops(2))?;
+        let wires = try_table(KIND, complex.tops(1))?;
         let tops = tets.len() + faces.len() + wires.len();
         to_u32(KIND, tops, "top simplices")?;
         to_u32(KIND, tets.len() * 4, "tetrahedron adjacency entries")?;
@@ -273,7 +280,7 @@ impl NonManifoldIa {
                 what: format!("{tops} top simplices exceed the 2^28 of the link keys"),
             });
         }
-        let adj = tet_adjacency(&tets).map_err(|(f, three)| {
+        let adj = tet_adjacency(&tets)?.map_err(|(f, three)| {
             let three: Vec<String> = three.chunks(4).map(show).collect();
             unsupported(format!(
                 "triangle {} is a face of more than two tetrahedra ({}, ...); NMIA, as in the \
@@ -283,7 +290,7 @@ impl NonManifoldIa {
             ))
         })?;
         let mut s = NonManifoldIa {
-            nav: NavIndex::new(complex),
+            nav: NavIndex::new(KIND, complex)?,
             d,
             n,
             tets,
@@ -301,6 +308,11 @@ impl NonManifoldIa {
             .coords()
             .filter(|c| c.dim == 3)
             .map(|c| c.data.as_slice());
+        // The rings' peak: each edge incidence (12 bytes) in a doubling array and its sorted
+        // copy, and the sort (20 bytes): under 64 bytes an incidence.
+        let incidences = 6 * s.tets.len() + 3 * s.faces.len();
+        crate::complex::table::headroom(incidences.saturating_mul(64))
+            .map_err(|bytes| super::common::too_large(KIND, bytes, "the edge rings"))?;
         let (keys, next) = s.rings(coords);
         s.link_keys = keys.into();
         s.link_next = Arr::from(next);
@@ -912,7 +924,12 @@ impl NonManifoldIa {
                 }
             }
         }
-        if tet_adjacency(&self.tets).ok().as_deref() != Some(&*self.adj) {
+        if tet_adjacency(&self.tets)
+            .ok()
+            .and_then(Result::ok)
+            .as_deref()
+            != Some(&*self.adj)
+        {
             return Err("R_{3,3} misses a shared triangle".into());
         }
         Ok(())

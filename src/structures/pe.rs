@@ -36,6 +36,7 @@
 //! - R_{2,0}, R_{2,1}: the face loop, O(1). R_{2,2}(t): the three radial cycles, O(answer + 3).
 
 use super::BuildError;
+use super::common::{try_copy, try_vec, try_with_capacity};
 use super::nav::{NavBase, NavIndex};
 use super::radial::{self, EdgeAt, NONE, TriTopo, row3};
 use crate::complex::Complex;
@@ -72,26 +73,26 @@ impl PartialEntities {
     pub fn build(complex: &Complex) -> Result<PartialEntities, BuildError> {
         let parts = radial::parts(KIND, complex)?;
         let n2 = parts.tris.len() as u32;
-        let rad = radial::radial(&parts.tris, complex.coords());
+        let rad = radial::radial(KIND, &parts.tris, complex.coords())?;
         let (tri_edge_id, wire_id) = radial::merge_edges(&rad.edges, &parts.wires);
         let n1 = rad.edges.len() + parts.wires.len();
         let p_count = 3 * n2 as usize + 2 * parts.wires.len();
         let mut pe = PartialEntities {
-            nav: NavIndex::new(complex),
+            nav: NavIndex::new(KIND, complex)?,
             n: parts.n,
             dim: parts.dim,
             isolated: parts.isolated,
             n_tris: n2,
             n_wires: parts.wires.len(),
             face_pe: (0..n2).map(|t| 3 * t).collect(),
-            edge_pe: Arr::from(vec![NONE; n1]),
-            pe_edge: Arr::from(Vec::with_capacity(p_count)),
-            pe_face: Arr::from(Vec::with_capacity(p_count)),
-            pe_rprev: Arr::from(rad.prev.clone()),
-            pe_rnext: Arr::from(rad.next.clone()),
-            pe_fprev: Arr::from(Vec::with_capacity(p_count)),
-            pe_fnext: Arr::from(Vec::with_capacity(p_count)),
-            pe_start: Arr::from(Vec::with_capacity(p_count)),
+            edge_pe: Arr::from(try_vec(KIND, NONE, n1, "edge references")?),
+            pe_edge: Arr::from(try_with_capacity(KIND, p_count, "edge uses")?),
+            pe_face: Arr::from(try_with_capacity(KIND, p_count, "edge uses")?),
+            pe_rprev: Arr::from(try_copy(KIND, &rad.prev, "radial links")?),
+            pe_rnext: Arr::from(try_copy(KIND, &rad.next, "radial links")?),
+            pe_fprev: Arr::from(try_with_capacity(KIND, p_count, "edge uses")?),
+            pe_fnext: Arr::from(try_with_capacity(KIND, p_count, "edge uses")?),
+            pe_start: Arr::from(try_with_capacity(KIND, p_count, "edge uses")?),
             vertex_off: Arr::from(Vec::new()),
             vertex_pe: Arr::from(Vec::new()),
         };

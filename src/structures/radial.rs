@@ -22,10 +22,10 @@ use std::f64::consts::TAU;
 
 use rustc_hash::FxHashSet;
 
-use super::common::{IdSet, Scratch};
+use super::common::{IdSet, Scratch, try_iota, try_order, try_push, try_table, try_vec};
 use super::nav::with_scratch;
 use super::{BuildError, to_u32};
-use crate::complex::table::{id_bits, order_by_key};
+use crate::complex::table::id_bits;
 use crate::complex::{Complex, SimplexTable};
 use crate::handle::SimplexHandle;
 use crate::io::Coords;
@@ -64,12 +64,12 @@ pub(crate) fn parts(kind: StructureKind, complex: &Complex) -> Result<Parts, Bui
         });
     }
     let tris = if d == 2 {
-        complex.tops(2).clone()
+        try_table(kind, complex.tops(2))?
     } else {
         SimplexTable::empty(3)
     };
     let wires = if d >= 1 {
-        complex.tops(1).clone()
+        try_table(kind, complex.tops(1))?
     } else {
         SimplexTable::empty(2)
     };
@@ -120,7 +120,11 @@ pub(crate) struct Radial {
 }
 
 /// Groups the slots by edge (radix sort, O(n2)) and orders each group radially.
-pub(crate) fn radial(tris: &SimplexTable, coords: Option<&Coords>) -> Radial {
+pub(crate) fn radial(
+    kind: StructureKind,
+    tris: &SimplexTable,
+    coords: Option<&Coords>,
+) -> Result<Radial, BuildError> {
     let m = tris.len() * 3;
     let key = |s: u32| {
         let t = row3(tris, s / 3);
@@ -133,20 +137,23 @@ pub(crate) fn radial(tris: &SimplexTable, coords: Option<&Coords>) -> Radial {
     // and each has one slot on the edge. Two ids leave room in the 64-bit key for the slot, so
     // the radix sort stays on its one-word path at 10^6 triangles.
     let bits = id_bits(tris.as_flat().iter().copied().max().unwrap_or(0));
-    let mut order = order_by_key(m, 2 * bits, |s| {
+    let order = try_order(kind, m, 2 * bits, |s| {
         let (a, b, _) = key(s);
         (a as u64) << bits | b as u64
-    })
-    .unwrap_or_else(|| {
-        let mut order: Vec<u32> = (0..m as u32).collect();
-        order.sort_unstable_by_key(|&s| key(s));
-        order
-    });
+    })?;
+    let mut order = match order {
+        Some(order) => order,
+        None => {
+            let mut order = try_iota(kind, m, "edge slots")?;
+            order.sort_unstable_by_key(|&s| key(s));
+            order
+        }
+    };
     let mut r = Radial {
-        next: vec![NONE; m],
-        prev: vec![NONE; m],
+        next: try_vec(kind, NONE, m, "radial links")?,
+        prev: try_vec(kind, NONE, m, "radial links")?,
         edges: Vec::new(),
-        slot_edge: vec![NONE; m],
+        slot_edge: try_vec(kind, NONE, m, "slot edges")?,
         edge_first: Vec::new(),
     };
     let mut g = 0;
@@ -164,8 +171,8 @@ pub(crate) fn radial(tris: &SimplexTable, coords: Option<&Coords>) -> Radial {
             sort_by_angle(group, a, b, c, |s| key(s).2);
         }
         let e = r.edges.len() as u32;
-        r.edges.push([a, b]);
-        r.edge_first.push(group[0]);
+        try_push(kind, &mut r.edges, [a, b], "edges")?;
+        try_push(kind, &mut r.edge_first, group[0], "edges")?;
         let k = group.len();
         for j in 0..k {
             let s = group[j] as usize;
@@ -175,7 +182,7 @@ pub(crate) fn radial(tris: &SimplexTable, coords: Option<&Coords>) -> Radial {
         }
         g = h;
     }
-    r
+    Ok(r)
 }
 
 fn point(c: &Coords, v: u32) -> Option<[f64; 3]> {
@@ -298,6 +305,23 @@ pub(crate) fn corner_roots(
         parent[c as usize] = find_root(&mut parent, c);
     }
     parent
+}
+
+/// Whether [`vertex_components`] and [`wire_lists`] can have their memory (roots, doubling
+/// lists of components and the CSR arrays: under 8 bytes a vertex, 72 a triangle, 16 a wire),
+/// else `TooLarge`: their arrays are made infallibly, so the build checks first.
+pub(crate) fn components_headroom(
+    kind: StructureKind,
+    n: u32,
+    tris: usize,
+    wires: usize,
+) -> Result<(), BuildError> {
+    let bytes = (n as usize)
+        .saturating_mul(8)
+        .saturating_add(tris.saturating_mul(72))
+        .saturating_add(wires.saturating_mul(16));
+    crate::complex::table::headroom(bytes)
+        .map_err(|bytes| super::common::too_large(kind, bytes, "the star components"))
 }
 
 /// The star components of each vertex: CSR offsets over the vertices and, per component, its

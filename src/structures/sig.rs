@@ -138,6 +138,7 @@
 use crate::store::Arr;
 use rustc_hash::{FxHashMap, FxHashSet};
 
+use super::common::try_closure;
 use super::ig::IncidenceGraph;
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
@@ -532,7 +533,7 @@ impl Sig {
     /// Builds straight from the complex (never an IG): closure, boundaries, then per dimension p
     /// the top simplices above each p-simplex and their clusters by union–find.
     pub fn build(complex: &Complex) -> Result<Sig, BuildError> {
-        let tables = complex.closure();
+        let tables = try_closure(KIND, complex)?;
         let d = tables.len() - 1;
         let first = lookup_table(tables.iter().map(SimplexTable::len))?;
         let boundary = boundaries(&tables)?;
@@ -634,7 +635,7 @@ impl Sig {
             top_counts[p] = t;
         }
         Ok(Sig {
-            nav: NavIndex::new(complex),
+            nav: NavIndex::new(KIND, complex)?,
             first,
             boundary: boundary.into_iter().map(Arr::from).collect(),
             cob,

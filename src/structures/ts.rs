@@ -76,7 +76,7 @@ impl TriangleSegment {
         let parts = radial::parts(KIND, complex)?;
         let tris = parts.tris;
         let n2 = tris.len() as u32;
-        let rad = radial::radial(&tris, complex.coords());
+        let rad = radial::radial(KIND, &tris, complex.coords())?;
         let m = 3 * n2 as usize;
         let mut next = vec![NONE; m];
         let mut nonmanifold = vec![0u64; m.div_ceil(64)];
@@ -96,13 +96,14 @@ impl TriangleSegment {
             }
         }
         let nonmanifold_rank = ranks(&nonmanifold);
+        radial::components_headroom(KIND, parts.n, tris.len(), parts.wires.len())?;
         let (comp_off, corners) =
             radial::vertex_components(parts.n, n2, |t| row3(&tris, t), |s| rad.next[s as usize]);
         let comp_tri: Vec<u32> = corners.into_iter().map(|c| c / 3).collect();
         let (wire_off, wire_nbr) = radial::wire_lists(parts.n, &parts.wires);
         let locator = EdgeLocator::build(&tris);
         Ok(TriangleSegment {
-            nav: NavIndex::new(complex),
+            nav: NavIndex::new(KIND, complex)?,
             n: parts.n,
             dim: parts.dim,
             n_edges: rad.edges.len() + parts.wires.len(),

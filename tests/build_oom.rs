@@ -1,0 +1,198 @@
+//! Issue 16, class 10 for structure builds: under a raised budget a complex may be as large as
+//! the caller allows, and a build whose arrays do not fit must say `TooLarge`, never abort the
+//! process ("memory allocation failed"). Each structure is built in a child process (this test
+//! binary run again) on a 180,000-triangle grid under `RLIMIT_AS` set 1 to 64 MB above what
+//! the process already uses, so the build stops at its first, a later, or no array. Linux only.
+
+use std::process::Command;
+
+use topoplex::StructureKind;
+
+const CHILD: &str = "TOPOPLEX_BUILD_OOM_KIND";
+
+/// The system allocator, which in the child names the failed allocation's caller on stderr
+/// (lifting the limit first, so the backtrace can be printed) before passing the failure on.
+struct Tell;
+
+static LIMIT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(u64::MAX);
+
+static TELLING: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+// SAFETY: every call is forwarded to `System`; only the failure path adds a side effect.
+unsafe impl std::alloc::GlobalAlloc for Tell {
+    unsafe fn alloc(&self, layout: std::alloc::Layout) -> *mut u8 {
+        // SAFETY: forwarded as is.
+        let p = unsafe { std::alloc::System.alloc(layout) };
+        if p.is_null() && !TELLING.swap(true, std::sync::atomic::Ordering::SeqCst) {
+            let limit = LIMIT.load(std::sync::atomic::Ordering::SeqCst);
+            set_address_space_limit(libc::RLIM_INFINITY);
+            let bt = std::backtrace::Backtrace::force_capture().to_string();
+            let ours: Vec<&str> = bt.lines().filter(|l| l.contains("topoplex::")).collect();
+            eprintln!("failed {} bytes at {}", layout.size(), ours.join(" <- "));
+            set_address_space_limit(limit);
+            TELLING.store(false, std::sync::atomic::Ordering::SeqCst);
+        }
+        p
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: std::alloc::Layout) {
+        // SAFETY: forwarded as is.
+        unsafe { std::alloc::System.dealloc(ptr, layout) }
+    }
+}
+
+#[global_allocator]
+static ALLOC: Tell = Tell;
+
+const KINDS: [StructureKind; 9] = [
+    StructureKind::Ig,
+    StructureKind::Sig,
+    StructureKind::Ia,
+    StructureKind::Iqm,
+    StructureKind::Nmia,
+    StructureKind::Ts,
+    StructureKind::Pe,
+    StructureKind::Le,
+    StructureKind::De,
+];
+
+/// A k×k grid of squares, two triangles each, as a complex.
+fn grid(k: u32) -> topoplex::Complex {
+    let mut ids = Vec::with_capacity(6 * (k * k) as usize);
+    for y in 0..k {
+        for x in 0..k {
+            let a = y * (k + 1) + x;
+            ids.extend_from_slice(&[a, a + 1, a + k + 2, a, a + k + 2, a + k + 1]);
+        }
+    }
+    let offsets: Vec<usize> = (0..=ids.len() / 3).map(|i| 3 * i).collect();
+    topoplex::Complex::from_arrays((k + 1) * (k + 1), &ids, &offsets, None).unwrap()
+}
+
+fn vm_size_bytes() -> u64 {
+    let s = std::fs::read_to_string("/proc/self/status").unwrap();
+    let line = s.lines().find(|l| l.starts_with("VmSize:")).unwrap();
+    line.split_whitespace()
+        .nth(1)
+        .unwrap()
+        .parse::<u64>()
+        .unwrap()
+        * 1024
+}
+
+/// Margins above the current address space at which each build is tried, in MB: the smallest
+/// stops the first input-sized array, the largest lets the whole build through, and those
+/// between stop it at later steps.
+const MARGINS_MB: [u64; 11] = [1, 2, 3, 5, 8, 13, 18, 24, 32, 44, 64];
+
+fn set_address_space_limit(bytes: u64) {
+    LIMIT.store(bytes, std::sync::atomic::Ordering::SeqCst);
+    let lim = libc::rlimit {
+        rlim_cur: bytes,
+        rlim_max: libc::RLIM_INFINITY,
+    };
+    // SAFETY: setrlimit only reads the struct.
+    assert_eq!(unsafe { libc::setrlimit(libc::RLIMIT_AS, &lim) }, 0);
+}
+
+/// Allocations below this size are not input-sized at the grid used here (the smallest input
+/// array, a vertex offset table, is 362 KB); one of them failing means the limit was met
+/// between arrays, which no reservation can prevent. Those aborts are told apart and allowed.
+const SMALL: usize = 256 << 10;
+
+/// The child: builds `kind` under each margin from the `start`-th, printing `MB:too-large` or
+/// `MB:built` per try on stdout (an abort cuts the list short); other errors fail.
+fn child(spec: &str) -> ! {
+    let (kind, start) = spec.split_once(':').unwrap();
+    let kind = KINDS.into_iter().find(|k| k.name() == kind).unwrap();
+    topoplex::parallel::set_threads(1);
+    // Arrays above 64 KB are mapped and unmapped on free (glibc would otherwise raise the
+    // threshold and keep freed memory), so the address space used is what is live.
+    // SAFETY: mallopt only sets allocator parameters, before any large allocation.
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, 64 << 10);
+        libc::mallopt(libc::M_TRIM_THRESHOLD, 64 << 10);
+    }
+    let complex = grid(300);
+    for mb in &MARGINS_MB[start.parse::<usize>().unwrap()..] {
+        set_address_space_limit(vm_size_bytes() + (mb << 20));
+        let outcome = topoplex::structures::build(kind, &complex).map(drop);
+        set_address_space_limit(libc::RLIM_INFINITY);
+        match outcome {
+            Err(topoplex::structures::BuildError::TooLarge { .. }) => println!("{mb}:too-large"),
+            Ok(()) => println!("{mb}:built"),
+            Err(e) => panic!("{e}"),
+        }
+    }
+    std::process::exit(0)
+}
+
+/// The outcome of each margin for `kind` (`abort` for an allowed small-allocation abort), or
+/// why it is wrong.
+fn tries(me: &std::path::Path, kind: &str) -> Result<Vec<String>, String> {
+    let mut outcomes = Vec::new();
+    while outcomes.len() < MARGINS_MB.len() {
+        let out = Command::new(me)
+            .args([
+                "--exact",
+                "every_build_under_an_address_space_limit_says_too_large",
+                "--test-threads=1",
+                "--nocapture",
+            ])
+            .env(CHILD, format!("{kind}:{}", outcomes.len()))
+            // One malloc arena: a thread's own arena reserves 64 MB of address space up front,
+            // which would hide the limit.
+            .env("MALLOC_ARENA_MAX", "1")
+            .output()
+            .unwrap();
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        for line in stdout.lines() {
+            if let Some((_, outcome)) = line.rsplit_once(':') {
+                outcomes.push(outcome.to_string());
+            }
+        }
+        if out.status.success() {
+            break;
+        }
+        // The allocator's last word: `failed N bytes at <callers>`.
+        let err = String::from_utf8_lossy(&out.stderr);
+        let last = err.lines().rfind(|l| l.contains("failed ")).unwrap_or("");
+        let bytes: usize = last
+            .split("failed ")
+            .nth(1)
+            .and_then(|r| r.split(' ').next())
+            .and_then(|n| n.parse().ok())
+            .unwrap_or(usize::MAX);
+        if bytes >= SMALL {
+            return Err(format!(
+                "{kind}: aborted at margin {} MB after {outcomes:?}: {last}",
+                MARGINS_MB[outcomes.len()]
+            ));
+        }
+        outcomes.push("abort".to_string());
+    }
+    Ok(outcomes)
+}
+
+#[test]
+fn every_build_under_an_address_space_limit_says_too_large() {
+    if let Ok(spec) = std::env::var(CHILD) {
+        child(&spec);
+    }
+    if !cfg!(target_os = "linux") || cfg!(miri) {
+        return;
+    }
+    let me = std::env::current_exe().unwrap();
+    let mut bad = Vec::new();
+    for kind in KINDS.map(StructureKind::name) {
+        match tries(&me, kind) {
+            // The smallest margin refused, the largest built: both outcomes exercised.
+            Ok(t) if t[0] == "too-large" && t[t.len() - 1] == "built" => {
+                eprintln!("{kind}: {t:?}")
+            }
+            Ok(t) => bad.push(format!("{kind}: {t:?}")),
+            Err(e) => bad.push(e),
+        }
+    }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
