@@ -174,6 +174,19 @@ pub enum QueryError {
         /// The handle as given.
         handle: SimplexHandle,
     },
+    /// A handle issued before the structure's last compaction (its generation is older): its
+    /// ids were renumbered, so it names nothing any more (editable structures only).
+    #[error(
+        "stale handle {handle}: issued at generation {generation}, before a compaction (the structure is at generation {current}); map or locate it again"
+    )]
+    StaleGeneration {
+        /// The handle as given.
+        handle: SimplexHandle,
+        /// The handle's generation.
+        generation: u32,
+        /// The structure's generation (its compaction count).
+        current: u32,
+    },
     /// A handle of the wrong kind for the operation (an edge where a vertex is needed).
     #[error("handle {handle} is not {expected}")]
     WrongHandleKind {

@@ -9,8 +9,10 @@ use std::collections::BTreeSet;
 use proptest::prelude::*;
 use topoplex::live::link::OMEGA;
 use topoplex::live::{ContractMode, LiveComplex, Refusal, VertexId};
-use topoplex::oracle::check_structure;
-use topoplex::{Complex, Topology};
+use topoplex::oracle::{Oracle, check_structure};
+use topoplex::{Complex, Fans, Navigate, Order, QueryError, SimplexHandle, Topology};
+
+use common::nav::{check_around_edges, check_fans, oracle_boundary, oracle_manifold, rows_of};
 
 /// The closure of a complex as plain sets: the reference semantics of every edit.
 #[derive(Debug, Clone)]
@@ -535,6 +537,176 @@ fn step(
                 *m = old_m;
             }
         }
+    }
+}
+
+/// Every handle operation of `live`, tombstones and all, equals the oracle on its rebuild
+/// (`to_complex()`: live vertices renumbered densely, an order-keeping map); answers are
+/// canonical (each equals the located handle of its vertices) and come lexicographic. Fans and
+/// edge clusters equal a compacted copy's, which are checked against brute force.
+fn assert_handles_match_the_oracle(live: &LiveComplex) {
+    let c = live.to_complex();
+    let o = Oracle::new(&c);
+    let slots: Vec<u32> = live.vertices().map(|v| v.0).collect();
+    let to_slots = |r: &[u32]| -> Vec<u32> { r.iter().map(|&v| slots[v as usize]).collect() };
+    let to_dense = |r: &[u32]| -> Vec<u32> {
+        r.iter()
+            .map(|v| slots.binary_search(v).unwrap() as u32)
+            .collect()
+    };
+    let n: &dyn Navigate = live.as_navigate().unwrap();
+    let d = o.dimension();
+    assert_eq!(n.dimension(), d);
+    let mut buf = Vec::new();
+    for p in 0..=d {
+        for row in &o.levels[p] {
+            let mut given = to_slots(row);
+            given.reverse();
+            let h = n.locate(&given).unwrap();
+            assert_eq!((h.dim(), h.generation()), (p, live.generation()));
+            assert_eq!(to_dense(&n.vertices_of(h).unwrap()), *row);
+            let top = n.top_id(h).unwrap();
+            assert_eq!(top.is_some(), o.tops[p].contains(row), "top_id of {row:?}");
+            if let Some(t) = top {
+                assert_eq!(n.top(t), Ok(h));
+                let mut w = n.top_as_given(t).unwrap().to_vec();
+                w.sort_unstable();
+                assert_eq!(to_dense(&w), *row);
+            }
+            for q in 0..=d {
+                for order in [Order::Natural, Order::Lexicographic] {
+                    n.related(h, q, order, &mut buf).unwrap();
+                    let got: Vec<Vec<u32>> = rows_of(n, &buf).iter().map(|r| to_dense(r)).collect();
+                    assert_eq!(got, o.relation(row, q), "R_{{{p},{q}}}({row:?})");
+                }
+                assert_eq!(n.degree(h, q), Ok(buf.len()));
+                for &x in &buf {
+                    assert_eq!(n.locate(&n.vertices_of(x).unwrap()), Ok(x), "canonical");
+                }
+            }
+            n.star(h, Order::Lexicographic, &mut buf).unwrap();
+            let star: Vec<Vec<u32>> = rows_of(n, &buf).iter().map(|r| to_dense(r)).collect();
+            let want: Vec<Vec<u32>> = (p + 1..=d).flat_map(|q| o.relation(row, q)).collect();
+            assert_eq!(star, want, "star of {row:?}");
+            n.link(h, Order::Natural, &mut buf).unwrap();
+            let link: Vec<Vec<u32>> = rows_of(n, &buf).iter().map(|r| to_dense(r)).collect();
+            let mut want: Vec<Vec<u32>> = want
+                .iter()
+                .map(|t| t.iter().copied().filter(|x| !row.contains(x)).collect())
+                .collect();
+            want.sort_by_key(|r| r.len());
+            assert_eq!(link, want, "link of {row:?}");
+            assert_eq!(n.is_boundary(h), Ok(oracle_boundary(&o, row)));
+            assert_eq!(n.is_manifold(h), Ok(oracle_manifold(&o, row)));
+        }
+    }
+    let tops: usize = o.tops.iter().map(Vec::len).sum();
+    assert_eq!(n.top_total() as usize, tops);
+    assert_cyclic_order_matches_a_compacted_copy(live, &c);
+}
+
+fn assert_cyclic_order_matches_a_compacted_copy(live: &LiveComplex, c: &Complex) {
+    let mut dense = live.clone();
+    dense.compact();
+    let d = c.dimension();
+    if d == 2 {
+        check_fans(&dense, c).unwrap();
+    }
+    if d == 3 {
+        check_around_edges(&dense, c).unwrap();
+    }
+    let (mut fa, mut fb) = (Fans::default(), Fans::default());
+    let same = |fa: &Fans, fb: &Fans| {
+        let rows = |l: &LiveComplex, f: &Fans| {
+            let live_ids: Vec<u32> = l.vertices().map(|v| v.0).collect();
+            rows_of(l, &f.items)
+                .into_iter()
+                .map(|r| {
+                    r.iter()
+                        .map(|v| live_ids.binary_search(v).unwrap())
+                        .collect::<Vec<_>>()
+                })
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(rows(live, fa), rows(&dense, fb));
+        assert_eq!(
+            (&fa.offsets, &fa.closed, &fa.oriented),
+            (&fb.offsets, &fb.closed, &fb.oriented)
+        );
+    };
+    for (k, v) in live.vertices().enumerate() {
+        let r = live.fans_around(live.vertex(v).unwrap(), &mut fa);
+        let s = dense.fans_around(dense.vertex(VertexId(k as u32)).unwrap(), &mut fb);
+        assert_eq!(r.is_ok(), s.is_ok());
+        if r.is_ok() {
+            same(&fa, &fb);
+        }
+    }
+    if d == 3 {
+        for e in live.edges() {
+            let h = live.locate(&e).unwrap();
+            let ids: Vec<u32> = live.vertices().map(|v| v.0).collect();
+            let de: Vec<u32> = e
+                .iter()
+                .map(|v| ids.binary_search(v).unwrap() as u32)
+                .collect();
+            for q in [2, 3] {
+                live.around_edge(h, q, &mut fa).unwrap();
+                dense
+                    .around_edge(dense.locate(&de).unwrap(), q, &mut fb)
+                    .unwrap();
+                same(&fa, &fb);
+            }
+        }
+    }
+}
+
+/// Handles of every simplex, with their vertices.
+fn every_handle(live: &LiveComplex) -> Vec<(SimplexHandle, Vec<u32>)> {
+    let mut out = Vec::new();
+    for p in 0..=live.dimension() {
+        let mut rows = Vec::new();
+        live.simplices(p, &mut rows);
+        for r in rows.chunks_exact(p + 1) {
+            out.push((live.locate(r).unwrap(), r.to_vec()));
+        }
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 40, ..ProptestConfig::default() })]
+    #[test]
+    fn handles_match_the_oracle_after_every_edit_and_never_name_another_simplex(
+        (n, list) in common::random_input(6, 8, 7),
+        ops in proptest::collection::vec(op(), 1..10),
+    ) {
+        let c = with_coords(n, &list);
+        let mut live = LiveComplex::from_complex(&c);
+        let mut m = Model::of(&live);
+        let mut undos = Vec::new();
+        assert_handles_match_the_oracle(&live);
+        for op in &ops {
+            let before = every_handle(&live);
+            step(&mut live, &mut m, &mut undos, op);
+            assert_handles_match_the_oracle(&live);
+            // A handle from before the edit names its old simplex or is refused as stale.
+            for (h, vs) in before {
+                match live.vertices_of(h) {
+                    Ok(v) => prop_assert_eq!(&*v, &vs[..]),
+                    Err(QueryError::StaleHandle { .. }) => {}
+                    Err(e) => panic!("{h}: {e}"),
+                }
+            }
+        }
+        let before = every_handle(&live);
+        live.compact();
+        for (h, _) in before {
+            let stale = matches!(live.vertices_of(h), Err(QueryError::StaleGeneration { .. }));
+            prop_assert!(stale);
+            prop_assert!(live.degree(h, 0).is_err());
+        }
+        assert_handles_match_the_oracle(&live);
     }
 }
 

@@ -68,6 +68,7 @@ pub(crate) fn query_failure(e: QueryError) -> Failure {
         QueryError::InvalidHandle { .. } => TpxStatus::InvalidHandle,
         QueryError::StaleHandle { .. } => TpxStatus::StaleHandle,
         QueryError::WrongHandleKind { .. } => TpxStatus::WrongHandleKind,
+        QueryError::StaleGeneration { .. } => TpxStatus::StaleGeneration,
     };
     Failure::new(status, e.to_string())
 }
