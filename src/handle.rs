@@ -420,6 +420,18 @@ pub trait Navigate: Topology {
     /// (ascending) form.
     fn top_as_given(&self, t: TopId) -> Result<Vertices, QueryError>;
 
+    /// The structure's generation (compaction count) that its handles must carry; 0 for the
+    /// nine immutable structures (see [`SimplexHandle::generation`]).
+    fn generation(&self) -> u32 {
+        0
+    }
+
+    /// Whether every handle this structure gives out is dense (true for the nine; the live
+    /// complex names simplices of dimension ≥ 1 by a top simplex and a vertex mask).
+    fn dense(&self) -> bool {
+        true
+    }
+
     /// Heap bytes of the handle bookkeeping (windings, tables built on first use), which
     /// [`Topology::storage`] does not count. 0 by default.
     fn handle_bytes(&self) -> u64 {

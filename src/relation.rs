@@ -245,6 +245,17 @@ pub trait Topology: Send + Sync + std::any::Any {
         None
     }
 
+    /// The structure as [`std::any::Any`], for the C ABI to reach an editable structure's own
+    /// type behind a `Box<dyn Topology>`. None by default.
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        None
+    }
+
+    /// Mutable form of [`Topology::as_any`]. None by default.
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        None
+    }
+
     /// R_{p,q}(σ) for σ given by vertex ids in any order; p = |σ| − 1. Validates σ (no repeated
     /// or out-of-range vertex, in the complex) and q, then appends the answer to `out` (cleared
     /// first) in the structure's order. Cost: the structure's [`Topology::query`] cost.

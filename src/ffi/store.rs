@@ -100,10 +100,7 @@ pub unsafe extern "C" fn tpx_structure_open(
             saved.verify().map_err(store_failure)?;
         }
         let topo = saved.structure_of(kind).map_err(store_failure)?;
-        *out = Box::into_raw(Box::new(TpxStructure {
-            topo,
-            stamp: super::handles::new_stamp(),
-        }));
+        *out = Box::into_raw(Box::new(TpxStructure::new(topo)));
         Ok(())
     })
 }

@@ -73,7 +73,7 @@
 //! `is_manifold`, fans around a vertex counter-clockwise by the winding, radial groups around an
 //! edge). A vertex's handle is its slot; any other simplex is named through a live top simplex
 //! holding it (a top simplex and a vertex mask), valid while that top simplex lives. Every handle
-//! carries the complex's generation (its compaction count, [`LiveComplex::generation`]): one from
+//! carries the complex's generation (its compaction count, [`crate::handle::Navigate::generation`]): one from
 //! before `compact` is refused with [`QueryError::StaleGeneration`], one of a removed vertex or
 //! top simplex with [`QueryError::StaleHandle`]; a handle never names another simplex. The
 //! generation costs 4 bytes per handle and one comparison per check. Costs per operation: the
@@ -715,6 +715,14 @@ impl Topology for LiveComplex {
     }
 
     fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+        Some(self)
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
         Some(self)
     }
 }

@@ -83,11 +83,6 @@ fn mask_of(sorted: &[u32], face: &[u32]) -> u16 {
 }
 
 impl LiveComplex {
-    /// The compaction count: every handle carries the one it was issued at.
-    pub fn generation(&self) -> u32 {
-        self.epoch
-    }
-
     fn vertex_handle(&self, v: u32) -> SimplexHandle {
         SimplexHandle::dense(0, v).with_generation(self.epoch)
     }
@@ -324,6 +319,14 @@ impl Navigate for LiveComplex {
 
     fn handle_bytes(&self) -> u64 {
         0
+    }
+
+    fn generation(&self) -> u32 {
+        self.epoch
+    }
+
+    fn dense(&self) -> bool {
+        false
     }
 
     fn visit(
