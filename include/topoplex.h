@@ -1358,6 +1358,30 @@ TpxStatus tpx_structure_open(const char *path,
 TpxStatus tpx_complex_open(const char *path, struct TpxComplex **out);
 
 /**
+ * Saves the live complex `l` with its complex to `path` (`.tpx`). Saving compacts a copy on the
+ * fly: removed vertices and slots are not written, ids are renumbered as `tpx_live_compact`
+ * would (`l` itself is unchanged). Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8),
+ * IO_ERROR. Cost: O(size).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid (a live handle; a NUL-terminated path).
+ */
+TpxStatus tpx_live_save(const struct TpxLive *l, const char *path);
+
+/**
+ * Opens `path` as an editable live complex: the saved live complex when the file holds one
+ * (`topoplex save INPUT --structure iastar`, `tpx_live_save`), else one built from the saved
+ * complex. Its arrays are copied out of the file (editable), so opening costs O(size), unlike
+ * `tpx_structure_open`. `flags` as `tpx_structure_open` (`TPX_OPEN_VERIFY`). On success `*out`
+ * receives a new live complex owned by the caller (free with `tpx_live_free`). Errors: as
+ * `tpx_structure_open`.
+ *
+ * # Safety
+ * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+ */
+TpxStatus tpx_live_open(const char *path, uint32_t flags, struct TpxLive **out);
+
+/**
  * Sets the number of threads later builds use (`0` is INVALID_ARGUMENT). Without a call, the
  * `TOPOPLEX_THREADS` environment variable, else every core. Builds give the same structure
  * whatever the count. O(1).

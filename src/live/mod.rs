@@ -89,6 +89,7 @@ use crate::structures::ia::faces_containing as faces;
 mod edit;
 pub mod link;
 mod nav;
+mod store;
 
 pub use edit::{CompactMaps, ContractMode, UndoRecord};
 
