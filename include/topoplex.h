@@ -348,6 +348,17 @@ enum TpxStatus
    * A saved file was written on a host of the other byte order.
    */
   TPX_STATUS_SAVED_FILE_WRONG_ENDIANNESS = 44,
+  /**
+   * A handle from before `tpx_live_compact` (live complex): the compaction renumbered every
+   * id, so it names nothing any more; map the ids or locate again.
+   */
+  TPX_STATUS_STALE_GENERATION = 52,
+  /**
+   * The answer holds simplices that have no dense index (the live complex numbers only its
+   * vertices densely): use the handle-writing twin (`tpx_related_handles`,
+   * `tpx_cyclic_handles`) or ask for vertices.
+   */
+  TPX_STATUS_NOT_DENSE = 53,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -418,9 +429,13 @@ typedef struct TpxInputStats {
  *
  * `index` is the simplex's dense index among the simplices of its dimension (lexicographic
  * rank; a vertex's index is its id; the caller's per-dimension arrays can be indexed by it).
- * `meta` holds the dimension in its low 8 bits (`meta & 0xff`); the other bits are 0 for every
- * structure of this library. `owner` is the stamp of the structure that made it. A handle stays
- * valid as long as its structure lives; copying it is free, nothing needs releasing.
+ * `meta` holds the dimension in its low 8 bits (`meta & 0xff`); the other bits are 0 for the
+ * nine built structures. The live complex (`tpx_live_structure`) names a simplex above its
+ * vertices by a top simplex (`index`: dimension in the top 4 bits, slot below) and a mask of its
+ * vertices (`meta` bits 16..32, form 1 in bits 8..16). `owner` is the stamp of the structure
+ * that made it. A handle of a built structure stays valid as long as its structure lives; one of
+ * a live complex until its naming top simplex is removed (STALE_HANDLE) or the complex is
+ * compacted (STALE_GENERATION). Copying it is free, nothing needs releasing.
  */
 typedef struct TpxSimplex {
   /**
@@ -806,7 +821,8 @@ TpxStatus tpx_top_as_given(const struct TpxStructure *s,
 /**
  * R_{p,q}(*h) (p = the handle's dimension) as dense indices of q-simplices into `buf`, in
  * `order` (`TPX_ORDER_*`); `*out_len` = the number written. Errors: FOREIGN_HANDLE,
- * INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), BUFFER_TOO_SMALL
+ * INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), NOT_DENSE (q > 0 on
+ * the live complex: use `tpx_related_handles`), BUFFER_TOO_SMALL
  * (nothing written; `*out_len` = needed). Cost: the structure's walk (module docs), plus a sort
  * for lexicographic order. No allocation once this thread's buffers have grown to the answer.
  *
@@ -895,9 +911,10 @@ TpxStatus tpx_simplex_test(const struct TpxStructure *s,
  * `items[offsets[k] .. offsets[k+1]]` (dense indices of triangles, or of tetrahedra for q = 3),
  * `flags[k]` has `TPX_GROUP_CLOSED` and `TPX_GROUP_ORIENTED`; `*out_items` and `*out_groups`
  * receive the counts. `offsets` needs `groups + 1` entries. Errors: WRONG_HANDLE_KIND (not a
- * vertex / not an edge), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL (nothing written; the needed
- * counts in `*out_items` and `*out_groups`). Cost: the star of the vertex or edge. No
- * allocation once this thread's buffers are warm.
+ * vertex / not an edge), DIMENSION_OUT_OF_RANGE, NOT_DENSE (the live complex: use
+ * `tpx_cyclic_handles`), BUFFER_TOO_SMALL (nothing written; the needed counts in `*out_items`
+ * and `*out_groups`). Cost: the star of the vertex or edge. No allocation once this thread's
+ * buffers are warm.
  *
  * # Safety
  * Non-NULL pointers must be valid; `items` has room for `items_len`, `offsets` for
@@ -913,6 +930,44 @@ TpxStatus tpx_cyclic(const struct TpxStructure *s,
                      size_t groups_len,
                      size_t *out_items,
                      size_t *out_groups);
+
+/**
+ * `tpx_cyclic` with the items written as handles (`TpxSimplex`): works for every structure,
+ * the live complex included (whose simplices above vertices have no dense index). Same
+ * arguments, errors and cost; `items` has room for `items_len` handles.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `items` has room for `items_len`, `offsets` for
+ * `groups_len + 1` and `flags` for `groups_len` entries.
+ */
+TpxStatus tpx_cyclic_handles(const struct TpxStructure *s,
+                             const struct TpxSimplex *h,
+                             uint32_t q,
+                             struct TpxSimplex *items,
+                             size_t items_len,
+                             uint32_t *offsets,
+                             uint32_t *flags,
+                             size_t groups_len,
+                             size_t *out_items,
+                             size_t *out_groups);
+
+/**
+ * R_{p,q}(*h) as handles (`TpxSimplex`) into `buf`, in `order`; `*out_len` = the number
+ * written. Works for every structure, the live complex included (`tpx_related` writes dense
+ * indices, which the live complex has only for vertices). Errors as `tpx_related`. Cost: the
+ * structure's walk (the live complex: answers come lexicographic, both orders cost the same).
+ * Allocation-free once this thread's buffer has grown to the answer.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` must have room for `buf_len` handles.
+ */
+TpxStatus tpx_related_handles(const struct TpxStructure *s,
+                              const struct TpxSimplex *h,
+                              uint32_t q,
+                              uint32_t order,
+                              struct TpxSimplex *buf,
+                              size_t buf_len,
+                              size_t *out_len);
 
 /**
  * Listed simplex `i` of the input (`0 .. input_simplices`) exactly as given (order and
@@ -1154,7 +1209,9 @@ TpxStatus tpx_live_split(struct TpxLive *l, const struct TpxUndo *u);
  * When `vertex_map` is not NULL it receives, for each old vertex id, its new id (`UINT32_MAX`
  * for a removed vertex): `*out_len` = old `tpx_live_vertex_slots`; with a buffer too short
  * nothing is compacted (BUFFER_TOO_SMALL, `*out_len` = needed length). Undo records issued
- * before are refused afterwards (STALE_UNDO). Cost: O(size).
+ * before are refused afterwards (STALE_UNDO), and so are handles (`TpxSimplex`) made before
+ * (STALE_GENERATION: the complex takes a new owner stamp and keeps the old ones, 4 bytes per
+ * compaction). Cost: O(size).
  *
  * # Safety
  * Non-NULL pointers must be valid; `vertex_map` has room for `map_len` uint32_t.
@@ -1182,6 +1239,24 @@ TpxStatus tpx_live_to_complex(const struct TpxLive *l, struct TpxComplex **out);
  * Non-NULL pointers must be valid.
  */
 TpxStatus tpx_live_validate(const struct TpxLive *l);
+
+/**
+ * The live complex as a structure, into `*out`: borrowed (valid until `tpx_live_free`; never
+ * pass it to `tpx_structure_free`), so that the handle functions navigate it exactly as a built
+ * structure — `tpx_locate`, `tpx_simplex_vertices`, `tpx_related_handles`, `tpx_degree`,
+ * `tpx_star`, `tpx_simplex_test`, `tpx_cyclic_handles`, `tpx_top`, `tpx_top_id`,
+ * `tpx_top_as_given`, and the vertex-id functions (`tpx_relation`, `tpx_structure_count`, ...).
+ * Handles stay valid across edits while the simplex's naming top simplex lives (STALE_HANDLE
+ * afterwards) and until `tpx_live_compact` (STALE_GENERATION afterwards). A vertex's handle index
+ * is its id; other simplices have no dense index (`tpx_related` and `tpx_cyclic` answer
+ * NOT_DENSE for them: use the `_handles` twins). Top ids are not dense either: dimension in the
+ * top 4 bits, slot below (an isolated vertex v: `v`). Not to be used while another thread edits
+ * the live complex. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_structure(const struct TpxLive *l, const struct TpxStructure **out);
 
 /**
  * Simplifies `complex` by quadric-error edge contraction (Garland–Heckbert, generalised to
@@ -1285,6 +1360,30 @@ TpxStatus tpx_structure_open(const char *path,
  * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
  */
 TpxStatus tpx_complex_open(const char *path, struct TpxComplex **out);
+
+/**
+ * Saves the live complex `l` with its complex to `path` (`.tpx`). Saving compacts a copy on the
+ * fly: removed vertices and slots are not written, ids are renumbered as `tpx_live_compact`
+ * would (`l` itself is unchanged). Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8),
+ * IO_ERROR. Cost: O(size).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid (a live handle; a NUL-terminated path).
+ */
+TpxStatus tpx_live_save(const struct TpxLive *l, const char *path);
+
+/**
+ * Opens `path` as an editable live complex: the saved live complex when the file holds one
+ * (`topoplex save INPUT --structure iastar`, `tpx_live_save`), else one built from the saved
+ * complex. Its arrays are copied out of the file (editable), so opening costs O(size), unlike
+ * `tpx_structure_open`. `flags` as `tpx_structure_open` (`TPX_OPEN_VERIFY`). On success `*out`
+ * receives a new live complex owned by the caller (free with `tpx_live_free`). Errors: as
+ * `tpx_structure_open`.
+ *
+ * # Safety
+ * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+ */
+TpxStatus tpx_live_open(const char *path, uint32_t flags, struct TpxLive **out);
 
 /**
  * Sets the number of threads later builds use (`0` is INVALID_ARGUMENT). Without a call, the

@@ -864,6 +864,86 @@ class Undo {
   TpxUndo *u_ = nullptr;
 };
 
+/* Handles over a borrowed array of TpxSimplex (answers of the live complex, whose simplices
+ * above vertices have no dense index). Iterating yields Simplex values; no allocation. */
+class HandleSpan {
+ public:
+  class iterator {
+   public:
+    using iterator_category = std::random_access_iterator_tag;
+    using value_type = Simplex;
+    using difference_type = std::ptrdiff_t;
+    using pointer = void;
+    using reference = Simplex;
+    iterator() = default;
+    explicit iterator(const TpxSimplex *p) : p_(p) {}
+    Simplex operator*() const noexcept { return Simplex(*p_); }
+    iterator &operator++() noexcept {
+      ++p_;
+      return *this;
+    }
+    iterator operator++(int) noexcept {
+      iterator t = *this;
+      ++p_;
+      return t;
+    }
+    difference_type operator-(const iterator &o) const noexcept { return p_ - o.p_; }
+    bool operator==(const iterator &o) const noexcept { return p_ == o.p_; }
+    bool operator!=(const iterator &o) const noexcept { return p_ != o.p_; }
+
+   private:
+    const TpxSimplex *p_ = nullptr;
+  };
+  HandleSpan(const TpxSimplex *h, std::size_t n) : h_(h), n_(n) {}
+  iterator begin() const noexcept { return iterator(h_); }
+  iterator end() const noexcept { return iterator(h_ + n_); }
+  std::size_t size() const noexcept { return n_; }
+  bool empty() const noexcept { return n_ == 0; }
+  Simplex operator[](std::size_t i) const noexcept { return Simplex(h_[i]); }
+
+ private:
+  const TpxSimplex *h_;
+  std::size_t n_;
+};
+
+/* An answer that owns its handles (returned by value); iterate it like a HandleSpan. */
+class HandleList {
+ public:
+  HandleList() = default;
+  explicit HandleList(std::vector<TpxSimplex> h) : h_(std::move(h)) {}
+  HandleSpan::iterator begin() const noexcept { return span().begin(); }
+  HandleSpan::iterator end() const noexcept { return span().end(); }
+  std::size_t size() const noexcept { return h_.size(); }
+  bool empty() const noexcept { return h_.empty(); }
+  Simplex operator[](std::size_t i) const noexcept { return Simplex(h_[i]); }
+  HandleSpan span() const noexcept { return HandleSpan(h_.data(), h_.size()); }
+
+ private:
+  std::vector<TpxSimplex> h_;
+};
+
+/* Cyclically ordered groups of handles (Live::fans_around, Live::around_edge); reuse one object
+ * across calls to avoid allocation. */
+class HandleFans {
+ public:
+  std::size_t size() const noexcept { return groups_; }
+  /* Group k, in cyclic order. */
+  HandleSpan operator[](std::size_t k) const noexcept {
+    return HandleSpan(items_.data() + offsets_[k], offsets_[k + 1] - offsets_[k]);
+  }
+  bool closed(std::size_t k) const noexcept { return (flags_[k] & TPX_GROUP_CLOSED) != 0; }
+  /* Consistently oriented and counter-clockwise by the input winding. */
+  bool oriented(std::size_t k) const noexcept { return (flags_[k] & TPX_GROUP_ORIENTED) != 0; }
+  /* Every group's simplices, group after group. */
+  HandleSpan all() const noexcept { return HandleSpan(items_.data(), items_n_); }
+
+ private:
+  friend class Live;
+  std::vector<TpxSimplex> items_;
+  std::vector<std::uint32_t> offsets_, flags_;
+  std::size_t items_n_ = 0, groups_ = 0;
+};
+
 /* An updatable complex (any dimension, non-manifold): insert/remove top simplices, contract
  * edges (link-checked or free), split (undo), move vertices. Edits need exclusive access; a
  * refused edit throws Error (status says why: TPX_STATUS_NOT_AN_EDGE,
@@ -1002,9 +1082,156 @@ class Live {
   }
   void validate() const { detail::check(tpx_live_validate(l_)); }
 
+  /* ---- handles: the same navigation as Structure (see tpx_live_structure) ----
+   * A vertex's handle index is its id; other simplices are named through a live top simplex.
+   * A handle stays valid across edits while that top simplex lives (else STALE_HANDLE) and
+   * until compact() (then STALE_GENERATION); it never names another simplex. Answers come
+   * lexicographic (both orders cost the same). */
+
+  /* The live complex seen as a borrowed structure (never free it), for the tpx_* handle calls. */
+  const TpxStructure *structure() const {
+    const TpxStructure *s = nullptr;
+    detail::check(tpx_live_structure(l_, &s));
+    return s;
+  }
+  Simplex locate(std::initializer_list<std::uint32_t> ids) const {
+    return locate(std::vector<std::uint32_t>(ids));
+  }
+  Simplex locate(const std::vector<std::uint32_t> &ids) const {
+    TpxSimplex h{};
+    detail::check(tpx_locate(structure(), ids.data(), ids.size(), &h));
+    return Simplex(h);
+  }
+  Simplex vertex(std::uint32_t v) const {
+    TpxSimplex h{};
+    detail::check(tpx_handle(structure(), 0, v, &h));
+    return Simplex(h);
+  }
+  /* Vertex ids of h, ascending. */
+  std::vector<std::uint32_t> vertices(Simplex h) const {
+    std::vector<std::uint32_t> out(16);
+    std::size_t len = 0;
+    detail::check(tpx_simplex_vertices(structure(), &h.raw(), out.data(), out.size(), &len));
+    out.resize(len);
+    return out;
+  }
+  /* R_{p,q}(h) as handles into `out` (reused: no allocation once it has grown). */
+  void related(Simplex h, std::uint32_t q, std::vector<TpxSimplex> &out,
+               Order order = Order::Natural) const {
+    if (out.capacity() < 16) out.reserve(16);
+    out.resize(out.capacity());
+    std::size_t len = 0;
+    const TpxStructure *s = structure();
+    const auto o = static_cast<std::uint32_t>(order);
+    TpxStatus st = tpx_related_handles(s, &h.raw(), q, o, out.data(), out.size(), &len);
+    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+      out.resize(len);
+      st = tpx_related_handles(s, &h.raw(), q, o, out.data(), out.size(), &len);
+    }
+    detail::check(st);
+    out.resize(len);
+  }
+  HandleList related(Simplex h, std::uint32_t q, Order order = Order::Natural) const {
+    std::vector<TpxSimplex> out;
+    related(h, q, out, order);
+    return HandleList(std::move(out));
+  }
+  HandleList boundary(Simplex h, std::uint32_t q, Order o = Order::Natural) const {
+    return related(h, q, o);
+  }
+  HandleList coboundary(Simplex h, std::uint32_t q, Order o = Order::Natural) const {
+    return related(h, q, o);
+  }
+  HandleList adjacent(Simplex h, Order o = Order::Natural) const { return related(h, h.dim(), o); }
+  std::size_t degree(Simplex h, std::uint32_t q) const {
+    std::size_t n = 0;
+    detail::check(tpx_degree(structure(), &h.raw(), q, &n));
+    return n;
+  }
+  bool is_boundary(Simplex h) const { return test(h, 0); }
+  bool is_manifold(Simplex h) const { return test(h, 1); }
+  HandleList star(Simplex h, Order o = Order::Natural) const { return star_or_link(h, 0, o); }
+  HandleList link(Simplex h, Order o = Order::Natural) const { return star_or_link(h, 1, o); }
+  /* The top id of h (dimension in the top 4 bits, slot below; not dense), or UINT32_MAX. */
+  std::uint32_t top_id(Simplex h) const {
+    std::uint32_t t = 0;
+    detail::check(tpx_top_id(structure(), &h.raw(), &t));
+    return t;
+  }
+  /* Top simplex t with its vertices in stored (winding) order. */
+  std::vector<std::uint32_t> top_as_given(std::uint32_t t) const {
+    std::vector<std::uint32_t> out(16);
+    std::size_t len = 0;
+    detail::check(tpx_top_as_given(structure(), t, out.data(), out.size(), &len));
+    out.resize(len);
+    return out;
+  }
+  /* Manifold fans of triangles around vertex v (a complex of dimension <= 2), each
+   * counter-clockwise by the winding where oriented; `fans` is reused. */
+  void fans_around(Simplex v, HandleFans &fans) const { cyclic(v, 0, fans); }
+  HandleFans fans_around(Simplex v) const {
+    HandleFans f;
+    fans_around(v, f);
+    return f;
+  }
+  /* Circulator-style: every fan's triangles in order, fan after fan. */
+  HandleList triangles_around(Simplex v) const {
+    HandleFans f;
+    fans_around(v, f);
+    auto all = f.all();
+    return HandleList(std::vector<TpxSimplex>(f.items_.begin(), f.items_.begin() + all.size()));
+  }
+  /* The triangles (q = 2) or tetrahedra (q = 3) around edge e in radial order, grouped. */
+  void around_edge(Simplex e, std::uint32_t q, HandleFans &fans) const { cyclic(e, q, fans); }
+  HandleFans around_edge(Simplex e, std::uint32_t q) const {
+    HandleFans f;
+    around_edge(e, q, f);
+    return f;
+  }
+
   const TpxLive *get() const noexcept { return l_; }
 
  private:
+  bool test(Simplex h, std::uint32_t what) const {
+    std::uint32_t r = 0;
+    detail::check(tpx_simplex_test(structure(), &h.raw(), what, &r));
+    return r != 0;
+  }
+  HandleList star_or_link(Simplex h, std::uint32_t link, Order o) const {
+    std::vector<TpxSimplex> buf(64);
+    std::size_t len = 0;
+    const TpxStructure *s = structure();
+    const auto ord = static_cast<std::uint32_t>(o);
+    TpxStatus st = tpx_star(s, &h.raw(), link, ord, buf.data(), buf.size(), &len);
+    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+      buf.resize(len);
+      st = tpx_star(s, &h.raw(), link, ord, buf.data(), buf.size(), &len);
+    }
+    detail::check(st);
+    buf.resize(len);
+    return HandleList(std::move(buf));
+  }
+  void cyclic(Simplex h, std::uint32_t q, HandleFans &f) const {
+    if (f.items_.size() < 16) f.items_.resize(16);
+    if (f.flags_.size() < 4) f.flags_.resize(4);
+    f.offsets_.resize(f.flags_.size() + 1);
+    std::size_t ni = 0, ng = 0;
+    const TpxStructure *s = structure();
+    TpxStatus st = tpx_cyclic_handles(s, &h.raw(), q, f.items_.data(), f.items_.size(),
+                                      f.offsets_.data(), f.flags_.data(), f.flags_.size(), &ni,
+                                      &ng);
+    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+      if (f.items_.size() < ni) f.items_.resize(ni);
+      if (f.flags_.size() < ng) f.flags_.resize(ng);
+      f.offsets_.resize(f.flags_.size() + 1);
+      st = tpx_cyclic_handles(s, &h.raw(), q, f.items_.data(), f.items_.size(),
+                              f.offsets_.data(), f.flags_.data(), f.flags_.size(), &ni, &ng);
+    }
+    detail::check(st);
+    f.items_n_ = ni;
+    f.groups_ = ng;
+  }
+
   TpxLive *l_ = nullptr;
 };
 

@@ -174,6 +174,19 @@ pub enum QueryError {
         /// The handle as given.
         handle: SimplexHandle,
     },
+    /// A handle issued before the structure's last compaction (its generation is older): its
+    /// ids were renumbered, so it names nothing any more (editable structures only).
+    #[error(
+        "stale handle {handle}: issued at generation {generation}, before a compaction (the structure is at generation {current}); map or locate it again"
+    )]
+    StaleGeneration {
+        /// The handle as given.
+        handle: SimplexHandle,
+        /// The handle's generation.
+        generation: u32,
+        /// The structure's generation (its compaction count).
+        current: u32,
+    },
     /// A handle of the wrong kind for the operation (an edge where a vertex is needed).
     #[error("handle {handle} is not {expected}")]
     WrongHandleKind {
@@ -229,6 +242,17 @@ pub trait Topology: Send + Sync + std::any::Any {
     /// This structure's handle navigation ([`Navigate`]), when it has one (every structure of
     /// this crate does).
     fn as_navigate(&self) -> Option<&dyn Navigate> {
+        None
+    }
+
+    /// The structure as [`std::any::Any`], for the C ABI to reach an editable structure's own
+    /// type behind a `Box<dyn Topology>`. None by default.
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        None
+    }
+
+    /// Mutable form of [`Topology::as_any`]. None by default.
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
         None
     }
 

@@ -9,8 +9,10 @@ use std::collections::BTreeSet;
 use proptest::prelude::*;
 use topoplex::live::link::OMEGA;
 use topoplex::live::{ContractMode, LiveComplex, Refusal, VertexId};
-use topoplex::oracle::check_structure;
-use topoplex::{Complex, Topology};
+use topoplex::oracle::{Oracle, check_structure};
+use topoplex::{Complex, Fans, Navigate, Order, QueryError, SimplexHandle, Topology};
+
+use common::nav::{check_around_edges, check_fans, oracle_boundary, oracle_manifold, rows_of};
 
 /// The closure of a complex as plain sets: the reference semantics of every edit.
 #[derive(Debug, Clone)]
@@ -538,6 +540,176 @@ fn step(
     }
 }
 
+/// Every handle operation of `live`, tombstones and all, equals the oracle on its rebuild
+/// (`to_complex()`: live vertices renumbered densely, an order-keeping map); answers are
+/// canonical (each equals the located handle of its vertices) and come lexicographic. Fans and
+/// edge clusters equal a compacted copy's, which are checked against brute force.
+fn assert_handles_match_the_oracle(live: &LiveComplex) {
+    let c = live.to_complex();
+    let o = Oracle::new(&c);
+    let slots: Vec<u32> = live.vertices().map(|v| v.0).collect();
+    let to_slots = |r: &[u32]| -> Vec<u32> { r.iter().map(|&v| slots[v as usize]).collect() };
+    let to_dense = |r: &[u32]| -> Vec<u32> {
+        r.iter()
+            .map(|v| slots.binary_search(v).unwrap() as u32)
+            .collect()
+    };
+    let n: &dyn Navigate = live.as_navigate().unwrap();
+    let d = o.dimension();
+    assert_eq!(n.dimension(), d);
+    let mut buf = Vec::new();
+    for p in 0..=d {
+        for row in &o.levels[p] {
+            let mut given = to_slots(row);
+            given.reverse();
+            let h = n.locate(&given).unwrap();
+            assert_eq!((h.dim(), h.generation()), (p, Navigate::generation(live)));
+            assert_eq!(to_dense(&n.vertices_of(h).unwrap()), *row);
+            let top = n.top_id(h).unwrap();
+            assert_eq!(top.is_some(), o.tops[p].contains(row), "top_id of {row:?}");
+            if let Some(t) = top {
+                assert_eq!(n.top(t), Ok(h));
+                let mut w = n.top_as_given(t).unwrap().to_vec();
+                w.sort_unstable();
+                assert_eq!(to_dense(&w), *row);
+            }
+            for q in 0..=d {
+                for order in [Order::Natural, Order::Lexicographic] {
+                    n.related(h, q, order, &mut buf).unwrap();
+                    let got: Vec<Vec<u32>> = rows_of(n, &buf).iter().map(|r| to_dense(r)).collect();
+                    assert_eq!(got, o.relation(row, q), "R_{{{p},{q}}}({row:?})");
+                }
+                assert_eq!(n.degree(h, q), Ok(buf.len()));
+                for &x in &buf {
+                    assert_eq!(n.locate(&n.vertices_of(x).unwrap()), Ok(x), "canonical");
+                }
+            }
+            n.star(h, Order::Lexicographic, &mut buf).unwrap();
+            let star: Vec<Vec<u32>> = rows_of(n, &buf).iter().map(|r| to_dense(r)).collect();
+            let want: Vec<Vec<u32>> = (p + 1..=d).flat_map(|q| o.relation(row, q)).collect();
+            assert_eq!(star, want, "star of {row:?}");
+            n.link(h, Order::Natural, &mut buf).unwrap();
+            let link: Vec<Vec<u32>> = rows_of(n, &buf).iter().map(|r| to_dense(r)).collect();
+            let mut want: Vec<Vec<u32>> = want
+                .iter()
+                .map(|t| t.iter().copied().filter(|x| !row.contains(x)).collect())
+                .collect();
+            want.sort_by_key(|r| r.len());
+            assert_eq!(link, want, "link of {row:?}");
+            assert_eq!(n.is_boundary(h), Ok(oracle_boundary(&o, row)));
+            assert_eq!(n.is_manifold(h), Ok(oracle_manifold(&o, row)));
+        }
+    }
+    let tops: usize = o.tops.iter().map(Vec::len).sum();
+    assert_eq!(n.top_total() as usize, tops);
+    assert_cyclic_order_matches_a_compacted_copy(live, &c);
+}
+
+fn assert_cyclic_order_matches_a_compacted_copy(live: &LiveComplex, c: &Complex) {
+    let mut dense = live.clone();
+    dense.compact();
+    let d = c.dimension();
+    if d == 2 {
+        check_fans(&dense, c).unwrap();
+    }
+    if d == 3 {
+        check_around_edges(&dense, c).unwrap();
+    }
+    let (mut fa, mut fb) = (Fans::default(), Fans::default());
+    let same = |fa: &Fans, fb: &Fans| {
+        let rows = |l: &LiveComplex, f: &Fans| {
+            let live_ids: Vec<u32> = l.vertices().map(|v| v.0).collect();
+            rows_of(l, &f.items)
+                .into_iter()
+                .map(|r| {
+                    r.iter()
+                        .map(|v| live_ids.binary_search(v).unwrap())
+                        .collect::<Vec<_>>()
+                })
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(rows(live, fa), rows(&dense, fb));
+        assert_eq!(
+            (&fa.offsets, &fa.closed, &fa.oriented),
+            (&fb.offsets, &fb.closed, &fb.oriented)
+        );
+    };
+    for (k, v) in live.vertices().enumerate() {
+        let r = live.fans_around(live.vertex(v).unwrap(), &mut fa);
+        let s = dense.fans_around(dense.vertex(VertexId(k as u32)).unwrap(), &mut fb);
+        assert_eq!(r.is_ok(), s.is_ok());
+        if r.is_ok() {
+            same(&fa, &fb);
+        }
+    }
+    if d == 3 {
+        for e in live.edges() {
+            let h = live.locate(&e).unwrap();
+            let ids: Vec<u32> = live.vertices().map(|v| v.0).collect();
+            let de: Vec<u32> = e
+                .iter()
+                .map(|v| ids.binary_search(v).unwrap() as u32)
+                .collect();
+            for q in [2, 3] {
+                live.around_edge(h, q, &mut fa).unwrap();
+                dense
+                    .around_edge(dense.locate(&de).unwrap(), q, &mut fb)
+                    .unwrap();
+                same(&fa, &fb);
+            }
+        }
+    }
+}
+
+/// Handles of every simplex, with their vertices.
+fn every_handle(live: &LiveComplex) -> Vec<(SimplexHandle, Vec<u32>)> {
+    let mut out = Vec::new();
+    for p in 0..=live.dimension() {
+        let mut rows = Vec::new();
+        live.simplices(p, &mut rows);
+        for r in rows.chunks_exact(p + 1) {
+            out.push((live.locate(r).unwrap(), r.to_vec()));
+        }
+    }
+    out
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 40, ..ProptestConfig::default() })]
+    #[test]
+    fn handles_match_the_oracle_after_every_edit_and_never_name_another_simplex(
+        (n, list) in common::random_input(6, 8, 7),
+        ops in proptest::collection::vec(op(), 1..10),
+    ) {
+        let c = with_coords(n, &list);
+        let mut live = LiveComplex::from_complex(&c);
+        let mut m = Model::of(&live);
+        let mut undos = Vec::new();
+        assert_handles_match_the_oracle(&live);
+        for op in &ops {
+            let before = every_handle(&live);
+            step(&mut live, &mut m, &mut undos, op);
+            assert_handles_match_the_oracle(&live);
+            // A handle from before the edit names its old simplex or is refused as stale.
+            for (h, vs) in before {
+                match live.vertices_of(h) {
+                    Ok(v) => prop_assert_eq!(&*v, &vs[..]),
+                    Err(QueryError::StaleHandle { .. }) => {}
+                    Err(e) => panic!("{h}: {e}"),
+                }
+            }
+        }
+        let before = every_handle(&live);
+        live.compact();
+        for (h, _) in before {
+            let stale = matches!(live.vertices_of(h), Err(QueryError::StaleGeneration { .. }));
+            prop_assert!(stale);
+            prop_assert!(live.degree(h, 0).is_err());
+        }
+        assert_handles_match_the_oracle(&live);
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
     #[test]
@@ -693,6 +865,187 @@ fn readme_example_contracts_edges_on_a_non_manifold_mesh_through_the_c_abi() {
     }
 }
 
+/// The live complex's view as a structure (`tpx_live_structure`).
+fn c_view(l: *const topoplex::ffi::TpxLive) -> *const topoplex::ffi::TpxStructure {
+    let mut s = std::ptr::null();
+    // SAFETY: `l` is a live handle; `s` a writable pointer.
+    assert_eq!(
+        unsafe { topoplex::ffi::tpx_live_structure(l, &mut s) },
+        topoplex::ffi::TpxStatus::Ok
+    );
+    s
+}
+
+/// The vertices of a C handle of the live complex, with the status.
+fn c_vertices(
+    l: *const topoplex::ffi::TpxLive,
+    h: &topoplex::ffi::TpxSimplex,
+) -> (topoplex::ffi::TpxStatus, Vec<u32>) {
+    let mut buf = [0u32; 16];
+    let mut len = 0usize;
+    // SAFETY: a valid structure pointer, a 16-id buffer.
+    let st = unsafe {
+        topoplex::ffi::tpx_simplex_vertices(c_view(l), h, buf.as_mut_ptr(), 16, &mut len)
+    };
+    (st, buf[..len].to_vec())
+}
+
+/// C handles of every simplex of the live complex, located through the C ABI.
+fn c_handles(
+    l: *const topoplex::ffi::TpxLive,
+    rust: &LiveComplex,
+) -> Vec<(topoplex::ffi::TpxSimplex, Vec<u32>)> {
+    use topoplex::ffi::*;
+    every_handle(rust)
+        .into_iter()
+        .map(|(_, row)| {
+            let mut h = TpxSimplex::default();
+            // SAFETY: a valid structure pointer and a simplex of row.len() ids.
+            let st = unsafe { tpx_locate(c_view(l), row.as_ptr(), row.len(), &mut h) };
+            assert_eq!(st, TpxStatus::Ok);
+            (h, row)
+        })
+        .collect()
+}
+
+/// Every navigation function of the C ABI on the live complex's view answers what the Rust
+/// API answers (as vertex rows), and the index-writing ones say NOT_DENSE above vertices.
+fn c_navigation_matches(l: *const topoplex::ffi::TpxLive, rust: &LiveComplex) {
+    use topoplex::ffi::*;
+    let s = c_view(l);
+    let d = rust.dimension();
+    let rows = |hs: &[TpxSimplex]| -> Vec<Vec<u32>> {
+        hs.iter()
+            .map(|h| {
+                let (st, r) = c_vertices(l, h);
+                assert_eq!(st, TpxStatus::Ok);
+                r
+            })
+            .collect()
+    };
+    let mut buf = vec![TpxSimplex::default(); 4096];
+    let mut rbuf = Vec::new();
+    for (h, row) in c_handles(l, rust) {
+        let rh = rust.locate(&row).unwrap();
+        assert_eq!(c_vertices(l, &h), (TpxStatus::Ok, row.clone()));
+        for q in 0..=d {
+            let mut len = 0usize;
+            // SAFETY: valid pointers; buffers of the stated lengths.
+            unsafe {
+                let st = tpx_related_handles(
+                    s,
+                    &h,
+                    q as u32,
+                    TPX_ORDER_NATURAL,
+                    buf.as_mut_ptr(),
+                    buf.len(),
+                    &mut len,
+                );
+                assert_eq!(st, TpxStatus::Ok);
+                rust.related(rh, q, Order::Natural, &mut rbuf).unwrap();
+                assert_eq!(rows(&buf[..len]), rows_of(rust, &rbuf));
+                let mut deg = 0usize;
+                assert_eq!(tpx_degree(s, &h, q as u32, &mut deg), TpxStatus::Ok);
+                assert_eq!(deg, len);
+                let mut ids = [0u32; 64];
+                let st = tpx_related(
+                    s,
+                    &h,
+                    q as u32,
+                    TPX_ORDER_NATURAL,
+                    ids.as_mut_ptr(),
+                    64,
+                    &mut len,
+                );
+                assert_eq!(
+                    st,
+                    if q == 0 {
+                        TpxStatus::Ok
+                    } else {
+                        TpxStatus::NotDense
+                    }
+                );
+            }
+        }
+        for link in [0, 1] {
+            let mut len = 0usize;
+            // SAFETY: as above.
+            let st = unsafe {
+                tpx_star(
+                    s,
+                    &h,
+                    link,
+                    TPX_ORDER_LEXICOGRAPHIC,
+                    buf.as_mut_ptr(),
+                    buf.len(),
+                    &mut len,
+                )
+            };
+            assert_eq!(st, TpxStatus::Ok);
+            if link == 0 {
+                rust.star(rh, Order::Lexicographic, &mut rbuf).unwrap();
+            } else {
+                rust.link(rh, Order::Lexicographic, &mut rbuf).unwrap();
+            }
+            assert_eq!(rows(&buf[..len]), rows_of(rust, &rbuf));
+        }
+        for (what, want) in [(0, rust.is_boundary(rh)), (1, rust.is_manifold(rh))] {
+            let mut r = 0u32;
+            // SAFETY: as above.
+            assert_eq!(
+                unsafe { tpx_simplex_test(s, &h, what, &mut r) },
+                TpxStatus::Ok
+            );
+            assert_eq!(r == 1, want.unwrap());
+        }
+        let q = match (row.len(), d) {
+            (1, 2) => 0,
+            (2, 3) => 3,
+            _ => continue,
+        };
+        let mut fans = Fans::default();
+        if q == 0 {
+            rust.fans_around(rh, &mut fans).unwrap();
+        } else {
+            rust.around_edge(rh, 3, &mut fans).unwrap();
+        }
+        let (mut offsets, mut flags) = (vec![0u32; 65], vec![0u32; 64]);
+        let (mut ni, mut ng) = (0usize, 0usize);
+        // SAFETY: as above.
+        unsafe {
+            let st = tpx_cyclic_handles(
+                s,
+                &h,
+                q,
+                buf.as_mut_ptr(),
+                buf.len(),
+                offsets.as_mut_ptr(),
+                flags.as_mut_ptr(),
+                64,
+                &mut ni,
+                &mut ng,
+            );
+            assert_eq!(st, TpxStatus::Ok);
+            assert_eq!(rows(&buf[..ni]), rows_of(rust, &fans.items));
+            assert_eq!(&offsets[..=ng], &fans.offsets[..]);
+            let mut items = [0u32; 64];
+            let st = tpx_cyclic(
+                s,
+                &h,
+                q,
+                items.as_mut_ptr(),
+                64,
+                offsets.as_mut_ptr(),
+                flags.as_mut_ptr(),
+                64,
+                &mut ni,
+                &mut ng,
+            );
+            assert_eq!(st, TpxStatus::NotDense);
+        }
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
     /// The C ABI and the Rust API agree on the outcome of every edit of a random sequence, and
@@ -717,6 +1070,7 @@ proptest! {
             prop_assert_eq!(tpx_complex_from_arrays(n, ids.as_ptr(), offsets.as_ptr(), list.len(), std::ptr::null(), 0, &mut tc), TpxStatus::Ok);
             prop_assert_eq!(tpx_live_from_complex(tc, &mut l), TpxStatus::Ok);
             tpx_complex_free(tc);
+            let mut before = c_handles(l, &rust);
             for (kind, a, b, x, len) in ops {
                 let sigma = [a, b, x][..len].to_vec();
                 let (st, ok) = match kind {
@@ -742,7 +1096,23 @@ proptest! {
                 };
                 prop_assert_eq!(st == TpxStatus::Ok, ok, "status {:?}", st);
                 prop_assert_eq!(tpx_live_validate(l), TpxStatus::Ok);
+                // Handles from before the edit name their simplex or are refused as stale.
+                for (h, row) in &before {
+                    let (st, got) = c_vertices(l, h);
+                    prop_assert!(st == TpxStatus::StaleHandle || (st == TpxStatus::Ok && got == *row), "{:?}", st);
+                }
+                before = c_handles(l, &rust);
+                c_navigation_matches(l, &rust);
             }
+            let old = c_handles(l, &rust);
+            let mut map = vec![0u32; rust.vertex_slots() as usize];
+            let mut len = 0usize;
+            prop_assert_eq!(tpx_live_compact(l, map.as_mut_ptr(), map.len(), &mut len), TpxStatus::Ok);
+            rust.compact();
+            for (h, _) in &old {
+                prop_assert_eq!(c_vertices(l, h).0, TpxStatus::StaleGeneration);
+            }
+            c_navigation_matches(l, &rust);
             let mut frozen = std::ptr::null_mut();
             prop_assert_eq!(tpx_live_to_complex(l, &mut frozen), TpxStatus::Ok);
             let mut ig = std::ptr::null_mut();

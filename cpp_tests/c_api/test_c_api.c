@@ -551,6 +551,57 @@ static void test_write(void) {
   tpx_complex_free(c);
 }
 
+/* The live complex navigates through the handle functions (tpx_live_structure): on the fixture,
+ * edge 2-3 bounds triangles 0 2 3, 1 2 3 and 2 3 4; after removing 2 3 4 a handle named through
+ * it is stale; after compaction every older handle is STALE_GENERATION. */
+static void test_live_handles(void) {
+  TpxComplex *c = fixture();
+  TpxLive *l = NULL;
+  const TpxStructure *s = NULL;
+  TpxSimplex e, t, tri[8], star[32];
+  uint32_t ids[16], offsets[9], flags[8], v = 0;
+  static const uint32_t edge[] = {3, 2}, dangling[] = {4, 2, 3};
+  size_t len = 0, ni = 0, ng = 0, deg = 0, i;
+  int seen_234 = 0;
+  CHECK_STATUS(tpx_live_from_complex(c, &l), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_live_structure(l, &s), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_locate(s, edge, 2, &e), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_related_handles(s, &e, 2, TPX_ORDER_NATURAL, tri, 8, &len), TPX_STATUS_OK);
+  CHECK(len == 3);
+  for (i = 0; i < len; ++i) {
+    size_t n = 0;
+    CHECK_STATUS(tpx_simplex_vertices(s, &tri[i], ids, 16, &n), TPX_STATUS_OK);
+    if (n == 3 && ids[0] == 2 && ids[1] == 3 && ids[2] == 4) seen_234 = 1;
+  }
+  CHECK(seen_234);
+  CHECK_STATUS(tpx_degree(s, &e, 3, &deg), TPX_STATUS_OK);
+  CHECK(deg == 1);
+  CHECK_STATUS(tpx_related(s, &e, 2, TPX_ORDER_NATURAL, ids, 16, &len), TPX_STATUS_NOT_DENSE);
+  CHECK_STATUS(tpx_star(s, &e, 0, TPX_ORDER_NATURAL, star, 32, &len), TPX_STATUS_OK);
+  CHECK(len == 4); /* three triangles and the tetrahedron */
+  CHECK_STATUS(tpx_simplex_test(s, &e, 1, &v), TPX_STATUS_OK);
+  CHECK(v == 0); /* not manifold */
+  CHECK_STATUS(tpx_cyclic_handles(s, &e, 2, tri, 8, offsets, flags, 8, &ni, &ng), TPX_STATUS_OK);
+  CHECK(ni == 3 && ng == 2);
+  CHECK_STATUS(tpx_cyclic(s, &e, 2, ids, 16, offsets, flags, 8, &ni, &ng), TPX_STATUS_NOT_DENSE);
+  /* Handles named through the dangling triangle (the lowest top slot holding them: the triangle
+   * itself and edge 2-3) go stale with it; edge 2-3 lives on in the tetrahedron: locate again. */
+  CHECK_STATUS(tpx_locate(s, dangling, 3, &t), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_live_remove_top(l, dangling, 3), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_degree(s, &t, 0, &deg), TPX_STATUS_STALE_HANDLE);
+  CHECK_STATUS(tpx_degree(s, &e, 2, &deg), TPX_STATUS_STALE_HANDLE);
+  CHECK_STATUS(tpx_locate(s, edge, 2, &e), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_degree(s, &e, 2, &deg), TPX_STATUS_OK);
+  CHECK(deg == 2);
+  CHECK_STATUS(tpx_live_compact(l, NULL, 0, NULL), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_degree(s, &e, 2, &deg), TPX_STATUS_STALE_GENERATION);
+  CHECK(message_contains("compaction"));
+  CHECK_STATUS(tpx_locate(s, edge, 2, &e), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_degree(s, &e, 2, &deg), TPX_STATUS_OK);
+  tpx_live_free(l);
+  tpx_complex_free(c);
+}
+
 int main(void) {
   test_version();
   test_complex_lifecycle();
@@ -565,6 +616,7 @@ int main(void) {
   test_relation_table();
   test_files();
   test_write();
+  test_live_handles();
   printf("%d passed, %d failed\n", g_passed, g_failed);
   return g_failed == 0 ? 0 : 1;
 }

@@ -253,6 +253,35 @@ TEST(Wrapper, TrianglesAroundAVertexComeCounterClockwise) {
   }
 }
 
+// The live complex navigates by handles like a Structure, across edits, until compact().
+TEST(Wrapper, LiveNavigatesByHandlesAcrossEdits) {
+  topoplex::Live live(fixture());
+  topoplex::Simplex e = live.locate({3, 2});
+  std::vector<Ids> tris;
+  for (auto t : live.coboundary(e, 2)) tris.push_back(live.vertices(t));
+  EXPECT_EQ(tris, (std::vector<Ids>{{0, 2, 3}, {1, 2, 3}, {2, 3, 4}}));
+  EXPECT_EQ(live.degree(e, 3), 1u);
+  EXPECT_FALSE(live.is_manifold(e));
+  EXPECT_EQ(live.star(e).size(), 4u);
+  EXPECT_EQ(live.link(live.vertex(5)).size(), 1u);
+  const topoplex::HandleFans f = live.around_edge(e, 2);
+  ASSERT_EQ(f.size(), 2u);
+  EXPECT_EQ(live.vertices(f[1][0]), (Ids{2, 3, 4}));
+  const topoplex::Simplex t = live.locate({2, 3, 4});
+  EXPECT_EQ(live.top_as_given(live.top_id(t)), (Ids{4, 2, 3}));
+  live.remove_top({2, 3, 4});
+  EXPECT_EQ(status_of([&] { live.degree(t, 0); }), TPX_STATUS_STALE_HANDLE);
+  // Edge 2-3 was named through the triangle (the lowest top slot holding it): stale with it,
+  // never misread; it lives on in the tetrahedron.
+  EXPECT_EQ(status_of([&] { live.degree(e, 2); }), TPX_STATUS_STALE_HANDLE);
+  e = live.locate({2, 3});
+  EXPECT_EQ(live.degree(e, 2), 2u);
+  live.compact();
+  EXPECT_EQ(status_of([&] { live.degree(e, 2); }), TPX_STATUS_STALE_GENERATION);
+  // A triangle fan after compaction: around 4 only the wire 4-5 remains.
+  EXPECT_EQ(live.related(live.vertex(4), 0).size(), 1u);
+}
+
 // The decomposition class: the bowtie splits into two components at its pinch vertex.
 TEST(Wrapper, DecompositionOfTheBowtie) {
   const Complex c = Complex::from_simplices(5, {{0, 1, 2}, {0, 3, 4}});

@@ -1,5 +1,6 @@
 #include <topoplex.hpp>
 #include <cstdio>
+#include <vector>
 
 int main() {
   /*      3 (4, 5)     triangles 1 2 3, 1 2 4, 1 2 5 share edge 1-2 (non-manifold);
@@ -21,6 +22,22 @@ int main() {
     std::printf("refused (status %u): %s\n", static_cast<unsigned>(e.status()), e.what());
   }
   mesh.contract(0, 3, topoplex::ContractMode::Free);  // unify 0 and 3: fills 0 1 2
+  // Navigate by handles: edge 1-2 now bounds triangles 0 1 2, 1 2 4 and 1 2 5.
+  topoplex::Simplex e = mesh.locate({1, 2});
+  bool ok = mesh.degree(e, 2) == 3 && !mesh.is_manifold(e);
+  for (topoplex::Simplex t : mesh.coboundary(e, 2)) {
+    std::vector<std::uint32_t> v = mesh.vertices(t);
+    std::printf("triangle %u %u %u on edge 1-2\n", v[0], v[1], v[2]);
+  }
+  // No edge at 1 joins two of its triangles: three fans of one triangle each.
+  ok = ok && mesh.fans_around(mesh.vertex(1)).size() == 3;
+  mesh.compact();  // renumbers ids: handles from before are refused, never misread
+  try {
+    mesh.degree(e, 2);
+    ok = false;
+  } catch (const topoplex::Error &err) {
+    ok = ok && err.status() == TPX_STATUS_STALE_GENERATION;
+  }
   topoplex::Structure ig(mesh.to_complex(), topoplex::Kind::IG);
-  return mesh.top_count(2) == 3 && mesh.top_count(1) == 0 ? 0 : 1;
+  return ok && mesh.top_count(2) == 3 && mesh.top_count(1) == 0 ? 0 : 1;
 }

@@ -76,7 +76,8 @@ enum Command {
     Save {
         /// .off, .obj, .mesh, .simplices or .tpx input.
         file: PathBuf,
-        /// ig, sig, ia, iqm, nmia, ts, pe, le, de; without it, only the complex is saved.
+        /// ig, sig, ia, iqm, nmia, ts, pe, le, de, or iastar (the live complex, opened back
+        /// editable); without it, only the complex is saved.
         #[arg(long)]
         structure: Option<String>,
         /// The .tpx file to write.
@@ -314,7 +315,13 @@ fn parse_kind(structure: &str) -> Result<StructureKind, String> {
 }
 
 fn save(file: &Path, structure: Option<&str>, out: &Path) -> Result<(), String> {
-    let kind = structure.map(parse_kind).transpose()?;
+    // The live complex (`iastar`) is saved too, to be opened back editable.
+    let kind = structure
+        .map(|s| match s {
+            "iastar" => Ok(StructureKind::IaStar),
+            _ => parse_kind(s),
+        })
+        .transpose()?;
     // Writing over the input would truncate it under its own memory map (a .tpx input).
     if let (Ok(a), Ok(b)) = (std::fs::metadata(file), std::fs::metadata(out))
         && same_file(&a, &b)

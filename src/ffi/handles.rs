@@ -5,7 +5,9 @@
 //! FOREIGN_HANDLE (its `owner` stamp differs), an index or dimension out of range INVALID_HANDLE,
 //! a handle of the wrong dimension for the call WRONG_HANDLE_KIND — never undefined behaviour.
 //! Answers of one dimension are written as dense indices (`uint32_t`): the q-simplex of index i
-//! is the handle `{i, q, owner}` (`tpx_handle` builds it checked).
+//! is the handle `{i, q, owner}` (`tpx_handle` builds it checked). The live complex has dense
+//! indices only for its vertices: `tpx_related_handles` and `tpx_cyclic_handles` write whole
+//! handles and work for every structure; the index-writing functions answer NOT_DENSE there.
 //!
 //! No allocation on the query path: every function here, on success, allocates nothing once
 //! this thread's buffers have grown to the answers asked (answer buffers and walk scratch are
@@ -26,9 +28,13 @@ use crate::structures::common::Scratch;
 ///
 /// `index` is the simplex's dense index among the simplices of its dimension (lexicographic
 /// rank; a vertex's index is its id; the caller's per-dimension arrays can be indexed by it).
-/// `meta` holds the dimension in its low 8 bits (`meta & 0xff`); the other bits are 0 for every
-/// structure of this library. `owner` is the stamp of the structure that made it. A handle stays
-/// valid as long as its structure lives; copying it is free, nothing needs releasing.
+/// `meta` holds the dimension in its low 8 bits (`meta & 0xff`); the other bits are 0 for the
+/// nine built structures. The live complex (`tpx_live_structure`) names a simplex above its
+/// vertices by a top simplex (`index`: dimension in the top 4 bits, slot below) and a mask of its
+/// vertices (`meta` bits 16..32, form 1 in bits 8..16). `owner` is the stamp of the structure
+/// that made it. A handle of a built structure stays valid as long as its structure lives; one of
+/// a live complex until its naming top simplex is removed (STALE_HANDLE) or the complex is
+/// compacted (STALE_GENERATION). Copying it is free, nothing needs releasing.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct TpxSimplex {
@@ -81,6 +87,15 @@ fn wrap(s: &TpxStructure, h: SimplexHandle) -> TpxSimplex {
 
 /// The structure's handle for `h`, checked: FOREIGN_HANDLE, INVALID_HANDLE.
 fn unwrap(s: &TpxStructure, n: &dyn Navigate, h: &TpxSimplex) -> Result<SimplexHandle, Failure> {
+    if h.owner != s.stamp && s.retired.contains(&h.owner) {
+        return Err(Failure::new(
+            TpxStatus::StaleGeneration,
+            format!(
+                "handle {{index {}, meta {:#x}}} was made before a compaction of this live complex: map or locate it again",
+                h.index, h.meta
+            ),
+        ));
+    }
     if h.owner != s.stamp {
         return Err(Failure::new(
             TpxStatus::ForeignHandle,
@@ -96,6 +111,7 @@ fn unwrap(s: &TpxStructure, n: &dyn Navigate, h: &TpxSimplex) -> Result<SimplexH
             format!("handle meta {:#x}: unknown form or dimension", h.meta),
         )
     })?;
+    let sh = sh.with_generation(n.generation());
     n.check(sh).map_err(query_failure)?;
     Ok(sh)
 }
@@ -294,7 +310,8 @@ pub unsafe extern "C" fn tpx_top_as_given(
 
 /// R_{p,q}(*h) (p = the handle's dimension) as dense indices of q-simplices into `buf`, in
 /// `order` (`TPX_ORDER_*`); `*out_len` = the number written. Errors: FOREIGN_HANDLE,
-/// INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), BUFFER_TOO_SMALL
+/// INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), NOT_DENSE (q > 0 on
+/// the live complex: use `tpx_related_handles`), BUFFER_TOO_SMALL
 /// (nothing written; `*out_len` = needed). Cost: the structure's walk (module docs), plus a sort
 /// for lexicographic order. No allocation once this thread's buffers have grown to the answer.
 ///
@@ -317,6 +334,7 @@ pub unsafe extern "C" fn tpx_related(
         let order = order_arg(order)?;
         let n = nav(s)?;
         let sh = unwrap(s, n, h)?;
+        dense_answers(n, q)?;
         with_kept(&IDS, |ids| {
             ids.clear();
             n.visit(sh, q as usize, &mut |x| ids.push(x.index()))
@@ -327,6 +345,20 @@ pub unsafe extern "C" fn tpx_related(
             write_buffer(ids, buf, buf_len, out_len)
         })
     })
+}
+
+/// NOT_DENSE when answers of dimension q have no dense index in this structure (the live
+/// complex above its vertices).
+fn dense_answers(n: &dyn Navigate, q: u32) -> Result<(), Failure> {
+    if q > 0 && !n.dense() {
+        return Err(Failure::new(
+            TpxStatus::NotDense,
+            format!(
+                "{q}-simplices of this structure have no dense index: use tpx_related_handles / tpx_cyclic_handles"
+            ),
+        ));
+    }
+    Ok(())
 }
 
 fn too_small(need: usize, have: usize, out_len: &mut usize) -> Result<(), Failure> {
@@ -371,6 +403,7 @@ pub unsafe extern "C" fn tpx_related_batch(
         }
         let order = order_arg(order)?;
         let n = nav(s)?;
+        dense_answers(n, q)?;
         let p = (p as usize).min(MAX_DIMENSION + 1);
         with_kept(&IDS, |ids| {
             ids.clear();
@@ -454,18 +487,7 @@ pub unsafe extern "C" fn tpx_star(
                 n.star(sh, order, hs)
             }
             .map_err(query_failure)?;
-            if hs.len() > buf_len {
-                return too_small(hs.len(), buf_len, out_len);
-            }
-            if !hs.is_empty() && buf.is_null() {
-                return Err(Failure::null("buf"));
-            }
-            for (i, &x) in hs.iter().enumerate() {
-                // SAFETY: `buf` has room for `buf_len >= hs.len()` handles.
-                unsafe { *buf.add(i) = wrap(s, x) };
-            }
-            *out_len = hs.len();
-            Ok(())
+            write_handles(s, hs, buf, buf_len, out_len)
         })
     })
 }
@@ -511,9 +533,10 @@ pub unsafe extern "C" fn tpx_simplex_test(
 /// `items[offsets[k] .. offsets[k+1]]` (dense indices of triangles, or of tetrahedra for q = 3),
 /// `flags[k]` has `TPX_GROUP_CLOSED` and `TPX_GROUP_ORIENTED`; `*out_items` and `*out_groups`
 /// receive the counts. `offsets` needs `groups + 1` entries. Errors: WRONG_HANDLE_KIND (not a
-/// vertex / not an edge), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL (nothing written; the needed
-/// counts in `*out_items` and `*out_groups`). Cost: the star of the vertex or edge. No
-/// allocation once this thread's buffers are warm.
+/// vertex / not an edge), DIMENSION_OUT_OF_RANGE, NOT_DENSE (the live complex: use
+/// `tpx_cyclic_handles`), BUFFER_TOO_SMALL (nothing written; the needed counts in `*out_items`
+/// and `*out_groups`). Cost: the star of the vertex or edge. No allocation once this thread's
+/// buffers are warm.
 ///
 /// # Safety
 /// Non-NULL pointers must be valid; `items` has room for `items_len`, `offsets` for
@@ -534,53 +557,182 @@ pub unsafe extern "C" fn tpx_cyclic(
 ) -> TpxStatus {
     guard(|| {
         let s = handle(s, "s")?;
-        let h = handle(h, "h")?;
-        let out_items = out_ptr(out_items, "out_items")?;
-        let out_groups = out_ptr(out_groups, "out_groups")?;
-        let n = nav(s)?;
-        let sh = unwrap(s, n, h)?;
-        with_kept(&FANS, |fans| {
-            match q {
-                0 => n.fans_around(sh, fans),
-                _ => n.around_edge(sh, q as usize, fans),
-            }
-            .map_err(query_failure)?;
-            let (ni, ng) = (fans.items.len(), fans.len());
-            if ni > items_len || ng > groups_len {
-                *out_items = ni;
-                *out_groups = ng;
-                return Err(Failure::new(
-                    TpxStatus::BufferTooSmall,
-                    format!("the answer needs {ni} items and {ng} groups"),
-                ));
-            }
-            if (ni > 0 && items.is_null()) || offsets.is_null() || (ng > 0 && flags.is_null()) {
-                return Err(Failure::null("items, offsets or flags"));
-            }
-            for (i, x) in fans.items.iter().enumerate() {
-                // SAFETY: room for items_len >= ni entries.
-                unsafe { *items.add(i) = x.index() };
-            }
-            for k in 0..=ng {
-                // SAFETY: room for groups_len + 1 >= ng + 1 offsets.
-                unsafe { *offsets.add(k) = fans.offsets.get(k).copied().unwrap_or(0) };
-            }
-            for k in 0..ng {
-                let closed = if fans.closed[k] { TPX_GROUP_CLOSED } else { 0 };
-                let f = closed
-                    | if fans.oriented[k] {
-                        TPX_GROUP_ORIENTED
-                    } else {
-                        0
-                    };
-                // SAFETY: room for groups_len >= ng flags.
-                unsafe { *flags.add(k) = f };
-            }
+        if !nav(s)?.dense() {
+            return Err(Failure::new(
+                TpxStatus::NotDense,
+                "this structure's triangles and tetrahedra have no dense index: use tpx_cyclic_handles",
+            ));
+        }
+        let out = CyclicOut {
+            items,
+            items_len,
+            offsets,
+            flags,
+            groups_len,
+            out_items,
+            out_groups,
+        };
+        cyclic_into(s, h, q, out, |x| x.index())
+    })
+}
+
+/// The output buffers of `tpx_cyclic` and `tpx_cyclic_handles` (items of type `T`).
+struct CyclicOut<T> {
+    items: *mut T,
+    items_len: usize,
+    offsets: *mut u32,
+    flags: *mut u32,
+    groups_len: usize,
+    out_items: *mut usize,
+    out_groups: *mut usize,
+}
+
+/// The body of `tpx_cyclic` / `tpx_cyclic_handles`, writing each item as `item(handle)`.
+fn cyclic_into<T>(
+    s: &TpxStructure,
+    h: *const TpxSimplex,
+    q: u32,
+    o: CyclicOut<T>,
+    item: impl Fn(SimplexHandle) -> T,
+) -> Result<(), Failure> {
+    let h = handle(h, "h")?;
+    let out_items = out_ptr(o.out_items, "out_items")?;
+    let out_groups = out_ptr(o.out_groups, "out_groups")?;
+    let (items, offsets, flags) = (o.items, o.offsets, o.flags);
+    let n = nav(s)?;
+    let sh = unwrap(s, n, h)?;
+    with_kept(&FANS, |fans| {
+        match q {
+            0 => n.fans_around(sh, fans),
+            _ => n.around_edge(sh, q as usize, fans),
+        }
+        .map_err(query_failure)?;
+        let (ni, ng) = (fans.items.len(), fans.len());
+        if ni > o.items_len || ng > o.groups_len {
             *out_items = ni;
             *out_groups = ng;
-            Ok(())
+            return Err(Failure::new(
+                TpxStatus::BufferTooSmall,
+                format!("the answer needs {ni} items and {ng} groups"),
+            ));
+        }
+        if (ni > 0 && items.is_null()) || offsets.is_null() || (ng > 0 && flags.is_null()) {
+            return Err(Failure::null("items, offsets or flags"));
+        }
+        for (i, &x) in fans.items.iter().enumerate() {
+            // SAFETY: room for items_len >= ni entries.
+            unsafe { *items.add(i) = item(x) };
+        }
+        for k in 0..=ng {
+            // SAFETY: room for groups_len + 1 >= ng + 1 offsets.
+            unsafe { *offsets.add(k) = fans.offsets.get(k).copied().unwrap_or(0) };
+        }
+        for k in 0..ng {
+            let closed = if fans.closed[k] { TPX_GROUP_CLOSED } else { 0 };
+            let f = closed
+                | if fans.oriented[k] {
+                    TPX_GROUP_ORIENTED
+                } else {
+                    0
+                };
+            // SAFETY: room for groups_len >= ng flags.
+            unsafe { *flags.add(k) = f };
+        }
+        *out_items = ni;
+        *out_groups = ng;
+        Ok(())
+    })
+}
+
+/// `tpx_cyclic` with the items written as handles (`TpxSimplex`): works for every structure,
+/// the live complex included (whose simplices above vertices have no dense index). Same
+/// arguments, errors and cost; `items` has room for `items_len` handles.
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `items` has room for `items_len`, `offsets` for
+/// `groups_len + 1` and `flags` for `groups_len` entries.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn tpx_cyclic_handles(
+    s: *const TpxStructure,
+    h: *const TpxSimplex,
+    q: u32,
+    items: *mut TpxSimplex,
+    items_len: usize,
+    offsets: *mut u32,
+    flags: *mut u32,
+    groups_len: usize,
+    out_items: *mut usize,
+    out_groups: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let out = CyclicOut {
+            items,
+            items_len,
+            offsets,
+            flags,
+            groups_len,
+            out_items,
+            out_groups,
+        };
+        cyclic_into(s, h, q, out, |x| wrap(s, x))
+    })
+}
+
+/// R_{p,q}(*h) as handles (`TpxSimplex`) into `buf`, in `order`; `*out_len` = the number
+/// written. Works for every structure, the live complex included (`tpx_related` writes dense
+/// indices, which the live complex has only for vertices). Errors as `tpx_related`. Cost: the
+/// structure's walk (the live complex: answers come lexicographic, both orders cost the same).
+/// Allocation-free once this thread's buffer has grown to the answer.
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `buf` must have room for `buf_len` handles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_related_handles(
+    s: *const TpxStructure,
+    h: *const TpxSimplex,
+    q: u32,
+    order: u32,
+    buf: *mut TpxSimplex,
+    buf_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let h = handle(h, "h")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let order = order_arg(order)?;
+        let n = nav(s)?;
+        let sh = unwrap(s, n, h)?;
+        with_kept(&HANDLES, |hs| {
+            n.related(sh, q as usize, order, hs)
+                .map_err(query_failure)?;
+            write_handles(s, hs, buf, buf_len, out_len)
         })
     })
+}
+
+/// Writes `hs` as `TpxSimplex` into `buf` (BUFFER_TOO_SMALL with the needed length otherwise).
+fn write_handles(
+    s: &TpxStructure,
+    hs: &[SimplexHandle],
+    buf: *mut TpxSimplex,
+    buf_len: usize,
+    out_len: &mut usize,
+) -> Result<(), Failure> {
+    if hs.len() > buf_len {
+        return too_small(hs.len(), buf_len, out_len);
+    }
+    if !hs.is_empty() && buf.is_null() {
+        return Err(Failure::null("buf"));
+    }
+    for (i, &x) in hs.iter().enumerate() {
+        // SAFETY: `buf` has room for `buf_len >= hs.len()` handles.
+        unsafe { *buf.add(i) = wrap(s, x) };
+    }
+    *out_len = hs.len();
+    Ok(())
 }
 
 /// Listed simplex `i` of the input (`0 .. input_simplices`) exactly as given (order and

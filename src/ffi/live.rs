@@ -8,7 +8,7 @@
 //! INVALID_ARGUMENT for coordinates of the wrong length).
 
 use super::complex::TpxComplex;
-use super::structure::sort_rows_in_place;
+use super::structure::{TpxStructure, sort_rows_in_place};
 use super::write_buffer;
 use super::{Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr};
 use crate::live::{ContractMode, LiveComplex, Refusal, UndoRecord, VertexId};
@@ -26,7 +26,33 @@ pub const TPX_CONTRACT_PRESERVE_MANIFOLD: u32 = 2;
 /// An updatable simplicial complex (opaque): any dimension, non-manifold, mixed-dimensional.
 /// Create with `tpx_live_from_complex`, release with `tpx_live_free`.
 pub struct TpxLive {
-    live: LiveComplex,
+    /// The live complex as a structure, so that the handle functions (`tpx_locate`,
+    /// `tpx_related_handles`, ...) take it through `tpx_live_structure`.
+    view: TpxStructure,
+}
+
+impl TpxLive {
+    pub(crate) fn new(live: LiveComplex) -> TpxLive {
+        TpxLive {
+            view: TpxStructure::new(Box::new(live)),
+        }
+    }
+
+    pub(crate) fn live(&self) -> &LiveComplex {
+        self.view
+            .topo
+            .as_any()
+            .and_then(|a| a.downcast_ref())
+            .expect("a TpxLive holds a LiveComplex")
+    }
+
+    fn live_mut(&mut self) -> &mut LiveComplex {
+        self.view
+            .topo
+            .as_any_mut()
+            .and_then(|a| a.downcast_mut())
+            .expect("a TpxLive holds a LiveComplex")
+    }
 }
 
 /// The undo record of one contraction (opaque), for `tpx_live_split`. Release with
@@ -51,7 +77,7 @@ fn refusal(e: Refusal) -> Failure {
 }
 
 fn live_mut<'a>(p: *mut TpxLive) -> Result<&'a mut LiveComplex, Failure> {
-    Ok(&mut out_ptr(p, "live")?.live)
+    Ok(out_ptr(p, "live")?.live_mut())
 }
 
 /// Builds a live complex from `c`: the same vertex ids, every top simplex with its input
@@ -70,7 +96,7 @@ pub unsafe extern "C" fn tpx_live_from_complex(
         let c = handle(c, "c")?;
         let out = out_ptr(out, "out")?;
         let live = LiveComplex::from_complex(&c.complex);
-        *out = Box::into_raw(Box::new(TpxLive { live }));
+        *out = Box::into_raw(Box::new(TpxLive::new(live)));
         Ok(())
     })
 }
@@ -110,7 +136,7 @@ pub unsafe extern "C" fn tpx_undo_free(u: *mut TpxUndo) {
 /// Non-NULL pointers must be valid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_live_vertex_slots(l: *const TpxLive, out: *mut u32) -> TpxStatus {
-    get_into(l, "l", out, |l| l.live.vertex_slots())
+    get_into(l, "l", out, |l| l.live().vertex_slots())
 }
 
 /// Number of live vertices into `*out`. O(1).
@@ -119,7 +145,7 @@ pub unsafe extern "C" fn tpx_live_vertex_slots(l: *const TpxLive, out: *mut u32)
 /// Non-NULL pointers must be valid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_live_vertex_count(l: *const TpxLive, out: *mut u32) -> TpxStatus {
-    get_into(l, "l", out, |l| l.live.live_vertex_count())
+    get_into(l, "l", out, |l| l.live().live_vertex_count())
 }
 
 /// Whether vertex `v` is live (1) or removed / out of range (0), into `*out`. O(1).
@@ -128,7 +154,7 @@ pub unsafe extern "C" fn tpx_live_vertex_count(l: *const TpxLive, out: *mut u32)
 /// Non-NULL pointers must be valid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_live_is_vertex(l: *const TpxLive, v: u32, out: *mut u32) -> TpxStatus {
-    get_into(l, "l", out, |l| l.live.is_live(VertexId(v)) as u32)
+    get_into(l, "l", out, |l| l.live().is_live(VertexId(v)) as u32)
 }
 
 /// Dimension of the complex (highest live top simplex) into `*out`. O(d).
@@ -137,7 +163,7 @@ pub unsafe extern "C" fn tpx_live_is_vertex(l: *const TpxLive, v: u32, out: *mut
 /// Non-NULL pointers must be valid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_live_dimension(l: *const TpxLive, out: *mut u32) -> TpxStatus {
-    get_into(l, "l", out, |l| l.live.dimension() as u32)
+    get_into(l, "l", out, |l| l.live().dimension() as u32)
 }
 
 /// Number of live top p-simplices into `*out` (p = 0: isolated vertices). O(1) for p ≥ 1,
@@ -151,7 +177,7 @@ pub unsafe extern "C" fn tpx_live_top_count(
     p: u32,
     out: *mut usize,
 ) -> TpxStatus {
-    get_into(l, "l", out, |l| l.live.top_count(p as usize))
+    get_into(l, "l", out, |l| l.live().top_count(p as usize))
 }
 
 /// The live top p-simplices (p ≥ 1) as rows of p+1 vertex ids in their stored order (input
@@ -173,7 +199,7 @@ pub unsafe extern "C" fn tpx_live_top_simplices(
         let l = handle(l, "l")?;
         let out_len = out_ptr(out_len, "out_len")?;
         let rows: Vec<u32> = l
-            .live
+            .live()
             .tops()
             .filter(|(t, _)| t.dim() == p as usize)
             .flat_map(|(_, s)| s.iter().copied())
@@ -205,14 +231,16 @@ pub unsafe extern "C" fn tpx_live_relation(
         let out_len = out_ptr(out_len, "out_len")?;
         let sigma = in_slice(simplex, simplex_len, "simplex")?;
         let mut rows = Vec::new();
-        l.live.relation(sigma, q as usize, &mut rows).map_err(|e| {
-            let status = match &e {
-                QueryError::NotInComplex { .. } => TpxStatus::NotInComplex,
-                QueryError::DimensionOutOfRange { .. } => TpxStatus::DimensionOutOfRange,
-                _ => TpxStatus::InvalidSimplex,
-            };
-            Failure::new(status, e.to_string())
-        })?;
+        l.live()
+            .relation(sigma, q as usize, &mut rows)
+            .map_err(|e| {
+                let status = match &e {
+                    QueryError::NotInComplex { .. } => TpxStatus::NotInComplex,
+                    QueryError::DimensionOutOfRange { .. } => TpxStatus::DimensionOutOfRange,
+                    _ => TpxStatus::InvalidSimplex,
+                };
+                Failure::new(status, e.to_string())
+            })?;
         sort_rows_in_place(&mut rows, q as usize + 1);
         write_buffer(&rows, buf, buf_len, out_len)
     })
@@ -234,7 +262,7 @@ pub unsafe extern "C" fn tpx_live_coords(
     guard(|| {
         let l = handle(l, "l")?;
         let out_len = out_ptr(out_len, "out_len")?;
-        let xyz = l.live.coords(VertexId(v)).map_err(refusal)?;
+        let xyz = l.live().coords(VertexId(v)).map_err(refusal)?;
         write_buffer(xyz, buf, buf_len, out_len)
     })
 }
@@ -245,7 +273,7 @@ pub unsafe extern "C" fn tpx_live_coords(
 /// Non-NULL pointers must be valid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_live_coord_dim(l: *const TpxLive, out: *mut usize) -> TpxStatus {
-    get_into(l, "l", out, |l| l.live.coord_dim())
+    get_into(l, "l", out, |l| l.live().coord_dim())
 }
 
 /// Sets the coordinates of live vertex `v` from `xyz[0 .. len]` (`len` must be the coordinate
@@ -338,7 +366,7 @@ pub unsafe extern "C" fn tpx_live_remove_top(
 pub unsafe extern "C" fn tpx_live_link_condition(l: *const TpxLive, a: u32, b: u32) -> TpxStatus {
     guard(|| {
         let l = handle(l, "l")?;
-        l.live
+        l.live()
             .link_condition(VertexId(a), VertexId(b))
             .map_err(refusal)
     })
@@ -359,7 +387,7 @@ pub unsafe extern "C" fn tpx_live_link_condition_with_boundary(
 ) -> TpxStatus {
     guard(|| {
         let l = handle(l, "l")?;
-        l.live
+        l.live()
             .link_condition_with_boundary(VertexId(a), VertexId(b))
             .map_err(refusal)
     })
@@ -435,7 +463,9 @@ pub unsafe extern "C" fn tpx_live_split(l: *mut TpxLive, u: *const TpxUndo) -> T
 /// When `vertex_map` is not NULL it receives, for each old vertex id, its new id (`UINT32_MAX`
 /// for a removed vertex): `*out_len` = old `tpx_live_vertex_slots`; with a buffer too short
 /// nothing is compacted (BUFFER_TOO_SMALL, `*out_len` = needed length). Undo records issued
-/// before are refused afterwards (STALE_UNDO). Cost: O(size).
+/// before are refused afterwards (STALE_UNDO), and so are handles (`TpxSimplex`) made before
+/// (STALE_GENERATION: the complex takes a new owner stamp and keeps the old ones, 4 bytes per
+/// compaction). Cost: O(size).
 ///
 /// # Safety
 /// Non-NULL pointers must be valid; `vertex_map` has room for `map_len` uint32_t.
@@ -447,8 +477,8 @@ pub unsafe extern "C" fn tpx_live_compact(
     out_len: *mut usize,
 ) -> TpxStatus {
     guard(|| {
-        let live = live_mut(l)?;
-        let slots = live.vertex_slots() as usize;
+        let l = out_ptr(l, "l")?;
+        let slots = l.live().vertex_slots() as usize;
         if !vertex_map.is_null() && map_len < slots {
             let out_len = out_ptr(out_len, "out_len")?;
             *out_len = slots;
@@ -457,7 +487,10 @@ pub unsafe extern "C" fn tpx_live_compact(
                 format!("vertex_map holds {map_len} uint32_t, the map needs {slots}"),
             ));
         }
-        let maps = live.compact();
+        let maps = l.live_mut().compact();
+        // Handles carry the stamp: a new one makes every older handle STALE_GENERATION.
+        let old = std::mem::replace(&mut l.view.stamp, super::handles::new_stamp());
+        l.view.retired.push(old);
         if !vertex_map.is_null() {
             let out_len = out_ptr(out_len, "out_len")?;
             write_buffer(&maps.vertices, vertex_map, map_len, out_len)?;
@@ -480,7 +513,7 @@ pub unsafe extern "C" fn tpx_live_to_complex(
     guard(|| {
         let l = handle(l, "l")?;
         let out = out_ptr(out, "out")?;
-        let complex = l.live.to_complex();
+        let complex = l.live().to_complex();
         *out = Box::into_raw(Box::new(TpxComplex { complex }));
         Ok(())
     })
@@ -495,8 +528,35 @@ pub unsafe extern "C" fn tpx_live_to_complex(
 pub unsafe extern "C" fn tpx_live_validate(l: *const TpxLive) -> TpxStatus {
     guard(|| {
         let l = handle(l, "l")?;
-        l.live
+        l.live()
             .validate()
             .map_err(|e| Failure::new(TpxStatus::Panic, format!("invalid live complex: {e}")))
+    })
+}
+
+/// The live complex as a structure, into `*out`: borrowed (valid until `tpx_live_free`; never
+/// pass it to `tpx_structure_free`), so that the handle functions navigate it exactly as a built
+/// structure — `tpx_locate`, `tpx_simplex_vertices`, `tpx_related_handles`, `tpx_degree`,
+/// `tpx_star`, `tpx_simplex_test`, `tpx_cyclic_handles`, `tpx_top`, `tpx_top_id`,
+/// `tpx_top_as_given`, and the vertex-id functions (`tpx_relation`, `tpx_structure_count`, ...).
+/// Handles stay valid across edits while the simplex's naming top simplex lives (STALE_HANDLE
+/// afterwards) and until `tpx_live_compact` (STALE_GENERATION afterwards). A vertex's handle index
+/// is its id; other simplices have no dense index (`tpx_related` and `tpx_cyclic` answer
+/// NOT_DENSE for them: use the `_handles` twins). Top ids are not dense either: dimension in the
+/// top 4 bits, slot below (an isolated vertex v: `v`). Not to be used while another thread edits
+/// the live complex. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_structure(
+    l: *const TpxLive,
+    out: *mut *const TpxStructure,
+) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        let out = out_ptr(out, "out")?;
+        *out = &l.view;
+        Ok(())
     })
 }

@@ -134,6 +134,13 @@ pub enum TpxStatus {
     SavedFileForeign = 43,
     /// A saved file was written on a host of the other byte order.
     SavedFileWrongEndianness = 44,
+    /// A handle from before `tpx_live_compact` (live complex): the compaction renumbered every
+    /// id, so it names nothing any more; map the ids or locate again.
+    StaleGeneration = 52,
+    /// The answer holds simplices that have no dense index (the live complex numbers only its
+    /// vertices densely): use the handle-writing twin (`tpx_related_handles`,
+    /// `tpx_cyclic_handles`) or ask for vertices.
+    NotDense = 53,
 }
 
 /// Incidence Graph.

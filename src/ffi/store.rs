@@ -4,6 +4,7 @@ use std::ffi::{CStr, c_char};
 use std::path::Path;
 
 use super::complex::{TpxComplex, complex_failure};
+use super::live::TpxLive;
 use super::structure::{TpxStructure, build_failure, kind_from_u32};
 use super::{Failure, TpxStatus, guard, handle, out_ptr};
 use crate::store::{Saved, StoreError, save};
@@ -100,10 +101,7 @@ pub unsafe extern "C" fn tpx_structure_open(
             saved.verify().map_err(store_failure)?;
         }
         let topo = saved.structure_of(kind).map_err(store_failure)?;
-        *out = Box::into_raw(Box::new(TpxStructure {
-            topo,
-            stamp: super::handles::new_stamp(),
-        }));
+        *out = Box::into_raw(Box::new(TpxStructure::new(topo)));
         Ok(())
     })
 }
@@ -126,6 +124,56 @@ pub unsafe extern "C" fn tpx_complex_open(
         let saved = Saved::open(path).map_err(store_failure)?;
         let complex = saved.complex().map_err(store_failure)?;
         *out = Box::into_raw(Box::new(TpxComplex { complex }));
+        Ok(())
+    })
+}
+
+/// Saves the live complex `l` with its complex to `path` (`.tpx`). Saving compacts a copy on the
+/// fly: removed vertices and slots are not written, ids are renumbered as `tpx_live_compact`
+/// would (`l` itself is unchanged). Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8),
+/// IO_ERROR. Cost: O(size).
+///
+/// # Safety
+/// Non-NULL pointers must be valid (a live handle; a NUL-terminated path).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_save(l: *const TpxLive, path: *const c_char) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        let path = path_arg(path)?;
+        l.live().save(path).map_err(store_failure)
+    })
+}
+
+/// Opens `path` as an editable live complex: the saved live complex when the file holds one
+/// (`topoplex save INPUT --structure iastar`, `tpx_live_save`), else one built from the saved
+/// complex. Its arrays are copied out of the file (editable), so opening costs O(size), unlike
+/// `tpx_structure_open`. `flags` as `tpx_structure_open` (`TPX_OPEN_VERIFY`). On success `*out`
+/// receives a new live complex owned by the caller (free with `tpx_live_free`). Errors: as
+/// `tpx_structure_open`.
+///
+/// # Safety
+/// `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_open(
+    path: *const c_char,
+    flags: u32,
+    out: *mut *mut TpxLive,
+) -> TpxStatus {
+    guard(|| {
+        let out = out_ptr(out, "out")?;
+        let path = path_arg(path)?;
+        if flags & !TPX_OPEN_VERIFY != 0 {
+            return Err(Failure::new(
+                TpxStatus::InvalidArgument,
+                format!("unknown flags {flags:#x} (only TPX_OPEN_VERIFY = 1)"),
+            ));
+        }
+        let saved = Saved::open(path).map_err(store_failure)?;
+        if flags & TPX_OPEN_VERIFY != 0 {
+            saved.verify().map_err(store_failure)?;
+        }
+        let live = crate::live::LiveComplex::open_saved(&saved).map_err(store_failure)?;
+        *out = Box::into_raw(Box::new(TpxLive::new(live)));
         Ok(())
     })
 }

@@ -18,6 +18,20 @@ pub struct TpxStructure {
     pub(crate) topo: Box<dyn Topology>,
     /// Owner stamp carried by every `TpxSimplex` this structure makes.
     pub(crate) stamp: u32,
+    /// Stamps this structure carried before (a live complex takes a new one at each
+    /// compaction): their handles are refused as STALE_GENERATION, not FOREIGN_HANDLE.
+    pub(crate) retired: Vec<u32>,
+}
+
+impl TpxStructure {
+    /// A structure with a fresh stamp.
+    pub(crate) fn new(topo: Box<dyn Topology>) -> TpxStructure {
+        TpxStructure {
+            topo,
+            stamp: super::handles::new_stamp(),
+            retired: Vec::new(),
+        }
+    }
 }
 
 /// Storage of a structure: what the papers count and what the process really holds.
@@ -68,6 +82,7 @@ pub(crate) fn query_failure(e: QueryError) -> Failure {
         QueryError::InvalidHandle { .. } => TpxStatus::InvalidHandle,
         QueryError::StaleHandle { .. } => TpxStatus::StaleHandle,
         QueryError::WrongHandleKind { .. } => TpxStatus::WrongHandleKind,
+        QueryError::StaleGeneration { .. } => TpxStatus::StaleGeneration,
     };
     Failure::new(status, e.to_string())
 }
@@ -105,10 +120,7 @@ pub unsafe extern "C" fn tpx_structure_build(
         let out = out_ptr(out, "out")?;
         let kind = kind_from_u32(kind)?;
         let topo = build(kind, &c.complex).map_err(build_failure)?;
-        *out = Box::into_raw(Box::new(TpxStructure {
-            topo,
-            stamp: super::handles::new_stamp(),
-        }));
+        *out = Box::into_raw(Box::new(TpxStructure::new(topo)));
         Ok(())
     })
 }

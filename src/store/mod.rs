@@ -446,16 +446,6 @@ pub fn save(
         path: path.to_path_buf(),
         message: e.to_string(),
     };
-    if let Some(s) = structure
-        && s.kind() == StructureKind::IaStar
-    {
-        return Err(StoreError::Io {
-            path: path.to_path_buf(),
-            message: "the live complex is not saved as a structure yet: save its complex \
-                      (to_complex) and build it again after opening"
-                .into(),
-        });
-    }
     let mut tmp = path.as_os_str().to_owned();
     tmp.push(".partial");
     let tmp = PathBuf::from(tmp);
@@ -717,9 +707,12 @@ fn check_head(path: &Path, bytes: &[u8]) -> Result<Head, StoreError> {
     }
     let kind = match kind_code {
         0 => None,
+        // Content code = kind + 1; the live complex (kind 9) is not in ALL.
         k => Some(
-            *StructureKind::ALL
-                .get(k as usize - 1)
+            StructureKind::ALL
+                .into_iter()
+                .chain([StructureKind::IaStar])
+                .find(|s| s.abi() + 1 == k)
                 .ok_or_else(|| corrupt(format!("unknown content code {k}")))?,
         ),
     };

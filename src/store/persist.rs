@@ -70,7 +70,8 @@ pub(super) fn save_structure(s: &dyn Topology, w: &mut Writer) {
         || go::<ts::TriangleSegment>(any, w)
         || go::<pe::PartialEntities>(any, w)
         || go::<le::LoopEdgeUse>(any, w)
-        || go::<de::DirectedEdge>(any, w);
+        || go::<de::DirectedEdge>(any, w)
+        || go::<crate::live::LiveComplex>(any, w);
     assert!(saved, "every structure kind implements Persist");
 }
 
@@ -91,9 +92,6 @@ pub(super) fn load_structure(
         StructureKind::Pe => go::<pe::PartialEntities>(r),
         StructureKind::Le => go::<le::LoopEdgeUse>(r),
         StructureKind::De => go::<de::DirectedEdge>(r),
-        // `save` refuses the live complex, so no honest file names it.
-        StructureKind::IaStar => {
-            Err(r.corrupt("structure kind 9 (the live complex) is never saved"))
-        }
+        StructureKind::IaStar => go::<crate::live::LiveComplex>(r),
     }
 }

@@ -2,6 +2,8 @@
 //! `../shared/data` when present.
 #![allow(dead_code)]
 
+pub mod nav;
+
 use std::path::PathBuf;
 
 use proptest::prelude::*;

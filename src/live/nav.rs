@@ -1,0 +1,419 @@
+//! [`Navigate`] for the live complex: the same handle navigation as the nine structures, over
+//! handles that survive edits.
+//!
+//! # Handles
+//! - A vertex is its dense handle `(0, slot)`, as in the nine structures: valid while the vertex
+//!   is live.
+//! - Any other simplex σ is a [`HandleForm::TopFace`] handle: a live top simplex T holding σ (its
+//!   packed slot: dimension in the top 4 bits, slot below) and a mask of T's vertices (bit i: T's
+//!   i-th smallest vertex). Slots are never rewritten while live (edits append slots; a split
+//!   restores a slot with its old vertices), so the handle names σ for as long as T lives, across
+//!   every other edit. When T is removed the handle is refused with
+//!   [`QueryError::StaleHandle`] — σ itself may survive in another top: locate it again.
+//! - Handles the live complex gives out are *canonical*: T is the live top holding σ with the
+//!   smallest packed slot. So two handles taken without an edit in between name the same simplex
+//!   exactly when they are equal; after edits, compare by [`Navigate::vertices_of`] (a later
+//!   answer may name σ through another top). A top simplex's handle is its own full mask.
+//! - Every handle carries the complex's generation (its compaction count,
+//!   [`SimplexHandle::generation`]); after [`LiveComplex::compact`] an older handle is refused
+//!   with [`QueryError::StaleGeneration`]. [`TopId`]s of the handle API are packed slots (not
+//!   dense: they number live tops by dimension and slot, an isolated vertex v as `(0, v)`), valid
+//!   until `compact`.
+//!
+//! # Cost (k_v = |St*(v)|, v the vertex of σ with the smallest star; d ≤ 15 is a constant)
+//! - `locate`, `check`, `vertices_of`, `top`, `top_id`, `top_as_given`: O(1), except `locate`
+//!   O(d·k_v) (a scan of St*(v) for the smallest slot holding σ).
+//! - `visit` R_{p,q}: the faces as in the relation API (module doc of [`crate::live`]), sorted and
+//!   deduplicated in a per-thread scratch buffer, then each answer named canonically: for q > p
+//!   for free (every top holding an answer holds σ, so the scan of St*(v) sees them all), for
+//!   q ≤ p one scan of the answer's smallest star, O(d·k). Answers come in ascending
+//!   lexicographic order of their vertices, which is the natural order here: both [`Order`]s
+//!   cost the same. No allocation once the scratch buffer has grown to the answer.
+//! - `star`, `link`, `degree`, `is_boundary`, `is_manifold`, `fans_around`, `around_edge`: the
+//!   trait's definitions over `visit` (costs in [`crate::handle`]); `top_total` O(n) (isolated
+//!   vertices are counted).
+
+use std::cell::RefCell;
+
+use super::{Key, LiveComplex, NONE, pack, subset, unpack};
+use crate::complex::MAX_DIMENSION;
+use crate::handle::{HandleForm, Navigate, Order, SimplexHandle, TopId, VertexId, Vertices};
+use crate::relation::{QueryError, Topology, normalize_simplex};
+use crate::structures::common::faces_containing;
+
+/// One answer row: the simplex (ascending) and the top naming it (packed slot; `NONE` while
+/// not yet named), with the mask of that top's vertices.
+#[derive(Clone, Copy)]
+struct Row {
+    key: Key,
+    raw: u32,
+    mask: u16,
+}
+
+thread_local! {
+    static ROWS: RefCell<Vec<Row>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Runs `f` with this thread's row buffer, cleared (a nested call — a visitor navigating
+/// again — gets a fresh one).
+fn with_rows<R>(f: impl FnOnce(&mut Vec<Row>) -> R) -> R {
+    let mut f = Some(f);
+    let kept = ROWS.try_with(|cell| {
+        let mut rows = cell.try_borrow_mut().ok()?;
+        rows.clear();
+        Some((f.take().expect("called once"))(&mut rows))
+    });
+    match kept {
+        Ok(Some(r)) => r,
+        _ => (f.take().expect("not called yet"))(&mut Vec::new()),
+    }
+}
+
+fn invalid(h: SimplexHandle, reason: &'static str) -> QueryError {
+    QueryError::InvalidHandle { handle: h, reason }
+}
+
+/// Mask of the vertices of `face` within `sorted` (ascending, a superset).
+fn mask_of(sorted: &[u32], face: &[u32]) -> u16 {
+    sorted
+        .iter()
+        .enumerate()
+        .filter(|(_, v)| face.contains(v))
+        .fold(0u16, |m, (i, _)| m | 1 << i)
+}
+
+impl LiveComplex {
+    fn vertex_handle(&self, v: u32) -> SimplexHandle {
+        SimplexHandle::dense(0, v).with_generation(self.epoch)
+    }
+
+    fn face_handle(&self, raw: u32, mask: u16) -> SimplexHandle {
+        SimplexHandle::top_face(TopId(raw), mask).with_generation(self.epoch)
+    }
+
+    /// The canonical handle of σ (ascending, live vertices, |σ| ≥ 2): the live top holding it
+    /// with the smallest packed slot, if any. O(d·k_v).
+    fn canonical(&self, sigma: &[u32]) -> Option<SimplexHandle> {
+        let v = self.smallest_star(sigma);
+        let raw = self.star[v as usize]
+            .iter()
+            .copied()
+            .filter(|&raw| subset(sigma, self.top_raw(raw)))
+            .min()?;
+        let top = Key::new(self.top_raw(raw));
+        Some(self.face_handle(raw, mask_of(top.as_slice(), sigma)))
+    }
+
+    /// The handle of live top simplex `t` (its full mask).
+    pub fn top_handle(&self, t: super::TopId) -> Result<SimplexHandle, super::Refusal> {
+        self.check_top(t)?;
+        Ok(self.face_handle(t.raw, ((1u32 << (t.dim() + 1)) - 1) as u16))
+    }
+
+    /// The handle's simplex, ascending, after checking it.
+    fn handle_vertices(&self, h: SimplexHandle) -> Result<Vertices, QueryError> {
+        Navigate::check(self, h)?;
+        if h.form() == HandleForm::Dense {
+            return Ok(Vertices::from_slice(&[h.index()]));
+        }
+        let top = Key::new(self.top_raw(h.index()));
+        let mut ids = [0u32; MAX_DIMENSION + 1];
+        let mut k = 0;
+        for (i, &v) in top.as_slice().iter().enumerate() {
+            if h.local() >> i & 1 == 1 {
+                ids[k] = v;
+                k += 1;
+            }
+        }
+        Ok(Vertices::from_slice(&ids[..k]))
+    }
+
+    /// Every answer row of R_{p,q}(σ) into `rows`, named or not (`raw == NONE`), duplicates
+    /// allowed.
+    fn answer_rows(&self, sigma: &[u32], q: usize, rows: &mut Vec<Row>) {
+        let p = sigma.len() - 1;
+        let unnamed = |f: &[u32]| Row {
+            key: Key::new(f),
+            raw: NONE,
+            mask: 0,
+        };
+        if q < p {
+            faces_containing(sigma, &[], q, |f| rows.push(unnamed(f)));
+        } else if q > p {
+            // Every top holding an answer holds σ, hence is in St*(v): name answers here.
+            let v = self.smallest_star(sigma);
+            for &raw in &self.star[v as usize] {
+                let t = self.top_raw(raw);
+                if t.len() > q && subset(sigma, t) {
+                    let top = Key::new(t);
+                    faces_containing(top.as_slice(), sigma, q, |f| {
+                        rows.push(Row {
+                            key: Key::new(f),
+                            raw,
+                            mask: mask_of(top.as_slice(), f),
+                        })
+                    });
+                }
+            }
+        } else if p == 0 {
+            for &raw in &self.star[sigma[0] as usize] {
+                for &u in self.top_raw(raw).iter().filter(|&&u| u != sigma[0]) {
+                    rows.push(unnamed(&[u]));
+                }
+            }
+        } else {
+            self.adjacent_rows(sigma, rows, unnamed);
+        }
+    }
+
+    /// R_{p,p}, p > 0: every p-simplex sharing a facet with σ holds σ[0] or σ[1].
+    fn adjacent_rows(&self, sigma: &[u32], rows: &mut Vec<Row>, unnamed: impl Fn(&[u32]) -> Row) {
+        let p = sigma.len() - 1;
+        let mut face = [0u32; MAX_DIMENSION + 1];
+        for &hub in &sigma[..2] {
+            for &raw in &self.star[hub as usize] {
+                let t = self.top_raw(raw);
+                for skip in 0..=p {
+                    let mut k = 0;
+                    for (i, &v) in sigma.iter().enumerate() {
+                        if i != skip {
+                            face[k] = v;
+                            k += 1;
+                        }
+                    }
+                    if !subset(&face[..p], t) {
+                        continue;
+                    }
+                    for &x in t.iter().filter(|x| !sigma.contains(x)) {
+                        face[p] = x;
+                        rows.push(unnamed(&face[..=p]));
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl Navigate for LiveComplex {
+    fn locate(&self, sigma: &[u32]) -> Result<SimplexHandle, QueryError> {
+        let n = self.vertex_slots();
+        let k = sigma.len();
+        if k == 0 || k > MAX_DIMENSION + 1 || sigma.iter().any(|&v| v >= n) {
+            return Err(normalize_simplex(sigma, n).expect_err("an invalid simplex"));
+        }
+        let s = Key::new(sigma);
+        let s = s.as_slice();
+        if s.windows(2).any(|w| w[0] == w[1]) {
+            return Err(normalize_simplex(sigma, n).expect_err("a repeated vertex"));
+        }
+        let not_in = || QueryError::NotInComplex {
+            simplex: s.to_vec(),
+        };
+        if s.iter().any(|&v| !self.alive[v as usize]) {
+            return Err(not_in());
+        }
+        if k == 1 {
+            return Ok(self.vertex_handle(s[0]));
+        }
+        self.canonical(s).ok_or_else(not_in)
+    }
+
+    /// Vertices only (`p = 0`): the live complex numbers no other dimension densely; locate
+    /// other simplices or take them from navigation answers.
+    fn handle(&self, p: usize, index: u32) -> Result<SimplexHandle, QueryError> {
+        if p != 0 {
+            return Err(invalid(
+                SimplexHandle::dense(p.min(MAX_DIMENSION), index),
+                "the live complex numbers only vertices densely (locate other simplices)",
+            ));
+        }
+        let h = self.vertex_handle(index);
+        Navigate::check(self, h).map(|_| h)
+    }
+
+    fn check(&self, h: SimplexHandle) -> Result<(), QueryError> {
+        if h.generation() != self.epoch {
+            return Err(QueryError::StaleGeneration {
+                handle: h,
+                generation: h.generation(),
+                current: self.epoch,
+            });
+        }
+        if h.is_none() {
+            return Err(invalid(h, "the NONE handle"));
+        }
+        if h.form() == HandleForm::Dense {
+            if h.dim() != 0 {
+                return Err(invalid(h, "the live complex numbers only vertices densely"));
+            }
+            if h.index() >= self.vertex_slots() {
+                return Err(invalid(h, "vertex beyond the vertex slots"));
+            }
+            if !self.alive[h.index() as usize] {
+                return Err(QueryError::StaleHandle { handle: h });
+            }
+            return Ok(());
+        }
+        let (p, slot) = unpack(h.index());
+        if p == 0 || (slot + 1) * (p + 1) > self.tops[p].len() {
+            return Err(invalid(h, "no top simplex slot of this number"));
+        }
+        let mask = h.local() as u32;
+        if h.dim() == 0 || mask >> (p + 1) != 0 || mask.count_ones() as usize != h.dim() + 1 {
+            return Err(invalid(h, "vertex mask does not fit its top simplex"));
+        }
+        if self.tops[p][slot * (p + 1)] == NONE {
+            return Err(QueryError::StaleHandle { handle: h });
+        }
+        Ok(())
+    }
+
+    fn vertex(&self, v: VertexId) -> Result<SimplexHandle, QueryError> {
+        Navigate::handle(self, 0, v.0)
+    }
+
+    fn vertices_of(&self, h: SimplexHandle) -> Result<Vertices, QueryError> {
+        self.handle_vertices(h)
+    }
+
+    fn top_total(&self) -> u32 {
+        (0..=MAX_DIMENSION).map(|p| self.top_count(p) as u32).sum()
+    }
+
+    fn top(&self, t: TopId) -> Result<SimplexHandle, QueryError> {
+        let bad = |why| invalid(SimplexHandle::top_face(t, 0), why);
+        if t.is_none() {
+            return Err(bad("the NONE top id"));
+        }
+        let (p, slot) = unpack(t.0);
+        if p == 0 {
+            let v = slot as u32;
+            if !self.is_live(VertexId(v)) || !self.star[slot].is_empty() {
+                return Err(bad("not an isolated vertex"));
+            }
+            return Ok(self.vertex_handle(v));
+        }
+        if (slot + 1) * (p + 1) > self.tops[p].len() || self.tops[p][slot * (p + 1)] == NONE {
+            return Err(bad("no live top simplex in this slot"));
+        }
+        Ok(self.face_handle(t.0, ((1u32 << (p + 1)) - 1) as u16))
+    }
+
+    fn top_id(&self, h: SimplexHandle) -> Result<Option<TopId>, QueryError> {
+        Navigate::check(self, h)?;
+        if h.form() == HandleForm::Dense {
+            let isolated = self.star[h.index() as usize].is_empty();
+            return Ok(isolated.then(|| TopId(pack(0, h.index()))));
+        }
+        let p = unpack(h.index()).0;
+        Ok((h.dim() == p).then_some(TopId(h.index())))
+    }
+
+    fn top_as_given(&self, t: TopId) -> Result<Vertices, QueryError> {
+        let h = self.top(t)?;
+        if h.form() == HandleForm::Dense {
+            return Ok(Vertices::from_slice(&[h.index()]));
+        }
+        Ok(Vertices::from_slice(self.top_raw(t.0)))
+    }
+
+    fn handle_bytes(&self) -> u64 {
+        0
+    }
+
+    fn generation(&self) -> u32 {
+        self.epoch
+    }
+
+    fn dense(&self) -> bool {
+        false
+    }
+
+    fn visit(
+        &self,
+        h: SimplexHandle,
+        q: usize,
+        visit: &mut dyn FnMut(SimplexHandle),
+    ) -> Result<(), QueryError> {
+        let sigma = self.handle_vertices(h)?;
+        let d = Topology::dimension(self);
+        if q > d {
+            return Err(QueryError::DimensionOutOfRange {
+                p: h.dim(),
+                q,
+                dim: d,
+            });
+        }
+        with_rows(|rows| {
+            self.answer_rows(&sigma, q, rows);
+            // Lexicographic, and for q > p the smallest naming slot first.
+            rows.sort_unstable_by_key(|r| (r.key, r.raw));
+            let mut last: Option<Key> = None;
+            for r in rows.iter() {
+                if last == Some(r.key) {
+                    continue;
+                }
+                last = Some(r.key);
+                let s = r.key.as_slice();
+                visit(if q == 0 {
+                    self.vertex_handle(s[0])
+                } else if r.raw != NONE {
+                    self.face_handle(r.raw, r.mask)
+                } else {
+                    self.canonical(s).expect("an answer is a simplex")
+                });
+            }
+        });
+        Ok(())
+    }
+
+    /// Answers come lexicographic already: both orders cost the same.
+    fn related(
+        &self,
+        h: SimplexHandle,
+        q: usize,
+        _order: Order,
+        out: &mut Vec<SimplexHandle>,
+    ) -> Result<(), QueryError> {
+        out.clear();
+        self.visit(h, q, &mut |x| out.push(x))
+    }
+
+    fn star(
+        &self,
+        h: SimplexHandle,
+        _order: Order,
+        out: &mut Vec<SimplexHandle>,
+    ) -> Result<(), QueryError> {
+        out.clear();
+        Navigate::check(self, h)?;
+        for q in h.dim() + 1..=Topology::dimension(self) {
+            self.visit(h, q, &mut |x| out.push(x))?;
+        }
+        Ok(())
+    }
+
+    /// τ ↦ τ ∖ σ keeps lexicographic order within a dimension, so the link comes in order too.
+    fn link(
+        &self,
+        h: SimplexHandle,
+        _order: Order,
+        out: &mut Vec<SimplexHandle>,
+    ) -> Result<(), QueryError> {
+        let sigma = self.handle_vertices(h)?;
+        let mut star = Vec::new();
+        self.star(h, Order::Natural, &mut star)?;
+        out.clear();
+        let mut rest = [0u32; MAX_DIMENSION + 1];
+        for tau in star {
+            let t = self.handle_vertices(tau)?;
+            let mut k = 0;
+            for &v in t.iter().filter(|v| !sigma.contains(v)) {
+                rest[k] = v;
+                k += 1;
+            }
+            out.push(self.locate(&rest[..k])?);
+        }
+        Ok(())
+    }
+}
