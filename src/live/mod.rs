@@ -222,6 +222,10 @@ pub(crate) struct Image {
     len: u8,
     /// From a top through both a and b (b dropped, one dimension lower).
     degenerate: bool,
+    /// Still a top simplex after the contraction (decided before anything changes).
+    kept: bool,
+    /// The top of St(b) it is the image of (packed id).
+    from: u32,
     ids: [u32; MAX_DIMENSION + 1],
 }
 
