@@ -34,7 +34,7 @@ pub struct UndoRecord {
     coords: Vec<f64>,
     /// Top simplices the contraction retired (winding as stored).
     removed: TopList,
-    /// Top simplices the contraction created.
+    /// Top simplices the contraction created (a moved top is in both lists, same slot).
     inserted: TopList,
 }
 
@@ -69,12 +69,17 @@ impl TopList {
 
 impl UndoRecord {
     /// Top simplices the contraction removed (those of St(b), and those of St(a) that became
-    /// faces of an image), with their vertices before the contraction.
+    /// faces of an image), with their vertices before the contraction. A top of St(b) whose
+    /// image stays a top is listed here with b and in [`UndoRecord::inserted_tops`] with a:
+    /// it was rewritten in its own slot.
     pub fn removed_tops(&self) -> impl Iterator<Item = &[u32]> + '_ {
         self.removed.iter().map(|(_, s)| s)
     }
 
-    /// Top simplices the contraction created (images of St(b) with b replaced by a).
+    /// Top simplices the contraction created (images of St(b) with b replaced by a). A moved
+    /// top keeps its slot, so its [`TopId`] from before the contraction stays valid and names
+    /// the image; only a degenerate image (of a top through both a and b) that stays a top gets
+    /// a new slot.
     pub fn inserted_tops(&self) -> impl Iterator<Item = TopId> + '_ {
         self.inserted.raw.iter().map(|&raw| TopId {
             raw,
