@@ -269,6 +269,40 @@ fn bowtie_contraction_in_a_triangle_keeps_the_pinch_and_the_winding() {
     assert_same_state(&live, &before);
 }
 
+/// ```text
+///   0 ----- 1 ----- 4      triangles 0 1 2, 1 3 2 and 2 3 4 (input winding):
+///    \     / \     /       contracting 3 into 1 drops 1 3 2 (through both) and
+///     \   /   \   /        moves 2 3 4 to 2 1 4 in its own slot, keeping its id
+///       2 ----- 3
+/// ```
+#[test]
+fn strip_contraction_moves_a_top_in_place_and_keeps_its_id() {
+    let c = with_coords(5, &[vec![0, 1, 2], vec![1, 3, 2], vec![2, 3, 4]]);
+    let mut live = LiveComplex::from_complex(&c);
+    let before = live.clone();
+    let moved = live.tops().find(|(_, s)| s == &[2, 3, 4]).unwrap().0;
+    let undo = live
+        .contract(
+            VertexId(1),
+            VertexId(3),
+            ContractMode::PreserveTopology,
+            None,
+        )
+        .unwrap();
+    live.validate().unwrap();
+    assert_eq!(live.top_vertices(moved).unwrap(), &[2, 1, 4]);
+    assert!(undo.inserted_tops().any(|t| t == moved));
+    let tops: Vec<Vec<u32>> = live.tops().map(|(_, s)| s.to_vec()).collect();
+    assert_eq!(tops, vec![vec![0, 1, 2], vec![2, 1, 4]]);
+    let mut removed: Vec<Vec<u32>> = undo.removed_tops().map(<[u32]>::to_vec).collect();
+    removed.sort();
+    assert_eq!(removed, vec![vec![1, 3, 2], vec![2, 3, 4]]);
+    live.split(&undo).unwrap();
+    live.validate().unwrap();
+    assert_same_state(&live, &before);
+    assert_eq!(live.top_vertices(moved).unwrap(), &[2, 3, 4]);
+}
+
 #[test]
 fn bowtie_contraction_across_the_pinch_is_refused_unless_free() {
     let mut live = bowtie();

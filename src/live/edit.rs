@@ -34,7 +34,7 @@ pub struct UndoRecord {
     coords: Vec<f64>,
     /// Top simplices the contraction retired (winding as stored).
     removed: TopList,
-    /// Top simplices the contraction created.
+    /// Top simplices the contraction created (a moved top is in both lists, same slot).
     inserted: TopList,
 }
 
@@ -52,6 +52,11 @@ impl TopList {
         self.ids.extend_from_slice(s);
     }
 
+    fn reserve(&mut self, tops: usize, ids: usize) {
+        self.raw.reserve(tops);
+        self.ids.reserve(ids);
+    }
+
     fn iter(&self) -> impl Iterator<Item = (u32, &[u32])> + '_ {
         let mut at = 0;
         self.raw.iter().map(move |&raw| {
@@ -64,12 +69,17 @@ impl TopList {
 
 impl UndoRecord {
     /// Top simplices the contraction removed (those of St(b), and those of St(a) that became
-    /// faces of an image), with their vertices before the contraction.
+    /// faces of an image), with their vertices before the contraction. A top of St(b) whose
+    /// image stays a top is listed here with b and in [`UndoRecord::inserted_tops`] with a:
+    /// it was rewritten in its own slot.
     pub fn removed_tops(&self) -> impl Iterator<Item = &[u32]> + '_ {
         self.removed.iter().map(|(_, s)| s)
     }
 
-    /// Top simplices the contraction created (images of St(b) with b replaced by a).
+    /// Top simplices the contraction created (images of St(b) with b replaced by a). A moved
+    /// top keeps its slot, so its [`TopId`] from before the contraction stays valid and names
+    /// the image; only a degenerate image (of a top through both a and b) that stays a top gets
+    /// a new slot.
     pub fn inserted_tops(&self) -> impl Iterator<Item = TopId> + '_ {
         self.inserted.raw.iter().map(|&raw| TopId {
             raw,
@@ -239,8 +249,8 @@ impl LiveComplex {
             inserted: TopList::default(),
         };
         let linked = mode != ContractMode::Free;
-        self.retire_star_of_b(a.0, b.0, linked, &mut undo);
-        self.place_images(a.0, linked, &mut undo);
+        self.image_star_of_b(a.0, b.0, linked);
+        self.move_star_of_b(a.0, b.0, linked, &mut undo);
         self.alive[b.index()] = false;
         self.live_vertices -= 1;
         if let Some(xyz) = new_position {
@@ -249,19 +259,27 @@ impl LiveComplex {
         Ok(undo)
     }
 
-    /// Step 1 of a contraction: detaches every top simplex of St(b) and leaves their images
-    /// (b replaced by a in place, or dropped where a is already there), deduplicated, in
-    /// `self.images`.
-    fn retire_star_of_b(&mut self, a: u32, b: u32, linked: bool, undo: &mut UndoRecord) {
-        let star_b = std::mem::take(&mut self.star[b as usize]);
+    /// Step 1 of a contraction, before anything changes: the image of every top of St(b) (b
+    /// replaced by a in place, or dropped where a is already there) into `self.images`, each
+    /// marked kept when it is still a top simplex afterwards.
+    ///
+    /// Two images never coincide: t1 − b + a = t2 − b would make t2 = t1 − a a face of t1, and
+    /// t1 − b = t2 − b gives t1 = t2. An image is not kept when it lies in a larger image or in
+    /// a top of St(a) outside St(b) (every image holds a, so such a top is in the star of each
+    /// of its vertices: the smallest is scanned). When the link condition holds (`linked`), only
+    /// the degenerate images need the test: an image t − b + a of a top t ∌ a inside a top
+    /// T ∈ St(a) would put τ = t − b in Lk(a) ∩ Lk(b), hence in Lk(ab), making t ∪ {a} a
+    /// simplex and t no top; and an image t − b + a inside another image t' − b (+ a) would
+    /// likewise make t ∪ {a} a simplex.
+    fn image_star_of_b(&mut self, a: u32, b: u32, linked: bool) {
         let mut images = std::mem::take(&mut self.images);
         images.clear();
-        for &raw in &star_b {
-            let (p, slot) = unpack(raw);
-            let t = &self.tops[p][slot * (p + 1)..(slot + 1) * (p + 1)];
+        for &raw in &self.star[b as usize] {
+            let t = self.top_raw(raw);
             let has_a = t.contains(&a);
             let mut img = Image {
                 degenerate: has_a,
+                from: raw,
                 ..Image::default()
             };
             for &v in t {
@@ -271,74 +289,73 @@ impl LiveComplex {
                     img.push(a);
                 }
             }
-            // Under the link condition no two images coincide (see `place_images`).
-            if img.len > 1
-                && (linked
-                    || !images
-                        .iter()
-                        .any(|o| same_set(o.as_slice(), img.as_slice())))
-            {
-                images.push(img);
-            }
-            undo.removed.push(raw, t);
-            self.detach_except(p, slot as u32, b);
+            img.kept = img.len > 1;
+            images.push(img);
         }
-        self.images = images;
-        // Keep b's (now empty) star allocation for a later split.
-        self.star[b as usize] = star_b;
-        self.star[b as usize].clear();
-    }
-
-    /// Step 2 of a contraction: inserts the images that are still top simplices (not a face of
-    /// another image or of a top of St(a)) and retires the tops of St(a) they absorb.
-    ///
-    /// When the link condition holds (`linked`), only the degenerate images need the tests: an
-    /// image t − b + a of a top t ∌ a inside a top T ∈ St(a) would put τ = t − b in
-    /// Lk(a) ∩ Lk(b), hence in Lk(ab), making t ∪ {a} a simplex and t no top; and a top T ∈ St(a)
-    /// inside such an image would likewise make T ∪ {b} a simplex. Two images never coincide:
-    /// t1 − b + a = t2 − b would make t1 a face of t2.
-    fn place_images(&mut self, a: u32, linked: bool, undo: &mut UndoRecord) {
-        let mut images = std::mem::take(&mut self.images);
-        // An image under another image or under a top of St(a) is a face, not a top.
-        let n = images.len();
-        let mut keep = 0;
-        for i in 0..n {
+        for i in 0..images.len() {
             let img = images[i];
-            if linked && !img.degenerate {
-                images.swap(keep, i);
-                keep += 1;
+            if !img.kept || (linked && !img.degenerate) {
                 continue;
             }
-            let under_image = (0..n).any(|j| {
-                j != i && images[j].len > img.len && subset(img.as_slice(), images[j].as_slice())
-            });
-            // A top holding the image is in the star of each of its vertices: scan the smallest.
-            let hub = self.smallest_star(img.as_slice());
-            let under_top = self.star[hub as usize]
+            let under_image = images
                 .iter()
-                .any(|&raw| subset(img.as_slice(), self.top_raw(raw)));
-            if !under_image && !under_top {
-                images.swap(keep, i);
-                keep += 1;
+                .any(|j| j.len > img.len && j.len > 1 && subset(img.as_slice(), j.as_slice()));
+            let hub = self.smallest_star(img.as_slice());
+            let under_top = self.star[hub as usize].iter().any(|&raw| {
+                let t = self.top_raw(raw);
+                !t.contains(&b) && subset(img.as_slice(), t)
+            });
+            images[i].kept = !under_image && !under_top;
+        }
+        self.images = images;
+    }
+
+    /// Step 2 of a contraction: every top of St(b) whose image is kept and not degenerate is
+    /// rewritten in its own slot (b replaced by a, so its id, its winding and its entries in the
+    /// other vertices' stars stay; it joins St(a)); the others are retired. In
+    /// [`ContractMode::Free`] the tops of St(a) that an image absorbs are retired too; then the
+    /// kept degenerate images get new slots.
+    fn move_star_of_b(&mut self, a: u32, b: u32, linked: bool, undo: &mut UndoRecord) {
+        let images = std::mem::take(&mut self.images);
+        let k = images.len();
+        undo.removed
+            .reserve(k, k * images.first().map_or(0, |i| i.len as usize + 1));
+        undo.inserted
+            .reserve(k, k * images.first().map_or(0, |i| i.len as usize));
+        for img in &images {
+            let (p, slot) = unpack(img.from);
+            let w = p + 1;
+            let t = &mut self.tops[p][slot * w..(slot + 1) * w];
+            undo.removed.push(img.from, t);
+            if img.kept && !img.degenerate {
+                let at = t
+                    .iter()
+                    .position(|&v| v == b)
+                    .expect("b in its star's tops");
+                t[at] = a;
+                self.star[a as usize].push(img.from);
+                undo.inserted.push(img.from, img.as_slice());
+            } else {
+                self.detach_except(p, slot as u32, b);
             }
         }
-        images.truncate(keep);
-        let mut k = 0;
-        while !linked && k < self.star[a as usize].len() {
-            let raw = self.star[a as usize][k];
+        self.star[b as usize].clear();
+        let mut i = 0;
+        while !linked && i < self.star[a as usize].len() {
+            let raw = self.star[a as usize][i];
             let t = self.top_raw(raw);
             if images
                 .iter()
-                .any(|img| img.len as usize > t.len() && subset(t, img.as_slice()))
+                .any(|img| img.kept && img.len as usize > t.len() && subset(t, img.as_slice()))
             {
                 let (p, slot) = unpack(raw);
                 undo.removed.push(raw, t);
                 self.detach(p, slot as u32);
             } else {
-                k += 1;
+                i += 1;
             }
         }
-        for img in &images {
+        for img in images.iter().filter(|img| img.kept && img.degenerate) {
             let slot = self.push_top(img.as_slice());
             undo.inserted
                 .push(pack(img.len as usize - 1, slot), img.as_slice());
@@ -395,7 +412,7 @@ impl LiveComplex {
         let inserted = &undo.inserted.raw;
         for (raw, s) in undo.removed.iter() {
             let (p, slot) = unpack(raw);
-            if self.tops[p][slot * (p + 1)] != NONE {
+            if self.tops[p][slot * (p + 1)] != NONE && !inserted.contains(&raw) {
                 return stale(format!("slot of {} is in use", show(s)));
             }
             if let Some(&v) = s
@@ -474,8 +491,4 @@ impl LiveComplex {
         self.epoch = self.epoch.wrapping_add(1);
         maps
     }
-}
-
-fn same_set(a: &[u32], b: &[u32]) -> bool {
-    a.len() == b.len() && subset(a, b)
 }

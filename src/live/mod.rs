@@ -54,18 +54,23 @@
 //!   0-simplex) removes the vertex.
 //! - [`LiveComplex::link_condition`] {a, b}: O(d·(k_a + k_b) + |F_a|·|F_b|·|F_ab|) word
 //!   operations (see [`link`]).
-//! - [`LiveComplex::contract`] {a, b} → a: the link test, then O(d·k_b·k_max) to detach St(b)
-//!   (each star entry is found by a scan of its vertex's star) and insert the images. When the
-//!   link condition holds no image can be a face of another simplex or absorb one, except the
-//!   images of tops through both a and b (proof at `place_images`), so only those O(k_ab) are
-//!   tested, each against the smallest star of its vertices; in [`ContractMode::Free`] every
-//!   image is: O(d²·k_b·(k_b + k_min)) worst case.
+//! - [`LiveComplex::contract`] {a, b} → a: the link test, then each top of St(b) whose image
+//!   stays a top is rewritten in its own slot (b replaced by a: O(d) and one entry appended to
+//!   St*(a); its id and its entries in the other stars stay), and the others are retired
+//!   (O(d·k_max) each, a scan of each vertex's star). When the link condition holds no image
+//!   can be a face of another simplex or absorb one, except the images of tops through both a
+//!   and b (proof at `image_star_of_b`), so only those O(k_ab) are tested, each against the
+//!   smallest star of its vertices: O(d·k_b + d·k_max·k_ab) in all. In
+//!   [`ContractMode::Free`] every image is tested: O(d²·k_b·(k_b + k_min)) worst case. Slots
+//!   are only taken by degenerate images that stay tops, so a run of contractions does not
+//!   grow the tables.
 //! - [`LiveComplex::split`]: the same order as the contraction it undoes.
 //! - [`LiveComplex::compact`]: O(size), renumbers vertices and slots densely and returns the maps.
 //!
 //! # Handles and invalidation
 //! [`VertexId`]s and [`TopId`]s stay valid across every edit until [`LiveComplex::compact`]
-//! (tombstones keep the slots); a [`TopId`] or [`UndoRecord`] from before a compaction is refused
+//! (tombstones keep the slots; a top moved by a contraction keeps its id and names its image);
+//! a [`TopId`] or [`UndoRecord`] from before a compaction is refused
 //! ([`Refusal::StaleHandle`]). Vertex ids are plain slots: after `compact`, use the returned map.
 //!
 //! The live complex answers the whole handle API ([`crate::handle::Navigate`]: locate,
@@ -236,6 +241,10 @@ pub(crate) struct Image {
     len: u8,
     /// From a top through both a and b (b dropped, one dimension lower).
     degenerate: bool,
+    /// Still a top simplex after the contraction (decided before anything changes).
+    kept: bool,
+    /// The top of St(b) it is the image of (packed id).
+    from: u32,
     ids: [u32; MAX_DIMENSION + 1],
 }
 

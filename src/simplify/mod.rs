@@ -30,8 +30,11 @@
 //! # Cost
 //! Step 1 O(Σ_σ d² (n² + d·k_v)), step 2 O(E (n³ + log E)), step 3 per contraction the
 //! [`LiveComplex::contract`] cost plus O(deg(a) (n³ + log E)) for the new costs. Memory beyond
-//! the live complex: `(n + 1)(n + 2) / 2` doubles and a version per vertex, 16 bytes per queue
-//! entry (the queue is rebuilt without its stale entries when it doubles).
+//! the live complex: `(n + 1)(n + 2) / 2` doubles and two integers per vertex (three with
+//! `preserve_topology`), and a queue of 16-byte entries allocated once at 1.25 × the edges (one
+//! entry per live edge plus stale ones: when it is full, the stale entries are dropped).
+//! Contractions rewrite the moved top simplices in their slots, so the live complex does not
+//! grow.
 
 pub mod quadric;
 
@@ -47,7 +50,8 @@ use crate::live::{ContractMode, LiveComplex, Refusal, VertexId};
 use quadric::{QuadricSpace, sum_into};
 
 /// Most top simplices of one dimension the live complex's handles can number (2^28) halved:
-/// contractions append the images of the tops they move before old slots are reused.
+/// a contraction keeps moved tops in their slots, but a degenerate image that stays a top (a
+/// top through both ends whose image is no face of another) takes a new slot.
 pub const MAX_TOPS_PER_DIMENSION: usize = 1 << 27;
 
 /// What to simplify to.
@@ -267,11 +271,11 @@ struct State<'a> {
     /// `space.len()` numbers per vertex slot.
     quadrics: Vec<f64>,
     version: Vec<u32>,
+    /// One entry per live edge, plus stale ones up to [`QUEUE_SLACK`] (its capacity).
     queue: BinaryHeap<Entry>,
-    /// Queue length above which stale entries are dropped.
-    queue_limit: usize,
     /// Per vertex: bumped whenever a contraction changes its neighbourhood (it is the survivor
-    /// or in the survivor's ring), which may change the link condition of its edges.
+    /// or in the survivor's ring), which may change the link condition of its edges. Empty
+    /// when contractions are free (nothing is parked).
     touch: Vec<u32>,
     /// Entries refused by the link condition, with the sum of their vertices' touches then:
     /// retried once that changes ([`unpark`]).
@@ -311,8 +315,12 @@ impl<'a> State<'a> {
             quadrics: vec![0.0; slots * space.len()],
             version: vec![0; slots],
             queue: BinaryHeap::new(),
-            queue_limit: 0,
-            touch: vec![0; slots],
+            // Only link-checked runs park refused edges.
+            touch: if options.preserve_topology {
+                vec![0; slots]
+            } else {
+                Vec::new()
+            },
             parked: Vec::new(),
             tops,
             stats: Stats::default(),
@@ -357,7 +365,17 @@ impl<'a> State<'a> {
         c
     }
 
+    /// Queues {a, b} with its cost, first dropping the stale entries if the queue is full (so
+    /// its allocation never grows by doubling).
     fn push(&mut self, a: u32, b: u32) {
+        let e = self.entry(a, b);
+        if self.queue.len() == self.queue.capacity() {
+            drop_stale(self);
+        }
+        self.queue.push(e);
+    }
+
+    fn entry(&mut self, a: u32, b: u32) -> Entry {
         let c = self.cost(a, b) as f32;
         let bits = if c.is_finite() {
             c.max(0.0).to_bits()
@@ -365,7 +383,7 @@ impl<'a> State<'a> {
             f32::MAX.to_bits()
         };
         let stamp = self.version[a as usize].wrapping_add(self.version[b as usize]);
-        self.queue.push(Reverse((bits, a, b, stamp)));
+        Reverse((bits, a, b, stamp))
     }
 
     fn touched(&self, a: u32, b: u32) -> u32 {
@@ -507,21 +525,40 @@ fn is_boundary_facet(live: &LiveComplex, facet: &[u32]) -> bool {
 }
 
 /// Step 2: every live edge with its cost, found as the ring of each vertex (no edge list is
-/// materialised: the queue is the only thing this step allocates).
+/// materialised). The edges are counted first so that the queue is allocated once, at
+/// [`QUEUE_SLACK`] × the edges: it never grows by doubling.
 fn fill_queue(state: &mut State) {
-    state.queue.clear();
+    let mut edges = 0;
+    for_each_ring(state, |_, _, ring| edges += ring.len());
+    let mut entries = Vec::with_capacity(with_slack(edges));
+    for_each_ring(state, |state, v, ring| {
+        for &u in ring {
+            entries.push(state.entry(v, u));
+        }
+    });
+    state.queue = BinaryHeap::from(entries);
+}
+
+/// Calls `f(state, v, ring)` for every live vertex v with its ring vertices above v.
+fn for_each_ring(state: &mut State, mut f: impl FnMut(&mut State, u32, &[u32])) {
     for v in 0..state.live.vertex_slots() {
         if !state.live.is_live(VertexId(v)) {
             continue;
         }
         state.ring(v);
-        let ring = std::mem::take(&mut state.scratch.ring);
-        for &u in ring.iter().filter(|&&u| u > v) {
-            state.push(v, u);
-        }
+        let mut ring = std::mem::take(&mut state.scratch.ring);
+        ring.retain(|&u| u > v);
+        f(state, v, &ring);
         state.scratch.ring = ring;
     }
-    state.queue_limit = (2 * state.queue.len()).max(1024);
+}
+
+/// The queue holds its live entries and up to a quarter more (stale ones, dropped when it is
+/// full): a lazy queue without the doubling of a growing vector.
+const QUEUE_SLACK: (usize, usize) = (5, 4);
+
+fn with_slack(n: usize) -> usize {
+    (n * QUEUE_SLACK.0 / QUEUE_SLACK.1).max(1024)
 }
 
 /// Step 3: contract the cheapest edges until the target (module doc).
@@ -548,9 +585,6 @@ fn contract_loop(state: &mut State, progress: &mut dyn FnMut(usize, usize)) {
                 last_report = done;
                 progress(done, total);
             }
-        }
-        if state.queue.len() > state.queue_limit {
-            drop_stale(state);
         }
     }
     progress(total - state.tops.saturating_sub(target), total);
@@ -598,9 +632,14 @@ fn contract_edge(state: &mut State, entry: Entry) -> bool {
     state.version[gone as usize] = state.version[gone as usize].wrapping_add(1);
     state.ring(keep);
     let ring = std::mem::take(&mut state.scratch.ring);
-    state.touch[keep as usize] = state.touch[keep as usize].wrapping_add(1);
+    let parks = !state.touch.is_empty();
+    if parks {
+        state.touch[keep as usize] = state.touch[keep as usize].wrapping_add(1);
+    }
     for &u in &ring {
-        state.touch[u as usize] = state.touch[u as usize].wrapping_add(1);
+        if parks {
+            state.touch[u as usize] = state.touch[u as usize].wrapping_add(1);
+        }
         state.push(keep, u);
     }
     state.scratch.ring = ring;
@@ -618,6 +657,9 @@ fn unpark(state: &mut State) -> bool {
             continue;
         }
         if state.touched(a, b) != touched {
+            if state.queue.len() == state.queue.capacity() {
+                drop_stale(state);
+            }
             state.queue.push(entry);
             moved = true;
         } else {
@@ -627,11 +669,15 @@ fn unpark(state: &mut State) -> bool {
     moved
 }
 
-/// Rebuilds the queue without stale entries and resets the limit.
+/// Rebuilds the queue without its stale entries, in the same allocation unless the live ones
+/// alone leave less than the slack free.
 fn drop_stale(state: &mut State) {
     let queue = std::mem::take(&mut state.queue);
     let mut entries = queue.into_vec();
     entries.retain(|&Reverse((_, a, b, stamp))| state.is_current(a, b, stamp));
+    let want = with_slack(entries.len());
+    if entries.capacity() < want {
+        entries.reserve_exact(want - entries.len());
+    }
     state.queue = BinaryHeap::from(entries);
-    state.queue_limit = (2 * state.queue.len()).max(1024);
 }
