@@ -366,21 +366,29 @@ pub(crate) struct EdgeLocator {
 }
 
 impl EdgeLocator {
+    /// Both permutations by radix sort (ties by triangle, as a sort by (key, triangle) would
+    /// give), on [`crate::parallel::threads`] threads when large: O(n2).
     pub fn build(tris: &SimplexTable) -> EdgeLocator {
-        let n2 = tris.len() as u32;
-        let mut by02: Vec<u32> = (0..n2).collect();
-        by02.sort_unstable_by_key(|&t| {
-            let r = tris.get(t as usize);
-            (r[0], r[2], t)
-        });
-        let mut by12: Vec<u32> = (0..n2).collect();
-        by12.sort_unstable_by_key(|&t| {
-            let r = tris.get(t as usize);
-            (r[1], r[2], t)
-        });
+        let n2 = tris.len();
+        let bits = id_bits(tris.as_flat().iter().copied().max().unwrap_or(0));
+        let by = |i: usize, j: usize| {
+            let key = |t: u32| {
+                let r = tris.get(t as usize);
+                (r[i], r[j], t)
+            };
+            order_by_key(n2, 2 * bits, |t| {
+                let (a, b, _) = key(t);
+                (a as u64) << bits | b as u64
+            })
+            .unwrap_or_else(|| {
+                let mut order: Vec<u32> = (0..n2 as u32).collect();
+                order.sort_unstable_by_key(|&t| key(t));
+                order
+            })
+        };
         EdgeLocator {
-            by02: by02.into(),
-            by12: by12.into(),
+            by02: by(0, 2).into(),
+            by12: by(1, 2).into(),
         }
     }
 
