@@ -7,6 +7,9 @@
 //!   at the radius giving ~12 neighbours, up to dimension DIM, as `.simplices`;
 //! - `scale phases FILE KIND THREADS TPX`: parse, build (THREADS threads), save to TPX, open,
 //!   vertex-star walks on the opened structure; one `phase seconds peak_rss_mib` line each.
+//! - `scale structures FILE THREADS [KIND,..]`: builds each structure (every kind, or the
+//!   listed ones) with 1 and with THREADS threads, one `kind seconds_1 seconds_N same` line
+//!   each, `same` saying whether both builds save to the same bytes.
 //!
 //! Generated data is never committed; the numbers go to docs/benchmarks.md.
 
@@ -257,6 +260,36 @@ fn phases(file: &Path, kind: StructureKind, threads: usize, tpx: &Path) {
     );
 }
 
+/// Best of `reps` builds (the first also warms the pool), and the saved bytes of the last.
+fn timed_build(c: &topoplex::Complex, kind: StructureKind, threads: usize) -> (f64, Vec<u8>) {
+    topoplex::parallel::set_threads(threads);
+    let mut best = f64::INFINITY;
+    let mut bytes = Vec::new();
+    for _ in 0..2 {
+        let t = Instant::now();
+        let Ok(s) = topoplex::structures::build(kind, c) else {
+            return (f64::NAN, Vec::new());
+        };
+        best = best.min(t.elapsed().as_secs_f64());
+        let path = std::env::temp_dir().join(format!("scale-{}.tpx", std::process::id()));
+        topoplex::store::save(&path, c, Some(s.as_ref())).expect("save");
+        bytes = std::fs::read(&path).expect("read back");
+        std::fs::remove_file(&path).ok();
+    }
+    (best, bytes)
+}
+
+fn structures(file: &Path, threads: usize, kinds: &[StructureKind]) {
+    let t = Instant::now();
+    let c = topoplex::Complex::from_path(file).expect("complex");
+    println!("read+complex {:.3}", t.elapsed().as_secs_f64());
+    for &kind in kinds {
+        let (t1, b1) = timed_build(&c, kind, 1);
+        let (tn, bn) = timed_build(&c, kind, threads);
+        println!("{kind} {t1:.3} {tn:.3} {}", b1 == bn);
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let a: Vec<&str> = args.iter().map(String::as_str).collect();
@@ -272,6 +305,18 @@ fn main() {
                 threads.parse().unwrap(),
                 Path::new(tpx),
             );
+            Ok(())
+        }
+        ["structures", file, threads, rest @ ..] => {
+            let kinds: Vec<StructureKind> = match rest {
+                [] => StructureKind::ALL.to_vec(),
+                [list] => list
+                    .split(',')
+                    .map(|k| StructureKind::from_name(k).expect("structure name"))
+                    .collect(),
+                _ => panic!("usage: scale structures FILE THREADS [KIND,..]"),
+            };
+            structures(Path::new(file), threads.parse().unwrap(), &kinds);
             Ok(())
         }
         _ => {

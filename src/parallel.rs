@@ -16,6 +16,69 @@ static THREADS: AtomicUsize = AtomicUsize::new(0);
 /// Below this many items a step runs serially: splitting costs more than it saves.
 pub(crate) const MIN_PARALLEL: usize = 1 << 16;
 
+/// The split threshold build steps use: [`MIN_PARALLEL`] unless a test lowered it.
+static SPLIT_AT: AtomicUsize = AtomicUsize::new(MIN_PARALLEL);
+
+/// Lowers (or restores) the number of items below which build steps run serially, so tests of
+/// determinism split small complexes as a large one would be split. Not for production use.
+#[doc(hidden)]
+pub fn set_split_threshold(n: usize) {
+    SPLIT_AT.store(n.max(1), Ordering::Relaxed);
+}
+
+/// Whether a step over `n` items runs on several threads.
+pub(crate) fn splits(n: usize) -> bool {
+    threads() > 1 && n >= SPLIT_AT.load(Ordering::Relaxed)
+}
+
+/// `0..n` cut into consecutive ranges for a parallel step: one range when the step runs
+/// serially, else 4 per thread (so uneven ranges even out). Callers concatenate the results in
+/// range order, which makes them independent of the thread count.
+pub(crate) fn ranges(n: usize) -> Vec<std::ops::Range<usize>> {
+    if !splits(n) {
+        return std::iter::once(0..n).collect();
+    }
+    let parts = (4 * threads()).min(n).max(1);
+    let step = n.div_ceil(parts);
+    (0..n).step_by(step).map(|a| a..(a + step).min(n)).collect()
+}
+
+/// `f` over each of [`ranges`]`(n)`, results in range order.
+pub(crate) fn map_ranges<T: Send>(
+    n: usize,
+    f: impl Fn(std::ops::Range<usize>) -> T + Sync + Send,
+) -> Vec<T> {
+    let r = ranges(n);
+    map_chunks(r.len(), |i| f(r[i].clone()))
+}
+
+/// `f(i, row)` for every row `i` of `width` items of `out` (each row written by one call),
+/// split like [`ranges`].
+pub(crate) fn fill_rows<T: Send>(
+    out: &mut [T],
+    width: usize,
+    f: impl Fn(usize, &mut [T]) + Sync + Send,
+) {
+    use rayon::prelude::*;
+    let rows = out.len() / width.max(1);
+    if width == 0 || !splits(rows) {
+        out.chunks_mut(width.max(1))
+            .enumerate()
+            .for_each(|(i, row)| f(i, row));
+        return;
+    }
+    let step = rows.div_ceil(4 * threads());
+    install(|| {
+        out.par_chunks_mut(step * width)
+            .enumerate()
+            .for_each(|(c, part)| {
+                for (k, row) in part.chunks_mut(width).enumerate() {
+                    f(c * step + k, row);
+                }
+            })
+    });
+}
+
 /// Sets the number of threads later builds use (at least 1).
 pub fn set_threads(n: usize) {
     THREADS.store(n.max(1), Ordering::Relaxed);
@@ -71,7 +134,7 @@ pub(crate) fn install<R: Send>(f: impl FnOnce() -> R + Send) -> R {
 /// sorted runs are merged, every merge split between threads at a co-ranked position.
 pub(crate) fn sort_keys(keys: &mut Vec<u64>, bits: u32, serial: fn(&mut Vec<u64>, u32)) {
     let t = threads();
-    if t == 1 || keys.len() < MIN_PARALLEL {
+    if !splits(keys.len()) {
         serial(keys, bits);
         return;
     }
@@ -151,7 +214,7 @@ fn merge(a: &[u64], b: &[u64], out: &mut [u64]) {
 /// `n` is large, so the result does not depend on the thread count.
 pub(crate) fn map_collect<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
     use rayon::prelude::*;
-    if threads() == 1 || n < MIN_PARALLEL {
+    if !splits(n) {
         return (0..n).map(f).collect();
     }
     install(|| (0..n).into_par_iter().map(f).collect())

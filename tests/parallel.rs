@@ -1,7 +1,12 @@
 //! Builds with several threads give the same structures, byte for byte, as serial builds: each
-//! structure is built with 1 and with 2 threads and saved (`.tpx`), and the files compared.
-//! The grids are large enough for every parallel step to split its work.
+//! structure is built with 1 and with 2 or 3 threads and saved (`.tpx`), and the files compared:
+//! on grids large enough for every parallel step to split its work, and on random non-manifold
+//! complexes and `../shared/data` with the split threshold lowered so that small inputs are cut
+//! into many ranges too.
 
+mod common;
+
+use proptest::test_runner::{Config, TestRunner};
 use topoplex::structures::build;
 use topoplex::{Complex, StructureKind};
 
@@ -69,26 +74,65 @@ fn saved(kind: StructureKind, c: &Complex, threads: usize, name: &str) -> Option
     Some(bytes)
 }
 
+/// Every structure that builds for `c` saves to the same bytes with 1 and `threads` threads;
+/// returns how many built.
+fn same_bytes(c: &Complex, threads: usize, name: &str) -> usize {
+    let mut built = 0;
+    for kind in StructureKind::ALL {
+        let one = saved(kind, c, 1, name);
+        let many = saved(kind, c, threads, name);
+        assert_eq!(one.is_some(), many.is_some(), "{name}: {kind}");
+        if let (Some(one), Some(many)) = (one, many) {
+            assert!(
+                one == many,
+                "{name}: {kind}: {threads}-thread build differs from 1-thread"
+            );
+            built += 1;
+        }
+    }
+    built
+}
+
 #[test]
-fn two_threads_build_the_same_bytes_as_one() {
-    // One test in this binary: the thread count is process-wide.
+fn several_threads_build_the_same_bytes_as_one() {
+    // One test in this binary: the thread count and split threshold are process-wide.
     for (name, c) in [
         ("grid", tetrahedral_grid(24)),
         ("surface", surface_with_wires(200)),
     ] {
-        let mut built = 0;
-        for kind in StructureKind::ALL {
-            let one = saved(kind, &c, 1, name);
-            let two = saved(kind, &c, 2, name);
-            assert_eq!(one.is_some(), two.is_some(), "{name}: {kind}");
-            if let (Some(one), Some(two)) = (one, two) {
-                assert!(
-                    one == two,
-                    "{name}: {kind}: 2-thread build differs from 1-thread"
-                );
-                built += 1;
-            }
-        }
+        let built = same_bytes(&c, 2, name);
         assert!(built >= 3, "{name}: only {built} structures built");
+    }
+
+    // Small inputs cut into ranges of a few items: every range boundary lands somewhere.
+    topoplex::parallel::set_split_threshold(2);
+    let mut runner = TestRunner::new(Config {
+        cases: 48,
+        failure_persistence: None,
+        ..Config::default()
+    });
+    let built = std::cell::Cell::new(0);
+    runner
+        .run(&common::random_input(5, 14, 24), |(n, list)| {
+            let c = common::complex_of(n, &list);
+            built.set(built.get() + same_bytes(&c, 3, "random"));
+            Ok(())
+        })
+        .unwrap();
+    assert!(
+        built.get() >= 48,
+        "random: only {} structures built",
+        built.get()
+    );
+
+    topoplex::parallel::set_split_threshold(64);
+    for f in common::shared_files() {
+        if std::fs::metadata(&f).map_or(true, |m| m.len() > 300_000) {
+            continue;
+        }
+        let Ok(c) = Complex::from_path(&f) else {
+            continue;
+        };
+        same_bytes(&c, 2, &f.file_name().unwrap().to_string_lossy());
     }
 }

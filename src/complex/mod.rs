@@ -39,7 +39,7 @@ use std::path::{Path, PathBuf};
 use crate::io::{Coords, RawInput, ReadError};
 
 pub mod table;
-pub use table::{SimplexTable, is_subset, push_facets, sort_dedup_rows};
+pub use table::{SimplexTable, is_subset, push_facets, sort_dedup_rows, write_facets};
 
 /// Highest simplex dimension accepted. The closure of one 15-simplex has 65,535 simplices, which
 /// every incidence-based structure stores; beyond that the count doubles per dimension.
@@ -705,13 +705,15 @@ impl Complex {
                 break;
             }
             let above = &levels[p + 1];
-            let len = above.len() * (p + 2) * (p + 1) + self.tops[p].as_flat().len();
+            // The facets of each (p+1)-simplex at a fixed place: written on several threads.
+            let w = (p + 2) * (p + 1);
+            let len = above.len() * w + self.tops[p].as_flat().len();
             let mut rows = Vec::new();
             rows.try_reserve_exact(len).map_err(|_| len * 4)?;
-            for s in above.iter() {
-                push_facets(s, &mut rows);
-            }
-            rows.extend_from_slice(self.tops[p].as_flat());
+            rows.resize(len, 0u32);
+            let (facets, listed) = rows.split_at_mut(above.len() * w);
+            crate::parallel::fill_rows(facets, w, |i, out| write_facets(above.get(i), out));
+            listed.copy_from_slice(self.tops[p].as_flat());
             levels[p] = SimplexTable::try_from_rows(p + 1, rows)?.0;
         }
         if d == 0 {

@@ -231,7 +231,7 @@ fn unpack_keys(keys: &[u64], arity: usize, bits: u32) -> Vec<u32> {
             *v = ((k >> (bits * (arity - 1 - i) as u32)) & mask) as u32;
         }
     };
-    if keys.len() >= crate::parallel::MIN_PARALLEL && crate::parallel::threads() > 1 {
+    if crate::parallel::splits(keys.len()) {
         use rayon::prelude::*;
         crate::parallel::install(|| {
             out.par_chunks_mut(arity)
@@ -371,6 +371,16 @@ pub fn push_facets(simplex: &[u32], out: &mut Vec<u32>) {
                 out.push(v);
             }
         }
+    }
+}
+
+/// Writes the facets of `simplex` to `out` (|simplex| · (|simplex| − 1) ids) in the order of
+/// [`push_facets`].
+pub fn write_facets(simplex: &[u32], out: &mut [u32]) {
+    let p = simplex.len() - 1;
+    for (skip, f) in out.chunks_exact_mut(p).enumerate() {
+        f[..skip].copy_from_slice(&simplex[..skip]);
+        f[skip..].copy_from_slice(&simplex[skip + 1..]);
     }
 }
 

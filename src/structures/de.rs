@@ -86,7 +86,7 @@ impl DirectedEdge {
             de_next: Arr::from(try_with_capacity(KIND, d, "edge uses")?),
             comp_off: Arr::from(Vec::new()),
             comp_de: Arr::from(Vec::new()),
-            locator: EdgeLocator::build(tris),
+            locator: EdgeLocator::build(KIND, tris)?,
         };
         de.de_radial.reserve_exact(2 * nw as usize);
         for s in 0..3 * n2 {

@@ -88,14 +88,27 @@ impl IncidenceGraph {
             if let Some(order) = order {
                 // Slots in facet order against the facet table, also in order: one linear merge
                 // instead of a binary search per slot, which misses the cache on large tables.
-                let mut j = 0;
-                for &k in &order {
-                    facet(k, &mut f);
-                    while below.get(j) < &f[..p] {
-                        j += 1;
+                // Ranges of the order merge on their own threads, each from a binary search.
+                let rows = crate::parallel::map_ranges(order.len(), |range| {
+                    let mut f = [0u32; 16];
+                    let mut rows = Vec::with_capacity(range.len());
+                    let Some(&k0) = order.get(range.start) else {
+                        return rows;
+                    };
+                    facet(k0, &mut f);
+                    let mut j = below.find(&f[..p]).expect("closure contains every facet") as usize;
+                    for &k in &order[range] {
+                        facet(k, &mut f);
+                        while below.get(j) < &f[..p] {
+                            j += 1;
+                        }
+                        debug_assert_eq!(below.get(j), &f[..p], "closure contains every facet");
+                        rows.push(j as u32);
                     }
-                    debug_assert_eq!(below.get(j), &f[..p], "closure contains every facet");
-                    b[k as usize] = j as u32;
+                    rows
+                });
+                for (&k, j) in order.iter().zip(rows.into_iter().flatten()) {
+                    b[k as usize] = j;
                 }
             } else {
                 for k in 0..slots as u32 {

@@ -90,9 +90,10 @@ impl NavIndex {
         for p in 0..=d {
             top_first.push(total);
             let tops = complex.tops(p);
-            for i in 0..tops.len() {
-                windings.push(winding(tops.get(i), complex.top_oriented(p, i as u32)));
-            }
+            // On several threads: each winding depends on its own top simplex only.
+            windings.extend(crate::parallel::map_collect(tops.len(), |i| {
+                winding(tops.get(i), complex.top_oriented(p, i as u32))
+            }));
             total += tops.len() as u32;
         }
         top_first.push(total);

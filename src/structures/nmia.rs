@@ -131,6 +131,19 @@ fn code(i: usize, j: usize) -> u64 {
     (i * 4 + j) as u64
 }
 
+/// The first position at or after `i` where an edge's group of incidences starts (`inc` is
+/// sorted by edge), or `inc.len()`.
+fn group_start(inc: &[([u32; 2], u32)], i: usize) -> usize {
+    match i {
+        0 => 0,
+        _ if i >= inc.len() => inc.len(),
+        _ => {
+            let e = inc[i - 1].0;
+            i + inc[i..].partition_point(|x| x.0 == e)
+        }
+    }
+}
+
 /// Adjacency across triangles, or the first triangle with three or more tetrahedra (and them);
 /// the outer `Err` is `TooLarge`: an array that cannot be had.
 #[allow(clippy::type_complexity)]
@@ -419,82 +432,33 @@ impl NonManifoldIa {
             let [a, b] = inc[i as usize].0;
             (a as u64) << bits | b as u64
         }) {
-            inc = order.into_iter().map(|i| inc[i as usize]).collect();
+            inc = crate::parallel::map_collect(order.len(), |k| inc[order[k] as usize]);
         } else {
             inc.sort_unstable();
         }
-        let point = |v: u32| {
-            let c = coords.unwrap();
-            let k = v as usize * 3;
-            [c[k], c[k + 1], c[k + 2]]
-        };
-        let mut links: Vec<(u64, u32)> = Vec::new();
-        let mut seen: IdSet = IdSet::default();
-        let mut clusters: Vec<Cluster> = Vec::new();
-        let mut i = 0;
-        while i < inc.len() {
-            let e = inc[i].0;
-            let mut j = i + 1;
-            while j < inc.len() && inc[j].0 == e {
-                j += 1;
+        // Ranges of edge groups on their own threads; links concatenated in edge order.
+        let mut links: Vec<(u64, u32)> = crate::parallel::map_ranges(inc.len(), |range| {
+            let (mut i, end) = (group_start(&inc, range.start), group_start(&inc, range.end));
+            let mut links = Vec::new();
+            let mut seen: IdSet = IdSet::default();
+            let mut clusters: Vec<Cluster> = Vec::new();
+            while i < end {
+                let e = inc[i].0;
+                let j = i + inc[i..].partition_point(|x| x.0 == e);
+                self.edge_links(
+                    e,
+                    &inc[i..j],
+                    coords,
+                    (&mut seen, &mut clusters),
+                    &mut links,
+                );
+                i = j;
             }
-            let group = &inc[i..j];
-            i = j;
-            if group.len() < 2 {
-                continue;
-            }
-            clusters.clear();
-            seen.clear();
-            for &(_, u) in group {
-                if u >= n3 {
-                    let x = *self.verts(u).iter().find(|x| !e.contains(x)).unwrap();
-                    clusters.push(Cluster {
-                        entry: u,
-                        exit: u,
-                        first: x,
-                        second: x,
-                        last: x,
-                        closed: false,
-                    });
-                } else if !seen.contains(&u) {
-                    clusters.push(self.fan(u, e, &mut seen));
-                }
-            }
-            if clusters.len() < 2 {
-                continue;
-            }
-            let mut keyed: Vec<(f64, u32, usize)> = Vec::with_capacity(clusters.len());
-            let radial = coords.map(|_| Radial::new(point(e[0]), point(e[1])));
-            for (k, c) in clusters.iter_mut().enumerate() {
-                let reverse = match &radial {
-                    Some(r) => {
-                        let mut delta = r.angle(point(c.second)) - r.angle(point(c.first));
-                        if delta > std::f64::consts::PI {
-                            delta -= 2.0 * std::f64::consts::PI;
-                        } else if delta <= -std::f64::consts::PI {
-                            delta += 2.0 * std::f64::consts::PI;
-                        }
-                        delta < 0.0
-                    }
-                    None => c.first > c.last,
-                };
-                if reverse && !c.closed {
-                    std::mem::swap(&mut c.entry, &mut c.exit);
-                    std::mem::swap(&mut c.first, &mut c.last);
-                }
-                let angle = radial.as_ref().map_or(0.0, |r| r.angle(point(c.first)));
-                keyed.push((angle, c.entry, k));
-            }
-            keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-            for w in 0..keyed.len() {
-                let from = &clusters[keyed[w].2];
-                let to = &clusters[keyed[(w + 1) % keyed.len()].2];
-                let vs = self.verts(from.exit);
-                let a = vs.iter().position(|&x| x == e[0]).unwrap();
-                let b = vs.iter().position(|&x| x == e[1]).unwrap();
-                links.push((((from.exit as u64) << 4) | code(a, b), to.entry));
-            }
-        }
+            links
+        })
+        .into_iter()
+        .flatten()
+        .collect();
         // (key, target) packed: key = exit top << 4 | edge code, below 2^(tb + 4).
         let tb = id_bits(self.n_tops());
         if let Some(order) = order_by_key(links.len(), 2 * tb + 4, |i| {
@@ -505,6 +469,79 @@ impl NonManifoldIa {
         } else {
             links.sort_unstable();
             links.into_iter().unzip()
+        }
+    }
+
+    /// The radial links around edge `e` (`group`: its incidences, by top simplex): the clusters
+    /// of top simplices at `e` (a fan of tetrahedra or one triangle each), ordered by angle
+    /// around `e` when there are coordinates (else by vertex), each linked to the next.
+    fn edge_links(
+        &self,
+        e: [u32; 2],
+        group: &[([u32; 2], u32)],
+        coords: Option<&[f64]>,
+        (seen, clusters): (&mut IdSet, &mut Vec<Cluster>),
+        links: &mut Vec<(u64, u32)>,
+    ) {
+        if group.len() < 2 {
+            return;
+        }
+        let n3 = self.tets.len() as u32;
+        let point = |v: u32| {
+            let c = coords.unwrap();
+            let k = v as usize * 3;
+            [c[k], c[k + 1], c[k + 2]]
+        };
+        clusters.clear();
+        seen.clear();
+        for &(_, u) in group {
+            if u >= n3 {
+                let x = *self.verts(u).iter().find(|x| !e.contains(x)).unwrap();
+                clusters.push(Cluster {
+                    entry: u,
+                    exit: u,
+                    first: x,
+                    second: x,
+                    last: x,
+                    closed: false,
+                });
+            } else if !seen.contains(&u) {
+                clusters.push(self.fan(u, e, seen));
+            }
+        }
+        if clusters.len() < 2 {
+            return;
+        }
+        let mut keyed: Vec<(f64, u32, usize)> = Vec::with_capacity(clusters.len());
+        let radial = coords.map(|_| Radial::new(point(e[0]), point(e[1])));
+        for (k, c) in clusters.iter_mut().enumerate() {
+            let reverse = match &radial {
+                Some(r) => {
+                    let mut delta = r.angle(point(c.second)) - r.angle(point(c.first));
+                    if delta > std::f64::consts::PI {
+                        delta -= 2.0 * std::f64::consts::PI;
+                    } else if delta <= -std::f64::consts::PI {
+                        delta += 2.0 * std::f64::consts::PI;
+                    }
+                    delta < 0.0
+                }
+                None => c.first > c.last,
+            };
+            if reverse && !c.closed {
+                std::mem::swap(&mut c.entry, &mut c.exit);
+                std::mem::swap(&mut c.first, &mut c.last);
+            }
+            let angle = radial.as_ref().map_or(0.0, |r| r.angle(point(c.first)));
+            keyed.push((angle, c.entry, k));
+        }
+        keyed.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        for w in 0..keyed.len() {
+            let from = &clusters[keyed[w].2];
+            let to = &clusters[keyed[(w + 1) % keyed.len()].2];
+            let vs = self.verts(from.exit);
+            let a = vs.iter().position(|&x| x == e[0]).unwrap();
+            let b = vs.iter().position(|&x| x == e[1]).unwrap();
+            links.push((((from.exit as u64) << 4) | code(a, b), to.entry));
         }
     }
 

@@ -390,22 +390,34 @@ pub(crate) struct EdgeLocator {
 }
 
 impl EdgeLocator {
-    pub fn build(tris: &SimplexTable) -> EdgeLocator {
-        let n2 = tris.len() as u32;
-        let mut by02: Vec<u32> = (0..n2).collect();
-        by02.sort_unstable_by_key(|&t| {
-            let r = tris.get(t as usize);
-            (r[0], r[2], t)
-        });
-        let mut by12: Vec<u32> = (0..n2).collect();
-        by12.sort_unstable_by_key(|&t| {
-            let r = tris.get(t as usize);
-            (r[1], r[2], t)
-        });
-        EdgeLocator {
-            by02: by02.into(),
-            by12: by12.into(),
-        }
+    /// Both permutations by radix sort (ties by triangle, as a sort by (key, triangle) would
+    /// give), on [`crate::parallel::threads`] threads when large: O(n2).
+    /// `TooLarge` (for `kind`) when the orders cannot be had.
+    pub fn build(kind: StructureKind, tris: &SimplexTable) -> Result<EdgeLocator, BuildError> {
+        let n2 = tris.len();
+        let bits = id_bits(tris.as_flat().iter().copied().max().unwrap_or(0));
+        let by = |i: usize, j: usize| -> Result<Vec<u32>, BuildError> {
+            let key = |t: u32| {
+                let r = tris.get(t as usize);
+                (r[i], r[j], t)
+            };
+            let order = try_order(kind, n2, 2 * bits, |t| {
+                let (a, b, _) = key(t);
+                (a as u64) << bits | b as u64
+            })?;
+            Ok(match order {
+                Some(order) => order,
+                None => {
+                    let mut order = try_iota(kind, n2, "triangles")?;
+                    order.sort_unstable_by_key(|&t| key(t));
+                    order
+                }
+            })
+        };
+        Ok(EdgeLocator {
+            by02: by(0, 2)?.into(),
+            by12: by(1, 2)?.into(),
+        })
     }
 
     /// A slot on edge {a, b} (a < b), or `None`: three binary searches, O(log n2).

@@ -275,6 +275,17 @@ impl CobWriter {
         }
     }
 
+    /// Appends the arrays `part` wrote for the simplices that follow this writer's.
+    fn append(&mut self, part: CobWriter) {
+        let base = self.long.len() as u32;
+        self.codes.extend_from_slice(&part.codes);
+        self.short.extend_from_slice(&part.short);
+        self.long.extend_from_slice(&part.long);
+        self.long_start
+            .extend(part.long_start[1..].iter().map(|&x| x + base));
+        self.tops += part.tops;
+    }
+
     fn finish(self) -> Result<(Cob, usize), BuildError> {
         for (len, what) in [
             (
@@ -379,26 +390,25 @@ fn walk_faces<B: std::ops::Deref<Target = [u32]>>(
     }
 }
 
-/// Boundaries of every simplex by binary search of each facet in the table below.
+/// Boundaries of every simplex by binary search of each facet in the table below, in ranges of
+/// simplices on [`crate::parallel::threads`] threads (each row written by one range).
 fn boundaries(tables: &[SimplexTable]) -> Result<Vec<Vec<u32>>, BuildError> {
     let d = tables.len() - 1;
     let mut boundary = vec![Vec::new(); d + 1];
-    let mut facet = Vec::with_capacity(d + 1);
     for p in 1..=d {
         let below = &tables[p - 1];
-        let mut b = Vec::with_capacity(tables[p].len() * (p + 1));
-        for s in tables[p].iter() {
-            for skip in 0..=p {
-                facet.clear();
-                facet.extend(
-                    s.iter()
-                        .enumerate()
-                        .filter(|&(j, _)| j != skip)
-                        .map(|(_, &v)| v),
-                );
-                b.push(below.find(&facet).expect("closure contains every facet"));
+        let mut b = vec![0u32; tables[p].len() * (p + 1)];
+        crate::parallel::fill_rows(&mut b, p + 1, |i, row| {
+            let s = tables[p].get(i);
+            let mut facet = [0u32; 16];
+            for (skip, slot) in row.iter_mut().enumerate() {
+                facet[..skip].copy_from_slice(&s[..skip]);
+                facet[skip..p].copy_from_slice(&s[skip + 1..]);
+                *slot = below
+                    .find(&facet[..p])
+                    .expect("closure contains every facet");
             }
-        }
+        });
         boundary[p] = b;
     }
     Ok(boundary)
@@ -429,6 +439,136 @@ fn root(parent: &mut [u32], mut i: u32) -> u32 {
         i = parent[i as usize];
     }
     i
+}
+
+/// Row of each top r-simplex in the closure's r-simplices: both tables are sorted, so one
+/// merge walk per dimension.
+fn top_rows(complex: &Complex, tables: &[SimplexTable]) -> Vec<Vec<u32>> {
+    let mut top_rows: Vec<Vec<u32>> = vec![Vec::new(); tables.len()];
+    for (r, rows) in top_rows.iter_mut().enumerate() {
+        let all = &tables[r];
+        let mut i = 0usize;
+        for t in complex.tops(r).iter() {
+            while all.get(i) < t {
+                i += 1;
+            }
+            rows.push(i as u32);
+        }
+    }
+    top_rows
+}
+
+/// What the steps of [`Sig::build`] share: the closure, the lookup table and the boundaries.
+struct BuildSteps<'a> {
+    tables: &'a [SimplexTable],
+    first: &'a [u32],
+    boundary: &'a [Vec<u32>],
+}
+
+impl BuildSteps<'_> {
+    /// CSR of the top simplices (global ids, ascending) above each p-simplex: offsets, entries.
+    fn tops_above(&self, p: usize, top_rows: &[Vec<u32>]) -> (Vec<u32>, Vec<u32>) {
+        let n = self.tables[p].len();
+        let mut off = vec![0u32; n + 1];
+        for (r, rows) in top_rows.iter().enumerate().skip(p + 1) {
+            for &t in rows {
+                walk_faces(self.boundary, r, t, r + 1, r - p, u32::MAX, &mut |f| {
+                    off[f as usize + 1] += 1
+                });
+            }
+        }
+        for i in 0..n {
+            off[i + 1] += off[i];
+        }
+        let mut fill = off.clone();
+        let mut above = vec![0u32; off[n] as usize];
+        for (r, rows) in top_rows.iter().enumerate().skip(p + 1) {
+            for &t in rows {
+                walk_faces(self.boundary, r, t, r + 1, r - p, u32::MAX, &mut |f| {
+                    above[fill[f as usize] as usize] = self.first[r] + t;
+                    fill[f as usize] += 1;
+                });
+            }
+        }
+        (off, above)
+    }
+
+    /// The partial co-boundaries of the p-simplices in `range`: per simplex, the (p+1)-simplices
+    /// above it, and for each higher dimension one representative (the smallest) per cluster of
+    /// its top simplices joined through faces outside σ.
+    fn clusters(
+        &self,
+        p: usize,
+        range: std::ops::Range<usize>,
+        off: &[u32],
+        above: &[u32],
+    ) -> CobWriter {
+        let first = self.first;
+        let mut w = CobWriter::new(range.len());
+        let mut parent: Vec<u32> = Vec::new();
+        let mut by_face: FxHashMap<u32, u32> = FxHashMap::default();
+        let mut reps = Vec::new();
+        for s in range {
+            let sigma = self.tables[p].get(s);
+            let list = &above[off[s] as usize..off[s + 1] as usize];
+            reps.clear();
+            // Group by dimension (ascending ids are grouped by dimension already).
+            let mut a = 0;
+            while a < list.len() {
+                let r = dim_of(first, list[a]);
+                let b = a + list[a..].partition_point(|&g| g < first[r + 1]);
+                let group = &list[a..b];
+                if r == p + 1 {
+                    reps.extend_from_slice(group);
+                } else {
+                    self.cluster_roots(r, sigma, group, (&mut parent, &mut by_face));
+                    reps.extend(
+                        (0..group.len() as u32).filter_map(|k| {
+                            (root(&mut parent, k) == k).then_some(group[k as usize])
+                        }),
+                    );
+                }
+                a = b;
+            }
+            w.push(&mut reps, first);
+        }
+        w
+    }
+
+    /// Union–find over `group` (top r-simplices above σ, global ids ascending): two are joined
+    /// when they share a facet outside σ; the smaller index stays root, so each cluster's root
+    /// is its smallest simplex.
+    fn cluster_roots(
+        &self,
+        r: usize,
+        sigma: &[u32],
+        group: &[u32],
+        (parent, by_face): (&mut Vec<u32>, &mut FxHashMap<u32, u32>),
+    ) {
+        parent.clear();
+        parent.extend(0..group.len() as u32);
+        by_face.clear();
+        for (k, &g) in group.iter().enumerate() {
+            let t = g - self.first[r];
+            let mask = outside(self.tables[r].get(t as usize), sigma);
+            for i in 0..=r {
+                if mask >> i & 1 == 0 {
+                    continue;
+                }
+                let face = self.boundary[r][t as usize * (r + 1) + i];
+                match by_face.get(&face) {
+                    None => {
+                        by_face.insert(face, k as u32);
+                    }
+                    Some(&other) => {
+                        let (x, y) = (root(parent, other), root(parent, k as u32));
+                        let (lo, hi) = (x.min(y), x.max(y));
+                        parent[hi as usize] = lo;
+                    }
+                }
+            }
+        }
+    }
 }
 
 impl Sig {
@@ -531,104 +671,31 @@ impl Sig {
     }
 
     /// Builds straight from the complex (never an IG): closure, boundaries, then per dimension p
-    /// the top simplices above each p-simplex and their clusters by union–find.
+    /// the top simplices above each p-simplex and their clusters by union–find. The boundaries
+    /// and the clusters are computed on [`crate::parallel::threads`] threads, in ranges of
+    /// simplices whose results are concatenated in order (the same bytes with any count).
     pub fn build(complex: &Complex) -> Result<Sig, BuildError> {
         let tables = try_closure(KIND, complex)?;
         let d = tables.len() - 1;
         let first = lookup_table(tables.iter().map(SimplexTable::len))?;
         let boundary = boundaries(&tables)?;
-        // Top rows per dimension: both tables are sorted, so one merge walk each.
-        let mut top_rows: Vec<Vec<u32>> = vec![Vec::new(); d + 1];
-        for (r, rows) in top_rows.iter_mut().enumerate() {
-            let all = &tables[r];
-            let mut i = 0usize;
-            for t in complex.tops(r).iter() {
-                while all.get(i) < t {
-                    i += 1;
-                }
-                rows.push(i as u32);
-            }
-        }
+        let top_rows = top_rows(complex, &tables);
         let mut cob = Vec::with_capacity(d);
         let mut top_counts = vec![0; d + 1];
         top_counts[d] = tables[d].len();
-        let mut parent: Vec<u32> = Vec::new();
-        let mut by_face: FxHashMap<u32, u32> = FxHashMap::default();
-        let mut reps = Vec::new();
+        let steps = BuildSteps {
+            tables: &tables,
+            first: &first,
+            boundary: &boundary,
+        };
         for p in 0..d {
-            let n = tables[p].len();
-            // CSR: the top simplices (global ids, ascending) above each p-simplex.
-            let mut off = vec![0u32; n + 1];
-            for (r, rows) in top_rows.iter().enumerate().skip(p + 1) {
-                for &t in rows {
-                    walk_faces(&boundary, r, t, r + 1, r - p, u32::MAX, &mut |f| {
-                        off[f as usize + 1] += 1
-                    });
-                }
-            }
-            for i in 0..n {
-                off[i + 1] += off[i];
-            }
-            let mut fill = off.clone();
-            let mut above = vec![0u32; off[n] as usize];
-            for (r, rows) in top_rows.iter().enumerate().skip(p + 1) {
-                for &t in rows {
-                    walk_faces(&boundary, r, t, r + 1, r - p, u32::MAX, &mut |f| {
-                        above[fill[f as usize] as usize] = first[r] + t;
-                        fill[f as usize] += 1;
-                    });
-                }
-            }
-            drop(fill);
-            let mut w = CobWriter::new(n);
-            for s in 0..n {
-                let sigma = tables[p].get(s);
-                let list = &above[off[s] as usize..off[s + 1] as usize];
-                reps.clear();
-                // Group by dimension (ascending ids are grouped by dimension already).
-                let mut a = 0;
-                while a < list.len() {
-                    let r = dim_of(&first, list[a]);
-                    let b = a + list[a..].partition_point(|&g| g < first[r + 1]);
-                    let group = &list[a..b];
-                    if r == p + 1 {
-                        reps.extend_from_slice(group);
-                    } else {
-                        parent.clear();
-                        parent.extend(0..group.len() as u32);
-                        by_face.clear();
-                        for (k, &g) in group.iter().enumerate() {
-                            let t = g - first[r];
-                            let mask = outside(tables[r].get(t as usize), sigma);
-                            for i in 0..=r {
-                                if mask >> i & 1 == 0 {
-                                    continue;
-                                }
-                                let face = boundary[r][t as usize * (r + 1) + i];
-                                match by_face.get(&face) {
-                                    None => {
-                                        by_face.insert(face, k as u32);
-                                    }
-                                    Some(&other) => {
-                                        let (x, y) =
-                                            (root(&mut parent, other), root(&mut parent, k as u32));
-                                        // The smaller index stays root: the root is the cluster's
-                                        // smallest simplex.
-                                        let (lo, hi) = (x.min(y), x.max(y));
-                                        parent[hi as usize] = lo;
-                                    }
-                                }
-                            }
-                        }
-                        for k in 0..group.len() as u32 {
-                            if root(&mut parent, k) == k {
-                                reps.push(group[k as usize]);
-                            }
-                        }
-                    }
-                    a = b;
-                }
-                w.push(&mut reps, &first);
+            let (off, above) = steps.tops_above(p, &top_rows);
+            let parts = crate::parallel::map_ranges(tables[p].len(), |range| {
+                steps.clusters(p, range, &off, &above)
+            });
+            let mut w = CobWriter::new(0);
+            for part in parts {
+                w.append(part);
             }
             let (c, t) = w.finish()?;
             cob.push(c);

@@ -101,7 +101,7 @@ impl TriangleSegment {
             radial::vertex_components(parts.n, n2, |t| row3(&tris, t), |s| rad.next[s as usize]);
         let comp_tri: Vec<u32> = corners.into_iter().map(|c| c / 3).collect();
         let (wire_off, wire_nbr) = radial::wire_lists(parts.n, &parts.wires);
-        let locator = EdgeLocator::build(&tris);
+        let locator = EdgeLocator::build(KIND, &tris)?;
         Ok(TriangleSegment {
             nav: NavIndex::new(KIND, complex)?,
             n: parts.n,
