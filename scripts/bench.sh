@@ -157,6 +157,21 @@ if [ -n "$bench_bin" ]; then
   for f in $(datasets 'tet-*.mesh'); do run topoplex_bench_tets tets "$f"; done
   # Issue 14: simplification to 1% next to OpenMesh's Decimater and CGAL's SMS.
   for f in $(datasets 'surf-*.off'); do run topoplex_bench_simplify simplify "$f"; done
+  # Peak RSS of the whole process, one library per process (same soup loaded first), into
+  # RESULTS/simplify_rss.tsv: the peak heap counter above misses what the C library keeps
+  # resident (docs/benchmarks.md, Simplification).
+  if [ -x /usr/bin/time ] && [ -x "$bench_bin/topoplex_bench_simplify" ]; then
+    printf 'dataset\tlib\tpeak_rss_kb\n' >"$results/simplify_rss.tsv"
+    for f in $(datasets 'surf-*.off'); do
+      for lib in openmesh cgal_sm tpx tpx_preserve; do
+        kb=$(/usr/bin/time -f '%M' "$bench_bin/topoplex_bench_simplify" \
+               --benchmark_filter="simplify/$lib\$" --benchmark_min_time=0 "$f" 2>&1 >/dev/null \
+             | tail -1)
+        printf '%s\t%s\t%s\n' "$(basename "$f")" "$lib" "$kb" >>"$results/simplify_rss.tsv"
+      done
+    done
+    cat "$results/simplify_rss.tsv"
+  fi
   for f in $(datasets 'surf-*.off') $(datasets 'tet-*.mesh') $(datasets 'alpha-*.simplices') \
            $(datasets 'rips-*.simplices'); do
     run topoplex_bench_gudhi gudhi "$f"

@@ -148,7 +148,8 @@ pub fn simplify(
 }
 
 /// [`simplify`] taking the complex by value: it is dropped as soon as the live complex is
-/// built, so the peak memory holds one copy of the input, not two.
+/// built, and its freed pages handed back to the system (see
+/// `ffi::release_freed_memory`), so the peak memory holds one copy of the input, not two.
 pub fn simplify_owned(
     complex: Complex,
     options: &Options,
@@ -157,6 +158,8 @@ pub fn simplify_owned(
     check(&complex, options)?;
     let mut live = LiveComplex::from_complex(&complex);
     drop(complex);
+    // Before the quadrics and the queue: the input's pages go back to the system.
+    crate::ffi::release_freed_memory();
     let stats = simplify_live(&mut live, options, progress)?;
     Ok(Simplified {
         complex: live.to_complex(),
