@@ -1085,7 +1085,8 @@ class Live {
   /* ---- handles: the same navigation as Structure (see tpx_live_structure) ----
    * A vertex's handle index is its id; other simplices are named through a live top simplex.
    * A handle stays valid across edits while that top simplex lives (else STALE_HANDLE) and
-   * until compact() (then STALE_GENERATION); it never names another simplex. Answers come
+   * until compact() (then STALE_GENERATION); across a contraction of b into a, a handle
+   * through a top moved in place names its image (b replaced by a). Answers come
    * lexicographic (both orders cost the same). */
 
   /* The live complex seen as a borrowed structure (never free it), for the tpx_* handle calls. */

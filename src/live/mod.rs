@@ -80,7 +80,8 @@
 //! holding it (a top simplex and a vertex mask), valid while that top simplex lives. Every handle
 //! carries the complex's generation (its compaction count, [`crate::handle::Navigate::generation`]): one from
 //! before `compact` is refused with [`QueryError::StaleGeneration`], one of a removed vertex or
-//! top simplex with [`QueryError::StaleHandle`]; a handle never names another simplex. The
+//! top simplex with [`QueryError::StaleHandle`]; across a contraction a handle through a moved top
+//! follows it to the image (b replaced by a), otherwise it keeps naming its simplex. The
 //! generation costs 4 bytes per handle and one comparison per check. Costs per operation: the
 //! `nav` module (O(1) checks and reads, `locate` O(d·k_v), relations as above plus O(d·k) to
 //! name each answer of dimension ≤ p, answers lexicographic, no allocation once warm).

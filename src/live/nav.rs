@@ -5,11 +5,13 @@
 //! - A vertex is its dense handle `(0, slot)`, as in the nine structures: valid while the vertex
 //!   is live.
 //! - Any other simplex σ is a [`HandleForm::TopFace`] handle: a live top simplex T holding σ (its
-//!   packed slot: dimension in the top 4 bits, slot below) and a mask of T's vertices (bit i: T's
-//!   i-th smallest vertex). Slots are never rewritten while live (edits append slots; a split
-//!   restores a slot with its old vertices), so the handle names σ for as long as T lives, across
-//!   every other edit. When T is removed the handle is refused with
-//!   [`QueryError::StaleHandle`] — σ itself may survive in another top: locate it again.
+//!   packed slot: dimension in the top 4 bits, slot below) and a mask of T's vertex positions
+//!   (bit i: T's i-th vertex as stored, i.e. in its winding). A slot changes only when a
+//!   contraction of b into a moves T in place (b replaced by a at its position; the split undoing
+//!   it puts b back), so the handle names σ for as long as T lives, and across a contraction it
+//!   follows T to σ's image (b replaced by a) — as a half-edge mesh's handles follow a collapse.
+//!   When T is removed the handle is refused with [`QueryError::StaleHandle`] — σ itself may
+//!   survive in another top: locate it again.
 //! - Handles the live complex gives out are *canonical*: T is the live top holding σ with the
 //!   smallest packed slot. So two handles taken without an edit in between name the same simplex
 //!   exactly when they are equal; after edits, compare by [`Navigate::vertices_of`] (a later
@@ -73,10 +75,9 @@ fn invalid(h: SimplexHandle, reason: &'static str) -> QueryError {
     QueryError::InvalidHandle { handle: h, reason }
 }
 
-/// Mask of the vertices of `face` within `sorted` (ascending, a superset).
-fn mask_of(sorted: &[u32], face: &[u32]) -> u16 {
-    sorted
-        .iter()
+/// Mask of the positions of `face`'s vertices within `top` (a superset, in its stored order).
+fn mask_of(top: &[u32], face: &[u32]) -> u16 {
+    top.iter()
         .enumerate()
         .filter(|(_, v)| face.contains(v))
         .fold(0u16, |m, (i, _)| m | 1 << i)
@@ -100,8 +101,7 @@ impl LiveComplex {
             .copied()
             .filter(|&raw| subset(sigma, self.top_raw(raw)))
             .min()?;
-        let top = Key::new(self.top_raw(raw));
-        Some(self.face_handle(raw, mask_of(top.as_slice(), sigma)))
+        Some(self.face_handle(raw, mask_of(self.top_raw(raw), sigma)))
     }
 
     /// The handle of live top simplex `t` (its full mask).
@@ -116,15 +116,15 @@ impl LiveComplex {
         if h.form() == HandleForm::Dense {
             return Ok(Vertices::from_slice(&[h.index()]));
         }
-        let top = Key::new(self.top_raw(h.index()));
         let mut ids = [0u32; MAX_DIMENSION + 1];
         let mut k = 0;
-        for (i, &v) in top.as_slice().iter().enumerate() {
+        for (i, &v) in self.top_raw(h.index()).iter().enumerate() {
             if h.local() >> i & 1 == 1 {
                 ids[k] = v;
                 k += 1;
             }
         }
+        ids[..k].sort_unstable();
         Ok(Vertices::from_slice(&ids[..k]))
     }
 
@@ -150,7 +150,7 @@ impl LiveComplex {
                         rows.push(Row {
                             key: Key::new(f),
                             raw,
-                            mask: mask_of(top.as_slice(), f),
+                            mask: mask_of(t, f),
                         })
                     });
                 }
