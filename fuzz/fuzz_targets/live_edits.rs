@@ -2,12 +2,69 @@
 //! Differential: random edit sequences (insert, remove, contract in both modes, split, move a
 //! vertex) on a complex built from arbitrary bytes, through the C ABI (`TpxLive`) and the Rust
 //! API side by side. Both must agree on every outcome, stay valid, and (compacted) answer every
-//! relation like the brute-force oracle on their own `to_complex()`.
+//! relation like the brute-force oracle on their own `to_complex()`. After every edit, handle
+//! navigation through the C ABI (`tpx_live_structure` + the handle functions) answers like the
+//! Rust `Navigate`, handles from before the edit name their old simplex or are STALE_HANDLE, and
+//! after the final compaction every older handle is STALE_GENERATION.
 use libfuzzer_sys::fuzz_target;
 use topoplex::ffi::*;
 use topoplex::live::{ContractMode, LiveComplex, VertexId};
 use topoplex::oracle::check_structure;
-use topoplex::{Complex, Topology};
+use topoplex::{Complex, Navigate, Order, Topology};
+
+/// The vertices of a C handle of the live complex, with the status.
+fn c_vertices(s: *const TpxStructure, h: &TpxSimplex) -> (TpxStatus, Vec<u32>) {
+    let mut buf = [0u32; 16];
+    let mut len = 0usize;
+    let st = unsafe { tpx_simplex_vertices(s, h, buf.as_mut_ptr(), 16, &mut len) };
+    (st, buf[..len].to_vec())
+}
+
+/// C handles of up to 12 simplices (vertices and top simplices first), with their vertices.
+fn c_handles(s: *const TpxStructure, rust: &LiveComplex) -> Vec<(TpxSimplex, Vec<u32>)> {
+    let rows = rust
+        .vertices()
+        .map(|v| vec![v.0])
+        .chain(rust.tops().map(|(_, t)| t.to_vec()))
+        .take(12);
+    rows.map(|row| {
+        let mut h = TpxSimplex::default();
+        assert_eq!(unsafe { tpx_locate(s, row.as_ptr(), row.len(), &mut h) }, TpxStatus::Ok);
+        let mut sorted = row;
+        sorted.sort_unstable();
+        (h, sorted)
+    })
+    .collect()
+}
+
+/// Navigation through the C ABI equals the Rust API's, as vertex rows.
+fn c_navigation_matches(s: *const TpxStructure, rust: &LiveComplex) {
+    let mut buf = vec![TpxSimplex::default(); 1 << 12];
+    let mut rbuf = Vec::new();
+    let rows = |hs: &[TpxSimplex]| -> Vec<Vec<u32>> { hs.iter().map(|h| c_vertices(s, h).1).collect() };
+    for (h, row) in c_handles(s, rust) {
+        let rh = rust.locate(&row).unwrap();
+        for q in 0..=rust.dimension() {
+            let mut len = 0usize;
+            let st = unsafe { tpx_related_handles(s, &h, q as u32, TPX_ORDER_NATURAL, buf.as_mut_ptr(), buf.len(), &mut len) };
+            if st == TpxStatus::BufferTooSmall {
+                continue;
+            }
+            assert_eq!(st, TpxStatus::Ok);
+            rust.related(rh, q, Order::Natural, &mut rbuf).unwrap();
+            let want: Vec<Vec<u32>> = rbuf.iter().map(|&x| rust.vertices_of(x).unwrap().to_vec()).collect();
+            assert_eq!(rows(&buf[..len]), want);
+        }
+        let mut len = 0usize;
+        if unsafe { tpx_star(s, &h, 1, TPX_ORDER_NATURAL, buf.as_mut_ptr(), buf.len(), &mut len) } == TpxStatus::Ok {
+            rust.link(rh, Order::Natural, &mut rbuf).unwrap();
+            assert_eq!(len, rbuf.len());
+        }
+        let mut r = 0u32;
+        assert_eq!(unsafe { tpx_simplex_test(s, &h, 1, &mut r) }, TpxStatus::Ok);
+        assert_eq!(r == 1, rust.is_manifold(rh).unwrap());
+    }
+}
 
 fuzz_target!(|data: &[u8]| {
     let split = data.first().map_or(0, |&b| b as usize).min(data.len());
@@ -31,6 +88,9 @@ fuzz_target!(|data: &[u8]| {
         assert_eq!(tpx_live_from_complex(tc, &mut live), TpxStatus::Ok);
         tpx_complex_free(tc);
     }
+    let mut view: *const TpxStructure = std::ptr::null();
+    assert_eq!(unsafe { tpx_live_structure(live, &mut view) }, TpxStatus::Ok);
+    let mut before = c_handles(view, &rust);
     let mut undos: Vec<(*mut TpxUndo, topoplex::live::UndoRecord)> = Vec::new();
     for op in data[split..].chunks(4) {
         let &[kind, x, y, z] = op else { break };
@@ -74,7 +134,19 @@ fuzz_target!(|data: &[u8]| {
         let mut dense = rust.clone();
         dense.compact();
         check_structure(&dense, &rust.to_complex()).unwrap();
+        for (h, row) in &before {
+            let (st, got) = c_vertices(view, h);
+            assert!(st == TpxStatus::StaleHandle || (st == TpxStatus::Ok && got == *row), "{st:?}");
+        }
+        c_navigation_matches(view, &rust);
+        before = c_handles(view, &rust);
     }
+    assert_eq!(unsafe { tpx_live_compact(live, std::ptr::null_mut(), 0, std::ptr::null_mut()) }, TpxStatus::Ok);
+    rust.compact();
+    for (h, _) in &before {
+        assert_eq!(c_vertices(view, h).0, TpxStatus::StaleGeneration);
+    }
+    c_navigation_matches(view, &rust);
     for (u, _) in undos {
         unsafe { tpx_undo_free(u) };
     }
