@@ -412,7 +412,9 @@ pub trait Navigate: Topology {
     /// n_p) otherwise (see the module doc).
     fn vertices_of(&self, h: SimplexHandle) -> Result<Vertices, QueryError>;
 
-    /// Number of top simplices, all dimensions (`TopId`s are `0..top_total()`).
+    /// Number of top simplices, all dimensions (`TopId`s are `0..top_total()` for the nine
+    /// structures; the live complex numbers its top simplices by packed slot instead, see
+    /// [`crate::live`]).
     fn top_total(&self) -> u32 {
         (0..=self.dimension())
             .map(|p| self.top_count(p) as u32)

@@ -732,6 +732,44 @@ fn every_handle(live: &LiveComplex) -> Vec<(SimplexHandle, Vec<u32>)> {
     out
 }
 
+/// Contractions (link-checked or free) and removals only, so that a surface stays a 2-complex
+/// and a tetrahedral complex a 3-complex: fans and edge clusters after every edit.
+fn shrink_and_check(c: &Complex, ops: &[(bool, prop::sample::Index, prop::sample::Index)]) {
+    let mut live = LiveComplex::from_complex(c);
+    for (free, i, j) in ops {
+        let vs: Vec<VertexId> = live.vertices().collect();
+        let (a, b) = (vs[i.index(vs.len())], vs[j.index(vs.len())]);
+        if *free && a != b {
+            live.contract(a, b, ContractMode::Free, None).unwrap();
+        } else if !*free {
+            let top: Option<Vec<u32>> = live.tops().nth(i.index(8)).map(|(_, s)| s.to_vec());
+            if let Some(s) = top {
+                live.remove_top(&s).unwrap();
+            }
+        }
+        assert_handles_match_the_oracle(&live);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 32, ..ProptestConfig::default() })]
+    #[test]
+    fn fans_match_brute_force_after_edits_of_random_surfaces(
+        (n, list) in common::random_input(2, 10, 14),
+        ops in proptest::collection::vec((any::<bool>(), any::<prop::sample::Index>(), any::<prop::sample::Index>()), 0..5),
+    ) {
+        shrink_and_check(&with_coords(n, &list), &ops);
+    }
+
+    #[test]
+    fn edge_clusters_match_brute_force_after_edits_of_random_3_complexes(
+        (n, list) in common::random_input(3, 8, 10),
+        ops in proptest::collection::vec((any::<bool>(), any::<prop::sample::Index>(), any::<prop::sample::Index>()), 0..5),
+    ) {
+        shrink_and_check(&with_coords(n, &list), &ops);
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 40, ..ProptestConfig::default() })]
     #[test]

@@ -2,12 +2,97 @@
 //! Differential: random edit sequences (insert, remove, contract in both modes, split, move a
 //! vertex) on a complex built from arbitrary bytes, through the C ABI (`TpxLive`) and the Rust
 //! API side by side. Both must agree on every outcome, stay valid, and (compacted) answer every
-//! relation like the brute-force oracle on their own `to_complex()`.
+//! relation like the brute-force oracle on their own `to_complex()`. After every edit, handle
+//! navigation through the C ABI (`tpx_live_structure` + the handle functions) answers like the
+//! Rust `Navigate`, handles from before the edit name their old simplex or are STALE_HANDLE, and
+//! after the final compaction every older handle is STALE_GENERATION.
 use libfuzzer_sys::fuzz_target;
 use topoplex::ffi::*;
 use topoplex::live::{ContractMode, LiveComplex, VertexId};
 use topoplex::oracle::check_structure;
-use topoplex::{Complex, Topology};
+use topoplex::{Complex, Navigate, Order, Topology};
+
+/// The vertices of a C handle of the live complex, with the status.
+fn c_vertices(s: *const TpxStructure, h: &TpxSimplex) -> (TpxStatus, Vec<u32>) {
+    let mut buf = [0u32; 16];
+    let mut len = 0usize;
+    let st = unsafe { tpx_simplex_vertices(s, h, buf.as_mut_ptr(), 16, &mut len) };
+    (st, buf[..len].to_vec())
+}
+
+/// C handles of up to 12 simplices (vertices and top simplices first), with their vertices.
+fn c_handles(s: *const TpxStructure, rust: &LiveComplex) -> Vec<(TpxSimplex, Vec<u32>)> {
+    let rows = rust
+        .vertices()
+        .map(|v| vec![v.0])
+        .chain(rust.tops().map(|(_, t)| t.to_vec()))
+        .take(12);
+    rows.map(|row| {
+        let mut h = TpxSimplex::default();
+        assert_eq!(
+            unsafe { tpx_locate(s, row.as_ptr(), row.len(), &mut h) },
+            TpxStatus::Ok
+        );
+        let mut sorted = row;
+        sorted.sort_unstable();
+        (h, sorted)
+    })
+    .collect()
+}
+
+/// Navigation through the C ABI equals the Rust API's, as vertex rows.
+fn c_navigation_matches(s: *const TpxStructure, rust: &LiveComplex) {
+    let mut buf = vec![TpxSimplex::default(); 1 << 12];
+    let mut rbuf = Vec::new();
+    let rows =
+        |hs: &[TpxSimplex]| -> Vec<Vec<u32>> { hs.iter().map(|h| c_vertices(s, h).1).collect() };
+    for (h, row) in c_handles(s, rust) {
+        let rh = rust.locate(&row).unwrap();
+        for q in 0..=rust.dimension() {
+            let mut len = 0usize;
+            let st = unsafe {
+                tpx_related_handles(
+                    s,
+                    &h,
+                    q as u32,
+                    TPX_ORDER_NATURAL,
+                    buf.as_mut_ptr(),
+                    buf.len(),
+                    &mut len,
+                )
+            };
+            if st == TpxStatus::BufferTooSmall {
+                continue;
+            }
+            assert_eq!(st, TpxStatus::Ok);
+            rust.related(rh, q, Order::Natural, &mut rbuf).unwrap();
+            let want: Vec<Vec<u32>> = rbuf
+                .iter()
+                .map(|&x| rust.vertices_of(x).unwrap().to_vec())
+                .collect();
+            assert_eq!(rows(&buf[..len]), want);
+        }
+        let mut len = 0usize;
+        if unsafe {
+            tpx_star(
+                s,
+                &h,
+                1,
+                TPX_ORDER_NATURAL,
+                buf.as_mut_ptr(),
+                buf.len(),
+                &mut len,
+            )
+        } == TpxStatus::Ok
+        {
+            rust.link(rh, Order::Natural, &mut rbuf).unwrap();
+            assert_eq!(len, rbuf.len());
+        }
+        let mut r = 0u32;
+        assert_eq!(unsafe { tpx_simplex_test(s, &h, 1, &mut r) }, TpxStatus::Ok);
+        assert_eq!(r == 1, rust.is_manifold(rh).unwrap());
+    }
+}
 
 fuzz_target!(|data: &[u8]| {
     let split = data.first().map_or(0, |&b| b as usize).min(data.len());
@@ -26,11 +111,25 @@ fuzz_target!(|data: &[u8]| {
     let mut tc: *mut TpxComplex = std::ptr::null_mut();
     let mut live: *mut TpxLive = std::ptr::null_mut();
     unsafe {
-        let st = tpx_complex_from_arrays(n, ids.as_ptr(), offsets.as_ptr(), list.len(), std::ptr::null(), 0, &mut tc);
+        let st = tpx_complex_from_arrays(
+            n,
+            ids.as_ptr(),
+            offsets.as_ptr(),
+            list.len(),
+            std::ptr::null(),
+            0,
+            &mut tc,
+        );
         assert_eq!(st, TpxStatus::Ok);
         assert_eq!(tpx_live_from_complex(tc, &mut live), TpxStatus::Ok);
         tpx_complex_free(tc);
     }
+    let mut view: *const TpxStructure = std::ptr::null();
+    assert_eq!(
+        unsafe { tpx_live_structure(live, &mut view) },
+        TpxStatus::Ok
+    );
+    let mut before = c_handles(view, &rust);
     let mut undos: Vec<(*mut TpxUndo, topoplex::live::UndoRecord)> = Vec::new();
     for op in data[split..].chunks(4) {
         let &[kind, x, y, z] = op else { break };
@@ -39,19 +138,29 @@ fuzz_target!(|data: &[u8]| {
         let sigma: Vec<u32> = [a, b, z as u32 % (n + 1)][..1 + (kind as usize >> 4) % 3].to_vec();
         let (st, ok) = match kind % 5 {
             0 => unsafe {
-                (tpx_live_insert_top(live, sigma.as_ptr(), sigma.len()), rust.insert_top(&sigma).is_ok())
+                (
+                    tpx_live_insert_top(live, sigma.as_ptr(), sigma.len()),
+                    rust.insert_top(&sigma).is_ok(),
+                )
             },
             1 => unsafe {
-                (tpx_live_remove_top(live, sigma.as_ptr(), sigma.len()), rust.remove_top(&sigma).is_ok())
+                (
+                    tpx_live_remove_top(live, sigma.as_ptr(), sigma.len()),
+                    rust.remove_top(&sigma).is_ok(),
+                )
             },
             2 | 3 => {
                 let (mode, m) = if kind % 5 == 2 {
-                    (TPX_CONTRACT_PRESERVE_TOPOLOGY, ContractMode::PreserveTopology)
+                    (
+                        TPX_CONTRACT_PRESERVE_TOPOLOGY,
+                        ContractMode::PreserveTopology,
+                    )
                 } else {
                     (TPX_CONTRACT_FREE, ContractMode::Free)
                 };
                 let mut u: *mut TpxUndo = std::ptr::null_mut();
-                let st = unsafe { tpx_live_contract(live, a, b, mode, std::ptr::null(), 0, &mut u) };
+                let st =
+                    unsafe { tpx_live_contract(live, a, b, mode, std::ptr::null(), 0, &mut u) };
                 let r = rust.contract(VertexId(a), VertexId(b), m, None);
                 let ok = r.is_ok();
                 if let Ok(rec) = r {
@@ -68,13 +177,35 @@ fuzz_target!(|data: &[u8]| {
                 None => continue,
             },
         };
-        assert_eq!(st == TpxStatus::Ok, ok, "C ABI and Rust disagree on {op:?}: {st:?}");
+        assert_eq!(
+            st == TpxStatus::Ok,
+            ok,
+            "C ABI and Rust disagree on {op:?}: {st:?}"
+        );
         assert_eq!(unsafe { tpx_live_validate(live) }, TpxStatus::Ok);
         rust.validate().unwrap();
         let mut dense = rust.clone();
         dense.compact();
         check_structure(&dense, &rust.to_complex()).unwrap();
+        for (h, row) in &before {
+            let (st, got) = c_vertices(view, h);
+            assert!(
+                st == TpxStatus::StaleHandle || (st == TpxStatus::Ok && got == *row),
+                "{st:?}"
+            );
+        }
+        c_navigation_matches(view, &rust);
+        before = c_handles(view, &rust);
     }
+    assert_eq!(
+        unsafe { tpx_live_compact(live, std::ptr::null_mut(), 0, std::ptr::null_mut()) },
+        TpxStatus::Ok
+    );
+    rust.compact();
+    for (h, _) in &before {
+        assert_eq!(c_vertices(view, h).0, TpxStatus::StaleGeneration);
+    }
+    c_navigation_matches(view, &rust);
     for (u, _) in undos {
         unsafe { tpx_undo_free(u) };
     }

@@ -229,7 +229,9 @@ pub unsafe extern "C" fn tpx_simplex_vertices(
     })
 }
 
-/// Number of top simplices over all dimensions into `*out` (top ids are `0 .. *out`). O(1).
+/// Number of top simplices over all dimensions into `*out` (top ids are `0 .. *out`, except on
+/// the live complex, whose top ids are packed slots: see `tpx_live_structure`). O(1) (O(n) on
+/// the live complex).
 ///
 /// # Safety
 /// Non-NULL pointers must be valid.

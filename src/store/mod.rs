@@ -35,6 +35,12 @@
 //! (every access is bounds-checked; the C ABI turns a panic into `TPX_STATUS_PANIC`). The
 //! complex is rebuilt from its listing when asked for ([`Saved::complex`]), which validates it
 //! fully.
+//!
+//! # The live complex
+//! The live complex (content code 10, kind `iastar`) is saved compacted (no tombstones; ids as
+//! [`crate::live::LiveComplex::compact`] gives them, the numbering of the complex saved beside
+//! it) and opened back *editable*: its tables are copied out of the file and its stars rebuilt,
+//! O(size), then every invariant is checked before it is returned (module doc of `live/store.rs`).
 
 use std::fs::File;
 use std::io::{self, BufWriter, Seek, SeekFrom, Write};
