@@ -573,11 +573,23 @@ fn neighbours<T: TriTopo + ?Sized>(topo: &T, v: u32, out: &mut Vec<u32>) {
     let start = out.len();
     topo.star_corners(v, out);
     let k = out.len() - start;
-    let mut seen: IdSet = IdSet::default();
-    for i in start..start + k {
-        for w in topo.tri(out[i] / 3) {
-            if w != v && seen.insert(w) {
-                out.push(w);
+    if k <= 32 {
+        // A mesh vertex's few neighbours: deduplicated against what is already written, which
+        // costs less than setting up a set.
+        for i in start..start + k {
+            for w in topo.tri(out[i] / 3) {
+                if w != v && !out[start + k..].contains(&w) {
+                    out.push(w);
+                }
+            }
+        }
+    } else {
+        let mut seen: IdSet = IdSet::default();
+        for i in start..start + k {
+            for w in topo.tri(out[i] / 3) {
+                if w != v && seen.insert(w) {
+                    out.push(w);
+                }
             }
         }
     }
