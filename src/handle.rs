@@ -444,7 +444,8 @@ pub trait Navigate: Topology {
     /// `ids` to `ends`. `InvalidHandle` for an index out of range (or p above the dimension),
     /// `DimensionOutOfRange` as [`Navigate::visit`]; on error `ids` and `ends` hold a prefix.
     /// Default: one [`Navigate::visit`] per index; a structure may answer in a loop with no call
-    /// per answer (TS, PE, LE, DE for VV, VF and FF). No allocation beyond `ids` and `ends`.
+    /// per answer (TS, PE, LE, DE for VV, VF and FF; the IG for R_{0,0} and R_{p,p±1}). No
+    /// allocation beyond `ids` and `ends`.
     fn related_batch(
         &self,
         p: usize,
