@@ -845,8 +845,9 @@ TpxStatus tpx_related(const struct TpxStructure *s,
  * (`offsets[count]` = total) and `buf` the dense q-indices, each answer in `order`.
  * Errors: INVALID_HANDLE (p > d or an index out of range), DIMENSION_OUT_OF_RANGE,
  * BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`.
- * `offsets` must hold `count + 1` entries. Cost: one walk per index; allocation-free once this
- * thread's buffer has grown to the total.
+ * `offsets` must hold `count + 1` entries. Cost: one walk per index (TS, PE, LE, DE answer
+ * VV, VF and FF in one loop with no call per answer); allocation-free once this thread's buffer
+ * has grown to the total.
  *
  * # Safety
  * Non-NULL pointers must be valid; `indices` holds `count` ids, `offsets` room for `count + 1`,

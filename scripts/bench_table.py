@@ -339,6 +339,45 @@ def aims(results) -> list[str]:
         tag = verdict(flat) if lib.startswith("tpx_") else "(peer, for reference)"
         out.append(f"  - {fam} {lib}: ns/simplex {vals} → {tag}")
     out.append(f"  - all Topoplex kinds: {verdict(flat_all)}")
+    out += handle_aims(results)
+    return out
+
+
+def handle_aims(results) -> list[str]:
+    """Issue 13: the handle API per op against each peer, best kind over the per-call walk
+    (`op`) and the batch form (`op_batch`, compared with the peer's per-element walk)."""
+    out = ["", "### Aims of issue 13 (handles)", ""]
+    aims13 = [
+        ("surface", "VF", ("openmesh", "cgal_sm"), 0.8),
+        ("surface", "VV", ("openmesh", "cgal_sm"), 0.8),
+        ("surface", "FF", ("openmesh", "cgal_sm"), 0.8),
+        ("tets", "star_cells", ("cgal_t3",), 0.8),
+        ("tets", "star_edges", ("cgal_t3",), 0.8),
+        ("surface", "stats", ("openmesh",), 1.0),
+        ("surface", "FF_index", ("openmesh",), 1.0),
+    ]
+    for program, op, peers, limit in aims13:
+        for peer in peers:
+            rows, ok_all = [], None
+            for (prog, dataset), ops in sorted(results.items(), key=lambda kv: (family(kv[0][1]), size_of(kv[0][1]))):
+                if prog != program or op not in ops or peer not in ops[op]:
+                    continue
+                best = None
+                for form in (op, op + "_batch"):
+                    if form not in ops:
+                        continue
+                    libs = dict(ops[form])
+                    libs[peer] = ops[op][peer]
+                    b = best_over(libs, peer)
+                    if b is not None and (best is None or b[1] < best[2]):
+                        best = (b[0], form, b[1])
+                if best is None:
+                    continue
+                ok = best[2] <= limit
+                ok_all = ok if ok_all is None else ok_all and ok
+                rows.append(f"  - {dataset}: best tpx_{best[0]} `{best[1]}` ratio {fmt_ratio(best[2])} → {verdict(ok)}")
+            out.append(f"- `{op}` ≤ {limit}× {peer}: {verdict(ok_all)}")
+            out += rows or ["  - no results"]
     return out
 
 

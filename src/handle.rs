@@ -480,6 +480,25 @@ pub trait Navigate: Topology {
         Ok(())
     }
 
+    /// R_{p,q} of many p-simplices at once, as one CSR: for each dense index of `indices`, its
+    /// answer's dense q-indices are appended to `ids` (in `order`) and the end of that answer in
+    /// `ids` to `ends`. `InvalidHandle` for an index out of range (or p above the dimension),
+    /// `DimensionOutOfRange` as [`Navigate::visit`]; on error `ids` and `ends` hold a prefix.
+    /// Default: one [`Navigate::visit`] per index; a structure may answer in a loop with no call
+    /// per answer (TS, PE, LE, DE for VV, VF and FF; the IG for R_{0,0} and R_{p,p±1}). No
+    /// allocation beyond `ids` and `ends`.
+    fn related_batch(
+        &self,
+        p: usize,
+        indices: &[u32],
+        q: usize,
+        order: Order,
+        ids: &mut Vec<u32>,
+        ends: &mut Vec<usize>,
+    ) -> Result<(), QueryError> {
+        batch_by_visit(self, p, indices, q, order, ids, ends)
+    }
+
     /// The q-faces of h, q < p (`DimensionOutOfRange` otherwise); see [`Navigate::related`].
     fn boundary(
         &self,
@@ -641,6 +660,28 @@ pub trait Navigate: Topology {
     fn around_edge(&self, e: SimplexHandle, q: usize, out: &mut Fans) -> Result<(), QueryError> {
         crate::structures::cyclic::around_edge(self, e, q, out)
     }
+}
+
+/// [`Navigate::related_batch`] by one [`Navigate::visit`] per index.
+pub(crate) fn batch_by_visit<N: Navigate + ?Sized>(
+    n: &N,
+    p: usize,
+    indices: &[u32],
+    q: usize,
+    order: Order,
+    ids: &mut Vec<u32>,
+    ends: &mut Vec<usize>,
+) -> Result<(), QueryError> {
+    for &i in indices {
+        let h = n.handle(p, i)?;
+        let start = ids.len();
+        n.visit(h, q, &mut |x| ids.push(x.index()))?;
+        if order == Order::Lexicographic {
+            ids[start..].sort_unstable();
+        }
+        ends.push(ids.len());
+    }
+    Ok(())
 }
 
 fn out_of_range(p: usize, q: usize, dim: usize) -> QueryError {

@@ -98,7 +98,49 @@ fn check_handles(s: &dyn Topology, c: &Complex, deep: bool) -> Result<(), String
             }
         }
     }
+    check_batches(n)?;
     check_tops(n, c)
+}
+
+/// `related_batch` over every p-simplex is the per-handle answers concatenated, in both orders
+/// (TS, PE, LE, DE answer VV, VF and FF in their own loop), and refuses an index out of range.
+fn check_batches(n: &dyn Navigate) -> Result<(), String> {
+    let d = n.dimension();
+    let kind = n.kind();
+    let mut buf = Vec::new();
+    for p in 0..=d {
+        let all: Vec<u32> = (0..n.count(p) as u32).collect();
+        for q in 0..=d {
+            for order in [Order::Natural, Order::Lexicographic] {
+                let (mut ids, mut ends) = (Vec::new(), Vec::new());
+                n.related_batch(p, &all, q, order, &mut ids, &mut ends)
+                    .map_err(|e| format!("{kind}: batch R_{{{p},{q}}}: {e}"))?;
+                let (mut want, mut want_ends) = (Vec::new(), Vec::new());
+                for &i in &all {
+                    n.related(n.handle(p, i).unwrap(), q, order, &mut buf)
+                        .unwrap();
+                    want.extend(buf.iter().map(|h| h.index()));
+                    want_ends.push(want.len());
+                }
+                if (&ids, &ends) != (&want, &want_ends) {
+                    return Err(format!(
+                        "{kind}: batch R_{{{p},{q}}} ({order:?}) {ids:?} {ends:?}, per handle {want:?} {want_ends:?}"
+                    ));
+                }
+            }
+            let past = [n.count(p) as u32];
+            let (mut ids, mut ends) = (Vec::new(), Vec::new());
+            if n.related_batch(p, &past, q, Order::Natural, &mut ids, &mut ends)
+                .is_ok()
+            {
+                return Err(format!(
+                    "{kind}: batch R_{{{p},{q}}} took index {}",
+                    past[0]
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 fn check_star_and_link(

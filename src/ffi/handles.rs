@@ -376,8 +376,9 @@ fn too_small(need: usize, have: usize, out_len: &mut usize) -> Result<(), Failur
 /// (`offsets[count]` = total) and `buf` the dense q-indices, each answer in `order`.
 /// Errors: INVALID_HANDLE (p > d or an index out of range), DIMENSION_OUT_OF_RANGE,
 /// BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`.
-/// `offsets` must hold `count + 1` entries. Cost: one walk per index; allocation-free once this
-/// thread's buffer has grown to the total.
+/// `offsets` must hold `count + 1` entries. Cost: one walk per index (TS, PE, LE, DE answer
+/// VV, VF and FF in one loop with no call per answer); allocation-free once this thread's buffer
+/// has grown to the total.
 ///
 /// # Safety
 /// Non-NULL pointers must be valid; `indices` holds `count` ids, `offsets` room for `count + 1`,
@@ -409,26 +410,24 @@ pub unsafe extern "C" fn tpx_related_batch(
         let p = (p as usize).min(MAX_DIMENSION + 1);
         with_kept(&IDS, |ids| {
             ids.clear();
-            // Offsets are written only on success: keep them after the ids, then copy.
-            let mut ends = Scratch::<Vec<u32>>::take();
-            ends.try_reserve(count + 1)
+            // Offsets are written only on success: kept aside, then copied.
+            let mut ends = Scratch::<Vec<usize>>::take();
+            ends.try_reserve(count)
                 .map_err(|_| Failure::new(TpxStatus::TooLarge, "offsets do not fit in memory"))?;
-            ends.push(0u32);
-            for &i in indices {
-                let h = n.handle(p, i).map_err(query_failure)?;
-                let start = ids.len();
-                n.visit(h, q as usize, &mut |x| ids.push(x.index()))
-                    .map_err(query_failure)?;
-                if order == Order::Lexicographic {
-                    ids[start..].sort_unstable();
-                }
-                let end = u32::try_from(ids.len())
-                    .map_err(|_| Failure::new(TpxStatus::TooLarge, "answers exceed 2^32 ids"))?;
-                ends.push(end);
+            n.related_batch(p, indices, q as usize, order, ids, &mut ends)
+                .map_err(query_failure)?;
+            if u32::try_from(ids.len()).is_err() {
+                return Err(Failure::new(TpxStatus::TooLarge, "answers exceed 2^32 ids"));
             }
             write_buffer(ids, buf, buf_len, out_len)?;
-            // SAFETY: `offsets` has room for `count + 1` entries (documented contract).
-            unsafe { std::ptr::copy_nonoverlapping(ends.as_ptr(), offsets, ends.len()) };
+            // SAFETY: `offsets` has room for `count + 1` entries (documented contract), and
+            // `ends` holds `count` ends below 2^32 (checked above).
+            unsafe {
+                *offsets = 0;
+                for (k, &e) in ends.iter().enumerate() {
+                    *offsets.add(k + 1) = e as u32;
+                }
+            }
             Ok(())
         })
     })

@@ -209,6 +209,17 @@ impl NavBase for LoopEdgeUse {
     ) -> Option<Result<(), QueryError>> {
         radial::fast_visit(self, h, sigma, q, visit)
     }
+
+    fn fast_batch(
+        &self,
+        p: usize,
+        indices: &[u32],
+        q: usize,
+        ids: &mut Vec<u32>,
+        ends: &mut Vec<usize>,
+    ) -> Option<Result<(), QueryError>> {
+        radial::fast_batch(self, self.vertex_count(), p, indices, q, ids, ends)
+    }
 }
 
 impl Topology for LoopEdgeUse {

@@ -25,7 +25,7 @@ use std::sync::OnceLock;
 use super::BuildError;
 use super::common::{Scratch, try_table, try_with_capacity};
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable};
-use crate::handle::{HandleForm, Navigate, SimplexHandle, TopId, Vertices};
+use crate::handle::{HandleForm, Navigate, Order, SimplexHandle, TopId, Vertices, batch_by_visit};
 use crate::relation::{QueryError, StructureKind, Topology, normalize_simplex};
 use crate::store::{Arr, Field};
 
@@ -179,6 +179,21 @@ pub(crate) trait NavBase: Topology {
         None
     }
 
+    /// R_{p,q} of the dense p-indices `indices` as one CSR (see
+    /// [`Navigate::related_batch`]), in natural order, from the structure's arrays in one loop,
+    /// when it has one for this (p, q). Indices are not checked yet: the loop checks them.
+    /// `None`: one visit per index.
+    fn fast_batch(
+        &self,
+        _p: usize,
+        _indices: &[u32],
+        _q: usize,
+        _ids: &mut Vec<u32>,
+        _ends: &mut Vec<usize>,
+    ) -> Option<Result<(), QueryError>> {
+        None
+    }
+
     /// The lexicographic table of the p-simplices (p ≥ 1): stored, or built on first use.
     fn table(&self, p: usize) -> &SimplexTable {
         if let Some(t) = self.stored_table(p) {
@@ -305,6 +320,36 @@ impl<T: NavBase> Navigate for T {
             *g = sorted[((w >> (4 * i)) & 0xf) as usize];
         }
         Ok(Vertices::from_slice(&given[..sorted.len()]))
+    }
+
+    fn related_batch(
+        &self,
+        p: usize,
+        indices: &[u32],
+        q: usize,
+        order: Order,
+        ids: &mut Vec<u32>,
+        ends: &mut Vec<usize>,
+    ) -> Result<(), QueryError> {
+        let (start, first) = (ends.len(), ids.len());
+        // Out-of-range dimensions take the checked path, which reports them.
+        let fast = if p <= self.dimension() && q <= self.dimension() {
+            self.fast_batch(p, indices, q, ids, ends)
+        } else {
+            None
+        };
+        match fast {
+            Some(r) => r?,
+            None => return batch_by_visit(self, p, indices, q, order, ids, ends),
+        }
+        if order == Order::Lexicographic {
+            let mut from = first;
+            for &end in &ends[start..] {
+                ids[from..end].sort_unstable();
+                from = end;
+            }
+        }
+        Ok(())
     }
 
     fn visit(

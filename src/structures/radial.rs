@@ -602,6 +602,51 @@ pub(crate) fn fast_visit<T: TriTopo + ?Sized>(
     Some(Ok(()))
 }
 
+/// The batch form of [`fast_visit`] for VV (R_{0,0}), VF (R_{0,2}) and FF (R_{2,2}): one loop
+/// over the indices, no call per answer; the same answers in the same order. `n` vertices.
+pub(crate) fn fast_batch<T: TriTopo + ?Sized>(
+    topo: &T,
+    n: u32,
+    p: usize,
+    indices: &[u32],
+    q: usize,
+    ids: &mut Vec<u32>,
+    ends: &mut Vec<usize>,
+) -> Option<Result<(), QueryError>> {
+    let count = match (p, q) {
+        (0, 0) | (0, 2) => n,
+        (2, 2) => topo.n_tris(),
+        _ => return None,
+    };
+    if let Some(&bad) = indices.iter().find(|&&i| i >= count) {
+        return Some(Err(QueryError::InvalidHandle {
+            handle: SimplexHandle::dense(p, bad),
+            reason: "index beyond the simplices of its dimension",
+        }));
+    }
+    for &i in indices {
+        match (p, q) {
+            (0, 0) => neighbours(topo, i, ids),
+            (0, 2) => {
+                let start = ids.len();
+                topo.star_corners(i, ids);
+                ids[start..].iter_mut().for_each(|c| *c /= 3);
+            }
+            _ => {
+                for s in 3 * i..3 * i + 3 {
+                    let mut r = topo.radial_next(s);
+                    while r != s {
+                        ids.push(r / 3);
+                        r = topo.radial_next(r);
+                    }
+                }
+            }
+        }
+        ends.push(ids.len());
+    }
+    Some(Ok(()))
+}
+
 /// Distinct vertices adjacent to `v` (through triangles or wire edges), in discovery order:
 /// O(star of v).
 fn neighbours<T: TriTopo + ?Sized>(topo: &T, v: u32, out: &mut Vec<u32>) {
@@ -609,11 +654,23 @@ fn neighbours<T: TriTopo + ?Sized>(topo: &T, v: u32, out: &mut Vec<u32>) {
     let start = out.len();
     topo.star_corners(v, out);
     let k = out.len() - start;
-    let mut seen: IdSet = IdSet::default();
-    for i in start..start + k {
-        for w in topo.tri(out[i] / 3) {
-            if w != v && seen.insert(w) {
-                out.push(w);
+    if k <= 32 {
+        // A mesh vertex's few neighbours: deduplicated against what is already written, which
+        // costs less than setting up a set.
+        for i in start..start + k {
+            for w in topo.tri(out[i] / 3) {
+                if w != v && !out[start + k..].contains(&w) {
+                    out.push(w);
+                }
+            }
+        }
+    } else {
+        let mut seen: IdSet = IdSet::default();
+        for i in start..start + k {
+            for w in topo.tri(out[i] / 3) {
+                if w != v && seen.insert(w) {
+                    out.push(w);
+                }
             }
         }
     }
