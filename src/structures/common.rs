@@ -1,6 +1,6 @@
 //! Helpers several structures share: per-query scratch sets and stacks for walks ([`IdSet`],
 //! [`IdStack`], [`RowSet`]), face enumeration ([`faces_containing`], [`faces_of_tops`]), the
-//! union–find and [`show`] for messages.
+//! union–find, the boundary links of a closure ([`facet_links`]) and [`show`] for messages.
 
 use rustc_hash::FxHashSet;
 
@@ -252,4 +252,47 @@ pub(crate) fn faces_of_tops<'a>(
         faces_containing(t, &[], p, |f| rows.extend_from_slice(f));
     }
     *rows = sort_dedup_rows(p + 1, std::mem::take(rows));
+}
+
+/// B_{p,p−1} of every p-simplex of a closure (`tables` by dimension, each sorted): slot
+/// `k·(p+1) + i` holds the row in `tables[p − 1]` of the facet of simplex k opposite its vertex
+/// i. Each facet is found by binary search among the rows that start with its first vertex (a
+/// range the size of a vertex star, so the search stays in cache); p-simplices in ranges on
+/// [`crate::parallel::threads`] threads, each row written by one range. O(n_p · p · log star).
+pub(crate) fn facet_links(tables: &[crate::complex::SimplexTable], p: usize) -> Vec<u32> {
+    let below = &tables[p - 1];
+    // start[v]: the first row of `below` whose first vertex is ≥ v.
+    let n = tables[0].len();
+    let mut start = vec![0u32; n + 1];
+    for s in below.iter() {
+        start[s[0] as usize + 1] += 1;
+    }
+    for v in 0..n {
+        start[v + 1] += start[v];
+    }
+    let mut b = vec![0u32; tables[p].len() * (p + 1)];
+    crate::parallel::fill_rows(&mut b, p + 1, |i, row| {
+        let s = tables[p].get(i);
+        let mut facet = [0u32; 16];
+        for (skip, slot) in row.iter_mut().enumerate() {
+            facet[..skip].copy_from_slice(&s[..skip]);
+            facet[skip..p].copy_from_slice(&s[skip + 1..]);
+            let (mut lo, mut hi) = (
+                start[facet[0] as usize] as usize,
+                start[facet[0] as usize + 1] as usize,
+            );
+            while lo < hi {
+                let mid = (lo + hi) / 2;
+                if below.get(mid) < &facet[..p] {
+                    lo = mid + 1;
+                } else {
+                    hi = mid;
+                }
+            }
+            let k = lo;
+            debug_assert_eq!(below.get(k), &facet[..p], "closure contains every facet");
+            *slot = k as u32;
+        }
+    });
+    b
 }
