@@ -270,6 +270,11 @@ pub(crate) fn facet_links(tables: &[crate::complex::SimplexTable], p: usize) -> 
     for v in 0..n {
         start[v + 1] += start[v];
     }
+    // Rows as one word each when p ids fit (a compare of words, not of slices).
+    let bits = crate::complex::table::id_bits(n.saturating_sub(1) as u32);
+    let pack = |r: &[u32]| r.iter().fold(0u64, |k, &v| k << bits | u64::from(v));
+    let packed = (p as u32 * bits <= 64)
+        .then(|| crate::parallel::map_collect(below.len(), |i| pack(below.get(i))));
     let mut b = vec![0u32; tables[p].len() * (p + 1)];
     crate::parallel::fill_rows(&mut b, p + 1, |i, row| {
         let s = tables[p].get(i);
@@ -277,19 +282,28 @@ pub(crate) fn facet_links(tables: &[crate::complex::SimplexTable], p: usize) -> 
         for (skip, slot) in row.iter_mut().enumerate() {
             facet[..skip].copy_from_slice(&s[..skip]);
             facet[skip..p].copy_from_slice(&s[skip + 1..]);
-            let (mut lo, mut hi) = (
+            let (lo, hi) = (
                 start[facet[0] as usize] as usize,
                 start[facet[0] as usize + 1] as usize,
             );
-            while lo < hi {
-                let mid = (lo + hi) / 2;
-                if below.get(mid) < &facet[..p] {
-                    lo = mid + 1;
-                } else {
-                    hi = mid;
+            let k = match &packed {
+                Some(keys) => {
+                    let key = pack(&facet[..p]);
+                    lo + keys[lo..hi].partition_point(|&x| x < key)
                 }
-            }
-            let k = lo;
+                None => {
+                    let (mut lo, mut hi) = (lo, hi);
+                    while lo < hi {
+                        let mid = (lo + hi) / 2;
+                        if below.get(mid) < &facet[..p] {
+                            lo = mid + 1;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                    lo
+                }
+            };
             debug_assert_eq!(below.get(k), &facet[..p], "closure contains every facet");
             *slot = k as u32;
         }
