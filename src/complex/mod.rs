@@ -678,7 +678,7 @@ impl Complex {
     /// the cache; buckets come out in vertex order, so their concatenation is the sorted table.
     /// Ranges of vertices run on [`crate::parallel::threads`] threads. O(Σ_top 2^{p+1}) time (the
     /// closure bound the budget checks), the closure's size in memory. Ids too wide for d of
-    /// them to fit a word fall back to [`Complex::closure_by_levels`].
+    /// them to fit a word fall back to the level-by-level closure.
     pub fn closure(&self) -> Vec<SimplexTable> {
         let d = self.dimension();
         let bits = table::id_bits(self.n_vertices.saturating_sub(1));
