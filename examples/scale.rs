@@ -7,6 +7,8 @@
 //!   at the radius giving ~12 neighbours, up to dimension DIM, as `.simplices`;
 //! - `scale phases FILE KIND THREADS TPX`: parse, build (THREADS threads), save to TPX, open,
 //!   vertex-star walks on the opened structure; one `phase seconds peak_rss_mib` line each.
+//! - `scale soup FILE THREADS KIND,..`: what the side-by-side `build` op times (a complex from
+//!   the listing's arrays, then the structure), best of 5, with the complex's share;
 //! - `scale structures FILE THREADS [KIND,..]`: builds each structure (every kind, or the
 //!   listed ones) with 1 and with THREADS threads, one `kind seconds_1 seconds_N same` line
 //!   each, `same` saying whether both builds save to the same bytes.
@@ -290,6 +292,34 @@ fn structures(file: &Path, threads: usize, kinds: &[StructureKind]) {
     }
 }
 
+fn soup(file: &Path, threads: usize, kinds: &[StructureKind]) {
+    let raw = topoplex::io::read_path(file).expect("read");
+    let n = raw
+        .vertex_count
+        .unwrap_or_else(|| raw.ids.iter().max().map_or(0, |m| m + 1));
+    topoplex::parallel::set_threads(threads);
+    for &kind in kinds {
+        let (mut best, mut complex_best) = (f64::INFINITY, f64::INFINITY);
+        let mut simplices = 0;
+        for _ in 0..5 {
+            let t = Instant::now();
+            let c =
+                topoplex::Complex::from_arrays(n, &raw.ids, &raw.offsets, None).expect("complex");
+            let tc = t.elapsed().as_secs_f64();
+            let s = topoplex::structures::build(kind, &c).expect("build");
+            let all = t.elapsed().as_secs_f64();
+            simplices = (0..=s.dimension()).map(|p| s.count(p)).sum::<usize>();
+            if all < best {
+                (best, complex_best) = (all, tc);
+            }
+        }
+        println!(
+            "{kind} {best:.4} s (complex {complex_best:.4} s) {simplices} simplices {:.1} ns/simplex",
+            best * 1e9 / simplices as f64
+        );
+    }
+}
+
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let a: Vec<&str> = args.iter().map(String::as_str).collect();
@@ -305,6 +335,14 @@ fn main() {
                 threads.parse().unwrap(),
                 Path::new(tpx),
             );
+            Ok(())
+        }
+        ["soup", file, threads, list] => {
+            let kinds: Vec<StructureKind> = list
+                .split(',')
+                .map(|k| StructureKind::from_name(k).expect("structure name"))
+                .collect();
+            soup(Path::new(file), threads.parse().unwrap(), &kinds);
             Ok(())
         }
         ["structures", file, threads, rest @ ..] => {

@@ -43,6 +43,25 @@ pub(crate) fn ranges(n: usize) -> Vec<std::ops::Range<usize>> {
     (0..n).step_by(step).map(|a| a..(a + step).min(n)).collect()
 }
 
+/// Consecutive ranges of the `off.len() - 1` items of a CSR layout (item `i` weighs
+/// `off[i + 1] - off[i]`), cut so that each holds about the same weight: one range when the
+/// total weight is below the split threshold, else 4 per thread.
+pub(crate) fn ranges_by_weight(off: &[usize]) -> Vec<std::ops::Range<usize>> {
+    let n = off.len().saturating_sub(1);
+    let total = off.last().copied().unwrap_or(0);
+    if !splits(total) || n == 0 {
+        return std::iter::once(0..n).collect();
+    }
+    let parts = 4 * threads();
+    let mut cuts: Vec<usize> = (1..parts)
+        .map(|k| off.partition_point(|&o| o < k * total / parts).min(n))
+        .collect();
+    cuts.insert(0, 0);
+    cuts.push(n);
+    cuts.dedup();
+    cuts.windows(2).map(|w| w[0]..w[1]).collect()
+}
+
 /// `f` over each of [`ranges`]`(n)`, results in range order.
 pub(crate) fn map_ranges<T: Send>(
     n: usize,

@@ -1,8 +1,8 @@
 //! Helpers several structures share: per-query scratch sets and stacks for walks ([`IdSet`],
 //! [`IdStack`], [`RowSet`]), face enumeration ([`faces_containing`], [`faces_of_tops`]), the
-//! union–find, per-thread pooled scratch buffers ([`Scratch`]), [`show`] for messages, and the
-//! fallible allocations of input-sized arrays ([`try_vec`], [`try_with_capacity`], [`try_iota`],
-//! [`try_reserve`]).
+//! union–find, per-thread pooled scratch buffers ([`Scratch`]), the boundary links of a closure
+//! ([`facet_links`]), [`show`] for messages, and the fallible allocations of input-sized arrays
+//! ([`try_vec`], [`try_with_capacity`], [`try_iota`], [`try_reserve`]).
 
 use std::cell::RefCell;
 use std::thread::LocalKey;
@@ -491,4 +491,61 @@ pub(crate) fn faces_of_tops<'a>(
         faces_containing(t, &[], p, |f| rows.extend_from_slice(f));
     }
     *rows = sort_dedup_rows(p + 1, std::mem::take(rows));
+}
+
+/// B_{p,p−1} of every p-simplex of a closure (`tables` by dimension, each sorted): slot
+/// `k·(p+1) + i` holds the row in `tables[p − 1]` of the facet of simplex k opposite its vertex
+/// i. Each facet is found by binary search among the rows that start with its first vertex (a
+/// range the size of a vertex star, so the search stays in cache); p-simplices in ranges on
+/// [`crate::parallel::threads`] threads, each row written by one range. O(n_p · p · log star).
+pub(crate) fn facet_links(tables: &[crate::complex::SimplexTable], p: usize) -> Vec<u32> {
+    let below = &tables[p - 1];
+    // start[v]: the first row of `below` whose first vertex is ≥ v.
+    let n = tables[0].len();
+    let mut start = vec![0u32; n + 1];
+    for s in below.iter() {
+        start[s[0] as usize + 1] += 1;
+    }
+    for v in 0..n {
+        start[v + 1] += start[v];
+    }
+    // Rows as one word each when p ids fit (a compare of words, not of slices).
+    let bits = crate::complex::table::id_bits(n.saturating_sub(1) as u32);
+    let pack = |r: &[u32]| r.iter().fold(0u64, |k, &v| k << bits | u64::from(v));
+    let packed = (p as u32 * bits <= 64)
+        .then(|| crate::parallel::map_collect(below.len(), |i| pack(below.get(i))));
+    let mut b = vec![0u32; tables[p].len() * (p + 1)];
+    crate::parallel::fill_rows(&mut b, p + 1, |i, row| {
+        let s = tables[p].get(i);
+        let mut facet = [0u32; 16];
+        for (skip, slot) in row.iter_mut().enumerate() {
+            facet[..skip].copy_from_slice(&s[..skip]);
+            facet[skip..p].copy_from_slice(&s[skip + 1..]);
+            let (lo, hi) = (
+                start[facet[0] as usize] as usize,
+                start[facet[0] as usize + 1] as usize,
+            );
+            let k = match &packed {
+                Some(keys) => {
+                    let key = pack(&facet[..p]);
+                    lo + keys[lo..hi].partition_point(|&x| x < key)
+                }
+                None => {
+                    let (mut lo, mut hi) = (lo, hi);
+                    while lo < hi {
+                        let mid = (lo + hi) / 2;
+                        if below.get(mid) < &facet[..p] {
+                            lo = mid + 1;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                    lo
+                }
+            };
+            debug_assert_eq!(below.get(k), &facet[..p], "closure contains every facet");
+            *slot = k as u32;
+        }
+    });
+    b
 }

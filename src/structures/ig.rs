@@ -30,10 +30,9 @@
 //! Queries keep no state in the structure: the "visited" marks are a per-query set.
 
 use super::common::try_closure;
-use super::common::{IdSet, Scratch, faces_containing};
+use super::common::{IdSet, Scratch, faces_containing, facet_links};
 use super::nav::{NavBase, NavIndex, with_scratch};
 use super::{BuildError, to_u32};
-use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable};
 use crate::handle::SimplexHandle;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
@@ -65,58 +64,13 @@ impl IncidenceGraph {
         }
         let d = tables.len() - 1;
         let mut boundary: Vec<Vec<u32>> = vec![Vec::new(); d + 1];
-        let bits = id_bits(complex.vertex_count() - 1);
         for p in 1..=d {
-            let below = &tables[p - 1];
-            let w = p + 1;
-            let slots = tables[p].len() * w;
-            to_u32(KIND, slots, "boundary links of one dimension")?;
-            // Slot k = (simplex k / w, facet opposite vertex k % w).
-            let facet = |k: u32, f: &mut [u32; 16]| {
-                let s = tables[p].get(k as usize / w);
-                let skip = k as usize % w;
-                f[..skip].copy_from_slice(&s[..skip]);
-                f[skip..p].copy_from_slice(&s[skip + 1..]);
-            };
-            let mut b = vec![0u32; slots];
-            let mut f = [0u32; 16];
-            let order = order_by_key(slots, p as u32 * bits, |k| {
-                let mut f = [0u32; 16];
-                facet(k, &mut f);
-                f[..p].iter().fold(0u64, |acc, &v| (acc << bits) | v as u64)
-            });
-            if let Some(order) = order {
-                // Slots in facet order against the facet table, also in order: one linear merge
-                // instead of a binary search per slot, which misses the cache on large tables.
-                // Ranges of the order merge on their own threads, each from a binary search.
-                let rows = crate::parallel::map_ranges(order.len(), |range| {
-                    let mut f = [0u32; 16];
-                    let mut rows = Vec::with_capacity(range.len());
-                    let Some(&k0) = order.get(range.start) else {
-                        return rows;
-                    };
-                    facet(k0, &mut f);
-                    let mut j = below.find(&f[..p]).expect("closure contains every facet") as usize;
-                    for &k in &order[range] {
-                        facet(k, &mut f);
-                        while below.get(j) < &f[..p] {
-                            j += 1;
-                        }
-                        debug_assert_eq!(below.get(j), &f[..p], "closure contains every facet");
-                        rows.push(j as u32);
-                    }
-                    rows
-                });
-                for (&k, j) in order.iter().zip(rows.into_iter().flatten()) {
-                    b[k as usize] = j;
-                }
-            } else {
-                for k in 0..slots as u32 {
-                    facet(k, &mut f);
-                    b[k as usize] = below.find(&f[..p]).expect("closure contains every facet");
-                }
-            }
-            boundary[p] = b;
+            to_u32(
+                KIND,
+                tables[p].len() * (p + 1),
+                "boundary links of one dimension",
+            )?;
+            boundary[p] = facet_links(&tables, p);
         }
         let mut cob_offsets = vec![Vec::new(); d];
         let mut cob = vec![Vec::new(); d];

@@ -390,26 +390,12 @@ fn walk_faces<B: std::ops::Deref<Target = [u32]>>(
     }
 }
 
-/// Boundaries of every simplex by binary search of each facet in the table below, in ranges of
-/// simplices on [`crate::parallel::threads`] threads (each row written by one range).
+/// Boundaries of every simplex ([`super::common::facet_links`] per dimension).
 fn boundaries(tables: &[SimplexTable]) -> Result<Vec<Vec<u32>>, BuildError> {
     let d = tables.len() - 1;
     let mut boundary = vec![Vec::new(); d + 1];
-    for p in 1..=d {
-        let below = &tables[p - 1];
-        let mut b = vec![0u32; tables[p].len() * (p + 1)];
-        crate::parallel::fill_rows(&mut b, p + 1, |i, row| {
-            let s = tables[p].get(i);
-            let mut facet = [0u32; 16];
-            for (skip, slot) in row.iter_mut().enumerate() {
-                facet[..skip].copy_from_slice(&s[..skip]);
-                facet[skip..p].copy_from_slice(&s[skip + 1..]);
-                *slot = below
-                    .find(&facet[..p])
-                    .expect("closure contains every facet");
-            }
-        });
-        boundary[p] = b;
+    for (p, b) in boundary.iter_mut().enumerate().skip(1) {
+        *b = super::common::facet_links(tables, p);
     }
     Ok(boundary)
 }
