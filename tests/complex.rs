@@ -302,6 +302,10 @@ fn long_listings_of_repeats_dedup_in_blocks_with_the_same_result() {
         );
         // The listing keeps every simplex as given.
         assert_eq!(c.input_count(), tris.len(), "{name}");
-        assert_eq!(c.input_simplex(tris.len() - 1), &tris[tris.len() - 1], "{name}");
+        assert_eq!(
+            c.input_simplex(tris.len() - 1),
+            &tris[tris.len() - 1],
+            "{name}"
+        );
     }
 }

@@ -323,14 +323,7 @@ fn parse_kind(structure: &str) -> Result<StructureKind, String> {
 fn save(file: &Path, structure: Option<&str>, out: &Path) -> Result<(), String> {
     let kind = structure.map(parse_kind).transpose()?;
     // Writing over the input would truncate it under its own memory map (a .tpx input).
-    if let (Ok(a), Ok(b)) = (std::fs::metadata(file), std::fs::metadata(out))
-        && same_file(&a, &b)
-    {
-        return Err(format!(
-            "--out {} is the input file; choose another path",
-            echo_path(out)
-        ));
-    }
+    not_the_input(file, out, "--out ")?;
     let complex = load(file)?;
     let built = match kind {
         Some(k) if topoplex::store::is_saved_path(file) => Some(load_structure(file, k)?),
@@ -460,6 +453,8 @@ fn convert(input: &Path, output: &Path, format: Option<&str>, census: bool) -> R
             echo_path(output)
         ));
     }
+    // The input's content beyond the complex (OBJ normals, PLY properties, ...) would be lost.
+    not_the_input(input, output, "")?;
     let complex = load(input)?;
     if census {
         return topoplex::report::census_vtk::write_census_vtk(&complex, output)
@@ -534,6 +529,18 @@ fn prepare_out_dir(input: &Path, out: &Path, force: bool) -> Result<(), String> 
 }
 
 /// Whether two paths' metadata are one file (hard links and symbolic links included).
+/// Refuses an output path that is the input file itself (issue 16 class 9: never overwrite the
+/// input); `flag` names the argument in the message.
+fn not_the_input(input: &Path, out: &Path, flag: &str) -> Result<(), String> {
+    match (std::fs::metadata(input), std::fs::metadata(out)) {
+        (Ok(a), Ok(b)) if same_file(&a, &b) => Err(format!(
+            "{flag}{} is the input file; choose another path",
+            echo_path(out)
+        )),
+        _ => Ok(()),
+    }
+}
+
 fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
     #[cfg(unix)]
     {
@@ -558,14 +565,7 @@ fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Re
         ratio,
         preserve_topology,
     };
-    if let (Ok(a), Ok(b)) = (std::fs::metadata(input), std::fs::metadata(out))
-        && same_file(&a, &b)
-    {
-        return Err(format!(
-            "--out {} is the input file; choose another path",
-            echo_path(out)
-        ));
-    }
+    not_the_input(input, out, "--out ")?;
     let complex = load(input)?;
     // Refuse an unknown or unfit format and an unwritable output before the work, not after.
     let existed = out.exists();
