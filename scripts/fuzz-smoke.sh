@@ -23,7 +23,8 @@ for src in fuzz_targets/*.rs; do
   mkdir -p "$work/$t" artifacts/"$t"
   cp -r corpus/"$t"/. "$work/$t"/
   echo "== fuzz $t (${secs}s)"
-  if ! "$CARGO_TARGET_DIR/$target/release/$t" "$work/$t" -max_total_time="$secs" -rss_limit_mb=2048 \
+  # TMPDIR: the CLI target writes its fixtures and outputs in a scratch directory under it.
+  if ! TMPDIR="$work" "$CARGO_TARGET_DIR/$target/release/$t" "$work/$t" -max_total_time="$secs" -rss_limit_mb=2048 \
       -max_len=8192 -artifact_prefix=artifacts/"$t"/ >"$work/$t.log" 2>&1; then
     tail -40 "$work/$t.log"
     echo "fuzz target $t failed (reproducer under fuzz/artifacts/$t)"

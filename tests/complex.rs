@@ -258,3 +258,54 @@ fn input_order_and_winding_are_kept() {
     assert_eq!(c.top_oriented(0, 0), &[2]);
     assert_eq!(c.tops_as_given().count(), 1);
 }
+
+/// Issue 16 class 5: a long listing of few distinct simplices (a file of short lines) is
+/// deduplicated block by block as it is read; the result and the counts are those of one final
+/// sort. Three cases: repeats only, repeats after a run of distinct triangles (blocks keep
+/// halving), distinct triangles after repeats (deduplication stops, the rest is kept).
+#[test]
+fn long_listings_of_repeats_dedup_in_blocks_with_the_same_result() {
+    // Triangles of a fan around vertex 0: [0 i i+1].
+    let fan = |i: u32| [0, i, i + 1];
+    let cases: [(&str, Vec<[u32; 3]>); 3] = [
+        ("repeats", (0..1_500_000).map(|k| fan(1 + k % 7)).collect()),
+        (
+            "distinct then repeats",
+            (0..200_000)
+                .map(|k| fan(1 + k))
+                .chain((0..1_300_000).map(|k| fan(1 + k % 7)))
+                .collect(),
+        ),
+        (
+            "repeats then distinct",
+            (0..600_000)
+                .map(|k| fan(1 + k % 7))
+                .chain((0..900_000).map(|k| fan(1 + k)))
+                .collect(),
+        ),
+    ];
+    for (name, tris) in cases {
+        let ids: Vec<u32> = tris.iter().flatten().copied().collect();
+        let offsets: Vec<usize> = (0..=tris.len()).map(|i| 3 * i).collect();
+        let n = ids.iter().max().unwrap() + 1;
+        let c = Complex::from_arrays(n, &ids, &offsets, None).unwrap();
+        let mut unique = tris.clone();
+        unique.sort_unstable();
+        unique.dedup();
+        let flat: Vec<u32> = unique.iter().flatten().copied().collect();
+        assert_eq!(c.tops(2).as_flat(), &flat[..], "{name}");
+        let s = c.stats();
+        assert_eq!(
+            (s.input_simplices, s.absorbed_duplicates, s.absorbed_faces),
+            (tris.len(), tris.len() - unique.len(), 0),
+            "{name}"
+        );
+        // The listing keeps every simplex as given.
+        assert_eq!(c.input_count(), tris.len(), "{name}");
+        assert_eq!(
+            c.input_simplex(tris.len() - 1),
+            &tris[tris.len() - 1],
+            "{name}"
+        );
+    }
+}

@@ -228,6 +228,23 @@ fn cases(dir: &Path) -> Vec<(&'static str, &'static str, String)> {
         );
     }
 
+    // Class 9: no command writes over its input.
+    write(
+        dir,
+        "mesh.obj",
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1\n",
+    );
+    row(
+        "9 silent overwrites",
+        "`convert mesh.obj mesh.obj` (the normals would be lost)",
+        outcome(dir, &run_in(dir, &["convert", "mesh.obj", "mesh.obj"])),
+    );
+    assert!(
+        std::fs::read_to_string(dir.join("mesh.obj"))
+            .unwrap()
+            .contains("vn")
+    );
+
     // Class 9: decompose never overwrites silently.
     write(dir, "bowtie.simplices", "s 0 1 2\ns 2 3 4\n");
     std::fs::create_dir_all(dir.join("parts")).unwrap();

@@ -9,7 +9,7 @@
 use std::io::{BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::{OnceLock, mpsc};
+use std::sync::{Mutex, mpsc};
 use std::time::Duration;
 
 use clap::{CommandFactory, Parser, Subcommand};
@@ -159,27 +159,34 @@ fn parse_pq(s: &str) -> Result<(usize, usize), String> {
     Ok((num(p)?, num(q)?))
 }
 
-/// The budget of every input (set once from `--max-simplices`).
-static BUDGET: OnceLock<Budget> = OnceLock::new();
+/// The budget of every input (from `--max-simplices`; a mutex rather than a once-cell so the
+/// CLI can be run several times in one process, as the CLI fuzz target does).
+static BUDGET: Mutex<Option<u64>> = Mutex::new(None);
 
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
-        Ok(cli) => cli,
-        Err(e) => return clap_exit(&e),
-    };
-    let _ = BUDGET.set(Budget {
-        max_simplices: cli.max_simplices,
-    });
-    if let Some(n) = cli.threads {
-        if n == 0 {
-            return fail("--threads must be at least 1");
-        }
-        topoplex::parallel::set_threads(n);
-    }
-    match run(cli.command) {
+    match cli(std::env::args_os()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(msg) => fail(&msg),
     }
+}
+
+/// The whole CLI on an argument list (program name first): `Ok` is exit 0, `Err` the message
+/// of exit 1, which [`main`] writes as one line. Also run in-process by the CLI fuzz target
+/// (fuzz/fuzz_targets/cli_args.rs), which includes this file as a module.
+pub fn cli(args: impl IntoIterator<Item = std::ffi::OsString>) -> Result<(), String> {
+    let cli = Cli::try_parse_from(args).map_err(|e| clap_outcome(&e));
+    let cli = match cli {
+        Ok(cli) => cli,
+        Err(outcome) => return outcome,
+    };
+    *BUDGET.lock().unwrap_or_else(|e| e.into_inner()) = cli.max_simplices;
+    if let Some(n) = cli.threads {
+        if n == 0 {
+            return Err("--threads must be at least 1".to_string());
+        }
+        topoplex::parallel::set_threads(n);
+    }
+    run(cli.command)
 }
 
 /// One arm per subcommand.
@@ -235,24 +242,22 @@ fn fail(msg: &str) -> ExitCode {
 /// clap's outcome when parsing fails: `--help`/`--version` print to stdout (exit 0, or 1 when
 /// stdout cannot take them); every usage error becomes one line and exit 1 (clap's own is
 /// several lines and exit 2).
-fn clap_exit(e: &clap::Error) -> ExitCode {
+fn clap_outcome(e: &clap::Error) -> Result<(), String> {
     use clap::error::ErrorKind;
     match e.kind() {
-        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => {
-            print(&e.render().to_string()).map_or_else(|msg| fail(&msg), |()| ExitCode::SUCCESS)
-        }
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => print(&e.render().to_string()),
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
             let names: Vec<String> = Cli::command()
                 .get_subcommands()
                 .map(|c| c.get_name().to_string())
                 .filter(|n| n != "help")
                 .collect();
-            fail(&format!(
+            Err(format!(
                 "no command given (one of: {}; see topoplex --help)",
                 names.join(", ")
             ))
         }
-        _ => fail(&usage_line(&e.render().to_string())),
+        _ => Err(usage_line(&e.render().to_string())),
     }
 }
 
@@ -289,7 +294,9 @@ fn load(file: &Path) -> Result<Complex, String> {
         let saved = Saved::open(file).map_err(|e| e.to_string())?;
         return saved.complex().map_err(|e| e.to_string());
     }
-    let budget = BUDGET.get().copied().unwrap_or_default();
+    let budget = Budget {
+        max_simplices: *BUDGET.lock().unwrap_or_else(|e| e.into_inner()),
+    };
     Complex::from_path_with(file, budget).map_err(|e| e.to_string())
 }
 
@@ -323,14 +330,7 @@ fn save(file: &Path, structure: Option<&str>, out: &Path) -> Result<(), String> 
         })
         .transpose()?;
     // Writing over the input would truncate it under its own memory map (a .tpx input).
-    if let (Ok(a), Ok(b)) = (std::fs::metadata(file), std::fs::metadata(out))
-        && same_file(&a, &b)
-    {
-        return Err(format!(
-            "--out {} is the input file; choose another path",
-            echo_path(out)
-        ));
-    }
+    not_the_input(file, out, "--out ")?;
     let complex = load(file)?;
     let built = match kind {
         Some(k) if topoplex::store::is_saved_path(file) => Some(load_structure(file, k)?),
@@ -460,6 +460,8 @@ fn convert(input: &Path, output: &Path, format: Option<&str>, census: bool) -> R
             echo_path(output)
         ));
     }
+    // The input's content beyond the complex (OBJ normals, PLY properties, ...) would be lost.
+    not_the_input(input, output, "")?;
     let complex = load(input)?;
     if census {
         return topoplex::report::census_vtk::write_census_vtk(&complex, output)
@@ -534,6 +536,18 @@ fn prepare_out_dir(input: &Path, out: &Path, force: bool) -> Result<(), String> 
 }
 
 /// Whether two paths' metadata are one file (hard links and symbolic links included).
+/// Refuses an output path that is the input file itself (issue 16 class 9: never overwrite the
+/// input); `flag` names the argument in the message.
+fn not_the_input(input: &Path, out: &Path, flag: &str) -> Result<(), String> {
+    match (std::fs::metadata(input), std::fs::metadata(out)) {
+        (Ok(a), Ok(b)) if same_file(&a, &b) => Err(format!(
+            "{flag}{} is the input file; choose another path",
+            echo_path(out)
+        )),
+        _ => Ok(()),
+    }
+}
+
 fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
     #[cfg(unix)]
     {
@@ -558,14 +572,7 @@ fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Re
         ratio,
         preserve_topology,
     };
-    if let (Ok(a), Ok(b)) = (std::fs::metadata(input), std::fs::metadata(out))
-        && same_file(&a, &b)
-    {
-        return Err(format!(
-            "--out {} is the input file; choose another path",
-            echo_path(out)
-        ));
-    }
+    not_the_input(input, out, "--out ")?;
     let complex = load(input)?;
     // Refuse an unknown or unfit format and an unwritable output before the work, not after.
     let existed = out.exists();

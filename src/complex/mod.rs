@@ -453,9 +453,10 @@ impl Complex {
             }
         }
         let highest = totals.iter().rposition(|&t| t > 0).map_or(0, |p| p + 1);
-        let mut by_dim: Vec<Vec<u32>> = totals[..highest]
+        let mut by_dim: Vec<Rows> = totals[..highest]
             .iter()
-            .map(|&t| Vec::with_capacity(t))
+            .enumerate()
+            .map(|(p, &t)| Rows::new(p + 1, t))
             .collect();
         let mut sorted = Vec::new();
         for i in 0..count {
@@ -489,24 +490,19 @@ impl Complex {
                     vertex: w[0],
                 });
             }
-            let p = s.len() - 1;
-            if by_dim.len() <= p {
-                by_dim.resize(p + 1, Vec::new());
-            }
-            by_dim[p]
-                .try_reserve(sorted.len())
-                .map_err(|_| oom("the input simplices", sorted.len() * 4))?;
-            by_dim[p].extend_from_slice(&sorted);
+            by_dim[s.len() - 1]
+                .push(&sorted)
+                .map_err(|bytes| oom("the input simplices", bytes))?;
         }
-        let id_count: usize = by_dim.iter().map(Vec::len).sum();
+        let id_count: usize = totals.iter().sum();
         let mut stats = InputStats {
             input_simplices: count,
             ..Default::default()
         };
         let mut tables: Vec<SimplexTable> = Vec::with_capacity(by_dim.len());
         for (p, rows) in by_dim.into_iter().enumerate() {
-            let (t, dups) = SimplexTable::from_rows(p + 1, rows);
-            stats.absorbed_duplicates += dups;
+            let (t, dups) = SimplexTable::from_rows(p + 1, rows.ids);
+            stats.absorbed_duplicates += dups + rows.absorbed;
             tables.push(t);
         }
         let bound = closure_bound(n, &tables);
@@ -845,6 +841,78 @@ fn faces_above<'a>(
                 out[q].push((key >> (bits * i as u32) & id_mask) as u32);
             }
         }
+    }
+}
+
+/// The sorted input rows of one dimension, deduplicated as they come while that pays: a file
+/// of many short lines lists the same few simplices over and over (an 8-byte `s 1 2 3` line can
+/// only name vertices 0–9), and holding every copy until the final sort would cost 12 bytes a
+/// line plus the sort's keys (issue 16 class 5: reading must peak under 5× the file). Each
+/// block of [`Rows::BLOCK`] rows is sorted and deduplicated with what is held; once a block
+/// removes less than half of the rows, the rest is reserved exactly and kept as is (unique
+/// inputs pay one sort of one block).
+struct Rows {
+    arity: usize,
+    ids: Vec<u32>,
+    /// Ids still to come for this dimension.
+    left: usize,
+    /// Row count at which the next block is deduplicated; `usize::MAX` once that stopped.
+    next_dedup: usize,
+    /// Rows removed as duplicates so far.
+    absorbed: usize,
+}
+
+impl Rows {
+    /// Rows a block holds before it is deduplicated.
+    const BLOCK: usize = 1 << 18;
+
+    fn new(arity: usize, total_ids: usize) -> Rows {
+        let rows = total_ids / arity;
+        let dedup = rows > 2 * Rows::BLOCK;
+        Rows {
+            arity,
+            // Exact reservation unless blocks may shrink it (growth by doubling would hold up
+            // to twice the ids).
+            ids: Vec::new(),
+            left: total_ids,
+            next_dedup: if dedup { Rows::BLOCK } else { usize::MAX },
+            absorbed: 0,
+        }
+    }
+
+    /// Appends one sorted row; `Err(bytes)` when memory runs out.
+    fn push(&mut self, row: &[u32]) -> Result<(), usize> {
+        if self.ids.len() == self.ids.capacity() {
+            let want = if self.next_dedup == usize::MAX {
+                self.left
+            } else {
+                (self.next_dedup * self.arity - self.ids.len()).min(self.left)
+            };
+            self.ids
+                .try_reserve_exact(want.max(row.len()))
+                .map_err(|_| want * 4)?;
+        }
+        self.ids.extend_from_slice(row);
+        self.left -= row.len();
+        if self.next_dedup != usize::MAX && self.ids.len() == self.next_dedup * self.arity {
+            self.dedup();
+        }
+        Ok(())
+    }
+
+    /// Sorts and deduplicates what is held; sets the next block's bound, or stops.
+    fn dedup(&mut self) {
+        let before = self.ids.len() / self.arity;
+        let ids = std::mem::take(&mut self.ids);
+        self.ids = sort_dedup_rows(self.arity, ids);
+        let after = self.ids.len() / self.arity;
+        self.absorbed += before - after;
+        // Held rows sorted plus a fresh block: continue while blocks halve at least.
+        self.next_dedup = if before - after >= Rows::BLOCK / 2 {
+            after + Rows::BLOCK
+        } else {
+            usize::MAX
+        };
     }
 }
 

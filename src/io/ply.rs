@@ -26,7 +26,7 @@ use ply_rs_bw::ply::{
 use ply_rs_bw::writer::Writer;
 
 use super::write::{check_coord_dim, check_max_len, vertex_count};
-use super::{Coords, RawInput, ReadErrorKind, syntax};
+use super::{Coords, RawInput, ReadErrorKind, echo, syntax};
 
 /// A property as a float, when it is a number.
 fn number(p: &Property) -> Option<f64> {
@@ -94,15 +94,7 @@ pub fn parse(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
                 Some((l, rest)) if l.starts_with("Line ") => rest,
                 _ => first,
             };
-            let mut shown: String = first
-                .chars()
-                .take(160)
-                .flat_map(char::escape_debug)
-                .collect();
-            if first.chars().count() > 160 {
-                shown.push_str("...");
-            }
-            (line, syntax(format!("PLY: {shown}")))
+            (line, syntax(format!("PLY: {}", echo(first))))
         })?;
     let at0 = |k| (0, k);
     let mut raw = RawInput::new();

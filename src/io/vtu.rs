@@ -19,7 +19,7 @@ use vtkio::model::{
 };
 
 use super::write::{check_coord_dim, check_max_len, vertex_count};
-use super::{Coords, RawInput, ReadErrorKind, syntax};
+use super::{Coords, RawInput, ReadErrorKind, echo, syntax};
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
@@ -120,11 +120,7 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
     // the process's panic hook, by default stderr).
     let parsed = std::panic::catch_unwind(|| Vtk::parse_xml(bytes))
         .map_err(|_| err("VTU: malformed data array (the vtkio crate panicked on it)"))?;
-    let vtk = parsed.map_err(|e| {
-        let msg = e.to_string();
-        let shown: String = msg.chars().take(200).flat_map(char::escape_debug).collect();
-        err(format!("VTU: {shown}"))
-    })?;
+    let vtk = parsed.map_err(|e| err(format!("VTU: {}", echo(e.to_string()))))?;
     let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
         return Err(err(
             "not an UnstructuredGrid (only unstructured grids are read)",

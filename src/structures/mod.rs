@@ -3,7 +3,10 @@
 //! Every build is linear (up to a log factor) in the closure of its complex, and the closure is
 //! bounded when the complex is made ([`crate::complex::Budget`]: by default `max(2^20, 64 ×
 //! input size)` simplices), so no input of a few bytes can make a build take gigabytes. A
-//! complex made under a raised or unlimited budget builds with the memory its closure needs.
+//! complex made under a raised or unlimited budget builds with the memory its closure needs,
+//! and when that memory cannot be had the build is [`BuildError::TooLarge`], never an abort:
+//! input-sized arrays are reserved fallibly (`common::try_*`) and steps that allocate inside
+//! sorts and walks first check their peak ([`crate::complex::table::headroom`]).
 
 use crate::complex::Complex;
 use crate::relation::{StructureKind, Topology};
