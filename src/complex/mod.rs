@@ -705,8 +705,9 @@ impl Complex {
         if d == 0 || d as u32 * bits > 64 {
             return self.closure_by_levels();
         }
-        // The buckets grow by pushes on worker threads: probe for their bound first (every
-        // face of every top, repeats and all, as ids) so that a refusal is an error, not an abort.
+        // The buckets grow by doubling pushes on worker threads (up to 3× their size while one
+        // moves): probe for that over their bound first (every face of every top, repeats and
+        // all, as ids), so that a refusal is an error, not an abort.
         let bound: usize = (1..=d)
             .map(|p| {
                 self.tops[p]
@@ -715,7 +716,7 @@ impl Complex {
                     .saturating_mul(4)
             })
             .fold(0, usize::saturating_add);
-        table::headroom(bound)?;
+        table::headroom(bound.saturating_mul(3))?;
         let (off, at) = self.tops_at_vertices()?;
         let parts = crate::parallel::ranges_by_weight(&off);
         let buckets = crate::parallel::map_chunks(parts.len(), |c| {
