@@ -591,3 +591,64 @@ pub fn write_with_fields(
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn vtk(body: &str) -> String {
+        format!("# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n{body}")
+    }
+
+    fn message(body: &str) -> (u32, String) {
+        let (line, kind) = parse(vtk(body).as_bytes()).unwrap_err();
+        (line, kind.to_string())
+    }
+
+    /// Streamed cells report as the whole block did: a malformed entry after a bad id wins
+    /// (read first), the block ending inside a cell wins over that cell's bad id, a bad id
+    /// wins over a type error.
+    #[test]
+    fn streamed_cells_report_errors_in_the_order_the_whole_block_did() {
+        let pts = "POINTS 3 double\n0 0 0 1 0 0 0 1 0\n";
+        let (l, m) = message(&format!(
+            "{pts}CELLS 2 6\n2 0 -1\n2 0 x\nCELL_TYPES 2\n3 3\n"
+        ));
+        assert_eq!(l, 9);
+        assert!(m.contains("'x' is not a int"), "{m}");
+        let (l, m) = message(&format!(
+            "{pts}CELLS 2 5\n2 0 1\n3 0 -1\nCELL_TYPES 2\n3 5\n"
+        ));
+        assert_eq!(l, 7);
+        assert!(m.contains("ends inside cell #1"), "{m}");
+        let (_, m) = message(&format!(
+            "{pts}CELLS 2 6\n2 0 -1\n2 0 1\nCELL_TYPES 2\n9 3\n"
+        ));
+        assert!(m.contains("-1"), "{m}");
+        let (l, m) = message(&format!(
+            "{pts}CELLS 2 6\n2 0 1\n2 0 1\nCELL_TYPES 2\n3 9\n"
+        ));
+        assert_eq!(l, 10);
+        assert!(m.contains("cell #1 has VTK type 9 (quad)"), "{m}");
+        let (_, m) = message(&format!(
+            "{pts}CELLS 2 6\n2 0 1\n2 0 1\nCELL_TYPES 3\n3 9 3\n"
+        ));
+        assert!(m.contains("3 cell types for 2 cells"), "{m}");
+    }
+
+    /// A repeated CELLS section replaces the first, as before.
+    #[test]
+    fn a_repeated_cells_section_replaces_the_first() {
+        let raw = parse(
+            vtk(
+                "POINTS 3 double\n0 0 0 1 0 0 0 1 0\nCELLS 1 3\n2 0 1\nCELLS 1 4\n3 0 1 2\n\
+                 CELL_TYPES 1\n5\n",
+            )
+            .as_bytes(),
+        )
+        .unwrap();
+        assert_eq!(raw.simplex_count(), 1);
+        assert_eq!(raw.simplex(0), &[0, 1, 2]);
+        assert_eq!(raw.lines, vec![9]);
+    }
+}
