@@ -994,8 +994,8 @@ TpxStatus tpx_complex_input_simplex(const struct TpxComplex *c,
 /**
  * Builds a live complex from `c`: the same vertex ids, every top simplex with its input
  * winding, the coordinates copied. `*out` receives a new handle owned by the caller (free with
- * `tpx_live_free`); it does not borrow `c`. Errors: NULL_ARGUMENT. Cost: O(size of the top
- * simplices).
+ * `tpx_live_free`); it does not borrow `c`. Errors: NULL_ARGUMENT; TOO_LARGE when the
+ * memory for its arrays cannot be had. Cost: O(size of the top simplices).
  *
  * # Safety
  * Non-NULL pointers must be valid.

@@ -44,7 +44,8 @@ unsafe impl std::alloc::GlobalAlloc for Tell {
 #[global_allocator]
 static ALLOC: Tell = Tell;
 
-const KINDS: [StructureKind; 9] = [
+/// The nine structures and the live complex (IA*, whose build is `LiveComplex::try_from_complex`).
+const KINDS: [StructureKind; 10] = [
     StructureKind::Ig,
     StructureKind::Sig,
     StructureKind::Ia,
@@ -54,6 +55,7 @@ const KINDS: [StructureKind; 9] = [
     StructureKind::Pe,
     StructureKind::Le,
     StructureKind::De,
+    StructureKind::IaStar,
 ];
 
 /// A k×k grid of squares, two triangles each, as a complex.

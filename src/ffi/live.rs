@@ -82,8 +82,8 @@ fn live_mut<'a>(p: *mut TpxLive) -> Result<&'a mut LiveComplex, Failure> {
 
 /// Builds a live complex from `c`: the same vertex ids, every top simplex with its input
 /// winding, the coordinates copied. `*out` receives a new handle owned by the caller (free with
-/// `tpx_live_free`); it does not borrow `c`. Errors: NULL_ARGUMENT. Cost: O(size of the top
-/// simplices).
+/// `tpx_live_free`); it does not borrow `c`. Errors: NULL_ARGUMENT; TOO_LARGE when the
+/// memory for its arrays cannot be had. Cost: O(size of the top simplices).
 ///
 /// # Safety
 /// Non-NULL pointers must be valid.
@@ -95,7 +95,8 @@ pub unsafe extern "C" fn tpx_live_from_complex(
     guard(|| {
         let c = handle(c, "c")?;
         let out = out_ptr(out, "out")?;
-        let live = LiveComplex::from_complex(&c.complex);
+        let live =
+            LiveComplex::try_from_complex(&c.complex).map_err(super::structure::build_failure)?;
         *out = Box::into_raw(Box::new(TpxLive::new(live)));
         Ok(())
     })

@@ -70,22 +70,45 @@ fn simplex_len(t: i64) -> Result<usize, &'static str> {
     })
 }
 
+/// A VTK data type name's byte size and whether it is a float.
+fn data_type(ty: &str, line: u32) -> Res<(usize, bool)> {
+    Ok(match ty.to_ascii_lowercase().as_str() {
+        "float" => (4, true),
+        "double" => (8, true),
+        "char" | "unsigned_char" | "bit" => (1, false),
+        "short" | "unsigned_short" => (2, false),
+        "int" | "unsigned_int" | "vtktypeint32" | "vtktypeuint32" => (4, false),
+        "long" | "unsigned_long" | "vtktypeint64" | "vtktypeuint64" | "vtkidtype" => (8, false),
+        _ => return Err((line, syntax(format!("unknown VTK data type '{ty}'")))),
+    })
+}
+
 impl Input<'_> {
-    /// `n` numbers of `ty` (a VTK data type name): ASCII tokens, or big-endian binary starting
-    /// after the newline that ends the keyword line `line`.
+    /// `n` numbers of `ty` (a VTK data type name), collected.
     fn numbers(&mut self, n: usize, ty: &str, line: u32, what: &str) -> Res<Vec<f64>> {
-        let (size, float) = match ty.to_ascii_lowercase().as_str() {
-            "float" => (4, true),
-            "double" => (8, true),
-            "char" | "unsigned_char" | "bit" => (1, false),
-            "short" | "unsigned_short" => (2, false),
-            "int" | "unsigned_int" | "vtktypeint32" | "vtktypeuint32" => (4, false),
-            "long" | "unsigned_long" | "vtktypeint64" | "vtktypeuint64" | "vtkidtype" => (8, false),
-            _ => return Err((line, syntax(format!("unknown VTK data type '{ty}'")))),
-        };
+        let (size, _) = data_type(ty, line)?;
         let mut out = Vec::with_capacity(n.min(self.left() / size.min(2) + 1));
+        self.each_number(n, ty, line, what, |_, x| {
+            out.push(x);
+            Ok(())
+        })?;
+        Ok(out)
+    }
+
+    /// Hands `n` numbers of `ty` to `f` one by one (with their index), so that a reader keeps
+    /// only what it needs of them: ASCII tokens, or big-endian binary starting after the
+    /// newline that ends the keyword line `line`.
+    fn each_number(
+        &mut self,
+        n: usize,
+        ty: &str,
+        line: u32,
+        what: &str,
+        mut f: impl FnMut(usize, f64) -> Res<()>,
+    ) -> Res<()> {
+        let (size, float) = data_type(ty, line)?;
         if self.binary {
-            return self.binary_numbers(n, ty, size, float, line, what, out);
+            return self.binary_numbers(n, ty, size, float, line, what, f);
         }
         for i in 0..n {
             let Some((tok, l)) = self.token() else {
@@ -103,11 +126,12 @@ impl Input<'_> {
                     Err(_) => None,
                 }
             };
-            out.push(
+            f(
+                i,
                 x.ok_or_else(|| (l, syntax(format!("'{tok}' is not a {ty} among the {what}"))))?,
-            );
+            )?;
         }
-        Ok(out)
+        Ok(())
     }
 
     #[allow(clippy::too_many_arguments)]
@@ -119,8 +143,8 @@ impl Input<'_> {
         float: bool,
         line: u32,
         what: &str,
-        mut out: Vec<f64>,
-    ) -> Res<Vec<f64>> {
+        mut f: impl FnMut(usize, f64) -> Res<()>,
+    ) -> Res<()> {
         // The block starts after the keyword line's newline.
         self.rest_of_line();
         let bytes = n
@@ -136,7 +160,10 @@ impl Input<'_> {
                 )
             })?;
         let signed = !ty.starts_with("unsigned") && !ty.contains("uint");
-        for c in self.b[self.pos..self.pos + bytes].chunks_exact(size) {
+        for (i, c) in self.b[self.pos..self.pos + bytes]
+            .chunks_exact(size)
+            .enumerate()
+        {
             let x = match (size, float) {
                 (4, true) => f64::from(f32::from_be_bytes(c.try_into().unwrap())),
                 (8, true) => f64::from_be_bytes(c.try_into().unwrap()),
@@ -149,10 +176,10 @@ impl Input<'_> {
                 (_, _) if signed => i64::from_be_bytes(c.try_into().unwrap()) as f64,
                 (_, _) => u64::from_be_bytes(c.try_into().unwrap()) as f64,
             };
-            out.push(x);
+            f(i, x)?;
         }
         self.pos += bytes;
-        Ok(out)
+        Ok(())
     }
 }
 
@@ -170,75 +197,146 @@ fn vertex_id(x: f64, line: u32) -> Res<u32> {
     Ok(x as u32)
 }
 
-/// The cells as (ids per cell) from the version 4 `CELLS m size` layout, or version 5's.
-fn read_cells(inp: &mut Input, version5: bool, line: u32) -> Res<(Vec<Vec<u32>>, u32)> {
+/// The cells, pushed into a fresh [`RawInput`] (each on the `CELLS` line), from the version 4
+/// `CELLS m size` layout or version 5's.
+fn read_cells(inp: &mut Input, version5: bool, line: u32) -> Res<RawInput> {
     let a = inp.count("CELLS")?;
     let b = inp.count("CELLS")?;
-    let mut cells = Vec::new();
+    let mut raw = RawInput::new();
+    // Exact reservations from the declared counts, capped by what the bytes left can hold
+    // (each entry takes at least 2 bytes in ASCII, 1 in binary).
+    let cap = inp.left() / if inp.binary { 1 } else { 2 } + 1;
+    raw.offsets.reserve_exact(a.min(cap));
+    raw.lines.reserve_exact(a.min(cap));
     if version5 {
-        let (kw, l) = inp.expect_token("OFFSETS")?;
-        if !kw.eq_ignore_ascii_case("OFFSETS") {
+        read_cells5(inp, a, b, line, &mut raw)?;
+    } else {
+        raw.ids.reserve_exact(b.saturating_sub(a).min(cap));
+        read_cells4(inp, a, b, line, &mut raw)?;
+    }
+    Ok(raw)
+}
+
+/// Version 5: `OFFSETS <type>` (`a` ints) then `CONNECTIVITY <type>` (`b` ints).
+fn read_cells5(inp: &mut Input, a: usize, b: usize, line: u32, raw: &mut RawInput) -> Res<()> {
+    let (kw, l) = inp.expect_token("OFFSETS")?;
+    if !kw.eq_ignore_ascii_case("OFFSETS") {
+        return Err((
+            l,
+            syntax(format!("expected OFFSETS after CELLS, found '{kw}'")),
+        ));
+    }
+    let (ty, _) = inp.expect_token("the OFFSETS data type")?;
+    let offsets = inp.numbers(a, ty, l, "offsets")?;
+    let (kw, l2) = inp.expect_token("CONNECTIVITY")?;
+    if !kw.eq_ignore_ascii_case("CONNECTIVITY") {
+        return Err((l2, syntax(format!("expected CONNECTIVITY, found '{kw}'"))));
+    }
+    let (ty, _) = inp.expect_token("the CONNECTIVITY data type")?;
+    let conn = inp.numbers(b, ty, l2, "connectivity entries")?;
+    let mut ids = Vec::new();
+    for (i, w) in offsets.windows(2).enumerate() {
+        let (s, e) = (w[0], w[1]);
+        if !(0.0 <= s && s <= e && e <= conn.len() as f64) {
             return Err((
                 l,
-                syntax(format!("expected OFFSETS after CELLS, found '{kw}'")),
+                syntax(format!("cell #{i}: offsets {s}..{e} out of order or range")),
             ));
         }
-        let (ty, _) = inp.expect_token("the OFFSETS data type")?;
-        let offsets = inp.numbers(a, ty, l, "offsets")?;
-        let (kw, l2) = inp.expect_token("CONNECTIVITY")?;
-        if !kw.eq_ignore_ascii_case("CONNECTIVITY") {
-            return Err((l2, syntax(format!("expected CONNECTIVITY, found '{kw}'"))));
+        ids.clear();
+        for &x in &conn[s as usize..e as usize] {
+            ids.push(vertex_id(x, l2)?);
         }
-        let (ty, _) = inp.expect_token("the CONNECTIVITY data type")?;
-        let conn = inp.numbers(b, ty, l2, "connectivity entries")?;
-        for (i, w) in offsets.windows(2).enumerate() {
-            let (s, e) = (w[0], w[1]);
-            if !(0.0 <= s && s <= e && e <= conn.len() as f64) {
-                return Err((
-                    l,
-                    syntax(format!("cell #{i}: offsets {s}..{e} out of order or range")),
-                ));
-            }
-            let ids = conn[s as usize..e as usize]
-                .iter()
-                .map(|&x| vertex_id(x, l2))
-                .collect::<Res<Vec<u32>>>()?;
-            cells.push(ids);
-        }
-    } else {
-        let flat = inp.numbers(b, "int", line, "CELLS entries")?;
-        let mut k = 0;
-        for i in 0..a {
-            let Some(&len) = flat.get(k) else {
-                return Err((
-                    line,
-                    syntax(format!("CELLS size {b} ends inside cell #{i}")),
-                ));
-            };
-            // A huge or non-finite length saturates; the end must not overflow past it.
-            let len = len.max(0.0) as usize;
-            let end = (k + 1).saturating_add(len);
-            let ids = flat.get(k + 1..end).ok_or_else(|| {
-                (
-                    line,
-                    syntax(format!("CELLS size {b} ends inside cell #{i}")),
-                )
-            })?;
-            cells.push(
-                ids.iter()
-                    .map(|&x| vertex_id(x, line))
-                    .collect::<Res<Vec<u32>>>()?,
-            );
-            k = end;
-        }
-        if k != flat.len() {
-            return Err((
-                line,
-                syntax(format!("CELLS size {b} but the {a} cells use {k}")),
-            ));
-        }
+        raw.push(&ids, line);
     }
-    Ok((cells, line))
+    Ok(())
+}
+
+/// Version 4: `CELLS a b`, then `b` ints making `a` lists "k id ... id". Streams the entries
+/// straight into `raw`; a structural error is kept until every entry has been read, so that a
+/// malformed or missing entry later in the block is reported first, as when the whole block
+/// was read before being split into cells.
+fn read_cells4(inp: &mut Input, a: usize, b: usize, line: u32, raw: &mut RawInput) -> Res<()> {
+    let ends_inside = |i: usize| {
+        (
+            line,
+            syntax(format!("CELLS size {b} ends inside cell #{i}")),
+        )
+    };
+    let mut pending: Option<(u32, ReadErrorKind)> = None;
+    // The cell being read: its index, the ids it still expects, its first bad id.
+    let mut cell = 0usize;
+    let mut left = 0usize;
+    let mut in_cell = false;
+    let mut bad_id: Option<(u32, ReadErrorKind)> = None;
+    let mut used = 0usize;
+    inp.each_number(b, "int", line, "CELLS entries", |_, x| {
+        if pending.is_some() {
+            return Ok(());
+        }
+        if in_cell {
+            match vertex_id(x, line) {
+                Ok(v) => raw.ids.push(v),
+                Err(e) => {
+                    bad_id.get_or_insert(e);
+                }
+            }
+            left -= 1;
+        } else if cell < a {
+            // A huge or non-finite length saturates.
+            left = x.max(0.0) as usize;
+            in_cell = true;
+        } else {
+            return Ok(());
+        }
+        used += 1;
+        if in_cell && left == 0 {
+            if let Some(e) = bad_id.take() {
+                pending = Some(e);
+            }
+            raw.offsets.push(raw.ids.len());
+            raw.lines.push(line);
+            in_cell = false;
+            cell += 1;
+        }
+        Ok(())
+    })?;
+    if let Some(e) = pending {
+        return Err(e);
+    }
+    if in_cell || cell < a {
+        return Err(ends_inside(cell));
+    }
+    if used != b {
+        return Err((
+            line,
+            syntax(format!("CELLS size {b} but the {a} cells use {used}")),
+        ));
+    }
+    Ok(())
+}
+
+/// The first cell of `raw` whose VTK type `t` (cell `i`) is no simplex or does not match its
+/// id count, as the error to report.
+fn check_type(raw: &RawInput, i: usize, t: f64, types_line: u32, cells_line: u32) -> Res<()> {
+    let len = simplex_len(t as i64).map_err(|name| {
+        (
+            types_line,
+            syntax(format!(
+                "cell #{i} has VTK type {t} ({name}), which is not a simplex"
+            )),
+        )
+    })?;
+    let have = raw.simplex(i).len();
+    if have != len {
+        return Err((
+            cells_line,
+            syntax(format!(
+                "cell #{i} of VTK type {t} has {have} ids, expected {len}"
+            )),
+        ));
+    }
+    Ok(())
 }
 
 /// Parses a legacy VTK unstructured grid.
@@ -283,9 +381,15 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
             )),
         ));
     }
+    read_sections(&mut inp, version5)
+}
+
+/// The sections after the header, up to `CELL_TYPES`, checked against each other. Cell types
+/// are checked as they are read, not kept.
+fn read_sections(inp: &mut Input, version5: bool) -> Res<RawInput> {
     let mut points: Option<Vec<f64>> = None;
-    let mut cells: Option<(Vec<Vec<u32>>, u32)> = None;
-    let types = loop {
+    let mut cells: Option<(RawInput, u32)> = None;
+    let (m, types_line, bad_type) = loop {
         let (kw, l) = inp.expect_token("POINTS, CELLS or CELL_TYPES")?;
         match kw.to_ascii_uppercase().as_str() {
             "POINTS" => {
@@ -294,6 +398,7 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
                 let n3 = n
                     .checked_mul(3)
                     .ok_or((l, syntax("POINTS count too large")))?;
+                points.take(); // a repeated section replaces the first: free it first
                 points = Some(inp.numbers(n3, ty, l, "point coordinates")?);
             }
             "METADATA" => {
@@ -301,10 +406,23 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
                 inp.rest_of_line();
                 while inp.left() > 0 && !inp.rest_of_line().trim_ascii().is_empty() {}
             }
-            "CELLS" => cells = Some(read_cells(&mut inp, version5, l)?),
+            "CELLS" => {
+                cells.take();
+                cells = Some((read_cells(inp, version5, l)?, l));
+            }
             "CELL_TYPES" => {
                 let m = inp.count("CELL_TYPES")?;
-                break (inp.numbers(m, "int", l, "cell types")?, l);
+                let mut bad = None;
+                inp.each_number(m, "int", l, "cell types", |i, t| {
+                    if bad.is_none()
+                        && let Some((raw, cells_line)) = &cells
+                        && i < raw.simplex_count()
+                    {
+                        bad = check_type(raw, i, t, l, *cells_line).err();
+                    }
+                    Ok(())
+                })?;
+                break (m, l, bad);
             }
             "FIELD" => {
                 return Err((l, syntax("FIELD data before CELL_TYPES is not supported")));
@@ -319,46 +437,23 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
             }
         }
     };
-    let points = points.ok_or((types.1, syntax("no POINTS section")))?;
-    let (cells, cells_line) = cells.ok_or((types.1, syntax("CELL_TYPES without CELLS")))?;
-    let (types, types_line) = types;
-    if types.len() != cells.len() {
+    let points = points.ok_or((types_line, syntax("no POINTS section")))?;
+    let (mut raw, _) = cells.ok_or((types_line, syntax("CELL_TYPES without CELLS")))?;
+    if m != raw.simplex_count() {
         return Err((
             types_line,
-            syntax(format!(
-                "{} cell types for {} cells",
-                types.len(),
-                cells.len()
-            )),
+            syntax(format!("{m} cell types for {} cells", raw.simplex_count())),
         ));
     }
-    let mut raw = RawInput::new();
+    if let Some(e) = bad_type {
+        return Err(e);
+    }
     raw.vertex_count =
         Some(u32::try_from(points.len() / 3).map_err(|_| (0, syntax("more than 2^32 points")))?);
     raw.coords = Some(Coords {
         dim: 3,
         data: points,
     });
-    for (i, (ids, &t)) in cells.iter().zip(&types).enumerate() {
-        let len = simplex_len(t as i64).map_err(|name| {
-            (
-                types_line,
-                syntax(format!(
-                    "cell #{i} has VTK type {t} ({name}), which is not a simplex"
-                )),
-            )
-        })?;
-        if ids.len() != len {
-            return Err((
-                cells_line,
-                syntax(format!(
-                    "cell #{i} of VTK type {t} has {} ids, expected {len}",
-                    ids.len()
-                )),
-            ));
-        }
-        raw.push(ids, cells_line);
-    }
     Ok(raw)
 }
 
@@ -495,4 +590,65 @@ pub fn write_with_fields(
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn vtk(body: &str) -> String {
+        format!("# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n{body}")
+    }
+
+    fn message(body: &str) -> (u32, String) {
+        let (line, kind) = parse(vtk(body).as_bytes()).unwrap_err();
+        (line, kind.to_string())
+    }
+
+    /// Streamed cells report as the whole block did: a malformed entry after a bad id wins
+    /// (read first), the block ending inside a cell wins over that cell's bad id, a bad id
+    /// wins over a type error.
+    #[test]
+    fn streamed_cells_report_errors_in_the_order_the_whole_block_did() {
+        let pts = "POINTS 3 double\n0 0 0 1 0 0 0 1 0\n";
+        let (l, m) = message(&format!(
+            "{pts}CELLS 2 6\n2 0 -1\n2 0 x\nCELL_TYPES 2\n3 3\n"
+        ));
+        assert_eq!(l, 9);
+        assert!(m.contains("'x' is not a int"), "{m}");
+        let (l, m) = message(&format!(
+            "{pts}CELLS 2 5\n2 0 1\n3 0 -1\nCELL_TYPES 2\n3 5\n"
+        ));
+        assert_eq!(l, 7);
+        assert!(m.contains("ends inside cell #1"), "{m}");
+        let (_, m) = message(&format!(
+            "{pts}CELLS 2 6\n2 0 -1\n2 0 1\nCELL_TYPES 2\n9 3\n"
+        ));
+        assert!(m.contains("-1"), "{m}");
+        let (l, m) = message(&format!(
+            "{pts}CELLS 2 6\n2 0 1\n2 0 1\nCELL_TYPES 2\n3 9\n"
+        ));
+        assert_eq!(l, 10);
+        assert!(m.contains("cell #1 has VTK type 9 (quad)"), "{m}");
+        let (_, m) = message(&format!(
+            "{pts}CELLS 2 6\n2 0 1\n2 0 1\nCELL_TYPES 3\n3 9 3\n"
+        ));
+        assert!(m.contains("3 cell types for 2 cells"), "{m}");
+    }
+
+    /// A repeated CELLS section replaces the first, as before.
+    #[test]
+    fn a_repeated_cells_section_replaces_the_first() {
+        let raw = parse(
+            vtk(
+                "POINTS 3 double\n0 0 0 1 0 0 0 1 0\nCELLS 1 3\n2 0 1\nCELLS 1 4\n3 0 1 2\n\
+                 CELL_TYPES 1\n5\n",
+            )
+            .as_bytes(),
+        )
+        .unwrap();
+        assert_eq!(raw.simplex_count(), 1);
+        assert_eq!(raw.simplex(0), &[0, 1, 2]);
+        assert_eq!(raw.lines, vec![9]);
+    }
 }

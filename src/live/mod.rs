@@ -90,6 +90,8 @@ use std::fmt;
 
 use crate::complex::{Complex, MAX_DIMENSION};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::structures::BuildError;
+use crate::structures::common::{too_large, try_copy, try_vec, try_with_capacity};
 use crate::structures::ia::faces_containing as faces;
 
 mod edit;
@@ -298,14 +300,26 @@ impl fmt::Debug for Key {
 impl LiveComplex {
     /// Builds from a complex: every vertex of `complex` is live with the same id, every top
     /// simplex gets a slot in input order with its input winding (`Complex::tops_as_given`).
-    /// O(size of the top simplices).
+    /// O(size of the top simplices). Aborts, like `Vec`, when the memory cannot be had: a host
+    /// that must survive that uses [`LiveComplex::try_from_complex`].
     pub fn from_complex(complex: &Complex) -> LiveComplex {
+        Self::try_from_complex(complex).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// [`LiveComplex::from_complex`], or [`BuildError::TooLarge`] (kind `IaStar`) when an array
+    /// sized from the input cannot be allocated: every array is reserved exactly, fallibly, before
+    /// it is filled, so no allocation failure aborts the process.
+    pub fn try_from_complex(complex: &Complex) -> Result<LiveComplex, BuildError> {
+        const K: StructureKind = StructureKind::IaStar;
         let n = complex.vertex_count() as usize;
         let (coord_dim, coords) = match complex.coords() {
-            Some(c) => (c.dim, c.data.clone()),
+            Some(c) => (c.dim, try_copy(K, &c.data, "coordinates")?),
             None => (0, Vec::new()),
         };
-        let mut degree = vec![0u32; n];
+        complex
+            .try_listing_maps()
+            .map_err(|bytes| too_large(K, bytes, "the input listing's maps"))?;
+        let mut degree = try_vec(K, 0u32, n, "vertex degrees")?;
         let mut per_dim = [0usize; MAX_DIMENSION + 1];
         for (_, p, _, s) in complex.tops_as_given() {
             if p > 0 {
@@ -315,17 +329,31 @@ impl LiveComplex {
                 }
             }
         }
+        let mut tops = try_with_capacity(K, MAX_DIMENSION + 1, "top arrays")?;
+        for (p, &count) in per_dim.iter().enumerate() {
+            if count > SLOT_MASK as usize + 1 {
+                return Err(BuildError::TooLarge {
+                    kind: K,
+                    what: format!("{count} top {p}-simplices (at most 2^28 per dimension)"),
+                });
+            }
+            tops.push(try_with_capacity(
+                K,
+                count.saturating_mul(p + 1),
+                &format!("top {p}-simplex vertices"),
+            )?);
+        }
+        let mut star = try_with_capacity(K, n, "vertex stars")?;
+        for &k in &degree {
+            star.push(try_with_capacity(K, k as usize, "star entries")?);
+        }
+        drop(degree);
         let mut live = LiveComplex {
-            tops: (0..=MAX_DIMENSION)
-                .map(|p| Vec::with_capacity(per_dim[p] * (p + 1)))
-                .collect(),
+            tops,
             live_tops: [0; MAX_DIMENSION + 1],
-            alive: vec![true; n],
+            alive: try_vec(K, true, n, "vertex flags")?,
             live_vertices: n as u32,
-            star: degree
-                .iter()
-                .map(|&k| Vec::with_capacity(k as usize))
-                .collect(),
+            star,
             coord_dim,
             coords,
             epoch: 0,
@@ -336,7 +364,7 @@ impl LiveComplex {
                 live.push_top(s);
             }
         }
-        live
+        Ok(live)
     }
 
     /// Appends a slot for `s` (not checked) and enters it in its vertices' stars.

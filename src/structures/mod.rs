@@ -65,7 +65,9 @@ pub fn build(kind: StructureKind, complex: &Complex) -> Result<Box<dyn Topology>
         StructureKind::Pe => Ok(Box::new(pe::PartialEntities::build(complex)?)),
         StructureKind::Le => Ok(Box::new(le::LoopEdgeUse::build(complex)?)),
         StructureKind::De => Ok(Box::new(de::DirectedEdge::build(complex)?)),
-        StructureKind::IaStar => Ok(Box::new(crate::live::LiveComplex::from_complex(complex))),
+        StructureKind::IaStar => Ok(Box::new(crate::live::LiveComplex::try_from_complex(
+            complex,
+        )?)),
     }
 }
 
