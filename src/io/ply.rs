@@ -1,6 +1,6 @@
-//! PLY (`.ply`, ASCII and binary, either byte order). The `ply-rs-bw` crate reads the header,
-//! binary bodies and writes; ASCII bodies are read by our own streaming reader (the crate's
-//! map per element costs 55× the file on short lines; ours keeps only coordinates and
+//! PLY (`.ply`, ASCII and binary, either byte order). The `ply-rs-bw` crate reads the header
+//! and writes; bodies are read by our own streaming reader (the crate's map per element costs
+//! 55× an ASCII file of short lines, 34× a binary one; ours keeps only coordinates and
 //! simplices, under 5×). This module maps elements to simplices.
 //!
 //! Reading:
@@ -28,10 +28,11 @@ use ply_rs_bw::ply::{
 use ply_rs_bw::writer::Writer;
 
 use super::write::{check_coord_dim, check_max_len, vertex_count};
-use super::{Coords, RawInput, ReadErrorKind, echo, syntax};
+use super::{RawInput, ReadErrorKind, echo, syntax};
 
-mod ascii;
+mod body;
 
+#[cfg(test)]
 /// A property as a float, when it is a number.
 fn number(p: &Property) -> Option<f64> {
     Some(match *p {
@@ -55,6 +56,7 @@ fn id(x: i64, what: &str) -> Result<u32, ReadErrorKind> {
     u32::try_from(x).map_err(|_| syntax(format!("{what}: vertex id {x} does not fit in 32 bits")))
 }
 
+#[cfg(test)]
 /// A list property of vertex ids.
 fn id_list(p: &Property, what: &str) -> Result<Vec<u32>, ReadErrorKind> {
     let ids: Vec<i64> = match p {
@@ -73,6 +75,7 @@ fn id_list(p: &Property, what: &str) -> Result<Vec<u32>, ReadErrorKind> {
     ids.into_iter().map(|x| id(x, what)).collect()
 }
 
+#[cfg(test)]
 fn scalar_id(e: &DefaultElement, key: &str, what: &str) -> Result<u32, ReadErrorKind> {
     let p = e
         .get(key)
@@ -97,23 +100,27 @@ fn crate_error(e: &ply_rs_bw::parser::ParseError) -> (u32, ReadErrorKind) {
 }
 
 /// Parses a PLY file. Errors are `(line, kind)` with line 0 when only an element index is known.
-/// The header is read by the crate; an ASCII body by our own reader (streaming, nothing
-/// kept per element but what the complex needs), a binary body by the crate.
+/// The header is read by the crate, the body (ASCII or binary) by our own reader (streaming,
+/// nothing kept per element but what the complex needs).
 pub fn parse(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
     let mut reader = ply_rs_bw::parser::Reader::new(bytes);
     let header = Parser::<DefaultElement>::new()
         .read_header(&mut reader)
         .map_err(|e| crate_error(&e))?;
-    if header.encoding == Encoding::Ascii {
-        let body = *reader.get_ref();
-        let header_len = bytes.len() - body.len();
-        let first_line = bytes[..header_len].iter().filter(|&&c| c == b'\n').count() + 1;
-        return ascii::parse_body(&header, body, first_line);
-    }
-    via_crate(bytes)
+    let body = *reader.get_ref();
+    let header_len = bytes.len() - body.len();
+    let first_line = bytes[..header_len].iter().filter(|&&c| c == b'\n').count() + 1;
+    let binary = match header.encoding {
+        Encoding::Ascii => None,
+        Encoding::BinaryBigEndian => Some(true),
+        Encoding::BinaryLittleEndian => Some(false),
+    };
+    body::parse_body(&header, body, first_line, binary)
 }
 
-/// The whole file read by the crate (one map per element), mapped to simplices: binary bodies.
+#[cfg(test)]
+/// The whole file read by the crate (one map per element), mapped to simplices: the reference
+/// the tests hold the streaming body reader to.
 fn via_crate(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
     let ply = Parser::<DefaultElement>::new()
         .read_ply(&mut &bytes[..])
@@ -139,7 +146,7 @@ fn via_crate(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
             data.push(x);
         }
     }
-    raw.coords = Some(Coords { dim, data });
+    raw.coords = Some(super::Coords { dim, data });
     for (i, f) in ply.payload.get("face").into_iter().flatten().enumerate() {
         let what = format!("face #{i}");
         let list = f
@@ -264,29 +271,33 @@ mod tests {
 
     /// ASCII bodies read by the streaming reader and by the crate: the same simplices and
     /// coordinates, or both refused.
+    const HEAD: &str =
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n";
+
+    /// Each case is [`HEAD`] followed by it.
+    const CASES: [&str; 15] = [
+        "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n3 0 1 2\n2 1 2\n",
+        "element edge 1\nproperty int vertex1\nproperty uint vertex2\nelement face 1\nproperty list uchar uint vertex_index\nend_header\n0 0\n1 0\n0 1\n0 1\n1 2\n",
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n4 0 1 2 0\n",
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n3 0 -1 2\n",
+        "element face 1\nproperty list uchar uchar vertex_indices\nend_header\n0 0\n1 0\n0 1\n3 0 256 2\n",
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n3 0 1\n",
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n",
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 x\n0 1\n3 0 1 2\n",
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 .5\n0 1\n3 0 1 2\n",
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0\t0 7\r\n1.5e3 -0\n0 +1\n3 0 1 2 9\n",
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n0\n",
+        "element other 1\nproperty float w\nend_header\n0 0\n1 0\n0 1\n5\n",
+        "element edge 1\nproperty float vertex1\nproperty float vertex2\nend_header\n0 0\n1 0\n0 1\n0 1.5\n",
+        "end_header\n0 0\n1 0\n0 1\n\n",
+        "end_header\n0 0\n1 0\n",
+    ];
+
     #[test]
     fn ascii_body_reads_as_the_crate_does() {
-        let head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n";
-        let cases = [
-            "element face 2\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n3 0 1 2\n2 1 2\n",
-            "element edge 1\nproperty int vertex1\nproperty uint vertex2\nelement face 1\nproperty list uchar uint vertex_index\nend_header\n0 0\n1 0\n0 1\n0 1\n1 2\n",
-            "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n4 0 1 2 0\n",
-            "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n3 0 -1 2\n",
-            "element face 1\nproperty list uchar uchar vertex_indices\nend_header\n0 0\n1 0\n0 1\n3 0 256 2\n",
-            "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n3 0 1\n",
-            "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n",
-            "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 x\n0 1\n3 0 1 2\n",
-            "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 .5\n0 1\n3 0 1 2\n",
-            "element face 1\nproperty list uchar int vertex_indices\nend_header\n0\t0 7\r\n1.5e3 -0\n0 +1\n3 0 1 2 9\n",
-            "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n0\n",
-            "element other 1\nproperty float w\nend_header\n0 0\n1 0\n0 1\n5\n",
-            "element edge 1\nproperty float vertex1\nproperty float vertex2\nend_header\n0 0\n1 0\n0 1\n0 1.5\n",
-            "end_header\n0 0\n1 0\n0 1\n\n",
-            "end_header\n0 0\n1 0\n",
-        ];
         let mut both_ok = 0;
-        for case in cases {
-            let text = format!("{head}{case}");
+        for case in CASES {
+            let text = format!("{HEAD}{case}");
             let ours = parse(text.as_bytes());
             let theirs = via_crate(text.as_bytes());
             match (&ours, &theirs) {
@@ -299,5 +310,44 @@ mod tests {
             }
         }
         assert!(both_ok >= 4, "only {both_ok} cases read");
+    }
+
+    /// The cases the crate reads, written by the crate in both byte orders: the streaming
+    /// binary reader gives the same simplices and coordinates; cut short, both refuse.
+    #[test]
+    fn binary_body_reads_as_the_crate_does() {
+        let mut read = 0;
+        for case in CASES {
+            let text = format!("{HEAD}{case}");
+            let Ok(mut ply) = Parser::<DefaultElement>::new().read_ply(&mut text.as_bytes()) else {
+                continue;
+            };
+            for encoding in [Encoding::BinaryLittleEndian, Encoding::BinaryBigEndian] {
+                ply.header.encoding = encoding;
+                let mut bytes = Vec::new();
+                Writer::new().write_ply(&mut bytes, &mut ply).unwrap();
+                let (ours, theirs) = (parse(&bytes), via_crate(&bytes));
+                match (&ours, &theirs) {
+                    (Ok(a), Ok(b)) => assert_eq!(a, b, "{text} as {encoding:?}"),
+                    (Err(_), Err(_)) => {}
+                    _ => panic!("{text} as {encoding:?}\nours {ours:?}\ncrate {theirs:?}"),
+                }
+                read += usize::from(ours.is_ok());
+                let body = bytes.len()
+                    - (bytes
+                        .windows(11)
+                        .position(|w| w == b"end_header\n")
+                        .unwrap()
+                        + 11);
+                for cut in 1..=body.min(3) {
+                    let short = &bytes[..bytes.len() - cut];
+                    assert!(
+                        parse(short).is_err() && via_crate(short).is_err(),
+                        "{text} cut {cut}"
+                    );
+                }
+            }
+        }
+        assert!(read >= 8, "only {read} binary cases read");
     }
 }

@@ -1,8 +1,10 @@
-//! The body of a `format ascii` PLY file, read line by line without the crate: the crate builds
-//! a map per element (55× the file for short lines), this keeps only coordinates and simplices.
-//! Accepts and refuses what the crate does: one element per line, tokens separated by spaces or
-//! tabs matching `[-+]?[0-9]+(.[0-9]+)?([eE][-+]?[0-9]+)?`, each parsed as its property's type
-//! (so `-1` is no `uchar`), extra tokens ignored.
+//! The body of a PLY file, read as it streams without the crate: the crate builds a map per
+//! element (55× an ASCII file of short lines, 34× a binary one), this keeps only coordinates and
+//! simplices. ASCII bodies: accepts and refuses what the crate does: one element per line, tokens
+//! separated by spaces or tabs matching `[-+]?[0-9]+(.[0-9]+)?([eE][-+]?[0-9]+)?`, each parsed
+//! as its property's type (so `-1` is no `uchar`), extra tokens ignored. Binary bodies: each
+//! property's value in its type's width and the file's byte order, list lengths non-negative
+//! integers; running out of bytes is the crate's end-of-file error.
 
 use ply_rs_bw::ply::{ElementDef, Header, PropertyType, ScalarType};
 
@@ -101,6 +103,96 @@ impl<'a> Lines<'a> {
     }
 }
 
+/// Where element records come from: text lines, or packed values in a byte order.
+enum Records<'a> {
+    Text(Lines<'a>),
+    Binary { rest: &'a [u8], big_endian: bool },
+}
+
+/// The next `n` bytes of `rest`, or `None` when fewer are left.
+fn take<'a>(rest: &mut &'a [u8], n: usize) -> Option<&'a [u8]> {
+    if rest.len() < n {
+        return None;
+    }
+    let (a, b) = rest.split_at(n);
+    *rest = b;
+    Some(a)
+}
+
+/// One binary value of type `ty`, as a float (every PLY scalar fits one exactly).
+fn binary_scalar(rest: &mut &[u8], ty: &ScalarType, big: bool) -> Option<f64> {
+    macro_rules! num {
+        ($t:ty) => {{
+            let a = take(rest, size_of::<$t>())?.try_into().ok()?;
+            let v = if big {
+                <$t>::from_be_bytes(a)
+            } else {
+                <$t>::from_le_bytes(a)
+            };
+            f64::from(v)
+        }};
+    }
+    Some(match ty {
+        ScalarType::Char => num!(i8),
+        ScalarType::UChar => num!(u8),
+        ScalarType::Short => num!(i16),
+        ScalarType::UShort => num!(u16),
+        ScalarType::Int => num!(i32),
+        ScalarType::UInt => num!(u32),
+        ScalarType::Float => num!(f32),
+        ScalarType::Double => num!(f64),
+    })
+}
+
+/// One binary element's values, as [`read_line`] gives them; `Ok(false)` when the bytes ran
+/// out.
+fn read_binary(
+    rest: &mut &[u8],
+    big: bool,
+    def: &ElementDef,
+    wanted: &Wanted,
+    vals: &mut [f64],
+    list: &mut Vec<f64>,
+) -> Res<bool> {
+    for (p, (name, prop)) in def.properties.iter().enumerate() {
+        let slot = wanted.keys.iter().position(|&k| k == Some(p));
+        match &prop.data_type {
+            PropertyType::Scalar(ty) => {
+                let Some(x) = binary_scalar(rest, ty, big) else {
+                    return Ok(false);
+                };
+                if let Some(s) = slot {
+                    vals[s] = x;
+                }
+            }
+            PropertyType::List(count_ty, ty) => {
+                let Some(count) = binary_scalar(rest, count_ty, big) else {
+                    return Ok(false);
+                };
+                if count < 0.0 || count.fract() != 0.0 {
+                    return Err((
+                        0,
+                        syntax(format!(
+                            "PLY: list length {count} of property '{}' is no count",
+                            echo(name)
+                        )),
+                    ));
+                }
+                // Each entry is read before it is kept: the bytes left bound the list.
+                for _ in 0..count as u64 {
+                    let Some(x) = binary_scalar(rest, ty, big) else {
+                        return Ok(false);
+                    };
+                    if slot.is_some() {
+                        list.push(x);
+                    }
+                }
+            }
+        }
+    }
+    Ok(true)
+}
+
 /// One element line's values: the wanted properties as floats (lists: their entries appended
 /// to `list`), checked against the property types.
 fn read_line(
@@ -188,12 +280,24 @@ fn id_of(x: f64, what: &str) -> Result<u32, ReadErrorKind> {
     id(x as i64, what)
 }
 
-/// The vertex coordinates, faces and edges of an ASCII body starting at line `first_line`.
-pub(super) fn parse_body(header: &Header, body: &[u8], first_line: usize) -> Res<RawInput> {
+/// The vertex coordinates, faces and edges of a body starting at line `first_line`: ASCII when
+/// `binary` is `None`, else binary, big-endian when `Some(true)`.
+pub(super) fn parse_body(
+    header: &Header,
+    body: &[u8],
+    first_line: usize,
+    binary: Option<bool>,
+) -> Res<RawInput> {
     let at0 = |k| (0, k);
-    let mut lines = Lines {
-        rest: body,
-        line: first_line,
+    let mut records = match binary {
+        None => Records::Text(Lines {
+            rest: body,
+            line: first_line,
+        }),
+        Some(big_endian) => Records::Binary {
+            rest: body,
+            big_endian,
+        },
     };
     let mut raw = RawInput::new();
     let mut coords = Coords {
@@ -204,8 +308,13 @@ pub(super) fn parse_body(header: &Header, body: &[u8], first_line: usize) -> Res
     let mut vertex_count = 0usize;
     let mut vals = [0.0f64; 3];
     let mut list = Vec::new();
-    // Every element line takes at least 2 bytes, so the bytes left bound every reservation.
-    let cap = body.len() / 2 + 1;
+    // Every element line takes at least 2 bytes (a binary element at least 1), so the bytes
+    // left bound every reservation.
+    let cap = if binary.is_some() {
+        body.len() + 1
+    } else {
+        body.len() / 2 + 1
+    };
     for (name, def) in &header.elements {
         let wanted = match name.as_str() {
             "vertex" => {
@@ -254,18 +363,32 @@ pub(super) fn parse_body(header: &Header, body: &[u8], first_line: usize) -> Res
             _ => Wanted::new(def, &[]),
         };
         for i in 0..def.count {
-            let Some((l, n)) = lines.next_line() else {
-                return Err((
-                    u32::try_from(lines.line).unwrap_or(u32::MAX),
-                    syntax(format!(
-                        "PLY: Unexpected end of file while reading element '{}' (expected {}, got {i}).",
-                        echo(name),
-                        def.count
-                    )),
-                ));
-            };
             list.clear();
-            read_line(l, n, def, &wanted, &mut vals, &mut list)?;
+            let read = match &mut records {
+                Records::Text(lines) => match lines.next_line() {
+                    Some((l, n)) => read_line(l, n, def, &wanted, &mut vals, &mut list).map(|()| 0),
+                    None => Ok(u32::try_from(lines.line).unwrap_or(u32::MAX)),
+                },
+                Records::Binary { rest, big_endian } => {
+                    read_binary(rest, *big_endian, def, &wanted, &mut vals, &mut list)
+                        .map(|full| if full { 0 } else { u32::MAX })
+                }
+            };
+            // `Ok(0)`: read; else the line to blame for the end of the data.
+            match read? {
+                0 => {}
+                line => {
+                    let line = if binary.is_some() { 0 } else { line };
+                    return Err((
+                        line,
+                        syntax(format!(
+                            "PLY: Unexpected end of file while reading element '{}' (expected {}, got {i}).",
+                            echo(name),
+                            def.count
+                        )),
+                    ));
+                }
+            }
             match name.as_str() {
                 "vertex" => coords.data.extend_from_slice(&vals[..coords.dim]),
                 "face" => push_face(&mut raw, &list, i)?,
