@@ -13,6 +13,7 @@ use crate::simplify::{Options, SimplifyError, check, check_output, simplify, sim
 fn simplify_failure(e: SimplifyError) -> Failure {
     let status = match e {
         SimplifyError::Ratio(_) => TpxStatus::InvalidRatio,
+        SimplifyError::Memory { .. } => TpxStatus::TooLarge,
         _ => TpxStatus::CannotSimplify,
     };
     Failure::new(status, e.to_string())
@@ -51,7 +52,8 @@ fn path_arg<'a>(p: *const c_char, what: &str) -> Result<&'a str, Failure> {
 /// On success `*out` receives a new complex owned by the caller (free with
 /// `tpx_complex_free`), with coordinates, vertices renumbered densely in ascending old id
 /// order. Errors: NULL_ARGUMENT, INVALID_RATIO (`ratio` not in (0, 1]), CANNOT_SIMPLIFY (no
-/// coordinates, a non-finite coordinate, too many top simplices). Cost: O(E log E) for E edges
+/// coordinates, a non-finite coordinate, too many top simplices), TOO_LARGE (the live complex's
+/// arrays cannot be allocated). Cost: O(E log E) for E edges
 /// plus the contractions (see the `simplify` module documentation); memory about the live
 /// complex plus (n + 1)(n + 2) / 2 doubles per vertex for n coordinates.
 ///
@@ -80,7 +82,8 @@ pub unsafe extern "C" fn tpx_simplify(
 /// result. The input is released as soon as the editable copy is built, so the peak memory
 /// holds one copy of it, not two (use this when the input is no longer needed).
 ///
-/// Errors (the complex is then unchanged): NULL_ARGUMENT, INVALID_RATIO, CANNOT_SIMPLIFY.
+/// Errors (the complex is then unchanged): NULL_ARGUMENT, INVALID_RATIO, CANNOT_SIMPLIFY,
+/// TOO_LARGE.
 /// After PANIC (an internal bug) the complex holds a single isolated vertex. Cost: as
 /// `tpx_simplify`.
 ///
@@ -116,7 +119,7 @@ pub unsafe extern "C" fn tpx_simplify_in_place(
 ///
 /// Errors: NULL_ARGUMENT, INVALID_ARGUMENT (a path not UTF-8), INVALID_RATIO, IO_ERROR /
 /// PARSE_ERROR / INVALID_COMPLEX (reading `input`, as `tpx_complex_from_file`),
-/// CANNOT_SIMPLIFY, UNKNOWN_FORMAT (the output's extension names no format),
+/// CANNOT_SIMPLIFY, TOO_LARGE, UNKNOWN_FORMAT (the output's extension names no format),
 /// FORMAT_CANNOT_HOLD (the format cannot hold a complex of the input's dimension or
 /// coordinates), WRITE_ERROR (the file system refused the output; the message names the path).
 /// Cost: `tpx_simplify` plus reading and writing.

@@ -84,6 +84,15 @@ pub enum SimplifyError {
         /// The first vertex with a non-finite coordinate.
         vertex: u32,
     },
+    /// An array sized from the input cannot be allocated while building the live complex
+    /// (reported, never an abort).
+    #[error("{}cannot hold the input: {source}", source_prefix(.file))]
+    Memory {
+        /// The input file, when known.
+        file: Option<std::path::PathBuf>,
+        /// What could not be allocated.
+        source: crate::structures::BuildError,
+    },
     /// More top simplices of one dimension than the live complex can number.
     #[error("{}{count} top {dim}-simplices, above the {max} simplification can hold", source_prefix(.file))]
     TooLarge {
@@ -139,11 +148,20 @@ pub fn simplify(
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Simplified, SimplifyError> {
     check(complex, options)?;
-    let mut live = LiveComplex::from_complex(complex);
+    let mut live = live_of(complex)?;
     let stats = simplify_live(&mut live, options, progress)?;
     Ok(Simplified {
         complex: live.to_complex(),
         stats,
+    })
+}
+
+/// The live complex of `complex`, or [`SimplifyError::Memory`]: built fallibly, as the
+/// structures are.
+fn live_of(complex: &Complex) -> Result<LiveComplex, SimplifyError> {
+    LiveComplex::try_from_complex(complex).map_err(|source| SimplifyError::Memory {
+        file: complex.source().map(Path::to_path_buf),
+        source,
     })
 }
 
@@ -156,7 +174,7 @@ pub fn simplify_owned(
     progress: &mut dyn FnMut(usize, usize),
 ) -> Result<Simplified, SimplifyError> {
     check(&complex, options)?;
-    let mut live = LiveComplex::from_complex(&complex);
+    let mut live = live_of(&complex)?;
     drop(complex);
     // Before the quadrics and the queue: the input's pages go back to the system.
     crate::ffi::release_freed_memory();
@@ -179,6 +197,7 @@ pub fn simplify_live(
     if live.coord_dim() == 0 {
         return Err(SimplifyError::NoCoordinates { file: None });
     }
+    probe_memory(live)?;
     let input_tops = top_count(live);
     let mut state = State::new(live, options);
     state.stats.input_tops = input_tops;
@@ -525,6 +544,31 @@ fn is_boundary_facet(live: &LiveComplex, facet: &[u32]) -> bool {
     })
     .nth(1)
     .is_none()
+}
+
+/// Step 0: the run's input-sized arrays (quadrics, stamps, the queue at its slack over an
+/// upper bound of the edges, the output's listing) probed before any is allocated, so that a
+/// complex too large for memory is [`SimplifyError::Memory`], not an abort.
+fn probe_memory(live: &LiveComplex) -> Result<(), SimplifyError> {
+    let slots = live.vertex_slots() as usize;
+    let n = live.coord_dim();
+    let (mut edges, mut ids) = (0usize, 0usize);
+    for (_, t) in live.tops() {
+        edges = edges.saturating_add(t.len() * (t.len() - 1) / 2);
+        ids = ids.saturating_add(t.len());
+    }
+    let quadric = QuadricSpace::new(n).len() * size_of::<f64>();
+    let bytes = slots
+        .saturating_mul(quadric + 3 * size_of::<u32>())
+        .saturating_add(with_slack(edges).saturating_mul(size_of::<Entry>()))
+        .saturating_add(ids.saturating_mul(2 * size_of::<u32>()));
+    crate::complex::table::headroom(bytes).map_err(|bytes| SimplifyError::Memory {
+        file: None,
+        source: crate::structures::BuildError::TooLarge {
+            kind: crate::relation::StructureKind::IaStar,
+            what: format!("cannot allocate {bytes} bytes for the quadrics and the queue"),
+        },
+    })
 }
 
 /// Step 2: every live edge with its cost, found as the ring of each vertex (no edge list is
