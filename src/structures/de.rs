@@ -32,7 +32,7 @@
 
 use super::BuildError;
 use super::common::{try_copy, try_with_capacity};
-use super::nav::{NavBase, NavIndex};
+use super::nav::NavIndex;
 use super::radial::{self, EdgeAt, EdgeLocator, TriTopo, row3};
 use crate::complex::Complex;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
@@ -198,32 +198,7 @@ impl TriTopo for DirectedEdge {
     }
 }
 
-impl NavBase for DirectedEdge {
-    fn nav(&self) -> &NavIndex {
-        &self.nav
-    }
-
-    fn fast_visit(
-        &self,
-        h: crate::handle::SimplexHandle,
-        sigma: &[u32],
-        q: usize,
-        visit: &mut dyn FnMut(crate::handle::SimplexHandle),
-    ) -> Option<Result<(), QueryError>> {
-        radial::fast_visit(self, h, sigma, q, visit)
-    }
-
-    fn fast_batch(
-        &self,
-        p: usize,
-        indices: &[u32],
-        q: usize,
-        ids: &mut Vec<u32>,
-        ends: &mut Vec<usize>,
-    ) -> Option<Result<(), QueryError>> {
-        radial::fast_batch(self, self.vertex_count(), p, indices, q, ids, ends)
-    }
-}
+radial::nav_base!(DirectedEdge);
 
 impl Topology for DirectedEdge {
     fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {

@@ -37,7 +37,7 @@
 
 use super::BuildError;
 use super::common::try_copy;
-use super::nav::{NavBase, NavIndex};
+use super::nav::NavIndex;
 use super::pe::by_start;
 use super::radial::{self, EdgeAt, NONE, TriTopo, row3, show};
 use crate::complex::Complex;
@@ -195,32 +195,7 @@ impl TriTopo for LoopEdgeUse {
     }
 }
 
-impl NavBase for LoopEdgeUse {
-    fn nav(&self) -> &NavIndex {
-        &self.nav
-    }
-
-    fn fast_visit(
-        &self,
-        h: crate::handle::SimplexHandle,
-        sigma: &[u32],
-        q: usize,
-        visit: &mut dyn FnMut(crate::handle::SimplexHandle),
-    ) -> Option<Result<(), QueryError>> {
-        radial::fast_visit(self, h, sigma, q, visit)
-    }
-
-    fn fast_batch(
-        &self,
-        p: usize,
-        indices: &[u32],
-        q: usize,
-        ids: &mut Vec<u32>,
-        ends: &mut Vec<usize>,
-    ) -> Option<Result<(), QueryError>> {
-        radial::fast_batch(self, self.vertex_count(), p, indices, q, ids, ends)
-    }
-}
+radial::nav_base!(LoopEdgeUse);
 
 impl Topology for LoopEdgeUse {
     fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {

@@ -553,6 +553,43 @@ pub(crate) fn walk_star<T: TriTopo + ?Sized>(
     }
 }
 
+/// `NavBase` for a 2-complex structure with a `nav: NavIndex` field, whose fast paths are
+/// [`fast_visit`] and [`fast_batch`] (TS, PE, LE and DE share them); items after `;` are the
+/// structure's own further methods.
+macro_rules! nav_base {
+    ($t:ty $(; $($extra:tt)*)?) => {
+        impl super::nav::NavBase for $t {
+            fn nav(&self) -> &super::nav::NavIndex {
+                &self.nav
+            }
+
+            fn fast_visit(
+                &self,
+                h: crate::handle::SimplexHandle,
+                sigma: &[u32],
+                q: usize,
+                visit: &mut dyn FnMut(crate::handle::SimplexHandle),
+            ) -> Option<Result<(), crate::relation::QueryError>> {
+                super::radial::fast_visit(self, h, sigma, q, visit)
+            }
+
+            fn fast_batch(
+                &self,
+                p: usize,
+                indices: &[u32],
+                q: usize,
+                ids: &mut Vec<u32>,
+                ends: &mut Vec<usize>,
+            ) -> Option<Result<(), crate::relation::QueryError>> {
+                super::radial::fast_batch(self, self.vertex_count(), p, indices, q, ids, ends)
+            }
+
+            $($($extra)*)?
+        }
+    };
+}
+pub(crate) use nav_base;
+
 /// The handle walks the primitives give directly (triangle `t` is dense 2-simplex `t`):
 /// R_{0,0}, R_{0,2}: O(star of v); R_{1,2}: the radial cycle; R_{2,0}: O(1); R_{2,2}: the three
 /// radial cycles. Other relations: `None` (the generic path). `sigma` is the checked handle `h`'s vertices.

@@ -39,7 +39,7 @@
 //! Queries keep no state in the structure: the walks' marks are per-query hash sets.
 
 use super::BuildError;
-use super::nav::{NavBase, NavIndex};
+use super::nav::NavIndex;
 use super::radial::{self, EdgeAt, EdgeLocator, NONE, TriTopo, row3, slot_ends};
 use crate::complex::{Complex, SimplexTable};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
@@ -216,36 +216,11 @@ impl TriTopo for TriangleSegment {
     }
 }
 
-impl NavBase for TriangleSegment {
-    fn nav(&self) -> &NavIndex {
-        &self.nav
-    }
-
-    fn fast_visit(
-        &self,
-        h: crate::handle::SimplexHandle,
-        sigma: &[u32],
-        q: usize,
-        visit: &mut dyn FnMut(crate::handle::SimplexHandle),
-    ) -> Option<Result<(), QueryError>> {
-        radial::fast_visit(self, h, sigma, q, visit)
-    }
-
-    fn fast_batch(
-        &self,
-        p: usize,
-        indices: &[u32],
-        q: usize,
-        ids: &mut Vec<u32>,
-        ends: &mut Vec<usize>,
-    ) -> Option<Result<(), QueryError>> {
-        radial::fast_batch(self, self.vertex_count(), p, indices, q, ids, ends)
-    }
-
+radial::nav_base!(TriangleSegment;
     fn stored_table(&self, p: usize) -> Option<&SimplexTable> {
         (p == 2).then_some(&self.tris)
     }
-}
+);
 
 impl Topology for TriangleSegment {
     fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
