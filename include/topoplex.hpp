@@ -206,6 +206,14 @@ class Complex {
     return Complex(c);
   }
 
+  /* The complex saved in a .tpx file (`topoplex save`, Complex::save), rebuilt from its saved
+   * listing and validated like any input: O(size of the listing). */
+  static Complex open(const std::string &path) {
+    TpxComplex *c = nullptr;
+    detail::check(tpx_complex_open(path.c_str(), &c));
+    return Complex(c);
+  }
+
   Complex(Complex &&o) noexcept : c_(std::exchange(o.c_, nullptr)) {}
   Complex &operator=(Complex &&o) noexcept {
     if (this != &o) {
@@ -275,6 +283,11 @@ class Complex {
    * throws TPX_STATUS_FORMAT_CANNOT_HOLD, naming the simplex, if the format cannot hold it. */
   void write(const std::string &path, Format format = Format::FromExtension) const {
     detail::check(tpx_complex_write(c_, path.c_str(), static_cast<std::uint32_t>(format)));
+  }
+  /* Saves the complex alone to a .tpx file (written under a temporary name, then renamed);
+   * Structure::save stores a structure beside it. */
+  void save(const std::string &path) const {
+    detail::check(tpx_save(c_, nullptr, path.c_str()));
   }
   const TpxComplex *get() const noexcept { return c_; }
 
@@ -493,6 +506,17 @@ class Structure {
     detail::check(tpx_structure_build(c.get(), static_cast<std::uint32_t>(kind), &s_));
     detail::check(tpx_structure_stamp(s_, &stamp_));
   }
+  /* The structure of `kind` saved in a .tpx file, memory-mapped: opening costs O(sections)
+   * (O(file) with verify: every checksum and invariant checked first); arrays are paged in as
+   * queries touch them and the mapping lives as long as the Structure. A file holding another
+   * kind or only a complex gets the structure built from its saved complex instead. */
+  static Structure open(const std::string &path, Kind kind, bool verify = false) {
+    TpxStructure *s = nullptr;
+    detail::check(tpx_structure_open(path.c_str(), static_cast<std::uint32_t>(kind),
+                                     verify ? TPX_OPEN_VERIFY : 0u, &s));
+    return Structure(s);
+  }
+
   Structure(Structure &&o) noexcept : s_(std::exchange(o.s_, nullptr)), stamp_(o.stamp_) {}
   Structure &operator=(Structure &&o) noexcept {
     if (this != &o) {
@@ -721,9 +745,22 @@ class Structure {
     return f;
   }
 
+  /* Saves this structure with `c`, the complex it was built from (the file pairs them), to a
+   * .tpx file: one pass over the listing and the structure's arrays. */
+  void save(const Complex &c, const std::string &path) const {
+    detail::check(tpx_save(c.get(), s_, path.c_str()));
+  }
+
   const TpxStructure *get() const noexcept { return s_; }
 
  private:
+  explicit Structure(TpxStructure *s) : s_(s) {
+    const TpxStatus st = tpx_structure_stamp(s_, &stamp_);
+    if (st != TPX_STATUS_OK) {
+      tpx_structure_free(s_);
+      detail::check(st);
+    }
+  }
   bool test(Simplex h, std::uint32_t what) const {
     std::uint32_t r = 0;
     detail::check(tpx_simplex_test(s_, &h.raw(), what, &r));
@@ -951,6 +988,15 @@ class HandleFans {
 class Live {
  public:
   explicit Live(const Complex &c) { detail::check(tpx_live_from_complex(c.get(), &l_)); }
+  /* An editable live complex from a .tpx file: the saved live complex if it holds one, else one
+   * built from its saved complex. Arrays are copied out (editable): O(size). */
+  static Live open(const std::string &path, bool verify = false) {
+    TpxLive *l = nullptr;
+    detail::check(tpx_live_open(path.c_str(), verify ? TPX_OPEN_VERIFY : 0u, &l));
+    return Live(l);
+  }
+  /* Saves a compacted copy (this live complex is unchanged, its handles stay valid): O(size). */
+  void save(const std::string &path) const { detail::check(tpx_live_save(l_, path.c_str())); }
   Live(Live &&o) noexcept : l_(std::exchange(o.l_, nullptr)) {}
   Live &operator=(Live &&o) noexcept {
     if (this != &o) {
@@ -1233,6 +1279,7 @@ class Live {
     f.groups_ = ng;
   }
 
+  explicit Live(TpxLive *l) noexcept : l_(l) {}
   TpxLive *l_ = nullptr;
 };
 
