@@ -599,7 +599,8 @@ impl Saved {
         if let Some(s) = self.structure()? {
             // A hostile file whose checksums were recomputed may still break an invariant that
             // `validate` indexes through: its panic is an answer here, not a crash.
-            let checked = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| s.validate()));
+            let checked =
+                crate::error::caught_quietly(std::panic::AssertUnwindSafe(|| s.validate()));
             match checked {
                 Ok(Ok(())) => {}
                 Ok(Err(e)) => return Err(self.corrupt(format!("saved {}: {e}", s.kind()))),
