@@ -75,7 +75,17 @@ impl Persist for LiveComplex {
                 "{n} vertices, but the file names only {named} vertex references"
             )));
         }
-        let live = LiveComplex::from_tables(n, coord_dim, coords.to_vec(), &tables);
+        // The tables and stars built below are allocated infallibly: their size (per vertex a
+        // degree, a flag and a star's header; per id a slot in a table and one in a star) is
+        // probed first, so that a file too large for memory is refused rather than an abort.
+        let ids: usize = tables.iter().map(|t| t.len()).sum();
+        let bytes = (n as usize)
+            .saturating_mul(4 + 1 + size_of::<Vec<u32>>())
+            .saturating_add(ids.saturating_mul(8));
+        crate::complex::table::headroom(bytes)
+            .map_err(|bytes| r.out_of_memory("the live complex's tables", bytes))?;
+        let coords = r.copy(&coords)?;
+        let live = LiveComplex::from_tables(n, coord_dim, coords, &tables);
         live.check_invariants()
             .map_err(|e| r.corrupt(format!("live complex: {e}")))?;
         // Every vertex is in a top simplex or listed isolated, exactly once.
