@@ -152,10 +152,13 @@ impl LiveComplex {
 
     /// [`LiveComplex::open`] of an opened file.
     pub fn open_saved(saved: &crate::store::Saved) -> Result<LiveComplex, StoreError> {
-        let s = saved.structure_of(crate::relation::StructureKind::IaStar)?;
-        Ok(s.as_any()
-            .and_then(|a| a.downcast_ref::<LiveComplex>())
-            .expect("a structure of kind iastar is a LiveComplex")
-            .clone())
+        let kind = crate::relation::StructureKind::IaStar;
+        if let Some(live) = saved.structure_as::<LiveComplex>(kind)? {
+            return Ok(live);
+        }
+        LiveComplex::try_from_complex(&saved.complex()?).map_err(|source| StoreError::Build {
+            path: saved.path().to_path_buf(),
+            source,
+        })
     }
 }

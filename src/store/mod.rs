@@ -518,7 +518,19 @@ impl Saved {
             message: e.to_string(),
         };
         let file = File::open(path).map_err(io_err)?;
-        let map = map_file(&file).map_err(io_err)?;
+        // A mapping counts against an address-space limit: one that does not fit is memory
+        // the file asks for (TooLarge), not an I/O error.
+        let map = map_file(&file).map_err(|e| match e.kind() {
+            io::ErrorKind::OutOfMemory => StoreError::Complex {
+                path: path.to_path_buf(),
+                source: ComplexError::OutOfMemory {
+                    file: None,
+                    what: "mapping the file",
+                    bytes: file.metadata().map_or(0, |m| m.len()),
+                },
+            },
+            _ => io_err(e),
+        })?;
         Saved::from_backing(path, Backing::Map(map))
     }
 
@@ -592,6 +604,26 @@ impl Saved {
         };
         let mut r = self.reader(self.structure_first);
         let s = persist::load_structure(kind, &mut r)?;
+        r.done()?;
+        Ok(Some(s))
+    }
+
+    /// The file's path (as opened).
+    pub(crate) fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The saved structure as its concrete type `T` when the file holds one of `kind` (`T`'s
+    /// kind), else `None`; owned, not boxed (no copy to take it out of a `dyn Topology`).
+    pub(crate) fn structure_as<T: Persist>(
+        &self,
+        kind: StructureKind,
+    ) -> Result<Option<T>, StoreError> {
+        if self.kind != Some(kind) {
+            return Ok(None);
+        }
+        let mut r = self.reader(self.structure_first);
+        let s = T::load(&mut r)?;
         r.done()?;
         Ok(Some(s))
     }
