@@ -100,6 +100,33 @@ fn invisible(c: char) -> bool {
         | 0xf0000..=0x10ffff)
 }
 
+/// Runs `f`, turning a panic into `Err` like [`std::panic::catch_unwind`], but without the
+/// panic hook's report for panics on this thread while `f` runs: a caught panic that the caller
+/// reports as an error (a crate's panic on malformed input) would otherwise add lines of
+/// "thread panicked at" to the one-line message on stderr.
+///
+/// The first call wraps the process's panic hook once in one that stays silent on a thread
+/// inside `caught_quietly` and passes every other panic to the hook it wrapped, so other
+/// threads' panics are reported as before. (A hook set later replaces the wrapper; then caught
+/// panics are reported again, nothing worse.)
+pub fn caught_quietly<R>(f: impl FnOnce() -> R + std::panic::UnwindSafe) -> std::thread::Result<R> {
+    use std::cell::Cell;
+    thread_local!(static QUIET: Cell<bool> = const { Cell::new(false) });
+    static WRAPPED: std::sync::Once = std::sync::Once::new();
+    WRAPPED.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !QUIET.with(Cell::get) {
+                previous(info);
+            }
+        }));
+    });
+    let was = QUIET.with(|q| q.replace(true));
+    let result = std::panic::catch_unwind(f);
+    QUIET.with(|q| q.set(was));
+    result
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

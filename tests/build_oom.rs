@@ -1,8 +1,10 @@
-//! Issue 16, class 10 for structure builds: under a raised budget a complex may be as large as
-//! the caller allows, and a build whose arrays do not fit must say `TooLarge`, never abort the
-//! process ("memory allocation failed"). Each structure is built in a child process (this test
-//! binary run again) on a 180,000-triangle grid under `RLIMIT_AS` set 1 to 64 MB above what
-//! the process already uses, so the build stops at its first, a later, or no array. Linux only.
+//! Issue 16, class 10 for structure builds and readers: under a raised budget a complex may be
+//! as large as the caller allows, and a build whose arrays do not fit must say `TooLarge`, never
+//! abort the process ("memory allocation failed"). Each structure is built in a child process
+//! (this test binary run again) on a 180,000-triangle grid under `RLIMIT_AS` set 1 to 64 MB
+//! above what the process already uses, so the build stops at its first, a later, or no array.
+//! Each reader (every format, `.tpx` opened as a complex and as a live complex) reads a
+//! 45,000-triangle grid (1 to 4 MB) the same way under margins of 0.5 to 32 MB. Linux only.
 
 use std::process::Command;
 
@@ -87,6 +89,12 @@ fn vm_size_bytes() -> u64 {
 /// between stop it at later steps.
 const MARGINS_MB: [u64; 11] = [1, 2, 3, 5, 8, 13, 18, 24, 32, 44, 64];
 
+/// The readers' margins, in KB: finer, for files of 1 to 4 MB whose reading peaks at a few
+/// times their size.
+const READ_MARGINS_KB: [u64; 11] = [
+    512, 1024, 1536, 2048, 2560, 3072, 4096, 5120, 6144, 8192, 32768,
+];
+
 fn set_address_space_limit(bytes: u64) {
     LIMIT.store(bytes, std::sync::atomic::Ordering::SeqCst);
     let lim = libc::rlimit {
@@ -105,8 +113,7 @@ const SMALL: usize = 256 << 10;
 /// The child: builds `kind` under each margin from the `start`-th, printing `MB:too-large` or
 /// `MB:built` per try on stdout (an abort cuts the list short); other errors fail.
 fn child(spec: &str) -> ! {
-    let (kind, start) = spec.split_once(':').unwrap();
-    let kind = KINDS.into_iter().find(|k| k.name() == kind).unwrap();
+    let (kind, start) = spec.rsplit_once(':').unwrap();
     topoplex::parallel::set_threads(1);
     // Arrays above 64 KB are mapped and unmapped on free (glibc would otherwise raise the
     // threshold and keep freed memory), so the address space used is what is live.
@@ -115,6 +122,10 @@ fn child(spec: &str) -> ! {
         libc::mallopt(libc::M_MMAP_THRESHOLD, 64 << 10);
         libc::mallopt(libc::M_TRIM_THRESHOLD, 64 << 10);
     }
+    if let Some(path) = kind.strip_prefix("read=") {
+        read_child(std::path::Path::new(path), start.parse().unwrap());
+    }
+    let kind = KINDS.into_iter().find(|k| k.name() == kind).unwrap();
     let complex = grid(300);
     for mb in &MARGINS_MB[start.parse::<usize>().unwrap()..] {
         set_address_space_limit(vm_size_bytes() + (mb << 20));
@@ -131,16 +142,11 @@ fn child(spec: &str) -> ! {
 
 /// The outcome of each margin for `kind` (`abort` for an allowed small-allocation abort), or
 /// why it is wrong.
-fn tries(me: &std::path::Path, kind: &str) -> Result<Vec<String>, String> {
+fn tries(me: &std::path::Path, test: &str, kind: &str) -> Result<Vec<String>, String> {
     let mut outcomes = Vec::new();
     while outcomes.len() < MARGINS_MB.len() {
         let out = Command::new(me)
-            .args([
-                "--exact",
-                "every_build_under_an_address_space_limit_says_too_large",
-                "--test-threads=1",
-                "--nocapture",
-            ])
+            .args(["--exact", test, "--test-threads=1", "--nocapture"])
             .env(CHILD, format!("{kind}:{}", outcomes.len()))
             // One malloc arena: a thread's own arena reserves 64 MB of address space up front,
             // which would hide the limit.
@@ -167,8 +173,8 @@ fn tries(me: &std::path::Path, kind: &str) -> Result<Vec<String>, String> {
             .unwrap_or(usize::MAX);
         if bytes >= SMALL {
             return Err(format!(
-                "{kind}: aborted at margin {} MB after {outcomes:?}: {last}",
-                MARGINS_MB[outcomes.len()]
+                "{kind}: aborted at margin #{} after {outcomes:?}: {last}",
+                outcomes.len()
             ));
         }
         outcomes.push("abort".to_string());
@@ -187,7 +193,11 @@ fn every_build_under_an_address_space_limit_says_too_large() {
     let me = std::env::current_exe().unwrap();
     let mut bad = Vec::new();
     for kind in KINDS.map(StructureKind::name) {
-        match tries(&me, kind) {
+        match tries(
+            &me,
+            "every_build_under_an_address_space_limit_says_too_large",
+            kind,
+        ) {
             // The smallest margin refused, the largest built: both outcomes exercised.
             Ok(t) if t[0] == "too-large" && t[t.len() - 1] == "built" => {
                 eprintln!("{kind}: {t:?}")
@@ -196,5 +206,146 @@ fn every_build_under_an_address_space_limit_says_too_large() {
             Err(e) => bad.push(e),
         }
     }
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
+
+/// The reader child: opens `path` (any format by extension; `.tpx` as a saved complex and, when
+/// the name says `live`, as an editable live complex) under each of [`READ_MARGINS_KB`] from
+/// the `start`-th, printing `KB:too-large` or `KB:built` per try like [`child`].
+fn read_child(path: &std::path::Path, start: usize) -> ! {
+    use topoplex::io::ReadErrorKind;
+    use topoplex::store::StoreError;
+    let live = path.to_string_lossy().contains("live");
+    for kb in &READ_MARGINS_KB[start..] {
+        set_address_space_limit(vm_size_bytes() + (kb << 10));
+        let outcome: Result<(), String> = if topoplex::store::is_saved_path(path) {
+            let opened = if live {
+                topoplex::live::LiveComplex::open(path).map(drop)
+            } else {
+                topoplex::store::Saved::open(path).and_then(|s| s.complex().map(drop))
+            };
+            match opened {
+                Ok(()) => Ok(()),
+                Err(StoreError::Complex {
+                    source: topoplex::ComplexError::OutOfMemory { .. },
+                    ..
+                })
+                | Err(StoreError::Build {
+                    source: topoplex::BuildError::TooLarge { .. },
+                    ..
+                }) => Err("too-large".into()),
+                Err(e) => Err(e.to_string()),
+            }
+        } else {
+            match topoplex::io::read_path(path) {
+                Ok(_) => Ok(()),
+                Err(e) if matches!(e.kind, ReadErrorKind::TooLarge(_)) => Err("too-large".into()),
+                Err(e) => Err(e.to_string()),
+            }
+        };
+        set_address_space_limit(libc::RLIM_INFINITY);
+        match outcome {
+            Ok(()) => println!("{kb}:built"),
+            Err(e) if e == "too-large" => println!("{kb}:too-large"),
+            Err(e) => panic!("{e}"),
+        }
+    }
+    std::process::exit(0)
+}
+
+/// A k×k grid in every format the readers take (each writer's output; legacy VTK also as
+/// version 5, OFFSETS / CONNECTIVITY, written here) and saved as `.tpx` (complex, live
+/// complex), in `dir`. Returns (name, path).
+fn grid_files(dir: &std::path::Path, k: u32) -> Vec<(String, std::path::PathBuf)> {
+    use topoplex::io::write::{Format, write_complex};
+    let mut complex = grid(k);
+    let n = complex.vertex_count();
+    let coords = (0..n).flat_map(|v| [f64::from(v % (k + 1)), f64::from(v / (k + 1)), 0.0]);
+    let ids: Vec<u32> = (0..complex.input_count())
+        .flat_map(|i| complex.input_simplex(i).to_vec())
+        .collect();
+    let offsets: Vec<usize> = (0..=ids.len() / 3).map(|i| 3 * i).collect();
+    let data: Vec<f64> = coords.collect();
+    complex = topoplex::Complex::from_arrays(
+        n,
+        &ids,
+        &offsets,
+        Some(topoplex::io::Coords { dim: 3, data }),
+    )
+    .unwrap();
+    let mut files = Vec::new();
+    for format in Format::ALL {
+        let ext = match format.name().split('-').next().unwrap() {
+            "msh2" => "msh",
+            e => e,
+        };
+        let path = dir.join(format!("grid-{}.{ext}", format.name()));
+        write_complex(&complex, &path, Some(format)).unwrap();
+        files.push((format.name().to_string(), path));
+    }
+    let path = dir.join("grid-v5.vtk");
+    let mut text = format!(
+        "# vtk DataFile Version 5.1\ngrid\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS {n} double\n"
+    );
+    for v in 0..n {
+        text += &format!("{} {} 0\n", v % (k + 1), v / (k + 1));
+    }
+    let m = ids.len() / 3;
+    text += &format!("CELLS {} {}\nOFFSETS vtktypeint64\n", m + 1, ids.len());
+    for o in &offsets {
+        text += &format!("{o}\n");
+    }
+    text += "CONNECTIVITY vtktypeint64\n";
+    for t in ids.chunks(3) {
+        text += &format!("{} {} {}\n", t[0], t[1], t[2]);
+    }
+    text += &format!("CELL_TYPES {m}\n");
+    text += &"5\n".repeat(m);
+    std::fs::write(&path, text).unwrap();
+    files.push(("vtk5".into(), path));
+    let path = dir.join("grid.tpx");
+    topoplex::store::save(&path, &complex, None).unwrap();
+    files.push(("tpx".into(), path));
+    let path = dir.join("grid-live.tpx");
+    topoplex::live::LiveComplex::try_from_complex(&complex)
+        .unwrap()
+        .save(&path)
+        .unwrap();
+    files.push(("tpx-live".into(), path));
+    files
+}
+
+/// The readers' row: a file of a few MB in each format read under the same margins. The
+/// smallest margin refuses (`TooLarge`: the file's buffer or a first output array), the largest
+/// reads, and no try aborts on an allocation above [`SMALL`] (a reader's output arrays, the
+/// crates' arrays behind vtkio and stl_io probed first, `.tpx` copies and mapping).
+#[test]
+fn every_reader_under_an_address_space_limit_says_too_large() {
+    if let Ok(spec) = std::env::var(CHILD) {
+        child(&spec);
+    }
+    if !cfg!(target_os = "linux") || cfg!(miri) {
+        return;
+    }
+    let dir = std::env::temp_dir().join(format!("topoplex-read-oom-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let me = std::env::current_exe().unwrap();
+    let mut bad = Vec::new();
+    for (name, path) in grid_files(&dir, 150) {
+        let size = std::fs::metadata(&path).unwrap().len();
+        let spec = format!("read={}", path.display());
+        match tries(
+            &me,
+            "every_reader_under_an_address_space_limit_says_too_large",
+            &spec,
+        ) {
+            Ok(t) if t[0] == "too-large" && t[t.len() - 1] == "built" => {
+                eprintln!("{name} ({size} bytes): {t:?}")
+            }
+            Ok(t) => bad.push(format!("{name}: {t:?}")),
+            Err(e) => bad.push(format!("{name}: {e}")),
+        }
+    }
+    let _ = std::fs::remove_dir_all(&dir);
     assert!(bad.is_empty(), "{}", bad.join("\n"));
 }

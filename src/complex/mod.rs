@@ -501,7 +501,8 @@ impl Complex {
         };
         let mut tables: Vec<SimplexTable> = Vec::with_capacity(by_dim.len());
         for (p, rows) in by_dim.into_iter().enumerate() {
-            let (t, dups) = SimplexTable::from_rows(p + 1, rows.ids);
+            let (t, dups) = SimplexTable::try_from_rows(p + 1, rows.ids)
+                .map_err(|bytes| oom("sorting the input simplices", bytes))?;
             stats.absorbed_duplicates += dups + rows.absorbed;
             tables.push(t);
         }

@@ -33,9 +33,10 @@
 
 use super::scan::{self, Scanner};
 use super::{
-    Coords, RawInput, ReadErrorKind, capped, check_integer, echo, parse_count, parse_f64,
-    parse_integer, syntax,
+    Coords, RawInput, ReadErrorKind, capped, check_integer, echo, no_room, parse_count, parse_f64,
+    parse_integer, syntax, try_with_capacity,
 };
+use crate::complex::table;
 
 /// What one number of a section entry is.
 #[derive(Clone, Copy, PartialEq)]
@@ -85,7 +86,7 @@ impl<'a> Reader<'a> {
         keyword: &str,
         count: u32,
         items: &[Item],
-        mut entry: impl FnMut(&[u32], &[f64], u32),
+        mut entry: impl FnMut(&[u32], &[f64], u32) -> Result<(), ReadErrorKind>,
     ) -> Res<()> {
         let (name, names) = nouns(keyword);
         let mut ids = Vec::with_capacity(items.len());
@@ -133,7 +134,7 @@ impl<'a> Reader<'a> {
                     first_line = l;
                 }
             }
-            entry(&ids, &xs, first_line);
+            entry(&ids, &xs, first_line).map_err(|k| (first_line, k))?;
         }
         Ok(())
     }
@@ -301,8 +302,12 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
                     return Err((l, syntax("second Vertices section")));
                 }
                 let n = r.count(kw)?;
-                let mut data = Vec::with_capacity(capped((n as usize).saturating_mul(dim), r.text));
-                r.entries(kw, n, &vertex_items, |_, xs, _| data.extend_from_slice(xs))?;
+                let cap = capped((n as usize).saturating_mul(dim), r.text);
+                let mut data =
+                    try_with_capacity(cap, "the vertex coordinates").map_err(|k| (l, k))?;
+                r.entries(kw, n, &vertex_items, |_, xs, _| {
+                    table::try_extend(&mut data, xs).map_err(no_room("the vertex coordinates"))
+                })?;
                 vertices = Some((n, data));
             }
             "edges" | "triangles" | "tetrahedra" => {
@@ -313,26 +318,25 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
                 };
                 let n = r.count(kw)?;
                 let cap = capped(n as usize, r.text);
-                raw.ids.reserve(cap.saturating_mul(k).min(r.text.len()));
-                raw.offsets.reserve(cap);
-                raw.lines.reserve(cap);
-                r.entries(kw, n, &element(k), |ids, _, line| raw.push(ids, line))?;
+                raw.try_reserve(cap, cap.saturating_mul(k).min(r.text.len()))
+                    .map_err(|e| (l, e))?;
+                r.entries(kw, n, &element(k), |ids, _, line| raw.try_push(ids, line))?;
             }
             "corners" | "ridges" | "requiredvertices" | "requirededges" | "requiredtriangles" => {
                 let n = r.count(kw)?;
-                r.entries(kw, n, &[Item::Int], |_, _, _| {})?;
+                r.entries(kw, n, &[Item::Int], |_, _, _| Ok(()))?;
             }
             "normals" | "tangents" => {
                 let n = r.count(kw)?;
-                r.entries(kw, n, &vec![Item::Real; dim], |_, _, _| {})?;
+                r.entries(kw, n, &vec![Item::Real; dim], |_, _, _| Ok(()))?;
             }
             "normalatvertices" | "tangentatvertices" => {
                 let n = r.count(kw)?;
-                r.entries(kw, n, &[Item::Int; 2], |_, _, _| {})?;
+                r.entries(kw, n, &[Item::Int; 2], |_, _, _| Ok(()))?;
             }
             "normalattrianglevertices" => {
                 let n = r.count(kw)?;
-                r.entries(kw, n, &[Item::Int; 3], |_, _, _| {})?;
+                r.entries(kw, n, &[Item::Int; 3], |_, _, _| Ok(()))?;
             }
             "identifier" | "geometry" => {
                 // The string is the rest of this line, or else the whole next line.

@@ -54,6 +54,7 @@ pub mod vtk;
 pub mod vtu;
 pub mod write;
 
+use crate::complex::table;
 use crate::error::{echo, echo_path};
 
 /// Vertex coordinates, `dim` numbers per vertex, vertex-major.
@@ -91,11 +92,33 @@ impl RawInput {
         }
     }
 
-    /// Appends one simplex read on `line`.
+    /// Appends one simplex read on `line` (growth infallible: for inputs built in memory; the
+    /// readers use [`RawInput::try_push`]).
     pub fn push(&mut self, ids: &[u32], line: u32) {
         self.ids.extend_from_slice(ids);
         self.offsets.push(self.ids.len());
         self.lines.push(line);
+    }
+
+    /// [`RawInput::push`] whose growth is reserved fallibly: [`ReadErrorKind::TooLarge`] when
+    /// the memory cannot be had (a reader's output never aborts the process).
+    #[inline]
+    pub fn try_push(&mut self, ids: &[u32], line: u32) -> Result<(), ReadErrorKind> {
+        table::try_extend(&mut self.ids, ids).map_err(no_room("the simplices' vertex ids"))?;
+        table::try_push(&mut self.offsets, self.ids.len())
+            .map_err(no_room("the simplex offsets"))?;
+        table::try_push(&mut self.lines, line).map_err(no_room("the simplices' line numbers"))
+    }
+
+    /// Reserves room for `simplices` more simplices of `ids` ids in all, fallibly
+    /// ([`ReadErrorKind::TooLarge`]). Readers size it from declared counts capped by what the
+    /// file could hold ([`capped`]), so that the arrays are allocated once, at their size.
+    pub fn try_reserve(&mut self, simplices: usize, ids: usize) -> Result<(), ReadErrorKind> {
+        table::try_reserve_exact(&mut self.offsets, simplices)
+            .map_err(no_room("the simplex offsets"))?;
+        table::try_reserve_exact(&mut self.lines, simplices)
+            .map_err(no_room("the simplices' line numbers"))?;
+        table::try_reserve_exact(&mut self.ids, ids).map_err(no_room("the simplices' vertex ids"))
     }
 
     /// Number of simplices read.
@@ -296,6 +319,25 @@ fn read_binary_capable(path: &Path, ext: &str) -> Result<RawInput, ReadError> {
 /// Shorthand for a syntax error.
 pub(crate) fn syntax(msg: impl Into<String>) -> ReadErrorKind {
     ReadErrorKind::Syntax(msg.into())
+}
+
+/// The [`ReadErrorKind::TooLarge`] of an allocation of `what` (a reader's output array) that
+/// failed asking for the given bytes: `map_err(no_room("..."))` on the `Err(bytes)` of
+/// [`table::try_push`] and its family.
+pub(crate) fn no_room(what: &'static str) -> impl Fn(usize) -> ReadErrorKind {
+    move |bytes| {
+        ReadErrorKind::TooLarge(format!(
+            "cannot allocate {bytes} bytes for {what} (out of memory)"
+        ))
+    }
+}
+
+/// A `Vec` of `n` elements' capacity reserved fallibly ([`ReadErrorKind::TooLarge`] naming
+/// `what`); `n` comes from a declared count capped by what the file could hold ([`capped`]).
+pub(crate) fn try_with_capacity<T>(n: usize, what: &'static str) -> Result<Vec<T>, ReadErrorKind> {
+    let mut v = Vec::new();
+    table::try_reserve_exact(&mut v, n).map_err(no_room(what))?;
+    Ok(v)
 }
 
 /// Caps a capacity taken from a count declared in the file by what the text could hold (every

@@ -29,7 +29,8 @@ use rustc_hash::FxHashMap;
 
 use super::bytes::Input;
 use super::write::{check_coord_dim, check_max_len, push_f64, vertex_count};
-use super::{Coords, RawInput, ReadErrorKind, parse_integer, syntax};
+use super::{Coords, RawInput, ReadErrorKind, no_room, parse_integer, syntax};
+use crate::complex::table;
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
@@ -144,6 +145,12 @@ impl<'a> Reader<'a> {
             u32::try_from(self.tags.len()).map_err(|_| (line, syntax("more than 2^32 nodes")))?;
         let tag = u64::try_from(tag)
             .map_err(|_| (line, syntax(format!("node tag {tag} is negative"))))?;
+        self.tags.try_reserve(1).map_err(|_| {
+            (
+                line,
+                no_room("the node tags")(self.tags.len().saturating_mul(24)),
+            )
+        })?;
         if self.tags.insert(tag, id).is_some() {
             return Err((line, syntax(format!("node tag {tag} appears twice"))));
         }
@@ -153,14 +160,15 @@ impl<'a> Reader<'a> {
     fn nodes(&mut self, line: u32) -> Res<()> {
         if !self.v4 {
             let n = self.count("the node count", line)?;
-            self.reserve(n, 4 + 24);
+            self.reserve(n, 4 + 24, line)?;
             self.enter_binary_block();
             for _ in 0..n {
                 let (tag, l) = self.int(4, "a node tag", line)?;
                 self.node(tag, l)?;
                 for _ in 0..3 {
                     let x = self.real(line)?;
-                    self.coords.push(x);
+                    table::try_push(&mut self.coords, x)
+                        .map_err(|b| (line, no_room("the vertex coordinates")(b)))?;
                 }
             }
             return self.end("$EndNodes");
@@ -170,7 +178,7 @@ impl<'a> Reader<'a> {
         let n = self.count("the node count", line)?;
         self.count("the minimum node tag", line)?;
         self.count("the maximum node tag", line)?;
-        self.reserve(n, 8 + 24);
+        self.reserve(n, 8 + 24, line)?;
         for _ in 0..blocks {
             let (dim, _) = self.int(4, "an entity dimension", line)?;
             self.int(4, "an entity tag", line)?;
@@ -188,7 +196,8 @@ impl<'a> Reader<'a> {
             for _ in 0..k {
                 for _ in 0..3 {
                     let x = self.real(line)?;
-                    self.coords.push(x);
+                    table::try_push(&mut self.coords, x)
+                        .map_err(|b| (line, no_room("the vertex coordinates")(b)))?;
                 }
                 for _ in 0..extra {
                     self.real(line)?;
@@ -199,11 +208,14 @@ impl<'a> Reader<'a> {
     }
 
     /// Reserves for `n` items of at least `bytes` bytes each (2 in ASCII), capped by the input.
-    fn reserve(&mut self, n: usize, bytes: usize) {
+    fn reserve(&mut self, n: usize, bytes: usize, line: u32) -> Res<()> {
         let per = if self.inp.binary { bytes } else { 2 };
         let n = n.min(self.inp.left() / per + 1);
-        self.tags.reserve(n);
-        self.coords.reserve(n * 3);
+        self.tags
+            .try_reserve(n)
+            .map_err(|_| (line, no_room("the node tags")(n.saturating_mul(24))))?;
+        table::try_reserve_exact(&mut self.coords, n * 3)
+            .map_err(|b| (line, no_room("the vertex coordinates")(b)))
     }
 
     /// One element: its node tags mapped to vertex ids.
@@ -222,8 +234,9 @@ impl<'a> Reader<'a> {
                     )
                 })?;
         }
-        self.raw.push(&ids[..nodes.len()], line);
-        Ok(())
+        self.raw
+            .try_push(&ids[..nodes.len()], line)
+            .map_err(|k| (line, k))
     }
 
     fn simplex_len(&self, tag: i64, t: i64, line: u32) -> Res<usize> {

@@ -29,7 +29,10 @@
 //! `vertex_count` is the number of `v` statements.
 
 use super::scan::{self, Scanner};
-use super::{Coords, IntError, RawInput, ReadErrorKind, echo, parse_f64, parse_integer, syntax};
+use super::{
+    Coords, IntError, RawInput, ReadErrorKind, echo, no_room, parse_f64, parse_integer, syntax,
+};
+use crate::complex::table;
 
 /// Statements that carry nothing a simplicial complex keeps (texture and normal vertices,
 /// grouping, materials, display attributes, and the free-form attribute and body statements,
@@ -227,8 +230,7 @@ fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), R
         "v" => vertex(s, st),
         "f" => {
             if let Some(ids) = plain_triangle(s) {
-                st.raw.push(&ids, line);
-                return Ok(());
+                return st.raw.try_push(&ids, line);
             }
             let mut refs = [""; 3];
             let mut k = 0;
@@ -249,13 +251,13 @@ fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), R
             for (id, tok) in ids.iter_mut().zip(refs) {
                 *id = vertex_index(tok, Form::Face, st.seen)?;
             }
-            st.raw.push(&ids, line);
-            Ok(())
+            st.raw.try_push(&ids, line)
         }
         "l" => {
             st.ids.clear();
             while let Some((tok, _)) = s.token_in_line() {
-                st.ids.push(vertex_index(tok, Form::Line, st.seen)?);
+                let id = vertex_index(tok, Form::Line, st.seen)?;
+                table::try_push(&mut st.ids, id).map_err(no_room("a line element's ids"))?;
             }
             if st.ids.len() < 2 {
                 return Err(syntax(format!(
@@ -264,7 +266,7 @@ fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), R
                 )));
             }
             for pair in st.ids.windows(2) {
-                st.raw.push(pair, line);
+                st.raw.try_push(pair, line)?;
             }
             Ok(())
         }
@@ -272,7 +274,7 @@ fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), R
             let before = st.raw.simplex_count();
             while let Some((tok, _)) = s.token_in_line() {
                 let id = vertex_index(tok, Form::Point, st.seen)?;
-                st.raw.push(&[id], line);
+                st.raw.try_push(&[id], line)?;
             }
             if st.raw.simplex_count() == before {
                 return Err(syntax("point element with no vertices"));
@@ -335,7 +337,9 @@ fn vertex(s: &mut Scanner<'_>, st: &mut State) -> Result<(), ReadErrorKind> {
         0..=2 => {
             return Err(syntax(format!("expected 3 vertex coordinates, found {n}")));
         }
-        3 | 4 | 6 | 7 => st.data.extend_from_slice(&xyz),
+        3 | 4 | 6 | 7 => {
+            table::try_extend(&mut st.data, &xyz).map_err(no_room("the vertex coordinates"))?
+        }
         _ => {
             return Err(syntax(format!(
                 "v statement with {n} numbers; expected x y z, optionally followed by w (4 \

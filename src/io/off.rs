@@ -36,9 +36,10 @@
 
 use super::scan::{self, Scanner};
 use super::{
-    Coords, IntError, RawInput, ReadErrorKind, capped_len, echo, parse_count, parse_f64,
-    parse_integer, syntax,
+    Coords, IntError, RawInput, ReadErrorKind, capped_len, echo, no_room, parse_count, parse_f64,
+    parse_integer, syntax, try_with_capacity,
 };
+use crate::complex::table;
 
 /// The prefixes of an OFF header keyword.
 #[derive(Debug, Default, Clone, Copy)]
@@ -77,11 +78,15 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     let h = header(&mut t)?;
     let dim = dimension(&mut t, h)?;
     let (nv, nf) = counts(&mut t)?;
+    let counts_line = t.line();
     let layout = Layout::new(h, dim);
     let (data, widest) = vertices(&mut t, nv, &layout)?;
     let mut raw = RawInput::new();
     raw.vertex_count = Some(nv);
     raw.coords = Some(Coords { dim, data });
+    let cap = capped_len(nf as usize, t.len());
+    raw.try_reserve(cap, cap.saturating_mul(3).min(t.len()))
+        .map_err(|k| (counts_line, k))?;
     faces(&mut t, nf, &mut raw, |(l, k)| {
         first_face_hint(l, k, widest, &layout)
     })?;
@@ -234,7 +239,8 @@ impl Layout {
 /// Also returns the most vertex numbers one line held.
 fn vertices(t: &mut Scanner<'_>, nv: u32, layout: &Layout) -> Res<(Vec<f64>, usize)> {
     let (dim, per_vertex) = (layout.dim, layout.per_vertex);
-    let mut data = Vec::with_capacity(capped_len((nv as usize).saturating_mul(dim), t.len()));
+    let cap = capped_len((nv as usize).saturating_mul(dim), t.len());
+    let mut data = try_with_capacity(cap, "the vertex coordinates").map_err(|k| (t.line(), k))?;
     // (line, numbers read on it) for the line holding the vertex numbers read last.
     let mut on_line = (0u32, 0usize);
     let mut widest = 0;
@@ -256,7 +262,8 @@ fn vertices(t: &mut Scanner<'_>, nv: u32, layout: &Layout) -> Res<(Vec<f64>, usi
             on_line.1 += 1;
             widest = widest.max(on_line.1);
             if j < dim {
-                data.push(x);
+                table::try_push(&mut data, x)
+                    .map_err(|b| (l, no_room("the vertex coordinates")(b)))?;
             }
         }
     }
@@ -349,10 +356,6 @@ fn faces(
     raw: &mut RawInput,
     hint: impl Fn((u32, ReadErrorKind)) -> (u32, ReadErrorKind),
 ) -> Res<()> {
-    let cap = capped_len(nf as usize, t.len());
-    raw.ids.reserve(cap.saturating_mul(3).min(t.len()));
-    raw.offsets.reserve(cap);
-    raw.lines.reserve(cap);
     for f in 0..nf {
         face(t, f, nf, raw).map_err(|e| if f == 0 { hint(e) } else { e })?;
     }
@@ -387,8 +390,8 @@ fn face(t: &mut Scanner<'_>, f: u32, nf: u32, raw: &mut RawInput) -> Res<()> {
         };
     }
     face_colour(t, f, k)?;
-    raw.push(&ids[..k], face_line);
-    Ok(())
+    raw.try_push(&ids[..k], face_line)
+        .map_err(|e| (face_line, e))
 }
 
 /// A face's vertex count: 1, 2 or 3.

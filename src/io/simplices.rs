@@ -24,7 +24,8 @@
 //!   line at all.
 
 use super::scan::{self, Scanner};
-use super::{Coords, RawInput, ReadErrorKind, echo, parse_f64, syntax};
+use super::{Coords, RawInput, ReadErrorKind, echo, no_room, parse_f64, syntax};
+use crate::complex::table;
 
 /// Reads a `.simplices` file's text.
 pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
@@ -51,7 +52,8 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
                                 None => break,
                             },
                         };
-                        data.push(x);
+                        table::try_push(&mut data, x)
+                            .map_err(|b| err(no_room("the vertex coordinates")(b)))?;
                     }
                     let k = data.len() - start;
                     match first_v {
@@ -78,12 +80,13 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
                                 None => break,
                             },
                         };
-                        ids.push(id.map_err(err)?);
+                        table::try_push(&mut ids, id.map_err(err)?)
+                            .map_err(|b| err(no_room("an s line's ids")(b)))?;
                     }
                     if ids.is_empty() {
                         return Err(err(syntax("s line with no vertex ids")));
                     }
-                    raw.push(&ids, line);
+                    raw.try_push(&ids, line).map_err(err)?;
                 }
                 k => {
                     return Err(err(syntax(format!(

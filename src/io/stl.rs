@@ -24,28 +24,30 @@ use std::io::Cursor;
 use stl_io::{Normal, Triangle, Vertex};
 
 use super::write::{check_coord_dim, show, vertex_count};
-use super::{Coords, RawInput, ReadErrorKind, syntax};
+use super::{Coords, RawInput, ReadErrorKind, no_room, syntax, try_with_capacity};
+use crate::complex::table::headroom;
 
 /// The bytes as `stl_io` tells them apart: it takes any file starting with `solid ` for ASCII
 /// and anything else for binary. A binary file whose 80-byte header starts with `solid` (many
 /// exporters write one) gets a blank header; an ASCII `solid` with no name gets a space.
-fn for_stl_io(bytes: &[u8]) -> Cow<'_, [u8]> {
+fn for_stl_io(bytes: &[u8]) -> Result<Cow<'_, [u8]>, ReadErrorKind> {
     let binary_size = bytes
         .get(80..84)
         .map(|c| 84 + 50 * u64::from(u32::from_le_bytes(c.try_into().unwrap())));
     if binary_size == Some(bytes.len() as u64) {
         if bytes.starts_with(b"solid") {
-            let mut b = bytes.to_vec();
+            let mut b = try_with_capacity(bytes.len(), "a copy of the file")?;
+            b.extend_from_slice(bytes);
             b[..80].fill(0);
-            return Cow::Owned(b);
+            return Ok(Cow::Owned(b));
         }
     } else if bytes.starts_with(b"solid") && matches!(bytes.get(5), Some(b'\n' | b'\r')) {
-        let mut b = Vec::with_capacity(bytes.len() + 1);
+        let mut b = try_with_capacity(bytes.len() + 1, "a copy of the file")?;
         b.extend_from_slice(b"solid ");
         b.extend_from_slice(&bytes[5..]);
-        return Cow::Owned(b);
+        return Ok(Cow::Owned(b));
     }
-    Cow::Borrowed(bytes)
+    Ok(Cow::Borrowed(bytes))
 }
 
 /// Parses an STL file, welding exactly equal corners.
@@ -59,18 +61,22 @@ pub fn parse(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
             )),
         ));
     }
-    let mesh = stl_io::read_stl(&mut Cursor::new(for_stl_io(bytes)))
-        .map_err(|e| (0, syntax(format!("STL: {e}"))))?;
+    let bytes = for_stl_io(bytes).map_err(|k| (0, k))?;
+    // The crate's arrays are allocated infallibly: their peak (under 3 times the file) is
+    // probed first, so that a file too large for memory is refused rather than an abort.
+    headroom(bytes.len().saturating_mul(3)).map_err(|b| (0, no_room("reading STL")(b)))?;
+    let mesh =
+        stl_io::read_stl(&mut Cursor::new(bytes)).map_err(|e| (0, syntax(format!("STL: {e}"))))?;
     let mut raw = RawInput::new();
     let n =
         u32::try_from(mesh.vertices.len()).map_err(|_| (0, syntax("more than 2^32 vertices")))?;
     raw.vertex_count = Some(n);
-    let data = mesh
-        .vertices
-        .iter()
-        .flat_map(|v| v.0.map(f64::from))
-        .collect();
+    let mut data =
+        try_with_capacity(mesh.vertices.len() * 3, "the vertex coordinates").map_err(|k| (0, k))?;
+    data.extend(mesh.vertices.iter().flat_map(|v| v.0.map(f64::from)));
     raw.coords = Some(Coords { dim: 3, data });
+    raw.try_reserve(mesh.faces.len(), mesh.faces.len() * 3)
+        .map_err(|k| (0, k))?;
     for f in &mesh.faces {
         // Ids are below n, which fits in u32.
         raw.push(&f.vertices.map(|v| v as u32), 0);

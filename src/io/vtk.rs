@@ -34,7 +34,10 @@
 
 use super::bytes::Input;
 use super::write::{check_coord_dim, check_max_len, push_f64, push_ids, vertex_count};
-use super::{Coords, IntError, RawInput, ReadErrorKind, parse_integer, syntax};
+use super::{
+    Coords, IntError, RawInput, ReadErrorKind, no_room, parse_integer, syntax, try_with_capacity,
+};
+use crate::complex::table;
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
@@ -87,10 +90,11 @@ impl Input<'_> {
     /// `n` numbers of `ty` (a VTK data type name), collected.
     fn numbers(&mut self, n: usize, ty: &str, line: u32, what: &str) -> Res<Vec<f64>> {
         let (size, _) = data_type(ty, line)?;
-        let mut out = Vec::with_capacity(n.min(self.left() / size.min(2) + 1));
+        let mut out =
+            try_with_capacity(n.min(self.left() / size.min(2) + 1), "an array of numbers")
+                .map_err(|k| (line, k))?;
         self.each_number(n, ty, line, what, |_, x| {
-            out.push(x);
-            Ok(())
+            table::try_push(&mut out, x).map_err(|b| (line, no_room("an array of numbers")(b)))
         })?;
         Ok(out)
     }
@@ -203,21 +207,24 @@ fn read_cells(inp: &mut Input, version5: bool, line: u32) -> Res<RawInput> {
     let a = inp.count("CELLS")?;
     let b = inp.count("CELLS")?;
     let mut raw = RawInput::new();
-    // Exact reservations from the declared counts, capped by what the bytes left can hold
-    // (each entry takes at least 2 bytes in ASCII, 1 in binary).
+    // Exact reservations (fallible) from the declared counts, capped by what the bytes left can
+    // hold (each entry takes at least 2 bytes in ASCII, 1 in binary).
     let cap = inp.left() / if inp.binary { 1 } else { 2 } + 1;
-    raw.offsets.reserve_exact(a.min(cap));
-    raw.lines.reserve_exact(a.min(cap));
     if version5 {
         read_cells5(inp, a, b, line, &mut raw)?;
     } else {
-        raw.ids.reserve_exact(b.saturating_sub(a).min(cap));
+        raw.try_reserve(a.min(cap), b.saturating_sub(a).min(cap))
+            .map_err(|k| (line, k))?;
         read_cells4(inp, a, b, line, &mut raw)?;
     }
     Ok(raw)
 }
 
-/// Version 5: `OFFSETS <type>` (`a` ints) then `CONNECTIVITY <type>` (`b` ints).
+/// Version 5: `OFFSETS <type>` (`a` ints) then `CONNECTIVITY <type>` (`b` ints); cell `i` is
+/// the connectivity entries `offsets[i]..offsets[i + 1]`. The connectivity is streamed into
+/// `raw` (only the cells before the first bad offset pair are kept); errors come in the order
+/// the whole block gives them: a malformed number first, then the first cell whose offsets or
+/// ids are wrong.
 fn read_cells5(inp: &mut Input, a: usize, b: usize, line: u32, raw: &mut RawInput) -> Res<()> {
     let (kw, l) = inp.expect_token("OFFSETS")?;
     if !kw.eq_ignore_ascii_case("OFFSETS") {
@@ -228,26 +235,46 @@ fn read_cells5(inp: &mut Input, a: usize, b: usize, line: u32, raw: &mut RawInpu
     }
     let (ty, _) = inp.expect_token("the OFFSETS data type")?;
     let offsets = inp.numbers(a, ty, l, "offsets")?;
+    // The cells before the first whose offsets are out of order or range: consecutive ranges.
+    let bad_offsets = offsets
+        .windows(2)
+        .position(|w| !(0.0 <= w[0] && w[0] <= w[1] && w[1] <= b as f64));
+    let good = &offsets[..bad_offsets.map_or(offsets.len(), |i| i + 1)];
+    let (start, end) = match good {
+        [first, .., last] => (*first as usize, *last as usize),
+        _ => (0, 0),
+    };
     let (kw, l2) = inp.expect_token("CONNECTIVITY")?;
     if !kw.eq_ignore_ascii_case("CONNECTIVITY") {
         return Err((l2, syntax(format!("expected CONNECTIVITY, found '{kw}'"))));
     }
     let (ty, _) = inp.expect_token("the CONNECTIVITY data type")?;
-    let conn = inp.numbers(b, ty, l2, "connectivity entries")?;
-    let mut ids = Vec::new();
-    for (i, w) in offsets.windows(2).enumerate() {
-        let (s, e) = (w[0], w[1]);
-        if !(0.0 <= s && s <= e && e <= conn.len() as f64) {
-            return Err((
-                l,
-                syntax(format!("cell #{i}: offsets {s}..{e} out of order or range")),
-            ));
+    let cells = good.len().saturating_sub(1);
+    raw.try_reserve(cells, end - start).map_err(|k| (l, k))?;
+    let mut bad_id = None;
+    inp.each_number(b, ty, l2, "connectivity entries", |i, x| {
+        if (start..end).contains(&i) && bad_id.is_none() {
+            match vertex_id(x, l2) {
+                Ok(v) => raw.ids.push(v),
+                Err(e) => bad_id = Some(e),
+            }
         }
-        ids.clear();
-        for &x in &conn[s as usize..e as usize] {
-            ids.push(vertex_id(x, l2)?);
-        }
-        raw.push(&ids, line);
+        Ok(())
+    })?;
+    // A bad id lies in a cell before the first bad offset pair, so it is reported first.
+    if let Some(e) = bad_id {
+        return Err(e);
+    }
+    if let Some(i) = bad_offsets {
+        let (s, e) = (offsets[i], offsets[i + 1]);
+        return Err((
+            l,
+            syntax(format!("cell #{i}: offsets {s}..{e} out of order or range")),
+        ));
+    }
+    for &o in good.iter().skip(1) {
+        raw.offsets.push(o as usize - start);
+        raw.lines.push(line);
     }
     Ok(())
 }
@@ -276,7 +303,8 @@ fn read_cells4(inp: &mut Input, a: usize, b: usize, line: u32, raw: &mut RawInpu
         }
         if in_cell {
             match vertex_id(x, line) {
-                Ok(v) => raw.ids.push(v),
+                Ok(v) => table::try_push(&mut raw.ids, v)
+                    .map_err(|b| (line, no_room("the simplices' vertex ids")(b)))?,
                 Err(e) => {
                     bad_id.get_or_insert(e);
                 }
@@ -294,8 +322,10 @@ fn read_cells4(inp: &mut Input, a: usize, b: usize, line: u32, raw: &mut RawInpu
             if let Some(e) = bad_id.take() {
                 pending = Some(e);
             }
-            raw.offsets.push(raw.ids.len());
-            raw.lines.push(line);
+            table::try_push(&mut raw.offsets, raw.ids.len())
+                .map_err(|b| (line, no_room("the simplex offsets")(b)))?;
+            table::try_push(&mut raw.lines, line)
+                .map_err(|b| (line, no_room("the simplices' line numbers")(b)))?;
             in_cell = false;
             cell += 1;
         }
@@ -650,5 +680,59 @@ mod tests {
         assert_eq!(raw.simplex_count(), 1);
         assert_eq!(raw.simplex(0), &[0, 1, 2]);
         assert_eq!(raw.lines, vec![9]);
+    }
+
+    /// Version 5 (OFFSETS / CONNECTIVITY) with the connectivity streamed: cell `i` is
+    /// `offsets[i]..offsets[i + 1]` (the first offset need not be 0); a bad id in a cell before
+    /// the first bad offset pair is reported first, else the offsets, else a malformed number
+    /// anywhere in the block before both.
+    #[test]
+    fn version_5_cells_stream_and_report_in_cell_order() {
+        let v5 = |cells: &str| {
+            format!(
+                "# vtk DataFile Version 5.1\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n\
+                 POINTS 3 double\n0 0 0 1 0 0 0 1 0\n{cells}"
+            )
+        };
+        //   2
+        //   | \        cells: triangle 0 1 2, edge 1 2 (offsets 1..4..6 of 7 entries)
+        //   0---1
+        let raw = parse(
+            v5(
+                "CELLS 3 7\nOFFSETS vtktypeint64\n1 4 6\nCONNECTIVITY vtktypeint64\n9 0 1 2 1 2 9\n\
+                CELL_TYPES 2\n5 3\n",
+            )
+            .as_bytes(),
+        )
+        .unwrap();
+        assert_eq!(raw.simplex_count(), 2);
+        assert_eq!(
+            (raw.simplex(0), raw.simplex(1)),
+            (&[0, 1, 2][..], &[1, 2][..])
+        );
+        assert_eq!(raw.lines, [7, 7]);
+        let err = |cells: &str| {
+            let (l, k) = parse(v5(cells).as_bytes()).unwrap_err();
+            (l, k.to_string())
+        };
+        // Cell 1's offsets are out of range (7 > 6 entries); cell 0 has a bad id: cell 0 first.
+        let (l, m) = err(
+            "CELLS 3 6\nOFFSETS int\n0 3 7\nCONNECTIVITY int\n0 -1 2 0 1 2\nCELL_TYPES 2\n5 5\n",
+        );
+        assert_eq!((l, m.as_str()), (10, "negative vertex id -1"));
+        // The same bad id after the bad pair is not read: the offsets are reported.
+        let (l, m) = err(
+            "CELLS 3 6\nOFFSETS int\n0 3 2\nCONNECTIVITY int\n0 1 2 0 -1 2\nCELL_TYPES 2\n5 5\n",
+        );
+        assert_eq!(
+            (l, m.as_str()),
+            (8, "cell #1: offsets 3..2 out of order or range")
+        );
+        // A malformed number anywhere in the connectivity comes before both.
+        let (l, m) = err(
+            "CELLS 3 6\nOFFSETS int\n0 3 2\nCONNECTIVITY int\n0 -1 2\n0 x 2\nCELL_TYPES 2\n5 5\n",
+        );
+        assert_eq!(l, 12);
+        assert!(m.contains("'x' is not a int"), "{m}");
     }
 }

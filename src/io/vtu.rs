@@ -7,7 +7,10 @@
 //! polygon, hexahedron, wedge, higher order...) is refused naming the cell's index, and so is a
 //! cell whose id count does not match its type. vtkio reports XML errors without a line.
 //! Pieces stored in other files (parallel formats) are not read. vtkio panics on some malformed
-//! binary arrays; the panic is caught and reported as an error.
+//! binary arrays; the panic is caught and reported as an error (one line: the panic hook stays
+//! silent for it, [`crate::error::caught_quietly`]). vtkio's own arrays are allocated
+//! infallibly: their peak is probed before parsing, ours are reserved fallibly; memory that
+//! cannot be had is [`ReadErrorKind::TooLarge`].
 //!
 //! Writing: one piece, `Float64` points (3 per vertex, fewer padded with zeros, zeros without
 //! coordinates), `connectivity`, `offsets` and `types` in listing order, as vtkio encodes them
@@ -19,7 +22,13 @@ use vtkio::model::{
 };
 
 use super::write::{check_coord_dim, check_max_len, vertex_count};
-use super::{Coords, RawInput, ReadErrorKind, echo, syntax};
+use super::{Coords, RawInput, ReadErrorKind, echo, no_room, syntax};
+use crate::complex::table::{self, headroom};
+use crate::error::caught_quietly;
+
+/// vtkio's parse peak per byte of file, probed before it starts (measured with
+/// scripts/read-peak.sh, docs/benchmarks.md "Reading").
+const VTKIO_PEAK_PER_BYTE: usize = 4;
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
@@ -49,7 +58,8 @@ fn add_piece(
         .points
         .cast_into::<f64>()
         .ok_or_else(|| err(format!("piece {piece}: points are not numbers")))?;
-    data.extend_from_slice(&points);
+    table::try_extend(data, &points).map_err(|b| (0, no_room("the vertex coordinates")(b)))?;
+    drop(points);
     let (connectivity, offsets): (Vec<u64>, Vec<u64>) = match p.cells.cell_verts {
         VertexNumbers::XML {
             connectivity,
@@ -65,8 +75,12 @@ fn add_piece(
                 let ids = vertices
                     .get(k + 1..k + 1 + n)
                     .ok_or_else(|| err("truncated cell list"))?;
-                conn.extend(ids.iter().map(|&v| u64::from(v)));
-                offs.push(conn.len() as u64);
+                for &v in ids {
+                    table::try_push(&mut conn, u64::from(v))
+                        .map_err(|b| (0, no_room("the cells")(b)))?;
+                }
+                table::try_push(&mut offs, conn.len() as u64)
+                    .map_err(|b| (0, no_room("the cells")(b)))?;
                 k += 1 + n;
             }
             (conn, offs)
@@ -79,6 +93,8 @@ fn add_piece(
             offsets.len()
         )));
     }
+    raw.try_reserve(offsets.len(), connectivity.len())
+        .map_err(|k| (0, k))?;
     let mut start = 0u64;
     let mut ids = Vec::with_capacity(4);
     for (i, (&end, &t)) in offsets.iter().zip(&p.cells.types).enumerate() {
@@ -107,7 +123,7 @@ fn add_piece(
                 .map_err(|_| err(format!("piece {piece}, cell #{i}: id {v} too large")))?;
             ids.push(v);
         }
-        raw.push(&ids, 0);
+        raw.try_push(&ids, 0).map_err(|k| (0, k))?;
         start = end;
     }
     Ok(())
@@ -115,10 +131,13 @@ fn add_piece(
 
 /// Parses a `.vtu` file.
 pub fn parse(bytes: &[u8]) -> Res<RawInput> {
+    // vtkio's arrays are allocated infallibly: its peak is probed first (address space, see
+    // `headroom`), so that a file too large for memory is refused rather than an abort.
+    headroom(bytes.len().saturating_mul(VTKIO_PEAK_PER_BYTE))
+        .map_err(|b| (0, no_room("reading VTU")(b)))?;
     // vtkio 0.7.0-rc2 slices out of range on some malformed binary arrays (found by fuzzing):
-    // its panic is caught here and reported as a parse error (the panic message still reaches
-    // the process's panic hook, by default stderr).
-    let parsed = std::panic::catch_unwind(|| Vtk::parse_xml(bytes))
+    // its panic is caught here and reported as a parse error, without the panic hook's report.
+    let parsed = caught_quietly(|| Vtk::parse_xml(bytes))
         .map_err(|_| err("VTU: malformed data array (the vtkio crate panicked on it)"))?;
     let vtk = parsed.map_err(|e| err(format!("VTU: {}", echo(e.to_string()))))?;
     let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {

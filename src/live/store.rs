@@ -75,7 +75,17 @@ impl Persist for LiveComplex {
                 "{n} vertices, but the file names only {named} vertex references"
             )));
         }
-        let live = LiveComplex::from_tables(n, coord_dim, coords.to_vec(), &tables);
+        // The tables and stars built below are allocated infallibly: their size (per vertex a
+        // degree, a flag and a star's header; per id a slot in a table and one in a star) is
+        // probed first, so that a file too large for memory is refused rather than an abort.
+        let ids: usize = tables.iter().map(|t| t.len()).sum();
+        let bytes = (n as usize)
+            .saturating_mul(4 + 1 + size_of::<Vec<u32>>())
+            .saturating_add(ids.saturating_mul(8));
+        crate::complex::table::headroom(bytes)
+            .map_err(|bytes| r.out_of_memory("the live complex's tables", bytes))?;
+        let coords = r.copy(&coords)?;
+        let live = LiveComplex::from_tables(n, coord_dim, coords, &tables);
         live.check_invariants()
             .map_err(|e| r.corrupt(format!("live complex: {e}")))?;
         // Every vertex is in a top simplex or listed isolated, exactly once.
@@ -142,10 +152,13 @@ impl LiveComplex {
 
     /// [`LiveComplex::open`] of an opened file.
     pub fn open_saved(saved: &crate::store::Saved) -> Result<LiveComplex, StoreError> {
-        let s = saved.structure_of(crate::relation::StructureKind::IaStar)?;
-        Ok(s.as_any()
-            .and_then(|a| a.downcast_ref::<LiveComplex>())
-            .expect("a structure of kind iastar is a LiveComplex")
-            .clone())
+        let kind = crate::relation::StructureKind::IaStar;
+        if let Some(live) = saved.structure_as::<LiveComplex>(kind)? {
+            return Ok(live);
+        }
+        LiveComplex::try_from_complex(&saved.complex()?).map_err(|source| StoreError::Build {
+            path: saved.path().to_path_buf(),
+            source,
+        })
     }
 }

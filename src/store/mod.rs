@@ -48,7 +48,7 @@ use std::marker::PhantomData;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use crate::complex::{Complex, ComplexError, SimplexTable};
+use crate::complex::{Complex, ComplexError, SimplexTable, table};
 use crate::io::Coords;
 use crate::relation::{StructureKind, Topology};
 use crate::structures::BuildError;
@@ -348,12 +348,38 @@ impl Reader<'_> {
         self.arr()
     }
 
-    /// The next section, 64-bit integers as `usize` (copied; refused if one does not fit).
+    /// The next section, 64-bit integers as `usize` (copied, the copy reserved fallibly:
+    /// [`Reader::out_of_memory`]; refused if one does not fit).
     pub fn usizes(&mut self) -> Result<Vec<usize>, StoreError> {
         let wide = self.u64s()?;
-        wide.iter()
-            .map(|&x| usize::try_from(x).map_err(|_| self.corrupt(format!("{x} overflows usize"))))
-            .collect()
+        let mut out = Vec::new();
+        table::try_reserve_exact(&mut out, wide.len())
+            .map_err(|bytes| self.out_of_memory("a copy of a saved array", bytes))?;
+        for &x in wide.iter() {
+            out.push(usize::try_from(x).map_err(|_| self.corrupt(format!("{x} overflows usize")))?);
+        }
+        Ok(out)
+    }
+
+    /// A copy of a mapped array, reserved fallibly ([`Reader::out_of_memory`]).
+    pub fn copy<T: bytemuck::Pod>(&self, a: &Arr<T>) -> Result<Vec<T>, StoreError> {
+        let mut out = Vec::new();
+        table::try_extend(&mut out, a)
+            .map_err(|bytes| self.out_of_memory("a copy of a saved array", bytes))?;
+        Ok(out)
+    }
+
+    /// Memory that opening asks for (a copy of the file's arrays) that cannot be had: the
+    /// complex model's `OutOfMemory` (`TPX_STATUS_TOO_LARGE` through the C ABI), not an abort.
+    pub fn out_of_memory(&self, what: &'static str, bytes: usize) -> StoreError {
+        StoreError::Complex {
+            path: self.saved.path.clone(),
+            source: ComplexError::OutOfMemory {
+                file: None,
+                what,
+                bytes: bytes as u64,
+            },
+        }
     }
 
     /// The next section, one number.
@@ -492,14 +518,36 @@ impl Saved {
             message: e.to_string(),
         };
         let file = File::open(path).map_err(io_err)?;
-        let map = map_file(&file).map_err(io_err)?;
+        // A mapping counts against an address-space limit: one that does not fit is memory
+        // the file asks for (TooLarge), not an I/O error.
+        let map = map_file(&file).map_err(|e| match e.kind() {
+            io::ErrorKind::OutOfMemory => StoreError::Complex {
+                path: path.to_path_buf(),
+                source: ComplexError::OutOfMemory {
+                    file: None,
+                    what: "mapping the file",
+                    bytes: file.metadata().map_or(0, |m| m.len()),
+                },
+            },
+            _ => io_err(e),
+        })?;
         Saved::from_backing(path, Backing::Map(map))
     }
 
     /// Opens saved bytes held in memory (copied into aligned words); `name` stands for the file
     /// in errors. Same checks as [`Saved::open`].
     pub fn from_bytes(name: &Path, bytes: &[u8]) -> Result<Saved, StoreError> {
-        let mut words = vec![0u64; bytes.len().div_ceil(8)];
+        let n = bytes.len().div_ceil(8);
+        let mut words = Vec::new();
+        table::try_reserve_exact(&mut words, n).map_err(|bytes| StoreError::Complex {
+            path: name.to_path_buf(),
+            source: ComplexError::OutOfMemory {
+                file: None,
+                what: "a copy of the saved bytes",
+                bytes: bytes as u64,
+            },
+        })?;
+        words.resize(n, 0u64);
         bytemuck::cast_slice_mut::<u64, u8>(&mut words)[..bytes.len()].copy_from_slice(bytes);
         Saved::from_backing(name, Backing::Heap(words, bytes.len()))
     }
@@ -560,6 +608,26 @@ impl Saved {
         Ok(Some(s))
     }
 
+    /// The file's path (as opened).
+    pub(crate) fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// The saved structure as its concrete type `T` when the file holds one of `kind` (`T`'s
+    /// kind), else `None`; owned, not boxed (no copy to take it out of a `dyn Topology`).
+    pub(crate) fn structure_as<T: Persist>(
+        &self,
+        kind: StructureKind,
+    ) -> Result<Option<T>, StoreError> {
+        if self.kind != Some(kind) {
+            return Ok(None);
+        }
+        let mut r = self.reader(self.structure_first);
+        let s = T::load(&mut r)?;
+        r.done()?;
+        Ok(Some(s))
+    }
+
     /// A structure of `kind`: the saved one when it is of that kind, else built from the saved
     /// complex.
     pub fn structure_of(&self, kind: StructureKind) -> Result<Box<dyn Topology>, StoreError> {
@@ -599,7 +667,8 @@ impl Saved {
         if let Some(s) = self.structure()? {
             // A hostile file whose checksums were recomputed may still break an invariant that
             // `validate` indexes through: its panic is an answer here, not a crash.
-            let checked = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| s.validate()));
+            let checked =
+                crate::error::caught_quietly(std::panic::AssertUnwindSafe(|| s.validate()));
             match checked {
                 Ok(Ok(())) => {}
                 Ok(Err(e)) => return Err(self.corrupt(format!("saved {}: {e}", s.kind()))),

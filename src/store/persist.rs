@@ -43,10 +43,13 @@ pub(super) fn load_complex(r: &mut Reader) -> Result<Complex, StoreError> {
     let source = r.u8s()?;
     let source =
         (!source.is_empty()).then(|| PathBuf::from(String::from_utf8_lossy(&source).into_owned()));
-    let coords = (dim > 0).then(|| Coords {
-        dim,
-        data: data.to_vec(),
-    });
+    let coords = match dim {
+        0 => None,
+        _ => Some(Coords {
+            dim,
+            data: r.copy(&data)?,
+        }),
+    };
     let mut c =
         Complex::from_arrays(n, &ids, &offsets, coords).map_err(|source| StoreError::Complex {
             path: r.saved.path.clone(),

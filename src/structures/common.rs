@@ -10,7 +10,7 @@ use std::thread::LocalKey;
 use rustc_hash::FxHashSet;
 
 use super::BuildError;
-use crate::complex::table::{headroom, order_by_key};
+use crate::complex::table::{self, headroom, order_by_key};
 use crate::complex::{Complex, SimplexTable, sort_dedup_rows};
 use crate::relation::StructureKind;
 
@@ -54,8 +54,7 @@ pub(crate) fn try_reserve<T>(
     extra: usize,
     what: &str,
 ) -> Result<(), BuildError> {
-    v.try_reserve_exact(extra)
-        .map_err(|_| no_room::<T>(kind, extra, what))
+    table::try_reserve_exact(v, extra).map_err(|_| no_room::<T>(kind, extra, what))
 }
 
 /// `items.to_vec()`, or `TooLarge` when the memory cannot be had.
@@ -109,19 +108,15 @@ pub(crate) fn try_order(
     Ok(order_by_key(n, key_bits, key))
 }
 
-/// `v.push(x)` whose growth (doubling) is reserved fallibly, for arrays whose final length the
-/// input decides but no count gives in advance.
+/// `v.push(x)` whose growth (doubling) is reserved fallibly ([`table::try_push`]), for arrays
+/// whose final length the input decides but no count gives in advance.
 pub(crate) fn try_push<T>(
     kind: StructureKind,
     v: &mut Vec<T>,
     x: T,
     what: &str,
 ) -> Result<(), BuildError> {
-    if v.len() == v.capacity() {
-        try_reserve(kind, v, v.len().max(64), what)?;
-    }
-    v.push(x);
-    Ok(())
+    table::try_push(v, x).map_err(|bytes| too_large(kind, bytes, what))
 }
 
 /// `(0..n as u32).collect()`, or `TooLarge` when the memory cannot be had.

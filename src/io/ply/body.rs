@@ -8,8 +8,9 @@
 
 use ply_rs_bw::ply::{ElementDef, Header, PropertyType, ScalarType};
 
-use super::super::{Coords, RawInput, ReadErrorKind, echo, syntax};
+use super::super::{Coords, RawInput, ReadErrorKind, echo, no_room, syntax, try_with_capacity};
 use super::id;
+use crate::complex::table;
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
@@ -184,7 +185,8 @@ fn read_binary(
                         return Ok(false);
                     };
                     if slot.is_some() {
-                        list.push(x);
+                        table::try_push(list, x)
+                            .map_err(|b| (0, no_room("a list property's entries")(b)))?;
                     }
                 }
             }
@@ -255,7 +257,8 @@ fn read_line(
                     let x = scalar(t, ty)
                         .ok_or_else(|| bad(format!("'{t}' is no {ty:?} (property '{name}')")))?;
                     if slot.is_some() {
-                        list.push(x);
+                        table::try_push(list, x)
+                            .map_err(|b| (line, no_room("a list property's entries")(b)))?;
                     }
                 }
             }
@@ -330,8 +333,9 @@ pub(super) fn parse_body(
                         need_scalar(&w, k, "vertex #0", key)?;
                     }
                 }
-                coords.data = Vec::new();
-                coords.data.reserve_exact(def.count.min(cap) * coords.dim);
+                coords.data =
+                    try_with_capacity(def.count.min(cap) * coords.dim, "the vertex coordinates")
+                        .map_err(at0)?;
                 w
             }
             "face" => {
@@ -347,8 +351,7 @@ pub(super) fn parse_body(
                     }
                     Some(PropertyType::List(..)) => {}
                 }
-                raw.offsets.reserve_exact(def.count.min(cap));
-                raw.lines.reserve_exact(def.count.min(cap));
+                raw.try_reserve(def.count.min(cap), 0).map_err(at0)?;
                 w
             }
             "edge" => {
@@ -357,7 +360,7 @@ pub(super) fn parse_body(
                     need_scalar(&w, 0, "edge #0", "vertex1")?;
                     need_scalar(&w, 1, "edge #0", "vertex2")?;
                 }
-                edges.reserve_exact(def.count.min(cap) * 2);
+                edges = try_with_capacity(def.count.min(cap) * 2, "the edges").map_err(at0)?;
                 w
             }
             _ => Wanted::new(def, &[]),
@@ -390,13 +393,14 @@ pub(super) fn parse_body(
                 }
             }
             match name.as_str() {
-                "vertex" => coords.data.extend_from_slice(&vals[..coords.dim]),
+                "vertex" => table::try_extend(&mut coords.data, &vals[..coords.dim])
+                    .map_err(|b| at0(no_room("the vertex coordinates")(b)))?,
                 "face" => push_face(&mut raw, &list, i)?,
                 "edge" => {
                     for x in [vals[0], vals[1]] {
                         let v = id_of(x, "")
                             .map_err(|_| at0(id_of(x, &format!("edge #{i}")).unwrap_err()))?;
-                        edges.push(v);
+                        table::try_push(&mut edges, v).map_err(|b| at0(no_room("the edges")(b)))?;
                     }
                 }
                 _ => {}
@@ -407,8 +411,7 @@ pub(super) fn parse_body(
         Some(u32::try_from(vertex_count).map_err(|_| at0(syntax("more than 2^32 vertices")))?);
     raw.coords = Some(coords);
     // Faces come before edges in the listing, whatever the elements' order.
-    raw.offsets.reserve_exact(edges.len() / 2);
-    raw.lines.reserve_exact(edges.len() / 2);
+    raw.try_reserve(edges.len() / 2, edges.len()).map_err(at0)?;
     for e in edges.chunks_exact(2) {
         raw.push(e, 0);
     }
@@ -428,10 +431,7 @@ fn push_face(raw: &mut RawInput, list: &[f64], i: usize) -> Res<()> {
     }
     match list.len() {
         0 => Err(at0(syntax(format!("face #{i} has no vertex")))),
-        1..=3 => {
-            raw.push(&ids[..list.len()], 0);
-            Ok(())
-        }
+        1..=3 => raw.try_push(&ids[..list.len()], 0).map_err(at0),
         k => Err(at0(syntax(format!(
             "face #{i}: {}",
             ReadErrorKind::Polygon(k)
