@@ -97,7 +97,10 @@ use crate::structures::ia::faces_containing as faces;
 mod edit;
 pub mod link;
 mod nav;
+mod stars;
 mod store;
+
+use stars::Stars;
 
 pub use edit::{CompactMaps, ContractMode, UndoRecord};
 
@@ -228,8 +231,9 @@ pub struct LiveComplex {
     live_tops: [usize; MAX_DIMENSION + 1],
     alive: Vec<bool>,
     live_vertices: u32,
-    /// St*(v): packed ids of the live top simplices of dimension ≥ 1 containing v.
-    star: Vec<Vec<u32>>,
+    /// St*(v): packed ids of the live top simplices of dimension ≥ 1 containing v, one block
+    /// per vertex in one arena (`stars` module).
+    star: Stars,
     coord_dim: usize,
     coords: Vec<f64>,
     /// Bumped by `compact()`; handles and undo records carry it.
@@ -343,10 +347,7 @@ impl LiveComplex {
                 &format!("top {p}-simplex vertices"),
             )?);
         }
-        let mut star = try_with_capacity(K, n, "vertex stars")?;
-        for &k in &degree {
-            star.push(try_with_capacity(K, k as usize, "star entries")?);
-        }
+        let star = Stars::with_degrees(K, &degree)?;
         drop(degree);
         let mut live = LiveComplex {
             tops,
@@ -383,7 +384,7 @@ impl LiveComplex {
         let w = p + 1;
         for i in 0..w {
             let v = self.tops[p][slot as usize * w + i];
-            self.star[v as usize].push(raw);
+            self.star.push(v, raw);
         }
         self.live_tops[p] += 1;
     }
@@ -395,9 +396,7 @@ impl LiveComplex {
         let w = p + 1;
         let s = self.tops[p][slot as usize * w..(slot as usize + 1) * w].to_vec();
         for &v in &s {
-            let st = &mut self.star[v as usize];
-            let i = st.iter().position(|&x| x == raw).expect("star entry");
-            st.swap_remove(i);
+            self.unstar(v, raw);
         }
         self.tops[p][slot as usize * w] = NONE;
         self.live_tops[p] -= 1;
@@ -411,13 +410,20 @@ impl LiveComplex {
         for i in 0..w {
             let v = self.tops[p][slot as usize * w + i];
             if v != skip {
-                let st = &mut self.star[v as usize];
-                let k = st.iter().position(|&x| x == raw).expect("star entry");
-                st.swap_remove(k);
+                self.unstar(v, raw);
             }
         }
         self.tops[p][slot as usize * w] = NONE;
         self.live_tops[p] -= 1;
+    }
+
+    /// Removes the entry `raw` from St*(v). O(k_v).
+    fn unstar(&mut self, v: u32, raw: u32) {
+        let i = self.star[v as usize]
+            .iter()
+            .position(|&x| x == raw)
+            .expect("star entry");
+        self.star.swap_remove(v, i);
     }
 
     /// Vertices of the top with packed id `raw`, in stored (winding) order.
@@ -508,7 +514,7 @@ impl LiveComplex {
             return Err(Refusal::StaleHandle("vertex slots exhausted".into()));
         }
         self.alive.push(true);
-        self.star.push(Vec::new());
+        self.star.add_vertex();
         self.coords.extend_from_slice(xyz);
         self.live_vertices += 1;
         Ok(VertexId(v))
@@ -736,12 +742,11 @@ impl Topology for LiveComplex {
 
     fn storage(&self) -> Storage {
         let slots: usize = self.tops.iter().map(Vec::len).sum();
-        let star_entries: usize = self.star.iter().map(Vec::len).sum();
+        let star_entries = self.star.entries();
         let bytes = 4 * self.tops.iter().map(Vec::capacity).sum::<usize>()
             + 24 * self.tops.capacity()
             + self.alive.capacity()
-            + 24 * self.star.capacity()
-            + 4 * self.star.iter().map(Vec::capacity).sum::<usize>();
+            + self.star.bytes();
         Storage {
             integers: (slots + star_entries) as u64,
             bits: self.alive.len() as u64,
@@ -839,7 +844,8 @@ impl LiveComplex {
                 }
             }
         }
-        let listed: usize = self.star.iter().map(Vec::len).sum();
+        self.star.check()?;
+        let listed = self.star.entries();
         if listed != entries {
             return Err(format!(
                 "stars hold {listed} entries, the live tops have {entries} vertices"
