@@ -28,9 +28,13 @@
 //!
 //! # Storage
 //! Σ_{p≥1} 2(p+1)·t_p integers (t_p live-or-tombstoned top p-simplices: their vertices, and one
-//! star entry per vertex of each) and n_0 alive bits. Bytes add one `Vec` header (24 bytes) per
-//! vertex for its star and the vectors' spare capacity; coordinates are not counted (the nine
-//! structures hold none). On a tetrahedral mesh: 32 bytes per tetrahedron + ~25 per vertex.
+//! star entry per vertex of each) and n_0 alive bits. The stars are one arena (`stars` module):
+//! each vertex's St*(v) is a block named by three `u32`s (start, length, capacity), so bytes add
+//! 12 per vertex, and the arena's spare room: none after a build or `compact()` (each block at
+//! exactly its degree), and after edits the blocks' unused capacity plus free blocks, below 1/8
+//! of the arena plus one growth step. Coordinates are not counted (the nine structures hold
+//! none). On a tetrahedral mesh: 32 bytes per tetrahedron + ~13 per vertex; on a triangle mesh
+//! 24 bytes per triangle + ~13 per vertex.
 //!
 //! # Cost of each relation
 //! k_v = |St*(v)|; σ a p-simplex, v its vertex with the smallest star; d ≤ 15 so subsets of a
@@ -56,7 +60,8 @@
 //!   operations (see [`link`]).
 //! - [`LiveComplex::contract`] {a, b} → a: the link test, then each top of St(b) whose image
 //!   stays a top is rewritten in its own slot (b replaced by a: O(d) and one entry appended to
-//!   St*(a); its id and its entries in the other stars stay), and the others are retired
+//!   St*(a), amortised: St*(a) moves at most once per contraction, O(k_a + k_b) words, see
+//!   `stars`; its id and its entries in the other stars stay), and the others are retired
 //!   (O(d·k_max) each, a scan of each vertex's star). When the link condition holds no image
 //!   can be a face of another simplex or absorb one, except the images of tops through both a
 //!   and b (proof at `image_star_of_b`), so only those O(k_ab) are tested, each against the
