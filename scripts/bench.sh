@@ -5,8 +5,9 @@
 #      $TOPOPLEX_BENCH_DATA (default: <target dir>/bench-data; existing files are reused);
 #   3. build the Google Benchmark programs (cpp_tests/bench) against the prefix and run
 #      topoplex_bench_surface and topoplex_bench_simplify (issue 14: quadric simplification to
-#      1%) on surf-*.off, topoplex_bench_tets on tet-*.mesh and topoplex_bench_gudhi on every
-#      dataset, JSON into the results directory;
+#      1%) on surf-*.off, topoplex_bench_tets on tet-*.mesh, topoplex_bench_contract (issue 14:
+#      link-checked contractions per second next to OpenMesh's collapses) on the 300×300
+#      triangle grid and topoplex_bench_gudhi on every dataset, JSON into the results directory;
 #   4. `cargo bench --bench structures` (criterion, Rust API), if that bench exists, and its
 #      tables (benches/structures_table.py) into RESULTS/criterion.md; then `cargo bench --bench
 #      live` (the live complex: link-checked contractions per second, storage vs the IA) into
@@ -95,7 +96,8 @@ nice -n 10 "$build/bench_data/topoplex_bench_data" "${maker_args[@]}" "$data" \
 cp "$data/datasets.tsv" "$results/" 2>/dev/null || true
 
 echo "== build the benchmark programs (cpp_tests/bench) against $prefix"
-programs=(topoplex_bench_surface topoplex_bench_tets topoplex_bench_gudhi topoplex_bench_simplify)
+programs=(topoplex_bench_surface topoplex_bench_tets topoplex_bench_gudhi topoplex_bench_simplify
+          topoplex_bench_contract)
 if [ ! -f "$root/cpp_tests/bench/CMakeLists.txt" ]; then
   echo "cpp_tests/bench is missing: no side-by-side runs" >&2
   failed+=("cpp_tests/bench missing")
@@ -172,6 +174,9 @@ if [ -n "$bench_bin" ]; then
     done
     cat "$results/simplify_rss.tsv"
   fi
+  # Issue 14: link-checked contractions per second on the 300×300 triangle grid (tri-180k of
+  # benches/live.rs), next to OpenMesh's is_collapse_ok + collapse.
+  run topoplex_bench_contract contract 300
   for f in $(datasets 'surf-*.off') $(datasets 'tet-*.mesh') $(datasets 'alpha-*.simplices') \
            $(datasets 'rips-*.simplices'); do
     run topoplex_bench_gudhi gudhi "$f"

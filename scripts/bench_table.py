@@ -28,7 +28,7 @@ import sys
 from collections import defaultdict
 from pathlib import Path
 
-PROGRAMS = ("surface", "tets", "gudhi", "simplify")
+PROGRAMS = ("surface", "tets", "gudhi", "simplify", "contract")
 UNIT_NS = {"ns": 1.0, "us": 1e3, "ms": 1e6, "s": 1e9}
 # Which kinds the aims call "top-simplex structures" on a tetrahedral mesh: they store the top
 # simplices and their adjacencies (IA, its non-manifold extension NMIA, and the IQM).
@@ -59,6 +59,8 @@ class Run:
         self.heap = med("heap_bytes")
         self.peak = med("peak_heap_bytes")
         self.faces_out = med("faces_out")
+        self.items_per_second = ips
+        self.contracted = med("contracted")
         if self.peak is not None and self.peak < 0:
             self.peak = None
 
@@ -142,8 +144,8 @@ def main_table(results, kinds: list[str], sizes: dict[str, str]) -> list[str]:
     ]
     keys = sorted(results, key=lambda k: (family(k[1]), size_of(k[1]), k[1], PROGRAMS.index(k[0]) if k[0] in PROGRAMS else 9))
     for program, dataset in keys:
-        if program == "simplify":
-            continue  # its own table (simplify_table)
+        if program in ("simplify", "contract"):
+            continue  # their own tables (simplify_table, contract_table)
         ops = results[(program, dataset)]
         for op in ops:
             libs = ops[op]
@@ -223,6 +225,36 @@ def simplify_table(results) -> list[str]:
             f"- aim ≤ 1.0× the time and peak memory of {peer} (worst over the datasets: time {fmt_ratio(rt)}, "
             f"peak {fmt_ratio(rm)}): {verdict(rt <= 1.0 and rm <= 1.0)}"
         )
+    return out
+
+
+def contract_table(results) -> list[str]:
+    """Issue 14: link-checked contractions per second next to OpenMesh's collapses."""
+    keys = sorted(k for k in results if k[0] == "contract")
+    if not keys:
+        return []
+    out = [
+        "",
+        "## Link-checked contractions (issue 14): calls per second on the K×K triangle grid",
+        "",
+        "20,000 calls (a sample of the edges, in ascending order) on a fresh copy; rate by the "
+        "benchmark thread's CPU time. Ratio: Topoplex / OpenMesh calls per second (above 1: "
+        "Topoplex faster).",
+        "",
+        "| grid K | lib | calls/s | contracted | vs openmesh |",
+        "|---:|---|---:|---:|---:|",
+    ]
+    for _, k in keys:
+        libs = results[("contract", k)].get("contract", {})
+        peer = libs.get("openmesh")
+        for lib in ("openmesh", "tpx", "tpx_manifold"):
+            r = libs.get(lib)
+            if r is None or not r.items_per_second:
+                continue
+            vs = ratio(r.items_per_second, peer.items_per_second) if peer and peer.items_per_second else None
+            out.append(
+                f"| {k} | {lib} | {r.items_per_second / 1e6:.2f} M | {r.contracted or 0:,.0f} | {fmt_ratio(vs)} |"
+            )
     return out
 
 
@@ -399,6 +431,7 @@ def main() -> int:
     lines = main_table(results, kinds_in(results), sizes)
     lines += aims(results)
     lines += simplify_table(results)
+    lines += contract_table(results)
     print("\n".join(lines))
     return 0
 

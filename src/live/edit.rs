@@ -322,24 +322,30 @@ impl LiveComplex {
             .reserve(k, k * images.first().map_or(0, |i| i.len as usize + 1));
         undo.inserted
             .reserve(k, k * images.first().map_or(0, |i| i.len as usize));
+        // The retired ones first, so that St*(a) moves at most once, to its final size.
+        let moved = |img: &Image| img.kept && !img.degenerate;
         for img in &images {
             let (p, slot) = unpack(img.from);
-            let w = p + 1;
-            let t = &mut self.tops[p][slot * w..(slot + 1) * w];
-            undo.removed.push(img.from, t);
-            if img.kept && !img.degenerate {
-                let at = t
-                    .iter()
-                    .position(|&v| v == b)
-                    .expect("b in its star's tops");
-                t[at] = a;
-                self.star[a as usize].push(img.from);
-                undo.inserted.push(img.from, img.as_slice());
-            } else {
+            undo.removed.push(img.from, self.top_raw(img.from));
+            if !moved(img) {
                 self.detach_except(p, slot as u32, b);
             }
         }
-        self.star[b as usize].clear();
+        self.star
+            .reserve(a, images.iter().filter(|img| moved(img)).count());
+        for img in images.iter().filter(|img| moved(img)) {
+            let (p, slot) = unpack(img.from);
+            let w = p + 1;
+            let t = &mut self.tops[p][slot * w..(slot + 1) * w];
+            let at = t
+                .iter()
+                .position(|&v| v == b)
+                .expect("b in its star's tops");
+            t[at] = a;
+            self.star.push(a, img.from);
+            undo.inserted.push(img.from, img.as_slice());
+        }
+        self.star.release(b);
         let mut i = 0;
         while !linked && i < self.star[a as usize].len() {
             let raw = self.star[a as usize][i];
@@ -473,20 +479,17 @@ impl LiveComplex {
         }
         let k = self.coord_dim;
         let mut coords = Vec::with_capacity(n as usize * k);
-        let mut star = Vec::with_capacity(n as usize);
         for v in 0..self.alive.len() {
             if self.alive[v] {
                 coords.extend_from_slice(&self.coords[v * k..(v + 1) * k]);
-                let mut st = std::mem::take(&mut self.star[v]);
-                for raw in st.iter_mut() {
+                for raw in self.star[v].iter_mut() {
                     let (p, slot) = unpack(*raw);
                     *raw = pack(p, maps.tops[p][slot]);
                 }
-                star.push(st);
             }
         }
+        self.star.retain_packed(&self.alive);
         self.coords = coords;
-        self.star = star;
         self.alive = vec![true; n as usize];
         self.epoch = self.epoch.wrapping_add(1);
         maps

@@ -28,9 +28,13 @@
 //!
 //! # Storage
 //! Σ_{p≥1} 2(p+1)·t_p integers (t_p live-or-tombstoned top p-simplices: their vertices, and one
-//! star entry per vertex of each) and n_0 alive bits. Bytes add one `Vec` header (24 bytes) per
-//! vertex for its star and the vectors' spare capacity; coordinates are not counted (the nine
-//! structures hold none). On a tetrahedral mesh: 32 bytes per tetrahedron + ~25 per vertex.
+//! star entry per vertex of each) and n_0 alive bits. The stars are one arena (`stars` module):
+//! each vertex's St*(v) is a block named by three `u32`s (start, length, capacity), so bytes add
+//! 12 per vertex, and the arena's spare room: none after a build or `compact()` (each block at
+//! exactly its degree), and after edits the blocks' unused capacity plus free blocks, below 1/8
+//! of the arena plus one growth step. Coordinates are not counted (the nine structures hold
+//! none). On a tetrahedral mesh: 32 bytes per tetrahedron + ~13 per vertex; on a triangle mesh
+//! 24 bytes per triangle + ~13 per vertex.
 //!
 //! # Cost of each relation
 //! k_v = |St*(v)|; σ a p-simplex, v its vertex with the smallest star; d ≤ 15 so subsets of a
@@ -56,7 +60,8 @@
 //!   operations (see [`link`]).
 //! - [`LiveComplex::contract`] {a, b} → a: the link test, then each top of St(b) whose image
 //!   stays a top is rewritten in its own slot (b replaced by a: O(d) and one entry appended to
-//!   St*(a); its id and its entries in the other stars stay), and the others are retired
+//!   St*(a), amortised: St*(a) moves at most once per contraction, O(k_a + k_b) words, see
+//!   `stars`; its id and its entries in the other stars stay), and the others are retired
 //!   (O(d·k_max) each, a scan of each vertex's star). When the link condition holds no image
 //!   can be a face of another simplex or absorb one, except the images of tops through both a
 //!   and b (proof at `image_star_of_b`), so only those O(k_ab) are tested, each against the
@@ -97,7 +102,10 @@ use crate::structures::ia::faces_containing as faces;
 mod edit;
 pub mod link;
 mod nav;
+mod stars;
 mod store;
+
+use stars::Stars;
 
 pub use edit::{CompactMaps, ContractMode, UndoRecord};
 
@@ -228,8 +236,9 @@ pub struct LiveComplex {
     live_tops: [usize; MAX_DIMENSION + 1],
     alive: Vec<bool>,
     live_vertices: u32,
-    /// St*(v): packed ids of the live top simplices of dimension ≥ 1 containing v.
-    star: Vec<Vec<u32>>,
+    /// St*(v): packed ids of the live top simplices of dimension ≥ 1 containing v, one block
+    /// per vertex in one arena (`stars` module).
+    star: Stars,
     coord_dim: usize,
     coords: Vec<f64>,
     /// Bumped by `compact()`; handles and undo records carry it.
@@ -343,10 +352,7 @@ impl LiveComplex {
                 &format!("top {p}-simplex vertices"),
             )?);
         }
-        let mut star = try_with_capacity(K, n, "vertex stars")?;
-        for &k in &degree {
-            star.push(try_with_capacity(K, k as usize, "star entries")?);
-        }
+        let star = Stars::with_degrees(K, &degree)?;
         drop(degree);
         let mut live = LiveComplex {
             tops,
@@ -383,7 +389,7 @@ impl LiveComplex {
         let w = p + 1;
         for i in 0..w {
             let v = self.tops[p][slot as usize * w + i];
-            self.star[v as usize].push(raw);
+            self.star.push(v, raw);
         }
         self.live_tops[p] += 1;
     }
@@ -395,9 +401,7 @@ impl LiveComplex {
         let w = p + 1;
         let s = self.tops[p][slot as usize * w..(slot as usize + 1) * w].to_vec();
         for &v in &s {
-            let st = &mut self.star[v as usize];
-            let i = st.iter().position(|&x| x == raw).expect("star entry");
-            st.swap_remove(i);
+            self.unstar(v, raw);
         }
         self.tops[p][slot as usize * w] = NONE;
         self.live_tops[p] -= 1;
@@ -411,13 +415,20 @@ impl LiveComplex {
         for i in 0..w {
             let v = self.tops[p][slot as usize * w + i];
             if v != skip {
-                let st = &mut self.star[v as usize];
-                let k = st.iter().position(|&x| x == raw).expect("star entry");
-                st.swap_remove(k);
+                self.unstar(v, raw);
             }
         }
         self.tops[p][slot as usize * w] = NONE;
         self.live_tops[p] -= 1;
+    }
+
+    /// Removes the entry `raw` from St*(v). O(k_v).
+    fn unstar(&mut self, v: u32, raw: u32) {
+        let i = self.star[v as usize]
+            .iter()
+            .position(|&x| x == raw)
+            .expect("star entry");
+        self.star.swap_remove(v, i);
     }
 
     /// Vertices of the top with packed id `raw`, in stored (winding) order.
@@ -508,7 +519,7 @@ impl LiveComplex {
             return Err(Refusal::StaleHandle("vertex slots exhausted".into()));
         }
         self.alive.push(true);
-        self.star.push(Vec::new());
+        self.star.add_vertex();
         self.coords.extend_from_slice(xyz);
         self.live_vertices += 1;
         Ok(VertexId(v))
@@ -736,12 +747,11 @@ impl Topology for LiveComplex {
 
     fn storage(&self) -> Storage {
         let slots: usize = self.tops.iter().map(Vec::len).sum();
-        let star_entries: usize = self.star.iter().map(Vec::len).sum();
+        let star_entries = self.star.entries();
         let bytes = 4 * self.tops.iter().map(Vec::capacity).sum::<usize>()
             + 24 * self.tops.capacity()
             + self.alive.capacity()
-            + 24 * self.star.capacity()
-            + 4 * self.star.iter().map(Vec::capacity).sum::<usize>();
+            + self.star.bytes();
         Storage {
             integers: (slots + star_entries) as u64,
             bits: self.alive.len() as u64,
@@ -839,7 +849,8 @@ impl LiveComplex {
                 }
             }
         }
-        let listed: usize = self.star.iter().map(Vec::len).sum();
+        self.star.check()?;
+        let listed = self.star.entries();
         if listed != entries {
             return Err(format!(
                 "stars hold {listed} entries, the live tops have {entries} vertices"

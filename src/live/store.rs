@@ -14,7 +14,7 @@
 //! that is a face of another). Handles and undo records do not survive a save (the opened
 //! complex starts at generation 0).
 
-use super::{LiveComplex, MAX_DIMENSION, NONE, SLOT_MASK};
+use super::{LiveComplex, MAX_DIMENSION, NONE, SLOT_MASK, Stars};
 use crate::store::{Arr, Persist, Reader, StoreError, Writer};
 
 impl Persist for LiveComplex {
@@ -121,10 +121,9 @@ impl LiveComplex {
             live_tops: [0; MAX_DIMENSION + 1],
             alive: vec![true; n as usize],
             live_vertices: n,
-            star: degree
-                .iter()
-                .map(|&k| Vec::with_capacity(k as usize))
-                .collect(),
+            // The degrees come from the file's tables, which are in memory already.
+            star: Stars::with_degrees(crate::relation::StructureKind::IaStar, &degree)
+                .unwrap_or_else(|e| panic!("{e}")),
             coord_dim,
             coords,
             epoch: 0,

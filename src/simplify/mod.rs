@@ -47,6 +47,9 @@ use crate::complex::Complex;
 use crate::io::write::{Format, WriteError, WriteErrorKind};
 use crate::io::{Coords, RawInput};
 use crate::live::{ContractMode, LiveComplex, Refusal, VertexId};
+use crate::relation::StructureKind;
+use crate::structures::BuildError;
+use crate::structures::common::{try_vec, try_with_capacity};
 use quadric::{QuadricSpace, sum_into};
 
 /// Most top simplices of one dimension the live complex's handles can number (2^28) halved:
@@ -156,6 +159,15 @@ pub fn simplify(
     })
 }
 
+/// The kind named in [`SimplifyError::Memory`]: the arrays are the live complex's and its run's.
+const K: StructureKind = StructureKind::IaStar;
+
+/// [`SimplifyError::Memory`] for an array of the run (quadrics, stamps, the queue) that could
+/// not be allocated: each is reserved fallibly at its exact size before the contractions start.
+fn memory(source: BuildError) -> SimplifyError {
+    SimplifyError::Memory { file: None, source }
+}
+
 /// The live complex of `complex`, or [`SimplifyError::Memory`]: built fallibly, as the
 /// structures are.
 fn live_of(complex: &Complex) -> Result<LiveComplex, SimplifyError> {
@@ -197,13 +209,12 @@ pub fn simplify_live(
     if live.coord_dim() == 0 {
         return Err(SimplifyError::NoCoordinates { file: None });
     }
-    probe_memory(live)?;
     let input_tops = top_count(live);
-    let mut state = State::new(live, options);
+    let mut state = State::try_new(live, options).map_err(memory)?;
     state.stats.input_tops = input_tops;
     state.stats.target_tops = ((options.ratio * input_tops as f64).ceil() as usize).max(1);
     init_quadrics(&mut state);
-    fill_queue(&mut state);
+    fill_queue(&mut state).map_err(memory)?;
     contract_loop(&mut state, progress);
     state.stats.output_tops = state.tops;
     Ok(state.stats)
@@ -322,38 +333,41 @@ struct Scratch {
 }
 
 impl<'a> State<'a> {
-    fn new(live: &'a mut LiveComplex, options: &Options) -> State<'a> {
+    /// The run's vertex-sized arrays, allocated fallibly (an error, not an abort, when they
+    /// cannot be had).
+    fn try_new(live: &'a mut LiveComplex, options: &Options) -> Result<State<'a>, BuildError> {
         let n = live.coord_dim();
         let space = QuadricSpace::new(n);
         let slots = live.vertex_slots() as usize;
         let tops = top_count(live);
-        State {
+        let quadrics = try_vec(K, 0.0, slots.saturating_mul(space.len()), "quadrics")?;
+        let version = try_vec(K, 0, slots, "vertex versions")?;
+        // Only link-checked runs park refused edges.
+        let stamps = if options.preserve_topology { slots } else { 0 };
+        let touch = try_vec(K, 0, stamps, "touch stamps")?;
+        let mark = try_vec(K, 0, slots, "ring marks")?;
+        Ok(State {
             mode: if options.preserve_topology {
                 ContractMode::PreserveManifold
             } else {
                 ContractMode::Free
             },
             space,
-            quadrics: vec![0.0; slots * space.len()],
-            version: vec![0; slots],
+            quadrics,
+            version,
             queue: BinaryHeap::new(),
-            // Only link-checked runs park refused edges.
-            touch: if options.preserve_topology {
-                vec![0; slots]
-            } else {
-                Vec::new()
-            },
+            touch,
             parked: Vec::new(),
             tops,
             stats: Stats::default(),
             scratch: Scratch {
                 q: vec![0.0; space.len()],
                 x: vec![0.0; n],
-                mark: vec![0; slots],
+                mark,
                 ..Default::default()
             },
             live,
-        }
+        })
     }
 
     fn quadric(&self, v: u32) -> &[f64] {
@@ -546,44 +560,20 @@ fn is_boundary_facet(live: &LiveComplex, facet: &[u32]) -> bool {
     .is_none()
 }
 
-/// Step 0: the run's input-sized arrays (quadrics, stamps, the queue at its slack over an
-/// upper bound of the edges, the output's listing) probed before any is allocated, so that a
-/// complex too large for memory is [`SimplifyError::Memory`], not an abort.
-fn probe_memory(live: &LiveComplex) -> Result<(), SimplifyError> {
-    let slots = live.vertex_slots() as usize;
-    let n = live.coord_dim();
-    let (mut edges, mut ids) = (0usize, 0usize);
-    for (_, t) in live.tops() {
-        edges = edges.saturating_add(t.len() * (t.len() - 1) / 2);
-        ids = ids.saturating_add(t.len());
-    }
-    let quadric = QuadricSpace::new(n).len() * size_of::<f64>();
-    let bytes = slots
-        .saturating_mul(quadric + 3 * size_of::<u32>())
-        .saturating_add(with_slack(edges).saturating_mul(size_of::<Entry>()))
-        .saturating_add(ids.saturating_mul(2 * size_of::<u32>()));
-    crate::complex::table::headroom(bytes).map_err(|bytes| SimplifyError::Memory {
-        file: None,
-        source: crate::structures::BuildError::TooLarge {
-            kind: crate::relation::StructureKind::IaStar,
-            what: format!("cannot allocate {bytes} bytes for the quadrics and the queue"),
-        },
-    })
-}
-
 /// Step 2: every live edge with its cost, found as the ring of each vertex (no edge list is
 /// materialised). The edges are counted first so that the queue is allocated once, at
-/// [`QUEUE_SLACK`] × the edges: it never grows by doubling.
-fn fill_queue(state: &mut State) {
+/// [`QUEUE_SLACK`] × the edges: it never grows by doubling. Allocated fallibly.
+fn fill_queue(state: &mut State) -> Result<(), BuildError> {
     let mut edges = 0;
     for_each_ring(state, |_, _, ring| edges += ring.len());
-    let mut entries = Vec::with_capacity(with_slack(edges));
+    let mut entries = try_with_capacity(K, with_slack(edges), "the edge queue")?;
     for_each_ring(state, |state, v, ring| {
         for &u in ring {
             entries.push(state.entry(v, u));
         }
     });
     state.queue = BinaryHeap::from(entries);
+    Ok(())
 }
 
 /// Calls `f(state, v, ring)` for every live vertex v with its ring vertices above v.
