@@ -4,7 +4,7 @@
 
 mod common;
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 use proptest::prelude::*;
 use topoplex::live::link::OMEGA;
@@ -301,6 +301,68 @@ fn strip_contraction_moves_a_top_in_place_and_keeps_its_id() {
     live.validate().unwrap();
     assert_same_state(&live, &before);
     assert_eq!(live.top_vertices(moved).unwrap(), &[2, 3, 4]);
+}
+
+/// The strip above: handles named through triangle 1 3 2 (slot 1) outlive it. Contracting 3
+/// into 1 retires it (its image 1 2 lies in 0 1 2): the handle of edge 2 3 names the image 1 2,
+/// those of 1 3 and 1 2 3 (through both ends) are refused; the split brings them back. Removing
+/// 0 1 2 keeps edge 1 2 (in 1 3 2) but not 0 1; `compact` makes every handle stale.
+#[test]
+fn strip_face_handles_outlive_their_removed_top_while_the_face_lives() {
+    let c = with_coords(5, &[vec![0, 1, 2], vec![1, 3, 2], vec![2, 3, 4]]);
+    let mut live = LiveComplex::from_complex(&c);
+    let h = |live: &LiveComplex, s: &[u32]| live.locate(s).unwrap();
+    let (e12, e23, e13, e01) = (
+        h(&live, &[1, 2]),
+        h(&live, &[2, 3]),
+        h(&live, &[1, 3]),
+        h(&live, &[0, 1]),
+    );
+    let t123 = h(&live, &[1, 2, 3]);
+    let names = |live: &LiveComplex, x: SimplexHandle| live.vertices_of(x).map(|v| v.to_vec());
+    let stale = |live: &LiveComplex, x: SimplexHandle| {
+        matches!(live.vertices_of(x), Err(QueryError::StaleHandle { .. }))
+            && matches!(live.degree(x, 0), Err(QueryError::StaleHandle { .. }))
+    };
+    let undo = live
+        .contract(
+            VertexId(1),
+            VertexId(3),
+            ContractMode::PreserveTopology,
+            None,
+        )
+        .unwrap();
+    live.validate().unwrap();
+    assert_eq!(names(&live, e23), Ok(vec![1, 2]));
+    assert_eq!(names(&live, e12), Ok(vec![1, 2]));
+    assert!(stale(&live, e13) && stale(&live, t123));
+    // Navigation through the retired slot answers as through the located handle.
+    let mut via_old = Vec::new();
+    let mut via_new = Vec::new();
+    for q in 0..=2 {
+        live.related(e23, q, Order::Natural, &mut via_old).unwrap();
+        live.related(h(&live, &[1, 2]), q, Order::Natural, &mut via_new)
+            .unwrap();
+        assert_eq!(via_old, via_new);
+    }
+    assert_eq!(live.top_id(e23), live.top_id(h(&live, &[1, 2])));
+    live.split(&undo).unwrap();
+    assert_eq!(names(&live, e23), Ok(vec![2, 3]));
+    assert_eq!(names(&live, e13), Ok(vec![1, 3]));
+    assert_eq!(names(&live, t123), Ok(vec![1, 2, 3]));
+    live.remove_top(&[2, 1, 0]).unwrap();
+    live.validate().unwrap();
+    assert_eq!(names(&live, e12), Ok(vec![1, 2]));
+    assert_eq!(live.degree(e12, 2), Ok(1));
+    assert!(stale(&live, e01));
+    assert_eq!(names(&live, h(&live, &[0])), Ok(vec![0]));
+    live.compact();
+    for x in [e12, e23, e13, e01, t123] {
+        assert!(matches!(
+            live.vertices_of(x),
+            Err(QueryError::StaleGeneration { .. })
+        ));
+    }
 }
 
 #[test]
@@ -719,6 +781,18 @@ fn assert_cyclic_order_matches_a_compacted_copy(live: &LiveComplex, c: &Complex)
     }
 }
 
+/// An old handle `h` that names `v` answers every relation as the located handle of `v` does.
+fn navigates_as_located(live: &LiveComplex, h: SimplexHandle, v: &[u32]) {
+    let now = live.locate(v).unwrap();
+    assert_eq!(live.top_id(h), live.top_id(now), "top_id of {h}");
+    let (mut x, mut y) = (Vec::new(), Vec::new());
+    for q in 0..=live.dimension() {
+        live.related(h, q, Order::Natural, &mut x).unwrap();
+        live.related(now, q, Order::Natural, &mut y).unwrap();
+        assert_eq!(x, y, "R_q={q} of {h} (names {v:?})");
+    }
+}
+
 /// Handles of every simplex, with their vertices.
 fn every_handle(live: &LiveComplex) -> Vec<(SimplexHandle, Vec<u32>)> {
     let mut out = Vec::new();
@@ -782,23 +856,35 @@ proptest! {
         let mut m = Model::of(&live);
         let mut undos = Vec::new();
         assert_handles_match_the_oracle(&live);
+        // Every handle given out so far, with the simplex it last named.
+        let mut known: BTreeMap<SimplexHandle, Vec<u32>> = every_handle(&live).into_iter().collect();
         for op in &ops {
-            let before = every_handle(&live);
             let edit = step(&mut live, &mut m, &mut undos, op);
             assert_handles_match_the_oracle(&live);
-            // A handle from before the edit names its old simplex, follows a moved top to its
-            // image, or is refused as stale.
-            for (h, vs) in before {
+            // Every earlier handle names the simplex it named, or that simplex's image under
+            // this edit (a contraction of b into a, or the split undoing one), and navigates as
+            // the located handle does; or it is refused because that simplex is gone.
+            for (&h, last) in known.iter_mut() {
                 match live.vertices_of(h) {
-                    Ok(v) => prop_assert!(*v == vs[..] || follows_edit(&vs, &v, edit), "{h}: {vs:?} -> {v:?}"),
-                    Err(QueryError::StaleHandle { .. }) => {}
+                    Ok(v) => {
+                        prop_assert!(*v == last[..] || follows_edit(last, &v, edit), "{h}: {last:?} -> {v:?}");
+                        navigates_as_located(&live, h, &v);
+                        *last = v.to_vec();
+                    }
+                    Err(QueryError::StaleHandle { .. }) => {
+                        prop_assert!(!m.contains(last), "{h} refused, but {last:?} is there");
+                        prop_assert!(live.degree(h, 0).is_err());
+                    }
                     Err(e) => panic!("{h}: {e}"),
                 }
+            }
+            for (h, v) in every_handle(&live) {
+                known.entry(h).or_insert(v);
             }
         }
         let before = every_handle(&live);
         live.compact();
-        for (h, _) in before {
+        for (h, _) in before.into_iter().chain(known) {
             let stale = matches!(live.vertices_of(h), Err(QueryError::StaleGeneration { .. }));
             prop_assert!(stale);
             prop_assert!(live.degree(h, 0).is_err());

@@ -585,11 +585,15 @@ static void test_live_handles(void) {
   CHECK(ni == 3 && ng == 2);
   CHECK_STATUS(tpx_cyclic(s, &e, 2, ids, 16, offsets, flags, 8, &ni, &ng), TPX_STATUS_NOT_DENSE);
   /* Handles named through the dangling triangle (the lowest top slot holding them: the triangle
-   * itself and edge 2-3) go stale with it; edge 2-3 lives on in the tetrahedron: locate again. */
+   * itself and edge 2-3): the triangle's goes stale with it; edge 2-3 lives on in the
+   * tetrahedron, and its handle keeps naming it (located again on each use). */
   CHECK_STATUS(tpx_locate(s, dangling, 3, &t), TPX_STATUS_OK);
   CHECK_STATUS(tpx_live_remove_top(l, dangling, 3), TPX_STATUS_OK);
   CHECK_STATUS(tpx_degree(s, &t, 0, &deg), TPX_STATUS_STALE_HANDLE);
-  CHECK_STATUS(tpx_degree(s, &e, 2, &deg), TPX_STATUS_STALE_HANDLE);
+  CHECK_STATUS(tpx_degree(s, &e, 2, &deg), TPX_STATUS_OK);
+  CHECK(deg == 2);
+  CHECK_STATUS(tpx_simplex_vertices(s, &e, ids, 16, &len), TPX_STATUS_OK);
+  CHECK(len == 2 && ids[0] == 2 && ids[1] == 3);
   CHECK_STATUS(tpx_locate(s, edge, 2, &e), TPX_STATUS_OK);
   CHECK_STATUS(tpx_degree(s, &e, 2, &deg), TPX_STATUS_OK);
   CHECK(deg == 2);

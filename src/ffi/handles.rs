@@ -33,8 +33,10 @@ use crate::structures::common::Scratch;
 /// vertices by a top simplex (`index`: dimension in the top 4 bits, slot below) and a mask of its
 /// vertices (`meta` bits 16..32, form 1 in bits 8..16). `owner` is the stamp of the structure
 /// that made it. A handle of a built structure stays valid as long as its structure lives; one of
-/// a live complex until its naming top simplex is removed (STALE_HANDLE) or the complex is
-/// compacted (STALE_GENERATION). Copying it is free, nothing needs releasing.
+/// a live complex names its simplex (or, across a contraction, its image) while that simplex
+/// exists — also when the top simplex naming it was removed, at the cost of locating it again on
+/// each use — and is refused once the simplex is gone (STALE_HANDLE) or the complex is compacted
+/// (STALE_GENERATION). Copying it is free, nothing needs releasing.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct TpxSimplex {
