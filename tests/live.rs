@@ -722,7 +722,39 @@ fn assert_handles_match_the_oracle(live: &LiveComplex) {
     }
     let tops: usize = o.tops.iter().map(Vec::len).sum();
     assert_eq!(n.top_total() as usize, tops);
+    assert_batches_match_the_oracle(live, &o, &to_dense);
     assert_cyclic_order_matches_a_compacted_copy(live, &c);
+}
+
+/// `related_handles_batch` over every simplex at once (all dimensions mixed, in an order that is
+/// not by dimension) answers each like the oracle, in both orders.
+fn assert_batches_match_the_oracle(
+    live: &LiveComplex,
+    o: &Oracle,
+    to_dense: &dyn Fn(&[u32]) -> Vec<u32>,
+) {
+    let mut all = every_handle(live);
+    all.reverse();
+    let hs: Vec<SimplexHandle> = all.iter().map(|(h, _)| *h).collect();
+    let (mut out, mut ends) = (Vec::new(), Vec::new());
+    for q in 0..=o.dimension() {
+        for order in [Order::Natural, Order::Lexicographic] {
+            out.clear();
+            ends.clear();
+            live.related_handles_batch(&hs, q, order, &mut out, &mut ends)
+                .unwrap();
+            assert_eq!(ends.len(), hs.len());
+            let mut start = 0;
+            for ((_, row), &end) in all.iter().zip(&ends) {
+                let got: Vec<Vec<u32>> = rows_of(live, &out[start..end])
+                    .iter()
+                    .map(|r| to_dense(r))
+                    .collect();
+                assert_eq!(got, o.relation(&to_dense(row), q), "batch R_q={q}({row:?})");
+                start = end;
+            }
+        }
+    }
 }
 
 fn assert_cyclic_order_matches_a_compacted_copy(live: &LiveComplex, c: &Complex) {
@@ -1227,6 +1259,117 @@ fn c_navigation_matches(l: *const topoplex::ffi::TpxLive, rust: &LiveComplex) {
             assert_eq!(st, TpxStatus::NotDense);
         }
     }
+    c_batches_match(l, rust);
+}
+
+/// `tpx_related_handles_batch` over every simplex (dimensions mixed) equals the Rust API's
+/// per-handle answers; a too-small buffer writes nothing and says the size; a handle of another
+/// structure is refused with its position; `tpx_related_batch` says NOT_DENSE above vertices.
+fn c_batches_match(l: *const topoplex::ffi::TpxLive, rust: &LiveComplex) {
+    use topoplex::ffi::*;
+    let s = c_view(l);
+    let (hs, rows): (Vec<TpxSimplex>, Vec<Vec<u32>>) = c_handles(l, rust).into_iter().rev().unzip();
+    let mut buf = vec![TpxSimplex::default(); 8192];
+    let mut offsets = vec![u32::MAX; hs.len() + 1];
+    let mut rbuf = Vec::new();
+    for q in 0..=rust.dimension() as u32 {
+        let mut len = 0usize;
+        // SAFETY: valid pointers; buffers of the stated lengths.
+        let st = unsafe {
+            tpx_related_handles_batch(
+                s,
+                hs.as_ptr(),
+                hs.len(),
+                q,
+                TPX_ORDER_LEXICOGRAPHIC,
+                offsets.as_mut_ptr(),
+                buf.as_mut_ptr(),
+                buf.len(),
+                &mut len,
+            )
+        };
+        assert_eq!(st, TpxStatus::Ok);
+        assert_eq!((offsets[0], offsets[hs.len()] as usize), (0, len));
+        for (k, row) in rows.iter().enumerate() {
+            let got: Vec<Vec<u32>> = buf[offsets[k] as usize..offsets[k + 1] as usize]
+                .iter()
+                .map(|h| c_vertices(l, h).1)
+                .collect();
+            let rh = rust.locate(row).unwrap();
+            rust.related(rh, q as usize, Order::Lexicographic, &mut rbuf)
+                .unwrap();
+            assert_eq!(got, rows_of(rust, &rbuf), "batch R_q={q}({row:?})");
+        }
+        if len > 0 {
+            let before = offsets.clone();
+            let mut need = 0usize;
+            // SAFETY: as above, with a buffer one handle short.
+            let st = unsafe {
+                tpx_related_handles_batch(
+                    s,
+                    hs.as_ptr(),
+                    hs.len(),
+                    q,
+                    TPX_ORDER_NATURAL,
+                    offsets.as_mut_ptr(),
+                    buf.as_mut_ptr(),
+                    len - 1,
+                    &mut need,
+                )
+            };
+            assert_eq!((st, need), (TpxStatus::BufferTooSmall, len));
+            assert_eq!(offsets, before, "offsets written on an error");
+        }
+        let mut ids = [0u32; 8];
+        let mut one = [0u32; 2];
+        // SAFETY: as above; one vertex index.
+        let st = unsafe {
+            tpx_related_batch(
+                s,
+                0,
+                [rows[rows.len() - 1][0]].as_ptr(),
+                1,
+                q,
+                TPX_ORDER_NATURAL,
+                one.as_mut_ptr(),
+                ids.as_mut_ptr(),
+                8,
+                &mut len,
+            )
+        };
+        let want = if q == 0 {
+            TpxStatus::Ok
+        } else {
+            TpxStatus::NotDense
+        };
+        assert_eq!(st, want);
+    }
+    let mut foreign = hs.clone();
+    foreign[hs.len() / 2].owner ^= 0x5a5a;
+    let mut len = 0usize;
+    // SAFETY: as above.
+    let st = unsafe {
+        tpx_related_handles_batch(
+            s,
+            foreign.as_ptr(),
+            foreign.len(),
+            0,
+            TPX_ORDER_NATURAL,
+            offsets.as_mut_ptr(),
+            buf.as_mut_ptr(),
+            buf.len(),
+            &mut len,
+        )
+    };
+    assert_eq!(st, TpxStatus::ForeignHandle);
+    // SAFETY: the message of this thread's last error, a NUL-terminated string.
+    let msg = unsafe { std::ffi::CStr::from_ptr(tpx_last_error_message()) };
+    assert!(
+        msg.to_str()
+            .unwrap()
+            .contains(&format!("batch entry {}", hs.len() / 2)),
+        "{msg:?}"
+    );
 }
 
 proptest! {

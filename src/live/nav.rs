@@ -434,6 +434,22 @@ impl Navigate for LiveComplex {
         self.visit(h, q, &mut |x| out.push(x))
     }
 
+    /// Answers come lexicographic already: both orders cost the same.
+    fn related_handles_batch(
+        &self,
+        hs: &[SimplexHandle],
+        q: usize,
+        _order: Order,
+        out: &mut Vec<SimplexHandle>,
+        ends: &mut Vec<usize>,
+    ) -> Result<(), QueryError> {
+        for &h in hs {
+            self.visit(h, q, &mut |x| out.push(x))?;
+            ends.push(out.len());
+        }
+        Ok(())
+    }
+
     fn star(
         &self,
         h: SimplexHandle,
