@@ -10,6 +10,7 @@ use proptest::prelude::*;
 use topoplex::live::link::OMEGA;
 use topoplex::live::{ContractMode, LiveComplex, Refusal, VertexId};
 use topoplex::oracle::{Oracle, check_structure};
+use topoplex::testing::follows_edit;
 use topoplex::{Complex, Fans, Navigate, Order, QueryError, SimplexHandle, Topology};
 
 use common::nav::{check_around_edges, check_fans, oracle_boundary, oracle_manifold, rows_of};
@@ -639,25 +640,6 @@ fn step(
         }
     }
     None
-}
-
-/// Whether a handle that named `old` before an edit may name `now` after it: a contraction of
-/// b into a moves the tops through b (not a) in place, so a face handle through one follows it
-/// to its image (b replaced by a); the split undoing it moves them back.
-fn follows_edit(old: &[u32], now: &[u32], edit: Option<(u32, u32, bool)>) -> bool {
-    let Some((a, b, contracted)) = edit else {
-        return false;
-    };
-    let image = |r: &[u32]| -> Vec<u32> {
-        let mut v: Vec<u32> = r.iter().map(|&x| if x == b { a } else { x }).collect();
-        v.sort_unstable();
-        v
-    };
-    if contracted {
-        image(old) == now
-    } else {
-        image(now) == old
-    }
 }
 
 /// Every handle operation of `live`, tombstones and all, equals the oracle on its rebuild
@@ -1424,17 +1406,27 @@ proptest! {
                 };
                 prop_assert_eq!(st == TpxStatus::Ok, ok, "status {:?}", st);
                 prop_assert_eq!(tpx_live_validate(l), TpxStatus::Ok);
-                // Handles from before the edit name their simplex, follow a moved top to its
-                // image, or are refused as stale.
-                for (h, row) in &before {
+                // Every earlier handle names the simplex it last named or its image under this
+                // edit, or is refused because that simplex is gone.
+                for (h, row) in before.iter_mut() {
                     let (st, got) = c_vertices(l, h);
-                    let named = got == *row || follows_edit(row, &got, edit);
-                    prop_assert!(st == TpxStatus::StaleHandle || (st == TpxStatus::Ok && named), "{:?}", st);
+                    match st {
+                        TpxStatus::Ok => {
+                            prop_assert!(got == *row || follows_edit(row, &got, edit), "{:?} -> {:?}", row, got);
+                            *row = got;
+                        }
+                        TpxStatus::StaleHandle => prop_assert!(!rust.contains(row), "{:?} refused", row),
+                        _ => prop_assert!(false, "{:?}", st),
+                    }
                 }
-                before = c_handles(l, &rust);
+                for (h, row) in c_handles(l, &rust) {
+                    if !before.iter().any(|(k, _)| *k == h) {
+                        before.push((h, row));
+                    }
+                }
                 c_navigation_matches(l, &rust);
             }
-            let old = c_handles(l, &rust);
+            let old = before;
             let mut map = vec![0u32; rust.vertex_slots() as usize];
             let mut len = 0usize;
             prop_assert_eq!(tpx_live_compact(l, map.as_mut_ptr(), map.len(), &mut len), TpxStatus::Ok);
