@@ -434,8 +434,10 @@ typedef struct TpxInputStats {
  * vertices by a top simplex (`index`: dimension in the top 4 bits, slot below) and a mask of its
  * vertices (`meta` bits 16..32, form 1 in bits 8..16). `owner` is the stamp of the structure
  * that made it. A handle of a built structure stays valid as long as its structure lives; one of
- * a live complex until its naming top simplex is removed (STALE_HANDLE) or the complex is
- * compacted (STALE_GENERATION). Copying it is free, nothing needs releasing.
+ * a live complex names its simplex (or, across a contraction, its image) while that simplex
+ * exists — also when the top simplex naming it was removed, at the cost of locating it again on
+ * each use — and is refused once the simplex is gone (STALE_HANDLE) or the complex is compacted
+ * (STALE_GENERATION). Copying it is free, nothing needs releasing.
  */
 typedef struct TpxSimplex {
   /**
@@ -844,7 +846,8 @@ TpxStatus tpx_related(const struct TpxStructure *s,
  * `indices[0 .. count]`, `offsets[0 .. count + 1]` receives the start of each answer in `buf`
  * (`offsets[count]` = total) and `buf` the dense q-indices, each answer in `order`.
  * Errors: INVALID_HANDLE (p > d or an index out of range), DIMENSION_OUT_OF_RANGE,
- * BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`.
+ * BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`;
+ * NOT_DENSE for q > 0 on the live complex (use `tpx_related_handles_batch`).
  * `offsets` must hold `count + 1` entries. Cost: one walk per index (TS, PE, LE, DE answer
  * VV, VF and FF in one loop with no call per answer); allocation-free once this thread's buffer
  * has grown to the total.
@@ -971,6 +974,32 @@ TpxStatus tpx_related_handles(const struct TpxStructure *s,
                               struct TpxSimplex *buf,
                               size_t buf_len,
                               size_t *out_len);
+
+/**
+ * R_{p,q} of many handles at once, of any dimensions (mixed), in CSR form as handles: for the
+ * handles `hs[0 .. count]`, `offsets[0 .. count + 1]` receives the start of each answer in
+ * `buf` (`offsets[count]` = total) and `buf` the answers (`TpxSimplex`), each in `order`.
+ * Works for every structure, the live complex included (`tpx_related_batch` takes and writes
+ * dense indices, which the live complex has only for vertices). Errors: those of
+ * `tpx_related_handles` for the first handle that fails (the message gives its position),
+ * INVALID_ARGUMENT (order), BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of
+ * `buf`), TOO_LARGE (more than 2^32 answers); nothing is written on an error. Cost: one walk
+ * per handle, as `tpx_related_handles`; allocation-free once this thread's buffers have grown
+ * to `count` and the total.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `hs` holds `count` handles, `offsets` room for `count + 1`
+ * entries, `buf` room for `buf_len` handles.
+ */
+TpxStatus tpx_related_handles_batch(const struct TpxStructure *s,
+                                    const struct TpxSimplex *hs,
+                                    size_t count,
+                                    uint32_t q,
+                                    uint32_t order,
+                                    uint32_t *offsets,
+                                    struct TpxSimplex *buf,
+                                    size_t buf_len,
+                                    size_t *out_len);
 
 /**
  * Listed simplex `i` of the input (`0 .. input_simplices`) exactly as given (order and

@@ -981,6 +981,26 @@ class HandleFans {
   std::size_t items_n_ = 0, groups_ = 0;
 };
 
+/* Answers of many handles at once (Live::related_batch), in CSR form: batch[k] is the answer of
+ * the k-th handle asked. Reuse one object across calls to avoid allocation. */
+class HandleBatch {
+ public:
+  std::size_t size() const noexcept { return asked_; }
+  bool empty() const noexcept { return asked_ == 0; }
+  /* The answer of the k-th handle asked. */
+  HandleSpan operator[](std::size_t k) const noexcept {
+    return HandleSpan(items_.data() + offsets_[k], offsets_[k + 1] - offsets_[k]);
+  }
+  /* Every answer, one after the other. */
+  HandleSpan all() const noexcept { return HandleSpan(items_.data(), items_n_); }
+
+ private:
+  friend class Live;
+  std::vector<TpxSimplex> asked_raw_, items_;
+  std::vector<std::uint32_t> offsets_;
+  std::size_t asked_ = 0, items_n_ = 0;
+};
+
 /* An updatable complex (any dimension, non-manifold): insert/remove top simplices, contract
  * edges (link-checked or free), split (undo), move vertices. Edits need exclusive access; a
  * refused edit throws Error (status says why: TPX_STATUS_NOT_AN_EDGE,
@@ -1129,11 +1149,12 @@ class Live {
   void validate() const { detail::check(tpx_live_validate(l_)); }
 
   /* ---- handles: the same navigation as Structure (see tpx_live_structure) ----
-   * A vertex's handle index is its id; other simplices are named through a live top simplex.
-   * A handle stays valid across edits while that top simplex lives (else STALE_HANDLE) and
-   * until compact() (then STALE_GENERATION); across a contraction of b into a, a handle
-   * through a top moved in place names its image (b replaced by a). Answers come
-   * lexicographic (both orders cost the same). */
+   * A vertex's handle index is its id; other simplices are named through a top simplex.
+   * A handle keeps naming its simplex across edits while that simplex exists (when its top
+   * simplex was removed, the simplex is located again on each use), across a contraction of b
+   * into a it names the image (b replaced by a); it is refused once the simplex is gone
+   * (STALE_HANDLE) and after compact() (STALE_GENERATION). Answers come lexicographic (both
+   * orders cost the same). */
 
   /* The live complex seen as a borrowed structure (never free it), for the tpx_* handle calls. */
   const TpxStructure *structure() const {
@@ -1190,6 +1211,38 @@ class Live {
     return related(h, q, o);
   }
   HandleList adjacent(Simplex h, Order o = Order::Natural) const { return related(h, h.dim(), o); }
+  /* R_{p,q} of many handles at once (any dimensions, mixed; tpx_related_handles_batch): out[k]
+   * is the q-simplices related to hs[k]. `out` is reused: no allocation once it has grown. */
+  void related_batch(const std::vector<Simplex> &hs, std::uint32_t q, HandleBatch &out,
+                     Order order = Order::Natural) const {
+    out.asked_raw_.clear();
+    for (const Simplex &h : hs) out.asked_raw_.push_back(h.raw());
+    out.offsets_.resize(hs.size() + 1);
+    if (out.items_.size() < 4 * hs.size() + 16) out.items_.resize(4 * hs.size() + 16);
+    std::size_t len = 0;
+    const TpxStructure *s = structure();
+    const auto o = static_cast<std::uint32_t>(order);
+    TpxStatus st = tpx_related_handles_batch(s, out.asked_raw_.data(), hs.size(), q, o,
+                                             out.offsets_.data(), out.items_.data(),
+                                             out.items_.size(), &len);
+    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+      out.items_.resize(len);
+      st = tpx_related_handles_batch(s, out.asked_raw_.data(), hs.size(), q, o,
+                                     out.offsets_.data(), out.items_.data(), out.items_.size(),
+                                     &len);
+    }
+    out.asked_ = 0;
+    out.items_n_ = 0;
+    detail::check(st);
+    out.asked_ = hs.size();
+    out.items_n_ = len;
+  }
+  HandleBatch related_batch(const std::vector<Simplex> &hs, std::uint32_t q,
+                            Order order = Order::Natural) const {
+    HandleBatch b;
+    related_batch(hs, q, b, order);
+    return b;
+  }
   std::size_t degree(Simplex h, std::uint32_t q) const {
     std::size_t n = 0;
     detail::check(tpx_degree(structure(), &h.raw(), q, &n));

@@ -499,6 +499,32 @@ pub trait Navigate: Topology {
         batch_by_visit(self, p, indices, q, order, ids, ends)
     }
 
+    /// R_{p,q} of many handles at once, of any dimensions (mixed), as one CSR of handles: for
+    /// each handle of `hs`, its answer (as [`Navigate::related`] gives it, in `order`) is
+    /// appended to `out` and the end of that answer in `out` to `ends`. Works for every
+    /// structure, the live complex included (whose simplices above vertices have no dense index
+    /// for [`Navigate::related_batch`]). Errors as [`Navigate::related`] for the first handle
+    /// that fails; then `out` and `ends` hold a prefix. Cost: one [`Navigate::visit`] per handle;
+    /// no allocation beyond `out` and `ends`.
+    fn related_handles_batch(
+        &self,
+        hs: &[SimplexHandle],
+        q: usize,
+        order: Order,
+        out: &mut Vec<SimplexHandle>,
+        ends: &mut Vec<usize>,
+    ) -> Result<(), QueryError> {
+        for &h in hs {
+            let start = out.len();
+            self.visit(h, q, &mut |x| out.push(x))?;
+            if order == Order::Lexicographic {
+                out[start..].sort_unstable();
+            }
+            ends.push(out.len());
+        }
+        Ok(())
+    }
+
     /// The q-faces of h, q < p (`DimensionOutOfRange` otherwise); see [`Navigate::related`].
     fn boundary(
         &self,

@@ -30,6 +30,8 @@ pub mod report;
 pub mod simplify;
 pub mod store;
 pub mod structures;
+#[doc(hidden)]
+pub mod testing;
 
 pub use complex::{Budget, Complex, ComplexError};
 pub use handle::{Fans, Navigate, Order, SimplexHandle, TopId, VertexId, Vertices};

@@ -103,11 +103,35 @@ fn check_handles(s: &dyn Topology, c: &Complex, deep: bool) -> Result<(), String
 }
 
 /// `related_batch` over every p-simplex is the per-handle answers concatenated, in both orders
-/// (TS, PE, LE, DE answer VV, VF and FF in their own loop), and refuses an index out of range.
+/// (TS, PE, LE, DE answer VV, VF and FF in their own loop), and refuses an index out of range;
+/// so is `related_handles_batch` over every simplex, dimensions mixed.
 fn check_batches(n: &dyn Navigate) -> Result<(), String> {
     let d = n.dimension();
     let kind = n.kind();
     let mut buf = Vec::new();
+    let every: Vec<SimplexHandle> = (0..=d)
+        .rev()
+        .flat_map(|p| (0..n.count(p) as u32).map(move |i| (p, i)))
+        .map(|(p, i)| n.handle(p, i).unwrap())
+        .collect();
+    for q in 0..=d {
+        for order in [Order::Natural, Order::Lexicographic] {
+            let (mut got, mut ends) = (Vec::new(), Vec::new());
+            n.related_handles_batch(&every, q, order, &mut got, &mut ends)
+                .map_err(|e| format!("{kind}: handle batch R_{{*,{q}}}: {e}"))?;
+            let (mut want, mut want_ends) = (Vec::new(), Vec::new());
+            for &h in &every {
+                n.related(h, q, order, &mut buf).unwrap();
+                want.extend_from_slice(&buf);
+                want_ends.push(want.len());
+            }
+            if (&got, &ends) != (&want, &want_ends) {
+                return Err(format!(
+                    "{kind}: handle batch R_{{*,{q}}} ({order:?}) differs from per handle"
+                ));
+            }
+        }
+    }
     for p in 0..=d {
         let all: Vec<u32> = (0..n.count(p) as u32).collect();
         for q in 0..=d {

@@ -4,12 +4,13 @@
 
 mod common;
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 
 use proptest::prelude::*;
 use topoplex::live::link::OMEGA;
 use topoplex::live::{ContractMode, LiveComplex, Refusal, VertexId};
 use topoplex::oracle::{Oracle, check_structure};
+use topoplex::testing::follows_edit;
 use topoplex::{Complex, Fans, Navigate, Order, QueryError, SimplexHandle, Topology};
 
 use common::nav::{check_around_edges, check_fans, oracle_boundary, oracle_manifold, rows_of};
@@ -303,6 +304,68 @@ fn strip_contraction_moves_a_top_in_place_and_keeps_its_id() {
     assert_eq!(live.top_vertices(moved).unwrap(), &[2, 3, 4]);
 }
 
+/// The strip above: handles named through triangle 1 3 2 (slot 1) outlive it. Contracting 3
+/// into 1 retires it (its image 1 2 lies in 0 1 2): the handle of edge 2 3 names the image 1 2,
+/// those of 1 3 and 1 2 3 (through both ends) are refused; the split brings them back. Removing
+/// 0 1 2 keeps edge 1 2 (in 1 3 2) but not 0 1; `compact` makes every handle stale.
+#[test]
+fn strip_face_handles_outlive_their_removed_top_while_the_face_lives() {
+    let c = with_coords(5, &[vec![0, 1, 2], vec![1, 3, 2], vec![2, 3, 4]]);
+    let mut live = LiveComplex::from_complex(&c);
+    let h = |live: &LiveComplex, s: &[u32]| live.locate(s).unwrap();
+    let (e12, e23, e13, e01) = (
+        h(&live, &[1, 2]),
+        h(&live, &[2, 3]),
+        h(&live, &[1, 3]),
+        h(&live, &[0, 1]),
+    );
+    let t123 = h(&live, &[1, 2, 3]);
+    let names = |live: &LiveComplex, x: SimplexHandle| live.vertices_of(x).map(|v| v.to_vec());
+    let stale = |live: &LiveComplex, x: SimplexHandle| {
+        matches!(live.vertices_of(x), Err(QueryError::StaleHandle { .. }))
+            && matches!(live.degree(x, 0), Err(QueryError::StaleHandle { .. }))
+    };
+    let undo = live
+        .contract(
+            VertexId(1),
+            VertexId(3),
+            ContractMode::PreserveTopology,
+            None,
+        )
+        .unwrap();
+    live.validate().unwrap();
+    assert_eq!(names(&live, e23), Ok(vec![1, 2]));
+    assert_eq!(names(&live, e12), Ok(vec![1, 2]));
+    assert!(stale(&live, e13) && stale(&live, t123));
+    // Navigation through the retired slot answers as through the located handle.
+    let mut via_old = Vec::new();
+    let mut via_new = Vec::new();
+    for q in 0..=2 {
+        live.related(e23, q, Order::Natural, &mut via_old).unwrap();
+        live.related(h(&live, &[1, 2]), q, Order::Natural, &mut via_new)
+            .unwrap();
+        assert_eq!(via_old, via_new);
+    }
+    assert_eq!(live.top_id(e23), live.top_id(h(&live, &[1, 2])));
+    live.split(&undo).unwrap();
+    assert_eq!(names(&live, e23), Ok(vec![2, 3]));
+    assert_eq!(names(&live, e13), Ok(vec![1, 3]));
+    assert_eq!(names(&live, t123), Ok(vec![1, 2, 3]));
+    live.remove_top(&[2, 1, 0]).unwrap();
+    live.validate().unwrap();
+    assert_eq!(names(&live, e12), Ok(vec![1, 2]));
+    assert_eq!(live.degree(e12, 2), Ok(1));
+    assert!(stale(&live, e01));
+    assert_eq!(names(&live, h(&live, &[0])), Ok(vec![0]));
+    live.compact();
+    for x in [e12, e23, e13, e01, t123] {
+        assert!(matches!(
+            live.vertices_of(x),
+            Err(QueryError::StaleGeneration { .. })
+        ));
+    }
+}
+
 #[test]
 fn bowtie_contraction_across_the_pinch_is_refused_unless_free() {
     let mut live = bowtie();
@@ -579,25 +642,6 @@ fn step(
     None
 }
 
-/// Whether a handle that named `old` before an edit may name `now` after it: a contraction of
-/// b into a moves the tops through b (not a) in place, so a face handle through one follows it
-/// to its image (b replaced by a); the split undoing it moves them back.
-fn follows_edit(old: &[u32], now: &[u32], edit: Option<(u32, u32, bool)>) -> bool {
-    let Some((a, b, contracted)) = edit else {
-        return false;
-    };
-    let image = |r: &[u32]| -> Vec<u32> {
-        let mut v: Vec<u32> = r.iter().map(|&x| if x == b { a } else { x }).collect();
-        v.sort_unstable();
-        v
-    };
-    if contracted {
-        image(old) == now
-    } else {
-        image(now) == old
-    }
-}
-
 /// Every handle operation of `live`, tombstones and all, equals the oracle on its rebuild
 /// (`to_complex()`: live vertices renumbered densely, an order-keeping map); answers are
 /// canonical (each equals the located handle of its vertices) and come lexicographic. Fans and
@@ -660,7 +704,39 @@ fn assert_handles_match_the_oracle(live: &LiveComplex) {
     }
     let tops: usize = o.tops.iter().map(Vec::len).sum();
     assert_eq!(n.top_total() as usize, tops);
+    assert_batches_match_the_oracle(live, &o, &to_dense);
     assert_cyclic_order_matches_a_compacted_copy(live, &c);
+}
+
+/// `related_handles_batch` over every simplex at once (all dimensions mixed, in an order that is
+/// not by dimension) answers each like the oracle, in both orders.
+fn assert_batches_match_the_oracle(
+    live: &LiveComplex,
+    o: &Oracle,
+    to_dense: &dyn Fn(&[u32]) -> Vec<u32>,
+) {
+    let mut all = every_handle(live);
+    all.reverse();
+    let hs: Vec<SimplexHandle> = all.iter().map(|(h, _)| *h).collect();
+    let (mut out, mut ends) = (Vec::new(), Vec::new());
+    for q in 0..=o.dimension() {
+        for order in [Order::Natural, Order::Lexicographic] {
+            out.clear();
+            ends.clear();
+            live.related_handles_batch(&hs, q, order, &mut out, &mut ends)
+                .unwrap();
+            assert_eq!(ends.len(), hs.len());
+            let mut start = 0;
+            for ((_, row), &end) in all.iter().zip(&ends) {
+                let got: Vec<Vec<u32>> = rows_of(live, &out[start..end])
+                    .iter()
+                    .map(|r| to_dense(r))
+                    .collect();
+                assert_eq!(got, o.relation(&to_dense(row), q), "batch R_q={q}({row:?})");
+                start = end;
+            }
+        }
+    }
 }
 
 fn assert_cyclic_order_matches_a_compacted_copy(live: &LiveComplex, c: &Complex) {
@@ -716,6 +792,18 @@ fn assert_cyclic_order_matches_a_compacted_copy(live: &LiveComplex, c: &Complex)
                 same(&fa, &fb);
             }
         }
+    }
+}
+
+/// An old handle `h` that names `v` answers every relation as the located handle of `v` does.
+fn navigates_as_located(live: &LiveComplex, h: SimplexHandle, v: &[u32]) {
+    let now = live.locate(v).unwrap();
+    assert_eq!(live.top_id(h), live.top_id(now), "top_id of {h}");
+    let (mut x, mut y) = (Vec::new(), Vec::new());
+    for q in 0..=live.dimension() {
+        live.related(h, q, Order::Natural, &mut x).unwrap();
+        live.related(now, q, Order::Natural, &mut y).unwrap();
+        assert_eq!(x, y, "R_q={q} of {h} (names {v:?})");
     }
 }
 
@@ -782,23 +870,35 @@ proptest! {
         let mut m = Model::of(&live);
         let mut undos = Vec::new();
         assert_handles_match_the_oracle(&live);
+        // Every handle given out so far, with the simplex it last named.
+        let mut known: BTreeMap<SimplexHandle, Vec<u32>> = every_handle(&live).into_iter().collect();
         for op in &ops {
-            let before = every_handle(&live);
             let edit = step(&mut live, &mut m, &mut undos, op);
             assert_handles_match_the_oracle(&live);
-            // A handle from before the edit names its old simplex, follows a moved top to its
-            // image, or is refused as stale.
-            for (h, vs) in before {
+            // Every earlier handle names the simplex it named, or that simplex's image under
+            // this edit (a contraction of b into a, or the split undoing one), and navigates as
+            // the located handle does; or it is refused because that simplex is gone.
+            for (&h, last) in known.iter_mut() {
                 match live.vertices_of(h) {
-                    Ok(v) => prop_assert!(*v == vs[..] || follows_edit(&vs, &v, edit), "{h}: {vs:?} -> {v:?}"),
-                    Err(QueryError::StaleHandle { .. }) => {}
+                    Ok(v) => {
+                        prop_assert!(*v == last[..] || follows_edit(last, &v, edit), "{h}: {last:?} -> {v:?}");
+                        navigates_as_located(&live, h, &v);
+                        *last = v.to_vec();
+                    }
+                    Err(QueryError::StaleHandle { .. }) => {
+                        prop_assert!(!m.contains(last), "{h} refused, but {last:?} is there");
+                        prop_assert!(live.degree(h, 0).is_err());
+                    }
                     Err(e) => panic!("{h}: {e}"),
                 }
+            }
+            for (h, v) in every_handle(&live) {
+                known.entry(h).or_insert(v);
             }
         }
         let before = every_handle(&live);
         live.compact();
-        for (h, _) in before {
+        for (h, _) in before.into_iter().chain(known) {
             let stale = matches!(live.vertices_of(h), Err(QueryError::StaleGeneration { .. }));
             prop_assert!(stale);
             prop_assert!(live.degree(h, 0).is_err());
@@ -1141,6 +1241,117 @@ fn c_navigation_matches(l: *const topoplex::ffi::TpxLive, rust: &LiveComplex) {
             assert_eq!(st, TpxStatus::NotDense);
         }
     }
+    c_batches_match(l, rust);
+}
+
+/// `tpx_related_handles_batch` over every simplex (dimensions mixed) equals the Rust API's
+/// per-handle answers; a too-small buffer writes nothing and says the size; a handle of another
+/// structure is refused with its position; `tpx_related_batch` says NOT_DENSE above vertices.
+fn c_batches_match(l: *const topoplex::ffi::TpxLive, rust: &LiveComplex) {
+    use topoplex::ffi::*;
+    let s = c_view(l);
+    let (hs, rows): (Vec<TpxSimplex>, Vec<Vec<u32>>) = c_handles(l, rust).into_iter().rev().unzip();
+    let mut buf = vec![TpxSimplex::default(); 8192];
+    let mut offsets = vec![u32::MAX; hs.len() + 1];
+    let mut rbuf = Vec::new();
+    for q in 0..=rust.dimension() as u32 {
+        let mut len = 0usize;
+        // SAFETY: valid pointers; buffers of the stated lengths.
+        let st = unsafe {
+            tpx_related_handles_batch(
+                s,
+                hs.as_ptr(),
+                hs.len(),
+                q,
+                TPX_ORDER_LEXICOGRAPHIC,
+                offsets.as_mut_ptr(),
+                buf.as_mut_ptr(),
+                buf.len(),
+                &mut len,
+            )
+        };
+        assert_eq!(st, TpxStatus::Ok);
+        assert_eq!((offsets[0], offsets[hs.len()] as usize), (0, len));
+        for (k, row) in rows.iter().enumerate() {
+            let got: Vec<Vec<u32>> = buf[offsets[k] as usize..offsets[k + 1] as usize]
+                .iter()
+                .map(|h| c_vertices(l, h).1)
+                .collect();
+            let rh = rust.locate(row).unwrap();
+            rust.related(rh, q as usize, Order::Lexicographic, &mut rbuf)
+                .unwrap();
+            assert_eq!(got, rows_of(rust, &rbuf), "batch R_q={q}({row:?})");
+        }
+        if len > 0 {
+            let before = offsets.clone();
+            let mut need = 0usize;
+            // SAFETY: as above, with a buffer one handle short.
+            let st = unsafe {
+                tpx_related_handles_batch(
+                    s,
+                    hs.as_ptr(),
+                    hs.len(),
+                    q,
+                    TPX_ORDER_NATURAL,
+                    offsets.as_mut_ptr(),
+                    buf.as_mut_ptr(),
+                    len - 1,
+                    &mut need,
+                )
+            };
+            assert_eq!((st, need), (TpxStatus::BufferTooSmall, len));
+            assert_eq!(offsets, before, "offsets written on an error");
+        }
+        let mut ids = [0u32; 8];
+        let mut one = [0u32; 2];
+        // SAFETY: as above; one vertex index.
+        let st = unsafe {
+            tpx_related_batch(
+                s,
+                0,
+                [rows[rows.len() - 1][0]].as_ptr(),
+                1,
+                q,
+                TPX_ORDER_NATURAL,
+                one.as_mut_ptr(),
+                ids.as_mut_ptr(),
+                8,
+                &mut len,
+            )
+        };
+        let want = if q == 0 {
+            TpxStatus::Ok
+        } else {
+            TpxStatus::NotDense
+        };
+        assert_eq!(st, want);
+    }
+    let mut foreign = hs.clone();
+    foreign[hs.len() / 2].owner ^= 0x5a5a;
+    let mut len = 0usize;
+    // SAFETY: as above.
+    let st = unsafe {
+        tpx_related_handles_batch(
+            s,
+            foreign.as_ptr(),
+            foreign.len(),
+            0,
+            TPX_ORDER_NATURAL,
+            offsets.as_mut_ptr(),
+            buf.as_mut_ptr(),
+            buf.len(),
+            &mut len,
+        )
+    };
+    assert_eq!(st, TpxStatus::ForeignHandle);
+    // SAFETY: the message of this thread's last error, a NUL-terminated string.
+    let msg = unsafe { std::ffi::CStr::from_ptr(tpx_last_error_message()) };
+    assert!(
+        msg.to_str()
+            .unwrap()
+            .contains(&format!("batch entry {}", hs.len() / 2)),
+        "{msg:?}"
+    );
 }
 
 proptest! {
@@ -1195,17 +1406,27 @@ proptest! {
                 };
                 prop_assert_eq!(st == TpxStatus::Ok, ok, "status {:?}", st);
                 prop_assert_eq!(tpx_live_validate(l), TpxStatus::Ok);
-                // Handles from before the edit name their simplex, follow a moved top to its
-                // image, or are refused as stale.
-                for (h, row) in &before {
+                // Every earlier handle names the simplex it last named or its image under this
+                // edit, or is refused because that simplex is gone.
+                for (h, row) in before.iter_mut() {
                     let (st, got) = c_vertices(l, h);
-                    let named = got == *row || follows_edit(row, &got, edit);
-                    prop_assert!(st == TpxStatus::StaleHandle || (st == TpxStatus::Ok && named), "{:?}", st);
+                    match st {
+                        TpxStatus::Ok => {
+                            prop_assert!(got == *row || follows_edit(row, &got, edit), "{:?} -> {:?}", row, got);
+                            *row = got;
+                        }
+                        TpxStatus::StaleHandle => prop_assert!(!rust.contains(row), "{:?} refused", row),
+                        _ => prop_assert!(false, "{:?}", st),
+                    }
                 }
-                before = c_handles(l, &rust);
+                for (h, row) in c_handles(l, &rust) {
+                    if !before.iter().any(|(k, _)| *k == h) {
+                        before.push((h, row));
+                    }
+                }
                 c_navigation_matches(l, &rust);
             }
-            let old = c_handles(l, &rust);
+            let old = before;
             let mut map = vec![0u32; rust.vertex_slots() as usize];
             let mut len = 0usize;
             prop_assert_eq!(tpx_live_compact(l, map.as_mut_ptr(), map.len(), &mut len), TpxStatus::Ok);

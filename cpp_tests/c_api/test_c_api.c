@@ -552,8 +552,9 @@ static void test_write(void) {
 }
 
 /* The live complex navigates through the handle functions (tpx_live_structure): on the fixture,
- * edge 2-3 bounds triangles 0 2 3, 1 2 3 and 2 3 4; after removing 2 3 4 a handle named through
- * it is stale; after compaction every older handle is STALE_GENERATION. */
+ * edge 2-3 bounds triangles 0 2 3, 1 2 3 and 2 3 4; after removing 2 3 4 the triangle's handle
+ * is stale, edge 2-3's (named through it) still names the edge; many handles at once answer in
+ * one CSR; after compaction every older handle is STALE_GENERATION. */
 static void test_live_handles(void) {
   TpxComplex *c = fixture();
   TpxLive *l = NULL;
@@ -561,7 +562,7 @@ static void test_live_handles(void) {
   TpxSimplex e, t, tri[8], star[32];
   uint32_t ids[16], offsets[9], flags[8], v = 0;
   static const uint32_t edge[] = {3, 2}, dangling[] = {4, 2, 3};
-  size_t len = 0, ni = 0, ng = 0, deg = 0, i;
+  size_t len = 0, ni = 0, ng = 0, deg = 0, n2 = 0, i;
   int seen_234 = 0;
   CHECK_STATUS(tpx_live_from_complex(c, &l), TPX_STATUS_OK);
   CHECK_STATUS(tpx_live_structure(l, &s), TPX_STATUS_OK);
@@ -585,14 +586,41 @@ static void test_live_handles(void) {
   CHECK(ni == 3 && ng == 2);
   CHECK_STATUS(tpx_cyclic(s, &e, 2, ids, 16, offsets, flags, 8, &ni, &ng), TPX_STATUS_NOT_DENSE);
   /* Handles named through the dangling triangle (the lowest top slot holding them: the triangle
-   * itself and edge 2-3) go stale with it; edge 2-3 lives on in the tetrahedron: locate again. */
+   * itself and edge 2-3): the triangle's goes stale with it; edge 2-3 lives on in the
+   * tetrahedron, and its handle keeps naming it (located again on each use). */
   CHECK_STATUS(tpx_locate(s, dangling, 3, &t), TPX_STATUS_OK);
   CHECK_STATUS(tpx_live_remove_top(l, dangling, 3), TPX_STATUS_OK);
   CHECK_STATUS(tpx_degree(s, &t, 0, &deg), TPX_STATUS_STALE_HANDLE);
-  CHECK_STATUS(tpx_degree(s, &e, 2, &deg), TPX_STATUS_STALE_HANDLE);
+  CHECK_STATUS(tpx_degree(s, &e, 2, &deg), TPX_STATUS_OK);
+  CHECK(deg == 2);
+  CHECK_STATUS(tpx_simplex_vertices(s, &e, ids, 16, &len), TPX_STATUS_OK);
+  CHECK(len == 2 && ids[0] == 2 && ids[1] == 3);
   CHECK_STATUS(tpx_locate(s, edge, 2, &e), TPX_STATUS_OK);
   CHECK_STATUS(tpx_degree(s, &e, 2, &deg), TPX_STATUS_OK);
   CHECK(deg == 2);
+  {
+    /* Edge 2-3 and vertex 5 at once: triangles 0 2 3 and 1 2 3 / none; edges 2-3 / 4-5. */
+    TpxSimplex asked[2], ans[8];
+    uint32_t boff[3] = {9, 9, 9};
+    static const uint32_t five = 5;
+    asked[0] = e;
+    CHECK_STATUS(tpx_handle(s, 0, five, &asked[1]), TPX_STATUS_OK);
+    CHECK_STATUS(tpx_related_handles_batch(s, asked, 2, 2, TPX_ORDER_NATURAL, boff, ans, 8, &len),
+                 TPX_STATUS_OK);
+    CHECK(len == 2 && boff[0] == 0 && boff[1] == 2 && boff[2] == 2);
+    CHECK_STATUS(tpx_simplex_vertices(s, &ans[1], ids, 16, &n2), TPX_STATUS_OK);
+    CHECK(n2 == 3 && ids[0] == 1 && ids[1] == 2 && ids[2] == 3);
+    CHECK_STATUS(tpx_related_handles_batch(s, asked, 2, 1, TPX_ORDER_NATURAL, boff, ans, 1, &len),
+                 TPX_STATUS_BUFFER_TOO_SMALL);
+    CHECK(len == 5 && boff[2] == 2); /* 4 edges at 2-3 and 4-5: nothing written */
+    CHECK_STATUS(tpx_related_handles_batch(s, asked, 2, 1, TPX_ORDER_NATURAL, NULL, ans, 8, &len),
+                 TPX_STATUS_NULL_ARGUMENT);
+    CHECK_STATUS(tpx_related_handles_batch(s, asked, 2, 7, TPX_ORDER_NATURAL, boff, ans, 8, &len),
+                 TPX_STATUS_DIMENSION_OUT_OF_RANGE);
+    CHECK(message_contains("batch entry 0"));
+    CHECK_STATUS(tpx_related_batch(s, 0, &five, 1, 1, TPX_ORDER_NATURAL, boff, ids, 16, &len),
+                 TPX_STATUS_NOT_DENSE);
+  }
   CHECK_STATUS(tpx_live_compact(l, NULL, 0, NULL), TPX_STATUS_OK);
   CHECK_STATUS(tpx_degree(s, &e, 2, &deg), TPX_STATUS_STALE_GENERATION);
   CHECK(message_contains("compaction"));

@@ -323,9 +323,31 @@ TEST(Wrapper, LiveNavigatesByHandlesAcrossEdits) {
   EXPECT_EQ(live.top_as_given(live.top_id(t)), (Ids{4, 2, 3}));
   live.remove_top({2, 3, 4});
   EXPECT_EQ(status_of([&] { live.degree(t, 0); }), TPX_STATUS_STALE_HANDLE);
-  // Edge 2-3 was named through the triangle (the lowest top slot holding it): stale with it,
-  // never misread; it lives on in the tetrahedron.
-  EXPECT_EQ(status_of([&] { live.degree(e, 2); }), TPX_STATUS_STALE_HANDLE);
+  // Edge 2-3 was named through the triangle (the lowest top slot holding it); it lives on in the
+  // tetrahedron, and its handle keeps naming it (located again on each use).
+  EXPECT_EQ(live.degree(e, 2), 2u);
+  EXPECT_EQ(live.vertices(e), (Ids{2, 3}));
+  // Many handles at once, dimensions mixed: each answer as the handle alone gives it.
+  const std::vector<topoplex::Simplex> asked{e, live.vertex(5), live.locate({0, 2, 3}), live.vertex(4)};
+  topoplex::HandleBatch batch;
+  for (std::uint32_t q = 0; q <= live.dimension(); ++q) {
+    live.related_batch(asked, q, batch);
+    ASSERT_EQ(batch.size(), asked.size());
+    std::size_t total = 0;
+    for (std::size_t k = 0; k < asked.size(); ++k) {
+      std::vector<Ids> got, want;
+      for (auto x : batch[k]) got.push_back(live.vertices(x));
+      for (auto x : live.related(asked[k], q)) want.push_back(live.vertices(x));
+      EXPECT_EQ(got, want) << "q " << q << " handle " << k;
+      total += batch[k].size();
+    }
+    EXPECT_EQ(batch.all().size(), total);
+  }
+  live.related_batch(asked, 1, batch);
+  EXPECT_EQ(batch[1].size(), 1u);  // 5's only neighbour edge: the wire 4-5
+  EXPECT_EQ(status_of([&] { live.related_batch({e, live.vertex(4)}, 9, batch); }),
+            TPX_STATUS_DIMENSION_OUT_OF_RANGE);
+  EXPECT_TRUE(batch.empty());
   e = live.locate({2, 3});
   EXPECT_EQ(live.degree(e, 2), 2u);
   live.compact();

@@ -126,6 +126,7 @@ fn handle_calls(s: *const TpxStructure, topo: &dyn topoplex::Topology, b: &mut B
     let nav = topo.as_navigate().expect("every structure navigates");
     let mut stamp = 0u32;
     assert_eq!(unsafe { tpx_structure_stamp(s, &mut stamp) }, TpxStatus::Ok);
+    let mut asked = Vec::new();
     for _ in 0..8 {
         let mut h = TpxSimplex::default();
         let st = match b.next() % 3 {
@@ -151,6 +152,7 @@ fn handle_calls(s: *const TpxStructure, topo: &dyn topoplex::Topology, b: &mut B
             }
         };
         assert_ne!(st, TpxStatus::Panic);
+        asked.push(h);
         let q = u32::from(b.next() % 5);
         let order = u32::from(b.next() % 3);
         let cap = usize::from(b.next() % 64);
@@ -210,5 +212,64 @@ fn handle_calls(s: *const TpxStructure, topo: &dyn topoplex::Topology, b: &mut B
         assert_ne!(unsafe { tpx_top_id(s, &h, &mut top) }, TpxStatus::Panic);
         let st = unsafe { tpx_top_as_given(s, top, buf.as_mut_ptr(), cap, &mut len) };
         assert_ne!(st, TpxStatus::Panic);
+    }
+    batch_call(s, nav, &asked[..usize::from(b.next() % 9)], b);
+}
+
+/// `tpx_related_handles_batch` over the handles tried (often bad): no panic, and a success
+/// equals the Rust API's answers, handle by handle.
+fn batch_call(
+    s: *const TpxStructure,
+    nav: &dyn topoplex::Navigate,
+    asked: &[TpxSimplex],
+    b: &mut Bytes,
+) {
+    let q = u32::from(b.next() % 5);
+    let order = u32::from(b.next() % 3);
+    let cap = usize::from(b.next() % 96);
+    let mut buf = vec![TpxSimplex::default(); cap];
+    let mut offsets = vec![u32::MAX; asked.len() + 1];
+    let offsets_ptr = if b.next() % 16 == 0 {
+        null_mut()
+    } else {
+        offsets.as_mut_ptr()
+    };
+    let mut len = 0usize;
+    let st = unsafe {
+        tpx_related_handles_batch(
+            s,
+            asked.as_ptr(),
+            asked.len(),
+            q,
+            order,
+            offsets_ptr,
+            buf.as_mut_ptr(),
+            cap,
+            &mut len,
+        )
+    };
+    assert_ne!(st, TpxStatus::Panic);
+    if st != TpxStatus::Ok {
+        assert!(
+            offsets.iter().all(|&o| o == u32::MAX),
+            "offsets written on {st:?}"
+        );
+        return;
+    }
+    let order = [topoplex::Order::Natural, topoplex::Order::Lexicographic][order as usize];
+    let mut want = Vec::new();
+    assert_eq!(offsets[asked.len()] as usize, len);
+    for (k, h) in asked.iter().enumerate() {
+        let sh = nav
+            .handle((h.meta & 0xff) as usize, h.index)
+            .expect("accepted");
+        nav.related(sh, q as usize, order, &mut want)
+            .expect("the ABI answered");
+        let got: Vec<u32> = buf[offsets[k] as usize..offsets[k + 1] as usize]
+            .iter()
+            .map(|x| x.index)
+            .collect();
+        let want: Vec<u32> = want.iter().map(|x| x.index()).collect();
+        assert_eq!(got, want);
     }
 }

@@ -3,13 +3,16 @@
 //! vertex) on a complex built from arbitrary bytes, through the C ABI (`TpxLive`) and the Rust
 //! API side by side. Both must agree on every outcome, stay valid, and (compacted) answer every
 //! relation like the brute-force oracle on their own `to_complex()`. After every edit, handle
-//! navigation through the C ABI (`tpx_live_structure` + the handle functions) answers like the
-//! Rust `Navigate`, handles from before the edit name their old simplex or are STALE_HANDLE, and
-//! after the final compaction every older handle is STALE_GENERATION.
+//! navigation through the C ABI (`tpx_live_structure` + the handle functions, one handle at a
+//! time and `tpx_related_handles_batch`) answers like the Rust `Navigate`; every handle taken
+//! since the start names the simplex it last named or that simplex's image under the edit, or is
+//! STALE_HANDLE because that simplex is gone; after the final compaction every older handle is
+//! STALE_GENERATION.
 use libfuzzer_sys::fuzz_target;
 use topoplex::ffi::*;
 use topoplex::live::{ContractMode, LiveComplex, VertexId};
 use topoplex::oracle::check_structure;
+use topoplex::testing::follows_edit;
 use topoplex::{Complex, Navigate, Order, Topology};
 
 /// The vertices of a C handle of the live complex, with the status.
@@ -20,13 +23,15 @@ fn c_vertices(s: *const TpxStructure, h: &TpxSimplex) -> (TpxStatus, Vec<u32>) {
     (st, buf[..len].to_vec())
 }
 
-/// C handles of up to 12 simplices (vertices and top simplices first), with their vertices.
+/// C handles of up to 24 simplices (vertices, top simplices, then edges, which are named through
+/// a top that may be removed before them), with their vertices.
 fn c_handles(s: *const TpxStructure, rust: &LiveComplex) -> Vec<(TpxSimplex, Vec<u32>)> {
     let rows = rust
         .vertices()
         .map(|v| vec![v.0])
-        .chain(rust.tops().map(|(_, t)| t.to_vec()))
-        .take(12);
+        .take(8)
+        .chain(rust.tops().map(|(_, t)| t.to_vec()).take(8))
+        .chain(rust.edges().into_iter().map(|e| e.to_vec()).take(8));
     rows.map(|row| {
         let mut h = TpxSimplex::default();
         assert_eq!(
@@ -91,6 +96,49 @@ fn c_navigation_matches(s: *const TpxStructure, rust: &LiveComplex) {
         let mut r = 0u32;
         assert_eq!(unsafe { tpx_simplex_test(s, &h, 1, &mut r) }, TpxStatus::Ok);
         assert_eq!(r == 1, rust.is_manifold(rh).unwrap());
+    }
+    c_batches_match(s, rust);
+}
+
+/// `tpx_related_handles_batch` over every handle of `c_handles` (dimensions mixed) equals the
+/// Rust API's `related_handles_batch`, as vertex rows, CSR ends included.
+fn c_batches_match(s: *const TpxStructure, rust: &LiveComplex) {
+    let (hs, rows): (Vec<TpxSimplex>, Vec<Vec<u32>>) = c_handles(s, rust).into_iter().unzip();
+    let rh: Vec<_> = rows.iter().map(|r| rust.locate(r).unwrap()).collect();
+    let mut buf = vec![TpxSimplex::default(); 1 << 12];
+    let mut offsets = vec![0u32; hs.len() + 1];
+    let (mut want, mut ends) = (Vec::new(), Vec::new());
+    for q in 0..=rust.dimension() {
+        let mut len = 0usize;
+        let st = unsafe {
+            tpx_related_handles_batch(
+                s,
+                hs.as_ptr(),
+                hs.len(),
+                q as u32,
+                TPX_ORDER_LEXICOGRAPHIC,
+                offsets.as_mut_ptr(),
+                buf.as_mut_ptr(),
+                buf.len(),
+                &mut len,
+            )
+        };
+        if st == TpxStatus::BufferTooSmall {
+            continue;
+        }
+        assert_eq!(st, TpxStatus::Ok);
+        want.clear();
+        ends.clear();
+        rust.related_handles_batch(&rh, q, Order::Lexicographic, &mut want, &mut ends)
+            .unwrap();
+        let got_ends: Vec<usize> = offsets[1..].iter().map(|&o| o as usize).collect();
+        assert_eq!(got_ends, ends);
+        let got: Vec<Vec<u32>> = buf[..len].iter().map(|h| c_vertices(s, h).1).collect();
+        let want: Vec<Vec<u32>> = want
+            .iter()
+            .map(|&x| rust.vertices_of(x).unwrap().to_vec())
+            .collect();
+        assert_eq!(got, want);
     }
 }
 
@@ -191,18 +239,29 @@ fuzz_target!(|data: &[u8]| {
         let mut dense = rust.clone();
         dense.compact();
         check_structure(&dense, &rust.to_complex()).unwrap();
-        // A handle from before names its simplex, follows a top moved in place by a
-        // contraction of b into a (or back by the split) to its image, or is refused.
-        for (h, row) in &before {
+        // Every handle taken so far names the simplex it last named or its image under this
+        // edit (a contraction of b into a, or the split back), or is refused because that
+        // simplex is gone.
+        for (h, row) in before.iter_mut() {
             let (st, got) = c_vertices(view, h);
-            let named = got == *row || follows_edit(row, &got, edit);
-            assert!(
-                st == TpxStatus::StaleHandle || (st == TpxStatus::Ok && named),
-                "{st:?}: {row:?} -> {got:?}"
-            );
+            match st {
+                TpxStatus::Ok => {
+                    assert!(
+                        got == *row || follows_edit(row, &got, edit),
+                        "{row:?} -> {got:?}"
+                    );
+                    *row = got;
+                }
+                TpxStatus::StaleHandle => assert!(!rust.contains(row), "{row:?} refused"),
+                _ => panic!("{st:?}: {row:?}"),
+            }
         }
         c_navigation_matches(view, &rust);
-        before = c_handles(view, &rust);
+        for (h, row) in c_handles(view, &rust) {
+            if before.len() < 96 && !before.iter().any(|(k, _)| *k == h) {
+                before.push((h, row));
+            }
+        }
     }
     assert_eq!(
         unsafe { tpx_live_compact(live, std::ptr::null_mut(), 0, std::ptr::null_mut()) },
@@ -218,21 +277,3 @@ fuzz_target!(|data: &[u8]| {
     }
     unsafe { tpx_live_free(live) };
 });
-
-/// Whether a handle that named `old` may name `now` after an edit moving tops in place: the
-/// image of `old` under b -> a for a contraction, the preimage for its split.
-fn follows_edit(old: &[u32], now: &[u32], edit: Option<(u32, u32, bool)>) -> bool {
-    let Some((a, b, contracted)) = edit else {
-        return false;
-    };
-    let image = |r: &[u32]| -> Vec<u32> {
-        let mut v: Vec<u32> = r.iter().map(|&x| if x == b { a } else { x }).collect();
-        v.sort_unstable();
-        v
-    };
-    if contracted {
-        image(old) == now
-    } else {
-        image(now) == old
-    }
-}

@@ -6,8 +6,9 @@
 //! a handle of the wrong dimension for the call WRONG_HANDLE_KIND — never undefined behaviour.
 //! Answers of one dimension are written as dense indices (`uint32_t`): the q-simplex of index i
 //! is the handle `{i, q, owner}` (`tpx_handle` builds it checked). The live complex has dense
-//! indices only for its vertices: `tpx_related_handles` and `tpx_cyclic_handles` write whole
-//! handles and work for every structure; the index-writing functions answer NOT_DENSE there.
+//! indices only for its vertices: `tpx_related_handles`, `tpx_related_handles_batch` and
+//! `tpx_cyclic_handles` write whole handles and work for every structure; the index-writing
+//! functions answer NOT_DENSE there.
 //!
 //! No allocation on the query path: every function here, on success, allocates nothing once
 //! this thread's buffers have grown to the answers asked (answer buffers and walk scratch are
@@ -33,8 +34,10 @@ use crate::structures::common::Scratch;
 /// vertices by a top simplex (`index`: dimension in the top 4 bits, slot below) and a mask of its
 /// vertices (`meta` bits 16..32, form 1 in bits 8..16). `owner` is the stamp of the structure
 /// that made it. A handle of a built structure stays valid as long as its structure lives; one of
-/// a live complex until its naming top simplex is removed (STALE_HANDLE) or the complex is
-/// compacted (STALE_GENERATION). Copying it is free, nothing needs releasing.
+/// a live complex names its simplex (or, across a contraction, its image) while that simplex
+/// exists — also when the top simplex naming it was removed, at the cost of locating it again on
+/// each use — and is refused once the simplex is gone (STALE_HANDLE) or the complex is compacted
+/// (STALE_GENERATION). Copying it is free, nothing needs releasing.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub struct TpxSimplex {
@@ -356,7 +359,7 @@ fn dense_answers(n: &dyn Navigate, q: u32) -> Result<(), Failure> {
         return Err(Failure::new(
             TpxStatus::NotDense,
             format!(
-                "{q}-simplices of this structure have no dense index: use tpx_related_handles / tpx_cyclic_handles"
+                "{q}-simplices of this structure have no dense index: use tpx_related_handles / tpx_related_handles_batch / tpx_cyclic_handles"
             ),
         ));
     }
@@ -375,7 +378,8 @@ fn too_small(need: usize, have: usize, out_len: &mut usize) -> Result<(), Failur
 /// `indices[0 .. count]`, `offsets[0 .. count + 1]` receives the start of each answer in `buf`
 /// (`offsets[count]` = total) and `buf` the dense q-indices, each answer in `order`.
 /// Errors: INVALID_HANDLE (p > d or an index out of range), DIMENSION_OUT_OF_RANGE,
-/// BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`.
+/// BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`;
+/// NOT_DENSE for q > 0 on the live complex (use `tpx_related_handles_batch`).
 /// `offsets` must hold `count + 1` entries. Cost: one walk per index (TS, PE, LE, DE answer
 /// VV, VF and FF in one loop with no call per answer); allocation-free once this thread's buffer
 /// has grown to the total.
@@ -712,6 +716,79 @@ pub unsafe extern "C" fn tpx_related_handles(
             write_handles(s, hs, buf, buf_len, out_len)
         })
     })
+}
+
+/// R_{p,q} of many handles at once, of any dimensions (mixed), in CSR form as handles: for the
+/// handles `hs[0 .. count]`, `offsets[0 .. count + 1]` receives the start of each answer in
+/// `buf` (`offsets[count]` = total) and `buf` the answers (`TpxSimplex`), each in `order`.
+/// Works for every structure, the live complex included (`tpx_related_batch` takes and writes
+/// dense indices, which the live complex has only for vertices). Errors: those of
+/// `tpx_related_handles` for the first handle that fails (the message gives its position),
+/// INVALID_ARGUMENT (order), BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of
+/// `buf`), TOO_LARGE (more than 2^32 answers); nothing is written on an error. Cost: one walk
+/// per handle, as `tpx_related_handles`; allocation-free once this thread's buffers have grown
+/// to `count` and the total.
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `hs` holds `count` handles, `offsets` room for `count + 1`
+/// entries, `buf` room for `buf_len` handles.
+#[unsafe(no_mangle)]
+#[allow(clippy::too_many_arguments)]
+pub unsafe extern "C" fn tpx_related_handles_batch(
+    s: *const TpxStructure,
+    hs: *const TpxSimplex,
+    count: usize,
+    q: u32,
+    order: u32,
+    offsets: *mut u32,
+    buf: *mut TpxSimplex,
+    buf_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let hs = in_slice(hs, count, "hs")?;
+        if offsets.is_null() {
+            return Err(Failure::null("offsets"));
+        }
+        let order = order_arg(order)?;
+        let n = nav(s)?;
+        let too_large = |_| Failure::new(TpxStatus::TooLarge, "the batch does not fit in memory");
+        let mut checked = Scratch::<Vec<SimplexHandle>>::take();
+        checked.try_reserve(count).map_err(too_large)?;
+        for (k, h) in hs.iter().enumerate() {
+            checked.push(unwrap(s, n, h).map_err(|f| at_position(f, k))?);
+        }
+        let mut ends = Scratch::<Vec<usize>>::take();
+        ends.try_reserve(count).map_err(too_large)?;
+        with_kept(&HANDLES, |out| {
+            out.clear();
+            n.related_handles_batch(&checked, q as usize, order, out, &mut ends)
+                .map_err(|e| at_position(query_failure(e), ends.len()))?;
+            if u32::try_from(out.len()).is_err() {
+                return Err(Failure::new(
+                    TpxStatus::TooLarge,
+                    "answers exceed 2^32 handles",
+                ));
+            }
+            write_handles(s, out, buf, buf_len, out_len)?;
+            // SAFETY: `offsets` has room for `count + 1` entries (documented contract), and
+            // `ends` holds `count` ends below 2^32 (checked above).
+            unsafe {
+                *offsets = 0;
+                for (k, &e) in ends.iter().enumerate() {
+                    *offsets.add(k + 1) = e as u32;
+                }
+            }
+            Ok(())
+        })
+    })
+}
+
+/// `f` with the position of the batch entry it is about.
+fn at_position(f: Failure, k: usize) -> Failure {
+    Failure::new(f.status, format!("batch entry {k}: {}", f.message))
 }
 
 /// Writes `hs` as `TpxSimplex` into `buf` (BUFFER_TOO_SMALL with the needed length otherwise).

@@ -2,7 +2,9 @@
 //! its undo (vertex split), compaction. Each checks everything first and refuses with the
 //! structure unchanged, then mutates.
 
-use super::{Image, Key, LiveComplex, NONE, Refusal, TopId, VertexId, pack, show, subset, unpack};
+use super::{
+    DEAD, Image, Key, LiveComplex, NONE, Refusal, TopId, VertexId, pack, show, subset, unpack,
+};
 use crate::complex::MAX_DIMENSION;
 
 /// How [`LiveComplex::contract`] decides whether it may unify two vertices.
@@ -329,6 +331,7 @@ impl LiveComplex {
             undo.removed.push(img.from, self.top_raw(img.from));
             if !moved(img) {
                 self.detach_except(p, slot as u32, b);
+                self.bury_image(img.from, a, b);
             }
         }
         self.star
@@ -411,14 +414,14 @@ impl LiveComplex {
         }
         for (raw, s) in undo.inserted.iter() {
             let (p, slot) = unpack(raw);
-            if self.tops[p].get(slot * (p + 1)) == Some(&NONE) || self.top_raw(raw) != s {
+            if self.tops[p][slot * (p + 1)] >= DEAD || self.top_raw(raw) != s {
                 return stale(format!("created top simplex {} was edited since", show(s)));
             }
         }
         let inserted = &undo.inserted.raw;
         for (raw, s) in undo.removed.iter() {
             let (p, slot) = unpack(raw);
-            if self.tops[p][slot * (p + 1)] != NONE && !inserted.contains(&raw) {
+            if self.tops[p][slot * (p + 1)] < DEAD && !inserted.contains(&raw) {
                 return stale(format!("slot of {} is in use", show(s)));
             }
             if let Some(&v) = s
@@ -467,7 +470,7 @@ impl LiveComplex {
             maps.tops[p] = old
                 .chunks_exact(w)
                 .map(|s| {
-                    if s[0] == NONE {
+                    if s[0] >= DEAD {
                         return NONE;
                     }
                     table.extend(s.iter().map(|&v| maps.vertices[v as usize]));

@@ -82,11 +82,12 @@
 //! boundary / co-boundary / adjacency per dimension, star, link, degree, `is_boundary`,
 //! `is_manifold`, fans around a vertex counter-clockwise by the winding, radial groups around an
 //! edge). A vertex's handle is its slot; any other simplex is named through a live top simplex
-//! holding it (a top simplex and a vertex mask), valid while that top simplex lives. Every handle
-//! carries the complex's generation (its compaction count, [`crate::handle::Navigate::generation`]): one from
-//! before `compact` is refused with [`QueryError::StaleGeneration`], one of a removed vertex or
-//! top simplex with [`QueryError::StaleHandle`]; across a contraction a handle through a moved top
-//! follows it to the image (b replaced by a), otherwise it keeps naming its simplex. The
+//! holding it (a top simplex and a vertex mask). Every handle carries the complex's generation (its compaction count, [`crate::handle::Navigate::generation`]): one from
+//! before `compact` is refused with [`QueryError::StaleGeneration`]; otherwise a handle names its
+//! simplex while that simplex exists, even when the top simplex naming it is removed (a removed
+//! slot keeps its vertices until `compact`, and the face is located again: O(d·k_v) per use), and
+//! is refused with [`QueryError::StaleHandle`] once the simplex is gone; across a contraction it
+//! names the simplex's image (b replaced by a). The
 //! generation costs 4 bytes per handle and one comparison per check. Costs per operation: the
 //! `nav` module (O(1) checks and reads, `locate` O(d·k_v), relations as above plus O(d·k) to
 //! name each answer of dimension ≤ p, answers lexicographic, no allocation once warm).
@@ -109,8 +110,12 @@ use stars::Stars;
 
 pub use edit::{CompactMaps, ContractMode, UndoRecord};
 
-/// "No vertex" / tombstone marker in the slot tables.
+/// "No vertex" marker.
 const NONE: u32 = u32::MAX;
+/// Tombstone bit, set on a removed top's first id: the slot keeps its vertices until
+/// [`LiveComplex::compact`], so a handle through it can still find its face (`nav`). Vertex ids
+/// stay below it.
+const DEAD: u32 = 1 << 31;
 /// Bits of a packed top id that hold the slot; the dimension is in the 4 bits above.
 const SLOT_BITS: u32 = 28;
 const SLOT_MASK: u32 = (1 << SLOT_BITS) - 1;
@@ -229,7 +234,7 @@ pub enum Refusal {
 /// An updatable simplicial complex; see the module documentation.
 #[derive(Debug, Clone)]
 pub struct LiveComplex {
-    /// `tops[p]`: p + 1 ids per slot (input winding); a tombstone starts with `NONE`. `tops[0]`
+    /// `tops[p]`: p + 1 ids per slot (input winding); a tombstone's first id has `DEAD` set. `tops[0]`
     /// is unused (isolated vertices are live vertices with an empty star).
     tops: Vec<Vec<u32>>,
     /// Live top p-simplices per dimension (p ≥ 1).
@@ -321,6 +326,12 @@ impl LiveComplex {
     pub fn try_from_complex(complex: &Complex) -> Result<LiveComplex, BuildError> {
         const K: StructureKind = StructureKind::IaStar;
         let n = complex.vertex_count() as usize;
+        if n > DEAD as usize {
+            return Err(BuildError::TooLarge {
+                kind: K,
+                what: format!("{n} vertices (at most 2^31)"),
+            });
+        }
         let (coord_dim, coords) = match complex.coords() {
             Some(c) => (c.dim, try_copy(K, &c.data, "coordinates")?),
             None => (0, Vec::new()),
@@ -403,7 +414,7 @@ impl LiveComplex {
         for &v in &s {
             self.unstar(v, raw);
         }
-        self.tops[p][slot as usize * w] = NONE;
+        self.tops[p][slot as usize * w] |= DEAD;
         self.live_tops[p] -= 1;
         s
     }
@@ -418,7 +429,7 @@ impl LiveComplex {
                 self.unstar(v, raw);
             }
         }
-        self.tops[p][slot as usize * w] = NONE;
+        self.tops[p][slot as usize * w] |= DEAD;
         self.live_tops[p] -= 1;
     }
 
@@ -515,7 +526,7 @@ impl LiveComplex {
     pub fn add_vertex(&mut self, xyz: &[f64]) -> Result<VertexId, Refusal> {
         self.check_coords(xyz)?;
         let v = self.vertex_slots();
-        if v == NONE {
+        if v >= DEAD {
             return Err(Refusal::StaleHandle("vertex slots exhausted".into()));
         }
         self.alive.push(true);
@@ -533,7 +544,7 @@ impl LiveComplex {
             self.tops[p]
                 .chunks_exact(p + 1)
                 .enumerate()
-                .filter(|(_, s)| s[0] != NONE)
+                .filter(|(_, s)| s[0] < DEAD)
                 .map(move |(slot, s)| (self.handle(pack(p, slot as u32)), s))
         })
     }
@@ -553,7 +564,7 @@ impl LiveComplex {
         }
         let (p, slot) = unpack(t.raw);
         let w = p + 1;
-        if p == 0 || (slot + 1) * w > self.tops[p].len() || self.tops[p][slot * w] == NONE {
+        if p == 0 || (slot + 1) * w > self.tops[p].len() || self.tops[p][slot * w] >= DEAD {
             return Err(Refusal::StaleHandle(format!(
                 "top {p}-simplex slot {slot} is not live"
             )));
@@ -825,7 +836,7 @@ impl LiveComplex {
         for p in 1..=MAX_DIMENSION {
             let mut count = 0;
             for (slot, s) in self.tops[p].chunks_exact(p + 1).enumerate() {
-                if s[0] == NONE {
+                if s[0] >= DEAD {
                     continue;
                 }
                 count += 1;

@@ -4,14 +4,24 @@
 //! # Handles
 //! - A vertex is its dense handle `(0, slot)`, as in the nine structures: valid while the vertex
 //!   is live.
-//! - Any other simplex σ is a [`HandleForm::TopFace`] handle: a live top simplex T holding σ (its
+//! - Any other simplex σ is a [`HandleForm::TopFace`] handle: a top simplex T holding σ (its
 //!   packed slot: dimension in the top 4 bits, slot below) and a mask of T's vertex positions
 //!   (bit i: T's i-th vertex as stored, i.e. in its winding). A slot changes only when a
 //!   contraction of b into a moves T in place (b replaced by a at its position; the split undoing
 //!   it puts b back), so the handle names σ for as long as T lives, and across a contraction it
 //!   follows T to σ's image (b replaced by a) — as a half-edge mesh's handles follow a collapse.
-//!   When T is removed the handle is refused with [`QueryError::StaleHandle`] — σ itself may
-//!   survive in another top: locate it again.
+//! - When T is removed (`remove_top`, absorbed by an inserted simplex, or retired by a
+//!   contraction) the handle keeps naming σ while σ exists: a removed slot keeps its vertices
+//!   until [`LiveComplex::compact`] (a tombstone bit on the first), the mask picks σ out of them
+//!   and σ is located again in the star of its vertex with the smallest star — the slow path,
+//!   O(d·k_v) on every use of such a handle instead of O(1) (re-locate once to get a fast
+//!   handle back). A top retired by a contraction of b into a keeps a in b's place, so a handle
+//!   through it names σ's image like one through a moved top. The handle is refused with
+//!   [`QueryError::StaleHandle`] only when its simplex is gone: a vertex of it removed (or
+//!   contracted away while T was already removed), σ no longer a face of any top, or σ holding
+//!   both ends of a contracted edge (its image is a lower simplex). An edit that brings σ back
+//!   (the split undoing the contraction, inserting σ again) makes the handle name σ again; a
+//!   handle never names a simplex other than σ or its image.
 //! - Handles the live complex gives out are *canonical*: T is the live top holding σ with the
 //!   smallest packed slot. So two handles taken without an edit in between name the same simplex
 //!   exactly when they are equal; after edits, compare by [`Navigate::vertices_of`] (a later
@@ -24,7 +34,8 @@
 //!
 //! # Cost (k_v = |St*(v)|, v the vertex of σ with the smallest star; d ≤ 15 is a constant)
 //! - `locate`, `check`, `vertices_of`, `top`, `top_id`, `top_as_given`: O(1), except `locate`
-//!   O(d·k_v) (a scan of St*(v) for the smallest slot holding σ).
+//!   O(d·k_v) (a scan of St*(v) for the smallest slot holding σ). A handle through a removed
+//!   top adds O(d·k_v) to every call taking it (it is located again, see above).
 //! - `visit` R_{p,q}: the faces as in the relation API (module doc of [`crate::live`]), sorted and
 //!   deduplicated in a per-thread scratch buffer, then each answer named canonically: for q > p
 //!   for free (every top holding an answer holds σ, so the scan of St*(v) sees them all), for
@@ -37,7 +48,7 @@
 
 use std::cell::RefCell;
 
-use super::{Key, LiveComplex, NONE, pack, subset, unpack};
+use super::{DEAD, Key, LiveComplex, NONE, pack, subset, unpack};
 use crate::complex::MAX_DIMENSION;
 use crate::handle::{HandleForm, Navigate, Order, SimplexHandle, TopId, VertexId, Vertices};
 use crate::relation::{QueryError, Topology, normalize_simplex};
@@ -112,7 +123,7 @@ impl LiveComplex {
 
     /// The handle's simplex, ascending, after checking it.
     fn handle_vertices(&self, h: SimplexHandle) -> Result<Vertices, QueryError> {
-        Navigate::check(self, h)?;
+        let h = self.live_form(h)?;
         if h.form() == HandleForm::Dense {
             return Ok(Vertices::from_slice(&[h.index()]));
         }
@@ -126,6 +137,82 @@ impl LiveComplex {
         }
         ids[..k].sort_unstable();
         Ok(Vertices::from_slice(&ids[..k]))
+    }
+
+    /// `h` checked, named through a live top: `h` itself when its top lives (O(1)); when its top
+    /// was removed (by `remove_top`, absorbed by an insertion, or retired by a contraction),
+    /// the canonical handle of the simplex the removed slot's kept vertices name under the mask,
+    /// if that simplex still exists — O(d) to read it and O(d·k_v) to locate it. Else
+    /// `StaleHandle`: a vertex of it was removed, or the simplex itself is gone.
+    fn live_form(&self, h: SimplexHandle) -> Result<SimplexHandle, QueryError> {
+        self.check_form(h)?;
+        if h.form() == HandleForm::Dense || self.top_raw(h.index())[0] < DEAD {
+            return Ok(h);
+        }
+        let stale = || QueryError::StaleHandle { handle: h };
+        let mut ids = [0u32; MAX_DIMENSION + 1];
+        let mut k = 0;
+        for (i, &v) in self.top_raw(h.index()).iter().enumerate() {
+            if h.local() >> i & 1 == 1 {
+                ids[k] = v & !DEAD;
+                k += 1;
+            }
+        }
+        let sigma = &mut ids[..k];
+        sigma.sort_unstable();
+        // A repeated id: a face through both ends of a contracted edge, collapsed.
+        if sigma.windows(2).any(|w| w[0] == w[1]) || sigma.iter().any(|&v| !self.alive[v as usize])
+        {
+            return Err(stale());
+        }
+        self.canonical(sigma).ok_or_else(stale)
+    }
+
+    /// After a contraction of b into a retired the top `raw` of St(b): its kept vertices get a
+    /// in b's place, so that a handle through it names its face's image, as one through a top
+    /// moved in place does (a face through both a and b collapses: refused). O(d).
+    pub(super) fn bury_image(&mut self, raw: u32, a: u32, b: u32) {
+        let (p, slot) = unpack(raw);
+        for x in &mut self.tops[p][slot * (p + 1)..(slot + 1) * (p + 1)] {
+            if *x & !DEAD == b {
+                *x = a | (*x & DEAD);
+            }
+        }
+    }
+
+    /// Every check of `h` that needs no lookup: generation, form, ranges, mask.
+    fn check_form(&self, h: SimplexHandle) -> Result<(), QueryError> {
+        if h.generation() != self.epoch {
+            return Err(QueryError::StaleGeneration {
+                handle: h,
+                generation: h.generation(),
+                current: self.epoch,
+            });
+        }
+        if h.is_none() {
+            return Err(invalid(h, "the NONE handle"));
+        }
+        if h.form() == HandleForm::Dense {
+            if h.dim() != 0 {
+                return Err(invalid(h, "the live complex numbers only vertices densely"));
+            }
+            if h.index() >= self.vertex_slots() {
+                return Err(invalid(h, "vertex beyond the vertex slots"));
+            }
+            if !self.alive[h.index() as usize] {
+                return Err(QueryError::StaleHandle { handle: h });
+            }
+            return Ok(());
+        }
+        let (p, slot) = unpack(h.index());
+        if p == 0 || (slot + 1) * (p + 1) > self.tops[p].len() {
+            return Err(invalid(h, "no top simplex slot of this number"));
+        }
+        let mask = h.local() as u32;
+        if h.dim() == 0 || mask >> (p + 1) != 0 || mask.count_ones() as usize != h.dim() + 1 {
+            return Err(invalid(h, "vertex mask does not fit its top simplex"));
+        }
+        Ok(())
     }
 
     /// Every answer row of R_{p,q}(σ) into `rows`, named or not (`raw == NONE`), duplicates
@@ -231,41 +318,9 @@ impl Navigate for LiveComplex {
         Navigate::check(self, h).map(|_| h)
     }
 
+    /// O(1) through a live top; through a removed one, O(d·k_v) (see [`LiveComplex::live_form`]).
     fn check(&self, h: SimplexHandle) -> Result<(), QueryError> {
-        if h.generation() != self.epoch {
-            return Err(QueryError::StaleGeneration {
-                handle: h,
-                generation: h.generation(),
-                current: self.epoch,
-            });
-        }
-        if h.is_none() {
-            return Err(invalid(h, "the NONE handle"));
-        }
-        if h.form() == HandleForm::Dense {
-            if h.dim() != 0 {
-                return Err(invalid(h, "the live complex numbers only vertices densely"));
-            }
-            if h.index() >= self.vertex_slots() {
-                return Err(invalid(h, "vertex beyond the vertex slots"));
-            }
-            if !self.alive[h.index() as usize] {
-                return Err(QueryError::StaleHandle { handle: h });
-            }
-            return Ok(());
-        }
-        let (p, slot) = unpack(h.index());
-        if p == 0 || (slot + 1) * (p + 1) > self.tops[p].len() {
-            return Err(invalid(h, "no top simplex slot of this number"));
-        }
-        let mask = h.local() as u32;
-        if h.dim() == 0 || mask >> (p + 1) != 0 || mask.count_ones() as usize != h.dim() + 1 {
-            return Err(invalid(h, "vertex mask does not fit its top simplex"));
-        }
-        if self.tops[p][slot * (p + 1)] == NONE {
-            return Err(QueryError::StaleHandle { handle: h });
-        }
-        Ok(())
+        self.live_form(h).map(|_| ())
     }
 
     fn vertex(&self, v: VertexId) -> Result<SimplexHandle, QueryError> {
@@ -293,14 +348,14 @@ impl Navigate for LiveComplex {
             }
             return Ok(self.vertex_handle(v));
         }
-        if (slot + 1) * (p + 1) > self.tops[p].len() || self.tops[p][slot * (p + 1)] == NONE {
+        if (slot + 1) * (p + 1) > self.tops[p].len() || self.tops[p][slot * (p + 1)] >= DEAD {
             return Err(bad("no live top simplex in this slot"));
         }
         Ok(self.face_handle(t.0, ((1u32 << (p + 1)) - 1) as u16))
     }
 
     fn top_id(&self, h: SimplexHandle) -> Result<Option<TopId>, QueryError> {
-        Navigate::check(self, h)?;
+        let h = self.live_form(h)?;
         if h.form() == HandleForm::Dense {
             let isolated = self.star[h.index() as usize].is_empty();
             return Ok(isolated.then(|| TopId(pack(0, h.index()))));
@@ -377,6 +432,22 @@ impl Navigate for LiveComplex {
     ) -> Result<(), QueryError> {
         out.clear();
         self.visit(h, q, &mut |x| out.push(x))
+    }
+
+    /// Answers come lexicographic already: both orders cost the same.
+    fn related_handles_batch(
+        &self,
+        hs: &[SimplexHandle],
+        q: usize,
+        _order: Order,
+        out: &mut Vec<SimplexHandle>,
+        ends: &mut Vec<usize>,
+    ) -> Result<(), QueryError> {
+        for &h in hs {
+            self.visit(h, q, &mut |x| out.push(x))?;
+            ends.push(out.len());
+        }
+        Ok(())
     }
 
     fn star(

@@ -14,7 +14,7 @@
 //! that is a face of another). Handles and undo records do not survive a save (the opened
 //! complex starts at generation 0).
 
-use super::{LiveComplex, MAX_DIMENSION, NONE, SLOT_MASK, Stars};
+use super::{DEAD, LiveComplex, MAX_DIMENSION, NONE, SLOT_MASK, Stars};
 use crate::store::{Arr, Persist, Reader, StoreError, Writer};
 
 impl Persist for LiveComplex {
@@ -38,7 +38,7 @@ impl Persist for LiveComplex {
         for p in 1..=MAX_DIMENSION {
             let rows: Vec<u32> = self.tops[p]
                 .chunks_exact(p + 1)
-                .filter(|s| s[0] != NONE)
+                .filter(|s| s[0] < DEAD)
                 .flatten()
                 .map(|&v| map[v as usize])
                 .collect();
@@ -48,7 +48,7 @@ impl Persist for LiveComplex {
 
     fn load(r: &mut Reader) -> Result<Self, StoreError> {
         let n = r.u32("vertex count")?;
-        if n == 0 || n == NONE {
+        if n == 0 || n > DEAD {
             return Err(r.corrupt(format!("live complex with {n} vertex slots")));
         }
         let coord_dim = r.bounded(64, "coordinate dimension")? as usize;
