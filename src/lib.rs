@@ -32,6 +32,6 @@ pub mod store;
 pub mod structures;
 
 pub use complex::{Budget, Complex, ComplexError};
-pub use handle::{Fans, Navigate, Order, SimplexHandle, TopId, VertexId, Vertices};
+pub use handle::{Fans, Navigate, Order, RelationView, SimplexHandle, TopId, VertexId, Vertices};
 pub use relation::{QueryError, Storage, StructureKind, Topology};
 pub use structures::{BuildError, build};
