@@ -930,8 +930,8 @@ TpxStatus tpx_degree_batch(const struct TpxStructure *s,
  * owned by the structure and stay valid, unchanged, until `tpx_structure_free`; read them from
  * any number of threads. Where the structure stores the relation in CSR form (the IG's
  * co-boundaries R_{p,p+1}) they are its own arrays: O(1), no memory. Otherwise the first call
- * builds an index — one walk over every p-simplex (degrees first, then answers: about twice
- * `tpx_related_batch` over every p-simplex), `4 (n_p + 1) + 4 Σ|R_{p,q}|` bytes kept with the
+ * builds an index — one walk over every p-simplex (the cost of `tpx_related_batch` over every
+ * p-simplex), `4 (n_p + 1) + 4 Σ|R_{p,q}|` bytes kept with the
  * structure (`built` = 1, `bytes`) — and later calls are O(1). Each answer is in natural order,
  * the same as `tpx_related` (TPX_ORDER_NATURAL). Errors: NULL_ARGUMENT,
  * DIMENSION_OUT_OF_RANGE (p or q > d), NOT_DENSE (the live complex), TOO_LARGE (the index does

@@ -602,8 +602,8 @@ pub trait Navigate: Topology {
     /// caller that iterates answers itself (the C++ ranges read it inline, with no call per
     /// query). Where the structure stores the relation as a CSR (the IG's co-boundaries
     /// R_{p,p+1}) the view is its own arrays, at no cost. Otherwise the first call builds an
-    /// index of R_{p,q} — one walk over every p-simplex, its degrees counted first so the
-    /// arrays are reserved exactly (fallibly: `TooLarge`) — kept until the structure is dropped
+    /// index of R_{p,q} — one walk over every p-simplex (the cost of `related_batch` over all
+    /// of them), its arrays grown fallibly (`TooLarge`) — kept until the structure is dropped
     /// (`4 (n_p + 1) + 4 · Σ|R_{p,q}|` bytes, in [`Navigate::handle_bytes`]); later calls are
     /// O(1). `DimensionOutOfRange` for p or q above the dimension. `Ok(None)` for structures
     /// without dense handles (the live complex).

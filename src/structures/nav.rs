@@ -270,8 +270,8 @@ fn check_indices<T: NavBase + ?Sized>(t: &T, p: usize, indices: &[u32]) -> Resul
     }
 }
 
-/// The index of R_{p,q} behind [`Navigate::relation_view`]: degrees first (so both arrays are
-/// reserved exactly and fallibly), then every answer appended in natural order.
+/// The index of R_{p,q} behind [`Navigate::relation_view`]: one walk over every p-simplex, each
+/// answer walked into a scratch buffer and appended (the arrays grown fallibly, then trimmed).
 fn build_view<T: NavBase>(t: &T, p: usize, q: usize) -> Result<Csr, QueryError> {
     let n = t.count(p);
     let too_large = |bytes: u64| QueryError::TooLarge {
@@ -282,42 +282,19 @@ fn build_view<T: NavBase>(t: &T, p: usize, q: usize) -> Result<Csr, QueryError> 
     offsets
         .try_reserve_exact(n + 1)
         .map_err(|_| too_large(4 * (n as u64 + 1)))?;
-    offsets.resize(n + 1, 0);
-    let all = 0..n as u32;
-    let mut chunk = [0u32; 1024];
-    // Degrees into offsets[1..], a chunk of indices at a time (no index array of n entries).
-    for start in all.clone().step_by(chunk.len()) {
-        let end = (start as usize + chunk.len()).min(n) as u32;
-        let k = (end - start) as usize;
-        for (c, i) in chunk[..k].iter_mut().zip(start..end) {
-            *c = i;
-        }
-        t.degree_batch(
-            p,
-            &chunk[..k],
-            q,
-            &mut offsets[start as usize + 1..end as usize + 1],
-        )?;
-    }
-    let mut total = 0u64;
-    for o in offsets.iter_mut() {
-        total += u64::from(*o);
-        *o = u32::try_from(total).map_err(|_| too_large(4 * total))?;
-    }
+    offsets.push(0);
     let mut ids: Vec<u32> = Vec::new();
-    ids.try_reserve_exact(total as usize)
-        .map_err(|_| too_large(4 * total))?;
-    let mut ends = Scratch::<Vec<usize>>::take();
-    for start in all.step_by(chunk.len()) {
-        let end = (start as usize + chunk.len()).min(n) as u32;
-        let k = (end - start) as usize;
-        for (c, i) in chunk[..k].iter_mut().zip(start..end) {
-            *c = i;
-        }
-        ends.clear();
-        t.related_batch(p, &chunk[..k], q, Order::Natural, &mut ids, &mut ends)?;
+    let mut buf = Scratch::<Vec<u32>>::take();
+    for i in 0..n as u32 {
+        buf.clear();
+        t.related_ids(SimplexHandle::dense(p, i), q, Order::Natural, &mut buf)?;
+        ids.try_reserve(buf.len())
+            .map_err(|_| too_large(4 * (ids.len() + buf.len()) as u64))?;
+        ids.extend_from_slice(&buf);
+        offsets.push(u32::try_from(ids.len()).map_err(|_| too_large(4 * ids.len() as u64))?);
     }
-    debug_assert_eq!(ids.len() as u64, total);
+    // Shrinking in place: the amortised growth's slack is not kept for the structure's life.
+    ids.shrink_to_fit();
     Ok(Csr { offsets, ids })
 }
 
