@@ -455,6 +455,36 @@ typedef struct TpxSimplex {
 } TpxSimplex;
 
 /**
+ * R_{p,q} of every p-simplex as one CSR lent by a structure (`tpx_relation_view`), for
+ * iterating answers in the caller's own loop with no call per query (the C++
+ * `Structure::view` ranges do): the answer of the p-simplex of dense index i is
+ * `ids[offsets[i] .. offsets[i + 1]]`, in natural order. The arrays belong to the structure
+ * and live as long as it does.
+ */
+typedef struct TpxRelationView {
+  /**
+   * `count + 1` offsets into `ids` (first 0, last the total).
+   */
+  const uint32_t *offsets;
+  /**
+   * Every answer, p-simplex after p-simplex, as dense q-indices.
+   */
+  const uint32_t *ids;
+  /**
+   * Number of p-simplices (n_p).
+   */
+  size_t count;
+  /**
+   * 1 when the arrays are an index built for the view, 0 when they are the structure's own.
+   */
+  uint32_t built;
+  /**
+   * Bytes of the two arrays (`4 (count + 1) + 4 * total`): extra memory when `built`.
+   */
+  uint64_t bytes;
+} TpxRelationView;
+
+/**
  * Storage of a structure: what the papers count and what the process really holds.
  */
 typedef struct TpxStorage {
@@ -878,6 +908,45 @@ TpxStatus tpx_degree(const struct TpxStructure *s,
                      const struct TpxSimplex *h,
                      uint32_t q,
                      size_t *out);
+
+/**
+ * |R_{p,q}| of the p-simplices of dense indices `indices[0 .. count]` into `degrees[0 ..
+ * count]`, without writing any answer (a valence histogram, boundary and non-manifold edge
+ * lists read degrees only). Errors: NULL_ARGUMENT, INVALID_HANDLE (p > d or an index out of
+ * range), DIMENSION_OUT_OF_RANGE (q > d), NOT_DENSE (the live complex, q > 0); nothing is
+ * written on error. Cost: for relations the IG stores (R_{p,p±1}, and R_{0,0} = the edges at
+ * a vertex) O(1) per index from its offsets; otherwise the walk of each answer, counted in a
+ * scratch buffer (no answer copied out). No allocation once this thread's scratch is warm.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `indices` holds `count` ids and `degrees` room for `count`.
+ */
+TpxStatus tpx_degree_batch(const struct TpxStructure *s,
+                           uint32_t p,
+                           const uint32_t *indices,
+                           size_t count,
+                           uint32_t q,
+                           uint32_t *degrees);
+
+/**
+ * Lends R_{p,q} of every p-simplex as one CSR into `*out` (`TpxRelationView`). The arrays are
+ * owned by the structure and stay valid, unchanged, until `tpx_structure_free`; read them from
+ * any number of threads. Where the structure stores the relation in CSR form (the IG's
+ * co-boundaries R_{p,p+1}) they are its own arrays: O(1), no memory. Otherwise the first call
+ * builds an index — one walk over every p-simplex (the cost of `tpx_related_batch` over every
+ * p-simplex), `4 (n_p + 1) + 4 Σ|R_{p,q}|` bytes kept with the
+ * structure (`built` = 1, `bytes`) — and later calls are O(1). Each answer is in natural order,
+ * the same as `tpx_related` (TPX_ORDER_NATURAL). Errors: NULL_ARGUMENT,
+ * DIMENSION_OUT_OF_RANGE (p or q > d), NOT_DENSE (the live complex), TOO_LARGE (the index does
+ * not fit in memory or its offsets in 32 bits); `*out` is written only on success.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_relation_view(const struct TpxStructure *s,
+                            uint32_t p,
+                            uint32_t q,
+                            struct TpxRelationView *out);
 
 /**
  * The star (every simplex having `*h` as a proper face, dimension ascending) or, with `link`

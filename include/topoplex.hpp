@@ -475,6 +475,39 @@ class SimplexList {
   std::uint32_t dim_ = 0, owner_ = 0;
 };
 
+/* R_{p,q} of every p-simplex as one CSR lent by its Structure (Structure::view, over
+ * tpx_relation_view): view[i] is the answer of the p-simplex of dense index i as a SimplexSpan,
+ * read inline (two loads, no library call), so `for (auto f : vf[v])` costs what a circulator
+ * costs. Answers in natural order, the same as related(). Copy freely; valid as long as its
+ * Structure lives. Where the structure stores the relation in CSR form (the IG's co-boundaries
+ * R_{p,p+1}) the arrays are its own (built() false, no memory); otherwise the first view(p, q)
+ * of a structure builds an index once, kept with the structure (bytes() of memory). */
+class RelationView {
+ public:
+  RelationView() = default;
+  RelationView(const TpxRelationView &v, std::uint32_t q, std::uint32_t owner) noexcept
+      : v_(v), q_(q), owner_(owner) {}
+  /* Number of p-simplices. */
+  std::size_t size() const noexcept { return v_.count; }
+  /* The answer of the p-simplex of dense index i (i < size(), unchecked). O(1). */
+  SimplexSpan operator[](std::uint32_t i) const noexcept {
+    const std::uint32_t a = v_.offsets[i], b = v_.offsets[i + 1];
+    return SimplexSpan(v_.ids + a, b - a, q_, owner_);
+  }
+  SimplexSpan operator[](Simplex h) const noexcept { return (*this)[h.index()]; }
+  /* |R_{p,q}| of the p-simplex of dense index i. O(1). */
+  std::uint32_t degree(std::uint32_t i) const noexcept { return v_.offsets[i + 1] - v_.offsets[i]; }
+  /* Whether the arrays are an index built for the view (else the structure's own). */
+  bool built() const noexcept { return v_.built != 0; }
+  /* Bytes of the two arrays (extra memory when built()). */
+  std::uint64_t bytes() const noexcept { return v_.bytes; }
+  const TpxRelationView &raw() const noexcept { return v_; }
+
+ private:
+  TpxRelationView v_{};
+  std::uint32_t q_ = 0, owner_ = 0;
+};
+
 /* Cyclically ordered groups (fans around a vertex, radial groups around an edge). Reuse one
  * object across calls (Structure::fans_around(v, fans)) to avoid allocation. */
 class Fans {
@@ -680,6 +713,20 @@ class Structure {
     }
     detail::check(st);
     ids.resize(len);
+  }
+  /* R_{p,q} of every p-simplex, lent as a RelationView iterated inline (see RelationView for
+   * its cost: the first call for a relation the structure does not store builds an index). */
+  RelationView view(std::uint32_t p, std::uint32_t q) const {
+    TpxRelationView v{};
+    detail::check(tpx_relation_view(s_, p, q, &v));
+    return RelationView(v, q, stamp_);
+  }
+  /* |R_{p,q}| of the p-simplices of dense indices `indices` into `out` (resized), counts only
+   * (tpx_degree_batch: O(1) each for relations the IG stores). */
+  void degrees(std::uint32_t p, const std::vector<std::uint32_t> &indices, std::uint32_t q,
+               std::vector<std::uint32_t> &out) const {
+    out.resize(indices.size());
+    detail::check(tpx_degree_batch(s_, p, indices.data(), indices.size(), q, out.data()));
   }
   /* |R_{p,q}(h)| without writing the answer. */
   std::size_t degree(Simplex h, std::uint32_t q) const {

@@ -149,9 +149,13 @@ def main_table(results, kinds: list[str], sizes: dict[str, str]) -> list[str]:
         ops = results[(program, dataset)]
         for op in ops:
             libs = ops[op]
-            # `<op>_batch` (one tpx_related_batch call over every simplex) has no peer run of
-            # its own: compare it with the peers' per-element walk of `<op>`.
-            peer_libs = ops.get(op[: -len("_batch")], {}) if op.endswith("_batch") else libs
+            # `<op>_batch` (one tpx_related_batch / tpx_degree_batch call over every simplex)
+            # and `<op>_view` (answers read inline from a lent relation view) have no peer run
+            # of their own: compare them with the peers' per-element walk of `<op>`.
+            peer_libs = libs
+            for suffix in FORMS:
+                if op.endswith(suffix):
+                    peer_libs = ops.get(op[: -len(suffix)], {})
             peers = [lib for lib in peer_libs if not lib.startswith("tpx_")]
             for peer in peers:
                 p = peer_libs[peer]
@@ -375,9 +379,15 @@ def aims(results) -> list[str]:
     return out
 
 
+# Topoplex-only forms of a walk, compared with the peer's walk of the plain op: one batch call
+# over every simplex, and per-query answers read inline from a lent relation view.
+FORMS = ("_batch", "_view")
+
+
 def handle_aims(results) -> list[str]:
     """Issue 13: the handle API per op against each peer, best kind over the per-call walk
-    (`op`) and the batch form (`op_batch`, compared with the peer's per-element walk)."""
+    (`op`), the batch form (`op_batch`) and the lent view (`op_view`), each compared with the
+    peer's per-element walk."""
     out = ["", "### Aims of issue 13 (handles)", ""]
     aims13 = [
         ("surface", "VF", ("openmesh", "cgal_sm"), 0.8),
@@ -395,7 +405,7 @@ def handle_aims(results) -> list[str]:
                 if prog != program or op not in ops or peer not in ops[op]:
                     continue
                 best = None
-                for form in (op, op + "_batch"):
+                for form in (op,) + tuple(op + f for f in FORMS):
                     if form not in ops:
                         continue
                     libs = dict(ops[form])

@@ -369,6 +369,67 @@ impl Fans {
     }
 }
 
+/// R_{p,q} of every p-simplex of a structure as one CSR the structure lends
+/// ([`Navigate::relation_view`]): the answer of the p-simplex of dense index i is
+/// `ids[offsets[i]..offsets[i + 1]]`, dense q-indices in natural order (the same answers, in the
+/// same order, as [`Navigate::related`]). Valid as long as the structure lives; reading one
+/// answer is two loads and no call, which is what lets a C++ range iterate it inline.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RelationView<'a> {
+    offsets: &'a [u32],
+    ids: &'a [u32],
+    built: bool,
+}
+
+impl<'a> RelationView<'a> {
+    /// A view over `offsets` (n + 1 entries, non-decreasing, first 0, last `ids.len()`) and
+    /// `ids`; `built` when it is an index built for the view rather than stored arrays.
+    pub(crate) fn new(offsets: &'a [u32], ids: &'a [u32], built: bool) -> RelationView<'a> {
+        debug_assert!(offsets.first() == Some(&0) && offsets.last() == Some(&(ids.len() as u32)));
+        RelationView {
+            offsets,
+            ids,
+            built,
+        }
+    }
+
+    /// Number of p-simplices (answers).
+    pub fn len(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    /// Whether there is no p-simplex.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The answer of the p-simplex of dense index `i` (panics when `i >= len()`). O(1).
+    pub fn get(&self, i: usize) -> &'a [u32] {
+        &self.ids[self.offsets[i] as usize..self.offsets[i + 1] as usize]
+    }
+
+    /// The n + 1 offsets.
+    pub fn offsets(&self) -> &'a [u32] {
+        self.offsets
+    }
+
+    /// Every answer, one after the other.
+    pub fn ids(&self) -> &'a [u32] {
+        self.ids
+    }
+
+    /// Whether this is an index built for the view (memory: [`RelationView::bytes`], counted
+    /// in [`Navigate::handle_bytes`]) rather than the structure's own arrays (no extra memory).
+    pub fn is_built(&self) -> bool {
+        self.built
+    }
+
+    /// Bytes of the two arrays, `4 (n + 1) + 4 · total`.
+    pub fn bytes(&self) -> u64 {
+        4 * (self.offsets.len() + self.ids.len()) as u64
+    }
+}
+
 /// Navigation from handles to handles: locate once, then answer without re-locating.
 ///
 /// Object-safe, and implemented by every structure of this crate; `Box<dyn Topology>` reaches it
@@ -523,6 +584,57 @@ pub trait Navigate: Topology {
             ends.push(out.len());
         }
         Ok(())
+    }
+
+    /// R_{p,q}(h) appended to `ids` as dense q-indices (for dense handles), in `order`; `h` is
+    /// checked once. Default: [`Navigate::visit`]; the nine structures answer from their arrays
+    /// with no call per answer where they have a loop for (p, q) (see `related_batch`). No
+    /// allocation beyond `ids`.
+    fn related_ids(
+        &self,
+        h: SimplexHandle,
+        q: usize,
+        order: Order,
+        ids: &mut Vec<u32>,
+    ) -> Result<(), QueryError> {
+        let start = ids.len();
+        self.visit(h, q, &mut |x| ids.push(x.index()))?;
+        if order == Order::Lexicographic {
+            ids[start..].sort_unstable();
+        }
+        Ok(())
+    }
+
+    /// |R_{p,q}| of the dense p-indices `indices` into `out` (`out.len() == indices.len()`),
+    /// without writing any answer: for the stored relations of the IG (co-boundaries,
+    /// boundaries, R_{0,0} = edges at v) O(1) per index from its offsets; otherwise each
+    /// answer walked and counted in a scratch buffer (the walk's cost). Errors as
+    /// [`Navigate::related_batch`]; on error `out` holds a prefix. No allocation once this
+    /// thread's scratch is warm.
+    fn degree_batch(
+        &self,
+        p: usize,
+        indices: &[u32],
+        q: usize,
+        out: &mut [u32],
+    ) -> Result<(), QueryError> {
+        for (&i, o) in indices.iter().zip(out.iter_mut()) {
+            *o = self.degree(self.handle(p, i)?, q)? as u32;
+        }
+        Ok(())
+    }
+
+    /// R_{p,q} of every p-simplex as one CSR lent by the structure ([`RelationView`]), for a
+    /// caller that iterates answers itself (the C++ ranges read it inline, with no call per
+    /// query). Where the structure stores the relation as a CSR (the IG's co-boundaries
+    /// R_{p,p+1}) the view is its own arrays, at no cost. Otherwise the first call builds an
+    /// index of R_{p,q} — one walk over every p-simplex (the cost of `related_batch` over all
+    /// of them), its arrays grown fallibly (`TooLarge`) — kept until the structure is dropped
+    /// (`4 (n_p + 1) + 4 · Σ|R_{p,q}|` bytes, in [`Navigate::handle_bytes`]); later calls are
+    /// O(1). `DimensionOutOfRange` for p or q above the dimension. `Ok(None)` for structures
+    /// without dense handles (the live complex).
+    fn relation_view(&self, _p: usize, _q: usize) -> Result<Option<RelationView<'_>>, QueryError> {
+        Ok(None)
     }
 
     /// The q-faces of h, q < p (`DimensionOutOfRange` otherwise); see [`Navigate::related`].

@@ -34,6 +34,6 @@ pub mod structures;
 pub mod testing;
 
 pub use complex::{Budget, Complex, ComplexError};
-pub use handle::{Fans, Navigate, Order, SimplexHandle, TopId, VertexId, Vertices};
+pub use handle::{Fans, Navigate, Order, RelationView, SimplexHandle, TopId, VertexId, Vertices};
 pub use relation::{QueryError, Storage, StructureKind, Topology};
 pub use structures::{BuildError, build};

@@ -195,6 +195,14 @@ pub enum QueryError {
         /// What the operation needs ("a vertex", "an edge").
         expected: &'static str,
     },
+    /// An index a query builds (a relation view) does not fit in memory or in 32-bit offsets.
+    #[error("{what}: {bytes} bytes do not fit in memory (or its offsets in 32 bits)")]
+    TooLarge {
+        /// What was being built.
+        what: &'static str,
+        /// Bytes it needed.
+        bytes: u64,
+    },
 }
 
 /// The relation API. Implementors provide [`Topology::query`] for a validated simplex; callers

@@ -219,6 +219,16 @@ fn every_operation(s: *const TpxStructure, kind: u32, t: &mut Tally) {
                     )
                 },
             );
+            t.call(
+                || format!("kind {kind}: tpx_degree_batch p={p} q={q}"),
+                || unsafe { tpx_degree_batch(s, p, all.as_ptr(), all.len(), q, ids.as_mut_ptr()) },
+            );
+            // The first call builds the index (the warm-up pass); later calls only lend it.
+            let mut view = std::mem::MaybeUninit::<TpxRelationView>::zeroed();
+            t.call(
+                || format!("kind {kind}: tpx_relation_view p={p} q={q}"),
+                || unsafe { tpx_relation_view(s, p, q, view.as_mut_ptr()) },
+            );
         }
     }
     let mut tops = 0u32;

@@ -152,6 +152,7 @@ fn check_batches(n: &dyn Navigate) -> Result<(), String> {
                     ));
                 }
             }
+            check_views_and_degrees(n, p, q)?;
             let past = [n.count(p) as u32];
             let (mut ids, mut ends) = (Vec::new(), Vec::new());
             if n.related_batch(p, &past, q, Order::Natural, &mut ids, &mut ends)
@@ -163,6 +164,68 @@ fn check_batches(n: &dyn Navigate) -> Result<(), String> {
                 ));
             }
         }
+    }
+    Ok(())
+}
+
+/// For R_{p,q}: `related_ids` (both orders), the lent `relation_view` and `degree_batch` agree
+/// with `related` handle by handle; the view is the same on a second call (kept), and
+/// `degree_batch` refuses an index out of range.
+fn check_views_and_degrees(n: &dyn Navigate, p: usize, q: usize) -> Result<(), String> {
+    let kind = n.kind();
+    let all: Vec<u32> = (0..n.count(p) as u32).collect();
+    let view = n
+        .relation_view(p, q)
+        .map_err(|e| format!("{kind}: view R_{{{p},{q}}}: {e}"))?
+        .ok_or_else(|| format!("{kind}: no view"))?;
+    let mut degrees = vec![0u32; all.len()];
+    n.degree_batch(p, &all, q, &mut degrees)
+        .map_err(|e| format!("{kind}: degree_batch R_{{{p},{q}}}: {e}"))?;
+    if view.len() != all.len() {
+        return Err(format!(
+            "{kind}: view R_{{{p},{q}}} has {} rows",
+            view.len()
+        ));
+    }
+    let (mut buf, mut ids) = (Vec::new(), Vec::new());
+    for &i in &all {
+        let h = n.handle(p, i).unwrap();
+        for order in [Order::Natural, Order::Lexicographic] {
+            n.related(h, q, order, &mut buf).unwrap();
+            let want: Vec<u32> = buf.iter().map(|h| h.index()).collect();
+            ids.clear();
+            ids.push(7); // appended after what is there
+            n.related_ids(h, q, order, &mut ids).unwrap();
+            if ids[1..] != want[..] {
+                return Err(format!(
+                    "{kind}: related_ids R_{{{p},{q}}}({h}) {ids:?}, related {want:?}"
+                ));
+            }
+            if order == Order::Natural && view.get(i as usize) != &want[..] {
+                return Err(format!(
+                    "{kind}: view R_{{{p},{q}}}({h}) {:?}, related {want:?}",
+                    view.get(i as usize)
+                ));
+            }
+        }
+        if degrees[i as usize] as usize != buf.len() {
+            return Err(format!(
+                "{kind}: degree_batch R_{{{p},{q}}}({h}) {}, related has {}",
+                degrees[i as usize],
+                buf.len()
+            ));
+        }
+    }
+    let again = n.relation_view(p, q).unwrap().unwrap();
+    if again.ids().as_ptr() != view.ids().as_ptr() || again != view {
+        return Err(format!(
+            "{kind}: view R_{{{p},{q}}} rebuilt on the second call"
+        ));
+    }
+    if n.degree_batch(p, &[n.count(p) as u32], q, &mut [0]).is_ok() {
+        return Err(format!(
+            "{kind}: degree_batch R_{{{p},{q}}} took an index out of range"
+        ));
     }
     Ok(())
 }

@@ -1,14 +1,18 @@
 #include "bench_common.hpp"
 
+#include "topoplex.hpp"
+
 #include <malloc.h>
 
 #include <atomic>
+#include <chrono>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
 #include <sstream>
+#include <tuple>
 
 #if defined(__SANITIZE_ADDRESS__)
 #define TPXBENCH_SANITIZED 1
@@ -285,6 +289,50 @@ uint64_t walk(benchmark::State& state, const TpxStructure* s, const std::vector<
   }
   if (!ok) fail(state, "tpx_related failed: " + tpx_message());
   return count;
+}
+
+namespace {
+// The lent view of R_{p,q} of `s` and how long its first call took (per structure stamp: a
+// Google Benchmark function runs several times, only the first call builds).
+struct TakenView {
+  TpxRelationView raw{};
+  double first_ms = 0;
+};
+TakenView take_view(const TpxStructure* s, uint32_t p, uint32_t q) {
+  static std::map<std::tuple<uint32_t, uint32_t, uint32_t>, double> first;
+  uint32_t stamp = 0;
+  tpx_check(tpx_structure_stamp(s, &stamp), "tpx_structure_stamp");
+  TakenView t;
+  const auto t0 = std::chrono::steady_clock::now();
+  tpx_check(tpx_relation_view(s, p, q, &t.raw), "tpx_relation_view");
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  t.first_ms = first.emplace(std::make_tuple(stamp, p, q), ms).first->second;
+  return t;
+}
+}  // namespace
+
+void add_view_walk(const std::string& op, const std::string& lib, std::function<const TpxStructure*()> get,
+                   uint32_t p, uint32_t q) {
+  const std::string name = op + "_view";
+  add(name, lib, Unit::Walk, [=](benchmark::State& state) {
+    const TakenView t = take_view(get(), p, q);
+    const topoplex::RelationView view(t.raw, q, 0);
+    const uint32_t n = uint32_t(view.size());
+    uint64_t count = 0, sum = 0;
+    for (auto _ : state) {
+      count = 0;
+      for (uint32_t i = 0; i < n; ++i)
+        for (auto x : view[i]) {
+          sum += x.index();
+          ++count;
+        }
+      benchmark::DoNotOptimize(sum);
+    }
+    check_count(state, op, lib, count);  // the same count as the peers' walk of `op`
+    set_elements(state, count);
+    state.counters["view_first_ms"] = t.first_ms;
+    state.counters["index_bytes"] = t.raw.built ? double(t.raw.bytes) : 0.0;
+  });
 }
 
 std::vector<uint32_t> simplices_of(const TpxStructure* s, uint32_t p) {

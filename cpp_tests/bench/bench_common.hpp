@@ -181,6 +181,17 @@ class Walker {
 uint64_t walk(benchmark::State& state, const TpxStructure* s, const std::vector<uint32_t>& simplices, uint32_t p,
               const std::vector<uint32_t>& qs, Walker& w);
 
+// The walk of R_{p,q} over every p-simplex reading each answer inline from a lent relation
+// view (tpx_relation_view, iterated by topoplex::RelationView of topoplex.hpp: no library call
+// per query), registered as `<op>_view/<lib>`. `get` returns the library's structure (built
+// once, shared with its other walks). The view is taken outside the timed loop; for a
+// relation the structure does not store, the first call of a structure builds its index: that
+// call's time and the index's bytes are the counters `view_first_ms` and `index_bytes` (the
+// `<op>_batch` op is the same index built again, as a whole-mesh pass would pay it). Every id
+// is read (summed), as the peers' circulators read theirs.
+void add_view_walk(const std::string& op, const std::string& lib, std::function<const TpxStructure*()> get,
+                   uint32_t p, uint32_t q);
+
 // All p-simplices of a structure (rows of p+1 ids, ascending).
 std::vector<uint32_t> simplices_of(const TpxStructure* s, uint32_t p);
 // 0 .. n-1 as vertex rows.

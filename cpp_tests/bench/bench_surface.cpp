@@ -12,9 +12,12 @@
 //   FF     R_{2,2} of every triangle, the triangles sharing an edge (ff_range, faces_around_face)
 //   stats  whole-mesh pass (issue 13): valence histogram + boundary and non-manifold edge lists
 //          (OpenMesh valence/is_boundary; Topoplex tpx_degree per handle, or `stats_batch`: two
-//          tpx_related_batch calls)
+//          tpx_degree_batch calls, counts only)
 //   FF_index  whole-mesh pass: every face's neighbour faces as indices (ff_range + idx();
-//          tpx_related per face handle)
+//          tpx_related per face handle; `FF_index_batch`: one tpx_related_batch, then the pass
+//          over its CSR; `FF_index_view`: the lent view, see below)
+//   <op>_batch  VF/VV/FF as one tpx_related_batch over every simplex
+//   <op>_view   VF/VV/FF/FF_index read inline from a lent relation view (bench_common.hpp)
 // The peers' heap includes their vertex coordinates (OpenMesh 3 floats, CGAL 3 doubles per
 // vertex; counter `geometry_bytes`), Topoplex's structures hold none.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -402,6 +405,7 @@ int main(int argc, char** argv) {
         check_count(state, batch, lib, count);
         set_elements(state, count);
       });
+      add_view_walk(op.name, lib, [lib, make] { return slot().get<Built>(lib, make).s.get(); }, op.p, op.q);
     }
   }
   // The whole-mesh passes through the handle API: one tpx_degree / tpx_related per handle
@@ -451,7 +455,7 @@ int main(int argc, char** argv) {
       size_t nv = 0, ne = 0;
       tpx_check(tpx_structure_count(b.s.get(), 0, &nv), "tpx_structure_count");
       tpx_check(tpx_structure_count(b.s.get(), 1, &ne), "tpx_structure_count");
-      std::vector<uint32_t> vi(nv), ei(ne), off(std::max(nv, ne) + 1), ids(16 * std::max(nv, ne) + 16);
+      std::vector<uint32_t> vi(nv), ei(ne), deg(std::max(nv, ne));
       for (uint32_t i = 0; i < nv; ++i) vi[i] = i;
       for (uint32_t i = 0; i < ne; ++i) ei[i] = i;
       std::vector<uint32_t> hist(64, 0), boundary, nonmanifold;
@@ -460,29 +464,51 @@ int main(int argc, char** argv) {
         std::fill(hist.begin(), hist.end(), 0);
         boundary.clear();
         nonmanifold.clear();
-        size_t len = 0;
-        if (tpx_related_batch(b.s.get(), 0, vi.data(), nv, 0, TPX_ORDER_NATURAL, off.data(), ids.data(), ids.size(),
-                              &len) != TPX_STATUS_OK)
-          fail(state, "tpx_related_batch failed: " + tpx_message());
+        // Counts only (tpx_degree_batch): valences R_{0,0}, then triangles per edge R_{1,2}.
+        if (tpx_degree_batch(b.s.get(), 0, vi.data(), nv, 0, deg.data()) != TPX_STATUS_OK)
+          fail(state, "tpx_degree_batch failed: " + tpx_message());
         for (size_t i = 0; i < nv; ++i) {
-          const uint32_t deg = off[i + 1] - off[i];
-          if (deg >= hist.size()) hist.resize(deg + 1, 0);
-          ++hist[deg];
+          if (deg[i] >= hist.size()) hist.resize(deg[i] + 1, 0);
+          ++hist[deg[i]];
         }
-        if (tpx_related_batch(b.s.get(), 1, ei.data(), ne, 2, TPX_ORDER_NATURAL, off.data(), ids.data(), ids.size(),
-                              &len) != TPX_STATUS_OK)
-          fail(state, "tpx_related_batch failed: " + tpx_message());
+        if (tpx_degree_batch(b.s.get(), 1, ei.data(), ne, 2, deg.data()) != TPX_STATUS_OK)
+          fail(state, "tpx_degree_batch failed: " + tpx_message());
         for (uint32_t i = 0; i < ne; ++i) {
-          const uint32_t deg = off[i + 1] - off[i];
-          if (deg == 1) boundary.push_back(i);
-          if (deg > 2) nonmanifold.push_back(i);
+          if (deg[i] == 1) boundary.push_back(i);
+          if (deg[i] > 2) nonmanifold.push_back(i);
         }
         sum = stats_checksum(hist, boundary.size(), nonmanifold.size());
         benchmark::DoNotOptimize(sum);
       }
-      check_count(state, "stats_batch", lib, sum);
+      check_count(state, "stats", lib, sum);
       set_elements(state, nv + ne);
     });
+    // FF_index as one tpx_related_batch into the caller's CSR, then the same pass over it: the
+    // index is built inside the timed loop (what a whole-mesh pass pays for it).
+    add("FF_index_batch", lib, Unit::Walk, [=](benchmark::State& state) {
+      const Built& b = slot().get<Built>(lib + "_whole", make);
+      size_t nf = 0;
+      tpx_check(tpx_structure_count(b.s.get(), 2, &nf), "tpx_structure_count");
+      std::vector<uint32_t> fi(nf), off(nf + 1), ids(4 * nf + 16);
+      for (uint32_t i = 0; i < nf; ++i) fi[i] = i;
+      uint64_t n = 0, sum = 0;
+      for (auto _ : state) {
+        size_t len = 0;
+        if (tpx_related_batch(b.s.get(), 2, fi.data(), nf, 2, TPX_ORDER_NATURAL, off.data(), ids.data(), ids.size(),
+                              &len) != TPX_STATUS_OK)
+          fail(state, "tpx_related_batch failed: " + tpx_message());
+        n = 0;
+        for (size_t f = 0; f < nf; ++f)
+          for (uint32_t k = off[f]; k < off[f + 1]; ++k) {
+            sum += ids[k];
+            ++n;
+          }
+        benchmark::DoNotOptimize(sum);
+      }
+      check_count(state, "FF_index", lib, n);
+      set_elements(state, n);
+    });
+    add_view_walk("FF_index", lib, [lib, make] { return slot().get<Built>(lib + "_whole", make).s.get(); }, 2, 2);
     add("FF_index", lib, Unit::Walk, [=](benchmark::State& state) {
       const Built& b = slot().get<Built>(lib + "_whole", make);
       size_t nf = 0;

@@ -346,6 +346,7 @@ int main(int argc, char** argv) {
         check_count(state, name, lib, count);
         set_elements(state, count);
       });
+      add_view_walk(name, lib, [lib, make] { return slot().get<Built>(lib, make).s.get(); }, 0, q);
     }
   }
   return run();

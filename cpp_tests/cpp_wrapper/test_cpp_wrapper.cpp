@@ -284,6 +284,38 @@ TEST(Wrapper, HandlesNavigateTheFixture) {
   EXPECT_EQ(s.vertices(f[1][0]), (Ids{2, 3, 4}));
 }
 
+// Lent relations on the fixture, for every kind that holds it: each view's answers equal
+// related() handle by handle; the IG lends its stored edge -> triangle lists (not built), an
+// index otherwise (built, kept: the same arrays on the second view); degrees() counts alone.
+TEST(Wrapper, RelationViewsIterateInlineAndMatchRelated) {
+  const Complex c = fixture();
+  for (Kind k : {Kind::IG, Kind::SIG, Kind::IQM, Kind::NMIA}) {
+    const Structure s(c, k);
+    for (std::uint32_t p = 0; p <= 3; ++p)
+      for (std::uint32_t q = 0; q <= 3; ++q) {
+        const topoplex::RelationView v = s.view(p, q);
+        ASSERT_EQ(v.size(), s.count(p));
+        Ids all;
+        for (std::uint32_t i = 0; i < v.size(); ++i) {
+          Ids got, want;
+          for (auto x : v[i]) got.push_back(x.index());
+          s.related(s.handle(p, i), q, want);
+          EXPECT_EQ(got, want) << "kind " << int(k) << " R_" << p << q << " of " << i;
+          EXPECT_EQ(v.degree(i), want.size());
+          all.push_back(i);
+        }
+        Ids deg;
+        s.degrees(p, all, q, deg);
+        for (std::uint32_t i = 0; i < v.size(); ++i) EXPECT_EQ(deg[i], v.degree(i));
+        EXPECT_EQ(s.view(p, q).raw().ids, v.raw().ids);
+        if (k == Kind::IG) {
+          EXPECT_EQ(v.built(), q != p + 1);
+        }
+      }
+    EXPECT_EQ(status_of([&] { s.view(0, 4); }), TPX_STATUS_DIMENSION_OUT_OF_RANGE);
+  }
+}
+
 // Circulator over a wound fan: triangles around vertex 0, counter-clockwise by the winding.
 //
 //        3

@@ -171,7 +171,25 @@ fn handle_calls(s: *const TpxStructure, topo: &dyn topoplex::Topology, b: &mut B
             assert_eq!(&buf[..len], &want[..]);
         }
         let mut deg = 0usize;
-        assert_ne!(unsafe { tpx_degree(s, &h, q, &mut deg) }, TpxStatus::Panic);
+        let st = unsafe { tpx_degree(s, &h, q, &mut deg) };
+        assert_ne!(st, TpxStatus::Panic);
+        // The counts-only batch and the lent view answer as the per-handle calls do.
+        let p = h.meta & 0xff;
+        let mut degs = [0u32; 1];
+        let bst = unsafe { tpx_degree_batch(s, p, &h.index, 1, q, degs.as_mut_ptr()) };
+        assert_ne!(bst, TpxStatus::Panic);
+        if st == TpxStatus::Ok && h.owner == stamp && h.meta >> 8 == 0 {
+            assert_eq!((bst, degs[0] as usize), (TpxStatus::Ok, deg));
+        }
+        let mut view = std::mem::MaybeUninit::<TpxRelationView>::zeroed();
+        let vst = unsafe { tpx_relation_view(s, p, q, view.as_mut_ptr()) };
+        assert_ne!(vst, TpxStatus::Panic);
+        if vst == TpxStatus::Ok && st == TpxStatus::Ok && h.owner == stamp && h.meta >> 8 == 0 {
+            let v = unsafe { view.assume_init() };
+            let i = h.index as usize;
+            let (a, z) = unsafe { (*v.offsets.add(i), *v.offsets.add(i + 1)) };
+            assert_eq!((z - a) as usize, deg);
+        }
         let mut flag = 0u32;
         let what = u32::from(b.next() % 3);
         assert_ne!(

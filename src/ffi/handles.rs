@@ -88,8 +88,13 @@ fn wrap(s: &TpxStructure, h: SimplexHandle) -> TpxSimplex {
     }
 }
 
-/// The structure's handle for `h`, checked: FOREIGN_HANDLE, INVALID_HANDLE.
-fn unwrap(s: &TpxStructure, n: &dyn Navigate, h: &TpxSimplex) -> Result<SimplexHandle, Failure> {
+/// The structure's handle for `h`, its owner stamp and form checked (FOREIGN_HANDLE,
+/// STALE_GENERATION, INVALID_HANDLE), not yet its range.
+fn unwrap_owned(
+    s: &TpxStructure,
+    n: &dyn Navigate,
+    h: &TpxSimplex,
+) -> Result<SimplexHandle, Failure> {
     if h.owner != s.stamp && s.retired.contains(&h.owner) {
         return Err(Failure::new(
             TpxStatus::StaleGeneration,
@@ -114,7 +119,14 @@ fn unwrap(s: &TpxStructure, n: &dyn Navigate, h: &TpxSimplex) -> Result<SimplexH
             format!("handle meta {:#x}: unknown form or dimension", h.meta),
         )
     })?;
-    let sh = sh.with_generation(n.generation());
+    Ok(sh.with_generation(n.generation()))
+}
+
+/// [`unwrap_owned`] and the range check: for functions that hand the handle to several
+/// [`Navigate`] calls. A function making one call skips this second check, since every
+/// `Navigate` method checks its handle itself.
+fn unwrap(s: &TpxStructure, n: &dyn Navigate, h: &TpxSimplex) -> Result<SimplexHandle, Failure> {
+    let sh = unwrap_owned(s, n, h)?;
     n.check(sh).map_err(query_failure)?;
     Ok(sh)
 }
@@ -332,22 +344,60 @@ pub unsafe extern "C" fn tpx_related(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
+    let order = order_arg(order);
+    answer_into(
+        s,
+        h,
+        buf,
+        buf_len,
+        out_len,
+        &IDS,
+        |_, n, sh, ids| {
+            dense_answers(n, q)?;
+            n.related_ids(sh, q as usize, order?, ids)
+                .map_err(query_failure)
+        },
+        |_, &x| x,
+    )
+}
+
+/// The one body of the functions that answer one handle into the caller's buffer: `s`, `h`
+/// and `out_len` NULL-checked, the handle's owner stamp and form checked (its range is checked
+/// once, by the `Navigate` call inside `answer`), the answer built in this thread's kept
+/// buffer `kept` (no allocation once it has grown), then written to `buf` as `item(x)` (only
+/// on success; BUFFER_TOO_SMALL with the needed length otherwise).
+#[allow(clippy::too_many_arguments)]
+fn answer_into<T, U: Copy>(
+    s: *const TpxStructure,
+    h: *const TpxSimplex,
+    buf: *mut U,
+    buf_len: usize,
+    out_len: *mut usize,
+    kept: &'static std::thread::LocalKey<RefCell<Vec<T>>>,
+    answer: impl FnOnce(&TpxStructure, &dyn Navigate, SimplexHandle, &mut Vec<T>) -> Result<(), Failure>,
+    item: impl Fn(&TpxStructure, &T) -> U,
+) -> TpxStatus {
     guard(|| {
         let s = handle(s, "s")?;
         let h = handle(h, "h")?;
         let out_len = out_ptr(out_len, "out_len")?;
-        let order = order_arg(order)?;
         let n = nav(s)?;
-        let sh = unwrap(s, n, h)?;
-        dense_answers(n, q)?;
-        with_kept(&IDS, |ids| {
-            ids.clear();
-            n.visit(sh, q as usize, &mut |x| ids.push(x.index()))
-                .map_err(query_failure)?;
-            if order == Order::Lexicographic {
-                ids.sort_unstable();
+        let sh = unwrap_owned(s, n, h)?;
+        with_kept(kept, |v| {
+            v.clear();
+            answer(s, n, sh, v)?;
+            if buf.is_null() && buf_len > 0 {
+                return Err(Failure::null("buf"));
             }
-            write_buffer(ids, buf, buf_len, out_len)
+            if v.len() > buf_len {
+                return too_small(v.len(), buf_len, out_len);
+            }
+            for (i, x) in v.iter().enumerate() {
+                // SAFETY: `buf` has room for `buf_len >= v.len()` items (documented contract).
+                unsafe { *buf.add(i) = item(s, x) };
+            }
+            *out_len = v.len();
+            Ok(())
         })
     })
 }
@@ -455,8 +505,127 @@ pub unsafe extern "C" fn tpx_degree(
         let out = out_ptr(out, "out")?;
         let n = nav(s)?;
         *out = n
-            .degree(unwrap(s, n, h)?, q as usize)
+            .degree(unwrap_owned(s, n, h)?, q as usize)
             .map_err(query_failure)?;
+        Ok(())
+    })
+}
+
+/// |R_{p,q}| of the p-simplices of dense indices `indices[0 .. count]` into `degrees[0 ..
+/// count]`, without writing any answer (a valence histogram, boundary and non-manifold edge
+/// lists read degrees only). Errors: NULL_ARGUMENT, INVALID_HANDLE (p > d or an index out of
+/// range), DIMENSION_OUT_OF_RANGE (q > d), NOT_DENSE (the live complex, q > 0); nothing is
+/// written on error. Cost: for relations the IG stores (R_{p,p±1}, and R_{0,0} = the edges at
+/// a vertex) O(1) per index from its offsets; otherwise the walk of each answer, counted in a
+/// scratch buffer (no answer copied out). No allocation once this thread's scratch is warm.
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `indices` holds `count` ids and `degrees` room for `count`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_degree_batch(
+    s: *const TpxStructure,
+    p: u32,
+    indices: *const u32,
+    count: usize,
+    q: u32,
+    degrees: *mut u32,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let indices = in_slice(indices, count, "indices")?;
+        if degrees.is_null() && count > 0 {
+            return Err(Failure::null("degrees"));
+        }
+        let n = nav(s)?;
+        dense_answers(n, q)?;
+        let p = (p as usize).min(MAX_DIMENSION + 1);
+        // Counted aside first: an error leaves `degrees` untouched.
+        with_kept(&IDS, |k| {
+            k.clear();
+            k.try_reserve(count)
+                .map_err(|_| Failure::new(TpxStatus::TooLarge, "degrees do not fit in memory"))?;
+            k.resize(count, 0);
+            n.degree_batch(p, indices, q as usize, k)
+                .map_err(query_failure)?;
+            write_slice(k, degrees);
+            Ok(())
+        })
+    })
+}
+
+/// Copies `data` to `out`, which has room for `data.len()` items (checked by the caller).
+fn write_slice<T: Copy>(data: &[T], out: *mut T) {
+    if !data.is_empty() {
+        // SAFETY: the caller checked `out` non-NULL with room for `data.len()` items; `data`
+        // belongs to this library, so the two cannot overlap.
+        unsafe { std::ptr::copy_nonoverlapping(data.as_ptr(), out, data.len()) };
+    }
+}
+
+/// R_{p,q} of every p-simplex as one CSR lent by a structure (`tpx_relation_view`), for
+/// iterating answers in the caller's own loop with no call per query (the C++
+/// `Structure::view` ranges do): the answer of the p-simplex of dense index i is
+/// `ids[offsets[i] .. offsets[i + 1]]`, in natural order. The arrays belong to the structure
+/// and live as long as it does.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct TpxRelationView {
+    /// `count + 1` offsets into `ids` (first 0, last the total).
+    pub offsets: *const u32,
+    /// Every answer, p-simplex after p-simplex, as dense q-indices.
+    pub ids: *const u32,
+    /// Number of p-simplices (n_p).
+    pub count: usize,
+    /// 1 when the arrays are an index built for the view, 0 when they are the structure's own.
+    pub built: u32,
+    /// Bytes of the two arrays (`4 (count + 1) + 4 * total`): extra memory when `built`.
+    pub bytes: u64,
+}
+
+/// Lends R_{p,q} of every p-simplex as one CSR into `*out` (`TpxRelationView`). The arrays are
+/// owned by the structure and stay valid, unchanged, until `tpx_structure_free`; read them from
+/// any number of threads. Where the structure stores the relation in CSR form (the IG's
+/// co-boundaries R_{p,p+1}) they are its own arrays: O(1), no memory. Otherwise the first call
+/// builds an index — one walk over every p-simplex (the cost of `tpx_related_batch` over every
+/// p-simplex), `4 (n_p + 1) + 4 Σ|R_{p,q}|` bytes kept with the
+/// structure (`built` = 1, `bytes`) — and later calls are O(1). Each answer is in natural order,
+/// the same as `tpx_related` (TPX_ORDER_NATURAL). Errors: NULL_ARGUMENT,
+/// DIMENSION_OUT_OF_RANGE (p or q > d), NOT_DENSE (the live complex), TOO_LARGE (the index does
+/// not fit in memory or its offsets in 32 bits); `*out` is written only on success.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_relation_view(
+    s: *const TpxStructure,
+    p: u32,
+    q: u32,
+    out: *mut TpxRelationView,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let out = out_ptr(out, "out")?;
+        let n = nav(s)?;
+        let not_dense = || {
+            Failure::new(
+                TpxStatus::NotDense,
+                "this structure has no dense index for its simplices above vertices: no relation view",
+            )
+        };
+        if !n.dense() {
+            return Err(not_dense());
+        }
+        let v = n
+            .relation_view(p as usize, q as usize)
+            .map_err(query_failure)?
+            .ok_or_else(not_dense)?;
+        *out = TpxRelationView {
+            offsets: v.offsets().as_ptr(),
+            ids: v.ids().as_ptr(),
+            count: v.len(),
+            built: u32::from(v.is_built()),
+            bytes: v.bytes(),
+        };
         Ok(())
     })
 }
@@ -478,23 +647,25 @@ pub unsafe extern "C" fn tpx_star(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
-        let h = handle(h, "h")?;
-        let out_len = out_ptr(out_len, "out_len")?;
-        let order = order_arg(order)?;
-        let n = nav(s)?;
-        let sh = unwrap(s, n, h)?;
-        with_kept(&HANDLES, |hs| {
+    let order = order_arg(order);
+    answer_into(
+        s,
+        h,
+        buf,
+        buf_len,
+        out_len,
+        &HANDLES,
+        |_, n, sh, hs| {
+            let order = order?;
             if link != 0 {
                 n.link(sh, order, hs)
             } else {
                 n.star(sh, order, hs)
             }
-            .map_err(query_failure)?;
-            write_handles(s, hs, buf, buf_len, out_len)
-        })
-    })
+            .map_err(query_failure)
+        },
+        |s, &x| wrap(s, x),
+    )
 }
 
 /// Whether `*h` is on the boundary (`what` = 0) or a manifold simplex (`what` = 1), as 0 or 1
@@ -703,19 +874,17 @@ pub unsafe extern "C" fn tpx_related_handles(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
-        let h = handle(h, "h")?;
-        let out_len = out_ptr(out_len, "out_len")?;
-        let order = order_arg(order)?;
-        let n = nav(s)?;
-        let sh = unwrap(s, n, h)?;
-        with_kept(&HANDLES, |hs| {
-            n.related(sh, q as usize, order, hs)
-                .map_err(query_failure)?;
-            write_handles(s, hs, buf, buf_len, out_len)
-        })
-    })
+    let order = order_arg(order);
+    answer_into(
+        s,
+        h,
+        buf,
+        buf_len,
+        out_len,
+        &HANDLES,
+        |_, n, sh, hs| n.related(sh, q as usize, order?, hs).map_err(query_failure),
+        |s, &x| wrap(s, x),
+    )
 }
 
 /// R_{p,q} of many handles at once, of any dimensions (mixed), in CSR form as handles: for the

@@ -83,6 +83,7 @@ pub(crate) fn query_failure(e: QueryError) -> Failure {
         QueryError::StaleHandle { .. } => TpxStatus::StaleHandle,
         QueryError::WrongHandleKind { .. } => TpxStatus::WrongHandleKind,
         QueryError::StaleGeneration { .. } => TpxStatus::StaleGeneration,
+        QueryError::TooLarge { .. } => TpxStatus::TooLarge,
     };
     Failure::new(status, e.to_string())
 }

@@ -1111,3 +1111,96 @@ fn input_listing_and_stats_come_back_as_given() {
         tpx_complex_free(c);
     }
 }
+
+/// Relation views of the tetrahedron-with-triangle-and-wire (drawing at `tet_triangle_wire`):
+/// the IG lends its stored co-boundary R_{1,2} as it is (built = 0) and builds R_{0,0} once
+/// (built = 1, kept: the same arrays on the second call); every answer equals `tpx_related`;
+/// `tpx_degree_batch` gives the counts alone. Errors leave the outputs untouched.
+#[test]
+fn relation_views_and_degree_batches_match_tpx_related() {
+    let c = tet_triangle_wire();
+    let s = ig(c);
+    unsafe {
+        let related = |p: u32, i: u32, q: u32| {
+            let mut h = TpxSimplex::default();
+            assert_eq!(tpx_handle(s, p, i, &mut h), TpxStatus::Ok);
+            let (mut buf, mut len) = ([0u32; 16], 0usize);
+            let st = tpx_related(s, &h, q, TPX_ORDER_NATURAL, buf.as_mut_ptr(), 16, &mut len);
+            assert_eq!(st, TpxStatus::Ok);
+            buf[..len].to_vec()
+        };
+        let view = |p: u32, q: u32| {
+            let mut v = std::mem::MaybeUninit::<TpxRelationView>::zeroed();
+            assert_eq!(tpx_relation_view(s, p, q, v.as_mut_ptr()), TpxStatus::Ok);
+            v.assume_init()
+        };
+        let answer = |v: &TpxRelationView, i: usize| {
+            let (a, b) = (*v.offsets.add(i) as usize, *v.offsets.add(i + 1) as usize);
+            std::slice::from_raw_parts(v.ids.add(a), b - a).to_vec()
+        };
+        // Edges: 01 02 03 12 13 23 24 34 45; edge 23 (index 5) is in triangles 023, 123, 234.
+        let ef = view(1, 2);
+        assert_eq!((ef.count, ef.built), (9, 0));
+        for i in 0..9 {
+            assert_eq!(answer(&ef, i), related(1, i as u32, 2), "edge {i}");
+        }
+        assert_eq!(answer(&ef, 5).len(), 3);
+        assert_eq!(answer(&ef, 8), Vec::<u32>::new());
+        let vv = view(0, 0);
+        assert_eq!((vv.count, vv.built), (6, 1));
+        let mut total = 0;
+        for i in 0..6 {
+            assert_eq!(answer(&vv, i), related(0, i as u32, 0), "vertex {i}");
+            total += answer(&vv, i).len() as u64;
+        }
+        assert_eq!(vv.bytes, 4 * (7 + total));
+        let again = view(0, 0);
+        assert_eq!((again.offsets, again.ids), (vv.offsets, vv.ids));
+        // Degrees of the vertices (R_{0,0}) and of the edges (R_{1,2}), counts only.
+        let mut deg = [9u32; 9];
+        let all: Vec<u32> = (0..9).collect();
+        assert_eq!(
+            tpx_degree_batch(s, 0, all.as_ptr(), 6, 0, deg.as_mut_ptr()),
+            TpxStatus::Ok
+        );
+        assert_eq!(deg[..6], [3, 3, 4, 4, 3, 1]);
+        assert_eq!(
+            tpx_degree_batch(s, 1, all.as_ptr(), 9, 2, deg.as_mut_ptr()),
+            TpxStatus::Ok
+        );
+        assert_eq!(deg, [2, 2, 2, 2, 2, 3, 1, 1, 0]);
+        // Errors: index out of range, q above d, NULL, the live complex; nothing written.
+        let mut untouched = [7u32; 2];
+        let st = tpx_degree_batch(s, 0, [0, 6].as_ptr(), 2, 0, untouched.as_mut_ptr());
+        assert_eq!((st, untouched), (TpxStatus::InvalidHandle, [7, 7]));
+        let st = tpx_degree_batch(s, 0, [0].as_ptr(), 1, 4, untouched.as_mut_ptr());
+        assert_eq!((st, untouched), (TpxStatus::DimensionOutOfRange, [7, 7]));
+        let st = tpx_degree_batch(s, 0, [0].as_ptr(), 1, 0, null_mut());
+        assert_eq!(st, TpxStatus::NullArgument);
+        let mut v = TpxRelationView {
+            offsets: null(),
+            ids: null(),
+            count: 77,
+            built: 0,
+            bytes: 0,
+        };
+        assert_eq!(
+            tpx_relation_view(s, 4, 0, &mut v),
+            TpxStatus::DimensionOutOfRange
+        );
+        assert_eq!(v.count, 77);
+        assert_eq!(
+            tpx_relation_view(s, 0, 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        let mut live = null_mut();
+        assert_eq!(tpx_live_from_complex(c, &mut live), TpxStatus::Ok);
+        let mut ls = null();
+        assert_eq!(tpx_live_structure(live, &mut ls), TpxStatus::Ok);
+        assert_eq!(tpx_relation_view(ls, 0, 0, &mut v), TpxStatus::NotDense);
+        assert_eq!(v.count, 77);
+        tpx_live_free(live);
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}

@@ -497,6 +497,24 @@ impl NavBase for IndexedAdjacency {
         (p == self.d).then_some(&self.tops)
     }
 
+    // The same walks with no call per answer (R_{d,d}, R_{0,d}; d ≥ 1), same order as
+    // `fast_visit`.
+    fn has_fast(&self, p: usize, q: usize) -> bool {
+        self.d > 0 && q == self.d && (p == self.d || p == 0)
+    }
+
+    fn fast_into(&self, p: usize, i: u32, _q: usize, ids: &mut Vec<u32>) {
+        if p == self.d {
+            ids.extend(self.neighbours(i).iter().filter(|&&u| u != NONE));
+        } else {
+            let mut seen = IdSet::default();
+            self.walk_star(i, &mut seen, |t, _| {
+                ids.push(t);
+                true
+            });
+        }
+    }
+
     /// Direct walks (d-simplex `t` is dense d-simplex `t`): R_{d,0}, R_{d,d} O(d); R_{0,d},
     /// R_{0,0} the star walk, O(d·n_v). Others: the generic path.
     fn fast_visit(

@@ -111,12 +111,14 @@ impl IncidenceGraph {
     }
 
     /// B_{p,p−1} of p-simplex `id`: facet ids, entry i opposite vertex i.
+    #[inline]
     pub fn boundary_ids(&self, p: usize, id: u32) -> &[u32] {
         let w = p + 1;
         &self.boundary[p][id as usize * w..(id as usize + 1) * w]
     }
 
     /// C_{p,p+1} of p-simplex `id`: ids of (p+1)-simplices, ascending (empty for p = d).
+    #[inline]
     pub fn coboundary_ids(&self, p: usize, id: u32) -> &[u32] {
         match (self.cob_offsets.get(p), self.cob.get(p)) {
             (Some(off), Some(list)) => {
@@ -161,40 +163,41 @@ impl NavBase for IncidenceGraph {
         self.tables.get(p)
     }
 
-    // The stored relations in one loop (no call per answer): R_{p,p±1} and R_{0,0}, the same
-    // answers in the same order as `fast_visit`.
-    fn fast_batch(
-        &self,
-        p: usize,
-        indices: &[u32],
-        q: usize,
-        ids: &mut Vec<u32>,
-        ends: &mut Vec<usize>,
-    ) -> Option<Result<(), QueryError>> {
-        if !(q + 1 == p || q == p + 1 || (p == 0 && q == 0)) {
-            return None;
-        }
-        let count = self.count(p) as u32;
-        if let Some(&bad) = indices.iter().find(|&&i| i >= count) {
-            return Some(Err(QueryError::InvalidHandle {
-                handle: SimplexHandle::dense(p, bad),
-                reason: "index beyond the simplices of its dimension",
-            }));
-        }
-        for &i in indices {
-            if q + 1 == p {
-                ids.extend_from_slice(self.boundary_ids(p, i));
-            } else if q == p + 1 {
-                ids.extend_from_slice(self.coboundary_ids(p, i));
-            } else {
-                for &e in self.coboundary_ids(0, i) {
-                    let ends = self.boundary_ids(1, e);
-                    ids.push(if ends[0] == i { ends[1] } else { ends[0] });
-                }
+    // The stored relations with no call per answer: R_{p,p±1} and R_{0,0}, the same answers in
+    // the same order as `fast_visit`.
+    fn has_fast(&self, p: usize, q: usize) -> bool {
+        q + 1 == p || q == p + 1 || (p == 0 && q == 0)
+    }
+
+    fn fast_into(&self, p: usize, i: u32, q: usize, ids: &mut Vec<u32>) {
+        if q + 1 == p {
+            ids.extend_from_slice(self.boundary_ids(p, i));
+        } else if q == p + 1 {
+            ids.extend_from_slice(self.coboundary_ids(p, i));
+        } else {
+            for &e in self.coboundary_ids(0, i) {
+                let ends = self.boundary_ids(1, e);
+                ids.push(if ends[0] == i { ends[1] } else { ends[0] });
             }
-            ends.push(ids.len());
         }
-        Some(Ok(()))
+    }
+
+    // Counts the IG stores: p + 1 facets, the co-boundary's offsets, and for R_{0,0} the edges
+    // at v (each edge at v has a distinct other end).
+    fn stored_degree(&self, p: usize, i: u32, q: usize) -> Option<usize> {
+        if q + 1 == p {
+            Some(p + 1)
+        } else if q == p + 1 || (p == 0 && q == 0) {
+            Some(self.coboundary_ids(p, i).len())
+        } else {
+            None
+        }
+    }
+
+    // C_{p,p+1} is stored in CSR form, ascending within a list: lent as it is.
+    fn stored_view(&self, p: usize, q: usize) -> Option<crate::handle::RelationView<'_>> {
+        (q == p + 1)
+            .then(|| crate::handle::RelationView::new(&self.cob_offsets[p], &self.cob[p], false))
     }
 
     /// The stored links as handles (row `i` of `tables[p]` is dense p-simplex `i`): R_{p,p−1},

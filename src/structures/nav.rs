@@ -25,7 +25,9 @@ use std::sync::OnceLock;
 use super::BuildError;
 use super::common::{Scratch, try_table, try_with_capacity};
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable};
-use crate::handle::{HandleForm, Navigate, Order, SimplexHandle, TopId, Vertices, batch_by_visit};
+use crate::handle::{
+    HandleForm, Navigate, Order, RelationView, SimplexHandle, TopId, Vertices, batch_by_visit,
+};
 use crate::relation::{QueryError, StructureKind, Topology, normalize_simplex};
 use crate::store::{Arr, Field};
 
@@ -42,6 +44,7 @@ impl crate::store::Field for NavIndex {
             windings: Field::get(r)?,
             low_tops: Field::get(r)?,
             lazy: Default::default(),
+            views: Default::default(),
         };
         // The shape every handle lookup indexes by, checked before anything trusts it.
         let t = &nav.top_first;
@@ -73,6 +76,15 @@ pub(crate) struct NavIndex {
     low_tops: Vec<SimplexTable>,
     /// Lexicographic p-tables of the dimensions the structure does not store.
     lazy: [OnceLock<SimplexTable>; MAX_DIMENSION + 1],
+    /// Relation indexes built for [`Navigate::relation_view`], slot `p (d + 1) + q`.
+    views: OnceLock<Box<[OnceLock<Csr>]>>,
+}
+
+/// One relation index of [`Navigate::relation_view`]: offsets (n + 1) and answers.
+#[derive(Debug, Clone, Default)]
+struct Csr {
+    offsets: Vec<u32>,
+    ids: Vec<u32>,
 }
 
 impl NavIndex {
@@ -108,6 +120,7 @@ impl NavIndex {
             windings: windings.into(),
             low_tops,
             lazy: Default::default(),
+            views: Default::default(),
         })
     }
 
@@ -118,6 +131,7 @@ impl NavIndex {
             windings: self.windings.clone(),
             low_tops: self.low_tops.clone(),
             lazy: Default::default(),
+            views: Default::default(),
         }
     }
 
@@ -136,6 +150,13 @@ impl NavIndex {
                 .filter_map(OnceLock::get)
                 .map(SimplexTable::heap_bytes)
                 .sum::<usize>()
+            + self.views.get().map_or(0, |v| {
+                v.len() * std::mem::size_of::<OnceLock<Csr>>()
+                    + v.iter()
+                        .filter_map(OnceLock::get)
+                        .map(|c| 4 * (c.offsets.capacity() + c.ids.capacity()))
+                        .sum::<usize>()
+            })
     }
 }
 
@@ -179,18 +200,25 @@ pub(crate) trait NavBase: Topology {
         None
     }
 
-    /// R_{p,q} of the dense p-indices `indices` as one CSR (see
-    /// [`Navigate::related_batch`]), in natural order, from the structure's arrays in one loop,
-    /// when it has one for this (p, q). Indices are not checked yet: the loop checks them.
-    /// `None`: one visit per index.
-    fn fast_batch(
-        &self,
-        _p: usize,
-        _indices: &[u32],
-        _q: usize,
-        _ids: &mut Vec<u32>,
-        _ends: &mut Vec<usize>,
-    ) -> Option<Result<(), QueryError>> {
+    /// Whether [`NavBase::fast_into`] answers R_{p,q} (p, q ≤ d).
+    fn has_fast(&self, _p: usize, _q: usize) -> bool {
+        false
+    }
+
+    /// Appends R_{p,q} of the dense p-simplex `i` to `ids` as dense q-indices, in natural order
+    /// (the order [`NavBase::fast_visit`] gives), from the structure's arrays with no call per
+    /// answer. Called only when [`NavBase::has_fast`] says so, with `i < count(p)` checked.
+    fn fast_into(&self, _p: usize, _i: u32, _q: usize, _ids: &mut Vec<u32>) {}
+
+    /// |R_{p,q}| of dense p-simplex `i` (`i < count(p)` checked) in O(1) from stored arrays,
+    /// when the structure stores the relation with its counts (the IG's co-boundary offsets).
+    fn stored_degree(&self, _p: usize, _i: u32, _q: usize) -> Option<usize> {
+        None
+    }
+
+    /// R_{p,q} of every p-simplex as a CSR the structure stores (the IG's co-boundaries), lent
+    /// at no cost; `None`: [`Navigate::relation_view`] builds an index.
+    fn stored_view(&self, _p: usize, _q: usize) -> Option<RelationView<'_>> {
         None
     }
 
@@ -228,6 +256,46 @@ fn find<T: NavBase + ?Sized>(t: &T, s: &[u32]) -> Option<SimplexHandle> {
 
 fn invalid(h: SimplexHandle, reason: &'static str) -> QueryError {
     QueryError::InvalidHandle { handle: h, reason }
+}
+
+/// `InvalidHandle` for the first of `indices` at or above `count(p)`.
+fn check_indices<T: NavBase + ?Sized>(t: &T, p: usize, indices: &[u32]) -> Result<(), QueryError> {
+    let count = t.count(p);
+    match indices.iter().find(|&&i| i as usize >= count) {
+        Some(&bad) => Err(invalid(
+            SimplexHandle::dense(p, bad),
+            "index beyond the simplices of its dimension",
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The index of R_{p,q} behind [`Navigate::relation_view`]: one walk over every p-simplex, each
+/// answer walked into a scratch buffer and appended (the arrays grown fallibly, then trimmed).
+fn build_view<T: NavBase>(t: &T, p: usize, q: usize) -> Result<Csr, QueryError> {
+    let n = t.count(p);
+    let too_large = |bytes: u64| QueryError::TooLarge {
+        what: "relation view",
+        bytes,
+    };
+    let mut offsets: Vec<u32> = Vec::new();
+    offsets
+        .try_reserve_exact(n + 1)
+        .map_err(|_| too_large(4 * (n as u64 + 1)))?;
+    offsets.push(0);
+    let mut ids: Vec<u32> = Vec::new();
+    let mut buf = Scratch::<Vec<u32>>::take();
+    for i in 0..n as u32 {
+        buf.clear();
+        t.related_ids(SimplexHandle::dense(p, i), q, Order::Natural, &mut buf)?;
+        ids.try_reserve(buf.len())
+            .map_err(|_| too_large(4 * (ids.len() + buf.len()) as u64))?;
+        ids.extend_from_slice(&buf);
+        offsets.push(u32::try_from(ids.len()).map_err(|_| too_large(4 * ids.len() as u64))?);
+    }
+    // Shrinking in place: the amortised growth's slack is not kept for the structure's life.
+    ids.shrink_to_fit();
+    Ok(Csr { offsets, ids })
 }
 
 impl<T: NavBase> Navigate for T {
@@ -331,25 +399,107 @@ impl<T: NavBase> Navigate for T {
         ids: &mut Vec<u32>,
         ends: &mut Vec<usize>,
     ) -> Result<(), QueryError> {
-        let (start, first) = (ends.len(), ids.len());
         // Out-of-range dimensions take the checked path, which reports them.
-        let fast = if p <= self.dimension() && q <= self.dimension() {
-            self.fast_batch(p, indices, q, ids, ends)
-        } else {
-            None
-        };
-        match fast {
-            Some(r) => r?,
-            None => return batch_by_visit(self, p, indices, q, order, ids, ends),
+        let d = self.dimension();
+        if p > d || q > d || !self.has_fast(p, q) {
+            return batch_by_visit(self, p, indices, q, order, ids, ends);
         }
-        if order == Order::Lexicographic {
-            let mut from = first;
-            for &end in &ends[start..] {
-                ids[from..end].sort_unstable();
-                from = end;
+        check_indices(self, p, indices)?;
+        for &i in indices {
+            let start = ids.len();
+            self.fast_into(p, i, q, ids);
+            if order == Order::Lexicographic {
+                ids[start..].sort_unstable();
             }
+            ends.push(ids.len());
         }
         Ok(())
+    }
+
+    fn related_ids(
+        &self,
+        h: SimplexHandle,
+        q: usize,
+        order: Order,
+        ids: &mut Vec<u32>,
+    ) -> Result<(), QueryError> {
+        let (p, d) = (h.dim(), self.dimension());
+        if p > d || q > d || !self.has_fast(p, q) {
+            let start = ids.len();
+            self.visit(h, q, &mut |x| ids.push(x.index()))?;
+            if order == Order::Lexicographic {
+                ids[start..].sort_unstable();
+            }
+            return Ok(());
+        }
+        self.check(h)?;
+        let start = ids.len();
+        self.fast_into(p, h.index(), q, ids);
+        if order == Order::Lexicographic {
+            ids[start..].sort_unstable();
+        }
+        Ok(())
+    }
+
+    fn degree_batch(
+        &self,
+        p: usize,
+        indices: &[u32],
+        q: usize,
+        out: &mut [u32],
+    ) -> Result<(), QueryError> {
+        let d = self.dimension();
+        if q > d {
+            return Err(QueryError::DimensionOutOfRange { p, q, dim: d });
+        }
+        if p > d {
+            let h =
+                SimplexHandle::dense(p.min(MAX_DIMENSION), indices.first().copied().unwrap_or(0));
+            return Err(invalid(h, "dimension above the complex's"));
+        }
+        check_indices(self, p, indices)?;
+        if !self.has_fast(p, q) {
+            for (&i, o) in indices.iter().zip(out.iter_mut()) {
+                *o = match self.stored_degree(p, i, q) {
+                    Some(k) => k as u32,
+                    None => self.degree(SimplexHandle::dense(p, i), q)? as u32,
+                };
+            }
+            return Ok(());
+        }
+        let mut buf = Scratch::<Vec<u32>>::take();
+        for (&i, o) in indices.iter().zip(out.iter_mut()) {
+            *o = match self.stored_degree(p, i, q) {
+                Some(k) => k as u32,
+                None => {
+                    buf.clear();
+                    self.fast_into(p, i, q, &mut buf);
+                    buf.len() as u32
+                }
+            };
+        }
+        Ok(())
+    }
+
+    fn relation_view(&self, p: usize, q: usize) -> Result<Option<RelationView<'_>>, QueryError> {
+        let d = self.dimension();
+        if p > d || q > d {
+            return Err(QueryError::DimensionOutOfRange { p, q, dim: d });
+        }
+        if let Some(v) = self.stored_view(p, q) {
+            return Ok(Some(v));
+        }
+        let slots = self
+            .nav()
+            .views
+            .get_or_init(|| (0..(d + 1) * (d + 1)).map(|_| OnceLock::new()).collect());
+        let slot = &slots[p * (d + 1) + q];
+        if slot.get().is_none() {
+            // Two threads may both build it; the first to finish is kept, the other dropped.
+            let _ = slot.set(build_view(self, p, q)?);
+        }
+        let c = slot.get().expect("set above");
+        Ok(Some(RelationView::new(&c.offsets, &c.ids, true)))
     }
 
     fn visit(

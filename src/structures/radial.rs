@@ -554,7 +554,7 @@ pub(crate) fn walk_star<T: TriTopo + ?Sized>(
 }
 
 /// `NavBase` for a 2-complex structure with a `nav: NavIndex` field, whose fast paths are
-/// [`fast_visit`] and [`fast_batch`] (TS, PE, LE and DE share them); items after `;` are the
+/// [`fast_visit`] and [`fast_into`] (TS, PE, LE and DE share them); items after `;` are the
 /// structure's own further methods.
 macro_rules! nav_base {
     ($t:ty $(; $($extra:tt)*)?) => {
@@ -573,15 +573,12 @@ macro_rules! nav_base {
                 super::radial::fast_visit(self, h, sigma, q, visit)
             }
 
-            fn fast_batch(
-                &self,
-                p: usize,
-                indices: &[u32],
-                q: usize,
-                ids: &mut Vec<u32>,
-                ends: &mut Vec<usize>,
-            ) -> Option<Result<(), crate::relation::QueryError>> {
-                super::radial::fast_batch(self, self.vertex_count(), p, indices, q, ids, ends)
+            fn has_fast(&self, p: usize, q: usize) -> bool {
+                super::radial::has_fast(p, q)
+            }
+
+            fn fast_into(&self, p: usize, i: u32, q: usize, ids: &mut Vec<u32>) {
+                super::radial::fast_into(self, p, i, q, ids)
             }
 
             $($($extra)*)?
@@ -639,49 +636,38 @@ pub(crate) fn fast_visit<T: TriTopo + ?Sized>(
     Some(Ok(()))
 }
 
-/// The batch form of [`fast_visit`] for VV (R_{0,0}), VF (R_{0,2}) and FF (R_{2,2}): one loop
-/// over the indices, no call per answer; the same answers in the same order. `n` vertices.
-pub(crate) fn fast_batch<T: TriTopo + ?Sized>(
+/// Whether [`fast_into`] answers R_{p,q}: VV (R_{0,0}), VF (R_{0,2}) and FF (R_{2,2}).
+pub(crate) fn has_fast(p: usize, q: usize) -> bool {
+    matches!((p, q), (0, 0) | (0, 2) | (2, 2))
+}
+
+/// [`fast_visit`]'s answers for VV, VF and FF appended to `ids` as dense indices, in the same
+/// order, with no call per answer; `i` is a checked index of a p-simplex.
+pub(crate) fn fast_into<T: TriTopo + ?Sized>(
     topo: &T,
-    n: u32,
     p: usize,
-    indices: &[u32],
+    i: u32,
     q: usize,
     ids: &mut Vec<u32>,
-    ends: &mut Vec<usize>,
-) -> Option<Result<(), QueryError>> {
-    let count = match (p, q) {
-        (0, 0) | (0, 2) => n,
-        (2, 2) => topo.n_tris(),
-        _ => return None,
-    };
-    if let Some(&bad) = indices.iter().find(|&&i| i >= count) {
-        return Some(Err(QueryError::InvalidHandle {
-            handle: SimplexHandle::dense(p, bad),
-            reason: "index beyond the simplices of its dimension",
-        }));
-    }
-    for &i in indices {
-        match (p, q) {
-            (0, 0) => neighbours(topo, i, ids),
-            (0, 2) => {
-                let start = ids.len();
-                topo.star_corners(i, ids);
-                ids[start..].iter_mut().for_each(|c| *c /= 3);
-            }
-            _ => {
-                for s in 3 * i..3 * i + 3 {
-                    let mut r = topo.radial_next(s);
-                    while r != s {
-                        ids.push(r / 3);
-                        r = topo.radial_next(r);
-                    }
+) {
+    match (p, q) {
+        (0, 0) => neighbours(topo, i, ids),
+        (0, 2) => {
+            let start = ids.len();
+            topo.star_corners(i, ids);
+            ids[start..].iter_mut().for_each(|c| *c /= 3);
+        }
+        (2, 2) => {
+            for s in 3 * i..3 * i + 3 {
+                let mut r = topo.radial_next(s);
+                while r != s {
+                    ids.push(r / 3);
+                    r = topo.radial_next(r);
                 }
             }
         }
-        ends.push(ids.len());
+        _ => debug_assert!(false, "no fast walk for R_{{{p},{q}}}"),
     }
-    Some(Ok(()))
 }
 
 /// Distinct vertices adjacent to `v` (through triangles or wire edges), in discovery order:
