@@ -38,7 +38,9 @@ use std::path::{Path, PathBuf};
 
 use crate::io::{Coords, RawInput, ReadError};
 
+mod blocks;
 pub mod table;
+pub(crate) use blocks::Want;
 pub use table::{SimplexTable, is_subset, push_facets, sort_dedup_rows, write_facets};
 
 /// Highest simplex dimension accepted. The closure of one 15-simplex has 65,535 simplices, which
@@ -702,6 +704,19 @@ impl Complex {
     /// that could not be had (structure builds turn it into `TooLarge`, not an abort).
     pub fn try_closure(&self) -> Result<Vec<SimplexTable>, usize> {
         let d = self.dimension();
+        if d > 0
+            && let Some(c) = self.closure_by_blocks(Want::Tables)?
+        {
+            return Ok(c.tables);
+        }
+        self.closure_by_words()
+    }
+
+    /// The closure from every subset of each top simplex at its smallest vertex, as global ids
+    /// packed in words (level by level when d of them do not fit one): the path for blocks
+    /// whose ranks do not fit a word.
+    fn closure_by_words(&self) -> Result<Vec<SimplexTable>, usize> {
+        let d = self.dimension();
         let bits = table::id_bits(self.n_vertices.saturating_sub(1));
         if d == 0 || d as u32 * bits > 64 {
             return self.closure_by_levels();
@@ -1104,6 +1119,7 @@ mod tests {
     fn closure_by_vertex_buckets_equals_closure_by_levels() {
         for c in random_complexes() {
             assert_eq!(Ok(c.closure()), c.closure_by_levels());
+            assert_eq!(c.closure_by_words(), c.closure_by_levels());
         }
     }
 

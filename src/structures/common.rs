@@ -88,6 +88,29 @@ pub(crate) fn try_closure(
         .map_err(|bytes| too_large(kind, bytes, "the closure"))
 }
 
+/// The closure's tables and every simplex's boundary links ([`facet_links`] per dimension):
+/// made together by vertex blocks, or, where a block's keys do not fit a word, the closure and
+/// then the links.
+pub(crate) fn try_closure_links(
+    kind: StructureKind,
+    complex: &Complex,
+) -> Result<(Vec<SimplexTable>, Vec<Vec<u32>>), BuildError> {
+    let no_room = |bytes| too_large(kind, bytes, "the closure and its boundary links");
+    if complex.dimension() > 0
+        && let Some(c) = complex
+            .closure_by_blocks(crate::complex::Want::Links)
+            .map_err(no_room)?
+    {
+        return Ok((c.tables, c.boundary));
+    }
+    let tables = try_closure(kind, complex)?;
+    let mut boundary = vec![Vec::new(); tables.len()];
+    for (p, b) in boundary.iter_mut().enumerate().skip(1) {
+        *b = facet_links(&tables, p);
+    }
+    Ok((tables, boundary))
+}
+
 /// `TooLarge` for `bytes` that could not be had for `what`.
 pub(crate) fn too_large(kind: StructureKind, bytes: usize, what: &str) -> BuildError {
     BuildError::TooLarge {

@@ -29,8 +29,7 @@
 //!
 //! Queries keep no state in the structure: the "visited" marks are a per-query set.
 
-use super::common::try_closure;
-use super::common::{IdSet, Scratch, faces_containing, facet_links};
+use super::common::{IdSet, Scratch, faces_containing, try_closure_links};
 use super::nav::{NavBase, NavIndex, with_scratch};
 use super::{BuildError, to_u32};
 use crate::complex::{Complex, SimplexTable};
@@ -58,20 +57,12 @@ impl IncidenceGraph {
     /// boundaries. O(Σ_p (p+1) n_p · p) time when p facet ids fit in 64 bits (else a binary
     /// search per facet, O(Σ_p (p+1) n_p · p log n_p)).
     pub fn build(complex: &Complex) -> Result<IncidenceGraph, BuildError> {
-        let tables = try_closure(KIND, complex)?;
-        for t in &tables {
+        let (tables, boundary) = try_closure_links(KIND, complex)?;
+        for (p, t) in tables.iter().enumerate() {
             to_u32(KIND, t.len(), "simplices of one dimension")?;
+            to_u32(KIND, t.len() * (p + 1), "boundary links of one dimension")?;
         }
         let d = tables.len() - 1;
-        let mut boundary: Vec<Vec<u32>> = vec![Vec::new(); d + 1];
-        for p in 1..=d {
-            to_u32(
-                KIND,
-                tables[p].len() * (p + 1),
-                "boundary links of one dimension",
-            )?;
-            boundary[p] = facet_links(&tables, p);
-        }
         let mut cob_offsets = vec![Vec::new(); d];
         let mut cob = vec![Vec::new(); d];
         for p in 0..d {
