@@ -14,7 +14,7 @@
 //! that is a face of another). Handles and undo records do not survive a save (the opened
 //! complex starts at generation 0).
 
-use super::{DEAD, LiveComplex, MAX_DIMENSION, NONE, SLOT_MASK, Stars};
+use super::{DEAD, LiveComplex, MAX_DIMENSION, SLOT_MASK, Stars};
 use crate::store::{Arr, Persist, Reader, StoreError, Writer};
 
 impl Persist for LiveComplex {
