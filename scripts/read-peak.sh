@@ -31,7 +31,25 @@ files = {
     "short.vtk": "# vtk DataFile Version 2.0\nshort\nASCII\nDATASET UNSTRUCTURED_GRID\n"
         "POINTS 10 float\n" + verts10 + "CELLS %d %d\n" % (n * 4 // 5, 4 * (n * 4 // 5))
         + "3 1 2 3\n" * (n * 4 // 5) + "CELL_TYPES %d\n" % (n * 4 // 5) + "5\n" * (n * 4 // 5),
+    # Version 5: OFFSETS and CONNECTIVITY, one cell per line.
+    "short5.vtk": "# vtk DataFile Version 5.1\nshort\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+        "POINTS 10 float\n" + verts10 + "CELLS %d %d\nOFFSETS vtktypeint64\n" % (n // 2 + 1, 3 * (n // 2))
+        + "".join("%d\n" % (3 * i) for i in range(n // 2 + 1))
+        + "CONNECTIVITY vtktypeint64\n" + "1 2 3\n" * (n // 2)
+        + "CELL_TYPES %d\n" % (n // 2) + "5\n" * (n // 2),
 }
+# VTU with ASCII data arrays (vtkio's XML reader), one cell per line.
+c = n // 2
+files["short.vtu"] = (
+    '<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">\n'
+    '<UnstructuredGrid>\n<Piece NumberOfPoints="10" NumberOfCells="%d">\n<Points>\n'
+    '<DataArray type="Float64" NumberOfComponents="3" format="ascii">\n' % c + verts10
+    + '</DataArray>\n</Points>\n<Cells>\n<DataArray type="Int64" Name="connectivity" format="ascii">\n'
+    + "1 2 3\n" * c
+    + '</DataArray>\n<DataArray type="Int64" Name="offsets" format="ascii">\n'
+    + "".join("%d\n" % (3 * i + 3) for i in range(c))
+    + '</DataArray>\n<DataArray type="UInt8" Name="types" format="ascii">\n' + "5\n" * c
+    + '</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n')
 for name, text in files.items():
     with open(f"{work}/{name}", "w") as f:
         f.write(text)
