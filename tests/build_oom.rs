@@ -125,6 +125,9 @@ fn child(spec: &str) -> ! {
     if let Some(path) = kind.strip_prefix("read=") {
         read_child(std::path::Path::new(path), start.parse().unwrap());
     }
+    if let Some(path) = kind.strip_prefix("read-ffi=") {
+        read_ffi_child(path, start.parse().unwrap());
+    }
     let kind = KINDS.into_iter().find(|k| k.name() == kind).unwrap();
     let complex = grid(300);
     for mb in &MARGINS_MB[start.parse::<usize>().unwrap()..] {
@@ -253,6 +256,30 @@ fn read_child(path: &std::path::Path, start: usize) -> ! {
     std::process::exit(0)
 }
 
+/// [`read_child`] through the C ABI: `tpx_complex_from_file` must return
+/// `TPX_STATUS_TOO_LARGE` (reading or normalising) or OK, never abort the host.
+fn read_ffi_child(path: &str, start: usize) -> ! {
+    use topoplex::ffi::{TpxComplex, TpxStatus, tpx_complex_free, tpx_complex_from_file};
+    let c_path = std::ffi::CString::new(path).unwrap();
+    for kb in &READ_MARGINS_KB[start..] {
+        let mut out: *mut TpxComplex = std::ptr::null_mut();
+        set_address_space_limit(vm_size_bytes() + (kb << 10));
+        // SAFETY: a NUL-terminated path and a valid out pointer, as the header asks.
+        let st = unsafe { tpx_complex_from_file(c_path.as_ptr(), &mut out) };
+        set_address_space_limit(libc::RLIM_INFINITY);
+        match st {
+            TpxStatus::Ok => {
+                // SAFETY: a complex the call returned, freed once.
+                unsafe { tpx_complex_free(out) };
+                println!("{kb}:built");
+            }
+            TpxStatus::TooLarge => println!("{kb}:too-large"),
+            other => panic!("status {other:?}"),
+        }
+    }
+    std::process::exit(0)
+}
+
 /// A k×k grid in every format the readers take (each writer's output; legacy VTK also as
 /// version 5, OFFSETS / CONNECTIVITY, written here) and saved as `.tpx` (complex, live
 /// complex), in `dir`. Returns (name, path).
@@ -331,9 +358,20 @@ fn every_reader_under_an_address_space_limit_says_too_large() {
     std::fs::create_dir_all(&dir).unwrap();
     let me = std::env::current_exe().unwrap();
     let mut bad = Vec::new();
-    for (name, path) in grid_files(&dir, 150) {
+    let mut files = grid_files(&dir, 150);
+    // The C ABI's file reader on one text and one binary format.
+    for name in ["off", "ply-binary"] {
+        let (_, path) = files.iter().find(|(n, _)| n == name).unwrap().clone();
+        files.push((format!("{name} via tpx_complex_from_file"), path));
+    }
+    for (name, path) in files {
         let size = std::fs::metadata(&path).unwrap().len();
-        let spec = format!("read={}", path.display());
+        let mode = if name.contains("tpx_complex_from_file") {
+            "read-ffi"
+        } else {
+            "read"
+        };
+        let spec = format!("{mode}={}", path.display());
         match tries(
             &me,
             "every_reader_under_an_address_space_limit_says_too_large",

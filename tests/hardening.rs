@@ -367,7 +367,133 @@ fn cases(dir: &Path) -> Vec<(&'static str, &'static str, String)> {
             ),
         ),
     );
+
+    // Class 6 (readers): vtkio panics on a binary array shorter than its 8-byte size header;
+    // the panic is caught and is one line, without the panic hook's report.
+    let vtu = [
+        r#"<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64">"#,
+        r#"<UnstructuredGrid><Piece NumberOfPoints="3" NumberOfCells="1"><Points>"#,
+        r#"<DataArray type="Float64" Name="Points" NumberOfComponents="3" format="binary">"#,
+        &format!("S{}=", "A".repeat(106)),
+        r#"</DataArray></Points><Cells>"#,
+        r#"<DataArray type="UInt64" Name="connectivity" format="binary">AAAA</DataArray>"#,
+        r#"<DataArray type="UInt64" Name="offsets" format="binary">CAAAAAAAAAADAAAAAAAAAA==</DataArray>"#,
+        r#"<DataArray type="UInt8" Name="types" format="binary">AQAAAAAAAAAF</DataArray>"#,
+        r#"</Cells></Piece></UnstructuredGrid></VTKFile>"#,
+    ];
+    write(dir, "short-array.vtu", &vtu.concat());
+    row(
+        "6 unbounded, unescaped messages",
+        "`report short-array.vtu` (a base64 array of 3 bytes, shorter than its size header: vtkio panics)",
+        outcome(dir, &run_in(dir, &["report", "short-array.vtu"])),
+    );
+
+    // Class 10 (readers and the steps after them): under an address-space limit the CLI refuses
+    // in one line wherever the memory runs out, then works once it fits.
+    write(dir, "grid.off", &grid_off(300));
+    row(
+        "10 allocation failure",
+        "`save grid.off --structure ia --out grid.tpx --threads 1` (4.4 MB, 180,000 triangles) under `ulimit -v` raised 1 MB at a time from where the CLI starts",
+        limit_ladder(dir),
+    );
     rows
+}
+
+/// A k×k grid of squares, two triangles each, as OFF text.
+fn grid_off(k: u32) -> String {
+    let n = (k + 1) * (k + 1);
+    let mut s = format!("OFF\n{n} {} 0\n", 2 * k * k);
+    for v in 0..n {
+        s += &format!("{} {} 0\n", v % (k + 1), v / (k + 1));
+    }
+    for y in 0..k {
+        for x in 0..k {
+            let a = y * (k + 1) + x;
+            s += &format!(
+                "3 {a} {} {}\n3 {a} {} {}\n",
+                a + 1,
+                a + k + 2,
+                a + k + 2,
+                a + k + 1
+            );
+        }
+    }
+    s
+}
+
+/// Allocations below this size are not input-sized for the grid of [`limit_ladder`] (its
+/// smallest input array is 720 KB); one failing means the limit was met between arrays, which no
+/// reservation can prevent (as in tests/build_oom.rs).
+const SMALL: usize = 256 << 10;
+
+/// Runs `save grid.off` under `ulimit -v` from the lowest limit at which `topoplex --version`
+/// runs, 1 MB more each time, until it succeeds. Every refusal must be exit 1 with one line
+/// saying the memory was not there; an abort is allowed only on an allocation under [`SMALL`].
+/// At least one refusal must come from reading the file. Returns the catalogue's summary.
+fn limit_ladder(dir: &Path) -> String {
+    let under = |kb: u64, args: &[&str]| {
+        Command::new("sh")
+            .current_dir(dir)
+            .arg("-c")
+            .arg(format!("ulimit -v {kb} && exec \"$0\" \"$@\""))
+            .arg(env!("CARGO_BIN_EXE_topoplex"))
+            .args(args)
+            .output()
+            .unwrap()
+    };
+    let mut kb = (4..200)
+        .map(|mb| mb * 1024)
+        .find(|&kb| under(kb, &["--version"]).status.success())
+        .expect("the CLI starts under 200 MB");
+    let save = [
+        "save",
+        "grid.off",
+        "--structure",
+        "ia",
+        "--out",
+        "grid.tpx",
+        "--threads",
+        "1",
+    ];
+    let (mut refused, mut read_refused, mut small_aborts) = (0, 0, 0);
+    loop {
+        let o = under(kb, &save);
+        let err = String::from_utf8_lossy(&o.stderr).trim_end().to_string();
+        match o.status.code() {
+            Some(0) => break,
+            Some(1) => {
+                assert_eq!(err.lines().count(), 1, "{kb} KB: {err}");
+                assert!(
+                    err.starts_with("topoplex: ")
+                        && (err.contains("too large") || err.contains("out of memory")),
+                    "{kb} KB: {err}"
+                );
+                refused += 1;
+                read_refused += usize::from(err.contains("grid.off:"));
+            }
+            _ => {
+                let bytes: usize = err
+                    .split("memory allocation of ")
+                    .nth(1)
+                    .and_then(|r| r.split(' ').next())
+                    .and_then(|n| n.parse().ok())
+                    .unwrap_or(usize::MAX);
+                assert!(bytes < SMALL, "{kb} KB: {:?}: {err}", o.status);
+                small_aborts += 1;
+            }
+        }
+        kb += 1024;
+        assert!(kb < 400 << 10, "still refused at 400 MB");
+    }
+    assert!(
+        refused > 0 && read_refused > 0,
+        "{refused} refusals, {read_refused} reading"
+    );
+    let _ = small_aborts;
+    "exit 1 with one line at every limit it does not fit under (`topoplex: grid.off:L: file too \
+     large: cannot allocate N bytes for …` while reading, `out of memory` or `the complex is too \
+     large` after), then exit 0; no abort on an allocation of 256 KB or more"
+        .to_string()
 }
 
 #[test]

@@ -52,11 +52,19 @@ impl SimplexTable {
     }
 
     /// [`Self::from_rows`] whose memory is checked first: `Err(bytes)` when the sort's peak
-    /// (two 8-byte keys per row and the rows out) cannot be reserved, instead of an abort.
+    /// (two 8-byte keys per row, four when the sort is split between threads, and the rows
+    /// out) cannot be reserved, instead of an abort.
     pub fn try_from_rows(arity: usize, ids: Vec<u32>) -> Result<(Self, usize), usize> {
         let rows = ids.len() / arity.max(1);
+        // A sort split between threads also copies each run (each radix sorted with its own
+        // scratch) and merges them into a second buffer.
+        let per_row = if crate::parallel::splits(rows) {
+            32
+        } else {
+            16
+        };
         headroom(
-            rows.saturating_mul(16)
+            rows.saturating_mul(per_row)
                 .saturating_add(ids.len().saturating_mul(4)),
         )?;
         Ok(Self::from_rows(arity, ids))

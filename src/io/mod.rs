@@ -112,7 +112,7 @@ impl RawInput {
 
     /// Reserves room for `simplices` more simplices of `ids` ids in all, fallibly
     /// ([`ReadErrorKind::TooLarge`]). Readers size it from declared counts capped by what the
-    /// file could hold ([`capped`]), so that the arrays are allocated once, at their size.
+    /// file could hold, so that the arrays are allocated once, at their size.
     pub fn try_reserve(&mut self, simplices: usize, ids: usize) -> Result<(), ReadErrorKind> {
         table::try_reserve_exact(&mut self.offsets, simplices)
             .map_err(no_room("the simplex offsets"))?;

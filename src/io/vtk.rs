@@ -2,8 +2,10 @@
 //!
 //! Own code rather than the `vtkio` crate (used for `.vtu`): vtkio 0.6's legacy parser (nom 3)
 //! reserves memory from the counts a header declares (`POINTS 4000000000 double` aborts the
-//! process), and its errors carry no line; this reader caps every reservation by the bytes left
-//! and names lines.
+//! process), and its errors carry no line; this reader caps every reservation by the bytes left,
+//! makes it fallibly (memory that cannot be had is [`ReadErrorKind::TooLarge`]) and names lines.
+//! Cells are streamed into the simplex list as read: version 4's lists and version 5's
+//! connectivity (its offsets are read first, as numbers); cell types are checked, not kept.
 //!
 //! Reading (`# vtk DataFile Version` 2.0 to 5.1):
 //! ```text

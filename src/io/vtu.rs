@@ -26,9 +26,11 @@ use super::{Coords, RawInput, ReadErrorKind, echo, no_room, syntax};
 use crate::complex::table::{self, headroom};
 use crate::error::caught_quietly;
 
-/// vtkio's parse peak per byte of file, probed before it starts (measured with
-/// scripts/read-peak.sh, docs/benchmarks.md "Reading").
-const VTKIO_PEAK_PER_BYTE: usize = 4;
+/// vtkio's parse peak per byte of file, probed before it starts: 5.9 measured on ASCII data
+/// arrays of short lines (it holds the file, each array's text as a string and the typed
+/// arrays grown by doubling), 2.9 on base64 binary ones (scripts/read-peak.sh,
+/// docs/benchmarks.md "Reading").
+const VTKIO_PEAK_PER_BYTE: usize = 6;
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
@@ -138,7 +140,7 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
     // vtkio 0.7.0-rc2 slices out of range on some malformed binary arrays (found by fuzzing):
     // its panic is caught here and reported as a parse error, without the panic hook's report.
     let parsed = caught_quietly(|| Vtk::parse_xml(bytes))
-        .map_err(|_| err("VTU: malformed data array (the vtkio crate panicked on it)"))?;
+        .map_err(|_| err("VTU: malformed data array (vtkio failed on it: a caught panic)"))?;
     let vtk = parsed.map_err(|e| err(format!("VTU: {}", echo(e.to_string()))))?;
     let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
         return Err(err(

@@ -177,7 +177,9 @@ pub struct Writer {
 impl Writer {
     fn create(file: File) -> Writer {
         let mut w = Writer {
-            out: BufWriter::with_capacity(1 << 20, file),
+            // Small: sections larger than the buffer go to the file directly, so it only
+            // gathers headers, scalars and padding (and a fixed allocation stays small).
+            out: BufWriter::with_capacity(64 << 10, file),
             pos: 0,
             entries: Vec::new(),
             error: None,
@@ -229,10 +231,16 @@ impl Writer {
         self.section(items);
     }
 
-    /// Appends an array of `usize`, widened to 64 bits.
+    /// Appends an array of `usize`, widened to 64 bits (on 64-bit targets written as is: no
+    /// input-sized copy, which could not be had fallibly here).
     pub fn usizes(&mut self, items: &[usize]) {
-        let wide: Vec<u64> = items.iter().map(|&x| x as u64).collect();
-        self.section(&wide);
+        #[cfg(target_pointer_width = "64")]
+        self.section::<u64>(bytemuck::cast_slice(items));
+        #[cfg(not(target_pointer_width = "64"))]
+        {
+            let wide: Vec<u64> = items.iter().map(|&x| x as u64).collect();
+            self.section(&wide);
+        }
     }
 
     /// Appends one number (a one-element 64-bit section).
