@@ -648,6 +648,37 @@ impl Complex {
         })
     }
 
+    /// The top simplices of dimension ≥ 1 as (dimension, vertices in input order), in input
+    /// order: those of [`Complex::tops_as_given`], without their indices. When every listed
+    /// simplex of two or more vertices is a distinct top simplex (as many as there are top
+    /// simplices of dimension ≥ 1: nothing absorbed or repeated), they are the listing itself,
+    /// and the listing ↔ top maps (12 bytes a listing) are not built. O(listing).
+    pub(crate) fn tops_listed(&self) -> impl Iterator<Item = (usize, &[u32])> + '_ {
+        let direct = !self.tops_listed_needs_maps();
+        let listing = (0..if direct { self.input_count() } else { 0 })
+            .map(|i| self.input_simplex(i))
+            .filter(|s| s.len() > 1)
+            .map(|s| (s.len() - 1, s));
+        let mapped = (!direct)
+            .then(|| {
+                self.tops_as_given()
+                    .filter(|t| t.1 > 0)
+                    .map(|(_, p, _, s)| (p, s))
+            })
+            .into_iter()
+            .flatten();
+        listing.chain(mapped)
+    }
+
+    /// Whether [`Complex::tops_listed`] needs the listing ↔ top maps.
+    pub(crate) fn tops_listed_needs_maps(&self) -> bool {
+        let tops: usize = self.tops.iter().skip(1).map(SimplexTable::len).sum();
+        let listed = (0..self.input_count())
+            .filter(|&i| self.listing.offsets[i + 1] - self.listing.offsets[i] > 1)
+            .count();
+        tops != listed
+    }
+
     /// Number of vertices n (vertex ids are `0..n`).
     pub fn vertex_count(&self) -> u32 {
         self.n_vertices

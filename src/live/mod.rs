@@ -313,7 +313,8 @@ impl fmt::Debug for Key {
 
 impl LiveComplex {
     /// Builds from a complex: every vertex of `complex` is live with the same id, every top
-    /// simplex gets a slot in input order with its input winding (`Complex::tops_as_given`).
+    /// simplex gets a slot in input order with its input winding (`Complex::tops_as_given`;
+    /// read from the listing itself when it holds nothing but distinct top simplices).
     /// O(size of the top simplices). Aborts, like `Vec`, when the memory cannot be had: a host
     /// that must survive that uses [`LiveComplex::try_from_complex`].
     pub fn from_complex(complex: &Complex) -> LiveComplex {
@@ -336,17 +337,17 @@ impl LiveComplex {
             Some(c) => (c.dim, try_copy(K, &c.data, "coordinates")?),
             None => (0, Vec::new()),
         };
-        complex
-            .try_listing_maps()
-            .map_err(|bytes| too_large(K, bytes, "the input listing's maps"))?;
+        if complex.tops_listed_needs_maps() {
+            complex
+                .try_listing_maps()
+                .map_err(|bytes| too_large(K, bytes, "the input listing's maps"))?;
+        }
         let mut degree = try_vec(K, 0u32, n, "vertex degrees")?;
         let mut per_dim = [0usize; MAX_DIMENSION + 1];
-        for (_, p, _, s) in complex.tops_as_given() {
-            if p > 0 {
-                per_dim[p] += 1;
-                for &v in s {
-                    degree[v as usize] += 1;
-                }
+        for (p, s) in complex.tops_listed() {
+            per_dim[p] += 1;
+            for &v in s {
+                degree[v as usize] += 1;
             }
         }
         let mut tops = try_with_capacity(K, MAX_DIMENSION + 1, "top arrays")?;
@@ -376,10 +377,8 @@ impl LiveComplex {
             epoch: 0,
             images: Vec::new(),
         };
-        for (_, p, _, s) in complex.tops_as_given() {
-            if p > 0 {
-                live.push_top(s);
-            }
+        for (_, s) in complex.tops_listed() {
+            live.push_top(s);
         }
         Ok(live)
     }

@@ -5,7 +5,12 @@
 //!
 //! # Layout and costs
 //! - `words`: the blocks, back to back. A complex built from a list of tops gets each vertex's
-//!   block at exactly its degree (the arena is Σ_v deg(v) words, no spare room).
+//!   block at exactly its degree (the arena is Σ_v deg(v) words), and the allocation 1/8 of
+//!   spare room at its end (address space: its pages are touched only when used). A run of
+//!   contractions frees more than it appends, so that room is used up only when 1/8 of the
+//!   arena is free and the arena is compacted in place rather than reallocated: a
+//!   reallocation would hold the old and the new arena at once (and, in glibc's heap, leave
+//!   the old one's pages resident).
 //! - A block that must grow moves: in place when it ends the arena, else into a free block of
 //!   its size class or onto the end of the arena. Size classes are 1..8, then four per doubling
 //!   (10, 12, 14, 16, 20, 24, …), so a star growing one entry at a time moves O(log k) times
@@ -19,13 +24,14 @@
 //! - Removal from a star is a swap with its last entry (order is not kept); a star never
 //!   shrinks its block, except [`Stars::release`], which frees it.
 //!
-//! Bytes: 4 per arena word (of its allocation) + 12 per vertex.
+//! Bytes: 4 per arena word of its allocation (Σ_v cap(v), free room, and 1/8 spare after a
+//! build) + 12 per vertex.
 
 use std::ops::{Index, IndexMut};
 
 use crate::relation::StructureKind;
 use crate::structures::BuildError;
-use crate::structures::common::{too_large, try_vec, try_with_capacity};
+use crate::structures::common::{too_large, try_with_capacity};
 
 /// "No block" in a free list.
 const END: u32 = u32::MAX;
@@ -97,8 +103,10 @@ impl Stars {
             });
             start += k;
         }
+        let mut words = try_with_capacity(kind, total + total / 8, "star entries")?;
+        words.resize(total, 0);
         Ok(Stars {
-            words: try_vec(kind, 0, total, "star entries")?,
+            words,
             blocks,
             free: vec![END; CLASSES],
             owned: total,
