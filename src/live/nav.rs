@@ -368,7 +368,7 @@ impl Navigate for LiveComplex {
         Navigate::check(self, h).map(|_| h)
     }
 
-    /// O(1) through a live top; through a removed one, O(d·k_v) (see [`LiveComplex::live_form`]).
+    /// O(1) through a live top; through a removed one, O(d·k_v) (it is located again: module doc).
     fn check(&self, h: SimplexHandle) -> Result<(), QueryError> {
         self.live_form(h).map(|_| ())
     }
