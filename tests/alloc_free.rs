@@ -116,6 +116,7 @@ fn every_operation(s: *const TpxStructure, kind: u32, t: &mut Tally) {
         let mut count = 0usize;
         unsafe { tpx_structure_count(s, p, &mut count) };
         let all: Vec<u32> = (0..count as u32).collect();
+        let mut every = Vec::with_capacity(count);
         for i in 0..count as u32 {
             let name = |op: &str| format!("kind {kind}: {op} of {p}-simplex {i}");
             let mut h = TpxSimplex::default();
@@ -123,6 +124,7 @@ fn every_operation(s: *const TpxStructure, kind: u32, t: &mut Tally) {
                 || name("tpx_handle"),
                 || unsafe { tpx_handle(s, p, i, &mut h) },
             );
+            every.push(h);
             let mut verts = [0u32; 16];
             t.call(
                 || name("tpx_simplex_vertices"),
@@ -228,6 +230,22 @@ fn every_operation(s: *const TpxStructure, kind: u32, t: &mut Tally) {
             t.call(
                 || format!("kind {kind}: tpx_relation_view p={p} q={q}"),
                 || unsafe { tpx_relation_view(s, p, q, view.as_mut_ptr()) },
+            );
+            t.call(
+                || format!("kind {kind}: tpx_related_handles_batch p={p} q={q}"),
+                || unsafe {
+                    tpx_related_handles_batch(
+                        s,
+                        every.as_ptr(),
+                        every.len(),
+                        q,
+                        TPX_ORDER_LEXICOGRAPHIC,
+                        offsets.as_mut_ptr(),
+                        handles.as_mut_ptr(),
+                        handles.len(),
+                        &mut len,
+                    )
+                },
             );
         }
     }

@@ -19,7 +19,9 @@
 //! # What it encodes
 //! - Per dimension p ≥ 1, a table of top p-simplices, p + 1 vertex ids per slot in the order the
 //!   input gave them (its winding; a contraction replaces b by a in place, so winding survives).
-//!   A removed slot is a tombstone (first id `u32::MAX`) until [`LiveComplex::compact`].
+//!   A removed slot is a tombstone (bit 31 set on its first id, so vertex ids stay below 2^31)
+//!   that keeps its vertices — a top retired by a contraction of b into a with a in b's place —
+//!   until [`LiveComplex::compact`], for the handles named through it (`nav`).
 //! - Per vertex: alive or not, its coordinates, and its star St*(v): every live top simplex of
 //!   dimension ≥ 1 containing v, as packed [`TopId`] raw values (dimension in the top 4 bits).
 //!   A live vertex with an empty star is an isolated vertex (a top 0-simplex).
@@ -81,16 +83,17 @@
 //! The live complex answers the whole handle API ([`crate::handle::Navigate`]: locate,
 //! boundary / co-boundary / adjacency per dimension, star, link, degree, `is_boundary`,
 //! `is_manifold`, fans around a vertex counter-clockwise by the winding, radial groups around an
-//! edge). A vertex's handle is its slot; any other simplex is named through a live top simplex
-//! holding it (a top simplex and a vertex mask). Every handle carries the complex's generation (its compaction count, [`crate::handle::Navigate::generation`]): one from
-//! before `compact` is refused with [`QueryError::StaleGeneration`]; otherwise a handle names its
-//! simplex while that simplex exists, even when the top simplex naming it is removed (a removed
-//! slot keeps its vertices until `compact`, and the face is located again: O(d·k_v) per use), and
-//! is refused with [`QueryError::StaleHandle`] once the simplex is gone; across a contraction it
-//! names the simplex's image (b replaced by a). The
-//! generation costs 4 bytes per handle and one comparison per check. Costs per operation: the
-//! `nav` module (O(1) checks and reads, `locate` O(d·k_v), relations as above plus O(d·k) to
-//! name each answer of dimension ≤ p, answers lexicographic, no allocation once warm).
+//! edge). A vertex's handle is its slot; any other simplex is named through a top simplex
+//! holding it (a top simplex and a vertex mask). Every handle carries the complex's generation
+//! (its compaction count, [`crate::handle::Navigate::generation`]): one from before `compact` is
+//! refused with [`QueryError::StaleGeneration`]; otherwise a handle names its simplex while that
+//! simplex exists, even when the top simplex naming it is removed (a removed slot keeps its
+//! vertices until `compact`, and the face is located again: O(d·k_v) per use), and is refused
+//! with [`QueryError::StaleHandle`] once the simplex is gone; across a contraction it names the
+//! simplex's image (b replaced by a). The generation costs 4 bytes per handle and one comparison
+//! per check. Costs per operation: the `nav` module (O(1) checks and reads, `locate` O(d·k_v),
+//! relations as above plus O(d·k) to name each answer of dimension ≤ p, answers lexicographic,
+//! no allocation once warm).
 
 use std::fmt;
 
@@ -234,8 +237,8 @@ pub enum Refusal {
 /// An updatable simplicial complex; see the module documentation.
 #[derive(Debug, Clone)]
 pub struct LiveComplex {
-    /// `tops[p]`: p + 1 ids per slot (input winding); a tombstone's first id has `DEAD` set. `tops[0]`
-    /// is unused (isolated vertices are live vertices with an empty star).
+    /// `tops[p]`: p + 1 ids per slot (input winding); a tombstone's first id has `DEAD` set.
+    /// `tops[0]` is unused (isolated vertices are live vertices with an empty star).
     tops: Vec<Vec<u32>>,
     /// Live top p-simplices per dimension (p ≥ 1).
     live_tops: [usize; MAX_DIMENSION + 1],

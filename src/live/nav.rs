@@ -39,7 +39,8 @@
 //! - `visit` R_{p,q}: the faces as in the relation API (module doc of [`crate::live`]), sorted and
 //!   deduplicated in a per-thread scratch buffer, then each answer named canonically: for q > p
 //!   for free (every top holding an answer holds σ, so the scan of St*(v) sees them all), for
-//!   q ≤ p one scan of the answer's smallest star, O(d·k). Answers come in ascending
+//!   q ≤ p one scan of the answer's smallest star, O(d·k), except an adjacent simplex that is
+//!   itself a top (R_{d,d} on a pure complex), named by the top it was found in. Answers come in ascending
 //!   lexicographic order of their vertices, which is the natural order here: both [`Order`]s
 //!   cost the same. No allocation once the scratch buffer has grown to the answer.
 //! - `star`, `link`, `degree`, `is_boundary`, `is_manifold`, `fans_around`, `around_edge`: the
@@ -52,7 +53,7 @@ use super::{DEAD, Key, LiveComplex, NONE, pack, subset, unpack};
 use crate::complex::MAX_DIMENSION;
 use crate::handle::{HandleForm, Navigate, Order, SimplexHandle, TopId, VertexId, Vertices};
 use crate::relation::{QueryError, Topology, normalize_simplex};
-use crate::structures::common::faces_containing;
+use crate::structures::common::{Scratch, faces_containing};
 
 /// One answer row: the simplex (ascending) and the top naming it (packed slot; `NONE` while
 /// not yet named), with the mask of that top's vertices.
@@ -215,8 +216,26 @@ impl LiveComplex {
         Ok(())
     }
 
-    /// Every answer row of R_{p,q}(σ) into `rows`, named or not (`raw == NONE`), duplicates
-    /// allowed.
+    /// R_{p,0}(σ): σ's vertices, or for a vertex the other vertices of its star, sorted and
+    /// deduplicated as plain ids (no row keys: the VV walk's cost is the sort of O(d·k_v) ids).
+    fn visit_vertices(&self, sigma: &[u32], visit: &mut dyn FnMut(SimplexHandle)) {
+        let mut ids = Scratch::<Vec<u32>>::take();
+        if sigma.len() == 1 {
+            for &raw in &self.star[sigma[0] as usize] {
+                ids.extend(self.top_raw(raw).iter().filter(|&&u| u != sigma[0]));
+            }
+            ids.sort_unstable();
+            ids.dedup();
+        } else {
+            ids.extend_from_slice(sigma);
+        }
+        for &u in ids.iter() {
+            visit(self.vertex_handle(u));
+        }
+    }
+
+    /// Every answer row of R_{p,q}(σ), q ≥ 1 (vertices: `visit_vertices`), into `rows`, named or
+    /// not (`raw == NONE`), duplicates allowed.
     fn answer_rows(&self, sigma: &[u32], q: usize, rows: &mut Vec<Row>) {
         let p = sigma.len() - 1;
         let unnamed = |f: &[u32]| Row {
@@ -242,41 +261,72 @@ impl LiveComplex {
                     });
                 }
             }
-        } else if p == 0 {
-            for &raw in &self.star[sigma[0] as usize] {
-                for &u in self.top_raw(raw).iter().filter(|&&u| u != sigma[0]) {
-                    rows.push(unnamed(&[u]));
-                }
-            }
         } else {
             self.adjacent_rows(sigma, rows, unnamed);
         }
     }
 
-    /// R_{p,p}, p > 0: every p-simplex sharing a facet with σ holds σ[0] or σ[1].
+    /// R_{p,p}, p > 0: every p-simplex sharing a facet with σ holds σ[0] or σ[1], so it lies in
+    /// a top of St*(σ[0]), or of St*(σ[1]) without σ[0]. Each top t is tested once: it holds a
+    /// facet of σ when it misses at most one vertex of σ (O(d²) per top).
     fn adjacent_rows(&self, sigma: &[u32], rows: &mut Vec<Row>, unnamed: impl Fn(&[u32]) -> Row) {
         let p = sigma.len() - 1;
-        let mut face = [0u32; MAX_DIMENSION + 1];
-        for &hub in &sigma[..2] {
+        for (h, &hub) in sigma[..2].iter().enumerate() {
             for &raw in &self.star[hub as usize] {
                 let t = self.top_raw(raw);
-                for skip in 0..=p {
-                    let mut k = 0;
-                    for (i, &v) in sigma.iter().enumerate() {
-                        if i != skip {
-                            face[k] = v;
-                            k += 1;
-                        }
-                    }
-                    if !subset(&face[..p], t) {
-                        continue;
-                    }
-                    for &x in t.iter().filter(|x| !sigma.contains(x)) {
-                        face[p] = x;
-                        rows.push(unnamed(&face[..=p]));
+                if h == 1 && t.contains(&sigma[0]) {
+                    continue; // seen in St*(σ[0])
+                }
+                let mut missing = None;
+                let mut misses = 0;
+                for (i, v) in sigma.iter().enumerate() {
+                    if !t.contains(v) {
+                        misses += 1;
+                        missing = Some(i);
                     }
                 }
+                match (misses, missing) {
+                    (0, _) => (0..=p)
+                        .for_each(|skip| self.rows_across(sigma, skip, t, raw, rows, &unnamed)),
+                    (1, Some(skip)) => self.rows_across(sigma, skip, t, raw, rows, &unnamed),
+                    _ => {}
+                }
             }
+        }
+    }
+
+    /// The p-simplices of top t (packed id `raw`) across σ's facet without σ[skip]: that facet
+    /// plus one vertex of t outside σ. One that is t itself (a top) is named by t: no other top
+    /// holds it.
+    fn rows_across(
+        &self,
+        sigma: &[u32],
+        skip: usize,
+        t: &[u32],
+        raw: u32,
+        rows: &mut Vec<Row>,
+        unnamed: &impl Fn(&[u32]) -> Row,
+    ) {
+        let p = sigma.len() - 1;
+        let mut face = [0u32; MAX_DIMENSION + 1];
+        let mut k = 0;
+        for (i, &v) in sigma.iter().enumerate() {
+            if i != skip {
+                face[k] = v;
+                k += 1;
+            }
+        }
+        for &x in t.iter().filter(|x| !sigma.contains(x)) {
+            face[p] = x;
+            rows.push(if t.len() == p + 1 {
+                Row {
+                    key: Key::new(t),
+                    raw,
+                    mask: ((1u32 << (p + 1)) - 1) as u16,
+                }
+            } else {
+                unnamed(&face[..=p])
+            });
         }
     }
 }
@@ -318,7 +368,7 @@ impl Navigate for LiveComplex {
         Navigate::check(self, h).map(|_| h)
     }
 
-    /// O(1) through a live top; through a removed one, O(d·k_v) (see [`LiveComplex::live_form`]).
+    /// O(1) through a live top; through a removed one, O(d·k_v) (it is located again: module doc).
     fn check(&self, h: SimplexHandle) -> Result<(), QueryError> {
         self.live_form(h).map(|_| ())
     }
@@ -399,6 +449,10 @@ impl Navigate for LiveComplex {
                 dim: d,
             });
         }
+        if q == 0 {
+            self.visit_vertices(&sigma, visit);
+            return Ok(());
+        }
         with_rows(|rows| {
             self.answer_rows(&sigma, q, rows);
             // Lexicographic, and for q > p the smallest naming slot first.
@@ -410,9 +464,7 @@ impl Navigate for LiveComplex {
                 }
                 last = Some(r.key);
                 let s = r.key.as_slice();
-                visit(if q == 0 {
-                    self.vertex_handle(s[0])
-                } else if r.raw != NONE {
+                visit(if r.raw != NONE {
                     self.face_handle(r.raw, r.mask)
                 } else {
                     self.canonical(s).expect("an answer is a simplex")
