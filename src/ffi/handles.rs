@@ -20,7 +20,9 @@ use std::cell::RefCell;
 use std::sync::atomic::{AtomicU32, Ordering as AtomicOrdering};
 
 use super::structure::{TpxStructure, query_failure};
-use super::{Failure, TpxStatus, guard, handle, in_slice, out_ptr, write_buffer};
+use super::{
+    Failure, TpxStatus, guard, handle, in_slice, out_ptr, with_answer, with_kept, write_buffer,
+};
 use crate::complex::MAX_DIMENSION;
 use crate::handle::{Fans, Navigate, Order, SimplexHandle, TopId};
 use crate::structures::common::Scratch;
@@ -144,25 +146,7 @@ fn order_arg(order: u32) -> Result<Order, Failure> {
 
 thread_local! {
     static HANDLES: RefCell<Vec<SimplexHandle>> = const { RefCell::new(Vec::new()) };
-    static IDS: RefCell<Vec<u32>> = const { RefCell::new(Vec::new()) };
     static FANS: RefCell<Fans> = RefCell::new(Fans::default());
-}
-
-/// Runs `f` with this thread's kept buffer from `key` (a fresh one during thread teardown or
-/// while it is in use).
-fn with_kept<T: Default, R>(
-    key: &'static std::thread::LocalKey<RefCell<T>>,
-    f: impl FnOnce(&mut T) -> R,
-) -> R {
-    let mut f = Some(f);
-    let kept = key.try_with(|cell| {
-        let mut v = cell.try_borrow_mut().ok()?;
-        Some((f.take().expect("called once"))(&mut v))
-    });
-    match kept {
-        Ok(Some(r)) => r,
-        _ => (f.take().expect("not called yet"))(&mut T::default()),
-    }
 }
 
 /// The owner stamp of structure `s` into `*out`: every handle it makes carries it. O(1).
@@ -351,7 +335,7 @@ pub unsafe extern "C" fn tpx_related(
         buf,
         buf_len,
         out_len,
-        &IDS,
+        &super::ANSWER,
         |_, n, sh, ids| {
             dense_answers(n, q)?;
             n.related_ids(sh, q as usize, order?, ids)
@@ -385,21 +369,35 @@ fn answer_into<T, U: Copy>(
         let sh = unwrap_owned(s, n, h)?;
         with_kept(kept, |v| {
             v.clear();
-            answer(s, n, sh, v)?;
-            if buf.is_null() && buf_len > 0 {
-                return Err(Failure::null("buf"));
-            }
-            if v.len() > buf_len {
-                return too_small(v.len(), buf_len, out_len);
-            }
-            for (i, x) in v.iter().enumerate() {
-                // SAFETY: `buf` has room for `buf_len >= v.len()` items (documented contract).
-                unsafe { *buf.add(i) = item(s, x) };
-            }
-            *out_len = v.len();
-            Ok(())
+            let r = answer(s, n, sh, v);
+            let r = r.and_then(|()| copy_out(s, v, buf, buf_len, out_len, &item));
+            super::trim_kept(v);
+            r
         })
     })
+}
+
+/// The tail of [`answer_into`]: `v` written to `buf` as `item(x)`, or BUFFER_TOO_SMALL.
+fn copy_out<T, U: Copy>(
+    s: &TpxStructure,
+    v: &[T],
+    buf: *mut U,
+    buf_len: usize,
+    out_len: &mut usize,
+    item: &impl Fn(&TpxStructure, &T) -> U,
+) -> Result<(), Failure> {
+    if buf.is_null() && buf_len > 0 {
+        return Err(Failure::null("buf"));
+    }
+    if v.len() > buf_len {
+        return too_small(v.len(), buf_len, out_len);
+    }
+    for (i, x) in v.iter().enumerate() {
+        // SAFETY: `buf` has room for `buf_len >= v.len()` items (documented contract).
+        unsafe { *buf.add(i) = item(s, x) };
+    }
+    *out_len = v.len();
+    Ok(())
 }
 
 /// NOT_DENSE when answers of dimension q have no dense index in this structure (the live
@@ -462,8 +460,7 @@ pub unsafe extern "C" fn tpx_related_batch(
         let n = nav(s)?;
         dense_answers(n, q)?;
         let p = (p as usize).min(MAX_DIMENSION + 1);
-        with_kept(&IDS, |ids| {
-            ids.clear();
+        with_answer(|ids| {
             // Offsets are written only on success: kept aside, then copied.
             let mut ends = Scratch::<Vec<usize>>::take();
             ends.try_reserve(count)
@@ -540,8 +537,7 @@ pub unsafe extern "C" fn tpx_degree_batch(
         dense_answers(n, q)?;
         let p = (p as usize).min(MAX_DIMENSION + 1);
         // Counted aside first: an error leaves `degrees` untouched.
-        with_kept(&IDS, |k| {
-            k.clear();
+        with_answer(|k| {
             k.try_reserve(count)
                 .map_err(|_| Failure::new(TpxStatus::TooLarge, "degrees do not fit in memory"))?;
             k.resize(count, 0);

@@ -279,6 +279,49 @@ pub(crate) fn get_into<H, T>(
     })
 }
 
+thread_local! {
+    /// The answer of the current `tpx_relation` / `tpx_related` / `tpx_related_batch` /
+    /// `tpx_degree_batch` call on this thread, kept between calls so that a walk over every
+    /// simplex does not allocate an answer per call.
+    pub(crate) static ANSWER: RefCell<Vec<u32>> = const { RefCell::new(Vec::new()) };
+}
+
+/// Runs `f` with this thread's kept buffer from `key` (a fresh one during thread teardown or
+/// while it is in use).
+pub(crate) fn with_kept<T: Default, R>(
+    key: &'static std::thread::LocalKey<RefCell<T>>,
+    f: impl FnOnce(&mut T) -> R,
+) -> R {
+    let mut f = Some(f);
+    let kept = key.try_with(|cell| {
+        let mut v = cell.try_borrow_mut().ok()?;
+        Some((f.take().expect("called once"))(&mut v))
+    });
+    match kept {
+        Ok(Some(r)) => r,
+        _ => (f.take().expect("not called yet"))(&mut T::default()),
+    }
+}
+
+/// Releases a kept buffer above 1 Mi items, so that one huge answer does not pin its memory for
+/// the thread's lifetime.
+pub(crate) fn trim_kept<T>(v: &mut Vec<T>) {
+    const KEEP: usize = 1 << 20;
+    if v.capacity() > KEEP {
+        *v = Vec::new();
+    }
+}
+
+/// Runs `f` on this thread's cleared answer buffer ([`ANSWER`]), trimmed afterwards.
+pub(crate) fn with_answer<R>(f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
+    with_kept(&ANSWER, |v| {
+        v.clear();
+        let r = f(v);
+        trim_kept(v);
+        r
+    })
+}
+
 /// Shared reference to a handle, or NULL_ARGUMENT.
 pub(crate) fn handle<'a, T>(p: *const T, what: &str) -> Result<&'a T, Failure> {
     // SAFETY: non-NULL handles come from this library and are alive (documented contract).

@@ -3,7 +3,6 @@
 use super::{
     Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr, write_buffer,
 };
-use std::cell::RefCell;
 
 use crate::complex::MAX_DIMENSION;
 use crate::relation::{QueryError, StructureKind, Topology, normalize_simplex, sort_rows};
@@ -291,7 +290,7 @@ pub unsafe extern "C" fn tpx_relation(
                 dim: topo.dimension(),
             }));
         }
-        with_scratch(|rows| {
+        super::with_answer(|rows| {
             topo.query(sorted, q, rows).map_err(query_failure)?;
             sort_rows_in_place(rows, q + 1);
             write_buffer(rows, buf, buf_len, out_len)
@@ -317,33 +316,6 @@ fn sorted_simplex<'a>(
         return Err(normalize_simplex(sigma, n).expect_err("a repeated vertex"));
     }
     Ok(out)
-}
-
-thread_local! {
-    /// The answer of the current `tpx_relation` call on this thread, kept between calls so that
-    /// a walk over every simplex does not allocate an answer per call.
-    static SCRATCH: RefCell<Vec<u32>> = const { RefCell::new(Vec::new()) };
-}
-
-/// Runs `f` on this thread's cleared scratch vector (a fresh one during thread teardown or if
-/// the scratch is somehow in use). Capacity above 1 Mi ids is released afterwards, so one huge
-/// answer does not pin its memory for the thread's lifetime.
-fn with_scratch<R>(f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
-    const KEEP: usize = 1 << 20;
-    let mut f = Some(f);
-    let shared = SCRATCH.try_with(|cell| {
-        let mut rows = cell.try_borrow_mut().ok()?;
-        rows.clear();
-        let r = (f.take().expect("called once"))(&mut rows);
-        if rows.capacity() > KEEP {
-            *rows = Vec::new();
-        }
-        Some(r)
-    });
-    match shared {
-        Ok(Some(r)) => r,
-        _ => (f.take().expect("not called yet"))(&mut Vec::new()),
-    }
 }
 
 /// Sorts distinct rows of `arity` ids into ascending lexicographic order in place: a linear

@@ -1204,3 +1204,40 @@ fn relation_views_and_degree_batches_match_tpx_related() {
         tpx_complex_free(c);
     }
 }
+
+/// Four threads ask for the same relation view of one structure at once: each gets the same
+/// kept arrays (the first index built is the one lent; a concurrent second build is dropped).
+#[test]
+fn threads_asking_for_one_view_share_one_index() {
+    #[derive(Clone, Copy)]
+    struct Shared(*const TpxStructure);
+    unsafe impl Send for Shared {}
+    let c = tet_triangle_wire();
+    let mut s = null_mut();
+    assert_eq!(
+        unsafe { tpx_structure_build(c, TPX_KIND_NMIA, &mut s) },
+        TpxStatus::Ok
+    );
+    let shared = Shared(s);
+    let views: Vec<(usize, usize, usize)> = std::thread::scope(|scope| {
+        let hs: Vec<_> = (0..4)
+            .map(|_| {
+                scope.spawn(move || {
+                    let shared = shared;
+                    let mut v = std::mem::MaybeUninit::<TpxRelationView>::zeroed();
+                    let st = unsafe { tpx_relation_view(shared.0, 1, 2, v.as_mut_ptr()) };
+                    assert_eq!(st, TpxStatus::Ok);
+                    let v = unsafe { v.assume_init() };
+                    (v.offsets as usize, v.ids as usize, v.count)
+                })
+            })
+            .collect();
+        hs.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    assert!(views.iter().all(|&v| v == views[0]), "{views:?}");
+    assert_eq!(views[0].2, 9);
+    unsafe {
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}

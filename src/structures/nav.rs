@@ -10,7 +10,10 @@
 //!   to number them; top d-simplices are the d-simplices, so need no table;
 //! - lazily, per dimension p the structure does not store, the lexicographic table of the
 //!   p-simplices (built from [`Topology::simplices`] on the first request that needs it:
-//!   O(n_p log n_p) time, (p + 1)·n_p integers).
+//!   O(n_p log n_p) time, (p + 1)·n_p integers);
+//! - lazily, per relation R_{p,q} a caller asks to be lent ([`Navigate::relation_view`]) and the
+//!   structure does not store as a CSR, its index: `n_p + 1` offsets and every answer, 4 bytes
+//!   each, built by one walk over every p-simplex on the first request.
 //!
 //! # Cost of each operation (on top of the structure's own relation cost)
 //! - `locate`: validation, then binary search in the p-table: O(p log n_p); vertices O(1).
@@ -19,6 +22,13 @@
 //! - `visit`: a structure's fast walk when it has one (answers are handles directly); otherwise
 //!   the structure's vertex-id relation into a per-thread scratch buffer, then each answer row
 //!   located in its table, O(q log n_q) per answer. No allocation once the scratch is warm.
+//! - `related_ids`, `related_batch`: where the structure has a loop for (p, q)
+//!   ([`NavBase::fast_into`]: TS, PE, LE, DE for VV, VF, FF; the IG for R_{p,p±1} and R_{0,0};
+//!   the IA for R_{d,d} and R_{0,d}) the answers are appended with no call per answer and the
+//!   handle checked once; otherwise one `visit` per simplex.
+//! - `degree_batch`: O(1) per simplex for counts the structure stores
+//!   ([`NavBase::stored_degree`]: the IG), else the walk counted in a scratch buffer.
+//! - `relation_view`: O(1) once built (the IG's co-boundaries are lent as stored, never built).
 
 use std::sync::OnceLock;
 
