@@ -113,15 +113,20 @@ struct Segs {
 impl Segs {
     const SEG: usize = 1 << 16;
 
-    fn push(&mut self, row: &[u32]) {
-        if self.cur.capacity() - self.cur.len() < row.len() {
-            let full = std::mem::replace(&mut self.cur, Vec::with_capacity(Segs::SEG));
+    /// `len` more ids, zeroed, for the caller to write (one capacity check per block level
+    /// instead of one per row).
+    fn grow(&mut self, len: usize) -> &mut [u32] {
+        if self.cur.capacity() - self.cur.len() < len {
+            let cap = Segs::SEG.max(len);
+            let full = std::mem::replace(&mut self.cur, Vec::with_capacity(cap));
             if !full.is_empty() {
                 self.full.push(full);
             }
         }
-        self.cur.extend_from_slice(row);
-        self.len += row.len();
+        let at = self.cur.len();
+        self.cur.resize(at + len, 0);
+        self.len += len;
+        &mut self.cur[at..]
     }
 
     fn segments(&self) -> impl Iterator<Item = &[u32]> {
@@ -321,31 +326,33 @@ fn emit(v: u32, shape: Shape, want: Want, s: &Scratch, part: &mut Part) {
         *b = (part.rows[q].len / (q + 1)) as u32;
     }
     let mask = (1u64 << lb) - 1;
-    let mut row = [0u32; super::MAX_DIMENSION + 1];
     for q in 1..=dv {
-        row[0] = v;
-        for &k in &s.keys[q] {
+        let keys = &s.keys[q];
+        let rows = part.rows[q].grow(keys.len() * (q + 1));
+        for (row, &k) in rows.chunks_exact_mut(q + 1).zip(keys) {
+            row[0] = v;
             for e in 0..q {
                 row[e + 1] = s.nbr[(k >> (lb * (q - 1 - e) as u32) & mask) as usize];
             }
-            part.rows[q].push(&row[..=q]);
         }
         if want != Want::Links {
             continue;
         }
-        let links = &mut part.links[q];
+        let links = part.links[q].grow(keys.len() * (q + 1));
         if q == 1 {
-            for &k in &s.keys[1] {
-                links.push(&[s.nbr[k as usize], v]);
+            for (row, &k) in links.chunks_exact_mut(2).zip(keys) {
+                row.copy_from_slice(&[s.nbr[k as usize], v]);
             }
             continue;
         }
-        for local in s.links[q].chunks_exact(q + 1) {
+        for (row, local) in links
+            .chunks_exact_mut(q + 1)
+            .zip(s.links[q].chunks_exact(q + 1))
+        {
             row[0] = UNSET;
             for e in 1..=q {
                 row[e] = local[e].wrapping_add(base[q - 1]);
             }
-            links.push(&row[..=q]);
         }
     }
 }

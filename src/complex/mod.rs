@@ -579,7 +579,8 @@ impl Complex {
     pub(crate) fn try_listing_maps(&self) -> Result<(), usize> {
         if self.listing.maps.get().is_none() {
             let tops: usize = self.tops.iter().map(SimplexTable::len).sum();
-            table::headroom(self.input_count() * 8 + tops * 4)?;
+            let starts = (self.n_vertices as usize + 1) * 4 * self.tops.len();
+            table::headroom(self.input_count() * 8 + tops * 4 + starts)?;
             self.listing_maps();
         }
         Ok(())
@@ -587,29 +588,72 @@ impl Complex {
 
     fn listing_maps(&self) -> &ListingMaps {
         self.listing.maps.get_or_init(|| {
-            let mut first: Vec<Vec<u32>> =
-                self.tops.iter().map(|t| vec![u32::MAX; t.len()]).collect();
-            let mut top = Vec::with_capacity(self.input_count());
-            let mut sorted = Vec::new();
-            for i in 0..self.input_count() {
-                sorted.clear();
-                sorted.extend_from_slice(self.input_simplex(i));
+            // Each listing is searched among the top simplices that start with its smallest
+            // vertex (a few rows, not log n_p cache misses), listings on several threads.
+            // (Small tables are searched whole.)
+            let starts: Vec<Vec<u32>> = self
+                .tops
+                .iter()
+                .map(|t| match t.len() {
+                    0..64 => Vec::new(),
+                    _ => self.first_vertex_starts(t),
+                })
+                .collect();
+            let top = crate::parallel::map_collect(self.input_count(), |i| {
+                let mut sorted = [0u32; MAX_DIMENSION + 1];
+                let given = self.input_simplex(i);
+                let sorted = &mut sorted[..given.len()];
+                sorted.copy_from_slice(given);
                 sorted.sort_unstable();
                 let p = sorted.len() - 1;
-                let found = self.tops.get(p).and_then(|t| t.find(&sorted));
-                match found {
-                    Some(j) => {
-                        top.push((p as u8, j));
-                        let f = &mut first[p][j as usize];
-                        if *f == u32::MAX {
-                            *f = i as u32;
-                        }
+                let (Some(t), Some(start)) = (self.tops.get(p), starts.get(p)) else {
+                    return NONE_TOP;
+                };
+                if start.is_empty() {
+                    return t.find(sorted).map_or(NONE_TOP, |j| (p as u8, j));
+                }
+                let v = sorted[0] as usize;
+                let (lo, hi) = (start[v] as usize, start[v + 1] as usize);
+                let (mut a, mut b) = (lo, hi);
+                while a < b {
+                    let mid = (a + b) / 2;
+                    if t.get(mid) < &*sorted {
+                        a = mid + 1;
+                    } else {
+                        b = mid;
                     }
-                    None => top.push(NONE_TOP),
+                }
+                if a < hi && t.get(a) == &*sorted {
+                    (p as u8, a as u32)
+                } else {
+                    NONE_TOP
+                }
+            });
+            let mut first: Vec<Vec<u32>> =
+                self.tops.iter().map(|t| vec![u32::MAX; t.len()]).collect();
+            for (i, &(p, j)) in top.iter().enumerate() {
+                if p != u8::MAX {
+                    let f = &mut first[p as usize][j as usize];
+                    if *f == u32::MAX {
+                        *f = i as u32;
+                    }
                 }
             }
             ListingMaps { top, first }
         })
+    }
+
+    /// `start[v]`: the first row of `table` whose first vertex is ≥ v, for v in `0..=n`.
+    fn first_vertex_starts(&self, table: &SimplexTable) -> Vec<u32> {
+        let n = self.n_vertices as usize;
+        let mut start = vec![0u32; n + 1];
+        for s in table.iter() {
+            start[s[0] as usize + 1] += 1;
+        }
+        for v in 0..n {
+            start[v + 1] += start[v];
+        }
+        start
     }
 
     /// The top simplex that listed simplex `i` is, as (dimension, index in [`Complex::tops`]);
@@ -1040,66 +1084,57 @@ fn closure_count(n: u32, tables: &[SimplexTable], limit: u64) -> Option<u64> {
 }
 
 /// Drops listed simplices that are faces of higher-dimensional listed ones, and adds the vertices
-/// no simplex uses as top 0-simplices. A p-simplex is tested against the higher-dimensional kept
-/// simplices at its vertex with the fewest of them: O(Σ_σ min_{v∈σ} deg(v) · d) in all, near
-/// linear on meshes (the worst case is many low-dimensional simplices all at one hub vertex).
-/// Its per-vertex arrays are reserved fallibly: `Err(bytes)` when `n` of them cannot be had.
+/// no simplex uses as top 0-simplices. A p-simplex is tested against the listed simplices of
+/// higher dimension at its vertex with the fewest listed simplices of dimension ≥ 2: O(Σ_σ
+/// min_{v∈σ} deg(v) · d) in all, near linear on meshes (the worst case is many low-dimensional
+/// simplices all at one hub vertex). Testing against every listed simplex, absorbed or not, gives
+/// the verdict of testing against the kept ones: a face of an absorbed simplex is a face of the
+/// simplex that absorbed it. The per-vertex arrays are reserved fallibly: `Err(bytes)` when
+/// they cannot be had.
 fn absorb_faces(
     n: u32,
-    tables: Vec<SimplexTable>,
+    mut tables: Vec<SimplexTable>,
     stats: &mut InputStats,
 ) -> Result<Vec<SimplexTable>, usize> {
     // No listed simplex at all: every vertex is isolated.
     let d = tables.len().max(1) - 1;
-    // star[v]: (dimension, index) of kept simplices of dimension >= 1 containing v. Only filled
-    // while some lower dimension (>= 1) still has listed simplices to test, so a pure mesh never
-    // pays for it.
-    let mut star: Vec<Vec<(u8, u32)>> = Vec::new();
     let mut used: Vec<bool> = Vec::new();
     used.try_reserve_exact(n as usize).map_err(|_| n as usize)?;
     used.resize(n as usize, false);
+    // Only when some dimension 1..d has simplices to test: a pure mesh never pays for the star.
+    let test = tables
+        .get(1..d)
+        .is_some_and(|t| t.iter().any(|t| !t.is_empty()));
+    let (off, at) = if test {
+        listed_at_vertices(n, &tables)?
+    } else {
+        (Vec::new(), Vec::new())
+    };
     let mut kept: Vec<SimplexTable> = vec![SimplexTable::default(); d + 1];
-    let mut tables = tables;
-    for p in (1..=d).rev() {
-        let table = std::mem::take(&mut tables[p]);
-        let table = if star.is_empty() {
-            table
-        } else {
-            let mut rows = Vec::new();
-            for s in table.iter() {
-                let hub = s
-                    .iter()
-                    .min_by_key(|&&v| star[v as usize].len())
-                    .copied()
-                    .unwrap();
-                let absorbed = star[hub as usize]
-                    .iter()
-                    .any(|&(q, j)| is_subset(s, kept[q as usize].get(j as usize)));
-                if absorbed {
-                    stats.absorbed_faces += 1;
-                } else {
-                    rows.extend_from_slice(s);
-                }
-            }
-            // A subsequence of a sorted table is still sorted.
-            SimplexTable::from_sorted_unique(p + 1, rows)
-        };
-        for s in table.iter() {
-            for &v in s {
-                used[v as usize] = true;
+    for p in (1..d).rev().filter(|_| test) {
+        let mut rows = Vec::new();
+        for s in tables[p].iter() {
+            let degree = |v: &&u32| off[**v as usize + 1] - off[**v as usize];
+            let hub = *s.iter().min_by_key(degree).unwrap() as usize;
+            let absorbed = at[off[hub]..off[hub + 1]]
+                .iter()
+                .any(|&(q, j)| q as usize > p && is_subset(s, tables[q as usize].get(j as usize)));
+            if absorbed {
+                stats.absorbed_faces += 1;
+            } else {
+                rows.extend_from_slice(s);
             }
         }
-        if tables[1..p].iter().any(|t| !t.is_empty()) {
-            star.try_reserve_exact(n as usize)
-                .map_err(|_| n as usize * std::mem::size_of::<Vec<(u8, u32)>>())?;
-            star.resize(n as usize, Vec::new());
-            for (j, s) in table.iter().enumerate() {
-                for &v in s {
-                    star[v as usize].push((p as u8, j as u32));
-                }
-            }
+        // A subsequence of a sorted table is still sorted.
+        kept[p] = SimplexTable::from_sorted_unique(p + 1, rows);
+    }
+    for p in 1..=d {
+        if p == d || !test {
+            kept[p] = std::mem::take(&mut tables[p]);
         }
-        kept[p] = table;
+        for &v in kept[p].as_flat() {
+            used[v as usize] = true;
+        }
     }
     let listed_vertices = tables.first().map_or(0, SimplexTable::len);
     let listed_isolated = tables
@@ -1116,6 +1151,44 @@ fn absorb_faces(
         kept.pop();
     }
     Ok(kept)
+}
+
+/// A listed simplex as (dimension, row in its table).
+type Listed = (u8, u32);
+
+/// The listed simplices of dimension ≥ 2 at each vertex, as (dimension, row): CSR offsets over
+/// the vertices, entries. Reserved fallibly.
+fn listed_at_vertices(
+    n: u32,
+    tables: &[SimplexTable],
+) -> Result<(Vec<usize>, Vec<Listed>), usize> {
+    let n = n as usize;
+    let mut off: Vec<usize> = Vec::new();
+    off.try_reserve_exact(n + 1).map_err(|_| (n + 1) * 8)?;
+    off.resize(n + 1, 0);
+    for t in tables.iter().skip(2) {
+        for &v in t.as_flat() {
+            off[v as usize + 1] += 1;
+        }
+    }
+    for v in 0..n {
+        off[v + 1] += off[v];
+    }
+    let mut fill = Vec::new();
+    fill.try_reserve_exact(n).map_err(|_| n * 8)?;
+    fill.extend_from_slice(&off[..n]);
+    let mut at = Vec::new();
+    at.try_reserve_exact(off[n]).map_err(|_| off[n] * 8)?;
+    at.resize(off[n], (0u8, 0u32));
+    for (p, t) in tables.iter().enumerate().skip(2) {
+        for (j, s) in t.iter().enumerate() {
+            for &v in s {
+                at[fill[v as usize]] = (p as u8, j as u32);
+                fill[v as usize] += 1;
+            }
+        }
+    }
+    Ok((off, at))
 }
 
 #[cfg(test)]

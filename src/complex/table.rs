@@ -176,6 +176,9 @@ pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
         keys.dedup();
         return unpack_keys(&keys, arity, bits);
     }
+    if arity >= 3 && (arity as u32 - 1) * bits <= 128 {
+        return sort_dedup_by_first(arity, ids, bits);
+    }
     fn packed<K: Ord + Copy>(
         arity: usize,
         ids: &[u32],
@@ -227,6 +230,57 @@ pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
             out
         }
     }
+}
+
+/// Rows too wide for one word, sorted and deduplicated: a counting sort by their first id, then
+/// each bucket (the rows at one vertex: few, in cache) by the other ids packed in a u128.
+/// Buckets in ranges on several threads, concatenated in order. O(rows · arity + ids' range).
+fn sort_dedup_by_first(arity: usize, ids: Vec<u32>, bits: u32) -> Vec<u32> {
+    let rows = ids.len() / arity;
+    let n = ids
+        .chunks_exact(arity)
+        .map(|r| r[0])
+        .max()
+        .map_or(0, |m| m as usize + 1);
+    let mut start = vec![0usize; n + 1];
+    for r in ids.chunks_exact(arity) {
+        start[r[0] as usize + 1] += 1;
+    }
+    for v in 0..n {
+        start[v + 1] += start[v];
+    }
+    let mut fill = start.clone();
+    let mut order = vec![0u32; rows];
+    for (i, r) in ids.chunks_exact(arity).enumerate() {
+        order[fill[r[0] as usize]] = i as u32;
+        fill[r[0] as usize] += 1;
+    }
+    drop(fill);
+    let mask = (1u128 << bits) - 1;
+    let parts = crate::parallel::ranges_by_weight(&start);
+    let done = crate::parallel::map_chunks(parts.len(), |c| {
+        let mut out = Vec::new();
+        let mut keys: Vec<u128> = Vec::new();
+        for v in parts[c].clone() {
+            keys.clear();
+            keys.extend(order[start[v]..start[v + 1]].iter().map(|&i| {
+                let r = &ids[i as usize * arity + 1..(i as usize + 1) * arity];
+                r.iter().fold(0u128, |k, &x| k << bits | u128::from(x))
+            }));
+            keys.sort_unstable();
+            keys.dedup();
+            for &k in &keys {
+                out.push(v as u32);
+                for e in (0..arity - 1).rev() {
+                    out.push((k >> (bits * e as u32) & mask) as u32);
+                }
+            }
+        }
+        out
+    });
+    // The input is in the buckets now: free it before they are joined (peak memory).
+    drop((ids, order));
+    done.concat()
 }
 
 /// Rows of `arity` ids of `bits` bits each from their packed keys (split between threads; each

@@ -111,6 +111,26 @@ pub(crate) fn try_closure_links(
     Ok((tables, boundary))
 }
 
+/// The number of simplices of each dimension of the closure, without its tables where the
+/// vertex blocks allow (memory: one block at a time per thread).
+pub(crate) fn try_closure_counts(
+    kind: StructureKind,
+    complex: &Complex,
+) -> Result<Vec<usize>, BuildError> {
+    let no_room = |bytes| too_large(kind, bytes, "the closure's counts");
+    if complex.dimension() > 0
+        && let Some(c) = complex
+            .closure_by_blocks(crate::complex::Want::Counts)
+            .map_err(no_room)?
+    {
+        return Ok(c.counts);
+    }
+    Ok(try_closure(kind, complex)?
+        .iter()
+        .map(SimplexTable::len)
+        .collect())
+}
+
 /// `TooLarge` for `bytes` that could not be had for `what`.
 pub(crate) fn too_large(kind: StructureKind, bytes: usize, what: &str) -> BuildError {
     BuildError::TooLarge {

@@ -112,7 +112,7 @@ use crate::store::Arr;
 
 use super::common::{IdSet, IdStack, Scratch, UnionFind, faces_containing};
 use super::common::{
-    try_closure, try_copy, try_iota, try_order, try_push, try_vec, try_with_capacity,
+    try_closure_counts, try_copy, try_iota, try_order, try_push, try_vec, try_with_capacity,
 };
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
@@ -543,10 +543,7 @@ impl Iqm {
         let copies = number_copies(&x, &mut slots, &top_comp, m)?;
         let (adj, crowded_facets) = component_adjacency(&copies.tops)?;
         let hyper = hypergraph(n, &copies.copy_vertex)?;
-        let counts = try_closure(KIND, complex)?
-            .iter()
-            .map(SimplexTable::len)
-            .collect();
+        let counts = try_closure_counts(KIND, complex)?;
         Ok(Iqm {
             nav: NavIndex::new(KIND, complex)?,
             n,

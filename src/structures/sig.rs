@@ -138,7 +138,7 @@
 use crate::store::Arr;
 use rustc_hash::{FxHashMap, FxHashSet};
 
-use super::common::try_closure;
+use super::common::try_closure_links;
 use super::ig::IncidenceGraph;
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
@@ -388,16 +388,6 @@ fn walk_faces<B: std::ops::Deref<Target = [u32]>>(
         let facet = boundary[r][id as usize * (r + 1) + i];
         walk_faces(boundary, r - 1, facet, i, drops - 1, allowed, f);
     }
-}
-
-/// Boundaries of every simplex ([`super::common::facet_links`] per dimension).
-fn boundaries(tables: &[SimplexTable]) -> Result<Vec<Vec<u32>>, BuildError> {
-    let d = tables.len() - 1;
-    let mut boundary = vec![Vec::new(); d + 1];
-    for (p, b) in boundary.iter_mut().enumerate().skip(1) {
-        *b = super::common::facet_links(tables, p);
-    }
-    Ok(boundary)
 }
 
 fn lookup_table(counts: impl Iterator<Item = usize>) -> Result<Vec<u32>, BuildError> {
@@ -661,10 +651,9 @@ impl Sig {
     /// and the clusters are computed on [`crate::parallel::threads`] threads, in ranges of
     /// simplices whose results are concatenated in order (the same bytes with any count).
     pub fn build(complex: &Complex) -> Result<Sig, BuildError> {
-        let tables = try_closure(KIND, complex)?;
+        let (tables, boundary) = try_closure_links(KIND, complex)?;
         let d = tables.len() - 1;
         let first = lookup_table(tables.iter().map(SimplexTable::len))?;
-        let boundary = boundaries(&tables)?;
         let top_rows = top_rows(complex, &tables);
         let mut cob = Vec::with_capacity(d);
         let mut top_counts = vec![0; d + 1];
