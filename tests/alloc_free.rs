@@ -1,6 +1,7 @@
 //! Every handle operation through the C ABI allocates nothing on the query path: a counting
 //! global allocator (per thread, armed only around each call) checks a second pass of every
-//! operation over every simplex of every one of the nine structures. The first pass warms what
+//! operation over every simplex of every one of the nine structures, and of the live complex's
+//! navigation on handles through a removed top simplex. The first pass warms what
 //! may be kept between queries (this thread's answer buffers, the tables a structure builds on
 //! first use). Failed calls are not counted: an error's message is the one allocation allowed.
 
@@ -386,4 +387,146 @@ fn tetrahedra_with_dangling_triangle_and_wire_allocate_nothing() {
         "IG, SIG, IA and IQM hold a 3-complex ({built} built)"
     );
     assert!(calls > 1000, "{calls} calls measured");
+}
+
+/// Handle calls of the live complex's navigation, on handles located before the edit, some of
+/// them named through the removed top (located again on each use), and in one batch.
+fn live_operations(s: *const TpxStructure, hs: &[TpxSimplex], d: u32, t: &mut Tally) {
+    let mut handles = vec![TpxSimplex::default(); 4096];
+    let mut offsets = vec![0u32; hs.len() + 1];
+    let mut verts = [0u32; 16];
+    let mut len = 0usize;
+    for (k, h) in hs.iter().enumerate() {
+        let name = |op: &str| format!("live: {op} of handle {k}");
+        t.call(
+            || name("tpx_simplex_vertices"),
+            || unsafe { tpx_simplex_vertices(s, h, verts.as_mut_ptr(), 16, &mut len) },
+        );
+        for q in 0..=d {
+            t.call(
+                || name(&format!("tpx_related_handles q={q}")),
+                || unsafe {
+                    tpx_related_handles(
+                        s,
+                        h,
+                        q,
+                        TPX_ORDER_NATURAL,
+                        handles.as_mut_ptr(),
+                        handles.len(),
+                        &mut len,
+                    )
+                },
+            );
+            t.call(
+                || name(&format!("tpx_degree q={q}")),
+                || unsafe { tpx_degree(s, h, q, &mut len) },
+            );
+        }
+        t.call(
+            || name("tpx_star"),
+            || unsafe {
+                tpx_star(
+                    s,
+                    h,
+                    0,
+                    TPX_ORDER_NATURAL,
+                    handles.as_mut_ptr(),
+                    handles.len(),
+                    &mut len,
+                )
+            },
+        );
+    }
+    for q in 0..=d {
+        t.call(
+            || format!("live: tpx_related_handles_batch q={q}"),
+            || unsafe {
+                tpx_related_handles_batch(
+                    s,
+                    hs.as_ptr(),
+                    hs.len(),
+                    q,
+                    TPX_ORDER_LEXICOGRAPHIC,
+                    offsets.as_mut_ptr(),
+                    handles.as_mut_ptr(),
+                    handles.len(),
+                    &mut len,
+                )
+            },
+        );
+    }
+}
+
+#[test]
+fn live_handles_through_a_removed_top_allocate_nothing() {
+    // The tetrahedra above; then the dangling triangle 3 4 2 is removed. Edge 2-3 was named
+    // through it (the lowest packed top holding it): that handle is located again on each use
+    // (2-3 lives on in the tetrahedra); those of 3-4 and of the triangle are refused.
+    let c = complex(
+        7,
+        &[
+            &[0, 1, 2, 3],
+            &[1, 2, 3, 5],
+            &[3, 4, 2],
+            &[4, 5],
+            &[0, 2, 3, 6],
+        ],
+    );
+    let (mut l, mut s) = (null_mut(), null());
+    // SAFETY: valid complex and out pointers; the view is borrowed from `l`.
+    unsafe {
+        assert_eq!(tpx_live_from_complex(c, &mut l), TpxStatus::Ok);
+        assert_eq!(tpx_live_structure(l, &mut s), TpxStatus::Ok);
+    }
+    let rows: [&[u32]; 6] = [
+        &[2],
+        &[2, 3],
+        &[3, 4],
+        &[2, 3, 4],
+        &[1, 2, 3],
+        &[0, 2, 3, 6],
+    ];
+    let hs: Vec<TpxSimplex> = rows
+        .iter()
+        .map(|r| {
+            let mut h = TpxSimplex::default();
+            // SAFETY: as above.
+            assert_eq!(
+                unsafe { tpx_locate(s, r.as_ptr(), r.len(), &mut h) },
+                TpxStatus::Ok
+            );
+            h
+        })
+        .collect();
+    // SAFETY: as above.
+    unsafe {
+        assert_eq!(
+            tpx_live_remove_top(l, [3u32, 4, 2].as_ptr(), 3),
+            TpxStatus::Ok
+        );
+    }
+    let hs: Vec<TpxSimplex> = hs
+        .into_iter()
+        .filter(|h| {
+            let mut n = 0usize;
+            // SAFETY: as above.
+            unsafe { tpx_degree(s, h, 0, &mut n) == TpxStatus::Ok }
+        })
+        .collect();
+    assert_eq!(
+        hs.len(),
+        4,
+        "2, 2-3, 1 2 3 and 0 2 3 6 live on; 3-4 and 3 4 2 are gone"
+    );
+    let mut t = Tally::default();
+    live_operations(s, &hs, 3, &mut t);
+    t.measure = true;
+    live_operations(s, &hs, 3, &mut t);
+    // SAFETY: created above, freed once.
+    unsafe {
+        tpx_live_free(l);
+        tpx_complex_free(c);
+    }
+    assert!(t.allocating.is_empty(), "allocating: {:?}", t.allocating);
+    assert!(t.calls > 40, "{} calls measured", t.calls);
 }
