@@ -1126,10 +1126,7 @@ type Listed = (u8, u32);
 
 /// The listed simplices of dimension ≥ 2 at each vertex, as (dimension, row): CSR offsets over
 /// the vertices, entries. Reserved fallibly.
-fn listed_at_vertices(
-    n: u32,
-    tables: &[SimplexTable],
-) -> Result<(Vec<usize>, Vec<Listed>), usize> {
+fn listed_at_vertices(n: u32, tables: &[SimplexTable]) -> Result<(Vec<usize>, Vec<Listed>), usize> {
     let n = n as usize;
     let mut off: Vec<usize> = Vec::new();
     off.try_reserve_exact(n + 1).map_err(|_| (n + 1) * 8)?;
