@@ -90,6 +90,8 @@ impl Word for u128 {
 /// One thread's buffers, reused from block to block.
 #[derive(Default)]
 struct Scratch {
+    /// Per vertex id: its rank in the block's N(v), `u32::MAX` outside it.
+    rank: Vec<u32>,
     nbr: Vec<u32>,
     /// Per level: the block's top simplices of that dimension, as keys.
     seeds: Vec<Vec<u64>>,
@@ -175,6 +177,9 @@ impl Complex {
         let parts = crate::parallel::ranges_by_weight(&off);
         let done = crate::parallel::map_chunks(parts.len(), |c| {
             let mut s = Scratch::default();
+            // One rank per vertex id (a chunk at a time per thread: threads × 4n bytes).
+            s.rank.try_reserve_exact(n).map_err(|_| n * 4)?;
+            s.rank.resize(n, u32::MAX);
             let mut part = Part {
                 counts: vec![0; d + 1],
                 rows: vec![Segs::default(); d + 1],
@@ -185,11 +190,14 @@ impl Complex {
             s.links = vec![Vec::new(); d + 1];
             for v in parts[c].clone() {
                 if !self.block(v as u32, &at[off[v]..off[v + 1]], want, &mut s, &mut part) {
-                    return None;
+                    return Ok(None);
                 }
             }
-            Some(part)
+            Ok(Some(part))
         });
+        let done = done
+            .into_iter()
+            .collect::<Result<Vec<Option<Part>>, usize>>()?;
         let Some(mut parts) = done.into_iter().collect::<Option<Vec<Part>>>() else {
             return Ok(None);
         };
@@ -217,32 +225,45 @@ impl Complex {
     fn block(&self, v: u32, tops: &[TopAt], want: Want, s: &mut Scratch, part: &mut Part) -> bool {
         let above =
             |&(p, j, pos): &TopAt| &self.tops[p as usize].get(j as usize)[pos as usize + 1..];
+        // N(v) once each (marked in `rank`), sorted, then each id's rank.
         s.nbr.clear();
         let mut dv = 0;
         for t in tops {
             let a = above(t);
-            s.nbr.extend_from_slice(a);
+            for &x in a {
+                if s.rank[x as usize] == u32::MAX {
+                    s.rank[x as usize] = 0;
+                    s.nbr.push(x);
+                }
+            }
             dv = dv.max(a.len());
         }
         if dv == 0 {
             return true;
         }
         s.nbr.sort_unstable();
-        s.nbr.dedup();
+        for (i, &x) in s.nbr.iter().enumerate() {
+            s.rank[x as usize] = i as u32;
+        }
         let lb = id_bits(s.nbr.len() as u32 - 1);
-        if dv as u32 * lb > 64 {
+        let fits = dv as u32 * lb <= 64;
+        if fits {
+            for q in 1..=dv {
+                s.seeds[q].clear();
+            }
+            for t in tops {
+                let a = above(t);
+                let key = a
+                    .iter()
+                    .fold(0u64, |k, &x| k << lb | u64::from(s.rank[x as usize]));
+                s.seeds[a.len()].push(key);
+            }
+        }
+        for &x in &s.nbr {
+            s.rank[x as usize] = u32::MAX;
+        }
+        if !fits {
             return false;
-        }
-        for q in 1..=dv {
-            s.seeds[q].clear();
-        }
-        for t in tops {
-            let a = above(t);
-            let nbr = &s.nbr;
-            let key = a
-                .iter()
-                .fold(0u64, |k, x| k << lb | nbr.partition_point(|y| y < x) as u64);
-            s.seeds[a.len()].push(key);
         }
         let shape = Shape { lb, dv };
         for q in (1..=dv).rev() {

@@ -760,13 +760,13 @@ impl Complex {
     }
 
     /// All simplices of the complex by dimension `0..=d`, each table in ascending lexicographic
-    /// order (so the p-simplices are numbered by their position). Faces are enumerated at their
-    /// smallest vertex: for each vertex v, every subset of the vertices above v in each top
-    /// simplex at v, packed in one word, sorted and deduplicated in a bucket small enough for
-    /// the cache; buckets come out in vertex order, so their concatenation is the sorted table.
-    /// Ranges of vertices run on [`crate::parallel::threads`] threads. O(Σ_top 2^{p+1}) time (the
-    /// closure bound the budget checks), the closure's size in memory. Ids too wide for d of
-    /// them to fit a word fall back to the level-by-level closure.
+    /// order (so the p-simplices are numbered by their position). Faces are made per block of
+    /// their smallest vertex v, level by level, as ranks among the vertices above v packed in
+    /// one word (`blocks.rs`); blocks come out in vertex order, so their concatenation is the
+    /// sorted table. Ranges of vertices run on [`crate::parallel::threads`] threads. At most
+    /// O(Σ_top 2^{p+1}) time (the closure bound the budget checks), the closure's size in
+    /// memory. Where a block's ranks do not fit a word, every subset of each top at its
+    /// smallest vertex in global ids, or (ids too wide for d of them) level by level.
     pub fn closure(&self) -> Vec<SimplexTable> {
         self.try_closure().unwrap_or_else(|bytes| {
             std::alloc::handle_alloc_error(
