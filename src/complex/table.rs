@@ -52,19 +52,12 @@ impl SimplexTable {
     }
 
     /// [`Self::from_rows`] whose memory is checked first: `Err(bytes)` when the sort's peak
-    /// (two 8-byte keys per row, four when the sort is split between threads, and the rows
-    /// out) cannot be reserved, instead of an abort.
+    /// (two 8-byte keys per row, with any number of threads, and the rows out) cannot be
+    /// reserved, instead of an abort.
     pub fn try_from_rows(arity: usize, ids: Vec<u32>) -> Result<(Self, usize), usize> {
         let rows = ids.len() / arity.max(1);
-        // A sort split between threads also copies each run (each radix sorted with its own
-        // scratch) and merges them into a second buffer.
-        let per_row = if crate::parallel::splits(rows) {
-            32
-        } else {
-            16
-        };
         headroom(
-            rows.saturating_mul(per_row)
+            rows.saturating_mul(16)
                 .saturating_add(ids.len().saturating_mul(4)),
         )?;
         Ok(Self::from_rows(arity, ids))
@@ -260,17 +253,68 @@ pub fn id_bits(max: u32) -> u32 {
 /// Sorts keys whose set bits all lie below `bits` (≤ 64): LSD radix sort by 11-bit digits,
 /// O(n·bits/11), skipping digits on which every key agrees. Small inputs use `sort_unstable`.
 /// With several threads ([`crate::parallel`]), chunks are sorted on their own threads and
-/// merged: the same result.
+/// merged: the same result, in the same memory (the keys and one scratch array as long).
 pub fn radix_sort(keys: &mut Vec<u64>, bits: u32) {
-    crate::parallel::sort_keys(keys, bits, radix_sort_serial);
+    if let Err(bytes) = try_radix_sort(keys, bits) {
+        std::alloc::handle_alloc_error(
+            std::alloc::Layout::array::<u8>(bytes).unwrap_or(std::alloc::Layout::new::<u8>()),
+        )
+    }
 }
 
-fn radix_sort_serial(keys: &mut Vec<u64>, bits: u32) {
-    if keys.len() < 4096 {
+/// [`radix_sort`] whose scratch array is reserved fallibly: `Err(bytes)` when it cannot be had
+/// (the keys are then untouched).
+pub fn try_radix_sort(keys: &mut Vec<u64>, bits: u32) -> Result<(), usize> {
+    if keys.len() < SMALL_SORT {
+        keys.sort_unstable();
+        return Ok(());
+    }
+    crate::parallel::sort_keys(keys, bits, radix_sort_run)
+}
+
+/// Below this many keys `sort_unstable` beats the radix sort's passes.
+const SMALL_SORT: usize = 4096;
+
+/// Sorts `keys` by LSD radix passes through `tmp` (as long), the result left in `keys`.
+fn radix_sort_run(keys: &mut [u64], tmp: &mut [u64], bits: u32) {
+    const DIGIT: u32 = 11;
+    const BUCKETS: usize = 1 << DIGIT;
+    if keys.len() < SMALL_SORT {
         keys.sort_unstable();
         return;
     }
-    radix_sort_by(keys, bits, |&k| k);
+    let mut count = vec![0usize; BUCKETS];
+    let (mut src, mut dst) = (keys, tmp);
+    let mut in_tmp = false;
+    let mut shift = 0;
+    while shift < bits.min(64) {
+        count.iter_mut().for_each(|c| *c = 0);
+        for &k in src.iter() {
+            count[((k >> shift) as usize) & (BUCKETS - 1)] += 1;
+        }
+        if count.contains(&src.len()) {
+            shift += DIGIT;
+            continue;
+        }
+        let mut sum = 0;
+        for c in count.iter_mut() {
+            let here = *c;
+            *c = sum;
+            sum += here;
+        }
+        for &k in src.iter() {
+            let b = ((k >> shift) as usize) & (BUCKETS - 1);
+            dst[count[b]] = k;
+            count[b] += 1;
+        }
+        std::mem::swap(&mut src, &mut dst);
+        in_tmp = !in_tmp;
+        shift += DIGIT;
+    }
+    if in_tmp {
+        // `src` is the scratch now, `dst` the keys.
+        dst.copy_from_slice(src);
+    }
 }
 
 /// Stable LSD radix sort of `items` by `key(item)`, whose set bits all lie below `bits` (≤ 64).
