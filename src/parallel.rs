@@ -144,6 +144,15 @@ fn pool(n: usize) -> Option<Arc<rayon::ThreadPool>> {
     Some(p)
 }
 
+/// Starts the pool of [`threads`] threads now if there are several and it is not running, so
+/// that a memory probe made next counts what the threads took (see
+/// [`crate::complex::table::headroom`]).
+pub(crate) fn start_pool() {
+    if threads() > 1 {
+        let _ = pool(threads());
+    }
+}
+
 /// Runs `f` in the pool of [`threads`] threads (directly when that is 1 or the pool cannot
 /// start), so rayon calls inside use that many threads. Callers reach it only after
 /// [`splits`] (or [`map_chunks`]' own check) found the pool running, which it then stays.
@@ -252,6 +261,24 @@ pub(crate) fn map_collect<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Sen
         return (0..n).map(f).collect();
     }
     install(|| (0..n).into_par_iter().map(f).collect())
+}
+
+/// [`map_collect`] into an array reserved fallibly before any `f` runs: `Err(bytes)` when it
+/// cannot be had. Rayon's collect writes in place into the reserved array, so the threads add
+/// no array of their own.
+pub(crate) fn try_map_collect<T: Send>(
+    n: usize,
+    f: impl Fn(usize) -> T + Sync + Send,
+) -> Result<Vec<T>, usize> {
+    use rayon::prelude::*;
+    let mut out = Vec::new();
+    crate::complex::table::try_reserve_exact(&mut out, n)?;
+    if splits(n) {
+        install(|| out.par_extend((0..n).into_par_iter().map(f)));
+    } else {
+        out.extend((0..n).map(f));
+    }
+    Ok(out)
 }
 
 /// `f(c)` for each of `chunks` chunks of work the caller sized, in chunk order: on

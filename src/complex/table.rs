@@ -51,6 +51,19 @@ impl SimplexTable {
         (table, dups)
     }
 
+    /// [`Self::from_rows`] sorted by [`try_sort_dedup_rows`].
+    fn from_rows_fallibly(arity: usize, ids: Vec<u32>) -> Result<(Self, usize), usize> {
+        assert!(arity > 0 && ids.len().is_multiple_of(arity));
+        let rows = ids.len() / arity;
+        let ids = try_sort_dedup_rows(arity, ids)?;
+        let table = SimplexTable {
+            arity,
+            ids: ids.into(),
+        };
+        let dups = rows - table.len();
+        Ok((table, dups))
+    }
+
     /// [`Self::from_rows`] whose memory is checked first: `Err(bytes)` when the sort's peak
     /// (two 8-byte keys per row, with any number of threads, and the rows out) cannot be
     /// reserved, instead of an abort.
@@ -60,7 +73,9 @@ impl SimplexTable {
             rows.saturating_mul(16)
                 .saturating_add(ids.len().saturating_mul(4)),
         )?;
-        Ok(Self::from_rows(arity, ids))
+        // The probe cannot see what other threads take after it: the packed sort's arrays are
+        // reserved fallibly too.
+        Self::from_rows_fallibly(arity, ids)
     }
 
     /// A copy whose memory is reserved fallibly: `Err(bytes)` when it cannot be had.
@@ -155,20 +170,36 @@ impl SimplexTable {
 /// 64 bits together are radix sorted as one packed key (linear time); other rows of up to four
 /// ids are packed into one u128 key, which sorts several times faster than comparing slices.
 pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
+    try_sort_dedup_rows(arity, ids).unwrap_or_else(|bytes| {
+        std::alloc::handle_alloc_error(
+            std::alloc::Layout::array::<u8>(bytes).unwrap_or(std::alloc::Layout::new::<u8>()),
+        )
+    })
+}
+
+/// [`sort_dedup_rows`] whose packed keys, sort scratch and rows out (the radix path, the one
+/// split between threads) are reserved fallibly: `Err(bytes)` when they cannot be had. The
+/// other paths, serial, allocate as [`sort_dedup_rows`] does (callers probe them).
+pub fn try_sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Result<Vec<u32>, usize> {
     // Rows whose ids fit side by side in 64 bits sort by a linear-time radix sort, so building
     // the closure costs the same per simplex at 10^4 and 10^6 simplices.
     let bits = id_bits(ids.iter().copied().max().unwrap_or(0));
     if arity >= 2 && arity as u32 * bits <= 64 {
-        let mut keys: Vec<u64> = crate::parallel::map_collect(ids.len() / arity, |r| {
+        let mut keys: Vec<u64> = crate::parallel::try_map_collect(ids.len() / arity, |r| {
             let row = &ids[r * arity..(r + 1) * arity];
             row.iter().fold(0u64, |acc, &v| (acc << bits) | v as u64)
-        });
+        })?;
         // The keys hold the rows now: free them before the sort's buffer (peak memory).
         drop(ids);
-        radix_sort(&mut keys, arity as u32 * bits);
+        try_radix_sort(&mut keys, arity as u32 * bits)?;
         keys.dedup();
         return unpack_keys(&keys, arity, bits);
     }
+    Ok(sort_dedup_serial(arity, ids))
+}
+
+/// [`sort_dedup_rows`] for rows too wide to pack in 64 bits (or single ids).
+fn sort_dedup_serial(arity: usize, ids: Vec<u32>) -> Vec<u32> {
     fn packed<K: Ord + Copy>(
         arity: usize,
         ids: &[u32],
@@ -224,9 +255,11 @@ pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
 
 /// Rows of `arity` ids of `bits` bits each from their packed keys (split between threads; each
 /// row's place is fixed by its key's index).
-fn unpack_keys(keys: &[u64], arity: usize, bits: u32) -> Vec<u32> {
+fn unpack_keys(keys: &[u64], arity: usize, bits: u32) -> Result<Vec<u32>, usize> {
     let mask = (1u64 << bits) - 1;
-    let mut out = vec![0u32; keys.len() * arity];
+    let mut out = Vec::new();
+    try_reserve_exact(&mut out, keys.len() * arity)?;
+    out.resize(keys.len() * arity, 0u32);
     let unpack = |(row, &k): (&mut [u32], &u64)| {
         for (i, v) in row.iter_mut().enumerate() {
             *v = ((k >> (bits * (arity - 1 - i) as u32)) & mask) as u32;
@@ -242,7 +275,7 @@ fn unpack_keys(keys: &[u64], arity: usize, bits: u32) -> Vec<u32> {
     } else {
         out.chunks_mut(arity).zip(keys.iter()).for_each(unpack);
     }
-    out
+    Ok(out)
 }
 
 /// Bits needed to write `max` (at least 1).
@@ -409,7 +442,10 @@ pub fn order_by_key(
 /// Whether `bytes` more can be allocated now: reserved and released at once (address space,
 /// not pages), so a step whose peak is known but whose buffers are made infallibly (a sort's
 /// keys and scratch) fails with `Err(bytes)` before it starts rather than aborting half way.
+/// With several threads the pool is started first (or found not to start), so that its
+/// threads' stacks, taken when the step splits, are not taken after the probe passed.
 pub fn headroom(bytes: usize) -> Result<(), usize> {
+    crate::parallel::start_pool();
     let mut probe: Vec<u8> = Vec::new();
     probe.try_reserve_exact(bytes).map_err(|_| bytes)
 }
