@@ -170,11 +170,7 @@ impl SimplexTable {
 /// 64 bits together are radix sorted as one packed key (linear time); other rows of up to four
 /// ids are packed into one u128 key, which sorts several times faster than comparing slices.
 pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
-    try_sort_dedup_rows(arity, ids).unwrap_or_else(|bytes| {
-        std::alloc::handle_alloc_error(
-            std::alloc::Layout::array::<u8>(bytes).unwrap_or(std::alloc::Layout::new::<u8>()),
-        )
-    })
+    try_sort_dedup_rows(arity, ids).unwrap_or_else(|bytes| abort_for(bytes))
 }
 
 /// [`sort_dedup_rows`] whose packed keys, sort scratch and rows out (the radix path, the one
@@ -289,9 +285,7 @@ pub fn id_bits(max: u32) -> u32 {
 /// merged: the same result, in the same memory (the keys and one scratch array as long).
 pub fn radix_sort(keys: &mut Vec<u64>, bits: u32) {
     if let Err(bytes) = try_radix_sort(keys, bits) {
-        std::alloc::handle_alloc_error(
-            std::alloc::Layout::array::<u8>(bytes).unwrap_or(std::alloc::Layout::new::<u8>()),
-        )
+        abort_for(bytes)
     }
 }
 
@@ -389,18 +383,51 @@ pub fn order_by_key(
     key_bits: u32,
     key: impl Fn(u32) -> u64 + Sync + Send,
 ) -> Option<Vec<u32>> {
-    let index_bits = id_bits(n.saturating_sub(1).try_into().ok()?);
+    try_order_by_key(n, key_bits, key).unwrap_or_else(|bytes| abort_for(bytes))
+}
+
+/// [`order_by_key`] whose packed keys, sort scratch and order (the path split between threads,
+/// taken when key and index fit one word) are reserved fallibly: `Err(bytes)` when they cannot
+/// be had. Wider keys take serial paths that allocate as [`order_by_key`] does.
+pub fn try_order_by_key(
+    n: usize,
+    key_bits: u32,
+    key: impl Fn(u32) -> u64 + Sync + Send,
+) -> Result<Option<Vec<u32>>, usize> {
+    let Ok(last) = n.saturating_sub(1).try_into() else {
+        return Ok(None);
+    };
+    let index_bits = id_bits(last);
     if key_bits > 64 {
-        return None;
+        return Ok(None);
     }
     if key_bits + index_bits <= 64 {
         // Key and index packed in one word: half the memory traffic of pairs.
         let mut keys: Vec<u64> =
-            crate::parallel::map_collect(n, |i| (key(i as u32) << index_bits) | i as u64);
-        radix_sort(&mut keys, key_bits + index_bits);
+            crate::parallel::try_map_collect(n, |i| (key(i as u32) << index_bits) | i as u64)?;
+        try_radix_sort(&mut keys, key_bits + index_bits)?;
         let mask = (1u64 << index_bits) - 1;
-        return Some(crate::parallel::map_collect(n, |i| (keys[i] & mask) as u32));
+        return Ok(Some(crate::parallel::try_map_collect(n, |i| {
+            (keys[i] & mask) as u32
+        })?));
     }
+    Ok(order_by_wide_key(n, key_bits, index_bits, key))
+}
+
+/// The `allocation failed` abort for `bytes`, for the infallible forms of fallible functions.
+fn abort_for(bytes: usize) -> ! {
+    std::alloc::handle_alloc_error(
+        std::alloc::Layout::array::<u8>(bytes).unwrap_or(std::alloc::Layout::new::<u8>()),
+    )
+}
+
+/// [`order_by_key`] when key and index do not fit one word together (serial).
+fn order_by_wide_key(
+    n: usize,
+    key_bits: u32,
+    index_bits: u32,
+    key: impl Fn(u32) -> u64,
+) -> Option<Vec<u32>> {
     let hi = key_bits + index_bits - 64;
     if hi <= 16 {
         // Key and index do not fit one word: a counting sort by the key's top `hi` bits (stable,
