@@ -591,6 +591,15 @@ mod tests {
         want.sort_unstable();
         radix_sort(&mut keys, 41);
         assert_eq!(keys, want);
+        // Three digit passes: the result ends in the scratch array and is copied back.
+        let mut odd: Vec<u64> = want
+            .iter()
+            .map(|k| k.wrapping_mul(0x9e37) % (1 << 33))
+            .collect();
+        let mut want_odd = odd.clone();
+        want_odd.sort_unstable();
+        try_radix_sort(&mut odd, 33).unwrap();
+        assert_eq!(odd, want_odd);
         // Order by key then index: equal keys keep index order.
         let order = order_by_key(10_000, 3, |i| (i % 7 % 3) as u64).unwrap();
         let mut want: Vec<u32> = (0..10_000).collect();
