@@ -26,9 +26,11 @@ pub fn set_split_threshold(n: usize) {
     SPLIT_AT.store(n.max(1), Ordering::Relaxed);
 }
 
-/// Whether a step over `n` items runs on several threads.
+/// Whether a step over `n` items runs on several threads: [`threads`] is above 1, `n` reaches
+/// the split threshold, and the pool is running (a pool that cannot start, e.g. under a memory
+/// limit, leaves the step serial: the same bytes, see the module doc).
 pub(crate) fn splits(n: usize) -> bool {
-    threads() > 1 && n >= SPLIT_AT.load(Ordering::Relaxed)
+    threads() > 1 && n >= SPLIT_AT.load(Ordering::Relaxed) && pool(threads()).is_some()
 }
 
 /// `0..n` cut into consecutive ranges for a parallel step: one range when the step runs
@@ -121,56 +123,77 @@ pub fn threads() -> usize {
     }
 }
 
-/// The pool for `n` threads, built on first use and kept (one per count asked for).
-fn pool(n: usize) -> Arc<rayon::ThreadPool> {
+/// The pool for `n` threads, built on first use and kept (one per count asked for); `None`
+/// when its threads cannot be started (no memory for their stacks, a thread limit), tried
+/// again on the next call. Callers then run serially, never on rayon's global pool.
+fn pool(n: usize) -> Option<Arc<rayon::ThreadPool>> {
     static POOLS: Mutex<Vec<(usize, Arc<rayon::ThreadPool>)>> = Mutex::new(Vec::new());
     let mut pools = POOLS.lock().unwrap_or_else(|e| e.into_inner());
     if let Some((_, p)) = pools.iter().find(|(k, _)| *k == n) {
-        return Arc::clone(p);
+        return Some(Arc::clone(p));
     }
+    // Rayon stops the threads it did start when a later one fails.
     let p = Arc::new(
         rayon::ThreadPoolBuilder::new()
             .num_threads(n)
             .thread_name(|i| format!("topoplex-{i}"))
             .build()
-            .expect("a thread pool"),
+            .ok()?,
     );
     pools.push((n, Arc::clone(&p)));
-    p
+    Some(p)
 }
 
-/// Runs `f` in the pool of [`threads`] threads (directly when that is 1), so rayon calls inside
-/// use that many threads.
+/// Starts the pool of [`threads`] threads now if there are several and it is not running, so
+/// that a memory probe made next counts what the threads took (see
+/// [`crate::complex::table::headroom`]).
+pub(crate) fn start_pool() {
+    if threads() > 1 {
+        let _ = pool(threads());
+    }
+}
+
+/// Runs `f` in the pool of [`threads`] threads (directly when that is 1 or the pool cannot
+/// start), so rayon calls inside use that many threads. Callers reach it only after
+/// [`splits`] (or [`map_chunks`]' own check) found the pool running, which it then stays.
 pub(crate) fn install<R: Send>(f: impl FnOnce() -> R + Send) -> R {
     match threads() {
         1 => f(),
-        n => pool(n).install(f),
+        n => match pool(n) {
+            Some(p) => p.install(f),
+            None => f(),
+        },
     }
 }
 
-/// Sorts `keys` (set bits below `bits`) in ascending order: with one thread or few keys, the
-/// serial radix sort; else each of [`threads`] chunks is radix sorted on its own thread and the
-/// sorted runs are merged, every merge split between threads at a co-ranked position.
-pub(crate) fn sort_keys(keys: &mut Vec<u64>, bits: u32, serial: fn(&mut Vec<u64>, u32)) {
-    let t = threads();
+/// Sorts `keys` (set bits below `bits`) in ascending order with `sort_run(run, scratch, bits)`,
+/// which sorts `run` using `scratch` (as long) and leaves the result in `run`: with one thread or
+/// few keys, once over all keys; else each of [`threads`] chunks on its own thread, then the
+/// sorted runs are merged, every merge split between threads at a co-ranked position. One
+/// scratch buffer as long as `keys` serves the runs and then the merges, so the sort's peak is
+/// the same with any number of threads; `Err(bytes)` when it cannot be reserved.
+pub(crate) fn sort_keys(
+    keys: &mut Vec<u64>,
+    bits: u32,
+    sort_run: fn(&mut [u64], &mut [u64], u32),
+) -> Result<(), usize> {
+    let mut tmp = Vec::new();
+    crate::complex::table::try_reserve_exact(&mut tmp, keys.len())?;
+    tmp.resize(keys.len(), 0u64);
     if !splits(keys.len()) {
-        serial(keys, bits);
-        return;
+        sort_run(keys, &mut tmp, bits);
+        return Ok(());
     }
+    let t = threads();
     install(|| {
         let runs = t.next_power_of_two();
         let chunk = keys.len().div_ceil(runs);
         rayon::scope(|s| {
-            for part in keys.chunks_mut(chunk) {
-                s.spawn(move |_| {
-                    let mut v = part.to_vec();
-                    serial(&mut v, bits);
-                    part.copy_from_slice(&v);
-                });
+            for (part, scratch) in keys.chunks_mut(chunk).zip(tmp.chunks_mut(chunk)) {
+                s.spawn(move |_| sort_run(part, scratch, bits));
             }
         });
         // Merge runs pairwise, doubling their width each round.
-        let mut tmp = vec![0u64; keys.len()];
         let mut width = chunk;
         while width < keys.len() {
             merge_round(keys, &mut tmp, width);
@@ -178,6 +201,7 @@ pub(crate) fn sort_keys(keys: &mut Vec<u64>, bits: u32, serial: fn(&mut Vec<u64>
             width *= 2;
         }
     });
+    Ok(())
 }
 
 /// Merges each pair of adjacent sorted runs of `width` from `src` into `dst`.
@@ -239,11 +263,29 @@ pub(crate) fn map_collect<T: Send>(n: usize, f: impl Fn(usize) -> T + Sync + Sen
     install(|| (0..n).into_par_iter().map(f).collect())
 }
 
+/// [`map_collect`] into an array reserved fallibly before any `f` runs: `Err(bytes)` when it
+/// cannot be had. Rayon's collect writes in place into the reserved array, so the threads add
+/// no array of their own.
+pub(crate) fn try_map_collect<T: Send>(
+    n: usize,
+    f: impl Fn(usize) -> T + Sync + Send,
+) -> Result<Vec<T>, usize> {
+    use rayon::prelude::*;
+    let mut out = Vec::new();
+    crate::complex::table::try_reserve_exact(&mut out, n)?;
+    if splits(n) {
+        install(|| out.par_extend((0..n).into_par_iter().map(f)));
+    } else {
+        out.extend((0..n).map(f));
+    }
+    Ok(out)
+}
+
 /// `f(c)` for each of `chunks` chunks of work the caller sized, in chunk order: on
 /// [`threads`] threads whenever there are several chunks.
 pub(crate) fn map_chunks<T: Send>(chunks: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
     use rayon::prelude::*;
-    if threads() == 1 || chunks < 2 {
+    if threads() == 1 || chunks < 2 || pool(threads()).is_none() {
         return (0..chunks).map(f).collect();
     }
     install(|| (0..chunks).into_par_iter().map(f).collect())
@@ -269,7 +311,7 @@ mod tests {
             want.sort_unstable();
             for t in [2, 3, 4] {
                 let mut got = keys.clone();
-                pool(t).install(|| {
+                pool(t).expect("a pool").install(|| {
                     let runs = t.next_power_of_two();
                     let chunk = got.len().div_ceil(runs).max(1);
                     for part in got.chunks_mut(chunk) {

@@ -110,11 +110,14 @@ fn set_address_space_limit(bytes: u64) {
 /// between arrays, which no reservation can prevent. Those aborts are told apart and allowed.
 const SMALL: usize = 256 << 10;
 
-/// The child: builds `kind` under each margin from the `start`-th, printing `MB:too-large` or
-/// `MB:built` per try on stdout (an abort cuts the list short); other errors fail.
+/// The child: builds `kind` (`name@threads`) under each margin from the `start`-th, printing
+/// `MB:too-large` or `MB:built` per try on stdout (an abort cuts the list short); other errors
+/// fail. With 2 threads the pool is started inside the limit: at the smallest margins its
+/// threads cannot start and the build runs serially.
 fn child(spec: &str) -> ! {
     let (kind, start) = spec.rsplit_once(':').unwrap();
-    topoplex::parallel::set_threads(1);
+    let (kind, threads) = kind.split_once('@').unwrap_or((kind, "1"));
+    topoplex::parallel::set_threads(threads.parse().unwrap());
     // Arrays above 64 KB are mapped and unmapped on free (glibc would otherwise raise the
     // threshold and keep freed memory), so the address space used is what is live.
     // SAFETY: mallopt only sets allocator parameters, before any large allocation.
@@ -195,7 +198,14 @@ fn every_build_under_an_address_space_limit_says_too_large() {
     }
     let me = std::env::current_exe().unwrap();
     let mut bad = Vec::new();
-    for kind in KINDS.map(StructureKind::name) {
+    // Every structure serially and with 2 threads (the parallel steps' buffers, the sort's
+    // merge buffer, the pool's threads).
+    let specs = KINDS
+        .map(StructureKind::name)
+        .into_iter()
+        .flat_map(|k| [format!("{k}@1"), format!("{k}@2")]);
+    for kind in specs {
+        let kind = kind.as_str();
         match tries(
             &me,
             "every_build_under_an_address_space_limit_says_too_large",

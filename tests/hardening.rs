@@ -394,7 +394,12 @@ fn cases(dir: &Path) -> Vec<(&'static str, &'static str, String)> {
     row(
         "10 allocation failure",
         "`save grid.off --structure ia --out grid.tpx --threads 1` (4.4 MB, 180,000 triangles) under `ulimit -v` raised 1 MB at a time from where the CLI starts",
-        limit_ladder(dir),
+        limit_ladder(dir, 1),
+    );
+    row(
+        "10 allocation failure",
+        "the same with `--threads 2` (the pool's threads, the split sort and the parallel steps inside the limit)",
+        limit_ladder(dir, 2),
     );
     rows
 }
@@ -430,7 +435,7 @@ const SMALL: usize = 256 << 10;
 /// runs, 1 MB more each time, until it succeeds. Every refusal must be exit 1 with one line
 /// saying the memory was not there; an abort is allowed only on an allocation under [`SMALL`].
 /// At least one refusal must come from reading the file. Returns the catalogue's summary.
-fn limit_ladder(dir: &Path) -> String {
+fn limit_ladder(dir: &Path, threads: u32) -> String {
     let under = |kb: u64, args: &[&str]| {
         Command::new("sh")
             .current_dir(dir)
@@ -453,7 +458,7 @@ fn limit_ladder(dir: &Path) -> String {
         "--out",
         "grid.tpx",
         "--threads",
-        "1",
+        &threads.to_string(),
     ];
     let (mut refused, mut read_refused, mut small_aborts) = (0, 0, 0);
     loop {
@@ -472,11 +477,16 @@ fn limit_ladder(dir: &Path) -> String {
                 read_refused += usize::from(err.contains("grid.off:"));
             }
             _ => {
+                // The largest of the failed sizes: with 2 threads, two failures may print at
+                // once, interleaved ("memory allocation of memory allocation of 408 bytes …").
                 let bytes: usize = err
-                    .split("memory allocation of ")
-                    .nth(1)
-                    .and_then(|r| r.split(' ').next())
-                    .and_then(|n| n.parse().ok())
+                    .split(" bytes failed")
+                    .filter_map(|head| {
+                        let digits =
+                            head.len() - head.trim_end_matches(|c: char| c.is_ascii_digit()).len();
+                        head[head.len() - digits..].parse().ok()
+                    })
+                    .max()
                     .unwrap_or(usize::MAX);
                 assert!(bytes < SMALL, "{kb} KB: {:?}: {err}", o.status);
                 small_aborts += 1;
@@ -489,7 +499,9 @@ fn limit_ladder(dir: &Path) -> String {
         refused > 0 && read_refused > 0,
         "{refused} refusals, {read_refused} reading"
     );
-    let _ = small_aborts;
+    eprintln!(
+        "ladder, {threads} threads: {refused} refusals ({read_refused} reading), {small_aborts} small aborts, fits at {kb} KB"
+    );
     "exit 1 with one line at every limit it does not fit under (`topoplex: grid.off:L: file too \
      large: cannot allocate N bytes for …` while reading, `out of memory` or `the complex is too \
      large` after), then exit 0; no abort on an allocation of 256 KB or more"

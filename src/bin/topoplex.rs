@@ -407,10 +407,19 @@ fn report(files: &[PathBuf], json: bool, csv: bool, svg: Option<&Path>) -> Resul
             bar.set_message(format!("{name}: {what}"));
             bar.inc(1);
         };
-        Dataset::measure(name, file, complex, &mut step)
+        Dataset::measure(name, file, complex, &mut step).map_err(|bytes| {
+            let name = topoplex::error::echo(name);
+            format!("{name}: out of memory: cannot reserve {bytes} bytes for the census's closure")
+        })
     };
     if files.is_empty() {
-        datasets.push(run("built-in example", None, &fixtures::builtin_example()));
+        match run("built-in example", None, &fixtures::builtin_example()) {
+            Ok(d) => datasets.push(d),
+            Err(e) => {
+                progress.finish();
+                return Err(e);
+            }
+        }
     }
     for (i, f) in files.iter().enumerate() {
         let name = f.display().to_string();
@@ -422,7 +431,13 @@ fn report(files: &[PathBuf], json: bool, csv: bool, svg: Option<&Path>) -> Resul
                 return Err(e);
             }
         };
-        datasets.push(run(&name, Some(&name), &complex));
+        match run(&name, Some(&name), &complex) {
+            Ok(d) => datasets.push(d),
+            Err(e) => {
+                progress.finish();
+                return Err(e);
+            }
+        }
         // Unsupported structures skip their timing steps: keep the bar in step per file.
         progress.bar.set_position((i as u64 + 1) * per_file);
     }

@@ -51,23 +51,31 @@ impl SimplexTable {
         (table, dups)
     }
 
+    /// [`Self::from_rows`] sorted by [`try_sort_dedup_rows`].
+    fn from_rows_fallibly(arity: usize, ids: Vec<u32>) -> Result<(Self, usize), usize> {
+        assert!(arity > 0 && ids.len().is_multiple_of(arity));
+        let rows = ids.len() / arity;
+        let ids = try_sort_dedup_rows(arity, ids)?;
+        let table = SimplexTable {
+            arity,
+            ids: ids.into(),
+        };
+        let dups = rows - table.len();
+        Ok((table, dups))
+    }
+
     /// [`Self::from_rows`] whose memory is checked first: `Err(bytes)` when the sort's peak
-    /// (two 8-byte keys per row, four when the sort is split between threads, and the rows
-    /// out) cannot be reserved, instead of an abort.
+    /// (two 8-byte keys per row, with any number of threads, and the rows out) cannot be
+    /// reserved, instead of an abort.
     pub fn try_from_rows(arity: usize, ids: Vec<u32>) -> Result<(Self, usize), usize> {
         let rows = ids.len() / arity.max(1);
-        // A sort split between threads also copies each run (each radix sorted with its own
-        // scratch) and merges them into a second buffer.
-        let per_row = if crate::parallel::splits(rows) {
-            32
-        } else {
-            16
-        };
         headroom(
-            rows.saturating_mul(per_row)
+            rows.saturating_mul(16)
                 .saturating_add(ids.len().saturating_mul(4)),
         )?;
-        Ok(Self::from_rows(arity, ids))
+        // The probe cannot see what other threads take after it: the packed sort's arrays are
+        // reserved fallibly too.
+        Self::from_rows_fallibly(arity, ids)
     }
 
     /// A copy whose memory is reserved fallibly: `Err(bytes)` when it cannot be had.
@@ -162,23 +170,35 @@ impl SimplexTable {
 /// 64 bits together are radix sorted as one packed key (linear time); other rows of up to four
 /// ids are packed into one u128 key, which sorts several times faster than comparing slices.
 pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
+    try_sort_dedup_rows(arity, ids).unwrap_or_else(|bytes| abort_for(bytes))
+}
+
+/// [`sort_dedup_rows`] whose packed keys, sort scratch and rows out (the radix path, the one
+/// split between threads) are reserved fallibly: `Err(bytes)` when they cannot be had. The
+/// other paths, serial, allocate as [`sort_dedup_rows`] does (callers probe them).
+pub fn try_sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Result<Vec<u32>, usize> {
     // Rows whose ids fit side by side in 64 bits sort by a linear-time radix sort, so building
     // the closure costs the same per simplex at 10^4 and 10^6 simplices.
     let bits = id_bits(ids.iter().copied().max().unwrap_or(0));
     if arity >= 2 && arity as u32 * bits <= 64 {
-        let mut keys: Vec<u64> = crate::parallel::map_collect(ids.len() / arity, |r| {
+        let mut keys: Vec<u64> = crate::parallel::try_map_collect(ids.len() / arity, |r| {
             let row = &ids[r * arity..(r + 1) * arity];
             row.iter().fold(0u64, |acc, &v| (acc << bits) | v as u64)
-        });
+        })?;
         // The keys hold the rows now: free them before the sort's buffer (peak memory).
         drop(ids);
-        radix_sort(&mut keys, arity as u32 * bits);
+        try_radix_sort(&mut keys, arity as u32 * bits)?;
         keys.dedup();
         return unpack_keys(&keys, arity, bits);
     }
     if arity >= 3 && (arity as u32 - 1) * bits <= 128 {
         return sort_dedup_by_first(arity, ids, bits);
     }
+    Ok(sort_dedup_serial(arity, ids))
+}
+
+/// [`sort_dedup_rows`] for rows too wide to pack in 64 bits (or single ids).
+fn sort_dedup_serial(arity: usize, ids: Vec<u32>) -> Vec<u32> {
     fn packed<K: Ord + Copy>(
         arity: usize,
         ids: &[u32],
@@ -235,34 +255,45 @@ pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
 /// Rows too wide for one word, sorted and deduplicated: a counting sort by their first id, then
 /// each bucket (the rows at one vertex: few, in cache) by the other ids packed in a u128.
 /// Buckets in ranges on several threads, concatenated in order. O(rows · arity + ids' range).
-fn sort_dedup_by_first(arity: usize, ids: Vec<u32>, bits: u32) -> Vec<u32> {
+/// Every input-sized array is reserved fallibly (`Err(bytes)`).
+fn sort_dedup_by_first(arity: usize, ids: Vec<u32>, bits: u32) -> Result<Vec<u32>, usize> {
     let rows = ids.len() / arity;
     let n = ids
         .chunks_exact(arity)
         .map(|r| r[0])
         .max()
         .map_or(0, |m| m as usize + 1);
-    let mut start = vec![0usize; n + 1];
+    let mut start: Vec<usize> = Vec::new();
+    try_reserve_exact(&mut start, n + 1)?;
+    start.resize(n + 1, 0);
     for r in ids.chunks_exact(arity) {
         start[r[0] as usize + 1] += 1;
     }
     for v in 0..n {
         start[v + 1] += start[v];
     }
-    let mut fill = start.clone();
-    let mut order = vec![0u32; rows];
-    for (i, r) in ids.chunks_exact(arity).enumerate() {
-        order[fill[r[0] as usize]] = i as u32;
-        fill[r[0] as usize] += 1;
+    let mut order: Vec<u32> = Vec::new();
+    try_reserve_exact(&mut order, rows)?;
+    order.resize(rows, 0);
+    {
+        let mut fill: Vec<usize> = Vec::new();
+        try_reserve_exact(&mut fill, n + 1)?;
+        fill.extend_from_slice(&start);
+        for (i, r) in ids.chunks_exact(arity).enumerate() {
+            order[fill[r[0] as usize]] = i as u32;
+            fill[r[0] as usize] += 1;
+        }
     }
-    drop(fill);
     let mask = (1u128 << bits) - 1;
     let parts = crate::parallel::ranges_by_weight(&start);
-    let done = crate::parallel::map_chunks(parts.len(), |c| {
+    let done = crate::parallel::map_chunks(parts.len(), |c| -> Result<Vec<u32>, usize> {
+        let range = parts[c].clone();
         let mut out = Vec::new();
+        try_reserve_exact(&mut out, (start[range.end] - start[range.start]) * arity)?;
         let mut keys: Vec<u128> = Vec::new();
-        for v in parts[c].clone() {
+        for v in range {
             keys.clear();
+            try_grow(&mut keys, start[v + 1] - start[v])?;
             keys.extend(order[start[v]..start[v + 1]].iter().map(|&i| {
                 let r = &ids[i as usize * arity + 1..(i as usize + 1) * arity];
                 r.iter().fold(0u128, |k, &x| k << bits | u128::from(x))
@@ -276,18 +307,32 @@ fn sort_dedup_by_first(arity: usize, ids: Vec<u32>, bits: u32) -> Vec<u32> {
                 }
             }
         }
-        out
+        Ok(out)
     });
     // The input is in the buckets now: free it before they are joined (peak memory).
     drop((ids, order));
-    done.concat()
+    if done.len() == 1 {
+        return done.into_iter().next().unwrap_or(Ok(Vec::new()));
+    }
+    let mut joined = Vec::new();
+    let mut total = 0usize;
+    for part in &done {
+        total += part.as_ref().map_or(0, Vec::len);
+    }
+    try_reserve_exact(&mut joined, total)?;
+    for part in done {
+        joined.extend_from_slice(&part?);
+    }
+    Ok(joined)
 }
 
 /// Rows of `arity` ids of `bits` bits each from their packed keys (split between threads; each
 /// row's place is fixed by its key's index).
-fn unpack_keys(keys: &[u64], arity: usize, bits: u32) -> Vec<u32> {
+fn unpack_keys(keys: &[u64], arity: usize, bits: u32) -> Result<Vec<u32>, usize> {
     let mask = (1u64 << bits) - 1;
-    let mut out = vec![0u32; keys.len() * arity];
+    let mut out = Vec::new();
+    try_reserve_exact(&mut out, keys.len() * arity)?;
+    out.resize(keys.len() * arity, 0u32);
     let unpack = |(row, &k): (&mut [u32], &u64)| {
         for (i, v) in row.iter_mut().enumerate() {
             *v = ((k >> (bits * (arity - 1 - i) as u32)) & mask) as u32;
@@ -303,7 +348,7 @@ fn unpack_keys(keys: &[u64], arity: usize, bits: u32) -> Vec<u32> {
     } else {
         out.chunks_mut(arity).zip(keys.iter()).for_each(unpack);
     }
-    out
+    Ok(out)
 }
 
 /// Bits needed to write `max` (at least 1).
@@ -314,17 +359,66 @@ pub fn id_bits(max: u32) -> u32 {
 /// Sorts keys whose set bits all lie below `bits` (≤ 64): LSD radix sort by 11-bit digits,
 /// O(n·bits/11), skipping digits on which every key agrees. Small inputs use `sort_unstable`.
 /// With several threads ([`crate::parallel`]), chunks are sorted on their own threads and
-/// merged: the same result.
+/// merged: the same result, in the same memory (the keys and one scratch array as long).
 pub fn radix_sort(keys: &mut Vec<u64>, bits: u32) {
-    crate::parallel::sort_keys(keys, bits, radix_sort_serial);
+    if let Err(bytes) = try_radix_sort(keys, bits) {
+        abort_for(bytes)
+    }
 }
 
-fn radix_sort_serial(keys: &mut Vec<u64>, bits: u32) {
-    if keys.len() < 4096 {
+/// [`radix_sort`] whose scratch array is reserved fallibly: `Err(bytes)` when it cannot be had
+/// (the keys are then untouched).
+pub fn try_radix_sort(keys: &mut Vec<u64>, bits: u32) -> Result<(), usize> {
+    if keys.len() < SMALL_SORT {
+        keys.sort_unstable();
+        return Ok(());
+    }
+    crate::parallel::sort_keys(keys, bits, radix_sort_run)
+}
+
+/// Below this many keys `sort_unstable` beats the radix sort's passes.
+const SMALL_SORT: usize = 4096;
+
+/// Sorts `keys` by LSD radix passes through `tmp` (as long), the result left in `keys`.
+fn radix_sort_run(keys: &mut [u64], tmp: &mut [u64], bits: u32) {
+    const DIGIT: u32 = 11;
+    const BUCKETS: usize = 1 << DIGIT;
+    if keys.len() < SMALL_SORT {
         keys.sort_unstable();
         return;
     }
-    radix_sort_by(keys, bits, |&k| k);
+    let mut count = vec![0usize; BUCKETS];
+    let (mut src, mut dst) = (keys, tmp);
+    let mut in_tmp = false;
+    let mut shift = 0;
+    while shift < bits.min(64) {
+        count.iter_mut().for_each(|c| *c = 0);
+        for &k in src.iter() {
+            count[((k >> shift) as usize) & (BUCKETS - 1)] += 1;
+        }
+        if count.contains(&src.len()) {
+            shift += DIGIT;
+            continue;
+        }
+        let mut sum = 0;
+        for c in count.iter_mut() {
+            let here = *c;
+            *c = sum;
+            sum += here;
+        }
+        for &k in src.iter() {
+            let b = ((k >> shift) as usize) & (BUCKETS - 1);
+            dst[count[b]] = k;
+            count[b] += 1;
+        }
+        std::mem::swap(&mut src, &mut dst);
+        in_tmp = !in_tmp;
+        shift += DIGIT;
+    }
+    if in_tmp {
+        // `src` is the scratch now, `dst` the keys.
+        dst.copy_from_slice(src);
+    }
 }
 
 /// Stable LSD radix sort of `items` by `key(item)`, whose set bits all lie below `bits` (≤ 64).
@@ -366,18 +460,51 @@ pub fn order_by_key(
     key_bits: u32,
     key: impl Fn(u32) -> u64 + Sync + Send,
 ) -> Option<Vec<u32>> {
-    let index_bits = id_bits(n.saturating_sub(1).try_into().ok()?);
+    try_order_by_key(n, key_bits, key).unwrap_or_else(|bytes| abort_for(bytes))
+}
+
+/// [`order_by_key`] whose packed keys, sort scratch and order (the path split between threads,
+/// taken when key and index fit one word) are reserved fallibly: `Err(bytes)` when they cannot
+/// be had. Wider keys take serial paths that allocate as [`order_by_key`] does.
+pub fn try_order_by_key(
+    n: usize,
+    key_bits: u32,
+    key: impl Fn(u32) -> u64 + Sync + Send,
+) -> Result<Option<Vec<u32>>, usize> {
+    let Ok(last) = n.saturating_sub(1).try_into() else {
+        return Ok(None);
+    };
+    let index_bits = id_bits(last);
     if key_bits > 64 {
-        return None;
+        return Ok(None);
     }
     if key_bits + index_bits <= 64 {
         // Key and index packed in one word: half the memory traffic of pairs.
         let mut keys: Vec<u64> =
-            crate::parallel::map_collect(n, |i| (key(i as u32) << index_bits) | i as u64);
-        radix_sort(&mut keys, key_bits + index_bits);
+            crate::parallel::try_map_collect(n, |i| (key(i as u32) << index_bits) | i as u64)?;
+        try_radix_sort(&mut keys, key_bits + index_bits)?;
         let mask = (1u64 << index_bits) - 1;
-        return Some(crate::parallel::map_collect(n, |i| (keys[i] & mask) as u32));
+        return Ok(Some(crate::parallel::try_map_collect(n, |i| {
+            (keys[i] & mask) as u32
+        })?));
     }
+    Ok(order_by_wide_key(n, key_bits, index_bits, key))
+}
+
+/// The `allocation failed` abort for `bytes`, for the infallible forms of fallible functions.
+fn abort_for(bytes: usize) -> ! {
+    std::alloc::handle_alloc_error(
+        std::alloc::Layout::array::<u8>(bytes).unwrap_or(std::alloc::Layout::new::<u8>()),
+    )
+}
+
+/// [`order_by_key`] when key and index do not fit one word together (serial).
+fn order_by_wide_key(
+    n: usize,
+    key_bits: u32,
+    index_bits: u32,
+    key: impl Fn(u32) -> u64,
+) -> Option<Vec<u32>> {
     let hi = key_bits + index_bits - 64;
     if hi <= 16 {
         // Key and index do not fit one word: a counting sort by the key's top `hi` bits (stable,
@@ -419,7 +546,10 @@ pub fn order_by_key(
 /// Whether `bytes` more can be allocated now: reserved and released at once (address space,
 /// not pages), so a step whose peak is known but whose buffers are made infallibly (a sort's
 /// keys and scratch) fails with `Err(bytes)` before it starts rather than aborting half way.
+/// With several threads the pool is started first (or found not to start), so that its
+/// threads' stacks, taken when the step splits, are not taken after the probe passed.
 pub fn headroom(bytes: usize) -> Result<(), usize> {
+    crate::parallel::start_pool();
     let mut probe: Vec<u8> = Vec::new();
     probe.try_reserve_exact(bytes).map_err(|_| bytes)
 }
@@ -538,6 +668,15 @@ mod tests {
         want.sort_unstable();
         radix_sort(&mut keys, 41);
         assert_eq!(keys, want);
+        // Three digit passes: the result ends in the scratch array and is copied back.
+        let mut odd: Vec<u64> = want
+            .iter()
+            .map(|k| k.wrapping_mul(0x9e37) % (1 << 33))
+            .collect();
+        let mut want_odd = odd.clone();
+        want_odd.sort_unstable();
+        try_radix_sort(&mut odd, 33).unwrap();
+        assert_eq!(odd, want_odd);
         // Order by key then index: equal keys keep index order.
         let order = order_by_key(10_000, 3, |i| (i % 7 % 3) as u64).unwrap();
         let mut want: Vec<u32> = (0..10_000).collect();

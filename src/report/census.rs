@@ -62,12 +62,23 @@ impl Census {
     /// Counts everything for `complex`: O(Σ_τ 2^{dim τ+1}) faces of top simplices grouped per
     /// vertex, plus one link test per simplex (small: the link of σ has the size of its star).
     pub fn of(complex: &Complex) -> Census {
+        Census::try_of(complex).unwrap_or_else(|bytes| {
+            std::alloc::handle_alloc_error(
+                std::alloc::Layout::array::<u8>(bytes).unwrap_or(std::alloc::Layout::new::<u8>()),
+            )
+        })
+    }
+
+    /// [`Census::of`] whose closure is computed fallibly ([`Complex::try_closure`]):
+    /// `Err(bytes)` names the reservation that could not be had, so that `report` refuses in
+    /// one line rather than aborting.
+    pub fn try_of(complex: &Complex) -> Result<Census, usize> {
         let d = complex.dimension();
         let top_simplices = complex.top_counts();
-        let simplices: Vec<usize> = complex.closure().iter().map(|t| t.len()).collect();
+        let simplices: Vec<usize> = complex.try_closure()?.iter().map(|t| t.len()).collect();
         let n = complex.vertex_count() as usize;
         let links = LinkCounts::of(complex, None);
-        Census {
+        Ok(Census {
             dimension: d,
             vertices: n,
             wire_edges: top_simplices.get(1).copied().unwrap_or(0),
@@ -84,7 +95,7 @@ impl Census {
             approximated_links: links.approximated,
             unclassified_links: links.unclassified,
             unclassified_examples: links.unclassified_examples,
-        }
+        })
     }
 }
 

@@ -94,27 +94,29 @@ pub struct Dataset {
 impl Dataset {
     /// Counts, builds and times every structure on `complex`. `progress` hears what is being
     /// done (for a progress bar); it is called between steps, never inside a timed loop.
+    /// `Err(bytes)` when the census's closure cannot be had (structures that cannot be built
+    /// are reported in their [`StructureResult`] instead).
     pub fn measure(
         name: &str,
         file: Option<&str>,
         complex: &Complex,
         progress: &mut dyn FnMut(&str),
-    ) -> Dataset {
+    ) -> Result<Dataset, usize> {
         progress("census");
-        let census = Census::of(complex);
+        let census = Census::try_of(complex)?;
         let total: usize = census.simplices.iter().sum();
         let sample = Sample::of(complex, timing::SAMPLE);
         let structures = StructureKind::ALL
             .into_iter()
             .map(|kind| timing::measure(kind, complex, &sample, total, progress))
             .collect();
-        Dataset {
+        Ok(Dataset {
             name: name.to_string(),
             file: file.map(str::to_string),
             input: complex.stats(),
             census,
             sample,
             structures,
-        }
+        })
     }
 }

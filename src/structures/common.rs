@@ -10,7 +10,7 @@ use std::thread::LocalKey;
 use rustc_hash::FxHashSet;
 
 use super::BuildError;
-use crate::complex::table::{self, headroom, order_by_key};
+use crate::complex::table::{self, headroom};
 use crate::complex::{Complex, SimplexTable, sort_dedup_rows};
 use crate::relation::StructureKind;
 
@@ -139,7 +139,7 @@ pub(crate) fn too_large(kind: StructureKind, bytes: usize, what: &str) -> BuildE
     }
 }
 
-/// [`order_by_key`] after checking that its peak (packed keys, the radix sort's scratch and
+/// [`table::order_by_key`] after checking that its peak (packed keys, the radix sort's scratch and
 /// the order: 20 bytes an element) can be had, else `TooLarge`.
 pub(crate) fn try_order(
     kind: StructureKind,
@@ -148,7 +148,8 @@ pub(crate) fn try_order(
     key: impl Fn(u32) -> u64 + Sync + Send,
 ) -> Result<Option<Vec<u32>>, BuildError> {
     headroom(n.saturating_mul(20)).map_err(|bytes| too_large(kind, bytes, "a sort"))?;
-    Ok(order_by_key(n, key_bits, key))
+    // Reserved fallibly too: the probe cannot see what other threads take after it.
+    table::try_order_by_key(n, key_bits, key).map_err(|bytes| too_large(kind, bytes, "a sort"))
 }
 
 /// `v.push(x)` whose growth (doubling) is reserved fallibly ([`table::try_push`]), for arrays
