@@ -1,6 +1,6 @@
 //! VTK XML unstructured grids (`.vtu`). Files whose data arrays are all ASCII are read by our
-//! streaming reader ([`ascii`]: quick-xml events, numbers parsed straight into the output, errors
-//! with lines); the others (base64, zlib-compressed or appended arrays) are read and written with
+//! streaming reader (`vtu/ascii.rs`: quick-xml events, numbers parsed straight into the output,
+//! errors with lines); the others (base64, zlib-compressed or appended arrays) are read and written with
 //! the `vtkio` crate, and this module maps its cells to simplices.
 //!
 //! Reading: every piece's points (3 coordinates, any numeric type, widened to `f64`) and cells.
@@ -34,8 +34,8 @@ use crate::error::caught_quietly;
 
 /// vtkio's parse peak per byte of file, probed before it starts: 5.9 measured on ASCII data
 /// arrays of short lines (it holds the file, each array's text as a string and the typed
-/// arrays grown by doubling; those files are now read by [`ascii`], but a file mixing ASCII
-/// and binary arrays still comes here), 2.9 on base64 binary ones (scripts/read-peak.sh,
+/// arrays grown by doubling; those files are now read by our ASCII reader, but a file mixing
+/// ASCII and binary arrays still comes here), 2.9 on base64 binary ones (scripts/read-peak.sh,
 /// docs/benchmarks.md "Reading").
 const VTKIO_PEAK_PER_BYTE: usize = 6;
 
@@ -138,7 +138,7 @@ fn add_piece(
     Ok(())
 }
 
-/// Parses a `.vtu` file: by [`ascii`] when its data arrays are all ASCII, else by vtkio.
+/// Parses a `.vtu` file: by our ASCII reader when its data arrays are all ASCII, else by vtkio.
 pub fn parse(bytes: &[u8]) -> Res<RawInput> {
     match ascii::parse(bytes)? {
         ascii::Taken::Yes(raw) => Ok(raw),
