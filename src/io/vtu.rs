@@ -1,7 +1,7 @@
 //! VTK XML unstructured grids (`.vtu`). Files whose data arrays are all ASCII are read by our
 //! streaming reader (`vtu/ascii.rs`: quick-xml events, numbers parsed straight into the output,
-//! errors with lines); the others (base64, zlib-compressed or appended arrays) are read and written with
-//! the `vtkio` crate, and this module maps its cells to simplices.
+//! errors with lines); the others (base64, zlib-compressed or appended arrays) are read and
+//! written with the `vtkio` crate, and this module maps its cells to simplices.
 //!
 //! Reading: every piece's points (3 coordinates, any numeric type, widened to `f64`) and cells.
 //! Pieces are concatenated, each piece's ids shifted by the points before it. Cell types 1
