@@ -5,8 +5,7 @@
 # text format (about $1 MB each, default 100) and runs examples/read_peak.rs on each under
 # /usr/bin/time -v, one process per file. Prints: file, size MB, lines, max RSS MB (time -v),
 # peak above start / size (the example's own VmHWM), and fails when a ratio reaches 5.
-# Figures are recorded in docs/bad-input.md (class 5) and docs/benchmarks.md ("Reading"). One
-# documented exception: ASCII .vtu (vtkio's parse, 5.9x).
+# Figures are recorded in docs/bad-input.md (class 5) and docs/benchmarks.md ("Reading").
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mb=${1:-100}
@@ -39,7 +38,7 @@ files = {
         + "CONNECTIVITY vtktypeint64\n" + "1 2 3\n" * (n // 2)
         + "CELL_TYPES %d\n" % (n // 2) + "5\n" * (n // 2),
 }
-# VTU with ASCII data arrays (vtkio's XML reader), one cell per line.
+# VTU with ASCII data arrays (our streaming reader, src/io/vtu/ascii.rs), one cell per line.
 c = n // 2
 files["short.vtu"] = (
     '<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">\n'
@@ -72,13 +71,8 @@ for f in "$work"/short.*; do
   IFS=$'\t' read -r _ size lines _ ratio _ <<<"$out"
   printf '%s\t%s\t%s\t%s\t%s\n' "$(basename "$f")" "$((size / 1000000))" "$lines" "$((rss / 1024))" "$ratio"
   if awk -v r="$ratio" 'BEGIN { exit !(r >= 5) }'; then
-    # ASCII VTU is parsed by vtkio (its XML model holds each array's text and the typed arrays
-    # grown by doubling): 5.9x, over the bound, documented in docs/bad-input.md (class 5) and
-    # probed before parsing so that it is refused, not an abort, when memory lacks.
-    case "$(basename "$f")" in
-      short.vtu) echo "  (over the bound: vtkio's ASCII parse, a documented exception)" ;;
-      *) fail=1 ;;
-    esac
+    echo "  (over the bound)"
+    fail=1
   fi
 done
 exit $fail

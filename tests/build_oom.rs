@@ -340,6 +340,30 @@ fn grid_files(dir: &std::path::Path, k: u32) -> Vec<(String, std::path::PathBuf)
     text += &"5\n".repeat(m);
     std::fs::write(&path, text).unwrap();
     files.push(("vtk5".into(), path));
+    // VTU with ASCII data arrays: read by our streaming reader, not vtkio.
+    let path = dir.join("grid-ascii.vtu");
+    let mut text = format!(
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n\
+         <UnstructuredGrid>\n<Piece NumberOfPoints=\"{n}\" NumberOfCells=\"{m}\">\n<Points>\n\
+         <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"
+    );
+    for v in 0..n {
+        text += &format!("{} {} 0\n", v % (k + 1), v / (k + 1));
+    }
+    text += "</DataArray>\n</Points>\n<Cells>\n\
+             <DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
+    for t in ids.chunks(3) {
+        text += &format!("{} {} {}\n", t[0], t[1], t[2]);
+    }
+    text += "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
+    for o in &offsets[1..] {
+        text += &format!("{o}\n");
+    }
+    text += "</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
+    text += &"5\n".repeat(m);
+    text += "</DataArray>\n</Cells>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+    std::fs::write(&path, text).unwrap();
+    files.push(("vtu-ascii".into(), path));
     let path = dir.join("grid.tpx");
     topoplex::store::save(&path, &complex, None).unwrap();
     files.push(("tpx".into(), path));
