@@ -581,79 +581,94 @@ impl Complex {
             let tops: usize = self.tops.iter().map(SimplexTable::len).sum();
             let starts = (self.n_vertices as usize + 1) * 4 * self.tops.len();
             table::headroom(self.input_count() * 8 + tops * 4 + starts)?;
-            self.listing_maps();
+            // Another thread may have built them meanwhile: then ours is dropped.
+            let _ = self.listing.maps.set(self.build_listing_maps()?);
         }
         Ok(())
     }
 
     fn listing_maps(&self) -> &ListingMaps {
         self.listing.maps.get_or_init(|| {
-            // Each listing is searched among the top simplices that start with its smallest
-            // vertex (a few rows, not log n_p cache misses), listings on several threads.
-            // (Small tables are searched whole.)
-            let starts: Vec<Vec<u32>> = self
-                .tops
-                .iter()
-                .map(|t| match t.len() {
-                    0..64 => Vec::new(),
-                    _ => self.first_vertex_starts(t),
-                })
-                .collect();
-            let top = crate::parallel::map_collect(self.input_count(), |i| {
-                let mut sorted = [0u32; MAX_DIMENSION + 1];
-                let given = self.input_simplex(i);
-                let sorted = &mut sorted[..given.len()];
-                sorted.copy_from_slice(given);
-                sorted.sort_unstable();
-                let p = sorted.len() - 1;
-                let (Some(t), Some(start)) = (self.tops.get(p), starts.get(p)) else {
-                    return NONE_TOP;
-                };
-                if start.is_empty() {
-                    return t.find(sorted).map_or(NONE_TOP, |j| (p as u8, j));
-                }
-                let v = sorted[0] as usize;
-                let (lo, hi) = (start[v] as usize, start[v + 1] as usize);
-                let (mut a, mut b) = (lo, hi);
-                while a < b {
-                    let mid = (a + b) / 2;
-                    if t.get(mid) < &*sorted {
-                        a = mid + 1;
-                    } else {
-                        b = mid;
-                    }
-                }
-                if a < hi && t.get(a) == &*sorted {
-                    (p as u8, a as u32)
-                } else {
-                    NONE_TOP
-                }
-            });
-            let mut first: Vec<Vec<u32>> =
-                self.tops.iter().map(|t| vec![u32::MAX; t.len()]).collect();
-            for (i, &(p, j)) in top.iter().enumerate() {
-                if p != u8::MAX {
-                    let f = &mut first[p as usize][j as usize];
-                    if *f == u32::MAX {
-                        *f = i as u32;
-                    }
-                }
-            }
-            ListingMaps { top, first }
+            self.build_listing_maps()
+                .unwrap_or_else(|bytes| table::abort_for(bytes))
         })
     }
 
+    /// The listing ↔ top maps, every array reserved fallibly (`Err(bytes)`). Each listing is
+    /// searched among the top simplices that start with its smallest vertex (a few rows, not
+    /// log n_p cache misses), listings on several threads. (Small tables are searched whole.)
+    fn build_listing_maps(&self) -> Result<ListingMaps, usize> {
+        let mut starts: Vec<Vec<u32>> = Vec::new();
+        table::try_reserve_exact(&mut starts, self.tops.len())?;
+        for t in &self.tops {
+            starts.push(match t.len() {
+                0..64 => Vec::new(),
+                _ => self.first_vertex_starts(t)?,
+            });
+        }
+        let top = crate::parallel::try_map_collect(self.input_count(), |i| {
+            let mut sorted = [0u32; MAX_DIMENSION + 1];
+            let given = self.input_simplex(i);
+            let sorted = &mut sorted[..given.len()];
+            sorted.copy_from_slice(given);
+            sorted.sort_unstable();
+            let p = sorted.len() - 1;
+            let (Some(t), Some(start)) = (self.tops.get(p), starts.get(p)) else {
+                return NONE_TOP;
+            };
+            if start.is_empty() {
+                return t.find(sorted).map_or(NONE_TOP, |j| (p as u8, j));
+            }
+            let v = sorted[0] as usize;
+            let (lo, hi) = (start[v] as usize, start[v + 1] as usize);
+            let (mut a, mut b) = (lo, hi);
+            while a < b {
+                let mid = (a + b) / 2;
+                if t.get(mid) < &*sorted {
+                    a = mid + 1;
+                } else {
+                    b = mid;
+                }
+            }
+            if a < hi && t.get(a) == &*sorted {
+                (p as u8, a as u32)
+            } else {
+                NONE_TOP
+            }
+        })?;
+        drop(starts);
+        let mut first: Vec<Vec<u32>> = Vec::new();
+        table::try_reserve_exact(&mut first, self.tops.len())?;
+        for t in &self.tops {
+            let mut f = Vec::new();
+            table::try_reserve_exact(&mut f, t.len())?;
+            f.resize(t.len(), u32::MAX);
+            first.push(f);
+        }
+        for (i, &(p, j)) in top.iter().enumerate() {
+            if p != u8::MAX {
+                let f = &mut first[p as usize][j as usize];
+                if *f == u32::MAX {
+                    *f = i as u32;
+                }
+            }
+        }
+        Ok(ListingMaps { top, first })
+    }
+
     /// `start[v]`: the first row of `table` whose first vertex is ≥ v, for v in `0..=n`.
-    fn first_vertex_starts(&self, table: &SimplexTable) -> Vec<u32> {
+    fn first_vertex_starts(&self, table: &SimplexTable) -> Result<Vec<u32>, usize> {
         let n = self.n_vertices as usize;
-        let mut start = vec![0u32; n + 1];
+        let mut start = Vec::new();
+        table::try_reserve_exact(&mut start, n + 1)?;
+        start.resize(n + 1, 0u32);
         for s in table.iter() {
             start[s[0] as usize + 1] += 1;
         }
         for v in 0..n {
             start[v + 1] += start[v];
         }
-        start
+        Ok(start)
     }
 
     /// The top simplex that listed simplex `i` is, as (dimension, index in [`Complex::tops`]);

@@ -492,7 +492,7 @@ pub fn try_order_by_key(
 }
 
 /// The `allocation failed` abort for `bytes`, for the infallible forms of fallible functions.
-fn abort_for(bytes: usize) -> ! {
+pub(crate) fn abort_for(bytes: usize) -> ! {
     std::alloc::handle_alloc_error(
         std::alloc::Layout::array::<u8>(bytes).unwrap_or(std::alloc::Layout::new::<u8>()),
     )
