@@ -8,6 +8,7 @@
 #      1%) on surf-*.off, topoplex_bench_tets on tet-*.mesh, topoplex_bench_contract (issue 14:
 #      link-checked contractions per second next to OpenMesh's collapses) on the 300×300
 #      triangle grid and topoplex_bench_gudhi on every dataset, JSON into the results directory;
+#      then peak RSS and time of whole simplify processes (simplify_rss.tsv, simplify_cli.tsv);
 #   4. `cargo bench --bench structures` (criterion, Rust API), if that bench exists, and its
 #      tables (benches/structures_table.py) into RESULTS/criterion.md; then `cargo bench --bench
 #      live` (the live complex: link-checked contractions per second, storage vs the IA) into
@@ -173,6 +174,34 @@ if [ -n "$bench_bin" ]; then
       done
     done
     cat "$results/simplify_rss.tsv"
+  fi
+  # RESULTS/simplify_cli.tsv: whole processes reading the file, simplifying to 1% and writing
+  # the result — the `topoplex simplify` CLI (which fixes glibc's mmap threshold, see
+  # src/ffi/mod.rs) next to OpenMesh's and CGAL's readers + simplifiers + writers
+  # (`--file-job`): peak RSS (KiB) and wall/user/sys seconds from /usr/bin/time.
+  if [ -x /usr/bin/time ] && [ -x "$bench_bin/topoplex_bench_simplify" ] \
+     && nice -n 10 cargo build --release --bin topoplex --manifest-path "$root/Cargo.toml" \
+          --target-dir "$target" >/dev/null 2>&1; then
+    plain=$(mktemp -d)
+    printf 'dataset\tjob\tpeak_rss_kb\twall_s\tuser_s\tsys_s\n' >"$results/simplify_cli.tsv"
+    for f in $(datasets 'surf-*.off'); do
+      g="$plain/$(basename "$f")"
+      grep -v '^#' "$f" >"$g"  # OpenMesh's OFF reader reads a comment line as an empty mesh
+      ratio=${TOPOPLEX_BENCH_SIMPLIFY_RATIO:-0.01}
+      for job in openmesh cgal_sm cli cli_preserve; do
+        case $job in
+          cli) cmd=("$target/release/topoplex" simplify "$g" --out "$plain/out.off" --ratio "$ratio") ;;
+          cli_preserve) cmd=("$target/release/topoplex" simplify "$g" --out "$plain/out.off" --ratio "$ratio"
+                             --preserve-topology) ;;
+          *) cmd=("$bench_bin/topoplex_bench_simplify" --file-job "$job" "$g" "$plain/out.off") ;;
+        esac
+        r=$(/usr/bin/time -f '%M %e %U %S' "${cmd[@]}" 2>&1 >/dev/null | tail -1)
+        printf '%s\t%s\t%s\n' "$(basename "$f")" "$job" "${r// /$'\t'}" >>"$results/simplify_cli.tsv"
+      done
+      rm -f "$g"
+    done
+    rm -rf "$plain"
+    cat "$results/simplify_cli.tsv"
   fi
   # Issue 14: link-checked contractions per second on the 300×300 triangle grid (tri-180k of
   # benches/live.rs), next to OpenMesh's is_collapse_ok + collapse.

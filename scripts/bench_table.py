@@ -5,8 +5,8 @@ of issue 9 part 3 with met / not met.
 usage: scripts/bench_table.py RESULTS_DIR [--datasets DATASETS_TSV]
 
 RESULTS_DIR holds Google Benchmark JSON files (--benchmark_format=json) named
-`<program>__<dataset file>.json`, program one of surface, tets, gudhi (scripts/bench.sh writes
-them so). Benchmark names are `<op>/<lib>` (cpp_tests/bench/bench_common.hpp): lib is a peer
+`<program>__<dataset file>.json`, program one of surface, tets, gudhi, simplify, contract
+(scripts/bench.sh writes them so; simplify and contract get tables of their own). Benchmark names are `<op>/<lib>` (cpp_tests/bench/bench_common.hpp): lib is a peer
 (openmesh, cgal_sm, cgal_t3, gudhi) or `tpx_<kind>`. Every benchmark carries the counter
 `elements` (elements retrieved per iteration; for load/build the simplices of the complex) and,
 for load/build, `heap_bytes` and `peak_heap_bytes`.

@@ -21,6 +21,12 @@
 // topoplex_bench_simplify --peers-on FILE.obj|FILE.off prints, one line per library, what it
 // does with a (possibly non-manifold) mesh: whether it loads it whole, how many triangles it
 // keeps, and what simplifying it to half does.
+//
+// topoplex_bench_simplify --file-job openmesh|cgal_sm IN.off OUT.off runs the job the way
+// `topoplex simplify IN --out OUT --ratio 0.01` does (the library's own reader, simplify to 1%
+// or TOPOPLEX_BENCH_SIMPLIFY_RATIO, its writer), once (OpenMesh reads no '#' comment line:
+// strip it first), so that a whole process's peak RSS and
+// time compare with the CLI's (docs/benchmarks.md, Simplification).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 #include <CGAL/Surface_mesh_simplification/edge_collapse.h>
@@ -264,10 +270,35 @@ int peers_on(const std::string& path) {
   return 0;
 }
 
+// --file-job: one peer's read + simplify + write, once; the faces left on stdout.
+int file_job(const std::string& lib, const std::string& in, const std::string& out) {
+  const double ratio = ratio_from_env();
+  if (lib == "openmesh") {
+    OMesh m;
+    // Its OFF reader accepts a '#' comment line as an empty mesh: refuse that.
+    if (!OpenMesh::IO::read_mesh(m, in) || m.n_faces() == 0) return std::fprintf(stderr, "openmesh: cannot read %s\n", in.c_str()), 1;
+    const size_t left = openmesh_decimate(m, size_t(std::ceil(ratio * double(m.n_faces()))));
+    if (!OpenMesh::IO::write_mesh(m, out)) return std::fprintf(stderr, "openmesh: cannot write %s\n", out.c_str()), 1;
+    std::printf("openmesh: %zu faces\n", left);
+    return 0;
+  }
+  if (lib == "cgal_sm") {
+    SMesh m;
+    if (!CGAL::IO::read_polygon_mesh(in, m)) return std::fprintf(stderr, "cgal_sm: cannot read %s\n", in.c_str()), 1;
+    const size_t left = cgal_decimate(m, size_t(std::ceil(ratio * double(m.number_of_faces()))));
+    if (!CGAL::IO::write_polygon_mesh(out, m)) return std::fprintf(stderr, "cgal_sm: cannot write %s\n", out.c_str()), 1;
+    std::printf("cgal_sm: %zu faces\n", left);
+    return 0;
+  }
+  std::fprintf(stderr, "--file-job: unknown library %s (openmesh or cgal_sm)\n", lib.c_str());
+  return 1;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc == 3 && std::strcmp(argv[1], "--peers-on") == 0) return peers_on(argv[2]);
+  if (argc == 5 && std::strcmp(argv[1], "--file-job") == 0) return file_job(argv[2], argv[3], argv[4]);
   const std::string path = init(&argc, argv, "FILE.off");
   Soup soup;
   const std::string err = read_off_soup(path, &soup);

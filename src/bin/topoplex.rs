@@ -164,6 +164,9 @@ fn parse_pq(s: &str) -> Result<(usize, usize), String> {
 static BUDGET: Mutex<Option<u64>> = Mutex::new(None);
 
 fn main() -> ExitCode {
+    // Keeps `simplify`'s peak RSS at its live heap: glibc's default dynamic mmap threshold left
+    // ~40 MB of freed memory resident on a 1.2M-triangle mesh (docs/benchmarks.md).
+    topoplex::ffi::fix_malloc_thresholds_for_executable();
     match cli(std::env::args_os()) {
         Ok(()) => ExitCode::SUCCESS,
         Err(msg) => fail(&msg),

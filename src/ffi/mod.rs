@@ -42,6 +42,25 @@ pub(crate) fn release_freed_memory() {
     }
 }
 
+/// Fixes glibc's mmap threshold at 128 KiB for the whole process (`mallopt(M_MMAP_THRESHOLD)`;
+/// a no-op on other C libraries and under Miri). For executables only: the `topoplex` CLI calls
+/// it first thing in `main`; the library never does, since a host's malloc settings are the
+/// host's. Why: glibc raises its threshold (up to 32 MB) each time a large mapped block is freed,
+/// so once `simplify` drops its input complex the next large arrays are carved from the heaps,
+/// and the worker threads' arenas keep their freed tops resident (`malloc_trim` does not trim
+/// them). A fixed threshold maps every array above 128 KiB on its own and unmaps it on free:
+/// measured on the 1.2M-triangle bunny in docs/benchmarks.md (Simplification).
+/// Setting the threshold also turns glibc's dynamic adjustment of it (and of the trim
+/// threshold) off. Call it before any thread starts.
+pub fn fix_malloc_thresholds_for_executable() {
+    #[cfg(all(target_os = "linux", target_env = "gnu", not(miri)))]
+    // SAFETY: mallopt takes two integers and changes only glibc's own tuning parameters; it is
+    // called by the executable's main before other threads exist.
+    unsafe {
+        libc::mallopt(libc::M_MMAP_THRESHOLD, 128 * 1024);
+    }
+}
+
 mod complex;
 mod decomposition;
 mod handles;

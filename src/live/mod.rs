@@ -32,11 +32,12 @@
 //! Σ_{p≥1} 2(p+1)·t_p integers (t_p live-or-tombstoned top p-simplices: their vertices, and one
 //! star entry per vertex of each) and n_0 alive bits. The stars are one arena (`stars` module):
 //! each vertex's St*(v) is a block named by three `u32`s (start, length, capacity), so bytes add
-//! 12 per vertex, and the arena's spare room: none after a build or `compact()` (each block at
-//! exactly its degree), and after edits the blocks' unused capacity plus free blocks, below 1/8
-//! of the arena plus one growth step. Coordinates are not counted (the nine structures hold
-//! none). On a tetrahedral mesh: 32 bytes per tetrahedron + ~13 per vertex; on a triangle mesh
-//! 24 bytes per triangle + ~13 per vertex.
+//! 12 per vertex, and the arena's spare room: after a build every block is at exactly its
+//! degree with 1/8 of the arena spare at its end (none after `compact()`); after edits, the
+//! blocks' unused capacity and free blocks (the arena grows only while less than 1/8 of it is
+//! free). Coordinates are not counted (the nine structures hold none). On a tetrahedral mesh:
+//! 32 bytes per tetrahedron (+ 2 spare) + ~13 per vertex; on a triangle mesh 24 bytes per
+//! triangle (+ 1.5 spare) + ~13 per vertex.
 //!
 //! # Cost of each relation
 //! k_v = |St*(v)|; σ a p-simplex, v its vertex with the smallest star; d ≤ 15 so subsets of a

@@ -19,8 +19,9 @@
 //!   of the largest class it holds (its rest is lost until the next compaction).
 //! - When the arena's allocation is full and at least 1/8 of it is free, the blocks are slid
 //!   down in address order (in place, O(arena + vertices), a bitmap of block starts as the only
-//!   scratch); otherwise the allocation grows by 1/8. So the arena stays below
-//!   8/7 · Σ_v cap(v) + one growth step, and every push stays amortised O(1).
+//!   scratch); otherwise the allocation grows by 1/8. So the arena grows only while less than
+//!   1/8 of it is free: its length stays below 8/7 of the largest Σ_v cap(v) it has held,
+//!   plus one growth step, and every push stays amortised O(1).
 //! - Removal from a star is a swap with its last entry (order is not kept); a star never
 //!   shrinks its block, except [`Stars::release`], which frees it.
 //!
