@@ -381,20 +381,32 @@ const SMALL_SORT: usize = 4096;
 
 /// Sorts `keys` by LSD radix passes through `tmp` (as long), the result left in `keys`.
 fn radix_sort_run(keys: &mut [u64], tmp: &mut [u64], bits: u32) {
-    const DIGIT: u32 = 11;
-    const BUCKETS: usize = 1 << DIGIT;
     if keys.len() < SMALL_SORT {
         keys.sort_unstable();
         return;
     }
+    radix_passes(keys, tmp, bits, |&k| k);
+}
+
+/// Stable LSD radix sort of `items` by `key(item)`, whose set bits all lie below `bits` (≤ 64).
+fn radix_sort_by<T: Copy + Default>(items: &mut [T], bits: u32, key: impl Fn(&T) -> u64) {
+    let mut tmp = vec![T::default(); items.len()];
+    radix_passes(items, &mut tmp, bits, key);
+}
+
+/// Stable LSD radix passes of 11 bits over `items` by `key`, ping-ponging through `tmp` (as
+/// long); a digit every item shares is skipped. The result is left in `items`.
+fn radix_passes<T: Copy>(items: &mut [T], tmp: &mut [T], bits: u32, key: impl Fn(&T) -> u64) {
+    const DIGIT: u32 = 11;
+    const BUCKETS: usize = 1 << DIGIT;
     let mut count = vec![0usize; BUCKETS];
-    let (mut src, mut dst) = (keys, tmp);
+    let (mut src, mut dst) = (items, tmp);
     let mut in_tmp = false;
     let mut shift = 0;
     while shift < bits.min(64) {
         count.iter_mut().for_each(|c| *c = 0);
-        for &k in src.iter() {
-            count[((k >> shift) as usize) & (BUCKETS - 1)] += 1;
+        for it in src.iter() {
+            count[((key(it) >> shift) as usize) & (BUCKETS - 1)] += 1;
         }
         if count.contains(&src.len()) {
             shift += DIGIT;
@@ -406,9 +418,9 @@ fn radix_sort_run(keys: &mut [u64], tmp: &mut [u64], bits: u32) {
             *c = sum;
             sum += here;
         }
-        for &k in src.iter() {
-            let b = ((k >> shift) as usize) & (BUCKETS - 1);
-            dst[count[b]] = k;
+        for it in src.iter() {
+            let b = ((key(it) >> shift) as usize) & (BUCKETS - 1);
+            dst[count[b]] = *it;
             count[b] += 1;
         }
         std::mem::swap(&mut src, &mut dst);
@@ -416,40 +428,8 @@ fn radix_sort_run(keys: &mut [u64], tmp: &mut [u64], bits: u32) {
         shift += DIGIT;
     }
     if in_tmp {
-        // `src` is the scratch now, `dst` the keys.
+        // `src` is the scratch now, `dst` the items.
         dst.copy_from_slice(src);
-    }
-}
-
-/// Stable LSD radix sort of `items` by `key(item)`, whose set bits all lie below `bits` (≤ 64).
-fn radix_sort_by<T: Copy + Default>(items: &mut Vec<T>, bits: u32, key: impl Fn(&T) -> u64) {
-    const DIGIT: u32 = 11;
-    const BUCKETS: usize = 1 << DIGIT;
-    let mut tmp = vec![T::default(); items.len()];
-    let mut count = vec![0usize; BUCKETS];
-    let mut shift = 0;
-    while shift < bits.min(64) {
-        count.iter_mut().for_each(|c| *c = 0);
-        for it in items.iter() {
-            count[((key(it) >> shift) as usize) & (BUCKETS - 1)] += 1;
-        }
-        if count.contains(&items.len()) {
-            shift += DIGIT;
-            continue;
-        }
-        let mut sum = 0;
-        for c in count.iter_mut() {
-            let here = *c;
-            *c = sum;
-            sum += here;
-        }
-        for it in items.iter() {
-            let b = ((key(it) >> shift) as usize) & (BUCKETS - 1);
-            tmp[count[b]] = *it;
-            count[b] += 1;
-        }
-        std::mem::swap(items, &mut tmp);
-        shift += DIGIT;
     }
 }
 
