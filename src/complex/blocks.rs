@@ -103,50 +103,23 @@ struct Scratch {
     cand128: Vec<u128>,
 }
 
-/// Ids appended in fixed-size segments: appending never moves what is held (a doubling `Vec`
-/// would copy it again at each growth; the segments are copied once, into the final table).
-#[derive(Default, Clone)]
-struct Segs {
-    full: Vec<Vec<u32>>,
-    cur: Vec<u32>,
-    len: usize,
-}
-
-impl Segs {
-    const SEG: usize = 1 << 16;
-
-    /// `len` more ids, zeroed, for the caller to write (one capacity check per block level
-    /// instead of one per row).
-    fn grow(&mut self, len: usize) -> &mut [u32] {
-        if self.cur.capacity() - self.cur.len() < len {
-            let cap = Segs::SEG.max(len);
-            let full = std::mem::replace(&mut self.cur, Vec::with_capacity(cap));
-            if !full.is_empty() {
-                self.full.push(full);
-            }
-        }
-        let at = self.cur.len();
-        self.cur.resize(at + len, 0);
-        self.len += len;
-        &mut self.cur[at..]
-    }
-
-    fn segments(&self) -> impl Iterator<Item = &[u32]> {
-        self.full
-            .iter()
-            .map(Vec::as_slice)
-            .chain(std::iter::once(self.cur.as_slice()))
-    }
+/// `len` more ids at the end of `v`, zeroed, for the caller to write (one capacity check per
+/// block level instead of one per row). Growth doubles: large buffers are reallocated by
+/// remapping their pages, not copying them, and the first part's buffers become the tables.
+fn grow(v: &mut Vec<u32>, len: usize) -> &mut [u32] {
+    let at = v.len();
+    v.resize(at + len, 0);
+    &mut v[at..]
 }
 
 /// One range of vertices' blocks, concatenated.
 #[derive(Default)]
 struct Part {
     counts: Vec<usize>,
-    rows: Vec<Segs>,
+    rows: Vec<Vec<u32>>,
     /// Per level q ≥ 1, q + 1 per row: slot 0 [`UNSET`] (q ≥ 2), others rows of the level
     /// below counted from this part's first.
-    links: Vec<Segs>,
+    links: Vec<Vec<u32>>,
 }
 
 /// A block's shape: its ranks' width and its longest subset.
@@ -182,8 +155,8 @@ impl Complex {
             s.rank.resize(n, u32::MAX);
             let mut part = Part {
                 counts: vec![0; d + 1],
-                rows: vec![Segs::default(); d + 1],
-                links: vec![Segs::default(); d + 1],
+                rows: vec![Vec::new(); d + 1],
+                links: vec![Vec::new(); d + 1],
             };
             s.seeds = vec![Vec::new(); d + 1];
             s.keys = vec![Vec::new(); d + 1];
@@ -344,12 +317,12 @@ fn emit(v: u32, shape: Shape, want: Want, s: &Scratch, part: &mut Part) {
     // The part's rows of each level before this block: where its local facet rows start.
     let mut base = [0u32; super::MAX_DIMENSION + 1];
     for (q, b) in base.iter_mut().enumerate().take(dv + 1).skip(1) {
-        *b = (part.rows[q].len / (q + 1)) as u32;
+        *b = (part.rows[q].len() / (q + 1)) as u32;
     }
     let mask = (1u64 << lb) - 1;
     for q in 1..=dv {
         let keys = &s.keys[q];
-        let rows = part.rows[q].grow(keys.len() * (q + 1));
+        let rows = grow(&mut part.rows[q], keys.len() * (q + 1));
         for (row, &k) in rows.chunks_exact_mut(q + 1).zip(keys) {
             row[0] = v;
             for e in 0..q {
@@ -359,7 +332,7 @@ fn emit(v: u32, shape: Shape, want: Want, s: &Scratch, part: &mut Part) {
         if want != Want::Links {
             continue;
         }
-        let links = part.links[q].grow(keys.len() * (q + 1));
+        let links = grow(&mut part.links[q], keys.len() * (q + 1));
         if q == 1 {
             for (row, &k) in links.chunks_exact_mut(2).zip(keys) {
                 row.copy_from_slice(&[s.nbr[k as usize], v]);
@@ -378,18 +351,15 @@ fn emit(v: u32, shape: Shape, want: Want, s: &Scratch, part: &mut Part) {
     }
 }
 
-/// Step 3: each level's rows, parts in order (so in vertex order: sorted tables).
+/// Step 3: each level's rows, parts in order (so in vertex order: sorted tables). The first
+/// part's buffer is extended in place: with one part (one thread) nothing is copied.
 fn concat_rows(parts: &mut [Part], n: u32, d: usize) -> Result<Vec<SimplexTable>, usize> {
     let mut tables = vec![SimplexTable::try_vertices(n)?];
     for q in 1..=d {
-        let len: usize = parts.iter().map(|p| p.rows[q].len).sum();
-        let mut ids = Vec::new();
-        ids.try_reserve_exact(len).map_err(|_| len * 4)?;
-        for p in parts.iter_mut() {
-            for seg in std::mem::take(&mut p.rows[q]).segments() {
-                ids.extend_from_slice(seg);
-            }
-        }
+        let ids = append_parts(
+            parts.iter_mut().map(|p| std::mem::take(&mut p.rows[q])),
+            |_| 0,
+        )?;
         tables.push(SimplexTable::from_sorted_unique(q + 1, ids));
     }
     Ok(tables)
@@ -399,30 +369,48 @@ fn concat_rows(parts: &mut [Part], n: u32, d: usize) -> Result<Vec<SimplexTable>
 fn concat_links(parts: &mut [Part], d: usize) -> Result<Vec<Vec<u32>>, usize> {
     let mut boundary = vec![Vec::new()];
     for q in 1..=d {
-        let len: usize = parts.iter().map(|p| p.links[q].len).sum();
-        let mut links = Vec::new();
-        links.try_reserve_exact(len).map_err(|_| len * 4)?;
-        // Rows of level q − 1 in the parts before this one.
-        let mut shift = 0u32;
-        for p in parts.iter_mut() {
-            let mine = std::mem::take(&mut p.links[q]);
-            for seg in mine.segments() {
-                if q == 1 {
-                    links.extend_from_slice(seg);
-                } else {
-                    links.extend(
-                        seg.iter()
-                            .map(|&i| if i == UNSET { i } else { i.wrapping_add(shift) }),
-                    );
+        // Rows of level q − 1 in the parts before each part (edges link to vertex ids).
+        let shifts: Vec<u32> = parts
+            .iter()
+            .scan(0u32, |before, p| {
+                let s = *before;
+                if q > 1 {
+                    *before = before.wrapping_add(p.counts[q - 1] as u32);
                 }
-            }
-            if q > 1 {
-                shift = shift.wrapping_add(p.counts[q - 1] as u32);
-            }
-        }
+                Some(s)
+            })
+            .collect();
+        let links = append_parts(
+            parts.iter_mut().map(|p| std::mem::take(&mut p.links[q])),
+            |k| shifts[k],
+        )?;
         boundary.push(links);
     }
     Ok(boundary)
+}
+
+/// The parts' buffers one after the other in the first one's, part k's ids shifted by
+/// `shift(k)` ([`UNSET`] kept); the result holds no spare capacity.
+fn append_parts(
+    mut bufs: impl Iterator<Item = Vec<u32>>,
+    shift: impl Fn(usize) -> u32,
+) -> Result<Vec<u32>, usize> {
+    let mut all = bufs.next().unwrap_or_default();
+    for (k, b) in bufs.enumerate() {
+        let s = shift(k + 1);
+        all.try_reserve_exact(b.len())
+            .map_err(|_| (all.len() + b.len()) * 4)?;
+        if s == 0 {
+            all.extend_from_slice(&b);
+        } else {
+            all.extend(
+                b.iter()
+                    .map(|&i| if i == UNSET { i } else { i.wrapping_add(s) }),
+            );
+        }
+    }
+    all.shrink_to_fit();
+    Ok(all)
 }
 
 /// Step 4: slot 0 of every q-simplex (q ≥ 2), the facet without its first vertex, searched

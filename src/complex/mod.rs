@@ -596,46 +596,53 @@ impl Complex {
 
     /// The listing ↔ top maps, every array reserved fallibly (`Err(bytes)`). Each listing is
     /// searched among the top simplices that start with its smallest vertex (a few rows, not
-    /// log n_p cache misses), listings on several threads. (Small tables are searched whole.)
+    /// log n_p cache misses), listings on several threads. (Tables small next to the vertex
+    /// count are searched whole.)
     fn build_listing_maps(&self) -> Result<ListingMaps, usize> {
         let mut starts: Vec<Vec<u32>> = Vec::new();
         table::try_reserve_exact(&mut starts, self.tops.len())?;
         for t in &self.tops {
-            starts.push(match t.len() {
-                0..64 => Vec::new(),
-                _ => self.first_vertex_starts(t)?,
+            // Starts cost O(n): worth it for tables of at least n/4 rows (a Rips complex's few
+            // lower-dimensional tops over a million vertices are searched whole).
+            starts.push(if t.len() < 64 || t.len() < self.n_vertices as usize / 4 {
+                Vec::new()
+            } else {
+                self.first_vertex_starts(t)?
             });
         }
-        let top = crate::parallel::try_map_collect(self.input_count(), |i| {
-            let mut sorted = [0u32; MAX_DIMENSION + 1];
-            let given = self.input_simplex(i);
-            let sorted = &mut sorted[..given.len()];
-            sorted.copy_from_slice(given);
-            sorted.sort_unstable();
-            let p = sorted.len() - 1;
-            let (Some(t), Some(start)) = (self.tops.get(p), starts.get(p)) else {
-                return NONE_TOP;
-            };
-            if start.is_empty() {
-                return t.find(sorted).map_or(NONE_TOP, |j| (p as u8, j));
-            }
-            let v = sorted[0] as usize;
-            let (lo, hi) = (start[v] as usize, start[v + 1] as usize);
-            let (mut a, mut b) = (lo, hi);
-            while a < b {
-                let mid = (a + b) / 2;
-                if t.get(mid) < &*sorted {
-                    a = mid + 1;
-                } else {
-                    b = mid;
+        let mut top = Vec::new();
+        table::try_reserve_exact(&mut top, self.input_count())?;
+        top.resize(self.input_count(), NONE_TOP);
+        // Listings in runs of `RUN` on several threads; inside a run each dimension's last
+        // answer is tried first (then the row after it): a listing written in lexicographic
+        // order, as Rips and alpha makers write it, then costs one compare, not a search.
+        const RUN: usize = 4096;
+        crate::parallel::fill_rows(&mut top, RUN, |c, run| {
+            let mut last = [usize::MAX; MAX_DIMENSION + 1];
+            for (k, out) in run.iter_mut().enumerate() {
+                let mut sorted = [0u32; MAX_DIMENSION + 1];
+                let given = self.input_simplex(c * RUN + k);
+                let sorted = &mut sorted[..given.len()];
+                sorted.copy_from_slice(given);
+                sorted.sort_unstable();
+                let p = sorted.len() - 1;
+                let (Some(t), Some(start)) = (self.tops.get(p), starts.get(p)) else {
+                    continue;
+                };
+                let near = [last[p].wrapping_add(1), last[p]];
+                let found = match near
+                    .into_iter()
+                    .find(|&j| j < t.len() && t.get(j) == &*sorted)
+                {
+                    Some(j) => Some(j),
+                    None => find_top(t, start, sorted),
+                };
+                if let Some(j) = found {
+                    last[p] = j;
+                    *out = (p as u8, j as u32);
                 }
             }
-            if a < hi && t.get(a) == &*sorted {
-                (p as u8, a as u32)
-            } else {
-                NONE_TOP
-            }
-        })?;
+        });
         drop(starts);
         let mut first: Vec<Vec<u32>> = Vec::new();
         table::try_reserve_exact(&mut first, self.tops.len())?;
@@ -1098,6 +1105,26 @@ fn closure_count(n: u32, tables: &[SimplexTable], limit: u64) -> Option<u64> {
     Some(count)
 }
 
+/// Row of `sorted` in top table `t`: among the rows that start with its first vertex when
+/// `start` holds the first-vertex starts, else in the whole table.
+fn find_top(t: &SimplexTable, start: &[u32], sorted: &[u32]) -> Option<usize> {
+    if start.is_empty() {
+        return t.find(sorted).map(|j| j as usize);
+    }
+    let v = sorted[0] as usize;
+    let (lo, hi) = (start[v] as usize, start[v + 1] as usize);
+    let (mut a, mut b) = (lo, hi);
+    while a < b {
+        let mid = (a + b) / 2;
+        if t.get(mid) < sorted {
+            a = mid + 1;
+        } else {
+            b = mid;
+        }
+    }
+    (a < hi && t.get(a) == sorted).then_some(a)
+}
+
 /// Drops listed simplices that are faces of higher-dimensional listed ones, and adds the vertices
 /// no simplex uses as top 0-simplices. A p-simplex is tested against the listed simplices of
 /// higher dimension at its vertex with the fewest listed simplices of dimension ≥ 2: O(Σ_σ
@@ -1248,5 +1275,49 @@ mod tests {
         assert_eq!(Ok(levels.clone()), c.closure_by_levels());
         assert_eq!(levels[1].len(), 10 + 1);
         assert_eq!(levels[4].get(0), &top);
+    }
+
+    /// Listings of every kind past one run of the map search: sorted runs of tops, shuffled
+    /// windings, repeats, absorbed faces, over few vertices (starts) and many (whole search).
+    #[test]
+    fn listing_maps_name_the_top_each_listing_became() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut rnd = move |m: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % m
+        };
+        for n in [40u32, 200_000] {
+            let mut listed: Vec<Vec<u32>> = (0..9000)
+                .map(|_| {
+                    let mut s: Vec<u32> = (0..1 + rnd(5)).map(|_| rnd(n as u64) as u32).collect();
+                    s.sort_unstable();
+                    s.dedup();
+                    s
+                })
+                .collect();
+            listed.sort();
+            for i in 0..listed.len() {
+                match rnd(6) {
+                    0 => listed[i].reverse(),
+                    1 => listed.push(listed[i].clone()),
+                    _ => {}
+                }
+            }
+            let refs: Vec<&[u32]> = listed.iter().map(Vec::as_slice).collect();
+            let c = Complex::from_simplices(n, &refs).unwrap();
+            let mut first_seen = std::collections::HashMap::new();
+            for (i, given) in listed.iter().enumerate() {
+                let mut s = given.clone();
+                s.sort_unstable();
+                let want = c.tops(s.len() - 1).find(&s).map(|j| (s.len() - 1, j));
+                assert_eq!(c.input_top(i), want, "listing {i}: {given:?}");
+                let first = *first_seen.entry(s).or_insert(i);
+                if let Some((p, j)) = want {
+                    assert_eq!(c.top_listing(p, j), Some(first));
+                }
+            }
+        }
     }
 }
