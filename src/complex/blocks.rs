@@ -101,6 +101,32 @@ struct Scratch {
     links: Vec<Vec<u32>>,
     cand64: Vec<u64>,
     cand128: Vec<u128>,
+    /// [`level_hashed`]'s open-addressed set: keys ([`EMPTY`] free) and their insertion ids.
+    slot_keys: Vec<u64>,
+    slot_ids: Vec<u32>,
+    /// [`level_hashed`]'s distinct keys with their insertion ids, then each id's sorted row.
+    distinct: Vec<(u64, u32)>,
+    row_of: Vec<u32>,
+}
+
+/// A free slot of [`level_hashed`]'s set: no key is all ones (a key's ranks are distinct, so
+/// a key of one rank has at most 32 bits and a longer key two different ranks).
+const EMPTY: u64 = u64::MAX;
+
+/// Levels with at least this many candidates deduplicate by hashing (fewer to sort).
+const HASH_FROM: usize = 96;
+
+/// [`HASH_FROM`], which tests move to run every level through one path or the other (both give
+/// the same keys and links, so other tests running meanwhile are not disturbed).
+#[cfg(test)]
+static HASH_FROM_TEST: std::sync::atomic::AtomicUsize =
+    std::sync::atomic::AtomicUsize::new(HASH_FROM);
+
+fn hash_from() -> usize {
+    #[cfg(test)]
+    return HASH_FROM_TEST.load(std::sync::atomic::Ordering::Relaxed);
+    #[cfg(not(test))]
+    HASH_FROM
 }
 
 /// `len` more ids at the end of `v`, zeroed, for the caller to write (one capacity check per
@@ -249,7 +275,10 @@ impl Complex {
             } else {
                 0
             };
-            if q as u32 * lb + ob <= 64 {
+            let candidates = s.seeds[q].len() + from_above;
+            if candidates >= hash_from() {
+                level_hashed(q, shape, want, s);
+            } else if q as u32 * lb + ob <= 64 {
                 level::<u64>(q, shape, ob, sentinel, want, s);
             } else {
                 level::<u128>(q, shape, ob, sentinel, want, s);
@@ -303,6 +332,78 @@ fn level<W: Word>(q: usize, shape: Shape, ob: u32, sentinel: u32, want: Want, s:
         }
     }
     *W::buffer(s) = cand;
+}
+
+/// [`level`] for a level with many candidates: each candidate is put in a hash set (its slot's
+/// link takes the key's insertion id), then only the distinct keys are sorted and the links
+/// renamed from insertion ids to rows. The same keys and links as [`level`].
+fn level_hashed(q: usize, shape: Shape, want: Want, s: &mut Scratch) {
+    let Shape { lb, dv } = shape;
+    let from_above = if q < dv { s.keys[q + 1].len() } else { 0 };
+    let links = want == Want::Links && q < dv;
+    let m = s.seeds[q].len() + from_above * (q + 1);
+    let bits = (2 * m).next_power_of_two().trailing_zeros();
+    let mask = (1usize << bits) - 1;
+    s.slot_keys.clear();
+    s.slot_keys.resize(1 << bits, EMPTY);
+    s.slot_ids.resize(1 << bits, 0);
+    s.distinct.clear();
+    // The key's insertion id, inserting it when new.
+    let insert = |key: u64, s_keys: &mut Vec<u64>, ids: &mut Vec<u32>, d: &mut Vec<(u64, u32)>| {
+        let mut h = (key.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> (64 - bits)) as usize;
+        loop {
+            if s_keys[h] == key {
+                return ids[h];
+            }
+            if s_keys[h] == EMPTY {
+                let id = d.len() as u32;
+                s_keys[h] = key;
+                ids[h] = id;
+                d.push((key, id));
+                return id;
+            }
+            h = (h + 1) & mask;
+        }
+    };
+    for i in 0..s.seeds[q].len() {
+        let k = s.seeds[q][i];
+        insert(k, &mut s.slot_keys, &mut s.slot_ids, &mut s.distinct);
+    }
+    if links {
+        s.links[q + 1].clear();
+        s.links[q + 1].resize(from_above * (q + 2), 0);
+    }
+    if q < dv {
+        let len = q + 1;
+        for i in 0..from_above {
+            let k = s.keys[q + 1][i];
+            for e in 0..len {
+                let low = lb * (len - 1 - e) as u32;
+                let hi = k.checked_shr(lb * (len - e) as u32).unwrap_or(0);
+                let facet = hi << low | (k & ((1u64 << low) - 1));
+                let id = insert(facet, &mut s.slot_keys, &mut s.slot_ids, &mut s.distinct);
+                if links {
+                    s.links[q + 1][i * (len + 1) + e + 1] = id;
+                }
+            }
+        }
+    }
+    s.distinct.sort_unstable();
+    let keys = &mut s.keys[q];
+    keys.clear();
+    keys.extend(s.distinct.iter().map(|&(k, _)| k));
+    if links {
+        s.row_of.clear();
+        s.row_of.resize(s.distinct.len(), 0);
+        for (row, &(_, id)) in s.distinct.iter().enumerate() {
+            s.row_of[id as usize] = row as u32;
+        }
+        for link in s.links[q + 1].chunks_exact_mut(q + 2) {
+            for l in &mut link[1..] {
+                *l = s.row_of[*l as usize];
+            }
+        }
+    }
 }
 
 /// Appends a block's faces (and links) to its part (step 3's block-local half).
@@ -506,7 +607,16 @@ mod tests {
 
     #[test]
     fn blocks_give_the_closure_and_the_facet_links_of_every_simplex() {
-        for c in random_complexes() {
+        use std::sync::atomic::Ordering::Relaxed;
+        // Every level sorted, then every level hashed, then the threshold the build uses.
+        for (from, complexes) in [(usize::MAX, 100), (0, 100), (HASH_FROM, 300)] {
+            HASH_FROM_TEST.store(from, Relaxed);
+            blocks_match_levels(complexes);
+        }
+    }
+
+    fn blocks_match_levels(complexes: usize) {
+        for c in random_complexes().take(complexes) {
             let levels = c.closure_by_levels().unwrap();
             if c.dimension() == 0 {
                 continue;
