@@ -118,6 +118,18 @@ const HASH_FROM: usize = 96;
 
 /// [`HASH_FROM`], which tests move to run every level through one path or the other (both give
 /// the same keys and links, so other tests running meanwhile are not disturbed).
+/// The first position at or after `lo` in sorted `keys` whose key is not below `key`, found by
+/// doubling steps from `lo` and then a binary search in the last step.
+fn gallop(keys: &[u64], lo: usize, key: u64) -> usize {
+    let (mut lo, mut step) = (lo, 1);
+    while lo + step <= keys.len() && keys[lo + step - 1] < key {
+        lo += step;
+        step *= 2;
+    }
+    let hi = (lo + step).min(keys.len());
+    lo + keys[lo..hi].partition_point(|&x| x < key)
+}
+
 #[cfg(test)]
 static HASH_FROM_TEST: std::sync::atomic::AtomicUsize =
     std::sync::atomic::AtomicUsize::new(HASH_FROM);
@@ -539,32 +551,44 @@ fn facets_without_first(tables: &[SimplexTable], q: usize, links: &mut [u32]) ->
     } else {
         None
     };
-    crate::parallel::fill_rows(links, q + 1, |i, row| {
-        let f = &tables[q].get(i)[1..];
-        let (lo, hi) = (
-            start[f[0] as usize] as usize,
-            start[f[0] as usize + 1] as usize,
-        );
-        let k = match &rest {
-            Some(keys) => {
-                let key = pack(&f[1..]);
-                lo + keys[lo..hi].partition_point(|&x| x < key)
+    // Runs of rows on several threads. Rows that share their first two vertices with the row
+    // before have facets after its facet (same first vertex, larger rest): the search gallops
+    // from there, a step or two in a Rips block instead of a search over the whole start.
+    const RUN: usize = 1024;
+    let w = q + 1;
+    crate::parallel::fill_rows(links, w * RUN, |c, run| {
+        let mut prev: Option<(&[u32], usize)> = None;
+        for (k, row) in run.chunks_exact_mut(w).enumerate() {
+            let sigma = tables[q].get(c * RUN + k);
+            let f = &sigma[1..];
+            let (mut lo, hi) = (
+                start[f[0] as usize] as usize,
+                start[f[0] as usize + 1] as usize,
+            );
+            if let Some((p, at)) = prev
+                && p[..2] == sigma[..2]
+            {
+                lo = at + 1;
             }
-            None => {
-                let (mut lo, mut hi) = (lo, hi);
-                while lo < hi {
-                    let mid = (lo + hi) / 2;
-                    if below.get(mid) < f {
-                        lo = mid + 1;
-                    } else {
-                        hi = mid;
+            let at = match &rest {
+                Some(keys) => gallop(&keys[..hi], lo, pack(&f[1..])),
+                None => {
+                    let (mut lo, mut hi) = (lo, hi);
+                    while lo < hi {
+                        let mid = (lo + hi) / 2;
+                        if below.get(mid) < f {
+                            lo = mid + 1;
+                        } else {
+                            hi = mid;
+                        }
                     }
+                    lo
                 }
-                lo
-            }
-        };
-        debug_assert_eq!(below.get(k), f, "the closure holds every facet");
-        row[0] = k as u32;
+            };
+            debug_assert_eq!(below.get(at), f, "the closure holds every facet");
+            row[0] = at as u32;
+            prev = Some((sigma, at));
+        }
     });
     Ok(())
 }
