@@ -9,14 +9,18 @@
 //!    needs more than 64 bits).
 //! 2. Level by level downwards: the block's q-faces are its top simplices of dimension q and
 //!    the facets that keep v of its (q+1)-faces; the candidates carry the slot they came from,
-//!    so one sort both deduplicates the level and gives every slot its facet (the facet that
-//!    drops vertex i ≥ 1 of a face lies in the same block).
-//! 3. Blocks are concatenated in vertex order (each level's table is then sorted); local facet
-//!    indices are shifted by the rows of the blocks before.
-//! 4. Slot 0 (the facet without v) lies in the block of the face's second vertex: one binary
-//!    search per simplex among that block's rows, packed as words past their first id.
+//!    so deduplicating a level also gives every slot but slot 0 its facet (the facet that drops
+//!    vertex i ≥ 1 of a face lies in the same block). Small levels sort the candidates; levels
+//!    of [`HASH_FROM`] candidates or more put them in a hash set and sort only the distinct
+//!    faces (a Rips level has several candidates per face).
+//! 3. Blocks are appended in vertex order to their range's buffers, the first range's buffers
+//!    becoming the tables (nothing copied with one thread); local facet indices are shifted by
+//!    the rows of the blocks before.
+//! 4. Slot 0 (the facet without v) lies in the block of the face's second vertex: a search
+//!    among that block's rows, packed as words past their first id, starting after the facet
+//!    of the row before when both rows share their first two vertices (doubling steps).
 //!
-//! Work: Σ over the blocks' faces of (q+1) candidates, sorted in cache-sized blocks, plus one
+//! Work: Σ over the blocks' faces of (q+1) candidates, hashed or sorted in cache-sized blocks, plus one
 //! search per simplex; memory: the closure's tables and links, and each block's scratch.
 
 use super::table::{headroom, id_bits};
