@@ -20,8 +20,9 @@
 //!    among that block's rows, packed as words past their first id, starting after the facet
 //!    of the row before when both rows share their first two vertices (doubling steps).
 //!
-//! Work: Σ over the blocks' faces of (q+1) candidates, hashed or sorted in cache-sized blocks, plus one
-//! search per simplex; memory: the closure's tables and links, and each block's scratch.
+//! Work: Σ over the blocks' faces of (q+1) candidates, hashed or sorted in cache-sized blocks,
+//! plus one search per simplex; memory: the closure's tables and links, and each block's
+//! scratch.
 
 use super::table::{headroom, id_bits};
 use super::{Complex, SimplexTable, TopAt};
