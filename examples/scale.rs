@@ -5,7 +5,7 @@
 //! - `scale loop L OUT.off`: an icosahedron Loop-subdivided L times (20·4^L triangles) as OFF;
 //! - `scale rips N DIM OUT.simplices`: the Rips complex of N random points in the unit square
 //!   at the radius giving ~12 neighbours, up to dimension DIM, as `.simplices`;
-//! - `scale phases FILE KIND THREADS TPX`: parse, build (THREADS threads), save to TPX, open,
+//! - `scale phases FILE KIND THREADS TPX`: parse, normalise and build (THREADS threads), save to TPX, open,
 //!   vertex-star walks on the opened structure; one `phase seconds peak_rss_mib` line each.
 //! - `scale soup FILE THREADS KIND,..`: what the side-by-side `build` op times (a complex from
 //!   the listing's arrays, then the structure), best of 5, with the complex's share;
@@ -216,14 +216,16 @@ fn phases(file: &Path, kind: StructureKind, threads: usize, tpx: &Path) {
     let line = |what: &str, t: Instant| {
         println!("{what} {:.3} {:.0}", t.elapsed().as_secs_f64(), peak_mib());
     };
+    // Reading and normalising run on THREADS threads too, as in `topoplex --threads`.
+    topoplex::parallel::set_threads(threads);
     let t = Instant::now();
     let raw = topoplex::io::read_path(file).expect("read");
     line("parse", t);
     let t = Instant::now();
-    let complex = topoplex::Complex::from_raw(&raw, Some(file)).expect("complex");
-    drop(raw);
+    // What `Complex::from_path` does after reading: the complex keeps the parsed arrays.
+    let complex =
+        topoplex::Complex::from_input(raw, Some(file), Default::default()).expect("complex");
     line("complex", t);
-    topoplex::parallel::set_threads(threads);
     let t = Instant::now();
     let s = topoplex::structures::build(kind, &complex).expect("build");
     line("build", t);

@@ -237,14 +237,68 @@ pub struct Complex {
 
 /// The input simplices as given, and (computed on first use) which top simplex each became.
 ///
-/// Cost: one copy of the input ids and an offset per listed simplex (held for the complex's
-/// life); the listing ↔ top maps cost 12 bytes per listed simplex more, built on first use in
-/// O(Σ (p+1) log n_p) by binary search in the top tables.
+/// Cost: one copy of the input ids (held for the complex's life), plus an offset (8 bytes) per
+/// listed simplex unless all have the same number of vertices (a mesh of one kind of cell:
+/// then the offsets are a formula); the listing ↔ top maps cost 12 bytes per listed simplex
+/// more, built on first use in O(Σ (p+1) log n_p) by binary search in the top tables.
 #[derive(Debug, Clone, Default)]
 struct Listing {
     ids: Vec<u32>,
-    offsets: Vec<usize>,
+    offsets: Offsets,
     maps: std::sync::OnceLock<ListingMaps>,
+}
+
+/// Where each listed simplex's ids start in [`Listing::ids`].
+#[derive(Debug, Clone)]
+enum Offsets {
+    /// `count` simplices of `arity` ids each: simplex `i` starts at `i * arity`.
+    Uniform { arity: usize, count: usize },
+    /// Simplex `i` is `ids[o[i]..o[i + 1]]` (`o` starts with 0).
+    Varied(Vec<usize>),
+}
+
+impl Default for Offsets {
+    fn default() -> Self {
+        Offsets::Uniform { arity: 0, count: 0 }
+    }
+}
+
+impl Offsets {
+    /// The offsets of a reader or caller (`o[0] == 0`, ascending), dropped for the formula when
+    /// every simplex has the same length.
+    fn from_vec(o: Vec<usize>) -> Offsets {
+        let count = o.len().saturating_sub(1);
+        let arity = o.get(1).copied().unwrap_or(0);
+        let uniform = o.first().is_none_or(|&a| a == 0)
+            && arity > 0
+            && crate::parallel::map_ranges(o.len(), |r| {
+                o[r.clone()].iter().zip(r).all(|(&x, i)| x == i * arity)
+            })
+            .into_iter()
+            .all(|ok| ok);
+        if uniform || count == 0 {
+            Offsets::Uniform { arity, count }
+        } else {
+            Offsets::Varied(o)
+        }
+    }
+
+    /// Number of simplices.
+    fn count(&self) -> usize {
+        match self {
+            Offsets::Uniform { count, .. } => *count,
+            Offsets::Varied(o) => o.len().saturating_sub(1),
+        }
+    }
+
+    /// Where simplex `i` starts (`i == count()`: the ids' end).
+    #[inline]
+    fn at(&self, i: usize) -> usize {
+        match self {
+            Offsets::Uniform { arity, .. } => i * arity,
+            Offsets::Varied(o) => o[i],
+        }
+    }
 }
 
 #[derive(Debug, Clone, Default)]
@@ -270,14 +324,24 @@ impl Complex {
 
     /// Reads and normalises a file (format by extension) under `budget`.
     pub fn from_path_with(path: &Path, budget: Budget) -> Result<Complex, ComplexError> {
-        let mut raw = crate::io::read_path(path)?;
-        // The reader's simplex list becomes the listing and its coordinates the complex's,
-        // moved rather than copied: this keeps reading's peak memory down (docs/bad-input.md,
-        // "Bounded resources").
+        let raw = crate::io::read_path(path)?;
+        Complex::from_input(raw, Some(path), budget)
+    }
+
+    /// Normalises reader output that the complex may keep under `budget` (`file` names the
+    /// source in errors): the simplex list becomes the listing and the coordinates the
+    /// complex's, moved rather than copied, which keeps the peak memory of reading and building
+    /// down (docs/bad-input.md, "Bounded resources"); the offsets are dropped when every
+    /// simplex has the same length, and the line numbers once normalised.
+    pub fn from_input(
+        mut raw: RawInput,
+        file: Option<&Path>,
+        budget: Budget,
+    ) -> Result<Complex, ComplexError> {
         let coords = raw.coords.take();
-        let mut c = Complex::normalise_raw(&raw, Some(path), coords, budget, false)?;
+        let mut c = Complex::normalise_raw(&raw, file, coords, budget, false)?;
         c.listing.ids = raw.ids;
-        c.listing.offsets = raw.offsets;
+        c.listing.offsets = Offsets::from_vec(raw.offsets);
         Ok(c)
     }
 
@@ -526,19 +590,34 @@ impl Complex {
             absorb_faces(n, tables, &mut stats).map_err(|bytes| oom("the vertex tables", bytes))?;
         let mut listing = Listing::default();
         if copy_listing {
-            listing
-                .offsets
-                .try_reserve_exact(count + 1)
-                .map_err(|_| oom("the input listing", (count + 1) * 8))?;
+            // Every simplex was checked to have 1 to MAX_DIMENSION + 1 vertices: one non-zero
+            // total means they all have the same length, and the offsets are a formula.
+            let lengths = totals.iter().filter(|&&t| t > 0).count();
+            let mut offsets = Vec::new();
+            if lengths > 1 {
+                offsets
+                    .try_reserve_exact(count + 1)
+                    .map_err(|_| oom("the input listing", (count + 1) * 8))?;
+                offsets.push(0);
+            }
             listing
                 .ids
                 .try_reserve_exact(id_count)
                 .map_err(|_| oom("the input listing", id_count * 4))?;
-            listing.offsets.push(0);
             for i in 0..count {
                 listing.ids.extend_from_slice(simplex(i));
-                listing.offsets.push(listing.ids.len());
+                if lengths > 1 {
+                    offsets.push(listing.ids.len());
+                }
             }
+            listing.offsets = if lengths > 1 {
+                Offsets::Varied(offsets)
+            } else {
+                Offsets::Uniform {
+                    arity: id_count / count.max(1),
+                    count,
+                }
+            };
         }
         Ok(Complex {
             n_vertices: n,
@@ -553,10 +632,12 @@ impl Complex {
         })
     }
 
-    /// The listing's arrays: simplex `i` as given is `ids[offsets[i]..offsets[i + 1]]` (saved
-    /// files keep them so that the complex is rebuilt exactly).
-    pub(crate) fn listing_arrays(&self) -> (&[u32], &[usize]) {
-        (&self.listing.ids, &self.listing.offsets)
+    /// The listing: its ids, its simplex count and where simplex `i` starts in the ids
+    /// (`0..=count`): simplex `i` as given is `ids[at(i)..at(i + 1)]` (saved files keep them so
+    /// that the complex is rebuilt exactly).
+    pub(crate) fn listing_arrays(&self) -> (&[u32], usize, impl Fn(usize) -> usize + '_) {
+        let o = &self.listing.offsets;
+        (&self.listing.ids, o.count(), move |i| o.at(i))
     }
 
     /// Names the file the complex came from (a reopened saved complex names its first source).
@@ -566,12 +647,13 @@ impl Complex {
 
     /// Number of simplices as listed in the input (absorbed ones included).
     pub fn input_count(&self) -> usize {
-        self.listing.offsets.len().saturating_sub(1)
+        self.listing.offsets.count()
     }
 
     /// Listed simplex `i` exactly as given: its vertex order is the input's winding.
     pub fn input_simplex(&self, i: usize) -> &[u32] {
-        &self.listing.ids[self.listing.offsets[i]..self.listing.offsets[i + 1]]
+        let o = &self.listing.offsets;
+        &self.listing.ids[o.at(i)..o.at(i + 1)]
     }
 
     /// Builds the listing ↔ top maps now if their memory (8 bytes a listing, 4 a top simplex)
@@ -733,7 +815,7 @@ impl Complex {
     pub(crate) fn tops_listed_needs_maps(&self) -> bool {
         let tops: usize = self.tops.iter().skip(1).map(SimplexTable::len).sum();
         let listed = (0..self.input_count())
-            .filter(|&i| self.listing.offsets[i + 1] - self.listing.offsets[i] > 1)
+            .filter(|&i| self.listing.offsets.at(i + 1) - self.listing.offsets.at(i) > 1)
             .count();
         tops != listed
     }
