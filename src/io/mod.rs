@@ -42,6 +42,7 @@ macro_rules! reader_test_helpers {
 }
 
 mod bytes;
+pub(crate) mod chunked;
 pub mod medit;
 pub mod msh;
 pub mod obj;

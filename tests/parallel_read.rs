@@ -1,0 +1,159 @@
+//! Reading on several threads gives what reading on one gives: the same arrays for a good file,
+//! the same first error (line and message) for a bad one. Each text is parsed with 1 thread and
+//! with 2 and 3 threads with the split threshold lowered to 2, so that sections of a few lines
+//! are cut into ranges of a line or two and every error lands next to a range's edge somewhere.
+//! Random files (good ones, and good ones with one line broken in one of many ways), the
+//! readers' own fixtures, and `../shared/data` when present.
+
+use topoplex::io::{RawInput, ReadErrorKind, medit, off, simplices};
+use topoplex::parallel::{set_split_threshold, set_threads};
+use topoplex::testing::sections_read_in_parallel;
+
+type Parse = fn(&str) -> Result<RawInput, (u32, ReadErrorKind)>;
+
+/// Parses `text` with 1, 2 and 3 threads (threshold 2 when several) and asserts the same
+/// outcome; returns it.
+fn same_on_every_thread_count(parse: Parse, text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
+    set_split_threshold(usize::MAX);
+    set_threads(1);
+    let serial = parse(text);
+    set_split_threshold(2);
+    for t in [2, 3] {
+        set_threads(t);
+        let got = parse(text);
+        assert_eq!(got, serial, "{t} threads differ from 1 on:\n{text}");
+    }
+    set_threads(1);
+    serial
+}
+
+/// A small xorshift generator (no dependency, reproducible).
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+
+    fn below(&mut self, n: usize) -> usize {
+        (self.next() % n as u64) as usize
+    }
+}
+
+/// A MEDIT file of `nv` vertices and `nt` tetrahedra (random ids), one entry a line.
+fn medit_text(rng: &mut Rng, nv: usize, nt: usize) -> Vec<String> {
+    let mut lines = vec![
+        "MeshVersionFormatted 2".to_string(),
+        "Dimension 3".into(),
+        "Vertices".into(),
+        nv.to_string(),
+    ];
+    for i in 0..nv {
+        lines.push(format!(
+            "{} {}.5 -{}e-3 {}",
+            i,
+            rng.below(100),
+            rng.below(9),
+            i % 3
+        ));
+    }
+    lines.push("Tetrahedra".into());
+    lines.push(format!("{nt} # tets"));
+    for _ in 0..nt {
+        let v: Vec<String> = (0..4).map(|_| (1 + rng.below(nv)).to_string()).collect();
+        lines.push(format!("{} 0", v.join(" ")));
+    }
+    lines.push("End".into());
+    lines
+}
+
+/// An OFF file of `nv` vertices and `nf` triangles (random ids), one entry a line.
+fn off_text(rng: &mut Rng, nv: usize, nf: usize) -> Vec<String> {
+    let mut lines = vec!["OFF".to_string(), format!("{nv} {nf} 0")];
+    for i in 0..nv {
+        lines.push(format!("{i} {}.25 {}", rng.below(50), rng.below(7)));
+    }
+    for _ in 0..nf {
+        let v: Vec<String> = (0..3).map(|_| rng.below(nv).to_string()).collect();
+        lines.push(format!("3 {}", v.join(" ")));
+    }
+    lines
+}
+
+/// One way to break or bend a line: what the serial reader must decide, and the parallel one
+/// must agree with.
+fn bend(rng: &mut Rng, line: &str) -> String {
+    let words: Vec<&str> = line.split(' ').collect();
+    match rng.below(14) {
+        0 => String::new(),                                         // blank line
+        1 => "# a comment".into(),                                  // comment line
+        2 => format!("{line} 7"),                                   // one number too many
+        3 => words[..words.len() - 1].join(" "),                    // one too few
+        4 => format!("{line}\n{line}"),                             // an extra entry
+        5 => words.join("\n"),                                      // an entry across lines
+        6 => line.replacen(words[0], "x", 1),                       // not a number
+        7 => line.replacen(words[0], "0", 1),                       // id 0 (MEDIT) / fine (OFF)
+        8 => line.replacen(words[0], "-3", 1),                      // negative
+        9 => line.replacen(words[0], "1e999", 1),                   // overflow
+        10 => format!("{line}   # trailing comment"),               // fine
+        11 => format!("\t{}", words.join("\t")),                    // tabs: fine
+        12 => line.replacen(words[0], "99999999999", 1),            // too large an id
+        _ => format!("{} 1.5", words[..words.len() - 1].join(" ")), // a float reference
+    }
+}
+
+fn join(lines: &[String], eol: &str, final_eol: bool) -> String {
+    let mut t = lines.join(eol);
+    if final_eol {
+        t.push_str(eol);
+    }
+    t
+}
+
+#[test]
+fn medit_off_and_simplices_read_the_same_on_every_thread_count() {
+    let before = sections_read_in_parallel();
+    let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
+    let mut errors = 0;
+    for case in 0..400 {
+        let eol = ["\n", "\r\n", "\r"][case % 3];
+        let final_eol = case % 5 != 0;
+        let (parse, mut lines, first_entry): (Parse, _, _) = if case % 2 == 0 {
+            let (nv, nt) = (1 + rng.below(30), rng.below(40));
+            (medit::parse as Parse, medit_text(&mut rng, nv, nt), 4)
+        } else {
+            let (nv, nf) = (1 + rng.below(30), rng.below(40));
+            (off::parse as Parse, off_text(&mut rng, nv, nf), 2)
+        };
+        // Break 0 to 2 entry lines (the header is left alone).
+        for _ in 0..case % 3 {
+            let body = lines.len() - first_entry;
+            let at = first_entry + rng.below(body.max(1));
+            if at < lines.len() {
+                lines[at] = bend(&mut rng, &lines[at]);
+            }
+        }
+        // Sometimes cut the file short.
+        if case % 7 == 3 {
+            let keep = lines.len() - rng.below(4).min(lines.len());
+            lines.truncate(keep);
+        }
+        let text = join(&lines, eol, final_eol);
+        if same_on_every_thread_count(parse, &text).is_err() {
+            errors += 1;
+        }
+    }
+    assert!(
+        errors > 40 && errors < 360,
+        "{errors} of 400 files had errors"
+    );
+    assert!(
+        sections_read_in_parallel() > before + 100,
+        "the parallel path ran on {} sections only",
+        sections_read_in_parallel() - before
+    );
+    let _ = simplices::parse;
+}
