@@ -221,6 +221,10 @@ fn phases(file: &Path, kind: StructureKind, threads: usize, tpx: &Path) {
     let t = Instant::now();
     let raw = topoplex::io::read_path(file).expect("read");
     line("parse", t);
+    println!(
+        "sections_read_in_parallel {}",
+        topoplex::testing::sections_read_in_parallel()
+    );
     let t = Instant::now();
     // What `Complex::from_path` does after reading: the complex keeps the parsed arrays.
     let complex =

@@ -9,6 +9,9 @@ use topoplex::io::{RawInput, ReadErrorKind, medit, off, simplices};
 use topoplex::parallel::{set_split_threshold, set_threads};
 use topoplex::testing::sections_read_in_parallel;
 
+/// The thread count and split threshold are global: one test at a time sets them.
+static GLOBALS: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 type Parse = fn(&str) -> Result<RawInput, (u32, ReadErrorKind)>;
 
 /// Parses `text` with 1, 2 and 3 threads (threshold 2 when several) and asserts the same
@@ -115,6 +118,7 @@ fn join(lines: &[String], eol: &str, final_eol: bool) -> String {
 
 #[test]
 fn medit_off_and_simplices_read_the_same_on_every_thread_count() {
+    let _one_at_a_time = GLOBALS.lock().unwrap_or_else(|e| e.into_inner());
     let before = sections_read_in_parallel();
     let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
     let mut errors = 0;
@@ -156,4 +160,58 @@ fn medit_off_and_simplices_read_the_same_on_every_thread_count() {
         sections_read_in_parallel() - before
     );
     let _ = simplices::parse;
+}
+
+/// What a complex is made of, for comparing two builds.
+fn summary(c: &topoplex::Complex) -> (Vec<Vec<u32>>, Vec<Vec<u32>>, String) {
+    let tops = (0..=c.dimension())
+        .map(|p| c.tops(p).iter().flatten().copied().collect())
+        .collect();
+    let listing = (0..c.input_count())
+        .map(|i| c.input_simplex(i).to_vec())
+        .collect();
+    (tops, listing, format!("{:?}", c.stats()))
+}
+
+#[test]
+fn complexes_are_checked_and_sorted_the_same_on_every_thread_count() {
+    let _one_at_a_time = GLOBALS.lock().unwrap_or_else(|e| e.into_inner());
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let mut refused = 0;
+    for case in 0..300 {
+        let n = 2 + rng.below(12) as u32;
+        let mut raw = RawInput::new();
+        raw.vertex_count = Some(n);
+        for i in 0..rng.below(60) {
+            let len = 1 + rng.below(4);
+            let mut s: Vec<u32> = (0..len).map(|_| rng.below(n as usize) as u32).collect();
+            s.sort_unstable();
+            s.dedup();
+            if rng.below(3) == 0 {
+                s.reverse(); // a winding that is not ascending
+            }
+            // Now and then a simplex the complex model refuses.
+            match (case % 4, rng.below(40)) {
+                (1, 0) => s.push(s[0]),
+                (2, 0) => s.push(n + rng.below(3) as u32),
+                (3, 0) => s = (0..17).collect(),
+                (3, 1) => s.clear(),
+                _ => {}
+            }
+            raw.push(&s, i as u32 + 1);
+        }
+        let build = || topoplex::Complex::from_raw(&raw, Some(std::path::Path::new("r.simplices")));
+        set_split_threshold(usize::MAX);
+        set_threads(1);
+        let serial = build().map(|c| summary(&c));
+        set_split_threshold(2);
+        for t in [2, 3] {
+            set_threads(t);
+            let got = build().map(|c| summary(&c));
+            assert_eq!(got, serial, "{t} threads, case {case}");
+        }
+        set_threads(1);
+        refused += usize::from(serial.is_err());
+    }
+    assert!(refused > 30, "only {refused} of 300 inputs refused");
 }

@@ -484,7 +484,7 @@ impl Complex {
         n: u32,
         coords: Option<Coords>,
         count: usize,
-        simplex: impl Fn(usize) -> &'a [u32],
+        simplex: impl Fn(usize) -> &'a [u32] + Sync,
         origin: impl Fn(usize) -> Origin,
         file: Option<&Path>,
         (budget, input_size): (Budget, u64),
@@ -524,41 +524,47 @@ impl Complex {
             .enumerate()
             .map(|(p, &t)| Rows::new(p + 1, t))
             .collect();
-        let mut sorted = Vec::new();
-        for i in 0..count {
-            let s = simplex(i);
-            if s.is_empty() {
-                return Err(ComplexError::EmptySimplex { origin: origin(i) });
-            }
-            if s.len() > MAX_DIMENSION + 1 {
-                return Err(ComplexError::DimensionTooHigh {
-                    origin: origin(i),
-                    simplex: s.to_vec(),
-                    dim: s.len() - 1,
+        let invalid = |i: usize, why: Invalid| -> ComplexError {
+            let origin = origin(i);
+            let simplex = simplex(i).to_vec();
+            match why {
+                Invalid::Empty => ComplexError::EmptySimplex { origin },
+                Invalid::TooHigh => ComplexError::DimensionTooHigh {
+                    origin,
+                    dim: simplex.len() - 1,
+                    simplex,
                     max: MAX_DIMENSION,
-                });
-            }
-            if let Some(&v) = s.iter().find(|&&v| v >= n) {
-                return Err(ComplexError::VertexOutOfRange {
-                    origin: origin(i),
-                    simplex: s.to_vec(),
-                    vertex: v,
+                },
+                Invalid::OutOfRange(vertex) => ComplexError::VertexOutOfRange {
+                    origin,
+                    simplex,
+                    vertex,
                     n,
-                });
+                },
+                Invalid::Repeated(vertex) => ComplexError::RepeatedVertex {
+                    origin,
+                    simplex,
+                    vertex,
+                },
             }
-            sorted.clear();
-            sorted.extend_from_slice(s);
-            sorted.sort_unstable();
-            if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
-                return Err(ComplexError::RepeatedVertex {
-                    origin: origin(i),
-                    simplex: s.to_vec(),
-                    vertex: w[0],
-                });
+        };
+        let push = |by_dim: &mut Vec<Rows>, row: &[u32]| {
+            by_dim[row.len() - 1]
+                .push(row)
+                .map_err(|bytes| oom("the input simplices", bytes))
+        };
+        if crate::parallel::splits(count) {
+            sorted_rows_in_parallel(count, n, &simplex, |i, row| match row {
+                Ok(row) => push(&mut by_dim, row),
+                Err(why) => Err(invalid(i, why)),
+            })
+            .map_err(|e| e.unwrap_or_else(|bytes| oom("the input simplices", bytes)))?;
+        } else {
+            let mut sorted = [0u32; MAX_DIMENSION + 1];
+            for i in 0..count {
+                let row = sorted_row(simplex(i), n, &mut sorted).map_err(|why| invalid(i, why))?;
+                push(&mut by_dim, row)?;
             }
-            by_dim[s.len() - 1]
-                .push(&sorted)
-                .map_err(|bytes| oom("the input simplices", bytes))?;
         }
         let id_count: usize = totals.iter().sum();
         let mut stats = InputStats {
@@ -1040,6 +1046,89 @@ fn faces_above<'a>(
 /// block of [`Rows::BLOCK`] rows is sorted and deduplicated with what is held; once a block
 /// removes less than half of the rows, the rest is reserved exactly and kept as is (unique
 /// inputs pay one sort of one block).
+/// Why a listed simplex is refused (the error is made with its origin by the caller).
+#[derive(Debug, Clone, Copy)]
+enum Invalid {
+    Empty,
+    TooHigh,
+    OutOfRange(u32),
+    Repeated(u32),
+}
+
+/// Simplex `s` checked (1 to `MAX_DIMENSION + 1` vertices, ids below `n`, none repeated) and
+/// sorted into `buf`: the sorted row.
+#[inline]
+fn sorted_row<'b>(
+    s: &[u32],
+    n: u32,
+    buf: &'b mut [u32; MAX_DIMENSION + 1],
+) -> Result<&'b [u32], Invalid> {
+    if s.is_empty() {
+        return Err(Invalid::Empty);
+    }
+    if s.len() > MAX_DIMENSION + 1 {
+        return Err(Invalid::TooHigh);
+    }
+    if let Some(&v) = s.iter().find(|&&v| v >= n) {
+        return Err(Invalid::OutOfRange(v));
+    }
+    let row = &mut buf[..s.len()];
+    row.copy_from_slice(s);
+    row.sort_unstable();
+    if let Some(w) = row.windows(2).find(|w| w[0] == w[1]) {
+        return Err(Invalid::Repeated(w[0]));
+    }
+    Ok(row)
+}
+
+/// [`sorted_row`] of simplices `0..count` on several threads, handed to `take` in input order
+/// (each row, or why simplex `i` is refused), on the calling thread: windows of simplices are
+/// checked and sorted in ranges on [`crate::parallel::threads`] threads into buffers of the
+/// window's size (reserved fallibly: `Err(Err(bytes))`), then taken in order, so the first
+/// refused simplex in input order is the one reported, and `take` sees what the serial loop
+/// would. Stops at `take`'s first error (`Err(Ok(e))`).
+fn sorted_rows_in_parallel<'a, E>(
+    count: usize,
+    n: u32,
+    simplex: &(impl Fn(usize) -> &'a [u32] + Sync),
+    mut take: impl FnMut(usize, Result<&[u32], Invalid>) -> Result<(), E>,
+) -> Result<(), Result<E, usize>> {
+    const WINDOW: usize = 1 << 18;
+    for w in (0..count).step_by(WINDOW) {
+        let window = w..(w + WINDOW).min(count);
+        let parts = crate::parallel::map_ranges(window.len(), |r| {
+            let r = (w + r.start)..(w + r.end);
+            let ids: usize = r
+                .clone()
+                .map(|i| simplex(i).len().min(MAX_DIMENSION + 1))
+                .sum();
+            let mut rows: Vec<u32> = Vec::new();
+            table::try_reserve_exact(&mut rows, ids)?;
+            let mut buf = [0u32; MAX_DIMENSION + 1];
+            for i in r.clone() {
+                match sorted_row(simplex(i), n, &mut buf) {
+                    Ok(row) => rows.extend_from_slice(row),
+                    Err(why) => return Ok((rows, r, Some((i, why)))),
+                }
+            }
+            Ok((rows, r, None))
+        });
+        for part in parts {
+            let (rows, r, refused) = part.map_err(Err)?;
+            let mut at = 0;
+            for i in r.start..refused.map_or(r.end, |(i, _)| i) {
+                let len = simplex(i).len();
+                take(i, Ok(&rows[at..at + len])).map_err(Ok)?;
+                at += len;
+            }
+            if let Some((i, why)) = refused {
+                take(i, Err(why)).map_err(Ok)?;
+            }
+        }
+    }
+    Ok(())
+}
+
 struct Rows {
     arity: usize,
     ids: Vec<u32>,
