@@ -3,7 +3,9 @@
 //! with 2 and 3 threads with the split threshold lowered to 2, so that sections of a few lines
 //! are cut into ranges of a line or two and every error lands next to a range's edge somewhere.
 //! Random files (good ones, and good ones with one line broken in one of many ways), the
-//! readers' own fixtures, and `../shared/data` when present.
+//! files of `../shared/data` when present.
+
+mod common;
 
 use topoplex::io::{RawInput, ReadErrorKind, medit, off, simplices};
 use topoplex::parallel::{set_split_threshold, set_threads};
@@ -86,6 +88,34 @@ fn off_text(rng: &mut Rng, nv: usize, nf: usize) -> Vec<String> {
     lines
 }
 
+/// A `.simplices` file: `v` lines (some files have none) and `s` lines of 1 to 4 ids,
+/// interleaved, with blank and comment lines now and then.
+fn simplices_text(rng: &mut Rng, nv: usize, ns: usize) -> Vec<String> {
+    let with_v = rng.below(4) != 0;
+    let dim = rng.below(3);
+    let mut lines = Vec::new();
+    let (mut v, mut s) = (0, 0);
+    while v < nv * usize::from(with_v) || s < ns {
+        if with_v && v < nv && (s == ns || rng.below(3) == 0) {
+            let xs: Vec<String> = (0..dim).map(|_| format!("{}.5", rng.below(9))).collect();
+            lines.push(format!("v {}", xs.join(" ")).trim_end().to_string());
+            v += 1;
+        } else {
+            let ids: Vec<String> = (0..1 + rng.below(4))
+                .map(|_| rng.below(nv).to_string())
+                .collect();
+            lines.push(format!("s {}", ids.join(" ")));
+            s += 1;
+        }
+        match rng.below(20) {
+            0 => lines.push(String::new()),
+            1 => lines.push("# comment".into()),
+            _ => {}
+        }
+    }
+    lines
+}
+
 /// One way to break or bend a line: what the serial reader must decide, and the parallel one
 /// must agree with.
 fn bend(rng: &mut Rng, line: &str) -> String {
@@ -122,18 +152,21 @@ fn medit_off_and_simplices_read_the_same_on_every_thread_count() {
     let before = sections_read_in_parallel();
     let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
     let mut errors = 0;
-    for case in 0..400 {
-        let eol = ["\n", "\r\n", "\r"][case % 3];
+    for case in 0..600 {
+        let eol = ["\n", "\r\n", "\r"][case / 3 % 3];
         let final_eol = case % 5 != 0;
-        let (parse, mut lines, first_entry): (Parse, _, _) = if case % 2 == 0 {
-            let (nv, nt) = (1 + rng.below(30), rng.below(40));
-            (medit::parse as Parse, medit_text(&mut rng, nv, nt), 4)
-        } else {
-            let (nv, nf) = (1 + rng.below(30), rng.below(40));
-            (off::parse as Parse, off_text(&mut rng, nv, nf), 2)
+        let (nv, n) = (1 + rng.below(30), rng.below(40));
+        let (parse, mut lines, first_entry): (Parse, _, _) = match case % 3 {
+            0 => (medit::parse as Parse, medit_text(&mut rng, nv, n), 4),
+            1 => (off::parse as Parse, off_text(&mut rng, nv, n), 2),
+            _ => (
+                simplices::parse as Parse,
+                simplices_text(&mut rng, nv, n),
+                0,
+            ),
         };
         // Break 0 to 2 entry lines (the header is left alone).
-        for _ in 0..case % 3 {
+        for _ in 0..case / 9 % 3 {
             let body = lines.len() - first_entry;
             let at = first_entry + rng.below(body.max(1));
             if at < lines.len() {
@@ -155,11 +188,32 @@ fn medit_off_and_simplices_read_the_same_on_every_thread_count() {
         "{errors} of 400 files had errors"
     );
     assert!(
-        sections_read_in_parallel() > before + 100,
+        sections_read_in_parallel() > before + 200,
         "the parallel path ran on {} sections only",
         sections_read_in_parallel() - before
     );
-    let _ = simplices::parse;
+}
+
+#[test]
+fn shared_data_reads_the_same_on_every_thread_count() {
+    let _one_at_a_time = GLOBALS.lock().unwrap_or_else(|e| e.into_inner());
+    for path in common::shared_files() {
+        let parse: Parse = match path.extension().and_then(|e| e.to_str()) {
+            Some("mesh") => medit::parse,
+            Some("off") => off::parse,
+            Some("simplices") => simplices::parse,
+            _ => continue,
+        };
+        let text = std::fs::read_to_string(&path).unwrap();
+        let before = sections_read_in_parallel();
+        let got = same_on_every_thread_count(parse, &text);
+        assert!(got.is_ok(), "{}: {got:?}", path.display());
+        eprintln!(
+            "{}: {} sections read in parallel",
+            path.display(),
+            sections_read_in_parallel() - before
+        );
+    }
 }
 
 /// What a complex is made of, for comparing two builds.

@@ -126,9 +126,38 @@ pub(crate) fn fill<T: Send>(
             .all(|(r, part)| run(r, part))
     });
     if read {
-        SECTIONS.fetch_add(1, Ordering::Relaxed);
+        note_section();
     }
     read
+}
+
+/// Counts one section read on several threads (see [`sections_read`]).
+pub(crate) fn note_section() {
+    SECTIONS.fetch_add(1, Ordering::Relaxed);
+}
+
+/// `text` cut into about [`crate::parallel::threads`]` × 4` ranges of whole lines (each cut
+/// just after a line end): the byte where each range starts, and the text's end.
+pub(crate) fn line_ranges(text: &str) -> Vec<usize> {
+    let b = text.as_bytes();
+    let parts = 4 * crate::parallel::threads();
+    let mut cuts = vec![0];
+    for k in 1..parts {
+        let from = (b.len() / parts * k).max(*cuts.last().unwrap_or(&0));
+        let Some(at) = memchr::memchr2(b'\n', b'\r', &b[from..]).map(|i| from + i) else {
+            break;
+        };
+        let next = if b[at] == b'\r' && b.get(at + 1) == Some(&b'\n') {
+            at + 2
+        } else {
+            at + 1
+        };
+        if next < b.len() && next > *cuts.last().unwrap_or(&0) {
+            cuts.push(next);
+        }
+    }
+    cuts.push(b.len());
+    cuts
 }
 
 /// Appends `n` copies of `x` to `v` on several threads (the pages are touched in parallel);
