@@ -327,6 +327,9 @@ fn soup(file: &Path, threads: usize, kinds: &[StructureKind]) {
 }
 
 fn main() {
+    // As the `topoplex` CLI does: a fixed mmap threshold, so that glibc's per-thread arenas do
+    // not keep freed arrays resident (the peaks below are then the CLI's).
+    topoplex::ffi::fix_malloc_thresholds_for_executable();
     let args: Vec<String> = std::env::args().skip(1).collect();
     let a: Vec<&str> = args.iter().map(String::as_str).collect();
     let done = match a.as_slice() {

@@ -269,3 +269,53 @@ fn complexes_are_checked_and_sorted_the_same_on_every_thread_count() {
     }
     assert!(refused > 30, "only {refused} of 300 inputs refused");
 }
+
+/// Inputs large enough (over 2 × 2^18 rows of one dimension) for the normaliser to deduplicate
+/// by blocks: windows of simplices pushed in order, then (once blocks stop halving) rows written
+/// in place. Many duplicates (blocks keep halving) or none; a refused simplex early, late, or
+/// none.
+#[test]
+fn large_inputs_deduplicated_by_blocks_are_normalised_the_same_on_every_thread_count() {
+    let _one_at_a_time = GLOBALS.lock().unwrap_or_else(|e| e.into_inner());
+    let count = (1 << 19) + 12_345;
+    for (dups, bad_at) in [
+        (true, None),
+        (false, None),
+        (true, Some(300_000)),
+        (false, Some(count - 7)),
+        (false, Some(1 << 18)),
+    ] {
+        let mut rng = Rng(0x1234_5678_9abc_def1);
+        let n: u32 = if dups { 40 } else { 1 << 20 };
+        let mut raw = RawInput::new();
+        raw.vertex_count = Some(n);
+        for i in 0..count {
+            let mut s = [0u32; 3];
+            loop {
+                for x in &mut s {
+                    *x = rng.below(n as usize) as u32;
+                }
+                if s[0] != s[1] && s[1] != s[2] && s[0] != s[2] {
+                    break;
+                }
+            }
+            if bad_at == Some(i) {
+                s[2] = s[0];
+            }
+            raw.push(&s, i as u32 + 1);
+        }
+        // A few edges and tetrahedra too.
+        raw.push(&[0, 1], 0);
+        raw.push(&[0, 1, 2, 3], 0);
+        let build = || topoplex::Complex::from_raw(&raw, None).map(|c| summary(&c));
+        set_split_threshold(usize::MAX);
+        set_threads(1);
+        let serial = build();
+        assert_eq!(serial.is_err(), bad_at.is_some());
+        set_split_threshold(2);
+        set_threads(2);
+        let parallel = build();
+        set_threads(1);
+        assert!(parallel == serial, "dups {dups}, refused at {bad_at:?}");
+    }
+}

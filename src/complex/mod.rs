@@ -554,11 +554,12 @@ impl Complex {
                 .map_err(|bytes| oom("the input simplices", bytes))
         };
         if crate::parallel::splits(count) {
-            sorted_rows_in_parallel(count, n, &simplex, |i, row| match row {
-                Ok(row) => push(&mut by_dim, row),
-                Err(why) => Err(invalid(i, why)),
-            })
-            .map_err(|e| e.unwrap_or_else(|bytes| oom("the input simplices", bytes)))?;
+            sorted_rows_in_parallel(count, n, &simplex, &mut by_dim).map_err(
+                |stop| match stop {
+                    Stop::Refused(i, why) => invalid(i, why),
+                    Stop::NoRoom(bytes) => oom("the input simplices", bytes),
+                },
+            )?;
         } else {
             let mut sorted = [0u32; MAX_DIMENSION + 1];
             for i in 0..count {
@@ -1081,20 +1082,31 @@ fn sorted_row<'b>(
     Ok(row)
 }
 
-/// [`sorted_row`] of simplices `0..count` on several threads, handed to `take` in input order
-/// (each row, or why simplex `i` is refused), on the calling thread: windows of simplices are
-/// checked and sorted in ranges on [`crate::parallel::threads`] threads into buffers of the
-/// window's size (reserved fallibly: `Err(Err(bytes))`), then taken in order, so the first
-/// refused simplex in input order is the one reported, and `take` sees what the serial loop
-/// would. Stops at `take`'s first error (`Err(Ok(e))`).
-fn sorted_rows_in_parallel<'a, E>(
+/// Why [`sorted_rows_in_parallel`] stopped: simplex `i` is refused, or memory ran out.
+enum Stop {
+    Refused(usize, Invalid),
+    NoRoom(usize),
+}
+
+/// [`sorted_row`] of simplices `0..count` pushed into `by_dim` (by length) on several threads,
+/// with the serial loop's result: the same rows, the first refused simplex in input order.
+/// While a dimension's rows may still be deduplicated by blocks ([`Rows::push`]), windows of
+/// simplices are checked and sorted in ranges on [`crate::parallel::threads`] threads into
+/// buffers of the window's size (reserved fallibly), then pushed in order; from where no
+/// dimension deduplicates any more (at once for most inputs, after one block for large
+/// ones), the rest is written in place ([`rows_in_place`]).
+fn sorted_rows_in_parallel<'a>(
     count: usize,
     n: u32,
     simplex: &(impl Fn(usize) -> &'a [u32] + Sync),
-    mut take: impl FnMut(usize, Result<&[u32], Invalid>) -> Result<(), E>,
-) -> Result<(), Result<E, usize>> {
+    by_dim: &mut [Rows],
+) -> Result<(), Stop> {
     const WINDOW: usize = 1 << 18;
-    for w in (0..count).step_by(WINDOW) {
+    let mut w = 0;
+    while w < count {
+        if by_dim.iter().all(|r| r.next_dedup == usize::MAX) {
+            return rows_in_place(w..count, n, simplex, by_dim);
+        }
         let window = w..(w + WINDOW).min(count);
         let parts = crate::parallel::map_ranges(window.len(), |r| {
             let r = (w + r.start)..(w + r.end);
@@ -1114,19 +1126,95 @@ fn sorted_rows_in_parallel<'a, E>(
             Ok((rows, r, None))
         });
         for part in parts {
-            let (rows, r, refused) = part.map_err(Err)?;
+            let (rows, r, refused) = part.map_err(Stop::NoRoom)?;
             let mut at = 0;
             for i in r.start..refused.map_or(r.end, |(i, _)| i) {
                 let len = simplex(i).len();
-                take(i, Ok(&rows[at..at + len])).map_err(Ok)?;
+                by_dim[len - 1]
+                    .push(&rows[at..at + len])
+                    .map_err(Stop::NoRoom)?;
                 at += len;
             }
             if let Some((i, why)) = refused {
-                take(i, Err(why)).map_err(Ok)?;
+                return Err(Stop::Refused(i, why));
             }
         }
+        w = window.end;
     }
     Ok(())
+}
+
+/// The rows of simplices `range` written in place on several threads, once no dimension
+/// deduplicates: each dimension's array is reserved at its exact final size (as
+/// [`Rows::push`] would) and filled with zeros, every range of simplices counts its rows per
+/// dimension, and then sorts its simplices into its own slice of each array.
+fn rows_in_place<'a>(
+    range: std::ops::Range<usize>,
+    n: u32,
+    simplex: &(impl Fn(usize) -> &'a [u32] + Sync),
+    by_dim: &mut [Rows],
+) -> Result<(), Stop> {
+    use rayon::prelude::*;
+    let ranges: Vec<_> = crate::parallel::ranges(range.len())
+        .into_iter()
+        .map(|r| (range.start + r.start)..(range.start + r.end))
+        .collect();
+    let dims = by_dim.len();
+    let counts = crate::parallel::map_chunks(ranges.len(), |k| {
+        let mut c = [0usize; MAX_DIMENSION + 1];
+        for i in ranges[k].clone() {
+            let len = simplex(i).len();
+            if (1..=dims).contains(&len) {
+                c[len - 1] += len;
+            }
+        }
+        c
+    });
+    let mut tails = Vec::with_capacity(dims);
+    for rows in by_dim.iter_mut() {
+        let base = rows.ids.len();
+        table::try_reserve_exact(&mut rows.ids, rows.left).map_err(Stop::NoRoom)?;
+        crate::io::chunked::extend_filled(&mut rows.ids, rows.left, 0);
+        rows.left = 0;
+        tails.push(&mut rows.ids[base..]);
+    }
+    let mut parts = Vec::with_capacity(ranges.len());
+    for (c, r) in counts.iter().zip(&ranges) {
+        let mine: Vec<&mut [u32]> = tails
+            .iter_mut()
+            .zip(c)
+            .map(|(t, &len)| {
+                let (a, b) = std::mem::take(t).split_at_mut(len);
+                *t = b;
+                a
+            })
+            .collect();
+        parts.push((mine, r.clone()));
+    }
+    let refused: Vec<Option<(usize, Invalid)>> = crate::parallel::install(|| {
+        parts
+            .into_par_iter()
+            .map(|(mut slices, r)| {
+                let mut at = [0usize; MAX_DIMENSION + 1];
+                let mut buf = [0u32; MAX_DIMENSION + 1];
+                for i in r {
+                    match sorted_row(simplex(i), n, &mut buf) {
+                        Ok(row) => {
+                            let p = row.len() - 1;
+                            slices[p][at[p]..at[p] + row.len()].copy_from_slice(row);
+                            at[p] += row.len();
+                        }
+                        Err(why) => return Some((i, why)),
+                    }
+                }
+                None
+            })
+            .collect()
+    });
+    match refused.into_iter().flatten().next() {
+        Some((i, why)) => Err(Stop::Refused(i, why)),
+        None => Ok(()),
+    }
 }
 
 struct Rows {

@@ -325,13 +325,15 @@ fn vertices_in_parallel(
     let mut data = try_with_capacity(capped_len(len, t.len()), "the vertex coordinates").ok()?;
     chunked::extend_filled(&mut data, len, 0.0).then_some(())?;
     let read = chunked::fill(text, &body, &mut data, dim, |sc, xs| {
-        for j in 0..per_vertex {
+        let mut kept = xs.iter_mut();
+        for _ in 0..per_vertex {
             let x = match sc.real(false) {
                 Some((x, _)) => x,
                 None => parse_f64(sc.token_in_line()?.0, "").ok()?,
             };
-            if j < dim {
-                xs[j] = x;
+            // The first `dim` numbers are the coordinates; the rest are checked and dropped.
+            if let Some(slot) = kept.next() {
+                *slot = x;
             }
         }
         Some(())
