@@ -212,19 +212,47 @@ fn rips(n: u32, dim: usize, out: &Path) -> std::io::Result<()> {
     w.flush()
 }
 
+/// CPU seconds (user + system) of the process and of the calling thread so far, from
+/// `/proc` (clock ticks of 1/100 s).
+fn cpu_seconds() -> (f64, f64) {
+    let ticks = |path: &str| {
+        let stat = std::fs::read_to_string(path).unwrap_or_default();
+        // Fields after the command name (which ends with the last ')'): utime is the 12th.
+        let rest = stat.rsplit_once(')').map_or("", |(_, r)| r);
+        let f: Vec<f64> = rest
+            .split_whitespace()
+            .skip(11)
+            .take(2)
+            .filter_map(|x| x.parse().ok())
+            .collect();
+        f.iter().sum::<f64>() / 100.0
+    };
+    (ticks("/proc/self/stat"), ticks("/proc/thread-self/stat"))
+}
+
 fn phases(file: &Path, kind: StructureKind, threads: usize, tpx: &Path) {
+    // Columns: phase, wall seconds, peak MiB, then the phase's CPU seconds for the whole
+    // process and for the main thread alone. The main thread waits while the pool works, so
+    // its CPU is the phase's serial part: on a busy machine, where wall time mostly measures
+    // waiting, `main + (cpu - main) / THREADS` estimates the phase's quiet wall time.
+    let cpu_at = std::cell::Cell::new(cpu_seconds());
     let line = |what: &str, t: Instant| {
-        println!("{what} {:.3} {:.0}", t.elapsed().as_secs_f64(), peak_mib());
+        let (c0, m0) = cpu_at.get();
+        let (c, m) = cpu_seconds();
+        cpu_at.set((c, m));
+        println!(
+            "{what} {:.3} {:.0} {:.2} {:.2}",
+            t.elapsed().as_secs_f64(),
+            peak_mib(),
+            c - c0,
+            m - m0
+        );
     };
     // Reading and normalising run on THREADS threads too, as in `topoplex --threads`.
     topoplex::parallel::set_threads(threads);
     let t = Instant::now();
     let raw = topoplex::io::read_path(file).expect("read");
     line("parse", t);
-    println!(
-        "sections_read_in_parallel {}",
-        topoplex::testing::sections_read_in_parallel()
-    );
     let t = Instant::now();
     // What `Complex::from_path` does after reading: the complex keeps the parsed arrays.
     let complex =
