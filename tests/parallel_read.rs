@@ -205,6 +205,12 @@ fn shared_data_reads_the_same_on_every_thread_count() {
             _ => continue,
         };
         let text = std::fs::read_to_string(&path).unwrap();
+        // The whole read (the file read in pieces on several threads, then parsed) too.
+        set_threads(1);
+        let serial = topoplex::io::read_path(&path);
+        set_split_threshold(2);
+        set_threads(2);
+        assert_eq!(topoplex::io::read_path(&path), serial, "{}", path.display());
         let before = sections_read_in_parallel();
         let got = same_on_every_thread_count(parse, &text);
         assert!(got.is_ok(), "{}: {got:?}", path.display());
