@@ -5,8 +5,9 @@
 //! - `scale loop L OUT.off`: an icosahedron Loop-subdivided L times (20·4^L triangles) as OFF;
 //! - `scale rips N DIM OUT.simplices`: the Rips complex of N random points in the unit square
 //!   at the radius giving ~12 neighbours, up to dimension DIM, as `.simplices`;
-//! - `scale phases FILE KIND THREADS TPX`: parse, normalise and build (THREADS threads), save to TPX, open,
-//!   vertex-star walks on the opened structure; one `phase seconds peak_rss_mib` line each.
+//! - `scale phases FILE KIND THREADS TPX`: parse, normalise and build (THREADS threads), save
+//!   to TPX, open, vertex-star walks on the opened structure; one `phase seconds peak_rss_mib
+//!   cpu_seconds main_thread_cpu_seconds` line each.
 //! - `scale soup FILE THREADS KIND,..`: what the side-by-side `build` op times (a complex from
 //!   the listing's arrays, then the structure), best of 5, with the complex's share;
 //! - `scale structures FILE THREADS [KIND,..]`: builds each structure (every kind, or the
