@@ -5,8 +5,9 @@
 //! - `scale loop L OUT.off`: an icosahedron Loop-subdivided L times (20·4^L triangles) as OFF;
 //! - `scale rips N DIM OUT.simplices`: the Rips complex of N random points in the unit square
 //!   at the radius giving ~12 neighbours, up to dimension DIM, as `.simplices`;
-//! - `scale phases FILE KIND THREADS TPX`: parse, build (THREADS threads), save to TPX, open,
-//!   vertex-star walks on the opened structure; one `phase seconds peak_rss_mib` line each.
+//! - `scale phases FILE KIND THREADS TPX`: parse, normalise and build (THREADS threads), save
+//!   to TPX, open, vertex-star walks on the opened structure; one `phase seconds peak_rss_mib
+//!   cpu_seconds main_thread_cpu_seconds` line each.
 //! - `scale soup FILE THREADS KIND,..`: what the side-by-side `build` op times (a complex from
 //!   the listing's arrays, then the structure), best of 5, with the complex's share;
 //! - `scale structures FILE THREADS [KIND,..]`: builds each structure (every kind, or the
@@ -212,18 +213,52 @@ fn rips(n: u32, dim: usize, out: &Path) -> std::io::Result<()> {
     w.flush()
 }
 
-fn phases(file: &Path, kind: StructureKind, threads: usize, tpx: &Path) {
-    let line = |what: &str, t: Instant| {
-        println!("{what} {:.3} {:.0}", t.elapsed().as_secs_f64(), peak_mib());
+/// CPU seconds (user + system) of the process and of the calling thread so far, from
+/// `/proc` (clock ticks of 1/100 s).
+fn cpu_seconds() -> (f64, f64) {
+    let ticks = |path: &str| {
+        let stat = std::fs::read_to_string(path).unwrap_or_default();
+        // Fields after the command name (which ends with the last ')'): utime is the 12th.
+        let rest = stat.rsplit_once(')').map_or("", |(_, r)| r);
+        let f: Vec<f64> = rest
+            .split_whitespace()
+            .skip(11)
+            .take(2)
+            .filter_map(|x| x.parse().ok())
+            .collect();
+        f.iter().sum::<f64>() / 100.0
     };
+    (ticks("/proc/self/stat"), ticks("/proc/thread-self/stat"))
+}
+
+fn phases(file: &Path, kind: StructureKind, threads: usize, tpx: &Path) {
+    // Columns: phase, wall seconds, peak MiB, then the phase's CPU seconds for the whole
+    // process and for the main thread alone. The main thread waits while the pool works, so
+    // its CPU is the phase's serial part: on a busy machine, where wall time mostly measures
+    // waiting, `main + (cpu - main) / THREADS` estimates the phase's quiet wall time.
+    let cpu_at = std::cell::Cell::new(cpu_seconds());
+    let line = |what: &str, t: Instant| {
+        let (c0, m0) = cpu_at.get();
+        let (c, m) = cpu_seconds();
+        cpu_at.set((c, m));
+        println!(
+            "{what} {:.3} {:.0} {:.2} {:.2}",
+            t.elapsed().as_secs_f64(),
+            peak_mib(),
+            c - c0,
+            m - m0
+        );
+    };
+    // Reading and normalising run on THREADS threads too, as in `topoplex --threads`.
+    topoplex::parallel::set_threads(threads);
     let t = Instant::now();
     let raw = topoplex::io::read_path(file).expect("read");
     line("parse", t);
     let t = Instant::now();
-    let complex = topoplex::Complex::from_raw(&raw, Some(file)).expect("complex");
-    drop(raw);
+    // What `Complex::from_path` does after reading: the complex keeps the parsed arrays.
+    let complex =
+        topoplex::Complex::from_input(raw, Some(file), Default::default()).expect("complex");
     line("complex", t);
-    topoplex::parallel::set_threads(threads);
     let t = Instant::now();
     let s = topoplex::structures::build(kind, &complex).expect("build");
     line("build", t);
@@ -321,6 +356,9 @@ fn soup(file: &Path, threads: usize, kinds: &[StructureKind]) {
 }
 
 fn main() {
+    // As the `topoplex` CLI does: a fixed mmap threshold, so that glibc's per-thread arenas do
+    // not keep freed arrays resident (the peaks below are then the CLI's).
+    topoplex::ffi::fix_malloc_thresholds_for_executable();
     let args: Vec<String> = std::env::args().skip(1).collect();
     let a: Vec<&str> = args.iter().map(String::as_str).collect();
     let done = match a.as_slice() {

@@ -21,3 +21,9 @@ pub fn follows_edit(old: &[u32], now: &[u32], edit: Option<(u32, u32, bool)>) ->
         image(now) == old
     }
 }
+
+/// How many file sections the readers have read on several threads in this process (tests of
+/// the parallel readers check that the parallel path ran).
+pub fn sections_read_in_parallel() -> usize {
+    crate::io::chunked::sections_read()
+}

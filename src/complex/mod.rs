@@ -237,14 +237,68 @@ pub struct Complex {
 
 /// The input simplices as given, and (computed on first use) which top simplex each became.
 ///
-/// Cost: one copy of the input ids and an offset per listed simplex (held for the complex's
-/// life); the listing ↔ top maps cost 12 bytes per listed simplex more, built on first use in
-/// O(Σ (p+1) log n_p) by binary search in the top tables.
+/// Cost: one copy of the input ids (held for the complex's life), plus an offset (8 bytes) per
+/// listed simplex unless all have the same number of vertices (a mesh of one kind of cell:
+/// then the offsets are a formula); the listing ↔ top maps cost 12 bytes per listed simplex
+/// more, built on first use in O(Σ (p+1) log n_p) by binary search in the top tables.
 #[derive(Debug, Clone, Default)]
 struct Listing {
     ids: Vec<u32>,
-    offsets: Vec<usize>,
+    offsets: Offsets,
     maps: std::sync::OnceLock<ListingMaps>,
+}
+
+/// Where each listed simplex's ids start in [`Listing::ids`].
+#[derive(Debug, Clone)]
+enum Offsets {
+    /// `count` simplices of `arity` ids each: simplex `i` starts at `i * arity`.
+    Uniform { arity: usize, count: usize },
+    /// Simplex `i` is `ids[o[i]..o[i + 1]]` (`o` starts with 0).
+    Varied(Vec<usize>),
+}
+
+impl Default for Offsets {
+    fn default() -> Self {
+        Offsets::Uniform { arity: 0, count: 0 }
+    }
+}
+
+impl Offsets {
+    /// The offsets of a reader or caller (`o[0] == 0`, ascending), dropped for the formula when
+    /// every simplex has the same length.
+    fn from_vec(o: Vec<usize>) -> Offsets {
+        let count = o.len().saturating_sub(1);
+        let arity = o.get(1).copied().unwrap_or(0);
+        let uniform = o.first().is_none_or(|&a| a == 0)
+            && arity > 0
+            && crate::parallel::map_ranges(o.len(), |r| {
+                o[r.clone()].iter().zip(r).all(|(&x, i)| x == i * arity)
+            })
+            .into_iter()
+            .all(|ok| ok);
+        if uniform || count == 0 {
+            Offsets::Uniform { arity, count }
+        } else {
+            Offsets::Varied(o)
+        }
+    }
+
+    /// Number of simplices.
+    fn count(&self) -> usize {
+        match self {
+            Offsets::Uniform { count, .. } => *count,
+            Offsets::Varied(o) => o.len().saturating_sub(1),
+        }
+    }
+
+    /// Where simplex `i` starts (`i == count()`: the ids' end).
+    #[inline]
+    fn at(&self, i: usize) -> usize {
+        match self {
+            Offsets::Uniform { arity, .. } => i * arity,
+            Offsets::Varied(o) => o[i],
+        }
+    }
 }
 
 #[derive(Debug, Clone, Default)]
@@ -270,14 +324,24 @@ impl Complex {
 
     /// Reads and normalises a file (format by extension) under `budget`.
     pub fn from_path_with(path: &Path, budget: Budget) -> Result<Complex, ComplexError> {
-        let mut raw = crate::io::read_path(path)?;
-        // The reader's simplex list becomes the listing and its coordinates the complex's,
-        // moved rather than copied: this keeps reading's peak memory down (docs/bad-input.md,
-        // "Bounded resources").
+        let raw = crate::io::read_path(path)?;
+        Complex::from_input(raw, Some(path), budget)
+    }
+
+    /// Normalises reader output that the complex may keep under `budget` (`file` names the
+    /// source in errors): the simplex list becomes the listing and the coordinates the
+    /// complex's, moved rather than copied, which keeps the peak memory of reading and building
+    /// down (docs/bad-input.md, "Bounded resources"); the offsets are dropped when every
+    /// simplex has the same length, and the line numbers once normalised.
+    pub fn from_input(
+        mut raw: RawInput,
+        file: Option<&Path>,
+        budget: Budget,
+    ) -> Result<Complex, ComplexError> {
         let coords = raw.coords.take();
-        let mut c = Complex::normalise_raw(&raw, Some(path), coords, budget, false)?;
+        let mut c = Complex::normalise_raw(&raw, file, coords, budget, false)?;
         c.listing.ids = raw.ids;
-        c.listing.offsets = raw.offsets;
+        c.listing.offsets = Offsets::from_vec(raw.offsets);
         Ok(c)
     }
 
@@ -420,7 +484,7 @@ impl Complex {
         n: u32,
         coords: Option<Coords>,
         count: usize,
-        simplex: impl Fn(usize) -> &'a [u32],
+        simplex: impl Fn(usize) -> &'a [u32] + Sync,
         origin: impl Fn(usize) -> Origin,
         file: Option<&Path>,
         (budget, input_size): (Budget, u64),
@@ -460,41 +524,48 @@ impl Complex {
             .enumerate()
             .map(|(p, &t)| Rows::new(p + 1, t))
             .collect();
-        let mut sorted = Vec::new();
-        for i in 0..count {
-            let s = simplex(i);
-            if s.is_empty() {
-                return Err(ComplexError::EmptySimplex { origin: origin(i) });
-            }
-            if s.len() > MAX_DIMENSION + 1 {
-                return Err(ComplexError::DimensionTooHigh {
-                    origin: origin(i),
-                    simplex: s.to_vec(),
-                    dim: s.len() - 1,
+        let invalid = |i: usize, why: Invalid| -> ComplexError {
+            let origin = origin(i);
+            let simplex = simplex(i).to_vec();
+            match why {
+                Invalid::Empty => ComplexError::EmptySimplex { origin },
+                Invalid::TooHigh => ComplexError::DimensionTooHigh {
+                    origin,
+                    dim: simplex.len() - 1,
+                    simplex,
                     max: MAX_DIMENSION,
-                });
-            }
-            if let Some(&v) = s.iter().find(|&&v| v >= n) {
-                return Err(ComplexError::VertexOutOfRange {
-                    origin: origin(i),
-                    simplex: s.to_vec(),
-                    vertex: v,
+                },
+                Invalid::OutOfRange(vertex) => ComplexError::VertexOutOfRange {
+                    origin,
+                    simplex,
+                    vertex,
                     n,
-                });
+                },
+                Invalid::Repeated(vertex) => ComplexError::RepeatedVertex {
+                    origin,
+                    simplex,
+                    vertex,
+                },
             }
-            sorted.clear();
-            sorted.extend_from_slice(s);
-            sorted.sort_unstable();
-            if let Some(w) = sorted.windows(2).find(|w| w[0] == w[1]) {
-                return Err(ComplexError::RepeatedVertex {
-                    origin: origin(i),
-                    simplex: s.to_vec(),
-                    vertex: w[0],
-                });
+        };
+        let push = |by_dim: &mut Vec<Rows>, row: &[u32]| {
+            by_dim[row.len() - 1]
+                .push(row)
+                .map_err(|bytes| oom("the input simplices", bytes))
+        };
+        if crate::parallel::splits(count) {
+            sorted_rows_in_parallel(count, n, &simplex, &mut by_dim).map_err(
+                |stop| match stop {
+                    Stop::Refused(i, why) => invalid(i, why),
+                    Stop::NoRoom(bytes) => oom("the input simplices", bytes),
+                },
+            )?;
+        } else {
+            let mut sorted = [0u32; MAX_DIMENSION + 1];
+            for i in 0..count {
+                let row = sorted_row(simplex(i), n, &mut sorted).map_err(|why| invalid(i, why))?;
+                push(&mut by_dim, row)?;
             }
-            by_dim[s.len() - 1]
-                .push(&sorted)
-                .map_err(|bytes| oom("the input simplices", bytes))?;
         }
         let id_count: usize = totals.iter().sum();
         let mut stats = InputStats {
@@ -526,19 +597,34 @@ impl Complex {
             absorb_faces(n, tables, &mut stats).map_err(|bytes| oom("the vertex tables", bytes))?;
         let mut listing = Listing::default();
         if copy_listing {
-            listing
-                .offsets
-                .try_reserve_exact(count + 1)
-                .map_err(|_| oom("the input listing", (count + 1) * 8))?;
+            // Every simplex was checked to have 1 to MAX_DIMENSION + 1 vertices: one non-zero
+            // total means they all have the same length, and the offsets are a formula.
+            let lengths = totals.iter().filter(|&&t| t > 0).count();
+            let mut offsets = Vec::new();
+            if lengths > 1 {
+                offsets
+                    .try_reserve_exact(count + 1)
+                    .map_err(|_| oom("the input listing", (count + 1) * 8))?;
+                offsets.push(0);
+            }
             listing
                 .ids
                 .try_reserve_exact(id_count)
                 .map_err(|_| oom("the input listing", id_count * 4))?;
-            listing.offsets.push(0);
             for i in 0..count {
                 listing.ids.extend_from_slice(simplex(i));
-                listing.offsets.push(listing.ids.len());
+                if lengths > 1 {
+                    offsets.push(listing.ids.len());
+                }
             }
+            listing.offsets = if lengths > 1 {
+                Offsets::Varied(offsets)
+            } else {
+                Offsets::Uniform {
+                    arity: id_count / count.max(1),
+                    count,
+                }
+            };
         }
         Ok(Complex {
             n_vertices: n,
@@ -553,10 +639,12 @@ impl Complex {
         })
     }
 
-    /// The listing's arrays: simplex `i` as given is `ids[offsets[i]..offsets[i + 1]]` (saved
-    /// files keep them so that the complex is rebuilt exactly).
-    pub(crate) fn listing_arrays(&self) -> (&[u32], &[usize]) {
-        (&self.listing.ids, &self.listing.offsets)
+    /// The listing: its ids, its simplex count and where simplex `i` starts in the ids
+    /// (`0..=count`): simplex `i` as given is `ids[at(i)..at(i + 1)]` (saved files keep them so
+    /// that the complex is rebuilt exactly).
+    pub(crate) fn listing_arrays(&self) -> (&[u32], usize, impl Fn(usize) -> usize + '_) {
+        let o = &self.listing.offsets;
+        (&self.listing.ids, o.count(), move |i| o.at(i))
     }
 
     /// Names the file the complex came from (a reopened saved complex names its first source).
@@ -566,12 +654,13 @@ impl Complex {
 
     /// Number of simplices as listed in the input (absorbed ones included).
     pub fn input_count(&self) -> usize {
-        self.listing.offsets.len().saturating_sub(1)
+        self.listing.offsets.count()
     }
 
     /// Listed simplex `i` exactly as given: its vertex order is the input's winding.
     pub fn input_simplex(&self, i: usize) -> &[u32] {
-        &self.listing.ids[self.listing.offsets[i]..self.listing.offsets[i + 1]]
+        let o = &self.listing.offsets;
+        &self.listing.ids[o.at(i)..o.at(i + 1)]
     }
 
     /// Builds the listing ↔ top maps now if their memory (8 bytes a listing, 4 a top simplex)
@@ -740,7 +829,7 @@ impl Complex {
     pub(crate) fn tops_listed_needs_maps(&self) -> bool {
         let tops: usize = self.tops.iter().skip(1).map(SimplexTable::len).sum();
         let listed = (0..self.input_count())
-            .filter(|&i| self.listing.offsets[i + 1] - self.listing.offsets[i] > 1)
+            .filter(|&i| self.listing.offsets.at(i + 1) - self.listing.offsets.at(i) > 1)
             .count();
         tops != listed
     }
@@ -965,6 +1054,176 @@ fn faces_above<'a>(
 /// block of [`Rows::BLOCK`] rows is sorted and deduplicated with what is held; once a block
 /// removes less than half of the rows, the rest is reserved exactly and kept as is (unique
 /// inputs pay one sort of one block).
+/// Why a listed simplex is refused (the error is made with its origin by the caller).
+#[derive(Debug, Clone, Copy)]
+enum Invalid {
+    Empty,
+    TooHigh,
+    OutOfRange(u32),
+    Repeated(u32),
+}
+
+/// Simplex `s` checked (1 to `MAX_DIMENSION + 1` vertices, ids below `n`, none repeated) and
+/// sorted into `buf`: the sorted row.
+#[inline]
+fn sorted_row<'b>(
+    s: &[u32],
+    n: u32,
+    buf: &'b mut [u32; MAX_DIMENSION + 1],
+) -> Result<&'b [u32], Invalid> {
+    if s.is_empty() {
+        return Err(Invalid::Empty);
+    }
+    if s.len() > MAX_DIMENSION + 1 {
+        return Err(Invalid::TooHigh);
+    }
+    if let Some(&v) = s.iter().find(|&&v| v >= n) {
+        return Err(Invalid::OutOfRange(v));
+    }
+    let row = &mut buf[..s.len()];
+    row.copy_from_slice(s);
+    row.sort_unstable();
+    if let Some(w) = row.windows(2).find(|w| w[0] == w[1]) {
+        return Err(Invalid::Repeated(w[0]));
+    }
+    Ok(row)
+}
+
+/// Why [`sorted_rows_in_parallel`] stopped: simplex `i` is refused, or memory ran out.
+enum Stop {
+    Refused(usize, Invalid),
+    NoRoom(usize),
+}
+
+/// [`sorted_row`] of simplices `0..count` pushed into `by_dim` (by length) on several threads,
+/// with the serial loop's result: the same rows, the first refused simplex in input order.
+/// While a dimension's rows may still be deduplicated by blocks ([`Rows::push`]), windows of
+/// simplices are checked and sorted in ranges on [`crate::parallel::threads`] threads into
+/// buffers of the window's size (reserved fallibly), then pushed in order; from where no
+/// dimension deduplicates any more (at once for most inputs, after one block for large
+/// ones), the rest is written in place ([`rows_in_place`]).
+fn sorted_rows_in_parallel<'a>(
+    count: usize,
+    n: u32,
+    simplex: &(impl Fn(usize) -> &'a [u32] + Sync),
+    by_dim: &mut [Rows],
+) -> Result<(), Stop> {
+    const WINDOW: usize = 1 << 18;
+    let mut w = 0;
+    while w < count {
+        if by_dim.iter().all(|r| r.next_dedup == usize::MAX) {
+            return rows_in_place(w..count, n, simplex, by_dim);
+        }
+        let window = w..(w + WINDOW).min(count);
+        let parts = crate::parallel::map_ranges(window.len(), |r| {
+            let r = (w + r.start)..(w + r.end);
+            let ids: usize = r
+                .clone()
+                .map(|i| simplex(i).len().min(MAX_DIMENSION + 1))
+                .sum();
+            let mut rows: Vec<u32> = Vec::new();
+            table::try_reserve_exact(&mut rows, ids)?;
+            let mut buf = [0u32; MAX_DIMENSION + 1];
+            for i in r.clone() {
+                match sorted_row(simplex(i), n, &mut buf) {
+                    Ok(row) => rows.extend_from_slice(row),
+                    Err(why) => return Ok((rows, r, Some((i, why)))),
+                }
+            }
+            Ok((rows, r, None))
+        });
+        for part in parts {
+            let (rows, r, refused) = part.map_err(Stop::NoRoom)?;
+            let mut at = 0;
+            for i in r.start..refused.map_or(r.end, |(i, _)| i) {
+                let len = simplex(i).len();
+                by_dim[len - 1]
+                    .push(&rows[at..at + len])
+                    .map_err(Stop::NoRoom)?;
+                at += len;
+            }
+            if let Some((i, why)) = refused {
+                return Err(Stop::Refused(i, why));
+            }
+        }
+        w = window.end;
+    }
+    Ok(())
+}
+
+/// The rows of simplices `range` written in place on several threads, once no dimension
+/// deduplicates: each dimension's array is reserved at its exact final size (as
+/// [`Rows::push`] would) and filled with zeros, every range of simplices counts its rows per
+/// dimension, and then sorts its simplices into its own slice of each array.
+fn rows_in_place<'a>(
+    range: std::ops::Range<usize>,
+    n: u32,
+    simplex: &(impl Fn(usize) -> &'a [u32] + Sync),
+    by_dim: &mut [Rows],
+) -> Result<(), Stop> {
+    use rayon::prelude::*;
+    let ranges: Vec<_> = crate::parallel::ranges(range.len())
+        .into_iter()
+        .map(|r| (range.start + r.start)..(range.start + r.end))
+        .collect();
+    let dims = by_dim.len();
+    let counts = crate::parallel::map_chunks(ranges.len(), |k| {
+        let mut c = [0usize; MAX_DIMENSION + 1];
+        for i in ranges[k].clone() {
+            let len = simplex(i).len();
+            if (1..=dims).contains(&len) {
+                c[len - 1] += len;
+            }
+        }
+        c
+    });
+    let mut tails = Vec::with_capacity(dims);
+    for rows in by_dim.iter_mut() {
+        let base = rows.ids.len();
+        table::try_reserve_exact(&mut rows.ids, rows.left).map_err(Stop::NoRoom)?;
+        crate::io::chunked::extend_filled(&mut rows.ids, rows.left, 0);
+        rows.left = 0;
+        tails.push(&mut rows.ids[base..]);
+    }
+    let mut parts = Vec::with_capacity(ranges.len());
+    for (c, r) in counts.iter().zip(&ranges) {
+        let mine: Vec<&mut [u32]> = tails
+            .iter_mut()
+            .zip(c)
+            .map(|(t, &len)| {
+                let (a, b) = std::mem::take(t).split_at_mut(len);
+                *t = b;
+                a
+            })
+            .collect();
+        parts.push((mine, r.clone()));
+    }
+    let refused: Vec<Option<(usize, Invalid)>> = crate::parallel::install(|| {
+        parts
+            .into_par_iter()
+            .map(|(mut slices, r)| {
+                let mut at = [0usize; MAX_DIMENSION + 1];
+                let mut buf = [0u32; MAX_DIMENSION + 1];
+                for i in r {
+                    match sorted_row(simplex(i), n, &mut buf) {
+                        Ok(row) => {
+                            let p = row.len() - 1;
+                            slices[p][at[p]..at[p] + row.len()].copy_from_slice(row);
+                            at[p] += row.len();
+                        }
+                        Err(why) => return Some((i, why)),
+                    }
+                }
+                None
+            })
+            .collect()
+    });
+    match refused.into_iter().flatten().next() {
+        Some((i, why)) => Err(Stop::Refused(i, why)),
+        None => Ok(()),
+    }
+}
+
 struct Rows {
     arity: usize,
     ids: Vec<u32>,

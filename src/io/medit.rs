@@ -31,6 +31,7 @@
 //!   `Vertices` section the vertex count is 0.
 //! * A section ending before its count is reached is an error naming the file's last line.
 
+use super::chunked;
 use super::scan::{self, Scanner};
 use super::{
     Coords, RawInput, ReadErrorKind, capped, check_integer, echo, no_room, parse_count, parse_f64,
@@ -158,6 +159,113 @@ impl<'a> Reader<'a> {
         }
     }
 
+    /// Reads a section's `count` entries on several threads when it is large and laid out one
+    /// entry per line (see [`chunked`]): the `per` kept numbers of each entry (ids or
+    /// coordinates) appended to `out`, whose capacity must be reserved, and the scanner moved
+    /// past the section. `None` (nothing appended, the scanner unmoved) otherwise: the serial
+    /// [`Reader::entries`] then reads the section, errors included.
+    fn parallel_entries<T: Kept>(
+        &mut self,
+        count: u32,
+        items: &[Item],
+        out: &mut Vec<T>,
+        per: usize,
+    ) -> Option<chunked::Body> {
+        let n = count as usize;
+        if !crate::parallel::splits(n) || out.capacity() - out.len() < n.checked_mul(per)? {
+            return None;
+        }
+        // The entries start on the next line: nothing but a comment may follow the count.
+        let mut sc = self.t.clone();
+        if sc.token_in_line().is_some() || !sc.next_line() {
+            return None;
+        }
+        let body = chunked::body(self.text, sc.pos(), sc.line(), n)?;
+        let base = out.len();
+        chunked::extend_filled(out, n * per, T::default());
+        let read = chunked::fill(self.text, &body, &mut out[base..], per, |sc, slot| {
+            let mut kept = 0;
+            for &item in items {
+                match item_in_line(sc, item)? {
+                    Num::Skip => {}
+                    num => {
+                        *slot.get_mut(kept)? = T::from_num(num)?;
+                        kept += 1;
+                    }
+                }
+            }
+            Some(()).filter(|_| kept == per)
+        });
+        if !read {
+            out.truncate(base);
+            return None;
+        }
+        self.t.place(body.end.0, body.end.1);
+        Some(body)
+    }
+}
+
+/// One number of an entry as [`Reader::entries`] reads it: `None` when the line ends first
+/// or the number is not what the item needs (the serial reader then reads it and reports it).
+#[inline]
+fn item_in_line(sc: &mut Scanner<'_>, item: Item) -> Option<Num> {
+    match item {
+        Item::Id => match sc.digits(false) {
+            Some((v, _)) => scan::id_value(v, true).ok().map(Num::Id),
+            None => scan::id(sc.token_in_line()?.0, true).ok().map(Num::Id),
+        },
+        Item::Coord | Item::Real => {
+            let x = match sc.real(false) {
+                Some((x, _)) => x,
+                None => parse_f64(sc.token_in_line()?.0, "").ok()?,
+            };
+            Some(if item == Item::Coord {
+                Num::X(x)
+            } else {
+                Num::Skip
+            })
+        }
+        Item::Ref | Item::Int => match sc.digits(false) {
+            Some(_) => Some(Num::Skip),
+            None => check_integer(sc.token_in_line()?.0, "")
+                .ok()
+                .map(|()| Num::Skip),
+        },
+    }
+}
+
+/// A number of an entry read on a thread: a vertex id, a coordinate, or one that is skipped.
+#[derive(Clone, Copy)]
+enum Num {
+    Id(u32),
+    X(f64),
+    Skip,
+}
+
+/// What an entry keeps: vertex ids (`u32`) or coordinates (`f64`).
+trait Kept: Copy + Default + Send + Sync {
+    fn from_num(n: Num) -> Option<Self>;
+}
+
+impl Kept for u32 {
+    fn from_num(n: Num) -> Option<u32> {
+        match n {
+            Num::Id(v) => Some(v),
+            _ => None,
+        }
+    }
+}
+
+impl Kept for f64 {
+    fn from_num(n: Num) -> Option<f64> {
+        match n {
+            Num::X(x) => Some(x),
+            _ => None,
+        }
+    }
+}
+
+impl Reader<'_> {
     /// A section of elements that are not simplices: an error at its first entry, if any.
     fn reject(&mut self, keyword: &str, kind: ReadErrorKind) -> Res<()> {
         let count = self.count(keyword)?;
@@ -175,6 +283,31 @@ impl<'a> Reader<'a> {
             )),
         }
     }
+}
+
+/// Reads an element section of `count` entries of `items` into `raw` on several threads (see
+/// [`Reader::parallel_entries`]); false, with nothing read, for the serial reader to read it.
+fn elements_in_parallel(
+    r: &mut Reader<'_>,
+    count: u32,
+    items: &[Item],
+    raw: &mut RawInput,
+) -> bool {
+    let (n, k) = (count as usize, items.len() - 1);
+    let room = |len: usize, cap: usize| cap - len >= n;
+    if !room(raw.offsets.len(), raw.offsets.capacity())
+        || !room(raw.lines.len(), raw.lines.capacity())
+    {
+        return false;
+    }
+    let base = raw.ids.len();
+    let Some(body) = r.parallel_entries(count, items, &mut raw.ids, k) else {
+        return false;
+    };
+    // One entry a line: offsets and lines follow from the position.
+    let first = body.first_line;
+    chunked::extend_with(&mut raw.offsets, n, |i| base + (i + 1) * k)
+        && chunked::extend_with(&mut raw.lines, n, |i| first + i as u32)
 }
 
 /// The error for a token of an integer section (`Corners`, ...) that is not an integer.
@@ -305,9 +438,13 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
                 let cap = capped((n as usize).saturating_mul(dim), r.text);
                 let mut data =
                     try_with_capacity(cap, "the vertex coordinates").map_err(|k| (l, k))?;
-                r.entries(kw, n, &vertex_items, |_, xs, _| {
-                    table::try_extend(&mut data, xs).map_err(no_room("the vertex coordinates"))
-                })?;
+                if r.parallel_entries(n, &vertex_items, &mut data, dim)
+                    .is_none()
+                {
+                    r.entries(kw, n, &vertex_items, |_, xs, _| {
+                        table::try_extend(&mut data, xs).map_err(no_room("the vertex coordinates"))
+                    })?;
+                }
                 vertices = Some((n, data));
             }
             "edges" | "triangles" | "tetrahedra" => {
@@ -320,7 +457,10 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
                 let cap = capped(n as usize, r.text);
                 raw.try_reserve(cap, cap.saturating_mul(k).min(r.text.len()))
                     .map_err(|e| (l, e))?;
-                r.entries(kw, n, &element(k), |ids, _, line| raw.try_push(ids, line))?;
+                let items = element(k);
+                if !elements_in_parallel(&mut r, n, &items, &mut raw) {
+                    r.entries(kw, n, &items, |ids, _, line| raw.try_push(ids, line))?;
+                }
             }
             "corners" | "ridges" | "requiredvertices" | "requirededges" | "requiredtriangles" => {
                 let n = r.count(kw)?;

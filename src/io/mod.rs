@@ -42,6 +42,7 @@ macro_rules! reader_test_helpers {
 }
 
 mod bytes;
+pub(crate) mod chunked;
 pub mod medit;
 pub mod msh;
 pub mod obj;
@@ -226,8 +227,41 @@ pub fn read_file(path: &Path) -> Result<Vec<u8>, ReadErrorKind> {
     bytes
         .try_reserve_exact(len.saturating_add(1))
         .map_err(|_| too_large())?;
+    #[cfg(unix)]
+    if read_in_parallel(&file, len, &mut bytes) {
+        return Ok(bytes);
+    }
     file.read_to_end(&mut bytes).map_err(io)?;
     Ok(bytes)
+}
+
+/// Reads the `len` bytes of a large file into `bytes` (empty, capacity reserved) as ranges
+/// read on [`crate::parallel::threads`] threads at their offsets (the kernel's copy and the
+/// buffer's page faults are most of reading a file in the page cache). False, with `bytes`
+/// emptied, when it runs serially or anything differs from a plain read (a read error, a file
+/// that shrank or grew meanwhile): the caller then reads it in one go.
+#[cfg(unix)]
+fn read_in_parallel(file: &std::fs::File, len: usize, bytes: &mut Vec<u8>) -> bool {
+    use rayon::prelude::*;
+    use std::os::unix::fs::FileExt;
+    // From 1 MiB (at the default split threshold).
+    if !crate::parallel::splits(len / 16) {
+        return false;
+    }
+    let piece = len.div_ceil(4 * crate::parallel::threads()).max(4096);
+    chunked::extend_filled(bytes, len, 0);
+    let read = crate::parallel::install(|| {
+        bytes
+            .par_chunks_mut(piece)
+            .enumerate()
+            .all(|(k, part)| file.read_exact_at(part, (k * piece) as u64).is_ok())
+    });
+    // Nothing after the size read (the file did not grow).
+    if read && matches!(file.read_at(&mut [0u8; 1], len as u64), Ok(0)) {
+        return true;
+    }
+    bytes.clear();
+    false
 }
 
 /// Refuses anything but a regular file, naming what it is.

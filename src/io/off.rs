@@ -34,6 +34,7 @@
 //!
 //! Ids beyond the vertex count and repeated ids are left to the complex model.
 
+use super::chunked;
 use super::scan::{self, Scanner};
 use super::{
     Coords, IntError, RawInput, ReadErrorKind, capped_len, echo, no_room, parse_count, parse_f64,
@@ -80,16 +81,21 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     let (nv, nf) = counts(&mut t)?;
     let counts_line = t.line();
     let layout = Layout::new(h, dim);
-    let (data, widest) = vertices(&mut t, nv, &layout)?;
+    let (data, widest) = match vertices_in_parallel(&mut t, text, nv, &layout) {
+        Some(data) => (data, layout.per_vertex),
+        None => vertices(&mut t, nv, &layout)?,
+    };
     let mut raw = RawInput::new();
     raw.vertex_count = Some(nv);
     raw.coords = Some(Coords { dim, data });
     let cap = capped_len(nf as usize, t.len());
     raw.try_reserve(cap, cap.saturating_mul(3).min(t.len()))
         .map_err(|k| (counts_line, k))?;
-    faces(&mut t, nf, &mut raw, |(l, k)| {
-        first_face_hint(l, k, widest, &layout)
-    })?;
+    if !faces_in_parallel(&mut t, text, nf, &mut raw) {
+        faces(&mut t, nf, &mut raw, |(l, k)| {
+            first_face_hint(l, k, widest, &layout)
+        })?;
+    }
     if let Some((tok, l)) = t.token() {
         return Err((
             l,
@@ -288,6 +294,104 @@ fn vertices(t: &mut Scanner<'_>, nv: u32, layout: &Layout) -> Res<(Vec<f64>, usi
         check_whole_vertices(on_line, layout)?;
     }
     Ok((data, widest.max(on_line.1)))
+}
+
+/// The body of a section of `n` entries that starts on the line after the scanner's (nothing
+/// but a comment may follow it there), when it is large enough to split and present.
+fn section_body(t: &Scanner<'_>, text: &str, n: u32) -> Option<chunked::Body> {
+    if !crate::parallel::splits(n as usize) {
+        return None;
+    }
+    let mut sc = t.clone();
+    if sc.token_in_line().is_some() || !sc.next_line() {
+        return None;
+    }
+    chunked::body(text, sc.pos(), sc.line(), n as usize)
+}
+
+/// The vertices read on several threads when they are many and one a line (see
+/// [`chunked`]); `None` (the scanner unmoved, nothing reserved) for [`vertices`] to read them.
+fn vertices_in_parallel(
+    t: &mut Scanner<'_>,
+    text: &str,
+    nv: u32,
+    layout: &Layout,
+) -> Option<Vec<f64>> {
+    let body = section_body(t, text, nv)?;
+    let (dim, per_vertex) = (layout.dim, layout.per_vertex);
+    let len = (nv as usize).checked_mul(dim)?;
+    // The serial reader's reservation, so that the attempt fails (and the serial reader
+    // reports it) exactly where the serial reader would.
+    let mut data = try_with_capacity(capped_len(len, t.len()), "the vertex coordinates").ok()?;
+    chunked::extend_filled(&mut data, len, 0.0).then_some(())?;
+    let read = chunked::fill(text, &body, &mut data, dim, |sc, xs| {
+        let mut kept = xs.iter_mut();
+        for _ in 0..per_vertex {
+            let x = match sc.real(false) {
+                Some((x, _)) => x,
+                None => parse_f64(sc.token_in_line()?.0, "").ok()?,
+            };
+            // The first `dim` numbers are the coordinates; the rest are checked and dropped.
+            if let Some(slot) = kept.next() {
+                *slot = x;
+            }
+        }
+        Some(())
+    });
+    read.then(|| {
+        t.place(body.end.0, body.end.1);
+        data
+    })
+}
+
+/// The faces read into `raw` on several threads when they are many, one a line, and all of
+/// the first face's size (see [`chunked`]); false (nothing read, the scanner unmoved) for
+/// [`faces`] to read them.
+fn faces_in_parallel(t: &mut Scanner<'_>, text: &str, nf: u32, raw: &mut RawInput) -> bool {
+    let Some(body) = section_body(t, text, nf) else {
+        return false;
+    };
+    let mut first = Scanner::at_line(text, body.cuts[0], body.first_line);
+    let k = match first.digits(false) {
+        Some((k @ 1..=3, _)) => k as usize,
+        _ => return false,
+    };
+    let n = nf as usize;
+    let room = |len: usize, cap: usize| cap - len >= n;
+    if !room(raw.offsets.len(), raw.offsets.capacity())
+        || !room(raw.lines.len(), raw.lines.capacity())
+        || raw.ids.capacity() - raw.ids.len() < n * k
+    {
+        return false;
+    }
+    let base = raw.ids.len();
+    chunked::extend_filled(&mut raw.ids, n * k, 0);
+    let read = chunked::fill(text, &body, &mut raw.ids[base..], k, |sc, ids| {
+        if sc.digits(false)?.0 != k as u64 {
+            return None;
+        }
+        for id in ids.iter_mut() {
+            *id = match sc.digits(false) {
+                Some((v, _)) => scan::id_value(v, false).ok()?,
+                None => scan::id(sc.token_in_line()?.0, false).ok()?,
+            };
+        }
+        // The colour: the rest of the line, 0, 1, 3 or 4 numbers.
+        let mut colour = 0;
+        while let Some((tok, _)) = sc.token_in_line() {
+            parse_f64(tok, "").ok()?;
+            colour += 1;
+        }
+        matches!(colour, 0 | 1 | 3 | 4).then_some(())
+    });
+    if !read {
+        raw.ids.truncate(base);
+        return false;
+    }
+    t.place(body.end.0, body.end.1);
+    let line = body.first_line;
+    chunked::extend_with(&mut raw.offsets, n, |i| base + (i + 1) * k)
+        && chunked::extend_with(&mut raw.lines, n, |i| line + i as u32)
 }
 
 /// An error in the first face when vertex lines held several vertices each: most likely the

@@ -55,6 +55,27 @@ impl<'a> Scanner<'a> {
         }
     }
 
+    /// A scanner over `text` standing at byte `pos` (a line start), on line `line`.
+    pub(crate) fn at_line(text: &'a str, pos: usize, line: u32) -> Self {
+        Scanner {
+            pos,
+            line,
+            ..Scanner::new(text)
+        }
+    }
+
+    /// The byte the cursor stands at.
+    pub(crate) fn pos(&self) -> usize {
+        self.pos
+    }
+
+    /// Moves the cursor to byte `pos` (a line start, or the end of the text) on line `line`:
+    /// where the scanner would stand after reading up to there itself.
+    pub(crate) fn place(&mut self, pos: usize, line: u32) {
+        self.pos = pos;
+        self.line = line;
+    }
+
     /// A scanner for which a trailing `\` continues the line (OBJ).
     pub(crate) fn with_continuation(text: &'a str) -> Self {
         Scanner {

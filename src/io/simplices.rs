@@ -23,12 +23,193 @@
 //!   LF, CRLF or a lone CR. Any other keyword is an error, and so is a file with no `v` or `s`
 //!   line at all.
 
+use super::chunked;
 use super::scan::{self, Scanner};
 use super::{Coords, RawInput, ReadErrorKind, echo, no_room, parse_f64, syntax};
 use crate::complex::table;
 
-/// Reads a `.simplices` file's text.
+/// Reads a `.simplices` file's text. A large file is read on several threads (see
+/// [`parse_in_parallel`]), with the same result and the same first error as the serial read.
 pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
+    if crate::parallel::splits(text.len() / 8)
+        && let Some(raw) = parse_in_parallel(text)
+    {
+        return Ok(raw);
+    }
+    parse_serially(text)
+}
+
+/// What one range of lines holds (the first pass of [`parse_in_parallel`]).
+#[derive(Default, Clone, Copy)]
+struct Counts {
+    lines: usize,
+    simplices: usize,
+    ids: usize,
+    vertices: usize,
+    /// Coordinates of the range's first `v` line (every `v` line of the range has as many).
+    dim: Option<usize>,
+}
+
+/// Reads the file on several threads in two passes over ranges of whole lines: the first
+/// counts each range's lines, simplices, ids and vertices (tokens only, no numbers); the second
+/// parses each range straight into its place in arrays reserved at their exact size. `None`
+/// when anything is not plain — an error of any kind, a `v` line whose coordinate count differs
+/// from the first's, memory that cannot be had — for the serial reader to read the file (and
+/// report the first error, with its line and message).
+fn parse_in_parallel(text: &str) -> Option<RawInput> {
+    let cuts = chunked::line_ranges(text);
+    let ranges: Vec<(usize, usize)> = cuts.windows(2).map(|w| (w[0], w[1])).collect();
+    let counts = crate::parallel::map_chunks(ranges.len(), |r| count_range(text, ranges[r]));
+    let counts: Vec<Counts> = counts.into_iter().collect::<Option<_>>()?;
+    let dims: Vec<usize> = counts.iter().filter_map(|c| c.dim).collect();
+    let dim = dims.first().copied();
+    if dims.iter().any(|&d| Some(d) != dim) {
+        return None;
+    }
+    let total = |f: fn(&Counts) -> usize| counts.iter().map(f).sum::<usize>();
+    let (simplices, ids, vertices) = (
+        total(|c| c.simplices),
+        total(|c| c.ids),
+        total(|c| c.vertices),
+    );
+    if simplices + vertices == 0 || u32::try_from(vertices).is_err() {
+        return None;
+    }
+    let coords = vertices.checked_mul(dim.unwrap_or(0))?;
+    let mut raw = RawInput::new();
+    raw.try_reserve(simplices, ids).ok()?;
+    let mut data = Vec::new();
+    table::try_reserve_exact(&mut data, coords).ok()?;
+    chunked::extend_filled(&mut raw.ids, ids, 0);
+    chunked::extend_filled(&mut raw.offsets, simplices, 0);
+    chunked::extend_filled(&mut raw.lines, simplices, 0);
+    chunked::extend_filled(&mut data, coords, 0.0);
+    // Each range's share of the arrays, and where its numbering starts.
+    let mut parts = Vec::with_capacity(ranges.len());
+    let (mut ids_left, mut offs_left) = (&mut raw.ids[..], &mut raw.offsets[1..]);
+    let (mut lines_left, mut data_left) = (&mut raw.lines[..], &mut data[..]);
+    let (mut line, mut id_base) = (1u32, 0usize);
+    for (&range, c) in ranges.iter().zip(&counts) {
+        let (i, rest) = std::mem::take(&mut ids_left).split_at_mut(c.ids);
+        ids_left = rest;
+        let (o, rest) = std::mem::take(&mut offs_left).split_at_mut(c.simplices);
+        offs_left = rest;
+        let (l, rest) = std::mem::take(&mut lines_left).split_at_mut(c.simplices);
+        lines_left = rest;
+        let (d, rest) = std::mem::take(&mut data_left).split_at_mut(c.vertices * dim.unwrap_or(0));
+        data_left = rest;
+        parts.push((range, line, id_base, i, o, l, d));
+        line = line.checked_add(u32::try_from(c.lines).ok()?)?;
+        id_base += c.ids;
+    }
+    let read = crate::parallel::install(|| {
+        use rayon::prelude::*;
+        parts
+            .into_par_iter()
+            .all(|(range, line, id_base, i, o, l, d)| {
+                fill_range(text, range, line, id_base, i, o, l, d).is_some()
+            })
+    });
+    if !read {
+        return None;
+    }
+    chunked::note_section();
+    match dim {
+        None => {}
+        Some(dim) => {
+            raw.vertex_count = Some(vertices as u32);
+            raw.coords = (dim > 0).then_some(Coords { dim, data });
+        }
+    }
+    Some(raw)
+}
+
+/// The first pass over one range: its counts, `None` when a line is not plain.
+fn count_range(text: &str, (a, z): (usize, usize)) -> Option<Counts> {
+    let mut s = Scanner::at_line(&text[..z], a, 1);
+    let mut c = Counts::default();
+    loop {
+        if let Some((keyword, _)) = s.token_in_line() {
+            let mut n = 0;
+            while s.token_in_line().is_some() {
+                n += 1;
+            }
+            match keyword {
+                "v" => {
+                    if *c.dim.get_or_insert(n) != n {
+                        return None;
+                    }
+                    c.vertices += 1;
+                }
+                "s" if n > 0 => {
+                    c.simplices += 1;
+                    c.ids += n;
+                }
+                _ => return None,
+            }
+        }
+        if !s.next_line() {
+            break;
+        }
+        c.lines += 1;
+    }
+    Some(c)
+}
+
+/// The second pass over one range, whose first line is `line` and first id lands at `id_base`
+/// of the whole: its ids, offsets, lines and coordinates written into its shares. `None` when
+/// a number is not what the serial reader accepts.
+#[allow(clippy::too_many_arguments)]
+fn fill_range(
+    text: &str,
+    (a, z): (usize, usize),
+    line: u32,
+    id_base: usize,
+    ids: &mut [u32],
+    offsets: &mut [usize],
+    lines: &mut [u32],
+    coords: &mut [f64],
+) -> Option<()> {
+    let mut s = Scanner::at_line(&text[..z], a, line);
+    let (mut at, mut simplex, mut x) = (0, 0, 0);
+    loop {
+        if let Some((keyword, l)) = s.token_in_line() {
+            if keyword == "v" {
+                loop {
+                    *coords.get_mut(x)? = match s.real(false) {
+                        Some((v, _)) => v,
+                        None => match s.token_in_line() {
+                            Some((tok, _)) => parse_f64(tok, "").ok()?,
+                            None => break,
+                        },
+                    };
+                    x += 1;
+                }
+            } else {
+                loop {
+                    *ids.get_mut(at)? = match s.digits(false) {
+                        Some((v, _)) => scan::id_value(v, false).ok()?,
+                        None => match s.token_in_line() {
+                            Some((tok, _)) => scan::id(tok, false).ok()?,
+                            None => break,
+                        },
+                    };
+                    at += 1;
+                }
+                *offsets.get_mut(simplex)? = id_base + at;
+                *lines.get_mut(simplex)? = l;
+                simplex += 1;
+            }
+        }
+        if !s.next_line() {
+            break;
+        }
+    }
+    (at == ids.len() && simplex == offsets.len() && x == coords.len()).then_some(())
+}
+
+/// The serial reader.
+fn parse_serially(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     let mut s = Scanner::new(text);
     let mut raw = RawInput::new();
     let mut data = Vec::new();

@@ -243,6 +243,39 @@ impl Writer {
         }
     }
 
+    /// Appends `count` numbers produced by `items`, widened to 64 bits: the bytes of
+    /// [`Writer::usizes`] of the same numbers, without an array holding them (e.g. offsets
+    /// that are a formula).
+    pub fn usizes_from(&mut self, count: usize, items: impl Iterator<Item = usize>) {
+        self.pad_to(ALIGN);
+        let offset = self.pos;
+        let mut hash = xxhash_rust::xxh3::Xxh3::new();
+        let mut buf = [0u64; 1024];
+        let mut written = 0usize;
+        let mut items = items.take(count);
+        loop {
+            let mut n = 0;
+            for (slot, x) in buf.iter_mut().zip(&mut items) {
+                *slot = x as u64;
+                n += 1;
+            }
+            if n == 0 {
+                break;
+            }
+            let bytes: &[u8] = bytemuck::cast_slice(&buf[..n]);
+            hash.update(bytes);
+            self.write_raw(bytes);
+            written += n;
+        }
+        assert_eq!(written, count, "usizes_from: the iterator ended early");
+        self.entries.push(Entry {
+            offset,
+            count: count as u64,
+            size: 8,
+            checksum: hash.digest(),
+        });
+    }
+
     /// Appends one number (a one-element 64-bit section).
     pub fn scalar(&mut self, x: u64) {
         self.section(&[x]);

@@ -16,9 +16,9 @@ pub(super) fn save_complex(c: &Complex, w: &mut Writer) {
     let (dim, data) = coords_of(c);
     w.scalar(dim);
     w.section(data);
-    let (ids, offsets) = c.listing_arrays();
+    let (ids, count, offset) = c.listing_arrays();
     w.u32s(ids);
-    w.usizes(offsets);
+    w.usizes_from(count + 1, (0..=count).map(offset));
     let source = c.source().map(|p| p.to_string_lossy().into_owned());
     w.u8s(source.unwrap_or_default().as_bytes());
 }
