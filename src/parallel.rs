@@ -7,7 +7,7 @@
 //! The thread count is [`set_threads`] (the CLI's `--threads`, the C ABI's `tpx_set_threads`),
 //! else the `TOPOPLEX_THREADS` environment variable, else every core.
 
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU32, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 /// 0: not set, read the environment.
@@ -291,6 +291,191 @@ pub(crate) fn map_chunks<T: Send>(chunks: usize, f: impl Fn(usize) -> T + Sync +
     install(|| (0..chunks).into_par_iter().map(f).collect())
 }
 
+/// `n` atomic words set by `init(i)`, reserved fallibly (`Err(bytes)`).
+fn try_atomics(n: usize, init: impl Fn(usize) -> u32) -> Result<Vec<AtomicU32>, usize> {
+    let mut v = Vec::new();
+    crate::complex::table::try_reserve_exact(&mut v, n)?;
+    v.extend((0..n).map(|i| AtomicU32::new(init(i))));
+    Ok(v)
+}
+
+/// The plain words of `v`, in place (same size and alignment: no new allocation).
+fn into_plain(v: Vec<AtomicU32>) -> Vec<u32> {
+    v.into_iter().map(AtomicU32::into_inner).collect()
+}
+
+/// Union–find over `0..n` that several threads may merge into at once (lock-free: a root is
+/// linked below a smaller root by compare-and-swap, paths are halved by compare-and-swap). A
+/// parent is never larger than its child, so each class's root is its smallest member whatever
+/// the order of the unions or the number of threads: labels are deterministic. 4 bytes per item.
+pub(crate) struct SharedUnionFind(Vec<AtomicU32>);
+
+impl SharedUnionFind {
+    /// `n` singletons (`n` ≤ 2^32), or `Err(bytes)` when the memory cannot be had.
+    pub(crate) fn try_new(n: usize) -> Result<Self, usize> {
+        Ok(SharedUnionFind(try_atomics(n, |i| i as u32)?))
+    }
+
+    /// The root of `x`'s class (the smallest member once every union is done).
+    pub(crate) fn find(&self, mut x: u32) -> u32 {
+        loop {
+            let up = self.0[x as usize].load(Ordering::Relaxed);
+            if up == x {
+                return x;
+            }
+            let upper = self.0[up as usize].load(Ordering::Relaxed);
+            if upper != up {
+                // Path halving; losing the race only leaves a longer path.
+                let _ = self.0[x as usize].compare_exchange_weak(
+                    up,
+                    upper,
+                    Ordering::Relaxed,
+                    Ordering::Relaxed,
+                );
+            }
+            x = upper;
+        }
+    }
+
+    /// Merges the classes of `a` and `b`.
+    pub(crate) fn union(&self, a: u32, b: u32) {
+        let (mut a, mut b) = (a, b);
+        loop {
+            a = self.find(a);
+            b = self.find(b);
+            if a == b {
+                return;
+            }
+            let (lo, hi) = (a.min(b), a.max(b));
+            // Succeeds only while `hi` is still a root; else retry from the new roots.
+            if self.0[hi as usize]
+                .compare_exchange(hi, lo, Ordering::Relaxed, Ordering::Relaxed)
+                .is_ok()
+            {
+                return;
+            }
+        }
+    }
+
+    /// Whether `x` is its class's root (its smallest member, once every union is done).
+    pub(crate) fn is_root(&self, x: u32) -> bool {
+        self.0[x as usize].load(Ordering::Relaxed) == x
+    }
+}
+
+/// Inverts a relation from `sources` items to `targets` items into CSR form (offsets,
+/// entries): `emit(i, f)` calls `f(t)` for each target `t` of source `i` (no target twice);
+/// target `t`'s entries are `value(i)` of its sources, in source order, so `value` must grow
+/// with `i`. On several threads when `sources` is large: targets are counted and sources
+/// scattered through atomic cursors, then each target's entries sorted, which restores source
+/// order: the same arrays with any thread count. Offsets and entries fit 32 bits (callers
+/// check). `Err(bytes)` when an array cannot be had: 4 bytes a target (8 while scattering on
+/// several threads) and 4 an entry. O(sources + targets + entries) (+ the sorts of the
+/// targets' entries with several threads).
+pub(crate) fn try_invert(
+    targets: usize,
+    sources: usize,
+    value: impl Fn(usize) -> u32 + Sync + Send,
+    emit: impl Fn(usize, &mut dyn FnMut(u32)) + Sync + Send,
+) -> Result<(Vec<u32>, Vec<u32>), usize> {
+    if !splits(sources) {
+        return invert_serial(targets, sources, value, emit);
+    }
+    let counts = try_atomics(targets + 1, |_| 0)?;
+    map_ranges(sources, |r| {
+        for i in r {
+            emit(i, &mut |t| {
+                counts[t as usize + 1].fetch_add(1, Ordering::Relaxed);
+            });
+        }
+    });
+    let mut off = into_plain(counts);
+    for i in 0..targets {
+        off[i + 1] += off[i];
+    }
+    let cursor = try_atomics(targets, |t| off[t])?;
+    let list = try_atomics(off[targets] as usize, |_| 0)?;
+    map_ranges(sources, |r| {
+        for i in r {
+            let x = value(i);
+            emit(i, &mut |t| {
+                let at = cursor[t as usize].fetch_add(1, Ordering::Relaxed);
+                list[at as usize].store(x, Ordering::Relaxed);
+            });
+        }
+    });
+    drop(cursor);
+    let mut list = into_plain(list);
+    sort_rows(&off, &mut list);
+    Ok((off, list))
+}
+
+/// [`try_invert`] on one thread: a counting sort, which keeps source order by itself.
+fn invert_serial(
+    targets: usize,
+    sources: usize,
+    value: impl Fn(usize) -> u32,
+    emit: impl Fn(usize, &mut dyn FnMut(u32)),
+) -> Result<(Vec<u32>, Vec<u32>), usize> {
+    use crate::complex::table::try_reserve_exact;
+    let mut off = Vec::new();
+    try_reserve_exact(&mut off, targets + 1)?;
+    off.resize(targets + 1, 0u32);
+    for i in 0..sources {
+        emit(i, &mut |t| off[t as usize + 1] += 1);
+    }
+    for i in 0..targets {
+        off[i + 1] += off[i];
+    }
+    let mut fill = Vec::new();
+    try_reserve_exact(&mut fill, targets)?;
+    fill.extend_from_slice(&off[..targets]);
+    let mut list = Vec::new();
+    try_reserve_exact(&mut list, off[targets] as usize)?;
+    list.resize(off[targets] as usize, 0u32);
+    for i in 0..sources {
+        let x = value(i);
+        emit(i, &mut |t| {
+            list[fill[t as usize] as usize] = x;
+            fill[t as usize] += 1;
+        });
+    }
+    Ok((off, list))
+}
+
+/// Sorts each row `list[off[t]..off[t + 1]]`, rows split between threads by weight.
+fn sort_rows(off: &[u32], list: &mut [u32]) {
+    use rayon::prelude::*;
+    let targets = off.len() - 1;
+    let parts = 4 * threads();
+    let total = list.len();
+    let mut cuts: Vec<usize> = (1..parts)
+        .map(|k| {
+            off.partition_point(|&o| (o as usize) < k * total / parts)
+                .min(targets)
+        })
+        .collect();
+    cuts.insert(0, 0);
+    cuts.push(targets);
+    cuts.dedup();
+    let mut pieces = Vec::with_capacity(cuts.len());
+    let mut rest = list;
+    for w in cuts.windows(2) {
+        let len = (off[w[1]] - off[w[0]]) as usize;
+        let (piece, tail) = rest.split_at_mut(len);
+        pieces.push((w[0]..w[1], piece));
+        rest = tail;
+    }
+    install(|| {
+        pieces.into_par_iter().for_each(|(rows, piece)| {
+            let base = off[rows.start];
+            for t in rows {
+                piece[(off[t] - base) as usize..(off[t + 1] - base) as usize].sort_unstable();
+            }
+        })
+    });
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -328,5 +513,87 @@ mod tests {
                 assert_eq!(got, want, "n = {n}, {t} threads");
             }
         }
+    }
+
+    fn xorshift(x: &mut u64) -> u64 {
+        *x ^= *x << 13;
+        *x ^= *x >> 7;
+        *x ^= *x << 17;
+        *x
+    }
+
+    #[test]
+    fn shared_union_find_roots_are_each_class_smallest_member_on_any_thread_count() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let n = 50_000u32;
+        let edges: Vec<(u32, u32)> = (0..40_000)
+            .map(|_| {
+                let a = (xorshift(&mut x) % n as u64) as u32;
+                // Mostly near neighbours (long chains), some far jumps.
+                let b = if a.is_multiple_of(7) {
+                    (xorshift(&mut x) % n as u64) as u32
+                } else {
+                    (a + 1 + (xorshift(&mut x) % 3) as u32).min(n - 1)
+                };
+                (a, b)
+            })
+            .collect();
+        // Serial labels: the smallest member of each class.
+        let mut parent: Vec<u32> = (0..n).collect();
+        fn root(p: &mut [u32], mut x: u32) -> u32 {
+            while p[x as usize] != x {
+                x = p[x as usize];
+            }
+            x
+        }
+        for &(a, b) in &edges {
+            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+            parent[ra.max(rb) as usize] = ra.min(rb);
+        }
+        let want: Vec<u32> = (0..n).map(|i| root(&mut parent, i)).collect();
+        for t in [1, 2, 3, 4] {
+            let uf = SharedUnionFind::try_new(n as usize).unwrap();
+            pool(t).expect("a pool").install(|| {
+                rayon::scope(|s| {
+                    for part in edges.chunks(edges.len().div_ceil(t)) {
+                        let uf = &uf;
+                        s.spawn(move |_| part.iter().for_each(|&(a, b)| uf.union(a, b)));
+                    }
+                })
+            });
+            let got: Vec<u32> = (0..n).map(|i| uf.find(i)).collect();
+            assert_eq!(got, want, "{t} threads");
+            let roots = (0..n).filter(|&i| uf.is_root(i)).count();
+            assert_eq!(roots, (0..n).filter(|&i| want[i as usize] == i).count());
+        }
+    }
+
+    #[test]
+    fn parallel_inversion_lists_each_target_sources_in_order_like_the_counting_sort() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        // Three distinct targets per source among 5000: many sources per target.
+        let sources = 3 * MIN_PARALLEL;
+        let links: Vec<[u32; 3]> = (0..sources)
+            .map(|_| {
+                let a = (xorshift(&mut x) % 4998) as u32;
+                [a, a + 1, a + 2]
+            })
+            .collect();
+        let value = |i: usize| 2 * i as u32 + 1;
+        let emit = |i: usize, f: &mut dyn FnMut(u32)| links[i].iter().for_each(|&t| f(t));
+        let want = invert_serial(5000, sources, value, emit).unwrap();
+        let before = threads();
+        assert_eq!(want.0[5000] as usize, 3 * sources);
+        for t in [2, 3] {
+            set_threads(t);
+            assert!(splits(sources), "the test must take the parallel path");
+            assert!(
+                try_invert(5000, sources, value, emit).unwrap() == want,
+                "{t} threads"
+            );
+        }
+        set_threads(1);
+        assert!(try_invert(5000, sources, value, emit).unwrap() == want);
+        set_threads(before);
     }
 }

@@ -66,7 +66,7 @@ impl IncidenceGraph {
         let mut cob_offsets = vec![Vec::new(); d];
         let mut cob = vec![Vec::new(); d];
         for p in 0..d {
-            let (off, list) = invert(tables[p].len(), &boundary[p + 1], p + 2);
+            let (off, list) = invert(tables[p].len(), &boundary[p + 1], p + 2)?;
             cob_offsets[p] = off;
             cob[p] = list;
         }
@@ -127,22 +127,16 @@ impl IncidenceGraph {
 }
 
 /// Inverts fixed-width `links` (each row of `width` ids into a table of `n` simplices) into CSR
-/// form: for each target, the rows pointing at it, ascending.
-fn invert(n: usize, links: &[u32], width: usize) -> (Vec<u32>, Vec<u32>) {
-    let mut off = vec![0u32; n + 1];
-    for &t in links {
-        off[t as usize + 1] += 1;
-    }
-    for i in 0..n {
-        off[i + 1] += off[i];
-    }
-    let mut fill = off.clone();
-    let mut list = vec![0u32; links.len()];
-    for (k, &t) in links.iter().enumerate() {
-        list[fill[t as usize] as usize] = (k / width) as u32;
-        fill[t as usize] += 1;
-    }
-    (off, list)
+/// form: for each target, the rows pointing at it, ascending. On several threads for large
+/// tables ([`crate::parallel::try_invert`]); `TooLarge` when the arrays cannot be had.
+fn invert(n: usize, links: &[u32], width: usize) -> Result<(Vec<u32>, Vec<u32>), BuildError> {
+    crate::parallel::try_invert(
+        n,
+        links.len() / width,
+        |i| i as u32,
+        |i, f| links[i * width..(i + 1) * width].iter().for_each(|&t| f(t)),
+    )
+    .map_err(|bytes| super::common::too_large(KIND, bytes, "the co-boundaries"))
 }
 
 impl NavBase for IncidenceGraph {

@@ -138,7 +138,7 @@
 use crate::store::Arr;
 use rustc_hash::{FxHashMap, FxHashSet};
 
-use super::common::try_closure_links;
+use super::common::{too_large, try_closure_links};
 use super::ig::IncidenceGraph;
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
@@ -442,31 +442,37 @@ struct BuildSteps<'a> {
 }
 
 impl BuildSteps<'_> {
-    /// CSR of the top simplices (global ids, ascending) above each p-simplex: offsets, entries.
-    fn tops_above(&self, p: usize, top_rows: &[Vec<u32>]) -> (Vec<u32>, Vec<u32>) {
-        let n = self.tables[p].len();
-        let mut off = vec![0u32; n + 1];
-        for (r, rows) in top_rows.iter().enumerate().skip(p + 1) {
-            for &t in rows {
-                walk_faces(self.boundary, r, t, r + 1, r - p, u32::MAX, &mut |f| {
-                    off[f as usize + 1] += 1
-                });
-            }
+    /// CSR of the top simplices (global ids, ascending) above each p-simplex: offsets, entries;
+    /// an inversion of the tops' p-faces ([`crate::parallel::try_invert`], on several threads
+    /// for many tops). `TooLarge` when the arrays cannot be had.
+    fn tops_above(
+        &self,
+        p: usize,
+        top_rows: &[Vec<u32>],
+    ) -> Result<(Vec<u32>, Vec<u32>), BuildError> {
+        // Tops of dimension p + 1.. in global id order; `at[k]` is where dimension p + 1 + k's
+        // start.
+        let mut at = vec![0usize];
+        for rows in &top_rows[p + 1..] {
+            at.push(at.last().unwrap() + rows.len());
         }
-        for i in 0..n {
-            off[i + 1] += off[i];
-        }
-        let mut fill = off.clone();
-        let mut above = vec![0u32; off[n] as usize];
-        for (r, rows) in top_rows.iter().enumerate().skip(p + 1) {
-            for &t in rows {
-                walk_faces(self.boundary, r, t, r + 1, r - p, u32::MAX, &mut |f| {
-                    above[fill[f as usize] as usize] = self.first[r] + t;
-                    fill[f as usize] += 1;
-                });
-            }
-        }
-        (off, above)
+        let locate = |i: usize| {
+            let k = at.partition_point(|&a| a <= i) - 1;
+            (p + 1 + k, top_rows[p + 1 + k][i - at[k]])
+        };
+        crate::parallel::try_invert(
+            self.tables[p].len(),
+            *at.last().unwrap(),
+            |i| {
+                let (r, t) = locate(i);
+                self.first[r] + t
+            },
+            |i, f| {
+                let (r, t) = locate(i);
+                walk_faces(self.boundary, r, t, r + 1, r - p, u32::MAX, &mut |g| f(g));
+            },
+        )
+        .map_err(|bytes| too_large(KIND, bytes, "the tops above each simplex"))
     }
 
     /// The partial co-boundaries of the p-simplices in `range`: per simplex, the (p+1)-simplices
@@ -664,7 +670,7 @@ impl Sig {
             boundary: &boundary,
         };
         for p in 0..d {
-            let (off, above) = steps.tops_above(p, &top_rows);
+            let (off, above) = steps.tops_above(p, &top_rows)?;
             let parts = crate::parallel::map_ranges(tables[p].len(), |range| {
                 steps.clusters(p, range, &off, &above)
             });
