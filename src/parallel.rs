@@ -357,6 +357,18 @@ impl SharedUnionFind {
         }
     }
 
+    /// Each item's root (its class's smallest member), once every union is done; roots are
+    /// found on several threads for many items. No new array: the parent words become the roots.
+    pub(crate) fn into_roots(self) -> Vec<u32> {
+        map_ranges(self.0.len(), |range| {
+            for x in range {
+                let root = self.find(x as u32);
+                self.0[x].store(root, Ordering::Relaxed);
+            }
+        });
+        into_plain(self.0)
+    }
+
     /// Whether `x` is its class's root (its smallest member, once every union is done).
     pub(crate) fn is_root(&self, x: u32) -> bool {
         self.0[x as usize].load(Ordering::Relaxed) == x

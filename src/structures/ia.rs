@@ -157,14 +157,15 @@ fn adjacency(tops: &SimplexTable, d: usize) -> Result<Vec<u32>, (Vec<u32>, Vec<u
 /// d-simplices) is the same whatever the thread count. O(n_d·d·(1 + log b)) for buckets of b.
 /// The outer `Err` is `TooLarge`: an array that cannot be had.
 #[allow(clippy::type_complexity)]
-fn adjacency_by_vertex(
+pub(crate) fn adjacency_by_vertex(
+    kind: StructureKind,
     tops: &SimplexTable,
     d: usize,
     n: u32,
 ) -> Result<Result<Vec<u32>, (Vec<u32>, Vec<u32>)>, BuildError> {
     let w = d + 1;
     let slots = tops.len() * w;
-    let mut adj = try_vec(KIND, NONE, slots, "adjacencies")?;
+    let mut adj = try_vec(kind, NONE, slots, "adjacencies")?;
     if d == 0 {
         return Ok(Ok(adj));
     }
@@ -172,15 +173,15 @@ fn adjacency_by_vertex(
     // top's first vertex unless that is the one left out (slot 0 of a top). The tops are
     // sorted, so the other slots at v are those of the run of tops starting with v: only the
     // slot-0 facets are bucketed, by the top's second vertex (a counting sort of the tops).
-    let mut start = try_vec(KIND, 0u32, n as usize + 1, "bucket offsets")?;
+    let mut start = try_vec(kind, 0u32, n as usize + 1, "bucket offsets")?;
     for t in 0..tops.len() {
         start[tops.get(t)[1] as usize + 1] += 1;
     }
     for v in 0..n as usize {
         start[v + 1] += start[v];
     }
-    let mut fill = try_copy(KIND, &start, "bucket offsets")?;
-    let mut order = try_vec(KIND, 0u32, tops.len(), "facet slots")?;
+    let mut fill = try_copy(kind, &start, "bucket offsets")?;
+    let mut order = try_vec(kind, 0u32, tops.len(), "facet slots")?;
     for t in 0..tops.len() {
         let v = tops.get(t)[1] as usize;
         order[fill[v] as usize] = (t * w) as u32;
@@ -479,7 +480,7 @@ impl IndexedAdjacency {
         }
         let tops = try_table(KIND, complex.tops(d))?;
         to_u32(KIND, tops.len() * (d + 1), "adjacency entries")?;
-        let adj = adjacency_by_vertex(&tops, d, n)?.map_err(|(facet, three)| {
+        let adj = adjacency_by_vertex(KIND, &tops, d, n)?.map_err(|(facet, three)| {
             let three: Vec<String> = three.chunks(d + 1).map(show).collect();
             unsupported(format!(
                 "{}-simplex {} is a face of more than two {d}-simplices ({}, ...), so the \
