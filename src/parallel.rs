@@ -376,50 +376,105 @@ impl SharedUnionFind {
 }
 
 /// Inverts a relation from `sources` items to `targets` items into CSR form (offsets,
-/// entries): `emit(i, f)` calls `f(t)` for each target `t` of source `i` (no target twice);
-/// target `t`'s entries are `value(i)` of its sources, in source order, so `value` must grow
-/// with `i`. On several threads when `sources` is large: targets are counted and sources
-/// scattered through atomic cursors, then each target's entries sorted, which restores source
-/// order: the same arrays with any thread count. Offsets and entries fit 32 bits (callers
-/// check). `Err(bytes)` when an array cannot be had: 4 bytes a target (8 while scattering on
-/// several threads) and 4 an entry. O(sources + targets + entries) (+ the sorts of the
-/// targets' entries with several threads).
+/// entries): `emit(i, f)` calls `f(t)` for each target `t` of source `i`; target `t`'s entries
+/// are `value(i)` of its sources, in source order. On several threads when `sources` is large:
+/// the sources are cut into one range per thread, each range counts its targets in an array of
+/// its own, and each target's entries are laid out range after range, so every range scatters
+/// its sources, in order, to positions fixed before the split: the same arrays with any thread
+/// count, no sort. Offsets and entries fit 32 bits (callers check). `Err(bytes)` when an array
+/// cannot be had: 4 bytes a target and 4 an entry, plus 4 a target per thread when split.
+/// O(sources + threads·targets + entries).
 pub(crate) fn try_invert(
     targets: usize,
     sources: usize,
     value: impl Fn(usize) -> u32 + Sync + Send,
     emit: impl Fn(usize, &mut dyn FnMut(u32)) + Sync + Send,
 ) -> Result<(Vec<u32>, Vec<u32>), usize> {
+    use crate::complex::table::try_reserve_exact;
     if !splits(sources) {
         return invert_serial(targets, sources, value, emit);
     }
-    let counts = try_atomics(targets + 1, |_| 0)?;
-    map_ranges(sources, |r| {
-        for i in r {
-            emit(i, &mut |t| {
-                counts[t as usize + 1].fetch_add(1, Ordering::Relaxed);
-            });
-        }
-    });
-    let mut off = into_plain(counts);
-    for i in 0..targets {
-        off[i + 1] += off[i];
+    let parts = threads().min(sources);
+    let step = sources.div_ceil(parts);
+    let part = |r: usize| r * step..((r + 1) * step).min(sources);
+    // Per range, its count of each target, then (in place) its first position in each target.
+    let mut cursors = Vec::new();
+    try_reserve_exact(&mut cursors, parts)?;
+    for _ in 0..parts {
+        let mut c = Vec::new();
+        try_reserve_exact(&mut c, targets)?;
+        c.resize(targets, 0u32);
+        cursors.push(c);
     }
-    let cursor = try_atomics(targets, |t| off[t])?;
-    let list = try_atomics(off[targets] as usize, |_| 0)?;
-    map_ranges(sources, |r| {
-        for i in r {
-            let x = value(i);
-            emit(i, &mut |t| {
-                let at = cursor[t as usize].fetch_add(1, Ordering::Relaxed);
-                list[at as usize].store(x, Ordering::Relaxed);
-            });
-        }
+    install(|| {
+        use rayon::prelude::*;
+        cursors.par_iter_mut().enumerate().for_each(|(r, c)| {
+            for i in part(r) {
+                emit(i, &mut |t| c[t as usize] += 1);
+            }
+        })
     });
-    drop(cursor);
-    let mut list = into_plain(list);
-    sort_rows(&off, &mut list);
-    Ok((off, list))
+    let mut off = Vec::new();
+    try_reserve_exact(&mut off, targets + 1)?;
+    off.resize(targets + 1, 0u32);
+    offsets_by_range(&mut off, &mut cursors);
+    let list = try_atomics(off[targets] as usize, |_| 0)?;
+    install(|| {
+        use rayon::prelude::*;
+        cursors.par_iter_mut().enumerate().for_each(|(r, c)| {
+            for i in part(r) {
+                let x = value(i);
+                emit(i, &mut |t| {
+                    list[c[t as usize] as usize].store(x, Ordering::Relaxed);
+                    c[t as usize] += 1;
+                });
+            }
+        })
+    });
+    Ok((off, into_plain(list)))
+}
+
+/// From each range's count of each target (`counts[r][t]`): the CSR offsets `off` (targets + 1)
+/// and, in place of the counts, each range's first position in each target (the ranges' entries
+/// one after another). Targets in blocks on several threads: each block's total first, then
+/// the blocks' offsets.
+fn offsets_by_range(off: &mut [u32], counts: &mut [Vec<u32>]) {
+    use rayon::prelude::*;
+    let targets = off.len() - 1;
+    let block = targets.div_ceil(4 * threads()).max(1);
+    let blocks = targets.div_ceil(block);
+    let totals: Vec<u32> = map_chunks(blocks, |b| {
+        (b * block..((b + 1) * block).min(targets))
+            .map(|t| counts.iter().map(|c| c[t]).sum::<u32>())
+            .sum()
+    });
+    let mut starts = Vec::with_capacity(blocks);
+    let mut acc = 0u32;
+    for t in totals {
+        starts.push(acc);
+        acc += t;
+    }
+    off[targets] = acc;
+    // Each block's slice of `off` (its targets' starts) and of every range's counts.
+    let mut pieces: Vec<(u32, &mut [u32], Vec<&mut [u32]>)> = Vec::with_capacity(blocks);
+    let mut per_range: Vec<std::slice::ChunksMut<'_, u32>> =
+        counts.iter_mut().map(|c| c.chunks_mut(block)).collect();
+    for (o, start) in off[..targets].chunks_mut(block).zip(starts) {
+        let cs = per_range.iter_mut().map(|it| it.next().unwrap()).collect();
+        pieces.push((start, o, cs));
+    }
+    install(|| {
+        pieces.into_par_iter().for_each(|(mut acc, o, mut cs)| {
+            for (k, slot) in o.iter_mut().enumerate() {
+                *slot = acc;
+                for c in cs.iter_mut() {
+                    let n = c[k];
+                    c[k] = acc;
+                    acc += n;
+                }
+            }
+        })
+    });
 }
 
 /// [`try_invert`] on one thread: a counting sort, which keeps source order by itself.
@@ -453,39 +508,6 @@ fn invert_serial(
         });
     }
     Ok((off, list))
-}
-
-/// Sorts each row `list[off[t]..off[t + 1]]`, rows split between threads by weight.
-fn sort_rows(off: &[u32], list: &mut [u32]) {
-    use rayon::prelude::*;
-    let targets = off.len() - 1;
-    let parts = 4 * threads();
-    let total = list.len();
-    let mut cuts: Vec<usize> = (1..parts)
-        .map(|k| {
-            off.partition_point(|&o| (o as usize) < k * total / parts)
-                .min(targets)
-        })
-        .collect();
-    cuts.insert(0, 0);
-    cuts.push(targets);
-    cuts.dedup();
-    let mut pieces = Vec::with_capacity(cuts.len());
-    let mut rest = list;
-    for w in cuts.windows(2) {
-        let len = (off[w[1]] - off[w[0]]) as usize;
-        let (piece, tail) = rest.split_at_mut(len);
-        pieces.push((w[0]..w[1], piece));
-        rest = tail;
-    }
-    install(|| {
-        pieces.into_par_iter().for_each(|(rows, piece)| {
-            let base = off[rows.start];
-            for t in rows {
-                piece[(off[t] - base) as usize..(off[t + 1] - base) as usize].sort_unstable();
-            }
-        })
-    });
 }
 
 #[cfg(test)]

@@ -81,8 +81,9 @@ impl IncidenceGraph {
                 }
             })
             .collect();
+        let nav = NavIndex::new(KIND, complex)?;
         Ok(IncidenceGraph {
-            nav: NavIndex::new(KIND, complex)?,
+            nav,
             tables,
             boundary: boundary.into_iter().map(Arr::from).collect(),
             cob_offsets: cob_offsets.into_iter().map(Arr::from).collect(),
