@@ -456,7 +456,7 @@ fn offsets_by_range(off: &mut [u32], counts: &mut [Vec<u32>]) {
     }
     off[targets] = acc;
     // Each block's slice of `off` (its targets' starts) and of every range's counts.
-    let mut pieces: Vec<(u32, &mut [u32], Vec<&mut [u32]>)> = Vec::with_capacity(blocks);
+    let mut pieces = Vec::with_capacity(blocks);
     let mut per_range: Vec<std::slice::ChunksMut<'_, u32>> =
         counts.iter_mut().map(|c| c.chunks_mut(block)).collect();
     for (o, start) in off[..targets].chunks_mut(block).zip(starts) {
