@@ -460,7 +460,7 @@ fn offsets_by_range(off: &mut [u32], counts: &mut [Vec<u32>]) {
     let mut per_range: Vec<std::slice::ChunksMut<'_, u32>> =
         counts.iter_mut().map(|c| c.chunks_mut(block)).collect();
     for (o, start) in off[..targets].chunks_mut(block).zip(starts) {
-        let cs = per_range.iter_mut().map(|it| it.next().unwrap()).collect();
+        let cs: Vec<&mut [u32]> = per_range.iter_mut().map(|it| it.next().unwrap()).collect();
         pieces.push((start, o, cs));
     }
     install(|| {
