@@ -4,6 +4,11 @@
 //! how the work was split) or writes each result to a position fixed before the split, so a
 //! structure built with any number of threads is the same, byte for byte, as the serial one.
 //!
+//! Primitives: sorts of packed keys (`sort_keys`), collects in index order, a CSR inversion
+//! with one range of sources per thread (`try_invert`: the IG's co-boundaries, the SIG's tops
+//! above each simplex) and a lock-free union–find whose roots are each class's smallest member
+//! (`SharedUnionFind`: the IA's star components, the 2D structures' corner components).
+//!
 //! The thread count is [`set_threads`] (the CLI's `--threads`, the C ABI's `tpx_set_threads`),
 //! else the `TOPOPLEX_THREADS` environment variable, else every core.
 

@@ -51,10 +51,24 @@
 //! - R_{p,p}, 0 < p < d: every facet of σ contains v or w, so walk the stars of v and w; each
 //!   d-simplex sharing a facet f of σ gives f ∪ {x} for its vertices x ∉ σ, dedup:
 //!   O(d·(n_v + n_w) + output) — not optimal.
-//! - `count(p)`: cached at build (by enumerating the p-faces of every d-simplex and
-//!   deduplicating, O(n_d·C(d+1, p+1)·log)); `simplices(p)` re-derives the list the same way.
+//! - `count(p)`: cached at build (see below); `simplices(p)` enumerates the p-faces of every
+//!   d-simplex and deduplicates, O(n_d·C(d+1, p+1)·log).
 //!
 //! Queries keep no state in the structure: every walk has its own hash set.
+//!
+//! # Build
+//! Steps split between [`crate::parallel::threads`] threads, each writing to positions fixed
+//! before the split, so any thread count gives the same bytes:
+//! - R_{d,d}: each facet slot is matched in the bucket of its facet's smallest vertex v: the
+//!   slots of the run of d-simplices that start with v (the table is sorted) and the slot-0
+//!   facets whose d-simplex's second vertex is v (one counting sort of the d-simplices, 4 bytes
+//!   each); buckets sorted and matched by chunks of vertices on several threads.
+//!   O(n_d·d·(1 + log b)) for buckets of b slots.
+//! - Star components: with one thread, one walk per component through R_{d,d} (1 byte a slot);
+//!   with several, a shared union–find over the slots by ranges of d-simplices (4 bytes a
+//!   slot), whose roots (smallest slots) are the walks' starts. O(d²·n_d).
+//! - `count(p)`: n_{d−1} from R_{d,d}; 0 < p < d − 1 counted at their smallest vertex from a
+//!   walk of its star, by chunks of vertices on several threads. O(Σ_v n_v·C(d, p)·log).
 
 use super::nav::{NavBase, NavIndex};
 use crate::store::Arr;

@@ -54,7 +54,8 @@ pub struct IncidenceGraph {
 impl IncidenceGraph {
     /// Builds from the closure of the complex: boundaries by radix sorting the facet slots and
     /// merging them with the sorted table below, co-boundaries by a counting sort of the
-    /// boundaries. O(Σ_p (p+1) n_p · p) time when p facet ids fit in 64 bits (else a binary
+    /// boundaries (`parallel::try_invert`: one range of simplices per thread, the same
+    /// lists with any thread count; 4 bytes a simplex per thread while it runs). O(Σ_p (p+1) n_p · p) time when p facet ids fit in 64 bits (else a binary
     /// search per facet, O(Σ_p (p+1) n_p · p log n_p)).
     pub fn build(complex: &Complex) -> Result<IncidenceGraph, BuildError> {
         let (tables, boundary) = try_closure_links(KIND, complex)?;
@@ -129,7 +130,7 @@ impl IncidenceGraph {
 
 /// Inverts fixed-width `links` (each row of `width` ids into a table of `n` simplices) into CSR
 /// form: for each target, the rows pointing at it, ascending. On several threads for large
-/// tables ([`crate::parallel::try_invert`]); `TooLarge` when the arrays cannot be had.
+/// tables (`parallel::try_invert`); `TooLarge` when the arrays cannot be had.
 fn invert(n: usize, links: &[u32], width: usize) -> Result<(Vec<u32>, Vec<u32>), BuildError> {
     crate::parallel::try_invert(
         n,

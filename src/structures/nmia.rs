@@ -83,7 +83,8 @@
 //!   R_{0,0}, R_{0,1}, R_{0,2} optimal, R_{0,3} O(n_v) (Table 2).
 //! - R_{2,2}: R_{1,2} of its three edges, O(Σ n_e) — optimal. R_{1,1}: the edges at either
 //!   vertex from the stars of both, O(n_a + n_b) — optimal as in Table 2.
-//! - `count(p)` cached at build; `simplices(p)` derives the list from the top simplices.
+//! - `count(p)` cached at build (the closure's counts by vertex blocks, on several threads, one
+//!   block at a time per thread); `simplices(p)` derives the list from the top simplices.
 //!
 //! Queries keep no state in the structure: every walk has its own set of visited simplices.
 
@@ -147,7 +148,7 @@ fn group_start(inc: &[([u32; 2], u32)], i: usize) -> usize {
 }
 
 /// R_{3,3}: the IA's facet matching by smallest-vertex buckets
-/// ([`super::ia::adjacency_by_vertex`], on several threads); `Err((triangle, three tets))` for
+/// (`ia::adjacency_by_vertex`, on several threads); `Err((triangle, three tets))` for
 /// the lexicographically first triangle of three or more tetrahedra.
 #[allow(clippy::type_complexity)]
 fn tet_adjacency(
@@ -219,7 +220,8 @@ struct Cluster {
 }
 
 impl NonManifoldIa {
-    /// Checks the domain, builds R_{3,3} by sorting tetrahedron faces, the cluster rings by
+    /// Checks the domain, builds R_{3,3} by the IA's smallest-vertex buckets (on several
+    /// threads), the cluster rings by
     /// sorting the edges of the top simplices, and R_{0,clusters} by one walk per component.
     /// O(n log n) in the number of top simplices.
     pub fn build(complex: &Complex) -> Result<NonManifoldIa, BuildError> {

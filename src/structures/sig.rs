@@ -102,8 +102,10 @@
 //!   edge would cost k² (each rescans the edge's k co-faces).
 //! - [`Sig::build`]: straight from the complex, never making an IG (no co-boundary lists).
 //!   Per dimension p, the top simplices above each p-simplex come from enumerating every top
-//!   simplex's p-faces (counting sort into CSR, released after that dimension); clusters are a
-//!   union–find over those top simplices, keyed by the shared (g−1)-faces that contain σ.
+//!   simplex's p-faces (counting sort into CSR, released after that dimension; one range of top
+//!   simplices per thread, `parallel::try_invert`); clusters are a union–find over
+//!   those top simplices, keyed by the shared (g−1)-faces that contain σ, by ranges of
+//!   p-simplices on several threads. Either way the same bytes with any thread count.
 //!   After the closure and the boundaries (each facet found by binary search, as in the IG),
 //!   time O(Σ_{τ top} Σ_{p<r} C(r+1, p+1) · r), r = dim τ; extra memory one dimension's
 //!   top-incidence CSR (4 bytes per (face, top simplex) pair) plus per-simplex scratch.
@@ -443,7 +445,7 @@ struct BuildSteps<'a> {
 
 impl BuildSteps<'_> {
     /// CSR of the top simplices (global ids, ascending) above each p-simplex: offsets, entries;
-    /// an inversion of the tops' p-faces ([`crate::parallel::try_invert`], on several threads
+    /// an inversion of the tops' p-faces (`parallel::try_invert`, on several threads
     /// for many tops). `TooLarge` when the arrays cannot be had.
     fn tops_above(
         &self,
