@@ -380,24 +380,30 @@ impl SharedUnionFind {
     }
 }
 
+/// A relation from sources `0..n` to targets, for [`try_invert`].
+pub(crate) trait Incidences: Sync {
+    /// Calls `f(value, t)` for each target `t` of each source in `range`, sources in order;
+    /// `value` is what the inversion lists for that source.
+    fn visit(&self, range: std::ops::Range<usize>, f: &mut impl FnMut(u32, u32));
+}
+
 /// Inverts a relation from `sources` items to `targets` items into CSR form (offsets,
-/// entries): `emit(i, f)` calls `f(t)` for each target `t` of source `i`; target `t`'s entries
-/// are `value(i)` of its sources, in source order. On several threads when `sources` is large:
-/// the sources are cut into one range per thread, each range counts its targets in an array of
-/// its own, and each target's entries are laid out range after range, so every range scatters
-/// its sources, in order, to positions fixed before the split: the same arrays with any thread
-/// count, no sort. Offsets and entries fit 32 bits (callers check). `Err(bytes)` when an array
-/// cannot be had: 4 bytes a target and 4 an entry, plus 4 a target per thread when split.
+/// entries): target `t`'s entries are the values of its sources ([`Incidences::visit`]), in
+/// source order. On several threads when `sources` is large: the sources are cut into one
+/// range per thread, each range counts its targets in an array of its own, and each target's
+/// entries are laid out range after range, so every range scatters its sources, in order, to
+/// positions fixed before the split: the same arrays with any thread count, no sort. Offsets
+/// and entries fit 32 bits (callers check). `Err(bytes)` when an array cannot be had: 4 bytes a
+/// target and 4 an entry, plus 4 a target per thread when split.
 /// O(sources + threads·targets + entries).
 pub(crate) fn try_invert(
     targets: usize,
     sources: usize,
-    value: impl Fn(usize) -> u32 + Sync + Send,
-    emit: impl Fn(usize, &mut dyn FnMut(u32)) + Sync + Send,
+    inc: &impl Incidences,
 ) -> Result<(Vec<u32>, Vec<u32>), usize> {
     use crate::complex::table::try_reserve_exact;
     if !splits(sources) {
-        return invert_serial(targets, sources, value, emit);
+        return invert_serial(targets, sources, inc);
     }
     let parts = threads().min(sources);
     let step = sources.div_ceil(parts);
@@ -414,9 +420,7 @@ pub(crate) fn try_invert(
     install(|| {
         use rayon::prelude::*;
         cursors.par_iter_mut().enumerate().for_each(|(r, c)| {
-            for i in part(r) {
-                emit(i, &mut |t| c[t as usize] += 1);
-            }
+            inc.visit(part(r), &mut |_, t| c[t as usize] += 1);
         })
     });
     let mut off = Vec::new();
@@ -427,16 +431,40 @@ pub(crate) fn try_invert(
     install(|| {
         use rayon::prelude::*;
         cursors.par_iter_mut().enumerate().for_each(|(r, c)| {
-            for i in part(r) {
-                let x = value(i);
-                emit(i, &mut |t| {
-                    list[c[t as usize] as usize].store(x, Ordering::Relaxed);
-                    c[t as usize] += 1;
-                });
-            }
+            inc.visit(part(r), &mut |x, t| {
+                list[c[t as usize] as usize].store(x, Ordering::Relaxed);
+                c[t as usize] += 1;
+            });
         })
     });
     Ok((off, into_plain(list)))
+}
+
+/// [`try_invert`] on one thread: a counting sort, which keeps source order by itself.
+fn invert_serial(
+    targets: usize,
+    sources: usize,
+    inc: &impl Incidences,
+) -> Result<(Vec<u32>, Vec<u32>), usize> {
+    use crate::complex::table::try_reserve_exact;
+    let mut off = Vec::new();
+    try_reserve_exact(&mut off, targets + 1)?;
+    off.resize(targets + 1, 0u32);
+    inc.visit(0..sources, &mut |_, t| off[t as usize + 1] += 1);
+    for i in 0..targets {
+        off[i + 1] += off[i];
+    }
+    let mut fill = Vec::new();
+    try_reserve_exact(&mut fill, targets)?;
+    fill.extend_from_slice(&off[..targets]);
+    let mut list = Vec::new();
+    try_reserve_exact(&mut list, off[targets] as usize)?;
+    list.resize(off[targets] as usize, 0u32);
+    inc.visit(0..sources, &mut |x, t| {
+        list[fill[t as usize] as usize] = x;
+        fill[t as usize] += 1;
+    });
+    Ok((off, list))
 }
 
 /// From each range's count of each target (`counts[r][t]`): the CSR offsets `off` (targets + 1)
@@ -480,39 +508,6 @@ fn offsets_by_range(off: &mut [u32], counts: &mut [Vec<u32>]) {
             }
         })
     });
-}
-
-/// [`try_invert`] on one thread: a counting sort, which keeps source order by itself.
-fn invert_serial(
-    targets: usize,
-    sources: usize,
-    value: impl Fn(usize) -> u32,
-    emit: impl Fn(usize, &mut dyn FnMut(u32)),
-) -> Result<(Vec<u32>, Vec<u32>), usize> {
-    use crate::complex::table::try_reserve_exact;
-    let mut off = Vec::new();
-    try_reserve_exact(&mut off, targets + 1)?;
-    off.resize(targets + 1, 0u32);
-    for i in 0..sources {
-        emit(i, &mut |t| off[t as usize + 1] += 1);
-    }
-    for i in 0..targets {
-        off[i + 1] += off[i];
-    }
-    let mut fill = Vec::new();
-    try_reserve_exact(&mut fill, targets)?;
-    fill.extend_from_slice(&off[..targets]);
-    let mut list = Vec::new();
-    try_reserve_exact(&mut list, off[targets] as usize)?;
-    list.resize(off[targets] as usize, 0u32);
-    for i in 0..sources {
-        let x = value(i);
-        emit(i, &mut |t| {
-            list[fill[t as usize] as usize] = x;
-            fill[t as usize] += 1;
-        });
-    }
-    Ok((off, list))
 }
 
 #[cfg(test)]
@@ -618,21 +613,28 @@ mod tests {
                 [a, a + 1, a + 2]
             })
             .collect();
-        let value = |i: usize| 2 * i as u32 + 1;
-        let emit = |i: usize, f: &mut dyn FnMut(u32)| links[i].iter().for_each(|&t| f(t));
-        let want = invert_serial(5000, sources, value, emit).unwrap();
+        struct Links(Vec<[u32; 3]>);
+        impl Incidences for Links {
+            fn visit(&self, range: std::ops::Range<usize>, f: &mut impl FnMut(u32, u32)) {
+                for i in range {
+                    self.0[i].iter().for_each(|&t| f(2 * i as u32 + 1, t));
+                }
+            }
+        }
+        let links = Links(links);
+        let want = invert_serial(5000, sources, &links).unwrap();
         let before = threads();
         assert_eq!(want.0[5000] as usize, 3 * sources);
         for t in [2, 3] {
             set_threads(t);
             assert!(splits(sources), "the test must take the parallel path");
             assert!(
-                try_invert(5000, sources, value, emit).unwrap() == want,
+                try_invert(5000, sources, &links).unwrap() == want,
                 "{t} threads"
             );
         }
         set_threads(1);
-        assert!(try_invert(5000, sources, value, emit).unwrap() == want);
+        assert!(try_invert(5000, sources, &links).unwrap() == want);
         set_threads(before);
     }
 }

@@ -132,13 +132,17 @@ impl IncidenceGraph {
 /// form: for each target, the rows pointing at it, ascending. On several threads for large
 /// tables (`parallel::try_invert`); `TooLarge` when the arrays cannot be had.
 fn invert(n: usize, links: &[u32], width: usize) -> Result<(Vec<u32>, Vec<u32>), BuildError> {
-    crate::parallel::try_invert(
-        n,
-        links.len() / width,
-        |i| i as u32,
-        |i, f| links[i * width..(i + 1) * width].iter().for_each(|&t| f(t)),
-    )
-    .map_err(|bytes| super::common::too_large(KIND, bytes, "the co-boundaries"))
+    struct Rows<'a>(&'a [u32], usize);
+    impl crate::parallel::Incidences for Rows<'_> {
+        fn visit(&self, range: std::ops::Range<usize>, f: &mut impl FnMut(u32, u32)) {
+            let w = self.1;
+            for (k, &t) in self.0[range.start * w..range.end * w].iter().enumerate() {
+                f((range.start + k / w) as u32, t);
+            }
+        }
+    }
+    crate::parallel::try_invert(n, links.len() / width, &Rows(links, width))
+        .map_err(|bytes| super::common::too_large(KIND, bytes, "the co-boundaries"))
 }
 
 impl NavBase for IncidenceGraph {

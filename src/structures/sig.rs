@@ -443,6 +443,33 @@ struct BuildSteps<'a> {
     boundary: &'a [Vec<u32>],
 }
 
+/// The p-faces of the top simplices of dimension above p, sources in global id order, for
+/// [`BuildSteps::tops_above`].
+struct TopFaces<'a> {
+    steps: &'a BuildSteps<'a>,
+    p: usize,
+    top_rows: &'a [Vec<u32>],
+    at: &'a [usize],
+}
+
+impl crate::parallel::Incidences for TopFaces<'_> {
+    fn visit(&self, range: std::ops::Range<usize>, f: &mut impl FnMut(u32, u32)) {
+        let (p, s) = (self.p, self.steps);
+        let mut k = self.at.partition_point(|&a| a <= range.start) - 1;
+        for i in range {
+            while i >= self.at[k + 1] {
+                k += 1;
+            }
+            let r = p + 1 + k;
+            let t = self.top_rows[r][i - self.at[k]];
+            let g = s.first[r] + t;
+            walk_faces(s.boundary, r, t, r + 1, r - p, u32::MAX, &mut |face| {
+                f(g, face)
+            });
+        }
+    }
+}
+
 impl BuildSteps<'_> {
     /// CSR of the top simplices (global ids, ascending) above each p-simplex: offsets, entries;
     /// an inversion of the tops' p-faces (`parallel::try_invert`, on several threads
@@ -458,23 +485,14 @@ impl BuildSteps<'_> {
         for rows in &top_rows[p + 1..] {
             at.push(at.last().unwrap() + rows.len());
         }
-        let locate = |i: usize| {
-            let k = at.partition_point(|&a| a <= i) - 1;
-            (p + 1 + k, top_rows[p + 1 + k][i - at[k]])
+        let faces = TopFaces {
+            steps: self,
+            p,
+            top_rows,
+            at: &at,
         };
-        crate::parallel::try_invert(
-            self.tables[p].len(),
-            *at.last().unwrap(),
-            |i| {
-                let (r, t) = locate(i);
-                self.first[r] + t
-            },
-            |i, f| {
-                let (r, t) = locate(i);
-                walk_faces(self.boundary, r, t, r + 1, r - p, u32::MAX, &mut |g| f(g));
-            },
-        )
-        .map_err(|bytes| too_large(KIND, bytes, "the tops above each simplex"))
+        crate::parallel::try_invert(self.tables[p].len(), *at.last().unwrap(), &faces)
+            .map_err(|bytes| too_large(KIND, bytes, "the tops above each simplex"))
     }
 
     /// The partial co-boundaries of the p-simplices in `range`: per simplex, the (p+1)-simplices
