@@ -4,10 +4,15 @@
 //! how the work was split) or writes each result to a position fixed before the split, so a
 //! structure built with any number of threads is the same, byte for byte, as the serial one.
 //!
+//! Primitives: sorts of packed keys (`sort_keys`), collects in index order, a CSR inversion
+//! with one range of sources per thread (`try_invert`: the IG's co-boundaries, the SIG's tops
+//! above each simplex) and a lock-free union–find whose roots are each class's smallest member
+//! (`SharedUnionFind`: the IA's star components, the 2D structures' corner components).
+//!
 //! The thread count is [`set_threads`] (the CLI's `--threads`, the C ABI's `tpx_set_threads`),
 //! else the `TOPOPLEX_THREADS` environment variable, else every core.
 
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU32, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 
 /// 0: not set, read the environment.
@@ -291,6 +296,220 @@ pub(crate) fn map_chunks<T: Send>(chunks: usize, f: impl Fn(usize) -> T + Sync +
     install(|| (0..chunks).into_par_iter().map(f).collect())
 }
 
+/// `n` atomic words set by `init(i)`, reserved fallibly (`Err(bytes)`).
+fn try_atomics(n: usize, init: impl Fn(usize) -> u32) -> Result<Vec<AtomicU32>, usize> {
+    let mut v = Vec::new();
+    crate::complex::table::try_reserve_exact(&mut v, n)?;
+    v.extend((0..n).map(|i| AtomicU32::new(init(i))));
+    Ok(v)
+}
+
+/// The plain words of `v`, in place (same size and alignment: no new allocation).
+fn into_plain(v: Vec<AtomicU32>) -> Vec<u32> {
+    v.into_iter().map(AtomicU32::into_inner).collect()
+}
+
+/// Union–find over `0..n` that several threads may merge into at once (lock-free: a root is
+/// linked below a smaller root by compare-and-swap, paths are halved by compare-and-swap). A
+/// parent is never larger than its child, so each class's root is its smallest member whatever
+/// the order of the unions or the number of threads: labels are deterministic. 4 bytes per item.
+pub(crate) struct SharedUnionFind(Vec<AtomicU32>);
+
+impl SharedUnionFind {
+    /// `n` singletons (`n` ≤ 2^32), or `Err(bytes)` when the memory cannot be had.
+    pub(crate) fn try_new(n: usize) -> Result<Self, usize> {
+        Ok(SharedUnionFind(try_atomics(n, |i| i as u32)?))
+    }
+
+    /// The root of `x`'s class (the smallest member once every union is done).
+    pub(crate) fn find(&self, mut x: u32) -> u32 {
+        loop {
+            let up = self.0[x as usize].load(Ordering::Relaxed);
+            if up == x {
+                return x;
+            }
+            let upper = self.0[up as usize].load(Ordering::Relaxed);
+            if upper != up {
+                // Path halving; losing the race only leaves a longer path.
+                let _ = self.0[x as usize].compare_exchange_weak(
+                    up,
+                    upper,
+                    Ordering::Relaxed,
+                    Ordering::Relaxed,
+                );
+            }
+            x = upper;
+        }
+    }
+
+    /// Merges the classes of `a` and `b`.
+    pub(crate) fn union(&self, a: u32, b: u32) {
+        let (mut a, mut b) = (a, b);
+        loop {
+            a = self.find(a);
+            b = self.find(b);
+            if a == b {
+                return;
+            }
+            let (lo, hi) = (a.min(b), a.max(b));
+            // Succeeds only while `hi` is still a root; else retry from the new roots.
+            if self.0[hi as usize]
+                .compare_exchange(hi, lo, Ordering::Relaxed, Ordering::Relaxed)
+                .is_ok()
+            {
+                return;
+            }
+        }
+    }
+
+    /// Each item's root (its class's smallest member), once every union is done; roots are
+    /// found on several threads for many items. No new array: the parent words become the roots.
+    pub(crate) fn into_roots(self) -> Vec<u32> {
+        map_ranges(self.0.len(), |range| {
+            for x in range {
+                let root = self.find(x as u32);
+                self.0[x].store(root, Ordering::Relaxed);
+            }
+        });
+        into_plain(self.0)
+    }
+
+    /// Whether `x` is its class's root (its smallest member, once every union is done).
+    pub(crate) fn is_root(&self, x: u32) -> bool {
+        self.0[x as usize].load(Ordering::Relaxed) == x
+    }
+}
+
+/// A relation from sources `0..n` to targets, for [`try_invert`].
+pub(crate) trait Incidences: Sync {
+    /// Calls `f(value, t)` for each target `t` of each source in `range`, sources in order;
+    /// `value` is what the inversion lists for that source.
+    fn visit(&self, range: std::ops::Range<usize>, f: &mut impl FnMut(u32, u32));
+}
+
+/// Inverts a relation from `sources` items to `targets` items into CSR form (offsets,
+/// entries): target `t`'s entries are the values of its sources ([`Incidences::visit`]), in
+/// source order. On several threads when `sources` is large: the sources are cut into one
+/// range per thread, each range counts its targets in an array of its own, and each target's
+/// entries are laid out range after range, so every range scatters its sources, in order, to
+/// positions fixed before the split: the same arrays with any thread count, no sort. Offsets
+/// and entries fit 32 bits (callers check). `Err(bytes)` when an array cannot be had: 4 bytes a
+/// target and 4 an entry, plus 4 a target per thread when split.
+/// O(sources + threads·targets + entries).
+pub(crate) fn try_invert(
+    targets: usize,
+    sources: usize,
+    inc: &impl Incidences,
+) -> Result<(Vec<u32>, Vec<u32>), usize> {
+    use crate::complex::table::try_reserve_exact;
+    if !splits(sources) {
+        return invert_serial(targets, sources, inc);
+    }
+    let parts = threads().min(sources);
+    let step = sources.div_ceil(parts);
+    let part = |r: usize| r * step..((r + 1) * step).min(sources);
+    // Per range, its count of each target, then (in place) its first position in each target.
+    let mut cursors = Vec::new();
+    try_reserve_exact(&mut cursors, parts)?;
+    for _ in 0..parts {
+        let mut c = Vec::new();
+        try_reserve_exact(&mut c, targets)?;
+        c.resize(targets, 0u32);
+        cursors.push(c);
+    }
+    install(|| {
+        use rayon::prelude::*;
+        cursors.par_iter_mut().enumerate().for_each(|(r, c)| {
+            inc.visit(part(r), &mut |_, t| c[t as usize] += 1);
+        })
+    });
+    let mut off = Vec::new();
+    try_reserve_exact(&mut off, targets + 1)?;
+    off.resize(targets + 1, 0u32);
+    offsets_by_range(&mut off, &mut cursors);
+    let list = try_atomics(off[targets] as usize, |_| 0)?;
+    install(|| {
+        use rayon::prelude::*;
+        cursors.par_iter_mut().enumerate().for_each(|(r, c)| {
+            inc.visit(part(r), &mut |x, t| {
+                list[c[t as usize] as usize].store(x, Ordering::Relaxed);
+                c[t as usize] += 1;
+            });
+        })
+    });
+    Ok((off, into_plain(list)))
+}
+
+/// [`try_invert`] on one thread: a counting sort, which keeps source order by itself.
+fn invert_serial(
+    targets: usize,
+    sources: usize,
+    inc: &impl Incidences,
+) -> Result<(Vec<u32>, Vec<u32>), usize> {
+    use crate::complex::table::try_reserve_exact;
+    let mut off = Vec::new();
+    try_reserve_exact(&mut off, targets + 1)?;
+    off.resize(targets + 1, 0u32);
+    inc.visit(0..sources, &mut |_, t| off[t as usize + 1] += 1);
+    for i in 0..targets {
+        off[i + 1] += off[i];
+    }
+    let mut fill = Vec::new();
+    try_reserve_exact(&mut fill, targets)?;
+    fill.extend_from_slice(&off[..targets]);
+    let mut list = Vec::new();
+    try_reserve_exact(&mut list, off[targets] as usize)?;
+    list.resize(off[targets] as usize, 0u32);
+    inc.visit(0..sources, &mut |x, t| {
+        list[fill[t as usize] as usize] = x;
+        fill[t as usize] += 1;
+    });
+    Ok((off, list))
+}
+
+/// From each range's count of each target (`counts[r][t]`): the CSR offsets `off` (targets + 1)
+/// and, in place of the counts, each range's first position in each target (the ranges' entries
+/// one after another). Targets in blocks on several threads: each block's total first, then
+/// the blocks' offsets.
+fn offsets_by_range(off: &mut [u32], counts: &mut [Vec<u32>]) {
+    use rayon::prelude::*;
+    let targets = off.len() - 1;
+    let block = targets.div_ceil(4 * threads()).max(1);
+    let blocks = targets.div_ceil(block);
+    let totals: Vec<u32> = map_chunks(blocks, |b| {
+        (b * block..((b + 1) * block).min(targets))
+            .map(|t| counts.iter().map(|c| c[t]).sum::<u32>())
+            .sum()
+    });
+    let mut starts = Vec::with_capacity(blocks);
+    let mut acc = 0u32;
+    for t in totals {
+        starts.push(acc);
+        acc += t;
+    }
+    off[targets] = acc;
+    // Each block's slice of `off` (its targets' starts) and of every range's counts.
+    let mut pieces = Vec::with_capacity(blocks);
+    let mut per_range: Vec<std::slice::ChunksMut<'_, u32>> =
+        counts.iter_mut().map(|c| c.chunks_mut(block)).collect();
+    for (o, start) in off[..targets].chunks_mut(block).zip(starts) {
+        let cs: Vec<&mut [u32]> = per_range.iter_mut().map(|it| it.next().unwrap()).collect();
+        pieces.push((start, o, cs));
+    }
+    install(|| {
+        pieces.into_par_iter().for_each(|(mut acc, o, mut cs)| {
+            for (k, slot) in o.iter_mut().enumerate() {
+                *slot = acc;
+                for c in cs.iter_mut() {
+                    let n = c[k];
+                    c[k] = acc;
+                    acc += n;
+                }
+            }
+        })
+    });
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -328,5 +547,94 @@ mod tests {
                 assert_eq!(got, want, "n = {n}, {t} threads");
             }
         }
+    }
+
+    fn xorshift(x: &mut u64) -> u64 {
+        *x ^= *x << 13;
+        *x ^= *x >> 7;
+        *x ^= *x << 17;
+        *x
+    }
+
+    #[test]
+    fn shared_union_find_roots_are_each_class_smallest_member_on_any_thread_count() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let n = 50_000u32;
+        let edges: Vec<(u32, u32)> = (0..40_000)
+            .map(|_| {
+                let a = (xorshift(&mut x) % n as u64) as u32;
+                // Mostly near neighbours (long chains), some far jumps.
+                let b = if a.is_multiple_of(7) {
+                    (xorshift(&mut x) % n as u64) as u32
+                } else {
+                    (a + 1 + (xorshift(&mut x) % 3) as u32).min(n - 1)
+                };
+                (a, b)
+            })
+            .collect();
+        // Serial labels: the smallest member of each class.
+        let mut parent: Vec<u32> = (0..n).collect();
+        fn root(p: &mut [u32], mut x: u32) -> u32 {
+            while p[x as usize] != x {
+                x = p[x as usize];
+            }
+            x
+        }
+        for &(a, b) in &edges {
+            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+            parent[ra.max(rb) as usize] = ra.min(rb);
+        }
+        let want: Vec<u32> = (0..n).map(|i| root(&mut parent, i)).collect();
+        for t in [1, 2, 3, 4] {
+            let uf = SharedUnionFind::try_new(n as usize).unwrap();
+            pool(t).expect("a pool").install(|| {
+                rayon::scope(|s| {
+                    for part in edges.chunks(edges.len().div_ceil(t)) {
+                        let uf = &uf;
+                        s.spawn(move |_| part.iter().for_each(|&(a, b)| uf.union(a, b)));
+                    }
+                })
+            });
+            let got: Vec<u32> = (0..n).map(|i| uf.find(i)).collect();
+            assert_eq!(got, want, "{t} threads");
+            let roots = (0..n).filter(|&i| uf.is_root(i)).count();
+            assert_eq!(roots, (0..n).filter(|&i| want[i as usize] == i).count());
+        }
+    }
+
+    #[test]
+    fn parallel_inversion_lists_each_target_sources_in_order_like_the_counting_sort() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        // Three distinct targets per source among 5000: many sources per target.
+        let sources = 3 * MIN_PARALLEL;
+        let links: Vec<[u32; 3]> = (0..sources)
+            .map(|_| {
+                let a = (xorshift(&mut x) % 4998) as u32;
+                [a, a + 1, a + 2]
+            })
+            .collect();
+        struct Links(Vec<[u32; 3]>);
+        impl Incidences for Links {
+            fn visit(&self, range: std::ops::Range<usize>, f: &mut impl FnMut(u32, u32)) {
+                for i in range {
+                    self.0[i].iter().for_each(|&t| f(2 * i as u32 + 1, t));
+                }
+            }
+        }
+        let links = Links(links);
+        let want = invert_serial(5000, sources, &links).unwrap();
+        let before = threads();
+        assert_eq!(want.0[5000] as usize, 3 * sources);
+        for t in [2, 3] {
+            set_threads(t);
+            assert!(splits(sources), "the test must take the parallel path");
+            assert!(
+                try_invert(5000, sources, &links).unwrap() == want,
+                "{t} threads"
+            );
+        }
+        set_threads(1);
+        assert!(try_invert(5000, sources, &links).unwrap() == want);
+        set_threads(before);
     }
 }

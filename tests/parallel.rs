@@ -61,6 +61,33 @@ fn surface_with_wires(k: u32) -> Complex {
     Complex::from_simplices(n + 10, &refs).unwrap()
 }
 
+/// `copies` k×k×k tetrahedral grids sharing their corner vertex 0 (so its star has `copies`
+/// components: the IA keeps one reference each) and, between consecutive copies, the edge from
+/// that corner along the first axis (a pinched edge: its star is not connected through its
+/// triangles).
+fn bouquet_of_grids(k: u32, copies: u32) -> Complex {
+    let n = k + 1;
+    let per = n * n * n;
+    let grid = tetrahedral_grid(k);
+    let mut tets: Vec<Vec<u32>> = Vec::new();
+    for c in 0..copies {
+        // Vertex 0 is shared by all; vertex `n * n` (the corner's neighbour along the first
+        // axis) is shared with the previous copy.
+        let map = |v: u32| match v {
+            0 => 0,
+            v if v == n * n && c > 0 => (c - 1) * per + n * n,
+            v => c * per + v,
+        };
+        for t in grid.tops(3).iter() {
+            let mut t: Vec<u32> = t.iter().map(|&v| map(v)).collect();
+            t.sort_unstable();
+            tets.push(t);
+        }
+    }
+    let refs: Vec<&[u32]> = tets.iter().map(Vec::as_slice).collect();
+    Complex::from_simplices(copies * per, &refs).unwrap()
+}
+
 fn saved(kind: StructureKind, c: &Complex, threads: usize, name: &str) -> Option<Vec<u8>> {
     topoplex::parallel::set_threads(threads);
     let s = build(kind, c).ok()?;
@@ -106,6 +133,10 @@ fn several_threads_build_the_same_bytes_as_one() {
 
     // Small inputs cut into ranges of a few items: every range boundary lands somewhere.
     topoplex::parallel::set_split_threshold(2);
+    let pinched = bouquet_of_grids(3, 5);
+    for threads in [2, 3] {
+        assert!(same_bytes(&pinched, threads, "bouquet") >= 3);
+    }
     let mut runner = TestRunner::new(Config {
         cases: 48,
         failure_persistence: None,

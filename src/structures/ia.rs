@@ -51,16 +51,30 @@
 //! - R_{p,p}, 0 < p < d: every facet of σ contains v or w, so walk the stars of v and w; each
 //!   d-simplex sharing a facet f of σ gives f ∪ {x} for its vertices x ∉ σ, dedup:
 //!   O(d·(n_v + n_w) + output) — not optimal.
-//! - `count(p)`: cached at build (by enumerating the p-faces of every d-simplex and
-//!   deduplicating, O(n_d·C(d+1, p+1)·log)); `simplices(p)` re-derives the list the same way.
+//! - `count(p)`: cached at build (see below); `simplices(p)` enumerates the p-faces of every
+//!   d-simplex and deduplicates, O(n_d·C(d+1, p+1)·log).
 //!
 //! Queries keep no state in the structure: every walk has its own hash set.
+//!
+//! # Build
+//! Steps split between [`crate::parallel::threads`] threads, each writing to positions fixed
+//! before the split, so any thread count gives the same bytes:
+//! - R_{d,d}: each facet slot is matched in the bucket of its facet's smallest vertex v: the
+//!   slots of the run of d-simplices that start with v (the table is sorted) and the slot-0
+//!   facets whose d-simplex's second vertex is v (one counting sort of the d-simplices, 4 bytes
+//!   each); buckets sorted and matched by chunks of vertices on several threads.
+//!   O(n_d·d·(1 + log b)) for buckets of b slots.
+//! - Star components: with one thread, one walk per component through R_{d,d} (1 byte a slot);
+//!   with several, a shared union–find over the slots by ranges of d-simplices (4 bytes a
+//!   slot), whose roots (smallest slots) are the walks' starts. O(d²·n_d).
+//! - `count(p)`: n_{d−1} from R_{d,d}; 0 < p < d − 1 counted at their smallest vertex from a
+//!   walk of its star, by chunks of vertices on several threads. O(Σ_v n_v·C(d, p)·log).
 
 use super::nav::{NavBase, NavIndex};
 use crate::store::Arr;
 use rustc_hash::FxHashSet;
 
-use super::common::{try_copy, try_table, try_vec, try_with_capacity};
+use super::common::{too_large, try_copy, try_push, try_reserve, try_table, try_vec};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable, is_subset};
@@ -157,32 +171,34 @@ fn adjacency(tops: &SimplexTable, d: usize) -> Result<Vec<u32>, (Vec<u32>, Vec<u
 /// d-simplices) is the same whatever the thread count. O(n_d·d·(1 + log b)) for buckets of b.
 /// The outer `Err` is `TooLarge`: an array that cannot be had.
 #[allow(clippy::type_complexity)]
-fn adjacency_by_vertex(
+pub(crate) fn adjacency_by_vertex(
+    kind: StructureKind,
     tops: &SimplexTable,
     d: usize,
     n: u32,
 ) -> Result<Result<Vec<u32>, (Vec<u32>, Vec<u32>)>, BuildError> {
     let w = d + 1;
     let slots = tops.len() * w;
-    let mut adj = try_vec(KIND, NONE, slots, "adjacencies")?;
+    let mut adj = try_vec(kind, NONE, slots, "adjacencies")?;
     if d == 0 {
         return Ok(Ok(adj));
     }
     // Slot k = (top k / w, facet opposite vertex k % w); its facet's smallest vertex is the
-    // top's first vertex unless that is the one left out.
-    let low = |k: usize| tops.get(k / w)[usize::from(k.is_multiple_of(w))];
-    let mut start = try_vec(KIND, 0u32, n as usize + 1, "bucket offsets")?;
-    for k in 0..slots {
-        start[low(k) as usize + 1] += 1;
+    // top's first vertex unless that is the one left out (slot 0 of a top). The tops are
+    // sorted, so the other slots at v are those of the run of tops starting with v: only the
+    // slot-0 facets are bucketed, by the top's second vertex (a counting sort of the tops).
+    let mut start = try_vec(kind, 0u32, n as usize + 1, "bucket offsets")?;
+    for t in 0..tops.len() {
+        start[tops.get(t)[1] as usize + 1] += 1;
     }
     for v in 0..n as usize {
         start[v + 1] += start[v];
     }
-    let mut fill = try_copy(KIND, &start, "bucket offsets")?;
-    let mut order = try_vec(KIND, 0u32, slots, "facet slots")?;
-    for k in 0..slots {
-        let v = low(k) as usize;
-        order[fill[v] as usize] = k as u32;
+    let mut fill = try_copy(kind, &start, "bucket offsets")?;
+    let mut order = try_vec(kind, 0u32, tops.len(), "facet slots")?;
+    for t in 0..tops.len() {
+        let v = tops.get(t)[1] as usize;
+        order[fill[v] as usize] = (t * w) as u32;
         fill[v] += 1;
     }
     drop(fill);
@@ -200,8 +216,22 @@ fn adjacency_by_vertex(
         let (v0, v1) = (c * 1024, ((c + 1) * 1024).min(n as usize));
         let mut pairs = Vec::new();
         let mut bucket: Vec<([u32; 16], u32)> = Vec::new();
+        // The first top whose first vertex is v0 or more.
+        let (mut t, mut hi) = (0, tops.len());
+        while t < hi {
+            let mid = (t + hi) / 2;
+            if (tops.get(mid)[0] as usize) < v0 {
+                t = mid + 1;
+            } else {
+                hi = mid;
+            }
+        }
         for v in v0..v1 {
             bucket.clear();
+            while t < tops.len() && tops.get(t)[0] as usize == v {
+                bucket.extend((t * w + 1..(t + 1) * w).map(|k| (facet(k as u32), k as u32)));
+                t += 1;
+            }
             let range = start[v] as usize..start[v + 1] as usize;
             bucket.extend(order[range].iter().map(|&k| (facet(k), k)));
             bucket.sort_unstable();
@@ -322,17 +352,48 @@ fn face_counts(
 }
 
 /// Per-vertex star components: (CSR offsets, one d-simplex per component), each vertex's list
-/// ascending. Walks each component once through the adjacencies: O(d²·n_d).
+/// ascending. A component's reference is its smallest d-simplex: the serial path walks each
+/// component once through the adjacencies from its first slot in (d-simplex, vertex) order; on
+/// several threads, a shared union–find over the slots (whose roots are the smallest slots)
+/// gives the same components. O(d²·n_d).
 fn vertex_components(
     tops: &SimplexTable,
     adj: &[u32],
     d: usize,
     n: u32,
 ) -> Result<(Vec<u32>, Vec<u32>), BuildError> {
+    let pairs = if crate::parallel::splits(tops.len() * (d + 1)) {
+        component_roots(tops, adj, d)?
+    } else {
+        component_walks(tops, adj, d)?
+    };
+    let mut off = try_vec(KIND, 0u32, n as usize + 1, "star offsets")?;
+    for &(v, _) in &pairs {
+        off[v as usize + 1] += 1;
+    }
+    for i in 0..n as usize {
+        off[i + 1] += off[i];
+    }
+    let mut fill = try_copy(KIND, &off, "star offsets")?;
+    let mut list = try_vec(KIND, 0u32, pairs.len(), "star components")?;
+    // `pairs` is in ascending d-simplex order, so each vertex's list comes out ascending.
+    for &(v, t) in &pairs {
+        list[fill[v as usize] as usize] = t;
+        fill[v as usize] += 1;
+    }
+    Ok((off, list))
+}
+
+/// The (vertex, smallest d-simplex) of each star component, in (d-simplex, vertex) order, by
+/// one walk per component from its first unvisited slot. 1 byte per slot.
+fn component_walks(
+    tops: &SimplexTable,
+    adj: &[u32],
+    d: usize,
+) -> Result<Vec<(u32, u32)>, BuildError> {
     let w = d + 1;
     let mut visited = try_vec(KIND, false, tops.len() * w, "visit marks")?;
-    // At most one (vertex, component) pair per slot.
-    let mut pairs: Vec<(u32, u32)> = try_with_capacity(KIND, tops.len() * w, "star components")?;
+    let mut pairs = Vec::new();
     let mut stack = Vec::new();
     for t in 0..tops.len() {
         for j in 0..w {
@@ -340,7 +401,7 @@ fn vertex_components(
                 continue;
             }
             let v = tops.get(t)[j];
-            pairs.push((v, t as u32));
+            try_push(KIND, &mut pairs, (v, t as u32), "star components")?;
             visited[t * w + j] = true;
             stack.push((t, j));
             while let Some((u, pos)) = stack.pop() {
@@ -359,21 +420,56 @@ fn vertex_components(
             }
         }
     }
-    let mut off = try_vec(KIND, 0u32, n as usize + 1, "star offsets")?;
-    for &(v, _) in &pairs {
-        off[v as usize + 1] += 1;
+    Ok(pairs)
+}
+
+/// [`component_walks`] on several threads: slot (t, j) (vertex j of d-simplex t) is joined to
+/// the slot of the same vertex in each neighbour across a facet containing it, by ranges of
+/// d-simplices; the roots, the smallest slot of each component, are the walks' starts.
+/// 4 bytes per slot.
+fn component_roots(
+    tops: &SimplexTable,
+    adj: &[u32],
+    d: usize,
+) -> Result<Vec<(u32, u32)>, BuildError> {
+    let w = d + 1;
+    let slots = tops.len() * w;
+    let uf = crate::parallel::SharedUnionFind::try_new(slots)
+        .map_err(|bytes| too_large(KIND, bytes, "star component labels"))?;
+    crate::parallel::map_ranges(tops.len(), |range| {
+        for t in range {
+            let row = tops.get(t);
+            for (i, &x) in adj[t * w..(t + 1) * w].iter().enumerate() {
+                // Each shared facet once, from its smaller d-simplex.
+                if x == NONE || (x as usize) < t {
+                    continue;
+                }
+                let other = tops.get(x as usize);
+                for (j, &v) in row.iter().enumerate().filter(|&(j, _)| j != i) {
+                    let px = other.iter().position(|&y| y == v).unwrap();
+                    uf.union((t * w + j) as u32, (x as usize * w + px) as u32);
+                }
+            }
+        }
+    });
+    let parts = crate::parallel::map_ranges(tops.len(), |range| {
+        let mut pairs = Vec::new();
+        for t in range {
+            for (j, &v) in tops.get(t).iter().enumerate() {
+                if uf.is_root((t * w + j) as u32) {
+                    try_push(KIND, &mut pairs, (v, t as u32), "star components")?;
+                }
+            }
+        }
+        Ok(pairs)
+    });
+    let mut pairs = Vec::new();
+    for part in parts {
+        let part: Vec<(u32, u32)> = part?;
+        try_reserve(KIND, &mut pairs, part.len(), "star components")?;
+        pairs.extend_from_slice(&part);
     }
-    for i in 0..n as usize {
-        off[i + 1] += off[i];
-    }
-    let mut fill = try_copy(KIND, &off, "star offsets")?;
-    let mut list = try_vec(KIND, 0u32, pairs.len(), "star components")?;
-    // `pairs` is in ascending d-simplex order, so each vertex's list comes out ascending.
-    for &(v, t) in &pairs {
-        list[fill[v as usize] as usize] = t;
-        fill[v as usize] += 1;
-    }
-    Ok((off, list))
+    Ok(pairs)
 }
 
 impl IndexedAdjacency {
@@ -398,7 +494,7 @@ impl IndexedAdjacency {
         }
         let tops = try_table(KIND, complex.tops(d))?;
         to_u32(KIND, tops.len() * (d + 1), "adjacency entries")?;
-        let adj = adjacency_by_vertex(&tops, d, n)?.map_err(|(facet, three)| {
+        let adj = adjacency_by_vertex(KIND, &tops, d, n)?.map_err(|(facet, three)| {
             let three: Vec<String> = three.chunks(d + 1).map(show).collect();
             unsupported(format!(
                 "{}-simplex {} is a face of more than two {d}-simplices ({}, ...), so the \
@@ -410,8 +506,9 @@ impl IndexedAdjacency {
         })?;
         let (vstar_off, vstar) = vertex_components(&tops, &adj, d, n)?;
         let counts = face_counts(&tops, &adj, &vstar_off, &vstar, d, n);
+        let nav = NavIndex::new(KIND, complex)?;
         Ok(IndexedAdjacency {
-            nav: NavIndex::new(KIND, complex)?,
+            nav,
             d,
             n,
             tops,

@@ -54,7 +54,8 @@ pub struct IncidenceGraph {
 impl IncidenceGraph {
     /// Builds from the closure of the complex: boundaries by radix sorting the facet slots and
     /// merging them with the sorted table below, co-boundaries by a counting sort of the
-    /// boundaries. O(Σ_p (p+1) n_p · p) time when p facet ids fit in 64 bits (else a binary
+    /// boundaries (`parallel::try_invert`: one range of simplices per thread, the same
+    /// lists with any thread count; 4 bytes a simplex per thread while it runs). O(Σ_p (p+1) n_p · p) time when p facet ids fit in 64 bits (else a binary
     /// search per facet, O(Σ_p (p+1) n_p · p log n_p)).
     pub fn build(complex: &Complex) -> Result<IncidenceGraph, BuildError> {
         let (tables, boundary) = try_closure_links(KIND, complex)?;
@@ -66,7 +67,7 @@ impl IncidenceGraph {
         let mut cob_offsets = vec![Vec::new(); d];
         let mut cob = vec![Vec::new(); d];
         for p in 0..d {
-            let (off, list) = invert(tables[p].len(), &boundary[p + 1], p + 2);
+            let (off, list) = invert(tables[p].len(), &boundary[p + 1], p + 2)?;
             cob_offsets[p] = off;
             cob[p] = list;
         }
@@ -81,8 +82,9 @@ impl IncidenceGraph {
                 }
             })
             .collect();
+        let nav = NavIndex::new(KIND, complex)?;
         Ok(IncidenceGraph {
-            nav: NavIndex::new(KIND, complex)?,
+            nav,
             tables,
             boundary: boundary.into_iter().map(Arr::from).collect(),
             cob_offsets: cob_offsets.into_iter().map(Arr::from).collect(),
@@ -127,22 +129,20 @@ impl IncidenceGraph {
 }
 
 /// Inverts fixed-width `links` (each row of `width` ids into a table of `n` simplices) into CSR
-/// form: for each target, the rows pointing at it, ascending.
-fn invert(n: usize, links: &[u32], width: usize) -> (Vec<u32>, Vec<u32>) {
-    let mut off = vec![0u32; n + 1];
-    for &t in links {
-        off[t as usize + 1] += 1;
+/// form: for each target, the rows pointing at it, ascending. On several threads for large
+/// tables (`parallel::try_invert`); `TooLarge` when the arrays cannot be had.
+fn invert(n: usize, links: &[u32], width: usize) -> Result<(Vec<u32>, Vec<u32>), BuildError> {
+    struct Rows<'a>(&'a [u32], usize);
+    impl crate::parallel::Incidences for Rows<'_> {
+        fn visit(&self, range: std::ops::Range<usize>, f: &mut impl FnMut(u32, u32)) {
+            let w = self.1;
+            for (k, &t) in self.0[range.start * w..range.end * w].iter().enumerate() {
+                f((range.start + k / w) as u32, t);
+            }
+        }
     }
-    for i in 0..n {
-        off[i + 1] += off[i];
-    }
-    let mut fill = off.clone();
-    let mut list = vec![0u32; links.len()];
-    for (k, &t) in links.iter().enumerate() {
-        list[fill[t as usize] as usize] = (k / width) as u32;
-        fill[t as usize] += 1;
-    }
-    (off, list)
+    crate::parallel::try_invert(n, links.len() / width, &Rows(links, width))
+        .map_err(|bytes| super::common::too_large(KIND, bytes, "the co-boundaries"))
 }
 
 impl NavBase for IncidenceGraph {

@@ -83,12 +83,15 @@
 //!   R_{0,0}, R_{0,1}, R_{0,2} optimal, R_{0,3} O(n_v) (Table 2).
 //! - R_{2,2}: R_{1,2} of its three edges, O(Σ n_e) — optimal. R_{1,1}: the edges at either
 //!   vertex from the stars of both, O(n_a + n_b) — optimal as in Table 2.
-//! - `count(p)` cached at build; `simplices(p)` derives the list from the top simplices.
+//! - `count(p)` cached at build (the closure's counts by vertex blocks, on several threads, one
+//!   block at a time per thread); `simplices(p)` derives the list from the top simplices.
 //!
 //! Queries keep no state in the structure: every walk has its own set of visited simplices.
 
-use super::common::{IdSet, IdStack, RowSet, faces_containing, faces_of_tops, show};
-use super::common::{try_iota, try_order, try_table, try_vec};
+use super::common::try_table;
+use super::common::{
+    IdSet, IdStack, RowSet, faces_containing, faces_of_tops, show, try_closure_counts,
+};
 use super::ia::NONE;
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
@@ -144,65 +147,16 @@ fn group_start(inc: &[([u32; 2], u32)], i: usize) -> usize {
     }
 }
 
-/// Adjacency across triangles, or the first triangle with three or more tetrahedra (and them);
-/// the outer `Err` is `TooLarge`: an array that cannot be had.
+/// R_{3,3}: the IA's facet matching by smallest-vertex buckets
+/// (`ia::adjacency_by_vertex`, on several threads); `Err((triangle, three tets))` for
+/// the lexicographically first triangle of three or more tetrahedra.
 #[allow(clippy::type_complexity)]
 fn tet_adjacency(
     tets: &SimplexTable,
+    n: u32,
 ) -> Result<Result<Vec<u32>, ([u32; 3], Vec<u32>)>, BuildError> {
-    let facet = |k: u32| {
-        let (t, i) = (k as usize / 4, k as usize % 4);
-        let s = tets.get(t);
-        let mut f = [0u32; 3];
-        let mut o = 0;
-        for (j, &v) in s.iter().enumerate() {
-            if j != i {
-                f[o] = v;
-                o += 1;
-            }
-        }
-        f
-    };
-    let mut adj = try_vec(KIND, NONE, tets.len() * 4, "adjacencies")?;
-    let bits = id_bits(tets.as_flat().iter().copied().max().unwrap_or(0));
-    let order = try_order(KIND, tets.len() * 4, 3 * bits, |k| {
-        facet(k)
-            .iter()
-            .fold(0u64, |acc, &v| (acc << bits) | v as u64)
-    })?;
-    let order = match order {
-        Some(order) => order,
-        None => {
-            let mut order = try_iota(KIND, tets.len() * 4, "facet slots")?;
-            order.sort_unstable_by_key(|&k| (facet(k), k));
-            order
-        }
-    };
-    let mut i = 0;
-    while i < order.len() {
-        let f = facet(order[i]);
-        let mut j = i + 1;
-        while j < order.len() && facet(order[j]) == f {
-            j += 1;
-        }
-        match j - i {
-            1 => {}
-            2 => {
-                let (a, b) = (order[i], order[i + 1]);
-                adj[a as usize] = b / 4;
-                adj[b as usize] = a / 4;
-            }
-            _ => {
-                let three = order[i..i + 3]
-                    .iter()
-                    .flat_map(|&k| tets.get(k as usize / 4).iter().copied())
-                    .collect();
-                return Ok(Err((f, three)));
-            }
-        }
-        i = j;
-    }
-    Ok(Ok(adj))
+    Ok(super::ia::adjacency_by_vertex(KIND, tets, 3, n)?
+        .map_err(|(f, three)| ([f[0], f[1], f[2]], three)))
 }
 
 /// A plane basis around an edge, for angles.
@@ -266,7 +220,8 @@ struct Cluster {
 }
 
 impl NonManifoldIa {
-    /// Checks the domain, builds R_{3,3} by sorting tetrahedron faces, the cluster rings by
+    /// Checks the domain, builds R_{3,3} by the IA's smallest-vertex buckets (on several
+    /// threads), the cluster rings by
     /// sorting the edges of the top simplices, and R_{0,clusters} by one walk per component.
     /// O(n log n) in the number of top simplices.
     pub fn build(complex: &Complex) -> Result<NonManifoldIa, BuildError> {
@@ -293,7 +248,7 @@ impl NonManifoldIa {
                 what: format!("{tops} top simplices exceed the 2^28 of the link keys"),
             });
         }
-        let adj = tet_adjacency(&tets)?.map_err(|(f, three)| {
+        let adj = tet_adjacency(&tets, n)?.map_err(|(f, three)| {
             let three: Vec<String> = three.chunks(4).map(show).collect();
             unsupported(format!(
                 "triangle {} is a face of more than two tetrahedra ({}, ...); NMIA, as in the \
@@ -302,8 +257,9 @@ impl NonManifoldIa {
                 three.join(", ")
             ))
         })?;
+        let nav = NavIndex::new(KIND, complex)?;
         let mut s = NonManifoldIa {
-            nav: NavIndex::new(KIND, complex)?,
+            nav,
             d,
             n,
             tets,
@@ -332,14 +288,10 @@ impl NonManifoldIa {
         let (off, list) = s.vertex_components();
         s.vstar_off = Arr::from(off);
         s.vstar = Arr::from(list);
-        let mut counts = vec![0; d + 1];
+        // The closure's counts by vertex blocks (on several threads, one block at a time per
+        // thread) rather than every face listed and sorted.
+        let mut counts = try_closure_counts(KIND, complex)?;
         counts[0] = n as usize;
-        let mut rows = Vec::new();
-        for (p, c) in counts.iter_mut().enumerate().skip(1) {
-            rows.clear();
-            faces_of_tops(s.all_tops().map(|u| s.verts(u)), p, &mut rows);
-            *c = rows.len() / (p + 1);
-        }
         s.counts = counts;
         Ok(s)
     }
@@ -961,7 +913,7 @@ impl NonManifoldIa {
                 }
             }
         }
-        if tet_adjacency(&self.tets)
+        if tet_adjacency(&self.tets, self.n)
             .ok()
             .and_then(Result::ok)
             .as_deref()

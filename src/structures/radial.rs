@@ -280,15 +280,17 @@ pub(crate) fn corner(t: u32, tri: [u32; 3], v: u32) -> u32 {
 }
 
 /// For each corner, the smallest corner of its star component (triangles at the corner's vertex
-/// joined through edges at that vertex). Union-find over corners: near O(n2).
+/// joined through edges at that vertex). Union-find over corners: near O(n2); on several
+/// threads for many triangles (a shared union–find whose roots are the smallest corners too, so
+/// the same labels), else serial.
 pub(crate) fn corner_roots(
     n_tris: u32,
-    tri: impl Fn(u32) -> [u32; 3],
-    radial_next: impl Fn(u32) -> u32,
+    tri: impl Fn(u32) -> [u32; 3] + Sync + Send,
+    radial_next: impl Fn(u32) -> u32 + Sync + Send,
 ) -> Vec<u32> {
     let m = 3 * n_tris;
-    let mut parent: Vec<u32> = (0..m).collect();
-    for s in 0..m {
+    // Corner pairs of slot s and the next slot around its edge, for each end of the edge.
+    let joins = |s: u32, join: &mut dyn FnMut(u32, u32)| {
         let t = s / 3;
         let tv = tri(t);
         let (a, b) = slot_ends(tv, s);
@@ -296,10 +298,25 @@ pub(crate) fn corner_roots(
         let t2 = s2 / 3;
         let tv2 = tri(t2);
         for v in [a, b] {
-            let x = find_root(&mut parent, corner(t, tv, v));
-            let y = find_root(&mut parent, corner(t2, tv2, v));
-            parent[x.max(y) as usize] = x.min(y);
+            join(corner(t, tv, v), corner(t2, tv2, v));
         }
+    };
+    if crate::parallel::splits(m as usize)
+        && let Ok(uf) = crate::parallel::SharedUnionFind::try_new(m as usize)
+    {
+        crate::parallel::map_ranges(m as usize, |range| {
+            for s in range {
+                joins(s as u32, &mut |x, y| uf.union(x, y));
+            }
+        });
+        return uf.into_roots();
+    }
+    let mut parent: Vec<u32> = (0..m).collect();
+    for s in 0..m {
+        joins(s, &mut |x, y| {
+            let (x, y) = (find_root(&mut parent, x), find_root(&mut parent, y));
+            parent[x.max(y) as usize] = x.min(y);
+        });
     }
     for c in 0..m {
         parent[c as usize] = find_root(&mut parent, c);
@@ -329,8 +346,8 @@ pub(crate) fn components_headroom(
 pub(crate) fn vertex_components(
     n: u32,
     n_tris: u32,
-    tri: impl Fn(u32) -> [u32; 3],
-    radial_next: impl Fn(u32) -> u32,
+    tri: impl Fn(u32) -> [u32; 3] + Sync + Send,
+    radial_next: impl Fn(u32) -> u32 + Sync + Send,
 ) -> (Vec<u32>, Vec<u32>) {
     let roots = corner_roots(n_tris, &tri, radial_next);
     let mut off = vec![0u32; n as usize + 1];
@@ -916,7 +933,7 @@ pub(crate) fn validate_common<T: TriTopo + ?Sized>(topo: &T, n: u32) -> Result<(
 
 /// Checks one stored representative per star component of every vertex (`reps(v)` as corners):
 /// each at `v`, no two in one component, as many as the star has components. O(n2 + n0).
-pub(crate) fn validate_components<T: TriTopo + ?Sized>(
+pub(crate) fn validate_components<T: TriTopo + Sync + ?Sized>(
     topo: &T,
     n: u32,
     reps: impl Fn(u32) -> Vec<u32>,

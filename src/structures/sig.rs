@@ -102,8 +102,10 @@
 //!   edge would cost k² (each rescans the edge's k co-faces).
 //! - [`Sig::build`]: straight from the complex, never making an IG (no co-boundary lists).
 //!   Per dimension p, the top simplices above each p-simplex come from enumerating every top
-//!   simplex's p-faces (counting sort into CSR, released after that dimension); clusters are a
-//!   union–find over those top simplices, keyed by the shared (g−1)-faces that contain σ.
+//!   simplex's p-faces (counting sort into CSR, released after that dimension; one range of top
+//!   simplices per thread, `parallel::try_invert`); clusters are a union–find over
+//!   those top simplices, keyed by the shared (g−1)-faces that contain σ, by ranges of
+//!   p-simplices on several threads. Either way the same bytes with any thread count.
 //!   After the closure and the boundaries (each facet found by binary search, as in the IG),
 //!   time O(Σ_{τ top} Σ_{p<r} C(r+1, p+1) · r), r = dim τ; extra memory one dimension's
 //!   top-incidence CSR (4 bytes per (face, top simplex) pair) plus per-simplex scratch.
@@ -138,7 +140,7 @@
 use crate::store::Arr;
 use rustc_hash::{FxHashMap, FxHashSet};
 
-use super::common::try_closure_links;
+use super::common::{too_large, try_closure_links};
 use super::ig::IncidenceGraph;
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
@@ -441,32 +443,56 @@ struct BuildSteps<'a> {
     boundary: &'a [Vec<u32>],
 }
 
+/// The p-faces of the top simplices of dimension above p, sources in global id order, for
+/// [`BuildSteps::tops_above`].
+struct TopFaces<'a> {
+    steps: &'a BuildSteps<'a>,
+    p: usize,
+    top_rows: &'a [Vec<u32>],
+    at: &'a [usize],
+}
+
+impl crate::parallel::Incidences for TopFaces<'_> {
+    fn visit(&self, range: std::ops::Range<usize>, f: &mut impl FnMut(u32, u32)) {
+        let (p, s) = (self.p, self.steps);
+        let mut k = self.at.partition_point(|&a| a <= range.start) - 1;
+        for i in range {
+            while i >= self.at[k + 1] {
+                k += 1;
+            }
+            let r = p + 1 + k;
+            let t = self.top_rows[r][i - self.at[k]];
+            let g = s.first[r] + t;
+            walk_faces(s.boundary, r, t, r + 1, r - p, u32::MAX, &mut |face| {
+                f(g, face)
+            });
+        }
+    }
+}
+
 impl BuildSteps<'_> {
-    /// CSR of the top simplices (global ids, ascending) above each p-simplex: offsets, entries.
-    fn tops_above(&self, p: usize, top_rows: &[Vec<u32>]) -> (Vec<u32>, Vec<u32>) {
-        let n = self.tables[p].len();
-        let mut off = vec![0u32; n + 1];
-        for (r, rows) in top_rows.iter().enumerate().skip(p + 1) {
-            for &t in rows {
-                walk_faces(self.boundary, r, t, r + 1, r - p, u32::MAX, &mut |f| {
-                    off[f as usize + 1] += 1
-                });
-            }
+    /// CSR of the top simplices (global ids, ascending) above each p-simplex: offsets, entries;
+    /// an inversion of the tops' p-faces (`parallel::try_invert`, on several threads
+    /// for many tops). `TooLarge` when the arrays cannot be had.
+    fn tops_above(
+        &self,
+        p: usize,
+        top_rows: &[Vec<u32>],
+    ) -> Result<(Vec<u32>, Vec<u32>), BuildError> {
+        // Tops of dimension p + 1.. in global id order; `at[k]` is where dimension p + 1 + k's
+        // start.
+        let mut at = vec![0usize];
+        for rows in &top_rows[p + 1..] {
+            at.push(at.last().unwrap() + rows.len());
         }
-        for i in 0..n {
-            off[i + 1] += off[i];
-        }
-        let mut fill = off.clone();
-        let mut above = vec![0u32; off[n] as usize];
-        for (r, rows) in top_rows.iter().enumerate().skip(p + 1) {
-            for &t in rows {
-                walk_faces(self.boundary, r, t, r + 1, r - p, u32::MAX, &mut |f| {
-                    above[fill[f as usize] as usize] = self.first[r] + t;
-                    fill[f as usize] += 1;
-                });
-            }
-        }
-        (off, above)
+        let faces = TopFaces {
+            steps: self,
+            p,
+            top_rows,
+            at: &at,
+        };
+        crate::parallel::try_invert(self.tables[p].len(), *at.last().unwrap(), &faces)
+            .map_err(|bytes| too_large(KIND, bytes, "the tops above each simplex"))
     }
 
     /// The partial co-boundaries of the p-simplices in `range`: per simplex, the (p+1)-simplices
@@ -664,7 +690,7 @@ impl Sig {
             boundary: &boundary,
         };
         for p in 0..d {
-            let (off, above) = steps.tops_above(p, &top_rows);
+            let (off, above) = steps.tops_above(p, &top_rows)?;
             let parts = crate::parallel::map_ranges(tables[p].len(), |range| {
                 steps.clusters(p, range, &off, &above)
             });
