@@ -19,6 +19,7 @@
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicU32, Ordering as AtomicOrdering};
 
+use super::direct::{self, guard_fast};
 use super::structure::{TpxStructure, query_failure};
 use super::{
     Failure, TpxStatus, guard, handle, in_slice, out_ptr, with_answer, with_kept, write_buffer,
@@ -328,6 +329,20 @@ pub unsafe extern "C" fn tpx_related(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
+    let fast = guard_fast(|| {
+        let Some((st, sh, ord, len)) = direct::arguments(s, h, order, out_len) else {
+            return false;
+        };
+        let Some(mut out) = direct::out_slice(buf, buf_len) else {
+            return false;
+        };
+        direct::answer(st, sh, q, ord, &mut out)
+            .map(|n| *len = n)
+            .is_some()
+    });
+    if let Some(status) = fast {
+        return status;
+    }
     let order = order_arg(order);
     answer_into(
         s,
@@ -870,6 +885,25 @@ pub unsafe extern "C" fn tpx_related_handles(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
+    let fast = guard_fast(|| {
+        let Some((st, sh, ord, len)) = direct::arguments(s, h, order, out_len) else {
+            return false;
+        };
+        let Some(out) = direct::out_slice(buf, buf_len) else {
+            return false;
+        };
+        let mut out = direct::Handles {
+            out,
+            q,
+            owner: st.stamp,
+        };
+        direct::answer(st, sh, q, ord, &mut out)
+            .map(|n| *len = n)
+            .is_some()
+    });
+    if let Some(status) = fast {
+        return status;
+    }
     let order = order_arg(order);
     answer_into(
         s,

@@ -22,7 +22,7 @@
 //! - Every handle returned through `out` is owned by the caller and released by the matching
 //!   `tpx_*_free`, which accepts NULL.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::ffi::{CString, c_char};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 
@@ -63,6 +63,7 @@ pub fn fix_malloc_thresholds_for_executable() {
 
 mod complex;
 mod decomposition;
+mod direct;
 mod handles;
 mod live;
 mod simplify;
@@ -222,6 +223,10 @@ impl Failure {
 thread_local! {
     /// `None` after a success: clearing must not allocate (`CString::default()` would).
     static LAST_ERROR: RefCell<Option<CString>> = const { RefCell::new(None) };
+    /// Whether [`LAST_ERROR`] may hold a message: a success reads this flag (a thread-local
+    /// without destructor, so no registration check) and touches the message slot only after
+    /// a failure — every successful call pays this read, e.g. a walk's one call per element.
+    static ERROR_SET: Cell<bool> = const { Cell::new(false) };
 }
 
 fn set_last_error(message: &str) {
@@ -232,10 +237,15 @@ fn set_last_error(message: &str) {
     // `try_with`: during thread teardown the slot may be gone; the message is then dropped
     // rather than panicking outside the panic boundary.
     let _ = LAST_ERROR.try_with(|e| *e.borrow_mut() = Some(c));
+    ERROR_SET.set(true);
 }
 
+#[inline]
 fn clear_last_error() {
-    let _ = LAST_ERROR.try_with(|e| e.borrow_mut().take());
+    if ERROR_SET.get() {
+        let _ = LAST_ERROR.try_with(|e| e.borrow_mut().take());
+        ERROR_SET.set(false);
+    }
 }
 
 fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {
