@@ -14,6 +14,13 @@
 //! allocates nothing once warm.
 //!
 //! On failure the reported simplex is a lowest-dimensional one of Lk(a) ∩ Lk(b) outside Lk(ab).
+//!
+//! The test on the complex coned over its boundary (`link_condition_with_boundary`) runs on the
+//! same words: ω takes one more bit, and each boundary facet f through a or b (a facet of a top
+//! of the star that no other top of that star holds — O(d²·k²) per star, compared pairwise) adds
+//! the word of f \ {a, b} with ω's bit to F_a, F_b or F_ab. It runs after the plain test on the
+//! same masks, so it too allocates nothing once warm (past 64 common vertices it falls back to
+//! the lists).
 
 use std::cell::RefCell;
 
@@ -384,7 +391,10 @@ impl LiveComplex {
     /// contraction from pinching the boundary (joining two boundary vertices through the
     /// interior), so contractions that pass it keep manifoldness and the boundary's topology;
     /// on any complex it implies [`LiveComplex::link_condition`]. A failure naming ω reports it
-    /// as [`OMEGA`]. Cost: O(d²·k_a² + d²·k_b²) for the boundary facets, then as the plain test.
+    /// as [`OMEGA`]; a failure of the plain test is reported as that test reports it (it is
+    /// run first). Cost: the plain test, then O(d²·k_a² + d²·k_b²) for the boundary facets and
+    /// the word test again; allocates nothing once this thread's scratch is warm (up to 63
+    /// common vertices).
     pub fn link_condition_with_boundary(&self, a: VertexId, b: VertexId) -> Result<(), Refusal> {
         self.checked_link(a, b, true)
     }
