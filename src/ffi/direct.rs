@@ -371,3 +371,149 @@ pub(crate) fn guard_fast(body: impl FnOnce() -> bool) -> Option<TpxStatus> {
         })),
     }
 }
+
+/// The rows a structure stores, for the batch fast path (`tpx_related_batch`): each answer's
+/// length is known before it is written, so the total is checked against the caller's buffer
+/// first and the answers then written straight into it.
+enum Rows<'a> {
+    /// The IG's R_{p,p−1} (p facets) of p-simplices.
+    IgDown(&'a IncidenceGraph, usize),
+    /// The IG's R_{p,p+1} (stored co-boundary) of p-simplices.
+    IgUp(&'a IncidenceGraph, usize),
+    /// The IG's R_{0,0}: the other end of each edge at v.
+    IgVv(&'a IncidenceGraph),
+    /// The IA's R_{d,d}: the adjacency row without NONE.
+    IaAdj(&'a IndexedAdjacency),
+}
+
+impl Rows<'_> {
+    /// The rows of R_{p,q} of `s`, when it stores them; `None` otherwise.
+    fn of(s: &TpxStructure, p: usize, q: usize) -> Option<(Rows<'_>, usize)> {
+        // SAFETY (each `concrete`): as in `direct`.
+        match s.direct {
+            Direct::Ig => {
+                let g = unsafe { concrete::<IncidenceGraph>(s) };
+                let d = g.dimension();
+                if p > d || q > d {
+                    None
+                } else if q + 1 == p {
+                    Some((Rows::IgDown(g, p), g.count(p)))
+                } else if q == p + 1 {
+                    Some((Rows::IgUp(g, p), g.count(p)))
+                } else if p == 0 && q == 0 && d >= 1 {
+                    Some((Rows::IgVv(g), g.count(0)))
+                } else {
+                    None
+                }
+            }
+            Direct::Ia => {
+                let ia = unsafe { concrete::<IndexedAdjacency>(s) };
+                let d = ia.dimension();
+                (d > 0 && p == d && q == d).then(|| (Rows::IaAdj(ia), ia.count(d)))
+            }
+            _ => None,
+        }
+    }
+
+    /// Length of row `i` (`i` in range).
+    #[inline]
+    fn len(&self, i: u32) -> usize {
+        match *self {
+            Rows::IgDown(g, p) => g.boundary_ids(p, i).len(),
+            Rows::IgUp(g, p) => g.coboundary_ids(p, i).len(),
+            Rows::IgVv(g) => g.coboundary_ids(0, i).len(),
+            Rows::IaAdj(ia) => ia.neighbours(i).iter().filter(|&&t| t != NONE).count(),
+        }
+    }
+
+    /// Row `i` into `out` (exactly its length).
+    #[inline]
+    fn write(&self, i: u32, out: &mut [u32]) {
+        match *self {
+            Rows::IgDown(g, p) => out.copy_from_slice(g.boundary_ids(p, i)),
+            Rows::IgUp(g, p) => out.copy_from_slice(g.coboundary_ids(p, i)),
+            Rows::IgVv(g) => {
+                for (o, &e) in out.iter_mut().zip(g.coboundary_ids(0, i)) {
+                    let ends = g.boundary_ids(1, e);
+                    *o = if ends[0] == i { ends[1] } else { ends[0] };
+                }
+            }
+            Rows::IaAdj(ia) => {
+                for (o, t) in out
+                    .iter_mut()
+                    .zip(ia.neighbours(i).iter().copied().filter(|&t| t != NONE))
+                {
+                    *o = t;
+                }
+            }
+        }
+    }
+}
+
+/// The arguments of `tpx_related_batch`, checked as its full path does.
+pub(crate) struct Batch {
+    pub(crate) s: *const TpxStructure,
+    pub(crate) p: u32,
+    pub(crate) indices: *const u32,
+    pub(crate) count: usize,
+    pub(crate) q: u32,
+    pub(crate) order: u32,
+    pub(crate) offsets: *mut u32,
+    pub(crate) buf: *mut u32,
+    pub(crate) buf_len: usize,
+    pub(crate) out_len: *mut usize,
+}
+
+/// `tpx_related_batch` for the rows a structure stores: every index checked and the total
+/// counted first, then offsets and answers written straight into the caller's arrays; `false`
+/// (nothing written) for anything else, which the full path answers or reports.
+pub(crate) fn batch(a: &Batch) -> bool {
+    // SAFETY: non-NULL pointers passed to the ABI are valid (documented contract).
+    let Some(s) = (unsafe { a.s.as_ref() }) else {
+        return false;
+    };
+    if a.out_len.is_null() || a.offsets.is_null() || a.order > TPX_ORDER_LEXICOGRAPHIC {
+        return false;
+    }
+    let Some((rows, n)) = Rows::of(s, a.p as usize, a.q as usize) else {
+        return false;
+    };
+    let indices: &[u32] = if a.count == 0 {
+        &[]
+    } else if a.indices.is_null() || a.count > isize::MAX as usize / 4 {
+        return false;
+    } else {
+        // SAFETY: `indices` holds `count` ids (documented contract).
+        unsafe { std::slice::from_raw_parts(a.indices, a.count) }
+    };
+    let mut total = 0usize;
+    for &i in indices {
+        if i as usize >= n {
+            return false;
+        }
+        total += rows.len(i);
+    }
+    if total > a.buf_len || u32::try_from(total).is_err() {
+        return false;
+    }
+    let Some(buf) = out_slice(a.buf, a.buf_len) else {
+        return false;
+    };
+    // SAFETY: `offsets` has room for `count + 1` entries (documented contract).
+    let offsets = unsafe { std::slice::from_raw_parts_mut(a.offsets, a.count + 1) };
+    offsets[0] = 0;
+    let mut at = 0usize;
+    for (k, &i) in indices.iter().enumerate() {
+        let len = rows.len(i);
+        let row = &mut buf[at..at + len];
+        rows.write(i, row);
+        if a.order == TPX_ORDER_LEXICOGRAPHIC {
+            row.sort_unstable();
+        }
+        at += len;
+        offsets[k + 1] = at as u32;
+    }
+    // SAFETY: checked non-NULL above; valid for writes (documented contract).
+    unsafe { *a.out_len = total };
+    true
+}

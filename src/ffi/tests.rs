@@ -1332,6 +1332,69 @@ fn tpx_related_fast_path_matches_the_rust_api_on_every_kind() {
                     }
                 }
             }
+            // The batch over every p-simplex (the stored rows' fast path included) equals the
+            // Rust API's; one id short, nothing is written.
+            let all: Vec<u32> = (0..count).collect();
+            for q in 0..=2u32 {
+                for (order, o) in [
+                    (TPX_ORDER_NATURAL, Order::Natural),
+                    (TPX_ORDER_LEXICOGRAPHIC, Order::Lexicographic),
+                ] {
+                    let (mut want, mut ends) = (Vec::new(), Vec::new());
+                    n.related_batch(p as usize, &all, q as usize, o, &mut want, &mut ends)
+                        .unwrap();
+                    let mut off = vec![u32::MAX; all.len() + 1];
+                    let mut ids = vec![u32::MAX; want.len() + 1];
+                    let mut len = 0usize;
+                    let st = unsafe {
+                        tpx_related_batch(
+                            s,
+                            p,
+                            all.as_ptr(),
+                            all.len(),
+                            q,
+                            order,
+                            off.as_mut_ptr(),
+                            ids.as_mut_ptr(),
+                            ids.len(),
+                            &mut len,
+                        )
+                    };
+                    assert_eq!(
+                        (st, len),
+                        (TpxStatus::Ok, want.len()),
+                        "kind {kind} batch R_{p},{q}"
+                    );
+                    assert_eq!(&ids[..len], &want[..], "kind {kind} batch R_{p},{q}");
+                    let ends32: Vec<u32> = std::iter::once(0)
+                        .chain(ends.iter().map(|&e| e as u32))
+                        .collect();
+                    assert_eq!(off, ends32, "kind {kind} batch offsets R_{p},{q}");
+                    if !want.is_empty() {
+                        let mut off = vec![u32::MAX; all.len() + 1];
+                        let mut ids = vec![u32::MAX; want.len()];
+                        let st = unsafe {
+                            tpx_related_batch(
+                                s,
+                                p,
+                                all.as_ptr(),
+                                all.len(),
+                                q,
+                                order,
+                                off.as_mut_ptr(),
+                                ids.as_mut_ptr(),
+                                want.len() - 1,
+                                &mut len,
+                            )
+                        };
+                        assert_eq!((st, len), (TpxStatus::BufferTooSmall, want.len()));
+                        assert!(
+                            off.iter().chain(&ids).all(|&x| x == u32::MAX),
+                            "kind {kind}: written"
+                        );
+                    }
+                }
+            }
             // Past the last simplex: the full path's INVALID_HANDLE, then a success clears it.
             let bad = TpxSimplex {
                 index: count,
