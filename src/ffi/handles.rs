@@ -464,23 +464,6 @@ pub unsafe extern "C" fn tpx_related_batch(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    let fast = guard_fast(|| {
-        direct::batch(&direct::Batch {
-            s,
-            p,
-            indices,
-            count,
-            q,
-            order,
-            offsets,
-            buf,
-            buf_len,
-            out_len,
-        })
-    });
-    if let Some(status) = fast {
-        return status;
-    }
     guard(|| {
         let s = handle(s, "s")?;
         let out_len = out_ptr(out_len, "out_len")?;
