@@ -1265,7 +1265,15 @@ fn tpx_related_fast_path_matches_the_rust_api_on_every_kind() {
         &[&[0, 1, 4], &[1, 2, 4], &[2, 3, 4], &[0, 3, 4], &[1, 2, 5]],
     );
     let mut built = 0;
-    for kind in 0..=TPX_KIND_DE {
+    // Under Miri (scripts/test.sh) one kind per fast-path writer — the IG's rows, the IA's
+    // adjacency, the radial cycles (PE), the generic walk (NMIA) — and the first simplices only:
+    // the whole sweep takes tens of minutes there.
+    let kinds: Vec<u32> = if cfg!(miri) {
+        vec![TPX_KIND_IG, TPX_KIND_IA, TPX_KIND_PE, TPX_KIND_NMIA]
+    } else {
+        (0..=TPX_KIND_DE).collect()
+    };
+    for &kind in &kinds {
         let mut s = null_mut();
         if unsafe { tpx_structure_build(c, kind, &mut s) } != TpxStatus::Ok {
             continue;
@@ -1276,7 +1284,8 @@ fn tpx_related_fast_path_matches_the_rust_api_on_every_kind() {
         assert_eq!(unsafe { tpx_structure_stamp(s, &mut stamp) }, TpxStatus::Ok);
         for p in 0..=2u32 {
             let count = unsafe { (*s).topo.count(p as usize) } as u32;
-            for i in 0..count {
+            let walked = if cfg!(miri) { count.min(2) } else { count };
+            for i in 0..walked {
                 let h = TpxSimplex {
                     index: i,
                     meta: p,
@@ -1455,6 +1464,9 @@ fn tpx_related_fast_path_matches_the_rust_api_on_every_kind() {
         }
         unsafe { tpx_structure_free(s) };
     }
-    assert!(built >= 6, "only {built} kinds took the disk");
+    assert!(
+        built >= kinds.len().min(6),
+        "only {built} kinds took the disk"
+    );
     unsafe { tpx_complex_free(c) };
 }
