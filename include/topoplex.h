@@ -858,7 +858,9 @@ TpxStatus tpx_top_as_given(const struct TpxStructure *s,
  * INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), NOT_DENSE (q > 0 on
  * the live complex: use `tpx_related_handles`), BUFFER_TOO_SMALL
  * (nothing written; `*out_len` = needed). Cost: the structure's walk (module docs), plus a sort
- * for lexicographic order. No allocation once this thread's buffers have grown to the answer.
+ * for lexicographic order; rows a structure stores (the IG's boundaries and co-boundaries, the
+ * IA's adjacency, the radial cycles' FF) are copied straight into `buf` (see `ffi::direct`).
+ * No allocation once this thread's buffers have grown to the answer.
  *
  * # Safety
  * Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.

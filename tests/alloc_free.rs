@@ -530,3 +530,79 @@ fn live_handles_through_a_removed_top_allocate_nothing() {
     assert!(t.allocating.is_empty(), "allocating: {:?}", t.allocating);
     assert!(t.calls > 40, "{} calls measured", t.calls);
 }
+
+/// Both link checks of the live complex (`tpx_live_link_condition` and, the one behind
+/// `simplify --preserve-topology` and `TPX_CONTRACT_PRESERVE_MANIFOLD`,
+/// `tpx_live_link_condition_with_boundary`) on every edge of a 3×3 grid of squares cut in two
+/// (a disk: interior edges, boundary edges, and interior edges joining two boundary vertices,
+/// which the coned test refuses) allocate nothing once warm; the refusals are not measured
+/// (their message allocates).
+///
+/// ```text
+///   12-13-14-15
+///   | /| /| /|
+///   8--9-10-11
+///   | /| /| /|
+///   4--5--6--7
+///   | /| /| /|
+///   0--1--2--3
+/// ```
+#[test]
+fn live_link_checks_allocate_nothing() {
+    let mut tris: Vec<[u32; 3]> = Vec::new();
+    for i in 0..3u32 {
+        for j in 0..3u32 {
+            let v = 4 * i + j;
+            tris.push([v, v + 1, v + 5]);
+            tris.push([v, v + 5, v + 4]);
+        }
+    }
+    let rows: Vec<&[u32]> = tris.iter().map(|t| &t[..]).collect();
+    let c = complex(16, &rows);
+    let mut l = null_mut();
+    // SAFETY: valid complex and out pointer.
+    unsafe { assert_eq!(tpx_live_from_complex(c, &mut l), TpxStatus::Ok) };
+    let mut edges: Vec<(u32, u32)> = tris
+        .iter()
+        .flat_map(|t| [(t[0], t[1]), (t[1], t[2]), (t[0], t[2])])
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    let mut t = Tally::default();
+    let (mut passed, mut refused) = (0, 0);
+    for measure in [false, true] {
+        t.measure = measure;
+        for &(a, b) in &edges {
+            // SAFETY: `l` is alive (here and below).
+            t.call(
+                || format!("link condition {a}-{b}"),
+                || unsafe { tpx_live_link_condition(l, a, b) },
+            );
+            t.call(
+                || format!("coned link condition {a}-{b}"),
+                || {
+                    let st = unsafe { tpx_live_link_condition_with_boundary(l, a, b) };
+                    if measure {
+                        if st == TpxStatus::Ok {
+                            passed += 1
+                        } else {
+                            refused += 1
+                        }
+                    }
+                    st
+                },
+            );
+        }
+    }
+    // SAFETY: created above, freed once.
+    unsafe {
+        tpx_live_free(l);
+        tpx_complex_free(c);
+    }
+    assert!(t.allocating.is_empty(), "allocating: {:?}", t.allocating);
+    assert!(
+        passed > 10 && refused > 0,
+        "{passed} passed, {refused} refused"
+    );
+}

@@ -17,8 +17,15 @@
 //                          dimension, is refused; a dead vertex is refused.
 //   contract/tpx_manifold  the same with TPX_CONTRACT_PRESERVE_MANIFOLD (the link condition
 //                          with the boundary's cone, as OpenMesh's boundary rules).
+//   check/openmesh         the check alone on the fresh mesh (nothing collapsed, so every call
+//                          sees the same mesh): a dead vertex skipped, find_halfedge(b, a),
+//                          is_collapse_ok.
+//   check/tpx, check/tpx_manifold  the check alone: tpx_live_link_condition and
+//                          tpx_live_link_condition_with_boundary (a refusal also writes its
+//                          message, as in contract/*).
 // Counters: `elements` = calls per iteration (items per second = calls per second),
-// `contracted` = calls that contracted (they differ by library: each refuses by its own rule).
+// `contracted` = calls that contracted (they differ by library: each refuses by its own rule),
+// `passed` = calls whose check passed (check/*).
 // Tetrahedral meshes have no peer here: neither OpenMesh nor CGAL's Triangulation_3 collapses
 // edges of a tetrahedral mesh with a link check.
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
@@ -103,15 +110,37 @@ size_t openmesh_pass(OMesh& m, const std::vector<std::pair<uint32_t, uint32_t>>&
   return done;
 }
 
+// The checks alone, on the unchanged mesh; returns how many passed.
+size_t openmesh_checks(OMesh& m, const std::vector<std::pair<uint32_t, uint32_t>>& calls) {
+  size_t ok = 0;
+  for (const auto& [a, b] : calls) {
+    const OMesh::VertexHandle va{int(a)}, vb{int(b)};
+    if (m.status(va).deleted() || m.status(vb).deleted()) continue;
+    const OMesh::HalfedgeHandle h = m.find_halfedge(vb, va);
+    ok += h.is_valid() && m.is_collapse_ok(h);
+  }
+  return ok;
+}
+
+size_t tpx_checks(const TpxLive* l, const std::vector<std::pair<uint32_t, uint32_t>>& calls, bool manifold) {
+  size_t ok = 0;
+  for (const auto& [a, b] : calls) {
+    const TpxStatus st =
+        manifold ? tpx_live_link_condition_with_boundary(l, a, b) : tpx_live_link_condition(l, a, b);
+    ok += st == TPX_STATUS_OK;
+  }
+  return ok;
+}
+
 size_t tpx_pass(TpxLive* l, const std::vector<std::pair<uint32_t, uint32_t>>& calls, uint32_t mode) {
   size_t done = 0;
   for (const auto& [a, b] : calls) done += tpx_live_contract(l, a, b, mode, nullptr, 0, nullptr) == TPX_STATUS_OK;
   return done;
 }
 
-void set_counters(benchmark::State& st, size_t calls, size_t done) {
+void set_counters(benchmark::State& st, size_t calls, size_t done, const char* what = "contracted") {
   set_elements(st, calls);
-  st.counters["contracted"] = double(done);
+  st.counters[what] = double(done);
 }
 
 }  // namespace
@@ -164,6 +193,36 @@ int main(int argc, char** argv) {
       }
       tpx_complex_free(c);
       set_counters(st, calls.size(), done);
+    });
+  }
+  add("check", "openmesh", Unit::Walk, [&](benchmark::State& st) {
+    // is_collapse_ok is a member of the (non-const) mesh; it does not change it.
+    OMesh m = openmesh_grid(grid, k);
+    size_t ok = 0;
+    for (auto _ : st) {
+      ok = openmesh_checks(m, calls);
+      benchmark::DoNotOptimize(ok);
+    }
+    set_counters(st, calls.size(), ok, "passed");
+  });
+  for (const bool manifold : {false, true}) {
+    add("check", manifold ? "tpx_manifold" : "tpx", Unit::Walk, [&, manifold](benchmark::State& st) {
+      std::vector<size_t> offsets(grid.tris.size() / 3 + 1);
+      for (size_t i = 0; i < offsets.size(); ++i) offsets[i] = 3 * i;
+      TpxComplex* c = nullptr;
+      tpx_check(tpx_complex_from_arrays(grid.n_vertices, grid.tris.data(), offsets.data(), offsets.size() - 1,
+                                        nullptr, 0, &c),
+                "tpx_complex_from_arrays");
+      TpxLive* l = nullptr;
+      tpx_check(tpx_live_from_complex(c, &l), "tpx_live_from_complex");
+      size_t ok = 0;
+      for (auto _ : st) {
+        ok = tpx_checks(l, calls, manifold);
+        benchmark::DoNotOptimize(ok);
+      }
+      tpx_live_free(l);
+      tpx_complex_free(c);
+      set_counters(st, calls.size(), ok, "passed");
     });
   }
   return run();

@@ -19,6 +19,7 @@
 use std::cell::RefCell;
 use std::sync::atomic::{AtomicU32, Ordering as AtomicOrdering};
 
+use super::direct::{self, guard_fast};
 use super::structure::{TpxStructure, query_failure};
 use super::{
     Failure, TpxStatus, guard, handle, in_slice, out_ptr, with_answer, with_kept, write_buffer,
@@ -314,7 +315,9 @@ pub unsafe extern "C" fn tpx_top_as_given(
 /// INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), NOT_DENSE (q > 0 on
 /// the live complex: use `tpx_related_handles`), BUFFER_TOO_SMALL
 /// (nothing written; `*out_len` = needed). Cost: the structure's walk (module docs), plus a sort
-/// for lexicographic order. No allocation once this thread's buffers have grown to the answer.
+/// for lexicographic order; rows a structure stores (the IG's boundaries and co-boundaries, the
+/// IA's adjacency, the radial cycles' FF) are copied straight into `buf` (see `ffi::direct`).
+/// No allocation once this thread's buffers have grown to the answer.
 ///
 /// # Safety
 /// Non-NULL pointers must be valid; `buf` must have room for `buf_len` ids.
@@ -328,6 +331,20 @@ pub unsafe extern "C" fn tpx_related(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
+    let fast = guard_fast(|| {
+        let Some((st, sh, ord, len)) = direct::arguments(s, h, order, out_len) else {
+            return false;
+        };
+        let Some(mut out) = direct::out_slice(buf, buf_len) else {
+            return false;
+        };
+        direct::answer(st, sh, q, ord, &mut out)
+            .map(|n| *len = n)
+            .is_some()
+    });
+    if let Some(status) = fast {
+        return status;
+    }
     let order = order_arg(order);
     answer_into(
         s,
@@ -870,6 +887,25 @@ pub unsafe extern "C" fn tpx_related_handles(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
+    let fast = guard_fast(|| {
+        let Some((st, sh, ord, len)) = direct::arguments(s, h, order, out_len) else {
+            return false;
+        };
+        let Some(out) = direct::out_slice(buf, buf_len) else {
+            return false;
+        };
+        let mut out = direct::Handles {
+            out,
+            q,
+            owner: st.stamp,
+        };
+        direct::answer(st, sh, q, ord, &mut out)
+            .map(|n| *len = n)
+            .is_some()
+    });
+    if let Some(status) = fast {
+        return status;
+    }
     let order = order_arg(order);
     answer_into(
         s,

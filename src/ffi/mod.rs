@@ -22,9 +22,10 @@
 //! - Every handle returned through `out` is owned by the caller and released by the matching
 //!   `tpx_*_free`, which accepts NULL.
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::ffi::{CString, c_char};
 use std::panic::{AssertUnwindSafe, catch_unwind};
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// Hands the pages of freed heap memory back to the system (glibc's `malloc_trim`; a no-op on
 /// other C libraries and under Miri). The one allocator call outside the C ABI, here because
@@ -63,6 +64,7 @@ pub fn fix_malloc_thresholds_for_executable() {
 
 mod complex;
 mod decomposition;
+mod direct;
 mod handles;
 mod live;
 mod simplify;
@@ -222,7 +224,16 @@ impl Failure {
 thread_local! {
     /// `None` after a success: clearing must not allocate (`CString::default()` would).
     static LAST_ERROR: RefCell<Option<CString>> = const { RefCell::new(None) };
+    /// Whether [`LAST_ERROR`] holds a message (counted in [`THREADS_WITH_ERROR`]).
+    static ERROR_SET: Cell<bool> = const { Cell::new(false) };
 }
+
+/// How many threads have a message in [`LAST_ERROR`]. A success clears this thread's message
+/// only when some thread has one: while none has, the call reads one shared word and makes no
+/// thread-local access (in a shared library each is a call to `__tls_get_addr`) — what a walk
+/// of one call per element pays on every call. Relaxed suffices: a thread only needs to see
+/// its own increments.
+static THREADS_WITH_ERROR: AtomicUsize = AtomicUsize::new(0);
 
 fn set_last_error(message: &str) {
     // One bounded line with control characters escaped (NUL included, which CString refuses):
@@ -232,10 +243,18 @@ fn set_last_error(message: &str) {
     // `try_with`: during thread teardown the slot may be gone; the message is then dropped
     // rather than panicking outside the panic boundary.
     let _ = LAST_ERROR.try_with(|e| *e.borrow_mut() = Some(c));
+    if !ERROR_SET.replace(true) {
+        THREADS_WITH_ERROR.fetch_add(1, Ordering::Relaxed);
+    }
 }
 
+#[inline]
 fn clear_last_error() {
-    let _ = LAST_ERROR.try_with(|e| e.borrow_mut().take());
+    if THREADS_WITH_ERROR.load(Ordering::Relaxed) != 0 && ERROR_SET.get() {
+        let _ = LAST_ERROR.try_with(|e| e.borrow_mut().take());
+        ERROR_SET.set(false);
+        THREADS_WITH_ERROR.fetch_sub(1, Ordering::Relaxed);
+    }
 }
 
 fn panic_text(payload: &(dyn std::any::Any + Send)) -> String {

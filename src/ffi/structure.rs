@@ -20,12 +20,15 @@ pub struct TpxStructure {
     /// Stamps this structure carried before (a live complex takes a new one at each
     /// compaction): their handles are refused as STALE_GENERATION, not FOREIGN_HANDLE.
     pub(crate) retired: Vec<u32>,
+    /// The fast path of the one-handle queries, chosen by the structure's type.
+    pub(crate) direct: super::direct::Direct,
 }
 
 impl TpxStructure {
     /// A structure with a fresh stamp.
     pub(crate) fn new(topo: Box<dyn Topology>) -> TpxStructure {
         TpxStructure {
+            direct: super::direct::Direct::of(&*topo),
             topo,
             stamp: super::handles::new_stamp(),
             retired: Vec::new(),

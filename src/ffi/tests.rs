@@ -1241,3 +1241,232 @@ fn threads_asking_for_one_view_share_one_index() {
         tpx_complex_free(c);
     }
 }
+
+/// A disk of four triangles around vertex 4 and a fifth on edge 1-2:
+///
+/// ```text
+///   0 ------ 1
+///   | \    / | \
+///   |   4    |  5
+///   | /    \ | /
+///   3 ------ 2
+/// ```
+/// For every kind that takes it: `tpx_related` and `tpx_related_handles` (their fast path:
+/// stored rows, the structures' loops, the generic walk) give what the Rust API's
+/// `related_ids` gives, for every simplex, every q and both orders; a buffer one short is
+/// BUFFER_TOO_SMALL with the needed length and the buffer untouched; a success after a failure
+/// clears the last error; a handle with local bits set (not dense) still gets the full path's
+/// answer or error.
+#[test]
+fn tpx_related_fast_path_matches_the_rust_api_on_every_kind() {
+    use crate::handle::{Order, SimplexHandle};
+    let c = complex(
+        6,
+        &[&[0, 1, 4], &[1, 2, 4], &[2, 3, 4], &[0, 3, 4], &[1, 2, 5]],
+    );
+    let mut built = 0;
+    // Under Miri (scripts/test.sh) one kind per fast-path writer — the IG's rows, the IA's
+    // adjacency, the radial cycles (PE), the generic walk (NMIA) — and the first simplices only:
+    // the whole sweep takes tens of minutes there.
+    let kinds: Vec<u32> = if cfg!(miri) {
+        vec![TPX_KIND_IG, TPX_KIND_IA, TPX_KIND_PE, TPX_KIND_NMIA]
+    } else {
+        (0..=TPX_KIND_DE).collect()
+    };
+    for &kind in &kinds {
+        let mut s = null_mut();
+        if unsafe { tpx_structure_build(c, kind, &mut s) } != TpxStatus::Ok {
+            continue;
+        }
+        built += 1;
+        let n = unsafe { (*s).topo.as_navigate().unwrap() };
+        let mut stamp = 0;
+        assert_eq!(unsafe { tpx_structure_stamp(s, &mut stamp) }, TpxStatus::Ok);
+        for p in 0..=2u32 {
+            let count = unsafe { (*s).topo.count(p as usize) } as u32;
+            let walked = if cfg!(miri) { count.min(2) } else { count };
+            for i in 0..walked {
+                let h = TpxSimplex {
+                    index: i,
+                    meta: p,
+                    owner: stamp,
+                };
+                for q in 0..=2u32 {
+                    for (order, o) in [
+                        (TPX_ORDER_NATURAL, Order::Natural),
+                        (TPX_ORDER_LEXICOGRAPHIC, Order::Lexicographic),
+                    ] {
+                        let mut want = Vec::new();
+                        n.related_ids(
+                            SimplexHandle::dense(p as usize, i),
+                            q as usize,
+                            o,
+                            &mut want,
+                        )
+                        .unwrap();
+                        let (mut buf, mut len) = ([u32::MAX; 16], 0usize);
+                        let st =
+                            unsafe { tpx_related(s, &h, q, order, buf.as_mut_ptr(), 16, &mut len) };
+                        assert_eq!(st, TpxStatus::Ok, "kind {kind} R_{p},{q} of {i}");
+                        assert_eq!(&buf[..len], &want[..], "kind {kind} R_{p},{q} of {i}");
+                        assert_eq!(last_error(), "");
+                        let mut hb = [TpxSimplex::default(); 16];
+                        let st = unsafe {
+                            tpx_related_handles(s, &h, q, order, hb.as_mut_ptr(), 16, &mut len)
+                        };
+                        assert_eq!(st, TpxStatus::Ok);
+                        let got: Vec<u32> = hb[..len].iter().map(|x| x.index).collect();
+                        assert_eq!(got, want, "kind {kind} handles R_{p},{q} of {i}");
+                        assert!(hb[..len].iter().all(|x| x.meta == q && x.owner == stamp));
+                        if !want.is_empty() {
+                            let mut short = [u32::MAX; 16];
+                            let mut need = 0usize;
+                            let st = unsafe {
+                                tpx_related(
+                                    s,
+                                    &h,
+                                    q,
+                                    order,
+                                    short.as_mut_ptr(),
+                                    want.len() - 1,
+                                    &mut need,
+                                )
+                            };
+                            assert_eq!((st, need), (TpxStatus::BufferTooSmall, want.len()));
+                            assert!(
+                                short.iter().all(|&x| x == u32::MAX),
+                                "kind {kind}: buffer written"
+                            );
+                        }
+                    }
+                }
+            }
+            // The batch over every p-simplex (the stored rows' fast path included) equals the
+            // Rust API's; one id short, nothing is written.
+            let all: Vec<u32> = (0..count).collect();
+            for q in 0..=2u32 {
+                for (order, o) in [
+                    (TPX_ORDER_NATURAL, Order::Natural),
+                    (TPX_ORDER_LEXICOGRAPHIC, Order::Lexicographic),
+                ] {
+                    let (mut want, mut ends) = (Vec::new(), Vec::new());
+                    n.related_batch(p as usize, &all, q as usize, o, &mut want, &mut ends)
+                        .unwrap();
+                    let mut off = vec![u32::MAX; all.len() + 1];
+                    let mut ids = vec![u32::MAX; want.len() + 1];
+                    let mut len = 0usize;
+                    let st = unsafe {
+                        tpx_related_batch(
+                            s,
+                            p,
+                            all.as_ptr(),
+                            all.len(),
+                            q,
+                            order,
+                            off.as_mut_ptr(),
+                            ids.as_mut_ptr(),
+                            ids.len(),
+                            &mut len,
+                        )
+                    };
+                    assert_eq!(
+                        (st, len),
+                        (TpxStatus::Ok, want.len()),
+                        "kind {kind} batch R_{p},{q}"
+                    );
+                    assert_eq!(&ids[..len], &want[..], "kind {kind} batch R_{p},{q}");
+                    let ends32: Vec<u32> = std::iter::once(0)
+                        .chain(ends.iter().map(|&e| e as u32))
+                        .collect();
+                    assert_eq!(off, ends32, "kind {kind} batch offsets R_{p},{q}");
+                    if !want.is_empty() {
+                        let mut off = vec![u32::MAX; all.len() + 1];
+                        let mut ids = vec![u32::MAX; want.len()];
+                        let st = unsafe {
+                            tpx_related_batch(
+                                s,
+                                p,
+                                all.as_ptr(),
+                                all.len(),
+                                q,
+                                order,
+                                off.as_mut_ptr(),
+                                ids.as_mut_ptr(),
+                                want.len() - 1,
+                                &mut len,
+                            )
+                        };
+                        assert_eq!((st, len), (TpxStatus::BufferTooSmall, want.len()));
+                        assert!(
+                            off.iter().chain(&ids).all(|&x| x == u32::MAX),
+                            "kind {kind}: written"
+                        );
+                    }
+                }
+            }
+            // Past the last simplex: the full path's INVALID_HANDLE, then a success clears it.
+            let bad = TpxSimplex {
+                index: count,
+                meta: p,
+                owner: stamp,
+            };
+            let (mut buf, mut len) = ([0u32; 16], 0usize);
+            let st = unsafe {
+                tpx_related(
+                    s,
+                    &bad,
+                    0,
+                    TPX_ORDER_NATURAL,
+                    buf.as_mut_ptr(),
+                    16,
+                    &mut len,
+                )
+            };
+            assert_eq!(st, TpxStatus::InvalidHandle);
+            assert!(!last_error().is_empty());
+            let good = TpxSimplex {
+                index: 0,
+                meta: p,
+                owner: stamp,
+            };
+            let st = unsafe {
+                tpx_related(
+                    s,
+                    &good,
+                    0,
+                    TPX_ORDER_NATURAL,
+                    buf.as_mut_ptr(),
+                    16,
+                    &mut len,
+                )
+            };
+            assert_eq!((st, last_error()), (TpxStatus::Ok, String::new()));
+            // Local bits on a dense handle: not the fast path's; the answer is the same.
+            let odd = TpxSimplex {
+                index: 0,
+                meta: p | 1 << 16,
+                owner: stamp,
+            };
+            let mut len2 = 0;
+            let mut buf2 = [0u32; 16];
+            let st = unsafe {
+                tpx_related(
+                    s,
+                    &odd,
+                    0,
+                    TPX_ORDER_NATURAL,
+                    buf2.as_mut_ptr(),
+                    16,
+                    &mut len2,
+                )
+            };
+            assert_eq!((st, &buf2[..len2]), (TpxStatus::Ok, &buf[..len]));
+        }
+        unsafe { tpx_structure_free(s) };
+    }
+    assert!(
+        built >= kinds.len().min(6),
+        "only {built} kinds took the disk"
+    );
+    unsafe { tpx_complex_free(c) };
+}

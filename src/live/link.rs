@@ -14,6 +14,13 @@
 //! allocates nothing once warm.
 //!
 //! On failure the reported simplex is a lowest-dimensional one of Lk(a) ∩ Lk(b) outside Lk(ab).
+//!
+//! The test on the complex coned over its boundary (`link_condition_with_boundary`) runs on the
+//! same words: ω takes one more bit, and each boundary facet f through a or b (a facet of a top
+//! of the star that no other top of that star holds — O(d²·k²) per star, compared pairwise) adds
+//! the word of f \ {a, b} with ω's bit to F_a, F_b or F_ab. It runs after the plain test on the
+//! same masks, so it too allocates nothing once warm (past 64 common vertices it falls back to
+//! the lists).
 
 use std::cell::RefCell;
 
@@ -25,6 +32,12 @@ impl LiveComplex {
     /// Lk(a) ∩ Lk(b) not in Lk(ab). Read-only; allocates nothing after a thread's first calls
     /// (per-thread scratch). Cost: module doc of [`crate::live::link`].
     pub fn link_condition(&self, a: VertexId, b: VertexId) -> Result<(), Refusal> {
+        self.checked_link(a, b, false)
+    }
+
+    /// Both link tests: the edge checked, then the first violation looked for with this
+    /// thread's scratch (`coned`: on the complex coned over its boundary, after the plain test).
+    fn checked_link(&self, a: VertexId, b: VertexId, coned: bool) -> Result<(), Refusal> {
         self.check_vertex(a.0)?;
         self.check_vertex(b.0)?;
         let (a, b) = (a.0, b.0);
@@ -36,8 +49,8 @@ impl LiveComplex {
             return Err(Refusal::NotAnEdge { a, b });
         }
         let found = SCRATCH.with(|s| match s.try_borrow_mut() {
-            Ok(mut s) => self.first_violation(a, b, &mut s),
-            Err(_) => self.first_violation(a, b, &mut Scratch::default()),
+            Ok(mut s) => self.first_violation(a, b, coned, &mut s),
+            Err(_) => self.first_violation(a, b, coned, &mut Scratch::default()),
         });
         match found {
             None => Ok(()),
@@ -50,58 +63,127 @@ impl LiveComplex {
         }
     }
 
-    /// The common vertices C, then the word or list test (module doc).
-    fn first_violation(&self, a: u32, b: u32, s: &mut Scratch) -> Option<Vec<u32>> {
+    /// The common vertices C, then the word or list test (module doc); with `coned`, when the
+    /// plain test passes, the same test again with the boundary facets' cones added.
+    fn first_violation(&self, a: u32, b: u32, coned: bool, s: &mut Scratch) -> Option<Vec<u32>> {
         let fa = || self.star[a as usize].iter().map(|&r| self.top_raw(r));
         let fb = || self.star[b as usize].iter().map(|&r| self.top_raw(r));
         common_vertices(fa(), fb(), a, b, self.star.len(), s);
-        if s.common.is_empty() {
+        if coned {
+            // ω gets the next bit; a superset of the common vertices changes no x ∩ y.
+            s.index_omega = s.common.len() as u32;
+            s.common.push(OMEGA);
+        } else if s.common.is_empty() {
             return None;
         }
         if s.common.len() > 64 {
+            if coned {
+                s.common.pop();
+            }
             s.common.sort_unstable();
             let fa: Vec<&[u32]> = fa().filter(|t| !t.contains(&b)).collect();
-            let fab: Vec<&[u32]> = self.star[a as usize]
-                .iter()
-                .map(|&r| self.top_raw(r))
-                .filter(|t| t.contains(&b))
-                .collect();
+            let fab: Vec<&[u32]> = fa_through(self, a, b).collect();
             let fb: Vec<&[u32]> = fb().filter(|t| !t.contains(&a)).collect();
-            return lists::first_violation(&s.common, &fa, &fb, &fab);
+            let plain = lists::first_violation(&s.common, &fa, &fb, &fab);
+            if plain.is_some() || !coned {
+                return plain;
+            }
+            return self.coned_by_lists(a, b);
         }
-        let Scratch {
-            common,
-            ma,
-            mb,
-            mz,
-            stamp,
-            index,
-            epoch,
-            ..
-        } = s;
-        let mask = |t: &[u32]| {
-            t.iter()
-                .filter(|&&v| stamp[v as usize] == *epoch)
-                .fold(0u64, |m, &v| m | 1 << index[v as usize])
-        };
-        ma.clear();
-        mb.clear();
-        mz.clear();
+        s.ma.clear();
+        s.mb.clear();
+        s.mz.clear();
         for t in fa() {
-            let m = mask(t);
+            let m = s.mask(t);
             if t.contains(&b) {
-                mz.push(m);
+                s.mz.push(m);
             } else {
-                ma.push(m);
+                s.ma.push(m);
             }
         }
         for t in fb().filter(|t| !t.contains(&a)) {
-            mb.push(mask(t));
+            let m = s.mask(t);
+            s.mb.push(m);
         }
-        maximal(ma);
-        maximal(mb);
-        words::first_violation(common, ma, mb, mz)
+        maximal(&mut s.ma);
+        maximal(&mut s.mb);
+        let plain = words::first_violation(&s.common, &s.ma, &s.mb, &s.mz);
+        if plain.is_some() || !coned {
+            return plain;
+        }
+        self.boundary_cones(a, b, s);
+        maximal(&mut s.ma);
+        maximal(&mut s.mb);
+        words::first_violation(&s.common, &s.ma, &s.mb, &s.mz)
     }
+
+    /// The cones ω ∗ (f \ {a, b}) over the boundary facets f at a and at b, as words added to
+    /// the families: at a, to F_ab when b ∈ f, else to F_a; at b, to F_b when a ∉ f.
+    fn boundary_cones(&self, a: u32, b: u32, s: &mut Scratch) {
+        let omega = 1u64 << s.index_omega;
+        for &r in self.star[a as usize].iter() {
+            let t = self.top_raw(r);
+            let (m, open) = (s.mask(t), self.boundary_positions(a, r));
+            for (j, &x) in t.iter().enumerate() {
+                if open >> j & 1 == 1 {
+                    let w = s.without(m, x) | omega;
+                    if x != b && t.contains(&b) {
+                        s.mz.push(w);
+                    } else {
+                        s.ma.push(w);
+                    }
+                }
+            }
+        }
+        for &r in self.star[b as usize].iter() {
+            let t = self.top_raw(r);
+            let (m, open) = (s.mask(t), self.boundary_positions(b, r));
+            for (j, &x) in t.iter().enumerate() {
+                // f = t \ {x} must not hold a.
+                if open >> j & 1 == 1 && (x == a || !t.contains(&a)) {
+                    s.mb.push(s.without(m, x) | omega);
+                }
+            }
+        }
+    }
+
+    /// The positions j of top `raw` ∈ St(v) whose facet t \ {t[j]} (j not v's position) is on
+    /// the boundary: held by no other top of St(v) (every top holding it holds v). As bits.
+    fn boundary_positions(&self, v: u32, raw: u32) -> u32 {
+        let t = self.top_raw(raw);
+        let mut shared = 0u32;
+        for &o in self.star[v as usize].iter() {
+            if o == raw {
+                continue;
+            }
+            let other = self.top_raw(o);
+            if other.len() + 1 < t.len() {
+                continue;
+            }
+            // t \ {t[j]} ⊆ other iff t[j] is t's only vertex missing from other.
+            let (mut missing, mut at) = (0, 0);
+            for (j, x) in t.iter().enumerate() {
+                if !other.contains(x) {
+                    missing += 1;
+                    at = j;
+                }
+            }
+            if missing == 1 {
+                shared |= 1 << at;
+            }
+        }
+        let all = (1u32 << t.len()) - 1;
+        let own = t.iter().position(|&x| x == v).map_or(0, |j| 1 << j);
+        all & !shared & !own
+    }
+}
+
+/// The tops of St(a) through b.
+fn fa_through<'a>(l: &'a LiveComplex, a: u32, b: u32) -> impl Iterator<Item = &'a [u32]> + 'a {
+    l.star[a as usize]
+        .iter()
+        .map(move |&r| l.top_raw(r))
+        .filter(move |t| t.contains(&b))
 }
 
 /// Per-thread buffers of the link test, so that a check allocates nothing once warm.
@@ -113,9 +195,31 @@ struct Scratch {
     index: Vec<u32>,
     epoch: u32,
     common: Vec<u32>,
+    /// The bit of ω (the cone vertex) in the coned test.
+    index_omega: u32,
     ma: Vec<u64>,
     mb: Vec<u64>,
     mz: Vec<u64>,
+}
+
+impl Scratch {
+    /// The common vertices of `t` as a word.
+    #[inline]
+    fn mask(&self, t: &[u32]) -> u64 {
+        t.iter()
+            .filter(|&&v| self.stamp[v as usize] == self.epoch)
+            .fold(0u64, |m, &v| m | 1 << self.index[v as usize])
+    }
+
+    /// Word `m` without vertex `x`'s bit (when x is common).
+    #[inline]
+    fn without(&self, m: u64, x: u32) -> u64 {
+        if self.stamp[x as usize] == self.epoch {
+            m & !(1 << self.index[x as usize])
+        } else {
+            m
+        }
+    }
 }
 
 thread_local! {
@@ -287,10 +391,16 @@ impl LiveComplex {
     /// contraction from pinching the boundary (joining two boundary vertices through the
     /// interior), so contractions that pass it keep manifoldness and the boundary's topology;
     /// on any complex it implies [`LiveComplex::link_condition`]. A failure naming ω reports it
-    /// as [`OMEGA`]. Cost: O(d²·k_a² + d²·k_b²) for the boundary facets, then as the plain test.
+    /// as [`OMEGA`]; a failure of the plain test is reported as that test reports it (it is
+    /// run first). Cost: the plain test, then O(d²·k_a² + d²·k_b²) for the boundary facets and
+    /// the word test again; allocates nothing once this thread's scratch is warm (up to 63
+    /// common vertices).
     pub fn link_condition_with_boundary(&self, a: VertexId, b: VertexId) -> Result<(), Refusal> {
-        self.link_condition(a, b)?;
-        let (a, b) = (a.0, b.0);
+        self.checked_link(a, b, true)
+    }
+
+    /// The coned test with sorted id lists, for more than 64 common vertices (allocates).
+    fn coned_by_lists(&self, a: u32, b: u32) -> Option<Vec<u32>> {
         let (mut fa, mut fab) = (Vec::new(), Vec::new());
         for t in self.star[a as usize].iter().map(|&r| self.top_raw(r)) {
             let set = t.iter().copied().filter(|&v| v != a && v != b).collect();
@@ -331,15 +441,7 @@ impl LiveComplex {
             .into_iter()
             .filter(|v| vb.binary_search(v).is_ok())
             .collect();
-        match lists::first_violation(&common, &refs(&fa), &refs(&fb), &refs(&fab)) {
-            None => Ok(()),
-            Some(simplex) => Err(Refusal::LinkCondition {
-                a,
-                b,
-                dim: simplex.len() - 1,
-                simplex,
-            }),
-        }
+        lists::first_violation(&common, &refs(&fa), &refs(&fb), &refs(&fab))
     }
 
     /// The boundary facets through v: facets f ∋ v of a top t ∈ St*(v) that no other top holds.
