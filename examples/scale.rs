@@ -356,9 +356,6 @@ fn soup(file: &Path, threads: usize, kinds: &[StructureKind]) {
 }
 
 fn main() {
-    // As the `topoplex` CLI does: a fixed mmap threshold, so that glibc's per-thread arenas do
-    // not keep freed arrays resident (the peaks below are then the CLI's).
-    topoplex::ffi::fix_malloc_thresholds_for_executable();
     let args: Vec<String> = std::env::args().skip(1).collect();
     let a: Vec<&str> = args.iter().map(String::as_str).collect();
     let done = match a.as_slice() {
@@ -366,6 +363,10 @@ fn main() {
         ["loop", l, out] => loop_surface(l.parse().unwrap(), Path::new(out)),
         ["rips", n, d, out] => rips(n.parse().unwrap(), d.parse().unwrap(), Path::new(out)),
         ["phases", file, kind, threads, tpx] => {
+            // As the `topoplex` CLI does: a fixed mmap threshold, so that glibc's per-thread
+            // arenas do not keep freed arrays resident (the peaks are then the CLI's). Only
+            // here: it costs the timing loops below fresh pages for every large array.
+            topoplex::ffi::fix_malloc_thresholds_for_executable();
             let kind = StructureKind::from_name(kind).expect("structure name");
             phases(
                 Path::new(file),
