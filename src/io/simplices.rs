@@ -28,8 +28,9 @@ use super::scan::{self, Scanner};
 use super::{Coords, RawInput, ReadErrorKind, echo, no_room, parse_f64, syntax};
 use crate::complex::table;
 
-/// Reads a `.simplices` file's text. A large file is read on several threads (see
-/// [`parse_in_parallel`]), with the same result and the same first error as the serial read.
+/// Reads a `.simplices` file's text. A large file is read on several threads (ranges of whole
+/// lines counted, then parsed into arrays reserved at their size), with the same result and the
+/// same first error as the serial read.
 pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     if crate::parallel::splits(text.len() / 8)
         && let Some(raw) = parse_in_parallel(text)
