@@ -179,7 +179,8 @@ pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
 pub fn try_sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Result<Vec<u32>, usize> {
     // Rows whose ids fit side by side in 64 bits sort by a linear-time radix sort, so building
     // the closure costs the same per simplex at 10^4 and 10^6 simplices.
-    let bits = id_bits(ids.iter().copied().max().unwrap_or(0));
+    let widest = ids.iter().copied().max().unwrap_or(0);
+    let bits = id_bits(widest);
     if arity >= 2 && arity as u32 * bits <= 64 {
         let mut keys: Vec<u64> = crate::parallel::try_map_collect(ids.len() / arity, |r| {
             let row = &ids[r * arity..(r + 1) * arity];
@@ -191,7 +192,14 @@ pub fn try_sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Result<Vec<u32>, usiz
         keys.dedup();
         return unpack_keys(&keys, arity, bits);
     }
-    if arity >= 3 && (arity as u32 - 1) * bits <= 128 {
+    // Buckets by first vertex cost 16 bytes per id up to the largest: only when the ids are not
+    // far sparser than the rows (a few rows with a huge id — a hostile saved file's — would
+    // otherwise allocate gigabytes).
+    let rows = ids.len() / arity.max(1);
+    if arity >= 3
+        && (arity as u32 - 1) * bits <= 128
+        && widest as usize <= rows.saturating_mul(4).max(1 << 16)
+    {
         return sort_dedup_by_first(arity, ids, bits);
     }
     Ok(sort_dedup_serial(arity, ids))
