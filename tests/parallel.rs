@@ -62,20 +62,19 @@ fn surface_with_wires(k: u32) -> Complex {
 }
 
 /// `copies` k×k×k tetrahedral grids sharing their corner vertex 0 (so its star has `copies`
-/// components: the IA keeps one reference each) and, between consecutive copies, the edge from
-/// that corner along the first axis (a pinched edge: its star is not connected through its
-/// triangles).
+/// components: the IA keeps one reference each) and the edge from that corner along the first
+/// axis (a pinched edge: its star is not connected through its triangles).
 fn bouquet_of_grids(k: u32, copies: u32) -> Complex {
     let n = k + 1;
     let per = n * n * n;
     let grid = tetrahedral_grid(k);
     let mut tets: Vec<Vec<u32>> = Vec::new();
     for c in 0..copies {
-        // Vertex 0 is shared by all; vertex `n * n` (the corner's neighbour along the first
-        // axis) is shared with the previous copy.
+        // Vertices 0 and `n * n` (the corner's neighbour along the first axis) are copy 0's
+        // in every copy.
         let map = |v: u32| match v {
             0 => 0,
-            v if v == n * n && c > 0 => (c - 1) * per + n * n,
+            v if v == n * n => n * n,
             v => c * per + v,
         };
         for t in grid.tops(3).iter() {
@@ -86,6 +85,52 @@ fn bouquet_of_grids(k: u32, copies: u32) -> Complex {
     }
     let refs: Vec<&[u32]> = tets.iter().map(Vec::as_slice).collect();
     Complex::from_simplices(copies * per, &refs).unwrap()
+}
+
+/// `copies` k×k triangulated squares (as in [`surface_with_wires`]) sharing the edge {0, 1}
+/// (a non-manifold edge of `copies` triangles) and the far corner ★ (a pinched vertex where
+/// `copies` fans meet), plus a wire at ★ and at each copy's corner (k, 0): the corner
+/// components of the triangle-based structures then span several fans at a vertex.
+///
+/// ```text
+///   one copy, k = 2 (0, 1 and ★ are the same vertices in every copy)
+///
+///   0 ─────── 1 ─────── ·
+///   │    ╲    │    ╲    │
+///   · ─────── · ─────── ·
+///   │    ╲    │    ╲    │
+///   · ─────── · ─────── ★ ── wire
+///   │
+///   wire
+/// ```
+fn bouquet_of_squares(k: u32, copies: u32) -> Complex {
+    let side = k + 1;
+    let per = side * side;
+    let far = per - 1;
+    let map = |c: u32, v: u32| {
+        if v == 0 || v == 1 || v == far {
+            v
+        } else {
+            c * per + v
+        }
+    };
+    let mut s: Vec<Vec<u32>> = Vec::new();
+    for c in 0..copies {
+        for i in 0..k {
+            for j in 0..k {
+                let id = |a: u32, b: u32| map(c, a * side + b);
+                s.push(vec![id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                s.push(vec![id(i, j), id(i, j + 1), id(i + 1, j + 1)]);
+            }
+        }
+    }
+    let n = copies * per;
+    s.push(vec![far, n]);
+    for c in 0..copies {
+        s.push(vec![map(c, k * side), n + 1 + c]);
+    }
+    let refs: Vec<&[u32]> = s.iter().map(Vec::as_slice).collect();
+    Complex::from_simplices(n + 1 + copies, &refs).unwrap()
 }
 
 fn saved(kind: StructureKind, c: &Complex, threads: usize, name: &str) -> Option<Vec<u8>> {
@@ -134,8 +179,10 @@ fn several_threads_build_the_same_bytes_as_one() {
     // Small inputs cut into ranges of a few items: every range boundary lands somewhere.
     topoplex::parallel::set_split_threshold(2);
     let pinched = bouquet_of_grids(3, 5);
+    let squares = bouquet_of_squares(4, 4);
     for threads in [2, 3] {
         assert!(same_bytes(&pinched, threads, "bouquet") >= 3);
+        assert!(same_bytes(&squares, threads, "squares") >= 4);
     }
     let mut runner = TestRunner::new(Config {
         cases: 48,
