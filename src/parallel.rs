@@ -297,7 +297,7 @@ pub(crate) fn map_chunks<T: Send>(chunks: usize, f: impl Fn(usize) -> T + Sync +
 }
 
 /// `n` atomic words set by `init(i)`, reserved fallibly (`Err(bytes)`).
-fn try_atomics(n: usize, init: impl Fn(usize) -> u32) -> Result<Vec<AtomicU32>, usize> {
+pub(crate) fn try_atomics(n: usize, init: impl Fn(usize) -> u32) -> Result<Vec<AtomicU32>, usize> {
     let mut v = Vec::new();
     crate::complex::table::try_reserve_exact(&mut v, n)?;
     v.extend((0..n).map(|i| AtomicU32::new(init(i))));
@@ -305,7 +305,7 @@ fn try_atomics(n: usize, init: impl Fn(usize) -> u32) -> Result<Vec<AtomicU32>, 
 }
 
 /// The plain words of `v`, in place (same size and alignment: no new allocation).
-fn into_plain(v: Vec<AtomicU32>) -> Vec<u32> {
+pub(crate) fn into_plain(v: Vec<AtomicU32>) -> Vec<u32> {
     v.into_iter().map(AtomicU32::into_inner).collect()
 }
 

@@ -73,6 +73,7 @@
 use super::nav::{NavBase, NavIndex};
 use crate::store::Arr;
 use rustc_hash::FxHashSet;
+use std::sync::atomic::Ordering;
 
 use super::common::{too_large, try_copy, try_push, try_reserve, try_table, try_vec};
 use super::{BuildError, to_u32};
@@ -179,9 +180,12 @@ pub(crate) fn adjacency_by_vertex(
 ) -> Result<Result<Vec<u32>, (Vec<u32>, Vec<u32>)>, BuildError> {
     let w = d + 1;
     let slots = tops.len() * w;
-    let mut adj = try_vec(kind, NONE, slots, "adjacencies")?;
+    // Shared words: each slot is in one matched pair, so the chunks' stores never meet and the
+    // array is the same whatever the thread count (no serial scatter of the pairs afterwards).
+    let adj = crate::parallel::try_atomics(slots, |_| NONE)
+        .map_err(|bytes| too_large(kind, bytes, "adjacencies"))?;
     if d == 0 {
-        return Ok(Ok(adj));
+        return Ok(Ok(crate::parallel::into_plain(adj)));
     }
     // Slot k = (top k / w, facet opposite vertex k % w); its facet's smallest vertex is the
     // top's first vertex unless that is the one left out (slot 0 of a top). The tops are
@@ -210,11 +214,15 @@ pub(crate) fn adjacency_by_vertex(
         f[i..d].copy_from_slice(&row[i + 1..]);
         f
     };
-    // Buckets in chunks of vertices; each chunk yields its matched pairs and its first error.
+    // Buckets in chunks of vertices; each chunk stores its matched pairs and yields its first
+    // error.
     let chunks = (n as usize).div_ceil(1024).max(1);
+    let pair = |a: u32, b: u32| {
+        adj[a as usize].store(b / w as u32, Ordering::Relaxed);
+        adj[b as usize].store(a / w as u32, Ordering::Relaxed);
+    };
     let per_chunk = |c: usize| {
         let (v0, v1) = (c * 1024, ((c + 1) * 1024).min(n as usize));
-        let mut pairs = Vec::new();
         let mut bucket: Vec<([u32; 16], u32)> = Vec::new();
         // The first top whose first vertex is v0 or more.
         let (mut t, mut hi) = (0, tops.len());
@@ -243,34 +251,29 @@ pub(crate) fn adjacency_by_vertex(
                 }
                 match j - i {
                     1 => {}
-                    2 => pairs.push((bucket[i].1, bucket[i + 1].1)),
+                    2 => pair(bucket[i].1, bucket[i + 1].1),
                     _ => {
-                        return (
-                            pairs,
-                            Some((bucket[i].0, [bucket[i].1, bucket[i + 1].1, bucket[i + 2].1])),
-                        );
+                        return Some((
+                            bucket[i].0,
+                            [bucket[i].1, bucket[i + 1].1, bucket[i + 2].1],
+                        ));
                     }
                 }
                 i = j;
             }
         }
-        (pairs, None)
+        None
     };
     let results = crate::parallel::map_chunks(chunks, per_chunk);
-    for (pairs, error) in results {
-        if let Some((f, three)) = error {
-            let three = three
-                .iter()
-                .flat_map(|&k| tops.get(k as usize / w).iter().copied())
-                .collect();
-            return Ok(Err((f[..d].to_vec(), three)));
-        }
-        for (a, b) in pairs {
-            adj[a as usize] = b / w as u32;
-            adj[b as usize] = a / w as u32;
-        }
+    // The first error in vertex order, as one thread would find it.
+    if let Some((f, three)) = results.into_iter().flatten().next() {
+        let three = three
+            .iter()
+            .flat_map(|&k| tops.get(k as usize / w).iter().copied())
+            .collect();
+        return Ok(Err((f[..d].to_vec(), three)));
     }
-    Ok(Ok(adj))
+    Ok(Ok(crate::parallel::into_plain(adj)))
 }
 
 /// n_p for p = 0..=d without listing the faces: n_{d−1} from the adjacencies (a facet is on
