@@ -62,7 +62,8 @@
 //! - R_{d,d}: each facet slot is matched in the bucket of its facet's smallest vertex v: the
 //!   slots of the run of d-simplices that start with v (the table is sorted) and the slot-0
 //!   facets whose d-simplex's second vertex is v (one counting sort of the d-simplices, 4 bytes
-//!   each); buckets sorted and matched by chunks of vertices on several threads.
+//!   each); buckets sorted and matched by chunks of vertices on several threads, each chunk
+//!   storing its pairs straight into R_{d,d} (a slot is in one pair: the stores never meet).
 //!   O(n_d·d·(1 + log b)) for buckets of b slots.
 //! - Star components: with one thread, one walk per component through R_{d,d} (1 byte a slot);
 //!   with several, a shared union–find over the slots by ranges of d-simplices (4 bytes a
