@@ -3,6 +3,7 @@
 //! random arbitrary complexes, and the IG on the real data when present.
 
 mod common;
+use common::Rng;
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -224,20 +225,6 @@ fn two_tetrahedra_and_a_pinched_pair() {
     assert_eq!(rel(&s, &[1, 2, 3], 2).len(), 6);
     check_storage(&s, &c);
     check_structure(&s, &c).unwrap();
-}
-
-/// A tiny deterministic generator, so that one proptest seed draws a whole pseudo-manifold.
-struct Rng(u64);
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
 }
 
 /// A random d-pseudo-manifold: 1–3 components, each a subset of the boundary of the

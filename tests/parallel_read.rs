@@ -6,6 +6,7 @@
 //! files of `../shared/data` when present.
 
 mod common;
+use common::Rng;
 
 use topoplex::io::{RawInput, ReadErrorKind, medit, off, simplices};
 use topoplex::parallel::{set_split_threshold, set_threads};
@@ -30,22 +31,6 @@ fn same_on_every_thread_count(parse: Parse, text: &str) -> Result<RawInput, (u32
     }
     set_threads(1);
     serial
-}
-
-/// A small xorshift generator (no dependency, reproducible).
-struct Rng(u64);
-
-impl Rng {
-    fn next(&mut self) -> u64 {
-        self.0 ^= self.0 << 13;
-        self.0 ^= self.0 >> 7;
-        self.0 ^= self.0 << 17;
-        self.0
-    }
-
-    fn below(&mut self, n: usize) -> usize {
-        (self.next() % n as u64) as usize
-    }
 }
 
 /// A MEDIT file of `nv` vertices and `nt` tetrahedra (random ids), one entry a line.

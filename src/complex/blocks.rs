@@ -605,13 +605,7 @@ mod tests {
     /// Random non-manifold complexes over few vertices (faces shared), dimension ≤ 7, and some
     /// over ids up to 2^20 (global ids too wide for d of them to share a word; ranks are not).
     fn random_complexes() -> impl Iterator<Item = Complex> {
-        let mut x = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = move |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x % m
-        };
+        let mut rnd = crate::complex::xorshift_below(0x9e37_79b9_7f4a_7c15);
         (0..300).map(move |i| {
             let (n, spread) = if i % 5 == 0 {
                 (1 << 20, 1 << 16)

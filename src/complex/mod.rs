@@ -1489,6 +1489,18 @@ fn listed_at_vertices(n: u32, tables: &[SimplexTable]) -> Result<(Vec<usize>, Ve
     Ok((off, at))
 }
 
+/// A xorshift generator for the unit tests' random listings: each call a number below `m`.
+#[cfg(test)]
+pub(crate) fn xorshift_below(seed: u64) -> impl FnMut(u64) -> u64 {
+    let mut x = seed;
+    move |m: u64| {
+        x ^= x << 13;
+        x ^= x >> 7;
+        x ^= x << 17;
+        x % m
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -1540,13 +1552,7 @@ mod tests {
     /// windings, repeats, absorbed faces, over few vertices (starts) and many (whole search).
     #[test]
     fn listing_maps_name_the_top_each_listing_became() {
-        let mut x = 0x9e37_79b9_7f4a_7c15u64;
-        let mut rnd = move |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x % m
-        };
+        let mut rnd = crate::complex::xorshift_below(0x9e37_79b9_7f4a_7c15);
         for n in [40u32, 200_000] {
             let mut listed: Vec<Vec<u32>> = (0..9000)
                 .map(|_| {

@@ -4,6 +4,24 @@
 
 pub mod nav;
 
+/// A small xorshift generator (no dependency, reproducible): one seed draws a whole fixture.
+pub struct Rng(pub u64);
+
+impl Rng {
+    /// The next 64 random bits.
+    pub fn next(&mut self) -> u64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        self.0
+    }
+
+    /// A number below `n` (`n` > 0).
+    pub fn below(&mut self, n: usize) -> usize {
+        (self.next() % n as u64) as usize
+    }
+}
+
 use std::path::PathBuf;
 
 use proptest::prelude::*;
