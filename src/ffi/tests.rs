@@ -1352,23 +1352,28 @@ fn tpx_related_fast_path_matches_the_rust_api_on_every_kind() {
                     let (mut want, mut ends) = (Vec::new(), Vec::new());
                     n.related_batch(p as usize, &all, q as usize, o, &mut want, &mut ends)
                         .unwrap();
-                    let mut off = vec![u32::MAX; all.len() + 1];
-                    let mut ids = vec![u32::MAX; want.len() + 1];
-                    let mut len = 0usize;
-                    let st = unsafe {
-                        tpx_related_batch(
-                            s,
-                            p,
-                            all.as_ptr(),
-                            all.len(),
-                            q,
-                            order,
-                            off.as_mut_ptr(),
-                            ids.as_mut_ptr(),
-                            ids.len(),
-                            &mut len,
-                        )
+                    // The batch into buffers of `cap` ids, pre-filled with u32::MAX.
+                    let batch = |cap: usize| {
+                        let mut off = vec![u32::MAX; all.len() + 1];
+                        let mut ids = vec![u32::MAX; cap];
+                        let mut len = 0usize;
+                        let st = unsafe {
+                            tpx_related_batch(
+                                s,
+                                p,
+                                all.as_ptr(),
+                                all.len(),
+                                q,
+                                order,
+                                off.as_mut_ptr(),
+                                ids.as_mut_ptr(),
+                                cap,
+                                &mut len,
+                            )
+                        };
+                        (st, len, off, ids)
                     };
+                    let (st, len, off, ids) = batch(want.len() + 1);
                     assert_eq!(
                         (st, len),
                         (TpxStatus::Ok, want.len()),
@@ -1380,22 +1385,7 @@ fn tpx_related_fast_path_matches_the_rust_api_on_every_kind() {
                         .collect();
                     assert_eq!(off, ends32, "kind {kind} batch offsets R_{p},{q}");
                     if !want.is_empty() {
-                        let mut off = vec![u32::MAX; all.len() + 1];
-                        let mut ids = vec![u32::MAX; want.len()];
-                        let st = unsafe {
-                            tpx_related_batch(
-                                s,
-                                p,
-                                all.as_ptr(),
-                                all.len(),
-                                q,
-                                order,
-                                off.as_mut_ptr(),
-                                ids.as_mut_ptr(),
-                                want.len() - 1,
-                                &mut len,
-                            )
-                        };
+                        let (st, len, off, ids) = batch(want.len() - 1);
                         assert_eq!((st, len), (TpxStatus::BufferTooSmall, want.len()));
                         assert!(
                             off.iter().chain(&ids).all(|&x| x == u32::MAX),
