@@ -66,6 +66,7 @@ class Run:
         self.faces_out = med("faces_out")
         self.items_per_second = ips
         self.contracted = med("contracted")
+        self.passed = med("passed")
         if self.peak is not None and self.peak < 0:
             self.peak = None
 
@@ -247,23 +248,25 @@ def contract_table(results) -> list[str]:
         "## Link-checked contractions (issue 14): calls per second on the K×K triangle grid",
         "",
         "20,000 calls (a sample of the edges, in ascending order) on a fresh copy; rate by the "
-        "benchmark thread's CPU time. Ratio: Topoplex / OpenMesh calls per second (above 1: "
-        "Topoplex faster).",
+        "benchmark thread's CPU time. `contract`: check and collapse; `check`: the check alone on "
+        "the unchanged mesh. Ratio: Topoplex / OpenMesh calls per second (above 1: Topoplex faster).",
         "",
-        "| grid K | lib | calls/s | contracted | vs openmesh |",
-        "|---:|---|---:|---:|---:|",
+        "| grid K | op | lib | calls/s | contracted / passed | vs openmesh |",
+        "|---:|---|---|---:|---:|---:|",
     ]
     for _, k in keys:
-        libs = results[("contract", k)].get("contract", {})
-        peer = libs.get("openmesh")
-        for lib in ("openmesh", "tpx", "tpx_manifold"):
-            r = libs.get(lib)
-            if r is None or not r.items_per_second:
-                continue
-            vs = ratio(r.items_per_second, peer.items_per_second) if peer and peer.items_per_second else None
-            out.append(
-                f"| {k} | {lib} | {r.items_per_second / 1e6:.2f} M | {r.contracted or 0:,.0f} | {fmt_ratio(vs)} |"
-            )
+        for op, count in (("contract", "contracted"), ("check", "passed")):
+            libs = results[("contract", k)].get(op, {})
+            peer = libs.get("openmesh")
+            for lib in ("openmesh", "tpx", "tpx_manifold"):
+                r = libs.get(lib)
+                if r is None or not r.items_per_second:
+                    continue
+                vs = ratio(r.items_per_second, peer.items_per_second) if peer and peer.items_per_second else None
+                n = getattr(r, count) or 0
+                out.append(
+                    f"| {k} | {op} | {lib} | {r.items_per_second / 1e6:.2f} M | {n:,.0f} | {fmt_ratio(vs)} |"
+                )
     return out
 
 
