@@ -29,7 +29,7 @@ fn main() {
     }
     times.sort_by(f64::total_cmp);
     println!(
-        "best {:.4} median {:.4} tops {:?}",
+        "best {:.5} median {:.5} tops {:?}",
         times[0],
         times[times.len() / 2],
         counts

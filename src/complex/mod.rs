@@ -1461,9 +1461,12 @@ fn absorb_faces(
             let parts = crate::parallel::map_ranges(t.len(), |r| -> Result<_, usize> {
                 let (mut rows, mut absorbed) = (Vec::new(), 0usize);
                 for s in r.map(|i| t.get(i)) {
-                    let is_face = stars.at(hub(s)).iter().any(|&(q, j)| {
-                        q as usize > p && is_subset(s, tables[q as usize].get(j as usize))
-                    });
+                    // A star lists its simplices by dimension: those above p are its tail.
+                    let star = stars.at(hub(s));
+                    let above = &star[star.partition_point(|&(q, _)| q as usize <= p)..];
+                    let is_face = above
+                        .iter()
+                        .any(|&(q, j)| is_subset(s, tables[q as usize].get(j as usize)));
                     if is_face {
                         absorbed += 1;
                     } else {
@@ -1595,7 +1598,7 @@ impl HubStars {
         Ok(HubStars { slot, off, at })
     }
 
-    /// The listed simplices of dimension ≥ 2 at `v` (empty when `v` is no hub).
+    /// The listed simplices of dimension ≥ 2 at `v`, by dimension (empty when `v` is no hub).
     fn at(&self, v: u32) -> &[Listed] {
         match self.slot[v as usize] {
             u32::MAX => &[],
