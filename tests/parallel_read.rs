@@ -310,3 +310,60 @@ fn large_inputs_deduplicated_by_blocks_are_normalised_the_same_on_every_thread_c
         assert!(parallel == serial, "dups {dups}, refused at {bad_at:?}");
     }
 }
+
+/// Listings as Rips and alpha makers write them — rows ascending, each dimension in
+/// lexicographic order, so neither rows nor tables are sorted — with repeats, faces of listed
+/// simplices, and now and then one bad simplex: the same complex (or first error) on every
+/// thread count, every range edge landing somewhere (threshold 2).
+#[test]
+fn ascending_listings_are_normalised_the_same_on_every_thread_count() {
+    let _one_at_a_time = GLOBALS.lock().unwrap_or_else(|e| e.into_inner());
+    let mut rng = Rng(0x0dd_ba11_5eed_1234);
+    let mut refused = 0;
+    for case in 0..200 {
+        let n = 3 + rng.below(30) as u32;
+        let mut listed: Vec<Vec<u32>> = (0..rng.below(80))
+            .map(|_| {
+                let mut s: Vec<u32> = (0..1 + rng.below(5))
+                    .map(|_| rng.below(n as usize) as u32)
+                    .collect();
+                s.sort_unstable();
+                s.dedup();
+                s
+            })
+            .collect();
+        for i in 0..listed.len() {
+            match rng.below(6) {
+                0 if listed[i].len() > 1 => listed.push(listed[i][1..].to_vec()),
+                1 => listed.push(listed[i].clone()),
+                _ => {}
+            }
+        }
+        listed.sort_by(|a, b| (a.len(), a).cmp(&(b.len(), b)));
+        if case % 3 == 1 && !listed.is_empty() {
+            let at = rng.below(listed.len());
+            listed[at] = match rng.below(3) {
+                0 => vec![1, n + rng.below(4) as u32],
+                1 => vec![2, 2],
+                _ => Vec::new(),
+            };
+        }
+        let mut raw = RawInput::new();
+        raw.vertex_count = Some(n);
+        for (i, s) in listed.iter().enumerate() {
+            raw.push(s, i as u32 + 1);
+        }
+        let build = || topoplex::Complex::from_raw(&raw, None).map(|c| summary(&c));
+        set_split_threshold(usize::MAX);
+        set_threads(1);
+        let serial = build();
+        set_split_threshold(2);
+        for t in [2, 3] {
+            set_threads(t);
+            assert_eq!(build(), serial, "{t} threads, case {case}");
+        }
+        set_threads(1);
+        refused += usize::from(serial.is_err());
+    }
+    assert!(refused > 30, "only {refused} of 200 inputs refused");
+}

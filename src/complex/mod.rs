@@ -407,7 +407,11 @@ impl Complex {
             origin,
             file,
             (budget, input_size),
-            copy_listing,
+            if copy_listing {
+                ListingSource::Arrays(&raw.ids, &raw.offsets)
+            } else {
+                ListingSource::None
+            },
         )
     }
 
@@ -452,7 +456,7 @@ impl Complex {
             origin,
             None,
             (budget, input_size),
-            true,
+            ListingSource::Arrays(ids, offsets),
         )
     }
 
@@ -471,14 +475,14 @@ impl Complex {
             origin,
             None,
             (Budget::UNLIMITED, 0),
-            true,
+            ListingSource::Each,
         )
     }
 
     /// Validates, sorts and absorbs. `(budget, input_size)`: the closure's upper bound is
     /// checked against `budget.limit(input_size)` before anything of closure size is allocated.
-    /// The listing is copied from `simplex` when `copy_listing`, else left empty for the caller
-    /// to fill.
+    /// The listing is copied from `listing_source` (left empty for the caller to fill when
+    /// [`ListingSource::None`]).
     #[allow(clippy::too_many_arguments)]
     fn build<'a>(
         n: u32,
@@ -488,7 +492,7 @@ impl Complex {
         origin: impl Fn(usize) -> Origin,
         file: Option<&Path>,
         (budget, input_size): (Budget, u64),
-        copy_listing: bool,
+        listing_source: ListingSource<'a>,
     ) -> Result<Complex, ComplexError> {
         let oom = |what: &'static str, bytes: usize| ComplexError::OutOfMemory {
             file: file.map(Path::to_path_buf),
@@ -567,7 +571,6 @@ impl Complex {
                 push(&mut by_dim, row)?;
             }
         }
-        let id_count: usize = totals.iter().sum();
         let mut stats = InputStats {
             input_simplices: count,
             ..Default::default()
@@ -595,37 +598,8 @@ impl Complex {
         }
         let tops =
             absorb_faces(n, tables, &mut stats).map_err(|bytes| oom("the vertex tables", bytes))?;
-        let mut listing = Listing::default();
-        if copy_listing {
-            // Every simplex was checked to have 1 to MAX_DIMENSION + 1 vertices: one non-zero
-            // total means they all have the same length, and the offsets are a formula.
-            let lengths = totals.iter().filter(|&&t| t > 0).count();
-            let mut offsets = Vec::new();
-            if lengths > 1 {
-                offsets
-                    .try_reserve_exact(count + 1)
-                    .map_err(|_| oom("the input listing", (count + 1) * 8))?;
-                offsets.push(0);
-            }
-            listing
-                .ids
-                .try_reserve_exact(id_count)
-                .map_err(|_| oom("the input listing", id_count * 4))?;
-            for i in 0..count {
-                listing.ids.extend_from_slice(simplex(i));
-                if lengths > 1 {
-                    offsets.push(listing.ids.len());
-                }
-            }
-            listing.offsets = if lengths > 1 {
-                Offsets::Varied(offsets)
-            } else {
-                Offsets::Uniform {
-                    arity: id_count / count.max(1),
-                    count,
-                }
-            };
-        }
+        let listing = copy_listing(listing_source, count, &simplex, &totals)
+            .map_err(|bytes| oom("the input listing", bytes))?;
         Ok(Complex {
             n_vertices: n,
             coords: coords.unwrap_or(Coords {
@@ -1054,6 +1028,68 @@ fn faces_above<'a>(
 /// block of [`Rows::BLOCK`] rows is sorted and deduplicated with what is held; once a block
 /// removes less than half of the rows, the rest is reserved exactly and kept as is (unique
 /// inputs pay one sort of one block).
+/// Where [`Complex::build`] copies the listing from.
+enum ListingSource<'a> {
+    /// Nowhere: the caller moves its own arrays in.
+    None,
+    /// Simplex by simplex, through the accessor.
+    Each,
+    /// Arrays in which simplex `i` is `ids[offsets[i]..offsets[i + 1]]`: the simplices are one
+    /// run of `ids`, copied whole on several threads.
+    Arrays(&'a [u32], &'a [usize]),
+}
+
+/// The listing of simplices `0..count` (all checked: 1 to `MAX_DIMENSION + 1` ids each, so
+/// `totals`, the ids per length, has one non-zero entry exactly when every simplex has the same
+/// length, and the offsets are then a formula). Memory reserved fallibly (`Err(bytes)`).
+fn copy_listing<'a>(
+    source: ListingSource<'a>,
+    count: usize,
+    simplex: &impl Fn(usize) -> &'a [u32],
+    totals: &[usize],
+) -> Result<Listing, usize> {
+    let mut listing = Listing::default();
+    let id_count: usize = totals.iter().sum();
+    let varied = totals.iter().filter(|&&t| t > 0).count() > 1;
+    let mut offsets = Vec::new();
+    match source {
+        ListingSource::None => return Ok(listing),
+        ListingSource::Arrays(ids, o) if count > 0 => {
+            // Every simplex was sliced out of `ids` by the caller already, so `o[..=count]` is
+            // ascending and within `ids`.
+            let (base, run) = (o[0], &ids[o[0]..o[count]]);
+            listing.ids = crate::parallel::try_map_collect(run.len(), |k| run[k])
+                .map_err(|_| id_count * 4)?;
+            if varied {
+                offsets = crate::parallel::try_map_collect(count + 1, |i| o[i] - base)
+                    .map_err(|_| (count + 1) * 8)?;
+            }
+        }
+        _ => {
+            if varied {
+                table::try_reserve_exact(&mut offsets, count + 1).map_err(|_| (count + 1) * 8)?;
+                offsets.push(0);
+            }
+            table::try_reserve_exact(&mut listing.ids, id_count).map_err(|_| id_count * 4)?;
+            for i in 0..count {
+                listing.ids.extend_from_slice(simplex(i));
+                if varied {
+                    offsets.push(listing.ids.len());
+                }
+            }
+        }
+    }
+    listing.offsets = if varied {
+        Offsets::Varied(offsets)
+    } else {
+        Offsets::Uniform {
+            arity: id_count / count.max(1),
+            count,
+        }
+    };
+    Ok(listing)
+}
+
 /// Why a listed simplex is refused (the error is made with its origin by the caller).
 #[derive(Debug, Clone, Copy)]
 enum Invalid {
@@ -1067,7 +1103,7 @@ enum Invalid {
 /// sorted into `buf`: the sorted row.
 #[inline]
 fn sorted_row<'b>(
-    s: &[u32],
+    s: &'b [u32],
     n: u32,
     buf: &'b mut [u32; MAX_DIMENSION + 1],
 ) -> Result<&'b [u32], Invalid> {
@@ -1076,6 +1112,16 @@ fn sorted_row<'b>(
     }
     if s.len() > MAX_DIMENSION + 1 {
         return Err(Invalid::TooHigh);
+    }
+    if s.is_sorted_by(|a, b| a < b) {
+        // Ascending as given (Rips and alpha makers write rows so): no repeat, and the first
+        // id out of range, if any, is at the end.
+        return match s[s.len() - 1] {
+            last if last < n => Ok(s),
+            _ => Err(Invalid::OutOfRange(
+                *s.iter().find(|&&v| v >= n).unwrap_or(&n),
+            )),
+        };
     }
     if let Some(&v) = s.iter().find(|&&v| v >= n) {
         return Err(Invalid::OutOfRange(v));
@@ -1386,12 +1432,13 @@ fn find_top(t: &SimplexTable, start: &[u32], sorted: &[u32]) -> Option<usize> {
 
 /// Drops listed simplices that are faces of higher-dimensional listed ones, and adds the vertices
 /// no simplex uses as top 0-simplices. A p-simplex is tested against the listed simplices of
-/// higher dimension at its vertex with the fewest listed simplices of dimension ≥ 2: O(Σ_σ
-/// min_{v∈σ} deg(v) · d) in all, near linear on meshes (the worst case is many low-dimensional
-/// simplices all at one hub vertex). Testing against every listed simplex, absorbed or not, gives
-/// the verdict of testing against the kept ones: a face of an absorbed simplex is a face of the
-/// simplex that absorbed it. The per-vertex arrays are reserved fallibly: `Err(bytes)` when
-/// they cannot be had.
+/// higher dimension at its *hub*, its vertex with the fewest listed simplices of dimension ≥ 2:
+/// O(Σ_σ min_{v∈σ} deg(v) · d) in all, near linear on meshes (the worst case is many
+/// low-dimensional simplices all at one hub vertex). Only the hubs' simplices are gathered
+/// (a Rips complex's few low-dimensional tops touch a small part of its stars). Testing against
+/// every listed simplex, absorbed or not, gives the verdict of testing against the kept ones: a
+/// face of an absorbed simplex is a face of the simplex that absorbed it. The per-vertex arrays
+/// are reserved fallibly: `Err(bytes)` when they cannot be had.
 fn absorb_faces(
     n: u32,
     mut tables: Vec<SimplexTable>,
@@ -1399,53 +1446,63 @@ fn absorb_faces(
 ) -> Result<Vec<SimplexTable>, usize> {
     // No listed simplex at all: every vertex is isolated.
     let d = tables.len().max(1) - 1;
-    let mut used: Vec<bool> = Vec::new();
-    used.try_reserve_exact(n as usize).map_err(|_| n as usize)?;
-    used.resize(n as usize, false);
-    // Only when some dimension 1..d has simplices to test: a pure mesh never pays for the star.
+    let (degree, used) = degrees(n, &tables)?;
+    let used = |v: u32| used[v as usize];
+    let hub = |s: &[u32]| *s.iter().min_by_key(|&&v| degree[v as usize]).unwrap();
+    let mut kept: Vec<SimplexTable> = vec![SimplexTable::default(); d + 1];
+    // Only when some dimension 1..d has simplices to test: a pure mesh never pays for the stars.
     let test = tables
         .get(1..d)
         .is_some_and(|t| t.iter().any(|t| !t.is_empty()));
-    let (off, at) = if test {
-        listed_at_vertices(n, &tables)?
-    } else {
-        (Vec::new(), Vec::new())
-    };
-    let mut kept: Vec<SimplexTable> = vec![SimplexTable::default(); d + 1];
-    for p in (1..d).rev().filter(|_| test) {
-        let mut rows = Vec::new();
-        for s in tables[p].iter() {
-            let degree = |v: &&u32| off[**v as usize + 1] - off[**v as usize];
-            let hub = *s.iter().min_by_key(degree).unwrap() as usize;
-            let absorbed = at[off[hub]..off[hub + 1]]
-                .iter()
-                .any(|&(q, j)| q as usize > p && is_subset(s, tables[q as usize].get(j as usize)));
-            if absorbed {
-                stats.absorbed_faces += 1;
-            } else {
-                rows.extend_from_slice(s);
+    if test {
+        let stars = HubStars::new(n, &tables, &degree, hub)?;
+        for p in (1..d).rev() {
+            let t = &tables[p];
+            let parts = crate::parallel::map_ranges(t.len(), |r| -> Result<_, usize> {
+                let (mut rows, mut absorbed) = (Vec::new(), 0usize);
+                for s in r.map(|i| t.get(i)) {
+                    // A star lists its simplices by dimension: those above p are its tail.
+                    let star = stars.at(hub(s));
+                    let above = &star[star.partition_point(|&(q, _)| q as usize <= p)..];
+                    let is_face = above
+                        .iter()
+                        .any(|&(q, j)| is_subset(s, tables[q as usize].get(j as usize)));
+                    if is_face {
+                        absorbed += 1;
+                    } else {
+                        table::try_extend(&mut rows, s)?;
+                    }
+                }
+                Ok((rows, absorbed))
+            });
+            let mut rows = Vec::new();
+            for part in parts {
+                let (part, absorbed) = part?;
+                stats.absorbed_faces += absorbed;
+                if rows.is_empty() {
+                    rows = part;
+                } else {
+                    table::try_extend(&mut rows, &part)?;
+                }
             }
+            // A subsequence of a sorted table is still sorted.
+            kept[p] = SimplexTable::from_sorted_unique(p + 1, rows);
         }
-        // A subsequence of a sorted table is still sorted.
-        kept[p] = SimplexTable::from_sorted_unique(p + 1, rows);
     }
     for p in 1..=d {
         if p == d || !test {
             kept[p] = std::mem::take(&mut tables[p]);
         }
-        for &v in kept[p].as_flat() {
-            used[v as usize] = true;
-        }
     }
     let listed_vertices = tables.first().map_or(0, SimplexTable::len);
     let listed_isolated = tables
         .first()
-        .map_or(0, |t| t.iter().filter(|s| !used[s[0] as usize]).count());
+        .map_or(0, |t| t.iter().filter(|s| !used(s[0])).count());
     stats.absorbed_faces += listed_vertices - listed_isolated;
-    let free = used.iter().filter(|&&u| !u).count();
+    let free = (0..n).filter(|&v| !used(v)).count();
     let mut isolated: Vec<u32> = Vec::new();
     isolated.try_reserve_exact(free).map_err(|_| free * 4)?;
-    isolated.extend((0..n).filter(|&v| !used[v as usize]));
+    isolated.extend((0..n).filter(|&v| !used(v)));
     kept[0] = SimplexTable::from_sorted_unique(1, isolated);
     // A complex of only isolated vertices has d = 0.
     while kept.len() > 1 && kept.last().unwrap().is_empty() {
@@ -1454,39 +1511,100 @@ fn absorb_faces(
     Ok(kept)
 }
 
-/// A listed simplex as (dimension, row in its table).
-type Listed = (u8, u32);
-
-/// The listed simplices of dimension ≥ 2 at each vertex, as (dimension, row): CSR offsets over
-/// the vertices, entries. Reserved fallibly.
-fn listed_at_vertices(n: u32, tables: &[SimplexTable]) -> Result<(Vec<usize>, Vec<Listed>), usize> {
+/// Per vertex, the number of listed simplices of dimension ≥ 2 at it (saturating: it only
+/// picks hubs), and whether a listed simplex of dimension ≥ 1 uses it — which a kept one then
+/// does too (a listed simplex is kept or a face of a kept one). Reserved fallibly.
+fn degrees(n: u32, tables: &[SimplexTable]) -> Result<(Vec<u32>, Vec<bool>), usize> {
     let n = n as usize;
-    let mut off: Vec<usize> = Vec::new();
-    off.try_reserve_exact(n + 1).map_err(|_| (n + 1) * 8)?;
-    off.resize(n + 1, 0);
-    for t in tables.iter().skip(2) {
+    let mut degree: Vec<u32> = Vec::new();
+    table::try_reserve_exact(&mut degree, n)?;
+    degree.resize(n, 0);
+    let mut edge: Vec<bool> = Vec::new();
+    table::try_reserve_exact(&mut edge, n)?;
+    edge.resize(n, false);
+    for (p, t) in tables.iter().enumerate().skip(1) {
         for &v in t.as_flat() {
-            off[v as usize + 1] += 1;
-        }
-    }
-    for v in 0..n {
-        off[v + 1] += off[v];
-    }
-    let mut fill = Vec::new();
-    fill.try_reserve_exact(n).map_err(|_| n * 8)?;
-    fill.extend_from_slice(&off[..n]);
-    let mut at = Vec::new();
-    at.try_reserve_exact(off[n]).map_err(|_| off[n] * 8)?;
-    at.resize(off[n], (0u8, 0u32));
-    for (p, t) in tables.iter().enumerate().skip(2) {
-        for (j, s) in t.iter().enumerate() {
-            for &v in s {
-                at[fill[v as usize]] = (p as u8, j as u32);
-                fill[v as usize] += 1;
+            if p == 1 {
+                edge[v as usize] = true;
+            } else {
+                degree[v as usize] = degree[v as usize].saturating_add(1);
             }
         }
     }
-    Ok((off, at))
+    for (e, &k) in edge.iter_mut().zip(&degree) {
+        *e |= k > 0;
+    }
+    Ok((degree, edge))
+}
+
+/// A listed simplex as (dimension, row in its table).
+type Listed = (u8, u32);
+
+/// The listed simplices of dimension ≥ 2 at each hub of a simplex to test (CSR over the hubs,
+/// in hub order of first appearance).
+struct HubStars {
+    /// Per vertex: its hub number, `u32::MAX` when it is no hub.
+    slot: Vec<u32>,
+    off: Vec<usize>,
+    at: Vec<Listed>,
+}
+
+impl HubStars {
+    /// The stars of the hubs (by `hub`) of the simplices of dimensions 1..d−1 that may be faces
+    /// (hubs with a listed simplex of dimension ≥ 2). Reserved fallibly.
+    fn new(
+        n: u32,
+        tables: &[SimplexTable],
+        degree: &[u32],
+        hub: impl Fn(&[u32]) -> u32,
+    ) -> Result<HubStars, usize> {
+        let d = tables.len() - 1;
+        let mut slot: Vec<u32> = Vec::new();
+        table::try_reserve_exact(&mut slot, n as usize)?;
+        slot.resize(n as usize, u32::MAX);
+        let mut off = vec![0usize];
+        for t in &tables[1..d] {
+            for s in t.iter() {
+                let h = hub(s) as usize;
+                if slot[h] == u32::MAX && degree[h] > 0 {
+                    if degree[h] == u32::MAX {
+                        // Only a saturated count: more listed simplices than memory holds.
+                        return Err(usize::MAX);
+                    }
+                    let end = off[off.len() - 1] + degree[h] as usize;
+                    slot[h] = (off.len() - 1) as u32;
+                    table::try_push(&mut off, end)?;
+                }
+            }
+        }
+        let mut fill: Vec<usize> = Vec::new();
+        table::try_reserve_exact(&mut fill, off.len())?;
+        fill.extend_from_slice(&off);
+        let mut at: Vec<Listed> = Vec::new();
+        let len = off[off.len() - 1];
+        table::try_reserve_exact(&mut at, len)?;
+        at.resize(len, (0, 0));
+        for (p, t) in tables.iter().enumerate().skip(2) {
+            for (j, s) in t.iter().enumerate() {
+                for &v in s {
+                    let h = slot[v as usize];
+                    if h != u32::MAX {
+                        at[fill[h as usize]] = (p as u8, j as u32);
+                        fill[h as usize] += 1;
+                    }
+                }
+            }
+        }
+        Ok(HubStars { slot, off, at })
+    }
+
+    /// The listed simplices of dimension ≥ 2 at `v`, by dimension (empty when `v` is no hub).
+    fn at(&self, v: u32) -> &[Listed] {
+        match self.slot[v as usize] {
+            u32::MAX => &[],
+            h => &self.at[self.off[h as usize]..self.off[h as usize + 1]],
+        }
+    }
 }
 
 /// A xorshift generator for the unit tests' random listings: each call a number below `m`.
@@ -1527,6 +1645,156 @@ mod tests {
             let refs: Vec<&[u32]> = simplices.iter().map(Vec::as_slice).collect();
             Complex::from_simplices(n, &refs).unwrap()
         })
+    }
+
+    /// Normalises a listing by definition: rows sorted, repeats counted, a row that is a
+    /// proper subset of another counted as a face, unused vertices isolated.
+    fn normalised_by_brute_force(n: u32, listed: &[Vec<u32>]) -> (Vec<Vec<Vec<u32>>>, InputStats) {
+        let mut rows: Vec<Vec<u32>> = listed
+            .iter()
+            .map(|s| {
+                let mut s = s.clone();
+                s.sort_unstable();
+                s
+            })
+            .collect();
+        rows.sort();
+        rows.dedup();
+        let mut stats = InputStats {
+            input_simplices: listed.len(),
+            absorbed_duplicates: listed.len() - rows.len(),
+            absorbed_faces: 0,
+        };
+        let mut tops: Vec<Vec<Vec<u32>>> = vec![Vec::new(); MAX_DIMENSION + 1];
+        for s in &rows {
+            if rows.iter().any(|t| t.len() > s.len() && is_subset(s, t)) {
+                stats.absorbed_faces += 1;
+            } else {
+                tops[s.len() - 1].push(s.clone());
+            }
+        }
+        let used: std::collections::HashSet<u32> = rows.iter().flatten().copied().collect();
+        tops[0].extend((0..n).filter(|v| !used.contains(v)).map(|v| vec![v]));
+        tops[0].sort();
+        while tops.len() > 1 && tops.last().unwrap().is_empty() {
+            tops.pop();
+        }
+        (tops, stats)
+    }
+
+    fn tops_of(c: &Complex) -> Vec<Vec<Vec<u32>>> {
+        (0..=c.dimension())
+            .map(|p| c.tops(p).iter().map(<[u32]>::to_vec).collect())
+            .collect()
+    }
+
+    fn from_listing(n: u32, listed: &[Vec<u32>]) -> Result<Complex, ComplexError> {
+        let ids: Vec<u32> = listed.concat();
+        let mut offsets = vec![0];
+        for s in listed {
+            offsets.push(offsets.last().unwrap() + s.len());
+        }
+        Complex::from_arrays_with(n, &ids, &offsets, None, Budget::UNLIMITED)
+    }
+
+    /// A listing written as Rips and alpha makers write it (rows ascending, in lexicographic
+    /// order per dimension: no sort needed) and the same simplices shuffled and reversed (every
+    /// row and table sorted) give the tops and counts of the definition — with repeats and
+    /// faces of other listed simplices, some shared and mixed in. Large listings (so the
+    /// ascending check and the rows split into ranges) and small.
+    #[test]
+    fn ascending_listings_and_shuffled_ones_normalise_as_by_definition() {
+        let mut rnd = crate::complex::xorshift_below(0x51ed_270b_2763_f3a9);
+        for case in 0..120 {
+            let n = 2 + rnd(if case % 3 == 0 { 400 } else { 12 }) as u32;
+            let count = rnd(if case % 10 == 0 { 3000 } else { 40 }) as usize;
+            let mut listed: Vec<Vec<u32>> = (0..count)
+                .map(|_| {
+                    let mut s: Vec<u32> = (0..1 + rnd(6)).map(|_| rnd(n as u64) as u32).collect();
+                    s.sort_unstable();
+                    s.dedup();
+                    s
+                })
+                .collect();
+            // Faces of listed simplices and repeats.
+            for i in 0..listed.len() {
+                match rnd(5) {
+                    0 if listed[i].len() > 1 => {
+                        let mut f = listed[i].clone();
+                        f.remove(rnd(f.len() as u64) as usize);
+                        listed.push(f);
+                    }
+                    1 => listed.push(listed[i].clone()),
+                    _ => {}
+                }
+            }
+            let want = normalised_by_brute_force(n, &listed);
+            // As a maker writes it: by dimension, each in order (repeats stay next to each other).
+            let mut ascending = listed.clone();
+            ascending.sort_by(|a, b| (a.len(), a).cmp(&(b.len(), b)));
+            if case % 2 == 0 {
+                // Dimensions interleaved; each dimension still in order.
+                ascending.sort_by_key(|s| s.len() % 3);
+            }
+            let mut shuffled = listed.clone();
+            for i in (1..shuffled.len()).rev() {
+                shuffled.swap(i, rnd(i as u64 + 1) as usize);
+                if rnd(2) == 0 {
+                    shuffled[i].reverse();
+                }
+            }
+            for given in [&ascending, &shuffled, &listed] {
+                let c = from_listing(n, given).unwrap();
+                assert_eq!((tops_of(&c), c.stats()), want, "case {case}");
+                let back: Vec<Vec<u32>> = (0..c.input_count())
+                    .map(|i| c.input_simplex(i).to_vec())
+                    .collect();
+                assert_eq!(&back, given);
+            }
+        }
+    }
+
+    /// One bad simplex at every position of an ascending listing (so the rows before it took
+    /// the ascending path): the error names it as the per-row checks do, and of two bad ones
+    /// the first.
+    #[test]
+    fn a_bad_simplex_anywhere_in_an_ascending_listing_is_the_error() {
+        let n = 9u32;
+        let good: Vec<Vec<u32>> = (0..7u32).map(|v| vec![v, v + 1, v + 2]).collect();
+        let bad: [(Vec<u32>, &str); 6] = [
+            (
+                vec![1, 4, 9],
+                "uses vertex 9, but the complex has 9 vertices",
+            ),
+            (
+                vec![3, 10, 12],
+                "uses vertex 10, but the complex has 9 vertices",
+            ),
+            (
+                vec![12, 3, 10],
+                "uses vertex 12, but the complex has 9 vertices",
+            ),
+            (vec![2, 5, 5], "repeats vertex 5"),
+            (vec![], "simplex with no vertex"),
+            (
+                (0..17).collect(),
+                "has dimension 16, above the supported maximum 15",
+            ),
+        ];
+        for (b, why) in &bad {
+            for at in 0..=good.len() {
+                let mut listed = good.clone();
+                listed.insert(at, b.clone());
+                let e = from_listing(n, &listed).unwrap_err().to_string();
+                assert!(
+                    e.starts_with(&format!("input simplex #{at}:")) && e.contains(why),
+                    "{b:?} at {at}: {e}"
+                );
+                // A later bad simplex does not hide it.
+                listed.push(vec![0, 0]);
+                assert_eq!(from_listing(n, &listed).unwrap_err().to_string(), e);
+            }
+        }
     }
 
     #[test]

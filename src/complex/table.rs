@@ -68,6 +68,10 @@ impl SimplexTable {
     /// (two 8-byte keys per row, with any number of threads, and the rows out) cannot be
     /// reserved, instead of an abort.
     pub fn try_from_rows(arity: usize, ids: Vec<u32>) -> Result<(Self, usize), usize> {
+        if arity > 0 && ids.len().is_multiple_of(arity) && rows_ascending(arity, &ids) {
+            // Already a table (a Rips or alpha maker's listing): no sort, no memory.
+            return Ok((SimplexTable::from_sorted_unique(arity, ids), 0));
+        }
         let rows = ids.len() / arity.max(1);
         headroom(
             rows.saturating_mul(16)
@@ -177,6 +181,9 @@ pub fn sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Vec<u32> {
 /// split between threads) are reserved fallibly: `Err(bytes)` when they cannot be had. The
 /// other paths, serial, allocate as [`sort_dedup_rows`] does (callers probe them).
 pub fn try_sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Result<Vec<u32>, usize> {
+    if arity > 0 && rows_ascending(arity, &ids) {
+        return Ok(ids);
+    }
     // Rows whose ids fit side by side in 64 bits sort by a linear-time radix sort, so building
     // the closure costs the same per simplex at 10^4 and 10^6 simplices.
     let widest = ids.iter().copied().max().unwrap_or(0);
@@ -203,6 +210,25 @@ pub fn try_sort_dedup_rows(arity: usize, ids: Vec<u32>) -> Result<Vec<u32>, usiz
         return sort_dedup_by_first(arity, ids, bits);
     }
     Ok(sort_dedup_serial(arity, ids))
+}
+
+/// Whether the rows of `arity` ids in `ids` are in strictly ascending lexicographic order,
+/// i.e. already sorted and without repeats (sorting would leave them as they are): one pass,
+/// ranges of rows on several threads, each range stopping at its first descent.
+pub(crate) fn rows_ascending(arity: usize, ids: &[u32]) -> bool {
+    let rows = ids.len() / arity;
+    if rows < 2 {
+        return true;
+    }
+    // Ranges of row pairs: range r compares rows r.start..=r.end, so the ranges overlap by one
+    // row and every adjacent pair is compared.
+    crate::parallel::map_ranges(rows - 1, |r| {
+        ids[r.start * arity..(r.end + 1) * arity]
+            .chunks_exact(arity)
+            .is_sorted_by(|a, b| a < b)
+    })
+    .into_iter()
+    .all(|ok| ok)
 }
 
 /// [`sort_dedup_rows`] for rows too wide to pack in 64 bits (or single ids).
