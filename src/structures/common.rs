@@ -73,9 +73,11 @@ pub(crate) fn try_table(
     kind: StructureKind,
     table: &SimplexTable,
 ) -> Result<SimplexTable, BuildError> {
-    table
-        .try_clone()
-        .map_err(|bytes| too_large(kind, bytes, "a copy of a simplex table"))
+    // Copied on several threads (the copy of a large table, and its first touch of the new
+    // pages, would otherwise be a serial step of every build).
+    let ids = crate::parallel::try_copied(table.as_flat())
+        .map_err(|bytes| too_large(kind, bytes, "a copy of a simplex table"))?;
+    Ok(SimplexTable::from_arr(table.arity(), ids.into()))
 }
 
 /// The complex's closure ([`Complex::try_closure`]), or `TooLarge`.
