@@ -81,7 +81,7 @@ use crate::store::Arr;
 use rustc_hash::FxHashSet;
 use std::sync::atomic::Ordering;
 
-use super::common::{too_large, try_push, try_table, try_vec};
+use super::common::{PairParts, too_large, try_push, try_table, try_vec};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable, is_subset};
@@ -383,47 +383,9 @@ fn vertex_components(
     } else {
         vec![component_walks(tops, adj, d)?]
     };
-    let pairs = Parts::new(parts);
+    let pairs = PairParts::new(parts);
     crate::parallel::try_invert(n as usize, pairs.len(), &pairs)
         .map_err(|bytes| too_large(KIND, bytes, "star components"))
-}
-
-/// The (vertex, d-simplex) pairs of the star components, as the ranges of d-simplices found
-/// them (one after another), read as one list for [`crate::parallel::try_invert`]: from vertex
-/// to d-simplex.
-struct Parts {
-    parts: Vec<Vec<(u32, u32)>>,
-    /// `first[k]`: the index of part `k`'s first pair in the whole list (then the total).
-    first: Vec<usize>,
-}
-
-impl Parts {
-    fn new(parts: Vec<Vec<(u32, u32)>>) -> Parts {
-        let mut first = Vec::with_capacity(parts.len() + 1);
-        first.push(0);
-        for p in &parts {
-            first.push(first[first.len() - 1] + p.len());
-        }
-        Parts { parts, first }
-    }
-
-    fn len(&self) -> usize {
-        self.first[self.parts.len()]
-    }
-}
-
-impl crate::parallel::Incidences for Parts {
-    fn visit(&self, range: std::ops::Range<usize>, f: &mut impl FnMut(u32, u32)) {
-        // The last part starting at or before the range (empty parts are stepped over).
-        let mut k = self.first.partition_point(|&s| s <= range.start).max(1) - 1;
-        for i in range {
-            while i >= self.first[k + 1] {
-                k += 1;
-            }
-            let (v, t) = self.parts[k][i - self.first[k]];
-            f(t, v);
-        }
-    }
 }
 
 /// The (vertex, smallest d-simplex) of each star component, in (d-simplex, vertex) order, by
