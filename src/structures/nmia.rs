@@ -720,7 +720,8 @@ impl NonManifoldIa {
                         } else {
                             NONE
                         };
-                        if across != NONE {
+                        // Each shared triangle once, from its smaller tetrahedron.
+                        if across != NONE && across > u {
                             uf.union(here, slot(across, v));
                         }
                         if vs.len() >= 3
