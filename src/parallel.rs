@@ -1,13 +1,17 @@
 //! Threads for the build steps, and the parallel primitives they use.
 //!
 //! Every parallel step is deterministic: it either sorts (the sorted output does not depend on
-//! how the work was split) or writes each result to a position fixed before the split, so a
-//! structure built with any number of threads is the same, byte for byte, as the serial one.
+//! how the work was split), writes each result to a position fixed before the split, or keeps
+//! a minimum (the union–find's roots, a top simplex's first listing), so a structure built
+//! with any number of threads is the same, byte for byte, as the serial one.
 //!
-//! Primitives: sorts of packed keys (`sort_keys`), collects in index order, a CSR inversion
-//! with one range of sources per thread (`try_invert`: the IG's co-boundaries, the SIG's tops
-//! above each simplex) and a lock-free union–find whose roots are each class's smallest member
-//! (`SharedUnionFind`: the IA's star components, the 2D structures' corner components).
+//! Primitives: sorts of packed keys (`sort_keys`); collects, fills and copies in index order,
+//! written in place into arrays reserved fallibly (filling a large array, and the first touch
+//! of its pages, is then no serial step of a build); a CSR inversion with one range of sources
+//! per thread (`try_invert`: the IG's co-boundaries, the SIG's tops above each simplex, the
+//! IA's slot-0 buckets and star references); and a lock-free union–find whose roots are each
+//! class's smallest member (`SharedUnionFind`: the IA's star components, the 2D structures'
+//! corner components).
 //!
 //! The thread count is [`set_threads`] (the CLI's `--threads`, the C ABI's `tpx_set_threads`),
 //! else the `TOPOPLEX_THREADS` environment variable, else every core.
@@ -78,22 +82,23 @@ pub(crate) fn map_ranges<T: Send>(
     map_chunks(r.len(), |i| f(r[i].clone()))
 }
 
-/// `f(i, row)` for every row `i` of `width` items of `out` (each row written by one call),
-/// split like [`ranges`].
+/// `f(i, row)` for every row `i` of `width` items of `out` (each row written by one call; the
+/// last row may be shorter), on several threads when `out` holds enough items (rows of many
+/// items split as readily as many rows of one), in runs of rows like [`ranges`].
 pub(crate) fn fill_rows<T: Send>(
     out: &mut [T],
     width: usize,
     f: impl Fn(usize, &mut [T]) + Sync + Send,
 ) {
     use rayon::prelude::*;
-    let rows = out.len() / width.max(1);
-    if width == 0 || !splits(rows) {
-        out.chunks_mut(width.max(1))
+    let width = width.max(1);
+    if !splits(out.len()) {
+        out.chunks_mut(width)
             .enumerate()
             .for_each(|(i, row)| f(i, row));
         return;
     }
-    let step = rows.div_ceil(4 * threads());
+    let step = out.len().div_ceil(width).div_ceil(4 * threads());
     install(|| {
         out.par_chunks_mut(step * width)
             .enumerate()
@@ -275,13 +280,66 @@ pub(crate) fn try_map_collect<T: Send>(
     n: usize,
     f: impl Fn(usize) -> T + Sync + Send,
 ) -> Result<Vec<T>, usize> {
+    let mut out = Vec::new();
+    crate::complex::table::try_reserve_exact(&mut out, n)?;
+    extend_reserved(&mut out, n, f);
+    Ok(out)
+}
+
+/// Appends `f(i)` for `i` in `0..n` to `v`, whose spare capacity (at least `n`, reserved
+/// fallibly by the caller) it writes in place: on several threads when `n` is large, so the
+/// first touch of the new pages is split too. Results in index order.
+pub(crate) fn extend_reserved<T: Send>(
+    v: &mut Vec<T>,
+    n: usize,
+    f: impl Fn(usize) -> T + Sync + Send,
+) {
+    use rayon::prelude::*;
+    debug_assert!(v.capacity() - v.len() >= n, "capacity not reserved");
+    if splits(n) {
+        install(|| v.par_extend((0..n).into_par_iter().map(f)));
+    } else {
+        v.extend((0..n).map(f));
+    }
+}
+
+/// [`try_map_collect`] with a scratch state per run of at least `run` consecutive indices
+/// (`init()` at each run's start): `f(state, i)` may use it as a hint (the last answer, to try
+/// first) but its result must not depend on it, so that the array is the same for any split.
+pub(crate) fn try_map_collect_with<S, T: Send>(
+    n: usize,
+    run: usize,
+    init: impl Fn() -> S + Sync + Send,
+    f: impl Fn(&mut S, usize) -> T + Sync + Send,
+) -> Result<Vec<T>, usize> {
     use rayon::prelude::*;
     let mut out = Vec::new();
     crate::complex::table::try_reserve_exact(&mut out, n)?;
     if splits(n) {
-        install(|| out.par_extend((0..n).into_par_iter().map(f)));
+        let items = (0..n).into_par_iter().with_min_len(run.max(1));
+        install(|| out.par_extend(items.map_init(init, f)));
     } else {
-        out.extend((0..n).map(f));
+        let mut state = init();
+        out.extend((0..n).map(|i| f(&mut state, i)));
+    }
+    Ok(out)
+}
+
+/// `n` copies of `value` in an array reserved fallibly (`Err(bytes)`), written on several
+/// threads when `n` is large.
+pub(crate) fn try_filled<T: Clone + Send + Sync>(n: usize, value: T) -> Result<Vec<T>, usize> {
+    try_map_collect(n, |_| value.clone())
+}
+
+/// A copy of `items` in an array reserved fallibly (`Err(bytes)`), copied on several threads
+/// when it is long.
+pub(crate) fn try_copied<T: Copy + Send + Sync>(items: &[T]) -> Result<Vec<T>, usize> {
+    let mut out = Vec::new();
+    crate::complex::table::try_reserve_exact(&mut out, items.len())?;
+    if splits(items.len()) {
+        extend_reserved(&mut out, items.len(), |i| items[i]);
+    } else {
+        out.extend_from_slice(items);
     }
     Ok(out)
 }
@@ -296,12 +354,13 @@ pub(crate) fn map_chunks<T: Send>(chunks: usize, f: impl Fn(usize) -> T + Sync +
     install(|| (0..chunks).into_par_iter().map(f).collect())
 }
 
-/// `n` atomic words set by `init(i)`, reserved fallibly (`Err(bytes)`).
-pub(crate) fn try_atomics(n: usize, init: impl Fn(usize) -> u32) -> Result<Vec<AtomicU32>, usize> {
-    let mut v = Vec::new();
-    crate::complex::table::try_reserve_exact(&mut v, n)?;
-    v.extend((0..n).map(|i| AtomicU32::new(init(i))));
-    Ok(v)
+/// `n` atomic words set by `init(i)`, reserved fallibly (`Err(bytes)`), set on several threads
+/// when `n` is large.
+pub(crate) fn try_atomics(
+    n: usize,
+    init: impl Fn(usize) -> u32 + Sync + Send,
+) -> Result<Vec<AtomicU32>, usize> {
+    try_map_collect(n, |i| AtomicU32::new(init(i)))
 }
 
 /// The plain words of `v`, in place (same size and alignment: no new allocation).
@@ -636,5 +695,45 @@ mod tests {
         set_threads(1);
         assert!(try_invert(5000, sources, &links).unwrap() == want);
         set_threads(before);
+    }
+
+    /// The fills and collects, split at a threshold of 2 into pieces whose edges fall inside
+    /// rows and runs (3 rows of 7 and a short one; runs of 5 over 23 items), give the serial
+    /// arrays on 1 to 3 threads.
+    #[test]
+    fn fills_and_collects_split_anywhere_give_the_serial_arrays() {
+        let (before, split) = (threads(), SPLIT_AT.load(Ordering::Relaxed));
+        set_split_threshold(2);
+        let items: Vec<u64> = (0..23u64).map(|i| i * i % 17).collect();
+        for t in [1, 2, 3] {
+            set_threads(t);
+            let mut rows = vec![0usize; 3 * 7 + 2];
+            fill_rows(&mut rows, 7, |i, row| {
+                for (k, x) in row.iter_mut().enumerate() {
+                    *x = 100 * i + k;
+                }
+            });
+            let want: Vec<usize> = (0..23).map(|j| 100 * (j / 7) + j % 7).collect();
+            assert_eq!(rows, want, "{t} threads");
+            assert_eq!(try_copied(&items).unwrap(), items, "{t} threads");
+            assert_eq!(try_filled(23, 9u8).unwrap(), vec![9u8; 23], "{t} threads");
+            // Each run's state starts afresh: an answer written from the state would show it.
+            let hinted = try_map_collect_with(
+                items.len(),
+                5,
+                || 0usize,
+                |seen, i| {
+                    *seen += 1;
+                    items[i] + 1
+                },
+            )
+            .unwrap();
+            let want: Vec<u64> = items.iter().map(|x| x + 1).collect();
+            assert_eq!(hinted, want, "{t} threads");
+            let words = into_plain(try_atomics(23, |i| 3 * i as u32).unwrap());
+            assert_eq!(words, (0..23).map(|i| 3 * i).collect::<Vec<u32>>());
+        }
+        set_threads(before);
+        set_split_threshold(split);
     }
 }

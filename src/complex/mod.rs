@@ -660,7 +660,8 @@ impl Complex {
     /// The listing ↔ top maps, every array reserved fallibly (`Err(bytes)`). Each listing is
     /// searched among the top simplices that start with its smallest vertex (a few rows, not
     /// log n_p cache misses), listings on several threads. (Tables small next to the vertex
-    /// count are searched whole.)
+    /// count are searched whole.) Each top's first listing is the smallest listing that found
+    /// it, kept by an atomic minimum on several threads: the same maps for any thread count.
     fn build_listing_maps(&self) -> Result<ListingMaps, usize> {
         let mut starts: Vec<Vec<u32>> = Vec::new();
         table::try_reserve_exact(&mut starts, self.tops.len())?;
@@ -673,71 +674,93 @@ impl Complex {
                 self.first_vertex_starts(t)?
             });
         }
-        let mut top = Vec::new();
-        table::try_reserve_exact(&mut top, self.input_count())?;
-        top.resize(self.input_count(), NONE_TOP);
-        // Listings in runs of `RUN` on several threads; inside a run each dimension's last
-        // answer is tried first (then the row after it): a listing written in lexicographic
-        // order, as Rips and alpha makers write it, then costs one compare, not a search.
+        // Listings in runs of at least `RUN` on several threads; inside a run each dimension's
+        // last answer is tried first (then the row after it): a listing written in
+        // lexicographic order, as Rips and alpha makers write it, then costs one compare, not
+        // a search. The hint only saves work: the answer is the same without it.
         const RUN: usize = 4096;
-        crate::parallel::fill_rows(&mut top, RUN, |c, run| {
-            let mut last = [usize::MAX; MAX_DIMENSION + 1];
-            for (k, out) in run.iter_mut().enumerate() {
-                let mut sorted = [0u32; MAX_DIMENSION + 1];
-                let given = self.input_simplex(c * RUN + k);
-                let sorted = &mut sorted[..given.len()];
-                sorted.copy_from_slice(given);
-                sorted.sort_unstable();
-                let p = sorted.len() - 1;
-                let (Some(t), Some(start)) = (self.tops.get(p), starts.get(p)) else {
-                    continue;
-                };
-                let near = [last[p].wrapping_add(1), last[p]];
-                let found = match near
-                    .into_iter()
-                    .find(|&j| j < t.len() && t.get(j) == &*sorted)
-                {
-                    Some(j) => Some(j),
-                    None => find_top(t, start, sorted),
-                };
-                if let Some(j) = found {
-                    last[p] = j;
-                    *out = (p as u8, j as u32);
-                }
-            }
-        });
+        let find = |last: &mut [usize; MAX_DIMENSION + 1], i: usize| {
+            let mut sorted = [0u32; MAX_DIMENSION + 1];
+            let given = self.input_simplex(i);
+            let sorted = &mut sorted[..given.len()];
+            sorted.copy_from_slice(given);
+            sorted.sort_unstable();
+            let p = sorted.len() - 1;
+            let (Some(t), Some(start)) = (self.tops.get(p), starts.get(p)) else {
+                return NONE_TOP;
+            };
+            let near = [last[p].wrapping_add(1), last[p]];
+            let found = match near
+                .into_iter()
+                .find(|&j| j < t.len() && t.get(j) == &*sorted)
+            {
+                Some(j) => Some(j),
+                None => find_top(t, start, sorted),
+            };
+            found.map_or(NONE_TOP, |j| {
+                last[p] = j;
+                (p as u8, j as u32)
+            })
+        };
+        let top = crate::parallel::try_map_collect_with(
+            self.input_count(),
+            RUN,
+            || [usize::MAX; MAX_DIMENSION + 1],
+            find,
+        )?;
         drop(starts);
-        let mut first: Vec<Vec<u32>> = Vec::new();
+        let mut first: Vec<Vec<std::sync::atomic::AtomicU32>> = Vec::new();
         table::try_reserve_exact(&mut first, self.tops.len())?;
         for t in &self.tops {
-            let mut f = Vec::new();
-            table::try_reserve_exact(&mut f, t.len())?;
-            f.resize(t.len(), u32::MAX);
-            first.push(f);
+            first.push(crate::parallel::try_atomics(t.len(), |_| u32::MAX)?);
         }
-        for (i, &(p, j)) in top.iter().enumerate() {
-            if p != u8::MAX {
-                let f = &mut first[p as usize][j as usize];
-                if *f == u32::MAX {
-                    *f = i as u32;
+        if crate::parallel::splits(top.len()) {
+            crate::parallel::map_ranges(top.len(), |range| {
+                for i in range {
+                    let (p, j) = top[i];
+                    if p != u8::MAX {
+                        first[p as usize][j as usize]
+                            .fetch_min(i as u32, std::sync::atomic::Ordering::Relaxed);
+                    }
+                }
+            });
+        } else {
+            // One thread: plain words, no atomic instruction per listing.
+            for (i, &(p, j)) in top.iter().enumerate() {
+                if p != u8::MAX {
+                    let f = first[p as usize][j as usize].get_mut();
+                    *f = (*f).min(i as u32);
                 }
             }
         }
+        let first = first.into_iter().map(crate::parallel::into_plain).collect();
         Ok(ListingMaps { top, first })
     }
 
-    /// `start[v]`: the first row of `table` whose first vertex is ≥ v, for v in `0..=n`.
+    /// `start[v]`: the first row of `table` (sorted) whose first vertex is ≥ v, for v in
+    /// `0..=n`; vertices in chunks on several threads, each chunk finding its first row by a
+    /// binary search and walking on from there.
     fn first_vertex_starts(&self, table: &SimplexTable) -> Result<Vec<u32>, usize> {
-        let n = self.n_vertices as usize;
-        let mut start = Vec::new();
-        table::try_reserve_exact(&mut start, n + 1)?;
-        start.resize(n + 1, 0u32);
-        for s in table.iter() {
-            start[s[0] as usize + 1] += 1;
-        }
-        for v in 0..n {
-            start[v + 1] += start[v];
-        }
+        const CHUNK: usize = 4096;
+        let mut start = crate::parallel::try_filled(self.n_vertices as usize + 1, 0u32)?;
+        crate::parallel::fill_rows(&mut start, CHUNK, |c, part| {
+            let v0 = c * CHUNK;
+            let (mut row, mut hi) = (0, table.len());
+            while row < hi {
+                let mid = (row + hi) / 2;
+                if (table.get(mid)[0] as usize) < v0 {
+                    row = mid + 1;
+                } else {
+                    hi = mid;
+                }
+            }
+            for (v, slot) in (v0..).zip(part.iter_mut()) {
+                while row < table.len() && (table.get(row)[0] as usize) < v {
+                    row += 1;
+                }
+                *slot = row as u32;
+            }
+        });
         Ok(start)
     }
 
@@ -1821,7 +1844,7 @@ mod tests {
     #[test]
     fn listing_maps_name_the_top_each_listing_became() {
         let mut rnd = crate::complex::xorshift_below(0x9e37_79b9_7f4a_7c15);
-        for n in [40u32, 200_000] {
+        for n in [40u32, 3000, 200_000] {
             let mut listed: Vec<Vec<u32>> = (0..9000)
                 .map(|_| {
                     let mut s: Vec<u32> = (0..1 + rnd(5)).map(|_| rnd(n as u64) as u32).collect();
@@ -1851,6 +1874,54 @@ mod tests {
                     assert_eq!(c.top_listing(p, j), Some(first));
                 }
             }
+            // Built again on 2 and 3 threads, cut into small pieces (runs of listings, chunks
+            // of vertex starts, ranges of the first-listing minimum): the same maps.
+            let (threads, split) = (crate::parallel::threads(), crate::parallel::MIN_PARALLEL);
+            crate::parallel::set_split_threshold(5);
+            for t in [2, 3] {
+                crate::parallel::set_threads(t);
+                let maps = c.build_listing_maps().unwrap();
+                assert_eq!(maps.top, c.listing_maps().top, "n = {n}, {t} threads");
+                assert_eq!(maps.first, c.listing_maps().first, "n = {n}, {t} threads");
+            }
+            crate::parallel::set_threads(threads);
+            crate::parallel::set_split_threshold(split);
         }
+    }
+
+    /// Vertex starts of sorted tables with gaps (vertices starting no row) at the chunks'
+    /// edges, found on 1 to 3 threads, against a count of the rows by first vertex.
+    #[test]
+    fn first_vertex_starts_count_the_rows_before_each_vertex() {
+        let mut rnd = crate::complex::xorshift_below(0x2545_f491_4f6c_dd1d);
+        let n = 3 * 4096 + 5;
+        let skip = |v: u64| (4090..4100).contains(&(v % 4096)) || v < 3 || v + 3 > n;
+        let mut rows: Vec<Vec<u32>> = (0..20_000)
+            .map(|_| {
+                let a = rnd(n - 1);
+                vec![a as u32, (a + 1 + rnd(n - 1 - a)) as u32]
+            })
+            .filter(|r| !skip(u64::from(r[0])))
+            .collect();
+        rows.sort();
+        rows.dedup();
+        let refs: Vec<&[u32]> = rows.iter().map(Vec::as_slice).collect();
+        let c = Complex::from_simplices(n as u32, &refs).unwrap();
+        let table = c.tops(1);
+        let mut want = vec![0u32; n as usize + 1];
+        for s in table.iter() {
+            want[s[0] as usize + 1] += 1;
+        }
+        for v in 0..n as usize {
+            want[v + 1] += want[v];
+        }
+        let (threads, split) = (crate::parallel::threads(), crate::parallel::MIN_PARALLEL);
+        crate::parallel::set_split_threshold(2);
+        for t in [1, 2, 3] {
+            crate::parallel::set_threads(t);
+            assert_eq!(c.first_vertex_starts(table).unwrap(), want, "{t} threads");
+        }
+        crate::parallel::set_threads(threads);
+        crate::parallel::set_split_threshold(split);
     }
 }

@@ -73,9 +73,11 @@ pub(crate) fn try_table(
     kind: StructureKind,
     table: &SimplexTable,
 ) -> Result<SimplexTable, BuildError> {
-    table
-        .try_clone()
-        .map_err(|bytes| too_large(kind, bytes, "a copy of a simplex table"))
+    // Copied on several threads (the copy of a large table, and its first touch of the new
+    // pages, would otherwise be a serial step of every build).
+    let ids = crate::parallel::try_copied(table.as_flat())
+        .map_err(|bytes| too_large(kind, bytes, "a copy of a simplex table"))?;
+    Ok(SimplexTable::from_arr(table.arity(), ids.into()))
 }
 
 /// The complex's closure ([`Complex::try_closure`]), or `TooLarge`.
@@ -587,4 +589,43 @@ pub(crate) fn facet_links(tables: &[crate::complex::SimplexTable], p: usize) -> 
         }
     });
     b
+}
+
+/// (vertex, top simplex) pairs in parts (as the ranges of top simplices that found them
+/// returned them), read as the one list of the parts one after another, for
+/// [`crate::parallel::try_invert`]: from vertex to top simplex (the vertex star references of
+/// the IA and the NMIA).
+pub(crate) struct PairParts {
+    parts: Vec<Vec<(u32, u32)>>,
+    /// `first[k]`: the index of part `k`'s first pair in the whole list (then the total).
+    first: Vec<usize>,
+}
+
+impl PairParts {
+    pub(crate) fn new(parts: Vec<Vec<(u32, u32)>>) -> PairParts {
+        let mut first = Vec::with_capacity(parts.len() + 1);
+        first.push(0);
+        for p in &parts {
+            first.push(first[first.len() - 1] + p.len());
+        }
+        PairParts { parts, first }
+    }
+
+    pub(crate) fn len(&self) -> usize {
+        self.first[self.parts.len()]
+    }
+}
+
+impl crate::parallel::Incidences for PairParts {
+    fn visit(&self, range: std::ops::Range<usize>, f: &mut impl FnMut(u32, u32)) {
+        // The last part starting at or before the range (empty parts are stepped over).
+        let mut k = self.first.partition_point(|&s| s <= range.start).max(1) - 1;
+        for i in range {
+            while i >= self.first[k + 1] {
+                k += 1;
+            }
+            let (v, t) = self.parts[k][i - self.first[k]];
+            f(t, v);
+        }
+    }
 }

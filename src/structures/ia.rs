@@ -62,12 +62,17 @@
 //! - R_{d,d}: each facet slot is matched in the bucket of its facet's smallest vertex v: the
 //!   slots of the run of d-simplices that start with v (the table is sorted) and the slot-0
 //!   facets whose d-simplex's second vertex is v (one counting sort of the d-simplices, 4 bytes
-//!   each); buckets sorted and matched by chunks of vertices on several threads, each chunk
-//!   storing its pairs straight into R_{d,d} (a slot is in one pair: the stores never meet).
+//!   each, by ranges of d-simplices on several threads); buckets sorted and matched by chunks
+//!   of vertices on several threads, each chunk storing its pairs straight into R_{d,d} (a
+//!   slot is in one pair: the stores never meet).
 //!   O(n_d·d·(1 + log b)) for buckets of b slots.
 //! - Star components: with one thread, one walk per component through R_{d,d} (1 byte a slot);
 //!   with several, a shared union–find over the slots by ranges of d-simplices (4 bytes a
-//!   slot), whose roots (smallest slots) are the walks' starts. O(d²·n_d).
+//!   slot), whose roots (smallest slots) are the walks' starts; then inverted by vertex on
+//!   several threads. O(d²·n_d).
+//! - The arrays are filled (R_{d,d}'s "none", the union–find's singletons) and the d-simplices
+//!   copied on several threads too, and the handle index's listing maps and windings
+//!   are found by runs of listings.
 //! - `count(p)`: n_{d−1} from R_{d,d}; 0 < p < d − 1 counted at their smallest vertex from a
 //!   walk of its star, by chunks of vertices on several threads. O(Σ_v n_v·C(d, p)·log).
 
@@ -76,7 +81,7 @@ use crate::store::Arr;
 use rustc_hash::FxHashSet;
 use std::sync::atomic::Ordering;
 
-use super::common::{too_large, try_copy, try_push, try_reserve, try_table, try_vec};
+use super::common::{PairParts, too_large, try_push, try_table, try_vec};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable, is_subset};
@@ -191,22 +196,10 @@ pub(crate) fn adjacency_by_vertex(
     // Slot k = (top k / w, facet opposite vertex k % w); its facet's smallest vertex is the
     // top's first vertex unless that is the one left out (slot 0 of a top). The tops are
     // sorted, so the other slots at v are those of the run of tops starting with v: only the
-    // slot-0 facets are bucketed, by the top's second vertex (a counting sort of the tops).
-    let mut start = try_vec(kind, 0u32, n as usize + 1, "bucket offsets")?;
-    for t in 0..tops.len() {
-        start[tops.get(t)[1] as usize + 1] += 1;
-    }
-    for v in 0..n as usize {
-        start[v + 1] += start[v];
-    }
-    let mut fill = try_copy(kind, &start, "bucket offsets")?;
-    let mut order = try_vec(kind, 0u32, tops.len(), "facet slots")?;
-    for t in 0..tops.len() {
-        let v = tops.get(t)[1] as usize;
-        order[fill[v] as usize] = (t * w) as u32;
-        fill[v] += 1;
-    }
-    drop(fill);
+    // slot-0 facets are bucketed, by the top's second vertex (a counting sort of the tops, on
+    // several threads: each bucket lists its slots in top order for any thread count).
+    let (start, order) = crate::parallel::try_invert(n as usize, tops.len(), &SecondVertex(tops))
+        .map_err(|bytes| too_large(kind, bytes, "facet slots"))?;
     let facet = |k: u32| {
         let (t, i) = (k as usize / w, k as usize % w);
         let mut f = [0u32; 16];
@@ -277,6 +270,19 @@ pub(crate) fn adjacency_by_vertex(
     Ok(Ok(crate::parallel::into_plain(adj)))
 }
 
+/// The slot-0 facets of the d-simplices (slot `t·(d+1)`) by their d-simplex's second vertex, for
+/// [`crate::parallel::try_invert`].
+struct SecondVertex<'a>(&'a SimplexTable);
+
+impl crate::parallel::Incidences for SecondVertex<'_> {
+    fn visit(&self, range: std::ops::Range<usize>, f: &mut impl FnMut(u32, u32)) {
+        let w = self.0.arity();
+        for t in range {
+            f((t * w) as u32, self.0.get(t)[1]);
+        }
+    }
+}
+
 /// n_p for p = 0..=d without listing the faces: n_{d−1} from the adjacencies (a facet is on
 /// one or two d-simplices), and for 0 < p < d − 1 the p-faces counted at their smallest vertex
 /// v, from a walk of v's star (its components' seeds in `vstar`), split between threads by
@@ -294,7 +300,11 @@ fn face_counts(
     counts[0] = n as usize;
     counts[d] = tops.len();
     if d >= 2 {
-        let open = adj.iter().filter(|&&a| a == NONE).count();
+        let open: usize = crate::parallel::map_ranges(adj.len(), |r| {
+            adj[r].iter().filter(|&&a| a == NONE).count()
+        })
+        .into_iter()
+        .sum();
         counts[d - 1] = open + (adj.len() - open) / 2;
     }
     if d < 3 {
@@ -359,33 +369,23 @@ fn face_counts(
 /// ascending. A component's reference is its smallest d-simplex: the serial path walks each
 /// component once through the adjacencies from its first slot in (d-simplex, vertex) order; on
 /// several threads, a shared union–find over the slots (whose roots are the smallest slots)
-/// gives the same components. O(d²·n_d).
+/// gives the same components. The (vertex, d-simplex) pairs come in ascending d-simplex order,
+/// so inverting them by vertex (in source order, see [`crate::parallel::try_invert`]) lists
+/// each vertex's references ascending. O(d²·n_d).
 fn vertex_components(
     tops: &SimplexTable,
     adj: &[u32],
     d: usize,
     n: u32,
 ) -> Result<(Vec<u32>, Vec<u32>), BuildError> {
-    let pairs = if crate::parallel::splits(tops.len() * (d + 1)) {
+    let parts = if crate::parallel::splits(tops.len() * (d + 1)) {
         component_roots(tops, adj, d)?
     } else {
-        component_walks(tops, adj, d)?
+        vec![component_walks(tops, adj, d)?]
     };
-    let mut off = try_vec(KIND, 0u32, n as usize + 1, "star offsets")?;
-    for &(v, _) in &pairs {
-        off[v as usize + 1] += 1;
-    }
-    for i in 0..n as usize {
-        off[i + 1] += off[i];
-    }
-    let mut fill = try_copy(KIND, &off, "star offsets")?;
-    let mut list = try_vec(KIND, 0u32, pairs.len(), "star components")?;
-    // `pairs` is in ascending d-simplex order, so each vertex's list comes out ascending.
-    for &(v, t) in &pairs {
-        list[fill[v as usize] as usize] = t;
-        fill[v as usize] += 1;
-    }
-    Ok((off, list))
+    let pairs = PairParts::new(parts);
+    crate::parallel::try_invert(n as usize, pairs.len(), &pairs)
+        .map_err(|bytes| too_large(KIND, bytes, "star components"))
 }
 
 /// The (vertex, smallest d-simplex) of each star component, in (d-simplex, vertex) order, by
@@ -429,13 +429,13 @@ fn component_walks(
 
 /// [`component_walks`] on several threads: slot (t, j) (vertex j of d-simplex t) is joined to
 /// the slot of the same vertex in each neighbour across a facet containing it, by ranges of
-/// d-simplices; the roots, the smallest slot of each component, are the walks' starts.
-/// 4 bytes per slot.
+/// d-simplices; the roots, the smallest slot of each component, are the walks' starts: their
+/// pairs listed by range of d-simplices, ranges in order. 4 bytes per slot.
 fn component_roots(
     tops: &SimplexTable,
     adj: &[u32],
     d: usize,
-) -> Result<Vec<(u32, u32)>, BuildError> {
+) -> Result<Vec<Vec<(u32, u32)>>, BuildError> {
     let w = d + 1;
     let slots = tops.len() * w;
     let uf = crate::parallel::SharedUnionFind::try_new(slots)
@@ -456,7 +456,7 @@ fn component_roots(
             }
         }
     });
-    let parts = crate::parallel::map_ranges(tops.len(), |range| {
+    crate::parallel::map_ranges(tops.len(), |range| {
         let mut pairs = Vec::new();
         for t in range {
             for (j, &v) in tops.get(t).iter().enumerate() {
@@ -466,14 +466,9 @@ fn component_roots(
             }
         }
         Ok(pairs)
-    });
-    let mut pairs = Vec::new();
-    for part in parts {
-        let part: Vec<(u32, u32)> = part?;
-        try_reserve(KIND, &mut pairs, part.len(), "star components")?;
-        pairs.extend_from_slice(&part);
-    }
-    Ok(pairs)
+    })
+    .into_iter()
+    .collect()
 }
 
 impl IndexedAdjacency {

@@ -112,12 +112,10 @@ impl NavIndex {
         for p in 0..=d {
             top_first.push(total);
             let tops = complex.tops(p);
-            // On several threads: each winding depends on its own top simplex only. Filled in
+            // On several threads: each winding depends on its own top simplex only. Written in
             // place: the array was reserved fallibly, a collected temporary would not be.
-            let start = windings.len();
-            windings.resize(start + tops.len(), 0);
-            crate::parallel::fill_rows(&mut windings[start..], 1, |i, w| {
-                w[0] = winding(tops.get(i), complex.top_oriented(p, i as u32));
+            crate::parallel::extend_reserved(&mut windings, tops.len(), |i| {
+                winding(tops.get(i), complex.top_oriented(p, i as u32))
             });
             total += tops.len() as u32;
         }

@@ -88,9 +88,9 @@
 //!
 //! Queries keep no state in the structure: every walk has its own set of visited simplices.
 
-use super::common::try_table;
 use super::common::{
-    IdSet, IdStack, RowSet, faces_containing, faces_of_tops, show, try_closure_counts,
+    IdSet, IdStack, PairParts, RowSet, faces_containing, faces_of_tops, show, too_large,
+    try_closure_counts, try_push, try_table, try_vec,
 };
 use super::ia::NONE;
 use super::nav::{NavBase, NavIndex};
@@ -221,8 +221,9 @@ struct Cluster {
 
 impl NonManifoldIa {
     /// Checks the domain, builds R_{3,3} by the IA's smallest-vertex buckets (on several
-    /// threads), the cluster rings by
-    /// sorting the edges of the top simplices, and R_{0,clusters} by one walk per component.
+    /// threads), the cluster rings by sorting the edges of the top simplices, and
+    /// R_{0,clusters} by one walk per component (on several threads: a shared union–find over
+    /// the (top, vertex) slots, whose roots are the walks' starts, 4 bytes a slot).
     /// O(n log n) in the number of top simplices.
     pub fn build(complex: &Complex) -> Result<NonManifoldIa, BuildError> {
         let d = complex.dimension();
@@ -285,7 +286,7 @@ impl NonManifoldIa {
         let (keys, next) = s.rings(coords);
         s.link_keys = keys.into();
         s.link_next = Arr::from(next);
-        let (off, list) = s.vertex_components();
+        let (off, list) = s.vertex_components()?;
         s.vstar_off = Arr::from(off);
         s.vstar = Arr::from(list);
         // The closure's counts by vertex blocks (on several threads, one block at a time per
@@ -646,47 +647,105 @@ impl NonManifoldIa {
         found
     }
 
-    fn vertex_components(&self) -> (Vec<u32>, Vec<u32>) {
-        let (n3, n2) = (self.tets.len(), self.faces.len());
-        let base = |u: u32| {
-            let u = u as usize;
-            if u < n3 {
-                4 * u
-            } else if u < n3 + n2 {
-                4 * n3 + 3 * (u - n3)
-            } else {
-                4 * n3 + 3 * n2 + 2 * (u - n3 - n2)
-            }
+    /// Where top simplex `u`'s slots (one per vertex) start among all tops' slots: tetrahedra,
+    /// then triangles, then edges, in id order.
+    fn slot_base(&self, u: u32) -> usize {
+        let (n3, n2, u) = (self.tets.len(), self.faces.len(), u as usize);
+        if u < n3 {
+            4 * u
+        } else if u < n3 + n2 {
+            4 * n3 + 3 * (u - n3)
+        } else {
+            4 * n3 + 3 * n2 + 2 * (u - n3 - n2)
+        }
+    }
+
+    /// Per vertex, one top simplex per restricted-star component (CSR), each vertex's list
+    /// ascending: the (vertex, first top) of each component found by walks on one thread or
+    /// a union–find on several (the same pairs, in top order), then inverted by vertex.
+    fn vertex_components(&self) -> Result<(Vec<u32>, Vec<u32>), BuildError> {
+        let slots = self.slot_base(self.n_tops());
+        let parts = if crate::parallel::splits(slots) {
+            self.component_roots(slots)?
+        } else {
+            vec![self.component_walks(slots)?]
         };
-        let mut visited = vec![false; base(self.n_tops())];
+        let pairs = PairParts::new(parts);
+        crate::parallel::try_invert(self.n as usize, pairs.len(), &pairs)
+            .map_err(|bytes| too_large(KIND, bytes, "star components"))
+    }
+
+    /// The (vertex, top) of each restricted-star component, in (top, vertex) order, by one walk
+    /// per component from its first unvisited slot. 1 byte a slot.
+    fn component_walks(&self, slots: usize) -> Result<Vec<(u32, u32)>, BuildError> {
+        let mut visited = try_vec(KIND, false, slots, "visit marks")?;
         let mut pairs: Vec<(u32, u32)> = Vec::new();
         for u in self.all_tops() {
             for (pos, &v) in self.verts(u).iter().enumerate() {
-                if visited[base(u) + pos] {
+                if visited[self.slot_base(u) + pos] {
                     continue;
                 }
-                pairs.push((v, u));
+                try_push(KIND, &mut pairs, (v, u), "star components")?;
                 self.walk_vertex(v, &[u], &mut IdSet::default(), |t, vs| {
-                    visited[base(t) + vs.iter().position(|&x| x == v).unwrap()] = true;
+                    visited[self.slot_base(t) + vs.iter().position(|&x| x == v).unwrap()] = true;
                     true
                 });
             }
         }
-        let n = self.n as usize;
-        let mut off = vec![0u32; n + 1];
-        for &(v, _) in &pairs {
-            off[v as usize + 1] += 1;
-        }
-        for i in 0..n {
-            off[i + 1] += off[i];
-        }
-        let mut fill = off.clone();
-        let mut list = vec![0u32; pairs.len()];
-        for &(v, u) in &pairs {
-            list[fill[v as usize] as usize] = u;
-            fill[v as usize] += 1;
-        }
-        (off, list)
+        Ok(pairs)
+    }
+
+    /// [`Self::component_walks`] on several threads: each slot (u, v) is joined to the slot of
+    /// v in every top a walk at v steps to from u (across a facet containing v, or to the next
+    /// cluster around an edge at v: the rings are cycles and facet adjacency is symmetric, so
+    /// the walks' reach is the joined classes), by ranges of tops; the roots, each class's
+    /// smallest slot, are the walks' starts. Pairs listed by range, ranges in order. 4 bytes a
+    /// slot.
+    fn component_roots(&self, slots: usize) -> Result<Vec<Vec<(u32, u32)>>, BuildError> {
+        let uf = crate::parallel::SharedUnionFind::try_new(slots)
+            .map_err(|bytes| too_large(KIND, bytes, "star component labels"))?;
+        let n3 = self.tets.len() as u32;
+        let slot = |t: u32, v: u32| {
+            (self.slot_base(t) + self.verts(t).iter().position(|&x| x == v).unwrap()) as u32
+        };
+        let tops = self.n_tops() as usize;
+        crate::parallel::map_ranges(tops, |range| {
+            for u in range.start as u32..range.end as u32 {
+                let vs = self.verts(u);
+                for (pos, &v) in vs.iter().enumerate() {
+                    let here = (self.slot_base(u) + pos) as u32;
+                    for (i, &x) in vs.iter().enumerate().filter(|&(_, &x)| x != v) {
+                        let across = if u < n3 {
+                            self.adj[u as usize * 4 + i]
+                        } else {
+                            NONE
+                        };
+                        // Each shared triangle once, from its smaller tetrahedron.
+                        if across != NONE && across > u {
+                            uf.union(here, slot(across, v));
+                        }
+                        if vs.len() >= 3
+                            && let Some(t) = self.succeeding(u, v, x)
+                        {
+                            uf.union(here, slot(t, v));
+                        }
+                    }
+                }
+            }
+        });
+        crate::parallel::map_ranges(tops, |range| {
+            let mut pairs = Vec::new();
+            for u in range.start as u32..range.end as u32 {
+                for (pos, &v) in self.verts(u).iter().enumerate() {
+                    if uf.is_root((self.slot_base(u) + pos) as u32) {
+                        try_push(KIND, &mut pairs, (v, u), "star components")?;
+                    }
+                }
+            }
+            Ok(pairs)
+        })
+        .into_iter()
+        .collect()
     }
 }
 
