@@ -390,10 +390,7 @@ fn main() {
             Ok(())
         }
         ["soup", file, threads, list] => {
-            let kinds: Vec<StructureKind> = list
-                .split(',')
-                .map(kind_named)
-                .collect();
+            let kinds: Vec<StructureKind> = list.split(',').map(kind_named).collect();
             soup(Path::new(file), threads.parse().unwrap(), &kinds);
             Ok(())
         }
