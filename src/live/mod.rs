@@ -305,6 +305,17 @@ impl Key {
         }
     }
 
+    /// A copy of `vs`, already ascending (not checked): no sort.
+    #[inline]
+    pub(crate) fn sorted(vs: &[u32]) -> Key {
+        let mut ids = [0u32; MAX_DIMENSION + 1];
+        ids[..vs.len()].copy_from_slice(vs);
+        Key {
+            len: vs.len() as u8,
+            ids,
+        }
+    }
+
     pub(crate) fn as_slice(&self) -> &[u32] {
         &self.ids[..self.len as usize]
     }
