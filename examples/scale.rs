@@ -353,7 +353,7 @@ fn soup(file: &Path, threads: usize, kinds: &[StructureKind]) {
             }
         }
         println!(
-            "{kind} {best:.4} s (complex {complex_best:.4} s) {simplices} simplices {:.1} ns/simplex",
+            "{kind} {best:.6} s (complex {complex_best:.6} s) {simplices} simplices {:.1} ns/simplex",
             best * 1e9 / simplices as f64
         );
     }
