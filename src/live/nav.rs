@@ -456,23 +456,20 @@ impl Navigate for LiveComplex {
         with_rows(|rows| {
             self.answer_rows(&sigma, q, rows);
             // Lexicographic, and for q > p the smallest naming slot first. Every key has q + 1
-            // ids: compare those, not the whole inline arrays; and sort the rows' positions
-            // (4 bytes) rather than the rows (76): a vertex's star repeats each answer often.
-            let w = q + 1;
-            let mut order = Scratch::<Vec<u32>>::take();
-            order.extend(0..rows.len() as u32);
-            order.sort_unstable_by(|&a, &b| {
-                let (a, b) = (&rows[a as usize], &rows[b as usize]);
-                a.key.ids[..w].cmp(&b.key.ids[..w]).then(a.raw.cmp(&b.raw))
+            // ids: compare those, not the whole inline arrays.
+            rows.sort_unstable_by(|a, b| {
+                let w = q + 1;
+                a.key.ids[..w]
+                    .cmp(&b.key.ids[..w])
+                    .then(a.raw.cmp(&b.raw))
             });
-            let mut last: Option<&[u32]> = None;
-            for &i in order.iter() {
-                let r = &rows[i as usize];
-                let s = r.key.as_slice();
-                if last == Some(s) {
+            let mut last: Option<Key> = None;
+            for r in rows.iter() {
+                if last == Some(r.key) {
                     continue;
                 }
-                last = Some(s);
+                last = Some(r.key);
+                let s = r.key.as_slice();
                 visit(if r.raw != NONE {
                     self.face_handle(r.raw, r.mask)
                 } else {
