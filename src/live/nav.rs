@@ -459,9 +459,7 @@ impl Navigate for LiveComplex {
             // ids: compare those, not the whole inline arrays.
             rows.sort_unstable_by(|a, b| {
                 let w = q + 1;
-                a.key.ids[..w]
-                    .cmp(&b.key.ids[..w])
-                    .then(a.raw.cmp(&b.raw))
+                a.key.ids[..w].cmp(&b.key.ids[..w]).then(a.raw.cmp(&b.raw))
             });
             let mut last: Option<Key> = None;
             for r in rows.iter() {
