@@ -131,10 +131,12 @@ impl Stars {
             cap: w[1] - w[0],
         }));
         if entries.capacity() != total + total / 8 {
-            // The arena's spare room; the inversion sized `entries` exactly.
-            let mut words = try_with_capacity(kind, total + total / 8, "star entries")?;
-            words.extend_from_slice(&entries);
-            entries = words;
+            // The arena's spare room; the inversion sized `entries` exactly. Grown in place
+            // (a large block is remapped, not copied), and shrunk if it was larger.
+            entries.shrink_to_fit();
+            entries
+                .try_reserve_exact(total / 8)
+                .map_err(|_| too_large(kind, 4 * (total + total / 8), "star entries"))?;
         }
         Ok(Stars {
             words: entries,
