@@ -340,6 +340,7 @@ impl LiveComplex {
     /// [`LiveComplex::from_complex`], or [`BuildError::TooLarge`] (kind `IaStar`) when an array
     /// sized from the input cannot be allocated: every array is reserved exactly, fallibly, before
     /// it is filled, so no allocation failure aborts the process.
+    ///
     /// When the listing is the complex's top simplices (the usual case for maximal simplices)
     /// the tables and stars come from it directly, the stars on several threads (`build`
     /// module; the same arrays with any thread count); otherwise every top is pushed in turn.
