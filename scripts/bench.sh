@@ -25,7 +25,9 @@
 #                --huge, the 10^8-simplex tetrahedral grid
 #   RESULTS_DIR  default <target dir>/bench-results/<UTC date-time>
 # Environment: TOPOPLEX_BENCH_DATA (datasets), TOPOPLEX_BENCH_KINDS (ia,ts,...: restrict the
-# Topoplex kinds), TOPOPLEX_BENCH_MIN_TIME (seconds per benchmark; default Google Benchmark's
+# Topoplex kinds; iastar, the live complex, is a kind of topoplex_bench_gudhi only),
+# TOPOPLEX_BENCH_COFACES_STRIDE (topoplex_bench_gudhi's cofaces walks every k-th vertex and
+# edge, for every library), TOPOPLEX_BENCH_MIN_TIME (seconds per benchmark; default Google Benchmark's
 # own, 0.05 with --quick), TOPOPLEX_BENCH_GUDHI_COFACES_MAX (GUDHI cofaces only on datasets up
 # to this many top simplices, default 25000: see run() below), TOPOPLEX_BENCH_SIMPLIFY_RATIO
 # (fraction of the triangles topoplex_bench_simplify keeps, default 0.01), CARGO_TARGET_DIR.

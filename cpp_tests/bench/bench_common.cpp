@@ -186,7 +186,7 @@ std::vector<Kind> kinds_from_env() {
   std::stringstream ss(env);
   std::string name;
   while (std::getline(ss, name, ',')) {
-    if (name.empty()) continue;
+    if (name.empty() || name == "iastar") continue;
     bool found = false;
     for (auto& k : all)
       if (k.name == name) {
@@ -194,12 +194,34 @@ std::vector<Kind> kinds_from_env() {
         found = true;
       }
     if (!found) {
-      std::fprintf(stderr, "TOPOPLEX_BENCH_KINDS: unknown kind '%s' (kinds: ig,sig,ia,iqm,nmia,ts,pe,le,de)\n",
+      std::fprintf(stderr,
+                   "TOPOPLEX_BENCH_KINDS: unknown kind '%s' (kinds: ig,sig,ia,iqm,nmia,ts,pe,le,de,iastar)\n",
                    name.c_str());
       std::exit(2);
     }
   }
   return out;
+}
+
+bool live_from_env() {
+  const char* env = std::getenv("TOPOPLEX_BENCH_KINDS");
+  if (env == nullptr || *env == '\0') return true;
+  std::stringstream ss(env);
+  std::string name;
+  while (std::getline(ss, name, ','))
+    if (name == "iastar") return true;
+  return false;
+}
+
+uint32_t cofaces_stride() {
+  const char* env = std::getenv("TOPOPLEX_BENCH_COFACES_STRIDE");
+  if (env == nullptr || *env == '\0') return 1;
+  const long k = std::strtol(env, nullptr, 10);
+  if (k < 1) {
+    std::fprintf(stderr, "TOPOPLEX_BENCH_COFACES_STRIDE: '%s' is not a positive integer\n", env);
+    std::exit(2);
+  }
+  return uint32_t(k);
 }
 
 std::string tpx_message() { return tpx_last_error_message(); }
@@ -253,6 +275,16 @@ StructurePtr build_from_soup(const Soup& soup, uint32_t kind, TpxStatus* st) {
   return StructurePtr(s);
 }
 
+LivePtr live_from_soup(const Soup& soup, TpxStatus* st) {
+  TpxComplex* c = nullptr;
+  *st = tpx_complex_from_arrays(soup.n_vertices, soup.ids.data(), soup.offsets.data(), soup.size(), nullptr, 0, &c);
+  if (*st != TPX_STATUS_OK) return nullptr;
+  ComplexPtr owned(c);
+  TpxLive* l = nullptr;
+  *st = tpx_live_from_complex(c, &l);
+  return LivePtr(l);
+}
+
 StructurePtr load_structure(const std::string& path, uint32_t kind, TpxStatus* st) {
   TpxComplex* c = nullptr;
   *st = tpx_complex_from_file(path.c_str(), &c);
@@ -276,18 +308,28 @@ uint64_t simplex_count(const TpxStructure* s) {
 }
 
 uint64_t walk(benchmark::State& state, const TpxStructure* s, const std::vector<uint32_t>& simplices, uint32_t p,
-              const std::vector<uint32_t>& qs, Walker& w) {
+              const std::vector<uint32_t>& qs, Walker& w, uint32_t stride) {
   uint64_t count = 0;
   bool ok = true;
   const size_t arity = p + 1;
   uint32_t stamp = 0;
   tpx_check(tpx_structure_stamp(s, &stamp), "tpx_structure_stamp");
   const uint32_t n = uint32_t(simplices.size() / arity);
-  for (uint32_t i = 0; i < n; ++i) {
+  for (uint32_t i = 0; i < n; i += stride) {
     const TpxSimplex h{i, p, stamp};
     for (uint32_t q : qs) count += w.related(s, h, q, &ok);
   }
   if (!ok) fail(state, "tpx_related failed: " + tpx_message());
+  return count;
+}
+
+uint64_t walk_handles(benchmark::State& state, const TpxStructure* s, const std::vector<TpxSimplex>& handles,
+                      const std::vector<uint32_t>& qs, Walker& w) {
+  uint64_t count = 0;
+  bool ok = true;
+  for (const TpxSimplex& h : handles)
+    for (uint32_t q : qs) count += w.related_handles(s, h, q, &ok);
+  if (!ok) fail(state, "tpx_related_handles failed: " + tpx_message());
   return count;
 }
 
@@ -373,7 +415,7 @@ void time_build(benchmark::State& state, uint64_t simplices, Make make) {
   slot().clear();  // nothing else of ours on the heap while building
   for (auto _ : state) {
     TpxStatus st = TPX_STATUS_OK;
-    StructurePtr s = make(&st);
+    auto s = make(&st);
     if (!s) {
       fail(state, tpx_message());
       return;
@@ -384,7 +426,7 @@ void time_build(benchmark::State& state, uint64_t simplices, Make make) {
   }
   HeapUse use;
   TpxStatus st = TPX_STATUS_OK;
-  StructurePtr s = measure_heap([&] { return make(&st); }, &use);
+  auto s = measure_heap([&] { return make(&st); }, &use);
   set_heap_counters(state, use);
   set_elements(state, simplices);
 }
@@ -411,6 +453,12 @@ std::vector<Kind> kinds_that_build(const Soup& soup) {
 void add_tpx_build(const Soup& soup, const Kind& k, uint64_t simplices) {
   add("build", "tpx_" + k.name, Unit::Build, [&soup, k, simplices](benchmark::State& state) {
     time_build(state, simplices, [&](TpxStatus* st) { return build_from_soup(soup, k.id, st); });
+  });
+}
+
+void add_tpx_live_build(const Soup& soup, uint64_t simplices) {
+  add("build", "tpx_iastar", Unit::Build, [&soup, simplices](benchmark::State& state) {
+    time_build(state, simplices, [&](TpxStatus* st) { return live_from_soup(soup, st); });
   });
 }
 

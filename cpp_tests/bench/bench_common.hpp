@@ -7,7 +7,10 @@
 // Conventions every program follows (agreed with scripts/bench.sh):
 // - Benchmark names are `<op>/<lib>`: lib is a peer (`openmesh`, `cgal_sm`, `cgal_t3`, `gudhi`)
 //   or `tpx_<kind>` for each Topoplex kind that encodes the complex (TOPOPLEX_BENCH_KINDS=ia,ts
-//   restricts them; kinds that refuse the complex are reported on stderr and left out).
+//   restricts them; kinds that refuse the complex are reported on stderr and left out). The
+//   live complex (`tpx_iastar`: tpx_live_from_complex, navigated through tpx_live_structure) is
+//   a contender of topoplex_bench_gudhi only; TOPOPLEX_BENCH_KINDS names it `iastar`, the other
+//   programs accept the name and leave it out.
 // - Every benchmark sets SetItemsProcessed(elements retrieved) and the counter `elements`
 //   (per iteration). For a walk that is the number of rows (simplices) the relation returned
 //   over all elements; for `load`/`build` it is the number of simplices of the complex (all
@@ -81,8 +84,11 @@ struct Kind {
   uint32_t id;
   std::string name;  // "ia", used as `tpx_ia`
 };
-// All kinds, or those TOPOPLEX_BENCH_KINDS lists (comma-separated names; unknown names abort).
+// All kinds, or those TOPOPLEX_BENCH_KINDS lists (comma-separated names; unknown names abort;
+// `iastar` is accepted and left out: see live_from_env).
 std::vector<Kind> kinds_from_env();
+// Whether the live complex is a contender: TOPOPLEX_BENCH_KINDS unset or empty, or naming `iastar`.
+bool live_from_env();
 std::string tpx_message();
 // Aborts the program with the library's message if `st` is not OK (setup code only).
 void tpx_check(TpxStatus st, const char* what);
@@ -93,8 +99,12 @@ struct ComplexDeleter {
 struct StructureDeleter {
   void operator()(TpxStructure* s) const { tpx_structure_free(s); }
 };
+struct LiveDeleter {
+  void operator()(TpxLive* l) const { tpx_live_free(l); }
+};
 using ComplexPtr = std::unique_ptr<TpxComplex, ComplexDeleter>;
 using StructurePtr = std::unique_ptr<TpxStructure, StructureDeleter>;
+using LivePtr = std::unique_ptr<TpxLive, LiveDeleter>;
 
 ComplexPtr load_complex(const std::string& path);
 
@@ -124,6 +134,9 @@ std::vector<uint32_t> top_simplices(const TpxComplex* c, uint32_t p);
 // freed, so what stays is the structure alone. Coordinates are not passed: no structure keeps
 // geometry. Returns null (status in *st) if the kind refuses the complex.
 StructurePtr build_from_soup(const Soup& soup, uint32_t kind, TpxStatus* st);
+// The live complex's `build`: tpx_complex_from_arrays + tpx_live_from_complex, complex freed, as
+// build_from_soup. Returns null (status in *st) on a refusal.
+LivePtr live_from_soup(const Soup& soup, TpxStatus* st);
 // The kinds of kinds_from_env() that encode `soup`; each refusal is noted on stderr.
 std::vector<Kind> kinds_that_build(const Soup& soup);
 // Topoplex's `load`: tpx_complex_from_file + tpx_structure_build, complex freed.
@@ -168,18 +181,47 @@ class Walker {
     }
     return out;
   }
+  // Number of simplices of R_{p,q}(h) as handles (tpx_related_handles into a reused buffer: the
+  // call for structures without dense indices, the live complex); 0 with `ok` false on an error.
+  uint64_t related_handles(const TpxStructure* s, const TpxSimplex& h, uint32_t q, bool* ok) {
+    size_t out = 0;
+    TpxStatus st = tpx_related_handles(s, &h, q, TPX_ORDER_NATURAL, hbuf_.data(), hbuf_.size(), &out);
+    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+      hbuf_.resize(2 * out);
+      st = tpx_related_handles(s, &h, q, TPX_ORDER_NATURAL, hbuf_.data(), hbuf_.size(), &out);
+    }
+    if (st != TPX_STATUS_OK) {
+      *ok = false;
+      return 0;
+    }
+    return out;
+  }
   const uint32_t* data() const { return buf_.data(); }
 
  private:
   std::vector<uint32_t> buf_;
+  std::vector<TpxSimplex> hbuf_ = std::vector<TpxSimplex>(1024);
 };
+
+// Walks R_{p,q} over every handle of `handles` (located before timing) for each q in `qs`, one
+// tpx_related_handles call per handle and q, counting the answers; fails the benchmark on a
+// Topoplex error.
+uint64_t walk_handles(benchmark::State& state, const TpxStructure* s, const std::vector<TpxSimplex>& handles,
+                      const std::vector<uint32_t>& qs, Walker& w);
 
 // Walks R_{p,q} over every simplex of `simplices` (rows of p+1 ids, ascending lexicographic, so
 // row i is the simplex of dense index i) for each q in `qs`, through the handle API (one
 // tpx_related per simplex and q, from the handle {i, p, stamp}: no locating), counting the
 // answers; fails the benchmark on a Topoplex error.
+// With `stride` > 1 only the simplices of dense index 0, stride, 2·stride, ... are walked.
 uint64_t walk(benchmark::State& state, const TpxStructure* s, const std::vector<uint32_t>& simplices, uint32_t p,
-              const std::vector<uint32_t>& qs, Walker& w);
+              const std::vector<uint32_t>& qs, Walker& w, uint32_t stride = 1);
+
+// TOPOPLEX_BENCH_COFACES_STRIDE (default 1): topoplex_bench_gudhi's cofaces walks query every
+// stride-th vertex and edge (ascending lexicographic order, the same simplices for every library),
+// so that GUDHI 3.7's cofaces_simplex_range, which walks the tree below the simplex's vertices
+// for every query (quadratic over all vertices), can be timed on large complexes too.
+uint32_t cofaces_stride();
 
 // The walk of R_{p,q} over every p-simplex reading each answer inline from a lent relation
 // view (tpx_relation_view, iterated by topoplex::RelationView of topoplex.hpp: no library call
@@ -235,6 +277,8 @@ void add(const std::string& op, const std::string& lib, Unit unit, std::function
 // Topoplex's `load` and `build` benchmarks for one kind (same in every program).
 void add_tpx_load(const std::string& path, const Kind& k, uint64_t simplices);
 void add_tpx_build(const Soup& soup, const Kind& k, uint64_t simplices);
+// The live complex's `build` (`build/tpx_iastar`), timed and measured as add_tpx_build.
+void add_tpx_live_build(const Soup& soup, uint64_t simplices);
 
 // A peer's `load` / `build`: times `make` (destruction untimed), then measures one more build's
 // heap. `what` names the peer's object in the failure message; `geometry_bytes` (the peer's

@@ -4,16 +4,22 @@
 // Ops:
 //   build      from the complex's top simplices in memory: Simplex_tree::insert_simplex_and_subfaces
 //              of each; tpx_complex_from_arrays + tpx_structure_build for Topoplex
+//              (tpx_live_from_complex for the live complex, `tpx_iastar`)
 //   cofaces_v  the whole star of every vertex: GUDHI cofaces_simplex_range(v, 0); Topoplex
 //              R_{0,q} for q = 1..d (one tpx_relation call per q)
 //   cofaces_e  the whole star of every edge: cofaces_simplex_range(e, 0); R_{1,q}, q = 2..d
+// TOPOPLEX_BENCH_COFACES_STRIDE=k walks every k-th vertex and edge only (bench_common.hpp).
 // GUDHI's star includes the simplex itself, which the count leaves out. The tree uses the
 // lightest options GUDHI 3.7 offers (no filtration value, no key stored), so its heap is the
 // tree alone; simplex handles of the vertices and edges are looked up before timing, as
-// Topoplex's edge list is.
+// Topoplex's edge list is. The live complex (`tpx_iastar`, TOPOPLEX_BENCH_KINDS name `iastar`)
+// numbers only its vertices densely: its walks take handles located before timing (tpx_locate)
+// and call tpx_related_handles, one call per simplex and q as the other kinds' tpx_related.
 #include <gudhi/Simplex_tree.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <utility>
 
 #include "bench_common.hpp"
 
@@ -65,6 +71,35 @@ struct Built {
   uint32_t d = 0;
 };
 
+// The live complex and the handles of its vertices and edges (located before timing).
+struct BuiltLive {
+  LivePtr live;
+  const TpxStructure* view = nullptr;  // borrowed from `live`
+  std::vector<TpxSimplex> vertices, edges;
+  uint32_t d = 0;
+};
+
+std::unique_ptr<BuiltLive> make_live() {
+  auto b = std::make_unique<BuiltLive>();
+  TpxStatus st = TPX_STATUS_OK;
+  b->live = live_from_soup(g_soup, &st);
+  tpx_check(st, "tpx_live_from_complex");
+  tpx_check(tpx_live_structure(b->live.get(), &b->view), "tpx_live_structure");
+  tpx_check(tpx_structure_dimension(b->view, &b->d), "tpx_structure_dimension");
+  const auto locate = [&](const uint32_t* s, size_t len) {
+    TpxSimplex h{};
+    tpx_check(tpx_locate(b->view, s, len, &h), "tpx_locate");
+    return h;
+  };
+  const size_t stride = cofaces_stride();
+  for (uint32_t v = 0; v < g_soup.n_vertices; v += uint32_t(stride)) b->vertices.push_back(locate(&v, 1));
+  if (b->d >= 1) {
+    const auto edges = simplices_of(b->view, 1);
+    for (size_t i = 0; i < edges.size(); i += 2 * stride) b->edges.push_back(locate(&edges[i], 2));
+  }
+  return b;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -91,18 +126,39 @@ int main(int argc, char** argv) {
   }
 
   const std::vector<Kind> kinds = kinds_that_build(g_soup);
+  bool live = live_from_env();
+  if (live) {
+    TpxStatus st = TPX_STATUS_OK;
+    if (!live_from_soup(g_soup, &st)) {
+      note("tpx_iastar skipped: " + tpx_message());
+      live = false;
+    }
+  }
 
   add("build", "gudhi", Unit::Build, [simplices](benchmark::State& state) {
     time_peer_build<Stree>(state, simplices, [] { return gudhi_build(g_soup); }, "simplex tree");
   });
   for (const auto& k : kinds) add_tpx_build(g_soup, k, simplices);
+  if (live) add_tpx_live_build(g_soup, simplices);
 
   const std::function<std::unique_ptr<GudhiWalk>()> gmake = [] {
     auto w = std::make_unique<GudhiWalk>();
     w->st = gudhi_build(g_soup);
-    for (uint32_t v = 0; v < g_soup.n_vertices; ++v) w->vertices.push_back(w->st->find(std::vector<int>{int(v)}));
+    const uint32_t stride = cofaces_stride();
+    for (uint32_t v = 0; v < g_soup.n_vertices; v += stride)
+      w->vertices.push_back(w->st->find(std::vector<int>{int(v)}));
+    // Edges in ascending lexicographic order, as Topoplex lists them, so a stride picks the same.
+    std::vector<std::pair<std::pair<int, int>, Sh>> edges;
     for (Sh sh : w->st->skeleton_simplex_range(1))
-      if (w->st->dimension(sh) == 1) w->edges.push_back(sh);
+      if (w->st->dimension(sh) == 1) {
+        const auto vs = w->st->simplex_vertex_range(sh);  // decreasing
+        auto it = vs.begin();
+        const int hi = *it;
+        const int lo = *++it;
+        edges.push_back({{lo, hi}, sh});
+      }
+    std::sort(edges.begin(), edges.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (size_t i = 0; i < edges.size(); i += stride) w->edges.push_back(edges[i].second);
     return w;
   };
   for (const char* op : {"cofaces_v", "cofaces_e"}) {
@@ -140,10 +196,29 @@ int main(int argc, char** argv) {
         Walker w;
         uint64_t count = 0;
         for (auto _ : state) {
-          count = walk(state, b.s.get(), p == 0 ? b.vertices : b.edges, p, qs, w);
+          count = walk(state, b.s.get(), p == 0 ? b.vertices : b.edges, p, qs, w, cofaces_stride());
           benchmark::DoNotOptimize(count);
         }
         check_count(state, op, lib, count);
+        set_elements(state, count);
+      });
+    }
+  }
+  if (live) {
+    const std::function<std::unique_ptr<BuiltLive>()> make = make_live;
+    for (const char* op : {"cofaces_v", "cofaces_e"}) {
+      const uint32_t p = op[8] == 'v' ? 0 : 1;
+      add(op, "tpx_iastar", Unit::Walk, [=](benchmark::State& state) {
+        const BuiltLive& b = slot().get<BuiltLive>("tpx_iastar", make);
+        std::vector<uint32_t> qs;
+        for (uint32_t q = p + 1; q <= b.d; ++q) qs.push_back(q);
+        Walker w;
+        uint64_t count = 0;
+        for (auto _ : state) {
+          count = walk_handles(state, b.view, p == 0 ? b.vertices : b.edges, qs, w);
+          benchmark::DoNotOptimize(count);
+        }
+        check_count(state, op, "tpx_iastar", count);
         set_elements(state, count);
       });
     }

@@ -104,6 +104,7 @@ use crate::structures::BuildError;
 use crate::structures::common::{too_large, try_copy, try_vec, try_with_capacity};
 use crate::structures::ia::faces_containing as faces;
 
+mod build;
 mod edit;
 pub mod link;
 mod nav;
@@ -304,6 +305,17 @@ impl Key {
         }
     }
 
+    /// A copy of `vs`, already ascending (not checked): no sort.
+    #[inline]
+    pub(crate) fn sorted(vs: &[u32]) -> Key {
+        let mut ids = [0u32; MAX_DIMENSION + 1];
+        ids[..vs.len()].copy_from_slice(vs);
+        Key {
+            len: vs.len() as u8,
+            ids,
+        }
+    }
+
     pub(crate) fn as_slice(&self) -> &[u32] {
         &self.ids[..self.len as usize]
     }
@@ -328,19 +340,57 @@ impl LiveComplex {
     /// [`LiveComplex::from_complex`], or [`BuildError::TooLarge`] (kind `IaStar`) when an array
     /// sized from the input cannot be allocated: every array is reserved exactly, fallibly, before
     /// it is filled, so no allocation failure aborts the process.
+    ///
+    /// When the listing is the complex's top simplices (the usual case for maximal simplices)
+    /// the tables and stars come from it directly, the stars on several threads (`build`
+    /// module; the same arrays with any thread count); otherwise every top is pushed in turn.
     pub fn try_from_complex(complex: &Complex) -> Result<LiveComplex, BuildError> {
-        const K: StructureKind = StructureKind::IaStar;
+        let n = Self::check_vertex_count(complex)?;
+        if complex.tops_listed_needs_maps() {
+            return Self::try_from_complex_by_pushes(complex);
+        }
+        let parts = build::from_listing(complex, n)?;
+        let (coord_dim, coords) = Self::coords_of(complex)?;
+        Ok(LiveComplex {
+            tops: parts.tops,
+            live_tops: parts.live_tops,
+            alive: try_vec(StructureKind::IaStar, true, n, "vertex flags")?,
+            live_vertices: n as u32,
+            star: parts.star,
+            coord_dim,
+            coords,
+            epoch: 0,
+            images: Vec::new(),
+        })
+    }
+
+    fn check_vertex_count(complex: &Complex) -> Result<usize, BuildError> {
         let n = complex.vertex_count() as usize;
         if n > DEAD as usize {
             return Err(BuildError::TooLarge {
-                kind: K,
+                kind: StructureKind::IaStar,
                 what: format!("{n} vertices (at most 2^31)"),
             });
         }
-        let (coord_dim, coords) = match complex.coords() {
-            Some(c) => (c.dim, try_copy(K, &c.data, "coordinates")?),
+        Ok(n)
+    }
+
+    fn coords_of(complex: &Complex) -> Result<(usize, Vec<f64>), BuildError> {
+        Ok(match complex.coords() {
+            Some(c) => (
+                c.dim,
+                try_copy(StructureKind::IaStar, &c.data, "coordinates")?,
+            ),
             None => (0, Vec::new()),
-        };
+        })
+    }
+
+    /// [`LiveComplex::try_from_complex`] by pushing every top simplex, in listing order, into
+    /// its table and its vertices' stars: any complex, on one thread.
+    fn try_from_complex_by_pushes(complex: &Complex) -> Result<LiveComplex, BuildError> {
+        const K: StructureKind = StructureKind::IaStar;
+        let n = Self::check_vertex_count(complex)?;
+        let (coord_dim, coords) = Self::coords_of(complex)?;
         if complex.tops_listed_needs_maps() {
             complex
                 .try_listing_maps()

@@ -254,7 +254,7 @@ impl LiveComplex {
                     let top = Key::new(t);
                     faces_containing(top.as_slice(), sigma, q, |f| {
                         rows.push(Row {
-                            key: Key::new(f),
+                            key: Key::sorted(f), // faces come ascending
                             raw,
                             mask: mask_of(t, f),
                         })
@@ -455,8 +455,12 @@ impl Navigate for LiveComplex {
         }
         with_rows(|rows| {
             self.answer_rows(&sigma, q, rows);
-            // Lexicographic, and for q > p the smallest naming slot first.
-            rows.sort_unstable_by_key(|r| (r.key, r.raw));
+            // Lexicographic, and for q > p the smallest naming slot first. Every key has q + 1
+            // ids: compare those, not the whole inline arrays.
+            rows.sort_unstable_by(|a, b| {
+                let w = q + 1;
+                a.key.ids[..w].cmp(&b.key.ids[..w]).then(a.raw.cmp(&b.raw))
+            });
             let mut last: Option<Key> = None;
             for r in rows.iter() {
                 if last == Some(r.key) {

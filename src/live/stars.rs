@@ -114,6 +114,38 @@ impl Stars {
         })
     }
 
+    /// The stars of a CSR layout: vertex v's star is `entries[off[v] .. off[v + 1]]`, its block
+    /// at exactly its length, and 1/8 of spare room after the arena, as [`Stars::with_degrees`]
+    /// followed by a push of every entry in order leaves them. Fallible as `with_degrees`.
+    pub(crate) fn from_csr(
+        kind: StructureKind,
+        off: &[u32],
+        mut entries: Vec<u32>,
+    ) -> Result<Stars, BuildError> {
+        let total = entries.len();
+        let n = off.len() - 1;
+        let mut blocks = try_with_capacity(kind, n, "vertex stars")?;
+        blocks.extend(off.windows(2).map(|w| Block {
+            start: w[0],
+            len: w[1] - w[0],
+            cap: w[1] - w[0],
+        }));
+        if entries.capacity() != total + total / 8 {
+            // The arena's spare room; the inversion sized `entries` exactly. Grown in place
+            // (a large block is remapped, not copied), and shrunk if it was larger.
+            entries.shrink_to_fit();
+            entries
+                .try_reserve_exact(total / 8)
+                .map_err(|_| too_large(kind, 4 * (total + total / 8), "star entries"))?;
+        }
+        Ok(Stars {
+            words: entries,
+            blocks,
+            free: vec![END; CLASSES],
+            owned: total,
+        })
+    }
+
     /// Number of vertex slots.
     pub(crate) fn len(&self) -> usize {
         self.blocks.len()

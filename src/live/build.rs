@@ -1,0 +1,184 @@
+//! The live complex's tables and stars straight from a complex's listing, when the listing holds
+//! nothing but distinct top simplices (`Complex::tops_listed` reads it as is: a complex built
+//! from maximal simplices, as Rips and alpha complexes are listed).
+//!
+//! The stars are the inversion of the top → vertex relation ([`crate::parallel::try_invert`]):
+//! on several threads when the listing is large, each vertex's entries in listing order, so the
+//! arrays are the ones the serial build (`LiveComplex::try_from_complex` pushing every top in
+//! listing order into its vertices' stars) makes, with any thread count.
+//!
+//! Cost: one pass over the listing's offsets (top counts per dimension), one copying the tops
+//! into their tables, and the inversion's two passes (the parallel part): O(Σ_t |t|) work, 4
+//! bytes a listed simplex and 4 a vertex (plus 4 a vertex per thread when split) of scratch.
+
+use super::{NONE, SLOT_MASK, pack};
+use crate::complex::{Complex, MAX_DIMENSION};
+use crate::relation::StructureKind;
+use crate::structures::BuildError;
+use crate::structures::common::{too_large, try_with_capacity};
+
+use super::stars::Stars;
+
+const K: StructureKind = StructureKind::IaStar;
+
+/// What the live complex is built from: its top tables, live counts and stars.
+pub(super) struct Parts {
+    pub(super) tops: Vec<Vec<u32>>,
+    pub(super) live_tops: [usize; MAX_DIMENSION + 1],
+    pub(super) star: Stars,
+}
+
+/// Listing entry `i`'s packed top id (`NONE` for a listed vertex), the visit the inversion
+/// makes over a range of the listing.
+struct TopsOfListing<'a> {
+    complex: &'a Complex,
+    packed: &'a [u32],
+}
+
+impl crate::parallel::Incidences for TopsOfListing<'_> {
+    fn visit(&self, range: std::ops::Range<usize>, f: &mut impl FnMut(u32, u32)) {
+        for i in range {
+            let raw = self.packed[i];
+            if raw != NONE {
+                for &v in self.complex.input_simplex(i) {
+                    f(raw, v);
+                }
+            }
+        }
+    }
+}
+
+/// The parts for `complex` (whose listing is its top simplices, `!tops_listed_needs_maps()`),
+/// `n` vertices. Fallible as `LiveComplex::try_from_complex`.
+pub(super) fn from_listing(complex: &Complex, n: usize) -> Result<Parts, BuildError> {
+    let listed = complex.input_count();
+    let live_tops = count_tops(complex)?;
+    let (tops, packed) = copy_tops(complex, &live_tops)?;
+    let entries: usize = (1..=MAX_DIMENSION).map(|p| (p + 1) * live_tops[p]).sum();
+    if entries > u32::MAX as usize {
+        return Err(too_large(K, entries * 4, "star entries (at most 2^32)"));
+    }
+    let inc = TopsOfListing {
+        complex,
+        packed: &packed,
+    };
+    let (off, list) = crate::parallel::try_invert(n, listed, &inc)
+        .map_err(|bytes| too_large(K, bytes, "vertex stars"))?;
+    drop(packed);
+    let star = Stars::from_csr(K, &off, list)?;
+    Ok(Parts {
+        tops,
+        live_tops,
+        star,
+    })
+}
+
+/// Top p-simplices per dimension (p ≥ 1), each within the 2^28 slots a dimension has.
+fn count_tops(complex: &Complex) -> Result<[usize; MAX_DIMENSION + 1], BuildError> {
+    let mut per_dim = [0usize; MAX_DIMENSION + 1];
+    for i in 0..complex.input_count() {
+        per_dim[complex.input_simplex(i).len() - 1] += 1;
+    }
+    per_dim[0] = 0;
+    for (p, &count) in per_dim.iter().enumerate() {
+        if count > SLOT_MASK as usize + 1 {
+            return Err(BuildError::TooLarge {
+                kind: K,
+                what: format!("{count} top {p}-simplices (at most 2^28 per dimension)"),
+            });
+        }
+    }
+    Ok(per_dim)
+}
+
+/// The top tables (each top in its dimension's next slot, in listing order, with its winding)
+/// and every listing entry's packed top id.
+fn copy_tops(
+    complex: &Complex,
+    per_dim: &[usize; MAX_DIMENSION + 1],
+) -> Result<(Vec<Vec<u32>>, Vec<u32>), BuildError> {
+    let mut tops: Vec<Vec<u32>> = try_with_capacity(K, MAX_DIMENSION + 1, "top arrays")?;
+    for (p, &count) in per_dim.iter().enumerate() {
+        tops.push(try_with_capacity(
+            K,
+            count.saturating_mul(p + 1),
+            &format!("top {p}-simplex vertices"),
+        )?);
+    }
+    let mut packed = try_with_capacity(K, complex.input_count(), "listing's top ids")?;
+    for i in 0..complex.input_count() {
+        let s = complex.input_simplex(i);
+        let p = s.len() - 1;
+        if p == 0 {
+            packed.push(NONE);
+            continue;
+        }
+        packed.push(pack(p, (tops[p].len() / (p + 1)) as u32));
+        tops[p].extend_from_slice(s);
+    }
+    Ok((tops, packed))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::LiveComplex;
+    use crate::complex::Complex;
+
+    /// Random complexes of 1 to 4 dimensions over a few vertices, each as drawn (faces and
+    /// repeats absorbed: the listing maps are needed) and listed again as its top simplices
+    /// (the direct case), and one with a face listed besides its top.
+    fn complexes() -> Vec<Complex> {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut below = |k: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % k
+        };
+        let mut out = Vec::new();
+        for _ in 0..40 {
+            let n = 3 + below(12) as u32;
+            let mut rows: Vec<Vec<u32>> = Vec::new();
+            for _ in 0..1 + below(20) {
+                let len = 1 + below(5.min(n as u64)) as usize;
+                let mut s: Vec<u32> = Vec::new();
+                while s.len() < len {
+                    let v = below(n as u64) as u32;
+                    if !s.contains(&v) {
+                        s.push(v);
+                    }
+                }
+                rows.push(s);
+            }
+            let refs: Vec<&[u32]> = rows.iter().map(Vec::as_slice).collect();
+            let c = Complex::from_simplices(n, &refs).unwrap();
+            // Listed again as its top simplices only: the direct case.
+            let tops: Vec<&[u32]> = c.tops_listed().map(|(_, s)| s).collect();
+            out.push(Complex::from_simplices(n, &tops).unwrap());
+            out.push(c);
+        }
+        // Drawn: the triangle 0 1 2 and its edge 1 0 listed too (the listing maps are needed).
+        out.push(Complex::from_simplices(4, &[&[0, 1, 2][..], &[1, 0], &[3]]).unwrap());
+        out
+    }
+
+    #[test]
+    fn the_listing_build_equals_pushing_every_top() {
+        let mut direct = 0;
+        for c in complexes() {
+            let pushed = LiveComplex::try_from_complex_by_pushes(&c).unwrap();
+            let built = LiveComplex::try_from_complex(&c).unwrap();
+            built.check_invariants().unwrap();
+            assert_eq!(format!("{built:?}"), format!("{pushed:?}"));
+            assert_eq!(
+                crate::relation::Topology::storage(&built),
+                crate::relation::Topology::storage(&pushed)
+            );
+            direct += usize::from(!c.tops_listed_needs_maps());
+        }
+        assert!(
+            direct >= 40,
+            "only {direct} complexes took the listing build"
+        );
+    }
+}
