@@ -7,11 +7,11 @@
 //!    and a subset of N(v), written as the ranks of that subset packed `lb = bits(|N(v)| − 1)`
 //!    per rank (the block fails, and the caller takes another path, when the longest subset
 //!    needs more than 64 bits).
-//! 2. A block of at most [`MASK_MAX`] neighbours above v (most blocks of a Rips or alpha
-//!    complex: 2–22 in rips-building) by masks: its faces are bits of a set of 2^|N(v)|
-//!    subsets, visited from the largest mask down, which meets every face after its cofaces
-//!    and each level in lexicographic order; a face sets its facets' bits and its links read
-//!    their rows: nothing sorted or hashed ([`by_masks`]).
+//! 2. A block of at most 12 neighbours above v, or up to [`MASK_MAX`] with many faces (nearly
+//!    all blocks of a Rips or alpha complex: rips-building has 2–22) by masks: its faces are
+//!    bits of a set of 2^|N(v)| subsets, visited from the largest mask down, which meets every
+//!    face after its cofaces and each level in lexicographic order; a face sets its facets'
+//!    bits and its links read their rows: nothing sorted or hashed ([`by_masks`]).
 //!    Other blocks level by level downwards: the block's q-faces are its top simplices of
 //!    dimension q and the facets that keep v of its (q+1)-faces; the candidates carry the slot
 //!    they came from, so deduplicating a level also gives every slot but slot 0 its facet (the
@@ -23,8 +23,8 @@
 //!    thread) its buffers become the tables, nothing copied; several are copied into one array
 //!    on the threads, facet indices shifted by the rows of the ranges before.
 //! 4. Slot 0 (the facet without v) lies in the block of the face's second vertex: a search
-//!    among that block's rows, packed as words past their first id, starting after the facet
-//!    of the row before when both rows share their first two vertices (doubling steps).
+//!    among that block's rows, starting after the facet of the row before when both rows
+//!    share their first two vertices (doubling steps).
 //!
 //! Work: by masks, 2^|N(v)|/64 words plus q steps per q-face of the block; by levels, Σ over
 //! the blocks' faces of (q+1) candidates, hashed or sorted in cache-sized blocks; then one
@@ -127,18 +127,20 @@ struct Scratch {
     order: Vec<u32>,
 }
 
-/// Blocks of at most this many neighbours above v take [`by_masks`] (tables of 2^16 words
-/// and 2^16 bits per thread).
-const MASK_MAX: usize = 16;
+/// Blocks of at most this many neighbours above v may take [`by_masks`] (tables of 2^20 words
+/// and 2^20 bits per thread, had zeroed and touched only where faces are).
+const MASK_MAX: usize = 20;
 
-/// Whether v's block, with `m` neighbours above v, takes [`by_masks`]: its bit set of 2^m / 64
-/// words is scanned in less time than the block's faces take to write.
-fn takes_masks(m: usize) -> bool {
+/// Whether v's block, with `m` neighbours above v and `generated` faces counted with their
+/// repeats (Σ 2^a over its tops), takes [`by_masks`]: its bit set is small (2^12 bits), or
+/// its 2^m / 64 words few next to the faces (a vertex of a graph with 20 edges above it has
+/// 40, too few for 2^14 words).
+fn takes_masks(m: usize, generated: usize) -> bool {
     #[cfg(test)]
     if MASKS_TEST.load(std::sync::atomic::Ordering::Relaxed) == 0 {
         return false;
     }
-    m <= MASK_MAX
+    m <= 12 || (m <= MASK_MAX && 1usize << m <= generated.saturating_mul(256))
 }
 
 /// 0: blocks never take [`by_masks`], else [`takes_masks`]' rule.
@@ -154,16 +156,25 @@ const HASH_FROM: usize = 96;
 
 /// [`HASH_FROM`], which tests move to run every level through one path or the other (both give
 /// the same keys and links, so other tests running meanwhile are not disturbed).
-/// The first position at or after `lo` in sorted `keys` whose key is not below `key`, found by
-/// doubling steps from `lo` and then a binary search in the last step.
-fn gallop(keys: &[u64], lo: usize, key: u64) -> usize {
+/// The first position in `lo..hi` whose item is not `below` the one sought (`below` true on a
+/// prefix of the range), found by doubling steps from `lo` and then a binary search in the
+/// last step.
+fn gallop(lo: usize, hi: usize, below: impl Fn(usize) -> bool) -> usize {
     let (mut lo, mut step) = (lo, 1);
-    while lo + step <= keys.len() && keys[lo + step - 1] < key {
+    while lo + step <= hi && below(lo + step - 1) {
         lo += step;
         step *= 2;
     }
-    let hi = (lo + step).min(keys.len());
-    lo + keys[lo..hi].partition_point(|&x| x < key)
+    let mut end = (lo + step).min(hi);
+    while lo < end {
+        let mid = (lo + end) / 2;
+        if below(mid) {
+            lo = mid + 1;
+        } else {
+            end = mid;
+        }
+    }
+    lo
 }
 
 #[cfg(test)]
@@ -323,7 +334,7 @@ impl Complex {
             |&(p, j, pos): &TopAt| &self.tops[p as usize].get(j as usize)[pos as usize + 1..];
         // N(v) once each (marked in `rank`), sorted, then each id's rank.
         s.nbr.clear();
-        let mut dv = 0;
+        let (mut dv, mut generated) = (0, 0usize);
         for t in tops {
             let a = above(t);
             for &x in a {
@@ -333,6 +344,7 @@ impl Complex {
                 }
             }
             dv = dv.max(a.len());
+            generated += 1 << a.len();
         }
         if dv == 0 {
             return true;
@@ -342,10 +354,11 @@ impl Complex {
             s.rank[x as usize] = i as u32;
         }
         let m = s.nbr.len();
-        if takes_masks(m) {
+        if takes_masks(m, generated) {
             if s.mrow.len() < 1 << m {
-                s.mrow.resize(1 << m, 0);
-                s.present.resize((1usize << m).div_ceil(64), 0);
+                // Zeroed by the allocator: pages touched only where faces are.
+                s.mrow = vec![0; 1 << m];
+                s.present = vec![0; (1usize << m).div_ceil(64)];
             }
             for t in tops {
                 let r: usize = above(t)
@@ -736,17 +749,6 @@ fn facets_without_first(tables: &[SimplexTable], q: usize, links: &mut [u32]) ->
     for v in 0..n {
         start[v + 1] += start[v];
     }
-    let bits = id_bits(n.saturating_sub(1) as u32);
-    let pack = |r: &[u32]| r.iter().fold(0u64, |k, &v| k << bits | u64::from(v));
-    // The rows past their first id, as words when q − 1 ids fit (a compare of words).
-    let rest = if (q - 1) as u32 * bits <= 64 {
-        headroom(below.len() * 8)?;
-        Some(crate::parallel::map_collect(below.len(), |i| {
-            pack(&below.get(i)[1..])
-        }))
-    } else {
-        None
-    };
     // Runs of rows on several threads. Rows that share their first two vertices with the row
     // before have facets after its facet (same first vertex, larger rest): the search gallops
     // from there, a step or two in a Rips block instead of a search over the whole start.
@@ -766,21 +768,7 @@ fn facets_without_first(tables: &[SimplexTable], q: usize, links: &mut [u32]) ->
             {
                 lo = at + 1;
             }
-            let at = match &rest {
-                Some(keys) => gallop(&keys[..hi], lo, pack(&f[1..])),
-                None => {
-                    let (mut lo, mut hi) = (lo, hi);
-                    while lo < hi {
-                        let mid = (lo + hi) / 2;
-                        if below.get(mid) < f {
-                            lo = mid + 1;
-                        } else {
-                            hi = mid;
-                        }
-                    }
-                    lo
-                }
-            };
+            let at = gallop(lo, hi, |i| below.get(i) < f);
             debug_assert_eq!(below.get(at), f, "the closure holds every facet");
             row[0] = at as u32;
             prev = Some((sigma, at));
@@ -794,13 +782,13 @@ mod tests {
     use super::*;
 
     /// Random non-manifold complexes over few vertices (faces shared), dimension ≤ 7, some with
-    /// blocks of more than 16 neighbours above a vertex, and some
+    /// blocks of more than 20 neighbours above a vertex next to smaller ones, and some
     /// over ids up to 2^20 (global ids too wide for d of them to share a word; ranks are not).
     fn random_complexes() -> impl Iterator<Item = Complex> {
         let mut rnd = crate::complex::xorshift_below(0x9e37_79b9_7f4a_7c15);
         (0..300).map(move |i| {
-            // Some over up to 48 vertices with more simplices: blocks of more than 16
-            // neighbours above v (by levels) next to smaller ones (by masks).
+            // Some over up to 48 vertices with more simplices: blocks by levels (more than 20
+            // neighbours above v, or more than 12 and few faces) next to blocks by masks.
             let (n, spread, count) = match i % 5 {
                 0 => (1 << 20, 1 << 16, 24),
                 1 => (24 + rnd(24) as u32, 1, 96),
@@ -826,8 +814,7 @@ mod tests {
     fn blocks_give_the_closure_and_the_facet_links_of_every_simplex() {
         use std::sync::atomic::Ordering::Relaxed;
         // Every level sorted, then every level hashed, then the threshold the build uses, each
-        // with no block by masks; then the build's way (blocks of up to 16 neighbours above v
-        // by masks, others by levels).
+        // with no block by masks; then the build's way ([`takes_masks`]).
         MASKS_TEST.store(0, Relaxed);
         for (from, complexes) in [(usize::MAX, 100), (0, 100), (HASH_FROM, 300)] {
             HASH_FROM_TEST.store(from, Relaxed);
