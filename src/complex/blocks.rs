@@ -23,8 +23,8 @@
 //!    thread) its buffers become the tables, nothing copied; several are copied into one array
 //!    on the threads, facet indices shifted by the rows of the ranges before.
 //! 4. Slot 0 (the facet without v) lies in the block of the face's second vertex: a search
-//!    among that block's rows, starting after the facet of the row before when both rows
-//!    share their first two vertices (doubling steps).
+//!    among that block's rows, packed as words past their first id, starting after the facet
+//!    of the row before when both rows share their first two vertices (doubling steps).
 //!
 //! Work: by masks, 2^|N(v)|/64 words plus q steps per q-face of the block; by levels, Σ over
 //! the blocks' faces of (q+1) candidates, hashed or sorted in cache-sized blocks; then one
@@ -156,25 +156,16 @@ const HASH_FROM: usize = 96;
 
 /// [`HASH_FROM`], which tests move to run every level through one path or the other (both give
 /// the same keys and links, so other tests running meanwhile are not disturbed).
-/// The first position in `lo..hi` whose item is not `below` the one sought (`below` true on a
-/// prefix of the range), found by doubling steps from `lo` and then a binary search in the
-/// last step.
-fn gallop(lo: usize, hi: usize, below: impl Fn(usize) -> bool) -> usize {
+/// The first position at or after `lo` in sorted `keys` whose key is not below `key`, found by
+/// doubling steps from `lo` and then a binary search in the last step.
+fn gallop(keys: &[u64], lo: usize, key: u64) -> usize {
     let (mut lo, mut step) = (lo, 1);
-    while lo + step <= hi && below(lo + step - 1) {
+    while lo + step <= keys.len() && keys[lo + step - 1] < key {
         lo += step;
         step *= 2;
     }
-    let mut end = (lo + step).min(hi);
-    while lo < end {
-        let mid = (lo + end) / 2;
-        if below(mid) {
-            lo = mid + 1;
-        } else {
-            end = mid;
-        }
-    }
-    lo
+    let hi = (lo + step).min(keys.len());
+    lo + keys[lo..hi].partition_point(|&x| x < key)
 }
 
 #[cfg(test)]
@@ -749,6 +740,17 @@ fn facets_without_first(tables: &[SimplexTable], q: usize, links: &mut [u32]) ->
     for v in 0..n {
         start[v + 1] += start[v];
     }
+    let bits = id_bits(n.saturating_sub(1) as u32);
+    let pack = |r: &[u32]| r.iter().fold(0u64, |k, &v| k << bits | u64::from(v));
+    // The rows past their first id, as words when q − 1 ids fit (a compare of words).
+    let rest = if (q - 1) as u32 * bits <= 64 {
+        headroom(below.len() * 8)?;
+        Some(crate::parallel::map_collect(below.len(), |i| {
+            pack(&below.get(i)[1..])
+        }))
+    } else {
+        None
+    };
     // Runs of rows on several threads. Rows that share their first two vertices with the row
     // before have facets after its facet (same first vertex, larger rest): the search gallops
     // from there, a step or two in a Rips block instead of a search over the whole start.
@@ -768,7 +770,21 @@ fn facets_without_first(tables: &[SimplexTable], q: usize, links: &mut [u32]) ->
             {
                 lo = at + 1;
             }
-            let at = gallop(lo, hi, |i| below.get(i) < f);
+            let at = match &rest {
+                Some(keys) => gallop(&keys[..hi], lo, pack(&f[1..])),
+                None => {
+                    let (mut lo, mut hi) = (lo, hi);
+                    while lo < hi {
+                        let mid = (lo + hi) / 2;
+                        if below.get(mid) < f {
+                            lo = mid + 1;
+                        } else {
+                            hi = mid;
+                        }
+                    }
+                    lo
+                }
+            };
             debug_assert_eq!(below.get(at), f, "the closure holds every facet");
             row[0] = at as u32;
             prev = Some((sigma, at));
