@@ -855,6 +855,8 @@ mod tests {
                 let want = crate::structures::common::facet_links(&levels, p);
                 assert_eq!(got.boundary[p], want, "dimension {p}");
             }
+            let tables = c.closure_by_blocks(Want::Tables).unwrap().unwrap().tables;
+            assert_eq!(tables, levels, "tables without links");
             let counts = c.closure_by_blocks(Want::Counts).unwrap().unwrap().counts;
             let lens: Vec<usize> = levels.iter().map(SimplexTable::len).collect();
             assert_eq!(counts, lens);
