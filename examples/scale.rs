@@ -9,7 +9,8 @@
 //!   to TPX, open, vertex-star walks on the opened structure; one `phase seconds peak_rss_mib
 //!   cpu_seconds main_thread_cpu_seconds` line each.
 //! - `scale soup FILE THREADS KIND,..`: what the side-by-side `build` op times (a complex from
-//!   the listing's arrays, then the structure), best of 5, with the complex's share;
+//!   the listing's arrays, then the structure), best of 5, with the complex's share and the
+//!   least CPU time of the 5 on the calling thread (the whole build's with one thread);
 //!   `iastar` (the live complex) is accepted besides the nine kinds, here and in `structures`;
 //! - `scale structures FILE THREADS [KIND,..]`: builds each structure (every kind, or the
 //!   listed ones) with 1 and with THREADS threads, one `kind seconds_1 seconds_N same` line
@@ -31,6 +32,16 @@ fn peak_mib() -> f64 {
         .find_map(|l| l.strip_prefix("VmHWM:"))
         .and_then(|v| v.trim().trim_end_matches("kB").trim().parse::<f64>().ok())
         .map_or(0.0, |kb| kb / 1024.0)
+}
+
+/// This thread's CPU time in seconds (the first field of /proc/thread-self/schedstat, in ns;
+/// 0 where that file is missing): with one thread, a build's time without the waits that other
+/// processes on a loaded machine add to its wall time.
+fn thread_cpu() -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or(0.0, |ns| ns * 1e-9)
 }
 
 fn grid(k: u32, out: &Path) -> std::io::Result<()> {
@@ -335,15 +346,18 @@ fn soup(file: &Path, threads: usize, kinds: &[StructureKind]) {
         .unwrap_or_else(|| raw.ids.iter().max().map_or(0, |m| m + 1));
     topoplex::parallel::set_threads(threads);
     for &kind in kinds {
-        let (mut best, mut complex_best) = (f64::INFINITY, f64::INFINITY);
+        let (mut best, mut complex_best, mut cpu_best) =
+            (f64::INFINITY, f64::INFINITY, f64::INFINITY);
         let mut simplices = 0;
         for _ in 0..5 {
+            let cpu = thread_cpu();
             let t = Instant::now();
             let c =
                 topoplex::Complex::from_arrays(n, &raw.ids, &raw.offsets, None).expect("complex");
             let tc = t.elapsed().as_secs_f64();
             let s = topoplex::structures::build(kind, &c).expect("build");
             let all = t.elapsed().as_secs_f64();
+            cpu_best = cpu_best.min(thread_cpu() - cpu);
             if simplices == 0 {
                 // Once: the live complex counts by enumerating its faces.
                 simplices = (0..=s.dimension()).map(|p| s.count(p)).sum::<usize>();
@@ -353,7 +367,7 @@ fn soup(file: &Path, threads: usize, kinds: &[StructureKind]) {
             }
         }
         println!(
-            "{kind} {best:.6} s (complex {complex_best:.6} s) {simplices} simplices {:.1} ns/simplex",
+            "{kind} {best:.6} s (complex {complex_best:.6} s) {simplices} simplices {:.1} ns/simplex, this thread's CPU {cpu_best:.6} s",
             best * 1e9 / simplices as f64
         );
     }

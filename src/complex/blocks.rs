@@ -7,21 +7,28 @@
 //!    and a subset of N(v), written as the ranks of that subset packed `lb = bits(|N(v)| − 1)`
 //!    per rank (the block fails, and the caller takes another path, when the longest subset
 //!    needs more than 64 bits).
-//! 2. Level by level downwards: the block's q-faces are its top simplices of dimension q and
-//!    the facets that keep v of its (q+1)-faces; the candidates carry the slot they came from,
-//!    so deduplicating a level also gives every slot but slot 0 its facet (the facet that drops
-//!    vertex i ≥ 1 of a face lies in the same block). Small levels sort the candidates; levels
-//!    of [`HASH_FROM`] candidates or more put them in a hash set and sort only the distinct
-//!    faces (a Rips level has several candidates per face).
-//! 3. Blocks are appended in vertex order to their range's buffers, the first range's buffers
-//!    becoming the tables (nothing copied with one thread); local facet indices are shifted by
-//!    the rows of the blocks before.
+//! 2. A block of at most 12 neighbours above v, or up to [`MASK_MAX`] with many faces (nearly
+//!    all blocks of a Rips or alpha complex: rips-building has 2–22) by masks: its faces are
+//!    bits of a set of 2^|N(v)| subsets, visited from the largest mask down, which meets every
+//!    face after its cofaces and each level in lexicographic order; a face sets its facets'
+//!    bits and its links read their rows: nothing sorted or hashed ([`by_masks`]).
+//!    Other blocks level by level downwards: the block's q-faces are its top simplices of
+//!    dimension q and the facets that keep v of its (q+1)-faces; the candidates carry the slot
+//!    they came from, so deduplicating a level also gives every slot but slot 0 its facet (the
+//!    facet that drops vertex i ≥ 1 of a face lies in the same block). Small levels sort the
+//!    candidates; levels of [`HASH_FROM`] candidates or more put them in a hash set and sort
+//!    only the distinct faces (a Rips level has several candidates per face).
+//! 3. Blocks are appended in vertex order to their range's buffers, reserved for every face
+//!    the range's tops can give (only the pages written are touched). With one range (one
+//!    thread) its buffers become the tables, nothing copied; several are copied into one array
+//!    on the threads, facet indices shifted by the rows of the ranges before.
 //! 4. Slot 0 (the facet without v) lies in the block of the face's second vertex: a search
 //!    among that block's rows, packed as words past their first id, starting after the facet
 //!    of the row before when both rows share their first two vertices (doubling steps).
 //!
-//! Work: Σ over the blocks' faces of (q+1) candidates, hashed or sorted in cache-sized blocks,
-//! plus one search per simplex; memory: the closure's tables and links, and each block's
+//! Work: by masks, 2^|N(v)|/64 words plus q steps per q-face of the block; by levels, Σ over
+//! the blocks' faces of (q+1) candidates, hashed or sorted in cache-sized blocks; then one
+//! search per simplex; memory: the closure's tables and links, and each block's
 //! scratch.
 
 use super::table::{headroom, id_bits};
@@ -112,7 +119,33 @@ struct Scratch {
     /// [`level_hashed`]'s distinct keys with their insertion ids, then each id's sorted row.
     distinct: Vec<(u64, u32)>,
     row_of: Vec<u32>,
+    /// [`by_masks`]: a bit per subset of N(v) (bit `m − 1 − rank` for each rank in it) that is
+    /// a face of the block not yet visited; each visited face's row in its level; the faces in
+    /// visiting order, each as its mask and its level above [`MASK_MAX`] bits.
+    present: Vec<u64>,
+    mrow: Vec<u32>,
+    order: Vec<u32>,
 }
+
+/// Blocks of at most this many neighbours above v may take [`by_masks`] (tables of 2^20 words
+/// and 2^20 bits per thread, had zeroed and touched only where faces are).
+const MASK_MAX: usize = 20;
+
+/// Whether v's block, with `m` neighbours above v and `generated` faces counted with their
+/// repeats (Σ 2^a over its tops), takes [`by_masks`]: its bit set is small (2^12 bits), or
+/// its 2^m / 64 words few next to the faces (a vertex of a graph with 20 edges above it has
+/// 40, too few for 2^14 words).
+fn takes_masks(m: usize, generated: usize) -> bool {
+    #[cfg(test)]
+    if MASKS_TEST.load(std::sync::atomic::Ordering::Relaxed) == 0 {
+        return false;
+    }
+    m <= 12 || (m <= MASK_MAX && 1usize << m <= generated.saturating_mul(256))
+}
+
+/// 0: blocks never take [`by_masks`], else [`takes_masks`]' rule.
+#[cfg(test)]
+static MASKS_TEST: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(1);
 
 /// A free slot of [`level_hashed`]'s set: no key is all ones (a key's ranks are distinct, so
 /// a key of one rank has at most 32 bits and a longer key two different ranks).
@@ -147,8 +180,7 @@ fn hash_from() -> usize {
 }
 
 /// `len` more ids at the end of `v`, zeroed, for the caller to write (one capacity check per
-/// block level instead of one per row). Growth doubles: large buffers are reallocated by
-/// remapping their pages, not copying them, and the first part's buffers become the tables.
+/// block level instead of one per row; [`Part::reserved`] holds room for them all).
 fn grow(v: &mut Vec<u32>, len: usize) -> &mut [u32] {
     let at = v.len();
     v.resize(at + len, 0);
@@ -164,6 +196,59 @@ struct Part {
     /// below counted from this part's first.
     links: Vec<Vec<u32>>,
 }
+
+impl Part {
+    /// An empty part whose buffers hold, without growing, every face its tops can give: a top
+    /// with `a` vertices above v gives v's block at most C(a, q) q-faces. The bound is loose
+    /// (a Rips face comes from several tops) but only the pages written are ever touched, and
+    /// no block pays for a reallocation or its copy.
+    fn reserved(d: usize, tops: &[TopAt], want: Want) -> Result<Part, usize> {
+        let mut part = Part {
+            counts: vec![0; d + 1],
+            rows: vec![Vec::new(); d + 1],
+            links: vec![Vec::new(); d + 1],
+        };
+        if want == Want::Counts {
+            return Ok(part);
+        }
+        // Tops by their number of vertices above v, then C(a, q) faces from each.
+        let mut by_above = [0usize; super::MAX_DIMENSION + 1];
+        for &(p, _, pos) in tops {
+            by_above[usize::from(p - pos)] += 1;
+        }
+        let mut faces = [0usize; super::MAX_DIMENSION + 1];
+        for (a, &k) in by_above.iter().enumerate() {
+            for (q, f) in faces.iter_mut().enumerate().take(a + 1).skip(1) {
+                *f = f.saturating_add(k.saturating_mul(BINOMIAL[a][q]));
+            }
+        }
+        for (q, &f) in faces.iter().enumerate().take(d + 1).skip(1) {
+            let ids = f.saturating_mul(q + 1);
+            let bytes = ids.saturating_mul(4);
+            part.rows[q].try_reserve_exact(ids).map_err(|_| bytes)?;
+            if want == Want::Links {
+                part.links[q].try_reserve_exact(ids).map_err(|_| bytes)?;
+            }
+        }
+        Ok(part)
+    }
+}
+
+/// C(a, q) for a, q ≤ 15.
+const BINOMIAL: [[usize; 16]; 16] = {
+    let mut c = [[0usize; 16]; 16];
+    let mut a = 0;
+    while a < 16 {
+        c[a][0] = 1;
+        let mut q = 1;
+        while q <= a {
+            c[a][q] = c[a - 1][q - 1] + c[a - 1][q];
+            q += 1;
+        }
+        a += 1;
+    }
+    c
+};
 
 /// A block's shape: its ranks' width and its longest subset.
 #[derive(Clone, Copy)]
@@ -196,15 +281,12 @@ impl Complex {
             // One rank per vertex id (a chunk at a time per thread: threads × 4n bytes).
             s.rank.try_reserve_exact(n).map_err(|_| n * 4)?;
             s.rank.resize(n, u32::MAX);
-            let mut part = Part {
-                counts: vec![0; d + 1],
-                rows: vec![Vec::new(); d + 1],
-                links: vec![Vec::new(); d + 1],
-            };
+            let range = parts[c].clone();
+            let mut part = Part::reserved(d, &at[off[range.start]..off[range.end]], want)?;
             s.seeds = vec![Vec::new(); d + 1];
             s.keys = vec![Vec::new(); d + 1];
             s.links = vec![Vec::new(); d + 1];
-            for v in parts[c].clone() {
+            for v in range {
                 if !self.block(v as u32, &at[off[v]..off[v + 1]], want, &mut s, &mut part) {
                     return Ok(None);
                 }
@@ -243,7 +325,7 @@ impl Complex {
             |&(p, j, pos): &TopAt| &self.tops[p as usize].get(j as usize)[pos as usize + 1..];
         // N(v) once each (marked in `rank`), sorted, then each id's rank.
         s.nbr.clear();
-        let mut dv = 0;
+        let (mut dv, mut generated) = (0, 0usize);
         for t in tops {
             let a = above(t);
             for &x in a {
@@ -253,6 +335,7 @@ impl Complex {
                 }
             }
             dv = dv.max(a.len());
+            generated += 1 << a.len();
         }
         if dv == 0 {
             return true;
@@ -260,6 +343,25 @@ impl Complex {
         s.nbr.sort_unstable();
         for (i, &x) in s.nbr.iter().enumerate() {
             s.rank[x as usize] = i as u32;
+        }
+        let m = s.nbr.len();
+        if takes_masks(m, generated) {
+            if s.mrow.len() < 1 << m {
+                // Zeroed by the allocator: pages touched only where faces are.
+                s.mrow = vec![0; 1 << m];
+                s.present = vec![0; (1usize << m).div_ceil(64)];
+            }
+            for t in tops {
+                let r: usize = above(t)
+                    .iter()
+                    .fold(0, |r, &x| r | 1 << (m - 1 - s.rank[x as usize] as usize));
+                s.present[r >> 6] |= 1 << (r & 63);
+            }
+            for &x in &s.nbr {
+                s.rank[x as usize] = u32::MAX;
+            }
+            by_masks(v, Shape { lb: m as u32, dv }, want, s, part);
+            return true;
         }
         let lb = id_bits(s.nbr.len() as u32 - 1);
         let fits = dv as u32 * lb <= 64;
@@ -303,6 +405,87 @@ impl Complex {
         }
         emit(v, shape, want, s, part);
         true
+    }
+}
+
+/// Step 2 for a block of few neighbours above v (`shape.lb` is their number m here): its faces
+/// are subsets of N(v), each a mask with bit `m − 1 − rank` per rank, the tops' masks set in
+/// the bit set `s.present`. Masks in descending order meet every face after all its cofaces
+/// (supersets are larger), so one pass, taking the highest set bit each time, gives each face
+/// its row and sets its facets' bits; and among masks of one level, descending is the
+/// lexicographic order of the rank sequences (the first rank that differs is the highest bit
+/// that differs). A second pass over the faces in that order writes the rows and the facet
+/// links of slots 1... No candidate is sorted or hashed: O(2^m / 64 + Σ faces · q), and the
+/// bit set is empty again at the end.
+fn by_masks(v: u32, shape: Shape, want: Want, s: &mut Scratch, part: &mut Part) {
+    let Shape { lb, dv } = shape;
+    let m = lb as usize;
+    let mut count = [0u32; super::MAX_DIMENSION + 2];
+    s.order.clear();
+    for w in (0..(1usize << m).div_ceil(64)).rev() {
+        while s.present[w] != 0 {
+            let hb = 63 - s.present[w].leading_zeros() as usize;
+            s.present[w] ^= 1 << hb;
+            let r = w << 6 | hb;
+            if r == 0 {
+                break; // v alone, the last bit
+            }
+            let q = r.count_ones() as usize;
+            s.mrow[r] = count[q];
+            count[q] += 1;
+            s.order.push((r | q << MASK_MAX) as u32);
+            let mut x = r;
+            while x != 0 {
+                let b = x & x.wrapping_neg();
+                s.present[(r ^ b) >> 6] |= 1 << ((r ^ b) & 63);
+                x ^= b;
+            }
+        }
+    }
+    for (total, &c) in part.counts.iter_mut().zip(&count).take(dv + 1) {
+        *total += c as usize;
+    }
+    if want == Want::Counts {
+        return;
+    }
+    // Where this block's rows of each level start, as ids and as rows.
+    let (mut at, mut base) = ([0usize; 17], [0u32; 17]);
+    for q in 1..=dv {
+        at[q] = part.rows[q].len();
+        base[q] = (at[q] / (q + 1)) as u32;
+        grow(&mut part.rows[q], count[q] as usize * (q + 1));
+        if want == Want::Links {
+            grow(&mut part.links[q], count[q] as usize * (q + 1));
+        }
+    }
+    for &o in &s.order {
+        let (r, q) = (o as usize & ((1 << MASK_MAX) - 1), o as usize >> MASK_MAX);
+        let w = q + 1;
+        let out = &mut part.rows[q][at[q]..at[q] + w];
+        out[0] = v;
+        // Ranks ascending: bits from the highest.
+        let mut x = r;
+        for o in &mut out[1..] {
+            let hb = usize::BITS - 1 - x.leading_zeros();
+            *o = s.nbr[m - 1 - hb as usize];
+            x ^= 1 << hb;
+        }
+        if want == Want::Links {
+            let link = &mut part.links[q][at[q]..at[q] + w];
+            if q == 1 {
+                link.copy_from_slice(&[out[1], v]);
+            } else {
+                // Slot e drops the e-th rank: the e-th highest bit.
+                link[0] = UNSET;
+                let mut x = r;
+                for l in &mut link[1..] {
+                    let b = 1usize << (usize::BITS - 1 - x.leading_zeros());
+                    *l = s.mrow[r ^ b] + base[q - 1];
+                    x ^= b;
+                }
+            }
+        }
+        at[q] += w;
     }
 }
 
@@ -469,15 +652,14 @@ fn emit(v: u32, shape: Shape, want: Want, s: &Scratch, part: &mut Part) {
     }
 }
 
-/// Step 3: each level's rows, parts in order (so in vertex order: sorted tables). The first
-/// part's buffer is extended in place: with one part (one thread) nothing is copied.
+/// Step 3: each level's rows, parts in order (so in vertex order: sorted tables). With one
+/// part (one thread) its buffers become the tables, nothing copied.
 fn concat_rows(parts: &mut [Part], n: u32, d: usize) -> Result<Vec<SimplexTable>, usize> {
     let mut tables = vec![SimplexTable::try_vertices(n)?];
+    let none = vec![0; parts.len()];
     for q in 1..=d {
-        let ids = append_parts(
-            parts.iter_mut().map(|p| std::mem::take(&mut p.rows[q])),
-            |_| 0,
-        )?;
+        let bufs = parts.iter_mut().map(|p| std::mem::take(&mut p.rows[q]));
+        let ids = append_parts(bufs.collect(), &none)?;
         tables.push(SimplexTable::from_sorted_unique(q + 1, ids));
     }
     Ok(tables)
@@ -498,36 +680,49 @@ fn concat_links(parts: &mut [Part], d: usize) -> Result<Vec<Vec<u32>>, usize> {
                 Some(s)
             })
             .collect();
-        let links = append_parts(
-            parts.iter_mut().map(|p| std::mem::take(&mut p.links[q])),
-            |k| shifts[k],
-        )?;
-        boundary.push(links);
+        let bufs = parts.iter_mut().map(|p| std::mem::take(&mut p.links[q]));
+        boundary.push(append_parts(bufs.collect(), &shifts)?);
     }
     Ok(boundary)
 }
 
-/// The parts' buffers one after the other in the first one's, part k's ids shifted by
-/// `shift(k)` ([`UNSET`] kept); the result holds no spare capacity.
-fn append_parts(
-    mut bufs: impl Iterator<Item = Vec<u32>>,
-    shift: impl Fn(usize) -> u32,
-) -> Result<Vec<u32>, usize> {
-    let mut all = bufs.next().unwrap_or_default();
-    for (k, b) in bufs.enumerate() {
-        let s = shift(k + 1);
-        all.try_reserve_exact(b.len())
-            .map_err(|_| (all.len() + b.len()) * 4)?;
-        if s == 0 {
-            all.extend_from_slice(&b);
-        } else {
-            all.extend(
-                b.iter()
-                    .map(|&i| if i == UNSET { i } else { i.wrapping_add(s) }),
-            );
-        }
+/// The parts' buffers one after the other, part k's ids shifted by `shifts[k]` ([`UNSET`]
+/// kept); the result holds no spare capacity. One part is returned as it is; several are
+/// copied into one array on the threads, each part to its place.
+fn append_parts(mut bufs: Vec<Vec<u32>>, shifts: &[u32]) -> Result<Vec<u32>, usize> {
+    use rayon::prelude::*;
+    if bufs.len() < 2 {
+        let mut all = bufs.pop().unwrap_or_default();
+        all.shrink_to_fit();
+        return Ok(all);
     }
-    all.shrink_to_fit();
+    let total: usize = bufs.iter().map(Vec::len).sum();
+    // Probed, then had zeroed from the allocator: fresh pages, faulted in by the thread that
+    // copies into them rather than cleared by this one.
+    headroom(total.saturating_mul(4))?;
+    let mut all = vec![0u32; total];
+    let mut pieces = Vec::with_capacity(bufs.len());
+    let mut rest = all.as_mut_slice();
+    for b in &bufs {
+        let (piece, after) = rest.split_at_mut(b.len());
+        pieces.push(piece);
+        rest = after;
+    }
+    crate::parallel::install(|| {
+        pieces
+            .into_par_iter()
+            .zip(bufs)
+            .zip(shifts)
+            .for_each(|((out, b), &s)| {
+                if s == 0 {
+                    out.copy_from_slice(&b);
+                } else {
+                    for (o, &i) in out.iter_mut().zip(&b) {
+                        *o = if i == UNSET { i } else { i.wrapping_add(s) };
+                    }
+                }
+            })
+    });
     Ok(all)
 }
 
@@ -602,18 +797,21 @@ fn facets_without_first(tables: &[SimplexTable], q: usize, links: &mut [u32]) ->
 mod tests {
     use super::*;
 
-    /// Random non-manifold complexes over few vertices (faces shared), dimension ≤ 7, and some
+    /// Random non-manifold complexes over few vertices (faces shared), dimension ≤ 7, some with
+    /// blocks of more than 20 neighbours above a vertex next to smaller ones, and some
     /// over ids up to 2^20 (global ids too wide for d of them to share a word; ranks are not).
     fn random_complexes() -> impl Iterator<Item = Complex> {
         let mut rnd = crate::complex::xorshift_below(0x9e37_79b9_7f4a_7c15);
         (0..300).map(move |i| {
-            let (n, spread) = if i % 5 == 0 {
-                (1 << 20, 1 << 16)
-            } else {
-                (1 + rnd(16) as u32, 1)
+            // Some over up to 48 vertices with more simplices: blocks by levels (more than 20
+            // neighbours above v, or more than 12 and few faces) next to blocks by masks.
+            let (n, spread, count) = match i % 5 {
+                0 => (1 << 20, 1 << 16, 24),
+                1 => (24 + rnd(24) as u32, 1, 96),
+                _ => (1 + rnd(16) as u32, 1, 24),
             };
             let small = n / spread;
-            let simplices: Vec<Vec<u32>> = (0..rnd(24))
+            let simplices: Vec<Vec<u32>> = (0..rnd(count))
                 .map(|_| {
                     let mut s: Vec<u32> = (0..1 + rnd(8))
                         .map(|_| rnd(small as u64) as u32 * spread)
@@ -631,11 +829,15 @@ mod tests {
     #[test]
     fn blocks_give_the_closure_and_the_facet_links_of_every_simplex() {
         use std::sync::atomic::Ordering::Relaxed;
-        // Every level sorted, then every level hashed, then the threshold the build uses.
+        // Every level sorted, then every level hashed, then the threshold the build uses, each
+        // with no block by masks; then the build's way ([`takes_masks`]).
+        MASKS_TEST.store(0, Relaxed);
         for (from, complexes) in [(usize::MAX, 100), (0, 100), (HASH_FROM, 300)] {
             HASH_FROM_TEST.store(from, Relaxed);
             blocks_match_levels(complexes);
         }
+        MASKS_TEST.store(1, Relaxed);
+        blocks_match_levels(300);
     }
 
     fn blocks_match_levels(complexes: usize) {
@@ -653,6 +855,8 @@ mod tests {
                 let want = crate::structures::common::facet_links(&levels, p);
                 assert_eq!(got.boundary[p], want, "dimension {p}");
             }
+            let tables = c.closure_by_blocks(Want::Tables).unwrap().unwrap().tables;
+            assert_eq!(tables, levels, "tables without links");
             let counts = c.closure_by_blocks(Want::Counts).unwrap().unwrap().counts;
             let lens: Vec<usize> = levels.iter().map(SimplexTable::len).collect();
             assert_eq!(counts, lens);

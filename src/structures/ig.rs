@@ -136,8 +136,11 @@ fn invert(n: usize, links: &[u32], width: usize) -> Result<(Vec<u32>, Vec<u32>),
     impl crate::parallel::Incidences for Rows<'_> {
         fn visit(&self, range: std::ops::Range<usize>, f: &mut impl FnMut(u32, u32)) {
             let w = self.1;
-            for (k, &t) in self.0[range.start * w..range.end * w].iter().enumerate() {
-                f((range.start + k / w) as u32, t);
+            let rows = self.0[range.start * w..range.end * w].chunks_exact(w);
+            for (x, row) in (range.start as u32..).zip(rows) {
+                for &t in row {
+                    f(x, t);
+                }
             }
         }
     }
