@@ -226,6 +226,57 @@ fn dump(file: &Path, kind: &str, p: usize, q: usize) -> Output {
 }
 
 #[test]
+fn iastar_dumps_what_the_ig_dumps_on_a_mixed_complex() {
+    //        4
+    //       / \
+    //      3---5---6      7     the tetrahedron 0 1 2 3 below its apex 3, the triangle 3 4 5
+    //     /|\                   hanging from the apex, the wire edge 5 6, vertex 7 alone
+    //    0-+-2
+    //     \|/
+    //      1
+    let f = temp_file("mixed.simplices", "s 0 1 2 3\ns 3 4 5\ns 5 6\ns 7\n");
+    for p in 0..=3 {
+        for q in 0..=3 {
+            let want = dump(&f, "ig", p, q);
+            let got = dump(&f, "iastar", p, q);
+            assert!(
+                got.status.success(),
+                "iastar R_{{{p},{q}}}: {}",
+                stderr(&got)
+            );
+            assert_eq!(
+                stdout(&got),
+                stdout(&want),
+                "iastar R_{{{p},{q}}} differs from ig"
+            );
+        }
+    }
+    // Exact answers for one row each way: the apex's triangles, the wire's vertices.
+    let o = run(&[
+        "relation",
+        f.to_str().unwrap(),
+        "--structure",
+        "iastar",
+        "--relation",
+        "0,2",
+        "--simplex",
+        "3",
+    ]);
+    assert_eq!(stdout(&o), "3;0 1 3;0 2 3;1 2 3;3 4 5\n");
+    let o = run(&[
+        "relation",
+        f.to_str().unwrap(),
+        "--structure",
+        "iastar",
+        "--relation",
+        "1,0",
+        "--simplex",
+        "6 5",
+    ]);
+    assert_eq!(stdout(&o), "5 6;5;6\n");
+}
+
+#[test]
 fn every_structure_dumps_what_the_ig_dumps_on_real_data() {
     for path in common::shared_files() {
         let Ok(c) = topoplex::Complex::from_path(&path) else {
@@ -237,7 +288,8 @@ fn every_structure_dumps_what_the_ig_dumps_on_real_data() {
             continue;
         }
         let d = c.dimension();
-        for kind in StructureKind::ALL.into_iter().skip(1) {
+        let kinds = StructureKind::ALL.into_iter().skip(1);
+        for kind in kinds.chain([StructureKind::IaStar]) {
             if topoplex::build(kind, &c).is_err() {
                 continue;
             }

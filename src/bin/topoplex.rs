@@ -61,7 +61,8 @@ enum Command {
     /// Print R_{P,Q}: one line per P-simplex, `σ;τ1;τ2...`, all in ascending lexicographic order.
     Relation {
         file: PathBuf,
-        /// ig, sig, ia, iqm, nmia, ts, pe, le, de.
+        /// ig, sig, ia, iqm, nmia, ts, pe, le, de, or iastar (the live complex: top simplices and
+        /// vertex stars, every other simplex generated on each query).
         #[arg(long)]
         structure: String,
         /// P,Q (for example 1,2: the triangles around each edge).
@@ -314,8 +315,16 @@ fn load_structure(file: &Path, kind: StructureKind) -> Result<Box<dyn Topology>,
 }
 
 fn parse_kind(structure: &str) -> Result<StructureKind, String> {
+    // The live complex (`iastar`) is not among the nine frozen kinds but takes every query.
+    if structure == StructureKind::IaStar.name() {
+        return Ok(StructureKind::IaStar);
+    }
     StructureKind::from_name(structure).ok_or_else(|| {
-        let names: Vec<&str> = StructureKind::ALL.iter().map(|k| k.name()).collect();
+        let names: Vec<&str> = StructureKind::ALL
+            .iter()
+            .chain([&StructureKind::IaStar])
+            .map(|k| k.name())
+            .collect();
         format!(
             "unknown structure `{}` (expected one of: {})",
             echo(structure),
@@ -326,12 +335,7 @@ fn parse_kind(structure: &str) -> Result<StructureKind, String> {
 
 fn save(file: &Path, structure: Option<&str>, out: &Path) -> Result<(), String> {
     // The live complex (`iastar`) is saved too, to be opened back editable.
-    let kind = structure
-        .map(|s| match s {
-            "iastar" => Ok(StructureKind::IaStar),
-            _ => parse_kind(s),
-        })
-        .transpose()?;
+    let kind = structure.map(parse_kind).transpose()?;
     // Writing over the input would truncate it under its own memory map (a .tpx input).
     not_the_input(file, out, "--out ")?;
     let complex = load(file)?;
