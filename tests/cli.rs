@@ -94,27 +94,9 @@ fn relation_dump_format_is_exact() {
     let expected = "0 9;0 9 10\n0 10;0 9 10;0 10 11\n0 11;0 10 11\n9 10;0 9 10\n10 11;0 10 11\n";
     // Vertices 1..8 are isolated and have no edges, so only edges appear.
     assert_eq!(stdout(&o), expected);
-    let o = run(&[
-        "relation",
-        f.to_str().unwrap(),
-        "--structure",
-        "ig",
-        "--relation",
-        "1,0",
-        "--simplex",
-        "10 0",
-    ]);
+    let o = dump_one(&f, "ig", (1, 0), "10 0");
     assert_eq!(stdout(&o), "0 10;0;10\n");
-    let o = run(&[
-        "relation",
-        f.to_str().unwrap(),
-        "--structure",
-        "ig",
-        "--relation",
-        "0,0",
-        "--simplex",
-        "3",
-    ]);
+    let o = dump_one(&f, "ig", (0, 0), "3");
     assert_eq!(stdout(&o), "3\n");
 }
 
@@ -225,6 +207,20 @@ fn dump(file: &Path, kind: &str, p: usize, q: usize) -> Output {
     ])
 }
 
+/// `relation FILE --structure KIND --relation P,Q --simplex SIMPLEX`.
+fn dump_one(file: &Path, kind: &str, (p, q): (usize, usize), simplex: &str) -> Output {
+    run(&[
+        "relation",
+        file.to_str().unwrap(),
+        "--structure",
+        kind,
+        "--relation",
+        &format!("{p},{q}"),
+        "--simplex",
+        simplex,
+    ])
+}
+
 #[test]
 fn iastar_dumps_what_the_ig_dumps_on_a_mixed_complex() {
     //        4
@@ -252,27 +248,9 @@ fn iastar_dumps_what_the_ig_dumps_on_a_mixed_complex() {
         }
     }
     // Exact answers for one row each way: the apex's triangles, the wire's vertices.
-    let o = run(&[
-        "relation",
-        f.to_str().unwrap(),
-        "--structure",
-        "iastar",
-        "--relation",
-        "0,2",
-        "--simplex",
-        "3",
-    ]);
+    let o = dump_one(&f, "iastar", (0, 2), "3");
     assert_eq!(stdout(&o), "3;0 1 3;0 2 3;1 2 3;3 4 5\n");
-    let o = run(&[
-        "relation",
-        f.to_str().unwrap(),
-        "--structure",
-        "iastar",
-        "--relation",
-        "1,0",
-        "--simplex",
-        "6 5",
-    ]);
+    let o = dump_one(&f, "iastar", (1, 0), "6 5");
     assert_eq!(stdout(&o), "5 6;5;6\n");
 }
 
