@@ -196,29 +196,27 @@ fn errors_exit_nonzero_with_one_line() {
     }
 }
 
-fn dump(file: &Path, kind: &str, p: usize, q: usize) -> Output {
-    run(&[
+/// `relation FILE --structure KIND --relation P,Q [--simplex SIMPLEX]`.
+fn relation(file: &Path, kind: &str, (p, q): (usize, usize), simplex: Option<&str>) -> Output {
+    let pq = format!("{p},{q}");
+    let mut args = vec![
         "relation",
         file.to_str().unwrap(),
         "--structure",
         kind,
         "--relation",
-        &format!("{p},{q}"),
-    ])
+        &pq,
+    ];
+    args.extend(simplex.into_iter().flat_map(|s| ["--simplex", s]));
+    run(&args)
 }
 
-/// `relation FILE --structure KIND --relation P,Q --simplex SIMPLEX`.
-fn dump_one(file: &Path, kind: &str, (p, q): (usize, usize), simplex: &str) -> Output {
-    run(&[
-        "relation",
-        file.to_str().unwrap(),
-        "--structure",
-        kind,
-        "--relation",
-        &format!("{p},{q}"),
-        "--simplex",
-        simplex,
-    ])
+fn dump(file: &Path, kind: &str, p: usize, q: usize) -> Output {
+    relation(file, kind, (p, q), None)
+}
+
+fn dump_one(file: &Path, kind: &str, pq: (usize, usize), simplex: &str) -> Output {
+    relation(file, kind, pq, Some(simplex))
 }
 
 #[test]
