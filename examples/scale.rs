@@ -373,13 +373,9 @@ fn soup(file: &Path, threads: usize, kinds: &[StructureKind]) {
     }
 }
 
-/// A kind by its CLI name, or `iastar` (the live complex, which `StructureKind::from_name` leaves
-/// out, as the CLI's `save` parses it).
+/// A kind by its CLI name (`iastar` included).
 fn kind_named(name: &str) -> StructureKind {
-    match name {
-        "iastar" => StructureKind::IaStar,
-        _ => StructureKind::from_name(name).expect("structure name"),
-    }
+    StructureKind::from_name(name).expect("structure name")
 }
 
 fn main() {

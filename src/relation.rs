@@ -95,9 +95,23 @@ impl StructureKind {
         }
     }
 
-    /// The kind whose CLI name is `name`.
+    /// Every kind with a CLI name: the nine of [`StructureKind::ALL`], then the live complex.
+    pub const NAMED: [StructureKind; 10] = [
+        StructureKind::Ig,
+        StructureKind::Sig,
+        StructureKind::Ia,
+        StructureKind::Iqm,
+        StructureKind::Nmia,
+        StructureKind::Ts,
+        StructureKind::Pe,
+        StructureKind::Le,
+        StructureKind::De,
+        StructureKind::IaStar,
+    ];
+
+    /// The kind whose CLI name is `name` (any of [`StructureKind::NAMED`], `iastar` included).
     pub fn from_name(name: &str) -> Option<StructureKind> {
-        StructureKind::ALL.into_iter().find(|k| k.name() == name)
+        StructureKind::NAMED.into_iter().find(|k| k.name() == name)
     }
 }
 
@@ -317,4 +331,19 @@ pub fn normalize_simplex(sigma: &[u32], n: u32) -> Result<Vec<u32>, QueryError> 
 pub fn sort_rows(rows: &mut Vec<u32>, arity: usize) {
     let sorted = sort_dedup_rows(arity, std::mem::take(rows));
     *rows = sorted;
+}
+
+#[cfg(test)]
+mod tests {
+    use super::StructureKind;
+
+    #[test]
+    fn named_kinds_are_the_nine_then_the_live_complex_each_found_by_its_name() {
+        assert_eq!(StructureKind::NAMED[..9], StructureKind::ALL);
+        assert_eq!(StructureKind::NAMED[9], StructureKind::IaStar);
+        for k in StructureKind::NAMED {
+            assert_eq!(StructureKind::from_name(k.name()), Some(k));
+        }
+        assert_eq!(StructureKind::from_name("IG"), None);
+    }
 }

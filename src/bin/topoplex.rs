@@ -315,16 +315,8 @@ fn load_structure(file: &Path, kind: StructureKind) -> Result<Box<dyn Topology>,
 }
 
 fn parse_kind(structure: &str) -> Result<StructureKind, String> {
-    // The live complex (`iastar`) is not among the nine frozen kinds but takes every query.
-    if structure == StructureKind::IaStar.name() {
-        return Ok(StructureKind::IaStar);
-    }
     StructureKind::from_name(structure).ok_or_else(|| {
-        let names: Vec<&str> = StructureKind::ALL
-            .iter()
-            .chain([&StructureKind::IaStar])
-            .map(|k| k.name())
-            .collect();
+        let names: Vec<&str> = StructureKind::NAMED.iter().map(|k| k.name()).collect();
         format!(
             "unknown structure `{}` (expected one of: {})",
             echo(structure),
