@@ -96,13 +96,19 @@ OMesh openmesh_grid(const Grid& g, uint32_t k) {
   return m;
 }
 
+// The halfedge b -> a whose collapse keeps a; invalid when either vertex is gone or no edge
+// joins them.
+OMesh::HalfedgeHandle collapse_halfedge(const OMesh& m, uint32_t a, uint32_t b) {
+  const OMesh::VertexHandle va{int(a)}, vb{int(b)};
+  if (m.status(va).deleted() || m.status(vb).deleted()) return OMesh::HalfedgeHandle();
+  return m.find_halfedge(vb, va);
+}
+
 // One pass of the calls on `m`; returns how many contracted.
 size_t openmesh_pass(OMesh& m, const std::vector<std::pair<uint32_t, uint32_t>>& calls) {
   size_t done = 0;
   for (const auto& [a, b] : calls) {
-    const OMesh::VertexHandle va{int(a)}, vb{int(b)};
-    if (m.status(va).deleted() || m.status(vb).deleted()) continue;
-    const OMesh::HalfedgeHandle h = m.find_halfedge(vb, va);
+    const OMesh::HalfedgeHandle h = collapse_halfedge(m, a, b);
     if (!h.is_valid() || !m.is_collapse_ok(h)) continue;
     m.collapse(h);
     ++done;
@@ -114,9 +120,7 @@ size_t openmesh_pass(OMesh& m, const std::vector<std::pair<uint32_t, uint32_t>>&
 size_t openmesh_checks(OMesh& m, const std::vector<std::pair<uint32_t, uint32_t>>& calls) {
   size_t ok = 0;
   for (const auto& [a, b] : calls) {
-    const OMesh::VertexHandle va{int(a)}, vb{int(b)};
-    if (m.status(va).deleted() || m.status(vb).deleted()) continue;
-    const OMesh::HalfedgeHandle h = m.find_halfedge(vb, va);
+    const OMesh::HalfedgeHandle h = collapse_halfedge(m, a, b);
     ok += h.is_valid() && m.is_collapse_ok(h);
   }
   return ok;
