@@ -24,16 +24,15 @@ fn no_room<T>(kind: StructureKind, n: usize, what: &str) -> BuildError {
     )
 }
 
-/// `vec![value; n]`, or `TooLarge` when the memory cannot be had.
-pub(crate) fn try_vec<T: Clone>(
+/// `vec![value; n]`, or `TooLarge` when the memory cannot be had (filled on several threads
+/// when long: [`crate::parallel::try_filled`]).
+pub(crate) fn try_vec<T: Clone + Send + Sync>(
     kind: StructureKind,
     value: T,
     n: usize,
     what: &str,
 ) -> Result<Vec<T>, BuildError> {
-    let mut v = try_with_capacity(kind, n, what)?;
-    v.resize(n, value);
-    Ok(v)
+    crate::parallel::try_filled(n, value).map_err(|_| no_room::<T>(kind, n, what))
 }
 
 /// `Vec::with_capacity(n)`, or `TooLarge` when the memory cannot be had.
@@ -57,15 +56,14 @@ pub(crate) fn try_reserve<T>(
     table::try_reserve_exact(v, extra).map_err(|_| no_room::<T>(kind, extra, what))
 }
 
-/// `items.to_vec()`, or `TooLarge` when the memory cannot be had.
-pub(crate) fn try_copy<T: Clone>(
+/// `items.to_vec()`, or `TooLarge` when the memory cannot be had (copied on several threads
+/// when long: [`crate::parallel::try_copied`]).
+pub(crate) fn try_copy<T: Copy + Send + Sync>(
     kind: StructureKind,
     items: &[T],
     what: &str,
 ) -> Result<Vec<T>, BuildError> {
-    let mut v = try_with_capacity(kind, items.len(), what)?;
-    v.extend_from_slice(items);
-    Ok(v)
+    crate::parallel::try_copied(items).map_err(|_| no_room::<T>(kind, items.len(), what))
 }
 
 /// A copy of `table`, or `TooLarge` when the memory cannot be had.
