@@ -26,7 +26,7 @@ use std::time::{Duration, Instant};
 use criterion::{Criterion, Throughput};
 use topoplex::live::{ContractMode, LiveComplex, VertexId};
 use topoplex::relation::{StructureKind, Topology};
-use topoplex::{Complex, Navigate, Order, SimplexHandle, structures};
+use topoplex::{Complex, Navigate, Order, SimplexHandle};
 
 const SAMPLE: usize = 20_000;
 
@@ -55,7 +55,7 @@ fn cpu_timed(f: impl FnOnce()) -> Duration {
 
 fn bench_grid(c: &mut Criterion, name: &str, complex: &Complex) {
     let live = LiveComplex::from_complex(complex);
-    let ia = structures::build(StructureKind::Ia, complex).expect("grids are manifolds");
+    let ia = topoplex::build(StructureKind::Ia, complex).expect("grids are manifolds");
     let (lb, ib) = (live.storage().bytes, ia.storage().bytes);
     eprintln!(
         "storage {name}: live {lb} bytes, ia {ib} bytes, ratio {:.2}",
@@ -170,8 +170,8 @@ fn walk(n: &dyn Navigate, query: Query, verts: &[SimplexHandle], tops: &[Simplex
 
 fn bench_navigation(c: &mut Criterion, name: &str, complex: &Complex) {
     let live = LiveComplex::from_complex(complex);
-    let ia = structures::build(StructureKind::Ia, complex).expect("grids are manifolds");
-    let ig = structures::build(StructureKind::Ig, complex).expect("IG builds every complex");
+    let ia = topoplex::build(StructureKind::Ia, complex).expect("grids are manifolds");
+    let ig = topoplex::build(StructureKind::Ig, complex).expect("IG builds every complex");
     let kinds: [(&str, &dyn Navigate, Option<&LiveComplex>); 3] = [
         ("live", &live, Some(&live)),
         ("ia", ia.as_navigate().unwrap(), None),

@@ -4,7 +4,7 @@
 //! Complexes: triangle and tetrahedral grids of ~10^4, 10^5, 10^6 simplices, and the real data
 //! in `../shared/data` when present (files that are absent or do not load are skipped). For
 //! each structure that encodes the complex (the others are skipped with their reason on stderr):
-//! - `build`: `structures::build` from the complex (closure included); throughput = simplices
+//! - `build`: `topoplex::build` from the complex (closure included); throughput = simplices
 //!   of the complex, so criterion reports time per simplex;
 //! - `Rd,q` (q < d): boundary of top d-simplices;
 //! - `R0,q` (q > 0): co-boundary of vertices (VF, star cells, star edges, ...);
@@ -26,8 +26,8 @@ use std::path::Path;
 use std::time::Duration;
 
 use criterion::{BenchmarkId, Criterion, SamplingMode, Throughput};
+use topoplex::Complex;
 use topoplex::relation::{StructureKind, Topology};
-use topoplex::{Complex, structures};
 
 /// Queries per relation family: enough to cover every kind of vertex/simplex of a grid while
 /// keeping one pass near a millisecond.
@@ -142,7 +142,7 @@ fn bench_complex(c: &mut Criterion, name: &str, complex: &Complex, filter: Optio
         if !wanted("build") && !ops.iter().any(|(op, _, _)| wanted(op)) {
             continue;
         }
-        let topo = match structures::build(kind, complex) {
+        let topo = match topoplex::build(kind, complex) {
             Ok(t) => t,
             Err(e) => {
                 eprintln!("{name}/{kind}: skipped: {e}");
@@ -158,7 +158,7 @@ fn bench_complex(c: &mut Criterion, name: &str, complex: &Complex, filter: Optio
                 .measurement_time(Duration::from_millis(500))
                 .throughput(Throughput::Elements(simplices as u64));
             g.bench_function(BenchmarkId::new(kind.name(), "build"), |b| {
-                b.iter(|| structures::build(kind, black_box(complex)).unwrap())
+                b.iter(|| topoplex::build(kind, black_box(complex)).unwrap())
             });
         }
         g.sampling_mode(SamplingMode::Auto)

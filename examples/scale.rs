@@ -272,7 +272,7 @@ fn phases(file: &Path, kind: StructureKind, threads: usize, tpx: &Path) {
         topoplex::Complex::from_input(raw, Some(file), Default::default()).expect("complex");
     line("complex", t);
     let t = Instant::now();
-    let s = topoplex::structures::build(kind, &complex).expect("build");
+    let s = topoplex::build(kind, &complex).expect("build");
     line("build", t);
     let simplices: usize = (0..=s.dimension()).map(|p| s.count(p)).sum();
     println!("simplices {simplices} {:.0}", peak_mib());
@@ -316,7 +316,7 @@ fn timed_build(c: &topoplex::Complex, kind: StructureKind, threads: usize) -> (f
     let mut bytes = Vec::new();
     for _ in 0..2 {
         let t = Instant::now();
-        let Ok(s) = topoplex::structures::build(kind, c) else {
+        let Ok(s) = topoplex::build(kind, c) else {
             return (f64::NAN, Vec::new());
         };
         best = best.min(t.elapsed().as_secs_f64());
@@ -355,7 +355,7 @@ fn soup(file: &Path, threads: usize, kinds: &[StructureKind]) {
             let c =
                 topoplex::Complex::from_arrays(n, &raw.ids, &raw.offsets, None).expect("complex");
             let tc = t.elapsed().as_secs_f64();
-            let s = topoplex::structures::build(kind, &c).expect("build");
+            let s = topoplex::build(kind, &c).expect("build");
             let all = t.elapsed().as_secs_f64();
             cpu_best = cpu_best.min(thread_cpu() - cpu);
             if simplices == 0 {

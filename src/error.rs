@@ -15,6 +15,7 @@
 //! idempotent: a message built from echoed pieces passes [`one_line`] unchanged.
 
 use std::fmt::Write as _;
+use std::path::PathBuf;
 
 /// Most bytes of escaped input [`echo`] shows before cutting it.
 pub const ECHO_MAX_BYTES: usize = 200;
@@ -125,6 +126,60 @@ pub fn caught_quietly<R>(f: impl FnOnce() -> R + std::panic::UnwindSafe) -> std:
     let result = std::panic::catch_unwind(f);
     QUIET.with(|q| q.set(was));
     result
+}
+
+/// `[a b c]`, for messages naming a simplex.
+pub(crate) fn show(ids: &[u32]) -> String {
+    let v: Vec<String> = ids.iter().map(|i| i.to_string()).collect();
+    format!("[{}]", v.join(" "))
+}
+
+/// What was wrong, without the location ([`ReadError`] adds file and line).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ReadErrorKind {
+    /// The file could not be opened or read.
+    #[error("cannot read file: {0}")]
+    Io(String),
+    /// The file does not fit in memory (`TPX_STATUS_TOO_LARGE` through the C ABI).
+    #[error("file too large: {0}")]
+    TooLarge(String),
+    /// The extension names no supported format.
+    #[error(
+        "unknown file extension (expected .off, .obj, .mesh, .simplices, .ply, .stl, .vtk, .vtu or .msh)"
+    )]
+    UnknownExtension,
+    /// The text does not follow the format.
+    #[error("{0}")]
+    Syntax(String),
+    /// A polygon of more than 3 vertices (only simplices are accepted).
+    #[error("polygon with {0} vertices is not a simplex")]
+    Polygon(usize),
+    /// A negative vertex id.
+    #[error("negative vertex id {0}")]
+    NegativeId(i64),
+}
+
+/// A reader error naming the file and the 1-based line (line 0: the file as a whole).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{}:{line}: {kind}", echo_path(path))]
+pub struct ReadError {
+    /// The file.
+    pub path: PathBuf,
+    /// 1-based line (0: the file as a whole).
+    pub line: u32,
+    /// What was wrong.
+    pub kind: ReadErrorKind,
+}
+
+/// The [`ReadErrorKind::TooLarge`] of an allocation of `what` (a reader's output array) that
+/// failed asking for the given bytes: `map_err(no_room("..."))` on the `Err(bytes)` of
+/// [`crate::alloc::try_push`] and its family.
+pub(crate) fn no_room(what: &'static str) -> impl Fn(usize) -> ReadErrorKind {
+    move |bytes| {
+        ReadErrorKind::TooLarge(format!(
+            "cannot allocate {bytes} bytes for {what} (out of memory)"
+        ))
+    }
 }
 
 #[cfg(test)]

@@ -15,25 +15,34 @@
 #![deny(unsafe_code)]
 #![warn(missing_docs)]
 
+pub mod alloc;
 pub mod complex;
+pub mod decompose;
 pub mod error;
+pub mod family;
 #[allow(unsafe_code)]
 pub mod ffi;
 pub mod fixtures;
-pub mod handle;
+pub use relation::handle;
+pub mod codec;
 pub mod io;
 pub mod live;
+pub mod mapped;
 pub mod oracle;
 pub mod parallel;
 pub mod relation;
 pub mod report;
+pub(crate) mod scratch;
 pub mod simplify;
 pub mod store;
 pub mod structures;
+pub mod sys;
 #[doc(hidden)]
 pub mod testing;
+pub(crate) mod union_find;
 
 pub use complex::{Budget, Complex, ComplexError};
+pub use family::build;
 pub use handle::{Fans, Navigate, Order, RelationView, SimplexHandle, TopId, VertexId, Vertices};
+pub use relation::BuildError;
 pub use relation::{QueryError, Storage, StructureKind, Topology};
-pub use structures::{BuildError, build};

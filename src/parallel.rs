@@ -156,7 +156,7 @@ fn pool(n: usize) -> Option<Arc<rayon::ThreadPool>> {
 
 /// Starts the pool of [`threads`] threads now if there are several and it is not running, so
 /// that a memory probe made next counts what the threads took (see
-/// [`crate::complex::table::headroom`]).
+/// [`headroom`]).
 pub(crate) fn start_pool() {
     if threads() > 1 {
         let _ = pool(threads());
@@ -188,7 +188,7 @@ pub(crate) fn sort_keys(
     sort_run: fn(&mut [u64], &mut [u64], u32),
 ) -> Result<(), usize> {
     let mut tmp = Vec::new();
-    crate::complex::table::try_reserve_exact(&mut tmp, keys.len())?;
+    crate::alloc::try_reserve_exact(&mut tmp, keys.len())?;
     tmp.resize(keys.len(), 0u64);
     if !splits(keys.len()) {
         sort_run(keys, &mut tmp, bits);
@@ -281,7 +281,7 @@ pub(crate) fn try_map_collect<T: Send>(
     f: impl Fn(usize) -> T + Sync + Send,
 ) -> Result<Vec<T>, usize> {
     let mut out = Vec::new();
-    crate::complex::table::try_reserve_exact(&mut out, n)?;
+    crate::alloc::try_reserve_exact(&mut out, n)?;
     extend_reserved(&mut out, n, f);
     Ok(out)
 }
@@ -314,7 +314,7 @@ pub(crate) fn try_map_collect_with<S, T: Send>(
 ) -> Result<Vec<T>, usize> {
     use rayon::prelude::*;
     let mut out = Vec::new();
-    crate::complex::table::try_reserve_exact(&mut out, n)?;
+    crate::alloc::try_reserve_exact(&mut out, n)?;
     if splits(n) {
         let items = (0..n).into_par_iter().with_min_len(run.max(1));
         install(|| out.par_extend(items.map_init(init, f)));
@@ -335,7 +335,7 @@ pub(crate) fn try_filled<T: Clone + Send + Sync>(n: usize, value: T) -> Result<V
 /// when it is long.
 pub(crate) fn try_copied<T: Copy + Send + Sync>(items: &[T]) -> Result<Vec<T>, usize> {
     let mut out = Vec::new();
-    crate::complex::table::try_reserve_exact(&mut out, items.len())?;
+    crate::alloc::try_reserve_exact(&mut out, items.len())?;
     if splits(items.len()) {
         extend_reserved(&mut out, items.len(), |i| items[i]);
     } else {
@@ -460,7 +460,7 @@ pub(crate) fn try_invert(
     sources: usize,
     inc: &impl Incidences,
 ) -> Result<(Vec<u32>, Vec<u32>), usize> {
-    use crate::complex::table::try_reserve_exact;
+    use crate::alloc::try_reserve_exact;
     if !splits(sources) {
         return invert_serial(targets, sources, inc);
     }
@@ -505,7 +505,7 @@ fn invert_serial(
     sources: usize,
     inc: &impl Incidences,
 ) -> Result<(Vec<u32>, Vec<u32>), usize> {
-    use crate::complex::table::try_reserve_exact;
+    use crate::alloc::try_reserve_exact;
     let mut off = Vec::new();
     try_reserve_exact(&mut off, targets + 1)?;
     off.resize(targets + 1, 0u32);
@@ -567,6 +567,43 @@ fn offsets_by_range(off: &mut [u32], counts: &mut [Vec<u32>]) {
             }
         })
     });
+}
+
+/// Whether `bytes` more can be allocated now: reserved and released at once (address space,
+/// not pages), so a step whose peak is known but whose buffers are made infallibly (a sort's
+/// keys and scratch) fails with `Err(bytes)` before it starts rather than aborting half way.
+/// With several threads the pool is started first (or found not to start), so that its
+/// threads' stacks, taken when the step splits, are not taken after the probe passed.
+pub fn headroom(bytes: usize) -> Result<(), usize> {
+    start_pool();
+    let mut probe: Vec<u8> = Vec::new();
+    probe.try_reserve_exact(bytes).map_err(|_| bytes)
+}
+
+/// Appends `n` copies of `x` to `v` on several threads (the pages are touched in parallel);
+/// the capacity must be reserved already (checked: false, nothing appended, when it is not).
+pub(crate) fn extend_filled<T: Copy + Send + Sync>(v: &mut Vec<T>, n: usize, x: T) -> bool {
+    if v.capacity() - v.len() < n {
+        return false;
+    }
+    use rayon::prelude::*;
+    crate::parallel::install(|| v.par_extend(rayon::iter::repeat_n(x, n)));
+    true
+}
+
+/// Appends `f(i)` for `i` in `0..n` to `v` on several threads; the capacity must be reserved
+/// already (checked: false, nothing appended, when it is not).
+pub(crate) fn extend_with<T: Send>(
+    v: &mut Vec<T>,
+    n: usize,
+    f: impl Fn(usize) -> T + Sync + Send,
+) -> bool {
+    if v.capacity() - v.len() < n {
+        return false;
+    }
+    use rayon::prelude::*;
+    crate::parallel::install(|| v.par_extend((0..n).into_par_iter().map(f)));
+    true
 }
 
 #[cfg(test)]

@@ -135,10 +135,10 @@ fn child(spec: &str) -> ! {
     let complex = grid(300);
     for mb in &MARGINS_MB[start.parse::<usize>().unwrap()..] {
         set_address_space_limit(vm_size_bytes() + (mb << 20));
-        let outcome = topoplex::structures::build(kind, &complex).map(drop);
+        let outcome = topoplex::build(kind, &complex).map(drop);
         set_address_space_limit(libc::RLIM_INFINITY);
         match outcome {
-            Err(topoplex::structures::BuildError::TooLarge { .. }) => println!("{mb}:too-large"),
+            Err(topoplex::BuildError::TooLarge { .. }) => println!("{mb}:too-large"),
             Ok(()) => println!("{mb}:built"),
             Err(e) => panic!("{e}"),
         }

@@ -13,7 +13,7 @@ use std::collections::BTreeSet;
 use proptest::prelude::*;
 use topoplex::handle::HandleForm;
 use topoplex::oracle::Oracle;
-use topoplex::structures::{BuildError, build};
+use topoplex::{BuildError, build};
 use topoplex::{
     Complex, Fans, Navigate, Order, QueryError, SimplexHandle, StructureKind, TopId, Topology,
     VertexId, fixtures,

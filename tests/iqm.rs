@@ -519,7 +519,7 @@ fn writers_emit_each_component_and_the_gluing() {
     let dec = iqm(&c).decomposition();
     let dir = std::env::temp_dir().join(format!("topoplex-iqm-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let paths = topoplex::io::write::write_components(&dec, Some(&coords), &dir).unwrap();
+    let paths = topoplex::decompose::write_components(&dec, Some(&coords), &dir).unwrap();
     let names: Vec<String> = paths
         .iter()
         .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())

@@ -7,7 +7,7 @@
 mod common;
 
 use proptest::test_runner::{Config, TestRunner};
-use topoplex::structures::build;
+use topoplex::build;
 use topoplex::{Complex, StructureKind};
 
 /// A k×k×k grid of cubes, each cut into the six tetrahedra around its main diagonal.

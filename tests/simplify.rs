@@ -10,7 +10,7 @@ use std::process::Command;
 use topoplex::io::Coords;
 use topoplex::live::LiveComplex;
 use topoplex::simplify::{Options, SimplifyError, simplify, simplify_live};
-use topoplex::{Complex, StructureKind, Topology, structures};
+use topoplex::{Complex, StructureKind, Topology};
 
 fn with_coords(n: u32, simplices: &[&[u32]], xyz: &[f64], dim: usize) -> Complex {
     let mut ids = Vec::new();
@@ -45,7 +45,7 @@ fn run(c: &Complex, ratio: f64, preserve: bool) -> (Complex, topoplex::simplify:
     let stats = simplify_live(&mut live, &opts(ratio, preserve), &mut |_, _| {}).unwrap();
     live.validate().unwrap();
     let out = live.to_complex();
-    structures::build(StructureKind::Ig, &out)
+    topoplex::build(StructureKind::Ig, &out)
         .unwrap()
         .validate()
         .unwrap();

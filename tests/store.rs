@@ -11,7 +11,7 @@ use proptest::prelude::*;
 use topoplex::live::{ContractMode, LiveComplex, VertexId};
 use topoplex::oracle::compare_structures;
 use topoplex::store::{Saved, StoreError, save};
-use topoplex::structures::{BuildError, build};
+use topoplex::{BuildError, build};
 use topoplex::{Complex, StructureKind, Topology, fixtures};
 
 /// A fresh path per call: tests run in parallel threads.

@@ -8,7 +8,7 @@ use std::sync::Arc;
 
 use proptest::prelude::*;
 use topoplex::oracle::{check_structure, compare_structures};
-use topoplex::structures::{BuildError, build};
+use topoplex::{BuildError, build};
 use topoplex::{Complex, StructureKind, Topology, fixtures};
 
 /// Builds every kind; returns the ones that encode `c`, validated. A kind that is not

@@ -2,7 +2,7 @@
 
 use topoplex::io::RawInput;
 use topoplex::oracle::check_structure;
-use topoplex::structures::{BuildError, build};
+use topoplex::{BuildError, build};
 use topoplex::{Complex, StructureKind};
 
 /// Whatever a reader accepted either normalises or is refused with an error; a small complex

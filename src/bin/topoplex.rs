@@ -18,7 +18,7 @@ use topoplex::error::{echo, echo_path, one_line};
 use topoplex::io::write::Format;
 use topoplex::relation::sort_rows;
 use topoplex::store::Saved;
-use topoplex::{Budget, Complex, StructureKind, Topology, fixtures, structures};
+use topoplex::{Budget, Complex, StructureKind, Topology, fixtures};
 
 #[derive(Parser)]
 #[command(
@@ -311,7 +311,7 @@ fn load_structure(file: &Path, kind: StructureKind) -> Result<Box<dyn Topology>,
         return saved.structure_of(kind).map_err(|e| e.to_string());
     }
     let complex = load(file)?;
-    structures::build(kind, &complex).map_err(|e| e.to_string())
+    topoplex::build(kind, &complex).map_err(|e| e.to_string())
 }
 
 fn parse_kind(structure: &str) -> Result<StructureKind, String> {
@@ -333,7 +333,7 @@ fn save(file: &Path, structure: Option<&str>, out: &Path) -> Result<(), String> 
     let complex = load(file)?;
     let built = match kind {
         Some(k) if topoplex::store::is_saved_path(file) => Some(load_structure(file, k)?),
-        Some(k) => Some(structures::build(k, &complex).map_err(|e| e.to_string())?),
+        Some(k) => Some(topoplex::build(k, &complex).map_err(|e| e.to_string())?),
         None => None,
     };
     topoplex::store::save(out, &complex, built.as_deref()).map_err(|e| e.to_string())
@@ -491,8 +491,8 @@ fn decompose(file: &Path, out: &Path, force: bool, format: Option<&str>) -> Resu
     let iqm = topoplex::structures::iqm::Iqm::build(&complex).map_err(|e| e.to_string())?;
     let dec = iqm.decomposition();
     let paths = match format {
-        None => topoplex::io::write::write_components(&dec, complex.coords(), out),
-        Some(f) => topoplex::io::write::write_components_as(&dec, complex.coords(), out, f),
+        None => topoplex::decompose::write_components(&dec, complex.coords(), out),
+        Some(f) => topoplex::decompose::write_components_as(&dec, complex.coords(), out, f),
     }
     .map_err(|e| e.to_string())?;
     print(&format!(
@@ -520,7 +520,7 @@ fn prepare_out_dir(input: &Path, out: &Path, force: bool) -> Result<(), String> 
     for entry in entries {
         let path = entry.map_err(at)?.path();
         let name = path.file_name().and_then(|n| n.to_str()).unwrap_or("");
-        if topoplex::io::write::is_decomposition_file(name) {
+        if topoplex::decompose::is_decomposition_file(name) {
             if std::fs::metadata(&path).is_ok_and(|m| same_file(&m, &input_meta)) {
                 return Err(format!(
                     "--out {}: the input {} would be overwritten (decompose never overwrites its input; choose another directory)",

@@ -36,11 +36,13 @@
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use crate::io::{Coords, RawInput, ReadError};
+use crate::error::ReadError;
 
 mod blocks;
+mod input;
 pub mod table;
 pub(crate) use blocks::Want;
+pub use input::{Coords, RawInput};
 pub use table::{SimplexTable, is_subset, push_facets, sort_dedup_rows, write_facets};
 
 /// Highest simplex dimension accepted. The closure of one 15-simplex has 65,535 simplices, which
@@ -317,17 +319,6 @@ const NONE_TOP: (u8, u32) = (u8::MAX, u32::MAX);
 type TopAt = (u8, u32, u8);
 
 impl Complex {
-    /// Reads and normalises a file (format by extension), under the default [`Budget`].
-    pub fn from_path(path: &Path) -> Result<Complex, ComplexError> {
-        Complex::from_path_with(path, Budget::default())
-    }
-
-    /// Reads and normalises a file (format by extension) under `budget`.
-    pub fn from_path_with(path: &Path, budget: Budget) -> Result<Complex, ComplexError> {
-        let raw = crate::io::read_path(path)?;
-        Complex::from_input(raw, Some(path), budget)
-    }
-
     /// Normalises reader output that the complex may keep under `budget` (`file` names the
     /// source in errors): the simplex list becomes the listing and the coordinates the
     /// complex's, moved rather than copied, which keeps the peak memory of reading and building
@@ -1250,7 +1241,7 @@ fn rows_in_place<'a>(
     for rows in by_dim.iter_mut() {
         let base = rows.ids.len();
         table::try_reserve_exact(&mut rows.ids, rows.left).map_err(Stop::NoRoom)?;
-        crate::io::chunked::extend_filled(&mut rows.ids, rows.left, 0);
+        crate::parallel::extend_filled(&mut rows.ids, rows.left, 0);
         rows.left = 0;
         tails.push(&mut rows.ids[base..]);
     }

@@ -1,7 +1,11 @@
 //! Flat, sorted tables of p-simplices: the one representation of "a set of simplices" shared by
 //! the complex model, the oracle and the incidence-based structures.
 
-use crate::store::Arr;
+use crate::mapped::Arr;
+
+pub(crate) use crate::alloc::abort_for;
+pub use crate::alloc::{try_extend, try_grow, try_push, try_reserve_exact};
+pub use crate::parallel::headroom;
 
 /// The p-simplices of some set, each as `arity = p + 1` ascending vertex ids, concatenated, in
 /// ascending lexicographic order, without duplicates. Simplex `i` of the table is its `i`-th
@@ -505,13 +509,6 @@ pub fn try_order_by_key(
     Ok(order_by_wide_key(n, key_bits, index_bits, key))
 }
 
-/// The `allocation failed` abort for `bytes`, for the infallible forms of fallible functions.
-pub(crate) fn abort_for(bytes: usize) -> ! {
-    std::alloc::handle_alloc_error(
-        std::alloc::Layout::array::<u8>(bytes).unwrap_or(std::alloc::Layout::new::<u8>()),
-    )
-}
-
 /// [`order_by_key`] when key and index do not fit one word together (serial).
 fn order_by_wide_key(
     n: usize,
@@ -555,57 +552,6 @@ fn order_by_wide_key(
     let mut pairs: Vec<(u64, u32)> = (0..n as u32).map(|i| (key(i), i)).collect();
     radix_sort_by(&mut pairs, key_bits, |&(k, _)| k);
     Some(pairs.into_iter().map(|(_, i)| i).collect())
-}
-
-/// Whether `bytes` more can be allocated now: reserved and released at once (address space,
-/// not pages), so a step whose peak is known but whose buffers are made infallibly (a sort's
-/// keys and scratch) fails with `Err(bytes)` before it starts rather than aborting half way.
-/// With several threads the pool is started first (or found not to start), so that its
-/// threads' stacks, taken when the step splits, are not taken after the probe passed.
-pub fn headroom(bytes: usize) -> Result<(), usize> {
-    crate::parallel::start_pool();
-    let mut probe: Vec<u8> = Vec::new();
-    probe.try_reserve_exact(bytes).map_err(|_| bytes)
-}
-
-/// `v.reserve_exact(extra)` made fallible: `Err(bytes asked for)` when the memory cannot be had.
-/// With [`try_grow`] and [`try_push`], the one family of fallible reservations: structure builds
-/// turn the bytes into `BuildError::TooLarge`, readers into `ReadErrorKind::TooLarge`.
-pub fn try_reserve_exact<T>(v: &mut Vec<T>, extra: usize) -> Result<(), usize> {
-    v.try_reserve_exact(extra)
-        .map_err(|_| extra.saturating_mul(size_of::<T>()))
-}
-
-/// `v.reserve(extra)` made fallible (amortised: the capacity at least doubles when it grows),
-/// for arrays whose final length the input decides but no count gives in advance; `Err(bytes
-/// asked for)` when the memory cannot be had. Free when the capacity suffices.
-#[inline]
-pub fn try_grow<T>(v: &mut Vec<T>, extra: usize) -> Result<(), usize> {
-    if v.capacity() - v.len() >= extra {
-        return Ok(());
-    }
-    v.try_reserve(extra).map_err(|_| {
-        v.len()
-            .saturating_add(extra)
-            .max(v.capacity().saturating_mul(2))
-            .saturating_mul(size_of::<T>())
-    })
-}
-
-/// `v.push(x)` whose growth is reserved fallibly ([`try_grow`]).
-#[inline]
-pub fn try_push<T>(v: &mut Vec<T>, x: T) -> Result<(), usize> {
-    try_grow(v, 1)?;
-    v.push(x);
-    Ok(())
-}
-
-/// `v.extend_from_slice(xs)` whose growth is reserved fallibly ([`try_grow`]).
-#[inline]
-pub fn try_extend<T: Clone>(v: &mut Vec<T>, xs: &[T]) -> Result<(), usize> {
-    try_grow(v, xs.len())?;
-    v.extend_from_slice(xs);
-    Ok(())
 }
 
 /// Appends to `out` the facets of `simplex` (ascending ids): facet `i` omits vertex `i`, so the

@@ -24,8 +24,9 @@ use super::TpxStatus;
 use super::handles::{TPX_ORDER_LEXICOGRAPHIC, TPX_ORDER_NATURAL, TpxSimplex};
 use super::structure::TpxStructure;
 use crate::complex::MAX_DIMENSION;
-use crate::handle::{Navigate, Order, SimplexHandle};
+use crate::family::FastPath;
 use crate::relation::Topology;
+use crate::relation::handle::{Navigate, Order, SimplexHandle};
 use crate::structures::de::DirectedEdge;
 use crate::structures::ia::{IndexedAdjacency, NONE};
 use crate::structures::ig::IncidenceGraph;
@@ -57,26 +58,19 @@ pub(crate) enum Direct {
 }
 
 impl Direct {
-    /// The writer for `topo`: by its concrete type, `Walk` for the other dense structures.
+    /// The writer for `topo`: its kind's row of the registry ([`crate::family::fast_path`]);
+    /// the generic walk only for dense numberings.
     pub(crate) fn of(topo: &dyn Topology) -> Direct {
-        let any: &dyn Any = topo;
         let dense = topo.as_navigate().is_some_and(|n| n.dense());
-        if any.is::<IncidenceGraph>() {
-            Direct::Ig
-        } else if any.is::<IndexedAdjacency>() {
-            Direct::Ia
-        } else if any.is::<TriangleSegment>() {
-            Direct::Ts
-        } else if any.is::<PartialEntities>() {
-            Direct::Pe
-        } else if any.is::<LoopEdgeUse>() {
-            Direct::Le
-        } else if any.is::<DirectedEdge>() {
-            Direct::De
-        } else if dense {
-            Direct::Walk
-        } else {
-            Direct::None
+        match crate::family::fast_path(topo.kind()) {
+            FastPath::Ig => Direct::Ig,
+            FastPath::Ia => Direct::Ia,
+            FastPath::Ts => Direct::Ts,
+            FastPath::Pe => Direct::Pe,
+            FastPath::Le => Direct::Le,
+            FastPath::De => Direct::De,
+            FastPath::Walk if dense => Direct::Walk,
+            FastPath::Walk => Direct::None,
         }
     }
 }

@@ -1,5 +1,5 @@
 //! Handles through the C ABI: `TpxSimplex` and the `tpx_*` functions that locate once and then
-//! navigate from handles (see `crate::handle` for what a handle is and what it costs).
+//! navigate from handles (see `crate::relation::handle` for what a handle is and what it costs).
 //!
 //! Every function checks its handles before use: a handle from another structure is
 //! FOREIGN_HANDLE (its `owner` stamp differs), an index or dimension out of range INVALID_HANDLE,
@@ -25,7 +25,7 @@ use super::{
     Failure, TpxStatus, guard, handle, in_slice, out_ptr, with_answer, with_kept, write_buffer,
 };
 use crate::complex::MAX_DIMENSION;
-use crate::handle::{Fans, Navigate, Order, SimplexHandle, TopId};
+use crate::relation::handle::{Fans, Navigate, Order, SimplexHandle, TopId};
 use crate::structures::common::Scratch;
 
 /// A handle to one simplex of one structure (12 bytes, plain data; copy freely).

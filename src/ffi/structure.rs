@@ -5,8 +5,9 @@ use super::{
 };
 
 use crate::complex::MAX_DIMENSION;
+use crate::family::build;
+use crate::relation::BuildError;
 use crate::relation::{QueryError, StructureKind, Topology, normalize_simplex, sort_rows};
-use crate::structures::{BuildError, build};
 
 use super::complex::TpxComplex;
 

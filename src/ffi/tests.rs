@@ -1259,7 +1259,7 @@ fn threads_asking_for_one_view_share_one_index() {
 /// answer or error.
 #[test]
 fn tpx_related_fast_path_matches_the_rust_api_on_every_kind() {
-    use crate::handle::{Order, SimplexHandle};
+    use crate::relation::handle::{Order, SimplexHandle};
     let c = complex(
         6,
         &[&[0, 1, 4], &[1, 2, 4], &[2, 3, 4], &[0, 3, 4], &[1, 2, 5]],

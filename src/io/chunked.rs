@@ -21,6 +21,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use super::scan::Scanner;
 
+pub(crate) use crate::parallel::{extend_filled, extend_with};
+
 /// Sections read on several threads so far (see [`sections_read`]).
 static SECTIONS: AtomicUsize = AtomicUsize::new(0);
 
@@ -158,32 +160,6 @@ pub(crate) fn line_ranges(text: &str) -> Vec<usize> {
     }
     cuts.push(b.len());
     cuts
-}
-
-/// Appends `n` copies of `x` to `v` on several threads (the pages are touched in parallel);
-/// the capacity must be reserved already (checked: false, nothing appended, when it is not).
-pub(crate) fn extend_filled<T: Copy + Send + Sync>(v: &mut Vec<T>, n: usize, x: T) -> bool {
-    if v.capacity() - v.len() < n {
-        return false;
-    }
-    use rayon::prelude::*;
-    crate::parallel::install(|| v.par_extend(rayon::iter::repeat_n(x, n)));
-    true
-}
-
-/// Appends `f(i)` for `i` in `0..n` to `v` on several threads; the capacity must be reserved
-/// already (checked: false, nothing appended, when it is not).
-pub(crate) fn extend_with<T: Send>(
-    v: &mut Vec<T>,
-    n: usize,
-    f: impl Fn(usize) -> T + Sync + Send,
-) -> bool {
-    if v.capacity() - v.len() < n {
-        return false;
-    }
-    use rayon::prelude::*;
-    crate::parallel::install(|| v.par_extend((0..n).into_par_iter().map(f)));
-    true
 }
 
 #[cfg(test)]

@@ -10,7 +10,7 @@
 //! `.vtk`, `.vtu`, `.msh`.
 //! The writers ([`mod@write`]) are their inverse.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// The helpers every reader's unit tests share, bound to the calling module's `parse`: `ok`
 /// (parse or panic), `err` (an error on the given line whose message contains a needle) and
@@ -56,118 +56,25 @@ pub mod vtu;
 pub mod write;
 
 use crate::complex::table;
-use crate::error::{echo, echo_path};
+use crate::complex::{Budget, Complex, ComplexError};
+pub use crate::complex::{Coords, RawInput};
+use crate::error::echo;
+pub(crate) use crate::error::no_room;
+pub use crate::error::{ReadError, ReadErrorKind};
 
-/// Vertex coordinates, `dim` numbers per vertex, vertex-major.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Coords {
-    /// Numbers per vertex.
-    pub dim: usize,
-    /// `dim` numbers per vertex, vertex after vertex.
-    pub data: Vec<f64>,
-}
-
-/// What a reader produced: unvalidated simplices over 0-based vertex ids.
-#[derive(Debug, Clone, Default, PartialEq)]
-pub struct RawInput {
-    /// Number of vertices the file declares. `None` only for a `.simplices` file without `v`
-    /// lines, where the vertices are `0..=max id`.
-    pub vertex_count: Option<u32>,
-    /// Coordinates of the declared vertices, when the format carries them.
-    pub coords: Option<Coords>,
-    /// Simplex vertex ids, concatenated; simplex `i` is `ids[offsets[i]..offsets[i + 1]]`
-    /// (so `offsets` has one more entry than there are simplices and starts with 0).
-    pub ids: Vec<u32>,
-    /// Simplex boundaries in `ids` (see `ids`).
-    pub offsets: Vec<usize>,
-    /// 1-based line of each simplex in the file (0 when not from a file).
-    pub lines: Vec<u32>,
-}
-
-impl RawInput {
-    /// An empty input (offsets start at 0).
-    pub fn new() -> Self {
-        RawInput {
-            offsets: vec![0],
-            ..Default::default()
-        }
+// Reading into a complex is io's (the model below knows no files), as pmp's and
+// geometry-central's readers fill a mesh they include.
+impl Complex {
+    /// Reads and normalises a file (format by extension), under the default [`Budget`].
+    pub fn from_path(path: &Path) -> Result<Complex, ComplexError> {
+        Complex::from_path_with(path, Budget::default())
     }
 
-    /// Appends one simplex read on `line` (growth infallible: for inputs built in memory; the
-    /// readers use [`RawInput::try_push`]).
-    pub fn push(&mut self, ids: &[u32], line: u32) {
-        self.ids.extend_from_slice(ids);
-        self.offsets.push(self.ids.len());
-        self.lines.push(line);
+    /// Reads and normalises a file (format by extension) under `budget`.
+    pub fn from_path_with(path: &Path, budget: Budget) -> Result<Complex, ComplexError> {
+        let raw = read_path(path)?;
+        Complex::from_input(raw, Some(path), budget)
     }
-
-    /// [`RawInput::push`] whose growth is reserved fallibly: [`ReadErrorKind::TooLarge`] when
-    /// the memory cannot be had (a reader's output never aborts the process).
-    #[inline]
-    pub fn try_push(&mut self, ids: &[u32], line: u32) -> Result<(), ReadErrorKind> {
-        table::try_extend(&mut self.ids, ids).map_err(no_room("the simplices' vertex ids"))?;
-        table::try_push(&mut self.offsets, self.ids.len())
-            .map_err(no_room("the simplex offsets"))?;
-        table::try_push(&mut self.lines, line).map_err(no_room("the simplices' line numbers"))
-    }
-
-    /// Reserves room for `simplices` more simplices of `ids` ids in all, fallibly
-    /// ([`ReadErrorKind::TooLarge`]). Readers size it from declared counts capped by what the
-    /// file could hold, so that the arrays are allocated once, at their size.
-    pub fn try_reserve(&mut self, simplices: usize, ids: usize) -> Result<(), ReadErrorKind> {
-        table::try_reserve_exact(&mut self.offsets, simplices)
-            .map_err(no_room("the simplex offsets"))?;
-        table::try_reserve_exact(&mut self.lines, simplices)
-            .map_err(no_room("the simplices' line numbers"))?;
-        table::try_reserve_exact(&mut self.ids, ids).map_err(no_room("the simplices' vertex ids"))
-    }
-
-    /// Number of simplices read.
-    pub fn simplex_count(&self) -> usize {
-        self.offsets.len() - 1
-    }
-
-    /// Simplex `i` as read (panics when out of range).
-    pub fn simplex(&self, i: usize) -> &[u32] {
-        &self.ids[self.offsets[i]..self.offsets[i + 1]]
-    }
-}
-
-/// What was wrong, without the location ([`ReadError`] adds file and line).
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum ReadErrorKind {
-    /// The file could not be opened or read.
-    #[error("cannot read file: {0}")]
-    Io(String),
-    /// The file does not fit in memory (`TPX_STATUS_TOO_LARGE` through the C ABI).
-    #[error("file too large: {0}")]
-    TooLarge(String),
-    /// The extension names no supported format.
-    #[error(
-        "unknown file extension (expected .off, .obj, .mesh, .simplices, .ply, .stl, .vtk, .vtu or .msh)"
-    )]
-    UnknownExtension,
-    /// The text does not follow the format.
-    #[error("{0}")]
-    Syntax(String),
-    /// A polygon of more than 3 vertices (only simplices are accepted).
-    #[error("polygon with {0} vertices is not a simplex")]
-    Polygon(usize),
-    /// A negative vertex id.
-    #[error("negative vertex id {0}")]
-    NegativeId(i64),
-}
-
-/// A reader error naming the file and the 1-based line (line 0: the file as a whole).
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{}:{line}: {kind}", echo_path(path))]
-pub struct ReadError {
-    /// The file.
-    pub path: PathBuf,
-    /// 1-based line (0: the file as a whole).
-    pub line: u32,
-    /// What was wrong.
-    pub kind: ReadErrorKind,
 }
 
 /// Reads a file, choosing the reader by extension.
@@ -355,17 +262,6 @@ pub(crate) fn syntax(msg: impl Into<String>) -> ReadErrorKind {
     ReadErrorKind::Syntax(msg.into())
 }
 
-/// The [`ReadErrorKind::TooLarge`] of an allocation of `what` (a reader's output array) that
-/// failed asking for the given bytes: `map_err(no_room("..."))` on the `Err(bytes)` of
-/// [`table::try_push`] and its family.
-pub(crate) fn no_room(what: &'static str) -> impl Fn(usize) -> ReadErrorKind {
-    move |bytes| {
-        ReadErrorKind::TooLarge(format!(
-            "cannot allocate {bytes} bytes for {what} (out of memory)"
-        ))
-    }
-}
-
 /// A `Vec` of `n` elements' capacity reserved fallibly ([`ReadErrorKind::TooLarge`] naming
 /// `what`); `n` comes from a declared count capped by what the file could hold ([`capped`]).
 pub(crate) fn try_with_capacity<T>(n: usize, what: &'static str) -> Result<Vec<T>, ReadErrorKind> {
@@ -529,6 +425,7 @@ pub(crate) fn check_integer(tok: &str, what: &str) -> Result<(), ReadErrorKind> 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::PathBuf;
 
     /// A file under the temp dir, removed on drop.
     struct TempFile(PathBuf);

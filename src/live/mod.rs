@@ -81,12 +81,12 @@
 //! a [`TopId`] or [`UndoRecord`] from before a compaction is refused
 //! ([`Refusal::StaleHandle`]). Vertex ids are plain slots: after `compact`, use the returned map.
 //!
-//! The live complex answers the whole handle API ([`crate::handle::Navigate`]: locate,
+//! The live complex answers the whole handle API ([`crate::relation::handle::Navigate`]: locate,
 //! boundary / co-boundary / adjacency per dimension, star, link, degree, `is_boundary`,
 //! `is_manifold`, fans around a vertex counter-clockwise by the winding, radial groups around an
 //! edge). A vertex's handle is its slot; any other simplex is named through a top simplex
 //! holding it (a top simplex and a vertex mask). Every handle carries the complex's generation
-//! (its compaction count, [`crate::handle::Navigate::generation`]): one from before `compact` is
+//! (its compaction count, [`crate::relation::handle::Navigate::generation`]): one from before `compact` is
 //! refused with [`QueryError::StaleGeneration`]; otherwise a handle names its simplex while that
 //! simplex exists, even when the top simplex naming it is removed (a removed slot keeps its
 //! vertices until `compact`, and the face is located again: O(d·k_v) per use), and is refused
@@ -127,7 +127,7 @@ const SLOT_MASK: u32 = (1 << SLOT_BITS) - 1;
 
 /// A vertex of a [`LiveComplex`]: the crate's vertex handle; its slot, stable until
 /// [`LiveComplex::compact`].
-pub use crate::handle::VertexId;
+pub use crate::relation::handle::VertexId;
 
 /// A top simplex of a [`LiveComplex`]: its dimension and slot, and the compaction epoch it was
 /// issued in (so a handle from before [`LiveComplex::compact`] is refused, not misread).
@@ -827,7 +827,7 @@ impl Topology for LiveComplex {
         self.check_invariants()
     }
 
-    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
         Some(self)
     }
 

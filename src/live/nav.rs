@@ -44,14 +44,16 @@
 //!   lexicographic order of their vertices, which is the natural order here: both [`Order`]s
 //!   cost the same. No allocation once the scratch buffer has grown to the answer.
 //! - `star`, `link`, `degree`, `is_boundary`, `is_manifold`, `fans_around`, `around_edge`: the
-//!   trait's definitions over `visit` (costs in [`crate::handle`]); `top_total` O(n) (isolated
+//!   trait's definitions over `visit` (costs in [`crate::relation::handle`]); `top_total` O(n) (isolated
 //!   vertices are counted).
 
 use std::cell::RefCell;
 
 use super::{DEAD, Key, LiveComplex, NONE, pack, subset, unpack};
 use crate::complex::MAX_DIMENSION;
-use crate::handle::{HandleForm, Navigate, Order, SimplexHandle, TopId, VertexId, Vertices};
+use crate::relation::handle::{
+    HandleForm, Navigate, Order, SimplexHandle, TopId, VertexId, Vertices,
+};
 use crate::relation::{QueryError, Topology, normalize_simplex};
 use crate::structures::common::{Scratch, faces_containing};
 

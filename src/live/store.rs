@@ -1,4 +1,5 @@
-//! The live complex in a saved file (`.tpx`, [`crate::store`]).
+//! The live complex's sections in a saved file (`.tpx`; opening and saving a whole file is
+//! `crate::store`'s, which stands above).
 //!
 //! Saving compacts on the fly: tombstones are not persisted, so the file holds the live complex
 //! renumbered as [`LiveComplex::compact`] would (vertices and slots dense, in ascending old
@@ -15,7 +16,8 @@
 //! complex starts at generation 0).
 
 use super::{DEAD, LiveComplex, MAX_DIMENSION, SLOT_MASK, Stars};
-use crate::store::{Arr, Persist, Reader, StoreError, Writer};
+use crate::codec::{Persist, Reader, StoreError, Writer};
+use crate::mapped::Arr;
 
 impl Persist for LiveComplex {
     fn save(&self, w: &mut Writer) {
@@ -135,29 +137,5 @@ impl LiveComplex {
             }
         }
         live
-    }
-
-    /// Saves the live complex and its complex ([`LiveComplex::to_complex`]) to `path` (`.tpx`;
-    /// compacted on the fly, see the module doc). Cost: O(size).
-    pub fn save(&self, path: &std::path::Path) -> Result<(), StoreError> {
-        crate::store::save(path, &self.to_complex(), Some(self))
-    }
-
-    /// Opens a `.tpx` file as an editable live complex: the saved live complex when the file
-    /// holds one, else one built from the saved complex. Cost: O(size) (copied, not mapped).
-    pub fn open(path: &std::path::Path) -> Result<LiveComplex, StoreError> {
-        LiveComplex::open_saved(&crate::store::Saved::open(path)?)
-    }
-
-    /// [`LiveComplex::open`] of an opened file.
-    pub fn open_saved(saved: &crate::store::Saved) -> Result<LiveComplex, StoreError> {
-        let kind = crate::relation::StructureKind::IaStar;
-        if let Some(live) = saved.structure_as::<LiveComplex>(kind)? {
-            return Ok(live);
-        }
-        LiveComplex::try_from_complex(&saved.complex()?).map_err(|source| StoreError::Build {
-            path: saved.path().to_path_buf(),
-            source,
-        })
     }
 }

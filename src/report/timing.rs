@@ -8,7 +8,6 @@ use serde::Serialize;
 
 use crate::complex::Complex;
 use crate::relation::{Storage, StructureKind, Topology};
-use crate::structures;
 
 /// Most vertices and most top simplices queried per family.
 pub const SAMPLE: usize = 1000;
@@ -196,7 +195,7 @@ pub fn measure(
 ) -> StructureResult {
     progress(&format!("building {kind}"));
     let start = Instant::now();
-    let built = structures::build(kind, complex);
+    let built = crate::family::build(kind, complex);
     let first = start.elapsed();
     let topo = match built {
         Ok(t) => t,
@@ -214,7 +213,7 @@ pub fn measure(
         let start = Instant::now();
         let mut builds = 0;
         while builds == 0 || (start.elapsed() < MIN_TIME && builds < MAX_PASSES) {
-            black_box(structures::build(kind, complex).ok());
+            black_box(crate::family::build(kind, complex).ok());
             builds += 1;
         }
         (start.elapsed() / builds, builds)

@@ -179,7 +179,7 @@ fn live_of(complex: &Complex) -> Result<LiveComplex, SimplifyError> {
 
 /// [`simplify`] taking the complex by value: it is dropped as soon as the live complex is
 /// built, and its freed pages handed back to the system (see
-/// `ffi::release_freed_memory`), so the peak memory holds one copy of the input, not two.
+/// `sys::release_freed_memory`), so the peak memory holds one copy of the input, not two.
 pub fn simplify_owned(
     complex: Complex,
     options: &Options,
@@ -189,7 +189,7 @@ pub fn simplify_owned(
     let mut live = live_of(&complex)?;
     drop(complex);
     // Before the quadrics and the queue: the input's pages go back to the system.
-    crate::ffi::release_freed_memory();
+    crate::sys::release_freed_memory();
     let stats = simplify_live(&mut live, options, progress)?;
     Ok(Simplified {
         complex: live.to_complex(),

@@ -43,466 +43,23 @@
 //! O(size), then every invariant is checked before it is returned (module doc of `live/store.rs`).
 
 use std::fs::File;
-use std::io::{self, BufWriter, Seek, SeekFrom, Write};
-use std::marker::PhantomData;
+use std::io;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use crate::complex::{Complex, ComplexError, SimplexTable, table};
+use crate::complex::{Complex, ComplexError, table};
 use crate::io::Coords;
+use crate::live::LiveComplex;
 use crate::relation::{StructureKind, Topology};
-use crate::structures::BuildError;
 
-mod arr;
-mod field;
 mod persist;
-pub use arr::Arr;
-pub use field::Field;
-
-/// First bytes of every `.tpx` file.
-pub const MAGIC: [u8; 8] = *b"\x89TPX\r\n\x1a\n";
-/// The format version this build writes and reads.
-pub const VERSION: u32 = 1;
-/// Written as a native `u32`; read back swapped on a host of the other byte order.
-const BYTE_ORDER_MARK: u32 = 0x0102_0304;
-const HEADER_LEN: usize = 64;
-const ENTRY_LEN: usize = 32;
-const ALIGN: u64 = 64;
-/// More sections than any structure writes: bounds the table a hostile header can demand.
-const MAX_SECTIONS: u64 = 1 << 16;
-
-/// Why a `.tpx` file could not be written, opened or verified. Each names the file.
-#[derive(Debug, thiserror::Error)]
-pub enum StoreError {
-    /// The file cannot be read or written.
-    #[error("{}: {message}", crate::error::echo_path(.path))]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The system's message.
-        message: String,
-    },
-    /// The file is not a `.tpx` file (its first bytes are not the magic number).
-    #[error("{}: not a topoplex saved file (.tpx): wrong magic number", crate::error::echo_path(.path))]
-    Foreign {
-        /// The file.
-        path: PathBuf,
-    },
-    /// The file is shorter than its header says.
-    #[error("{}: truncated saved file: {what}", crate::error::echo_path(.path))]
-    Truncated {
-        /// The file.
-        path: PathBuf,
-        /// What is missing.
-        what: String,
-    },
-    /// The file was written by another format version.
-    #[error("{}: saved file format version {found}, this build reads version {supported}", crate::error::echo_path(.path))]
-    WrongVersion {
-        /// The file.
-        path: PathBuf,
-        /// The file's version.
-        found: u32,
-        /// The version this build reads.
-        supported: u32,
-    },
-    /// The file was written on a host of the other byte order.
-    #[error("{}: saved file written in the other byte order (big- vs little-endian); save it again on this machine", crate::error::echo_path(.path))]
-    WrongEndianness {
-        /// The file.
-        path: PathBuf,
-    },
-    /// A checksum, offset, length or value is wrong.
-    #[error("{}: corrupt saved file: {what}", crate::error::echo_path(.path))]
-    Corrupt {
-        /// The file.
-        path: PathBuf,
-        /// The first inconsistency found.
-        what: String,
-    },
-    /// The saved complex is not a valid complex.
-    #[error("{}: saved complex: {source}", crate::error::echo_path(.path))]
-    Complex {
-        /// The file.
-        path: PathBuf,
-        /// What the complex model refused.
-        source: ComplexError,
-    },
-    /// The requested structure could not be built from the saved complex.
-    #[error("{}: {source}", crate::error::echo_path(.path))]
-    Build {
-        /// The file.
-        path: PathBuf,
-        /// Why the build failed.
-        source: BuildError,
-    },
-}
-
-/// The bytes of an opened file: mapped, or (for [`Saved::from_bytes`]) an aligned heap copy.
-pub enum Backing {
-    /// A memory-mapped file.
-    Map(memmap2::Mmap),
-    /// Bytes held in 8-byte words (so every section's start is aligned), and their length.
-    Heap(Vec<u64>, usize),
-}
-
-impl Backing {
-    /// All bytes of the file.
-    pub fn bytes(&self) -> &[u8] {
-        match self {
-            Backing::Map(m) => m,
-            Backing::Heap(words, len) => &bytemuck::cast_slice(words)[..*len],
-        }
-    }
-}
-
-/// What a section's elements are (their size in bytes).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Entry {
-    offset: u64,
-    count: u64,
-    size: u32,
-    checksum: u64,
-}
-
-/// Writes the sections of a `.tpx` file in order. Each call appends one array; the first write
-/// error is kept and returned by `Writer::finish`, so `save` implementations stay linear.
-pub struct Writer {
-    out: BufWriter<File>,
-    pos: u64,
-    entries: Vec<Entry>,
-    error: Option<io::Error>,
-}
-
-impl Writer {
-    fn create(file: File) -> Writer {
-        let mut w = Writer {
-            // Small: sections larger than the buffer go to the file directly, so it only
-            // gathers headers, scalars and padding (and a fixed allocation stays small).
-            out: BufWriter::with_capacity(64 << 10, file),
-            pos: 0,
-            entries: Vec::new(),
-            error: None,
-        };
-        // The header is written last, once the table's place and checksum are known.
-        w.write_raw(&[0u8; HEADER_LEN]);
-        w
-    }
-
-    fn write_raw(&mut self, bytes: &[u8]) {
-        if self.error.is_none()
-            && let Err(e) = self.out.write_all(bytes)
-        {
-            self.error = Some(e);
-        }
-        self.pos += bytes.len() as u64;
-    }
-
-    fn pad_to(&mut self, align: u64) {
-        let pad = self.pos.next_multiple_of(align) - self.pos;
-        self.write_raw(&[0u8; ALIGN as usize][..pad as usize]);
-    }
-
-    /// Appends an array of any plain element type.
-    pub fn section<T: bytemuck::Pod>(&mut self, items: &[T]) {
-        self.pad_to(ALIGN);
-        let bytes: &[u8] = bytemuck::cast_slice(items);
-        self.entries.push(Entry {
-            offset: self.pos,
-            count: items.len() as u64,
-            size: size_of::<T>() as u32,
-            checksum: xxhash_rust::xxh3::xxh3_64(bytes),
-        });
-        self.write_raw(bytes);
-    }
-
-    /// Appends an array of bytes.
-    pub fn u8s(&mut self, items: &[u8]) {
-        self.section(items);
-    }
-
-    /// Appends an array of 32-bit integers.
-    pub fn u32s(&mut self, items: &[u32]) {
-        self.section(items);
-    }
-
-    /// Appends an array of 64-bit integers.
-    pub fn u64s(&mut self, items: &[u64]) {
-        self.section(items);
-    }
-
-    /// Appends an array of `usize`, widened to 64 bits (on 64-bit targets written as is: no
-    /// input-sized copy, which could not be had fallibly here).
-    pub fn usizes(&mut self, items: &[usize]) {
-        #[cfg(target_pointer_width = "64")]
-        self.section::<u64>(bytemuck::cast_slice(items));
-        #[cfg(not(target_pointer_width = "64"))]
-        {
-            let wide: Vec<u64> = items.iter().map(|&x| x as u64).collect();
-            self.section(&wide);
-        }
-    }
-
-    /// Appends `count` numbers produced by `items`, widened to 64 bits: the bytes of
-    /// [`Writer::usizes`] of the same numbers, without an array holding them (e.g. offsets
-    /// that are a formula).
-    pub fn usizes_from(&mut self, count: usize, items: impl Iterator<Item = usize>) {
-        self.pad_to(ALIGN);
-        let offset = self.pos;
-        let mut hash = xxhash_rust::xxh3::Xxh3::new();
-        let mut buf = [0u64; 1024];
-        let mut written = 0usize;
-        let mut items = items.take(count);
-        loop {
-            let mut n = 0;
-            for (slot, x) in buf.iter_mut().zip(&mut items) {
-                *slot = x as u64;
-                n += 1;
-            }
-            if n == 0 {
-                break;
-            }
-            let bytes: &[u8] = bytemuck::cast_slice(&buf[..n]);
-            hash.update(bytes);
-            self.write_raw(bytes);
-            written += n;
-        }
-        assert_eq!(written, count, "usizes_from: the iterator ended early");
-        self.entries.push(Entry {
-            offset,
-            count: count as u64,
-            size: 8,
-            checksum: hash.digest(),
-        });
-    }
-
-    /// Appends one number (a one-element 64-bit section).
-    pub fn scalar(&mut self, x: u64) {
-        self.section(&[x]);
-    }
-
-    /// Appends a simplex table: its arity, then its rows.
-    pub fn table(&mut self, t: &SimplexTable) {
-        self.scalar(t.arity() as u64);
-        self.u32s(t.as_flat());
-    }
-
-    fn finish(mut self, kind: u32, structure_first: u32) -> io::Result<()> {
-        self.pad_to(8);
-        let table_offset = self.pos;
-        let mut table = Vec::with_capacity(self.entries.len() * ENTRY_LEN);
-        for e in &self.entries {
-            table.extend_from_slice(&e.offset.to_ne_bytes());
-            table.extend_from_slice(&e.count.to_ne_bytes());
-            table.extend_from_slice(&e.size.to_ne_bytes());
-            table.extend_from_slice(&0u32.to_ne_bytes());
-            table.extend_from_slice(&e.checksum.to_ne_bytes());
-        }
-        self.write_raw(&table);
-        let file_len = self.pos;
-        let mut header = [0u8; HEADER_LEN];
-        header[0..8].copy_from_slice(&MAGIC);
-        header[8..12].copy_from_slice(&BYTE_ORDER_MARK.to_ne_bytes());
-        header[12..16].copy_from_slice(&VERSION.to_ne_bytes());
-        header[16..20].copy_from_slice(&32u32.to_ne_bytes());
-        header[20..24].copy_from_slice(&kind.to_ne_bytes());
-        header[24..28].copy_from_slice(&(self.entries.len() as u32).to_ne_bytes());
-        header[28..32].copy_from_slice(&structure_first.to_ne_bytes());
-        header[32..40].copy_from_slice(&file_len.to_ne_bytes());
-        header[40..48].copy_from_slice(&table_offset.to_ne_bytes());
-        let sum = head_checksum(&header[..48], &table);
-        header[48..56].copy_from_slice(&sum.to_ne_bytes());
-        if let Some(e) = self.error.take() {
-            return Err(e);
-        }
-        let mut file = self.out.into_inner().map_err(|e| e.into_error())?;
-        file.seek(SeekFrom::Start(0))?;
-        file.write_all(&header)?;
-        file.sync_all()
-    }
-}
-
-fn head_checksum(header48: &[u8], table: &[u8]) -> u64 {
-    let mut h = xxhash_rust::xxh3::Xxh3::new();
-    h.update(header48);
-    h.update(table);
-    h.digest()
-}
-
-/// Reads the sections of an opened file in the order they were written, as views (arrays) or
-/// numbers; every shape error names the file.
-pub struct Reader<'a> {
-    saved: &'a Saved,
-    next: usize,
-}
-
-impl Reader<'_> {
-    /// A `Corrupt` error naming the file.
-    pub fn corrupt(&self, what: impl Into<String>) -> StoreError {
-        StoreError::Corrupt {
-            path: self.saved.path.clone(),
-            what: what.into(),
-        }
-    }
-
-    fn entry(&mut self, size: u32) -> Result<Entry, StoreError> {
-        let i = self.next;
-        let e = *self
-            .saved
-            .entries
-            .get(i)
-            .ok_or_else(|| self.corrupt(format!("section {i} is missing")))?;
-        if e.size != size {
-            return Err(self.corrupt(format!(
-                "section {i} has {}-byte elements where {size}-byte ones were expected",
-                e.size
-            )));
-        }
-        self.next += 1;
-        Ok(e)
-    }
-
-    /// The next section, an array of any plain element type of the saved element size.
-    pub fn arr<T: bytemuck::Pod>(&mut self) -> Result<Arr<T>, StoreError> {
-        let e = self.entry(size_of::<T>() as u32)?;
-        // Offsets, lengths and alignment were checked against the file on open.
-        Ok(Arr::Mapped {
-            backing: Arc::clone(&self.saved.backing),
-            start: e.offset as usize,
-            len: e.count as usize,
-            _t: PhantomData,
-        })
-    }
-
-    /// The next section, an array of bytes.
-    pub fn u8s(&mut self) -> Result<Arr<u8>, StoreError> {
-        self.arr()
-    }
-
-    /// The next section, an array of 32-bit integers.
-    pub fn u32s(&mut self) -> Result<Arr<u32>, StoreError> {
-        self.arr()
-    }
-
-    /// The next section, an array of 64-bit integers.
-    pub fn u64s(&mut self) -> Result<Arr<u64>, StoreError> {
-        self.arr()
-    }
-
-    /// The next section, 64-bit integers as `usize` (copied, the copy reserved fallibly:
-    /// [`Reader::out_of_memory`]; refused if one does not fit).
-    pub fn usizes(&mut self) -> Result<Vec<usize>, StoreError> {
-        let wide = self.u64s()?;
-        let mut out = Vec::new();
-        table::try_reserve_exact(&mut out, wide.len())
-            .map_err(|bytes| self.out_of_memory("a copy of a saved array", bytes))?;
-        for &x in wide.iter() {
-            out.push(usize::try_from(x).map_err(|_| self.corrupt(format!("{x} overflows usize")))?);
-        }
-        Ok(out)
-    }
-
-    /// A copy of a mapped array, reserved fallibly ([`Reader::out_of_memory`]).
-    pub fn copy<T: bytemuck::Pod>(&self, a: &Arr<T>) -> Result<Vec<T>, StoreError> {
-        let mut out = Vec::new();
-        table::try_extend(&mut out, a)
-            .map_err(|bytes| self.out_of_memory("a copy of a saved array", bytes))?;
-        Ok(out)
-    }
-
-    /// Memory that opening asks for (a copy of the file's arrays) that cannot be had: the
-    /// complex model's `OutOfMemory` (`TPX_STATUS_TOO_LARGE` through the C ABI), not an abort.
-    pub fn out_of_memory(&self, what: &'static str, bytes: usize) -> StoreError {
-        StoreError::Complex {
-            path: self.saved.path.clone(),
-            source: ComplexError::OutOfMemory {
-                file: None,
-                what,
-                bytes: bytes as u64,
-            },
-        }
-    }
-
-    /// The next section, one number.
-    pub fn scalar(&mut self) -> Result<u64, StoreError> {
-        let a = self.u64s()?;
-        match *a {
-            [x] => Ok(x),
-            _ => Err(self.corrupt(format!(
-                "section {} should hold one number, holds {}",
-                self.next - 1,
-                a.len()
-            ))),
-        }
-    }
-
-    /// The next number, which must be at most `max`.
-    pub fn bounded(&mut self, max: u64, what: &str) -> Result<u64, StoreError> {
-        let x = self.scalar()?;
-        if x > max {
-            return Err(self.corrupt(format!("{what} is {x}, above {max}")));
-        }
-        Ok(x)
-    }
-
-    /// The next number as a `u32`.
-    pub fn u32(&mut self, what: &str) -> Result<u32, StoreError> {
-        Ok(self.bounded(u32::MAX as u64, what)? as u32)
-    }
-
-    /// The next number as a `usize`.
-    pub fn usize(&mut self, what: &str) -> Result<usize, StoreError> {
-        Ok(self.bounded(usize::MAX as u64, what)? as usize)
-    }
-
-    /// A simplex table written by [`Writer::table`]: arity 1..=16, length a multiple of it.
-    /// Row order is the structure's invariant, checked by `verify`.
-    pub fn table(&mut self) -> Result<SimplexTable, StoreError> {
-        let arity = self.bounded(crate::complex::MAX_DIMENSION as u64 + 1, "table arity")?;
-        if arity == 0 {
-            return Err(self.corrupt("table arity is 0"));
-        }
-        let ids = self.u32s()?;
-        if ids.len() % arity as usize != 0 {
-            return Err(self.corrupt(format!(
-                "table of {} ids is not made of rows of {arity}",
-                ids.len()
-            )));
-        }
-        Ok(SimplexTable::from_arr(arity as usize, ids))
-    }
-
-    /// Checks that `len` is `want`, naming the array.
-    pub fn expect_len(&self, what: &str, len: usize, want: usize) -> Result<(), StoreError> {
-        if len != want {
-            return Err(self.corrupt(format!("{what} has {len} entries, expected {want}")));
-        }
-        Ok(())
-    }
-
-    fn done(&self) -> Result<(), StoreError> {
-        let left = self.saved.entries.len() - self.next;
-        if left != 0 {
-            return Err(self.corrupt(format!("{left} sections left unread")));
-        }
-        Ok(())
-    }
-}
-
-/// What a structure writes to and reads back from a saved file.
-pub trait Persist: Sized {
-    /// Appends the structure's arrays and numbers.
-    fn save(&self, w: &mut Writer);
-    /// Reads them back in the same order. Checks the shapes it needs (array lengths against
-    /// counts), not the invariants `validate()` checks.
-    fn load(r: &mut Reader) -> Result<Self, StoreError>;
-}
+pub use crate::codec::{Field, MAGIC, Persist, StoreError, VERSION, Writer};
+pub(crate) use crate::codec::{HEADER_LEN, Reader, Sections, check_head};
+pub use crate::mapped::{Arr, Backing};
 
 /// An opened `.tpx` file: checked header and section table over mapped bytes.
 pub struct Saved {
-    path: PathBuf,
-    backing: Arc<Backing>,
-    entries: Vec<Entry>,
+    sections: Sections,
     kind: Option<StructureKind>,
     structure_first: usize,
 }
@@ -529,7 +86,7 @@ pub fn save(
     let first = w.entries.len() as u32;
     let kind = match structure {
         Some(s) => {
-            persist::save_structure(s, &mut w);
+            crate::family::save(s, &mut w);
             s.kind() as u32 + 1
         }
         None => 0,
@@ -561,7 +118,7 @@ impl Saved {
         let file = File::open(path).map_err(io_err)?;
         // A mapping counts against an address-space limit: one that does not fit is memory
         // the file asks for (TooLarge), not an I/O error.
-        let map = map_file(&file).map_err(|e| match e.kind() {
+        let map = crate::sys::map_file(&file).map_err(|e| match e.kind() {
             io::ErrorKind::OutOfMemory => StoreError::Complex {
                 path: path.to_path_buf(),
                 source: ComplexError::OutOfMemory {
@@ -596,9 +153,11 @@ impl Saved {
     fn from_backing(path: &Path, backing: Backing) -> Result<Saved, StoreError> {
         let (entries, kind, structure_first) = check_head(path, backing.bytes())?;
         Ok(Saved {
-            path: path.to_path_buf(),
-            backing: Arc::new(backing),
-            entries,
+            sections: Sections {
+                path: path.to_path_buf(),
+                backing: Arc::new(backing),
+                entries,
+            },
             kind,
             structure_first,
         })
@@ -611,7 +170,7 @@ impl Saved {
 
     /// The file's length in bytes.
     pub fn len(&self) -> usize {
-        self.backing.bytes().len()
+        self.sections.backing.bytes().len()
     }
 
     /// Whether the file is empty (never, once opened).
@@ -621,7 +180,7 @@ impl Saved {
 
     fn reader(&self, first: usize) -> Reader<'_> {
         Reader {
-            saved: self,
+            saved: &self.sections,
             next: first,
         }
     }
@@ -644,14 +203,14 @@ impl Saved {
             return Ok(None);
         };
         let mut r = self.reader(self.structure_first);
-        let s = persist::load_structure(kind, &mut r)?;
+        let s = crate::family::load(kind, &mut r)?;
         r.done()?;
         Ok(Some(s))
     }
 
     /// The file's path (as opened).
     pub(crate) fn path(&self) -> &Path {
-        &self.path
+        &self.sections.path
     }
 
     /// The saved structure as its concrete type `T` when the file holds one of `kind` (`T`'s
@@ -678,8 +237,8 @@ impl Saved {
             return Ok(s);
         }
         let complex = self.complex()?;
-        crate::structures::build(kind, &complex).map_err(|source| StoreError::Build {
-            path: self.path.clone(),
+        crate::family::build(kind, &complex).map_err(|source| StoreError::Build {
+            path: self.sections.path.clone(),
             source,
         })
     }
@@ -687,10 +246,10 @@ impl Saved {
     /// Checks every section's checksum (reads the whole file), then the saved structure's
     /// invariants (`validate()`). Cost: O(file size) plus the structure's validation.
     pub fn verify(&self) -> Result<(), StoreError> {
-        let bytes = self.backing.bytes();
+        let bytes = self.sections.backing.bytes();
         // Padding between sections must be zero, so that every byte of the file is checked.
         let mut covered = HEADER_LEN;
-        for (i, e) in self.entries.iter().enumerate() {
+        for (i, e) in self.sections.entries.iter().enumerate() {
             let start = e.offset as usize;
             let end = start + (e.count * e.size as u64) as usize;
             if start >= covered && bytes[covered..start].iter().any(|&b| b != 0) {
@@ -723,158 +282,9 @@ impl Saved {
 
     fn corrupt(&self, what: impl Into<String>) -> StoreError {
         StoreError::Corrupt {
-            path: self.path.clone(),
+            path: self.sections.path.clone(),
             what: what.into(),
         }
-    }
-}
-
-/// Maps `file` read-only.
-#[allow(unsafe_code)]
-fn map_file(file: &File) -> io::Result<memmap2::Mmap> {
-    // SAFETY: the map is read-only and every view into it is bounds-checked against its length.
-    // Another process truncating or rewriting the file while it is mapped is the documented
-    // hazard of every mmap (`save` writes a new file and renames it, so our own saves never
-    // rewrite a mapped file in place).
-    unsafe { memmap2::Mmap::map(file) }
-}
-
-type Head = (Vec<Entry>, Option<StructureKind>, usize);
-
-/// Checks the header and the section table of `bytes` (see the module doc).
-fn check_head(path: &Path, bytes: &[u8]) -> Result<Head, StoreError> {
-    let corrupt = |what: String| StoreError::Corrupt {
-        path: path.to_path_buf(),
-        what,
-    };
-    let truncated = |what: String| StoreError::Truncated {
-        path: path.to_path_buf(),
-        what,
-    };
-    if bytes.len() < MAGIC.len() || bytes[..MAGIC.len()] != MAGIC {
-        return Err(StoreError::Foreign {
-            path: path.to_path_buf(),
-        });
-    }
-    if bytes.len() < HEADER_LEN {
-        return Err(truncated(format!(
-            "{} bytes, shorter than the {HEADER_LEN}-byte header",
-            bytes.len()
-        )));
-    }
-    let u32_at = |o: usize| u32::from_ne_bytes(bytes[o..o + 4].try_into().unwrap());
-    let u64_at = |o: usize| u64::from_ne_bytes(bytes[o..o + 8].try_into().unwrap());
-    match u32_at(8) {
-        BYTE_ORDER_MARK => {}
-        m if m == BYTE_ORDER_MARK.swap_bytes() => {
-            return Err(StoreError::WrongEndianness {
-                path: path.to_path_buf(),
-            });
-        }
-        m => return Err(corrupt(format!("byte-order mark {m:#010x}"))),
-    }
-    if u32_at(12) != VERSION {
-        return Err(StoreError::WrongVersion {
-            path: path.to_path_buf(),
-            found: u32_at(12),
-            supported: VERSION,
-        });
-    }
-    if u64_at(56) != 0 {
-        return Err(corrupt(format!(
-            "reserved header bytes hold {:#x}",
-            u64_at(56)
-        )));
-    }
-    if u32_at(16) != 32 {
-        return Err(corrupt(format!(
-            "id width {} bits, expected 32",
-            u32_at(16)
-        )));
-    }
-    let (kind_code, n_sections, first) = (u32_at(20), u32_at(24) as u64, u32_at(28) as usize);
-    let (file_len, table_offset, sum) = (u64_at(32), u64_at(40), u64_at(48));
-    if file_len > bytes.len() as u64 {
-        return Err(truncated(format!(
-            "{} bytes of the {file_len} the header states",
-            bytes.len()
-        )));
-    }
-    if file_len < bytes.len() as u64 {
-        return Err(corrupt(format!(
-            "{} bytes where the header states {file_len}",
-            bytes.len()
-        )));
-    }
-    if n_sections > MAX_SECTIONS {
-        return Err(corrupt(format!("{n_sections} sections")));
-    }
-    let table_end = table_offset
-        .checked_add(n_sections * ENTRY_LEN as u64)
-        .filter(|&end| table_offset >= HEADER_LEN as u64 && end == file_len)
-        .ok_or_else(|| {
-            corrupt(format!(
-                "section table at {table_offset} for {n_sections} sections in {file_len} bytes"
-            ))
-        })?;
-    let table = &bytes[table_offset as usize..table_end as usize];
-    if head_checksum(&bytes[..48], table) != sum {
-        return Err(corrupt("header checksum mismatch".into()));
-    }
-    let kind = match kind_code {
-        0 => None,
-        // Content code = kind + 1; the live complex (kind 9) is not in ALL.
-        k => Some(
-            StructureKind::ALL
-                .into_iter()
-                .chain([StructureKind::IaStar])
-                .find(|s| s.abi() + 1 == k)
-                .ok_or_else(|| corrupt(format!("unknown content code {k}")))?,
-        ),
-    };
-    if first > n_sections as usize || (kind.is_none() && first != n_sections as usize) {
-        return Err(corrupt(format!(
-            "structure starts at section {first} of {n_sections}"
-        )));
-    }
-    let entries = parse_table(table, table_offset, &corrupt)?;
-    Ok((entries, kind, first))
-}
-
-fn parse_table(
-    table: &[u8],
-    table_offset: u64,
-    corrupt: &dyn Fn(String) -> StoreError,
-) -> Result<Vec<Entry>, StoreError> {
-    let mut entries = Vec::with_capacity(table.len() / ENTRY_LEN);
-    for (i, raw) in table.chunks_exact(ENTRY_LEN).enumerate() {
-        let u64_at = |o: usize| u64::from_ne_bytes(raw[o..o + 8].try_into().unwrap());
-        let e = Entry {
-            offset: u64_at(0),
-            count: u64_at(8),
-            size: u32::from_ne_bytes(raw[16..20].try_into().unwrap()),
-            checksum: u64_at(24),
-        };
-        if !(1..=64).contains(&e.size) {
-            return Err(corrupt(format!("section {i}: element size {}", e.size)));
-        }
-        let end = e
-            .count
-            .checked_mul(e.size as u64)
-            .and_then(|n| n.checked_add(e.offset));
-        let fits = end.is_some_and(|end| end <= table_offset);
-        if !fits || e.offset < HEADER_LEN as u64 || !e.offset.is_multiple_of(ALIGN) {
-            return Err(corrupt(format!(
-                "section {i}: {} elements of {} bytes at offset {} do not fit before the table at {table_offset}",
-                e.count, e.size, e.offset
-            )));
-        }
-        entries.push(e);
-    }
-    // Section 0 repeats the magic number: a cheap check that offsets mean what they say.
-    match entries.first() {
-        Some(e) if e.size == 1 && e.count == MAGIC.len() as u64 => Ok(entries),
-        _ => Err(corrupt("section 0 is not the magic number".into())),
     }
 }
 
@@ -883,5 +293,32 @@ fn coords_of(c: &Complex) -> (u64, &[f64]) {
     match c.coords() {
         Some(Coords { dim, data }) => (*dim as u64, data),
         None => (0, &[]),
+    }
+}
+
+// Saving and opening a whole file belongs to the store, which stands above the live mesh.
+impl LiveComplex {
+    /// Saves the live complex and its complex ([`LiveComplex::to_complex`]) to `path` (`.tpx`;
+    /// compacted on the fly, see the module doc). Cost: O(size).
+    pub fn save(&self, path: &std::path::Path) -> Result<(), StoreError> {
+        save(path, &self.to_complex(), Some(self))
+    }
+
+    /// Opens a `.tpx` file as an editable live complex: the saved live complex when the file
+    /// holds one, else one built from the saved complex. Cost: O(size) (copied, not mapped).
+    pub fn open(path: &std::path::Path) -> Result<LiveComplex, StoreError> {
+        LiveComplex::open_saved(&Saved::open(path)?)
+    }
+
+    /// [`LiveComplex::open`] of an opened file.
+    pub fn open_saved(saved: &Saved) -> Result<LiveComplex, StoreError> {
+        let kind = crate::relation::StructureKind::IaStar;
+        if let Some(live) = saved.structure_as::<LiveComplex>(kind)? {
+            return Ok(live);
+        }
+        LiveComplex::try_from_complex(&saved.complex()?).map_err(|source| StoreError::Build {
+            path: saved.path().to_path_buf(),
+            source,
+        })
     }
 }

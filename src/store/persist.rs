@@ -1,13 +1,10 @@
 //! The complex's sections, and dispatch of a structure's sections by kind.
 
-use std::any::Any;
 use std::path::PathBuf;
 
-use super::{Persist, Reader, StoreError, Writer, coords_of};
+use super::{Reader, StoreError, Writer, coords_of};
 use crate::complex::Complex;
-use crate::io::Coords;
-use crate::relation::{StructureKind, Topology};
-use crate::structures::{de, ia, ig, iqm, le, nmia, pe, sig, ts};
+use crate::complex::Coords;
 
 /// Vertex count, coordinates, the listing as given (ids and offsets) and the source path: all
 /// the complex model needs to rebuild the same complex.
@@ -57,44 +54,4 @@ pub(super) fn load_complex(r: &mut Reader) -> Result<Complex, StoreError> {
         })?;
     c.set_source(source);
     Ok(c)
-}
-
-/// Appends the structure's sections (its concrete type found by downcasting).
-pub(super) fn save_structure(s: &dyn Topology, w: &mut Writer) {
-    let any: &dyn Any = s;
-    fn go<T: Persist + 'static>(any: &dyn Any, w: &mut Writer) -> bool {
-        any.downcast_ref::<T>().map(|t| t.save(w)).is_some()
-    }
-    let saved = go::<ig::IncidenceGraph>(any, w)
-        || go::<sig::Sig>(any, w)
-        || go::<ia::IndexedAdjacency>(any, w)
-        || go::<iqm::Iqm>(any, w)
-        || go::<nmia::NonManifoldIa>(any, w)
-        || go::<ts::TriangleSegment>(any, w)
-        || go::<pe::PartialEntities>(any, w)
-        || go::<le::LoopEdgeUse>(any, w)
-        || go::<de::DirectedEdge>(any, w)
-        || go::<crate::live::LiveComplex>(any, w);
-    assert!(saved, "every structure kind implements Persist");
-}
-
-pub(super) fn load_structure(
-    kind: StructureKind,
-    r: &mut Reader,
-) -> Result<Box<dyn Topology>, StoreError> {
-    fn go<T: Persist + Topology>(r: &mut Reader) -> Result<Box<dyn Topology>, StoreError> {
-        Ok(Box::new(T::load(r)?))
-    }
-    match kind {
-        StructureKind::Ig => go::<ig::IncidenceGraph>(r),
-        StructureKind::Sig => go::<sig::Sig>(r),
-        StructureKind::Ia => go::<ia::IndexedAdjacency>(r),
-        StructureKind::Iqm => go::<iqm::Iqm>(r),
-        StructureKind::Nmia => go::<nmia::NonManifoldIa>(r),
-        StructureKind::Ts => go::<ts::TriangleSegment>(r),
-        StructureKind::Pe => go::<pe::PartialEntities>(r),
-        StructureKind::Le => go::<le::LoopEdgeUse>(r),
-        StructureKind::De => go::<de::DirectedEdge>(r),
-        StructureKind::IaStar => go::<crate::live::LiveComplex>(r),
-    }
 }

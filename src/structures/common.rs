@@ -4,15 +4,15 @@
 //! ([`facet_links`]), [`show`] for messages, and the fallible allocations of input-sized arrays
 //! ([`try_vec`], [`try_with_capacity`], [`try_iota`], [`try_reserve`]).
 
-use std::cell::RefCell;
-use std::thread::LocalKey;
-
 use rustc_hash::FxHashSet;
 
 use super::BuildError;
 use crate::complex::table::{self, headroom};
 use crate::complex::{Complex, SimplexTable, sort_dedup_rows};
+pub(crate) use crate::error::show;
 use crate::relation::StructureKind;
+pub(crate) use crate::scratch::{Pooled, Scratch};
+pub(crate) use crate::union_find::UnionFind;
 
 /// The error for an array of `n` elements of `T` (named by `what`) that cannot be had: a build
 /// under a raised budget must report `TooLarge`, never abort the host on allocation failure.
@@ -168,157 +168,6 @@ pub(crate) fn try_iota(kind: StructureKind, n: usize, what: &str) -> Result<Vec<
     let mut v = try_with_capacity(kind, n, what)?;
     v.extend(0..n as u32);
     Ok(v)
-}
-
-/// A buffer that is reset and handed back between uses: the per-thread pools of [`Scratch`].
-pub(crate) trait Pooled: Default + 'static {
-    /// This type's pool on the current thread.
-    fn pool() -> &'static LocalKey<RefCell<Vec<Self>>>;
-    /// Empties the buffer, keeping its allocation.
-    fn reset(&mut self);
-    /// The allocation size kept (what the pool sorts by).
-    fn capacity(&self) -> usize;
-}
-
-/// Buffers a thread keeps per type; more than this are dropped on return.
-const POOL_CAP: usize = 32;
-
-/// A scratch buffer taken from this thread's pool and returned to it on drop, so that queries
-/// (which take `&self` and keep no state in the structure) reuse the same allocations call after
-/// call: after a first call of a given size, the same call allocates nothing. Reentrant: a nested
-/// query takes another buffer from the pool (or a fresh one).
-pub(crate) struct Scratch<T: Pooled>(Option<T>);
-
-impl<T: Pooled> Scratch<T> {
-    /// An empty buffer from the pool.
-    pub(crate) fn take() -> Scratch<T> {
-        let kept = T::pool()
-            .try_with(|p| p.try_borrow_mut().ok().and_then(|mut p| p.pop()))
-            .ok()
-            .flatten();
-        Scratch(Some(kept.unwrap_or_default()))
-    }
-}
-
-impl<T: Pooled> Drop for Scratch<T> {
-    fn drop(&mut self) {
-        if let Some(mut v) = self.0.take() {
-            v.reset();
-            // During thread teardown or while the pool is borrowed, the buffer is just freed.
-            let _ = T::pool().try_with(|p| {
-                // Kept by ascending capacity and taken from the top: a query nested k deep
-                // gets the k-th largest buffer, so sizes settle after one pass.
-                if let Ok(mut p) = p.try_borrow_mut()
-                    && p.len() < POOL_CAP
-                {
-                    let at = p.partition_point(|x| x.capacity() <= v.capacity());
-                    p.insert(at, v);
-                }
-            });
-        }
-    }
-}
-
-impl<T: Pooled> std::ops::Deref for Scratch<T> {
-    type Target = T;
-    fn deref(&self) -> &T {
-        self.0.as_ref().expect("held until drop")
-    }
-}
-
-impl<T: Pooled> std::ops::DerefMut for Scratch<T> {
-    fn deref_mut(&mut self) -> &mut T {
-        self.0.as_mut().expect("held until drop")
-    }
-}
-
-/// Implements [`Pooled`] for `Vec<T>` with a thread-local pool per element type.
-macro_rules! pooled_vec {
-    ($($t:ty),*) => {$(
-        impl $crate::structures::common::Pooled for Vec<$t> {
-            fn pool() -> &'static ::std::thread::LocalKey<::std::cell::RefCell<Vec<Self>>> {
-                thread_local! {
-                    static POOL: ::std::cell::RefCell<Vec<Vec<$t>>> =
-                        const { ::std::cell::RefCell::new(Vec::new()) };
-                }
-                &POOL
-            }
-            fn reset(&mut self) {
-                self.clear();
-            }
-            fn capacity(&self) -> usize {
-                Vec::capacity(self)
-            }
-        }
-    )*};
-}
-pub(crate) use pooled_vec;
-
-pooled_vec!(u32, usize, bool, (u32, u32), crate::handle::SimplexHandle);
-
-impl Pooled for crate::handle::Fans {
-    fn pool() -> &'static LocalKey<RefCell<Vec<Self>>> {
-        thread_local! {
-            static POOL: RefCell<Vec<crate::handle::Fans>> = const { RefCell::new(Vec::new()) };
-        }
-        &POOL
-    }
-    fn reset(&mut self) {
-        self.clear();
-    }
-    fn capacity(&self) -> usize {
-        self.items.capacity()
-    }
-}
-
-/// `[a b c]`, for messages naming a simplex.
-pub(crate) fn show(ids: &[u32]) -> String {
-    let v: Vec<String> = ids.iter().map(|i| i.to_string()).collect();
-    format!("[{}]", v.join(" "))
-}
-
-/// Union–find over `0..n` with path halving; the smaller root wins, so the classes' roots do not
-/// depend on the order of the unions.
-pub(crate) struct UnionFind(Vec<u32>);
-
-impl UnionFind {
-    /// `n` singletons in `buf`'s allocation (cleared first); [`UnionFind::into_inner`] gives
-    /// it back.
-    pub(crate) fn reusing(mut buf: Vec<u32>, n: usize) -> Self {
-        buf.clear();
-        buf.extend(0..n as u32);
-        UnionFind(buf)
-    }
-
-    /// The parent array, to reuse its allocation.
-    pub(crate) fn into_inner(self) -> Vec<u32> {
-        self.0
-    }
-
-    /// `n` singletons, or `TooLarge` when the memory cannot be had.
-    pub(crate) fn try_new(kind: StructureKind, n: usize, what: &str) -> Result<Self, BuildError> {
-        Ok(UnionFind(try_iota(kind, n, what)?))
-    }
-
-    /// The root of `x`'s class.
-    pub(crate) fn find(&mut self, mut x: u32) -> u32 {
-        while self.0[x as usize] != x {
-            let up = self.0[self.0[x as usize] as usize];
-            self.0[x as usize] = up;
-            x = up;
-        }
-        x
-    }
-
-    /// Merges the classes of `a` and `b`.
-    pub(crate) fn union(&mut self, a: u32, b: u32) {
-        let (ra, rb) = (self.find(a), self.find(b));
-        if ra < rb {
-            self.0[rb as usize] = ra;
-        } else if rb < ra {
-            self.0[ra as usize] = rb;
-        }
-    }
 }
 
 /// Calls `f` with every (q+1)-vertex face of `top` (ascending) that contains `sigma` (ascending,

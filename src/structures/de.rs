@@ -35,8 +35,8 @@ use super::common::{try_copy, try_with_capacity};
 use super::nav::NavIndex;
 use super::radial::{self, EdgeAt, EdgeLocator, TriTopo, row3};
 use crate::complex::Complex;
+use crate::mapped::Arr;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
-use crate::store::Arr;
 
 const KIND: StructureKind = StructureKind::De;
 
@@ -201,7 +201,7 @@ impl TriTopo for DirectedEdge {
 radial::nav_base!(DirectedEdge);
 
 impl Topology for DirectedEdge {
-    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
         Some(self)
     }
 

@@ -77,7 +77,7 @@
 //!   walk of its star, by chunks of vertices on several threads. O(Σ_v n_v·C(d, p)·log).
 
 use super::nav::{NavBase, NavIndex};
-use crate::store::Arr;
+use crate::mapped::Arr;
 use rustc_hash::FxHashSet;
 use std::sync::atomic::Ordering;
 
@@ -85,7 +85,7 @@ use super::common::{PairParts, too_large, try_push, try_table, try_vec};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable, is_subset};
-use crate::handle::SimplexHandle;
+use crate::relation::handle::SimplexHandle;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Ia;
@@ -756,7 +756,7 @@ impl IndexedAdjacency {
 }
 
 impl Topology for IndexedAdjacency {
-    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
         Some(self)
     }
 

@@ -33,9 +33,9 @@ use super::common::{IdSet, Scratch, faces_containing, try_closure_links};
 use super::nav::{NavBase, NavIndex, with_scratch};
 use super::{BuildError, to_u32};
 use crate::complex::{Complex, SimplexTable};
-use crate::handle::SimplexHandle;
+use crate::mapped::Arr;
+use crate::relation::handle::SimplexHandle;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
-use crate::store::Arr;
 
 const KIND: StructureKind = StructureKind::Ig;
 
@@ -189,9 +189,10 @@ impl NavBase for IncidenceGraph {
     }
 
     // C_{p,p+1} is stored in CSR form, ascending within a list: lent as it is.
-    fn stored_view(&self, p: usize, q: usize) -> Option<crate::handle::RelationView<'_>> {
-        (q == p + 1)
-            .then(|| crate::handle::RelationView::new(&self.cob_offsets[p], &self.cob[p], false))
+    fn stored_view(&self, p: usize, q: usize) -> Option<crate::relation::handle::RelationView<'_>> {
+        (q == p + 1).then(|| {
+            crate::relation::handle::RelationView::new(&self.cob_offsets[p], &self.cob[p], false)
+        })
     }
 
     /// The stored links as handles (row `i` of `tables[p]` is dense p-simplex `i`): R_{p,p−1},
@@ -254,7 +255,7 @@ impl NavBase for IncidenceGraph {
 }
 
 impl Topology for IncidenceGraph {
-    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
         Some(self)
     }
 

@@ -108,9 +108,9 @@
 //!
 //! Queries keep no state in the structure: "visited" marks are a per-query hash set.
 
-use crate::store::Arr;
+use crate::mapped::Arr;
 
-use super::common::{IdSet, IdStack, Scratch, UnionFind, faces_containing};
+use super::common::{IdSet, IdStack, Scratch, UnionFind, faces_containing, too_large};
 use super::common::{
     try_closure_counts, try_copy, try_iota, try_order, try_push, try_vec, try_with_capacity,
 };
@@ -347,8 +347,10 @@ impl HigherTops {
 /// Steps 1–3: pastes top simplices along joints. Returns the union-finds over slots and over
 /// global tops.
 fn paste_joints(x: &Exploded, higher: &HigherTops) -> Result<(UnionFind, UnionFind), BuildError> {
-    let mut slots = UnionFind::try_new(KIND, x.slots(), "vertex slots")?;
-    let mut tops_uf = UnionFind::try_new(KIND, x.top_total(), "top simplices")?;
+    let mut slots =
+        UnionFind::try_new(x.slots()).map_err(|b| too_large(KIND, b, "vertex slots"))?;
+    let mut tops_uf =
+        UnionFind::try_new(x.top_total()).map_err(|b| too_large(KIND, b, "top simplices"))?;
     for k in 1..=x.dimension() {
         let w = k + 1;
         let facets = facet_rows(x.tables[k].as_flat(), w, false)?;
@@ -654,7 +656,7 @@ impl Iqm {
     /// winding): the stored row follows ascending original ids, the handle index keeps the
     /// permutation to the input. O(k log n_k) (locating the row's top id).
     fn push_row_as_given(&self, k: usize, t: u32, out: &mut Vec<u32>) {
-        use crate::handle::Navigate;
+        use crate::relation::handle::Navigate;
         let row = self.row(k, t);
         let mut orig = [0u32; crate::complex::MAX_DIMENSION + 1];
         for (o, &c) in orig.iter_mut().zip(row) {
@@ -792,7 +794,7 @@ impl NavBase for Iqm {
 }
 
 impl Topology for Iqm {
-    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
         Some(self)
     }
 

@@ -41,8 +41,8 @@ use super::nav::NavIndex;
 use super::pe::by_start;
 use super::radial::{self, EdgeAt, NONE, TriTopo, row3, show};
 use crate::complex::Complex;
+use crate::mapped::Arr;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
-use crate::store::Arr;
 
 const KIND: StructureKind = StructureKind::Le;
 
@@ -198,7 +198,7 @@ impl TriTopo for LoopEdgeUse {
 radial::nav_base!(LoopEdgeUse);
 
 impl Topology for LoopEdgeUse {
-    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
         Some(self)
     }
 

@@ -1,5 +1,5 @@
 //! [`Navigate`] written once for the nine structures, over dense handles (see
-//! [`crate::handle`]): what each structure adds is [`NavBase`] — where its [`NavIndex`] lives,
+//! [`crate::relation::handle`]): what each structure adds is [`NavBase`] — where its [`NavIndex`] lives,
 //! which dimensions it stores as a lexicographic table, and optional fast walks.
 //!
 //! # What the index holds, and its cost
@@ -34,21 +34,22 @@ use std::sync::OnceLock;
 
 use super::BuildError;
 use super::common::{Scratch, try_table, try_with_capacity};
+use crate::codec::Field;
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable};
-use crate::handle::{
+use crate::mapped::Arr;
+use crate::relation::handle::{
     HandleForm, Navigate, Order, RelationView, SimplexHandle, TopId, Vertices, batch_by_visit,
 };
 use crate::relation::{QueryError, StructureKind, Topology, normalize_simplex};
-use crate::store::{Arr, Field};
 
 // Saved with its structure (`.tpx`): the windings are mapped back, the lazy tables rebuilt on use.
-impl crate::store::Field for NavIndex {
-    fn put(&self, w: &mut crate::store::Writer) {
+impl crate::codec::Field for NavIndex {
+    fn put(&self, w: &mut crate::codec::Writer) {
         self.top_first.put(w);
         self.windings.put(w);
         self.low_tops.put(w);
     }
-    fn get(r: &mut crate::store::Reader) -> Result<Self, crate::store::StoreError> {
+    fn get(r: &mut crate::codec::Reader) -> Result<Self, crate::codec::StoreError> {
         let nav = NavIndex {
             top_first: Field::get(r)?,
             windings: Field::get(r)?,

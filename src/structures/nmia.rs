@@ -97,8 +97,8 @@ use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset};
+use crate::mapped::Arr;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
-use crate::store::Arr;
 
 const KIND: StructureKind = StructureKind::Nmia;
 
@@ -756,7 +756,7 @@ impl NavBase for NonManifoldIa {
 }
 
 impl Topology for NonManifoldIa {
-    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
         Some(self)
     }
 

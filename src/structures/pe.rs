@@ -40,8 +40,8 @@ use super::common::{try_copy, try_vec, try_with_capacity};
 use super::nav::NavIndex;
 use super::radial::{self, EdgeAt, NONE, TriTopo, row3};
 use crate::complex::Complex;
+use crate::mapped::Arr;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
-use crate::store::Arr;
 
 const KIND: StructureKind = StructureKind::Pe;
 
@@ -234,7 +234,7 @@ impl TriTopo for PartialEntities {
 radial::nav_base!(PartialEntities);
 
 impl Topology for PartialEntities {
-    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
         Some(self)
     }
 

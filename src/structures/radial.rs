@@ -17,7 +17,7 @@
 //! coordinates (none, another dimension, non-finite values, a zero-length edge): ascending
 //! third-vertex id, which is also ascending triangle id.
 
-use crate::store::Arr;
+use crate::mapped::Arr;
 use std::f64::consts::TAU;
 
 use rustc_hash::FxHashSet;
@@ -27,8 +27,8 @@ use super::nav::with_scratch;
 use super::{BuildError, to_u32};
 use crate::complex::table::id_bits;
 use crate::complex::{Complex, SimplexTable};
-use crate::handle::SimplexHandle;
 use crate::io::Coords;
+use crate::relation::handle::SimplexHandle;
 use crate::relation::{QueryError, StructureKind};
 
 pub(crate) const NONE: u32 = u32::MAX;
@@ -582,10 +582,10 @@ macro_rules! nav_base {
 
             fn fast_visit(
                 &self,
-                h: crate::handle::SimplexHandle,
+                h: crate::relation::handle::SimplexHandle,
                 sigma: &[u32],
                 q: usize,
-                visit: &mut dyn FnMut(crate::handle::SimplexHandle),
+                visit: &mut dyn FnMut(crate::relation::handle::SimplexHandle),
             ) -> Option<Result<(), crate::relation::QueryError>> {
                 super::radial::fast_visit(self, h, sigma, q, visit)
             }

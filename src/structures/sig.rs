@@ -137,7 +137,7 @@
 //! r-simplex's ids read through the boundary, merged with σ's sorted ids): the same answer as
 //! walking B, cheaper by a constant factor.
 
-use crate::store::Arr;
+use crate::mapped::Arr;
 use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::common::{too_large, try_closure_links};
@@ -145,7 +145,7 @@ use super::ig::IncidenceGraph;
 use super::nav::{NavBase, NavIndex};
 use super::{BuildError, to_u32};
 use crate::complex::{Complex, SimplexTable};
-use crate::handle::SimplexHandle;
+use crate::relation::handle::SimplexHandle;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Sig;
@@ -1069,7 +1069,7 @@ impl NavBase for Sig {
 }
 
 impl Topology for Sig {
-    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
         Some(self)
     }
 
@@ -1390,16 +1390,16 @@ crate::persist_fields!(Cob {
     long
 });
 
-impl crate::store::Field for Vec<Cob> {
-    fn put(&self, w: &mut crate::store::Writer) {
+impl crate::codec::Field for Vec<Cob> {
+    fn put(&self, w: &mut crate::codec::Writer) {
         w.scalar(self.len() as u64);
         for c in self {
-            crate::store::Field::put(c, w);
+            crate::codec::Field::put(c, w);
         }
     }
-    fn get(r: &mut crate::store::Reader) -> Result<Self, crate::store::StoreError> {
+    fn get(r: &mut crate::codec::Reader) -> Result<Self, crate::codec::StoreError> {
         let n = r.bounded(crate::complex::MAX_DIMENSION as u64 + 1, "dimensions")?;
-        (0..n).map(|_| crate::store::Field::get(r)).collect()
+        (0..n).map(|_| crate::codec::Field::get(r)).collect()
     }
 }
 

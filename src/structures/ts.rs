@@ -42,8 +42,8 @@ use super::BuildError;
 use super::nav::NavIndex;
 use super::radial::{self, EdgeAt, EdgeLocator, NONE, TriTopo, row3, slot_ends};
 use crate::complex::{Complex, SimplexTable};
+use crate::mapped::Arr;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
-use crate::store::Arr;
 
 const KIND: StructureKind = StructureKind::Ts;
 
@@ -223,7 +223,7 @@ radial::nav_base!(TriangleSegment;
 );
 
 impl Topology for TriangleSegment {
-    fn as_navigate(&self) -> Option<&dyn crate::handle::Navigate> {
+    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
         Some(self)
     }
 

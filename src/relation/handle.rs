@@ -45,7 +45,8 @@ use std::ops::Deref;
 
 use crate::complex::MAX_DIMENSION;
 use crate::relation::{QueryError, Topology};
-use crate::structures::common::{Scratch, UnionFind};
+use crate::scratch::Scratch;
+use crate::union_find::UnionFind;
 
 /// A vertex id, `0..n`. `VertexId::NONE` (`u32::MAX`) is no vertex.
 #[repr(transparent)]
@@ -783,7 +784,7 @@ pub trait Navigate: Topology {
     /// is not a vertex; `DimensionOutOfRange` for complexes of dimension above 2. Cost: the
     /// star of v and the triangle degree of each edge at v.
     fn fans_around(&self, v: SimplexHandle, out: &mut Fans) -> Result<(), QueryError> {
-        crate::structures::cyclic::fans_around(self, v, out)
+        super::cyclic::fans_around(self, v, out)
     }
 
     /// The q-simplices around edge `e` in radial order, q = 2 (triangles) or 3 (tetrahedra).
@@ -796,7 +797,7 @@ pub trait Navigate: Topology {
     /// clusters meet is in each of their sweeps), then every remaining triangle as a group of
     /// its own. `WrongHandleKind` when e is not an edge.
     fn around_edge(&self, e: SimplexHandle, q: usize, out: &mut Fans) -> Result<(), QueryError> {
-        crate::structures::cyclic::around_edge(self, e, q, out)
+        super::cyclic::around_edge(self, e, q, out)
     }
 }
 
@@ -876,4 +877,22 @@ pub(crate) fn link_is_pseudo_manifold(rows: &[u32], arity: usize) -> bool {
     ok = ok && (1..m as u32).all(|i| uf.find(i) == root);
     *parents = uf.into_inner();
     ok
+}
+
+crate::scratch::pooled_vec!(SimplexHandle);
+
+impl crate::scratch::Pooled for Fans {
+    fn pool() -> &'static std::thread::LocalKey<std::cell::RefCell<Vec<Self>>> {
+        thread_local! {
+            static POOL: std::cell::RefCell<Vec<Fans>> =
+                const { std::cell::RefCell::new(Vec::new()) };
+        }
+        &POOL
+    }
+    fn reset(&mut self) {
+        self.clear();
+    }
+    fn capacity(&self) -> usize {
+        self.items.capacity()
+    }
 }

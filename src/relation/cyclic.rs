@@ -5,9 +5,9 @@
 //! Both walks look only at the star of the vertex or edge: every triangle containing an edge vx
 //! contains v, so the star of v alone says which edges at v bound exactly two triangles.
 
-use super::common::{Scratch, pooled_vec};
-use crate::handle::{Fans, Navigate, SimplexHandle};
 use crate::relation::QueryError;
+use crate::relation::handle::{Fans, Navigate, SimplexHandle};
+use crate::scratch::{Scratch, pooled_vec};
 
 // Walks keep their lists in this thread's pooled buffers: no allocation once they are warm.
 pooled_vec!(Piece, [u32; 2]);

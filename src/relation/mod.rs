@@ -14,7 +14,10 @@
 use std::fmt;
 
 use crate::complex::{MAX_DIMENSION, sort_dedup_rows};
-use crate::handle::{Navigate, SimplexHandle};
+pub(crate) mod cyclic;
+pub mod handle;
+
+use handle::{Navigate, SimplexHandle};
 
 /// Storage of a built structure: what the papers count, and what the process really holds.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, serde::Serialize)]
@@ -331,6 +334,34 @@ pub fn normalize_simplex(sigma: &[u32], n: u32) -> Result<Vec<u32>, QueryError> 
 pub fn sort_rows(rows: &mut Vec<u32>, arity: usize) {
     let sorted = sort_dedup_rows(arity, std::mem::take(rows));
     *rows = sorted;
+}
+
+/// Why a structure could not be built for a complex.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum BuildError {
+    /// Kept for the C ABI's TPX_STATUS_NOT_IMPLEMENTED (numbers are never reused); every kind
+    /// is implemented today.
+    #[error("structure `{kind}` is not implemented yet")]
+    NotImplemented {
+        /// The structure asked for.
+        kind: StructureKind,
+    },
+    /// The structure's domain excludes this complex; `reason` names the first offending simplex.
+    #[error("structure `{kind}` cannot encode this complex: {reason}")]
+    Unsupported {
+        /// The structure asked for.
+        kind: StructureKind,
+        /// Why, naming the first offending simplex.
+        reason: String,
+    },
+    /// The structure's arrays would exceed their index range or the memory available.
+    #[error("structure `{kind}`: the complex is too large: {what}")]
+    TooLarge {
+        /// The structure asked for.
+        kind: StructureKind,
+        /// What overflowed.
+        what: String,
+    },
 }
 
 #[cfg(test)]

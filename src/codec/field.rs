@@ -124,23 +124,23 @@ impl<T: Field> Field for Option<T> {
 #[doc(hidden)]
 macro_rules! persist_fields {
     ($ty:ty { $($f:ident),* $(,)? }) => {
-        impl $crate::store::Field for $ty {
-            fn put(&self, w: &mut $crate::store::Writer) {
-                $( $crate::store::Field::put(&self.$f, w); )*
+        impl $crate::codec::Field for $ty {
+            fn put(&self, w: &mut $crate::codec::Writer) {
+                $( $crate::codec::Field::put(&self.$f, w); )*
             }
-            fn get(r: &mut $crate::store::Reader) -> Result<Self, $crate::store::StoreError> {
-                Ok(Self { $( $f: $crate::store::Field::get(r)?, )* })
+            fn get(r: &mut $crate::codec::Reader) -> Result<Self, $crate::codec::StoreError> {
+                Ok(Self { $( $f: $crate::codec::Field::get(r)?, )* })
             }
         }
     };
     ($ty:ty { $($f:ident),* $(,)? } check $check:expr) => {
         $crate::persist_fields!($ty { $($f),* });
-        impl $crate::store::Persist for $ty {
-            fn save(&self, w: &mut $crate::store::Writer) {
-                $crate::store::Field::put(self, w);
+        impl $crate::codec::Persist for $ty {
+            fn save(&self, w: &mut $crate::codec::Writer) {
+                $crate::codec::Field::put(self, w);
             }
-            fn load(r: &mut $crate::store::Reader) -> Result<Self, $crate::store::StoreError> {
-                let s: $ty = $crate::store::Field::get(r)?;
+            fn load(r: &mut $crate::codec::Reader) -> Result<Self, $crate::codec::StoreError> {
+                let s: $ty = $crate::codec::Field::get(r)?;
                 let check: fn(&$ty) -> Result<(), String> = $check;
                 check(&s).map_err(|e| r.corrupt(e))?;
                 Ok(s)

@@ -1,0 +1,81 @@
+//! What a reader hands the model: the raw simplex list and coordinates, unvalidated
+//! ([`RawInput`]), and the coordinates the complex keeps ([`Coords`]). Readers ([`crate::io`])
+//! stand above this and produce it; [`super::Complex::from_input`] normalises it.
+
+use crate::alloc;
+use crate::error::{ReadErrorKind, no_room};
+
+/// Vertex coordinates, `dim` numbers per vertex, vertex-major.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Coords {
+    /// Numbers per vertex.
+    pub dim: usize,
+    /// `dim` numbers per vertex, vertex after vertex.
+    pub data: Vec<f64>,
+}
+
+/// What a reader produced: unvalidated simplices over 0-based vertex ids.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct RawInput {
+    /// Number of vertices the file declares. `None` only for a `.simplices` file without `v`
+    /// lines, where the vertices are `0..=max id`.
+    pub vertex_count: Option<u32>,
+    /// Coordinates of the declared vertices, when the format carries them.
+    pub coords: Option<Coords>,
+    /// Simplex vertex ids, concatenated; simplex `i` is `ids[offsets[i]..offsets[i + 1]]`
+    /// (so `offsets` has one more entry than there are simplices and starts with 0).
+    pub ids: Vec<u32>,
+    /// Simplex boundaries in `ids` (see `ids`).
+    pub offsets: Vec<usize>,
+    /// 1-based line of each simplex in the file (0 when not from a file).
+    pub lines: Vec<u32>,
+}
+
+impl RawInput {
+    /// An empty input (offsets start at 0).
+    pub fn new() -> Self {
+        RawInput {
+            offsets: vec![0],
+            ..Default::default()
+        }
+    }
+
+    /// Appends one simplex read on `line` (growth infallible: for inputs built in memory; the
+    /// readers use [`RawInput::try_push`]).
+    pub fn push(&mut self, ids: &[u32], line: u32) {
+        self.ids.extend_from_slice(ids);
+        self.offsets.push(self.ids.len());
+        self.lines.push(line);
+    }
+
+    /// [`RawInput::push`] whose growth is reserved fallibly: [`ReadErrorKind::TooLarge`] when
+    /// the memory cannot be had (a reader's output never aborts the process).
+    #[inline]
+    pub fn try_push(&mut self, ids: &[u32], line: u32) -> Result<(), ReadErrorKind> {
+        alloc::try_extend(&mut self.ids, ids).map_err(no_room("the simplices' vertex ids"))?;
+        alloc::try_push(&mut self.offsets, self.ids.len())
+            .map_err(no_room("the simplex offsets"))?;
+        alloc::try_push(&mut self.lines, line).map_err(no_room("the simplices' line numbers"))
+    }
+
+    /// Reserves room for `simplices` more simplices of `ids` ids in all, fallibly
+    /// ([`ReadErrorKind::TooLarge`]). Readers size it from declared counts capped by what the
+    /// file could hold, so that the arrays are allocated once, at their size.
+    pub fn try_reserve(&mut self, simplices: usize, ids: usize) -> Result<(), ReadErrorKind> {
+        alloc::try_reserve_exact(&mut self.offsets, simplices)
+            .map_err(no_room("the simplex offsets"))?;
+        alloc::try_reserve_exact(&mut self.lines, simplices)
+            .map_err(no_room("the simplices' line numbers"))?;
+        alloc::try_reserve_exact(&mut self.ids, ids).map_err(no_room("the simplices' vertex ids"))
+    }
+
+    /// Number of simplices read.
+    pub fn simplex_count(&self) -> usize {
+        self.offsets.len() - 1
+    }
+
+    /// Simplex `i` as read (panics when out of range).
+    pub fn simplex(&self, i: usize) -> &[u32] {
+        &self.ids[self.offsets[i]..self.offsets[i + 1]]
+    }
+}
