@@ -292,26 +292,21 @@ fn print(text: &str) -> Result<(), String> {
         .map_err(output_error)
 }
 
-/// Reads and normalises `file` under the `--max-simplices` budget.
+/// Reads and normalises `file` under the `--max-simplices` budget (a `.tpx` gives its saved
+/// complex).
 fn load(file: &Path) -> Result<Complex, String> {
-    if topoplex::store::is_saved_path(file) {
-        let saved = Saved::open(file).map_err(|e| e.to_string())?;
-        return saved.complex().map_err(|e| e.to_string());
-    }
-    let budget = Budget {
-        max_simplices: *BUDGET.lock().unwrap_or_else(|e| e.into_inner()),
-    };
-    Complex::from_path_with(file, budget).map_err(|e| e.to_string())
+    topoplex::store::open_complex(file, budget()).map_err(|e| e.to_string())
 }
 
 /// The structure of `kind` for `file`: a saved one is mapped, not rebuilt.
 fn load_structure(file: &Path, kind: StructureKind) -> Result<Box<dyn Topology>, String> {
-    if topoplex::store::is_saved_path(file) {
-        let saved = Saved::open(file).map_err(|e| e.to_string())?;
-        return saved.structure_of(kind).map_err(|e| e.to_string());
+    topoplex::store::open_structure(file, kind, budget()).map_err(|e| e.to_string())
+}
+
+fn budget() -> Budget {
+    Budget {
+        max_simplices: *BUDGET.lock().unwrap_or_else(|e| e.into_inner()),
     }
-    let complex = load(file)?;
-    topoplex::build(kind, &complex).map_err(|e| e.to_string())
 }
 
 fn parse_kind(structure: &str) -> Result<StructureKind, String> {

@@ -29,6 +29,15 @@ pub(crate) fn complex_failure(e: ComplexError) -> Failure {
     Failure::new(status, e.to_string())
 }
 
+/// The status of an input that could not be opened (a mesh file or a `.tpx`).
+pub(crate) fn open_failure(e: crate::store::OpenError) -> Failure {
+    match e {
+        crate::store::OpenError::Read(e) => complex_failure(e),
+        crate::store::OpenError::Saved(e) => super::store::store_failure(e),
+        crate::store::OpenError::Build(e) => super::structure::build_failure(e),
+    }
+}
+
 fn boxed(complex: Complex, out: &mut *mut TpxComplex) {
     *out = Box::into_raw(Box::new(TpxComplex { complex }));
 }
@@ -159,7 +168,9 @@ pub unsafe extern "C" fn tpx_complex_from_arrays_budget(
 }
 
 /// Reads a complex from a file, the format chosen by extension: `.off`, `.obj`, `.mesh`,
-/// `.simplices` (`path` is a NUL-terminated UTF-8 path).
+/// `.simplices`, `.ply`, `.stl`, `.vtk`, `.vtu`, `.msh`, or a saved `.tpx` (its complex, rebuilt
+/// from the saved listing; the saved file's statuses `SAVED_FILE_*`) — the same door as the CLI
+/// (`path` is a NUL-terminated UTF-8 path).
 ///
 /// On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
 /// Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8), IO_ERROR (cannot read),
@@ -203,8 +214,8 @@ pub unsafe extern "C" fn tpx_complex_from_file_budget(
                 format!("path is not valid UTF-8: {e}"),
             )
         })?;
-        let complex = Complex::from_path_with(Path::new(path), budget(max_simplices))
-            .map_err(complex_failure)?;
+        let complex = crate::store::open_complex(Path::new(path), budget(max_simplices))
+            .map_err(open_failure)?;
         boxed(complex, out);
         Ok(())
     })

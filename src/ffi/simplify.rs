@@ -4,7 +4,6 @@
 use std::ffi::{CStr, c_char};
 use std::path::Path;
 
-use super::complex::complex_failure;
 use super::{Failure, TpxComplex, TpxStatus, guard, handle, out_ptr};
 use crate::complex::Complex;
 use crate::io::write::{WriteError, WriteErrorKind, write_complex};
@@ -137,7 +136,8 @@ pub unsafe extern "C" fn tpx_simplify_file(
         let input = path_arg(input, "input")?;
         let output = Path::new(path_arg(output, "output")?);
         let options = options(ratio, preserve_topology)?;
-        let complex = Complex::from_path(Path::new(input)).map_err(complex_failure)?;
+        let complex = crate::store::open_complex(Path::new(input), Default::default())
+            .map_err(super::complex::open_failure)?;
         let write_failure = |e: WriteError| {
             let status = match e.kind {
                 WriteErrorKind::Io(_) => TpxStatus::WriteError,

@@ -101,6 +101,46 @@ pub fn save(
     Ok(())
 }
 
+/// Why an input path could not be opened ([`open_complex`], [`open_structure`]): the message is
+/// the underlying error's, unchanged.
+#[derive(Debug, thiserror::Error)]
+pub enum OpenError {
+    /// A mesh file could not be read or normalised.
+    #[error(transparent)]
+    Read(#[from] ComplexError),
+    /// A saved file could not be opened, or its structure built.
+    #[error(transparent)]
+    Saved(#[from] StoreError),
+    /// The structure could not be built from the file's complex.
+    #[error(transparent)]
+    Build(#[from] crate::relation::BuildError),
+}
+
+/// The one door for an input path, used by the CLI and the C ABI alike: a `.tpx` saved file
+/// gives its complex (rebuilt from the saved listing), any other path is read by extension
+/// ([`Complex::from_path_with`], normalised under `budget`).
+pub fn open_complex(path: &Path, budget: crate::complex::Budget) -> Result<Complex, OpenError> {
+    if is_saved_path(path) {
+        return Ok(Saved::open(path)?.complex()?);
+    }
+    Ok(Complex::from_path_with(path, budget)?)
+}
+
+/// A structure of `kind` for an input path: a `.tpx` file's saved structure is mapped when it is
+/// of that kind (else built from the saved complex); any other path is read under `budget` and
+/// built.
+pub fn open_structure(
+    path: &Path,
+    kind: StructureKind,
+    budget: crate::complex::Budget,
+) -> Result<Box<dyn Topology>, OpenError> {
+    if is_saved_path(path) {
+        return Ok(Saved::open(path)?.structure_of(kind)?);
+    }
+    let complex = Complex::from_path_with(path, budget)?;
+    Ok(crate::family::build(kind, &complex)?)
+}
+
 /// Whether `path` names a saved file (by extension `.tpx`).
 pub fn is_saved_path(path: &Path) -> bool {
     path.extension()
