@@ -389,7 +389,7 @@ fn main() {
             // As the `topoplex` CLI does: a fixed mmap threshold, so that glibc's per-thread
             // arenas do not keep freed arrays resident (the peaks are then the CLI's). Only
             // here: it costs the timing loops below fresh pages for every large array.
-            topoplex::ffi::fix_malloc_thresholds_for_executable();
+            topoplex::sys::fix_malloc_thresholds_for_executable();
             let kind = kind_named(kind);
             phases(
                 Path::new(file),

@@ -14,21 +14,25 @@ python3 -c "import meshio" 2>/dev/null || python3 -m pip install --quiet meshio 
   echo "meshio not installed: tests/interop.rs will skip its checks"
 
 echo "== lint gates: formatting, clippy, docs (missing_docs is denied on the public API)"
-# src/lib.rs has #![warn(missing_docs)]; -D warnings turns it (and every clippy lint) into an
-# error here, as rustls-ffi's and petgraph's CI do.
-cargo fmt --check
-cargo clippy --all-targets -- -D warnings
-RUSTDOCFLAGS="-D warnings" cargo doc --no-deps
+# Each crate's lib.rs has #![warn(missing_docs)]; -D warnings turns it (and every clippy lint)
+# into an error here, as rustls-ffi's and petgraph's CI do.
+cargo fmt --all --check
+cargo clippy --workspace --all-targets -- -D warnings
+RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace
 
-echo "== cargo test"
-cargo test --profile ci --all-targets
+echo "== cargo test (the workspace: core, C ABI, CLI; unit, property, layering, real data)"
+# The C library first: the C ABI crate's header test holds libtopoplex_ffi.so's exported symbols
+# to include/topoplex.h (cargo test links the tests against the rlib only).
+cargo build --profile ci --workspace
+cargo test --profile ci --workspace --all-targets
+cargo test --profile ci --workspace --doc
 
 echo "== Miri on the FFI layer's unit tests"
 # Needs the nightly toolchain's miri component; rustup fetches it when it can.
 if rustup toolchain list 2>/dev/null | grep -q nightly &&
    { rustup component list --toolchain nightly --installed 2>/dev/null | grep -q '^miri' ||
      rustup component add miri rust-src --toolchain nightly >/dev/null 2>&1; }; then
-  cargo +nightly miri test --lib ffi
+  cargo +nightly miri test -p topoplex-ffi --lib
 else
   echo "MIRI NOT RUN: no nightly toolchain with the miri component on this machine"
 fi

@@ -9,7 +9,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::ptr::{null, null_mut};
 
-use topoplex::ffi::*;
+use topoplex_ffi::*;
 
 struct Counting;
 

@@ -269,7 +269,7 @@ fn read_child(path: &std::path::Path, start: usize) -> ! {
 /// [`read_child`] through the C ABI: `tpx_complex_from_file` must return
 /// `TPX_STATUS_TOO_LARGE` (reading or normalising) or OK, never abort the host.
 fn read_ffi_child(path: &str, start: usize) -> ! {
-    use topoplex::ffi::{TpxComplex, TpxStatus, tpx_complex_free, tpx_complex_from_file};
+    use topoplex_ffi::{TpxComplex, TpxStatus, tpx_complex_free, tpx_complex_from_file};
     let c_path = std::ffi::CString::new(path).unwrap();
     for kb in &READ_MARGINS_KB[start..] {
         let mut out: *mut TpxComplex = std::ptr::null_mut();

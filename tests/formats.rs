@@ -438,7 +438,7 @@ proptest! {
 #[test]
 fn c_abi_writes_by_extension_or_format_constant() {
     use std::ffi::{CStr, CString};
-    use topoplex::ffi::*;
+    use topoplex_ffi::*;
     let last = || {
         // SAFETY: never NULL, NUL-terminated.
         unsafe { CStr::from_ptr(tpx_last_error_message()) }

@@ -947,7 +947,7 @@ proptest! {
 /// triangle; each status the example relies on.
 #[test]
 fn readme_example_contracts_edges_on_a_non_manifold_mesh_through_the_c_abi() {
-    use topoplex::ffi::*;
+    use topoplex_ffi::*;
     let ids = [1u32, 2, 3, 1, 2, 4, 1, 2, 5, 0, 1, 0, 2];
     let offsets = [0usize, 3, 6, 9, 11, 13];
     let (mut c, mut l, mut u) = (
@@ -1063,36 +1063,35 @@ fn readme_example_contracts_edges_on_a_non_manifold_mesh_through_the_c_abi() {
 }
 
 /// The live complex's view as a structure (`tpx_live_structure`).
-fn c_view(l: *const topoplex::ffi::TpxLive) -> *const topoplex::ffi::TpxStructure {
+fn c_view(l: *const topoplex_ffi::TpxLive) -> *const topoplex_ffi::TpxStructure {
     let mut s = std::ptr::null();
     // SAFETY: `l` is a live handle; `s` a writable pointer.
     assert_eq!(
-        unsafe { topoplex::ffi::tpx_live_structure(l, &mut s) },
-        topoplex::ffi::TpxStatus::Ok
+        unsafe { topoplex_ffi::tpx_live_structure(l, &mut s) },
+        topoplex_ffi::TpxStatus::Ok
     );
     s
 }
 
 /// The vertices of a C handle of the live complex, with the status.
 fn c_vertices(
-    l: *const topoplex::ffi::TpxLive,
-    h: &topoplex::ffi::TpxSimplex,
-) -> (topoplex::ffi::TpxStatus, Vec<u32>) {
+    l: *const topoplex_ffi::TpxLive,
+    h: &topoplex_ffi::TpxSimplex,
+) -> (topoplex_ffi::TpxStatus, Vec<u32>) {
     let mut buf = [0u32; 16];
     let mut len = 0usize;
     // SAFETY: a valid structure pointer, a 16-id buffer.
-    let st = unsafe {
-        topoplex::ffi::tpx_simplex_vertices(c_view(l), h, buf.as_mut_ptr(), 16, &mut len)
-    };
+    let st =
+        unsafe { topoplex_ffi::tpx_simplex_vertices(c_view(l), h, buf.as_mut_ptr(), 16, &mut len) };
     (st, buf[..len].to_vec())
 }
 
 /// C handles of every simplex of the live complex, located through the C ABI.
 fn c_handles(
-    l: *const topoplex::ffi::TpxLive,
+    l: *const topoplex_ffi::TpxLive,
     rust: &LiveComplex,
-) -> Vec<(topoplex::ffi::TpxSimplex, Vec<u32>)> {
-    use topoplex::ffi::*;
+) -> Vec<(topoplex_ffi::TpxSimplex, Vec<u32>)> {
+    use topoplex_ffi::*;
     every_handle(rust)
         .into_iter()
         .map(|(_, row)| {
@@ -1107,8 +1106,8 @@ fn c_handles(
 
 /// Every navigation function of the C ABI on the live complex's view answers what the Rust
 /// API answers (as vertex rows), and the index-writing ones say NOT_DENSE above vertices.
-fn c_navigation_matches(l: *const topoplex::ffi::TpxLive, rust: &LiveComplex) {
-    use topoplex::ffi::*;
+fn c_navigation_matches(l: *const topoplex_ffi::TpxLive, rust: &LiveComplex) {
+    use topoplex_ffi::*;
     let s = c_view(l);
     let d = rust.dimension();
     let rows = |hs: &[TpxSimplex]| -> Vec<Vec<u32>> {
@@ -1247,8 +1246,8 @@ fn c_navigation_matches(l: *const topoplex::ffi::TpxLive, rust: &LiveComplex) {
 /// `tpx_related_handles_batch` over every simplex (dimensions mixed) equals the Rust API's
 /// per-handle answers; a too-small buffer writes nothing and says the size; a handle of another
 /// structure is refused with its position; `tpx_related_batch` says NOT_DENSE above vertices.
-fn c_batches_match(l: *const topoplex::ffi::TpxLive, rust: &LiveComplex) {
-    use topoplex::ffi::*;
+fn c_batches_match(l: *const topoplex_ffi::TpxLive, rust: &LiveComplex) {
+    use topoplex_ffi::*;
     let s = c_view(l);
     let (hs, rows): (Vec<TpxSimplex>, Vec<Vec<u32>>) = c_handles(l, rust).into_iter().rev().unzip();
     let mut buf = vec![TpxSimplex::default(); 8192];
@@ -1363,7 +1362,7 @@ proptest! {
         (n, list) in common::random_input(4, 8, 6),
         ops in proptest::collection::vec((0u8..5, 0u32..9, 0u32..9, 0u32..9, 1usize..4), 1..16),
     ) {
-        use topoplex::ffi::*;
+        use topoplex_ffi::*;
         let c = common::complex_of(n, &list);
         let mut rust = LiveComplex::from_complex(&c);
         let ids: Vec<u32> = list.iter().flatten().copied().collect();
@@ -1607,7 +1606,7 @@ fn real_data_contractions_keep_euler_characteristic_and_components() {
 #[test]
 fn c_abi_live_functions_refuse_null() {
     use std::ptr::{null, null_mut};
-    use topoplex::ffi::*;
+    use topoplex_ffi::*;
     let mut u = 0u32;
     let mut z = 0usize;
     // SAFETY: every pointer is NULL or valid; NULL handles must be refused, not read.

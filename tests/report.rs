@@ -8,9 +8,9 @@ use std::path::PathBuf;
 use std::process::{Command, Output};
 
 use proptest::prelude::*;
-use topoplex::report::Census;
-use topoplex::report::render::CSV_COLUMNS;
 use topoplex::{Complex, StructureKind, fixtures};
+use topoplex_cli::report::Census;
+use topoplex_cli::report::render::CSV_COLUMNS;
 
 fn run(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_topoplex"))
@@ -152,7 +152,7 @@ fn json_for_two_files_is_an_array_with_exact_censuses() {
                 continue;
             }
             assert!(s["integers"].is_u64() && s["bytes"].is_u64(), "{k}: {s}");
-            for f in topoplex::report::Family::ALL {
+            for f in topoplex_cli::report::Family::ALL {
                 let t = &s["families"][f.name()];
                 assert!(
                     t["queries"].is_u64() && t["elements"].is_u64(),

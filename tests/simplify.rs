@@ -650,7 +650,7 @@ mod ffi {
     use std::ffi::{CStr, CString};
     use std::ptr::{null, null_mut};
 
-    use topoplex::ffi::*;
+    use topoplex_ffi::*;
 
     fn last_error() -> String {
         // SAFETY: never NULL, NUL-terminated.

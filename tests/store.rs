@@ -227,7 +227,7 @@ fn query_everything(s: &dyn Topology) {
 fn the_c_abi_saves_opens_and_names_bad_files_by_status() {
     use std::ffi::CString;
     use std::ptr::{null, null_mut};
-    use topoplex::ffi::*;
+    use topoplex_ffi::*;
     let c = fixtures::builtin_example();
     let path = temp_path("abi.tpx");
     let cpath = CString::new(path.to_str().unwrap()).unwrap();
@@ -384,7 +384,7 @@ fn damaged_live_files_are_refused_or_valid_never_a_panic() {
 
 #[test]
 fn the_cli_and_the_c_abi_save_and_open_the_live_complex() {
-    use topoplex::ffi::*;
+    use topoplex_ffi::*;
     let input = temp_path("bowtie.off");
     std::fs::write(
         &input,

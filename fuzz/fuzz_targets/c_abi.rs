@@ -5,7 +5,7 @@
 //! panic (TPX_STATUS_PANIC fails the run), and every successful answer must equal the Rust API's.
 use libfuzzer_sys::fuzz_target;
 use std::ptr::{null, null_mut};
-use topoplex::ffi::*;
+use topoplex_ffi::*;
 use topoplex::relation::sort_rows;
 
 struct Bytes<'a>(&'a [u8]);

@@ -13,8 +13,8 @@ use libfuzzer_sys::fuzz_target;
 
 // The binary's source, so the fuzzer calls its `cli` function (clap parsing included).
 #[allow(dead_code)]
-#[path = "../../src/bin/topoplex.rs"]
-mod topoplex_cli;
+#[path = "../../src/main.rs"]
+mod cli_main;
 
 const VOCABULARY: &[&str] = &[
     "report",
@@ -121,7 +121,7 @@ fn setup() {
             .map(OsString::from)
             .to_vec(),
         };
-        topoplex_cli::cli(args).unwrap();
+        cli_main::cli(args).unwrap();
     }
 }
 
@@ -156,7 +156,7 @@ fn arguments(data: &[u8]) -> Vec<OsString> {
 fuzz_target!(|data: &[u8]| {
     static SETUP: Once = Once::new();
     SETUP.call_once(setup);
-    if let Err(msg) = topoplex_cli::cli(arguments(data)) {
+    if let Err(msg) = cli_main::cli(arguments(data)) {
         let line = topoplex::error::one_line(&msg);
         assert!(!line.contains('\n') && !line.is_empty(), "{line}");
         assert!(

@@ -9,7 +9,7 @@
 //! STALE_HANDLE because that simplex is gone; after the final compaction every older handle is
 //! STALE_GENERATION.
 use libfuzzer_sys::fuzz_target;
-use topoplex::ffi::*;
+use topoplex_ffi::*;
 use topoplex::live::{ContractMode, LiveComplex, VertexId};
 use topoplex::oracle::check_structure;
 use topoplex::testing::follows_edit;

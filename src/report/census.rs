@@ -3,8 +3,8 @@
 
 use serde::Serialize;
 
-use crate::complex::Complex;
-use crate::structures::iqm::Iqm;
+use topoplex::complex::Complex;
+use topoplex::structures::iqm::Iqm;
 
 /// What the survey's tables count for one dataset. Definitions: [`super`].
 #[derive(Debug, Clone, PartialEq, Eq, Serialize)]
@@ -615,7 +615,7 @@ fn euler_characteristic(rows: &Rows, arity: usize) -> i64 {
         }
     }
     for (len, f) in faces.into_iter().enumerate().skip(1) {
-        let count = crate::complex::sort_dedup_rows(len, f).len() / len;
+        let count = topoplex::complex::sort_dedup_rows(len, f).len() / len;
         chi += if len % 2 == 1 {
             count as i64
         } else {
@@ -628,7 +628,7 @@ fn euler_characteristic(rows: &Rows, arity: usize) -> i64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::fixtures;
+    use topoplex::fixtures;
 
     /// (wire edges, dangling faces, top simplices, C_e, C_v − n_0, IQM components,
     /// non-manifold per dimension), worked out by hand from each fixture's drawing.

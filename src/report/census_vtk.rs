@@ -1,11 +1,11 @@
 //! The non-manifold census as a legacy VTK file, to see the singularities in ParaView.
 //!
-//! Cells: the top simplices in input order and winding (as [`crate::io::write::listing`]),
+//! Cells: the top simplices in input order and winding (as [`topoplex::io::write::listing`]),
 //! then one cell per non-manifold edge and per non-manifold triangle. Fields:
 //! - point `non_manifold_vertex`: 1 for a non-manifold vertex, else 0;
 //! - cell `role`: 0 for a top simplex, 1 for a non-manifold edge, 2 for a non-manifold triangle;
 //! - cell `iqm_component`: the IQM component of each top simplex (its index in
-//!   [`crate::structures::iqm::Iqm::decomposition`]), -1 for the non-manifold cells (and for
+//!   [`topoplex::structures::iqm::Iqm::decomposition`]), -1 for the non-manifold cells (and for
 //!   every cell when the IQM cannot be built).
 //!
 //! Holds complexes of dimension up to 3 with at most 3 coordinates per vertex (VTK's cells).
@@ -16,10 +16,10 @@ use std::path::Path;
 use rustc_hash::FxHashMap;
 
 use super::census::non_manifold_simplices;
-use crate::complex::Complex;
-use crate::io::vtk::{Field, write_with_fields};
-use crate::io::write::{WriteError, WriteErrorKind, listing};
-use crate::structures::iqm::Iqm;
+use topoplex::complex::Complex;
+use topoplex::io::vtk::{Field, write_with_fields};
+use topoplex::io::write::{WriteError, WriteErrorKind, listing};
+use topoplex::structures::iqm::Iqm;
 
 /// The IQM component of each top simplex, keyed by its ascending vertex ids.
 fn components(complex: &Complex) -> FxHashMap<Vec<u32>, i32> {
@@ -131,7 +131,7 @@ mod tests {
 
     #[test]
     fn listed_non_manifold_simplices_match_the_census_counts() {
-        for (name, c) in crate::fixtures::all() {
+        for (name, c) in topoplex::fixtures::all() {
             let census = super::super::census::Census::of(&c);
             let lists = non_manifold_simplices(&c, c.dimension());
             let counts: Vec<usize> = lists.iter().map(Vec::len).collect();
@@ -154,7 +154,7 @@ mod tests {
         );
         assert!(text.contains("LOOKUP_TABLE default\n0 1 2 -1\n"), "{text}");
         // It reads back as a complex: the marker edge is absorbed as a face.
-        let raw = crate::io::vtk::parse(text.as_bytes()).unwrap();
+        let raw = topoplex::io::vtk::parse(text.as_bytes()).unwrap();
         let back = Complex::from_raw(&raw, None).unwrap();
         assert_eq!(back.top_counts(), c.top_counts());
     }

@@ -44,12 +44,12 @@
 //!   storage, 17.22k, is about 5.98k integers above 8·503 + 3·1989 + 44 + 1250 — roughly two
 //!   per edge between two dangling faces of a web of 1989 triangles.
 //! - **IQM components**: components of the IQM's standard decomposition
-//!   ([`crate::structures::iqm`]).
+//!   ([`topoplex::structures::iqm`]).
 //!
 //! # Timings
 //! Each structure is built once (timed); when that took under [`timing::MIN_TIME`] it is built
 //! again until the repeats take that long, and the mean of the repeats is reported. Queries
-//! call [`crate::relation::Topology::query`] directly (the simplex is already sorted and valid,
+//! call [`topoplex::relation::Topology::query`] directly (the simplex is already sorted and valid,
 //! so no validation is timed) on a deterministic sample: at most [`timing::SAMPLE`] vertices and
 //! as many top simplices of dimension ≥ 1, spread evenly over the vertex ids and over the top
 //! simplices in dimension-then-lexicographic order. The relation families
@@ -69,10 +69,10 @@ pub mod render;
 pub mod svg;
 pub mod timing;
 
-use crate::complex::{Complex, InputStats};
-use crate::relation::StructureKind;
 pub use census::Census;
 pub use timing::{Family, FamilyTiming, Measured, Sample, StructureResult};
+use topoplex::complex::{Complex, InputStats};
+use topoplex::relation::StructureKind;
 
 /// Everything `report` prints for one complex.
 #[derive(Debug, Clone)]

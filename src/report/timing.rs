@@ -6,8 +6,8 @@ use std::time::{Duration, Instant};
 
 use serde::Serialize;
 
-use crate::complex::Complex;
-use crate::relation::{Storage, StructureKind, Topology};
+use topoplex::complex::Complex;
+use topoplex::relation::{Storage, StructureKind, Topology};
 
 /// Most vertices and most top simplices queried per family.
 pub const SAMPLE: usize = 1000;
@@ -195,7 +195,7 @@ pub fn measure(
 ) -> StructureResult {
     progress(&format!("building {kind}"));
     let start = Instant::now();
-    let built = crate::family::build(kind, complex);
+    let built = topoplex::family::build(kind, complex);
     let first = start.elapsed();
     let topo = match built {
         Ok(t) => t,
@@ -213,7 +213,7 @@ pub fn measure(
         let start = Instant::now();
         let mut builds = 0;
         while builds == 0 || (start.elapsed() < MIN_TIME && builds < MAX_PASSES) {
-            black_box(crate::family::build(kind, complex).ok());
+            black_box(topoplex::family::build(kind, complex).ok());
             builds += 1;
         }
         (start.elapsed() / builds, builds)

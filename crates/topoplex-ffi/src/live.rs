@@ -1,0 +1,563 @@
+//! `TpxLive` (the updatable complex, [`topoplex::live::LiveComplex`]) and `TpxUndo` (what a
+//! contraction returns so that `tpx_live_split` can undo it).
+//!
+//! Unlike `TpxStructure`, a `TpxLive` is edited in place: edits take a non-const pointer and
+//! need exclusive access (no other call on the same handle at the same time); queries take a
+//! const pointer and may run concurrently with each other. Every refused edit leaves the complex
+//! unchanged and says why (statuses 20..=25, plus INVALID_SIMPLEX, NOT_IN_COMPLEX,
+//! INVALID_ARGUMENT for coordinates of the wrong length).
+
+use super::complex::TpxComplex;
+use super::structure::{TpxStructure, sort_rows_in_place};
+use super::write_buffer;
+use super::{Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr};
+use topoplex::live::{ContractMode, LiveComplex, Refusal, UndoRecord, VertexId};
+use topoplex::relation::{QueryError, Topology};
+
+/// `tpx_live_contract` mode: only an edge satisfying the link condition (topology preserved).
+pub const TPX_CONTRACT_PRESERVE_TOPOLOGY: u32 = 0;
+/// `tpx_live_contract` mode: any two live vertices (vertex unification).
+pub const TPX_CONTRACT_FREE: u32 = 1;
+/// `tpx_live_contract` mode: the link condition on the complex coned over its boundary
+/// (`tpx_live_link_condition_with_boundary`): also keeps 2- and 3-manifolds with boundary
+/// manifolds.
+pub const TPX_CONTRACT_PRESERVE_MANIFOLD: u32 = 2;
+
+/// An updatable simplicial complex (opaque): any dimension, non-manifold, mixed-dimensional.
+/// Create with `tpx_live_from_complex`, release with `tpx_live_free`.
+pub struct TpxLive {
+    /// The live complex as a structure, so that the handle functions (`tpx_locate`,
+    /// `tpx_related_handles`, ...) take it through `tpx_live_structure`.
+    view: TpxStructure,
+}
+
+impl TpxLive {
+    pub(crate) fn new(live: LiveComplex) -> TpxLive {
+        TpxLive {
+            view: TpxStructure::new(Box::new(live)),
+        }
+    }
+
+    pub(crate) fn live(&self) -> &LiveComplex {
+        self.view
+            .topo
+            .as_any()
+            .and_then(|a| a.downcast_ref())
+            .expect("a TpxLive holds a LiveComplex")
+    }
+
+    fn live_mut(&mut self) -> &mut LiveComplex {
+        self.view
+            .topo
+            .as_any_mut()
+            .and_then(|a| a.downcast_mut())
+            .expect("a TpxLive holds a LiveComplex")
+    }
+}
+
+/// The undo record of one contraction (opaque), for `tpx_live_split`. Release with
+/// `tpx_undo_free`; it does not borrow the live complex.
+pub struct TpxUndo {
+    undo: UndoRecord,
+}
+
+fn refusal(e: Refusal) -> Failure {
+    let status = match &e {
+        Refusal::InvalidSimplex { .. } => TpxStatus::InvalidSimplex,
+        Refusal::UnknownVertex { .. } => TpxStatus::DeadVertex,
+        Refusal::NotAnEdge { .. } => TpxStatus::NotAnEdge,
+        Refusal::LinkCondition { .. } => TpxStatus::LinkConditionFails,
+        Refusal::AlreadyPresent { .. } => TpxStatus::SimplexAlreadyPresent,
+        Refusal::NotTop { .. } => TpxStatus::NotATopSimplex,
+        Refusal::NotInComplex { .. } => TpxStatus::NotInComplex,
+        Refusal::StaleHandle(_) => TpxStatus::StaleUndo,
+        Refusal::CoordinateDimension { .. } => TpxStatus::InvalidArgument,
+    };
+    Failure::new(status, e.to_string())
+}
+
+fn live_mut<'a>(p: *mut TpxLive) -> Result<&'a mut LiveComplex, Failure> {
+    Ok(out_ptr(p, "live")?.live_mut())
+}
+
+/// Builds a live complex from `c`: the same vertex ids, every top simplex with its input
+/// winding, the coordinates copied. `*out` receives a new handle owned by the caller (free with
+/// `tpx_live_free`); it does not borrow `c`. Errors: NULL_ARGUMENT; TOO_LARGE when the
+/// memory for its arrays cannot be had. Cost: O(size of the top simplices).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_from_complex(
+    c: *const TpxComplex,
+    out: *mut *mut TpxLive,
+) -> TpxStatus {
+    guard(|| {
+        let c = handle(c, "c")?;
+        let out = out_ptr(out, "out")?;
+        let live =
+            LiveComplex::try_from_complex(&c.complex).map_err(super::structure::build_failure)?;
+        *out = Box::into_raw(Box::new(TpxLive::new(live)));
+        Ok(())
+    })
+}
+
+/// Releases a live complex. NULL is a no-op.
+///
+/// # Safety
+/// `l` must be NULL or a live handle from this library, not used afterwards.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_free(l: *mut TpxLive) {
+    guard_value((), || {
+        if !l.is_null() {
+            // SAFETY: the handle came from Box::into_raw in this module and is released once.
+            drop(unsafe { Box::from_raw(l) });
+        }
+    })
+}
+
+/// Releases an undo record. NULL is a no-op.
+///
+/// # Safety
+/// `u` must be NULL or a handle from `tpx_live_contract`, not used afterwards.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_undo_free(u: *mut TpxUndo) {
+    guard_value((), || {
+        if !u.is_null() {
+            // SAFETY: the handle came from Box::into_raw in this module and is released once.
+            drop(unsafe { Box::from_raw(u) });
+        }
+    })
+}
+
+/// Number of vertex slots into `*out`: vertex ids are `0 .. slots`, some of them removed
+/// (contracted away or deleted) until `tpx_live_compact`. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_vertex_slots(l: *const TpxLive, out: *mut u32) -> TpxStatus {
+    get_into(l, "l", out, |l| l.live().vertex_slots())
+}
+
+/// Number of live vertices into `*out`. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_vertex_count(l: *const TpxLive, out: *mut u32) -> TpxStatus {
+    get_into(l, "l", out, |l| l.live().live_vertex_count())
+}
+
+/// Whether vertex `v` is live (1) or removed / out of range (0), into `*out`. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_is_vertex(l: *const TpxLive, v: u32, out: *mut u32) -> TpxStatus {
+    get_into(l, "l", out, |l| l.live().is_live(VertexId(v)) as u32)
+}
+
+/// Dimension of the complex (highest live top simplex) into `*out`. O(d).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_dimension(l: *const TpxLive, out: *mut u32) -> TpxStatus {
+    get_into(l, "l", out, |l| l.live().dimension() as u32)
+}
+
+/// Number of live top p-simplices into `*out` (p = 0: isolated vertices). O(1) for p ≥ 1,
+/// O(vertices) for p = 0.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_top_count(
+    l: *const TpxLive,
+    p: u32,
+    out: *mut usize,
+) -> TpxStatus {
+    get_into(l, "l", out, |l| l.live().top_count(p as usize))
+}
+
+/// The live top p-simplices (p ≥ 1) as rows of p+1 vertex ids in their stored order (input
+/// winding, b replaced by a in place after contractions), in slot order, into `buf`;
+/// `*out_len` receives the number of uint32_t. Errors: NULL_ARGUMENT, BUFFER_TOO_SMALL (nothing
+/// copied, `*out_len` = needed length). Cost: O(slots of dimension p).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `buf` must have room for `buf_len` uint32_t.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_top_simplices(
+    l: *const TpxLive,
+    p: u32,
+    buf: *mut u32,
+    buf_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let rows: Vec<u32> = l
+            .live()
+            .tops()
+            .filter(|(t, _)| t.dim() == p as usize)
+            .flat_map(|(_, s)| s.iter().copied())
+            .collect();
+        write_buffer(&rows, buf, buf_len, out_len)
+    })
+}
+
+/// R_{p,q}(σ) for σ given by vertex ids in any order (p = simplex_len − 1), as rows of q+1
+/// ascending ids in ascending lexicographic order, into `buf`; `*out_len` receives the number
+/// of uint32_t. Errors: NULL_ARGUMENT, INVALID_SIMPLEX, NOT_IN_COMPLEX (also for a removed
+/// vertex), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL. Cost: module doc of `live` (linear in the
+/// stars of σ's vertices).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `simplex` has `simplex_len` ids, `buf` room for `buf_len`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_relation(
+    l: *const TpxLive,
+    simplex: *const u32,
+    simplex_len: usize,
+    q: u32,
+    buf: *mut u32,
+    buf_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let sigma = in_slice(simplex, simplex_len, "simplex")?;
+        let mut rows = Vec::new();
+        l.live()
+            .relation(sigma, q as usize, &mut rows)
+            .map_err(|e| {
+                let status = match &e {
+                    QueryError::NotInComplex { .. } => TpxStatus::NotInComplex,
+                    QueryError::DimensionOutOfRange { .. } => TpxStatus::DimensionOutOfRange,
+                    _ => TpxStatus::InvalidSimplex,
+                };
+                Failure::new(status, e.to_string())
+            })?;
+        sort_rows_in_place(&mut rows, q as usize + 1);
+        write_buffer(&rows, buf, buf_len, out_len)
+    })
+}
+
+/// The coordinates of live vertex `v` (`tpx_live_coord_dim` doubles) into `buf`; `*out_len`
+/// receives their number. Errors: NULL_ARGUMENT, DEAD_VERTEX, BUFFER_TOO_SMALL. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `buf` must have room for `buf_len` doubles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_coords(
+    l: *const TpxLive,
+    v: u32,
+    buf: *mut f64,
+    buf_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let xyz = l.live().coords(VertexId(v)).map_err(refusal)?;
+        write_buffer(xyz, buf, buf_len, out_len)
+    })
+}
+
+/// Coordinates per vertex into `*out` (0 when the complex has none). O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_coord_dim(l: *const TpxLive, out: *mut usize) -> TpxStatus {
+    get_into(l, "l", out, |l| l.live().coord_dim())
+}
+
+/// Sets the coordinates of live vertex `v` from `xyz[0 .. len]` (`len` must be the coordinate
+/// dimension). Errors: NULL_ARGUMENT, DEAD_VERTEX, INVALID_ARGUMENT (wrong length). O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `xyz` has `len` doubles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_set_coords(
+    l: *mut TpxLive,
+    v: u32,
+    xyz: *const f64,
+    len: usize,
+) -> TpxStatus {
+    guard(|| {
+        let live = live_mut(l)?;
+        let xyz = in_slice(xyz, len, "xyz")?;
+        live.set_coords(VertexId(v), xyz).map_err(refusal)
+    })
+}
+
+/// Adds an isolated vertex at `xyz[0 .. len]`; its id into `*out`. Errors: NULL_ARGUMENT,
+/// INVALID_ARGUMENT (wrong length). Amortised O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `xyz` has `len` doubles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_add_vertex(
+    l: *mut TpxLive,
+    xyz: *const f64,
+    len: usize,
+    out: *mut u32,
+) -> TpxStatus {
+    guard(|| {
+        let live = live_mut(l)?;
+        let xyz = in_slice(xyz, len, "xyz")?;
+        let out = out_ptr(out, "out")?;
+        *out = live.add_vertex(xyz).map_err(refusal)?.0;
+        Ok(())
+    })
+}
+
+/// Inserts the simplex `ids[0 .. len]` (its vertex order is kept as its winding) as a top
+/// simplex; top simplices it contains become its faces. Errors: NULL_ARGUMENT, INVALID_SIMPLEX
+/// (empty, repeated vertex, more than 16), DEAD_VERTEX, SIMPLEX_ALREADY_PRESENT (also for a
+/// single vertex: add vertices with `tpx_live_add_vertex`). Cost: O(d² Σ_{v∈σ} |St(v)|).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `ids` has `len` ids.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_insert_top(
+    l: *mut TpxLive,
+    ids: *const u32,
+    len: usize,
+) -> TpxStatus {
+    guard(|| {
+        let live = live_mut(l)?;
+        let ids = in_slice(ids, len, "ids")?;
+        live.insert_top(ids).map(|_| ()).map_err(refusal)
+    })
+}
+
+/// Removes the top simplex `ids[0 .. len]` (any order). Its faces that no other top simplex
+/// holds go too, except its vertices, which stay (isolated if nothing else holds them); a
+/// single isolated vertex is removed itself. Errors: NULL_ARGUMENT, INVALID_SIMPLEX,
+/// DEAD_VERTEX, NOT_IN_COMPLEX, NOT_A_TOP_SIMPLEX. Cost: O(Σ_{v∈σ} |St(v)|).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `ids` has `len` ids.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_remove_top(
+    l: *mut TpxLive,
+    ids: *const u32,
+    len: usize,
+) -> TpxStatus {
+    guard(|| {
+        let live = live_mut(l)?;
+        let ids = in_slice(ids, len, "ids")?;
+        live.remove_top(ids).map_err(refusal)
+    })
+}
+
+/// Checks the link condition for edge {a, b} without changing anything: OK, NOT_AN_EDGE, or
+/// LINK_CONDITION_FAILS (message: the dimension and an offending link simplex); DEAD_VERTEX.
+/// Cost: O(d (|St(a)| + |St(b)|)) on meshes.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_link_condition(l: *const TpxLive, a: u32, b: u32) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        l.live()
+            .link_condition(VertexId(a), VertexId(b))
+            .map_err(refusal)
+    })
+}
+
+/// The link condition on the complex coned over its boundary by a dummy vertex ω (Dey,
+/// Edelsbrunner, Guha, Nekhayev 1999): a boundary facet is a simplex that is a facet of exactly
+/// one simplex. OK, NOT_AN_EDGE or LINK_CONDITION_FAILS (message: dimension and simplex, ω
+/// written as 4294967294); DEAD_VERTEX. Cost: O(d² (|St(a)|² + |St(b)|²)).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_link_condition_with_boundary(
+    l: *const TpxLive,
+    a: u32,
+    b: u32,
+) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        l.live()
+            .link_condition_with_boundary(VertexId(a), VertexId(b))
+            .map_err(refusal)
+    })
+}
+
+/// Contracts b into a (`mode`: `TPX_CONTRACT_PRESERVE_TOPOLOGY`, `TPX_CONTRACT_FREE` or
+/// `TPX_CONTRACT_PRESERVE_MANIFOLD`), moving
+/// a to `position[0 .. position_len]` when `position` is not NULL. When `out_undo` is not NULL
+/// it receives a new undo record (owned by the caller, free with `tpx_undo_free`) for
+/// `tpx_live_split`. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (unknown mode, wrong coordinate
+/// count), INVALID_SIMPLEX (a == b), DEAD_VERTEX, and in topology-preserving mode NOT_AN_EDGE
+/// or LINK_CONDITION_FAILS. Refused contractions change nothing. Cost: O(d (|St(a)| + |St(b)|))
+/// per top simplex of St(b) on meshes.
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `position` has `position_len` doubles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_contract(
+    l: *mut TpxLive,
+    a: u32,
+    b: u32,
+    mode: u32,
+    position: *const f64,
+    position_len: usize,
+    out_undo: *mut *mut TpxUndo,
+) -> TpxStatus {
+    guard(|| {
+        let live = live_mut(l)?;
+        let mode = match mode {
+            TPX_CONTRACT_PRESERVE_TOPOLOGY => ContractMode::PreserveTopology,
+            TPX_CONTRACT_FREE => ContractMode::Free,
+            TPX_CONTRACT_PRESERVE_MANIFOLD => ContractMode::PreserveManifold,
+            m => {
+                return Err(Failure::new(
+                    TpxStatus::InvalidArgument,
+                    format!("unknown contraction mode {m} (TPX_CONTRACT_*)"),
+                ));
+            }
+        };
+        let position = if position.is_null() {
+            None
+        } else {
+            Some(in_slice(position, position_len, "position")?)
+        };
+        let undo = live
+            .contract(VertexId(a), VertexId(b), mode, position)
+            .map_err(refusal)?;
+        if !out_undo.is_null() {
+            // SAFETY: a non-NULL `out_undo` is valid for writes (documented contract).
+            unsafe { *out_undo = Box::into_raw(Box::new(TpxUndo { undo })) };
+        }
+        Ok(())
+    })
+}
+
+/// Undoes the contraction that produced `u` (vertex split): same ids, slots, winding and
+/// coordinates as before it. `u` stays owned by the caller. Errors: NULL_ARGUMENT, STALE_UNDO
+/// (from before `tpx_live_compact`, applied already, or later edits changed what it restores).
+/// Cost: that of the contraction.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_split(l: *mut TpxLive, u: *const TpxUndo) -> TpxStatus {
+    guard(|| {
+        let u = handle(u, "u")?;
+        let live = live_mut(l)?;
+        live.split(&u.undo).map_err(refusal)
+    })
+}
+
+/// Drops removed vertices and top slots, renumbering the live ones densely in ascending order.
+/// When `vertex_map` is not NULL it receives, for each old vertex id, its new id (`UINT32_MAX`
+/// for a removed vertex): `*out_len` = old `tpx_live_vertex_slots`; with a buffer too short
+/// nothing is compacted (BUFFER_TOO_SMALL, `*out_len` = needed length). Undo records issued
+/// before are refused afterwards (STALE_UNDO), and so are handles (`TpxSimplex`) made before
+/// (STALE_GENERATION: the complex takes a new owner stamp and keeps the old ones, 4 bytes per
+/// compaction). Cost: O(size).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `vertex_map` has room for `map_len` uint32_t.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_compact(
+    l: *mut TpxLive,
+    vertex_map: *mut u32,
+    map_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let l = out_ptr(l, "l")?;
+        let slots = l.live().vertex_slots() as usize;
+        if !vertex_map.is_null() && map_len < slots {
+            let out_len = out_ptr(out_len, "out_len")?;
+            *out_len = slots;
+            return Err(Failure::new(
+                TpxStatus::BufferTooSmall,
+                format!("vertex_map holds {map_len} uint32_t, the map needs {slots}"),
+            ));
+        }
+        let maps = l.live_mut().compact();
+        // Handles carry the stamp: a new one makes every older handle STALE_GENERATION.
+        let old = std::mem::replace(&mut l.view.stamp, super::handles::new_stamp());
+        l.view.retired.push(old);
+        if !vertex_map.is_null() {
+            let out_len = out_ptr(out_len, "out_len")?;
+            write_buffer(&maps.vertices, vertex_map, map_len, out_len)?;
+        }
+        Ok(())
+    })
+}
+
+/// The live complex as a new `TpxComplex` (live vertices renumbered densely in ascending order,
+/// as `tpx_live_compact` would; windings and coordinates kept), owned by the caller: freeze it
+/// into any structure with `tpx_structure_build`. Errors: NULL_ARGUMENT. Cost: O(size).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_to_complex(
+    l: *const TpxLive,
+    out: *mut *mut TpxComplex,
+) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        let out = out_ptr(out, "out")?;
+        let complex = l.live().to_complex();
+        *out = Box::into_raw(Box::new(TpxComplex { complex }));
+        Ok(())
+    })
+}
+
+/// Checks every invariant of the live complex: OK, or PANIC with the broken invariant in the
+/// message (a library bug). Cost: O(d² Σ_v |St(v)|²) — for tests.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_validate(l: *const TpxLive) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        l.live()
+            .validate()
+            .map_err(|e| Failure::new(TpxStatus::Panic, format!("invalid live complex: {e}")))
+    })
+}
+
+/// The live complex as a structure, into `*out`: borrowed (valid until `tpx_live_free`; never
+/// pass it to `tpx_structure_free`), so that the handle functions navigate it exactly as a built
+/// structure — `tpx_locate`, `tpx_simplex_vertices`, `tpx_related_handles`, `tpx_degree`,
+/// `tpx_star`, `tpx_simplex_test`, `tpx_cyclic_handles`, `tpx_top`, `tpx_top_id`,
+/// `tpx_top_as_given`, and the vertex-id functions (`tpx_relation`, `tpx_structure_count`, ...).
+/// Handles stay valid across edits while the simplex's naming top simplex lives (STALE_HANDLE
+/// afterwards) and until `tpx_live_compact` (STALE_GENERATION afterwards). A vertex's handle index
+/// is its id; other simplices have no dense index (`tpx_related` and `tpx_cyclic` answer
+/// NOT_DENSE for them: use the `_handles` twins). Top ids are not dense either: dimension in the
+/// top 4 bits, slot below (an isolated vertex v: `v`). Not to be used while another thread edits
+/// the live complex. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_structure(
+    l: *const TpxLive,
+    out: *mut *const TpxStructure,
+) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        let out = out_ptr(out, "out")?;
+        *out = &l.view;
+        Ok(())
+    })
+}

@@ -1,0 +1,196 @@
+//! Saved files (`.tpx`, see `topoplex::store`) and the build thread count.
+
+use std::ffi::{CStr, c_char};
+use std::path::Path;
+
+use super::complex::{TpxComplex, complex_failure};
+use super::live::TpxLive;
+use super::structure::{TpxStructure, build_failure, kind_from_u32};
+use super::{Failure, TpxStatus, guard, handle, out_ptr};
+use topoplex::store::{Saved, StoreError, save};
+
+/// `tpx_structure_open` flag: check every section's checksum and the structure's invariants
+/// before returning (reads the whole file).
+pub const TPX_OPEN_VERIFY: u32 = 1;
+
+pub(crate) fn store_failure(e: StoreError) -> Failure {
+    let status = match &e {
+        StoreError::Io { .. } => TpxStatus::IoError,
+        StoreError::Foreign { .. } => TpxStatus::SavedFileForeign,
+        StoreError::Truncated { .. } => TpxStatus::SavedFileTruncated,
+        StoreError::WrongVersion { .. } => TpxStatus::SavedFileWrongVersion,
+        StoreError::WrongEndianness { .. } => TpxStatus::SavedFileWrongEndianness,
+        StoreError::Corrupt { .. } => TpxStatus::SavedFileCorrupt,
+        StoreError::Complex { source, .. } => return complex_failure(source.clone()),
+        StoreError::Build { source, .. } => return build_failure(source.clone()),
+    };
+    Failure::new(status, e.to_string())
+}
+
+fn path_arg<'a>(path: *const c_char) -> Result<&'a Path, Failure> {
+    if path.is_null() {
+        return Err(Failure::null("path"));
+    }
+    // SAFETY: non-NULL `path` is NUL-terminated (documented contract).
+    let s = unsafe { CStr::from_ptr(path) }.to_str().map_err(|e| {
+        Failure::new(
+            TpxStatus::InvalidArgument,
+            format!("path is not valid UTF-8: {e}"),
+        )
+    })?;
+    Ok(Path::new(s))
+}
+
+/// Saves the complex `c` and, unless `s` is NULL, the structure `s` built from it, to `path`
+/// (a `.tpx` file: written beside it under a temporary name, then renamed).
+///
+/// Errors: NULL_ARGUMENT (`c` or `path`), INVALID_ARGUMENT (path not UTF-8), IO_ERROR. Cost:
+/// one pass over the complex's listing and the structure's arrays.
+///
+/// # Safety
+/// Non-NULL pointers must be valid (live handles; a NUL-terminated path). `s` must have been
+/// built from `c` (or opened from a file saved with it): the file pairs them.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_save(
+    c: *const TpxComplex,
+    s: *const TpxStructure,
+    path: *const c_char,
+) -> TpxStatus {
+    guard(|| {
+        let c = handle(c, "c")?;
+        let path = path_arg(path)?;
+        // SAFETY: a non-NULL `s` is a live handle (documented contract).
+        let s = unsafe { s.as_ref() };
+        save(path, &c.complex, s.map(|s| s.topo.as_ref())).map_err(store_failure)
+    })
+}
+
+/// Opens the structure of `kind` (`TPX_KIND_*`) saved in `path` by memory mapping it: the
+/// structure's arrays are read from the file as queries touch them. If the file holds another
+/// kind or only a complex, the structure is built from the saved complex instead. With
+/// `flags & TPX_OPEN_VERIFY`, every checksum and the structure's invariants are checked first.
+///
+/// On success `*out` receives a new structure owned by the caller (free with
+/// `tpx_structure_free`; the mapping lives until then). Errors: NULL_ARGUMENT,
+/// INVALID_ARGUMENT (path not UTF-8, unknown flag), UNKNOWN_KIND, IO_ERROR,
+/// SAVED_FILE_CORRUPT, SAVED_FILE_TRUNCATED, SAVED_FILE_WRONG_VERSION, SAVED_FILE_FOREIGN,
+/// SAVED_FILE_WRONG_ENDIANNESS, and the build errors of `tpx_structure_build` when building.
+/// Cost: O(sections) without VERIFY; O(file size) with it.
+///
+/// # Safety
+/// `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_structure_open(
+    path: *const c_char,
+    kind: u32,
+    flags: u32,
+    out: *mut *mut TpxStructure,
+) -> TpxStatus {
+    guard(|| {
+        let out = out_ptr(out, "out")?;
+        let path = path_arg(path)?;
+        let kind = kind_from_u32(kind)?;
+        if flags & !TPX_OPEN_VERIFY != 0 {
+            return Err(Failure::new(
+                TpxStatus::InvalidArgument,
+                format!("unknown flags {flags:#x} (only TPX_OPEN_VERIFY = 1)"),
+            ));
+        }
+        let saved = Saved::open(path).map_err(store_failure)?;
+        if flags & TPX_OPEN_VERIFY != 0 {
+            saved.verify().map_err(store_failure)?;
+        }
+        let topo = saved.structure_of(kind).map_err(store_failure)?;
+        *out = Box::into_raw(Box::new(TpxStructure::new(topo)));
+        Ok(())
+    })
+}
+
+/// Opens the complex saved in `path`, rebuilt from its saved listing (validated like any
+/// input). On success `*out` receives a new complex owned by the caller (free with
+/// `tpx_complex_free`). Errors: as `tpx_structure_open`, plus INVALID_COMPLEX. Cost: a
+/// normalisation of the saved listing.
+///
+/// # Safety
+/// `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_open(
+    path: *const c_char,
+    out: *mut *mut TpxComplex,
+) -> TpxStatus {
+    guard(|| {
+        let out = out_ptr(out, "out")?;
+        let path = path_arg(path)?;
+        let saved = Saved::open(path).map_err(store_failure)?;
+        let complex = saved.complex().map_err(store_failure)?;
+        *out = Box::into_raw(Box::new(TpxComplex { complex }));
+        Ok(())
+    })
+}
+
+/// Saves the live complex `l` with its complex to `path` (`.tpx`). Saving compacts a copy on the
+/// fly: removed vertices and slots are not written, ids are renumbered as `tpx_live_compact`
+/// would (`l` itself is unchanged). Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8),
+/// IO_ERROR. Cost: O(size).
+///
+/// # Safety
+/// Non-NULL pointers must be valid (a live handle; a NUL-terminated path).
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_save(l: *const TpxLive, path: *const c_char) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        let path = path_arg(path)?;
+        l.live().save(path).map_err(store_failure)
+    })
+}
+
+/// Opens `path` as an editable live complex: the saved live complex when the file holds one
+/// (`topoplex save INPUT --structure iastar`, `tpx_live_save`), else one built from the saved
+/// complex. Its arrays are copied out of the file (editable), so opening costs O(size), unlike
+/// `tpx_structure_open`. `flags` as `tpx_structure_open` (`TPX_OPEN_VERIFY`). On success `*out`
+/// receives a new live complex owned by the caller (free with `tpx_live_free`). Errors: as
+/// `tpx_structure_open`.
+///
+/// # Safety
+/// `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_open(
+    path: *const c_char,
+    flags: u32,
+    out: *mut *mut TpxLive,
+) -> TpxStatus {
+    guard(|| {
+        let out = out_ptr(out, "out")?;
+        let path = path_arg(path)?;
+        if flags & !TPX_OPEN_VERIFY != 0 {
+            return Err(Failure::new(
+                TpxStatus::InvalidArgument,
+                format!("unknown flags {flags:#x} (only TPX_OPEN_VERIFY = 1)"),
+            ));
+        }
+        let saved = Saved::open(path).map_err(store_failure)?;
+        if flags & TPX_OPEN_VERIFY != 0 {
+            saved.verify().map_err(store_failure)?;
+        }
+        let live = topoplex::live::LiveComplex::open_saved(&saved).map_err(store_failure)?;
+        *out = Box::into_raw(Box::new(TpxLive::new(live)));
+        Ok(())
+    })
+}
+
+/// Sets the number of threads later builds use (`0` is INVALID_ARGUMENT). Without a call, the
+/// `TOPOPLEX_THREADS` environment variable, else every core. Builds give the same structure
+/// whatever the count. O(1).
+#[unsafe(no_mangle)]
+pub extern "C" fn tpx_set_threads(threads: u32) -> TpxStatus {
+    guard(|| {
+        if threads == 0 {
+            return Err(Failure::new(
+                TpxStatus::InvalidArgument,
+                "threads must be at least 1",
+            ));
+        }
+        topoplex::parallel::set_threads(threads as usize);
+        Ok(())
+    })
+}

@@ -1,0 +1,1462 @@
+//! The ABI called from Rust as C would call it. No file IO, no FFI to C and small inputs, so
+//! that `cargo +nightly miri test --lib ffi` can check the unsafe code (Stacked Borrows, leaks).
+
+use std::ffi::CStr;
+use std::ptr::{null, null_mut};
+
+use super::*;
+
+fn last_error() -> String {
+    // SAFETY: tpx_last_error_message never returns NULL and the string is NUL-terminated.
+    unsafe { CStr::from_ptr(tpx_last_error_message()) }
+        .to_str()
+        .unwrap()
+        .to_string()
+}
+
+/// Builds a complex from a list of simplices through the ABI.
+fn complex(n: u32, simplices: &[&[u32]]) -> *mut TpxComplex {
+    let mut ids = Vec::new();
+    let mut offsets = vec![0usize];
+    for s in simplices {
+        ids.extend_from_slice(s);
+        offsets.push(ids.len());
+    }
+    let mut out = null_mut();
+    let st = unsafe {
+        tpx_complex_from_arrays(
+            n,
+            ids.as_ptr(),
+            offsets.as_ptr(),
+            simplices.len(),
+            null(),
+            0,
+            &mut out,
+        )
+    };
+    assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+    assert!(!out.is_null());
+    out
+}
+
+/// A tetrahedron 0123, a dangling triangle 2 3 4 on its edge 2-3, and a wire edge 4-5.
+///
+/// ```text
+///          3 ------ 4 ------ 5
+///         /|\      /
+///        / | \    /
+///       0--|--2--/
+///        \ | /
+///         \|/
+///          1
+/// ```
+fn tet_triangle_wire() -> *mut TpxComplex {
+    complex(6, &[&[0, 1, 2, 3], &[2, 3, 4], &[4, 5]])
+}
+
+fn ig(c: *const TpxComplex) -> *mut TpxStructure {
+    let mut s = null_mut();
+    let st = unsafe { tpx_structure_build(c, TPX_KIND_IG, &mut s) };
+    assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+    s
+}
+
+/// Calls tpx_relation with a buffer of `cap` entries; returns the status, the filled prefix and
+/// `*out_len` (or the sentinel if untouched).
+fn relation(s: *const TpxStructure, sigma: &[u32], q: u32, cap: usize) -> (TpxStatus, Vec<u32>) {
+    let mut buf = vec![u32::MAX; cap];
+    let mut len = 7777usize;
+    let st = unsafe {
+        tpx_relation(
+            s,
+            sigma.as_ptr(),
+            sigma.len(),
+            q,
+            buf.as_mut_ptr(),
+            cap,
+            &mut len,
+        )
+    };
+    if st == TpxStatus::Ok {
+        buf.truncate(len);
+    }
+    (st, buf)
+}
+
+#[test]
+fn status_numbers_are_the_agreed_abi() {
+    use TpxStatus::*;
+    let all = [
+        Ok,
+        NullArgument,
+        InvalidArgument,
+        IoError,
+        ParseError,
+        InvalidComplex,
+        UnknownKind,
+        NotImplemented,
+        UnsupportedComplex,
+        NotInComplex,
+        InvalidSimplex,
+        DimensionOutOfRange,
+        BufferTooSmall,
+        TooLarge,
+        Panic,
+    ];
+    for (i, s) in all.into_iter().enumerate() {
+        assert_eq!(s as u32, i as u32, "{s:?}");
+    }
+    // Saved files: 40..=44.
+    let saved = [
+        SavedFileCorrupt,
+        SavedFileTruncated,
+        SavedFileWrongVersion,
+        SavedFileForeign,
+        SavedFileWrongEndianness,
+    ];
+    for (i, s) in saved.into_iter().enumerate() {
+        assert_eq!(s as u32, 40 + i as u32, "{s:?}");
+    }
+    let kinds = topoplex::relation::StructureKind::ALL;
+    assert_eq!([TPX_KIND_IG, TPX_KIND_DE], [0, kinds.len() as u32 - 1]);
+}
+
+#[test]
+fn version_is_the_crate_version() {
+    let v = unsafe { CStr::from_ptr(tpx_version()) };
+    assert_eq!(v.to_str().unwrap(), env!("CARGO_PKG_VERSION"));
+}
+
+#[test]
+fn lifecycle_of_the_tetrahedron_with_triangle_and_wire() {
+    let c = tet_triangle_wire();
+    let (mut d, mut n, mut tops) = (99u32, 99u32, [99usize; 5]);
+    unsafe {
+        assert_eq!(tpx_complex_dimension(c, &mut d), TpxStatus::Ok);
+        assert_eq!(tpx_complex_vertex_count(c, &mut n), TpxStatus::Ok);
+        for (p, t) in tops.iter_mut().enumerate() {
+            assert_eq!(tpx_complex_top_count(c, p as u32, t), TpxStatus::Ok);
+        }
+    }
+    assert_eq!((d, n, tops), (3, 6, [0, 1, 1, 1, 0]));
+    assert_eq!(last_error(), "");
+
+    let s = ig(c);
+    // The structure owns its data: the complex can go first.
+    unsafe { tpx_complex_free(c) };
+    let (mut kind, mut sd) = (99u32, 99u32);
+    let mut counts = [99usize; 5];
+    let mut top_counts = [99usize; 5];
+    let mut storage = TpxStorage::default();
+    unsafe {
+        assert_eq!(tpx_structure_kind(s, &mut kind), TpxStatus::Ok);
+        assert_eq!(tpx_structure_dimension(s, &mut sd), TpxStatus::Ok);
+        for p in 0..5 {
+            assert_eq!(
+                tpx_structure_count(s, p as u32, &mut counts[p]),
+                TpxStatus::Ok
+            );
+            assert_eq!(
+                tpx_structure_top_count(s, p as u32, &mut top_counts[p]),
+                TpxStatus::Ok
+            );
+        }
+        assert_eq!(tpx_structure_storage(s, &mut storage), TpxStatus::Ok);
+    }
+    assert_eq!((kind, sd), (TPX_KIND_IG, 3));
+    // 6 vertices; 6 tet edges + 2-4, 3-4, 4-5; 4 tet faces + 2 3 4; the tetrahedron.
+    assert_eq!(counts, [6, 9, 5, 1, 0]);
+    assert_eq!(top_counts, [0, 1, 1, 1, 0]);
+    assert!(storage.bytes > 0 && storage.integers > 0);
+
+    // Triangles on edge 2-3, given in the other order.
+    let (st, rows) = relation(s, &[3, 2], 2, 16);
+    assert_eq!(st, TpxStatus::Ok);
+    assert_eq!(rows, [0, 2, 3, 1, 2, 3, 2, 3, 4]);
+    // Edges at vertex 4.
+    assert_eq!(relation(s, &[4], 1, 6).1, [2, 4, 3, 4, 4, 5]);
+    // Boundary vertices of the dangling triangle.
+    assert_eq!(relation(s, &[4, 3, 2], 0, 3).1, [2, 3, 4]);
+    // Vertex 5 is on no triangle: an empty answer, with a NULL buffer.
+    let mut len = 7usize;
+    let st = unsafe { tpx_relation(s, [5u32].as_ptr(), 1, 2, null_mut(), 0, &mut len) };
+    assert_eq!((st, len), (TpxStatus::Ok, 0));
+
+    unsafe { tpx_structure_free(s) };
+}
+
+#[test]
+fn simplices_in_lexicographic_order_and_buffer_too_small() {
+    let c = tet_triangle_wire();
+    let s = ig(c);
+    let mut buf = [u32::MAX; 32];
+    let mut len = 0usize;
+    let st = unsafe { tpx_structure_simplices(s, 2, buf.as_mut_ptr(), buf.len(), &mut len) };
+    assert_eq!(st, TpxStatus::Ok);
+    assert_eq!(&buf[..len], [0, 1, 2, 0, 1, 3, 0, 2, 3, 1, 2, 3, 2, 3, 4]);
+
+    // Size query with a NULL buffer, then too small: only *out_len is written.
+    let mut len = 0usize;
+    let st = unsafe { tpx_structure_simplices(s, 1, null_mut(), 0, &mut len) };
+    assert_eq!((st, len), (TpxStatus::BufferTooSmall, 18));
+    let mut small = [u32::MAX; 4];
+    let mut len = 0usize;
+    let st = unsafe { tpx_structure_simplices(s, 1, small.as_mut_ptr(), 4, &mut len) };
+    assert_eq!((st, len), (TpxStatus::BufferTooSmall, 18));
+    assert_eq!(small, [u32::MAX; 4]);
+    assert!(last_error().contains("18"), "{}", last_error());
+
+    let (st, untouched) = relation(s, &[2, 3], 2, 8);
+    assert_eq!(st, TpxStatus::BufferTooSmall);
+    assert_eq!(untouched, [u32::MAX; 8]);
+    let mut len = 0usize;
+    let st = unsafe { tpx_relation(s, [2u32, 3].as_ptr(), 2, 2, null_mut(), 0, &mut len) };
+    assert_eq!((st, len), (TpxStatus::BufferTooSmall, 9));
+
+    // A non-NULL need with a NULL buffer claiming room is a NULL argument.
+    let st = unsafe { tpx_relation(s, [2u32, 3].as_ptr(), 2, 2, null_mut(), 9, &mut len) };
+    assert_eq!(st, TpxStatus::NullArgument);
+
+    unsafe {
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+#[test]
+fn relation_table_of_edges_at_each_vertex() {
+    let c = tet_triangle_wire();
+    let s = ig(c);
+    let mut t = null_mut();
+    assert_eq!(
+        unsafe { tpx_relation_table(s, 0, 1, &mut t) },
+        TpxStatus::Ok
+    );
+    let (mut no, mut ni) = (0usize, 0usize);
+    let (offsets, ids) = unsafe {
+        let o = tpx_relation_table_offsets(t, &mut no);
+        let i = tpx_relation_table_ids(t, &mut ni);
+        (
+            std::slice::from_raw_parts(o, no).to_vec(),
+            std::slice::from_raw_parts(i, ni).to_vec(),
+        )
+    };
+    assert_eq!(offsets, [0, 6, 12, 20, 28, 34, 36]);
+    #[rustfmt::skip]
+    assert_eq!(ids, [
+        0, 1, 0, 2, 0, 3,        // vertex 0
+        0, 1, 1, 2, 1, 3,        // vertex 1
+        0, 2, 1, 2, 2, 3, 2, 4,  // vertex 2
+        0, 3, 1, 3, 2, 3, 3, 4,  // vertex 3
+        2, 4, 3, 4, 4, 5,        // vertex 4
+        4, 5,                    // vertex 5
+    ]);
+    unsafe {
+        assert!(tpx_relation_table_offsets(null(), &mut no).is_null());
+        assert!(tpx_relation_table_ids(t, null_mut()).is_null());
+        tpx_relation_table_free(t);
+        let mut t = null_mut();
+        assert_eq!(
+            tpx_relation_table(s, 4, 0, &mut t),
+            TpxStatus::DimensionOutOfRange
+        );
+        assert_eq!(
+            tpx_relation_table(s, 0, 4, &mut t),
+            TpxStatus::DimensionOutOfRange
+        );
+        assert!(t.is_null());
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+/// Calls tpx_complex_top_simplices with a buffer of `cap` entries; returns the status, the
+/// filled prefix (or the untouched buffer) and `*out_len` (7777 if untouched).
+fn top_simplices(c: *const TpxComplex, p: u32, cap: usize) -> (TpxStatus, Vec<u32>, usize) {
+    let mut buf = vec![u32::MAX; cap];
+    let mut len = 7777usize;
+    let st = unsafe { tpx_complex_top_simplices(c, p, buf.as_mut_ptr(), cap, &mut len) };
+    if st == TpxStatus::Ok {
+        buf.truncate(len);
+    }
+    (st, buf, len)
+}
+
+#[test]
+fn top_simplices_and_coordinates_give_back_the_complex() {
+    // Two triangles given unsorted, one a duplicate, plus an isolated vertex 4 and a face of
+    // the first triangle (absorbed).
+    //
+    //   2 ---- 3       4 (isolated)
+    //   | \    |
+    //   |  \   |
+    //   0 ---- 1
+    let ids = [2u32, 1, 0, 1, 3, 2, 0, 2, 1, 0, 1];
+    let offsets = [0usize, 3, 6, 9, 11];
+    #[rustfmt::skip]
+    let coords = [
+        0.0, 0.0, 0.5,
+        1.0, 0.0, 0.5,
+        0.0, 1.0, 0.5,
+        1.0, 1.0, 0.5,
+        9.0, 9.0, 9.0,
+    ];
+    let mut c = null_mut();
+    let st = unsafe {
+        tpx_complex_from_arrays(
+            5,
+            ids.as_ptr(),
+            offsets.as_ptr(),
+            4,
+            coords.as_ptr(),
+            3,
+            &mut c,
+        )
+    };
+    assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+
+    assert_eq!(
+        top_simplices(c, 2, 6),
+        (TpxStatus::Ok, vec![0, 1, 2, 1, 2, 3], 6)
+    );
+    assert_eq!(top_simplices(c, 1, 0), (TpxStatus::Ok, vec![], 0));
+    assert_eq!(top_simplices(c, 0, 1), (TpxStatus::Ok, vec![4], 1));
+    // Too small: nothing copied, the needed length reported; a NULL buffer asks for the size.
+    assert_eq!(
+        top_simplices(c, 2, 5),
+        (TpxStatus::BufferTooSmall, vec![u32::MAX; 5], 6)
+    );
+    let mut len = 0usize;
+    let st = unsafe { tpx_complex_top_simplices(c, 2, null_mut(), 0, &mut len) };
+    assert_eq!((st, len), (TpxStatus::BufferTooSmall, 6));
+    assert_eq!(
+        top_simplices(c, 3, 16),
+        (TpxStatus::DimensionOutOfRange, vec![u32::MAX; 16], 7777)
+    );
+    assert!(last_error().contains("p = 3"), "{}", last_error());
+
+    let mut dim = 99usize;
+    assert_eq!(unsafe { tpx_complex_coord_dim(c, &mut dim) }, TpxStatus::Ok);
+    assert_eq!(dim, 3);
+    let mut buf = [f64::NAN; 15];
+    let mut len = 0usize;
+    let st = unsafe { tpx_complex_coords(c, buf.as_mut_ptr(), 15, &mut len) };
+    assert_eq!((st, len), (TpxStatus::Ok, 15));
+    assert_eq!(buf, coords);
+    let mut small = [f64::NAN; 14];
+    let mut len = 0usize;
+    let st = unsafe { tpx_complex_coords(c, small.as_mut_ptr(), 14, &mut len) };
+    assert_eq!((st, len), (TpxStatus::BufferTooSmall, 15));
+    assert!(small.iter().all(|x| x.is_nan()));
+    assert!(last_error().contains("14 double"), "{}", last_error());
+    unsafe { tpx_complex_free(c) };
+
+    // Without coordinates: dimension 0 and an empty answer, even into a NULL buffer.
+    let c = tet_triangle_wire();
+    let (mut dim, mut len) = (99usize, 99usize);
+    unsafe {
+        assert_eq!(tpx_complex_coord_dim(c, &mut dim), TpxStatus::Ok);
+        assert_eq!(
+            tpx_complex_coords(c, null_mut(), 0, &mut len),
+            TpxStatus::Ok
+        );
+    }
+    assert_eq!((dim, len), (0, 0));
+    assert_eq!(top_simplices(c, 3, 4), (TpxStatus::Ok, vec![0, 1, 2, 3], 4));
+    assert_eq!(top_simplices(c, 1, 2), (TpxStatus::Ok, vec![4, 5], 2));
+    unsafe { tpx_complex_free(c) };
+}
+
+#[test]
+fn null_arguments_are_refused_and_outputs_untouched() {
+    let c = tet_triangle_wire();
+    let s = ig(c);
+    let mut u = 42u32;
+    let mut z = 42usize;
+    unsafe {
+        assert_eq!(
+            tpx_complex_dimension(null(), &mut u),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(u, 42);
+        assert!(last_error().contains("`c`"), "{}", last_error());
+        assert_eq!(
+            tpx_complex_dimension(c, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_vertex_count(null(), &mut u),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_top_count(c, 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_coord_dim(null(), &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_coords(c, null_mut(), 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_top_simplices(null(), 0, null_mut(), 0, &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_top_simplices(c, 3, null_mut(), 4, &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_structure_build(null(), 0, &mut null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_structure_build(c, 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(tpx_structure_kind(null(), &mut u), TpxStatus::NullArgument);
+        assert_eq!(
+            tpx_structure_dimension(s, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_structure_count(null(), 0, &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_structure_top_count(s, 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_structure_storage(s, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_structure_simplices(s, 0, null_mut(), 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_relation(s, null(), 1, 0, null_mut(), 0, &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_relation(null(), [0u32].as_ptr(), 1, 0, null_mut(), 0, &mut z),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_relation_table(s, 0, 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_from_file(null(), &mut null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_from_arrays(1, null(), null(), 0, null(), 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_from_arrays(
+                3,
+                null(),
+                [0usize, 2].as_ptr(),
+                1,
+                null(),
+                0,
+                &mut null_mut()
+            ),
+            TpxStatus::NullArgument
+        );
+        assert_eq!((u, z), (42, 42));
+        tpx_complex_free(null_mut());
+        tpx_structure_free(null_mut());
+        tpx_relation_table_free(null_mut());
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+#[test]
+fn complex_errors_map_to_statuses_with_evidence() {
+    let mut out = null_mut();
+    unsafe {
+        // Decreasing offsets.
+        let st = tpx_complex_from_arrays(
+            3,
+            [0u32, 1, 2].as_ptr(),
+            [0usize, 2, 1].as_ptr(),
+            2,
+            null(),
+            0,
+            &mut out,
+        );
+        assert_eq!(st, TpxStatus::InvalidArgument);
+        // Repeated vertex in simplex #1.
+        let st = tpx_complex_from_arrays(
+            3,
+            [0u32, 1, 2, 2].as_ptr(),
+            [0usize, 2, 4].as_ptr(),
+            2,
+            null(),
+            0,
+            &mut out,
+        );
+        assert_eq!(st, TpxStatus::InvalidComplex);
+        assert!(last_error().contains("#1"), "{}", last_error());
+        assert!(last_error().contains("[2 2]"), "{}", last_error());
+        // Vertex 3 of 3.
+        let st = tpx_complex_from_arrays(
+            3,
+            [0u32, 3].as_ptr(),
+            [0usize, 2].as_ptr(),
+            1,
+            null(),
+            0,
+            &mut out,
+        );
+        assert_eq!(st, TpxStatus::InvalidComplex);
+        // No vertices.
+        let st = tpx_complex_from_arrays(0, null(), null(), 0, null(), 0, &mut out);
+        assert_eq!(st, TpxStatus::InvalidComplex);
+        // Coordinates with dimension 0.
+        let st = tpx_complex_from_arrays(1, null(), null(), 0, [0.0].as_ptr(), 0, &mut out);
+        assert_eq!(st, TpxStatus::InvalidArgument);
+        assert!(out.is_null());
+        // Unknown extension: refused before any file access.
+        let st = tpx_complex_from_file(c"mesh.txt".as_ptr(), &mut out);
+        assert_eq!(st, TpxStatus::ParseError);
+        assert!(last_error().contains("mesh.txt"), "{}", last_error());
+        let st = tpx_complex_from_file(c"bad\xff.off".as_ptr(), &mut out);
+        assert_eq!(st, TpxStatus::InvalidArgument);
+        assert!(out.is_null());
+
+        // Isolated vertices only, with coordinates.
+        let st = tpx_complex_from_arrays(2, null(), null(), 0, [0.0, 1.0].as_ptr(), 1, &mut out);
+        assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+        let mut d = 9u32;
+        assert_eq!(tpx_complex_dimension(out, &mut d), TpxStatus::Ok);
+        assert_eq!(d, 0);
+        tpx_complex_free(out);
+    }
+}
+
+#[test]
+fn kinds_and_query_errors_map_to_statuses() {
+    let c = tet_triangle_wire();
+    let mut s = null_mut();
+    unsafe {
+        assert_eq!(tpx_structure_build(c, 9, &mut s), TpxStatus::UnknownKind);
+        assert_eq!(
+            tpx_structure_build(c, u32::MAX, &mut s),
+            TpxStatus::UnknownKind
+        );
+        assert!(s.is_null());
+        for kind in 0..9 {
+            let st = tpx_structure_build(c, kind, &mut s);
+            // Kinds land one by one; each either builds or says so.
+            match st {
+                TpxStatus::Ok => tpx_structure_free(std::mem::replace(&mut s, null_mut())),
+                TpxStatus::NotImplemented | TpxStatus::UnsupportedComplex => {
+                    assert!(!last_error().is_empty());
+                    assert!(s.is_null());
+                }
+                other => panic!("kind {kind}: {other:?} {}", last_error()),
+            }
+        }
+    }
+    let s = ig(c);
+    assert_eq!(relation(s, &[0, 4], 0, 8).0, TpxStatus::NotInComplex);
+    assert!(last_error().contains("[0 4]"), "{}", last_error());
+    assert_eq!(relation(s, &[], 0, 8).0, TpxStatus::InvalidSimplex);
+    assert_eq!(relation(s, &[1, 1], 0, 8).0, TpxStatus::InvalidSimplex);
+    assert_eq!(relation(s, &[6], 0, 8).0, TpxStatus::InvalidSimplex);
+    assert_eq!(relation(s, &[0], 4, 8).0, TpxStatus::DimensionOutOfRange);
+    let mut len = 0usize;
+    let st = unsafe { tpx_structure_simplices(s, 4, null_mut(), 0, &mut len) };
+    assert_eq!((st, len), (TpxStatus::DimensionOutOfRange, 0));
+    // A success clears the message.
+    assert_eq!(relation(s, &[0], 1, 8).0, TpxStatus::Ok);
+    assert_eq!(last_error(), "");
+    unsafe {
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+/// tpx_relation validates and sorts on its own (no allocation per call): its answers and error
+/// messages must be those of the Rust API, `Topology::relation` then `sort_rows`, for every
+/// simplex and every q, with answers of all sizes following each other on one thread (the
+/// per-thread answer buffer is reused). A 4-simplex makes rows of 5 ids (the general sort).
+#[test]
+fn relation_matches_the_rust_api_for_every_simplex_and_q() {
+    // A 4-simplex 0..4 sharing vertex 4 with a triangle 4 5 6, and a wire edge 6-7.
+    let c = complex(8, &[&[4, 3, 2, 1, 0], &[6, 5, 4], &[7, 6]]);
+    for kind in [TPX_KIND_IG, TPX_KIND_SIG] {
+        let mut s = null_mut();
+        assert_eq!(
+            unsafe { tpx_structure_build(c, kind, &mut s) },
+            TpxStatus::Ok,
+            "{}",
+            last_error()
+        );
+        let topo = unsafe { &*s }.topo.as_ref();
+        let d = topo.dimension();
+        for p in 0..=d {
+            let mut all = Vec::new();
+            topo.simplices(p, &mut all);
+            for sigma in all.chunks_exact(p + 1) {
+                // Given in descending order, to exercise the sort of the query simplex.
+                let given: Vec<u32> = sigma.iter().rev().copied().collect();
+                for q in 0..=d {
+                    let mut want = Vec::new();
+                    topo.relation(sigma, q, &mut want).unwrap();
+                    topoplex::relation::sort_rows(&mut want, q + 1);
+                    let (st, got) = relation(s, &given, q as u32, 512);
+                    assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+                    assert_eq!(got, want, "kind {kind} R{p},{q} of {sigma:?}");
+                }
+            }
+        }
+        // Invalid queries: the same message as the Rust API's error.
+        for bad in [&[][..], &[3, 1, 3], &[2, 8], &[0, 5]] {
+            let want = topo
+                .relation(bad, 1, &mut Vec::new())
+                .unwrap_err()
+                .to_string();
+            let (st, _) = relation(s, bad, 1, 8);
+            assert_ne!(st, TpxStatus::Ok);
+            assert_eq!(last_error(), want);
+        }
+        let too_many: Vec<u32> = (0..17).collect();
+        let want = topo
+            .relation(&too_many, 0, &mut Vec::new())
+            .unwrap_err()
+            .to_string();
+        assert_eq!(relation(s, &too_many, 0, 8).0, TpxStatus::InvalidSimplex);
+        assert_eq!(last_error(), want);
+        unsafe { tpx_structure_free(s) };
+    }
+    unsafe { tpx_complex_free(c) };
+}
+
+#[test]
+fn answers_are_sorted_in_place_for_every_arity() {
+    for arity in 1..=6usize {
+        // Rows r = 0..5 of `arity` ids (r, r+1, ...), listed 3 1 4 0 2.
+        let row = |r: u32| (r..r + arity as u32).collect::<Vec<u32>>();
+        let mut rows: Vec<u32> = [3, 1, 4, 0, 2].into_iter().flat_map(row).collect();
+        super::structure::sort_rows_in_place(&mut rows, arity);
+        let want: Vec<u32> = (0..5).flat_map(row).collect();
+        assert_eq!(rows, want, "arity {arity}");
+        // Rows that differ only in a later id (high ids: no carry between packed ids), and
+        // more rows than are sorted on the stack.
+        for n in [7u32, 200] {
+            let row = |r: u32| {
+                let mut v = vec![u32::MAX - 1; arity];
+                v[arity - 1] = u32::MAX - 1 - (r % 3);
+                v[0] = r / 3;
+                v
+            };
+            let mut rows: Vec<u32> = (0..n).rev().flat_map(row).collect();
+            let mut want: Vec<Vec<u32>> = (0..n).map(row).collect();
+            want.sort();
+            super::structure::sort_rows_in_place(&mut rows, arity);
+            assert_eq!(rows, want.concat(), "arity {arity}, {n} rows");
+        }
+    }
+}
+
+#[test]
+fn a_panic_becomes_a_status_not_an_unwind() {
+    let st = guard(|| panic!("boom at [1 2]"));
+    assert_eq!(st, TpxStatus::Panic);
+    assert!(last_error().contains("boom at [1 2]"), "{}", last_error());
+    assert_eq!(guard_value(5, || panic!("x")), 5);
+}
+
+#[test]
+fn queries_from_two_threads_share_one_structure() {
+    // A const handle shared across threads, as the header promises C callers may do.
+    #[derive(Clone, Copy)]
+    struct Shared(*const TpxStructure);
+    unsafe impl Send for Shared {}
+    let c = tet_triangle_wire();
+    let s = ig(c);
+    let shared = Shared(s);
+    let answers: Vec<Vec<u32>> = std::thread::scope(|scope| {
+        let hs: Vec<_> = (0..2u32)
+            .map(|v| {
+                scope.spawn(move || {
+                    let shared = shared;
+                    relation(shared.0, &[v + 2], 0, 8).1
+                })
+            })
+            .collect();
+        hs.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    assert_eq!(answers, [vec![0, 1, 3, 4], vec![0, 1, 2, 4]]);
+    unsafe {
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+#[test]
+fn decomposition_of_the_bowtie_splits_its_pinch_vertex() {
+    //   0       3
+    //   | \   / |
+    //   |  2    |     two triangles sharing only vertex 2: two components, vertex 2 split
+    //   | /   \ |
+    //   1       4
+    let c = complex(5, &[&[0, 1, 2], &[2, 3, 4]]);
+    let mut d = null_mut();
+    assert_eq!(unsafe { tpx_decomposition_build(c, &mut d) }, TpxStatus::Ok);
+    let mut count = 0usize;
+    assert_eq!(
+        unsafe { tpx_decomposition_component_count(d, &mut count) },
+        TpxStatus::Ok
+    );
+    assert_eq!(count, 2);
+    let mut originals = Vec::new();
+    for i in 0..count {
+        let (mut dim, mut tops, mut tops_len, mut orig, mut orig_len) =
+            (0u32, null(), 0usize, null(), 0usize);
+        let st = unsafe {
+            tpx_decomposition_component(
+                d,
+                i,
+                &mut dim,
+                &mut tops,
+                &mut tops_len,
+                &mut orig,
+                &mut orig_len,
+            )
+        };
+        assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+        assert_eq!((dim, tops_len, orig_len), (2, 3, 3));
+        let tops = unsafe { std::slice::from_raw_parts(tops, tops_len) };
+        let orig = unsafe { std::slice::from_raw_parts(orig, orig_len) };
+        let mut tri: Vec<u32> = tops.iter().map(|&l| orig[l as usize]).collect();
+        tri.sort();
+        originals.push(tri);
+    }
+    originals.sort();
+    assert_eq!(originals, [vec![0, 1, 2], vec![2, 3, 4]]);
+    let (mut sv, mut sv_len, mut off, mut copies, mut copies_len) =
+        (null(), 0usize, null(), null(), 0usize);
+    assert_eq!(
+        unsafe {
+            tpx_decomposition_split_vertices(
+                d,
+                &mut sv,
+                &mut sv_len,
+                &mut off,
+                &mut copies,
+                &mut copies_len,
+            )
+        },
+        TpxStatus::Ok
+    );
+    assert_eq!(unsafe { std::slice::from_raw_parts(sv, sv_len) }, [2]);
+    assert_eq!(copies_len, 2);
+    let (mut cv, mut cc, mut n) = (null(), null(), 0usize);
+    assert_eq!(
+        unsafe { tpx_decomposition_copies(d, &mut cv, &mut cc, &mut n) },
+        TpxStatus::Ok
+    );
+    assert_eq!(n, 6);
+    let copies = unsafe { std::slice::from_raw_parts(copies, copies_len) };
+    let cv = unsafe { std::slice::from_raw_parts(cv, n) };
+    let cc = unsafe { std::slice::from_raw_parts(cc, n) };
+    assert!(copies.iter().all(|&k| cv[k as usize] == 2));
+    assert_ne!(cc[copies[0] as usize], cc[copies[1] as usize]);
+    let (mut dim, mut p, mut l) = (0u32, null(), 0usize);
+    let st =
+        unsafe { tpx_decomposition_component(d, 2, &mut dim, &mut p, &mut l, &mut null(), &mut 0) };
+    assert_eq!(st, TpxStatus::DimensionOutOfRange);
+    assert_eq!(
+        unsafe { tpx_decomposition_component_count(null(), &mut count) },
+        TpxStatus::NullArgument
+    );
+    unsafe {
+        tpx_decomposition_free(d);
+        tpx_decomposition_free(null_mut());
+        tpx_complex_free(c);
+    }
+}
+
+/// Issue 16, class 11: a NULL buffer with a non-zero length is NULL_ARGUMENT even when the
+/// answer is empty (the edge 4-5 has no triangle), as the header promises; `*out_len` untouched.
+#[test]
+fn a_null_buffer_with_a_length_is_refused_even_for_an_empty_answer() {
+    let c = tet_triangle_wire();
+    let s = ig(c);
+    let mut len = 42usize;
+    unsafe {
+        let st = tpx_relation(s, [4u32, 5].as_ptr(), 2, 2, null_mut(), 8, &mut len);
+        assert_eq!((st, len), (TpxStatus::NullArgument, 42));
+        assert!(last_error().contains("`buf`"), "{}", last_error());
+        // Length 0 with NULL still asks for the size.
+        let st = tpx_relation(s, [4u32, 5].as_ptr(), 2, 2, null_mut(), 0, &mut len);
+        assert_eq!((st, len), (TpxStatus::Ok, 0));
+        // The same rule on every buffer-filling export: an empty answer and a NULL buffer.
+        let st = tpx_complex_coords(c, null_mut(), 3, &mut len);
+        assert_eq!(st, TpxStatus::NullArgument);
+        let st = tpx_complex_top_simplices(c, 0, null_mut(), 3, &mut len);
+        assert_eq!(st, TpxStatus::NullArgument);
+        let st = tpx_structure_simplices(s, 0, null_mut(), 100, &mut len);
+        assert_eq!(st, TpxStatus::NullArgument);
+        assert_eq!(len, 0);
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+/// Issue 16, classes 4 and 10: a vertex count with nothing behind it, or a closure above the
+/// budget, is TOO_LARGE before anything of that size is allocated (never an abort); the
+/// budget can be raised; `*out` is untouched.
+#[test]
+fn closure_bombs_are_too_large_and_the_budget_can_be_raised() {
+    let mut out = null_mut();
+    unsafe {
+        let st = tpx_complex_from_arrays(u32::MAX, null(), null(), 0, null(), 0, &mut out);
+        assert_eq!(st, TpxStatus::TooLarge, "{}", last_error());
+        assert!(last_error().contains("4294967295"), "{}", last_error());
+        assert!(out.is_null());
+        // One 4-simplex: 5 + 26 simplices by the bound; a budget of 30 refuses it, 31 takes it.
+        let ids = [0u32, 1, 2, 3, 4];
+        let offsets = [0usize, 5];
+        let build = |max: u64, out: &mut *mut TpxComplex| {
+            tpx_complex_from_arrays_budget(
+                5,
+                ids.as_ptr(),
+                offsets.as_ptr(),
+                1,
+                null(),
+                0,
+                max,
+                out,
+            )
+        };
+        assert_eq!(build(30, &mut out), TpxStatus::TooLarge);
+        assert!(
+            last_error().contains("up to 31 simplices"),
+            "{}",
+            last_error()
+        );
+        assert!(out.is_null());
+        assert_eq!(build(31, &mut out), TpxStatus::Ok, "{}", last_error());
+        tpx_complex_free(std::mem::replace(&mut out, null_mut()));
+        assert_eq!(build(u64::MAX, &mut out), TpxStatus::Ok);
+        tpx_complex_free(out);
+    }
+}
+
+/// Issue 16, class 12: what normalisation absorbed is visible through the C ABI.
+#[test]
+fn input_stats_count_absorbed_duplicates_and_faces() {
+    // 0 1 2 twice (once reversed), its edge 1 2, and the wire 3 4.
+    let c = complex(5, &[&[0, 1, 2], &[2, 1, 0], &[1, 2], &[3, 4]]);
+    let mut st = TpxInputStats {
+        input_simplices: 9,
+        absorbed_duplicates: 9,
+        absorbed_faces: 9,
+    };
+    unsafe {
+        assert_eq!(tpx_complex_input_stats(c, &mut st), TpxStatus::Ok);
+        assert_eq!(
+            st,
+            TpxInputStats {
+                input_simplices: 4,
+                absorbed_duplicates: 1,
+                absorbed_faces: 1,
+            }
+        );
+        assert_eq!(
+            tpx_complex_input_stats(null(), &mut st),
+            TpxStatus::NullArgument
+        );
+        assert_eq!(
+            tpx_complex_input_stats(c, null_mut()),
+            TpxStatus::NullArgument
+        );
+        tpx_complex_free(c);
+    }
+}
+
+/// Issue 16, class 6 (C ABI side): the last error message is one bounded line, control
+/// characters escaped, whatever the failure's text.
+#[test]
+fn last_error_message_is_one_bounded_escaped_line() {
+    let long = format!("{}\n\u{b}{}", "x".repeat(5_000), "y".repeat(10));
+    let st = guard(|| Err(Failure::new(TpxStatus::ParseError, long)));
+    assert_eq!(st, TpxStatus::ParseError);
+    let msg = last_error();
+    assert!(
+        msg.len() < topoplex::error::MESSAGE_MAX_BYTES + 40,
+        "{}",
+        msg.len()
+    );
+    assert!(msg.ends_with("more bytes)"), "{msg}");
+    assert!(!msg.contains('\n') && !msg.contains('\u{b}'));
+    let st = guard(|| Err(Failure::new(TpxStatus::ParseError, "a\nb\u{b}c\0")));
+    assert_eq!(st, TpxStatus::ParseError);
+    assert_eq!(last_error(), "a\\nb\\x0bc\\0");
+}
+
+/// Handles through the C ABI on the tetrahedron with a dangling triangle and a wire: locate,
+/// vertices, related (both orders), batch CSR, degree, tops as given, and every bad handle a
+/// clear status with outputs untouched.
+#[test]
+fn handles_locate_navigate_and_refuse_bad_handles() {
+    let c = tet_triangle_wire();
+    let s = ig(c);
+    let mut other = null_mut();
+    assert_eq!(
+        unsafe { tpx_structure_build(c, TPX_KIND_NMIA, &mut other) },
+        TpxStatus::Ok
+    );
+    unsafe {
+        let mut e = TpxSimplex::default();
+        assert_eq!(tpx_locate(s, [3, 2].as_ptr(), 2, &mut e), TpxStatus::Ok);
+        assert_eq!(e.meta & 0xff, 1);
+        let mut v = [0u32; 4];
+        let mut len = 0usize;
+        assert_eq!(
+            tpx_simplex_vertices(s, &e, v.as_mut_ptr(), 4, &mut len),
+            TpxStatus::Ok
+        );
+        assert_eq!(&v[..len], &[2, 3]);
+        // Triangles at edge 2-3: 0 2 3, 1 2 3, 2 3 4, as dense indices of triangles.
+        let mut buf = [0u32; 8];
+        let st = tpx_related(
+            s,
+            &e,
+            2,
+            TPX_ORDER_LEXICOGRAPHIC,
+            buf.as_mut_ptr(),
+            8,
+            &mut len,
+        );
+        assert_eq!(st, TpxStatus::Ok);
+        let mut rows = Vec::new();
+        for &i in &buf[..len] {
+            let mut t = TpxSimplex::default();
+            assert_eq!(tpx_handle(s, 2, i, &mut t), TpxStatus::Ok);
+            let mut w = [0u32; 3];
+            let mut wl = 0;
+            assert_eq!(
+                tpx_simplex_vertices(s, &t, w.as_mut_ptr(), 3, &mut wl),
+                TpxStatus::Ok
+            );
+            rows.push(w.to_vec());
+        }
+        assert_eq!(rows, [vec![0, 2, 3], vec![1, 2, 3], vec![2, 3, 4]]);
+        let mut deg = 0usize;
+        assert_eq!(tpx_degree(s, &e, 2, &mut deg), TpxStatus::Ok);
+        assert_eq!(deg, 3);
+        // Too small: status, needed length, buffer untouched.
+        let mut small = [u32::MAX; 2];
+        let st = tpx_related(s, &e, 2, TPX_ORDER_NATURAL, small.as_mut_ptr(), 2, &mut len);
+        assert_eq!(
+            (st, len, small),
+            (TpxStatus::BufferTooSmall, 3, [u32::MAX; 2])
+        );
+        // Batch: R_{0,0} of vertices 4 and 5 in CSR form.
+        let mut offsets = [9u32; 3];
+        let mut ids = [0u32; 16];
+        let st = tpx_related_batch(
+            s,
+            0,
+            [4, 5].as_ptr(),
+            2,
+            0,
+            TPX_ORDER_LEXICOGRAPHIC,
+            offsets.as_mut_ptr(),
+            ids.as_mut_ptr(),
+            16,
+            &mut len,
+        );
+        assert_eq!(st, TpxStatus::Ok);
+        assert_eq!((offsets, &ids[..len]), ([0, 3, 4], &[2, 3, 5, 4][..]));
+        // Tops: 4-5 (wire), 2 3 4 (dangling), 0 1 2 3; as given and numbered the same.
+        let mut total = 0;
+        assert_eq!(tpx_top_total(s, &mut total), TpxStatus::Ok);
+        assert_eq!(total, 3);
+        let mut t = TpxSimplex::default();
+        assert_eq!(tpx_top(s, 2, &mut t), TpxStatus::Ok);
+        let mut id = 0;
+        assert_eq!(tpx_top_id(s, &t, &mut id), TpxStatus::Ok);
+        assert_eq!(id, 2);
+        assert_eq!(tpx_top_id(s, &e, &mut id), TpxStatus::Ok);
+        assert_eq!(id, u32::MAX);
+        // Bad handles: foreign, out of range, NONE, unknown form, wrong kind; outputs untouched.
+        let mut foreign = TpxSimplex::default();
+        assert_eq!(
+            tpx_locate(other, [3, 2].as_ptr(), 2, &mut foreign),
+            TpxStatus::Ok
+        );
+        deg = 77;
+        assert_eq!(
+            tpx_degree(s, &foreign, 2, &mut deg),
+            TpxStatus::ForeignHandle
+        );
+        let past = TpxSimplex {
+            index: 10,
+            meta: 1,
+            owner: e.owner,
+        };
+        assert_eq!(tpx_degree(s, &past, 2, &mut deg), TpxStatus::InvalidHandle);
+        let none = TpxSimplex {
+            index: u32::MAX,
+            meta: 0,
+            owner: e.owner,
+        };
+        assert_eq!(tpx_degree(s, &none, 0, &mut deg), TpxStatus::InvalidHandle);
+        let form = TpxSimplex {
+            index: 0,
+            meta: 7 << 8,
+            owner: e.owner,
+        };
+        assert_eq!(tpx_degree(s, &form, 0, &mut deg), TpxStatus::InvalidHandle);
+        assert_eq!(deg, 77);
+        let (mut ni, mut ng) = (0usize, 0usize);
+        let st = tpx_cyclic(
+            s,
+            &e,
+            0,
+            buf.as_mut_ptr(),
+            8,
+            offsets.as_mut_ptr(),
+            small.as_mut_ptr(),
+            2,
+            &mut ni,
+            &mut ng,
+        );
+        assert_eq!(st, TpxStatus::WrongHandleKind);
+        assert_eq!(
+            tpx_degree(s, &e, 9, &mut deg),
+            TpxStatus::DimensionOutOfRange
+        );
+        assert_eq!(tpx_degree(s, null(), 0, &mut deg), TpxStatus::NullArgument);
+        tpx_structure_free(other);
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+/// Every kind's ABI number is its TPX_KIND_* constant, in both directions (not only the ends).
+#[test]
+fn kind_numbers_are_the_tpx_kind_constants() {
+    use topoplex::relation::StructureKind as K;
+    let pairs = [
+        (K::Ig, TPX_KIND_IG),
+        (K::Sig, TPX_KIND_SIG),
+        (K::Ia, TPX_KIND_IA),
+        (K::Iqm, TPX_KIND_IQM),
+        (K::Nmia, TPX_KIND_NMIA),
+        (K::Ts, TPX_KIND_TS),
+        (K::Pe, TPX_KIND_PE),
+        (K::Le, TPX_KIND_LE),
+        (K::De, TPX_KIND_DE),
+    ];
+    for (k, n) in pairs {
+        assert_eq!((k.abi(), K::from_abi(n)), (n, Some(k)));
+    }
+    assert_eq!(K::from_abi(9), None);
+}
+
+/// The input listing through the C ABI: a repeated triangle and an absorbed edge are counted,
+/// each listing comes back as given with the top id it became.
+///
+/// ```text
+///   listed: (2 1 0), (0 1) absorbed face, (1 2 0) repeat of the first, (3 2)
+///   tops:   id 0 = 2-3 (edge), id 1 = 0 1 2 (triangle)
+/// ```
+#[test]
+fn input_listing_and_stats_come_back_as_given() {
+    let c = complex(4, &[&[2, 1, 0], &[0, 1], &[1, 2, 0], &[3, 2]]);
+    unsafe {
+        let mut st = TpxInputStats::default();
+        assert_eq!(tpx_complex_input_stats(c, &mut st), TpxStatus::Ok);
+        assert_eq!(
+            (
+                st.input_simplices,
+                st.absorbed_duplicates,
+                st.absorbed_faces
+            ),
+            (4, 1, 1)
+        );
+        let mut got = Vec::new();
+        for i in 0..4 {
+            let (mut buf, mut len, mut top) = ([0u32; 4], 0usize, 0u32);
+            let s = tpx_complex_input_simplex(c, i, buf.as_mut_ptr(), 4, &mut len, &mut top);
+            assert_eq!(s, TpxStatus::Ok);
+            got.push((buf[..len].to_vec(), top));
+        }
+        assert_eq!(
+            got,
+            [
+                (vec![2, 1, 0], 1),
+                (vec![0, 1], u32::MAX),
+                (vec![1, 2, 0], 1),
+                (vec![3, 2], 0)
+            ]
+        );
+        let (mut buf, mut len, mut top) = ([0u32; 4], 0usize, 7u32);
+        let s = tpx_complex_input_simplex(c, 4, buf.as_mut_ptr(), 4, &mut len, &mut top);
+        assert_eq!((s, top), (TpxStatus::InvalidArgument, 7));
+        tpx_complex_free(c);
+    }
+}
+
+/// Relation views of the tetrahedron-with-triangle-and-wire (drawing at `tet_triangle_wire`):
+/// the IG lends its stored co-boundary R_{1,2} as it is (built = 0) and builds R_{0,0} once
+/// (built = 1, kept: the same arrays on the second call); every answer equals `tpx_related`;
+/// `tpx_degree_batch` gives the counts alone. Errors leave the outputs untouched.
+#[test]
+fn relation_views_and_degree_batches_match_tpx_related() {
+    let c = tet_triangle_wire();
+    let s = ig(c);
+    unsafe {
+        let related = |p: u32, i: u32, q: u32| {
+            let mut h = TpxSimplex::default();
+            assert_eq!(tpx_handle(s, p, i, &mut h), TpxStatus::Ok);
+            let (mut buf, mut len) = ([0u32; 16], 0usize);
+            let st = tpx_related(s, &h, q, TPX_ORDER_NATURAL, buf.as_mut_ptr(), 16, &mut len);
+            assert_eq!(st, TpxStatus::Ok);
+            buf[..len].to_vec()
+        };
+        let view = |p: u32, q: u32| {
+            let mut v = std::mem::MaybeUninit::<TpxRelationView>::zeroed();
+            assert_eq!(tpx_relation_view(s, p, q, v.as_mut_ptr()), TpxStatus::Ok);
+            v.assume_init()
+        };
+        let answer = |v: &TpxRelationView, i: usize| {
+            let (a, b) = (*v.offsets.add(i) as usize, *v.offsets.add(i + 1) as usize);
+            std::slice::from_raw_parts(v.ids.add(a), b - a).to_vec()
+        };
+        // Edges: 01 02 03 12 13 23 24 34 45; edge 23 (index 5) is in triangles 023, 123, 234.
+        let ef = view(1, 2);
+        assert_eq!((ef.count, ef.built), (9, 0));
+        for i in 0..9 {
+            assert_eq!(answer(&ef, i), related(1, i as u32, 2), "edge {i}");
+        }
+        assert_eq!(answer(&ef, 5).len(), 3);
+        assert_eq!(answer(&ef, 8), Vec::<u32>::new());
+        let vv = view(0, 0);
+        assert_eq!((vv.count, vv.built), (6, 1));
+        let mut total = 0;
+        for i in 0..6 {
+            assert_eq!(answer(&vv, i), related(0, i as u32, 0), "vertex {i}");
+            total += answer(&vv, i).len() as u64;
+        }
+        assert_eq!(vv.bytes, 4 * (7 + total));
+        let again = view(0, 0);
+        assert_eq!((again.offsets, again.ids), (vv.offsets, vv.ids));
+        // Degrees of the vertices (R_{0,0}) and of the edges (R_{1,2}), counts only.
+        let mut deg = [9u32; 9];
+        let all: Vec<u32> = (0..9).collect();
+        assert_eq!(
+            tpx_degree_batch(s, 0, all.as_ptr(), 6, 0, deg.as_mut_ptr()),
+            TpxStatus::Ok
+        );
+        assert_eq!(deg[..6], [3, 3, 4, 4, 3, 1]);
+        assert_eq!(
+            tpx_degree_batch(s, 1, all.as_ptr(), 9, 2, deg.as_mut_ptr()),
+            TpxStatus::Ok
+        );
+        assert_eq!(deg, [2, 2, 2, 2, 2, 3, 1, 1, 0]);
+        // Errors: index out of range, q above d, NULL, the live complex; nothing written.
+        let mut untouched = [7u32; 2];
+        let st = tpx_degree_batch(s, 0, [0, 6].as_ptr(), 2, 0, untouched.as_mut_ptr());
+        assert_eq!((st, untouched), (TpxStatus::InvalidHandle, [7, 7]));
+        let st = tpx_degree_batch(s, 0, [0].as_ptr(), 1, 4, untouched.as_mut_ptr());
+        assert_eq!((st, untouched), (TpxStatus::DimensionOutOfRange, [7, 7]));
+        let st = tpx_degree_batch(s, 0, [0].as_ptr(), 1, 0, null_mut());
+        assert_eq!(st, TpxStatus::NullArgument);
+        let mut v = TpxRelationView {
+            offsets: null(),
+            ids: null(),
+            count: 77,
+            built: 0,
+            bytes: 0,
+        };
+        assert_eq!(
+            tpx_relation_view(s, 4, 0, &mut v),
+            TpxStatus::DimensionOutOfRange
+        );
+        assert_eq!(v.count, 77);
+        assert_eq!(
+            tpx_relation_view(s, 0, 0, null_mut()),
+            TpxStatus::NullArgument
+        );
+        let mut live = null_mut();
+        assert_eq!(tpx_live_from_complex(c, &mut live), TpxStatus::Ok);
+        let mut ls = null();
+        assert_eq!(tpx_live_structure(live, &mut ls), TpxStatus::Ok);
+        assert_eq!(tpx_relation_view(ls, 0, 0, &mut v), TpxStatus::NotDense);
+        assert_eq!(v.count, 77);
+        tpx_live_free(live);
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+/// Four threads ask for the same relation view of one structure at once: each gets the same
+/// kept arrays (the first index built is the one lent; a concurrent second build is dropped).
+#[test]
+fn threads_asking_for_one_view_share_one_index() {
+    #[derive(Clone, Copy)]
+    struct Shared(*const TpxStructure);
+    unsafe impl Send for Shared {}
+    let c = tet_triangle_wire();
+    let mut s = null_mut();
+    assert_eq!(
+        unsafe { tpx_structure_build(c, TPX_KIND_NMIA, &mut s) },
+        TpxStatus::Ok
+    );
+    let shared = Shared(s);
+    let views: Vec<(usize, usize, usize)> = std::thread::scope(|scope| {
+        let hs: Vec<_> = (0..4)
+            .map(|_| {
+                scope.spawn(move || {
+                    let shared = shared;
+                    let mut v = std::mem::MaybeUninit::<TpxRelationView>::zeroed();
+                    let st = unsafe { tpx_relation_view(shared.0, 1, 2, v.as_mut_ptr()) };
+                    assert_eq!(st, TpxStatus::Ok);
+                    let v = unsafe { v.assume_init() };
+                    (v.offsets as usize, v.ids as usize, v.count)
+                })
+            })
+            .collect();
+        hs.into_iter().map(|h| h.join().unwrap()).collect()
+    });
+    assert!(views.iter().all(|&v| v == views[0]), "{views:?}");
+    assert_eq!(views[0].2, 9);
+    unsafe {
+        tpx_structure_free(s);
+        tpx_complex_free(c);
+    }
+}
+
+/// A disk of four triangles around vertex 4 and a fifth on edge 1-2:
+///
+/// ```text
+///   0 ------ 1
+///   | \    / | \
+///   |   4    |  5
+///   | /    \ | /
+///   3 ------ 2
+/// ```
+/// For every kind that takes it: `tpx_related` and `tpx_related_handles` (their fast path:
+/// stored rows, the structures' loops, the generic walk) give what the Rust API's
+/// `related_ids` gives, for every simplex, every q and both orders; a buffer one short is
+/// BUFFER_TOO_SMALL with the needed length and the buffer untouched; a success after a failure
+/// clears the last error; a handle with local bits set (not dense) still gets the full path's
+/// answer or error.
+#[test]
+fn tpx_related_fast_path_matches_the_rust_api_on_every_kind() {
+    use topoplex::relation::handle::{Order, SimplexHandle};
+    let c = complex(
+        6,
+        &[&[0, 1, 4], &[1, 2, 4], &[2, 3, 4], &[0, 3, 4], &[1, 2, 5]],
+    );
+    let mut built = 0;
+    // Under Miri (scripts/test.sh) one kind per fast-path writer — the IG's rows, the IA's
+    // adjacency, the radial cycles (PE), the generic walk (NMIA) — and the first simplices only:
+    // the whole sweep takes tens of minutes there.
+    let kinds: Vec<u32> = if cfg!(miri) {
+        vec![TPX_KIND_IG, TPX_KIND_IA, TPX_KIND_PE, TPX_KIND_NMIA]
+    } else {
+        (0..=TPX_KIND_DE).collect()
+    };
+    for &kind in &kinds {
+        let mut s = null_mut();
+        if unsafe { tpx_structure_build(c, kind, &mut s) } != TpxStatus::Ok {
+            continue;
+        }
+        built += 1;
+        let n = unsafe { (*s).topo.as_navigate().unwrap() };
+        let mut stamp = 0;
+        assert_eq!(unsafe { tpx_structure_stamp(s, &mut stamp) }, TpxStatus::Ok);
+        for p in 0..=2u32 {
+            let count = unsafe { (*s).topo.count(p as usize) } as u32;
+            let walked = if cfg!(miri) { count.min(2) } else { count };
+            for i in 0..walked {
+                let h = TpxSimplex {
+                    index: i,
+                    meta: p,
+                    owner: stamp,
+                };
+                for q in 0..=2u32 {
+                    for (order, o) in [
+                        (TPX_ORDER_NATURAL, Order::Natural),
+                        (TPX_ORDER_LEXICOGRAPHIC, Order::Lexicographic),
+                    ] {
+                        let mut want = Vec::new();
+                        n.related_ids(
+                            SimplexHandle::dense(p as usize, i),
+                            q as usize,
+                            o,
+                            &mut want,
+                        )
+                        .unwrap();
+                        let (mut buf, mut len) = ([u32::MAX; 16], 0usize);
+                        let st =
+                            unsafe { tpx_related(s, &h, q, order, buf.as_mut_ptr(), 16, &mut len) };
+                        assert_eq!(st, TpxStatus::Ok, "kind {kind} R_{p},{q} of {i}");
+                        assert_eq!(&buf[..len], &want[..], "kind {kind} R_{p},{q} of {i}");
+                        assert_eq!(last_error(), "");
+                        let mut hb = [TpxSimplex::default(); 16];
+                        let st = unsafe {
+                            tpx_related_handles(s, &h, q, order, hb.as_mut_ptr(), 16, &mut len)
+                        };
+                        assert_eq!(st, TpxStatus::Ok);
+                        let got: Vec<u32> = hb[..len].iter().map(|x| x.index).collect();
+                        assert_eq!(got, want, "kind {kind} handles R_{p},{q} of {i}");
+                        assert!(hb[..len].iter().all(|x| x.meta == q && x.owner == stamp));
+                        if !want.is_empty() {
+                            let mut short = [u32::MAX; 16];
+                            let mut need = 0usize;
+                            let st = unsafe {
+                                tpx_related(
+                                    s,
+                                    &h,
+                                    q,
+                                    order,
+                                    short.as_mut_ptr(),
+                                    want.len() - 1,
+                                    &mut need,
+                                )
+                            };
+                            assert_eq!((st, need), (TpxStatus::BufferTooSmall, want.len()));
+                            assert!(
+                                short.iter().all(|&x| x == u32::MAX),
+                                "kind {kind}: buffer written"
+                            );
+                        }
+                    }
+                }
+            }
+            // The batch over every p-simplex (the stored rows' fast path included) equals the
+            // Rust API's; one id short, nothing is written.
+            let all: Vec<u32> = (0..count).collect();
+            for q in 0..=2u32 {
+                for (order, o) in [
+                    (TPX_ORDER_NATURAL, Order::Natural),
+                    (TPX_ORDER_LEXICOGRAPHIC, Order::Lexicographic),
+                ] {
+                    let (mut want, mut ends) = (Vec::new(), Vec::new());
+                    n.related_batch(p as usize, &all, q as usize, o, &mut want, &mut ends)
+                        .unwrap();
+                    // The batch into buffers of `cap` ids, pre-filled with u32::MAX.
+                    let batch = |cap: usize| {
+                        let mut off = vec![u32::MAX; all.len() + 1];
+                        let mut ids = vec![u32::MAX; cap];
+                        let mut len = 0usize;
+                        let st = unsafe {
+                            tpx_related_batch(
+                                s,
+                                p,
+                                all.as_ptr(),
+                                all.len(),
+                                q,
+                                order,
+                                off.as_mut_ptr(),
+                                ids.as_mut_ptr(),
+                                cap,
+                                &mut len,
+                            )
+                        };
+                        (st, len, off, ids)
+                    };
+                    let (st, len, off, ids) = batch(want.len() + 1);
+                    assert_eq!(
+                        (st, len),
+                        (TpxStatus::Ok, want.len()),
+                        "kind {kind} batch R_{p},{q}"
+                    );
+                    assert_eq!(&ids[..len], &want[..], "kind {kind} batch R_{p},{q}");
+                    let ends32: Vec<u32> = std::iter::once(0)
+                        .chain(ends.iter().map(|&e| e as u32))
+                        .collect();
+                    assert_eq!(off, ends32, "kind {kind} batch offsets R_{p},{q}");
+                    if !want.is_empty() {
+                        let (st, len, off, ids) = batch(want.len() - 1);
+                        assert_eq!((st, len), (TpxStatus::BufferTooSmall, want.len()));
+                        assert!(
+                            off.iter().chain(&ids).all(|&x| x == u32::MAX),
+                            "kind {kind}: written"
+                        );
+                    }
+                }
+            }
+            // Past the last simplex: the full path's INVALID_HANDLE, then a success clears it.
+            let bad = TpxSimplex {
+                index: count,
+                meta: p,
+                owner: stamp,
+            };
+            let (mut buf, mut len) = ([0u32; 16], 0usize);
+            let st = unsafe {
+                tpx_related(
+                    s,
+                    &bad,
+                    0,
+                    TPX_ORDER_NATURAL,
+                    buf.as_mut_ptr(),
+                    16,
+                    &mut len,
+                )
+            };
+            assert_eq!(st, TpxStatus::InvalidHandle);
+            assert!(!last_error().is_empty());
+            let good = TpxSimplex {
+                index: 0,
+                meta: p,
+                owner: stamp,
+            };
+            let st = unsafe {
+                tpx_related(
+                    s,
+                    &good,
+                    0,
+                    TPX_ORDER_NATURAL,
+                    buf.as_mut_ptr(),
+                    16,
+                    &mut len,
+                )
+            };
+            assert_eq!((st, last_error()), (TpxStatus::Ok, String::new()));
+            // Local bits on a dense handle: not the fast path's; the answer is the same.
+            let odd = TpxSimplex {
+                index: 0,
+                meta: p | 1 << 16,
+                owner: stamp,
+            };
+            let mut len2 = 0;
+            let mut buf2 = [0u32; 16];
+            let st = unsafe {
+                tpx_related(
+                    s,
+                    &odd,
+                    0,
+                    TPX_ORDER_NATURAL,
+                    buf2.as_mut_ptr(),
+                    16,
+                    &mut len2,
+                )
+            };
+            assert_eq!((st, &buf2[..len2]), (TpxStatus::Ok, &buf[..len]));
+        }
+        unsafe { tpx_structure_free(s) };
+    }
+    assert!(
+        built >= kinds.len().min(6),
+        "only {built} kinds took the disk"
+    );
+    unsafe { tpx_complex_free(c) };
+}

@@ -1,0 +1,104 @@
+//! Writing a `TpxComplex` to a file (`tpx_complex_write`).
+
+use std::ffi::{CStr, c_char};
+use std::path::Path;
+
+use super::complex::TpxComplex;
+use super::{Failure, TpxStatus, guard, handle};
+use topoplex::io::write::{Format, WriteErrorKind, write_complex};
+
+/// The format named by the output file's extension (`tpx_complex_write`).
+pub const TPX_FORMAT_FROM_EXTENSION: u32 = 0;
+/// Geomview OFF (`.off`): vertices, edges, triangles.
+pub const TPX_FORMAT_OFF: u32 = 1;
+/// Wavefront OBJ (`.obj`): points, edges, triangles; at most 3 coordinates.
+pub const TPX_FORMAT_OBJ: u32 = 2;
+/// MEDIT ASCII (`.mesh`): edges, triangles, tetrahedra; 2 or 3 coordinates.
+pub const TPX_FORMAT_MEDIT: u32 = 3;
+/// Topoplex `.simplices`: any complex.
+pub const TPX_FORMAT_SIMPLICES: u32 = 4;
+/// PLY ASCII (`.ply`): edges and triangles; at most 3 coordinates.
+pub const TPX_FORMAT_PLY: u32 = 5;
+/// PLY binary little-endian.
+pub const TPX_FORMAT_PLY_BINARY: u32 = 6;
+/// STL ASCII (`.stl`): triangles covering every vertex, distinct 32-bit float coordinates.
+pub const TPX_FORMAT_STL: u32 = 7;
+/// STL binary.
+pub const TPX_FORMAT_STL_BINARY: u32 = 8;
+/// Legacy VTK unstructured grid, ASCII (`.vtk`): vertices, edges, triangles, tetrahedra.
+pub const TPX_FORMAT_VTK: u32 = 9;
+/// Legacy VTK unstructured grid, BINARY.
+pub const TPX_FORMAT_VTK_BINARY: u32 = 10;
+/// Gmsh MSH 4.1 ASCII (`.msh`): points, edges, triangles, tetrahedra.
+pub const TPX_FORMAT_MSH: u32 = 11;
+/// Gmsh MSH 4.1 binary.
+pub const TPX_FORMAT_MSH_BINARY: u32 = 12;
+/// Gmsh MSH 2.2 ASCII.
+pub const TPX_FORMAT_MSH2: u32 = 13;
+/// Gmsh MSH 2.2 binary.
+pub const TPX_FORMAT_MSH2_BINARY: u32 = 14;
+/// VTK XML unstructured grid (`.vtu`): vertices, edges, triangles, tetrahedra.
+pub const TPX_FORMAT_VTU: u32 = 15;
+
+/// The `Format` of a `TPX_FORMAT_*` number (`None` for `TPX_FORMAT_FROM_EXTENSION`).
+pub(crate) fn format_from_u32(format: u32) -> Result<Option<Format>, Failure> {
+    if format == TPX_FORMAT_FROM_EXTENSION {
+        return Ok(None);
+    }
+    Format::ALL
+        .get(format as usize - 1)
+        .copied()
+        .map(Some)
+        .ok_or_else(|| {
+            Failure::new(
+                TpxStatus::UnknownFormat,
+                format!(
+                    "unknown format {format} (expected 0..={}, TPX_FORMAT_*)",
+                    Format::ALL.len()
+                ),
+            )
+        })
+}
+
+/// Writes the complex `c` to the file `path` (NUL-terminated UTF-8) in `format`
+/// (`TPX_FORMAT_*`; `TPX_FORMAT_FROM_EXTENSION` picks it from the path's extension): its top
+/// simplices in input order with their input vertex order (winding), isolated vertices and wire
+/// edges kept, coordinates in the shortest decimal that reads back bit for bit. Reading the file
+/// back with `tpx_complex_from_file` gives the same complex.
+///
+/// Errors: NULL_ARGUMENT, INVALID_ARGUMENT (path not UTF-8), UNKNOWN_FORMAT (format number or
+/// extension unknown), FORMAT_CANNOT_HOLD (the format cannot hold the complex, e.g. OFF with a
+/// tetrahedron; the message names the first offending simplex; nothing is written), IO_ERROR
+/// (cannot write). Cost: linear in the complex; the file is built in memory, then written.
+///
+/// # Safety
+/// `c` must be NULL or a live complex; `path` NULL or a NUL-terminated string.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_write(
+    c: *const TpxComplex,
+    path: *const c_char,
+    format: u32,
+) -> TpxStatus {
+    guard(|| {
+        let c = handle(c, "c")?;
+        if path.is_null() {
+            return Err(Failure::null("path"));
+        }
+        // SAFETY: non-NULL `path` is NUL-terminated (documented contract).
+        let path = unsafe { CStr::from_ptr(path) }.to_str().map_err(|e| {
+            Failure::new(
+                TpxStatus::InvalidArgument,
+                format!("path is not valid UTF-8: {e}"),
+            )
+        })?;
+        let format = format_from_u32(format)?;
+        write_complex(&c.complex, Path::new(path), format).map_err(|e| {
+            let status = match e.kind {
+                WriteErrorKind::Io(_) => TpxStatus::IoError,
+                WriteErrorKind::UnknownExtension => TpxStatus::UnknownFormat,
+                WriteErrorKind::CannotHold { .. } => TpxStatus::FormatCannotHold,
+            };
+            Failure::new(status, e.to_string())
+        })
+    })
+}

@@ -1,0 +1,466 @@
+//! VTK XML unstructured grids (`.vtu`). Files whose data arrays are all ASCII are read by our
+//! streaming reader (`vtu/ascii.rs`: quick-xml events, numbers parsed straight into the output,
+//! errors with lines); the others (base64, zlib-compressed or appended arrays) are read and
+//! written with the `vtkio` crate, and this module maps its cells to simplices.
+//!
+//! Reading: every piece's points (3 coordinates, any numeric type, widened to `f64`) and cells.
+//! Pieces are concatenated, each piece's ids shifted by the points before it. Cell types 1
+//! (vertex), 3 (line), 5 (triangle) and 10 (tetrahedron) are simplices; any other (quad,
+//! polygon, hexahedron, wedge, higher order...) is refused naming the cell's index, and so is a
+//! cell whose id count does not match its type. Our ASCII reader names the line of an error
+//! (and checks the declared `NumberOfPoints`/`NumberOfCells` against the arrays); vtkio
+//! reports XML errors without a line.
+//! Pieces stored in other files (parallel formats) are not read. vtkio panics on some malformed
+//! binary arrays; the panic is caught and reported as an error (one line: the panic hook stays
+//! silent for it, [`crate::error::caught_quietly`]). vtkio's own arrays are allocated
+//! infallibly: their peak is probed before parsing, ours (and all of the ASCII reader's) are
+//! reserved fallibly; memory that cannot be had is [`ReadErrorKind::TooLarge`].
+//!
+//! Writing: one piece, `Float64` points (3 per vertex, fewer padded with zeros, zeros without
+//! coordinates), `connectivity`, `offsets` and `types` in listing order, as vtkio encodes them
+//! (base64 binary, so coordinates are exact). Holds vertices, edges, triangles, tetrahedra.
+
+use vtkio::model::{
+    Attributes, ByteOrder, CellType, Cells, DataSet, IOBuffer, Piece, UnstructuredGridPiece,
+    Version, VertexNumbers, Vtk,
+};
+
+mod ascii;
+
+use super::write::{check_coord_dim, check_max_len, vertex_count};
+use super::{Coords, RawInput, ReadErrorKind, echo, no_room, syntax};
+use crate::complex::table::{self, headroom};
+use crate::error::caught_quietly;
+
+/// vtkio's parse peak per byte of file, probed before it starts: 5.9 measured on ASCII data
+/// arrays of short lines (it holds the file, each array's text as a string and the typed
+/// arrays grown by doubling; those files are now read by our ASCII reader, but a file mixing
+/// ASCII and binary arrays still comes here), 2.9 on base64 binary ones (scripts/read-peak.sh,
+/// docs/benchmarks.md "Reading").
+const VTKIO_PEAK_PER_BYTE: usize = 6;
+
+type Res<T> = Result<T, (u32, ReadErrorKind)>;
+
+fn err(msg: impl Into<String>) -> (u32, ReadErrorKind) {
+    (0, syntax(msg))
+}
+
+fn simplex_len(t: CellType) -> Result<usize, String> {
+    Ok(match t {
+        CellType::Vertex => 1,
+        CellType::Line => 2,
+        CellType::Triangle => 3,
+        CellType::Tetra => 4,
+        other => return Err(format!("{other:?}")),
+    })
+}
+
+/// One piece's points and cells appended to `raw` (its ids shifted by `base`).
+fn add_piece(
+    p: UnstructuredGridPiece,
+    piece: usize,
+    raw: &mut RawInput,
+    data: &mut Vec<f64>,
+) -> Res<()> {
+    let base = data.len() / 3;
+    let points: Vec<f64> = p
+        .points
+        .cast_into::<f64>()
+        .ok_or_else(|| err(format!("piece {piece}: points are not numbers")))?;
+    table::try_extend(data, &points).map_err(|b| (0, no_room("the vertex coordinates")(b)))?;
+    drop(points);
+    let (connectivity, offsets): (Vec<u64>, Vec<u64>) = match p.cells.cell_verts {
+        VertexNumbers::XML {
+            connectivity,
+            offsets,
+        } => (connectivity, offsets),
+        VertexNumbers::Legacy { vertices, .. } => {
+            // Not produced by the XML reader; converted for completeness.
+            let mut conn = Vec::new();
+            let mut offs = Vec::new();
+            let mut k = 0;
+            while k < vertices.len() {
+                let n = vertices[k] as usize;
+                let ids = vertices
+                    .get(k + 1..k + 1 + n)
+                    .ok_or_else(|| err("truncated cell list"))?;
+                for &v in ids {
+                    table::try_push(&mut conn, u64::from(v))
+                        .map_err(|b| (0, no_room("the cells")(b)))?;
+                }
+                table::try_push(&mut offs, conn.len() as u64)
+                    .map_err(|b| (0, no_room("the cells")(b)))?;
+                k += 1 + n;
+            }
+            (conn, offs)
+        }
+    };
+    if offsets.len() != p.cells.types.len() {
+        return Err(err(format!(
+            "piece {piece}: {} cell types for {} cells",
+            p.cells.types.len(),
+            offsets.len()
+        )));
+    }
+    raw.try_reserve(offsets.len(), connectivity.len())
+        .map_err(|k| (0, k))?;
+    let mut start = 0u64;
+    let mut ids = Vec::with_capacity(4);
+    for (i, (&end, &t)) in offsets.iter().zip(&p.cells.types).enumerate() {
+        let len = simplex_len(t).map_err(|name| {
+            err(format!(
+                "piece {piece}, cell #{i} is a {name}, which is not a simplex"
+            ))
+        })?;
+        let cell = connectivity
+            .get(start as usize..end as usize)
+            .filter(|_| start <= end)
+            .ok_or_else(|| {
+                err(format!(
+                    "piece {piece}, cell #{i}: offsets out of order or range"
+                ))
+            })?;
+        if cell.len() != len {
+            return Err(err(format!(
+                "piece {piece}, cell #{i} of type {t:?} has {} ids, expected {len}",
+                cell.len()
+            )));
+        }
+        ids.clear();
+        for &v in cell {
+            let v = u32::try_from(v as usize + base)
+                .map_err(|_| err(format!("piece {piece}, cell #{i}: id {v} too large")))?;
+            ids.push(v);
+        }
+        raw.try_push(&ids, 0).map_err(|k| (0, k))?;
+        start = end;
+    }
+    Ok(())
+}
+
+/// Parses a `.vtu` file: by our ASCII reader when its data arrays are all ASCII, else by vtkio.
+pub fn parse(bytes: &[u8]) -> Res<RawInput> {
+    match ascii::parse(bytes)? {
+        ascii::Taken::Yes(raw) => Ok(raw),
+        ascii::Taken::No => parse_vtkio(bytes),
+    }
+}
+
+/// Parses a `.vtu` file with vtkio.
+fn parse_vtkio(bytes: &[u8]) -> Res<RawInput> {
+    // vtkio's arrays are allocated infallibly: its peak is probed first (address space, see
+    // `headroom`), so that a file too large for memory is refused rather than an abort.
+    headroom(bytes.len().saturating_mul(VTKIO_PEAK_PER_BYTE))
+        .map_err(|b| (0, no_room("reading VTU")(b)))?;
+    // vtkio 0.7.0-rc2 slices out of range on some malformed binary arrays (found by fuzzing):
+    // its panic is caught here and reported as a parse error, without the panic hook's report.
+    let parsed = caught_quietly(|| Vtk::parse_xml(bytes))
+        .map_err(|_| err("VTU: malformed data array (vtkio failed on it: a caught panic)"))?;
+    let vtk = parsed.map_err(|e| err(format!("VTU: {}", echo(e.to_string()))))?;
+    let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
+        return Err(err(
+            "not an UnstructuredGrid (only unstructured grids are read)",
+        ));
+    };
+    let mut raw = RawInput::new();
+    let mut data = Vec::new();
+    for (i, piece) in pieces.into_iter().enumerate() {
+        match piece {
+            Piece::Inline(p) => add_piece(*p, i, &mut raw, &mut data)?,
+            _ => {
+                return Err(err(format!(
+                    "piece {i} is stored in another file (not read)"
+                )));
+            }
+        }
+    }
+    if data.len() % 3 != 0 {
+        return Err(err("the point coordinates are not a multiple of 3"));
+    }
+    raw.vertex_count =
+        Some(u32::try_from(data.len() / 3).map_err(|_| err("more than 2^32 points"))?);
+    raw.coords = Some(Coords { dim: 3, data });
+    Ok(raw)
+}
+
+/// Writes `raw` as a `.vtu` file.
+pub(crate) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
+    check_max_len(
+        raw,
+        4,
+        "vertices, edges, triangles and tetrahedra (use .simplices)",
+    )?;
+    check_coord_dim(raw, 3)?;
+    let n = vertex_count(raw);
+    let coords = raw.coords.as_ref();
+    let points: Vec<f64> = (0..n)
+        .flat_map(|v| {
+            (0..3).map(move |k| {
+                coords
+                    .filter(|c| k < c.dim)
+                    .map_or(0.0, |c| c.data[v * c.dim + k])
+            })
+        })
+        .collect();
+    let types = (0..raw.simplex_count())
+        .map(|i| match raw.simplex(i).len() {
+            1 => CellType::Vertex,
+            2 => CellType::Line,
+            3 => CellType::Triangle,
+            _ => CellType::Tetra,
+        })
+        .collect();
+    let piece = UnstructuredGridPiece {
+        points: IOBuffer::F64(points),
+        cells: Cells {
+            cell_verts: VertexNumbers::XML {
+                connectivity: raw.ids.iter().map(|&v| u64::from(v)).collect(),
+                offsets: raw.offsets[1..].iter().map(|&o| o as u64).collect(),
+            },
+            types,
+        },
+        data: Attributes::new(),
+    };
+    let vtk = Vtk {
+        version: Version::new_xml(1, 0),
+        title: String::new(),
+        byte_order: ByteOrder::LittleEndian,
+        file_path: None,
+        data: DataSet::inline(piece),
+    };
+    vtk.write_xml(out).map_err(|e| format!("VTU writer: {e}"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `raw` without its lines (the vtkio path has none).
+    fn unlined(mut raw: RawInput) -> RawInput {
+        raw.lines.iter_mut().for_each(|l| *l = 0);
+        raw
+    }
+
+    /// Our reader's result on an ASCII file, checked equal to the vtkio path's.
+    fn both(text: &str) -> RawInput {
+        let ours = match ascii::parse(text.as_bytes()) {
+            Ok(ascii::Taken::Yes(raw)) => raw,
+            Ok(ascii::Taken::No) => panic!("handed to vtkio:\n{text}"),
+            Err(e) => panic!("{e:?}\n{text}"),
+        };
+        let theirs = parse_vtkio(text.as_bytes()).unwrap_or_else(|e| panic!("{e:?}\n{text}"));
+        assert_eq!(unlined(ours.clone()), theirs, "{text}");
+        ours
+    }
+
+    /// Our reader's refusal: its line and message.
+    fn refused(text: &str) -> (u32, String) {
+        match ascii::parse(text.as_bytes()) {
+            Err((line, ReadErrorKind::Syntax(m))) => (line, m),
+            Err(e) => panic!("{e:?}"),
+            Ok(ascii::Taken::Yes(_)) => panic!("read:\n{text}"),
+            Ok(ascii::Taken::No) => panic!("handed to vtkio:\n{text}"),
+        }
+    }
+
+    fn head(points: usize, cells: usize) -> String {
+        format!(
+            "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\">\n\
+             <UnstructuredGrid>\n<Piece NumberOfPoints=\"{points}\" NumberOfCells=\"{cells}\">\n"
+        )
+    }
+
+    fn array(kind: &str, name: &str, body: &str) -> String {
+        format!(
+            "<DataArray type=\"{kind}\" Name=\"{name}\" format=\"ascii\">\n{body}</DataArray>\n"
+        )
+    }
+
+    const TAIL: &str = "</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
+
+    /// A triangle and an edge over four points:
+    /// ```text
+    ///   2        3
+    ///   | \      |
+    ///   0--1     1
+    /// ```
+    fn triangle_and_edge(conn: &str, offsets: &str, types: &str) -> String {
+        head(4, 2)
+            + "<Points>\n"
+            + "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n"
+            + "0 0 0\n1 0 0\n0 1 0\n1 1 0\n</DataArray>\n"
+            + "</Points>\n<Cells>\n"
+            + &array("Int32", "connectivity", conn)
+            + &array("Int32", "offsets", offsets)
+            + &array("UInt8", "types", types)
+            + "</Cells>\n"
+            + TAIL
+    }
+
+    #[test]
+    fn triangle_and_edge_read_alike_with_lines() {
+        let raw = both(&triangle_and_edge("0 1 2\n1 3\n", "3\n5\n", "5\n3\n"));
+        assert_eq!(raw.simplex(0), [0, 1, 2]);
+        assert_eq!(raw.simplex(1), [1, 3]);
+        assert_eq!(raw.vertex_count, Some(4));
+        // Each cell's line is its offset's line.
+        assert_eq!(raw.lines, [19, 20]);
+    }
+
+    #[test]
+    fn fixtures_binary_go_to_vtkio() {
+        let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../fuzz/corpus/read_vtu");
+        let mut ascii_seen = 0;
+        for e in std::fs::read_dir(dir).unwrap() {
+            let bytes = std::fs::read(e.unwrap().path()).unwrap();
+            let theirs = parse_vtkio(&bytes).unwrap();
+            match ascii::parse(&bytes).unwrap() {
+                ascii::Taken::Yes(ours) => {
+                    ascii_seen += 1;
+                    assert_eq!(unlined(ours), theirs);
+                }
+                ascii::Taken::No => {
+                    assert!(String::from_utf8_lossy(&bytes).contains("format=\"binary\""));
+                }
+            }
+            assert_eq!(unlined(parse(&bytes).unwrap()), theirs);
+        }
+        assert!(ascii_seen >= 1, "an ASCII seed in {dir}");
+    }
+
+    /// Random ASCII grids: several pieces, the four simplex types, Float32/Float64/Int32
+    /// points, numbers in several spellings, point data to skip, varied whitespace.
+    fn random_grid(seed: u64) -> String {
+        let mut state = seed.wrapping_mul(0x9e37_79b9_7f4a_7c15) | 1;
+        let mut rnd = move |n: u64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state % n
+        };
+        let mut out =
+            "<?xml version=\"1.0\"?>\n<!-- generated -->\n<VTKFile type=\"UnstructuredGrid\" \
+                       version=\"1.0\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>\n"
+                .to_string();
+        for _ in 0..1 + rnd(3) {
+            let np = 1 + rnd(12) as usize;
+            let nc = rnd(15) as usize;
+            let sep = |r: u64| [" ", "\n", "  ", "\t", "\r\n"][r as usize];
+            let (kind, coord): (&str, fn(u64) -> String) = match rnd(3) {
+                0 => ("Float32", |r| format!("{}.{}e-{}", r % 97, r % 1013, r % 5)),
+                1 => ("Float64", |r| format!("-{}.{}", r % 1000, r % 9_999_991)),
+                _ => ("Int32", |r| format!("{}", r as i64 % 50 - 25)),
+            };
+            let coords: String = (0..3 * np)
+                .map(|_| coord(rnd(1 << 40)) + sep(rnd(5)))
+                .collect();
+            let (mut conn, mut offs, mut types, mut end) =
+                (String::new(), String::new(), String::new(), 0);
+            for _ in 0..nc {
+                let (t, len) = [(1, 1), (3, 2), (5, 3), (10, 4)][rnd(4) as usize];
+                for _ in 0..len {
+                    conn += &format!("{}{}", rnd(np as u64), sep(rnd(5)));
+                }
+                end += len;
+                offs += &format!("{end}{}", sep(rnd(5)));
+                types += &format!("{t}{}", sep(rnd(5)));
+            }
+            out += &format!("<Piece NumberOfPoints=\"{np}\" NumberOfCells=\"{nc}\">\n");
+            out += "<PointData Scalars=\"s\">\n";
+            out += &array("Float32", "s", &"1.5 ".repeat(np));
+            out += "</PointData>\n<Points>\n";
+            out += &format!(
+                "<DataArray type=\"{kind}\" NumberOfComponents=\"3\" format=\"ascii\">{coords}</DataArray>\n"
+            );
+            out += "</Points>\n<Cells>\n";
+            // Arrays in either order.
+            let mut cells = [
+                array("Int64", "connectivity", &conn),
+                array("Int64", "offsets", &offs),
+                array("UInt8", "types", &types),
+            ];
+            if rnd(2) == 0 {
+                cells.reverse();
+            }
+            out += &cells.concat();
+            out += "</Cells>\n</Piece>\n";
+        }
+        out + "</UnstructuredGrid>\n</VTKFile>\n"
+    }
+
+    #[test]
+    fn random_ascii_grids_read_as_vtkio_reads_them() {
+        for seed in 0..200 {
+            both(&random_grid(seed));
+        }
+    }
+
+    #[test]
+    fn binary_or_other_data_sets_go_to_vtkio() {
+        let bin = triangle_and_edge("0 1 2\n1 3\n", "3\n5\n", "5\n3\n").replacen(
+            "format=\"ascii\"",
+            "format=\"binary\"",
+            1,
+        );
+        assert!(matches!(ascii::parse(bin.as_bytes()), Ok(ascii::Taken::No)));
+        let poly = "<VTKFile type=\"PolyData\"></VTKFile>\n";
+        assert!(matches!(
+            ascii::parse(poly.as_bytes()),
+            Ok(ascii::Taken::No)
+        ));
+        assert!(matches!(ascii::parse(b""), Ok(ascii::Taken::No)));
+        // vtkio's messages for those stay (docs/bad-input.md).
+        assert!(
+            parse(b"")
+                .unwrap_err()
+                .1
+                .to_string()
+                .contains("UnexpectedEof")
+        );
+    }
+
+    #[test]
+    fn refusals_name_line_and_cell() {
+        let ok = triangle_and_edge("0 1 2\n1 3\n", "3\n5\n", "5\n3\n");
+        // Truncated inside the connectivity.
+        let cut = &ok[..ok.find("1 3\n").unwrap()];
+        let (line, m) = refused(cut);
+        assert_eq!((line, m.as_str()), (16, "file ends inside <DataArray>"));
+        // A bad number, on its line.
+        let (line, m) = refused(&triangle_and_edge("0 1 2\n1 x\n", "3\n5\n", "5\n3\n"));
+        assert_eq!(line, 16);
+        assert!(m.contains("'x'"), "{m}");
+        // A hexahedron's type, named as vtkio names it.
+        let (line, m) = refused(&triangle_and_edge("0 1 2\n1 3\n", "3\n5\n", "5\n12\n"));
+        assert_eq!(
+            (line, m.as_str()),
+            (
+                24,
+                "piece 0, cell #1 is a Hexahedron, which is not a simplex"
+            )
+        );
+        // Wrong counts: offsets, types, ids per cell, connectivity left over, coordinates.
+        let (_, m) = refused(&triangle_and_edge("0 1 2\n1 3\n", "3\n", "5\n3\n"));
+        assert!(m.starts_with("piece 0: 1 cell offsets, expected 2"), "{m}");
+        let (_, m) = refused(&triangle_and_edge("0 1 2\n1 3\n", "3\n5\n", "5\n"));
+        assert!(m.starts_with("piece 0: 1 cell types, expected 2"), "{m}");
+        let (_, m) = refused(&triangle_and_edge("0 1 2\n1 3\n", "2\n5\n", "5\n3\n"));
+        assert_eq!(m, "piece 0, cell #0 of type Triangle has 2 ids, expected 3");
+        let (_, m) = refused(&triangle_and_edge("0 1 2\n1 3 0\n", "3\n5\n", "5\n3\n"));
+        assert_eq!(m, "piece 0: 6 connectivity ids, the offsets end at 5");
+        let (_, m) = refused(&triangle_and_edge("0 1 2\n1 3\n", "3\n9\n", "5\n3\n"));
+        assert_eq!(m, "piece 0, cell #1: offsets out of order or range");
+        let (line, m) = refused(&ok.replacen("1 1 0\n", "1 1\n", 1));
+        assert_eq!(line, 11);
+        assert!(
+            m.starts_with("piece 0: 11 point coordinates, expected 12"),
+            "{m}"
+        );
+        // A negative id, as the other readers report it.
+        let neg = triangle_and_edge("0 1 2\n1 -3\n", "3\n5\n", "5\n3\n");
+        assert!(matches!(
+            ascii::parse(neg.as_bytes()),
+            Err((16, ReadErrorKind::NegativeId(-3)))
+        ));
+    }
+}

@@ -1,0 +1,950 @@
+//! The live complex: an updatable structure for arbitrary simplicial complexes (any dimension up
+//! to 15, non-manifold, mixed-dimensional) with insertion and removal of top simplices, edge
+//! contraction (link-checked or free), vertex split as its exact undo, and coordinates.
+//!
+//! # Why not the IA* as published
+//! IA* (Canino, De Floriani, Weiss 2011) stores the top simplices per dimension with their
+//! vertices, adjacencies across (p−1)-faces where manifold, per-face lists where not, and one
+//! incident top simplex per vertex *cluster*. Every edit would have to repair all three: a
+//! contraction changes the adjacency of every top simplex in St(a) ∪ St(b), and may merge or
+//! split the clusters of every vertex in the link of {a, b}, which needs a walk of those vertices'
+//! stars to find new cluster representatives. This structure keeps the IA*'s top-simplex tables
+//! (vertex lists, in input winding) and replaces adjacencies + cluster representatives by the
+//! complete list of incident top simplices per vertex (the VT relation restricted to tops, as in
+//! the leaves of a Stellar tree). On a pure d-complex that costs the same number of integers as
+//! the plain IA — (d+1)·n_d vertex references plus (d+1)·n_d star entries against the IA's
+//! (d+1)·n_d vertices and (d+1)·n_d adjacencies — and every edit touches only St(a) ∪ St(b).
+//! Adjacency across a facet is found by scanning the star of one of its vertices.
+//!
+//! # What it encodes
+//! - Per dimension p ≥ 1, a table of top p-simplices, p + 1 vertex ids per slot in the order the
+//!   input gave them (its winding; a contraction replaces b by a in place, so winding survives).
+//!   A removed slot is a tombstone (bit 31 set on its first id, so vertex ids stay below 2^31)
+//!   that keeps its vertices — a top retired by a contraction of b into a with a in b's place —
+//!   until [`LiveComplex::compact`], for the handles named through it (`nav`).
+//! - Per vertex: alive or not, its coordinates, and its star St*(v): every live top simplex of
+//!   dimension ≥ 1 containing v, as packed [`TopId`] raw values (dimension in the top 4 bits).
+//!   A live vertex with an empty star is an isolated vertex (a top 0-simplex).
+//!
+//! Every other simplex is implicit, as a vertex subset of a top simplex.
+//!
+//! # Storage
+//! Σ_{p≥1} 2(p+1)·t_p integers (t_p live-or-tombstoned top p-simplices: their vertices, and one
+//! star entry per vertex of each) and n_0 alive bits. The stars are one arena (`stars` module):
+//! each vertex's St*(v) is a block named by three `u32`s (start, length, capacity), so bytes add
+//! 12 per vertex, and the arena's spare room: after a build every block is at exactly its
+//! degree with 1/8 of the arena spare at its end (none after `compact()`); after edits, the
+//! blocks' unused capacity and free blocks (the arena grows only while less than 1/8 of it is
+//! free). Coordinates are not counted (the nine structures hold none). On a tetrahedral mesh:
+//! 32 bytes per tetrahedron (+ 2 spare) + ~13 per vertex; on a triangle mesh 24 bytes per
+//! triangle (+ 1.5 spare) + ~13 per vertex.
+//!
+//! # Cost of each relation
+//! k_v = |St*(v)|; σ a p-simplex, v its vertex with the smallest star; d ≤ 15 so subsets of a
+//! simplex count as constant factors.
+//! - Locating σ (`contains`): scan St*(v) for a top simplex holding σ, O(d·k_v); p = 0 O(1).
+//! - R_{p,q}, q < p: the (q+1)-subsets of σ — optimal.
+//! - R_{p,q}, q > p: the q-faces through σ of every top in St*(v) holding σ, sorted and deduped:
+//!   O(k_v·d + m log m), m the faces produced — optimal up to the log and the scan of St*(v).
+//! - R_{0,0}: the other vertices of St*(v), deduped — O(d·k_v + m log m).
+//! - R_{p,p}, p > 0: every p-simplex sharing a facet with σ contains σ's first or second vertex:
+//!   scan both stars, O(d²·(k_v + k_w) + m log m).
+//! - `count(p)`, `simplices(p)`: enumerate the p-faces of every live top, sort, dedup:
+//!   O(Σ_t C(|t|, p+1) log) — not cached, since edits would invalidate it.
+//!
+//! # Cost of each operation
+//! - [`LiveComplex::insert_top`] σ: validate, refuse if present (O(d·k_v)), retire the top
+//!   simplices that σ absorbs (scan St*(u) for u ∈ σ: O(d²·Σ_{u∈σ} k_u)), append a slot.
+//! - [`LiveComplex::remove_top`] σ: locate O(d·k_v), tombstone, remove from the d+1 stars
+//!   O(Σ_{u∈σ} k_u). Its faces that no other top simplex holds go with it, except its vertices,
+//!   which stay (isolated if nothing else holds them); removing an isolated vertex (a top
+//!   0-simplex) removes the vertex.
+//! - [`LiveComplex::link_condition`] {a, b}: O(d·(k_a + k_b) + |F_a|·|F_b|·|F_ab|) word
+//!   operations (see [`link`]).
+//! - [`LiveComplex::contract`] {a, b} → a: the link test, then each top of St(b) whose image
+//!   stays a top is rewritten in its own slot (b replaced by a: O(d) and one entry appended to
+//!   St*(a), amortised: St*(a) moves at most once per contraction, O(k_a + k_b) words, see
+//!   `stars`; its id and its entries in the other stars stay), and the others are retired
+//!   (O(d·k_max) each, a scan of each vertex's star). When the link condition holds no image
+//!   can be a face of another simplex or absorb one, except the images of tops through both a
+//!   and b (proof at `image_star_of_b`), so only those O(k_ab) are tested, each against the
+//!   smallest star of its vertices: O(d·k_b + d·k_max·k_ab) in all. In
+//!   [`ContractMode::Free`] every image is tested: O(d²·k_b·(k_b + k_min)) worst case. Slots
+//!   are only taken by degenerate images that stay tops, so a run of contractions does not
+//!   grow the tables.
+//! - [`LiveComplex::split`]: the same order as the contraction it undoes.
+//! - [`LiveComplex::compact`]: O(size), renumbers vertices and slots densely and returns the maps.
+//!
+//! # Handles and invalidation
+//! [`VertexId`]s and [`TopId`]s stay valid across every edit until [`LiveComplex::compact`]
+//! (tombstones keep the slots; a top moved by a contraction keeps its id and names its image);
+//! a [`TopId`] or [`UndoRecord`] from before a compaction is refused
+//! ([`Refusal::StaleHandle`]). Vertex ids are plain slots: after `compact`, use the returned map.
+//!
+//! The live complex answers the whole handle API ([`crate::relation::handle::Navigate`]: locate,
+//! boundary / co-boundary / adjacency per dimension, star, link, degree, `is_boundary`,
+//! `is_manifold`, fans around a vertex counter-clockwise by the winding, radial groups around an
+//! edge). A vertex's handle is its slot; any other simplex is named through a top simplex
+//! holding it (a top simplex and a vertex mask). Every handle carries the complex's generation
+//! (its compaction count, [`crate::relation::handle::Navigate::generation`]): one from before `compact` is
+//! refused with [`QueryError::StaleGeneration`]; otherwise a handle names its simplex while that
+//! simplex exists, even when the top simplex naming it is removed (a removed slot keeps its
+//! vertices until `compact`, and the face is located again: O(d·k_v) per use), and is refused
+//! with [`QueryError::StaleHandle`] once the simplex is gone; across a contraction it names the
+//! simplex's image (b replaced by a). The generation costs 4 bytes per handle and one comparison
+//! per check. Costs per operation: the `nav` module (O(1) checks and reads, `locate` O(d·k_v),
+//! relations as above plus O(d·k) to name each answer of dimension ≤ p, answers lexicographic,
+//! no allocation once warm).
+
+use std::fmt;
+
+use crate::complex::{Complex, MAX_DIMENSION};
+use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::structures::BuildError;
+use crate::structures::common::{too_large, try_copy, try_vec, try_with_capacity};
+use crate::structures::ia::faces_containing as faces;
+
+mod build;
+mod edit;
+pub mod link;
+mod nav;
+mod stars;
+mod store;
+
+use stars::Stars;
+
+pub use edit::{CompactMaps, ContractMode, UndoRecord};
+
+/// "No vertex" marker.
+const NONE: u32 = u32::MAX;
+/// Tombstone bit, set on a removed top's first id: the slot keeps its vertices until
+/// [`LiveComplex::compact`], so a handle through it can still find its face (`nav`). Vertex ids
+/// stay below it.
+const DEAD: u32 = 1 << 31;
+/// Bits of a packed top id that hold the slot; the dimension is in the 4 bits above.
+const SLOT_BITS: u32 = 28;
+const SLOT_MASK: u32 = (1 << SLOT_BITS) - 1;
+
+/// A vertex of a [`LiveComplex`]: the crate's vertex handle; its slot, stable until
+/// [`LiveComplex::compact`].
+pub use crate::relation::handle::VertexId;
+
+/// A top simplex of a [`LiveComplex`]: its dimension and slot, and the compaction epoch it was
+/// issued in (so a handle from before [`LiveComplex::compact`] is refused, not misread).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct TopId {
+    raw: u32,
+    epoch: u32,
+}
+
+impl TopId {
+    /// Dimension of the top simplex (≥ 1; isolated vertices are addressed by [`VertexId`]).
+    pub fn dim(self) -> usize {
+        (self.raw >> SLOT_BITS) as usize
+    }
+
+    /// Slot in its dimension's table.
+    pub fn slot(self) -> u32 {
+        self.raw & SLOT_MASK
+    }
+}
+
+fn pack(p: usize, slot: u32) -> u32 {
+    ((p as u32) << SLOT_BITS) | slot
+}
+
+fn unpack(raw: u32) -> (usize, usize) {
+    ((raw >> SLOT_BITS) as usize, (raw & SLOT_MASK) as usize)
+}
+
+fn show(ids: &[u32]) -> String {
+    let v: Vec<String> = ids.iter().map(|i| i.to_string()).collect();
+    format!("[{}]", v.join(" "))
+}
+
+/// Why an edit was refused. The structure is unchanged after every refusal.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum Refusal {
+    /// The simplex is empty, has more than 16 vertices, or repeats a vertex.
+    #[error("invalid simplex {}: {why}", show(.simplex))]
+    InvalidSimplex {
+        /// The simplex as given.
+        simplex: Vec<u32>,
+        /// What is wrong with it.
+        why: &'static str,
+    },
+    /// A vertex id is out of range or names a removed (contracted or deleted) vertex.
+    #[error("vertex {vertex} is not a live vertex (slots 0..{slots})")]
+    UnknownVertex {
+        /// The vertex as given.
+        vertex: u32,
+        /// Number of vertex slots.
+        slots: u32,
+    },
+    /// Topology-preserving contraction of a pair that is not an edge.
+    #[error("{{{a}, {b}}} is not an edge of the complex")]
+    NotAnEdge {
+        /// First vertex.
+        a: u32,
+        /// Second vertex.
+        b: u32,
+    },
+    /// The link condition Lk(a) ∩ Lk(b) = Lk(ab) fails; `simplex` is a lowest-dimensional
+    /// simplex of Lk(a) ∩ Lk(b) that is not in Lk(ab), of dimension `dim`.
+    #[error("link condition fails for edge {{{a}, {b}}} in dimension {dim}: {} is in Lk({a}) ∩ Lk({b}) but not in Lk({a}{b})", show(.simplex))]
+    LinkCondition {
+        /// First vertex.
+        a: u32,
+        /// Second vertex.
+        b: u32,
+        /// Dimension of the offending link simplex.
+        dim: usize,
+        /// The offending link simplex (ascending).
+        simplex: Vec<u32>,
+    },
+    /// Insertion of a simplex that is already in the complex (as a top simplex or a face).
+    #[error("simplex {} is already in the complex", show(.simplex))]
+    AlreadyPresent {
+        /// The simplex as given.
+        simplex: Vec<u32>,
+    },
+    /// Removal of a simplex that is a proper face of another simplex.
+    #[error("simplex {} is not a top simplex (it is a face of {})", show(.simplex), show(.coface))]
+    NotTop {
+        /// The simplex as given.
+        simplex: Vec<u32>,
+        /// A top simplex having it as a proper face.
+        coface: Vec<u32>,
+    },
+    /// Removal of a simplex that is not in the complex.
+    #[error("simplex {} is not in the complex", show(.simplex))]
+    NotInComplex {
+        /// The simplex as given.
+        simplex: Vec<u32>,
+    },
+    /// A handle or undo record from before a `compact()`, of a removed top simplex, or an undo
+    /// record whose contraction's result has since been edited.
+    #[error("stale handle: {0}")]
+    StaleHandle(String),
+    /// Coordinates of the wrong length.
+    #[error("{given} coordinates given, the complex has {dim} per vertex")]
+    CoordinateDimension {
+        /// Numbers given.
+        given: usize,
+        /// Coordinates per vertex.
+        dim: usize,
+    },
+}
+
+/// An updatable simplicial complex; see the module documentation.
+#[derive(Debug, Clone)]
+pub struct LiveComplex {
+    /// `tops[p]`: p + 1 ids per slot (input winding); a tombstone's first id has `DEAD` set.
+    /// `tops[0]` is unused (isolated vertices are live vertices with an empty star).
+    tops: Vec<Vec<u32>>,
+    /// Live top p-simplices per dimension (p ≥ 1).
+    live_tops: [usize; MAX_DIMENSION + 1],
+    alive: Vec<bool>,
+    live_vertices: u32,
+    /// St*(v): packed ids of the live top simplices of dimension ≥ 1 containing v, one block
+    /// per vertex in one arena (`stars` module).
+    star: Stars,
+    coord_dim: usize,
+    coords: Vec<f64>,
+    /// Bumped by `compact()`; handles and undo records carry it.
+    epoch: u32,
+    /// Contraction scratch: the images of St(b), kept between edits to avoid allocating.
+    images: Vec<Image>,
+}
+
+/// A top simplex's image under a contraction: at most 16 ids inline, in stored order.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Image {
+    len: u8,
+    /// From a top through both a and b (b dropped, one dimension lower).
+    degenerate: bool,
+    /// Still a top simplex after the contraction (decided before anything changes).
+    kept: bool,
+    /// The top of St(b) it is the image of (packed id).
+    from: u32,
+    ids: [u32; MAX_DIMENSION + 1],
+}
+
+impl Image {
+    fn push(&mut self, v: u32) {
+        self.ids[self.len as usize] = v;
+        self.len += 1;
+    }
+
+    fn as_slice(&self) -> &[u32] {
+        &self.ids[..self.len as usize]
+    }
+}
+
+/// `small ⊆ big` for unsorted vertex lists of at most 16 ids.
+#[inline]
+fn subset(small: &[u32], big: &[u32]) -> bool {
+    small.len() <= big.len() && small.iter().all(|v| big.contains(v))
+}
+
+/// A sorted copy of at most 16 ids, inline.
+#[derive(Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub(crate) struct Key {
+    len: u8,
+    ids: [u32; MAX_DIMENSION + 1],
+}
+
+impl Key {
+    pub(crate) fn new(vs: &[u32]) -> Key {
+        let mut ids = [0u32; MAX_DIMENSION + 1];
+        ids[..vs.len()].copy_from_slice(vs);
+        ids[..vs.len()].sort_unstable();
+        Key {
+            len: vs.len() as u8,
+            ids,
+        }
+    }
+
+    /// A copy of `vs`, already ascending (not checked): no sort.
+    #[inline]
+    pub(crate) fn sorted(vs: &[u32]) -> Key {
+        let mut ids = [0u32; MAX_DIMENSION + 1];
+        ids[..vs.len()].copy_from_slice(vs);
+        Key {
+            len: vs.len() as u8,
+            ids,
+        }
+    }
+
+    pub(crate) fn as_slice(&self) -> &[u32] {
+        &self.ids[..self.len as usize]
+    }
+}
+
+impl fmt::Debug for Key {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{:?}", self.as_slice())
+    }
+}
+
+impl LiveComplex {
+    /// Builds from a complex: every vertex of `complex` is live with the same id, every top
+    /// simplex gets a slot in input order with its input winding (`Complex::tops_as_given`;
+    /// read from the listing itself when it holds nothing but distinct top simplices).
+    /// O(size of the top simplices). Aborts, like `Vec`, when the memory cannot be had: a host
+    /// that must survive that uses [`LiveComplex::try_from_complex`].
+    pub fn from_complex(complex: &Complex) -> LiveComplex {
+        Self::try_from_complex(complex).unwrap_or_else(|e| panic!("{e}"))
+    }
+
+    /// [`LiveComplex::from_complex`], or [`BuildError::TooLarge`] (kind `IaStar`) when an array
+    /// sized from the input cannot be allocated: every array is reserved exactly, fallibly, before
+    /// it is filled, so no allocation failure aborts the process.
+    ///
+    /// When the listing is the complex's top simplices (the usual case for maximal simplices)
+    /// the tables and stars come from it directly, the stars on several threads (`build`
+    /// module; the same arrays with any thread count); otherwise every top is pushed in turn.
+    pub fn try_from_complex(complex: &Complex) -> Result<LiveComplex, BuildError> {
+        let n = Self::check_vertex_count(complex)?;
+        if complex.tops_listed_needs_maps() {
+            return Self::try_from_complex_by_pushes(complex);
+        }
+        let parts = build::from_listing(complex, n)?;
+        let (coord_dim, coords) = Self::coords_of(complex)?;
+        Ok(LiveComplex {
+            tops: parts.tops,
+            live_tops: parts.live_tops,
+            alive: try_vec(StructureKind::IaStar, true, n, "vertex flags")?,
+            live_vertices: n as u32,
+            star: parts.star,
+            coord_dim,
+            coords,
+            epoch: 0,
+            images: Vec::new(),
+        })
+    }
+
+    fn check_vertex_count(complex: &Complex) -> Result<usize, BuildError> {
+        let n = complex.vertex_count() as usize;
+        if n > DEAD as usize {
+            return Err(BuildError::TooLarge {
+                kind: StructureKind::IaStar,
+                what: format!("{n} vertices (at most 2^31)"),
+            });
+        }
+        Ok(n)
+    }
+
+    fn coords_of(complex: &Complex) -> Result<(usize, Vec<f64>), BuildError> {
+        Ok(match complex.coords() {
+            Some(c) => (
+                c.dim,
+                try_copy(StructureKind::IaStar, &c.data, "coordinates")?,
+            ),
+            None => (0, Vec::new()),
+        })
+    }
+
+    /// [`LiveComplex::try_from_complex`] by pushing every top simplex, in listing order, into
+    /// its table and its vertices' stars: any complex, on one thread.
+    fn try_from_complex_by_pushes(complex: &Complex) -> Result<LiveComplex, BuildError> {
+        const K: StructureKind = StructureKind::IaStar;
+        let n = Self::check_vertex_count(complex)?;
+        let (coord_dim, coords) = Self::coords_of(complex)?;
+        if complex.tops_listed_needs_maps() {
+            complex
+                .try_listing_maps()
+                .map_err(|bytes| too_large(K, bytes, "the input listing's maps"))?;
+        }
+        let mut degree = try_vec(K, 0u32, n, "vertex degrees")?;
+        let mut per_dim = [0usize; MAX_DIMENSION + 1];
+        for (p, s) in complex.tops_listed() {
+            per_dim[p] += 1;
+            for &v in s {
+                degree[v as usize] += 1;
+            }
+        }
+        let mut tops = try_with_capacity(K, MAX_DIMENSION + 1, "top arrays")?;
+        for (p, &count) in per_dim.iter().enumerate() {
+            if count > SLOT_MASK as usize + 1 {
+                return Err(BuildError::TooLarge {
+                    kind: K,
+                    what: format!("{count} top {p}-simplices (at most 2^28 per dimension)"),
+                });
+            }
+            tops.push(try_with_capacity(
+                K,
+                count.saturating_mul(p + 1),
+                &format!("top {p}-simplex vertices"),
+            )?);
+        }
+        let star = Stars::with_degrees(K, &degree)?;
+        drop(degree);
+        let mut live = LiveComplex {
+            tops,
+            live_tops: [0; MAX_DIMENSION + 1],
+            alive: try_vec(K, true, n, "vertex flags")?,
+            live_vertices: n as u32,
+            star,
+            coord_dim,
+            coords,
+            epoch: 0,
+            images: Vec::new(),
+        };
+        for (_, s) in complex.tops_listed() {
+            live.push_top(s);
+        }
+        Ok(live)
+    }
+
+    /// Appends a slot for `s` (not checked) and enters it in its vertices' stars.
+    fn push_top(&mut self, s: &[u32]) -> u32 {
+        let p = s.len() - 1;
+        let slot = (self.tops[p].len() / (p + 1)) as u32;
+        assert!(slot <= SLOT_MASK, "more than 2^28 top {p}-simplices");
+        self.tops[p].extend_from_slice(s);
+        self.attach(p, slot);
+        slot
+    }
+
+    /// Enters the top at (p, slot) in its vertices' stars and counts it live.
+    fn attach(&mut self, p: usize, slot: u32) {
+        let raw = pack(p, slot);
+        let w = p + 1;
+        for i in 0..w {
+            let v = self.tops[p][slot as usize * w + i];
+            self.star.push(v, raw);
+        }
+        self.live_tops[p] += 1;
+    }
+
+    /// Removes the top at (p, slot) from its vertices' stars and tombstones the slot; returns
+    /// its vertices.
+    fn detach(&mut self, p: usize, slot: u32) -> Vec<u32> {
+        let raw = pack(p, slot);
+        let w = p + 1;
+        let s = self.tops[p][slot as usize * w..(slot as usize + 1) * w].to_vec();
+        for &v in &s {
+            self.unstar(v, raw);
+        }
+        self.tops[p][slot as usize * w] |= DEAD;
+        self.live_tops[p] -= 1;
+        s
+    }
+
+    /// Like [`LiveComplex::detach`], leaving the star of `skip` alone (the caller has taken it).
+    fn detach_except(&mut self, p: usize, slot: u32, skip: u32) {
+        let raw = pack(p, slot);
+        let w = p + 1;
+        for i in 0..w {
+            let v = self.tops[p][slot as usize * w + i];
+            if v != skip {
+                self.unstar(v, raw);
+            }
+        }
+        self.tops[p][slot as usize * w] |= DEAD;
+        self.live_tops[p] -= 1;
+    }
+
+    /// Removes the entry `raw` from St*(v). O(k_v).
+    fn unstar(&mut self, v: u32, raw: u32) {
+        let i = self.star[v as usize]
+            .iter()
+            .position(|&x| x == raw)
+            .expect("star entry");
+        self.star.swap_remove(v, i);
+    }
+
+    /// Vertices of the top with packed id `raw`, in stored (winding) order.
+    #[inline]
+    fn top_raw(&self, raw: u32) -> &[u32] {
+        let (p, slot) = unpack(raw);
+        &self.tops[p][slot * (p + 1)..(slot + 1) * (p + 1)]
+    }
+
+    fn handle(&self, raw: u32) -> TopId {
+        TopId {
+            raw,
+            epoch: self.epoch,
+        }
+    }
+
+    /// Number of vertex slots (live or removed); vertex ids are `0..vertex_slots()`.
+    pub fn vertex_slots(&self) -> u32 {
+        self.alive.len() as u32
+    }
+
+    /// Number of live vertices.
+    pub fn live_vertex_count(&self) -> u32 {
+        self.live_vertices
+    }
+
+    /// Whether `v` is a live vertex.
+    pub fn is_live(&self, v: VertexId) -> bool {
+        self.alive.get(v.index()).copied().unwrap_or(false)
+    }
+
+    /// The live vertices, ascending.
+    pub fn vertices(&self) -> impl Iterator<Item = VertexId> + '_ {
+        (0..self.vertex_slots())
+            .filter(|&v| self.alive[v as usize])
+            .map(VertexId)
+    }
+
+    pub(crate) fn check_vertex(&self, v: u32) -> Result<(), Refusal> {
+        if self.alive.get(v as usize).copied().unwrap_or(false) {
+            Ok(())
+        } else {
+            Err(Refusal::UnknownVertex {
+                vertex: v,
+                slots: self.vertex_slots(),
+            })
+        }
+    }
+
+    /// Coordinates per vertex (0 when the complex has none).
+    pub fn coord_dim(&self) -> usize {
+        self.coord_dim
+    }
+
+    /// The coordinates of a live vertex (empty when the complex has none). O(1).
+    pub fn coords(&self, v: VertexId) -> Result<&[f64], Refusal> {
+        self.check_vertex(v.0)?;
+        let k = self.coord_dim;
+        Ok(&self.coords[v.index() * k..(v.index() + 1) * k])
+    }
+
+    /// Sets the coordinates of a live vertex; `xyz` must have [`LiveComplex::coord_dim`]
+    /// numbers. O(1).
+    pub fn set_coords(&mut self, v: VertexId, xyz: &[f64]) -> Result<(), Refusal> {
+        self.check_vertex(v.0)?;
+        self.check_coords(xyz)?;
+        let k = self.coord_dim;
+        self.coords[v.index() * k..(v.index() + 1) * k].copy_from_slice(xyz);
+        Ok(())
+    }
+
+    fn check_coords(&self, xyz: &[f64]) -> Result<(), Refusal> {
+        if xyz.len() != self.coord_dim {
+            return Err(Refusal::CoordinateDimension {
+                given: xyz.len(),
+                dim: self.coord_dim,
+            });
+        }
+        Ok(())
+    }
+
+    /// Adds an isolated vertex with coordinates `xyz` ([`LiveComplex::coord_dim`] numbers).
+    /// Amortised O(1).
+    pub fn add_vertex(&mut self, xyz: &[f64]) -> Result<VertexId, Refusal> {
+        self.check_coords(xyz)?;
+        let v = self.vertex_slots();
+        if v >= DEAD {
+            return Err(Refusal::StaleHandle("vertex slots exhausted".into()));
+        }
+        self.alive.push(true);
+        self.star.add_vertex();
+        self.coords.extend_from_slice(xyz);
+        self.live_vertices += 1;
+        Ok(VertexId(v))
+    }
+
+    /// The live top simplices of dimension ≥ 1 (isolated vertices: [`LiveComplex::vertices`]
+    /// with an empty [`LiveComplex::vertex_star`]), by dimension then slot, with their vertices
+    /// in stored (winding) order. O(1) per item plus tombstones skipped.
+    pub fn tops(&self) -> impl Iterator<Item = (TopId, &[u32])> + '_ {
+        (1..=MAX_DIMENSION).flat_map(move |p| {
+            self.tops[p]
+                .chunks_exact(p + 1)
+                .enumerate()
+                .filter(|(_, s)| s[0] < DEAD)
+                .map(move |(slot, s)| (self.handle(pack(p, slot as u32)), s))
+        })
+    }
+
+    /// The vertices of a live top simplex, in stored (winding) order. O(1).
+    pub fn top_vertices(&self, t: TopId) -> Result<&[u32], Refusal> {
+        self.check_top(t)?;
+        Ok(self.top_raw(t.raw))
+    }
+
+    fn check_top(&self, t: TopId) -> Result<(), Refusal> {
+        if t.epoch != self.epoch {
+            return Err(Refusal::StaleHandle(format!(
+                "top simplex handle from before compaction {}",
+                t.epoch + 1
+            )));
+        }
+        let (p, slot) = unpack(t.raw);
+        let w = p + 1;
+        if p == 0 || (slot + 1) * w > self.tops[p].len() || self.tops[p][slot * w] >= DEAD {
+            return Err(Refusal::StaleHandle(format!(
+                "top {p}-simplex slot {slot} is not live"
+            )));
+        }
+        Ok(())
+    }
+
+    /// St*(v): the live top simplices of dimension ≥ 1 containing `v`, in no particular order.
+    /// O(1) per item.
+    pub fn vertex_star(&self, v: VertexId) -> Result<impl Iterator<Item = TopId> + '_, Refusal> {
+        self.check_vertex(v.0)?;
+        Ok(self.star[v.index()].iter().map(|&raw| self.handle(raw)))
+    }
+
+    /// The edges of the complex, each once as (lower id, higher id), ascending.
+    /// O(Σ_t |t|² + m log m).
+    pub fn edges(&self) -> Vec<[u32; 2]> {
+        let mut out = Vec::new();
+        self.simplices(1, &mut out);
+        out.chunks_exact(2).map(|e| [e[0], e[1]]).collect()
+    }
+
+    /// The complex as a [`Complex`], live vertices renumbered densely in ascending id order (the
+    /// numbering [`LiveComplex::compact`] gives), top simplices in dimension-then-slot order with
+    /// their winding, coordinates kept. Freeze it into any of the nine structures with
+    /// [`crate::build`]. O(size).
+    pub fn to_complex(&self) -> Complex {
+        let (map, n) = self.vertex_map();
+        let mut ids = Vec::new();
+        let mut offsets = vec![0usize];
+        for (_, s) in self.tops() {
+            ids.extend(s.iter().map(|&v| map[v as usize]));
+            offsets.push(ids.len());
+        }
+        let coords = (self.coord_dim > 0).then(|| crate::io::Coords {
+            dim: self.coord_dim,
+            data: (0..self.vertex_slots() as usize)
+                .filter(|&v| self.alive[v])
+                .flat_map(|v| {
+                    self.coords[v * self.coord_dim..(v + 1) * self.coord_dim]
+                        .iter()
+                        .copied()
+                })
+                .collect(),
+        });
+        Complex::from_arrays(n, &ids, &offsets, coords)
+            .expect("a live complex is a valid complex (has a vertex, ids in range)")
+    }
+
+    /// Old vertex slot → dense id (`NONE` for removed ones), and the live count.
+    fn vertex_map(&self) -> (Vec<u32>, u32) {
+        let mut next = 0;
+        let map = self
+            .alive
+            .iter()
+            .map(|&a| {
+                if a {
+                    next += 1;
+                    next - 1
+                } else {
+                    NONE
+                }
+            })
+            .collect();
+        (map, next)
+    }
+
+    /// The live top with the same vertex set as `sorted` (ascending), if any.
+    fn find_top(&self, sorted: &[u32]) -> Option<u32> {
+        if sorted.len() < 2 {
+            return None;
+        }
+        let v = self.smallest_star(sorted);
+        self.star[v as usize]
+            .iter()
+            .copied()
+            .find(|&raw| unpack(raw).0 + 1 == sorted.len() && subset(sorted, self.top_raw(raw)))
+    }
+
+    /// A live top containing `sigma` (any order, live vertices, |σ| ≥ 1), if any.
+    fn top_containing(&self, sigma: &[u32]) -> Option<u32> {
+        let v = self.smallest_star(sigma);
+        self.star[v as usize]
+            .iter()
+            .copied()
+            .find(|&raw| subset(sigma, self.top_raw(raw)))
+    }
+
+    fn smallest_star(&self, sigma: &[u32]) -> u32 {
+        *sigma
+            .iter()
+            .min_by_key(|&&v| self.star[v as usize].len())
+            .unwrap()
+    }
+
+    /// Whether `sigma` (any order) is a simplex of the complex.
+    fn holds(&self, sigma: &[u32]) -> bool {
+        if sigma.iter().any(|&v| !self.alive[v as usize]) {
+            return false;
+        }
+        sigma.len() == 1 || self.top_containing(sigma).is_some()
+    }
+}
+
+impl Topology for LiveComplex {
+    fn kind(&self) -> StructureKind {
+        StructureKind::IaStar
+    }
+
+    fn dimension(&self) -> usize {
+        (1..=MAX_DIMENSION)
+            .rev()
+            .find(|&p| self.live_tops[p] > 0)
+            .unwrap_or(0)
+    }
+
+    /// Vertex slots (removed vertices included: they are not simplices; `count(0)` is the number
+    /// of live ones).
+    fn vertex_count(&self) -> u32 {
+        self.vertex_slots()
+    }
+
+    fn count(&self, p: usize) -> usize {
+        if p == 0 {
+            return self.live_vertices as usize;
+        }
+        let mut out = Vec::new();
+        self.simplices(p, &mut out);
+        out.len() / (p + 1)
+    }
+
+    fn top_count(&self, p: usize) -> usize {
+        if p == 0 {
+            return self
+                .vertices()
+                .filter(|v| self.star[v.index()].is_empty())
+                .count();
+        }
+        self.live_tops.get(p).copied().unwrap_or(0)
+    }
+
+    fn simplices(&self, p: usize, out: &mut Vec<u32>) {
+        if p == 0 {
+            out.extend(self.vertices().map(|v| v.0));
+            return;
+        }
+        let mut rows = Vec::new();
+        for (_, s) in self.tops() {
+            if s.len() > p {
+                let k = Key::new(s);
+                faces(k.as_slice(), &[], p, |f| rows.extend_from_slice(f));
+            }
+        }
+        out.extend(crate::complex::sort_dedup_rows(p + 1, rows));
+    }
+
+    fn query(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Result<(), QueryError> {
+        if !self.holds(sigma) {
+            return Err(QueryError::NotInComplex {
+                simplex: sigma.to_vec(),
+            });
+        }
+        let p = sigma.len() - 1;
+        let mut rows = Vec::new();
+        if q < p {
+            faces(sigma, &[], q, |f| rows.extend_from_slice(f));
+        } else if q > p {
+            let v = self.smallest_star(sigma);
+            for &raw in &self.star[v as usize] {
+                let t = self.top_raw(raw);
+                if t.len() > q && subset(sigma, t) {
+                    faces(Key::new(t).as_slice(), sigma, q, |f| {
+                        rows.extend_from_slice(f)
+                    });
+                }
+            }
+        } else if p == 0 {
+            for &raw in &self.star[sigma[0] as usize] {
+                rows.extend(self.top_raw(raw).iter().filter(|&&u| u != sigma[0]));
+            }
+        } else {
+            self.adjacent(sigma, &mut rows);
+        }
+        out.extend(crate::complex::sort_dedup_rows(q + 1, rows));
+        Ok(())
+    }
+
+    fn contains(&self, sigma: &[u32]) -> bool {
+        self.holds(sigma)
+    }
+
+    fn storage(&self) -> Storage {
+        let slots: usize = self.tops.iter().map(Vec::len).sum();
+        let star_entries = self.star.entries();
+        let bytes = 4 * self.tops.iter().map(Vec::capacity).sum::<usize>()
+            + 24 * self.tops.capacity()
+            + self.alive.capacity()
+            + self.star.bytes();
+        Storage {
+            integers: (slots + star_entries) as u64,
+            bits: self.alive.len() as u64,
+            bytes: bytes as u64,
+        }
+    }
+
+    fn validate(&self) -> Result<(), String> {
+        self.check_invariants()
+    }
+
+    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
+        Some(self)
+    }
+
+    fn as_any(&self) -> Option<&dyn std::any::Any> {
+        Some(self)
+    }
+
+    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
+        Some(self)
+    }
+}
+
+impl LiveComplex {
+    /// R_{p,p} for p > 0: every p-simplex sharing a facet with σ holds σ[0] or σ[1].
+    fn adjacent(&self, sigma: &[u32], rows: &mut Vec<u32>) {
+        let p = sigma.len() - 1;
+        let mut face = [0u32; MAX_DIMENSION + 1];
+        for &hub in &sigma[..2] {
+            for &raw in &self.star[hub as usize] {
+                let t = self.top_raw(raw);
+                if t.len() < p + 1 {
+                    continue;
+                }
+                for skip in 0..=p {
+                    // The facet of σ without its `skip`-th vertex, if this top holds it.
+                    let f: Vec<u32> = (0..=p).filter(|&i| i != skip).map(|i| sigma[i]).collect();
+                    if !subset(&f, t) {
+                        continue;
+                    }
+                    for &x in t {
+                        if sigma.contains(&x) {
+                            continue;
+                        }
+                        face[..p].copy_from_slice(&f);
+                        face[p] = x;
+                        face[..=p].sort_unstable();
+                        rows.extend_from_slice(&face[..=p]);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Every invariant: slots hold distinct live vertices; stars list exactly the live tops
+    /// through each vertex, once; no top is a face of (or equal to) another; counts agree.
+    fn check_invariants(&self) -> Result<(), String> {
+        let n = self.vertex_slots() as usize;
+        if self.star.len() != n || self.coords.len() != n * self.coord_dim {
+            return Err("per-vertex arrays disagree on the vertex count".into());
+        }
+        let live = self.alive.iter().filter(|&&a| a).count();
+        if live != self.live_vertices as usize || live == 0 {
+            return Err(format!(
+                "{live} live vertices, counted {}",
+                self.live_vertices
+            ));
+        }
+        let mut entries = 0usize;
+        for p in 1..=MAX_DIMENSION {
+            let mut count = 0;
+            for (slot, s) in self.tops[p].chunks_exact(p + 1).enumerate() {
+                if s[0] >= DEAD {
+                    continue;
+                }
+                count += 1;
+                entries += p + 1;
+                self.check_top_slot(p, slot as u32, s)?;
+            }
+            if count != self.live_tops[p] {
+                return Err(format!(
+                    "{count} live top {p}-simplices, counted {}",
+                    self.live_tops[p]
+                ));
+            }
+        }
+        for (v, st) in self.star.iter().enumerate() {
+            if !self.alive[v] && !st.is_empty() {
+                return Err(format!("removed vertex {v} has a non-empty star"));
+            }
+            for (i, &raw) in st.iter().enumerate() {
+                if st[..i].contains(&raw) {
+                    return Err(format!("star of {v} lists a top simplex twice"));
+                }
+            }
+        }
+        self.star.check()?;
+        let listed = self.star.entries();
+        if listed != entries {
+            return Err(format!(
+                "stars hold {listed} entries, the live tops have {entries} vertices"
+            ));
+        }
+        Ok(())
+    }
+
+    fn check_top_slot(&self, p: usize, slot: u32, s: &[u32]) -> Result<(), String> {
+        let raw = pack(p, slot);
+        for (i, &v) in s.iter().enumerate() {
+            if v as usize >= self.alive.len() || !self.alive[v as usize] {
+                return Err(format!("top {p}-simplex {} uses dead vertex {v}", show(s)));
+            }
+            if s[..i].contains(&v) {
+                return Err(format!("top {p}-simplex {} repeats {v}", show(s)));
+            }
+            if !self.star[v as usize].contains(&raw) {
+                return Err(format!("star of {v} misses top {}", show(s)));
+            }
+        }
+        for &other in &self.star[s[0] as usize] {
+            if other != raw && subset(s, self.top_raw(other)) {
+                return Err(format!(
+                    "top {} is a face of top {}",
+                    show(s),
+                    show(self.top_raw(other))
+                ));
+            }
+        }
+        Ok(())
+    }
+}
