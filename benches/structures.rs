@@ -17,7 +17,7 @@
 //! Benchmark ids are `<complex>/<kind>/<op>`, e.g. `tri-1M/ia/R0,2`. Criterion's filter selects a
 //! subset (`cargo bench --bench structures -- tet-1M/ts/`); a filter without regex
 //! metacharacters also skips building what it excludes. `benches/structures_table.py` turns
-//! criterion's output into the tables of docs/benchmarks.md.
+//! criterion's output into tables (docs/benchmarks.md merges its grid sizes into one table).
 
 mod common;
 
