@@ -47,18 +47,7 @@ unsafe impl std::alloc::GlobalAlloc for Tell {
 static ALLOC: Tell = Tell;
 
 /// The nine structures and the live complex (IA*, whose build is `LiveComplex::try_from_complex`).
-const KINDS: [StructureKind; 10] = [
-    StructureKind::Ig,
-    StructureKind::Sig,
-    StructureKind::Ia,
-    StructureKind::Iqm,
-    StructureKind::Nmia,
-    StructureKind::Ts,
-    StructureKind::Pe,
-    StructureKind::Le,
-    StructureKind::De,
-    StructureKind::IaStar,
-];
+const KINDS: [StructureKind; 10] = StructureKind::NAMED;
 
 /// A k×k grid of squares, two triangles each, as a complex.
 fn grid(k: u32) -> topoplex::Complex {

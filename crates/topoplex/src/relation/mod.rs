@@ -99,18 +99,15 @@ impl StructureKind {
     }
 
     /// Every kind with a CLI name: the nine of [`StructureKind::ALL`], then the live complex.
-    pub const NAMED: [StructureKind; 10] = [
-        StructureKind::Ig,
-        StructureKind::Sig,
-        StructureKind::Ia,
-        StructureKind::Iqm,
-        StructureKind::Nmia,
-        StructureKind::Ts,
-        StructureKind::Pe,
-        StructureKind::Le,
-        StructureKind::De,
-        StructureKind::IaStar,
-    ];
+    pub const NAMED: [StructureKind; 10] = {
+        let mut named = [StructureKind::IaStar; 10];
+        let mut i = 0;
+        while i < StructureKind::ALL.len() {
+            named[i] = StructureKind::ALL[i];
+            i += 1;
+        }
+        named
+    };
 
     /// The kind whose CLI name is `name` (any of [`StructureKind::NAMED`], `iastar` included).
     pub fn from_name(name: &str) -> Option<StructureKind> {
