@@ -4,7 +4,7 @@ use std::ffi::{CStr, c_char};
 use std::path::Path;
 
 use super::{
-    Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr, try_copy,
+    Failure, TpxStatus, free_box, get_into, guard, handle, in_slice, out_ptr, set_boxed, try_copy,
     write_buffer,
 };
 use crate::complex::{Budget, Complex, ComplexError};
@@ -27,10 +27,6 @@ pub(crate) fn complex_failure(e: ComplexError) -> Failure {
         _ => TpxStatus::InvalidComplex,
     };
     Failure::new(status, e.to_string())
-}
-
-fn boxed(complex: Complex, out: &mut *mut TpxComplex) {
-    *out = Box::into_raw(Box::new(TpxComplex { complex }));
 }
 
 /// Builds a complex from simplices given as arrays: simplex `i` is
@@ -153,7 +149,7 @@ pub unsafe extern "C" fn tpx_complex_from_arrays_budget(
         let complex =
             Complex::from_arrays_with(n_vertices, ids, offsets, coords, budget(max_simplices))
                 .map_err(complex_failure)?;
-        boxed(complex, out);
+        set_boxed(out, TpxComplex { complex });
         Ok(())
     })
 }
@@ -205,7 +201,7 @@ pub unsafe extern "C" fn tpx_complex_from_file_budget(
         })?;
         let complex = Complex::from_path_with(Path::new(path), budget(max_simplices))
             .map_err(complex_failure)?;
-        boxed(complex, out);
+        set_boxed(out, TpxComplex { complex });
         Ok(())
     })
 }
@@ -217,12 +213,8 @@ pub unsafe extern "C" fn tpx_complex_from_file_budget(
 /// `complex` must be NULL or a live handle from this library, not used afterwards.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_complex_free(complex: *mut TpxComplex) {
-    guard_value((), || {
-        if !complex.is_null() {
-            // SAFETY: the handle came from Box::into_raw in this module and is released once.
-            drop(unsafe { Box::from_raw(complex) });
-        }
-    })
+    // SAFETY: the same contract, passed on.
+    unsafe { free_box(complex) }
 }
 
 /// What normalising the input absorbed (`TpxComplex`'s input statistics).

@@ -360,6 +360,40 @@ pub(crate) fn with_answer<R>(f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
     })
 }
 
+/// The opaque handle types whose C owner holds a `Box` (rustls-ffi's `Castable<Ownership =
+/// OwnershipBox>`): each is made by [`set_boxed`] and released by [`free_box`] in its
+/// `tpx_*_free`, and no other type can be.
+pub(crate) trait Boxed {}
+
+impl Boxed for TpxComplex {}
+impl Boxed for TpxStructure {}
+impl Boxed for TpxRelationTable {}
+impl Boxed for TpxLive {}
+impl Boxed for TpxUndo {}
+impl Boxed for TpxDecomposition {}
+
+/// Puts `v` in `*out` as a new handle owned by the caller, to be released with its `tpx_*_free`
+/// (rustls-ffi's `set_boxed_mut_ptr`). Called last, once nothing can fail, so that `*out` is
+/// written only on success.
+pub(crate) fn set_boxed<T: Boxed>(out: &mut *mut T, v: T) {
+    *out = Box::into_raw(Box::new(v));
+}
+
+/// The body of every `tpx_*_free`: releases a handle made by [`set_boxed`]. NULL is a no-op; a
+/// panic while dropping does not cross the boundary.
+///
+/// # Safety
+/// `p` must be NULL or a handle from [`set_boxed`], not used afterwards.
+pub(crate) unsafe fn free_box<T: Boxed>(p: *mut T) {
+    guard_value((), || {
+        if !p.is_null() {
+            // SAFETY: the handle came from Box::into_raw in `set_boxed` and is released once
+            // (the caller's contract).
+            drop(unsafe { Box::from_raw(p) });
+        }
+    })
+}
+
 /// Shared reference to a handle, or NULL_ARGUMENT.
 pub(crate) fn handle<'a, T>(p: *const T, what: &str) -> Result<&'a T, Failure> {
     // SAFETY: non-NULL handles come from this library and are alive (documented contract).

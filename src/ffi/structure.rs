@@ -1,7 +1,8 @@
 //! `TpxStructure` (one of the family behind the relation API) and `TpxRelationTable`.
 
 use super::{
-    Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr, write_buffer,
+    Failure, TpxStatus, free_box, get_into, guard, guard_value, handle, in_slice, out_ptr,
+    set_boxed, write_buffer,
 };
 
 use crate::complex::MAX_DIMENSION;
@@ -123,7 +124,7 @@ pub unsafe extern "C" fn tpx_structure_build(
         let out = out_ptr(out, "out")?;
         let kind = kind_from_u32(kind)?;
         let topo = build(kind, &c.complex).map_err(build_failure)?;
-        *out = Box::into_raw(Box::new(TpxStructure::new(topo)));
+        set_boxed(out, TpxStructure::new(topo));
         Ok(())
     })
 }
@@ -135,12 +136,8 @@ pub unsafe extern "C" fn tpx_structure_build(
 /// queried by another thread).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_structure_free(s: *mut TpxStructure) {
-    guard_value((), || {
-        if !s.is_null() {
-            // SAFETY: the handle came from Box::into_raw in this module and is released once.
-            drop(unsafe { Box::from_raw(s) });
-        }
-    })
+    // SAFETY: the same contract, passed on.
+    unsafe { free_box(s) }
 }
 
 /// The structure's kind (`TPX_KIND_*`) into `*out`. O(1).
@@ -415,7 +412,7 @@ pub unsafe extern "C" fn tpx_relation_table(
             ids.extend_from_slice(&rows);
             offsets.push(ids.len());
         }
-        *out = Box::into_raw(Box::new(TpxRelationTable { offsets, ids }));
+        set_boxed(out, TpxRelationTable { offsets, ids });
         Ok(())
     })
 }
@@ -474,10 +471,6 @@ pub unsafe extern "C" fn tpx_relation_table_ids(
 /// `t` must be NULL or a live handle from this library, not used afterwards.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_relation_table_free(t: *mut TpxRelationTable) {
-    guard_value((), || {
-        if !t.is_null() {
-            // SAFETY: the handle came from Box::into_raw in this module and is released once.
-            drop(unsafe { Box::from_raw(t) });
-        }
-    })
+    // SAFETY: the same contract, passed on.
+    unsafe { free_box(t) }
 }
