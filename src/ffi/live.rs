@@ -357,12 +357,7 @@ pub unsafe extern "C" fn tpx_live_remove_top(
 /// Non-NULL pointers must be valid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_live_link_condition(l: *const TpxLive, a: u32, b: u32) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
-        l.live()
-            .link_condition(VertexId(a), VertexId(b))
-            .map_err(refusal)
-    })
+    link_test(l, a, b, LiveComplex::link_condition)
 }
 
 /// The link condition on the complex coned over its boundary by a dummy vertex ω (Dey,
@@ -378,12 +373,17 @@ pub unsafe extern "C" fn tpx_live_link_condition_with_boundary(
     a: u32,
     b: u32,
 ) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
-        l.live()
-            .link_condition_with_boundary(VertexId(a), VertexId(b))
-            .map_err(refusal)
-    })
+    link_test(l, a, b, LiveComplex::link_condition_with_boundary)
+}
+
+/// The one body of `tpx_live_link_condition` and `tpx_live_link_condition_with_boundary`.
+fn link_test(
+    l: *const TpxLive,
+    a: u32,
+    b: u32,
+    test: impl FnOnce(&LiveComplex, VertexId, VertexId) -> Result<(), Refusal>,
+) -> TpxStatus {
+    guard(|| test(handle(l, "l")?.live(), VertexId(a), VertexId(b)).map_err(refusal))
 }
 
 /// Contracts b into a (`mode`: `TPX_CONTRACT_PRESERVE_TOPOLOGY`, `TPX_CONTRACT_FREE` or

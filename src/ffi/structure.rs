@@ -429,16 +429,7 @@ pub unsafe extern "C" fn tpx_relation_table_offsets(
     t: *const TpxRelationTable,
     len: *mut usize,
 ) -> *const usize {
-    guard_value(std::ptr::null(), || {
-        // SAFETY: non-NULL pointers are valid (documented contract).
-        match unsafe { (t.as_ref(), len.as_mut()) } {
-            (Some(t), Some(len)) => {
-                *len = t.offsets.len();
-                t.offsets.as_ptr()
-            }
-            _ => std::ptr::null(),
-        }
-    })
+    table_array(t, len, |t| &t.offsets)
 }
 
 /// The concatenated rows of a relation table (rows of q+1 ids): `*len` receives the number of
@@ -453,12 +444,23 @@ pub unsafe extern "C" fn tpx_relation_table_ids(
     t: *const TpxRelationTable,
     len: *mut usize,
 ) -> *const u32 {
+    table_array(t, len, |t| &t.ids)
+}
+
+/// The one body of `tpx_relation_table_offsets` and `tpx_relation_table_ids`: the array `get`
+/// picks, its length into `*len`; NULL (and `*len` left alone) if `t` or `len` is NULL.
+fn table_array<T>(
+    t: *const TpxRelationTable,
+    len: *mut usize,
+    get: impl FnOnce(&TpxRelationTable) -> &[T],
+) -> *const T {
     guard_value(std::ptr::null(), || {
         // SAFETY: non-NULL pointers are valid (documented contract).
         match unsafe { (t.as_ref(), len.as_mut()) } {
             (Some(t), Some(len)) => {
-                *len = t.ids.len();
-                t.ids.as_ptr()
+                let a = get(t);
+                *len = a.len();
+                a.as_ptr()
             }
             _ => std::ptr::null(),
         }
