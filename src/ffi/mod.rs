@@ -133,6 +133,8 @@ pub enum TpxStatus {
     WrongHandleKind = 17,
     /// A handle made by another structure (its owner stamp does not match).
     ForeignHandle = 18,
+    // 19 is reserved: no status ever had it (the gap after the handle statuses 15–18), and
+    // none will.
     /// Live complex: a topology-preserving contraction of two vertices that are not an edge.
     NotAnEdge = 20,
     /// Live complex: the link condition Lk(a) ∩ Lk(b) = Lk(ab) fails; the message names the
@@ -147,6 +149,8 @@ pub enum TpxStatus {
     /// Live complex: an undo record from before `tpx_live_compact`, applied already, or whose
     /// contraction's result later edits changed (the message says which).
     StaleUndo = 25,
+    // 26 is reserved: no status ever had it (the gap after the live-complex statuses 20–25),
+    // and none will.
     /// `tpx_simplify*`: the ratio is not in (0, 1] (NaN included).
     InvalidRatio = 27,
     /// `tpx_simplify_file`: the file system refused to write the output file.
@@ -160,6 +164,8 @@ pub enum TpxStatus {
     /// The output format cannot hold the complex (a tetrahedron in OFF, an edge in STL); the
     /// message names the first offending simplex. Nothing was written.
     FormatCannotHold = 31,
+    // 32–39 are reserved: no status ever had them (the gap after the simplification and
+    // writer statuses 27–31), and none will.
     /// A saved file (`.tpx`) is corrupt: a checksum, offset or length is wrong (the message
     /// names the file and the first inconsistency).
     SavedFileCorrupt = 40,
@@ -171,6 +177,8 @@ pub enum TpxStatus {
     SavedFileForeign = 43,
     /// A saved file was written on a host of the other byte order.
     SavedFileWrongEndianness = 44,
+    // 45–51 are reserved: no status ever had them (the gap after the saved-file statuses
+    // 40–44), and none will.
     /// A handle from before `tpx_live_compact` (live complex): the compaction renumbered every
     /// id, so it names nothing any more; map the ids or locate again.
     StaleGeneration = 52,
