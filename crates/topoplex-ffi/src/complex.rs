@@ -4,7 +4,7 @@ use std::ffi::{CStr, c_char};
 use std::path::Path;
 
 use super::{
-    Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr, try_copy,
+    Failure, TpxStatus, free_box, get_into, guard, handle, in_slice, out_ptr, set_boxed, try_copy,
     write_buffer,
 };
 use topoplex::complex::{Budget, Complex, ComplexError};
@@ -36,10 +36,6 @@ pub(crate) fn open_failure(e: topoplex::store::OpenError) -> Failure {
         topoplex::store::OpenError::Saved(e) => super::store::store_failure(e),
         topoplex::store::OpenError::Build(e) => super::structure::build_failure(e),
     }
-}
-
-fn boxed(complex: Complex, out: &mut *mut TpxComplex) {
-    *out = Box::into_raw(Box::new(TpxComplex { complex }));
 }
 
 /// Builds a complex from simplices given as arrays: simplex `i` is
@@ -162,7 +158,7 @@ pub unsafe extern "C" fn tpx_complex_from_arrays_budget(
         let complex =
             Complex::from_arrays_with(n_vertices, ids, offsets, coords, budget(max_simplices))
                 .map_err(complex_failure)?;
-        boxed(complex, out);
+        set_boxed(out, TpxComplex { complex });
         Ok(())
     })
 }
@@ -216,7 +212,7 @@ pub unsafe extern "C" fn tpx_complex_from_file_budget(
         })?;
         let complex = topoplex::store::open_complex(Path::new(path), budget(max_simplices))
             .map_err(open_failure)?;
-        boxed(complex, out);
+        set_boxed(out, TpxComplex { complex });
         Ok(())
     })
 }
@@ -228,12 +224,8 @@ pub unsafe extern "C" fn tpx_complex_from_file_budget(
 /// `complex` must be NULL or a live handle from this library, not used afterwards.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_complex_free(complex: *mut TpxComplex) {
-    guard_value((), || {
-        if !complex.is_null() {
-            // SAFETY: the handle came from Box::into_raw in this module and is released once.
-            drop(unsafe { Box::from_raw(complex) });
-        }
-    })
+    // SAFETY: the same contract, passed on.
+    unsafe { free_box(complex) }
 }
 
 /// What normalising the input absorbed (`TpxComplex`'s input statistics).

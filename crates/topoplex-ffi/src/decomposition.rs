@@ -3,7 +3,7 @@
 
 use super::complex::TpxComplex;
 use super::structure::build_failure;
-use super::{Failure, TpxStatus, get_into, guard, guard_value, handle, out_ptr};
+use super::{Failure, TpxStatus, free_box, get_into, guard, handle, out_ptr, set_boxed};
 use topoplex::structures::iqm::{Decomposition, Iqm};
 
 /// The standard decomposition of a complex into initial quasi-manifold components (opaque).
@@ -32,9 +32,8 @@ pub unsafe extern "C" fn tpx_decomposition_build(
         let c = handle(c, "c")?;
         let out = out_ptr(out, "out")?;
         let iqm = Iqm::build(&c.complex).map_err(build_failure)?;
-        *out = Box::into_raw(Box::new(TpxDecomposition {
-            dec: iqm.decomposition(),
-        }));
+        let dec = iqm.decomposition();
+        set_boxed(out, TpxDecomposition { dec });
         Ok(())
     })
 }
@@ -45,12 +44,8 @@ pub unsafe extern "C" fn tpx_decomposition_build(
 /// `d` must be NULL or a live handle from this library, not used afterwards.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_decomposition_free(d: *mut TpxDecomposition) {
-    guard_value((), || {
-        if !d.is_null() {
-            // SAFETY: the handle came from Box::into_raw in this module and is released once.
-            drop(unsafe { Box::from_raw(d) });
-        }
-    })
+    // SAFETY: the same contract, passed on.
+    unsafe { free_box(d) }
 }
 
 /// Number of components into `*out`. Components are numbered by dimension, descending, then by

@@ -331,14 +331,111 @@ pub unsafe extern "C" fn tpx_related(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
+    related_into(s, h, q, order, buf, buf_len, out_len)
+}
+
+/// What an answer is written as: dense indices (`u32`: `tpx_related`, `tpx_related_batch`,
+/// `tpx_cyclic`) or handles (`TpxSimplex`: their `_handles` twins). Each pair of twins is one
+/// generic body over it ([`related_into`], [`batch_into`], [`cyclic_into`]); an impl is the table
+/// of what differs.
+trait Written: Copy + 'static {
+    /// What the full path collects in [`Written::KEPT`].
+    type Kept: 'static;
+    /// This thread's kept buffer of the full path.
+    const KEPT: &'static std::thread::LocalKey<RefCell<Vec<Self::Kept>>>;
+    /// The items' name in messages.
+    const NAME: &'static str;
+    /// Whether these are dense indices, which the live complex has only for its vertices.
+    const DENSE: bool;
+    /// R_{p,q}(h) by the full path (the structure's walk).
+    const WALK: Walk<Self::Kept>;
+    /// A batch's answers into the caller's buffer, or BUFFER_TOO_SMALL.
+    const WRITE: Write<Self::Kept, Self>;
+    /// The caller's buffer as the fast path's [`direct::Sink`] (answers of dimension `q` of the
+    /// structure stamped `owner`).
+    fn sink(out: &mut [Self], q: u32, owner: u32) -> impl direct::Sink + '_;
+    /// A kept answer as written.
+    fn item(s: &TpxStructure, x: &Self::Kept) -> Self;
+    /// The simplex of handle `h` as written.
+    fn of_handle(s: &TpxStructure, h: SimplexHandle) -> Self;
+}
+
+/// [`Written::WALK`]: R_{p,q}(h) in `order` into the kept buffer.
+type Walk<K> = fn(
+    &dyn Navigate,
+    SimplexHandle,
+    usize,
+    Order,
+    &mut Vec<K>,
+) -> Result<(), topoplex::relation::QueryError>;
+
+/// [`Written::WRITE`]: `v` into `buf[0 .. buf_len]`, `*out_len` its length.
+type Write<K, U> = fn(&TpxStructure, &[K], *mut U, usize, &mut usize) -> Result<(), Failure>;
+
+impl Written for u32 {
+    type Kept = u32;
+    const KEPT: &'static std::thread::LocalKey<RefCell<Vec<u32>>> = &super::ANSWER;
+    const NAME: &'static str = "ids";
+    const DENSE: bool = true;
+    const WALK: Walk<u32> = |n, h, q, order, v| n.related_ids(h, q, order, v);
+    const WRITE: Write<u32, u32> =
+        |_, v, buf, buf_len, out_len| write_buffer(v, buf, buf_len, out_len);
+
+    fn sink(out: &mut [u32], _: u32, _: u32) -> impl direct::Sink + '_ {
+        out
+    }
+
+    fn item(_: &TpxStructure, &x: &u32) -> u32 {
+        x
+    }
+
+    fn of_handle(_: &TpxStructure, h: SimplexHandle) -> u32 {
+        h.index()
+    }
+}
+
+impl Written for TpxSimplex {
+    type Kept = SimplexHandle;
+    const KEPT: &'static std::thread::LocalKey<RefCell<Vec<SimplexHandle>>> = &HANDLES;
+    const NAME: &'static str = "handles";
+    const DENSE: bool = false;
+    const WALK: Walk<SimplexHandle> = |n, h, q, order, v| n.related(h, q, order, v);
+    const WRITE: Write<SimplexHandle, TpxSimplex> = write_handles;
+
+    fn sink(out: &mut [TpxSimplex], q: u32, owner: u32) -> impl direct::Sink + '_ {
+        direct::Handles { out, q, owner }
+    }
+
+    fn item(s: &TpxStructure, &x: &SimplexHandle) -> TpxSimplex {
+        wrap(s, x)
+    }
+
+    fn of_handle(s: &TpxStructure, h: SimplexHandle) -> TpxSimplex {
+        wrap(s, h)
+    }
+}
+
+/// The one body of `tpx_related` and `tpx_related_handles`: the fast path ([`direct`]) when the
+/// arguments are the usual ones and the answer fits, else the full path ([`answer_into`]),
+/// which finds and reports every error.
+#[inline]
+fn related_into<U: Written>(
+    s: *const TpxStructure,
+    h: *const TpxSimplex,
+    q: u32,
+    order: u32,
+    buf: *mut U,
+    buf_len: usize,
+    out_len: *mut usize,
+) -> TpxStatus {
     let fast = guard_fast(|| {
         let Some((st, sh, ord, len)) = direct::arguments(s, h, order, out_len) else {
             return false;
         };
-        let Some(mut out) = direct::out_slice(buf, buf_len) else {
+        let Some(out) = direct::out_slice(buf, buf_len) else {
             return false;
         };
-        direct::answer(st, sh, q, ord, &mut out)
+        direct::answer(st, sh, q, ord, &mut U::sink(out, q, st.stamp))
             .map(|n| *len = n)
             .is_some()
     });
@@ -346,37 +443,26 @@ pub unsafe extern "C" fn tpx_related(
         return status;
     }
     let order = order_arg(order);
-    answer_into(
-        s,
-        h,
-        buf,
-        buf_len,
-        out_len,
-        &super::ANSWER,
-        |_, n, sh, ids| {
+    answer_into(s, h, buf, buf_len, out_len, |n, sh, v| {
+        if U::DENSE {
             dense_answers(n, q)?;
-            n.related_ids(sh, q as usize, order?, ids)
-                .map_err(query_failure)
-        },
-        |_, &x| x,
-    )
+        }
+        (U::WALK)(n, sh, q as usize, order?, v).map_err(query_failure)
+    })
 }
 
 /// The one body of the functions that answer one handle into the caller's buffer: `s`, `h`
 /// and `out_len` NULL-checked, the handle's owner stamp and form checked (its range is checked
 /// once, by the `Navigate` call inside `answer`), the answer built in this thread's kept
-/// buffer `kept` (no allocation once it has grown), then written to `buf` as `item(x)` (only
-/// on success; BUFFER_TOO_SMALL with the needed length otherwise).
-#[allow(clippy::too_many_arguments)]
-fn answer_into<T, U: Copy>(
+/// buffer ([`Written::KEPT`]; no allocation once it has grown), then written to `buf` as
+/// [`Written::item`] (only on success; BUFFER_TOO_SMALL with the needed length otherwise).
+fn answer_into<U: Written>(
     s: *const TpxStructure,
     h: *const TpxSimplex,
     buf: *mut U,
     buf_len: usize,
     out_len: *mut usize,
-    kept: &'static std::thread::LocalKey<RefCell<Vec<T>>>,
-    answer: impl FnOnce(&TpxStructure, &dyn Navigate, SimplexHandle, &mut Vec<T>) -> Result<(), Failure>,
-    item: impl Fn(&TpxStructure, &T) -> U,
+    answer: impl FnOnce(&dyn Navigate, SimplexHandle, &mut Vec<U::Kept>) -> Result<(), Failure>,
 ) -> TpxStatus {
     guard(|| {
         let s = handle(s, "s")?;
@@ -384,37 +470,26 @@ fn answer_into<T, U: Copy>(
         let out_len = out_ptr(out_len, "out_len")?;
         let n = nav(s)?;
         let sh = unwrap_owned(s, n, h)?;
-        with_kept(kept, |v| {
+        with_kept(U::KEPT, |v| {
             v.clear();
-            let r = answer(s, n, sh, v);
-            let r = r.and_then(|()| copy_out(s, v, buf, buf_len, out_len, &item));
+            let r = answer(n, sh, v).and_then(|()| {
+                if buf.is_null() && buf_len > 0 {
+                    return Err(Failure::null("buf"));
+                }
+                if v.len() > buf_len {
+                    return too_small(v.len(), buf_len, out_len);
+                }
+                for (i, x) in v.iter().enumerate() {
+                    // SAFETY: `buf` has room for `buf_len >= v.len()` items (documented contract).
+                    unsafe { *buf.add(i) = U::item(s, x) };
+                }
+                *out_len = v.len();
+                Ok(())
+            });
             super::trim_kept(v);
             r
         })
     })
-}
-
-/// The tail of [`answer_into`]: `v` written to `buf` as `item(x)`, or BUFFER_TOO_SMALL.
-fn copy_out<T, U: Copy>(
-    s: &TpxStructure,
-    v: &[T],
-    buf: *mut U,
-    buf_len: usize,
-    out_len: &mut usize,
-    item: &impl Fn(&TpxStructure, &T) -> U,
-) -> Result<(), Failure> {
-    if buf.is_null() && buf_len > 0 {
-        return Err(Failure::null("buf"));
-    }
-    if v.len() > buf_len {
-        return too_small(v.len(), buf_len, out_len);
-    }
-    for (i, x) in v.iter().enumerate() {
-        // SAFETY: `buf` has room for `buf_len >= v.len()` items (documented contract).
-        unsafe { *buf.add(i) = item(s, x) };
-    }
-    *out_len = v.len();
-    Ok(())
 }
 
 /// NOT_DENSE when answers of dimension q have no dense index in this structure (the live
@@ -466,37 +541,67 @@ pub unsafe extern "C" fn tpx_related_batch(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
+    let inputs = (indices, count, "indices");
+    let out = (offsets, buf, buf_len, out_len);
+    batch_into(s, inputs, order, out, |_, n, indices, order, ids, ends| {
+        dense_answers(n, q)?;
+        let p = (p as usize).min(MAX_DIMENSION + 1);
+        let too_large = |_| Failure::new(TpxStatus::TooLarge, "offsets do not fit in memory");
+        ends.try_reserve(count).map_err(too_large)?;
+        n.related_batch(p, indices, q as usize, order, ids, ends)
+            .map_err(query_failure)
+    })
+}
+
+/// The one body of `tpx_related_batch` and `tpx_related_handles_batch`: the arguments checked
+/// (the `count` inputs, named `what` in messages), then `answer` fills this thread's kept
+/// buffer with every answer and `ends` with where each ends. The answers (fewer than 2^32) and
+/// the offsets are written only on success.
+fn batch_into<U: Written, I>(
+    s: *const TpxStructure,
+    (inputs, count, what): (*const I, usize, &str),
+    order: u32,
+    (offsets, buf, buf_len, out_len): (*mut u32, *mut U, usize, *mut usize),
+    answer: impl FnOnce(
+        &TpxStructure,
+        &dyn Navigate,
+        &[I],
+        Order,
+        &mut Vec<U::Kept>,
+        &mut Vec<usize>,
+    ) -> Result<(), Failure>,
+) -> TpxStatus {
     guard(|| {
         let s = handle(s, "s")?;
         let out_len = out_ptr(out_len, "out_len")?;
-        let indices = in_slice(indices, count, "indices")?;
+        let inputs = in_slice(inputs, count, what)?;
         if offsets.is_null() {
             return Err(Failure::null("offsets"));
         }
         let order = order_arg(order)?;
         let n = nav(s)?;
-        dense_answers(n, q)?;
-        let p = (p as usize).min(MAX_DIMENSION + 1);
-        with_answer(|ids| {
-            // Offsets are written only on success: kept aside, then copied.
-            let mut ends = Scratch::<Vec<usize>>::take();
-            ends.try_reserve(count)
-                .map_err(|_| Failure::new(TpxStatus::TooLarge, "offsets do not fit in memory"))?;
-            n.related_batch(p, indices, q as usize, order, ids, &mut ends)
-                .map_err(query_failure)?;
-            if u32::try_from(ids.len()).is_err() {
-                return Err(Failure::new(TpxStatus::TooLarge, "answers exceed 2^32 ids"));
-            }
-            write_buffer(ids, buf, buf_len, out_len)?;
-            // SAFETY: `offsets` has room for `count + 1` entries (documented contract), and
-            // `ends` holds `count` ends below 2^32 (checked above).
-            unsafe {
-                *offsets = 0;
-                for (k, &e) in ends.iter().enumerate() {
-                    *offsets.add(k + 1) = e as u32;
+        // Offsets are written only on success: kept aside, then copied.
+        let mut ends = Scratch::<Vec<usize>>::take();
+        with_kept(U::KEPT, |v| {
+            v.clear();
+            let r = answer(s, n, inputs, order, v, &mut ends).and_then(|()| {
+                if u32::try_from(v.len()).is_err() {
+                    let message = format!("answers exceed 2^32 {}", U::NAME);
+                    return Err(Failure::new(TpxStatus::TooLarge, message));
                 }
-            }
-            Ok(())
+                (U::WRITE)(s, v, buf, buf_len, out_len)?;
+                // SAFETY: `offsets` has room for `count + 1` entries (documented contract), and
+                // `ends` holds `count` ends below 2^32 (checked above).
+                unsafe {
+                    *offsets = 0;
+                    for (k, &e) in ends.iter().enumerate() {
+                        *offsets.add(k + 1) = e as u32;
+                    }
+                }
+                Ok(())
+            });
+            super::trim_kept(v);
+            r
         })
     })
 }
@@ -661,24 +766,15 @@ pub unsafe extern "C" fn tpx_star(
     out_len: *mut usize,
 ) -> TpxStatus {
     let order = order_arg(order);
-    answer_into(
-        s,
-        h,
-        buf,
-        buf_len,
-        out_len,
-        &HANDLES,
-        |_, n, sh, hs| {
-            let order = order?;
-            if link != 0 {
-                n.link(sh, order, hs)
-            } else {
-                n.star(sh, order, hs)
-            }
-            .map_err(query_failure)
-        },
-        |s, &x| wrap(s, x),
-    )
+    answer_into(s, h, buf, buf_len, out_len, |n, sh, hs| {
+        let order = order?;
+        if link != 0 {
+            n.link(sh, order, hs)
+        } else {
+            n.star(sh, order, hs)
+        }
+        .map_err(query_failure)
+    })
 }
 
 /// Whether `*h` is on the boundary (`what` = 0) or a manifold simplex (`what` = 1), as 0 or 1
@@ -744,25 +840,9 @@ pub unsafe extern "C" fn tpx_cyclic(
     out_items: *mut usize,
     out_groups: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
-        if !nav(s)?.dense() {
-            return Err(Failure::new(
-                TpxStatus::NotDense,
-                "this structure's triangles and tetrahedra have no dense index: use tpx_cyclic_handles",
-            ));
-        }
-        let out = CyclicOut {
-            items,
-            items_len,
-            offsets,
-            flags,
-            groups_len,
-            out_items,
-            out_groups,
-        };
-        cyclic_into(s, h, q, out, |x| x.index())
-    })
+    let items = (items, items_len);
+    let groups = (offsets, flags, groups_len);
+    cyclic_into(s, h, q, items, groups, (out_items, out_groups))
 }
 
 /// The output buffers of `tpx_cyclic` and `tpx_cyclic_handles` (items of type `T`).
@@ -776,14 +856,41 @@ struct CyclicOut<T> {
     out_groups: *mut usize,
 }
 
-/// The body of `tpx_cyclic` / `tpx_cyclic_handles`, writing each item as `item(handle)`.
-fn cyclic_into<T>(
+/// The one body of `tpx_cyclic` and `tpx_cyclic_handles`: `items` is (`items`, `items_len`),
+/// `groups` (`offsets`, `flags`, `groups_len`), `counts` (`out_items`, `out_groups`).
+fn cyclic_into<U: Written>(
+    s: *const TpxStructure,
+    h: *const TpxSimplex,
+    q: u32,
+    (items, items_len): (*mut U, usize),
+    (offsets, flags, groups_len): (*mut u32, *mut u32, usize),
+    (out_items, out_groups): (*mut usize, *mut usize),
+) -> TpxStatus {
+    let o = CyclicOut {
+        items,
+        items_len,
+        offsets,
+        flags,
+        groups_len,
+        out_items,
+        out_groups,
+    };
+    guard(|| cyclic_checked(handle(s, "s")?, h, q, o))
+}
+
+/// [`cyclic_into`] once `s` is checked.
+fn cyclic_checked<U: Written>(
     s: &TpxStructure,
     h: *const TpxSimplex,
     q: u32,
-    o: CyclicOut<T>,
-    item: impl Fn(SimplexHandle) -> T,
+    o: CyclicOut<U>,
 ) -> Result<(), Failure> {
+    if U::DENSE && !nav(s)?.dense() {
+        return Err(Failure::new(
+            TpxStatus::NotDense,
+            "this structure's triangles and tetrahedra have no dense index: use tpx_cyclic_handles",
+        ));
+    }
     let h = handle(h, "h")?;
     let out_items = out_ptr(o.out_items, "out_items")?;
     let out_groups = out_ptr(o.out_groups, "out_groups")?;
@@ -810,7 +917,7 @@ fn cyclic_into<T>(
         }
         for (i, &x) in fans.items.iter().enumerate() {
             // SAFETY: room for items_len >= ni entries.
-            unsafe { *items.add(i) = item(x) };
+            unsafe { *items.add(i) = U::of_handle(s, x) };
         }
         for k in 0..=ng {
             // SAFETY: room for groups_len + 1 >= ng + 1 offsets.
@@ -854,19 +961,9 @@ pub unsafe extern "C" fn tpx_cyclic_handles(
     out_items: *mut usize,
     out_groups: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
-        let out = CyclicOut {
-            items,
-            items_len,
-            offsets,
-            flags,
-            groups_len,
-            out_items,
-            out_groups,
-        };
-        cyclic_into(s, h, q, out, |x| wrap(s, x))
-    })
+    let items = (items, items_len);
+    let groups = (offsets, flags, groups_len);
+    cyclic_into(s, h, q, items, groups, (out_items, out_groups))
 }
 
 /// R_{p,q}(*h) as handles (`TpxSimplex`) into `buf`, in `order`; `*out_len` = the number
@@ -887,36 +984,7 @@ pub unsafe extern "C" fn tpx_related_handles(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    let fast = guard_fast(|| {
-        let Some((st, sh, ord, len)) = direct::arguments(s, h, order, out_len) else {
-            return false;
-        };
-        let Some(out) = direct::out_slice(buf, buf_len) else {
-            return false;
-        };
-        let mut out = direct::Handles {
-            out,
-            q,
-            owner: st.stamp,
-        };
-        direct::answer(st, sh, q, ord, &mut out)
-            .map(|n| *len = n)
-            .is_some()
-    });
-    if let Some(status) = fast {
-        return status;
-    }
-    let order = order_arg(order);
-    answer_into(
-        s,
-        h,
-        buf,
-        buf_len,
-        out_len,
-        &HANDLES,
-        |_, n, sh, hs| n.related(sh, q as usize, order?, hs).map_err(query_failure),
-        |s, &x| wrap(s, x),
-    )
+    related_into(s, h, q, order, buf, buf_len, out_len)
 }
 
 /// R_{p,q} of many handles at once, of any dimensions (mixed), in CSR form as handles: for the
@@ -946,44 +1014,18 @@ pub unsafe extern "C" fn tpx_related_handles_batch(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
-        let out_len = out_ptr(out_len, "out_len")?;
-        let hs = in_slice(hs, count, "hs")?;
-        if offsets.is_null() {
-            return Err(Failure::null("offsets"));
-        }
-        let order = order_arg(order)?;
-        let n = nav(s)?;
+    let inputs = (hs, count, "hs");
+    let out = (offsets, buf, buf_len, out_len);
+    batch_into(s, inputs, order, out, |s, n, hs, order, out, ends| {
         let too_large = |_| Failure::new(TpxStatus::TooLarge, "the batch does not fit in memory");
         let mut checked = Scratch::<Vec<SimplexHandle>>::take();
         checked.try_reserve(count).map_err(too_large)?;
         for (k, h) in hs.iter().enumerate() {
             checked.push(unwrap(s, n, h).map_err(|f| at_position(f, k))?);
         }
-        let mut ends = Scratch::<Vec<usize>>::take();
         ends.try_reserve(count).map_err(too_large)?;
-        with_kept(&HANDLES, |out| {
-            out.clear();
-            n.related_handles_batch(&checked, q as usize, order, out, &mut ends)
-                .map_err(|e| at_position(query_failure(e), ends.len()))?;
-            if u32::try_from(out.len()).is_err() {
-                return Err(Failure::new(
-                    TpxStatus::TooLarge,
-                    "answers exceed 2^32 handles",
-                ));
-            }
-            write_handles(s, out, buf, buf_len, out_len)?;
-            // SAFETY: `offsets` has room for `count + 1` entries (documented contract), and
-            // `ends` holds `count` ends below 2^32 (checked above).
-            unsafe {
-                *offsets = 0;
-                for (k, &e) in ends.iter().enumerate() {
-                    *offsets.add(k + 1) = e as u32;
-                }
-            }
-            Ok(())
-        })
+        n.related_handles_batch(&checked, q as usize, order, out, ends)
+            .map_err(|e| at_position(query_failure(e), ends.len()))
     })
 }
 

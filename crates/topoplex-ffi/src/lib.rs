@@ -101,6 +101,8 @@ pub enum TpxStatus {
     WrongHandleKind = 17,
     /// A handle made by another structure (its owner stamp does not match).
     ForeignHandle = 18,
+    // 19 is reserved: no status ever had it (the gap after the handle statuses 15–18), and
+    // none will.
     /// Live complex: a topology-preserving contraction of two vertices that are not an edge.
     NotAnEdge = 20,
     /// Live complex: the link condition Lk(a) ∩ Lk(b) = Lk(ab) fails; the message names the
@@ -115,6 +117,8 @@ pub enum TpxStatus {
     /// Live complex: an undo record from before `tpx_live_compact`, applied already, or whose
     /// contraction's result later edits changed (the message says which).
     StaleUndo = 25,
+    // 26 is reserved: no status ever had it (the gap after the live-complex statuses 20–25),
+    // and none will.
     /// `tpx_simplify*`: the ratio is not in (0, 1] (NaN included).
     InvalidRatio = 27,
     /// `tpx_simplify_file`: the file system refused to write the output file.
@@ -128,6 +132,8 @@ pub enum TpxStatus {
     /// The output format cannot hold the complex (a tetrahedron in OFF, an edge in STL); the
     /// message names the first offending simplex. Nothing was written.
     FormatCannotHold = 31,
+    // 32–39 are reserved: no status ever had them (the gap after the simplification and
+    // writer statuses 27–31), and none will.
     /// A saved file (`.tpx`) is corrupt: a checksum, offset or length is wrong (the message
     /// names the file and the first inconsistency).
     SavedFileCorrupt = 40,
@@ -139,6 +145,8 @@ pub enum TpxStatus {
     SavedFileForeign = 43,
     /// A saved file was written on a host of the other byte order.
     SavedFileWrongEndianness = 44,
+    // 45–51 are reserved: no status ever had them (the gap after the saved-file statuses
+    // 40–44), and none will.
     /// A handle from before `tpx_live_compact` (live complex): the compaction renumbered every
     /// id, so it names nothing any more; map the ids or locate again.
     StaleGeneration = 52,
@@ -325,6 +333,40 @@ pub(crate) fn with_answer<R>(f: impl FnOnce(&mut Vec<u32>) -> R) -> R {
         let r = f(v);
         trim_kept(v);
         r
+    })
+}
+
+/// The opaque handle types whose C owner holds a `Box` (rustls-ffi's `Castable<Ownership =
+/// OwnershipBox>`): each is made by [`set_boxed`] and released by [`free_box`] in its
+/// `tpx_*_free`, and no other type can be.
+pub(crate) trait Boxed {}
+
+impl Boxed for TpxComplex {}
+impl Boxed for TpxStructure {}
+impl Boxed for TpxRelationTable {}
+impl Boxed for TpxLive {}
+impl Boxed for TpxUndo {}
+impl Boxed for TpxDecomposition {}
+
+/// Puts `v` in `*out` as a new handle owned by the caller, to be released with its `tpx_*_free`
+/// (rustls-ffi's `set_boxed_mut_ptr`). Called last, once nothing can fail, so that `*out` is
+/// written only on success.
+pub(crate) fn set_boxed<T: Boxed>(out: &mut *mut T, v: T) {
+    *out = Box::into_raw(Box::new(v));
+}
+
+/// The body of every `tpx_*_free`: releases a handle made by [`set_boxed`]. NULL is a no-op; a
+/// panic while dropping does not cross the boundary.
+///
+/// # Safety
+/// `p` must be NULL or a handle from [`set_boxed`], not used afterwards.
+pub(crate) unsafe fn free_box<T: Boxed>(p: *mut T) {
+    guard_value((), || {
+        if !p.is_null() {
+            // SAFETY: the handle came from Box::into_raw in `set_boxed` and is released once
+            // (the caller's contract).
+            drop(unsafe { Box::from_raw(p) });
+        }
     })
 }
 

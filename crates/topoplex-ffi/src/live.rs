@@ -10,7 +10,7 @@
 use super::complex::TpxComplex;
 use super::structure::{TpxStructure, sort_rows_in_place};
 use super::write_buffer;
-use super::{Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr};
+use super::{Failure, TpxStatus, free_box, get_into, guard, handle, in_slice, out_ptr, set_boxed};
 use topoplex::live::{ContractMode, LiveComplex, Refusal, UndoRecord, VertexId};
 use topoplex::relation::{QueryError, Topology};
 
@@ -97,7 +97,7 @@ pub unsafe extern "C" fn tpx_live_from_complex(
         let out = out_ptr(out, "out")?;
         let live =
             LiveComplex::try_from_complex(&c.complex).map_err(super::structure::build_failure)?;
-        *out = Box::into_raw(Box::new(TpxLive::new(live)));
+        set_boxed(out, TpxLive::new(live));
         Ok(())
     })
 }
@@ -108,12 +108,8 @@ pub unsafe extern "C" fn tpx_live_from_complex(
 /// `l` must be NULL or a live handle from this library, not used afterwards.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_live_free(l: *mut TpxLive) {
-    guard_value((), || {
-        if !l.is_null() {
-            // SAFETY: the handle came from Box::into_raw in this module and is released once.
-            drop(unsafe { Box::from_raw(l) });
-        }
-    })
+    // SAFETY: the same contract, passed on.
+    unsafe { free_box(l) }
 }
 
 /// Releases an undo record. NULL is a no-op.
@@ -122,12 +118,8 @@ pub unsafe extern "C" fn tpx_live_free(l: *mut TpxLive) {
 /// `u` must be NULL or a handle from `tpx_live_contract`, not used afterwards.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_undo_free(u: *mut TpxUndo) {
-    guard_value((), || {
-        if !u.is_null() {
-            // SAFETY: the handle came from Box::into_raw in this module and is released once.
-            drop(unsafe { Box::from_raw(u) });
-        }
-    })
+    // SAFETY: the same contract, passed on.
+    unsafe { free_box(u) }
 }
 
 /// Number of vertex slots into `*out`: vertex ids are `0 .. slots`, some of them removed
@@ -365,12 +357,7 @@ pub unsafe extern "C" fn tpx_live_remove_top(
 /// Non-NULL pointers must be valid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_live_link_condition(l: *const TpxLive, a: u32, b: u32) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
-        l.live()
-            .link_condition(VertexId(a), VertexId(b))
-            .map_err(refusal)
-    })
+    link_test(l, a, b, LiveComplex::link_condition)
 }
 
 /// The link condition on the complex coned over its boundary by a dummy vertex ω (Dey,
@@ -386,12 +373,17 @@ pub unsafe extern "C" fn tpx_live_link_condition_with_boundary(
     a: u32,
     b: u32,
 ) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
-        l.live()
-            .link_condition_with_boundary(VertexId(a), VertexId(b))
-            .map_err(refusal)
-    })
+    link_test(l, a, b, LiveComplex::link_condition_with_boundary)
+}
+
+/// The one body of `tpx_live_link_condition` and `tpx_live_link_condition_with_boundary`.
+fn link_test(
+    l: *const TpxLive,
+    a: u32,
+    b: u32,
+    test: impl FnOnce(&LiveComplex, VertexId, VertexId) -> Result<(), Refusal>,
+) -> TpxStatus {
+    guard(|| test(handle(l, "l")?.live(), VertexId(a), VertexId(b)).map_err(refusal))
 }
 
 /// Contracts b into a (`mode`: `TPX_CONTRACT_PRESERVE_TOPOLOGY`, `TPX_CONTRACT_FREE` or
@@ -436,9 +428,9 @@ pub unsafe extern "C" fn tpx_live_contract(
         let undo = live
             .contract(VertexId(a), VertexId(b), mode, position)
             .map_err(refusal)?;
-        if !out_undo.is_null() {
-            // SAFETY: a non-NULL `out_undo` is valid for writes (documented contract).
-            unsafe { *out_undo = Box::into_raw(Box::new(TpxUndo { undo })) };
+        // SAFETY: a non-NULL `out_undo` is valid for writes (documented contract).
+        if let Some(out_undo) = unsafe { out_undo.as_mut() } {
+            set_boxed(out_undo, TpxUndo { undo });
         }
         Ok(())
     })
@@ -515,7 +507,7 @@ pub unsafe extern "C" fn tpx_live_to_complex(
         let l = handle(l, "l")?;
         let out = out_ptr(out, "out")?;
         let complex = l.live().to_complex();
-        *out = Box::into_raw(Box::new(TpxComplex { complex }));
+        set_boxed(out, TpxComplex { complex });
         Ok(())
     })
 }

@@ -4,7 +4,7 @@
 use std::ffi::{CStr, c_char};
 use std::path::Path;
 
-use super::{Failure, TpxComplex, TpxStatus, guard, handle, out_ptr};
+use super::{Failure, TpxComplex, TpxStatus, guard, handle, out_ptr, set_boxed};
 use topoplex::complex::Complex;
 use topoplex::io::write::{WriteError, WriteErrorKind, write_complex};
 use topoplex::simplify::{Options, SimplifyError, check, check_output, simplify, simplify_owned};
@@ -70,9 +70,8 @@ pub unsafe extern "C" fn tpx_simplify(
         let out = out_ptr(out, "out")?;
         let options = options(ratio, preserve_topology)?;
         let done = simplify(&c.complex, &options, &mut |_, _| {}).map_err(simplify_failure)?;
-        *out = Box::into_raw(Box::new(TpxComplex {
-            complex: done.complex,
-        }));
+        let complex = done.complex;
+        set_boxed(out, TpxComplex { complex });
         Ok(())
     })
 }

@@ -6,7 +6,7 @@ use std::path::Path;
 use super::complex::{TpxComplex, complex_failure};
 use super::live::TpxLive;
 use super::structure::{TpxStructure, build_failure, kind_from_u32};
-use super::{Failure, TpxStatus, guard, handle, out_ptr};
+use super::{Failure, TpxStatus, guard, handle, out_ptr, set_boxed};
 use topoplex::store::{Saved, StoreError, save};
 
 /// `tpx_structure_open` flag: check every section's checksum and the structure's invariants
@@ -101,7 +101,7 @@ pub unsafe extern "C" fn tpx_structure_open(
             saved.verify().map_err(store_failure)?;
         }
         let topo = saved.structure_of(kind).map_err(store_failure)?;
-        *out = Box::into_raw(Box::new(TpxStructure::new(topo)));
+        set_boxed(out, TpxStructure::new(topo));
         Ok(())
     })
 }
@@ -123,7 +123,7 @@ pub unsafe extern "C" fn tpx_complex_open(
         let path = path_arg(path)?;
         let saved = Saved::open(path).map_err(store_failure)?;
         let complex = saved.complex().map_err(store_failure)?;
-        *out = Box::into_raw(Box::new(TpxComplex { complex }));
+        set_boxed(out, TpxComplex { complex });
         Ok(())
     })
 }
@@ -173,7 +173,7 @@ pub unsafe extern "C" fn tpx_live_open(
             saved.verify().map_err(store_failure)?;
         }
         let live = topoplex::live::LiveComplex::open_saved(&saved).map_err(store_failure)?;
-        *out = Box::into_raw(Box::new(TpxLive::new(live)));
+        set_boxed(out, TpxLive::new(live));
         Ok(())
     })
 }

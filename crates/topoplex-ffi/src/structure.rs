@@ -1,7 +1,8 @@
 //! `TpxStructure` (one of the family behind the relation API) and `TpxRelationTable`.
 
 use super::{
-    Failure, TpxStatus, get_into, guard, guard_value, handle, in_slice, out_ptr, write_buffer,
+    Failure, TpxStatus, free_box, get_into, guard, guard_value, handle, in_slice, out_ptr,
+    set_boxed, write_buffer,
 };
 
 use topoplex::complex::MAX_DIMENSION;
@@ -124,7 +125,7 @@ pub unsafe extern "C" fn tpx_structure_build(
         let out = out_ptr(out, "out")?;
         let kind = kind_from_u32(kind)?;
         let topo = build(kind, &c.complex).map_err(build_failure)?;
-        *out = Box::into_raw(Box::new(TpxStructure::new(topo)));
+        set_boxed(out, TpxStructure::new(topo));
         Ok(())
     })
 }
@@ -136,12 +137,8 @@ pub unsafe extern "C" fn tpx_structure_build(
 /// queried by another thread).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_structure_free(s: *mut TpxStructure) {
-    guard_value((), || {
-        if !s.is_null() {
-            // SAFETY: the handle came from Box::into_raw in this module and is released once.
-            drop(unsafe { Box::from_raw(s) });
-        }
-    })
+    // SAFETY: the same contract, passed on.
+    unsafe { free_box(s) }
 }
 
 /// The structure's kind (`TPX_KIND_*`) into `*out`. O(1).
@@ -416,7 +413,7 @@ pub unsafe extern "C" fn tpx_relation_table(
             ids.extend_from_slice(&rows);
             offsets.push(ids.len());
         }
-        *out = Box::into_raw(Box::new(TpxRelationTable { offsets, ids }));
+        set_boxed(out, TpxRelationTable { offsets, ids });
         Ok(())
     })
 }
@@ -433,16 +430,7 @@ pub unsafe extern "C" fn tpx_relation_table_offsets(
     t: *const TpxRelationTable,
     len: *mut usize,
 ) -> *const usize {
-    guard_value(std::ptr::null(), || {
-        // SAFETY: non-NULL pointers are valid (documented contract).
-        match unsafe { (t.as_ref(), len.as_mut()) } {
-            (Some(t), Some(len)) => {
-                *len = t.offsets.len();
-                t.offsets.as_ptr()
-            }
-            _ => std::ptr::null(),
-        }
-    })
+    table_array(t, len, |t| &t.offsets)
 }
 
 /// The concatenated rows of a relation table (rows of q+1 ids): `*len` receives the number of
@@ -457,12 +445,23 @@ pub unsafe extern "C" fn tpx_relation_table_ids(
     t: *const TpxRelationTable,
     len: *mut usize,
 ) -> *const u32 {
+    table_array(t, len, |t| &t.ids)
+}
+
+/// The one body of `tpx_relation_table_offsets` and `tpx_relation_table_ids`: the array `get`
+/// picks, its length into `*len`; NULL (and `*len` left alone) if `t` or `len` is NULL.
+fn table_array<T>(
+    t: *const TpxRelationTable,
+    len: *mut usize,
+    get: impl FnOnce(&TpxRelationTable) -> &[T],
+) -> *const T {
     guard_value(std::ptr::null(), || {
         // SAFETY: non-NULL pointers are valid (documented contract).
         match unsafe { (t.as_ref(), len.as_mut()) } {
             (Some(t), Some(len)) => {
-                *len = t.ids.len();
-                t.ids.as_ptr()
+                let a = get(t);
+                *len = a.len();
+                a.as_ptr()
             }
             _ => std::ptr::null(),
         }
@@ -475,10 +474,6 @@ pub unsafe extern "C" fn tpx_relation_table_ids(
 /// `t` must be NULL or a live handle from this library, not used afterwards.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_relation_table_free(t: *mut TpxRelationTable) {
-    guard_value((), || {
-        if !t.is_null() {
-            // SAFETY: the handle came from Box::into_raw in this module and is released once.
-            drop(unsafe { Box::from_raw(t) });
-        }
-    })
+    // SAFETY: the same contract, passed on.
+    unsafe { free_box(t) }
 }

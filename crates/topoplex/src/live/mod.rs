@@ -652,7 +652,7 @@ impl LiveComplex {
             ids.extend(s.iter().map(|&v| map[v as usize]));
             offsets.push(ids.len());
         }
-        let coords = (self.coord_dim > 0).then(|| crate::io::Coords {
+        let coords = (self.coord_dim > 0).then(|| crate::complex::Coords {
             dim: self.coord_dim,
             data: (0..self.vertex_slots() as usize)
                 .filter(|&v| self.alive[v])
@@ -723,40 +723,30 @@ impl LiveComplex {
 }
 
 impl Topology for LiveComplex {
-    fn kind(&self) -> StructureKind {
-        StructureKind::IaStar
-    }
-
-    fn dimension(&self) -> usize {
-        (1..=MAX_DIMENSION)
+    // `vertex_count` is the vertex slots (removed vertices included: they are not simplices;
+    // `count(0)` is the number of live ones).
+    crate::relation::topology_preamble! {
+        self, StructureKind::IaStar;
+        dimension: (1..=MAX_DIMENSION)
             .rev()
             .find(|&p| self.live_tops[p] > 0)
-            .unwrap_or(0)
-    }
-
-    /// Vertex slots (removed vertices included: they are not simplices; `count(0)` is the number
-    /// of live ones).
-    fn vertex_count(&self) -> u32 {
-        self.vertex_slots()
-    }
-
-    fn count(&self, p: usize) -> usize {
-        if p == 0 {
-            return self.live_vertices as usize;
-        }
-        let mut out = Vec::new();
-        self.simplices(p, &mut out);
-        out.len() / (p + 1)
-    }
-
-    fn top_count(&self, p: usize) -> usize {
-        if p == 0 {
-            return self
-                .vertices()
+            .unwrap_or(0);
+        vertex_count: self.vertex_slots();
+        count(p): if p == 0 {
+            self.live_vertices as usize
+        } else {
+            let mut out = Vec::new();
+            self.simplices(p, &mut out);
+            out.len() / (p + 1)
+        };
+        top_count(p): if p == 0 {
+            self.vertices()
                 .filter(|v| self.star[v.index()].is_empty())
-                .count();
-        }
-        self.live_tops.get(p).copied().unwrap_or(0)
+                .count()
+        } else {
+            self.live_tops.get(p).copied().unwrap_or(0)
+        };
+        as_any;
     }
 
     fn simplices(&self, p: usize, out: &mut Vec<u32>) {
@@ -825,18 +815,6 @@ impl Topology for LiveComplex {
 
     fn validate(&self) -> Result<(), String> {
         self.check_invariants()
-    }
-
-    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
-        Some(self)
-    }
-
-    fn as_any(&self) -> Option<&dyn std::any::Any> {
-        Some(self)
-    }
-
-    fn as_any_mut(&mut self) -> Option<&mut dyn std::any::Any> {
-        Some(self)
     }
 }
 

@@ -296,6 +296,112 @@ pub trait Topology: Send + Sync + std::any::Any {
     }
 }
 
+/// Writes, inside an `impl Topology for T` block, the [`Topology`] methods every structure spells
+/// alike: `kind`, `dimension`, `vertex_count`, `count` and `top_count` from one expression each,
+/// and `as_navigate` (every structure has handles). Optional clauses after them, in any order:
+/// `answers: m;` makes `query` and `contains` the 2D family's `m::query` and `m::contains`;
+/// `simplices: m(n);` makes `simplices` `m::simplices(self, n, p, out)`; `as_any;` makes `as_any`
+/// and `as_any_mut` the structure itself (the live complex). The caller names `self` first, and
+/// the index of `count` and `top_count`, so that its expressions may use them (macro hygiene):
+///
+/// ```text
+/// impl Topology for T {
+///     crate::relation::topology_preamble! {
+///         self, KIND;
+///         dimension: self.d;
+///         vertex_count: self.n;
+///         count(p): self.counts.get(p).copied().unwrap_or(0);
+///         top_count(p): if p == self.d { self.tops.len() } else { 0 };
+///         answers: radial;
+///     }
+///
+///     fn storage(&self) -> Storage { .. }
+///     ..
+/// }
+/// ```
+macro_rules! topology_preamble {
+    (
+        $this:ident, $kind:expr;
+        dimension: $dimension:expr;
+        vertex_count: $vertex_count:expr;
+        count($p:ident): $count:expr;
+        top_count($tp:ident): $top_count:expr;
+        $($more:tt)*
+    ) => {
+        fn kind(&$this) -> $crate::StructureKind {
+            $kind
+        }
+
+        fn dimension(&$this) -> usize {
+            $dimension
+        }
+
+        fn vertex_count(&$this) -> u32 {
+            $vertex_count
+        }
+
+        fn count(&$this, $p: usize) -> usize {
+            $count
+        }
+
+        fn top_count(&$this, $tp: usize) -> usize {
+            $top_count
+        }
+
+        fn as_navigate(&$this) -> Option<&dyn $crate::Navigate> {
+            Some($this)
+        }
+
+        $crate::relation::topology_preamble!(@more $this; $($more)*);
+    };
+    (@more $this:ident;) => {};
+    (@more $this:ident; answers: $m:ident; $($more:tt)*) => {
+        fn query(
+            &$this,
+            sigma: &[u32],
+            q: usize,
+            out: &mut Vec<u32>,
+        ) -> Result<(), $crate::QueryError> {
+            $m::query($this, sigma, q, out)
+        }
+
+        fn contains(&$this, sigma: &[u32]) -> bool {
+            $m::contains($this, sigma)
+        }
+
+        $crate::relation::topology_preamble!(@more $this; $($more)*);
+    };
+    (@more $this:ident; simplices: $m:ident($n:expr); $($more:tt)*) => {
+        fn simplices(&$this, p: usize, out: &mut Vec<u32>) {
+            $m::simplices($this, $n, p, out)
+        }
+
+        $crate::relation::topology_preamble!(@more $this; $($more)*);
+    };
+    (@more $this:ident; as_any; $($more:tt)*) => {
+        fn as_any(&$this) -> Option<&dyn std::any::Any> {
+            Some($this)
+        }
+
+        fn as_any_mut(&mut $this) -> Option<&mut dyn std::any::Any> {
+            Some($this)
+        }
+
+        $crate::relation::topology_preamble!(@more $this; $($more)*);
+    };
+}
+pub(crate) use topology_preamble;
+
+/// `counts[p]` for `p <= d`, 0 above: a figure per dimension (`count`, `top_count`) of a
+/// structure of dimension `d` that stores `counts` for dimensions 0, 1, ...
+pub(crate) fn per_dimension<const N: usize>(p: usize, d: usize, counts: [usize; N]) -> usize {
+    if p <= d {
+        counts.get(p).copied().unwrap_or(0)
+    } else {
+        0
+    }
+}
+
 /// Sorts a copy of `sigma` and checks it: non-empty, within `MAX_DIMENSION`, no repeated vertex,
 /// every id below `n`.
 pub fn normalize_simplex(sigma: &[u32], n: u32) -> Result<Vec<u32>, QueryError> {

@@ -36,7 +36,7 @@ use super::nav::NavIndex;
 use super::radial::{self, EdgeAt, EdgeLocator, TriTopo, row3};
 use crate::complex::Complex;
 use crate::mapped::Arr;
-use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::relation::{Storage, StructureKind, Topology, per_dimension};
 
 const KIND: StructureKind = StructureKind::De;
 
@@ -201,50 +201,15 @@ impl TriTopo for DirectedEdge {
 radial::nav_base!(DirectedEdge);
 
 impl Topology for DirectedEdge {
-    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
-        Some(self)
-    }
-
-    fn kind(&self) -> StructureKind {
-        KIND
-    }
-
-    fn dimension(&self) -> usize {
-        self.dim
-    }
-
-    fn vertex_count(&self) -> u32 {
-        self.n
-    }
-
-    fn count(&self, p: usize) -> usize {
-        match p {
-            0 => self.n as usize,
-            1 if self.dim >= 1 => self.n_edges,
-            2 if self.dim >= 2 => self.n_tris as usize,
-            _ => 0,
-        }
-    }
-
-    fn top_count(&self, p: usize) -> usize {
-        match p {
-            0 => self.isolated,
-            1 => self.n_wires as usize,
-            2 => self.n_tris as usize,
-            _ => 0,
-        }
-    }
-
-    fn simplices(&self, p: usize, out: &mut Vec<u32>) {
-        radial::simplices(self, self.n, p, out);
-    }
-
-    fn query(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Result<(), QueryError> {
-        radial::query(self, sigma, q, out)
-    }
-
-    fn contains(&self, sigma: &[u32]) -> bool {
-        radial::contains(self, sigma)
+    crate::relation::topology_preamble! {
+        self, KIND;
+        dimension: self.dim;
+        vertex_count: self.n;
+        count(p): per_dimension(p, self.dim, [self.n as usize, self.n_edges, self.n_tris as usize]);
+        top_count(p):
+            per_dimension(p, 2, [self.isolated, self.n_wires as usize, self.n_tris as usize]);
+        answers: radial;
+        simplices: radial(self.n);
     }
 
     fn storage(&self) -> Storage {

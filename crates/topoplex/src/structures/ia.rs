@@ -756,28 +756,12 @@ impl IndexedAdjacency {
 }
 
 impl Topology for IndexedAdjacency {
-    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
-        Some(self)
-    }
-
-    fn kind(&self) -> StructureKind {
-        KIND
-    }
-
-    fn dimension(&self) -> usize {
-        self.d
-    }
-
-    fn vertex_count(&self) -> u32 {
-        self.n
-    }
-
-    fn count(&self, p: usize) -> usize {
-        self.counts.get(p).copied().unwrap_or(0)
-    }
-
-    fn top_count(&self, p: usize) -> usize {
-        if p == self.d { self.tops.len() } else { 0 }
+    crate::relation::topology_preamble! {
+        self, KIND;
+        dimension: self.d;
+        vertex_count: self.n;
+        count(p): self.counts.get(p).copied().unwrap_or(0);
+        top_count(p): if p == self.d { self.tops.len() } else { 0 };
     }
 
     fn simplices(&self, p: usize, out: &mut Vec<u32>) {

@@ -255,28 +255,12 @@ impl NavBase for IncidenceGraph {
 }
 
 impl Topology for IncidenceGraph {
-    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
-        Some(self)
-    }
-
-    fn kind(&self) -> StructureKind {
-        KIND
-    }
-
-    fn dimension(&self) -> usize {
-        self.tables.len() - 1
-    }
-
-    fn vertex_count(&self) -> u32 {
-        self.tables[0].len() as u32
-    }
-
-    fn count(&self, p: usize) -> usize {
-        self.tables.get(p).map_or(0, SimplexTable::len)
-    }
-
-    fn top_count(&self, p: usize) -> usize {
-        self.top_counts.get(p).copied().unwrap_or(0)
+    crate::relation::topology_preamble! {
+        self, KIND;
+        dimension: self.tables.len() - 1;
+        vertex_count: self.tables[0].len() as u32;
+        count(p): self.tables.get(p).map_or(0, SimplexTable::len);
+        top_count(p): self.top_counts.get(p).copied().unwrap_or(0);
     }
 
     fn simplices(&self, p: usize, out: &mut Vec<u32>) {

@@ -794,28 +794,12 @@ impl NavBase for Iqm {
 }
 
 impl Topology for Iqm {
-    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
-        Some(self)
-    }
-
-    fn kind(&self) -> StructureKind {
-        KIND
-    }
-
-    fn dimension(&self) -> usize {
-        self.counts.len() - 1
-    }
-
-    fn vertex_count(&self) -> u32 {
-        self.n
-    }
-
-    fn count(&self, p: usize) -> usize {
-        self.counts.get(p).copied().unwrap_or(0)
-    }
-
-    fn top_count(&self, p: usize) -> usize {
-        self.tops.get(p).map_or(0, |t| t.len() / (p + 1))
+    crate::relation::topology_preamble! {
+        self, KIND;
+        dimension: self.counts.len() - 1;
+        vertex_count: self.n;
+        count(p): self.counts.get(p).copied().unwrap_or(0);
+        top_count(p): self.tops.get(p).map_or(0, |t| t.len() / (p + 1));
     }
 
     fn simplices(&self, p: usize, out: &mut Vec<u32>) {

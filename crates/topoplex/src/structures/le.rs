@@ -42,7 +42,7 @@ use super::pe::by_start;
 use super::radial::{self, EdgeAt, NONE, TriTopo, row3, show};
 use crate::complex::Complex;
 use crate::mapped::Arr;
-use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::relation::{Storage, StructureKind, Topology, per_dimension};
 
 const KIND: StructureKind = StructureKind::Le;
 
@@ -198,33 +198,13 @@ impl TriTopo for LoopEdgeUse {
 radial::nav_base!(LoopEdgeUse);
 
 impl Topology for LoopEdgeUse {
-    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
-        Some(self)
-    }
-
-    fn kind(&self) -> StructureKind {
-        KIND
-    }
-
-    fn dimension(&self) -> usize {
-        2
-    }
-
-    fn vertex_count(&self) -> u32 {
-        self.n
-    }
-
-    fn count(&self, p: usize) -> usize {
-        match p {
-            0 => self.n as usize,
-            1 => self.edge_eu.len(),
-            2 => self.n_tris as usize,
-            _ => 0,
-        }
-    }
-
-    fn top_count(&self, p: usize) -> usize {
-        if p == 2 { self.n_tris as usize } else { 0 }
+    crate::relation::topology_preamble! {
+        self, KIND;
+        dimension: 2;
+        vertex_count: self.n;
+        count(p): per_dimension(p, 2, [self.n as usize, self.edge_eu.len(), self.n_tris as usize]);
+        top_count(p): if p == 2 { self.n_tris as usize } else { 0 };
+        answers: radial;
     }
 
     fn simplices(&self, p: usize, out: &mut Vec<u32>) {
@@ -236,14 +216,6 @@ impl Topology for LoopEdgeUse {
         } else {
             radial::simplices(self, self.n, p, out);
         }
-    }
-
-    fn query(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Result<(), QueryError> {
-        radial::query(self, sigma, q, out)
-    }
-
-    fn contains(&self, sigma: &[u32]) -> bool {
-        radial::contains(self, sigma)
     }
 
     fn storage(&self) -> Storage {

@@ -98,7 +98,7 @@ use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset};
 use crate::mapped::Arr;
-use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::relation::{QueryError, Storage, StructureKind, Topology, per_dimension};
 
 const KIND: StructureKind = StructureKind::Nmia;
 
@@ -756,34 +756,15 @@ impl NavBase for NonManifoldIa {
 }
 
 impl Topology for NonManifoldIa {
-    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
-        Some(self)
-    }
-
-    fn kind(&self) -> StructureKind {
-        KIND
-    }
-
-    fn dimension(&self) -> usize {
-        self.d
-    }
-
-    fn vertex_count(&self) -> u32 {
-        self.n
-    }
-
-    fn count(&self, p: usize) -> usize {
-        self.counts.get(p).copied().unwrap_or(0)
-    }
-
-    fn top_count(&self, p: usize) -> usize {
-        match p {
-            0 => self.isolated,
-            1 => self.wires.len(),
-            2 => self.faces.len(),
-            3 => self.tets.len(),
-            _ => 0,
-        }
+    crate::relation::topology_preamble! {
+        self, KIND;
+        dimension: self.d;
+        vertex_count: self.n;
+        count(p): self.counts.get(p).copied().unwrap_or(0);
+        top_count(p): {
+            let tops = [self.isolated, self.wires.len(), self.faces.len(), self.tets.len()];
+            per_dimension(p, 3, tops)
+        };
     }
 
     fn simplices(&self, p: usize, out: &mut Vec<u32>) {

@@ -41,7 +41,7 @@ use super::nav::NavIndex;
 use super::radial::{self, EdgeAt, NONE, TriTopo, row3};
 use crate::complex::Complex;
 use crate::mapped::Arr;
-use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::relation::{Storage, StructureKind, Topology, per_dimension};
 
 const KIND: StructureKind = StructureKind::Pe;
 
@@ -234,38 +234,14 @@ impl TriTopo for PartialEntities {
 radial::nav_base!(PartialEntities);
 
 impl Topology for PartialEntities {
-    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
-        Some(self)
-    }
-
-    fn kind(&self) -> StructureKind {
-        KIND
-    }
-
-    fn dimension(&self) -> usize {
-        self.dim
-    }
-
-    fn vertex_count(&self) -> u32 {
-        self.n
-    }
-
-    fn count(&self, p: usize) -> usize {
-        match p {
-            0 => self.n as usize,
-            1 if self.dim >= 1 => self.edge_pe.len(),
-            2 if self.dim >= 2 => self.n_tris as usize,
-            _ => 0,
-        }
-    }
-
-    fn top_count(&self, p: usize) -> usize {
-        match p {
-            0 => self.isolated,
-            1 => self.n_wires,
-            2 => self.n_tris as usize,
-            _ => 0,
-        }
+    crate::relation::topology_preamble! {
+        self, KIND;
+        dimension: self.dim;
+        vertex_count: self.n;
+        count(p):
+            per_dimension(p, self.dim, [self.n as usize, self.edge_pe.len(), self.n_tris as usize]);
+        top_count(p): per_dimension(p, 2, [self.isolated, self.n_wires, self.n_tris as usize]);
+        answers: radial;
     }
 
     fn simplices(&self, p: usize, out: &mut Vec<u32>) {
@@ -277,14 +253,6 @@ impl Topology for PartialEntities {
         } else {
             radial::simplices(self, self.n, p, out);
         }
-    }
-
-    fn query(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Result<(), QueryError> {
-        radial::query(self, sigma, q, out)
-    }
-
-    fn contains(&self, sigma: &[u32]) -> bool {
-        radial::contains(self, sigma)
     }
 
     fn storage(&self) -> Storage {

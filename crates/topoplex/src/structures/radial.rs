@@ -25,9 +25,9 @@ use rustc_hash::FxHashSet;
 use super::common::{IdSet, Scratch, try_iota, try_order, try_push, try_table, try_vec};
 use super::nav::with_scratch;
 use super::{BuildError, to_u32};
+use crate::complex::Coords;
 use crate::complex::table::id_bits;
 use crate::complex::{Complex, SimplexTable};
-use crate::io::Coords;
 use crate::relation::handle::SimplexHandle;
 use crate::relation::{QueryError, StructureKind};
 

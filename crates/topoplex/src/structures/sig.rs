@@ -1069,31 +1069,15 @@ impl NavBase for Sig {
 }
 
 impl Topology for Sig {
-    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
-        Some(self)
-    }
-
-    fn kind(&self) -> StructureKind {
-        KIND
-    }
-
-    fn dimension(&self) -> usize {
-        self.first.len() - 2
-    }
-
-    fn vertex_count(&self) -> u32 {
-        self.first[1]
-    }
-
-    fn count(&self, p: usize) -> usize {
-        match (self.first.get(p), self.first.get(p + 1)) {
+    crate::relation::topology_preamble! {
+        self, KIND;
+        dimension: self.first.len() - 2;
+        vertex_count: self.first[1];
+        count(p): match (self.first.get(p), self.first.get(p + 1)) {
             (Some(a), Some(b)) => (b - a) as usize,
             _ => 0,
-        }
-    }
-
-    fn top_count(&self, p: usize) -> usize {
-        self.top_counts.get(p).copied().unwrap_or(0)
+        };
+        top_count(p): self.top_counts.get(p).copied().unwrap_or(0);
     }
 
     fn simplices(&self, p: usize, out: &mut Vec<u32>) {

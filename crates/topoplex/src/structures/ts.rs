@@ -43,7 +43,7 @@ use super::nav::NavIndex;
 use super::radial::{self, EdgeAt, EdgeLocator, NONE, TriTopo, row3, slot_ends};
 use crate::complex::{Complex, SimplexTable};
 use crate::mapped::Arr;
-use crate::relation::{QueryError, Storage, StructureKind, Topology};
+use crate::relation::{Storage, StructureKind, Topology, per_dimension};
 
 const KIND: StructureKind = StructureKind::Ts;
 
@@ -223,50 +223,14 @@ radial::nav_base!(TriangleSegment;
 );
 
 impl Topology for TriangleSegment {
-    fn as_navigate(&self) -> Option<&dyn crate::relation::handle::Navigate> {
-        Some(self)
-    }
-
-    fn kind(&self) -> StructureKind {
-        KIND
-    }
-
-    fn dimension(&self) -> usize {
-        self.dim
-    }
-
-    fn vertex_count(&self) -> u32 {
-        self.n
-    }
-
-    fn count(&self, p: usize) -> usize {
-        match p {
-            0 => self.n as usize,
-            1 if self.dim >= 1 => self.n_edges,
-            2 if self.dim >= 2 => self.tris.len(),
-            _ => 0,
-        }
-    }
-
-    fn top_count(&self, p: usize) -> usize {
-        match p {
-            0 => self.isolated,
-            1 => self.n_wires,
-            2 => self.tris.len(),
-            _ => 0,
-        }
-    }
-
-    fn simplices(&self, p: usize, out: &mut Vec<u32>) {
-        radial::simplices(self, self.n, p, out);
-    }
-
-    fn query(&self, sigma: &[u32], q: usize, out: &mut Vec<u32>) -> Result<(), QueryError> {
-        radial::query(self, sigma, q, out)
-    }
-
-    fn contains(&self, sigma: &[u32]) -> bool {
-        radial::contains(self, sigma)
+    crate::relation::topology_preamble! {
+        self, KIND;
+        dimension: self.dim;
+        vertex_count: self.n;
+        count(p): per_dimension(p, self.dim, [self.n as usize, self.n_edges, self.tris.len()]);
+        top_count(p): per_dimension(p, 2, [self.isolated, self.n_wires, self.tris.len()]);
+        answers: radial;
+        simplices: radial(self.n);
     }
 
     fn storage(&self) -> Storage {
