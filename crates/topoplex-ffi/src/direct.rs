@@ -36,42 +36,29 @@ use topoplex::structures::pe::PartialEntities;
 use topoplex::structures::radial::TriTopo;
 use topoplex::structures::ts::TriangleSegment;
 
-/// The direct writer of a structure's C handle, chosen once by its concrete type.
+/// The direct writer of a structure's C handle, chosen once: its kind's row of the registry
+/// ([`topoplex::family::fast_path`]), kept only when the concrete type is the one that row names
+/// (what makes the casts of [`direct`] sound); `None` for no fast path (the live complex, whose
+/// handles carry generations and forms, and sparse numberings).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub(crate) enum Direct {
-    /// No fast path (the live complex: its handles carry generations and forms).
-    None,
-    /// One of the nine structures: its `Navigate::related_ids` into the thread's buffer.
-    Walk,
-    /// The IG: boundaries, co-boundaries and R_{0,0} read from its stored rows.
-    Ig,
-    /// The IA: R_{d,d} read from its adjacency row.
-    Ia,
-    /// TS: R_{2,2} from the radial cycles.
-    Ts,
-    /// PE: R_{2,2} from the radial cycles.
-    Pe,
-    /// LE: R_{2,2} from the radial cycles.
-    Le,
-    /// DE: R_{2,2} from the radial cycles.
-    De,
-}
+pub(crate) struct Direct(Option<FastPath>);
 
 impl Direct {
-    /// The writer for `topo`: its kind's row of the registry ([`topoplex::family::fast_path`]);
-    /// the generic walk only for dense numberings.
+    /// The writer for `topo`.
     pub(crate) fn of(topo: &dyn Topology) -> Direct {
+        let any: &dyn Any = topo;
         let dense = topo.as_navigate().is_some_and(|n| n.dense());
-        match topoplex::family::fast_path(topo.kind()) {
-            FastPath::Ig => Direct::Ig,
-            FastPath::Ia => Direct::Ia,
-            FastPath::Ts => Direct::Ts,
-            FastPath::Pe => Direct::Pe,
-            FastPath::Le => Direct::Le,
-            FastPath::De => Direct::De,
-            FastPath::Walk if dense => Direct::Walk,
-            FastPath::Walk => Direct::None,
-        }
+        let path = topoplex::family::fast_path(topo.kind());
+        let is_its_type = match path {
+            FastPath::Ig => any.is::<IncidenceGraph>(),
+            FastPath::Ia => any.is::<IndexedAdjacency>(),
+            FastPath::Ts => any.is::<TriangleSegment>(),
+            FastPath::Pe => any.is::<PartialEntities>(),
+            FastPath::Le => any.is::<LoopEdgeUse>(),
+            FastPath::De => any.is::<DirectedEdge>(),
+            FastPath::Walk => dense,
+        };
+        Direct(is_its_type.then_some(path))
     }
 }
 
@@ -141,7 +128,7 @@ pub(crate) fn arguments<'a>(
         _ => return None,
     };
     // A dense handle of this structure: form and local bits 0 (meta is the dimension).
-    if h.owner != s.stamp || h.meta as usize > MAX_DIMENSION || s.direct == Direct::None {
+    if h.owner != s.stamp || h.meta as usize > MAX_DIMENSION || s.direct.0.is_none() {
         return None;
     }
     Some((
@@ -188,19 +175,19 @@ pub(crate) fn answer(
 /// does not fit.
 fn direct(s: &TpxStructure, h: SimplexHandle, q: usize, out: &mut impl Sink) -> Option<usize> {
     let (p, i) = (h.dim(), h.index());
-    // SAFETY (each `concrete`): `s.direct` was set by `Direct::of(&*s.topo)` from the concrete
-    // type of the structure `s.topo` holds, which is never replaced.
-    match s.direct {
-        Direct::Ig => ig(unsafe { concrete::<IncidenceGraph>(s) }, p, i, q, out),
-        Direct::Ia => {
+    // SAFETY (each `concrete`): `s.direct` was set by `Direct::of(&*s.topo)`, which keeps a row
+    // only after checking the concrete type of the structure `s.topo` holds (never replaced).
+    match s.direct.0 {
+        Some(FastPath::Ig) => ig(unsafe { concrete::<IncidenceGraph>(s) }, p, i, q, out),
+        Some(FastPath::Ia) => {
             let ia = unsafe { concrete::<IndexedAdjacency>(s) };
             ia_adjacency(ia, p, i, q, out).or_else(|| looped(ia, p, i, q, out))
         }
-        Direct::Ts => radial(unsafe { concrete::<TriangleSegment>(s) }, p, i, q, out),
-        Direct::Pe => radial(unsafe { concrete::<PartialEntities>(s) }, p, i, q, out),
-        Direct::Le => radial(unsafe { concrete::<LoopEdgeUse>(s) }, p, i, q, out),
-        Direct::De => radial(unsafe { concrete::<DirectedEdge>(s) }, p, i, q, out),
-        Direct::Walk | Direct::None => None,
+        Some(FastPath::Ts) => radial(unsafe { concrete::<TriangleSegment>(s) }, p, i, q, out),
+        Some(FastPath::Pe) => radial(unsafe { concrete::<PartialEntities>(s) }, p, i, q, out),
+        Some(FastPath::Le) => radial(unsafe { concrete::<LoopEdgeUse>(s) }, p, i, q, out),
+        Some(FastPath::De) => radial(unsafe { concrete::<DirectedEdge>(s) }, p, i, q, out),
+        Some(FastPath::Walk) | None => None,
     }
 }
 
