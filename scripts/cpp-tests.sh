@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # C/C++ tests of the installed package:
-#   1. configure, build (one `cargo rustc --release --lib`) and install Topoplex into PREFIX_DIR
+#   1. configure, build (one `cargo rustc -p topoplex-ffi --release --lib`) and install Topoplex
+#      into PREFIX_DIR
 #      (default: a temporary directory), and check the installed SONAME;
 #   2. configure, build and ctest cpp_tests/ against that prefix;
 #   3. the same with TOPOPLEX_SANITIZE=ON (ASan + UBSan, LeakSanitizer on).
