@@ -1042,11 +1042,13 @@ fn write_handles(
     buf_len: usize,
     out_len: &mut usize,
 ) -> Result<(), Failure> {
+    // As `write_buffer`: NULL_ARGUMENT for a NULL buffer with a non-zero length, whatever the
+    // answer's size.
+    if buf.is_null() && buf_len > 0 {
+        return Err(Failure::null("buf"));
+    }
     if hs.len() > buf_len {
         return too_small(hs.len(), buf_len, out_len);
-    }
-    if !hs.is_empty() && buf.is_null() {
-        return Err(Failure::null("buf"));
     }
     for (i, &x) in hs.iter().enumerate() {
         // SAFETY: `buf` has room for `buf_len >= hs.len()` handles.

@@ -808,6 +808,26 @@ fn a_null_buffer_with_a_length_is_refused_even_for_an_empty_answer() {
         assert_eq!(st, TpxStatus::NullArgument);
         let st = tpx_structure_simplices(s, 0, null_mut(), 100, &mut len);
         assert_eq!(st, TpxStatus::NullArgument);
+        // Handle answers too (their writer checked the room first: an empty answer passed).
+        let mut h = TpxSimplex::default();
+        let st = tpx_locate(s, [4u32, 5].as_ptr(), 2, &mut h);
+        assert_eq!(st, TpxStatus::Ok);
+        let st = tpx_related_handles(s, &h, 2, TPX_ORDER_NATURAL, null_mut(), 8, &mut len);
+        assert_eq!(st, TpxStatus::NullArgument);
+        let mut offsets = [7u32; 2];
+        let st = tpx_related_handles_batch(
+            s,
+            &h,
+            1,
+            2,
+            TPX_ORDER_NATURAL,
+            offsets.as_mut_ptr(),
+            null_mut(),
+            8,
+            &mut len,
+        );
+        assert_eq!((st, offsets), (TpxStatus::NullArgument, [7, 7]));
+        assert!(last_error().contains("`buf`"), "{}", last_error());
         assert_eq!(len, 0);
         tpx_structure_free(s);
         tpx_complex_free(c);
