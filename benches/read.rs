@@ -15,6 +15,7 @@ use std::path::PathBuf;
 use std::time::Duration;
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use topoplex::fixtures::freudenthal_grid;
 
 /// The (k+1)² vertices of a k×k grid with non-round coordinates, as `x y z` lines after `prefix`.
 fn grid_vertices(out: &mut String, k: u32, prefix: &str, suffix: &str) {
@@ -80,29 +81,9 @@ fn medit(k: u32) -> String {
             }
         }
     }
-    let id = |p: [u32; 3]| (p[0] * n + p[1]) * n + p[2] + 1;
     writeln!(s, "Tetrahedra\n{}", 6 * k * k * k).unwrap();
-    for x in 0..k {
-        for y in 0..k {
-            for z in 0..k {
-                for perm in [
-                    [0, 1, 2],
-                    [0, 2, 1],
-                    [1, 0, 2],
-                    [1, 2, 0],
-                    [2, 0, 1],
-                    [2, 1, 0],
-                ] {
-                    let mut p = [x, y, z];
-                    let mut t = [id(p); 4];
-                    for (slot, axis) in t[1..].iter_mut().zip(perm) {
-                        p[axis] += 1;
-                        *slot = id(p);
-                    }
-                    writeln!(s, "{} {} {} {} 1", t[0], t[1], t[2], t[3]).unwrap();
-                }
-            }
-        }
+    for [a, b, c, d] in freudenthal_grid(k, |[x, y, z]| (x * n + y) * n + z + 1) {
+        writeln!(s, "{a} {b} {c} {d} 1").unwrap();
     }
     s.push_str("End\n");
     s

@@ -23,6 +23,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use topoplex::StructureKind;
+use topoplex::fixtures::freudenthal_grid;
 use topoplex::store::Saved;
 
 fn peak_mib() -> f64 {
@@ -60,28 +61,8 @@ fn grid(k: u32, out: &Path) -> std::io::Result<()> {
         }
     }
     writeln!(w, "Tetrahedra\n{}", 6 * (k as u64).pow(3))?;
-    let id = |p: [u32; 3]| (p[0] * n + p[1]) * n + p[2] + 1;
-    for x in 0..k {
-        for y in 0..k {
-            for z in 0..k {
-                for perm in [
-                    [0, 1, 2],
-                    [0, 2, 1],
-                    [1, 0, 2],
-                    [1, 2, 0],
-                    [2, 0, 1],
-                    [2, 1, 0],
-                ] {
-                    let mut p = [x, y, z];
-                    let mut t = [id(p); 4];
-                    for (i, a) in perm.into_iter().enumerate() {
-                        p[a] += 1;
-                        t[i + 1] = id(p);
-                    }
-                    writeln!(w, "{} {} {} {} 0", t[0], t[1], t[2], t[3])?;
-                }
-            }
-        }
+    for [a, b, c, d] in freudenthal_grid(k, |[x, y, z]| (x * n + y) * n + z + 1) {
+        writeln!(w, "{a} {b} {c} {d} 0")?;
     }
     writeln!(w, "End")?;
     w.flush()

@@ -22,6 +22,7 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -77,6 +78,65 @@ inline void check(TpxStatus status) {
     throw Error(status, tpx_last_error_message());
   }
 }
+
+/* The value a C call writes through its last (out) parameter: fn(args..., &value), checked.
+ * T is value-initialised first (0, nullptr, an all-zero struct). */
+template <class T, class F, class... A>
+T get(F fn, A... args) {
+  T value{};
+  check(fn(args..., &value));
+  return value;
+}
+
+/* A C call that writes an answer into a caller's buffer: fn(args..., buf.data(), buf.size(),
+ * &len), checked, then buf resized to the answer's length. When the library answers
+ * BUFFER_TOO_SMALL (len then holds the length needed) buf grows to len and fn is called once
+ * more: the object is immutable or exclusively borrowed between the calls, so that suffices. */
+template <class V, class F, class... A>
+void fill(V &buf, F fn, A... args) {
+  std::size_t len = 0;
+  TpxStatus st = fn(args..., buf.data(), buf.size(), &len);
+  if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
+    buf.resize(len);
+    st = fn(args..., buf.data(), buf.size(), &len);
+  }
+  check(st);
+  buf.resize(len);
+}
+
+/* The one owner of a library object: holds a T* (possibly null), move-only, and releases it
+ * with Free (a tpx_*_free, which accepts null) when destroyed or assigned over. A class
+ * holding one as a member gets its move constructor, move assignment and destructor
+ * implicitly, all noexcept, and no copies. */
+template <class T, void (*Free)(T *)>
+class Owned {
+ public:
+  Owned() = default;
+  explicit Owned(T *p) noexcept : p_(p) {}
+  Owned(Owned &&o) noexcept : p_(std::exchange(o.p_, nullptr)) {}
+  Owned &operator=(Owned &&o) noexcept {
+    if (this != &o) {
+      Free(p_);
+      p_ = std::exchange(o.p_, nullptr);
+    }
+    return *this;
+  }
+  Owned(const Owned &) = delete;
+  Owned &operator=(const Owned &) = delete;
+  ~Owned() { Free(p_); }
+  T *get() const noexcept { return p_; }
+
+ private:
+  T *p_ = nullptr;
+};
+
+/* What every owning class below promises (checked once each, after its definition). */
+template <class C>
+constexpr bool move_only = std::is_nothrow_move_constructible<C>::value &&
+                           std::is_nothrow_move_assignable<C>::value &&
+                           std::is_nothrow_destructible<C>::value &&
+                           !std::is_copy_constructible<C>::value &&
+                           !std::is_copy_assignable<C>::value;
 }  // namespace detail
 
 /* A non-owning view of one simplex: its ascending vertex ids. */
@@ -191,74 +251,48 @@ class Complex {
                              const std::vector<std::size_t> &offsets,
                              const std::vector<double> &coords = {},
                              std::size_t coord_dim = 0, std::uint64_t max_simplices = 0) {
-    TpxComplex *c = nullptr;
     const std::size_t n = offsets.empty() ? 0 : offsets.size() - 1;
-    detail::check(tpx_complex_from_arrays_budget(n_vertices, ids.data(), offsets.data(), n,
-                                                 coords.empty() ? nullptr : coords.data(),
-                                                 coord_dim, max_simplices, &c));
-    return Complex(c);
+    return Complex(detail::get<TpxComplex *>(tpx_complex_from_arrays_budget, n_vertices,
+                                             ids.data(), offsets.data(), n,
+                                             coords.empty() ? nullptr : coords.data(), coord_dim,
+                                             max_simplices));
   }
 
   /* Reads .off, .obj, .mesh or .simplices (max_simplices: as for from_arrays). */
   static Complex from_file(const std::string &path, std::uint64_t max_simplices = 0) {
-    TpxComplex *c = nullptr;
-    detail::check(tpx_complex_from_file_budget(path.c_str(), max_simplices, &c));
-    return Complex(c);
+    return Complex(
+        detail::get<TpxComplex *>(tpx_complex_from_file_budget, path.c_str(), max_simplices));
   }
 
   /* The complex saved in a .tpx file (`topoplex save`, Complex::save), rebuilt from its saved
    * listing and validated like any input: O(size of the listing). */
   static Complex open(const std::string &path) {
-    TpxComplex *c = nullptr;
-    detail::check(tpx_complex_open(path.c_str(), &c));
-    return Complex(c);
+    return Complex(detail::get<TpxComplex *>(tpx_complex_open, path.c_str()));
   }
-
-  Complex(Complex &&o) noexcept : c_(std::exchange(o.c_, nullptr)) {}
-  Complex &operator=(Complex &&o) noexcept {
-    if (this != &o) {
-      tpx_complex_free(c_);
-      c_ = std::exchange(o.c_, nullptr);
-    }
-    return *this;
-  }
-  Complex(const Complex &) = delete;
-  Complex &operator=(const Complex &) = delete;
-  ~Complex() { tpx_complex_free(c_); }
 
   std::uint32_t dimension() const {
-    std::uint32_t d = 0;
-    detail::check(tpx_complex_dimension(c_, &d));
-    return d;
+    return detail::get<std::uint32_t>(tpx_complex_dimension, c_.get());
   }
   std::uint32_t vertex_count() const {
-    std::uint32_t n = 0;
-    detail::check(tpx_complex_vertex_count(c_, &n));
-    return n;
+    return detail::get<std::uint32_t>(tpx_complex_vertex_count, c_.get());
   }
   std::size_t top_count(std::uint32_t p) const {
-    std::size_t n = 0;
-    detail::check(tpx_complex_top_count(c_, p, &n));
-    return n;
+    return detail::get<std::size_t>(tpx_complex_top_count, c_.get(), p);
   }
   /* What normalisation absorbed: simplices as given, extra listings, faces of listed ones. */
   TpxInputStats input_stats() const {
-    TpxInputStats s{};
-    detail::check(tpx_complex_input_stats(c_, &s));
-    return s;
+    return detail::get<TpxInputStats>(tpx_complex_input_stats, c_.get());
   }
   /* Coordinates per vertex; 0 when the complex has none. */
   std::size_t coord_dim() const {
-    std::size_t n = 0;
-    detail::check(tpx_complex_coord_dim(c_, &n));
-    return n;
+    return detail::get<std::size_t>(tpx_complex_coord_dim, c_.get());
   }
   /* Listed simplex i exactly as given; `top` receives its top id (as Structure::top numbers
    * them) or UINT32_MAX when it was absorbed as a face of another listed simplex. */
   std::vector<std::uint32_t> input_simplex(std::size_t i, std::uint32_t &top) const {
     std::vector<std::uint32_t> out(16);
     std::size_t len = 0;
-    detail::check(tpx_complex_input_simplex(c_, i, out.data(), out.size(), &len, &top));
+    detail::check(tpx_complex_input_simplex(c_.get(), i, out.data(), out.size(), &len, &top));
     out.resize(len);
     return out;
   }
@@ -266,36 +300,33 @@ class Complex {
   /* The coordinates, vertex-major (coord_dim() per vertex); empty without coordinates. */
   std::vector<double> coords() const {
     std::vector<double> buf(coord_dim() * vertex_count());
-    std::size_t len = 0;
-    detail::check(tpx_complex_coords(c_, buf.data(), buf.size(), &len));
-    buf.resize(len);
+    detail::fill(buf, tpx_complex_coords, c_.get());
     return buf;
   }
   /* The top p-simplices in ascending lexicographic order (throws for p > dimension()). */
   Rows top_simplices(std::uint32_t p) const {
     std::vector<std::uint32_t> buf((p + 1) * top_count(p));
-    std::size_t len = 0;
-    detail::check(tpx_complex_top_simplices(c_, p, buf.data(), buf.size(), &len));
-    buf.resize(len);
+    detail::fill(buf, tpx_complex_top_simplices, c_.get(), p);
     return Rows(std::move(buf), p + 1);
   }
   /* Writes the complex (top simplices in input order and winding, coordinates bit for bit);
    * throws TPX_STATUS_FORMAT_CANNOT_HOLD, naming the simplex, if the format cannot hold it. */
   void write(const std::string &path, Format format = Format::FromExtension) const {
-    detail::check(tpx_complex_write(c_, path.c_str(), static_cast<std::uint32_t>(format)));
+    detail::check(tpx_complex_write(c_.get(), path.c_str(), static_cast<std::uint32_t>(format)));
   }
   /* Saves the complex alone to a .tpx file (written under a temporary name, then renamed);
    * Structure::save stores a structure beside it. */
   void save(const std::string &path) const {
-    detail::check(tpx_save(c_, nullptr, path.c_str()));
+    detail::check(tpx_save(c_.get(), nullptr, path.c_str()));
   }
-  const TpxComplex *get() const noexcept { return c_; }
+  const TpxComplex *get() const noexcept { return c_.get(); }
 
  private:
   friend class Live;
   explicit Complex(TpxComplex *c) noexcept : c_(c) {}
-  TpxComplex *c_ = nullptr;
+  detail::Owned<TpxComplex, tpx_complex_free> c_;
 };
+static_assert(detail::move_only<Complex>, "Complex: a move-only owner");
 
 /* R_{p,q} of every p-simplex (owns a TpxRelationTable): row i, a RowsView of q+1 ids, belongs
    to the i-th p-simplex of Structure::simplices(p). */
@@ -328,29 +359,6 @@ class RelationTable {
     std::size_t i_ = 0;
   };
 
-  RelationTable(RelationTable &&o) noexcept
-      : t_(std::exchange(o.t_, nullptr)),
-        offsets_(o.offsets_),
-        n_offsets_(o.n_offsets_),
-        ids_(o.ids_),
-        n_ids_(o.n_ids_),
-        arity_(o.arity_) {}
-  RelationTable &operator=(RelationTable &&o) noexcept {
-    if (this != &o) {
-      tpx_relation_table_free(t_);
-      t_ = std::exchange(o.t_, nullptr);
-      offsets_ = o.offsets_;
-      n_offsets_ = o.n_offsets_;
-      ids_ = o.ids_;
-      n_ids_ = o.n_ids_;
-      arity_ = o.arity_;
-    }
-    return *this;
-  }
-  RelationTable(const RelationTable &) = delete;
-  RelationTable &operator=(const RelationTable &) = delete;
-  ~RelationTable() { tpx_relation_table_free(t_); }
-
   /* Number of rows (n_p). */
   std::size_t size() const noexcept { return n_offsets_ == 0 ? 0 : n_offsets_ - 1; }
   std::size_t arity() const noexcept { return arity_; }
@@ -368,17 +376,17 @@ class RelationTable {
  private:
   friend class Structure;
   RelationTable(TpxRelationTable *t, std::size_t arity) noexcept : t_(t), arity_(arity) {
-    offsets_ = tpx_relation_table_offsets(t_, &n_offsets_);
-    ids_ = tpx_relation_table_ids(t_, &n_ids_);
+    offsets_ = tpx_relation_table_offsets(t, &n_offsets_);
+    ids_ = tpx_relation_table_ids(t, &n_ids_);
   }
-  TpxRelationTable *t_ = nullptr;
+  detail::Owned<TpxRelationTable, tpx_relation_table_free> t_;
   const std::size_t *offsets_ = nullptr;
   std::size_t n_offsets_ = 0;
   const std::uint32_t *ids_ = nullptr;
   std::size_t n_ids_ = 0;
   std::size_t arity_ = 1;
 };
-
+static_assert(detail::move_only<RelationTable>, "RelationTable: a move-only owner");
 
 /* Answer order of navigation calls. */
 enum class Order : std::uint32_t {
@@ -535,82 +543,44 @@ class Fans {
 /* A built structure (owns a TpxStructure). Independent of the Complex once built. */
 class Structure {
  public:
-  Structure(const Complex &c, Kind kind) {
-    detail::check(tpx_structure_build(c.get(), static_cast<std::uint32_t>(kind), &s_));
-    detail::check(tpx_structure_stamp(s_, &stamp_));
-  }
+  Structure(const Complex &c, Kind kind)
+      : Structure(detail::get<TpxStructure *>(tpx_structure_build, c.get(),
+                                              static_cast<std::uint32_t>(kind))) {}
   /* The structure of `kind` saved in a .tpx file, memory-mapped: opening costs O(sections)
    * (O(file) with verify: every checksum and invariant checked first); arrays are paged in as
    * queries touch them and the mapping lives as long as the Structure. A file holding another
    * kind or only a complex gets the structure built from its saved complex instead. */
   static Structure open(const std::string &path, Kind kind, bool verify = false) {
-    TpxStructure *s = nullptr;
-    detail::check(tpx_structure_open(path.c_str(), static_cast<std::uint32_t>(kind),
-                                     verify ? TPX_OPEN_VERIFY : 0u, &s));
-    return Structure(s);
+    return Structure(detail::get<TpxStructure *>(tpx_structure_open, path.c_str(),
+                                                 static_cast<std::uint32_t>(kind),
+                                                 verify ? TPX_OPEN_VERIFY : 0u));
   }
-
-  Structure(Structure &&o) noexcept : s_(std::exchange(o.s_, nullptr)), stamp_(o.stamp_) {}
-  Structure &operator=(Structure &&o) noexcept {
-    if (this != &o) {
-      tpx_structure_free(s_);
-      s_ = std::exchange(o.s_, nullptr);
-      stamp_ = o.stamp_;
-    }
-    return *this;
-  }
-  Structure(const Structure &) = delete;
-  Structure &operator=(const Structure &) = delete;
-  ~Structure() { tpx_structure_free(s_); }
 
   Kind kind() const {
-    std::uint32_t k = 0;
-    detail::check(tpx_structure_kind(s_, &k));
-    return static_cast<Kind>(k);
+    return static_cast<Kind>(detail::get<std::uint32_t>(tpx_structure_kind, s_.get()));
   }
   std::uint32_t dimension() const {
-    std::uint32_t d = 0;
-    detail::check(tpx_structure_dimension(s_, &d));
-    return d;
+    return detail::get<std::uint32_t>(tpx_structure_dimension, s_.get());
   }
   std::size_t count(std::uint32_t p) const {
-    std::size_t n = 0;
-    detail::check(tpx_structure_count(s_, p, &n));
-    return n;
+    return detail::get<std::size_t>(tpx_structure_count, s_.get(), p);
   }
   std::size_t top_count(std::uint32_t p) const {
-    std::size_t n = 0;
-    detail::check(tpx_structure_top_count(s_, p, &n));
-    return n;
+    return detail::get<std::size_t>(tpx_structure_top_count, s_.get(), p);
   }
-  TpxStorage storage() const {
-    TpxStorage st{0, 0, 0};
-    detail::check(tpx_structure_storage(s_, &st));
-    return st;
-  }
+  TpxStorage storage() const { return detail::get<TpxStorage>(tpx_structure_storage, s_.get()); }
 
   /* Every p-simplex in ascending lexicographic order. */
   Rows simplices(std::uint32_t p) const {
     std::vector<std::uint32_t> buf((p + 1) * count(p));
-    std::size_t len = 0;
-    detail::check(tpx_structure_simplices(s_, p, buf.data(), buf.size(), &len));
-    buf.resize(len);
+    detail::fill(buf, tpx_structure_simplices, s_.get(), p);
     return Rows(std::move(buf), p + 1);
   }
 
   /* R_{p,q}(simplex), p = simplex.size() - 1, in ascending lexicographic order. */
   Rows relation(const std::vector<std::uint32_t> &simplex, std::uint32_t q) const {
     std::vector<std::uint32_t> buf(16 * (q + 1));
-    std::size_t len = 0;
-    TpxStatus st = tpx_relation(s_, simplex.data(), simplex.size(), q, buf.data(), buf.size(),
-                                &len);
-    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
-      // The structure is immutable, so the second call needs exactly `len`.
-      buf.resize(len);
-      st = tpx_relation(s_, simplex.data(), simplex.size(), q, buf.data(), buf.size(), &len);
-    }
-    detail::check(st);
-    buf.resize(len);
+    detail::fill(buf, tpx_relation, s_.get(), simplex.data(), simplex.size(), q);
     return Rows(std::move(buf), q + 1);
   }
   Rows relation(std::initializer_list<std::uint32_t> simplex, std::uint32_t q) const {
@@ -619,9 +589,8 @@ class Structure {
 
   /* R_{p,q} of every p-simplex at once. */
   RelationTable relation_table(std::uint32_t p, std::uint32_t q) const {
-    TpxRelationTable *t = nullptr;
-    detail::check(tpx_relation_table(s_, p, q, &t));
-    return RelationTable(t, q + 1);
+    return RelationTable(detail::get<TpxRelationTable *>(tpx_relation_table, s_.get(), p, q),
+                         q + 1);
   }
 
 
@@ -629,9 +598,7 @@ class Structure {
 
   /* The handle of the simplex with these vertex ids (any order); throws NOT_IN_COMPLEX. */
   Simplex locate(const std::uint32_t *ids, std::size_t n) const {
-    TpxSimplex h{};
-    detail::check(tpx_locate(s_, ids, n, &h));
-    return Simplex(h);
+    return Simplex(detail::get<TpxSimplex>(tpx_locate, s_.get(), ids, n));
   }
   Simplex locate(const std::vector<std::uint32_t> &ids) const {
     return locate(ids.data(), ids.size());
@@ -641,9 +608,7 @@ class Structure {
   }
   /* The p-simplex of dense index i (checked). vertex(v) = handle(0, v). */
   Simplex handle(std::uint32_t p, std::uint32_t i) const {
-    TpxSimplex h{};
-    detail::check(tpx_handle(s_, p, i, &h));
-    return Simplex(h);
+    return Simplex(detail::get<TpxSimplex>(tpx_handle, s_.get(), p, i));
   }
   Simplex vertex(std::uint32_t v) const { return handle(0, v); }
   /* The owner stamp every handle of this structure carries. */
@@ -652,9 +617,7 @@ class Structure {
   /* Vertex ids of h, ascending, into `out` (reused). */
   void vertices(Simplex h, std::vector<std::uint32_t> &out) const {
     out.resize(16);
-    std::size_t len = 0;
-    detail::check(tpx_simplex_vertices(s_, &h.raw(), out.data(), out.size(), &len));
-    out.resize(len);
+    detail::fill(out, tpx_simplex_vertices, s_.get(), &h.raw());
   }
   std::vector<std::uint32_t> vertices(Simplex h) const {
     std::vector<std::uint32_t> out;
@@ -668,16 +631,7 @@ class Structure {
                Order order = Order::Natural) const {
     if (out.capacity() < 16) out.reserve(16);
     out.resize(out.capacity());
-    std::size_t len = 0;
-    TpxStatus st = tpx_related(s_, &h.raw(), q, static_cast<std::uint32_t>(order), out.data(),
-                               out.size(), &len);
-    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
-      out.resize(len);
-      st = tpx_related(s_, &h.raw(), q, static_cast<std::uint32_t>(order), out.data(),
-                       out.size(), &len);
-    }
-    detail::check(st);
-    out.resize(len);
+    detail::fill(out, tpx_related, s_.get(), &h.raw(), q, static_cast<std::uint32_t>(order));
   }
   /* R_{p,q}(h) as a range of handles. */
   SimplexList related(Simplex h, std::uint32_t q, Order order = Order::Natural) const {
@@ -702,37 +656,25 @@ class Structure {
                      Order order = Order::Natural) const {
     offsets.resize(indices.size() + 1);
     if (ids.empty()) ids.resize(indices.size() * 8 + 16);
-    std::size_t len = 0;
     const auto o = static_cast<std::uint32_t>(order);
-    TpxStatus st = tpx_related_batch(s_, p, indices.data(), indices.size(), q, o,
-                                     offsets.data(), ids.data(), ids.size(), &len);
-    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
-      ids.resize(len);
-      st = tpx_related_batch(s_, p, indices.data(), indices.size(), q, o, offsets.data(),
-                             ids.data(), ids.size(), &len);
-    }
-    detail::check(st);
-    ids.resize(len);
+    detail::fill(ids, tpx_related_batch, s_.get(), p, indices.data(), indices.size(), q, o,
+                 offsets.data());
   }
   /* R_{p,q} of every p-simplex, lent as a RelationView iterated inline (see RelationView for
    * its cost: the first call for a relation the structure does not store builds an index). */
   RelationView view(std::uint32_t p, std::uint32_t q) const {
-    TpxRelationView v{};
-    detail::check(tpx_relation_view(s_, p, q, &v));
-    return RelationView(v, q, stamp_);
+    return RelationView(detail::get<TpxRelationView>(tpx_relation_view, s_.get(), p, q), q, stamp_);
   }
   /* |R_{p,q}| of the p-simplices of dense indices `indices` into `out` (resized), counts only
    * (tpx_degree_batch: O(1) each for relations the IG stores). */
   void degrees(std::uint32_t p, const std::vector<std::uint32_t> &indices, std::uint32_t q,
                std::vector<std::uint32_t> &out) const {
     out.resize(indices.size());
-    detail::check(tpx_degree_batch(s_, p, indices.data(), indices.size(), q, out.data()));
+    detail::check(tpx_degree_batch(s_.get(), p, indices.data(), indices.size(), q, out.data()));
   }
   /* |R_{p,q}(h)| without writing the answer. */
   std::size_t degree(Simplex h, std::uint32_t q) const {
-    std::size_t n = 0;
-    detail::check(tpx_degree(s_, &h.raw(), q, &n));
-    return n;
+    return detail::get<std::size_t>(tpx_degree, s_.get(), &h.raw(), q);
   }
   bool is_boundary(Simplex h) const { return test(h, 0); }
   bool is_manifold(Simplex h) const { return test(h, 1); }
@@ -742,28 +684,18 @@ class Structure {
 
   /* Top simplices: ids 0..top_total()-1 (dimension ascending, lexicographic within; the same
    * for every structure of one complex). */
-  std::uint32_t top_total() const {
-    std::uint32_t n = 0;
-    detail::check(tpx_top_total(s_, &n));
-    return n;
-  }
+  std::uint32_t top_total() const { return detail::get<std::uint32_t>(tpx_top_total, s_.get()); }
   Simplex top(std::uint32_t t) const {
-    TpxSimplex h{};
-    detail::check(tpx_top(s_, t, &h));
-    return Simplex(h);
+    return Simplex(detail::get<TpxSimplex>(tpx_top, s_.get(), t));
   }
   /* The top id of h, or UINT32_MAX when h is not a top simplex. */
   std::uint32_t top_id(Simplex h) const {
-    std::uint32_t t = 0;
-    detail::check(tpx_top_id(s_, &h.raw(), &t));
-    return t;
+    return detail::get<std::uint32_t>(tpx_top_id, s_.get(), &h.raw());
   }
   /* Top simplex t with its vertices as given in the input (its winding). */
   std::vector<std::uint32_t> top_as_given(std::uint32_t t) const {
     std::vector<std::uint32_t> out(16);
-    std::size_t len = 0;
-    detail::check(tpx_top_as_given(s_, t, out.data(), out.size(), &len));
-    out.resize(len);
+    detail::fill(out, tpx_top_as_given, s_.get(), t);
     return out;
   }
 
@@ -795,51 +727,35 @@ class Structure {
   /* Saves this structure with `c`, the complex it was built from (the file pairs them), to a
    * .tpx file: one pass over the listing and the structure's arrays. */
   void save(const Complex &c, const std::string &path) const {
-    detail::check(tpx_save(c.get(), s_, path.c_str()));
+    detail::check(tpx_save(c.get(), s_.get(), path.c_str()));
   }
 
-  const TpxStructure *get() const noexcept { return s_; }
+  const TpxStructure *get() const noexcept { return s_.get(); }
 
  private:
-  explicit Structure(TpxStructure *s) : s_(s) {
-    const TpxStatus st = tpx_structure_stamp(s_, &stamp_);
-    if (st != TPX_STATUS_OK) {
-      tpx_structure_free(s_);
-      detail::check(st);
-    }
-  }
+  /* Takes ownership of s first, so that s is freed when reading its stamp fails. */
+  explicit Structure(TpxStructure *s)
+      : s_(s), stamp_(detail::get<std::uint32_t>(tpx_structure_stamp, s)) {}
   bool test(Simplex h, std::uint32_t what) const {
-    std::uint32_t r = 0;
-    detail::check(tpx_simplex_test(s_, &h.raw(), what, &r));
-    return r != 0;
+    return detail::get<std::uint32_t>(tpx_simplex_test, s_.get(), &h.raw(), what) != 0;
   }
   std::vector<Simplex> star_or_link(Simplex h, std::uint32_t link, Order o) const {
     std::vector<TpxSimplex> buf(64);
-    std::size_t len = 0;
-    const auto ord = static_cast<std::uint32_t>(o);
-    TpxStatus st = tpx_star(s_, &h.raw(), link, ord, buf.data(), buf.size(), &len);
-    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
-      buf.resize(len);
-      st = tpx_star(s_, &h.raw(), link, ord, buf.data(), buf.size(), &len);
-    }
-    detail::check(st);
-    std::vector<Simplex> out;
-    out.reserve(len);
-    for (std::size_t i = 0; i < len; ++i) out.emplace_back(buf[i]);
-    return out;
+    detail::fill(buf, tpx_star, s_.get(), &h.raw(), link, static_cast<std::uint32_t>(o));
+    return std::vector<Simplex>(buf.begin(), buf.end());
   }
   void cyclic(Simplex h, std::uint32_t q, std::uint32_t dim, Fans &f) const {
     if (f.items_.size() < 16) f.items_.resize(16);
     if (f.flags_.size() < 4) f.flags_.resize(4);
     f.offsets_.resize(f.flags_.size() + 1);
     std::size_t ni = 0, ng = 0;
-    TpxStatus st = tpx_cyclic(s_, &h.raw(), q, f.items_.data(), f.items_.size(),
+    TpxStatus st = tpx_cyclic(s_.get(), &h.raw(), q, f.items_.data(), f.items_.size(),
                               f.offsets_.data(), f.flags_.data(), f.flags_.size(), &ni, &ng);
     if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
       if (f.items_.size() < ni) f.items_.resize(ni);
       if (f.flags_.size() < ng) f.flags_.resize(ng);
       f.offsets_.resize(f.flags_.size() + 1);
-      st = tpx_cyclic(s_, &h.raw(), q, f.items_.data(), f.items_.size(), f.offsets_.data(),
+      st = tpx_cyclic(s_.get(), &h.raw(), q, f.items_.data(), f.items_.size(), f.offsets_.data(),
                       f.flags_.data(), f.flags_.size(), &ni, &ng);
     }
     detail::check(st);
@@ -849,9 +765,10 @@ class Structure {
     f.owner_ = stamp_;
   }
 
-  TpxStructure *s_ = nullptr;
+  detail::Owned<TpxStructure, tpx_structure_free> s_;
   std::uint32_t stamp_ = 0;
 };
+static_assert(detail::move_only<Structure>, "Structure: a move-only owner");
 
 /* Per-simplex user data for the p-simplices of one structure, indexed by handle (dense index),
  * as pmp and geometry-central do: a std::vector<T> of count(p) entries. */
@@ -887,37 +804,26 @@ class Decomposition {
     const std::uint32_t *original_ids;
     std::size_t local_vertex_count;
   };
-  explicit Decomposition(const Complex &c) { detail::check(tpx_decomposition_build(c.get(), &d_)); }
-  Decomposition(Decomposition &&o) noexcept : d_(std::exchange(o.d_, nullptr)) {}
-  Decomposition &operator=(Decomposition &&o) noexcept {
-    if (this != &o) {
-      tpx_decomposition_free(d_);
-      d_ = std::exchange(o.d_, nullptr);
-    }
-    return *this;
-  }
-  Decomposition(const Decomposition &) = delete;
-  Decomposition &operator=(const Decomposition &) = delete;
-  ~Decomposition() { tpx_decomposition_free(d_); }
+  explicit Decomposition(const Complex &c)
+      : d_(detail::get<TpxDecomposition *>(tpx_decomposition_build, c.get())) {}
 
   std::size_t size() const {
-    std::size_t n = 0;
-    detail::check(tpx_decomposition_component_count(d_, &n));
-    return n;
+    return detail::get<std::size_t>(tpx_decomposition_component_count, d_.get());
   }
   Component operator[](std::size_t i) const {
     std::uint32_t dim = 0;
     const std::uint32_t *tops = nullptr, *orig = nullptr;
     std::size_t tops_len = 0, orig_len = 0;
     detail::check(
-        tpx_decomposition_component(d_, i, &dim, &tops, &tops_len, &orig, &orig_len));
+        tpx_decomposition_component(d_.get(), i, &dim, &tops, &tops_len, &orig, &orig_len));
     return Component{dim, RowsView(tops, tops_len, dim + 1), orig, orig_len};
   }
-  const TpxDecomposition *get() const noexcept { return d_; }
+  const TpxDecomposition *get() const noexcept { return d_.get(); }
 
  private:
-  TpxDecomposition *d_ = nullptr;
+  detail::Owned<TpxDecomposition, tpx_decomposition_free> d_;
 };
+static_assert(detail::move_only<Decomposition>, "Decomposition: a move-only owner");
 
 /* What Live::contract may unify (values of TPX_CONTRACT_*). */
 enum class ContractMode : std::uint32_t {
@@ -931,22 +837,12 @@ class Undo {
  public:
   Undo() = default;
   explicit Undo(TpxUndo *u) noexcept : u_(u) {}
-  Undo(Undo &&o) noexcept : u_(std::exchange(o.u_, nullptr)) {}
-  Undo &operator=(Undo &&o) noexcept {
-    if (this != &o) {
-      tpx_undo_free(u_);
-      u_ = std::exchange(o.u_, nullptr);
-    }
-    return *this;
-  }
-  Undo(const Undo &) = delete;
-  Undo &operator=(const Undo &) = delete;
-  ~Undo() { tpx_undo_free(u_); }
-  const TpxUndo *get() const noexcept { return u_; }
+  const TpxUndo *get() const noexcept { return u_.get(); }
 
  private:
-  TpxUndo *u_ = nullptr;
+  detail::Owned<TpxUndo, tpx_undo_free> u_;
 };
+static_assert(detail::move_only<Undo>, "Undo: a move-only owner");
 
 /* Handles over a borrowed array of TpxSimplex (answers of the live complex, whose simplices
  * above vertices have no dense index). Iterating yields Simplex values; no allocation. */
@@ -1054,104 +950,64 @@ class HandleBatch {
  * TPX_STATUS_LINK_CONDITION_FAILS, ...) and leaves the complex unchanged. */
 class Live {
  public:
-  explicit Live(const Complex &c) { detail::check(tpx_live_from_complex(c.get(), &l_)); }
+  explicit Live(const Complex &c)
+      : l_(detail::get<TpxLive *>(tpx_live_from_complex, c.get())) {}
   /* An editable live complex from a .tpx file: the saved live complex if it holds one, else one
    * built from its saved complex. Arrays are copied out (editable): O(size). */
   static Live open(const std::string &path, bool verify = false) {
-    TpxLive *l = nullptr;
-    detail::check(tpx_live_open(path.c_str(), verify ? TPX_OPEN_VERIFY : 0u, &l));
-    return Live(l);
+    return Live(
+        detail::get<TpxLive *>(tpx_live_open, path.c_str(), verify ? TPX_OPEN_VERIFY : 0u));
   }
   /* Saves a compacted copy (this live complex is unchanged, its handles stay valid): O(size). */
-  void save(const std::string &path) const { detail::check(tpx_live_save(l_, path.c_str())); }
-  Live(Live &&o) noexcept : l_(std::exchange(o.l_, nullptr)) {}
-  Live &operator=(Live &&o) noexcept {
-    if (this != &o) {
-      tpx_live_free(l_);
-      l_ = std::exchange(o.l_, nullptr);
-    }
-    return *this;
-  }
-  Live(const Live &) = delete;
-  Live &operator=(const Live &) = delete;
-  ~Live() { tpx_live_free(l_); }
-
+  void save(const std::string &path) const { detail::check(tpx_live_save(l_.get(), path.c_str())); }
   std::uint32_t vertex_slots() const {
-    std::uint32_t n = 0;
-    detail::check(tpx_live_vertex_slots(l_, &n));
-    return n;
+    return detail::get<std::uint32_t>(tpx_live_vertex_slots, l_.get());
   }
   std::uint32_t vertex_count() const {
-    std::uint32_t n = 0;
-    detail::check(tpx_live_vertex_count(l_, &n));
-    return n;
+    return detail::get<std::uint32_t>(tpx_live_vertex_count, l_.get());
   }
   bool is_vertex(std::uint32_t v) const {
-    std::uint32_t b = 0;
-    detail::check(tpx_live_is_vertex(l_, v, &b));
-    return b != 0;
+    return detail::get<std::uint32_t>(tpx_live_is_vertex, l_.get(), v) != 0;
   }
   std::uint32_t dimension() const {
-    std::uint32_t d = 0;
-    detail::check(tpx_live_dimension(l_, &d));
-    return d;
+    return detail::get<std::uint32_t>(tpx_live_dimension, l_.get());
   }
   std::size_t top_count(std::uint32_t p) const {
-    std::size_t n = 0;
-    detail::check(tpx_live_top_count(l_, p, &n));
-    return n;
+    return detail::get<std::size_t>(tpx_live_top_count, l_.get(), p);
   }
   /* Live top p-simplices (p >= 1), vertices in stored (winding) order. */
   Rows top_simplices(std::uint32_t p) const {
-    std::size_t len = 0;
-    TpxStatus st = tpx_live_top_simplices(l_, p, nullptr, 0, &len);
-    std::vector<std::uint32_t> buf(len);
-    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
-      st = tpx_live_top_simplices(l_, p, buf.data(), buf.size(), &len);
-    }
-    detail::check(st);
-    buf.resize(len);
+    std::vector<std::uint32_t> buf;  // empty: the first call asks for the length
+    detail::fill(buf, tpx_live_top_simplices, l_.get(), p);
     return Rows(std::move(buf), p + 1);
   }
   /* R_{p,q}(simplex), rows of q+1 ascending ids, lexicographic. */
   Rows relation(const std::vector<std::uint32_t> &simplex, std::uint32_t q) const {
     std::vector<std::uint32_t> buf(64);
-    std::size_t len = 0;
-    TpxStatus st = tpx_live_relation(l_, simplex.data(), simplex.size(), q, buf.data(),
-                                     buf.size(), &len);
-    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
-      buf.resize(len);
-      st = tpx_live_relation(l_, simplex.data(), simplex.size(), q, buf.data(), buf.size(), &len);
-    }
-    detail::check(st);
-    buf.resize(len);
+    detail::fill(buf, tpx_live_relation, l_.get(), simplex.data(), simplex.size(), q);
     return Rows(std::move(buf), q + 1);
   }
   std::vector<double> coords(std::uint32_t v) const {
-    std::size_t k = 0;
-    detail::check(tpx_live_coord_dim(l_, &k));
-    std::vector<double> xyz(k);
+    std::vector<double> xyz(detail::get<std::size_t>(tpx_live_coord_dim, l_.get()));
     std::size_t len = 0;
-    detail::check(tpx_live_coords(l_, v, xyz.data(), xyz.size(), &len));
+    detail::check(tpx_live_coords(l_.get(), v, xyz.data(), xyz.size(), &len));
     return xyz;
   }
   void set_coords(std::uint32_t v, const std::vector<double> &xyz) {
-    detail::check(tpx_live_set_coords(l_, v, xyz.data(), xyz.size()));
+    detail::check(tpx_live_set_coords(l_.get(), v, xyz.data(), xyz.size()));
   }
   std::uint32_t add_vertex(const std::vector<double> &xyz) {
-    std::uint32_t v = 0;
-    detail::check(tpx_live_add_vertex(l_, xyz.data(), xyz.size(), &v));
-    return v;
+    return detail::get<std::uint32_t>(tpx_live_add_vertex, l_.get(), xyz.data(), xyz.size());
   }
   void insert_top(const std::vector<std::uint32_t> &simplex) {
-    detail::check(tpx_live_insert_top(l_, simplex.data(), simplex.size()));
+    detail::check(tpx_live_insert_top(l_.get(), simplex.data(), simplex.size()));
   }
   void remove_top(const std::vector<std::uint32_t> &simplex) {
-    detail::check(tpx_live_remove_top(l_, simplex.data(), simplex.size()));
+    detail::check(tpx_live_remove_top(l_.get(), simplex.data(), simplex.size()));
   }
   /* Whether {a, b} is an edge satisfying the link condition (no exception). */
   bool link_condition(std::uint32_t a, std::uint32_t b) const {
-    TpxStatus st = tpx_live_link_condition(l_, a, b);
+    TpxStatus st = tpx_live_link_condition(l_.get(), a, b);
     if (st == TPX_STATUS_NOT_AN_EDGE || st == TPX_STATUS_LINK_CONDITION_FAILS) {
       return false;
     }
@@ -1160,7 +1016,7 @@ class Live {
   }
   /* The link condition on the complex coned over its boundary (what PreserveManifold checks). */
   bool link_condition_with_boundary(std::uint32_t a, std::uint32_t b) const {
-    TpxStatus st = tpx_live_link_condition_with_boundary(l_, a, b);
+    TpxStatus st = tpx_live_link_condition_with_boundary(l_.get(), a, b);
     if (st == TPX_STATUS_NOT_AN_EDGE || st == TPX_STATUS_LINK_CONDITION_FAILS) {
       return false;
     }
@@ -1171,29 +1027,24 @@ class Live {
   Undo contract(std::uint32_t a, std::uint32_t b,
                 ContractMode mode = ContractMode::PreserveTopology,
                 const std::vector<double> &position = {}) {
-    TpxUndo *u = nullptr;
-    detail::check(tpx_live_contract(l_, a, b, static_cast<std::uint32_t>(mode),
-                                    position.empty() ? nullptr : position.data(),
-                                    position.size(), &u));
-    return Undo(u);
+    return Undo(detail::get<TpxUndo *>(tpx_live_contract, l_.get(), a, b,
+                                       static_cast<std::uint32_t>(mode),
+                                       position.empty() ? nullptr : position.data(),
+                                       position.size()));
   }
   /* Undoes a contraction (vertex split). */
-  void split(const Undo &u) { detail::check(tpx_live_split(l_, u.get())); }
+  void split(const Undo &u) { detail::check(tpx_live_split(l_.get(), u.get())); }
   /* Drops removed vertices and slots; returns old -> new vertex ids (UINT32_MAX: removed). */
   std::vector<std::uint32_t> compact() {
     std::vector<std::uint32_t> map(vertex_slots());
-    std::size_t len = 0;
-    detail::check(tpx_live_compact(l_, map.data(), map.size(), &len));
-    map.resize(len);
+    detail::fill(map, tpx_live_compact, l_.get());
     return map;
   }
   /* A frozen copy, to build any Structure from. */
   Complex to_complex() const {
-    TpxComplex *c = nullptr;
-    detail::check(tpx_live_to_complex(l_, &c));
-    return Complex(c);
+    return Complex(detail::get<TpxComplex *>(tpx_live_to_complex, l_.get()));
   }
-  void validate() const { detail::check(tpx_live_validate(l_)); }
+  void validate() const { detail::check(tpx_live_validate(l_.get())); }
 
   /* ---- handles: the same navigation as Structure (see tpx_live_structure) ----
    * A vertex's handle index is its id; other simplices are named through a top simplex.
@@ -1205,29 +1056,21 @@ class Live {
 
   /* The live complex seen as a borrowed structure (never free it), for the tpx_* handle calls. */
   const TpxStructure *structure() const {
-    const TpxStructure *s = nullptr;
-    detail::check(tpx_live_structure(l_, &s));
-    return s;
+    return detail::get<const TpxStructure *>(tpx_live_structure, l_.get());
   }
   Simplex locate(std::initializer_list<std::uint32_t> ids) const {
     return locate(std::vector<std::uint32_t>(ids));
   }
   Simplex locate(const std::vector<std::uint32_t> &ids) const {
-    TpxSimplex h{};
-    detail::check(tpx_locate(structure(), ids.data(), ids.size(), &h));
-    return Simplex(h);
+    return Simplex(detail::get<TpxSimplex>(tpx_locate, structure(), ids.data(), ids.size()));
   }
   Simplex vertex(std::uint32_t v) const {
-    TpxSimplex h{};
-    detail::check(tpx_handle(structure(), 0, v, &h));
-    return Simplex(h);
+    return Simplex(detail::get<TpxSimplex>(tpx_handle, structure(), 0, v));
   }
   /* Vertex ids of h, ascending. */
   std::vector<std::uint32_t> vertices(Simplex h) const {
     std::vector<std::uint32_t> out(16);
-    std::size_t len = 0;
-    detail::check(tpx_simplex_vertices(structure(), &h.raw(), out.data(), out.size(), &len));
-    out.resize(len);
+    detail::fill(out, tpx_simplex_vertices, structure(), &h.raw());
     return out;
   }
   /* R_{p,q}(h) as handles into `out` (reused: no allocation once it has grown). */
@@ -1235,16 +1078,8 @@ class Live {
                Order order = Order::Natural) const {
     if (out.capacity() < 16) out.reserve(16);
     out.resize(out.capacity());
-    std::size_t len = 0;
-    const TpxStructure *s = structure();
-    const auto o = static_cast<std::uint32_t>(order);
-    TpxStatus st = tpx_related_handles(s, &h.raw(), q, o, out.data(), out.size(), &len);
-    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
-      out.resize(len);
-      st = tpx_related_handles(s, &h.raw(), q, o, out.data(), out.size(), &len);
-    }
-    detail::check(st);
-    out.resize(len);
+    detail::fill(out, tpx_related_handles, structure(), &h.raw(), q,
+                 static_cast<std::uint32_t>(order));
   }
   HandleList related(Simplex h, std::uint32_t q, Order order = Order::Natural) const {
     std::vector<TpxSimplex> out;
@@ -1291,9 +1126,7 @@ class Live {
     return b;
   }
   std::size_t degree(Simplex h, std::uint32_t q) const {
-    std::size_t n = 0;
-    detail::check(tpx_degree(structure(), &h.raw(), q, &n));
-    return n;
+    return detail::get<std::size_t>(tpx_degree, structure(), &h.raw(), q);
   }
   bool is_boundary(Simplex h) const { return test(h, 0); }
   bool is_manifold(Simplex h) const { return test(h, 1); }
@@ -1301,16 +1134,12 @@ class Live {
   HandleList link(Simplex h, Order o = Order::Natural) const { return star_or_link(h, 1, o); }
   /* The top id of h (dimension in the top 4 bits, slot below; not dense), or UINT32_MAX. */
   std::uint32_t top_id(Simplex h) const {
-    std::uint32_t t = 0;
-    detail::check(tpx_top_id(structure(), &h.raw(), &t));
-    return t;
+    return detail::get<std::uint32_t>(tpx_top_id, structure(), &h.raw());
   }
   /* Top simplex t with its vertices in stored (winding) order. */
   std::vector<std::uint32_t> top_as_given(std::uint32_t t) const {
     std::vector<std::uint32_t> out(16);
-    std::size_t len = 0;
-    detail::check(tpx_top_as_given(structure(), t, out.data(), out.size(), &len));
-    out.resize(len);
+    detail::fill(out, tpx_top_as_given, structure(), t);
     return out;
   }
   /* Manifold fans of triangles around vertex v (a complex of dimension <= 2), each
@@ -1336,26 +1165,15 @@ class Live {
     return f;
   }
 
-  const TpxLive *get() const noexcept { return l_; }
+  const TpxLive *get() const noexcept { return l_.get(); }
 
  private:
   bool test(Simplex h, std::uint32_t what) const {
-    std::uint32_t r = 0;
-    detail::check(tpx_simplex_test(structure(), &h.raw(), what, &r));
-    return r != 0;
+    return detail::get<std::uint32_t>(tpx_simplex_test, structure(), &h.raw(), what) != 0;
   }
   HandleList star_or_link(Simplex h, std::uint32_t link, Order o) const {
     std::vector<TpxSimplex> buf(64);
-    std::size_t len = 0;
-    const TpxStructure *s = structure();
-    const auto ord = static_cast<std::uint32_t>(o);
-    TpxStatus st = tpx_star(s, &h.raw(), link, ord, buf.data(), buf.size(), &len);
-    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
-      buf.resize(len);
-      st = tpx_star(s, &h.raw(), link, ord, buf.data(), buf.size(), &len);
-    }
-    detail::check(st);
-    buf.resize(len);
+    detail::fill(buf, tpx_star, structure(), &h.raw(), link, static_cast<std::uint32_t>(o));
     return HandleList(std::move(buf));
   }
   void cyclic(Simplex h, std::uint32_t q, HandleFans &f) const {
@@ -1380,8 +1198,9 @@ class Live {
   }
 
   explicit Live(TpxLive *l) noexcept : l_(l) {}
-  TpxLive *l_ = nullptr;
+  detail::Owned<TpxLive, tpx_live_free> l_;
 };
+static_assert(detail::move_only<Live>, "Live: a move-only owner");
 
 inline std::string version() { return tpx_version(); }
 

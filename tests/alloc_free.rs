@@ -266,9 +266,11 @@ fn every_operation(s: *const TpxStructure, kind: u32, t: &mut Tally) {
     }
 }
 
-/// Runs every operation twice on each of the nine structures of `c` that can hold it; the
-/// second pass must not allocate. Returns the number of structures and of measured calls.
-fn check_complex(c: *const TpxComplex) -> (usize, usize) {
+/// Runs every operation twice on each of the nine structures of the complex of `simplices`
+/// that can hold it; the second pass must not allocate, and over 1000 calls must have been
+/// measured. Returns the number of structures.
+fn check_complex(n: u32, simplices: &[&[u32]]) -> usize {
+    let c = complex(n, simplices);
     let mut built = 0;
     let mut t = Tally::default();
     for kind in TPX_KIND_IG..=TPX_KIND_DE {
@@ -302,7 +304,10 @@ fn check_complex(c: *const TpxComplex) -> (usize, usize) {
         t.calls,
         ops
     );
-    (built, t.calls)
+    // SAFETY: built above.
+    unsafe { tpx_complex_free(c) };
+    assert!(t.calls > 1000, "{} calls measured", t.calls);
+    built
 }
 
 #[test]
@@ -312,7 +317,7 @@ fn surface_with_pinch_fan_and_wire_allocates_nothing_in_any_structure() {
     // 3---1---5---|---7   and an isolated vertex 8; windings mixed
     //  \  |  /    |  /
     //   `-0-'----'  6
-    let c = complex(
+    let built = check_complex(
         9,
         &[
             &[0, 1, 2],
@@ -326,12 +331,8 @@ fn surface_with_pinch_fan_and_wire_allocates_nothing_in_any_structure() {
             &[7, 6, 8],
         ],
     );
-    let (built, calls) = check_complex(c);
-    // SAFETY: built above.
-    unsafe { tpx_complex_free(c) };
     // IA needs a pseudo-manifold, LE connected vertex stars: the next fixture has both.
     assert_eq!(built, 7, "every structure but IA and LE holds this complex");
-    assert!(calls > 1000, "{calls} calls measured");
 }
 
 #[test]
@@ -341,7 +342,7 @@ fn open_octahedron_allocates_nothing_in_any_structure() {
     //    3 --+-- 1         boundary cycle 0-1-5, windings mixed
     //      \ | /
     //        5     (0 and 2 at the back and front of the square)
-    let c = complex(
+    let built = check_complex(
         6,
         &[
             &[0, 1, 4],
@@ -353,11 +354,7 @@ fn open_octahedron_allocates_nothing_in_any_structure() {
             &[0, 3, 5],
         ],
     );
-    let (built, calls) = check_complex(c);
-    // SAFETY: built above.
-    unsafe { tpx_complex_free(c) };
     assert_eq!(built, 9, "every structure holds a pseudo-manifold surface");
-    assert!(calls > 1000, "{calls} calls measured");
 }
 
 #[test]
@@ -369,7 +366,7 @@ fn tetrahedra_with_dangling_triangle_and_wire_allocate_nothing() {
     //        \ | /
     //         \|/
     //          1
-    let c = complex(
+    let built = check_complex(
         7,
         &[
             &[0, 1, 2, 3],
@@ -379,14 +376,10 @@ fn tetrahedra_with_dangling_triangle_and_wire_allocate_nothing() {
             &[0, 2, 3, 6],
         ],
     );
-    let (built, calls) = check_complex(c);
-    // SAFETY: built above.
-    unsafe { tpx_complex_free(c) };
     assert!(
         built >= 4,
         "IG, SIG, IA and IQM hold a 3-complex ({built} built)"
     );
-    assert!(calls > 1000, "{calls} calls measured");
 }
 
 /// Handle calls of the live complex's navigation, on handles located before the edit, some of

@@ -290,25 +290,37 @@ fn every_structure_dumps_what_the_ig_dumps_on_real_data() {
     }
 }
 
-#[test]
-fn decompose_writes_components_and_gluing() {
-    //   0       3
-    //   | \   / |      bowtie: two triangles pinched at vertex 2, plus a wire edge 4-5
-    //   |  2    |
-    //   | /   \ |
-    //   1       4 --- 5
+/// `topoplex decompose` of a bowtie with a wire (written as `file`) into the folder `out` beside
+/// it, with `options`; the command must succeed. Returns the folder and the output.
+///
+/// ```text
+///   0       3
+///   | \   / |      bowtie: two triangles pinched at vertex 2, plus a wire edge 4-5
+///   |  2    |
+///   | /   \ |
+///   1       4 --- 5
+/// ```
+fn decompose_bowtie(file: &str, out: &str, options: &[&str]) -> (PathBuf, Output) {
     let f = temp_file(
-        "bowtie.simplices",
+        file,
         "v 0 0 0\nv 0 1 0\nv 1 0.5 0\nv 2 1 0\nv 2 0 0\nv 3 0 0\ns 0 1 2\ns 2 3 4\ns 4 5\n",
     );
-    let out = f.with_file_name("bowtie-parts");
-    let o = run(&[
+    let out = f.with_file_name(out);
+    let mut args = vec![
         "decompose",
         f.to_str().unwrap(),
         "--out",
         out.to_str().unwrap(),
-    ]);
+    ];
+    args.extend_from_slice(options);
+    let o = run(&args);
     assert!(o.status.success(), "{}", stderr(&o));
+    (out, o)
+}
+
+#[test]
+fn decompose_writes_components_and_gluing() {
+    let (out, o) = decompose_bowtie("bowtie.simplices", "bowtie-parts", &[]);
     assert!(
         stdout(&o).starts_with("3 components, 2 split vertices"),
         "{}",
@@ -400,20 +412,7 @@ fn convert_refuses_what_the_format_cannot_hold() {
 
 #[test]
 fn decompose_writes_components_in_a_chosen_format() {
-    let f = temp_file(
-        "bowtie-fmt.simplices",
-        "v 0 0 0\nv 0 1 0\nv 1 0.5 0\nv 2 1 0\nv 2 0 0\nv 3 0 0\ns 0 1 2\ns 2 3 4\ns 4 5\n",
-    );
-    let out = f.with_file_name("bowtie-obj");
-    let o = run(&[
-        "decompose",
-        f.to_str().unwrap(),
-        "--out",
-        out.to_str().unwrap(),
-        "--format",
-        "obj",
-    ]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    let (out, _) = decompose_bowtie("bowtie-fmt.simplices", "bowtie-obj", &["--format", "obj"]);
     let mut names: Vec<String> = std::fs::read_dir(&out)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())

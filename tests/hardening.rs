@@ -42,6 +42,11 @@ fn run_in(dir: &Path, args: &[&str]) -> Output {
     topoplex().current_dir(dir).args(args).output().unwrap()
 }
 
+/// The `outcome` of `run_in(dir, args)`.
+fn run_outcome(dir: &Path, args: &[&str]) -> String {
+    outcome(dir, &run_in(dir, args))
+}
+
 /// `args` with stdout (or stderr) going to `/dev/full`.
 fn run_full(dir: &Path, args: &[&str], stderr_full: bool) -> Output {
     let full = || {
@@ -122,34 +127,31 @@ fn cases(dir: &Path) -> Vec<(&'static str, &'static str, String)> {
     row(
         "4 closure bomb",
         "`report bomb.simplices` (11 bytes: `s 16777215`)",
-        outcome(dir, &run_in(dir, &["report", "bomb.simplices"])),
+        run_outcome(dir, &["report", "bomb.simplices"]),
     );
     write(dir, "bomb1000.simplices", &disjoint_simplices(1000, 15));
     row(
         "4 closure bomb",
         "`report bomb1000.simplices` (1,000 disjoint 15-simplices, 87 KB)",
-        outcome(dir, &run_in(dir, &["report", "bomb1000.simplices"])),
+        run_outcome(dir, &["report", "bomb1000.simplices"]),
     );
     row(
         "4 closure bomb",
         "`relation one15.simplices ... --max-simplices 1000` (budget lowered)",
-        outcome(
+        run_outcome(
             dir,
-            &run_in(
-                dir,
-                &[
-                    "relation",
-                    "one15.simplices",
-                    "--structure",
-                    "ig",
-                    "--relation",
-                    "0,0",
-                    "--simplex",
-                    "0",
-                    "--max-simplices",
-                    "1000",
-                ],
-            ),
+            &[
+                "relation",
+                "one15.simplices",
+                "--structure",
+                "ig",
+                "--relation",
+                "0,0",
+                "--simplex",
+                "0",
+                "--max-simplices",
+                "1000",
+            ],
         ),
     );
     let o = run_in(
@@ -237,7 +239,7 @@ fn cases(dir: &Path) -> Vec<(&'static str, &'static str, String)> {
     row(
         "9 silent overwrites",
         "`convert mesh.obj mesh.obj` (the normals would be lost)",
-        outcome(dir, &run_in(dir, &["convert", "mesh.obj", "mesh.obj"])),
+        run_outcome(dir, &["convert", "mesh.obj", "mesh.obj"]),
     );
     assert!(
         std::fs::read_to_string(dir.join("mesh.obj"))
@@ -252,10 +254,7 @@ fn cases(dir: &Path) -> Vec<(&'static str, &'static str, String)> {
     row(
         "9 silent overwrites",
         "`decompose bowtie.simplices --out parts` (parts/ holds notes.txt)",
-        outcome(
-            dir,
-            &run_in(dir, &["decompose", "bowtie.simplices", "--out", "parts"]),
-        ),
+        run_outcome(dir, &["decompose", "bowtie.simplices", "--out", "parts"]),
     );
     write(dir, "parts/component_7.off", "stale\n");
     let o = run_in(
@@ -280,35 +279,29 @@ fn cases(dir: &Path) -> Vec<(&'static str, &'static str, String)> {
     row(
         "9 silent overwrites",
         "`decompose parts/component_0.simplices --out parts --force` (the input is an earlier component)",
-        outcome(
+        run_outcome(
             dir,
-            &run_in(
-                dir,
-                &[
-                    "decompose",
-                    "parts/component_0.simplices",
-                    "--out",
-                    "parts",
-                    "--force",
-                ],
-            ),
+            &[
+                "decompose",
+                "parts/component_0.simplices",
+                "--out",
+                "parts",
+                "--force",
+            ],
         ),
     );
     row(
         "9 silent overwrites",
         "`decompose bowtie.simplices --out bowtie.simplices --force` (the input as output directory)",
-        outcome(
+        run_outcome(
             dir,
-            &run_in(
-                dir,
-                &[
-                    "decompose",
-                    "bowtie.simplices",
-                    "--out",
-                    "bowtie.simplices",
-                    "--force",
-                ],
-            ),
+            &[
+                "decompose",
+                "bowtie.simplices",
+                "--out",
+                "bowtie.simplices",
+                "--force",
+            ],
         ),
     );
 
@@ -316,34 +309,31 @@ fn cases(dir: &Path) -> Vec<(&'static str, &'static str, String)> {
     row(
         "13 usage errors",
         "`topoplex` (no command)",
-        outcome(dir, &run_in(dir, &[])),
+        run_outcome(dir, &[]),
     );
     row(
         "13 usage errors",
         "`relation` (missing arguments)",
-        outcome(dir, &run_in(dir, &["relation"])),
+        run_outcome(dir, &["relation"]),
     );
     row(
         "13 usage errors",
         "`report --bogus`",
-        outcome(dir, &run_in(dir, &["report", "--bogus"])),
+        run_outcome(dir, &["report", "--bogus"]),
     );
     row(
         "13 usage errors",
         "`relation f --relation 1;2 ...`",
-        outcome(
+        run_outcome(
             dir,
-            &run_in(
-                dir,
-                &[
-                    "relation",
-                    "bowtie.simplices",
-                    "--structure",
-                    "ig",
-                    "--relation",
-                    "1;2",
-                ],
-            ),
+            &[
+                "relation",
+                "bowtie.simplices",
+                "--structure",
+                "ig",
+                "--relation",
+                "1;2",
+            ],
         ),
     );
 
@@ -352,19 +342,16 @@ fn cases(dir: &Path) -> Vec<(&'static str, &'static str, String)> {
     row(
         "6 unbounded, unescaped messages",
         "`relation f --structure $'ig\\v\\ufeff'xxx...` (100 KB)",
-        outcome(
+        run_outcome(
             dir,
-            &run_in(
-                dir,
-                &[
-                    "relation",
-                    "bowtie.simplices",
-                    "--structure",
-                    &long,
-                    "--relation",
-                    "0,1",
-                ],
-            ),
+            &[
+                "relation",
+                "bowtie.simplices",
+                "--structure",
+                &long,
+                "--relation",
+                "0,1",
+            ],
         ),
     );
 
@@ -385,7 +372,7 @@ fn cases(dir: &Path) -> Vec<(&'static str, &'static str, String)> {
     row(
         "6 unbounded, unescaped messages",
         "`report short-array.vtu` (a base64 array of 3 bytes, shorter than its size header: vtkio panics)",
-        outcome(dir, &run_in(dir, &["report", "short-array.vtu"])),
+        run_outcome(dir, &["report", "short-array.vtu"]),
     );
 
     // Class 10 (readers and the steps after them): under an address-space limit the CLI refuses

@@ -969,33 +969,21 @@ fn readme_example_contracts_edges_on_a_non_manifold_mesh_through_the_c_abi() {
         );
         assert_eq!(st, TpxStatus::Ok);
         assert_eq!(tpx_live_from_complex(c, &mut l), TpxStatus::Ok);
+        // Contractions without a new position.
+        let contract = move |a, b, mode, u: *mut *mut TpxUndo| {
+            tpx_live_contract(l, a, b, mode, std::ptr::null(), 0, u)
+        };
         assert_eq!(
             tpx_live_link_condition(l, 1, 2),
             TpxStatus::LinkConditionFails
         );
         assert_eq!(
-            tpx_live_contract(
-                l,
-                1,
-                2,
-                TPX_CONTRACT_PRESERVE_TOPOLOGY,
-                std::ptr::null(),
-                0,
-                &mut u
-            ),
+            contract(1, 2, TPX_CONTRACT_PRESERVE_TOPOLOGY, &mut u),
             TpxStatus::LinkConditionFails
         );
         assert!(u.is_null());
         assert_eq!(
-            tpx_live_contract(
-                l,
-                1,
-                3,
-                TPX_CONTRACT_PRESERVE_TOPOLOGY,
-                std::ptr::null(),
-                0,
-                &mut u
-            ),
+            contract(1, 3, TPX_CONTRACT_PRESERVE_TOPOLOGY, &mut u),
             TpxStatus::Ok
         );
         assert_eq!(tpx_live_top_count(l, 2, &mut count), TpxStatus::Ok);
@@ -1005,27 +993,11 @@ fn readme_example_contracts_edges_on_a_non_manifold_mesh_through_the_c_abi() {
         assert_eq!(tpx_live_top_count(l, 2, &mut count), TpxStatus::Ok);
         assert_eq!(count, 3);
         assert_eq!(
-            tpx_live_contract(
-                l,
-                0,
-                3,
-                TPX_CONTRACT_PRESERVE_TOPOLOGY,
-                std::ptr::null(),
-                0,
-                std::ptr::null_mut()
-            ),
+            contract(0, 3, TPX_CONTRACT_PRESERVE_TOPOLOGY, std::ptr::null_mut()),
             TpxStatus::NotAnEdge
         );
         assert_eq!(
-            tpx_live_contract(
-                l,
-                0,
-                3,
-                TPX_CONTRACT_FREE,
-                std::ptr::null(),
-                0,
-                std::ptr::null_mut()
-            ),
+            contract(0, 3, TPX_CONTRACT_FREE, std::ptr::null_mut()),
             TpxStatus::Ok
         );
         assert_eq!(tpx_live_top_count(l, 2, &mut count), TpxStatus::Ok);

@@ -214,25 +214,12 @@ fn tetrahedra_pinched_at_an_edge_and_at_a_vertex() {
 /// The cube [0,1]³ cut into six tetrahedra around its diagonal 0-7 (vertex i at the corner
 /// whose x, y, z are bits 0, 1, 2 of i).
 fn kuhn_cube() -> Vec<Vec<u32>> {
-    let mut tops = Vec::new();
-    for perm in [
-        [0, 1, 2],
-        [0, 2, 1],
-        [1, 0, 2],
-        [1, 2, 0],
-        [2, 0, 1],
-        [2, 1, 0],
-    ] {
-        let mut v = 0u32;
-        let mut t = vec![0];
-        for axis in perm {
-            v |= 1 << axis;
-            t.push(v);
-        }
-        t.sort_unstable();
-        tops.push(t);
-    }
-    tops
+    fixtures::freudenthal_grid(1, |[x, y, z]| x | y << 1 | z << 2)
+        .map(|mut t| {
+            t.sort_unstable();
+            t.to_vec()
+        })
+        .collect()
 }
 
 #[test]

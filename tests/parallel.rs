@@ -8,38 +8,8 @@ mod common;
 
 use proptest::test_runner::{Config, TestRunner};
 use topoplex::build;
+use topoplex::fixtures::tetrahedral_grid;
 use topoplex::{Complex, StructureKind};
-
-/// A k×k×k grid of cubes, each cut into the six tetrahedra around its main diagonal.
-fn tetrahedral_grid(k: u32) -> Complex {
-    let n = k + 1;
-    let id = |p: [u32; 3]| (p[0] * n + p[1]) * n + p[2];
-    let mut tets: Vec<Vec<u32>> = Vec::new();
-    for x in 0..k {
-        for y in 0..k {
-            for z in 0..k {
-                for perm in [
-                    [0, 1, 2],
-                    [0, 2, 1],
-                    [1, 0, 2],
-                    [1, 2, 0],
-                    [2, 0, 1],
-                    [2, 1, 0],
-                ] {
-                    let mut p = [x, y, z];
-                    let mut t = vec![id(p)];
-                    for a in perm {
-                        p[a] += 1;
-                        t.push(id(p));
-                    }
-                    tets.push(t);
-                }
-            }
-        }
-    }
-    let refs: Vec<&[u32]> = tets.iter().map(Vec::as_slice).collect();
-    Complex::from_simplices(n * n * n, &refs).unwrap()
-}
 
 /// The boundary surface of the grid plus a few wire edges: a 2-complex for the triangle-based
 /// structures.

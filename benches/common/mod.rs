@@ -18,37 +18,7 @@ pub fn triangle_grid(k: u32) -> Complex {
 
 /// A k×k×k grid of cubes, each cut into the six tetrahedra around its main diagonal
 /// (Freudenthal): ~26k³ simplices.
-pub fn tetrahedral_grid(k: u32) -> Complex {
-    let n = k + 1;
-    let id = |x: u32, y: u32, z: u32| (x * n + y) * n + z;
-    let mut tets = Vec::with_capacity(6 * (k * k * k) as usize);
-    let axes: [[u32; 3]; 3] = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
-    for x in 0..k {
-        for y in 0..k {
-            for z in 0..k {
-                for perm in [
-                    [0, 1, 2],
-                    [0, 2, 1],
-                    [1, 0, 2],
-                    [1, 2, 0],
-                    [2, 0, 1],
-                    [2, 1, 0],
-                ] {
-                    let mut p = [x, y, z];
-                    let mut t = vec![id(p[0], p[1], p[2])];
-                    for a in perm {
-                        for c in 0..3 {
-                            p[c] += axes[a][c];
-                        }
-                        t.push(id(p[0], p[1], p[2]));
-                    }
-                    tets.push(t);
-                }
-            }
-        }
-    }
-    complex(n * n * n, &tets)
-}
+pub use topoplex::fixtures::tetrahedral_grid;
 
 pub fn complex(n: u32, simplices: &[Vec<u32>]) -> Complex {
     let refs: Vec<&[u32]> = simplices.iter().map(Vec::as_slice).collect();

@@ -239,14 +239,24 @@ ComplexPtr load_complex(const std::string& path) {
   return ComplexPtr(c);
 }
 
-std::vector<uint32_t> top_simplices(const TpxComplex* c, uint32_t p) {
+namespace {
+// The `count(h, p)` p-simplices that `list` writes, as rows of p+1 ids (both calls checked).
+template <class H, class Count, class List>
+std::vector<uint32_t> rows_of(const H* h, uint32_t p, Count count, const char* count_name, List list,
+                              const char* list_name) {
   size_t n = 0;
-  tpx_check(tpx_complex_top_count(c, p, &n), "tpx_complex_top_count");
+  tpx_check(count(h, p, &n), count_name);
   std::vector<uint32_t> rows(n * (p + 1));
   size_t len = 0;
-  tpx_check(tpx_complex_top_simplices(c, p, rows.data(), rows.size(), &len), "tpx_complex_top_simplices");
+  tpx_check(list(h, p, rows.data(), rows.size(), &len), list_name);
   rows.resize(len);
   return rows;
+}
+}  // namespace
+
+std::vector<uint32_t> top_simplices(const TpxComplex* c, uint32_t p) {
+  return rows_of(c, p, tpx_complex_top_count, "tpx_complex_top_count", tpx_complex_top_simplices,
+                 "tpx_complex_top_simplices");
 }
 
 Soup soup_of(const TpxComplex* c) {
@@ -273,6 +283,17 @@ StructurePtr build_from_soup(const Soup& soup, uint32_t kind, TpxStatus* st) {
   TpxStructure* s = nullptr;
   *st = tpx_structure_build(c, kind, &s);
   return StructurePtr(s);
+}
+
+StructurePtr build_or_abort(const Soup& soup, uint32_t kind, const char* what) {
+  TpxStatus st = TPX_STATUS_OK;
+  StructurePtr s = build_from_soup(soup, kind, &st);
+  tpx_check(st, what);
+  return s;
+}
+
+uint64_t soup_simplex_count(const Soup& soup) {
+  return simplex_count(build_or_abort(soup, TPX_KIND_IG, "building the IG").get());
 }
 
 LivePtr live_from_soup(const Soup& soup, TpxStatus* st) {
@@ -378,13 +399,8 @@ void add_view_walk(const std::string& op, const std::string& lib, std::function<
 }
 
 std::vector<uint32_t> simplices_of(const TpxStructure* s, uint32_t p) {
-  size_t n = 0;
-  tpx_check(tpx_structure_count(s, p, &n), "tpx_structure_count");
-  std::vector<uint32_t> rows(n * (p + 1));
-  size_t len = 0;
-  tpx_check(tpx_structure_simplices(s, p, rows.data(), rows.size(), &len), "tpx_structure_simplices");
-  rows.resize(len);
-  return rows;
+  return rows_of(s, p, tpx_structure_count, "tpx_structure_count", tpx_structure_simplices,
+                 "tpx_structure_simplices");
 }
 
 std::vector<uint32_t> vertex_rows(uint32_t n) {

@@ -134,6 +134,11 @@ std::vector<uint32_t> top_simplices(const TpxComplex* c, uint32_t p);
 // freed, so what stays is the structure alone. Coordinates are not passed: no structure keeps
 // geometry. Returns null (status in *st) if the kind refuses the complex.
 StructurePtr build_from_soup(const Soup& soup, uint32_t kind, TpxStatus* st);
+// build_from_soup for set-up code (the kinds of kinds_that_build): aborts the program with the
+// library's message, naming `what`, if the kind refuses the complex.
+StructurePtr build_or_abort(const Soup& soup, uint32_t kind, const char* what = "tpx_structure_build");
+// The number of simplices of all dimensions of `soup` (the `elements` of load/build), from its IG.
+uint64_t soup_simplex_count(const Soup& soup);
 // The live complex's `build`: tpx_complex_from_arrays + tpx_live_from_complex, complex freed, as
 // build_from_soup. Returns null (status in *st) on a refusal.
 LivePtr live_from_soup(const Soup& soup, TpxStatus* st);
@@ -154,41 +159,37 @@ class Walker {
   Walker() : buf_(4096) {}
   // Number of rows of R_{p,q}(sigma), p = len - 1; 0 with `ok` false on an error.
   uint64_t rows(const TpxStructure* s, const uint32_t* sigma, size_t len, uint32_t q, bool* ok) {
-    size_t out = 0;
-    TpxStatus st = tpx_relation(s, sigma, len, q, buf_.data(), buf_.size(), &out);
-    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
-      buf_.resize(2 * out);
-      st = tpx_relation(s, sigma, len, q, buf_.data(), buf_.size(), &out);
-    }
-    if (st != TPX_STATUS_OK) {
-      *ok = false;
-      return 0;
-    }
-    return out / (q + 1);
+    return call(buf_, ok, [&](uint32_t* b, size_t n, size_t* out) {
+             return tpx_relation(s, sigma, len, q, b, n, out);
+           }) /
+           (q + 1);
   }
   // Number of simplices of R_{p,q}(h) through the handle API (dense indices into the reused
   // buffer); 0 with `ok` false on an error.
   uint64_t related(const TpxStructure* s, const TpxSimplex& h, uint32_t q, bool* ok) {
-    size_t out = 0;
-    TpxStatus st = tpx_related(s, &h, q, TPX_ORDER_NATURAL, buf_.data(), buf_.size(), &out);
-    if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
-      buf_.resize(2 * out);
-      st = tpx_related(s, &h, q, TPX_ORDER_NATURAL, buf_.data(), buf_.size(), &out);
-    }
-    if (st != TPX_STATUS_OK) {
-      *ok = false;
-      return 0;
-    }
-    return out;
+    return call(buf_, ok, [&](uint32_t* b, size_t n, size_t* out) {
+      return tpx_related(s, &h, q, TPX_ORDER_NATURAL, b, n, out);
+    });
   }
   // Number of simplices of R_{p,q}(h) as handles (tpx_related_handles into a reused buffer: the
   // call for structures without dense indices, the live complex); 0 with `ok` false on an error.
   uint64_t related_handles(const TpxStructure* s, const TpxSimplex& h, uint32_t q, bool* ok) {
+    return call(hbuf_, ok, [&](TpxSimplex* b, size_t n, size_t* out) {
+      return tpx_related_handles(s, &h, q, TPX_ORDER_NATURAL, b, n, out);
+    });
+  }
+  const uint32_t* data() const { return buf_.data(); }
+
+ private:
+  // fn(buf.data(), buf.size(), &len), once more after growing `buf` to twice the length asked
+  // for on BUFFER_TOO_SMALL; the length written, or 0 with `ok` false on an error.
+  template <class V, class F>
+  static uint64_t call(V& buf, bool* ok, F fn) {
     size_t out = 0;
-    TpxStatus st = tpx_related_handles(s, &h, q, TPX_ORDER_NATURAL, hbuf_.data(), hbuf_.size(), &out);
+    TpxStatus st = fn(buf.data(), buf.size(), &out);
     if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
-      hbuf_.resize(2 * out);
-      st = tpx_related_handles(s, &h, q, TPX_ORDER_NATURAL, hbuf_.data(), hbuf_.size(), &out);
+      buf.resize(2 * out);
+      st = fn(buf.data(), buf.size(), &out);
     }
     if (st != TPX_STATUS_OK) {
       *ok = false;
@@ -196,9 +197,7 @@ class Walker {
     }
     return out;
   }
-  const uint32_t* data() const { return buf_.data(); }
 
- private:
   std::vector<uint32_t> buf_;
   std::vector<TpxSimplex> hbuf_ = std::vector<TpxSimplex>(1024);
 };

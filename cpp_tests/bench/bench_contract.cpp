@@ -66,6 +66,16 @@ Grid triangle_grid(uint32_t k) {
 }
 
 // The edge sample of benches/live.rs: sorted (lower, higher) pairs, every step-th, 20,000.
+// The grid as a Topoplex complex (tpx_complex_from_arrays, no coordinates).
+ComplexPtr grid_complex(const Grid& g) {
+  std::vector<size_t> offsets(g.tris.size() / 3 + 1);
+  for (size_t i = 0; i < offsets.size(); ++i) offsets[i] = 3 * i;
+  TpxComplex* c = nullptr;
+  tpx_check(tpx_complex_from_arrays(g.n_vertices, g.tris.data(), offsets.data(), offsets.size() - 1, nullptr, 0, &c),
+            "tpx_complex_from_arrays");
+  return ComplexPtr(c);
+}
+
 std::vector<std::pair<uint32_t, uint32_t>> edge_sample(const Grid& g) {
   std::vector<std::pair<uint32_t, uint32_t>> edges;
   for (size_t t = 0; t < g.tris.size(); t += 3) {
@@ -178,24 +188,18 @@ int main(int argc, char** argv) {
   for (uint32_t mode : {uint32_t(TPX_CONTRACT_PRESERVE_TOPOLOGY), uint32_t(TPX_CONTRACT_PRESERVE_MANIFOLD)}) {
     const char* lib = mode == TPX_CONTRACT_PRESERVE_TOPOLOGY ? "tpx" : "tpx_manifold";
     add("contract", lib, Unit::Walk, [&, mode](benchmark::State& st) {
-      std::vector<size_t> offsets(grid.tris.size() / 3 + 1);
-      for (size_t i = 0; i < offsets.size(); ++i) offsets[i] = 3 * i;
-      TpxComplex* c = nullptr;
-      tpx_check(tpx_complex_from_arrays(grid.n_vertices, grid.tris.data(), offsets.data(), offsets.size() - 1,
-                                        nullptr, 0, &c),
-                "tpx_complex_from_arrays");
+      const ComplexPtr c = grid_complex(grid);
       size_t done = 0;
       for (auto _ : st) {
         st.PauseTiming();
         TpxLive* l = nullptr;
-        tpx_check(tpx_live_from_complex(c, &l), "tpx_live_from_complex");
+        tpx_check(tpx_live_from_complex(c.get(), &l), "tpx_live_from_complex");
         st.ResumeTiming();
         done = tpx_pass(l, calls, mode);
         st.PauseTiming();
         tpx_live_free(l);
         st.ResumeTiming();
       }
-      tpx_complex_free(c);
       set_counters(st, calls.size(), done);
     });
   }
@@ -211,21 +215,15 @@ int main(int argc, char** argv) {
   });
   for (const bool manifold : {false, true}) {
     add("check", manifold ? "tpx_manifold" : "tpx", Unit::Walk, [&, manifold](benchmark::State& st) {
-      std::vector<size_t> offsets(grid.tris.size() / 3 + 1);
-      for (size_t i = 0; i < offsets.size(); ++i) offsets[i] = 3 * i;
-      TpxComplex* c = nullptr;
-      tpx_check(tpx_complex_from_arrays(grid.n_vertices, grid.tris.data(), offsets.data(), offsets.size() - 1,
-                                        nullptr, 0, &c),
-                "tpx_complex_from_arrays");
+      const ComplexPtr c = grid_complex(grid);
       TpxLive* l = nullptr;
-      tpx_check(tpx_live_from_complex(c, &l), "tpx_live_from_complex");
+      tpx_check(tpx_live_from_complex(c.get(), &l), "tpx_live_from_complex");
       size_t ok = 0;
       for (auto _ : st) {
         ok = tpx_checks(l, calls, manifold);
         benchmark::DoNotOptimize(ok);
       }
       tpx_live_free(l);
-      tpx_complex_free(c);
       set_counters(st, calls.size(), ok, "passed");
     });
   }

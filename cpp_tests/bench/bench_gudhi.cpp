@@ -109,13 +109,7 @@ int main(int argc, char** argv) {
   uint32_t d = 0;
   tpx_check(tpx_complex_dimension(cx.get(), &d), "tpx_complex_dimension");
 
-  uint64_t simplices = 0;
-  {
-    TpxStatus st = TPX_STATUS_OK;
-    const auto ig = build_from_soup(g_soup, TPX_KIND_IG, &st);
-    tpx_check(st, "building the IG");
-    simplices = simplex_count(ig.get());
-  }
+  const uint64_t simplices = soup_simplex_count(g_soup);
   {
     const auto st = gudhi_build(g_soup);
     if (st->num_simplices() != simplices) {
@@ -179,9 +173,7 @@ int main(int argc, char** argv) {
     const std::string lib = "tpx_" + k.name;
     const std::function<std::unique_ptr<Built>()> make = [k] {
       auto b = std::make_unique<Built>();
-      TpxStatus st = TPX_STATUS_OK;
-      b->s = build_from_soup(g_soup, k.id, &st);
-      tpx_check(st, "tpx_structure_build");
+      b->s = build_or_abort(g_soup, k.id);
       tpx_check(tpx_structure_dimension(b->s.get(), &b->d), "tpx_structure_dimension");
       b->vertices = vertex_rows(g_soup.n_vertices);
       if (b->d >= 1) b->edges = simplices_of(b->s.get(), 1);

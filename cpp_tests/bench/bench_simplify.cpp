@@ -49,15 +49,12 @@
 #include <limits>
 #include <sstream>
 
-#include "bench_common.hpp"
+#include "bench_halfedge.hpp"
 
 namespace {
 
 using namespace tpxbench;
 
-using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using SMesh = CGAL::Surface_mesh<K::Point_3>;
 namespace SMS = CGAL::Surface_mesh_simplification;
 
 double ratio_from_env() {
@@ -94,22 +91,6 @@ struct Omesh {
   size_t faces = 0;
 };
 
-// Builds the TriMesh from the soup; null if add_face refuses a triangle.
-std::unique_ptr<OMesh> openmesh_from_soup(const Soup& soup) {
-  auto m = std::make_unique<OMesh>();
-  const size_t nf = soup.size();
-  m->reserve(soup.n_vertices, 3 * nf / 2, nf);
-  std::vector<OMesh::VertexHandle> vh(soup.n_vertices);
-  for (uint32_t i = 0; i < soup.n_vertices; ++i)
-    vh[i] = m->add_vertex(OMesh::Point(float(soup.coords[3 * i]), float(soup.coords[3 * i + 1]),
-                                       float(soup.coords[3 * i + 2])));
-  for (size_t f = 0; f < nf; ++f) {
-    const uint32_t* t = &soup.ids[soup.offsets[f]];
-    if (!m->add_face(vh[t[0]], vh[t[1]], vh[t[2]]).is_valid()) return nullptr;
-  }
-  return m;
-}
-
 // OpenMesh's decimation to `target` faces; returns the faces left.
 size_t openmesh_decimate(OMesh& m, size_t target) {
   using Decimater = OpenMesh::Decimater::DecimaterT<OMesh>;
@@ -122,20 +103,6 @@ size_t openmesh_decimate(OMesh& m, size_t target) {
   dec.decimate_to_faces(0, target);
   m.garbage_collection();
   return m.n_faces();
-}
-
-std::unique_ptr<SMesh> cgal_from_soup(const Soup& soup) {
-  auto m = std::make_unique<SMesh>();
-  const size_t nf = soup.size();
-  m->reserve(SMesh::size_type(soup.n_vertices), SMesh::size_type(3 * nf / 2), SMesh::size_type(nf));
-  std::vector<SMesh::Vertex_index> vh(soup.n_vertices);
-  for (uint32_t i = 0; i < soup.n_vertices; ++i)
-    vh[i] = m->add_vertex(K::Point_3(soup.coords[3 * i], soup.coords[3 * i + 1], soup.coords[3 * i + 2]));
-  for (size_t f = 0; f < nf; ++f) {
-    const uint32_t* t = &soup.ids[soup.offsets[f]];
-    if (m->add_face(vh[t[0]], vh[t[1]], vh[t[2]]) == SMesh::null_face()) return nullptr;
-  }
-  return m;
 }
 
 // Stops CGAL's edge collapse once the mesh has at most `target` faces.
@@ -311,21 +278,15 @@ int main(int argc, char** argv) {
   const size_t target = size_t(std::ceil(ratio * double(faces)));
   add("simplify", "openmesh", Unit::Build, [&](benchmark::State& st) {
     time_simplify(st, faces, [&](std::string* why) -> size_t {
-      auto m = openmesh_from_soup(soup);
-      if (!m) {
-        *why = "OpenMesh add_face refused a triangle";
-        return 0;
-      }
+      auto m = openmesh_from_soup(soup, why);
+      if (!m) return 0;
       return openmesh_decimate(*m, target);
     });
   });
   add("simplify", "cgal_sm", Unit::Build, [&](benchmark::State& st) {
     time_simplify(st, faces, [&](std::string* why) -> size_t {
-      auto m = cgal_from_soup(soup);
-      if (!m) {
-        *why = "Surface_mesh add_face refused a triangle";
-        return 0;
-      }
+      auto m = cgal_from_soup(soup, why);
+      if (!m) return 0;
       return cgal_decimate(*m, target);
     });
   });

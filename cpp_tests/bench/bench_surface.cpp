@@ -30,15 +30,11 @@
 #include <fstream>
 #include <sstream>
 
-#include "bench_common.hpp"
+#include "bench_halfedge.hpp"
 
 namespace {
 
 using namespace tpxbench;
-
-using OMesh = OpenMesh::TriMesh_ArrayKernelT<>;
-using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using SMesh = CGAL::Surface_mesh<K::Point_3>;
 
 // The file's triangles as it orders them (orientation kept, which add_face needs; Topoplex's
 // own top simplices are sorted) and its vertex coordinates. Returns an error text or "".
@@ -100,41 +96,6 @@ std::string read_off_soup(const std::string& path, Soup* soup) {
   return "";
 }
 
-std::unique_ptr<OMesh> openmesh_from_soup(const Soup& soup, std::string* why) {
-  auto m = std::make_unique<OMesh>();
-  const size_t nf = soup.size();
-  m->reserve(soup.n_vertices, 3 * nf / 2, nf);
-  std::vector<OMesh::VertexHandle> vh(soup.n_vertices);
-  for (uint32_t i = 0; i < soup.n_vertices; ++i)
-    vh[i] = m->add_vertex(OMesh::Point(float(soup.coords[3 * i]), float(soup.coords[3 * i + 1]),
-                                       float(soup.coords[3 * i + 2])));
-  for (size_t f = 0; f < nf; ++f) {
-    const uint32_t* t = &soup.ids[soup.offsets[f]];
-    if (!m->add_face(vh[t[0]], vh[t[1]], vh[t[2]]).is_valid()) {
-      *why = "OpenMesh add_face refused triangle #" + std::to_string(f) + " (non-manifold or inconsistent orientation)";
-      return nullptr;
-    }
-  }
-  return m;
-}
-
-std::unique_ptr<SMesh> cgal_from_soup(const Soup& soup, std::string* why) {
-  auto m = std::make_unique<SMesh>();
-  const size_t nf = soup.size();
-  m->reserve(SMesh::size_type(soup.n_vertices), SMesh::size_type(3 * nf / 2), SMesh::size_type(nf));
-  std::vector<SMesh::Vertex_index> vh(soup.n_vertices);
-  for (uint32_t i = 0; i < soup.n_vertices; ++i)
-    vh[i] = m->add_vertex(K::Point_3(soup.coords[3 * i], soup.coords[3 * i + 1], soup.coords[3 * i + 2]));
-  for (size_t f = 0; f < nf; ++f) {
-    const uint32_t* t = &soup.ids[soup.offsets[f]];
-    if (m->add_face(vh[t[0]], vh[t[1]], vh[t[2]]) == SMesh::null_face()) {
-      *why = "Surface_mesh add_face refused triangle #" + std::to_string(f) + " (non-manifold or inconsistent orientation)";
-      return nullptr;
-    }
-  }
-  return m;
-}
-
 std::unique_ptr<OMesh> openmesh_load(const std::string& path) {
   auto m = std::make_unique<OMesh>();
   if (!OpenMesh::IO::read_mesh(*m, path)) return nullptr;
@@ -148,32 +109,25 @@ std::unique_ptr<SMesh> cgal_load(const std::string& path) {
 }
 
 // The peers' walks. Each counts the elements its circulator yields.
-uint64_t om_vf(const OMesh& m) {
+// What the circulator `around(x)` yields over every x of `elements`.
+template <class Elements, class Around>
+uint64_t count_around(Elements elements, Around around) {
   uint64_t n = 0;
-  for (auto v : m.vertices())
-    for (auto f : m.vf_range(v)) {
-      (void)f;
+  for (auto x : elements)
+    for (auto y : around(x)) {
+      (void)y;
       ++n;
     }
   return n;
+}
+uint64_t om_vf(const OMesh& m) {
+  return count_around(m.vertices(), [&](auto v) { return m.vf_range(v); });
 }
 uint64_t om_vv(const OMesh& m) {
-  uint64_t n = 0;
-  for (auto v : m.vertices())
-    for (auto u : m.vv_range(v)) {
-      (void)u;
-      ++n;
-    }
-  return n;
+  return count_around(m.vertices(), [&](auto v) { return m.vv_range(v); });
 }
 uint64_t om_ff(const OMesh& m) {
-  uint64_t n = 0;
-  for (auto f : m.faces())
-    for (auto g : m.ff_range(f)) {
-      (void)g;
-      ++n;
-    }
-  return n;
+  return count_around(m.faces(), [&](auto f) { return m.ff_range(f); });
 }
 uint64_t sm_vf(const SMesh& m) {
   uint64_t n = 0;
@@ -285,13 +239,7 @@ int main(int argc, char** argv) {
   }
 
   // The number of simplices of all dimensions (the `elements` of load/build), from the IG.
-  uint64_t simplices = 0;
-  {
-    TpxStatus st = TPX_STATUS_OK;
-    const auto ig = build_from_soup(soup, TPX_KIND_IG, &st);
-    tpx_check(st, "building the IG");
-    simplices = simplex_count(ig.get());
-  }
+  const uint64_t simplices = soup_simplex_count(soup);
   const double om_geometry = double(n) * sizeof(OMesh::Point);
   const double sm_geometry = double(n) * sizeof(K::Point_3);
 
@@ -361,9 +309,7 @@ int main(int argc, char** argv) {
     const std::string lib = "tpx_" + k.name;
     const std::function<std::unique_ptr<Built>()> make = [k] {
       auto b = std::make_unique<Built>();
-      TpxStatus st = TPX_STATUS_OK;
-      b->s = build_from_soup(soup, k.id, &st);
-      tpx_check(st, "tpx_structure_build");
+      b->s = build_or_abort(soup, k.id);
       b->vertices = vertex_rows(soup.n_vertices);
       b->triangles = simplices_of(b->s.get(), 2);
       return b;
@@ -414,9 +360,7 @@ int main(int argc, char** argv) {
     const std::string lib = "tpx_" + k.name;
     const std::function<std::unique_ptr<Built>()> make = [k] {
       auto b = std::make_unique<Built>();
-      TpxStatus st = TPX_STATUS_OK;
-      b->s = build_from_soup(soup, k.id, &st);
-      tpx_check(st, "tpx_structure_build");
+      b->s = build_or_abort(soup, k.id);
       return b;
     };
     add("stats", lib, Unit::Walk, [=](benchmark::State& state) {

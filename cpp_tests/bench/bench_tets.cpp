@@ -255,13 +255,7 @@ int main(int argc, char** argv) {
   tets.tets = top_simplices(cx.get(), 3);
   tets.xyz = soup.coords;
 
-  uint64_t simplices = 0;
-  {
-    TpxStatus st = TPX_STATUS_OK;
-    const auto ig = build_from_soup(soup, TPX_KIND_IG, &st);
-    tpx_check(st, "building the IG");
-    simplices = simplex_count(ig.get());
-  }
+  const uint64_t simplices = soup_simplex_count(soup);
 
   // CGAL holds the tets only if they are all the complex has, with coordinates, and glue into
   // a Triangulation_3 whose vertex stars are whole (no pinched vertex).
@@ -326,9 +320,7 @@ int main(int argc, char** argv) {
     const std::string lib = "tpx_" + k.name;
     const std::function<std::unique_ptr<Built>()> make = [k] {
       auto b = std::make_unique<Built>();
-      TpxStatus st = TPX_STATUS_OK;
-      b->s = build_from_soup(soup, k.id, &st);
-      tpx_check(st, "tpx_structure_build");
+      b->s = build_or_abort(soup, k.id);
       b->vertices = vertex_rows(soup.n_vertices);
       return b;
     };

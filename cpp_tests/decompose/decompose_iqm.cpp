@@ -41,6 +41,8 @@
 #include <utility>
 #include <vector>
 
+#include "../find_data.hpp"
+
 namespace {
 
 using Tri = std::array<uint32_t, 3>;
@@ -72,18 +74,6 @@ void normalise(std::vector<Tri>& tris) {
   for (auto& t : tris) t = sorted(t);
   std::sort(tris.begin(), tris.end());
   tris.erase(std::unique(tris.begin(), tris.end()), tris.end());
-}
-
-std::string find_in(const char* env_var, const char* fallback, const std::string& relative) {
-  std::vector<std::string> dirs;
-  if (const char* env = std::getenv(env_var)) dirs.emplace_back(env);
-  dirs.emplace_back(fallback);
-  for (const auto& d : dirs) {
-    if (d.empty()) continue;
-    const std::string path = d + "/" + relative;
-    if (std::ifstream(path).good()) return path;
-  }
-  return {};
 }
 
 // `v` and `f` statements only (the shared non-manifold meshes have nothing else that matters);
@@ -484,7 +474,8 @@ class SharedObj : public ::testing::TestWithParam<ObjCase> {};
 
 TEST_P(SharedObj, ComponentsLoadIntoHalfedgeMeshesAndGlueBack) {
   const std::string relative = std::string("nonmanifold/") + GetParam().file;
-  const std::string path = find_in("TOPOPLEX_SHARED_DATA", TOPOPLEX_DECOMPOSE_SHARED_DATA_DIR, relative);
+  const std::string path =
+      topoplex_tests::find_data_file("TOPOPLEX_SHARED_DATA", TOPOPLEX_DECOMPOSE_SHARED_DATA_DIR, relative);
   if (path.empty()) GTEST_SKIP() << "shared data file " << relative << " not found";
   Input in;
   in.name = GetParam().file;
@@ -571,7 +562,8 @@ class AlphaComplex : public ::testing::TestWithParam<AlphaCase> {};
 
 TEST_P(AlphaComplex, ComponentsLoadIntoHalfedgeMeshesAndGlueBack) {
   const std::string relative = std::string("points_3/") + GetParam().file;
-  const std::string path = find_in("TOPOPLEX_CGAL_DATA", TOPOPLEX_DECOMPOSE_CGAL_DATA_DIR, relative);
+  const std::string path =
+      topoplex_tests::find_data_file("TOPOPLEX_CGAL_DATA", TOPOPLEX_DECOMPOSE_CGAL_DATA_DIR, relative);
   if (path.empty()) GTEST_SKIP() << "sample data file " << relative << " not found (install libcgal-demo)";
 
   std::vector<std::pair<K::Point_3, uint32_t>> points;

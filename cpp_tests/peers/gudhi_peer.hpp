@@ -28,11 +28,7 @@ inline Ids vertices_of(Stree& st, Stree::Simplex_handle sh) {
 // how many simplices have no coface one dimension up (the tops as the tree sees them).
 inline std::vector<size_t> gudhi_relations(Stree& st, std::vector<Relation>& rels) {
   const int d = st.dimension();
-  const size_t first = rels.size();
-  for (int p = 0; p <= d; ++p)
-    for (int q = 0; q <= d; ++q)
-      rels.emplace_back(uint32_t(p), uint32_t(q), "GUDHI Simplex_tree " + std::to_string(p) + "->" + std::to_string(q));
-  auto R = [&](int p, int q) -> Relation& { return rels[first + size_t(p) * size_t(d + 1) + size_t(q)]; };
+  const RelationGrid R = add_relations(rels, "GUDHI Simplex_tree", uint32_t(d));
 
   // Cofaces one dimension up are asked once per simplex: adjacency needs them for every facet.
   std::map<Ids, std::vector<Ids>> up;

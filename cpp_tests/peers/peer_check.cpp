@@ -1,5 +1,7 @@
 #include "peer_check.hpp"
 
+#include "../find_data.hpp"
+
 #include <gtest/gtest.h>
 #include <topoplex.h>
 
@@ -210,6 +212,17 @@ const std::vector<Relation::Entry>& Relation::entries() {
   return entries_;
 }
 
+RelationGrid add_relations(std::vector<Relation>& rels, const std::string& peer, uint32_t dim,
+                           const std::vector<std::string>& names) {
+  const RelationGrid grid{rels, rels.size(), dim};
+  for (uint32_t p = 0; p <= dim; ++p)
+    for (uint32_t q = 0; q <= dim; ++q) {
+      const size_t i = size_t(p) * (dim + 1) + q;
+      rels.emplace_back(p, q, peer + " " + (names.empty() ? std::to_string(p) + "->" + std::to_string(q) : names.at(i)));
+    }
+  return grid;
+}
+
 KindsReport check_all_kinds(const PeerComplex& cx, std::vector<Relation>& relations) {
   KindsReport report;
   ComplexHandle complex;
@@ -297,26 +310,12 @@ KindsReport check_all_kinds(const PeerComplex& cx, std::vector<Relation>& relati
   return report;
 }
 
-namespace {
-std::string find_in(const char* env_var, const char* fallback, const std::string& relative) {
-  std::vector<std::string> dirs;
-  if (const char* env = std::getenv(env_var)) dirs.emplace_back(env);
-  dirs.emplace_back(fallback);
-  for (const auto& d : dirs) {
-    if (d.empty()) continue;
-    std::string path = d + "/" + relative;
-    if (std::ifstream(path).good()) return path;
-  }
-  return {};
-}
-}  // namespace
-
 std::string data_file(const std::string& relative) {
-  return find_in("TOPOPLEX_CGAL_DATA", TOPOPLEX_PEERS_DATA_DIR, relative);
+  return topoplex_tests::find_data_file("TOPOPLEX_CGAL_DATA", TOPOPLEX_PEERS_DATA_DIR, relative);
 }
 
 std::string shared_data_file(const std::string& relative) {
-  return find_in("TOPOPLEX_SHARED_DATA", TOPOPLEX_PEERS_SHARED_DATA_DIR, relative);
+  return topoplex_tests::find_data_file("TOPOPLEX_SHARED_DATA", TOPOPLEX_PEERS_SHARED_DATA_DIR, relative);
 }
 
 std::vector<double> read_xyz(const std::string& path) {

@@ -61,6 +61,20 @@ class Relation {
   bool sorted_ = false;
 };
 
+// The relations R_{p,q}, p, q <= dim, that add_relations appended: R(p, q) (by index, so it
+// stays valid while `rels` grows).
+struct RelationGrid {
+  std::vector<Relation>& rels;
+  size_t first;
+  uint32_t dim;
+  Relation& operator()(uint32_t p, uint32_t q) const { return rels[first + p * (dim + 1) + q]; }
+};
+
+// Appends R_{p,q} for every p, q <= dim to `rels`, p major, each named "<peer> <what>": `what`
+// from `names` in that order, or "p->q" when `names` is empty.
+RelationGrid add_relations(std::vector<Relation>& rels, const std::string& peer, uint32_t dim,
+                           const std::vector<std::string>& names = {});
+
 struct KindsReport {
   std::vector<std::string> checked;  // kind names
   std::vector<std::string> skipped;  // "name: status: message"

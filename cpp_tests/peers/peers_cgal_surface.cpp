@@ -55,15 +55,12 @@ TEST_P(SurfaceMeshPeer, EveryRelationOfEveryKindMatches) {
   cx.expected_tops = {isolated, 0, m.number_of_faces()};
 
   std::vector<peers::Relation> rels;
-  rels.emplace_back(0, 0, "Surface_mesh vertices_around_target");
-  rels.emplace_back(0, 1, "Surface_mesh halfedges_around_target");
-  rels.emplace_back(0, 2, "Surface_mesh faces_around_target");
-  rels.emplace_back(1, 0, "Surface_mesh vertex(e, i)");
-  rels.emplace_back(1, 1, "Surface_mesh halfedges_around_target of both ends");
-  rels.emplace_back(1, 2, "Surface_mesh face(halfedge(e)), face(opposite)");
-  rels.emplace_back(2, 0, "Surface_mesh vertices_around_face");
-  rels.emplace_back(2, 1, "Surface_mesh halfedges_around_face");
-  rels.emplace_back(2, 2, "Surface_mesh faces_around_face");
+  const auto R = peers::add_relations(rels, "Surface_mesh", 2,
+                                      {"vertices_around_target", "halfedges_around_target",
+                                       "faces_around_target", "vertex(e, i)",
+                                       "halfedges_around_target of both ends",
+                                       "face(halfedge(e)), face(opposite)", "vertices_around_face",
+                                       "halfedges_around_face", "faces_around_face"});
 
   for (auto v : m.vertices()) {
     const Ids sigma{id(v)};
@@ -74,9 +71,9 @@ TEST_P(SurfaceMeshPeer, EveryRelationOfEveryKindMatches) {
       for (auto f : CGAL::faces_around_target(m.halfedge(v), m))
         if (f != Mesh::null_face()) faces.push_back(face_ids(m, f));
     }
-    rels[0].add(sigma, verts);
-    rels[1].add(sigma, edges);
-    rels[2].add(sigma, faces);
+    R(0, 0).add(sigma, verts);
+    R(0, 1).add(sigma, edges);
+    R(0, 2).add(sigma, faces);
   }
   for (auto e : m.edges()) {
     const Ids sigma = edge_ids(m, e);
@@ -87,9 +84,9 @@ TEST_P(SurfaceMeshPeer, EveryRelationOfEveryKindMatches) {
       for (auto h2 : CGAL::halfedges_around_target(h, m))
         if (m.edge(h2) != e) edges.push_back(edge_ids(m, m.edge(h2)));
     }
-    rels[3].add(sigma, verts);
-    rels[4].add(sigma, edges);
-    rels[5].add(sigma, faces);
+    R(1, 0).add(sigma, verts);
+    R(1, 1).add(sigma, edges);
+    R(1, 2).add(sigma, faces);
   }
   for (auto f : m.faces()) {
     const Ids sigma = face_ids(m, f);
@@ -98,9 +95,9 @@ TEST_P(SurfaceMeshPeer, EveryRelationOfEveryKindMatches) {
     for (auto h : CGAL::halfedges_around_face(m.halfedge(f), m)) edges.push_back(edge_ids(m, m.edge(h)));
     for (auto g : CGAL::faces_around_face(m.halfedge(f), m))
       if (g != Mesh::null_face()) faces.push_back(face_ids(m, g));
-    rels[6].add(sigma, verts);
-    rels[7].add(sigma, edges);
-    rels[8].add(sigma, faces);
+    R(2, 0).add(sigma, verts);
+    R(2, 1).add(sigma, edges);
+    R(2, 2).add(sigma, faces);
   }
 
   const auto report = peers::check_all_kinds(cx, rels);

@@ -52,24 +52,17 @@ TEST_P(OpenMeshPeer, EveryRelationOfEveryKindMatches) {
   cx.expected_tops = {isolated, 0, m.n_faces()};
 
   std::vector<peers::Relation> rels;
-  rels.emplace_back(0, 0, "OpenMesh VV");
-  rels.emplace_back(0, 1, "OpenMesh VE");
-  rels.emplace_back(0, 2, "OpenMesh VF");
-  rels.emplace_back(1, 0, "OpenMesh EV");
-  rels.emplace_back(1, 1, "OpenMesh EE via VE of both ends");
-  rels.emplace_back(1, 2, "OpenMesh EF");
-  rels.emplace_back(2, 0, "OpenMesh FV");
-  rels.emplace_back(2, 1, "OpenMesh FE");
-  rels.emplace_back(2, 2, "OpenMesh FF");
-  auto& vv = rels[0];
-  auto& ve = rels[1];
-  auto& vf = rels[2];
-  auto& ev = rels[3];
-  auto& ee = rels[4];
-  auto& ef = rels[5];
-  auto& fv = rels[6];
-  auto& fe = rels[7];
-  auto& ff = rels[8];
+  const auto R = peers::add_relations(
+      rels, "OpenMesh", 2, {"VV", "VE", "VF", "EV", "EE via VE of both ends", "EF", "FV", "FE", "FF"});
+  auto& vv = R(0, 0);
+  auto& ve = R(0, 1);
+  auto& vf = R(0, 2);
+  auto& ev = R(1, 0);
+  auto& ee = R(1, 1);
+  auto& ef = R(1, 2);
+  auto& fv = R(2, 0);
+  auto& fe = R(2, 1);
+  auto& ff = R(2, 2);
 
   for (auto v : m.vertices()) {
     const Ids sigma{uint32_t(v.idx())};

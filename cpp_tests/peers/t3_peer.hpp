@@ -91,10 +91,7 @@ void t3_peer(const Tr& tr, const Member& in, PointOf point_of, const std::string
     return s;
   };
 
-  const size_t first = rels.size();
-  for (uint32_t p = 0; p <= 3; ++p)
-    for (uint32_t q = 0; q <= 3; ++q) rels.emplace_back(p, q, peer + " " + std::to_string(p) + "->" + std::to_string(q));
-  auto R = [&](uint32_t p, uint32_t q) -> Relation& { return rels[first + 4 * p + q]; };
+  const RelationGrid R = add_relations(rels, peer, 3);
 
   // Members' cofaces one dimension up, through CGAL's incidence queries.
   auto member_edges_at = [&](Vh v) {

@@ -148,6 +148,62 @@ pub fn four_iqm_components_two_clusters() -> Complex {
     )
 }
 
+/// The Freudenthal (Kuhn) triangulation of the k×k×k grid of unit cubes: every cube cut into
+/// the six tetrahedra around its main diagonal, 6k³ tetrahedra over the (k+1)³ grid points
+/// (~26k³ simplices with their faces). The generator behind [`tetrahedral_grid`] and the
+/// tetrahedral grids that tests, benches and the `scale` example write out.
+///
+/// Each tetrahedron comes as its four corners numbered by `vertex` (given a corner's grid
+/// coordinates `[x, y, z]`, each in `0..=k`), walking from the cube's lowest corner to its
+/// highest one axis step at a time. Cubes come by x, then y, then z (z varying fastest), six
+/// tetrahedra each, for the axis orders 012, 021, 102, 120, 201, 210. Lazy: a grid too large to
+/// hold can be written out as it is generated.
+///
+/// ```
+/// use topoplex::fixtures::freudenthal_grid;
+/// // One cube, corner (x, y, z) numbered x + 2y + 4z: six tetrahedra around the diagonal 0-7.
+/// let tets: Vec<[u32; 4]> = freudenthal_grid(1, |[x, y, z]| x | y << 1 | z << 2).collect();
+/// assert_eq!(tets[0], [0, 1, 3, 7]);
+/// assert_eq!(tets[5], [0, 4, 6, 7]);
+/// assert_eq!(freudenthal_grid(3, |_| 0).count(), 6 * 27);
+/// ```
+pub fn freudenthal_grid(
+    k: u32,
+    vertex: impl Fn([u32; 3]) -> u32,
+) -> impl Iterator<Item = [u32; 4]> {
+    const AXIS_ORDERS: [[usize; 3]; 6] = [
+        [0, 1, 2],
+        [0, 2, 1],
+        [1, 0, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+    ];
+    let cubes = (0..k).flat_map(move |x| (0..k).flat_map(move |y| (0..k).map(move |z| [x, y, z])));
+    cubes
+        .flat_map(|lowest| {
+            AXIS_ORDERS.map(|axes| {
+                let mut p = lowest;
+                let mut corners = [p; 4];
+                for (corner, axis) in corners[1..].iter_mut().zip(axes) {
+                    p[axis] += 1;
+                    *corner = p;
+                }
+                corners
+            })
+        })
+        .map(move |corners| corners.map(&vertex))
+}
+
+/// The k×k×k grid of [`freudenthal_grid`] as a complex: (k+1)³ vertices, (x, y, z) numbered
+/// (x·(k+1) + y)·(k+1) + z, and the 6k³ tetrahedra listed in the generator's order.
+pub fn tetrahedral_grid(k: u32) -> Complex {
+    let n = k + 1;
+    let tets: Vec<[u32; 4]> = freudenthal_grid(k, |[x, y, z]| (x * n + y) * n + z).collect();
+    let refs: Vec<&[u32]> = tets.iter().map(|t| &t[..]).collect();
+    make(n * n * n, &refs)
+}
+
 /// Every fixture by name (tests iterate over them).
 pub fn all() -> Vec<(&'static str, Complex)> {
     vec![
