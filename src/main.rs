@@ -437,7 +437,8 @@ fn report(files: &[PathBuf], json: bool, csv: bool, svg: Option<&Path>) -> Resul
     }
     progress.finish();
     if let Some(path) = svg {
-        std::fs::write(path, topoplex_cli::report::svg::svg(&datasets))
+        topoplex::io::check_output(path)
+            .and_then(|()| std::fs::write(path, topoplex_cli::report::svg::svg(&datasets)))
             .map_err(|e| format!("{}: cannot write: {e}", echo_path(path)))?;
     }
     let text = if json {

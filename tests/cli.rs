@@ -457,3 +457,63 @@ fn convert_census_marks_singularities_for_paraview() {
         stderr(&o)
     );
 }
+
+/// Outputs that exist and are not regular files — a named pipe, a link to `/dev/null` — are
+/// refused with exit 1, before anything is written beside them, and left as they were (`save`
+/// used to write OUT.partial and rename it over whatever OUT was).
+#[test]
+fn outputs_that_are_not_regular_files_are_refused_and_left_alone() {
+    use std::os::unix::fs::FileTypeExt;
+    let input = temp_file(
+        "cli-special-out.off",
+        "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+    );
+    let dir = std::env::temp_dir().join(format!("topoplex-special-out-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let pipe = dir.join("pipe.tpx");
+    let made = Command::new("mkfifo").arg(&pipe).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo failed");
+    let null_link = dir.join("null.off");
+    std::os::unix::fs::symlink("/dev/null", &null_link).unwrap();
+    let input = input.to_str().unwrap();
+    for args in [
+        vec![
+            "save",
+            input,
+            "--structure",
+            "ig",
+            "--out",
+            pipe.to_str().unwrap(),
+        ],
+        vec!["save", input, "--out", null_link.to_str().unwrap()],
+        vec!["convert", input, null_link.to_str().unwrap()],
+    ] {
+        let o = run(&args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert!(
+            e.contains("not a regular file") && e.lines().count() == 1,
+            "{args:?}: {e}"
+        );
+    }
+    assert!(std::fs::metadata(&pipe).unwrap().file_type().is_fifo());
+    let link = std::fs::symlink_metadata(&null_link).unwrap();
+    assert!(link.file_type().is_symlink());
+    assert!(
+        std::fs::metadata("/dev/null")
+            .unwrap()
+            .file_type()
+            .is_char_device()
+    );
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(
+        left.len(),
+        2,
+        "something was written beside the outputs: {left:?}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -157,6 +157,15 @@ fn write_components_with(
         files.push((name, bytes));
     }
     std::fs::create_dir_all(dir).map_err(|e| WriteError::io(dir, e))?;
+    // Every target checked before the first write: a device or pipe among them writes nothing.
+    let gluing = dir.join("gluing.json");
+    for path in files
+        .iter()
+        .map(|(name, _)| dir.join(name))
+        .chain([gluing.clone()])
+    {
+        crate::io::check_output(&path).map_err(|e| WriteError::io(&path, e))?;
+    }
     let mut paths = Vec::with_capacity(files.len() + 1);
     let mut names = Vec::with_capacity(files.len());
     for (name, bytes) in files {
@@ -165,7 +174,7 @@ fn write_components_with(
         names.push(name);
         paths.push(path);
     }
-    let path = dir.join("gluing.json");
+    let path = gluing;
     let json = gluing_json(dec, coords, &names);
     let text = serde_json::to_string_pretty(&json).expect("JSON of numbers and strings");
     std::fs::write(&path, text + "\n").map_err(|e| WriteError::io(&path, e))?;

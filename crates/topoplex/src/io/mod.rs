@@ -172,6 +172,30 @@ fn read_in_parallel(file: &std::fs::File, len: usize, bytes: &mut Vec<u8>) -> bo
 }
 
 /// Refuses anything but a regular file, naming what it is.
+/// Refuses an output path that exists and is not a regular file — a device such as `/dev/full`
+/// or `/dev/null`, a named pipe (which would block), a socket, a directory — before anything is
+/// created beside it or written to it: the writers and `save` never replace or feed what they do
+/// not own. A symbolic link is followed (a link to a regular file is written through); a path
+/// that does not exist yet is fine.
+pub fn check_output(path: &Path) -> std::io::Result<()> {
+    let Ok(meta) = std::fs::metadata(path) else {
+        return Ok(());
+    };
+    let t = meta.file_type();
+    if t.is_file() {
+        return Ok(());
+    }
+    let what = if t.is_dir() {
+        "a directory"
+    } else {
+        special_file_kind(&t)
+    };
+    Err(std::io::Error::new(
+        std::io::ErrorKind::InvalidInput,
+        format!("it is {what}, not a regular file (outputs are only written to regular files)"),
+    ))
+}
+
 fn check_regular(meta: &std::fs::Metadata) -> Result<(), ReadErrorKind> {
     let t = meta.file_type();
     if t.is_file() {

@@ -239,6 +239,7 @@ pub fn write_raw(raw: &RawInput, path: &Path, format: Option<Format>) -> Result<
     let format = format
         .or_else(|| Format::from_path(path))
         .ok_or_else(|| err(WriteErrorKind::UnknownExtension))?;
+    super::check_output(path).map_err(|e| WriteError::io(path, e))?;
     let bytes = format.write(raw).map_err(err)?;
     std::fs::write(path, bytes).map_err(|e| WriteError::io(path, e))
 }

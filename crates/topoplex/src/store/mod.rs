@@ -79,6 +79,9 @@ pub fn save(
     let mut tmp = path.as_os_str().to_owned();
     tmp.push(".partial");
     let tmp = PathBuf::from(tmp);
+    // The rename would replace a device or pipe under `path` by a regular file.
+    crate::io::check_output(path).map_err(io_err)?;
+    crate::io::check_output(&tmp).map_err(io_err)?;
     let file = File::create(&tmp).map_err(io_err)?;
     let mut w = Writer::create(file);
     w.u8s(&MAGIC);
