@@ -1493,7 +1493,8 @@ TpxStatus tpx_live_save(const struct TpxLive *l, const char *path);
 TpxStatus tpx_live_open(const char *path, uint32_t flags, struct TpxLive **out);
 
 /**
- * Sets the number of threads later builds use (`0` is INVALID_ARGUMENT). Without a call, the
+ * Sets the number of threads later builds use, 1 to 256 (`0` or more than 256 is
+ * INVALID_ARGUMENT, the count unchanged). Without a call, the
  * `TOPOPLEX_THREADS` environment variable, else every core. Builds give the same structure
  * whatever the count. O(1).
  */

@@ -32,7 +32,7 @@ struct Cli {
     /// vertices), so a few bytes of high-dimensional simplices cannot expand into gigabytes.
     #[arg(long, global = true, value_name = "N", value_parser = parse_max_simplices)]
     max_simplices: Option<u64>,
-    /// Threads for building structures (default: TOPOPLEX_THREADS, else every core).
+    /// Threads for building structures, 1 to 256 (default: TOPOPLEX_THREADS, else every core).
     #[arg(long, global = true, value_name = "N")]
     threads: Option<usize>,
     #[command(subcommand)]
@@ -184,10 +184,9 @@ pub fn cli(args: impl IntoIterator<Item = std::ffi::OsString>) -> Result<(), Str
         Err(outcome) => return outcome,
     };
     *BUDGET.lock().unwrap_or_else(|e| e.into_inner()) = cli.max_simplices;
+    topoplex::parallel::threads_from_env()?;
     if let Some(n) = cli.threads {
-        if n == 0 {
-            return Err("--threads must be at least 1".to_string());
-        }
+        let n = topoplex::parallel::check_threads(n).map_err(|e| format!("--threads: {e}"))?;
         topoplex::parallel::set_threads(n);
     }
     run(cli.command)

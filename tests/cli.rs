@@ -517,3 +517,53 @@ fn outputs_that_are_not_regular_files_are_refused_and_left_alone() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// `--threads` and `TOPOPLEX_THREADS` are bounded (1..=256) and a bad value is an error (exit 1,
+/// one line naming the flag or variable), never ignored.
+#[test]
+fn thread_counts_outside_the_bound_are_refused() {
+    let input = temp_file(
+        "cli-threads.off",
+        "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+    );
+    let input = input.to_str().unwrap();
+    let args = ["relation", input, "--structure", "ig", "--relation", "0,2"];
+    for (threads, env, needle) in [
+        (
+            Some("100000"),
+            None,
+            "--threads: thread count 100000 is outside 1..=256",
+        ),
+        (
+            Some("0"),
+            None,
+            "--threads: thread count 0 is outside 1..=256",
+        ),
+        (
+            None,
+            Some("abc"),
+            "TOPOPLEX_THREADS=abc: not a thread count in 1..=256",
+        ),
+        (
+            None,
+            Some("20000"),
+            "TOPOPLEX_THREADS=20000: not a thread count",
+        ),
+    ] {
+        let mut cmd = Command::new(env!("CARGO_BIN_EXE_topoplex"));
+        cmd.args(args);
+        if let Some(t) = threads {
+            cmd.args(["--threads", t]);
+        }
+        match env {
+            Some(v) => cmd.env("TOPOPLEX_THREADS", v),
+            None => cmd.env_remove("TOPOPLEX_THREADS"),
+        };
+        let o = cmd.output().unwrap();
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{threads:?} {env:?}: {e}");
+        assert!(e.contains(needle) && e.lines().count() == 1, "{e}");
+    }
+    let o = run(&[&args[..], &["--threads", "256"]].concat());
+    assert!(o.status.success(), "{}", stderr(&o));
+}

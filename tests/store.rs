@@ -268,6 +268,9 @@ fn the_c_abi_saves_opens_and_names_bad_files_by_status() {
         let st = tpx_structure_open(cpath.as_ptr(), TPX_KIND_SIG, 6, &mut s);
         assert_eq!(st, TpxStatus::InvalidArgument);
         assert_eq!(tpx_set_threads(0), TpxStatus::InvalidArgument);
+        // Bounded: a mistyped count cannot start thousands of threads.
+        assert_eq!(tpx_set_threads(257), TpxStatus::InvalidArgument);
+        assert_eq!(tpx_set_threads(100_000), TpxStatus::InvalidArgument);
         std::fs::remove_file(&again).unwrap();
     }
     std::fs::remove_file(&path).unwrap();

@@ -178,18 +178,15 @@ pub unsafe extern "C" fn tpx_live_open(
     })
 }
 
-/// Sets the number of threads later builds use (`0` is INVALID_ARGUMENT). Without a call, the
+/// Sets the number of threads later builds use, 1 to 256 (`0` or more than 256 is
+/// INVALID_ARGUMENT, the count unchanged). Without a call, the
 /// `TOPOPLEX_THREADS` environment variable, else every core. Builds give the same structure
 /// whatever the count. O(1).
 #[unsafe(no_mangle)]
 pub extern "C" fn tpx_set_threads(threads: u32) -> TpxStatus {
     guard(|| {
-        if threads == 0 {
-            return Err(Failure::new(
-                TpxStatus::InvalidArgument,
-                "threads must be at least 1",
-            ));
-        }
+        topoplex::parallel::check_threads(threads as usize)
+            .map_err(|e| Failure::new(TpxStatus::InvalidArgument, e))?;
         topoplex::parallel::set_threads(threads as usize);
         Ok(())
     })

@@ -110,9 +110,42 @@ pub(crate) fn fill_rows<T: Send>(
     });
 }
 
-/// Sets the number of threads later builds use (at least 1).
+/// The most threads a build may use: a bound on what any front end can ask for, so that a
+/// mistyped count cannot start thousands of threads (each with its stack).
+pub const MAX_THREADS: usize = 256;
+
+/// Sets the number of threads later builds use, held to `1..=MAX_THREADS` (front ends refuse
+/// counts outside it with [`check_threads`] rather than have them moved).
 pub fn set_threads(n: usize) {
-    THREADS.store(n.max(1), Ordering::Relaxed);
+    THREADS.store(n.clamp(1, MAX_THREADS), Ordering::Relaxed);
+}
+
+/// `Ok(n)` when `n` is a thread count a front end may set, else why not (one line).
+pub fn check_threads(n: usize) -> Result<usize, String> {
+    if (1..=MAX_THREADS).contains(&n) {
+        Ok(n)
+    } else {
+        Err(format!("thread count {n} is outside 1..={MAX_THREADS}"))
+    }
+}
+
+/// The `TOPOPLEX_THREADS` environment variable: `Ok(None)` when it is not set, `Ok(Some(n))`
+/// for a count in `1..=MAX_THREADS`, else an error naming the variable and its (escaped) value.
+/// [`threads`] falls back to every core when the value is not a count; front ends call this
+/// first so that a bad value is reported rather than ignored.
+pub fn threads_from_env() -> Result<Option<usize>, String> {
+    let Some(v) = std::env::var_os("TOPOPLEX_THREADS") else {
+        return Ok(None);
+    };
+    let text = v.to_string_lossy();
+    let bad = || {
+        format!(
+            "TOPOPLEX_THREADS={}: not a thread count in 1..={MAX_THREADS}",
+            crate::error::echo(text.as_bytes())
+        )
+    };
+    let n = text.trim().parse::<usize>().map_err(|_| bad())?;
+    check_threads(n).map(Some).map_err(|_| bad())
 }
 
 /// The number of threads builds use: [`set_threads`], else `TOPOPLEX_THREADS`, else the
@@ -123,11 +156,11 @@ pub fn threads() -> usize {
     static DEFAULT: std::sync::OnceLock<usize> = std::sync::OnceLock::new();
     match THREADS.load(Ordering::Relaxed) {
         0 => *DEFAULT.get_or_init(|| {
-            std::env::var("TOPOPLEX_THREADS")
+            threads_from_env()
                 .ok()
-                .and_then(|v| v.trim().parse::<usize>().ok())
-                .filter(|&n| n > 0)
+                .flatten()
                 .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+                .min(MAX_THREADS)
         }),
         n => n,
     }
