@@ -567,3 +567,47 @@ fn thread_counts_outside_the_bound_are_refused() {
     let o = run(&[&args[..], &["--threads", "256"]].concat());
     assert!(o.status.success(), "{}", stderr(&o));
 }
+
+/// A `.tpx` name on a named pipe or a directory is refused at once by every command that opens
+/// it (`verify` included), saying what it is; the pipe used to hang them all.
+#[test]
+fn a_saved_file_name_on_a_pipe_or_directory_is_refused_not_waited_on() {
+    let dir = std::env::temp_dir().join(format!("topoplex-special-in-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(dir.join("dir.tpx")).unwrap();
+    let pipe = dir.join("pipe.tpx");
+    let made = Command::new("mkfifo").arg(&pipe).status();
+    assert!(made.is_ok_and(|s| s.success()), "mkfifo failed");
+    for (name, what) in [("pipe.tpx", "a named pipe"), ("dir.tpx", "a directory")] {
+        let file = dir.join(name);
+        let file = file.to_str().unwrap();
+        for args in [
+            vec!["verify", file],
+            vec!["report", file],
+            vec!["relation", file, "--structure", "ig", "--relation", "0,1"],
+        ] {
+            let mut child = Command::new(env!("CARGO_BIN_EXE_topoplex"))
+                .args(&args)
+                .stdout(std::process::Stdio::null())
+                .stderr(std::process::Stdio::piped())
+                .spawn()
+                .unwrap();
+            let deadline = std::time::Instant::now() + std::time::Duration::from_secs(20);
+            let status = loop {
+                if let Some(s) = child.try_wait().unwrap() {
+                    break s;
+                }
+                if std::time::Instant::now() > deadline {
+                    let _ = child.kill();
+                    panic!("{args:?} still running after 20 s");
+                }
+                std::thread::sleep(std::time::Duration::from_millis(20));
+            };
+            let mut e = String::new();
+            std::io::Read::read_to_string(&mut child.stderr.take().unwrap(), &mut e).unwrap();
+            assert_eq!(status.code(), Some(1), "{args:?}: {e}");
+            assert!(e.contains(what) && e.lines().count() == 1, "{args:?}: {e}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -115,17 +115,7 @@ pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
 pub fn read_file(path: &Path) -> Result<Vec<u8>, ReadErrorKind> {
     use std::io::Read;
     let io = |e: std::io::Error| ReadErrorKind::Io(e.to_string());
-    check_regular(&std::fs::metadata(path).map_err(io)?)?;
-    let mut options = std::fs::OpenOptions::new();
-    options.read(true);
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::OpenOptionsExt;
-        options.custom_flags(libc::O_NONBLOCK);
-    }
-    let mut file = options.open(path).map_err(io)?;
-    let meta = file.metadata().map_err(io)?;
-    check_regular(&meta)?;
+    let (mut file, meta) = open_regular(path).map_err(io)?;
     let too_large =
         || ReadErrorKind::TooLarge(format!("{} bytes do not fit in memory", meta.len()));
     let len = usize::try_from(meta.len()).map_err(|_| too_large())?;
@@ -196,7 +186,28 @@ pub fn check_output(path: &Path) -> std::io::Result<()> {
     ))
 }
 
-fn check_regular(meta: &std::fs::Metadata) -> Result<(), ReadErrorKind> {
+/// Opens a regular file for reading, refusing anything else before it is read, with a message
+/// saying what it is: a directory, a named pipe (which would block until a writer comes), a
+/// device such as `/dev/zero` (which never ends), a socket. The type is checked on the path
+/// before opening and again on the opened file (the path may change in between); the open is
+/// non-blocking so that a pipe swapped in meanwhile cannot hang it. Used by every reader and by
+/// [`crate::store::Saved::open`].
+pub fn open_regular(path: &Path) -> std::io::Result<(std::fs::File, std::fs::Metadata)> {
+    check_regular(&std::fs::metadata(path)?)?;
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(libc::O_NONBLOCK);
+    }
+    let file = options.open(path)?;
+    let meta = file.metadata()?;
+    check_regular(&meta)?;
+    Ok((file, meta))
+}
+
+fn check_regular(meta: &std::fs::Metadata) -> std::io::Result<()> {
     let t = meta.file_type();
     if t.is_file() {
         return Ok(());
@@ -206,9 +217,10 @@ fn check_regular(meta: &std::fs::Metadata) -> Result<(), ReadErrorKind> {
     } else {
         special_file_kind(&t)
     };
-    Err(ReadErrorKind::Io(format!(
-        "it is {what}, not a regular file (only regular files are read)"
-    )))
+    Err(std::io::Error::new(
+        std::io::ErrorKind::InvalidInput,
+        format!("it is {what}, not a regular file (only regular files are read)"),
+    ))
 }
 
 #[cfg(unix)]

@@ -158,7 +158,8 @@ impl Saved {
             path: path.to_path_buf(),
             message: e.to_string(),
         };
-        let file = File::open(path).map_err(io_err)?;
+        // Only a regular file: a pipe would hang the open, a directory or device mislead it.
+        let (file, _) = crate::io::open_regular(path).map_err(io_err)?;
         // A mapping counts against an address-space limit: one that does not fit is memory
         // the file asks for (TooLarge), not an I/O error.
         let map = crate::sys::map_file(&file).map_err(|e| match e.kind() {
