@@ -188,112 +188,25 @@ impl Complex {
         (budget, input_size): (Budget, u64),
         listing_source: ListingSource<'a>,
     ) -> Result<Complex, ComplexError> {
-        let oom = |what: &'static str, bytes: usize| ComplexError::OutOfMemory {
-            file: file.map(Path::to_path_buf),
-            what,
-            bytes: bytes as u64,
-        };
-        if n == 0 {
-            return Err(ComplexError::NoVertices {
-                file: file.map(Path::to_path_buf),
-            });
-        }
-        if let Some(c) = &coords
-            && c.data.len() != c.dim * n as usize
-        {
-            return Err(ComplexError::Coordinates(format!(
-                "{} numbers given for {n} vertices of dimension {}",
-                c.data.len(),
-                c.dim
-            )));
-        }
+        let oom = |what| no_room(file, what);
+        check_vertices(n, coords.as_ref(), file)?;
         // Validate and bucket by dimension; rows are sorted so duplicates become equal rows.
         // Exact sizes up front: growing by doubling would hold up to twice the ids (peak memory).
-        let mut totals = [0usize; MAX_DIMENSION + 1];
-        for i in 0..count {
-            let len = simplex(i).len();
-            if (1..=MAX_DIMENSION + 1).contains(&len) {
-                totals[len - 1] += len;
-            }
-        }
-        let highest = totals.iter().rposition(|&t| t > 0).map_or(0, |p| p + 1);
-        let mut by_dim: Vec<Rows> = totals[..highest]
-            .iter()
-            .enumerate()
-            .map(|(p, &t)| Rows::new(p + 1, t))
-            .collect();
-        let invalid = |i: usize, why: Invalid| -> ComplexError {
-            let origin = origin(i);
-            let simplex = simplex(i).to_vec();
-            match why {
-                Invalid::Empty => ComplexError::EmptySimplex { origin },
-                Invalid::TooHigh => ComplexError::DimensionTooHigh {
-                    origin,
-                    dim: simplex.len() - 1,
-                    simplex,
-                    max: MAX_DIMENSION,
-                },
-                Invalid::OutOfRange(vertex) => ComplexError::VertexOutOfRange {
-                    origin,
-                    simplex,
-                    vertex,
-                    n,
-                },
-                Invalid::Repeated(vertex) => ComplexError::RepeatedVertex {
-                    origin,
-                    simplex,
-                    vertex,
-                },
-            }
-        };
-        let push = |by_dim: &mut Vec<Rows>, row: &[u32]| {
-            by_dim[row.len() - 1]
-                .push(row)
-                .map_err(|bytes| oom("the input simplices", bytes))
-        };
-        if crate::parallel::splits(count) {
-            sorted_rows_in_parallel(count, n, &simplex, &mut by_dim).map_err(
-                |stop| match stop {
-                    Stop::Refused(i, why) => invalid(i, why),
-                    Stop::NoRoom(bytes) => oom("the input simplices", bytes),
-                },
-            )?;
-        } else {
-            let mut sorted = [0u32; MAX_DIMENSION + 1];
-            for i in 0..count {
-                let row = sorted_row(simplex(i), n, &mut sorted).map_err(|why| invalid(i, why))?;
-                push(&mut by_dim, row)?;
-            }
-        }
+        let totals = ids_per_length(count, &simplex);
+        let by_dim = sorted_rows(count, n, &simplex, &totals).map_err(|stop| match stop {
+            Stop::Refused(i, why) => why.error(origin(i), simplex(i).to_vec(), n),
+            Stop::NoRoom(bytes) => oom("the input simplices")(bytes),
+        })?;
         let mut stats = InputStats {
             input_simplices: count,
             ..Default::default()
         };
-        let mut tables: Vec<SimplexTable> = Vec::with_capacity(by_dim.len());
-        for (p, rows) in by_dim.into_iter().enumerate() {
-            let (t, dups) = SimplexTable::try_from_rows(p + 1, rows.ids)
-                .map_err(|bytes| oom("sorting the input simplices", bytes))?;
-            stats.absorbed_duplicates += dups + rows.absorbed;
-            tables.push(t);
-        }
-        let bound = closure_bound(n, &tables);
-        let limit = budget.limit(input_size);
-        // The bound ignores shared faces; when it is not far above the limit, count exactly.
-        if bound > limit
-            && (bound > limit.saturating_mul(EXACT_COUNT_FACTOR)
-                || closure_count(n, &tables, limit).is_none())
-        {
-            return Err(ComplexError::TooLarge {
-                file: file.map(Path::to_path_buf),
-                bound,
-                limit,
-                input_size,
-            });
-        }
-        let tops =
-            absorb_faces(n, tables, &mut stats).map_err(|bytes| oom("the vertex tables", bytes))?;
+        let tables =
+            dedup_tables(by_dim, &mut stats).map_err(oom("sorting the input simplices"))?;
+        check_budget(n, &tables, budget, input_size, file)?;
+        let tops = absorb_faces(n, tables, &mut stats).map_err(oom("the vertex tables"))?;
         let listing = copy_listing(listing_source, count, &simplex, &totals)
-            .map_err(|bytes| oom("the input listing", bytes))?;
+            .map_err(oom("the input listing"))?;
         Ok(Complex {
             n_vertices: n,
             coords: coords.unwrap_or(Coords {
@@ -306,6 +219,121 @@ impl Complex {
             listing,
         })
     }
+}
+
+/// The error for `bytes` of memory for `what` that could not be had.
+fn no_room<'f>(file: Option<&'f Path>, what: &'static str) -> impl Fn(usize) -> ComplexError + 'f {
+    move |bytes| ComplexError::OutOfMemory {
+        file: file.map(Path::to_path_buf),
+        what,
+        bytes: bytes as u64,
+    }
+}
+
+/// Refuses a complex of no vertex, and coordinates other than `dim` numbers a vertex.
+fn check_vertices(
+    n: u32,
+    coords: Option<&Coords>,
+    file: Option<&Path>,
+) -> Result<(), ComplexError> {
+    if n == 0 {
+        return Err(ComplexError::NoVertices {
+            file: file.map(Path::to_path_buf),
+        });
+    }
+    if let Some(c) = coords
+        && c.data.len() != c.dim * n as usize
+    {
+        return Err(ComplexError::Coordinates(format!(
+            "{} numbers given for {n} vertices of dimension {}",
+            c.data.len(),
+            c.dim
+        )));
+    }
+    Ok(())
+}
+
+/// `totals[k − 1]`: the ids of the simplices `0..count` of k vertices, for k in
+/// `1..=MAX_DIMENSION + 1` (simplices of other lengths are refused by [`sorted_row`]).
+fn ids_per_length<'a>(
+    count: usize,
+    simplex: &impl Fn(usize) -> &'a [u32],
+) -> [usize; MAX_DIMENSION + 1] {
+    let mut totals = [0usize; MAX_DIMENSION + 1];
+    for i in 0..count {
+        let len = simplex(i).len();
+        if (1..=MAX_DIMENSION + 1).contains(&len) {
+            totals[len - 1] += len;
+        }
+    }
+    totals
+}
+
+/// Simplices `0..count` checked and sorted ([`sorted_row`]) into the rows of their dimension,
+/// reserved for `totals` ([`ids_per_length`]): on several threads when `count` splits
+/// ([`sorted_rows_in_parallel`]), else in one loop; the first refused simplex in input order.
+fn sorted_rows<'a>(
+    count: usize,
+    n: u32,
+    simplex: &(impl Fn(usize) -> &'a [u32] + Sync),
+    totals: &[usize; MAX_DIMENSION + 1],
+) -> Result<Vec<Rows>, Stop> {
+    let highest = totals.iter().rposition(|&t| t > 0).map_or(0, |p| p + 1);
+    let mut by_dim: Vec<Rows> = totals[..highest]
+        .iter()
+        .enumerate()
+        .map(|(p, &t)| Rows::new(p + 1, t))
+        .collect();
+    if crate::parallel::splits(count) {
+        sorted_rows_in_parallel(count, n, simplex, &mut by_dim)?;
+    } else {
+        let mut sorted = [0u32; MAX_DIMENSION + 1];
+        for i in 0..count {
+            let row =
+                sorted_row(simplex(i), n, &mut sorted).map_err(|why| Stop::Refused(i, why))?;
+            by_dim[row.len() - 1].push(row).map_err(Stop::NoRoom)?;
+        }
+    }
+    Ok(by_dim)
+}
+
+/// Each dimension's rows as a sorted table without repeats; the repeats counted in `stats`.
+/// `Err(bytes)` when the sort's memory cannot be had.
+fn dedup_tables(by_dim: Vec<Rows>, stats: &mut InputStats) -> Result<Vec<SimplexTable>, usize> {
+    let mut tables: Vec<SimplexTable> = Vec::with_capacity(by_dim.len());
+    for (p, rows) in by_dim.into_iter().enumerate() {
+        let (t, dups) = SimplexTable::try_from_rows(p + 1, rows.ids)?;
+        stats.absorbed_duplicates += dups + rows.absorbed;
+        tables.push(t);
+    }
+    Ok(tables)
+}
+
+/// Refuses a closure that could outgrow `budget` for an input of `input_size`: its upper
+/// bound ([`closure_bound`]) above the limit, and, when the bound is not far above it
+/// ([`EXACT_COUNT_FACTOR`]), its exact size ([`closure_count`]) too.
+fn check_budget(
+    n: u32,
+    tables: &[SimplexTable],
+    budget: Budget,
+    input_size: u64,
+    file: Option<&Path>,
+) -> Result<(), ComplexError> {
+    let bound = closure_bound(n, tables);
+    let limit = budget.limit(input_size);
+    // The bound ignores shared faces; when it is not far above the limit, count exactly.
+    if bound > limit
+        && (bound > limit.saturating_mul(EXACT_COUNT_FACTOR)
+            || closure_count(n, tables, limit).is_none())
+    {
+        return Err(ComplexError::TooLarge {
+            file: file.map(Path::to_path_buf),
+            bound,
+            limit,
+            input_size,
+        });
+    }
+    Ok(())
 }
 
 /// Where [`Complex::build`] copies the listing from.
@@ -377,6 +405,33 @@ enum Invalid {
     TooHigh,
     OutOfRange(u32),
     Repeated(u32),
+}
+
+impl Invalid {
+    /// The error for `simplex`, given at `origin`, in a complex of `n` vertices.
+    #[cold]
+    fn error(self, origin: Origin, simplex: Vec<u32>, n: u32) -> ComplexError {
+        match self {
+            Invalid::Empty => ComplexError::EmptySimplex { origin },
+            Invalid::TooHigh => ComplexError::DimensionTooHigh {
+                origin,
+                dim: simplex.len() - 1,
+                simplex,
+                max: MAX_DIMENSION,
+            },
+            Invalid::OutOfRange(vertex) => ComplexError::VertexOutOfRange {
+                origin,
+                simplex,
+                vertex,
+                n,
+            },
+            Invalid::Repeated(vertex) => ComplexError::RepeatedVertex {
+                origin,
+                simplex,
+                vertex,
+            },
+        }
+    }
 }
 
 /// Simplex `s` checked (1 to `MAX_DIMENSION + 1` vertices, ids below `n`, none repeated) and
