@@ -137,17 +137,12 @@ impl Complex {
                 0
             };
         let count = offsets.len().saturating_sub(1);
-        let origin = |i| Origin {
-            file: None,
-            line: 0,
-            index: i,
-        };
         Complex::build(
             n_vertices,
             coords,
             count,
             |i| &ids[offsets[i]..offsets[i + 1]],
-            origin,
+            array_origin,
             None,
             (budget, input_size),
             ListingSource::Arrays(ids, offsets),
@@ -156,17 +151,12 @@ impl Complex {
 
     /// Builds from a list of simplices (tests, fixtures).
     pub fn from_simplices(n_vertices: u32, simplices: &[&[u32]]) -> Result<Complex, ComplexError> {
-        let origin = |i| Origin {
-            file: None,
-            line: 0,
-            index: i,
-        };
         Complex::build(
             n_vertices,
             None,
             simplices.len(),
             |i| simplices[i],
-            origin,
+            array_origin,
             None,
             (Budget::UNLIMITED, 0),
             ListingSource::Each,
@@ -218,6 +208,15 @@ impl Complex {
             source: file.map(Path::to_path_buf),
             listing,
         })
+    }
+}
+
+/// Where simplex `i` of arrays given through the API was given.
+fn array_origin(i: usize) -> Origin {
+    Origin {
+        file: None,
+        line: 0,
+        index: i,
     }
 }
 

@@ -377,22 +377,11 @@ impl Mesh {
 impl<'a> Reader<'a> {
     /// `MeshVersionFormatted` and its value (1 to 4), which must open the file.
     fn version(&mut self) -> Res<()> {
-        let Some((kw, l)) = self.t.token() else {
-            return Err((
-                self.t.eof_line(),
-                syntax("file is empty; expected 'MeshVersionFormatted'"),
-            ));
-        };
-        if !kw.eq_ignore_ascii_case("MeshVersionFormatted") {
-            let kw = echo(kw);
-            return Err((
-                l,
-                syntax(format!(
-                    "expected 'MeshVersionFormatted' at the start of the file, found '{kw}'"
-                )),
-            ));
-        }
-        let (tok, l) = self.value(kw, "the version number")?;
+        let (tok, l) = self.header_value(
+            "MeshVersionFormatted",
+            ("file is empty", "at the start of the file"),
+            "the version number",
+        )?;
         if !matches!(parse_integer(tok), Ok(1..=4)) {
             let tok = echo(tok);
             return Err((
@@ -407,22 +396,11 @@ impl<'a> Reader<'a> {
 
     /// `Dimension` and its value (2 or 3), which must follow the version.
     fn dimension(&mut self) -> Res<usize> {
-        let Some((kw, l)) = self.t.token() else {
-            return Err((
-                self.t.eof_line(),
-                syntax("file ends after the version; expected 'Dimension'"),
-            ));
-        };
-        if !kw.eq_ignore_ascii_case("Dimension") {
-            let kw = echo(kw);
-            return Err((
-                l,
-                syntax(format!(
-                    "expected 'Dimension' after MeshVersionFormatted, found '{kw}'"
-                )),
-            ));
-        }
-        let (tok, l) = self.value(kw, "the dimension")?;
+        let (tok, l) = self.header_value(
+            "Dimension",
+            ("file ends after the version", "after MeshVersionFormatted"),
+            "the dimension",
+        )?;
         match parse_integer(tok) {
             Ok(d @ 2..=3) => Ok(d as usize),
             _ => {
@@ -433,6 +411,31 @@ impl<'a> Reader<'a> {
                 ))
             }
         }
+    }
+
+    /// The value (`what`) of header keyword `keyword`, which must be the next token (in any
+    /// case). `(at_end, place)`: what the file is when it ends before the keyword, and where
+    /// the keyword must stand, for the errors.
+    fn header_value(
+        &mut self,
+        keyword: &str,
+        (at_end, place): (&str, &str),
+        what: &str,
+    ) -> Res<(&'a str, u32)> {
+        let Some((kw, l)) = self.t.token() else {
+            return Err((
+                self.t.eof_line(),
+                syntax(format!("{at_end}; expected '{keyword}'")),
+            ));
+        };
+        if !kw.eq_ignore_ascii_case(keyword) {
+            let kw = echo(kw);
+            return Err((
+                l,
+                syntax(format!("expected '{keyword}' {place}, found '{kw}'")),
+            ));
+        }
+        self.value(kw, what)
     }
 
     /// The section that keyword `kw` (at line `l`) opens, read into `mesh`; false at `End`.
