@@ -126,11 +126,102 @@ impl LinkCounts {
     /// are those of the star of v whose part above v contains σ \ {v}, so each top τ ∋ v lists
     /// every subset of its vertices above v and equal subsets are grouped.
     fn of(complex: &Complex, list_up_to: Option<usize>) -> LinkCounts {
-        let d = complex.dimension();
+        let stars = Stars::of(complex);
+        let mut out = LinkCounts::new(complex.dimension(), list_up_to);
+        // Per-vertex scratch: subsets as (start in `keys`, length, top), grouped by sorting.
+        let mut keys: Vec<u32> = Vec::new();
+        let mut entries: Vec<(u32, u8, u32)> = Vec::new();
+        let mut link = Rows::default();
+        for v in 0..complex.vertex_count() as usize {
+            // An isolated vertex: empty link, a 0-manifold with no component.
+            if stars.at(v).is_empty() {
+                continue;
+            }
+            stars.subsets_above(v, &mut keys, &mut entries);
+            let key = |e: &(u32, u8, u32)| &keys[e.0 as usize..e.0 as usize + e.1 as usize];
+            let mut i = 0;
+            while i < entries.len() {
+                let rho = key(&entries[i]);
+                let mut j = i + 1;
+                while j < entries.len() && key(&entries[j]) == rho {
+                    j += 1;
+                }
+                // lk(σ) for σ = {v} ∪ ρ: the top simplices containing σ, minus σ.
+                link.clear();
+                for e in &entries[i..j] {
+                    let t = stars.tops[e.2 as usize];
+                    link.push(
+                        t.iter()
+                            .copied()
+                            .filter(|&x| x as usize != v && rho.binary_search(&x).is_err()),
+                    );
+                }
+                out.count(v, rho, &link);
+                i = j;
+            }
+        }
+        out
+    }
+
+    /// Nothing counted yet, for a complex of dimension `d`.
+    fn new(d: usize, list_up_to: Option<usize>) -> LinkCounts {
+        LinkCounts {
+            c_e: 0,
+            c_v: 0,
+            non_manifold: vec![0; d + 1],
+            approximated: 0,
+            unclassified: 0,
+            unclassified_examples: Vec::new(),
+            listed: vec![Vec::new(); list_up_to.map_or(0, |m| m.min(d) + 1)],
+        }
+    }
+
+    /// Counts σ = {v} ∪ `rho` by the test of its link `link`.
+    fn count(&mut self, v: usize, rho: &[u32], link: &Rows) {
+        let p = rho.len();
+        let mut work = Work::for_link(link);
+        let Some(a) = analyse(link, &mut work) else {
+            self.unclassified += 1;
+            if self.unclassified_examples.len() < UNCLASSIFIED_SHOWN {
+                let mut sigma = vec![v as u32];
+                sigma.extend_from_slice(rho);
+                self.unclassified_examples.push(sigma);
+            }
+            return;
+        };
+        if a.shape == Shape::Neither {
+            self.non_manifold[p] += 1;
+            if let Some(list) = self.listed.get_mut(p) {
+                list.push(
+                    std::iter::once(v as u32)
+                        .chain(rho.iter().copied())
+                        .collect(),
+                );
+            }
+        }
+        if a.approximate && a.shape != Shape::Neither {
+            self.approximated += 1;
+        }
+        if p == 0 {
+            self.c_v += a.components as u64;
+        } else if p == 1 && a.shape == Shape::Neither {
+            self.c_e += a.components as u64;
+        }
+    }
+}
+
+/// The star of each vertex: the top simplices of dimension ≥ 1 at it (CSR over `tops`).
+struct Stars<'c> {
+    tops: Vec<&'c [u32]>,
+    off: Vec<u32>,
+    star: Vec<u32>,
+}
+
+impl<'c> Stars<'c> {
+    fn of(complex: &'c Complex) -> Stars<'c> {
         let n = complex.vertex_count() as usize;
-        // Star of each vertex (CSR over the top simplices of dimension ≥ 1).
         let mut tops: Vec<&[u32]> = Vec::new();
-        for p in 1..=d {
+        for p in 1..=complex.dimension() {
             tops.extend(complex.tops(p).iter());
         }
         let mut off = vec![0u32; n + 1];
@@ -150,95 +241,35 @@ impl LinkCounts {
                 fill[v as usize] += 1;
             }
         }
+        Stars { tops, off, star }
+    }
 
-        let mut out = LinkCounts {
-            c_e: 0,
-            c_v: 0,
-            non_manifold: vec![0; d + 1],
-            approximated: 0,
-            unclassified: 0,
-            unclassified_examples: Vec::new(),
-            listed: vec![Vec::new(); list_up_to.map_or(0, |m| m.min(d) + 1)],
-        };
-        // Per-vertex scratch: subsets as (start in `keys`, length, top), grouped by sorting.
-        let mut keys: Vec<u32> = Vec::new();
-        let mut entries: Vec<(u32, u8, u32)> = Vec::new();
-        let mut link = Rows::default();
-        for v in 0..n {
-            let st = &star[off[v] as usize..off[v + 1] as usize];
-            // An isolated vertex: empty link, a 0-manifold with no component.
-            if st.is_empty() {
-                continue;
-            }
-            keys.clear();
-            entries.clear();
-            for &g in st {
-                let t = tops[g as usize];
-                let pos = t.iter().position(|&x| x as usize == v).unwrap();
-                let above = &t[pos + 1..];
-                for mask in 0u32..(1 << above.len()) {
-                    let start = keys.len() as u32;
-                    for (i, &x) in above.iter().enumerate() {
-                        if mask & (1 << i) != 0 {
-                            keys.push(x);
-                        }
-                    }
-                    entries.push((start, mask.count_ones() as u8, g));
-                }
-            }
-            let key = |e: &(u32, u8, u32)| &keys[e.0 as usize..e.0 as usize + e.1 as usize];
-            entries.sort_unstable_by(|a, b| (a.1, key(a), a.2).cmp(&(b.1, key(b), b.2)));
-            let mut i = 0;
-            while i < entries.len() {
-                let rho = key(&entries[i]);
-                let mut j = i + 1;
-                while j < entries.len() && key(&entries[j]) == rho {
-                    j += 1;
-                }
-                // lk(σ) for σ = {v} ∪ ρ: the top simplices containing σ, minus σ.
-                link.clear();
-                for e in &entries[i..j] {
-                    let t = tops[e.2 as usize];
-                    link.push(
-                        t.iter()
-                            .copied()
-                            .filter(|&x| x as usize != v && rho.binary_search(&x).is_err()),
-                    );
-                }
-                let p = rho.len();
-                let mut work = Work::for_link(&link);
-                let Some(a) = analyse(&link, &mut work) else {
-                    out.unclassified += 1;
-                    if out.unclassified_examples.len() < UNCLASSIFIED_SHOWN {
-                        let mut sigma = vec![v as u32];
-                        sigma.extend_from_slice(rho);
-                        out.unclassified_examples.push(sigma);
-                    }
-                    i = j;
-                    continue;
-                };
-                if a.shape == Shape::Neither {
-                    out.non_manifold[p] += 1;
-                    if let Some(list) = out.listed.get_mut(p) {
-                        list.push(
-                            std::iter::once(v as u32)
-                                .chain(rho.iter().copied())
-                                .collect(),
-                        );
+    /// The tops at `v`, as indices in `tops`.
+    fn at(&self, v: usize) -> &[u32] {
+        &self.star[self.off[v] as usize..self.off[v + 1] as usize]
+    }
+
+    /// Every subset of the vertices above `v` of every top at `v`, as (start in `keys`, length,
+    /// top) in `entries`, sorted by length, ids and top (equal subsets side by side).
+    fn subsets_above(&self, v: usize, keys: &mut Vec<u32>, entries: &mut Vec<(u32, u8, u32)>) {
+        keys.clear();
+        entries.clear();
+        for &g in self.at(v) {
+            let t = self.tops[g as usize];
+            let pos = t.iter().position(|&x| x as usize == v).unwrap();
+            let above = &t[pos + 1..];
+            for mask in 0u32..(1 << above.len()) {
+                let start = keys.len() as u32;
+                for (i, &x) in above.iter().enumerate() {
+                    if mask & (1 << i) != 0 {
+                        keys.push(x);
                     }
                 }
-                if a.approximate && a.shape != Shape::Neither {
-                    out.approximated += 1;
-                }
-                if p == 0 {
-                    out.c_v += a.components as u64;
-                } else if p == 1 && a.shape == Shape::Neither {
-                    out.c_e += a.components as u64;
-                }
-                i = j;
+                entries.push((start, mask.count_ones() as u8, g));
             }
         }
-        out
+        let key = |e: &(u32, u8, u32)| &keys[e.0 as usize..e.0 as usize + e.1 as usize];
+        entries.sort_unstable_by(|a, b| (a.1, key(a), a.2).cmp(&(b.1, key(b), b.2)));
     }
 }
 

@@ -4,7 +4,8 @@ use std::fmt::Write as _;
 
 use serde_json::{Value, json};
 
-use super::timing::{Family, Measured};
+use super::census::Census;
+use super::timing::{Family, Measured, StructureResult};
 use super::{Dataset, timing};
 
 fn join<T: ToString>(v: &[T]) -> String {
@@ -51,6 +52,17 @@ pub fn sample_text(d: &Dataset) -> String {
 /// then per dataset a table of every structure's storage and times.
 pub fn markdown(datasets: &[Dataset]) -> String {
     let mut s = String::new();
+    preamble(&mut s);
+    census_table(&mut s, datasets);
+    storage_table(&mut s, datasets);
+    for d in datasets {
+        dataset_section(&mut s, d);
+    }
+    s
+}
+
+/// The title and how the report was made.
+fn preamble(s: &mut String) {
     let _ = writeln!(s, "# Topoplex report\n");
     let _ = writeln!(
         s,
@@ -62,6 +74,10 @@ pub fn markdown(datasets: &[Dataset]) -> String {
         timing::SAMPLE,
         timing::MIN_TIME.as_millis()
     );
+}
+
+/// The census of every dataset, a row each, and the columns' legend.
+fn census_table(s: &mut String, datasets: &[Dataset]) {
     let _ = writeln!(s, "## Census\n");
     let _ = writeln!(
         s,
@@ -70,29 +86,6 @@ pub fn markdown(datasets: &[Dataset]) -> String {
     let _ = writeln!(s, "|---|--:|--:|--:|--:|---|--:|--:|--:|---|");
     for d in datasets {
         let c = &d.census;
-        let mut approx = if c.approximated_links > 0 {
-            format!(" (≥; {} links approximated)", c.approximated_links)
-        } else {
-            String::new()
-        };
-        if c.unclassified_links > 0 {
-            let shown: Vec<String> = c
-                .unclassified_examples
-                .iter()
-                .map(|s| format!("[{}]", join(s)))
-                .collect();
-            let more = if c.unclassified_links > shown.len() {
-                ", ..."
-            } else {
-                ""
-            };
-            let _ = write!(
-                approx,
-                " ({} links unclassified, over the work budget: {}{more})",
-                c.unclassified_links,
-                shown.join(" ")
-            );
-        }
         let _ = writeln!(
             s,
             "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {}{} |",
@@ -106,7 +99,7 @@ pub fn markdown(datasets: &[Dataset]) -> String {
             c.c_v_minus_n0,
             iqm_text(d),
             join(&c.non_manifold),
-            approx
+            link_notes(c)
         );
     }
     let _ = writeln!(
@@ -116,6 +109,39 @@ pub fn markdown(datasets: &[Dataset]) -> String {
          components summed over vertices; non-manifold: simplices whose link is neither a sphere \
          nor a ball."
     );
+}
+
+/// What follows a census's non-manifold counts: the links approximated, and those left
+/// unclassified with the first of them.
+fn link_notes(c: &Census) -> String {
+    let mut notes = if c.approximated_links > 0 {
+        format!(" (≥; {} links approximated)", c.approximated_links)
+    } else {
+        String::new()
+    };
+    if c.unclassified_links > 0 {
+        let shown: Vec<String> = c
+            .unclassified_examples
+            .iter()
+            .map(|s| format!("[{}]", join(s)))
+            .collect();
+        let more = if c.unclassified_links > shown.len() {
+            ", ..."
+        } else {
+            ""
+        };
+        let _ = write!(
+            notes,
+            " ({} links unclassified, over the work budget: {}{more})",
+            c.unclassified_links,
+            shown.join(" ")
+        );
+    }
+    notes
+}
+
+/// Heap bytes per simplex of every structure, a row per dataset.
+fn storage_table(s: &mut String, datasets: &[Dataset]) {
     let _ = writeln!(s, "\n## Storage: heap bytes per simplex\n");
     let kinds: Vec<&str> = datasets
         .first()
@@ -141,81 +167,87 @@ pub fn markdown(datasets: &[Dataset]) -> String {
             cells.join(" | ")
         );
     }
-    for d in datasets {
-        let c = &d.census;
-        let _ = writeln!(s, "\n## {}\n", d.name);
-        let _ = writeln!(s, "- dimension: {}", c.dimension);
-        let _ = writeln!(
-            s,
-            "- simplices per dimension (n_0..n_d): {}",
-            join(&c.simplices)
-        );
-        let _ = writeln!(
-            s,
-            "- top simplices per dimension: {}",
-            join(&c.top_simplices)
-        );
-        let _ = writeln!(
-            s,
-            "- input: {} simplices listed, {} absorbed as duplicates, {} absorbed as faces of other listed simplices",
-            d.input.input_simplices, d.input.absorbed_duplicates, d.input.absorbed_faces
-        );
-        if let Err(e) = &c.iqm_components {
-            let _ = writeln!(s, "- IQM decomposition: {e}");
-        }
-        let _ = writeln!(s, "- timing sample: {}\n", sample_text(d));
-        let _ = writeln!(
-            s,
-            "| structure | paper ints | paper bits | heap bytes | B/simplex | build ms | boundary ns | co-boundary ns | adj. vertex ns | adj. top ns | notes |"
-        );
-        let _ = writeln!(s, "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|");
-        for r in &d.structures {
-            match &r.outcome {
-                Ok(m) => {
-                    let times: Vec<String> = Family::ALL
-                        .iter()
-                        .map(|&f| {
-                            family(m, f).map_or("—".into(), |t| match &t.error {
-                                Some(_) => "error".into(),
-                                None => ns(t.ns_per_element),
-                            })
-                        })
-                        .collect();
-                    let mut notes: Vec<String> = m
-                        .summary
-                        .iter()
-                        .map(|(k, v)| format!("{v} {}", k.replace('_', " ")))
-                        .collect();
-                    notes.extend(m.families.iter().filter_map(|t| {
-                        t.error
-                            .as_ref()
-                            .map(|e| format!("{} query failed: {e}", t.family.name()))
-                    }));
-                    let _ = writeln!(
-                        s,
-                        "| {} | {} | {} | {} | {:.1} | {:.3} | {} | {} |",
-                        r.kind.name(),
-                        m.storage.integers,
-                        m.storage.bits,
-                        m.storage.bytes,
-                        m.bytes_per_simplex,
-                        m.build_ms,
-                        times.join(" | "),
-                        cell(&notes.join(", "))
-                    );
-                }
-                Err(reason) => {
-                    let _ = writeln!(
-                        s,
-                        "| {} | — | — | — | — | — | — | — | — | — | unsupported: {} |",
-                        r.kind.name(),
-                        cell(reason)
-                    );
-                }
-            }
-        }
+}
+
+/// One dataset: its counts and input, then a row per structure.
+fn dataset_section(s: &mut String, d: &Dataset) {
+    let c = &d.census;
+    let _ = writeln!(s, "\n## {}\n", d.name);
+    let _ = writeln!(s, "- dimension: {}", c.dimension);
+    let _ = writeln!(
+        s,
+        "- simplices per dimension (n_0..n_d): {}",
+        join(&c.simplices)
+    );
+    let _ = writeln!(
+        s,
+        "- top simplices per dimension: {}",
+        join(&c.top_simplices)
+    );
+    let _ = writeln!(
+        s,
+        "- input: {} simplices listed, {} absorbed as duplicates, {} absorbed as faces of other listed simplices",
+        d.input.input_simplices, d.input.absorbed_duplicates, d.input.absorbed_faces
+    );
+    if let Err(e) = &c.iqm_components {
+        let _ = writeln!(s, "- IQM decomposition: {e}");
     }
-    s
+    let _ = writeln!(s, "- timing sample: {}\n", sample_text(d));
+    let _ = writeln!(
+        s,
+        "| structure | paper ints | paper bits | heap bytes | B/simplex | build ms | boundary ns | co-boundary ns | adj. vertex ns | adj. top ns | notes |"
+    );
+    let _ = writeln!(s, "|---|--:|--:|--:|--:|--:|--:|--:|--:|--:|---|");
+    for r in &d.structures {
+        structure_row(s, r);
+    }
+}
+
+/// A structure's storage, build time and query times, or why it cannot encode the dataset.
+fn structure_row(s: &mut String, r: &StructureResult) {
+    let m = match &r.outcome {
+        Ok(m) => m,
+        Err(reason) => {
+            let _ = writeln!(
+                s,
+                "| {} | — | — | — | — | — | — | — | — | — | unsupported: {} |",
+                r.kind.name(),
+                cell(reason)
+            );
+            return;
+        }
+    };
+    let times: Vec<String> = Family::ALL
+        .iter()
+        .map(|&f| {
+            family(m, f).map_or("—".into(), |t| match &t.error {
+                Some(_) => "error".into(),
+                None => ns(t.ns_per_element),
+            })
+        })
+        .collect();
+    let mut notes: Vec<String> = m
+        .summary
+        .iter()
+        .map(|(k, v)| format!("{v} {}", k.replace('_', " ")))
+        .collect();
+    notes.extend(m.families.iter().filter_map(|t| {
+        t.error
+            .as_ref()
+            .map(|e| format!("{} query failed: {e}", t.family.name()))
+    }));
+    let _ = writeln!(
+        s,
+        "| {} | {} | {} | {} | {:.1} | {:.3} | {} | {} |",
+        r.kind.name(),
+        m.storage.integers,
+        m.storage.bits,
+        m.storage.bytes,
+        m.bytes_per_simplex,
+        m.build_ms,
+        times.join(" | "),
+        cell(&notes.join(", "))
+    );
 }
 
 /// One dataset as a JSON object. The fields of the first `report --json` (file, dimension,

@@ -91,9 +91,18 @@ impl Chart {
 
     /// Draws the chart with its top-left corner at (0, `y0`).
     fn draw(&self, s: &mut String, y0: f64) {
-        let w = self.width();
-        let plot_w = w - LEFT - LEGEND_W - 20.0;
+        let plot_w = self.width() - LEFT - LEGEND_W - 20.0;
         let base = y0 + TOP + PLOT_H;
+        let scale = self.scale();
+        self.draw_titles(s, y0);
+        self.draw_axes(s, &scale, plot_w, base);
+        self.draw_bars(s, &scale, plot_w, base);
+        self.draw_legend(s, y0);
+    }
+
+    /// The y axis for the chart's positive finite values: from 0 to a nice step above the
+    /// largest, or log from the decade below the smallest to the decade above the largest.
+    fn scale(&self) -> Scale {
         let all: Vec<f64> = self
             .values
             .iter()
@@ -103,7 +112,6 @@ impl Chart {
             .filter(|v| v.is_finite() && *v > 0.0)
             .collect();
         let max = all.iter().copied().fold(0.0f64, f64::max);
-        // y(v): pixel height above the axis.
         let (lo, hi, ticks): (f64, f64, Vec<f64>) = if self.log {
             let min = all.iter().copied().fold(f64::INFINITY, f64::min);
             let (lo, hi) = if all.is_empty() {
@@ -122,14 +130,16 @@ impl Chart {
             let n = (hi / step).round() as usize;
             (0.0, hi, (0..=n).map(|i| i as f64 * step).collect())
         };
-        let height = |v: f64| -> f64 {
-            let t = if self.log {
-                (v.log10() - lo) / (hi - lo)
-            } else {
-                (v - lo) / (hi - lo)
-            };
-            t.clamp(0.0, 1.0) * PLOT_H
-        };
+        Scale {
+            log: self.log,
+            lo,
+            hi,
+            ticks,
+        }
+    }
+
+    /// The title and subtitle above the plot.
+    fn draw_titles(&self, s: &mut String, y0: f64) {
         let _ = writeln!(
             s,
             r#"<text x="{}" y="{}" font-size="16" font-weight="bold">{}</text>"#,
@@ -144,9 +154,12 @@ impl Chart {
             y0 + 40.0,
             esc(&self.subtitle)
         );
-        // Axes, grid and ticks.
-        for &t in &ticks {
-            let y = base - height(t);
+    }
+
+    /// Axes, grid and ticks, and the y label.
+    fn draw_axes(&self, s: &mut String, scale: &Scale, plot_w: f64, base: f64) {
+        for &t in &scale.ticks {
+            let y = base - scale.height(t);
             let _ = writeln!(
                 s,
                 r##"<line x1="{LEFT}" y1="{y:.1}" x2="{:.1}" y2="{y:.1}" stroke="#ddd"/><text x="{}" y="{:.1}" font-size="11" text-anchor="end">{}</text>"##,
@@ -173,7 +186,10 @@ impl Chart {
             base - PLOT_H / 2.0,
             esc(&self.y_label)
         );
-        // Bars.
+    }
+
+    /// A group of bars per group, its label under it.
+    fn draw_bars(&self, s: &mut String, scale: &Scale, plot_w: f64, base: f64) {
         let gw = plot_w / self.groups.len().max(1) as f64;
         let inner = gw * 0.8;
         let bw = inner / self.series.len().max(1) as f64;
@@ -188,43 +204,25 @@ impl Chart {
             );
             for (k, series) in self.series.iter().enumerate() {
                 let x = gx + k as f64 * bw;
-                let cx = x + bw / 2.0;
+                let bar = Bar {
+                    x,
+                    width: bw,
+                    base,
+                    color: COLORS[k % COLORS.len()],
+                    series,
+                    group: name,
+                };
                 match self.values[g][k] {
-                    Some(v) if v.is_finite() && v > 0.0 => {
-                        let h = height(v).max(1.0);
-                        let _ = writeln!(
-                            s,
-                            r#"<rect x="{x:.1}" y="{:.1}" width="{:.1}" height="{h:.1}" fill="{}"><title>{} — {}: {}</title></rect>"#,
-                            base - h,
-                            (bw - 1.0).max(1.0),
-                            COLORS[k % COLORS.len()],
-                            esc(series),
-                            esc(name),
-                            fmt_value(v)
-                        );
-                        let _ = writeln!(
-                            s,
-                            r##"<text transform="translate({:.1},{:.1}) rotate(-90)" font-size="9" fill="#333">{}</text>"##,
-                            cx + 3.0,
-                            base - h - 3.0,
-                            fmt_value(v)
-                        );
-                    }
-                    _ => {
-                        let _ = writeln!(
-                            s,
-                            r##"<text transform="translate({:.1},{:.1}) rotate(-90)" font-size="9" fill="#999"><title>{} — {}: not available</title>n/a</text>"##,
-                            cx + 3.0,
-                            base - 3.0,
-                            esc(series),
-                            esc(name)
-                        );
-                    }
+                    Some(v) if v.is_finite() && v > 0.0 => bar.draw(s, v, scale.height(v)),
+                    _ => bar.draw_missing(s),
                 }
             }
         }
-        // Legend.
-        let lx = w - LEGEND_W;
+    }
+
+    /// A coloured square and the name of every series, right of the plot.
+    fn draw_legend(&self, s: &mut String, y0: f64) {
+        let lx = self.width() - LEGEND_W;
         for (k, series) in self.series.iter().enumerate() {
             let ly = y0 + TOP + k as f64 * 18.0;
             let _ = writeln!(
@@ -236,6 +234,75 @@ impl Chart {
                 esc(series)
             );
         }
+    }
+}
+
+/// A chart's y axis: linear or log from `lo` to `hi` (decades when log), with its ticks.
+struct Scale {
+    log: bool,
+    lo: f64,
+    hi: f64,
+    ticks: Vec<f64>,
+}
+
+impl Scale {
+    /// The pixel height of `v` above the axis.
+    fn height(&self, v: f64) -> f64 {
+        let t = if self.log {
+            (v.log10() - self.lo) / (self.hi - self.lo)
+        } else {
+            (v - self.lo) / (self.hi - self.lo)
+        };
+        t.clamp(0.0, 1.0) * PLOT_H
+    }
+}
+
+/// One bar's place: left edge `x`, `width`, the axis at `base`, and what it shows.
+struct Bar<'a> {
+    x: f64,
+    width: f64,
+    base: f64,
+    color: &'a str,
+    series: &'a str,
+    group: &'a str,
+}
+
+impl Bar<'_> {
+    /// The bar of value `v`, `h` pixels high (at least 1), with its value as a label and title.
+    fn draw(&self, s: &mut String, v: f64, h: f64) {
+        let (x, base) = (self.x, self.base);
+        let cx = x + self.width / 2.0;
+        let h = h.max(1.0);
+        let _ = writeln!(
+            s,
+            r#"<rect x="{x:.1}" y="{:.1}" width="{:.1}" height="{h:.1}" fill="{}"><title>{} — {}: {}</title></rect>"#,
+            base - h,
+            (self.width - 1.0).max(1.0),
+            self.color,
+            esc(self.series),
+            esc(self.group),
+            fmt_value(v)
+        );
+        let _ = writeln!(
+            s,
+            r##"<text transform="translate({:.1},{:.1}) rotate(-90)" font-size="9" fill="#333">{}</text>"##,
+            cx + 3.0,
+            base - h - 3.0,
+            fmt_value(v)
+        );
+    }
+
+    /// A grey "n/a" where the structure has no value.
+    fn draw_missing(&self, s: &mut String) {
+        let cx = self.x + self.width / 2.0;
+        let _ = writeln!(
+            s,
+            r##"<text transform="translate({:.1},{:.1}) rotate(-90)" font-size="9" fill="#999"><title>{} — {}: not available</title>n/a</text>"##,
+            cx + 3.0,
+            self.base - 3.0,
+            esc(self.series),
+            esc(self.group)
+        );
     }
 }
 

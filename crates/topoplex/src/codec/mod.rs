@@ -454,23 +454,46 @@ pub(crate) fn check_head(path: &Path, bytes: &[u8]) -> Result<Head, StoreError> 
         path: path.to_path_buf(),
         what,
     };
-    let truncated = |what: String| StoreError::Truncated {
-        path: path.to_path_buf(),
-        what,
-    };
+    check_fixed_fields(path, bytes, &corrupt)?;
+    let (u32_at, u64_at) = (|o| header_u32(bytes, o), |o| header_u64(bytes, o));
+    let (kind_code, n_sections, first) = (u32_at(20), u32_at(24) as u64, u32_at(28) as usize);
+    let (file_len, table_offset, sum) = (u64_at(32), u64_at(40), u64_at(48));
+    let table = section_table(path, bytes, (file_len, table_offset, n_sections), &corrupt)?;
+    if head_checksum(&bytes[..48], table) != sum {
+        return Err(corrupt("header checksum mismatch".into()));
+    }
+    let kind = content_kind(kind_code, &corrupt)?;
+    if first > n_sections as usize || (kind.is_none() && first != n_sections as usize) {
+        return Err(corrupt(format!(
+            "structure starts at section {first} of {n_sections}"
+        )));
+    }
+    let entries = parse_table(table, table_offset, &corrupt)?;
+    Ok((entries, kind, first))
+}
+
+/// Checks the header's fields that every file has alike: the magic, the length, the byte
+/// order, the version, the reserved bytes and the id width.
+fn check_fixed_fields(
+    path: &Path,
+    bytes: &[u8],
+    corrupt: &dyn Fn(String) -> StoreError,
+) -> Result<(), StoreError> {
     if bytes.len() < MAGIC.len() || bytes[..MAGIC.len()] != MAGIC {
         return Err(StoreError::Foreign {
             path: path.to_path_buf(),
         });
     }
     if bytes.len() < HEADER_LEN {
-        return Err(truncated(format!(
-            "{} bytes, shorter than the {HEADER_LEN}-byte header",
-            bytes.len()
-        )));
+        return Err(StoreError::Truncated {
+            path: path.to_path_buf(),
+            what: format!(
+                "{} bytes, shorter than the {HEADER_LEN}-byte header",
+                bytes.len()
+            ),
+        });
     }
-    let u32_at = |o: usize| u32::from_ne_bytes(bytes[o..o + 4].try_into().unwrap());
-    let u64_at = |o: usize| u64::from_ne_bytes(bytes[o..o + 8].try_into().unwrap());
+    let (u32_at, u64_at) = (|o| header_u32(bytes, o), |o| header_u64(bytes, o));
     match u32_at(8) {
         BYTE_ORDER_MARK => {}
         m if m == BYTE_ORDER_MARK.swap_bytes() => {
@@ -499,13 +522,32 @@ pub(crate) fn check_head(path: &Path, bytes: &[u8]) -> Result<Head, StoreError> 
             u32_at(16)
         )));
     }
-    let (kind_code, n_sections, first) = (u32_at(20), u32_at(24) as u64, u32_at(28) as usize);
-    let (file_len, table_offset, sum) = (u64_at(32), u64_at(40), u64_at(48));
+    Ok(())
+}
+
+/// The native-endian `u32` at byte `o` of the header.
+fn header_u32(bytes: &[u8], o: usize) -> u32 {
+    u32::from_ne_bytes(bytes[o..o + 4].try_into().unwrap())
+}
+
+/// The native-endian `u64` at byte `o` of the header.
+fn header_u64(bytes: &[u8], o: usize) -> u64 {
+    u64::from_ne_bytes(bytes[o..o + 8].try_into().unwrap())
+}
+
+/// The section table's bytes, checked against the file length the header states and its
+/// section count: `(file_len, table_offset, n_sections)`.
+fn section_table<'b>(
+    path: &Path,
+    bytes: &'b [u8],
+    (file_len, table_offset, n_sections): (u64, u64, u64),
+    corrupt: &dyn Fn(String) -> StoreError,
+) -> Result<&'b [u8], StoreError> {
     if file_len > bytes.len() as u64 {
-        return Err(truncated(format!(
-            "{} bytes of the {file_len} the header states",
-            bytes.len()
-        )));
+        return Err(StoreError::Truncated {
+            path: path.to_path_buf(),
+            what: format!("{} bytes of the {file_len} the header states", bytes.len()),
+        });
     }
     if file_len < bytes.len() as u64 {
         return Err(corrupt(format!(
@@ -524,11 +566,15 @@ pub(crate) fn check_head(path: &Path, bytes: &[u8]) -> Result<Head, StoreError> 
                 "section table at {table_offset} for {n_sections} sections in {file_len} bytes"
             ))
         })?;
-    let table = &bytes[table_offset as usize..table_end as usize];
-    if head_checksum(&bytes[..48], table) != sum {
-        return Err(corrupt("header checksum mismatch".into()));
-    }
-    let kind = match kind_code {
+    Ok(&bytes[table_offset as usize..table_end as usize])
+}
+
+/// The structure kind that content code `code` names (`None` for a complex alone).
+fn content_kind(
+    code: u32,
+    corrupt: &dyn Fn(String) -> StoreError,
+) -> Result<Option<StructureKind>, StoreError> {
+    Ok(match code {
         0 => None,
         // Content code = kind + 1; the live complex (kind 9) is not in ALL.
         k => Some(
@@ -538,14 +584,7 @@ pub(crate) fn check_head(path: &Path, bytes: &[u8]) -> Result<Head, StoreError> 
                 .find(|s| s.abi() + 1 == k)
                 .ok_or_else(|| corrupt(format!("unknown content code {k}")))?,
         ),
-    };
-    if first > n_sections as usize || (kind.is_none() && first != n_sections as usize) {
-        return Err(corrupt(format!(
-            "structure starts at section {first} of {n_sections}"
-        )));
-    }
-    let entries = parse_table(table, table_offset, &corrupt)?;
-    Ok((entries, kind, first))
+    })
 }
 
 fn parse_table(

@@ -31,8 +31,9 @@
 //! search per simplex; memory: the closure's tables and links, and each block's
 //! scratch.
 
+use super::closure::TopAt;
 use super::table::{headroom, id_bits};
-use super::{Complex, SimplexTable, TopAt};
+use super::{Complex, SimplexTable};
 
 /// What [`Complex::closure_by_blocks`] makes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

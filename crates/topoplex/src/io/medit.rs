@@ -265,26 +265,6 @@ impl Kept for f64 {
     }
 }
 
-impl Reader<'_> {
-    /// A section of elements that are not simplices: an error at its first entry, if any.
-    fn reject(&mut self, keyword: &str, kind: ReadErrorKind) -> Res<()> {
-        let count = self.count(keyword)?;
-        if count == 0 {
-            return Ok(());
-        }
-        let (name, names) = nouns(keyword);
-        match self.t.token() {
-            Some((_, l)) => Err((l, kind)),
-            None => Err((
-                self.t.eof_line(),
-                syntax(format!(
-                    "{name} count {count} declared but file ends after 0 {names}"
-                )),
-            )),
-        }
-    }
-}
-
 /// Reads an element section of `count` entries of `items` into `raw` on several threads (see
 /// [`Reader::parallel_entries`]); false, with nothing read, for the serial reader to read it.
 fn elements_in_parallel(
@@ -354,166 +334,221 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
         t: Scanner::new(text),
         text,
     };
+    r.version()?;
+    let dim = r.dimension()?;
+    let mut mesh = Mesh {
+        dim,
+        raw: RawInput::new(),
+        vertices: None,
+    };
+    while let Some((kw, l)) = r.t.token() {
+        if !r.section(kw, l, &mut mesh)? {
+            break;
+        }
+    }
+    Ok(mesh.into_raw())
+}
 
-    let Some((kw, l)) = r.t.token() else {
-        return Err((
-            r.t.eof_line(),
-            syntax("file is empty; expected 'MeshVersionFormatted'"),
-        ));
-    };
-    if !kw.eq_ignore_ascii_case("MeshVersionFormatted") {
-        let kw = echo(kw);
-        return Err((
-            l,
-            syntax(format!(
-                "expected 'MeshVersionFormatted' at the start of the file, found '{kw}'"
-            )),
-        ));
+/// What the sections have read so far.
+struct Mesh {
+    /// The `Dimension` of the header: coordinates per vertex.
+    dim: usize,
+    /// The element sections' simplices.
+    raw: RawInput,
+    /// The `Vertices` section, once read: its count and coordinates.
+    vertices: Option<(u32, Vec<f64>)>,
+}
+
+impl Mesh {
+    /// The simplices with the vertex count and coordinates (none without a `Vertices` section).
+    fn into_raw(self) -> RawInput {
+        let Mesh {
+            dim,
+            mut raw,
+            vertices,
+        } = self;
+        let (n, data) = vertices.unwrap_or_default();
+        raw.vertex_count = Some(n);
+        raw.coords = Some(Coords { dim, data });
+        raw
     }
-    let (tok, l) = r.value(kw, "the version number")?;
-    if !matches!(parse_integer(tok), Ok(1..=4)) {
-        let tok = echo(tok);
-        return Err((
-            l,
-            syntax(format!(
-                "unsupported MeshVersionFormatted '{tok}' (expected 1, 2, 3 or 4)"
-            )),
-        ));
-    }
-    let Some((kw, l)) = r.t.token() else {
-        return Err((
-            r.t.eof_line(),
-            syntax("file ends after the version; expected 'Dimension'"),
-        ));
-    };
-    if !kw.eq_ignore_ascii_case("Dimension") {
-        let kw = echo(kw);
-        return Err((
-            l,
-            syntax(format!(
-                "expected 'Dimension' after MeshVersionFormatted, found '{kw}'"
-            )),
-        ));
-    }
-    let (tok, l) = r.value(kw, "the dimension")?;
-    let dim = match parse_integer(tok) {
-        Ok(d @ 2..=3) => d as usize,
-        _ => {
+}
+
+impl<'a> Reader<'a> {
+    /// `MeshVersionFormatted` and its value (1 to 4), which must open the file.
+    fn version(&mut self) -> Res<()> {
+        let (tok, l) = self.header_value(
+            "MeshVersionFormatted",
+            ("file is empty", "at the start of the file"),
+            "the version number",
+        )?;
+        if !matches!(parse_integer(tok), Ok(1..=4)) {
             let tok = echo(tok);
             return Err((
                 l,
-                syntax(format!("Dimension must be 2 or 3, found '{tok}'")),
+                syntax(format!(
+                    "unsupported MeshVersionFormatted '{tok}' (expected 1, 2, 3 or 4)"
+                )),
             ));
         }
-    };
+        Ok(())
+    }
 
-    let mut raw = RawInput::new();
-    let mut vertices: Option<(u32, Vec<f64>)> = None;
-    let vertex_items: Vec<Item> = std::iter::repeat_n(Item::Coord, dim)
-        .chain([Item::Ref])
-        .collect();
-    let element = |n: usize| -> Vec<Item> {
-        std::iter::repeat_n(Item::Id, n)
-            .chain([Item::Ref])
-            .collect()
-    };
+    /// `Dimension` and its value (2 or 3), which must follow the version.
+    fn dimension(&mut self) -> Res<usize> {
+        let (tok, l) = self.header_value(
+            "Dimension",
+            ("file ends after the version", "after MeshVersionFormatted"),
+            "the dimension",
+        )?;
+        match parse_integer(tok) {
+            Ok(d @ 2..=3) => Ok(d as usize),
+            _ => {
+                let tok = echo(tok);
+                Err((
+                    l,
+                    syntax(format!("Dimension must be 2 or 3, found '{tok}'")),
+                ))
+            }
+        }
+    }
 
-    while let Some((kw, l)) = r.t.token() {
-        let lower = kw.to_ascii_lowercase();
-        match lower.as_str() {
+    /// The value (`what`) of header keyword `keyword`, which must be the next token (in any
+    /// case). `(at_end, place)`: what the file is when it ends before the keyword, and where
+    /// the keyword must stand, for the errors.
+    fn header_value(
+        &mut self,
+        keyword: &str,
+        (at_end, place): (&str, &str),
+        what: &str,
+    ) -> Res<(&'a str, u32)> {
+        let Some((kw, l)) = self.t.token() else {
+            return Err((
+                self.t.eof_line(),
+                syntax(format!("{at_end}; expected '{keyword}'")),
+            ));
+        };
+        if !kw.eq_ignore_ascii_case(keyword) {
+            let kw = echo(kw);
+            return Err((
+                l,
+                syntax(format!("expected '{keyword}' {place}, found '{kw}'")),
+            ));
+        }
+        self.value(kw, what)
+    }
+
+    /// The section that keyword `kw` (at line `l`) opens, read into `mesh`; false at `End`.
+    fn section(&mut self, kw: &'a str, l: u32, mesh: &mut Mesh) -> Res<bool> {
+        let dim = mesh.dim;
+        match kw.to_ascii_lowercase().as_str() {
             "end" => {
-                if let Some((tok, l)) = r.t.token() {
+                if let Some((tok, l)) = self.t.token() {
                     return Err((
                         l,
                         syntax(format!("unexpected content '{}' after End", echo(tok))),
                     ));
                 }
-                break;
+                return Ok(false);
             }
-            "vertices" => {
-                if vertices.is_some() {
-                    return Err((l, syntax("second Vertices section")));
-                }
-                let n = r.count(kw)?;
-                let cap = capped((n as usize).saturating_mul(dim), r.text);
-                let mut data =
-                    try_with_capacity(cap, "the vertex coordinates").map_err(|k| (l, k))?;
-                if r.parallel_entries(n, &vertex_items, &mut data, dim)
-                    .is_none()
-                {
-                    r.entries(kw, n, &vertex_items, |_, xs, _| {
-                        table::try_extend(&mut data, xs).map_err(no_room("the vertex coordinates"))
-                    })?;
-                }
-                vertices = Some((n, data));
-            }
-            "edges" | "triangles" | "tetrahedra" => {
-                let k = match lower.as_str() {
-                    "edges" => 2,
-                    "triangles" => 3,
-                    _ => 4,
-                };
-                let n = r.count(kw)?;
-                let cap = capped(n as usize, r.text);
-                raw.try_reserve(cap, cap.saturating_mul(k).min(r.text.len()))
-                    .map_err(|e| (l, e))?;
-                let items = element(k);
-                if !elements_in_parallel(&mut r, n, &items, &mut raw) {
-                    r.entries(kw, n, &items, |ids, _, line| raw.try_push(ids, line))?;
-                }
-            }
+            "vertices" => self.vertices(kw, l, mesh)?,
+            "edges" => self.elements(kw, l, 2, &mut mesh.raw)?,
+            "triangles" => self.elements(kw, l, 3, &mut mesh.raw)?,
+            "tetrahedra" => self.elements(kw, l, 4, &mut mesh.raw)?,
             "corners" | "ridges" | "requiredvertices" | "requirededges" | "requiredtriangles" => {
-                let n = r.count(kw)?;
-                r.entries(kw, n, &[Item::Int], |_, _, _| Ok(()))?;
+                self.skipped(kw, &[Item::Int])?;
             }
-            "normals" | "tangents" => {
-                let n = r.count(kw)?;
-                r.entries(kw, n, &vec![Item::Real; dim], |_, _, _| Ok(()))?;
-            }
-            "normalatvertices" | "tangentatvertices" => {
-                let n = r.count(kw)?;
-                r.entries(kw, n, &[Item::Int; 2], |_, _, _| Ok(()))?;
-            }
-            "normalattrianglevertices" => {
-                let n = r.count(kw)?;
-                r.entries(kw, n, &[Item::Int; 3], |_, _, _| Ok(()))?;
-            }
+            "normals" | "tangents" => self.skipped(kw, &vec![Item::Real; dim])?,
+            "normalatvertices" | "tangentatvertices" => self.skipped(kw, &[Item::Int; 2])?,
+            "normalattrianglevertices" => self.skipped(kw, &[Item::Int; 3])?,
             "identifier" | "geometry" => {
                 // The string is the rest of this line, or else the whole next line.
-                if r.t.token_in_line().is_none() {
-                    r.value(kw, "a string")?;
+                if self.t.token_in_line().is_none() {
+                    self.value(kw, "a string")?;
                 }
-                r.t.skip_rest_of_line();
+                self.t.skip_rest_of_line();
             }
-            "quadrilaterals" => r.reject(kw, ReadErrorKind::Polygon(4))?,
-            "hexahedra" => r.reject(kw, syntax("hexahedra are not simplices"))?,
-            "meshversionformatted" | "dimension" => {
-                return Err((
-                    l,
-                    syntax(format!("'{kw}' may appear only once, at the start")),
-                ));
-            }
-            _ if parse_f64(kw, "").is_ok() => {
-                let kw = echo(kw);
-                return Err((
-                    l,
-                    syntax(format!(
-                        "unexpected number '{kw}' where a section keyword was expected (does the \
-                         previous section hold more entries than its count?)"
-                    )),
-                ));
-            }
-            _ => {
-                let kw = echo(kw);
-                return Err((l, syntax(format!("unknown MEDIT section keyword '{kw}'"))));
-            }
+            "quadrilaterals" => self.reject(kw, ReadErrorKind::Polygon(4))?,
+            "hexahedra" => self.reject(kw, syntax("hexahedra are not simplices"))?,
+            lower => return Err((l, not_a_section(kw, lower))),
+        }
+        Ok(true)
+    }
+
+    /// The `Vertices` section (at line `l`): its count and `dim` coordinates a vertex.
+    fn vertices(&mut self, kw: &str, l: u32, mesh: &mut Mesh) -> Res<()> {
+        if mesh.vertices.is_some() {
+            return Err((l, syntax("second Vertices section")));
+        }
+        let dim = mesh.dim;
+        let items: Vec<Item> = std::iter::repeat_n(Item::Coord, dim)
+            .chain([Item::Ref])
+            .collect();
+        let n = self.count(kw)?;
+        let cap = capped((n as usize).saturating_mul(dim), self.text);
+        let mut data = try_with_capacity(cap, "the vertex coordinates").map_err(|k| (l, k))?;
+        if self.parallel_entries(n, &items, &mut data, dim).is_none() {
+            self.entries(kw, n, &items, |_, xs, _| {
+                table::try_extend(&mut data, xs).map_err(no_room("the vertex coordinates"))
+            })?;
+        }
+        mesh.vertices = Some((n, data));
+        Ok(())
+    }
+
+    /// An element section (at line `l`) of simplices of `k` vertices, appended to `raw`.
+    fn elements(&mut self, kw: &str, l: u32, k: usize, raw: &mut RawInput) -> Res<()> {
+        let n = self.count(kw)?;
+        let cap = capped(n as usize, self.text);
+        raw.try_reserve(cap, cap.saturating_mul(k).min(self.text.len()))
+            .map_err(|e| (l, e))?;
+        let items: Vec<Item> = std::iter::repeat_n(Item::Id, k)
+            .chain([Item::Ref])
+            .collect();
+        if !elements_in_parallel(self, n, &items, raw) {
+            self.entries(kw, n, &items, |ids, _, line| raw.try_push(ids, line))?;
+        }
+        Ok(())
+    }
+
+    /// A section of elements that are not simplices: an error at its first entry, if any.
+    fn reject(&mut self, keyword: &str, kind: ReadErrorKind) -> Res<()> {
+        let count = self.count(keyword)?;
+        if count == 0 {
+            return Ok(());
+        }
+        let (name, names) = nouns(keyword);
+        match self.t.token() {
+            Some((_, l)) => Err((l, kind)),
+            None => Err((
+                self.t.eof_line(),
+                syntax(format!(
+                    "{name} count {count} declared but file ends after 0 {names}"
+                )),
+            )),
         }
     }
 
-    let (n, data) = vertices.unwrap_or_default();
-    raw.vertex_count = Some(n);
-    raw.coords = Some(Coords { dim, data });
-    Ok(raw)
+    /// A section whose entries (laid out as `items`) are checked and dropped.
+    fn skipped(&mut self, kw: &str, items: &[Item]) -> Res<()> {
+        let n = self.count(kw)?;
+        self.entries(kw, n, items, |_, _, _| Ok(()))
+    }
+}
+
+/// The error for keyword `kw` (`lower` in lower case) where no section it names may stand.
+fn not_a_section(kw: &str, lower: &str) -> ReadErrorKind {
+    if lower == "meshversionformatted" || lower == "dimension" {
+        return syntax(format!("'{kw}' may appear only once, at the start"));
+    }
+    let kw_shown = echo(kw);
+    if parse_f64(kw, "").is_ok() {
+        return syntax(format!(
+            "unexpected number '{kw_shown}' where a section keyword was expected (does the \
+             previous section hold more entries than its count?)"
+        ));
+    }
+    syntax(format!("unknown MEDIT section keyword '{kw_shown}'"))
 }
 
 #[cfg(test)]

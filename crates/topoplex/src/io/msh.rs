@@ -437,88 +437,116 @@ pub(crate) fn write(
     if !v4 && (n > i32::MAX as usize || m > i32::MAX as usize) {
         return Err("more than 2^31 nodes or elements (use version 4.1)".into());
     }
-    let w = Writer { out, binary };
-    let version = if v4 { "4.1" } else { "2.2" };
-    w.out
-        .extend_from_slice(format!("$MeshFormat\n{version} {} 8\n", u8::from(binary)).as_bytes());
-    if binary {
-        w.out.extend_from_slice(&1i32.to_le_bytes());
-        w.out.push(b'\n');
-    }
-    w.out.extend_from_slice(b"$EndMeshFormat\n$Nodes\n");
-    let mut w = w;
-    if v4 {
-        w.sizes(&[1, n as u64, 1, n as u64]);
-        w.ints(&[3, 1, 0]);
-        w.sizes(&[n as u64]);
-        for v in 0..n {
-            w.sizes(&[v as u64 + 1]);
-        }
-    } else {
-        w.out.extend_from_slice(format!("{n}\n").as_bytes());
-    }
-    let coords = raw.coords.as_ref();
-    for v in 0..n {
-        if !v4 {
-            w.ints_open(&[v as i64 + 1]);
-        }
-        let p: Vec<f64> = (0..3)
-            .map(|k| {
-                coords
-                    .filter(|c| k < c.dim)
-                    .map_or(0.0, |c| c.data[v * c.dim + k])
-            })
-            .collect();
-        w.reals(&p);
-    }
-    w.close_block();
-    w.out.extend_from_slice(b"$EndNodes\n$Elements\n");
-    // Runs of equal length: one block each (version 4, binary version 2).
+    let mut w = Writer { out, binary };
+    w.format(v4);
+    w.nodes(raw, n, v4);
+    w.elements(raw, v4);
+    Ok(())
+}
+
+/// The runs of consecutive simplices of `raw` of equal length, as `(start, end)`.
+fn equal_length_runs(raw: &RawInput) -> Vec<(usize, usize)> {
     let mut runs: Vec<(usize, usize)> = Vec::new();
-    for i in 0..m {
+    for i in 0..raw.simplex_count() {
         match runs.last_mut() {
             Some((start, end)) if raw.simplex(*start).len() == raw.simplex(i).len() => *end = i + 1,
             _ => runs.push((i, i + 1)),
         }
     }
-    if v4 {
-        w.sizes(&[runs.len() as u64, m as u64, 1, m as u64]);
-    } else {
-        w.out.extend_from_slice(format!("{m}\n").as_bytes());
-    }
-    for &(start, end) in &runs {
-        let len = raw.simplex(start).len();
-        let t = element_type(len);
-        if v4 {
-            w.ints(&[len as i32 - 1, 1, t]);
-            w.sizes(&[(end - start) as u64]);
-        } else if binary {
-            w.ints(&[t, (end - start) as i32, 2]);
+    runs
+}
+
+impl Writer<'_> {
+    /// The `$MeshFormat` section (with the binary byte-order int).
+    fn format(&mut self, v4: bool) {
+        let version = if v4 { "4.1" } else { "2.2" };
+        self.out.extend_from_slice(
+            format!("$MeshFormat\n{version} {} 8\n", u8::from(self.binary)).as_bytes(),
+        );
+        if self.binary {
+            self.out.extend_from_slice(&1i32.to_le_bytes());
+            self.out.push(b'\n');
         }
-        for i in start..end {
-            let ids = raw.simplex(i).iter().map(|&v| u64::from(v) + 1);
+        self.out.extend_from_slice(b"$EndMeshFormat\n");
+    }
+
+    /// The `$Nodes` section: the `n` vertices, tagged 1..=n, with 3 coordinates each (0 where
+    /// `raw` has fewer).
+    fn nodes(&mut self, raw: &RawInput, n: usize, v4: bool) {
+        self.out.extend_from_slice(b"$Nodes\n");
+        if v4 {
+            self.sizes(&[1, n as u64, 1, n as u64]);
+            self.ints(&[3, 1, 0]);
+            self.sizes(&[n as u64]);
+            for v in 0..n {
+                self.sizes(&[v as u64 + 1]);
+            }
+        } else {
+            self.out.extend_from_slice(format!("{n}\n").as_bytes());
+        }
+        let coords = raw.coords.as_ref();
+        for v in 0..n {
+            if !v4 {
+                self.ints_open(&[v as i64 + 1]);
+            }
+            let p: Vec<f64> = (0..3)
+                .map(|k| {
+                    coords
+                        .filter(|c| k < c.dim)
+                        .map_or(0.0, |c| c.data[v * c.dim + k])
+                })
+                .collect();
+            self.reals(&p);
+        }
+        self.close_block();
+        self.out.extend_from_slice(b"$EndNodes\n");
+    }
+
+    /// The `$Elements` section: the simplices of `raw`, tagged 1..=m, a block per run of equal
+    /// length (version 4, binary version 2).
+    fn elements(&mut self, raw: &RawInput, v4: bool) {
+        let m = raw.simplex_count();
+        let binary = self.binary;
+        self.out.extend_from_slice(b"$Elements\n");
+        let runs = equal_length_runs(raw);
+        if v4 {
+            self.sizes(&[runs.len() as u64, m as u64, 1, m as u64]);
+        } else {
+            self.out.extend_from_slice(format!("{m}\n").as_bytes());
+        }
+        for &(start, end) in &runs {
+            let len = raw.simplex(start).len();
+            let t = element_type(len);
             if v4 {
-                let row: Vec<u64> = std::iter::once(i as u64 + 1).chain(ids).collect();
-                w.sizes(&row);
-            } else {
-                // Tags: physical 0, elementary 1; the type is in the block header in binary.
-                let head: &[i64] = if binary {
-                    &[0, 1]
+                self.ints(&[len as i32 - 1, 1, t]);
+                self.sizes(&[(end - start) as u64]);
+            } else if binary {
+                self.ints(&[t, (end - start) as i32, 2]);
+            }
+            for i in start..end {
+                let ids = raw.simplex(i).iter().map(|&v| u64::from(v) + 1);
+                if v4 {
+                    let row: Vec<u64> = std::iter::once(i as u64 + 1).chain(ids).collect();
+                    self.sizes(&row);
                 } else {
-                    &[i64::from(t), 2, 0, 1]
-                };
-                let row: Vec<i64> = std::iter::once(i as i64 + 1)
-                    .chain(head.iter().copied())
-                    .chain(ids.map(|x| x as i64))
-                    .collect();
-                w.ints_open(&row);
-                w.line();
+                    // Tags: physical 0, elementary 1; the type is in the block header in binary.
+                    let head: &[i64] = if binary {
+                        &[0, 1]
+                    } else {
+                        &[i64::from(t), 2, 0, 1]
+                    };
+                    let row: Vec<i64> = std::iter::once(i as i64 + 1)
+                        .chain(head.iter().copied())
+                        .chain(ids.map(|x| x as i64))
+                        .collect();
+                    self.ints_open(&row);
+                    self.line();
+                }
             }
         }
+        self.close_block();
+        self.out.extend_from_slice(b"$EndElements\n");
     }
-    w.close_block();
-    w.out.extend_from_slice(b"$EndElements\n");
-    Ok(())
 }
 
 /// Numbers in ASCII (space-separated, one record per line) or little-endian binary.

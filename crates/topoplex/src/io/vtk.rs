@@ -552,6 +552,14 @@ pub fn write_with_fields(
         )
         .as_bytes(),
     );
+    push_points(out, raw, n, binary);
+    push_cells(out, raw, binary);
+    push_fields(out, binary, "POINT_DATA", n, point_fields)?;
+    push_fields(out, binary, "CELL_DATA", m, cell_fields)
+}
+
+/// The coordinates of the `n` points, 3 a point (0 where `raw` has fewer).
+fn push_points(out: &mut Vec<u8>, raw: &RawInput, n: usize, binary: bool) {
     let coords = raw.coords.as_ref();
     for v in 0..n {
         for k in 0..3 {
@@ -570,6 +578,11 @@ pub fn write_with_fields(
     if binary {
         out.push(b'\n');
     }
+}
+
+/// The `CELLS` and `CELL_TYPES` sections: the simplices of `raw`.
+fn push_cells(out: &mut Vec<u8>, raw: &RawInput, binary: bool) {
+    let m = raw.simplex_count();
     let size = m + raw.ids.len();
     out.extend_from_slice(format!("CELLS {m} {size}\n").as_bytes());
     for i in 0..m {
@@ -594,32 +607,38 @@ pub fn write_with_fields(
         binary,
         (0..m).map(|i| i64::from(cell_type(raw.simplex(i).len()))),
     );
-    for (keyword, count, fields) in [
-        ("POINT_DATA", n, point_fields),
-        ("CELL_DATA", m, cell_fields),
-    ] {
-        if fields.is_empty() {
-            continue;
+}
+
+/// A `POINT_DATA` or `CELL_DATA` section (`keyword`) of `fields`, `count` values each; nothing
+/// without fields. `Err` names a field of another length.
+fn push_fields(
+    out: &mut Vec<u8>,
+    binary: bool,
+    keyword: &str,
+    count: usize,
+    fields: &[Field],
+) -> Result<(), String> {
+    if fields.is_empty() {
+        return Ok(());
+    }
+    out.extend_from_slice(format!("{keyword} {count}\n").as_bytes());
+    for f in fields {
+        if f.values.len() != count {
+            return Err(format!(
+                "field {} has {} values for {count} {}",
+                f.name,
+                f.values.len(),
+                if keyword == "POINT_DATA" {
+                    "points"
+                } else {
+                    "cells"
+                }
+            ));
         }
-        out.extend_from_slice(format!("{keyword} {count}\n").as_bytes());
-        for f in fields {
-            if f.values.len() != count {
-                return Err(format!(
-                    "field {} has {} values for {count} {}",
-                    f.name,
-                    f.values.len(),
-                    if keyword == "POINT_DATA" {
-                        "points"
-                    } else {
-                        "cells"
-                    }
-                ));
-            }
-            out.extend_from_slice(
-                format!("SCALARS {} int 1\nLOOKUP_TABLE default\n", f.name).as_bytes(),
-            );
-            push_ints(out, binary, f.values.iter().map(|&x| i64::from(x)));
-        }
+        out.extend_from_slice(
+            format!("SCALARS {} int 1\nLOOKUP_TABLE default\n", f.name).as_bytes(),
+        );
+        push_ints(out, binary, f.values.iter().map(|&x| i64::from(x)));
     }
     Ok(())
 }

@@ -291,7 +291,6 @@ pub(super) fn parse_body(
     first_line: usize,
     binary: Option<bool>,
 ) -> Res<RawInput> {
-    let at0 = |k| (0, k);
     let mut records = match binary {
         None => Records::Text(Lines {
             rest: body,
@@ -302,125 +301,218 @@ pub(super) fn parse_body(
             big_endian,
         },
     };
-    let mut raw = RawInput::new();
-    let mut coords = Coords {
-        dim: 3,
-        data: Vec::new(),
-    };
-    let mut edges: Vec<u32> = Vec::new();
-    let mut vertex_count = 0usize;
-    let mut vals = [0.0f64; 3];
-    let mut list = Vec::new();
-    // Every element line takes at least 2 bytes (a binary element at least 1), so the bytes
-    // left bound every reservation.
-    let cap = if binary.is_some() {
-        body.len() + 1
-    } else {
-        body.len() / 2 + 1
-    };
+    let mut kept = Kept::new(body.len(), binary.is_some());
     for (name, def) in &header.elements {
-        let wanted = match name.as_str() {
-            "vertex" => {
-                let w = Wanted::new(def, &[&["x"], &["y"], &["z"]]);
-                coords.dim = if w.keys[2].is_some() || def.count == 0 {
-                    3
-                } else {
-                    2
-                };
-                vertex_count = def.count;
-                if def.count > 0 {
-                    for (k, key) in ["x", "y", "z"][..coords.dim].iter().enumerate() {
-                        need_scalar(&w, k, "vertex #0", key)?;
-                    }
-                }
-                coords.data =
-                    try_with_capacity(def.count.min(cap) * coords.dim, "the vertex coordinates")
-                        .map_err(at0)?;
-                w
-            }
-            "face" => {
-                let w = Wanted::new(def, &[&["vertex_indices", "vertex_index"]]);
-                match w.keys[0].map(|p| &def.properties[p].data_type) {
-                    _ if def.count == 0 => {}
-                    None => return Err(at0(syntax("face #0 has no vertex_indices list"))),
-                    Some(PropertyType::List(_, ScalarType::Float | ScalarType::Double))
-                    | Some(PropertyType::Scalar(_)) => {
-                        return Err(at0(syntax(
-                            "face #0: vertex_indices is not a list of integers",
-                        )));
-                    }
-                    Some(PropertyType::List(..)) => {}
-                }
-                raw.try_reserve(def.count.min(cap), 0).map_err(at0)?;
-                w
-            }
-            "edge" => {
-                let w = Wanted::new(def, &[&["vertex1"], &["vertex2"]]);
-                if def.count > 0 {
-                    need_scalar(&w, 0, "edge #0", "vertex1")?;
-                    need_scalar(&w, 1, "edge #0", "vertex2")?;
-                }
-                edges = try_with_capacity(def.count.min(cap) * 2, "the edges").map_err(at0)?;
-                w
-            }
-            _ => Wanted::new(def, &[]),
+        let wanted = kept.prepare(name, def)?;
+        kept.read_elements(&mut records, name, def, &wanted)?;
+    }
+    kept.into_raw()
+}
+
+/// What a body keeps of its elements, filled element by element.
+struct Kept {
+    /// The faces (then the edges) as simplices.
+    raw: RawInput,
+    coords: Coords,
+    /// Edges as pairs of ids, listed after the faces.
+    edges: Vec<u32>,
+    vertex_count: usize,
+    /// The wanted scalar properties of the element being read.
+    vals: [f64; 3],
+    /// The wanted list property's entries of the element being read.
+    list: Vec<f64>,
+    /// Elements any reservation may be made for: bounded by the bytes left.
+    cap: usize,
+    binary: bool,
+}
+
+impl Kept {
+    fn new(body_len: usize, binary: bool) -> Kept {
+        Kept {
+            raw: RawInput::new(),
+            coords: Coords {
+                dim: 3,
+                data: Vec::new(),
+            },
+            edges: Vec::new(),
+            vertex_count: 0,
+            vals: [0.0f64; 3],
+            list: Vec::new(),
+            // Every element line takes at least 2 bytes (a binary element at least 1), so the
+            // bytes left bound every reservation.
+            cap: if binary {
+                body_len + 1
+            } else {
+                body_len / 2 + 1
+            },
+            binary,
+        }
+    }
+
+    /// The properties kept of element `name`, checked, and the room for its `def.count`
+    /// entries reserved.
+    fn prepare<'h>(&mut self, name: &str, def: &'h ElementDef) -> Res<Wanted<'h>> {
+        match name {
+            "vertex" => self.prepare_vertices(def),
+            "face" => self.prepare_faces(def),
+            "edge" => self.prepare_edges(def),
+            _ => Ok(Wanted::new(def, &[])),
+        }
+    }
+
+    /// `x`, `y` and (for 3 coordinates) `z`, which must be scalars.
+    fn prepare_vertices<'h>(&mut self, def: &'h ElementDef) -> Res<Wanted<'h>> {
+        let w = Wanted::new(def, &[&["x"], &["y"], &["z"]]);
+        self.coords.dim = if w.keys[2].is_some() || def.count == 0 {
+            3
+        } else {
+            2
         };
+        self.vertex_count = def.count;
+        if def.count > 0 {
+            for (k, key) in ["x", "y", "z"][..self.coords.dim].iter().enumerate() {
+                need_scalar(&w, k, "vertex #0", key)?;
+            }
+        }
+        self.coords.data = try_with_capacity(
+            def.count.min(self.cap) * self.coords.dim,
+            "the vertex coordinates",
+        )
+        .map_err(at0)?;
+        Ok(w)
+    }
+
+    /// `vertex_indices` (or `vertex_index`), which must be a list of integers.
+    fn prepare_faces<'h>(&mut self, def: &'h ElementDef) -> Res<Wanted<'h>> {
+        let w = Wanted::new(def, &[&["vertex_indices", "vertex_index"]]);
+        match w.keys[0].map(|p| &def.properties[p].data_type) {
+            _ if def.count == 0 => {}
+            None => return Err(at0(syntax("face #0 has no vertex_indices list"))),
+            Some(PropertyType::List(_, ScalarType::Float | ScalarType::Double))
+            | Some(PropertyType::Scalar(_)) => {
+                return Err(at0(syntax(
+                    "face #0: vertex_indices is not a list of integers",
+                )));
+            }
+            Some(PropertyType::List(..)) => {}
+        }
+        self.raw
+            .try_reserve(def.count.min(self.cap), 0)
+            .map_err(at0)?;
+        Ok(w)
+    }
+
+    /// `vertex1` and `vertex2`, which must be scalars.
+    fn prepare_edges<'h>(&mut self, def: &'h ElementDef) -> Res<Wanted<'h>> {
+        let w = Wanted::new(def, &[&["vertex1"], &["vertex2"]]);
+        if def.count > 0 {
+            need_scalar(&w, 0, "edge #0", "vertex1")?;
+            need_scalar(&w, 1, "edge #0", "vertex2")?;
+        }
+        self.edges = try_with_capacity(def.count.min(self.cap) * 2, "the edges").map_err(at0)?;
+        Ok(w)
+    }
+
+    /// The `def.count` entries of element `name` from `records`, each kept as [`Kept::keep`]
+    /// says.
+    fn read_elements(
+        &mut self,
+        records: &mut Records,
+        name: &str,
+        def: &ElementDef,
+        wanted: &Wanted,
+    ) -> Res<()> {
         for i in 0..def.count {
-            list.clear();
-            let read = match &mut records {
+            self.list.clear();
+            let read = match records {
                 Records::Text(lines) => match lines.next_line() {
-                    Some((l, n)) => read_line(l, n, def, &wanted, &mut vals, &mut list).map(|()| 0),
+                    Some((l, n)) => {
+                        read_line(l, n, def, wanted, &mut self.vals, &mut self.list).map(|()| 0)
+                    }
                     None => Ok(u32::try_from(lines.line).unwrap_or(u32::MAX)),
                 },
-                Records::Binary { rest, big_endian } => {
-                    read_binary(rest, *big_endian, def, &wanted, &mut vals, &mut list)
-                        .map(|full| if full { 0 } else { u32::MAX })
-                }
+                Records::Binary { rest, big_endian } => read_binary(
+                    rest,
+                    *big_endian,
+                    def,
+                    wanted,
+                    &mut self.vals,
+                    &mut self.list,
+                )
+                .map(|full| if full { 0 } else { u32::MAX }),
             };
             // `Ok(0)`: read; else the line to blame for the end of the data.
             match read? {
                 0 => {}
-                line => {
-                    let line = if binary.is_some() { 0 } else { line };
-                    return Err((
-                        line,
-                        syntax(format!(
-                            "PLY: Unexpected end of file while reading element '{}' (expected {}, got {i}).",
-                            echo(name),
-                            def.count
-                        )),
-                    ));
-                }
+                line => return Err(self.ended(line, name, def.count, i)),
             }
-            match name.as_str() {
-                "vertex" => table::try_extend(&mut coords.data, &vals[..coords.dim])
-                    .map_err(|b| at0(no_room("the vertex coordinates")(b)))?,
-                "face" => push_face(&mut raw, &list, i)?,
-                "edge" => {
-                    for x in [vals[0], vals[1]] {
-                        let v = id_of(x, "")
-                            .map_err(|_| at0(id_of(x, &format!("edge #{i}")).unwrap_err()))?;
-                        table::try_push(&mut edges, v).map_err(|b| at0(no_room("the edges")(b)))?;
-                    }
-                }
-                _ => {}
-            }
+            self.keep(name, i)?;
         }
+        Ok(())
     }
-    raw.vertex_count =
-        Some(u32::try_from(vertex_count).map_err(|_| at0(syntax("more than 2^32 vertices")))?);
-    raw.coords = Some(coords);
-    // Faces come before edges in the listing, whatever the elements' order.
-    raw.try_reserve(edges.len() / 2, edges.len()).map_err(at0)?;
-    for e in edges.chunks_exact(2) {
-        raw.push(e, 0);
+
+    /// The error for data that end at entry `i` of the `count` of element `name` (`line`: the
+    /// text line to blame).
+    #[cold]
+    fn ended(&self, line: u32, name: &str, count: usize, i: usize) -> (u32, ReadErrorKind) {
+        let line = if self.binary { 0 } else { line };
+        (
+            line,
+            syntax(format!(
+                "PLY: Unexpected end of file while reading element '{}' (expected {count}, got {i}).",
+                echo(name),
+            )),
+        )
     }
-    Ok(raw)
+
+    /// Entry `i` of element `name`, just read into `vals` and `list`, kept.
+    #[inline]
+    fn keep(&mut self, name: &str, i: usize) -> Res<()> {
+        match name {
+            "vertex" => table::try_extend(&mut self.coords.data, &self.vals[..self.coords.dim])
+                .map_err(|b| at0(no_room("the vertex coordinates")(b)))?,
+            "face" => push_face(&mut self.raw, &self.list, i)?,
+            "edge" => {
+                for x in [self.vals[0], self.vals[1]] {
+                    let v = id_of(x, "")
+                        .map_err(|_| at0(id_of(x, &format!("edge #{i}")).unwrap_err()))?;
+                    table::try_push(&mut self.edges, v)
+                        .map_err(|b| at0(no_room("the edges")(b)))?;
+                }
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// The faces, then the edges, with the vertex count and coordinates.
+    fn into_raw(self) -> Res<RawInput> {
+        let Kept {
+            mut raw,
+            coords,
+            edges,
+            vertex_count,
+            ..
+        } = self;
+        raw.vertex_count =
+            Some(u32::try_from(vertex_count).map_err(|_| at0(syntax("more than 2^32 vertices")))?);
+        raw.coords = Some(coords);
+        // Faces come before edges in the listing, whatever the elements' order.
+        raw.try_reserve(edges.len() / 2, edges.len()).map_err(at0)?;
+        for e in edges.chunks_exact(2) {
+            raw.push(e, 0);
+        }
+        Ok(raw)
+    }
+}
+
+/// An error at no particular line (line 0).
+fn at0(k: ReadErrorKind) -> (u32, ReadErrorKind) {
+    (0, k)
 }
 
 /// Face `i` with ids `list` as a simplex of `raw`.
 fn push_face(raw: &mut RawInput, list: &[f64], i: usize) -> Res<()> {
-    let at0 = |k| (0, k);
     let what = || format!("face #{i}");
     let mut ids = [0u32; 3];
     for (k, &x) in list.iter().enumerate() {
