@@ -192,6 +192,12 @@ fn winding(sorted: &[u32], given: &[u32]) -> u64 {
     })
 }
 
+/// The visitor [`NavBase::fast_visit`] calls with each answer.
+pub(crate) type Visit<'a> = &'a mut dyn FnMut(SimplexHandle);
+
+/// What [`NavBase::fast_visit`] returns: `None` when the structure has no walk of its own.
+pub(crate) type Fast = Option<Result<(), QueryError>>;
+
 /// What a structure provides to get [`Navigate`].
 #[doc(hidden)]
 pub trait NavBase: Topology {
@@ -205,13 +211,7 @@ pub trait NavBase: Topology {
 
     /// R_{p,q}(h) straight from the structure's arrays, when it has a walk for this (p, q); `h`
     /// is checked and has vertices `sigma`. `None`: fall back to the vertex-id relation.
-    fn fast_visit(
-        &self,
-        _h: SimplexHandle,
-        _sigma: &[u32],
-        _q: usize,
-        _visit: &mut dyn FnMut(SimplexHandle),
-    ) -> Option<Result<(), QueryError>> {
+    fn fast_visit(&self, _h: SimplexHandle, _sigma: &[u32], _q: usize, _visit: Visit<'_>) -> Fast {
         None
     }
 
