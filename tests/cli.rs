@@ -94,10 +94,8 @@ fn relation_dump_format_is_exact() {
     let expected = "0 9;0 9 10\n0 10;0 9 10;0 10 11\n0 11;0 10 11\n9 10;0 9 10\n10 11;0 10 11\n";
     // Vertices 1..8 are isolated and have no edges, so only edges appear.
     assert_eq!(stdout(&o), expected);
-    let o = dump_one(&f, "ig", (1, 0), "10 0");
-    assert_eq!(stdout(&o), "0 10;0;10\n");
-    let o = dump_one(&f, "ig", (0, 0), "3");
-    assert_eq!(stdout(&o), "3\n");
+    assert_dump_one(&f, "ig", (1, 0), "10 0", "0 10;0;10\n");
+    assert_dump_one(&f, "ig", (0, 0), "3", "3\n");
 }
 
 #[test]
@@ -215,8 +213,10 @@ fn dump(file: &Path, kind: &str, p: usize, q: usize) -> Output {
     relation(file, kind, (p, q), None)
 }
 
-fn dump_one(file: &Path, kind: &str, pq: (usize, usize), simplex: &str) -> Output {
-    relation(file, kind, pq, Some(simplex))
+/// Asserts the dump of one simplex's relation: `expected` on stdout.
+fn assert_dump_one(file: &Path, kind: &str, pq: (usize, usize), simplex: &str, expected: &str) {
+    let o = relation(file, kind, pq, Some(simplex));
+    assert_eq!(stdout(&o), expected);
 }
 
 #[test]
@@ -246,10 +246,8 @@ fn iastar_dumps_what_the_ig_dumps_on_a_mixed_complex() {
         }
     }
     // Exact answers for one row each way: the apex's triangles, the wire's vertices.
-    let o = dump_one(&f, "iastar", (0, 2), "3");
-    assert_eq!(stdout(&o), "3;0 1 3;0 2 3;1 2 3;3 4 5\n");
-    let o = dump_one(&f, "iastar", (1, 0), "6 5");
-    assert_eq!(stdout(&o), "5 6;5;6\n");
+    assert_dump_one(&f, "iastar", (0, 2), "3", "3;0 1 3;0 2 3;1 2 3;3 4 5\n");
+    assert_dump_one(&f, "iastar", (1, 0), "6 5", "5 6;5;6\n");
 }
 
 #[test]
