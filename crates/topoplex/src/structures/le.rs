@@ -65,18 +65,6 @@ pub struct LoopEdgeUse {
 }
 
 impl LoopEdgeUse {
-    /// The arrays with one entry per edge-use.
-    fn per_use(&self) -> [&Arr<u32>; 6] {
-        [
-            &self.eu_face,
-            &self.eu_edge,
-            &self.eu_rnext,
-            &self.eu_fnext,
-            &self.eu_start,
-            &self.eu_vnext,
-        ]
-    }
-
     /// Checks the domain, then radial cycles by sorting the triangle edges: O(n2 log n2 + n0).
     pub fn build(complex: &Complex) -> Result<LoopEdgeUse, BuildError> {
         let parts = radial::parts(KIND, complex)?;
@@ -209,6 +197,20 @@ impl TriTopo for LoopEdgeUse {
 
 radial::nav_base!(LoopEdgeUse);
 
+impl LoopEdgeUse {
+    /// The arrays with one entry per edge-use.
+    fn per_use(&self) -> [&Arr<u32>; 6] {
+        [
+            &self.eu_face,
+            &self.eu_edge,
+            &self.eu_rnext,
+            &self.eu_fnext,
+            &self.eu_start,
+            &self.eu_vnext,
+        ]
+    }
+}
+
 impl Topology for LoopEdgeUse {
     crate::relation::topology_preamble! {
         self, KIND;
@@ -233,13 +235,7 @@ impl Topology for LoopEdgeUse {
     fn storage(&self) -> Storage {
         let integers = self.n_tris as u64 * 19 + self.edge_eu.len() as u64 + self.n as u64;
         let others = [&self.face_eu, &self.edge_eu, &self.vertex_eu];
-        Storage {
-            integers,
-            bits: 0,
-            bytes: (self.per_use().into_iter().chain(others))
-                .map(|a| a.capacity() as u64 * 4)
-                .sum(),
-        }
+        radial::storage_of(integers, self.per_use().into_iter().chain(others))
     }
 
     fn validate(&self) -> Result<(), String> {

@@ -69,18 +69,6 @@ pub struct PartialEntities {
 }
 
 impl PartialEntities {
-    /// The arrays with one entry per partial edge, `pe_edge` aside.
-    fn per_use(&self) -> [&Arr<u32>; 6] {
-        [
-            &self.pe_face,
-            &self.pe_rprev,
-            &self.pe_rnext,
-            &self.pe_fprev,
-            &self.pe_fnext,
-            &self.pe_start,
-        ]
-    }
-
     /// Radial cycles by sorting the triangle edges: O(n2 log n2 + n1 + n0).
     pub fn build(complex: &Complex) -> Result<PartialEntities, BuildError> {
         let parts = radial::parts(KIND, complex)?;
@@ -245,6 +233,20 @@ impl TriTopo for PartialEntities {
 
 radial::nav_base!(PartialEntities);
 
+impl PartialEntities {
+    /// The arrays with one entry per partial edge, `pe_edge` aside.
+    fn per_use(&self) -> [&Arr<u32>; 6] {
+        [
+            &self.pe_face,
+            &self.pe_rprev,
+            &self.pe_rnext,
+            &self.pe_fprev,
+            &self.pe_fnext,
+            &self.pe_start,
+        ]
+    }
+}
+
 impl Topology for PartialEntities {
     crate::relation::topology_preamble! {
         self, KIND;
@@ -277,13 +279,7 @@ impl Topology for PartialEntities {
             &self.vertex_off,
             &self.vertex_pe,
         ];
-        Storage {
-            integers,
-            bits: 0,
-            bytes: (self.per_use().into_iter().chain(others))
-                .map(|a| a.capacity() as u64 * 4)
-                .sum(),
-        }
+        radial::storage_of(integers, self.per_use().into_iter().chain(others))
     }
 
     fn validate(&self) -> Result<(), String> {

@@ -195,6 +195,19 @@ fn point(c: &Coords, v: u32) -> Option<[f64; 3]> {
     p.iter().all(|x| x.is_finite()).then_some(p)
 }
 
+/// The storage of a radial structure: `integers` as counted, `arrays` (its `u32` arrays) as
+/// the bytes they hold room for.
+pub(crate) fn storage_of<'a>(
+    integers: u64,
+    arrays: impl IntoIterator<Item = &'a Arr<u32>>,
+) -> crate::relation::Storage {
+    crate::relation::Storage {
+        integers,
+        bits: 0,
+        bytes: arrays.into_iter().map(|a| a.capacity() as u64 * 4).sum(),
+    }
+}
+
 /// The 3-vector kit (also used by `nmia`).
 pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
