@@ -94,10 +94,8 @@ fn relation_dump_format_is_exact() {
     let expected = "0 9;0 9 10\n0 10;0 9 10;0 10 11\n0 11;0 10 11\n9 10;0 9 10\n10 11;0 10 11\n";
     // Vertices 1..8 are isolated and have no edges, so only edges appear.
     assert_eq!(stdout(&o), expected);
-    let o = dump_one(&f, "ig", (1, 0), "10 0");
-    assert_eq!(stdout(&o), "0 10;0;10\n");
-    let o = dump_one(&f, "ig", (0, 0), "3");
-    assert_eq!(stdout(&o), "3\n");
+    assert_dump_one(&f, "ig", (1, 0), "10 0", "0 10;0;10\n");
+    assert_dump_one(&f, "ig", (0, 0), "3", "3\n");
 }
 
 #[test]
@@ -109,85 +107,42 @@ fn errors_exit_nonzero_with_one_line() {
         "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n",
     );
     let txt = good.with_extension("txt");
-    let cases: Vec<(Vec<&str>, &str)> = vec![
+    let cases: Vec<(Vec<String>, &str)> = vec![
         (
-            vec![
-                "relation",
-                bad.to_str().unwrap(),
-                "--structure",
-                "ig",
-                "--relation",
-                "0,1",
-            ],
+            relation_args(&bad, "ig", (0, 1), None),
             "bad.off:6: simplex [0 1 1] repeats vertex 1",
         ),
         (
-            vec![
-                "relation",
-                quad.to_str().unwrap(),
-                "--structure",
-                "ig",
-                "--relation",
-                "0,1",
-            ],
+            relation_args(&quad, "ig", (0, 1), None),
             "quad.obj:5: polygon with 4 vertices is not a simplex",
         ),
         (
-            vec![
-                "relation",
-                good.to_str().unwrap(),
-                "--structure",
-                "xyz",
-                "--relation",
-                "0,1",
-            ],
+            relation_args(&good, "xyz", (0, 1), None),
             "unknown structure `xyz`",
         ),
         (
-            vec![
-                "relation",
-                good.to_str().unwrap(),
-                "--structure",
-                "ig",
-                "--relation",
-                "0,3",
-            ],
+            relation_args(&good, "ig", (0, 3), None),
             "the complex has dimension 2",
         ),
         (
-            vec![
-                "relation",
-                good.to_str().unwrap(),
-                "--structure",
-                "ig",
-                "--relation",
-                "1,2",
-                "--simplex",
-                "0 5",
-            ],
+            relation_args(&good, "ig", (1, 2), Some("0 5")),
             "uses vertex 5",
         ),
         (
-            vec![
-                "relation",
-                good.to_str().unwrap(),
-                "--structure",
-                "ig",
-                "--relation",
-                "1,2",
-                "--simplex",
-                "0",
-            ],
+            relation_args(&good, "ig", (1, 2), Some("0")),
             "P = 1 needs 2",
         ),
-        (vec!["report", "/nonexistent/x.off"], "cannot read file"),
         (
-            vec!["report", txt.to_str().unwrap()],
+            vec!["report".into(), "/nonexistent/x.off".into()],
+            "cannot read file",
+        ),
+        (
+            vec!["report".into(), txt.to_str().unwrap().into()],
             "unknown file extension",
         ),
     ];
     for (args, needle) in cases {
-        let o = run(&args);
+        let o = run(&args.iter().map(String::as_str).collect::<Vec<_>>());
         let err = stderr(&o);
         assert_eq!(o.status.code(), Some(1), "{args:?}: {err}");
         assert!(err.contains(needle), "{args:?}: {err}");
@@ -197,7 +152,18 @@ fn errors_exit_nonzero_with_one_line() {
 }
 
 /// `relation FILE --structure KIND --relation P,Q [--simplex SIMPLEX]`.
-fn relation(file: &Path, kind: &str, (p, q): (usize, usize), simplex: Option<&str>) -> Output {
+fn relation(file: &Path, kind: &str, pq: (usize, usize), simplex: Option<&str>) -> Output {
+    let args = relation_args(file, kind, pq, simplex);
+    run(&args.iter().map(String::as_str).collect::<Vec<_>>())
+}
+
+/// The arguments of [`relation`].
+fn relation_args(
+    file: &Path,
+    kind: &str,
+    (p, q): (usize, usize),
+    simplex: Option<&str>,
+) -> Vec<String> {
     let pq = format!("{p},{q}");
     let mut args = vec![
         "relation",
@@ -208,15 +174,17 @@ fn relation(file: &Path, kind: &str, (p, q): (usize, usize), simplex: Option<&st
         &pq,
     ];
     args.extend(simplex.into_iter().flat_map(|s| ["--simplex", s]));
-    run(&args)
+    args.into_iter().map(String::from).collect()
 }
 
 fn dump(file: &Path, kind: &str, p: usize, q: usize) -> Output {
     relation(file, kind, (p, q), None)
 }
 
-fn dump_one(file: &Path, kind: &str, pq: (usize, usize), simplex: &str) -> Output {
-    relation(file, kind, pq, Some(simplex))
+/// Asserts the dump of one simplex's relation: `expected` on stdout.
+fn assert_dump_one(file: &Path, kind: &str, pq: (usize, usize), simplex: &str, expected: &str) {
+    let o = relation(file, kind, pq, Some(simplex));
+    assert_eq!(stdout(&o), expected);
 }
 
 #[test]
@@ -246,10 +214,8 @@ fn iastar_dumps_what_the_ig_dumps_on_a_mixed_complex() {
         }
     }
     // Exact answers for one row each way: the apex's triangles, the wire's vertices.
-    let o = dump_one(&f, "iastar", (0, 2), "3");
-    assert_eq!(stdout(&o), "3;0 1 3;0 2 3;1 2 3;3 4 5\n");
-    let o = dump_one(&f, "iastar", (1, 0), "6 5");
-    assert_eq!(stdout(&o), "5 6;5;6\n");
+    assert_dump_one(&f, "iastar", (0, 2), "3", "3;0 1 3;0 2 3;1 2 3;3 4 5\n");
+    assert_dump_one(&f, "iastar", (1, 0), "6 5", "5 6;5;6\n");
 }
 
 #[test]

@@ -42,6 +42,23 @@ fn run_in(dir: &Path, args: &[&str]) -> Output {
     topoplex().current_dir(dir).args(args).output().unwrap()
 }
 
+/// `relation one15.simplices --structure ig --relation RELATION --simplex 0 --max-simplices
+/// BUDGET`.
+fn one15_vertex0<'a>(relation: &'a str, budget: &'a str) -> [&'a str; 10] {
+    [
+        "relation",
+        "one15.simplices",
+        "--structure",
+        "ig",
+        "--relation",
+        relation,
+        "--simplex",
+        "0",
+        "--max-simplices",
+        budget,
+    ]
+}
+
 /// The `outcome` of `run_in(dir, args)`.
 fn run_outcome(dir: &Path, args: &[&str]) -> String {
     outcome(dir, &run_in(dir, args))
@@ -138,37 +155,9 @@ fn cases(dir: &Path) -> Vec<(&'static str, &'static str, String)> {
     row(
         "4 closure bomb",
         "`relation one15.simplices ... --max-simplices 1000` (budget lowered)",
-        run_outcome(
-            dir,
-            &[
-                "relation",
-                "one15.simplices",
-                "--structure",
-                "ig",
-                "--relation",
-                "0,0",
-                "--simplex",
-                "0",
-                "--max-simplices",
-                "1000",
-            ],
-        ),
+        run_outcome(dir, &one15_vertex0("0,0", "1000")),
     );
-    let o = run_in(
-        dir,
-        &[
-            "relation",
-            "one15.simplices",
-            "--structure",
-            "ig",
-            "--relation",
-            "0,15",
-            "--simplex",
-            "0",
-            "--max-simplices",
-            "65535",
-        ],
-    );
+    let o = run_in(dir, &one15_vertex0("0,15", "65535"));
     row(
         "4 closure bomb",
         "`relation one15.simplices ... --max-simplices 65535` (the closure's exact size)",

@@ -3,7 +3,7 @@
 //! random arbitrary complexes, and the IG on the real data when present.
 
 mod common;
-use common::Rng;
+use common::{Rng, rel, show};
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -12,7 +12,7 @@ use topoplex::complex::is_subset;
 use topoplex::oracle::{Oracle, check_structure, compare_structures};
 use topoplex::structures::ia::{IndexedAdjacency, NONE};
 use topoplex::structures::ig::IncidenceGraph;
-use topoplex::{BuildError, Complex, Topology, fixtures};
+use topoplex::{Complex, Topology, fixtures};
 
 fn ia(c: &Complex) -> IndexedAdjacency {
     let s = IndexedAdjacency::build(c).unwrap();
@@ -20,23 +20,8 @@ fn ia(c: &Complex) -> IndexedAdjacency {
     s
 }
 
-fn rel(s: &dyn Topology, sigma: &[u32], q: usize) -> Vec<Vec<u32>> {
-    let mut out = Vec::new();
-    s.relation(sigma, q, &mut out).unwrap();
-    topoplex::relation::sort_rows(&mut out, q + 1);
-    out.chunks(q + 1).map(<[u32]>::to_vec).collect()
-}
-
 fn refusal(c: &Complex) -> String {
-    match IndexedAdjacency::build(c) {
-        Err(BuildError::Unsupported { reason, .. }) => reason,
-        other => panic!("expected a refusal, got {:?}", other.map(|_| ())),
-    }
-}
-
-fn show(ids: &[u32]) -> String {
-    let v: Vec<String> = ids.iter().map(|i| i.to_string()).collect();
-    format!("[{}]", v.join(" "))
+    common::refusal_of(IndexedAdjacency::build(c))
 }
 
 /// Components of the star of every vertex by brute force: d-simplices at v joined when they

@@ -3,6 +3,7 @@
 //! storage count on random mixed 3-complexes, and the IG on the real data when present.
 
 mod common;
+use common::{rel, show};
 
 use proptest::prelude::*;
 use topoplex::complex::is_subset;
@@ -11,24 +12,12 @@ use topoplex::oracle::{Oracle, check_structure, compare_structures};
 use topoplex::structures::ia::IndexedAdjacency;
 use topoplex::structures::ig::IncidenceGraph;
 use topoplex::structures::nmia::NonManifoldIa;
-use topoplex::{BuildError, Complex, Topology, fixtures};
+use topoplex::{Complex, Topology, fixtures};
 
 fn nmia(c: &Complex) -> NonManifoldIa {
     let s = NonManifoldIa::build(c).unwrap();
     s.validate().unwrap();
     s
-}
-
-fn rel(s: &dyn Topology, sigma: &[u32], q: usize) -> Vec<Vec<u32>> {
-    let mut out = Vec::new();
-    s.relation(sigma, q, &mut out).unwrap();
-    topoplex::relation::sort_rows(&mut out, q + 1);
-    out.chunks(q + 1).map(<[u32]>::to_vec).collect()
-}
-
-fn show(ids: &[u32]) -> String {
-    let v: Vec<String> = ids.iter().map(|i| i.to_string()).collect();
-    format!("[{}]", v.join(" "))
 }
 
 /// Connected components of the link of `s`, by union-find over the link vertices.
@@ -98,10 +87,7 @@ fn check_storage(s: &NonManifoldIa, c: &Complex) {
 }
 
 fn refusal(c: &Complex) -> String {
-    match NonManifoldIa::build(c) {
-        Err(BuildError::Unsupported { reason, .. }) => reason,
-        other => panic!("expected a refusal, got {:?}", other.map(|_| ())),
-    }
+    common::refusal_of(NonManifoldIa::build(c))
 }
 
 #[test]

@@ -4,6 +4,28 @@
 
 pub mod nav;
 
+/// R_{p,q}(sigma) of `s` as rows of q + 1 ids, in ascending lexicographic order.
+pub fn rel(s: &dyn topoplex::Topology, sigma: &[u32], q: usize) -> Vec<Vec<u32>> {
+    let mut out = Vec::new();
+    s.relation(sigma, q, &mut out).unwrap();
+    topoplex::relation::sort_rows(&mut out, q + 1);
+    out.chunks(q + 1).map(<[u32]>::to_vec).collect()
+}
+
+/// A simplex as refusals name it: `[a b c]`.
+pub fn show(ids: &[u32]) -> String {
+    let v: Vec<String> = ids.iter().map(|i| i.to_string()).collect();
+    format!("[{}]", v.join(" "))
+}
+
+/// The reason of a build refused as unsupported; panics on a success or another error.
+pub fn refusal_of<T>(built: Result<T, topoplex::BuildError>) -> String {
+    match built {
+        Err(topoplex::BuildError::Unsupported { reason, .. }) => reason,
+        other => panic!("expected a refusal, got {:?}", other.map(|_| ())),
+    }
+}
+
 /// A small xorshift generator (no dependency, reproducible): one seed draws a whole fixture.
 pub struct Rng(pub u64);
 

@@ -1,11 +1,10 @@
 //! `TpxComplex`: a normalised complex (its top simplices), input to every structure.
 
-use std::ffi::{CStr, c_char};
-use std::path::Path;
+use std::ffi::c_char;
 
 use super::{
-    Failure, TpxStatus, free_box, get_into, guard, handle, in_slice, out_ptr, set_boxed, try_copy,
-    write_buffer,
+    Failure, TpxStatus, free_box, get_into, guard, handle, in_slice, open_into, out_ptr, set_boxed,
+    try_copy, write_buffer,
 };
 use topoplex::complex::{Budget, Complex, ComplexError};
 use topoplex::io::{Coords, ReadErrorKind};
@@ -198,22 +197,10 @@ pub unsafe extern "C" fn tpx_complex_from_file_budget(
     max_simplices: u64,
     out: *mut *mut TpxComplex,
 ) -> TpxStatus {
-    guard(|| {
-        let out = out_ptr(out, "out")?;
-        if path.is_null() {
-            return Err(Failure::null("path"));
-        }
-        // SAFETY: non-NULL `path` is NUL-terminated (documented contract).
-        let path = unsafe { CStr::from_ptr(path) }.to_str().map_err(|e| {
-            Failure::new(
-                TpxStatus::InvalidArgument,
-                format!("path is not valid UTF-8: {e}"),
-            )
-        })?;
-        let complex = topoplex::store::open_complex(Path::new(path), budget(max_simplices))
-            .map_err(open_failure)?;
-        set_boxed(out, TpxComplex { complex });
-        Ok(())
+    open_into(path, out, |path| {
+        let complex =
+            topoplex::store::open_complex(path, budget(max_simplices)).map_err(open_failure)?;
+        Ok(TpxComplex { complex })
     })
 }
 

@@ -3,7 +3,7 @@
 
 use super::complex::TpxComplex;
 use super::structure::build_failure;
-use super::{Failure, TpxStatus, free_box, get_into, guard, handle, out_ptr, set_boxed};
+use super::{Failure, TpxStatus, build_into, free_box, get_into, guard, handle, out_ptr};
 use topoplex::structures::iqm::{Decomposition, Iqm};
 
 /// The standard decomposition of a complex into initial quasi-manifold components (opaque).
@@ -28,13 +28,10 @@ pub unsafe extern "C" fn tpx_decomposition_build(
     c: *const TpxComplex,
     out: *mut *mut TpxDecomposition,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
-        let out = out_ptr(out, "out")?;
+    build_into(c, "c", out, |c| {
         let iqm = Iqm::build(&c.complex).map_err(build_failure)?;
         let dec = iqm.decomposition();
-        set_boxed(out, TpxDecomposition { dec });
-        Ok(())
+        Ok(TpxDecomposition { dec })
     })
 }
 

@@ -355,6 +355,55 @@ pub(crate) fn set_boxed<T: Boxed>(out: &mut *mut T, v: T) {
     *out = Box::into_raw(Box::new(v));
 }
 
+/// The whole body of a constructor from a handle: `input` (named `what`) and `out`
+/// NULL-checked in that order, then `make` builds the new handle, put in `*out` on success only.
+pub(crate) fn build_into<I, O: Boxed>(
+    input: *const I,
+    what: &str,
+    out: *mut *mut O,
+    make: impl FnOnce(&I) -> Result<O, Failure>,
+) -> TpxStatus {
+    guard(|| {
+        let input = handle(input, what)?;
+        let out = out_ptr(out, "out")?;
+        set_boxed(out, make(input)?);
+        Ok(())
+    })
+}
+
+/// The whole body of a constructor from a file: `out` NULL-checked, then `path` read by
+/// [`path_arg`], then `make` builds the new handle, put in `*out` on success only.
+pub(crate) fn open_into<O: Boxed>(
+    path: *const c_char,
+    out: *mut *mut O,
+    make: impl FnOnce(&std::path::Path) -> Result<O, Failure>,
+) -> TpxStatus {
+    guard(|| {
+        let out = out_ptr(out, "out")?;
+        let path = path_arg(path, "path")?;
+        set_boxed(out, make(path)?);
+        Ok(())
+    })
+}
+
+/// A NUL-terminated UTF-8 path argument (named `what` in messages): NULL_ARGUMENT when NULL,
+/// INVALID_ARGUMENT when not UTF-8.
+pub(crate) fn path_arg<'a>(p: *const c_char, what: &str) -> Result<&'a std::path::Path, Failure> {
+    if p.is_null() {
+        return Err(Failure::null(what));
+    }
+    // SAFETY: a non-NULL path is NUL-terminated (documented contract of the callers).
+    let s = unsafe { std::ffi::CStr::from_ptr(p) }
+        .to_str()
+        .map_err(|e| {
+            Failure::new(
+                TpxStatus::InvalidArgument,
+                format!("{what} is not valid UTF-8: {e}"),
+            )
+        })?;
+    Ok(std::path::Path::new(s))
+}
+
 /// The body of every `tpx_*_free`: releases a handle made by [`set_boxed`]. NULL is a no-op; a
 /// panic while dropping does not cross the boundary.
 ///

@@ -10,7 +10,9 @@
 use super::complex::TpxComplex;
 use super::structure::{TpxStructure, sort_rows_in_place};
 use super::write_buffer;
-use super::{Failure, TpxStatus, free_box, get_into, guard, handle, in_slice, out_ptr, set_boxed};
+use super::{
+    Failure, TpxStatus, build_into, free_box, get_into, guard, handle, in_slice, out_ptr, set_boxed,
+};
 use topoplex::live::{ContractMode, LiveComplex, Refusal, UndoRecord, VertexId};
 use topoplex::relation::{QueryError, Topology};
 
@@ -92,13 +94,10 @@ pub unsafe extern "C" fn tpx_live_from_complex(
     c: *const TpxComplex,
     out: *mut *mut TpxLive,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
-        let out = out_ptr(out, "out")?;
+    build_into(c, "c", out, |c| {
         let live =
             LiveComplex::try_from_complex(&c.complex).map_err(super::structure::build_failure)?;
-        set_boxed(out, TpxLive::new(live));
-        Ok(())
+        Ok(TpxLive::new(live))
     })
 }
 
@@ -503,12 +502,9 @@ pub unsafe extern "C" fn tpx_live_to_complex(
     l: *const TpxLive,
     out: *mut *mut TpxComplex,
 ) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
-        let out = out_ptr(out, "out")?;
+    build_into(l, "l", out, |l| {
         let complex = l.live().to_complex();
-        set_boxed(out, TpxComplex { complex });
-        Ok(())
+        Ok(TpxComplex { complex })
     })
 }
 

@@ -1,10 +1,9 @@
 //! `tpx_simplify`, `tpx_simplify_file`: quadric-error edge-contraction simplification
 //! ([`topoplex::simplify`]) through the C ABI.
 
-use std::ffi::{CStr, c_char};
-use std::path::Path;
+use std::ffi::c_char;
 
-use super::{Failure, TpxComplex, TpxStatus, guard, handle, out_ptr, set_boxed};
+use super::{Failure, TpxComplex, TpxStatus, build_into, guard, out_ptr, path_arg};
 use topoplex::complex::Complex;
 use topoplex::io::write::{WriteError, WriteErrorKind, write_complex};
 use topoplex::simplify::{Options, SimplifyError, check, check_output, simplify, simplify_owned};
@@ -25,19 +24,6 @@ fn options(ratio: f64, preserve_topology: bool) -> Result<Options, Failure> {
     Ok(Options {
         ratio,
         preserve_topology,
-    })
-}
-
-fn path_arg<'a>(p: *const c_char, what: &str) -> Result<&'a str, Failure> {
-    if p.is_null() {
-        return Err(Failure::null(what));
-    }
-    // SAFETY: a non-NULL path is NUL-terminated (documented contract of the callers).
-    unsafe { CStr::from_ptr(p) }.to_str().map_err(|e| {
-        Failure::new(
-            TpxStatus::InvalidArgument,
-            format!("{what} is not valid UTF-8: {e}"),
-        )
     })
 }
 
@@ -65,14 +51,12 @@ pub unsafe extern "C" fn tpx_simplify(
     preserve_topology: bool,
     out: *mut *mut TpxComplex,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(complex, "complex")?;
-        let out = out_ptr(out, "out")?;
+    build_into(complex, "complex", out, |c| {
         let options = options(ratio, preserve_topology)?;
         let done = simplify(&c.complex, &options, &mut |_, _| {}).map_err(simplify_failure)?;
-        let complex = done.complex;
-        set_boxed(out, TpxComplex { complex });
-        Ok(())
+        Ok(TpxComplex {
+            complex: done.complex,
+        })
     })
 }
 
@@ -133,9 +117,9 @@ pub unsafe extern "C" fn tpx_simplify_file(
 ) -> TpxStatus {
     guard(|| {
         let input = path_arg(input, "input")?;
-        let output = Path::new(path_arg(output, "output")?);
+        let output = path_arg(output, "output")?;
         let options = options(ratio, preserve_topology)?;
-        let complex = topoplex::store::open_complex(Path::new(input), Default::default())
+        let complex = topoplex::store::open_complex(input, Default::default())
             .map_err(super::complex::open_failure)?;
         let write_failure = |e: WriteError| {
             let status = match e.kind {

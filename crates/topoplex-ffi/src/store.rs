@@ -1,12 +1,12 @@
 //! Saved files (`.tpx`, see `topoplex::store`) and the build thread count.
 
-use std::ffi::{CStr, c_char};
+use std::ffi::c_char;
 use std::path::Path;
 
 use super::complex::{TpxComplex, complex_failure};
 use super::live::TpxLive;
 use super::structure::{TpxStructure, build_failure, kind_from_u32};
-use super::{Failure, TpxStatus, guard, handle, out_ptr, set_boxed};
+use super::{Failure, TpxStatus, guard, handle, open_into, path_arg};
 use topoplex::store::{Saved, StoreError, save};
 
 /// `tpx_structure_open` flag: check every section's checksum and the structure's invariants
@@ -27,18 +27,20 @@ pub(crate) fn store_failure(e: StoreError) -> Failure {
     Failure::new(status, e.to_string())
 }
 
-fn path_arg<'a>(path: *const c_char) -> Result<&'a Path, Failure> {
-    if path.is_null() {
-        return Err(Failure::null("path"));
-    }
-    // SAFETY: non-NULL `path` is NUL-terminated (documented contract).
-    let s = unsafe { CStr::from_ptr(path) }.to_str().map_err(|e| {
-        Failure::new(
+/// The saved file at `path`, opened with `flags` (`TPX_OPEN_VERIFY` or 0) checked first and
+/// verified when asked.
+fn open_saved(path: &Path, flags: u32) -> Result<Saved, Failure> {
+    if flags & !TPX_OPEN_VERIFY != 0 {
+        return Err(Failure::new(
             TpxStatus::InvalidArgument,
-            format!("path is not valid UTF-8: {e}"),
-        )
-    })?;
-    Ok(Path::new(s))
+            format!("unknown flags {flags:#x} (only TPX_OPEN_VERIFY = 1)"),
+        ));
+    }
+    let saved = Saved::open(path).map_err(store_failure)?;
+    if flags & TPX_OPEN_VERIFY != 0 {
+        saved.verify().map_err(store_failure)?;
+    }
+    Ok(saved)
 }
 
 /// Saves the complex `c` and, unless `s` is NULL, the structure `s` built from it, to `path`
@@ -58,7 +60,7 @@ pub unsafe extern "C" fn tpx_save(
 ) -> TpxStatus {
     guard(|| {
         let c = handle(c, "c")?;
-        let path = path_arg(path)?;
+        let path = path_arg(path, "path")?;
         // SAFETY: a non-NULL `s` is a live handle (documented contract).
         let s = unsafe { s.as_ref() };
         save(path, &c.complex, s.map(|s| s.topo.as_ref())).map_err(store_failure)
@@ -86,23 +88,11 @@ pub unsafe extern "C" fn tpx_structure_open(
     flags: u32,
     out: *mut *mut TpxStructure,
 ) -> TpxStatus {
-    guard(|| {
-        let out = out_ptr(out, "out")?;
-        let path = path_arg(path)?;
+    open_into(path, out, |path| {
         let kind = kind_from_u32(kind)?;
-        if flags & !TPX_OPEN_VERIFY != 0 {
-            return Err(Failure::new(
-                TpxStatus::InvalidArgument,
-                format!("unknown flags {flags:#x} (only TPX_OPEN_VERIFY = 1)"),
-            ));
-        }
-        let saved = Saved::open(path).map_err(store_failure)?;
-        if flags & TPX_OPEN_VERIFY != 0 {
-            saved.verify().map_err(store_failure)?;
-        }
+        let saved = open_saved(path, flags)?;
         let topo = saved.structure_of(kind).map_err(store_failure)?;
-        set_boxed(out, TpxStructure::new(topo));
-        Ok(())
+        Ok(TpxStructure::new(topo))
     })
 }
 
@@ -118,13 +108,10 @@ pub unsafe extern "C" fn tpx_complex_open(
     path: *const c_char,
     out: *mut *mut TpxComplex,
 ) -> TpxStatus {
-    guard(|| {
-        let out = out_ptr(out, "out")?;
-        let path = path_arg(path)?;
+    open_into(path, out, |path| {
         let saved = Saved::open(path).map_err(store_failure)?;
         let complex = saved.complex().map_err(store_failure)?;
-        set_boxed(out, TpxComplex { complex });
-        Ok(())
+        Ok(TpxComplex { complex })
     })
 }
 
@@ -139,7 +126,7 @@ pub unsafe extern "C" fn tpx_complex_open(
 pub unsafe extern "C" fn tpx_live_save(l: *const TpxLive, path: *const c_char) -> TpxStatus {
     guard(|| {
         let l = handle(l, "l")?;
-        let path = path_arg(path)?;
+        let path = path_arg(path, "path")?;
         l.live().save(path).map_err(store_failure)
     })
 }
@@ -159,22 +146,10 @@ pub unsafe extern "C" fn tpx_live_open(
     flags: u32,
     out: *mut *mut TpxLive,
 ) -> TpxStatus {
-    guard(|| {
-        let out = out_ptr(out, "out")?;
-        let path = path_arg(path)?;
-        if flags & !TPX_OPEN_VERIFY != 0 {
-            return Err(Failure::new(
-                TpxStatus::InvalidArgument,
-                format!("unknown flags {flags:#x} (only TPX_OPEN_VERIFY = 1)"),
-            ));
-        }
-        let saved = Saved::open(path).map_err(store_failure)?;
-        if flags & TPX_OPEN_VERIFY != 0 {
-            saved.verify().map_err(store_failure)?;
-        }
+    open_into(path, out, |path| {
+        let saved = open_saved(path, flags)?;
         let live = topoplex::live::LiveComplex::open_saved(&saved).map_err(store_failure)?;
-        set_boxed(out, TpxLive::new(live));
-        Ok(())
+        Ok(TpxLive::new(live))
     })
 }
 

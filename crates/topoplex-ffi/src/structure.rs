@@ -1,8 +1,8 @@
 //! `TpxStructure` (one of the family behind the relation API) and `TpxRelationTable`.
 
 use super::{
-    Failure, TpxStatus, free_box, get_into, guard, guard_value, handle, in_slice, out_ptr,
-    set_boxed, write_buffer,
+    Failure, TpxStatus, build_into, free_box, get_into, guard, guard_value, handle, in_slice,
+    out_ptr, write_buffer,
 };
 
 use topoplex::complex::MAX_DIMENSION;
@@ -120,13 +120,10 @@ pub unsafe extern "C" fn tpx_structure_build(
     kind: u32,
     out: *mut *mut TpxStructure,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
-        let out = out_ptr(out, "out")?;
+    build_into(c, "c", out, |c| {
         let kind = kind_from_u32(kind)?;
         let topo = build(kind, &c.complex).map_err(build_failure)?;
-        set_boxed(out, TpxStructure::new(topo));
-        Ok(())
+        Ok(TpxStructure::new(topo))
     })
 }
 
@@ -393,9 +390,7 @@ pub unsafe extern "C" fn tpx_relation_table(
     q: u32,
     out: *mut *mut TpxRelationTable,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
-        let out = out_ptr(out, "out")?;
+    build_into(s, "s", out, |s| {
         let topo = s.topo.as_ref();
         let p = dimension_arg(topo, p, "p")?;
         let q = dimension_arg(topo, q, "q")?;
@@ -413,8 +408,7 @@ pub unsafe extern "C" fn tpx_relation_table(
             ids.extend_from_slice(&rows);
             offsets.push(ids.len());
         }
-        set_boxed(out, TpxRelationTable { offsets, ids });
-        Ok(())
+        Ok(TpxRelationTable { offsets, ids })
     })
 }
 

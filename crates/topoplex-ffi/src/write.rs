@@ -1,10 +1,9 @@
 //! Writing a `TpxComplex` to a file (`tpx_complex_write`).
 
-use std::ffi::{CStr, c_char};
-use std::path::Path;
+use std::ffi::c_char;
 
 use super::complex::TpxComplex;
-use super::{Failure, TpxStatus, guard, handle};
+use super::{Failure, TpxStatus, guard, handle, path_arg};
 use topoplex::io::write::{Format, WriteErrorKind, write_complex};
 
 /// The format named by the output file's extension (`tpx_complex_write`).
@@ -81,18 +80,9 @@ pub unsafe extern "C" fn tpx_complex_write(
 ) -> TpxStatus {
     guard(|| {
         let c = handle(c, "c")?;
-        if path.is_null() {
-            return Err(Failure::null("path"));
-        }
-        // SAFETY: non-NULL `path` is NUL-terminated (documented contract).
-        let path = unsafe { CStr::from_ptr(path) }.to_str().map_err(|e| {
-            Failure::new(
-                TpxStatus::InvalidArgument,
-                format!("path is not valid UTF-8: {e}"),
-            )
-        })?;
+        let path = path_arg(path, "path")?;
         let format = format_from_u32(format)?;
-        write_complex(&c.complex, Path::new(path), format).map_err(|e| {
+        write_complex(&c.complex, path, format).map_err(|e| {
             let status = match e.kind {
                 WriteErrorKind::Io(_) => TpxStatus::IoError,
                 WriteErrorKind::UnknownExtension => TpxStatus::UnknownFormat,

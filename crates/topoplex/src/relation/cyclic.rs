@@ -22,6 +22,24 @@ struct Piece {
     next: u32,
 }
 
+/// The q-simplices around `h` as pieces whose sides are still to fill, in this thread's pooled
+/// buffer.
+fn pieces_around<N: Navigate + ?Sized>(
+    nav: &N,
+    h: SimplexHandle,
+    q: usize,
+) -> Result<Scratch<Vec<Piece>>, QueryError> {
+    let mut pieces = Scratch::<Vec<Piece>>::take();
+    nav.visit(h, q, &mut |t| {
+        pieces.push(Piece {
+            handle: t,
+            prev: 0,
+            next: 0,
+        })
+    })?;
+    Ok(pieces)
+}
+
 /// See [`Navigate::fans_around`].
 pub(crate) fn fans_around<N: Navigate + ?Sized>(
     nav: &N,
@@ -46,14 +64,7 @@ pub(crate) fn fans_around<N: Navigate + ?Sized>(
     if nav.dimension() < 2 {
         return Ok(());
     }
-    let mut pieces = Scratch::<Vec<Piece>>::take();
-    nav.visit(v, 2, &mut |t| {
-        pieces.push(Piece {
-            handle: t,
-            prev: 0,
-            next: 0,
-        })
-    })?;
+    let mut pieces = pieces_around(nav, v, 2)?;
     for p in pieces.iter_mut() {
         let t = nav
             .top_id(p.handle)?
@@ -96,14 +107,7 @@ pub(crate) fn around_edge<N: Navigate + ?Sized>(
         push_group(out, &tris, tris.len() >= 2, false);
         return Ok(());
     }
-    let mut pieces = Scratch::<Vec<Piece>>::take();
-    nav.visit(e, 3, &mut |t| {
-        pieces.push(Piece {
-            handle: t,
-            prev: 0,
-            next: 0,
-        })
-    })?;
+    let mut pieces = pieces_around(nav, e, 3)?;
     for p in pieces.iter_mut() {
         let w = nav.vertices_of(p.handle)?;
         let mut rest = w.iter().copied().filter(|x| !ends.contains(x));

@@ -535,11 +535,7 @@ pub trait Navigate: Topology {
         out: &mut Vec<SimplexHandle>,
     ) -> Result<(), QueryError> {
         out.clear();
-        self.visit(h, q, &mut |x| out.push(x))?;
-        if order == Order::Lexicographic {
-            out.sort_unstable();
-        }
-        Ok(())
+        append_in_order(out, order, |out| self.visit(h, q, &mut |x| out.push(x)))
     }
 
     /// R_{p,q} of many p-simplices at once, as one CSR: for each dense index of `indices`, its
@@ -577,11 +573,7 @@ pub trait Navigate: Topology {
         ends: &mut Vec<usize>,
     ) -> Result<(), QueryError> {
         for &h in hs {
-            let start = out.len();
-            self.visit(h, q, &mut |x| out.push(x))?;
-            if order == Order::Lexicographic {
-                out[start..].sort_unstable();
-            }
+            append_in_order(out, order, |out| self.visit(h, q, &mut |x| out.push(x)))?;
             ends.push(out.len());
         }
         Ok(())
@@ -598,12 +590,9 @@ pub trait Navigate: Topology {
         order: Order,
         ids: &mut Vec<u32>,
     ) -> Result<(), QueryError> {
-        let start = ids.len();
-        self.visit(h, q, &mut |x| ids.push(x.index()))?;
-        if order == Order::Lexicographic {
-            ids[start..].sort_unstable();
-        }
-        Ok(())
+        append_in_order(ids, order, |ids| {
+            self.visit(h, q, &mut |x| ids.push(x.index()))
+        })
     }
 
     /// |R_{p,q}| of the dense p-indices `indices` into `out` (`out.len() == indices.len()`),
@@ -687,11 +676,7 @@ pub trait Navigate: Topology {
         out.clear();
         self.check(h)?;
         for q in h.dim() + 1..=self.dimension() {
-            let start = out.len();
-            self.visit(h, q, &mut |x| out.push(x))?;
-            if order == Order::Lexicographic {
-                out[start..].sort_unstable();
-            }
+            append_in_order(out, order, |out| self.visit(h, q, &mut |x| out.push(x)))?;
         }
         Ok(())
     }
@@ -801,6 +786,21 @@ pub trait Navigate: Topology {
     }
 }
 
+/// Appends to `out` what `fill` pushes, that part sorted when `order` is lexicographic (left
+/// as pushed when `fill` fails).
+pub(crate) fn append_in_order<T: Ord, E>(
+    out: &mut Vec<T>,
+    order: Order,
+    fill: impl FnOnce(&mut Vec<T>) -> Result<(), E>,
+) -> Result<(), E> {
+    let start = out.len();
+    fill(out)?;
+    if order == Order::Lexicographic {
+        out[start..].sort_unstable();
+    }
+    Ok(())
+}
+
 /// [`Navigate::related_batch`] by one [`Navigate::visit`] per index.
 pub(crate) fn batch_by_visit<N: Navigate + ?Sized>(
     n: &N,
@@ -813,11 +813,9 @@ pub(crate) fn batch_by_visit<N: Navigate + ?Sized>(
 ) -> Result<(), QueryError> {
     for &i in indices {
         let h = n.handle(p, i)?;
-        let start = ids.len();
-        n.visit(h, q, &mut |x| ids.push(x.index()))?;
-        if order == Order::Lexicographic {
-            ids[start..].sort_unstable();
-        }
+        append_in_order(ids, order, |ids| {
+            n.visit(h, q, &mut |x| ids.push(x.index()))
+        })?;
         ends.push(ids.len());
     }
     Ok(())

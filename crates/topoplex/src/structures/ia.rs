@@ -76,7 +76,7 @@
 //! - `count(p)`: n_{d−1} from R_{d,d}; 0 < p < d − 1 counted at their smallest vertex from a
 //!   walk of its star, by chunks of vertices on several threads. O(Σ_v n_v·C(d, p)·log).
 
-use super::nav::{NavBase, NavIndex};
+use super::nav::{Fast, NavBase, NavIndex, Visit};
 use crate::mapped::Arr;
 use rustc_hash::FxHashSet;
 use std::sync::atomic::Ordering;
@@ -613,13 +613,7 @@ impl NavBase for IndexedAdjacency {
 
     /// Direct walks (d-simplex `t` is dense d-simplex `t`): R_{d,0}, R_{d,d} O(d); R_{0,d},
     /// R_{0,0} the star walk, O(d·n_v). Others: the generic path.
-    fn fast_visit(
-        &self,
-        h: SimplexHandle,
-        sigma: &[u32],
-        q: usize,
-        visit: &mut dyn FnMut(SimplexHandle),
-    ) -> Option<Result<(), QueryError>> {
+    fn fast_visit(&self, h: SimplexHandle, sigma: &[u32], q: usize, visit: Visit<'_>) -> Fast {
         let d = self.d;
         if d == 0 {
             return None;

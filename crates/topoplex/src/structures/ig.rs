@@ -30,7 +30,7 @@
 //! Queries keep no state in the structure: the "visited" marks are a per-query set.
 
 use super::common::{IdSet, Scratch, faces_containing, try_closure_links};
-use super::nav::{NavBase, NavIndex, with_scratch};
+use super::nav::{Fast, NavBase, NavIndex, Visit, with_scratch};
 use super::{BuildError, to_u32};
 use crate::complex::{Complex, SimplexTable};
 use crate::mapped::Arr;
@@ -197,13 +197,7 @@ impl NavBase for IncidenceGraph {
 
     /// The stored links as handles (row `i` of `tables[p]` is dense p-simplex `i`): R_{p,p−1},
     /// R_{p,p+1} O(answer); R_{0,0} the other end of each edge at v. Others: the generic path.
-    fn fast_visit(
-        &self,
-        h: SimplexHandle,
-        _sigma: &[u32],
-        q: usize,
-        visit: &mut dyn FnMut(SimplexHandle),
-    ) -> Option<Result<(), QueryError>> {
+    fn fast_visit(&self, h: SimplexHandle, _sigma: &[u32], q: usize, visit: Visit<'_>) -> Fast {
         let (p, id) = (h.dim(), h.index());
         let ids = if q + 1 == p {
             self.boundary_ids(p, id)

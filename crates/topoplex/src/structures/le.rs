@@ -197,6 +197,20 @@ impl TriTopo for LoopEdgeUse {
 
 radial::nav_base!(LoopEdgeUse);
 
+impl LoopEdgeUse {
+    /// The arrays with one entry per edge-use.
+    fn per_use(&self) -> [&Arr<u32>; 6] {
+        [
+            &self.eu_face,
+            &self.eu_edge,
+            &self.eu_rnext,
+            &self.eu_fnext,
+            &self.eu_start,
+            &self.eu_vnext,
+        ]
+    }
+}
+
 impl Topology for LoopEdgeUse {
     crate::relation::topology_preamble! {
         self, KIND;
@@ -220,35 +234,13 @@ impl Topology for LoopEdgeUse {
 
     fn storage(&self) -> Storage {
         let integers = self.n_tris as u64 * 19 + self.edge_eu.len() as u64 + self.n as u64;
-        let arrays = [
-            &self.face_eu,
-            &self.edge_eu,
-            &self.eu_face,
-            &self.eu_edge,
-            &self.eu_rnext,
-            &self.eu_fnext,
-            &self.eu_start,
-            &self.eu_vnext,
-            &self.vertex_eu,
-        ];
-        Storage {
-            integers,
-            bits: 0,
-            bytes: arrays.iter().map(|a| a.capacity() as u64 * 4).sum(),
-        }
+        let others = [&self.face_eu, &self.edge_eu, &self.vertex_eu];
+        radial::storage_of(integers, self.per_use().into_iter().chain(others))
     }
 
     fn validate(&self) -> Result<(), String> {
         let m = 3 * self.n_tris as usize;
-        let arrays = [
-            &self.eu_face,
-            &self.eu_edge,
-            &self.eu_rnext,
-            &self.eu_fnext,
-            &self.eu_start,
-            &self.eu_vnext,
-        ];
-        if arrays.iter().any(|a| a.len() != m) || self.vertex_eu.len() != self.n as usize {
+        if self.per_use().iter().any(|a| a.len() != m) || self.vertex_eu.len() != self.n as usize {
             return Err("edge-use arrays have the wrong shape".into());
         }
         if self.n_tris == 0 {

@@ -38,7 +38,8 @@ use crate::codec::Field;
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable};
 use crate::mapped::Arr;
 use crate::relation::handle::{
-    HandleForm, Navigate, Order, RelationView, SimplexHandle, TopId, Vertices, batch_by_visit,
+    HandleForm, Navigate, Order, RelationView, SimplexHandle, TopId, Vertices, append_in_order,
+    batch_by_visit,
 };
 use crate::relation::{QueryError, StructureKind, Topology, normalize_simplex};
 
@@ -192,6 +193,12 @@ fn winding(sorted: &[u32], given: &[u32]) -> u64 {
     })
 }
 
+/// The visitor [`NavBase::fast_visit`] calls with each answer.
+pub(crate) type Visit<'a> = &'a mut dyn FnMut(SimplexHandle);
+
+/// What [`NavBase::fast_visit`] returns: `None` when the structure has no walk of its own.
+pub(crate) type Fast = Option<Result<(), QueryError>>;
+
 /// What a structure provides to get [`Navigate`].
 #[doc(hidden)]
 pub trait NavBase: Topology {
@@ -205,13 +212,7 @@ pub trait NavBase: Topology {
 
     /// R_{p,q}(h) straight from the structure's arrays, when it has a walk for this (p, q); `h`
     /// is checked and has vertices `sigma`. `None`: fall back to the vertex-id relation.
-    fn fast_visit(
-        &self,
-        _h: SimplexHandle,
-        _sigma: &[u32],
-        _q: usize,
-        _visit: &mut dyn FnMut(SimplexHandle),
-    ) -> Option<Result<(), QueryError>> {
+    fn fast_visit(&self, _h: SimplexHandle, _sigma: &[u32], _q: usize, _visit: Visit<'_>) -> Fast {
         None
     }
 
@@ -421,11 +422,10 @@ impl<T: NavBase> Navigate for T {
         }
         check_indices(self, p, indices)?;
         for &i in indices {
-            let start = ids.len();
-            self.fast_into(p, i, q, ids);
-            if order == Order::Lexicographic {
-                ids[start..].sort_unstable();
-            }
+            append_in_order(ids, order, |ids| {
+                self.fast_into(p, i, q, ids);
+                Ok::<_, QueryError>(())
+            })?;
             ends.push(ids.len());
         }
         Ok(())
@@ -440,20 +440,15 @@ impl<T: NavBase> Navigate for T {
     ) -> Result<(), QueryError> {
         let (p, d) = (h.dim(), self.dimension());
         if p > d || q > d || !self.has_fast(p, q) {
-            let start = ids.len();
-            self.visit(h, q, &mut |x| ids.push(x.index()))?;
-            if order == Order::Lexicographic {
-                ids[start..].sort_unstable();
-            }
-            return Ok(());
+            return append_in_order(ids, order, |ids| {
+                self.visit(h, q, &mut |x| ids.push(x.index()))
+            });
         }
         self.check(h)?;
-        let start = ids.len();
-        self.fast_into(p, h.index(), q, ids);
-        if order == Order::Lexicographic {
-            ids[start..].sort_unstable();
-        }
-        Ok(())
+        append_in_order(ids, order, |ids| {
+            self.fast_into(p, h.index(), q, ids);
+            Ok(())
+        })
     }
 
     fn degree_batch(

@@ -94,6 +94,7 @@ use super::common::{
 };
 use super::ia::NONE;
 use super::nav::{NavBase, NavIndex};
+use super::radial::{cross, dot, sub};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
 use crate::complex::{Complex, SimplexTable, is_subset};
@@ -166,19 +167,6 @@ struct Radial {
     w: [f64; 3],
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
-}
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
 fn unit(a: [f64; 3]) -> [f64; 3] {
     let l = dot(a, a).sqrt();
     if l > 0.0 {

@@ -233,6 +233,20 @@ impl TriTopo for PartialEntities {
 
 radial::nav_base!(PartialEntities);
 
+impl PartialEntities {
+    /// The arrays with one entry per partial edge, `pe_edge` aside.
+    fn per_use(&self) -> [&Arr<u32>; 6] {
+        [
+            &self.pe_face,
+            &self.pe_rprev,
+            &self.pe_rnext,
+            &self.pe_fprev,
+            &self.pe_fnext,
+            &self.pe_start,
+        ]
+    }
+}
+
 impl Topology for PartialEntities {
     crate::relation::topology_preamble! {
         self, KIND;
@@ -258,40 +272,20 @@ impl Topology for PartialEntities {
     fn storage(&self) -> Storage {
         let p = self.pe_edge.len() as u64;
         let integers = self.n_tris as u64 + self.edge_pe.len() as u64 + 8 * p + self.n as u64;
-        let arrays = [
+        let others = [
             &self.face_pe,
             &self.edge_pe,
             &self.pe_edge,
-            &self.pe_face,
-            &self.pe_rprev,
-            &self.pe_rnext,
-            &self.pe_fprev,
-            &self.pe_fnext,
-            &self.pe_start,
             &self.vertex_off,
             &self.vertex_pe,
         ];
-        Storage {
-            integers,
-            bits: 0,
-            bytes: arrays.iter().map(|a| a.capacity() as u64 * 4).sum(),
-        }
+        radial::storage_of(integers, self.per_use().into_iter().chain(others))
     }
 
     fn validate(&self) -> Result<(), String> {
         let pc = self.pe_edge.len();
         let n2 = self.n_tris;
-        if pc != 3 * n2 as usize + 2 * self.n_wires
-            || [
-                &self.pe_face,
-                &self.pe_rprev,
-                &self.pe_rnext,
-                &self.pe_fprev,
-                &self.pe_fnext,
-                &self.pe_start,
-            ]
-            .iter()
-            .any(|a| a.len() != pc)
+        if pc != 3 * n2 as usize + 2 * self.n_wires || self.per_use().iter().any(|a| a.len() != pc)
         {
             return Err("partial-edge arrays have different lengths".into());
         }

@@ -23,7 +23,7 @@ use std::f64::consts::TAU;
 use rustc_hash::FxHashSet;
 
 use super::common::{IdSet, Scratch, try_iota, try_order, try_push, try_table, try_vec};
-use super::nav::with_scratch;
+use super::nav::{Fast, Visit, with_scratch};
 use super::{BuildError, to_u32};
 use crate::complex::Coords;
 use crate::complex::table::id_bits;
@@ -195,15 +195,29 @@ fn point(c: &Coords, v: u32) -> Option<[f64; 3]> {
     p.iter().all(|x| x.is_finite()).then_some(p)
 }
 
-fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+/// The storage of a radial structure: `integers` as counted, `arrays` (its `u32` arrays) as
+/// the bytes they hold room for.
+pub(crate) fn storage_of<'a>(
+    integers: u64,
+    arrays: impl IntoIterator<Item = &'a Arr<u32>>,
+) -> crate::relation::Storage {
+    crate::relation::Storage {
+        integers,
+        bits: 0,
+        bytes: arrays.into_iter().map(|a| a.capacity() as u64 * 4).sum(),
+    }
+}
+
+/// The 3-vector kit (also used by `nmia`).
+pub(crate) fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
     [
         a[1] * b[2] - a[2] * b[1],
         a[2] * b[0] - a[0] * b[2],
@@ -587,8 +601,8 @@ macro_rules! nav_base {
                 h: crate::relation::handle::SimplexHandle,
                 sigma: &[u32],
                 q: usize,
-                visit: &mut dyn FnMut(crate::relation::handle::SimplexHandle),
-            ) -> Option<Result<(), crate::relation::QueryError>> {
+                visit: crate::structures::nav::Visit<'_>,
+            ) -> crate::structures::nav::Fast {
                 super::radial::fast_visit(self, h, sigma, q, visit)
             }
 
@@ -614,8 +628,8 @@ pub(crate) fn fast_visit<T: TriTopo + ?Sized>(
     h: SimplexHandle,
     sigma: &[u32],
     q: usize,
-    visit: &mut dyn FnMut(SimplexHandle),
-) -> Option<Result<(), QueryError>> {
+    visit: Visit<'_>,
+) -> Fast {
     match (sigma.len() - 1, q) {
         (0, 0) => with_scratch(|buf| {
             neighbours(topo, sigma[0], buf);

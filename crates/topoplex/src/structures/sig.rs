@@ -142,7 +142,7 @@ use rustc_hash::{FxHashMap, FxHashSet};
 
 use super::common::{too_large, try_closure_links};
 use super::ig::IncidenceGraph;
-use super::nav::{NavBase, NavIndex};
+use super::nav::{Fast, NavBase, NavIndex, Visit};
 use super::{BuildError, to_u32};
 use crate::complex::{Complex, SimplexTable};
 use crate::relation::handle::SimplexHandle;
@@ -1054,13 +1054,7 @@ impl NavBase for Sig {
     }
 
     // Ids of one dimension are lexicographic ranks: every answer is a dense handle as is.
-    fn fast_visit(
-        &self,
-        h: SimplexHandle,
-        sigma: &[u32],
-        q: usize,
-        visit: &mut dyn FnMut(SimplexHandle),
-    ) -> Option<Result<(), QueryError>> {
+    fn fast_visit(&self, h: SimplexHandle, sigma: &[u32], q: usize, visit: Visit<'_>) -> Fast {
         self.related_ids(h.index(), sigma, q, &mut |f| {
             visit(SimplexHandle::dense(q, f))
         });
