@@ -179,7 +179,7 @@ if [ -n "$bench_bin" ]; then
   fi
   # RESULTS/simplify_cli.tsv: whole processes reading the file, simplifying to 1% and writing
   # the result — the `topoplex simplify` CLI (which fixes glibc's mmap threshold, see
-  # src/ffi/mod.rs) next to OpenMesh's and CGAL's readers + simplifiers + writers
+  # crates/topoplex/src/sys.rs) next to OpenMesh's and CGAL's readers + simplifiers + writers
   # (`--file-job`): peak RSS (KiB) and wall/user/sys seconds from /usr/bin/time.
   if [ -x /usr/bin/time ] && [ -x "$bench_bin/topoplex_bench_simplify" ] \
      && nice -n 10 cargo build --release --bin topoplex --manifest-path "$root/Cargo.toml" \
