@@ -328,26 +328,32 @@ macro_rules! topology_preamble {
         top_count($tp:ident): $top_count:expr;
         $($more:tt)*
     ) => {
+        #[inline]
         fn kind(&$this) -> $crate::StructureKind {
             $kind
         }
 
+        #[inline]
         fn dimension(&$this) -> usize {
             $dimension
         }
 
+        #[inline]
         fn vertex_count(&$this) -> u32 {
             $vertex_count
         }
 
+        #[inline]
         fn count(&$this, $p: usize) -> usize {
             $count
         }
 
+        #[inline]
         fn top_count(&$this, $tp: usize) -> usize {
             $top_count
         }
 
+        #[inline]
         fn as_navigate(&$this) -> Option<&dyn $crate::Navigate> {
             Some($this)
         }

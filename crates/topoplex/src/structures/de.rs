@@ -152,15 +152,18 @@ impl DirectedEdge {
 }
 
 impl TriTopo for DirectedEdge {
+    #[inline]
     fn n_tris(&self) -> u32 {
         self.n_tris
     }
 
+    #[inline]
     fn tri(&self, t: u32) -> [u32; 3] {
         let i = 3 * t as usize;
         [self.de_start[i], self.de_start[i + 1], self.de_start[i + 2]]
     }
 
+    #[inline]
     fn radial_next(&self, s: u32) -> u32 {
         self.de_radial[s as usize]
     }

@@ -529,6 +529,7 @@ impl IndexedAdjacency {
     }
 
     /// R_{d,d} of d-simplex `t`: entry `i` across the facet opposite vertex `i`, or [`NONE`].
+    #[inline]
     pub fn neighbours(&self, t: u32) -> &[u32] {
         let w = self.d + 1;
         &self.adj[t as usize * w..(t as usize + 1) * w]

@@ -154,10 +154,12 @@ impl LoopEdgeUse {
 }
 
 impl TriTopo for LoopEdgeUse {
+    #[inline]
     fn n_tris(&self) -> u32 {
         self.n_tris
     }
 
+    #[inline]
     fn tri(&self, t: u32) -> [u32; 3] {
         let u0 = self.face_eu[t as usize];
         let u1 = self.eu_fnext[u0 as usize];
@@ -165,6 +167,7 @@ impl TriTopo for LoopEdgeUse {
         [self.start(u0), self.start(u1), self.start(u2)]
     }
 
+    #[inline]
     fn radial_next(&self, s: u32) -> u32 {
         self.eu_rnext[s as usize]
     }

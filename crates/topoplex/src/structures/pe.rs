@@ -179,10 +179,12 @@ pub(crate) fn by_start(n: u32, start: &[u32]) -> (Vec<u32>, Vec<u32>) {
 }
 
 impl TriTopo for PartialEntities {
+    #[inline]
     fn n_tris(&self) -> u32 {
         self.n_tris
     }
 
+    #[inline]
     fn tri(&self, t: u32) -> [u32; 3] {
         let p0 = self.face_pe[t as usize];
         let p1 = self.pe_fnext[p0 as usize];
@@ -190,6 +192,7 @@ impl TriTopo for PartialEntities {
         [self.start(p0), self.start(p1), self.start(p2)]
     }
 
+    #[inline]
     fn radial_next(&self, s: u32) -> u32 {
         self.pe_rnext[s as usize]
     }

@@ -165,14 +165,17 @@ fn ranks(bits: &[u64]) -> Vec<u32> {
 }
 
 impl TriTopo for TriangleSegment {
+    #[inline]
     fn n_tris(&self) -> u32 {
         self.tris.len() as u32
     }
 
+    #[inline]
     fn tri(&self, t: u32) -> [u32; 3] {
         row3(&self.tris, t)
     }
 
+    #[inline]
     fn radial_next(&self, s: u32) -> u32 {
         let t2 = self.next[s as usize];
         if t2 == NONE {
