@@ -105,14 +105,12 @@ impl IncidenceGraph {
 
     /// B_{p,p−1} of p-simplex `id`: facet ids, entry i opposite vertex i.
     #[inline]
-    #[inline]
     pub fn boundary_ids(&self, p: usize, id: u32) -> &[u32] {
         let w = p + 1;
         &self.boundary[p][id as usize * w..(id as usize + 1) * w]
     }
 
     /// C_{p,p+1} of p-simplex `id`: ids of (p+1)-simplices, ascending (empty for p = d).
-    #[inline]
     #[inline]
     pub fn coboundary_ids(&self, p: usize, id: u32) -> &[u32] {
         match (self.cob_offsets.get(p), self.cob.get(p)) {
