@@ -168,22 +168,10 @@ fn read_in_parallel(file: &std::fs::File, len: usize, bytes: &mut Vec<u8>) -> bo
 /// not own. A symbolic link is followed (a link to a regular file is written through); a path
 /// that does not exist yet is fine.
 pub fn check_output(path: &Path) -> std::io::Result<()> {
-    let Ok(meta) = std::fs::metadata(path) else {
-        return Ok(());
-    };
-    let t = meta.file_type();
-    if t.is_file() {
-        return Ok(());
+    match std::fs::metadata(path) {
+        Ok(meta) => only_regular(&meta, "outputs are only written to regular files"),
+        Err(_) => Ok(()),
     }
-    let what = if t.is_dir() {
-        "a directory"
-    } else {
-        special_file_kind(&t)
-    };
-    Err(std::io::Error::new(
-        std::io::ErrorKind::InvalidInput,
-        format!("it is {what}, not a regular file (outputs are only written to regular files)"),
-    ))
 }
 
 /// Opens a regular file for reading, refusing anything else before it is read, with a message
@@ -208,6 +196,11 @@ pub fn open_regular(path: &Path) -> std::io::Result<(std::fs::File, std::fs::Met
 }
 
 fn check_regular(meta: &std::fs::Metadata) -> std::io::Result<()> {
+    only_regular(meta, "only regular files are read")
+}
+
+/// `Ok` for a regular file, else an error saying what it is, with `why` in brackets.
+fn only_regular(meta: &std::fs::Metadata, why: &str) -> std::io::Result<()> {
     let t = meta.file_type();
     if t.is_file() {
         return Ok(());
@@ -219,7 +212,7 @@ fn check_regular(meta: &std::fs::Metadata) -> std::io::Result<()> {
     };
     Err(std::io::Error::new(
         std::io::ErrorKind::InvalidInput,
-        format!("it is {what}, not a regular file (only regular files are read)"),
+        format!("it is {what}, not a regular file ({why})"),
     ))
 }
 
