@@ -67,7 +67,7 @@ fn preamble(s: &mut String) {
     let _ = writeln!(
         s,
         "Census definitions, relation families and how times are taken: the README's CLI \
-         section and the `topoplex::report` module documentation. Times are per retrieved element (one simplex of an answer); \
+         section and the `topoplex_cli::report` module documentation. Times are per retrieved element (one simplex of an answer); \
          at most {} vertices and {} top simplices are queried per dataset, each measurement \
          repeated for at least {} ms after a warm-up pass.\n",
         timing::SAMPLE,
