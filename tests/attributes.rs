@@ -334,7 +334,8 @@ fn labelled_meshes_read_alike_in_every_format_gmsh_wrote_and_survive_our_writers
 
 /// The CLI keeps the data it can and refuses the rest: `convert` to a format without it exits 1
 /// naming the attribute, `--drop-data` drops it by name or all, naming an absent one is an
-/// error, and a verb that does not carry data yet refuses instead of dropping it.
+/// error, a verb that does not carry data yet (`save`) refuses instead of dropping it, and
+/// `simplify` carries it.
 #[test]
 fn cli_convert_keeps_refuses_or_drops_data_on_request() {
     let dir = Scratch::new("cli");
@@ -382,23 +383,20 @@ fn cli_convert_keeps_refuses_or_drops_data_on_request() {
         err.contains("no such attribute") && err.contains("'medit:ref'"),
         "{err}"
     );
-    let (code, err) = run(&["simplify", inp, "--out", &p("s.mesh"), "--ratio", "1"]);
+    let (code, err) = run(&["save", inp, "--out", &p("s.tpx")]);
     assert_eq!(code, Some(1));
     assert!(err.contains("does not carry attributes yet"), "{err}");
     assert_eq!(
-        run(&[
-            "simplify",
-            inp,
-            "--out",
-            &p("s.mesh"),
-            "--ratio",
-            "1",
-            "--drop-data",
-            "all"
-        ])
-        .0,
+        run(&["save", inp, "--out", &p("s.tpx"), "--drop-data", "all"]).0,
         Some(0)
     );
+    // simplify carries the data: the one triangle keeps reference 5.
+    assert_eq!(
+        run(&["simplify", inp, "--out", &p("s.mesh"), "--ratio", "1"]).0,
+        Some(0)
+    );
+    let back = read_path(&dir.0.join("s.mesh")).unwrap();
+    assert_eq!(listed_labels(&back.attributes, "medit:ref"), vec![5]);
 }
 
 fn listed_labels(at: &Attributes, name: &str) -> Vec<i64> {
@@ -406,4 +404,191 @@ fn listed_labels(at: &Attributes, name: &str) -> Vec<i64> {
     (0..a.element_count())
         .map(|i| a.label(i).unwrap())
         .collect()
+}
+
+/// The expected labels of a live complex: each top's label by its vertex set, and the listed
+/// faces' labels as a multiset of (vertex set, label) — moved by each edit as the data module
+/// says, by brute force over whole sets.
+#[derive(Debug, Clone, PartialEq)]
+struct Labels {
+    tops: std::collections::BTreeMap<Vec<u32>, i64>,
+    faces: Vec<(Vec<u32>, i64)>,
+    /// The vertex field: vertex → value.
+    field: std::collections::BTreeMap<u32, f64>,
+}
+
+fn key(s: &[u32]) -> Vec<u32> {
+    let mut v = s.to_vec();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+/// What `live` says: every live top's label, every listed face's (through `to_complex`), every
+/// live vertex's field value.
+fn labels_of(live: &topoplex::live::LiveComplex) -> Labels {
+    use topoplex::live::VertexId;
+    let tops = live
+        .tops()
+        .map(|(t, s)| {
+            let v = live.top_values("region", t).unwrap().unwrap();
+            assert_eq!(v.len(), 1);
+            (key(s), v.integer(0).unwrap())
+        })
+        .collect();
+    let c = live.to_complex();
+    let a = c.attributes().get("region", Location::Listed).unwrap();
+    let live_tops: std::collections::BTreeSet<Vec<u32>> =
+        live.tops().map(|(_, s)| key(s)).collect();
+    // to_complex renumbers vertices densely: map back by the live vertex order.
+    let ids: Vec<u32> = live.vertices().map(|v| v.0).collect();
+    let mut faces: Vec<(Vec<u32>, i64)> = (live_tops.len()..c.input_count())
+        .map(|i| {
+            let s: Vec<u32> = c
+                .input_simplex(i)
+                .iter()
+                .map(|&v| ids[v as usize])
+                .collect();
+            (key(&s), a.label(i).unwrap())
+        })
+        .collect();
+    faces.sort();
+    let field = live
+        .vertices()
+        .map(|v| {
+            let x = live
+                .vertex_values("weight", VertexId(v.0))
+                .unwrap()
+                .unwrap();
+            (v.0, x.real(0).unwrap())
+        })
+        .collect();
+    Labels { tops, faces, field }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(48))]
+
+    /// Random complexes to dimension 6 with random labels on every listed simplex and a random
+    /// vertex field, through random contractions (link-checked and free), splits, insertions,
+    /// removals and compactions: after each edit every surviving top keeps its label (an image
+    /// its preimage's), listed faces are renamed or retired with the edge, the survivor keeps
+    /// its field value, a split restores everything exactly, compact remaps, and
+    /// `to_complex` writes the same labels.
+    #[test]
+    fn labels_and_fields_survive_random_edits_of_the_live_complex(
+        (n, simplices) in common::random_input(6, 9, 14),
+        seed in any::<u64>(),
+        steps in proptest::collection::vec((0u8..6, any::<u32>(), any::<u32>()), 1..12),
+    ) {
+        use topoplex::Topology;
+        use topoplex::live::{ContractMode, LiveComplex, VertexId};
+        let mut rng = common::Rng(seed | 1);
+        let mut c = common::complex_of(n, &simplices);
+        let m = c.input_count();
+        let mut at = Attributes::new();
+        at.insert(Attribute::labels("region", Location::Listed, labels(&mut rng, m)));
+        at.insert(Attribute {
+            name: "weight".into(),
+            location: Location::Vertices,
+            components: 1,
+            values: Values::F64((0..n).map(|v| f64::from(v) + 0.5).collect()),
+        });
+        c.set_attributes(at).unwrap();
+        let mut live = LiveComplex::try_from_complex(&c).unwrap();
+        let average = seed % 2 == 0;
+        if average {
+            live.set_vertex_policy(topoplex::live::VertexPolicy::Average);
+        }
+        live.validate().unwrap();
+        // The listed labels at the start: tops by their first listing, faces the others.
+        let mut want = labels_of(&live);
+        let region = c.attributes().get("region", Location::Listed).unwrap();
+        for (s, l) in &want.tops {
+            prop_assert_eq!(Some(region.label(c.listed_index(s).unwrap()).unwrap()), Some(*l));
+        }
+        let mut undo_stack = Vec::new();
+        for (op, x, y) in steps {
+            let verts: Vec<u32> = live.vertices().map(|v| v.0).collect();
+            let (a, b) = (verts[x as usize % verts.len()], verts[y as usize % verts.len()]);
+            match op {
+                0 | 1 => {
+                    let mode = if op == 0 { ContractMode::PreserveTopology } else { ContractMode::Free };
+                    let before = want.clone();
+                    let Ok(undo) = live.contract(VertexId(a), VertexId(b), mode, None) else { continue };
+                    let image = |s: &[u32]| key(&s.iter().map(|&v| if v == b { a } else { v }).collect::<Vec<_>>());
+                    let now: std::collections::BTreeSet<Vec<u32>> = live.tops().map(|(_, s)| key(s)).collect();
+                    let mut tops = std::collections::BTreeMap::new();
+                    for (s, l) in &before.tops {
+                        let img = image(s);
+                        if now.contains(&img) {
+                            prop_assert!(tops.insert(img, *l).is_none(), "two preimages");
+                        }
+                    }
+                    for s in &now {
+                        if !tops.contains_key(s) {
+                            // A top of St(a) that was not moved keeps its own label.
+                            let l = before.tops.get(s).copied();
+                            prop_assert!(l.is_some(), "top {:?} has no preimage", s);
+                            tops.insert(s.clone(), l.unwrap());
+                        }
+                    }
+                    want.tops = tops;
+                    let fb = want.field.remove(&b).unwrap();
+                    if average {
+                        let fa = want.field.get_mut(&a).unwrap();
+                        *fa = (*fa + fb) / 2.0;
+                    }
+                    let mut faces: Vec<(Vec<u32>, i64)> = before.faces.iter()
+                        .filter(|(s, _)| !(s.contains(&a) && s.contains(&b)))
+                        .map(|(s, l)| (image(s), *l))
+                        .collect();
+                    // Records through the collapsed edge go; the others exist when their image does.
+                    let model_has = |s: &Vec<u32>| s.len() == 1 || now.iter().any(|t| s.iter().all(|v| t.contains(v)));
+                    faces.retain(|(s, _)| model_has(s));
+                    faces.sort();
+                    want.faces = faces;
+                    undo_stack.push((undo, before));
+                }
+                2 => {
+                    if let Some((undo, before)) = undo_stack.pop() {
+                        live.split(&undo).unwrap();
+                        want = before;
+                    }
+                }
+                3 => {
+                    let s = key(&[a, b]);
+                    if s.len() == 2 && live.insert_top(&s).is_ok() {
+                        // Inserted: label unset (0); the tops it absorbed go.
+                        undo_stack.clear();
+                        want = labels_of(&live);
+                        prop_assert_eq!(want.tops.get(&s).copied(), Some(0));
+                    }
+                }
+                4 => {
+                    let tops: Vec<Vec<u32>> = live.tops().map(|(_, s)| s.to_vec()).collect();
+                    if !tops.is_empty() {
+                        let t = &tops[x as usize % tops.len()];
+                        live.remove_top(t).unwrap();
+                        undo_stack.clear();
+                        want.tops.remove(&key(t));
+                        let now: Vec<Vec<u32>> = live.tops().map(|(_, s)| key(s)).collect();
+                        let alive: std::collections::BTreeSet<u32> = live.vertices().map(|v| v.0).collect();
+                        want.faces.retain(|(s, _)| if s.len() == 1 { alive.contains(&s[0]) } else { now.iter().any(|t| s.iter().all(|v| t.contains(v))) });
+                    }
+                }
+                _ => {
+                    let maps = live.compact();
+                    undo_stack.clear();
+                    let map = |v: u32| maps.vertices[v as usize];
+                    want.tops = want.tops.iter().map(|(s, l)| (key(&s.iter().map(|&v| map(v)).collect::<Vec<_>>()), *l)).collect();
+                    want.faces = want.faces.iter().map(|(s, l)| (key(&s.iter().map(|&v| map(v)).collect::<Vec<_>>()), *l)).collect();
+                    want.faces.sort();
+                    want.field = want.field.iter().map(|(&v, &x)| (map(v), x)).collect();
+                }
+            }
+            live.validate().unwrap();
+            prop_assert_eq!(labels_of(&live), want.clone());
+        }
+    }
 }

@@ -75,6 +75,12 @@
 //! - [`LiveComplex::split`]: the same order as the contraction it undoes.
 //! - [`LiveComplex::compact`]: O(size), renumbers vertices and slots densely and returns the maps.
 //!
+//! # Data
+//! The complex's attributes (labels and fields, [`crate::complex::attributes`]) travel with it:
+//! a row per vertex slot and per top slot, and a record per other listed simplex with data, kept
+//! through insert, remove, contraction, split and `compact()` ([`data`] says how and at what
+//! cost); [`LiveComplex::to_complex`] writes them back.
+//!
 //! # Handles and invalidation
 //! [`VertexId`]s and [`TopId`]s stay valid across every edit until [`LiveComplex::compact`]
 //! (tombstones keep the slots; a top moved by a contraction keeps its id and names its image);
@@ -105,6 +111,7 @@ use crate::structures::common::{too_large, try_copy, try_vec, try_with_capacity}
 use crate::structures::ia::faces_containing as faces;
 
 mod build;
+pub mod data;
 mod edit;
 pub mod link;
 mod nav;
@@ -113,6 +120,7 @@ mod store;
 
 use stars::Stars;
 
+pub use data::VertexPolicy;
 pub use edit::{CompactMaps, ContractMode, UndoRecord};
 
 /// "No vertex" marker.
@@ -255,6 +263,8 @@ pub struct LiveComplex {
     epoch: u32,
     /// Contraction scratch: the images of St(b), kept between edits to avoid allocating.
     images: Vec<Image>,
+    /// The attributes carried beside the slots (`data` module); empty without data.
+    data: data::LiveData,
 }
 
 /// A top simplex's image under a contraction: at most 16 ids inline, in stored order.
@@ -351,7 +361,7 @@ impl LiveComplex {
         }
         let parts = build::from_listing(complex, n)?;
         let (coord_dim, coords) = Self::coords_of(complex)?;
-        Ok(LiveComplex {
+        let mut live = LiveComplex {
             tops: parts.tops,
             live_tops: parts.live_tops,
             alive: try_vec(StructureKind::IaStar, true, n, "vertex flags")?,
@@ -361,7 +371,10 @@ impl LiveComplex {
             coords,
             epoch: 0,
             images: Vec::new(),
-        })
+            data: data::LiveData::default(),
+        };
+        live.data = data::LiveData::of(complex, &live);
+        Ok(live)
     }
 
     fn check_vertex_count(complex: &Complex) -> Result<usize, BuildError> {
@@ -430,20 +443,29 @@ impl LiveComplex {
             coords,
             epoch: 0,
             images: Vec::new(),
+            data: data::LiveData::default(),
         };
         for (_, s) in complex.tops_listed() {
             live.push_top(s);
         }
+        live.data = data::LiveData::of(complex, &live);
         Ok(live)
     }
 
     /// Appends a slot for `s` (not checked) and enters it in its vertices' stars.
     fn push_top(&mut self, s: &[u32]) -> u32 {
+        self.push_top_from(s, None)
+    }
+
+    /// [`LiveComplex::push_top`] whose data row is a copy of top `from`'s (packed id), or
+    /// unset.
+    fn push_top_from(&mut self, s: &[u32], from: Option<u32>) -> u32 {
         let p = s.len() - 1;
         let slot = (self.tops[p].len() / (p + 1)) as u32;
         assert!(slot <= SLOT_MASK, "more than 2^28 top {p}-simplices");
         self.tops[p].extend_from_slice(s);
         self.attach(p, slot);
+        self.data.push_top(p, from.map(unpack));
         slot
     }
 
@@ -585,6 +607,7 @@ impl LiveComplex {
         self.alive.push(true);
         self.star.add_vertex();
         self.coords.extend_from_slice(xyz);
+        self.data.push_vertex();
         self.live_vertices += 1;
         Ok(VertexId(v))
     }
@@ -648,9 +671,17 @@ impl LiveComplex {
         let (map, n) = self.vertex_map();
         let mut ids = Vec::new();
         let mut offsets = vec![0usize];
-        for (_, s) in self.tops() {
+        let mut live_slots: Vec<Vec<usize>> = vec![Vec::new(); MAX_DIMENSION + 1];
+        for (t, s) in self.tops() {
             ids.extend(s.iter().map(|&v| map[v as usize]));
             offsets.push(ids.len());
+            live_slots[t.dim()].push(t.slot() as usize);
+        }
+        let mut records = Vec::new();
+        for (r, s) in self.data.live_records(|s| self.holds_simplex(s)) {
+            ids.extend(s.iter().map(|&v| map[v as usize]));
+            offsets.push(ids.len());
+            records.push(r);
         }
         let coords = (self.coord_dim > 0).then(|| crate::complex::Coords {
             dim: self.coord_dim,
@@ -663,8 +694,13 @@ impl LiveComplex {
                 })
                 .collect(),
         });
-        Complex::from_arrays(n, &ids, &offsets, coords)
-            .expect("a live complex is a valid complex (has a vertex, ids in range)")
+        let mut c = Complex::from_arrays(n, &ids, &offsets, coords)
+            .expect("a live complex is a valid complex (has a vertex, ids in range)");
+        if !self.data.is_empty() {
+            c.set_attributes(self.data.attributes(&self.alive, &live_slots, &records))
+                .expect("the live data has a row per live vertex, top and record");
+        }
+        c
     }
 
     /// Old vertex slot → dense id (`NONE` for removed ones), and the live count.
@@ -856,6 +892,7 @@ impl LiveComplex {
         if self.star.len() != n || self.coords.len() != n * self.coord_dim {
             return Err("per-vertex arrays disagree on the vertex count".into());
         }
+        self.data.check(n, &self.tops)?;
         let live = self.alive.iter().filter(|&&a| a).count();
         if live != self.live_vertices as usize || live == 0 {
             return Err(format!(
