@@ -444,9 +444,6 @@ fn related_into<U: Written>(
     }
     let order = order_arg(order);
     answer_into(s, h, buf, buf_len, out_len, |n, sh, v| {
-        if U::DENSE {
-            dense_answers(n, q)?;
-        }
         (U::WALK)(n, sh, q as usize, order?, v).map_err(query_failure)
     })
 }
@@ -492,20 +489,6 @@ fn answer_into<U: Written>(
     })
 }
 
-/// NOT_DENSE when answers of dimension q have no dense index in this structure (the live
-/// complex above its vertices).
-fn dense_answers(n: &dyn Navigate, q: u32) -> Result<(), Failure> {
-    if q > 0 && !n.dense() {
-        return Err(Failure::new(
-            TpxStatus::NotDense,
-            format!(
-                "{q}-simplices of this structure have no dense index: use tpx_related_handles / tpx_related_handles_batch / tpx_cyclic_handles"
-            ),
-        ));
-    }
-    Ok(())
-}
-
 fn too_small(need: usize, have: usize, out_len: &mut usize) -> Result<(), Failure> {
     *out_len = need;
     Err(Failure::new(
@@ -544,7 +527,6 @@ pub unsafe extern "C" fn tpx_related_batch(
     let inputs = (indices, count, "indices");
     let out = (offsets, buf, buf_len, out_len);
     batch_into(s, inputs, order, out, |_, n, indices, order, ids, ends| {
-        dense_answers(n, q)?;
         let p = (p as usize).min(MAX_DIMENSION + 1);
         let too_large = |_| Failure::new(TpxStatus::TooLarge, "offsets do not fit in memory");
         ends.try_reserve(count).map_err(too_large)?;
@@ -656,7 +638,6 @@ pub unsafe extern "C" fn tpx_degree_batch(
             return Err(Failure::null("degrees"));
         }
         let n = nav(s)?;
-        dense_answers(n, q)?;
         let p = (p as usize).min(MAX_DIMENSION + 1);
         // Counted aside first: an error leaves `degrees` untouched.
         with_answer(|k| {
@@ -724,19 +705,15 @@ pub unsafe extern "C" fn tpx_relation_view(
         let s = handle(s, "s")?;
         let out = out_ptr(out, "out")?;
         let n = nav(s)?;
-        let not_dense = || {
-            Failure::new(
-                TpxStatus::NotDense,
-                "this structure has no dense index for its simplices above vertices: no relation view",
-            )
-        };
-        if !n.dense() {
-            return Err(not_dense());
-        }
         let v = n
             .relation_view(p as usize, q as usize)
             .map_err(query_failure)?
-            .ok_or_else(not_dense)?;
+            .ok_or_else(|| {
+                Failure::new(
+                    TpxStatus::NotDense,
+                    "this structure lends no relation view",
+                )
+            })?;
         *out = TpxRelationView {
             offsets: v.offsets().as_ptr(),
             ids: v.ids().as_ptr(),
@@ -885,12 +862,6 @@ fn cyclic_checked<U: Written>(
     q: u32,
     o: CyclicOut<U>,
 ) -> Result<(), Failure> {
-    if U::DENSE && !nav(s)?.dense() {
-        return Err(Failure::new(
-            TpxStatus::NotDense,
-            "this structure's triangles and tetrahedra have no dense index: use tpx_cyclic_handles",
-        ));
-    }
     let h = handle(h, "h")?;
     let out_items = out_ptr(o.out_items, "out_items")?;
     let out_groups = out_ptr(o.out_groups, "out_groups")?;
@@ -914,6 +885,12 @@ fn cyclic_checked<U: Written>(
         }
         if (ni > 0 && items.is_null()) || offsets.is_null() || (ng > 0 && flags.is_null()) {
             return Err(Failure::null("items, offsets or flags"));
+        }
+        if U::DENSE && !n.dense() {
+            // Handles that are not their index (the live complex): written as their index.
+            for x in fans.items.iter_mut() {
+                *x = SimplexHandle::dense(x.dim(), n.index_of(*x).map_err(query_failure)?);
+            }
         }
         for (i, &x) in fans.items.iter().enumerate() {
             // SAFETY: room for items_len >= ni entries.

@@ -174,8 +174,9 @@ pub const TPX_KIND_PE: u32 = 6;
 pub const TPX_KIND_LE: u32 = 7;
 /// Directed Edge structure.
 pub const TPX_KIND_DE: u32 = 8;
-/// The live complex (`TpxLive`, IA*-like and updatable). `tpx_structure_build` does not take it:
-/// a live complex is built with `tpx_live_from_complex`; the number names it in messages.
+/// The live complex (IA*-like). Works wherever a kind is taken: `tpx_structure_build` and
+/// `tpx_structure_open` give it as an immutable `TpxStructure`; the editable one is a `TpxLive`
+/// (`tpx_live_from_complex`, `tpx_live_open`), navigated through `tpx_live_structure`.
 pub const TPX_KIND_IASTAR: u32 = 9;
 
 /// A failure on its way to C: the status and the message for `tpx_last_error_message`.

@@ -1081,11 +1081,12 @@ fn kind_numbers_are_the_tpx_kind_constants() {
         (K::Pe, TPX_KIND_PE),
         (K::Le, TPX_KIND_LE),
         (K::De, TPX_KIND_DE),
+        (K::IaStar, TPX_KIND_IASTAR),
     ];
     for (k, n) in pairs {
         assert_eq!((k.abi(), K::from_abi(n)), (n, Some(k)));
     }
-    assert_eq!(K::from_abi(9), None);
+    assert_eq!(K::from_abi(10), None);
 }
 
 /// The input listing through the C ABI: a repeated triangle and an absorbed edge are counted,
@@ -1217,8 +1218,24 @@ fn relation_views_and_degree_batches_match_tpx_related() {
         assert_eq!(tpx_live_from_complex(c, &mut live), TpxStatus::Ok);
         let mut ls = null();
         assert_eq!(tpx_live_structure(live, &mut ls), TpxStatus::Ok);
-        assert_eq!(tpx_relation_view(ls, 0, 0, &mut v), TpxStatus::NotDense);
-        assert_eq!(v.count, 77);
+        // The live complex numbers as the IG does (lexicographic ranks; its vertices are
+        // its slots, none removed here): its views and degrees are the IG's.
+        for (p, q) in [(0, 0), (1, 2), (2, 1), (2, 2), (0, 3)] {
+            let mut lv = std::mem::MaybeUninit::<TpxRelationView>::zeroed();
+            assert_eq!(tpx_relation_view(ls, p, q, lv.as_mut_ptr()), TpxStatus::Ok);
+            let lv = lv.assume_init();
+            let iv = view(p, q);
+            assert_eq!((lv.count, lv.built), (iv.count, 1), "R_{{{p},{q}}}");
+            for i in 0..iv.count {
+                assert_eq!(answer(&lv, i), answer(&iv, i), "R_{{{p},{q}}} of {i}");
+            }
+            let idx: Vec<u32> = (0..iv.count as u32).collect();
+            let mut ld = vec![0u32; idx.len()];
+            let st = tpx_degree_batch(ls, p, idx.as_ptr(), idx.len(), q, ld.as_mut_ptr());
+            assert_eq!(st, TpxStatus::Ok);
+            let want: Vec<u32> = (0..iv.count).map(|i| answer(&iv, i).len() as u32).collect();
+            assert_eq!(ld, want, "degrees R_{{{p},{q}}}");
+        }
         tpx_live_free(live);
         tpx_structure_free(s);
         tpx_complex_free(c);

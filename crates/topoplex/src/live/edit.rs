@@ -127,6 +127,7 @@ impl LiveComplex {
     /// simplex, a vertex not live, σ already in the complex (as a top simplex or a face), or a
     /// single vertex (vertices are added by [`LiveComplex::add_vertex`]). Cost: module doc.
     pub fn insert_top(&mut self, sigma: &[u32]) -> Result<TopId, Refusal> {
+        self.renumbered();
         self.check_simplex(sigma)?;
         if self.holds(sigma) {
             return Err(Refusal::AlreadyPresent {
@@ -154,6 +155,7 @@ impl LiveComplex {
     /// For a single isolated vertex, removes the vertex. Refused: invalid simplex, a vertex not
     /// live, σ not in the complex, σ a proper face of another simplex. Cost: module doc.
     pub fn remove_top(&mut self, sigma: &[u32]) -> Result<(), Refusal> {
+        self.renumbered();
         let k = self.check_simplex(sigma)?;
         if let Some(raw) = self.find_top(k.as_slice()) {
             let (p, slot) = unpack(raw);
@@ -189,6 +191,7 @@ impl LiveComplex {
     /// Removes the top simplex `t` (see [`LiveComplex::remove_top`]). Refused: a handle from
     /// before `compact()` or of a removed top simplex.
     pub fn remove_top_id(&mut self, t: TopId) -> Result<(), Refusal> {
+        self.renumbered();
         self.check_top(t)?;
         let (p, slot) = unpack(t.raw);
         self.detach(p, slot as u32);
@@ -233,6 +236,7 @@ impl LiveComplex {
         mode: ContractMode,
         new_position: Option<&[f64]>,
     ) -> Result<UndoRecord, Refusal> {
+        self.renumbered();
         self.can_contract(a, b, mode)?;
         if let Some(xyz) = new_position {
             self.check_coords(xyz)?;
@@ -379,6 +383,7 @@ impl LiveComplex {
     /// before a `compact()`, was applied already, or later edits changed what it would restore
     /// (a created top simplex removed or a restored one now a face of another simplex).
     pub fn split(&mut self, undo: &UndoRecord) -> Result<(), Refusal> {
+        self.renumbered();
         self.check_undo(undo)?;
         for &raw in &undo.inserted.raw {
             let (p, slot) = unpack(raw);
@@ -457,6 +462,7 @@ impl LiveComplex {
     /// order (the numbering of [`LiveComplex::to_complex`]). Every [`TopId`] and [`UndoRecord`]
     /// issued before is refused afterwards; vertex ids must be mapped by the caller. O(size).
     pub fn compact(&mut self) -> CompactMaps {
+        self.renumbered();
         let (vmap, n) = self.vertex_map();
         let mut maps = CompactMaps {
             vertices: vmap,

@@ -105,6 +105,7 @@ use crate::structures::common::{too_large, try_copy, try_vec, try_with_capacity}
 use crate::structures::ia::faces_containing as faces;
 
 mod build;
+mod dense;
 mod edit;
 pub mod link;
 mod nav;
@@ -255,6 +256,9 @@ pub struct LiveComplex {
     epoch: u32,
     /// Contraction scratch: the images of St(b), kept between edits to avoid allocating.
     images: Vec<Image>,
+    /// Dense indices above vertices and lent views, built on first use, dropped by each edit
+    /// (`dense` module).
+    dense: dense::DenseIndex,
 }
 
 /// A top simplex's image under a contraction: at most 16 ids inline, in stored order.
@@ -361,6 +365,7 @@ impl LiveComplex {
             coords,
             epoch: 0,
             images: Vec::new(),
+            dense: Default::default(),
         })
     }
 
@@ -430,6 +435,7 @@ impl LiveComplex {
             coords,
             epoch: 0,
             images: Vec::new(),
+            dense: Default::default(),
         };
         for (_, s) in complex.tops_listed() {
             live.push_top(s);
@@ -578,6 +584,7 @@ impl LiveComplex {
     /// Amortised O(1).
     pub fn add_vertex(&mut self, xyz: &[f64]) -> Result<VertexId, Refusal> {
         self.check_coords(xyz)?;
+        self.renumbered();
         let v = self.vertex_slots();
         if v >= DEAD {
             return Err(Refusal::StaleHandle("vertex slots exhausted".into()));

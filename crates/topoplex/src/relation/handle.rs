@@ -501,9 +501,21 @@ pub trait Navigate: Topology {
     }
 
     /// Whether every handle this structure gives out is dense (true for the nine; the live
-    /// complex names simplices of dimension ≥ 1 by a top simplex and a vertex mask).
+    /// complex names simplices of dimension ≥ 1 by a top simplex and a vertex mask). Every
+    /// structure has dense indices all the same ([`Navigate::index_of`], [`Navigate::handle`]);
+    /// this says whether a handle *is* its index.
     fn dense(&self) -> bool {
         true
+    }
+
+    /// The dense index of `h`: its rank among the simplices of its dimension in ascending
+    /// lexicographic order (a vertex: its id), the index [`Navigate::handle`] takes back and
+    /// `related_ids`, `related_batch`, `degree_batch` and [`Navigate::relation_view`] use.
+    /// Checked as [`Navigate::check`]. O(1) for dense handles; the live complex finds it in
+    /// its numbering of the moment (O(p log n_p), see `live::dense`).
+    fn index_of(&self, h: SimplexHandle) -> Result<u32, QueryError> {
+        self.check(h)?;
+        Ok(h.index())
     }
 
     /// Heap bytes of the handle bookkeeping (windings, tables built on first use), which
@@ -621,8 +633,9 @@ pub trait Navigate: Topology {
     /// index of R_{p,q} — one walk over every p-simplex (the cost of `related_batch` over all
     /// of them), its arrays grown fallibly (`TooLarge`) — kept until the structure is dropped
     /// (`4 (n_p + 1) + 4 · Σ|R_{p,q}|` bytes, in [`Navigate::handle_bytes`]); later calls are
-    /// O(1). `DimensionOutOfRange` for p or q above the dimension. `Ok(None)` for structures
-    /// without dense handles (the live complex).
+    /// O(1). `DimensionOutOfRange` for p or q above the dimension. `Ok(None)` for a structure
+    /// that lends no view (none of this crate's: the live complex lends one valid until its
+    /// next edit, see `live::dense`).
     fn relation_view(&self, _p: usize, _q: usize) -> Result<Option<RelationView<'_>>, QueryError> {
         Ok(None)
     }
