@@ -709,10 +709,7 @@ pub unsafe extern "C" fn tpx_relation_view(
             .relation_view(p as usize, q as usize)
             .map_err(query_failure)?
             .ok_or_else(|| {
-                Failure::new(
-                    TpxStatus::NotDense,
-                    "this structure lends no relation view",
-                )
+                Failure::new(TpxStatus::NotDense, "this structure lends no relation view")
             })?;
         *out = TpxRelationView {
             offsets: v.offsets().as_ptr(),

@@ -141,7 +141,10 @@ pub unsafe extern "C" fn tpx_structure_build(
 /// # Safety
 /// Non-NULL pointers must be valid; `name` must be NUL-terminated.
 #[unsafe(no_mangle)]
-pub unsafe extern "C" fn tpx_kind_from_name(name: *const std::ffi::c_char, out: *mut u32) -> TpxStatus {
+pub unsafe extern "C" fn tpx_kind_from_name(
+    name: *const std::ffi::c_char,
+    out: *mut u32,
+) -> TpxStatus {
     guard(|| {
         let out = out_ptr(out, "out")?;
         if name.is_null() {

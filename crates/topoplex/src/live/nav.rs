@@ -152,7 +152,9 @@ impl LiveComplex {
         if h.form() == HandleForm::Dense && h.dim() > 0 {
             // An index of the numbering of the moment (`dense` module): named canonically.
             let row = self.table(h.dim()).get(h.index() as usize);
-            return Ok(self.canonical(row).expect("a row of the table is a simplex"));
+            return Ok(self
+                .canonical(row)
+                .expect("a row of the table is a simplex"));
         }
         if h.form() == HandleForm::Dense || self.top_raw(h.index())[0] < DEAD {
             return Ok(h);

@@ -491,7 +491,10 @@ mod tests {
             assert_eq!(StructureKind::from_name(k.name()), Some(k));
         }
         assert_eq!(StructureKind::from_name("IG"), Some(StructureKind::Ig));
-        assert_eq!(StructureKind::from_name("IaStar"), Some(StructureKind::IaStar));
+        assert_eq!(
+            StructureKind::from_name("IaStar"),
+            Some(StructureKind::IaStar)
+        );
         for bad in ["", "i", "igx", " ig", "ia*", "iastar\0"] {
             assert_eq!(StructureKind::from_name(bad), None, "{bad:?}");
         }
