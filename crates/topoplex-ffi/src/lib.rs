@@ -150,9 +150,8 @@ pub enum TpxStatus {
     /// A handle from before `tpx_live_compact` (live complex): the compaction renumbered every
     /// id, so it names nothing any more; map the ids or locate again.
     StaleGeneration = 52,
-    /// The answer holds simplices that have no dense index (the live complex numbers only its
-    /// vertices densely): use the handle-writing twin (`tpx_related_handles`,
-    /// `tpx_cyclic_handles`) or ask for vertices.
+    /// No longer returned: the live complex, which once numbered only its vertices densely, now
+    /// numbers every dimension (until its next edit). Kept so that the number is never reused.
     NotDense = 53,
 }
 

@@ -239,7 +239,7 @@ impl LiveComplex {
         self.renumbered();
         self.can_contract(a, b, mode)?;
         if let Some(xyz) = new_position {
-            self.check_coords(xyz)?;
+            self.check_coords_of(a.0, xyz)?;
         }
         let k = self.coord_dim;
         let mut undo = UndoRecord {

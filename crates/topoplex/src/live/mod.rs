@@ -235,6 +235,16 @@ pub enum Refusal {
         /// Coordinates per vertex.
         dim: usize,
     },
+    /// A coordinate given is NaN or infinite (nothing was changed).
+    #[error("coordinate {coordinate} of vertex {vertex} is {value}, not a finite number")]
+    NonFiniteCoordinate {
+        /// The vertex it was for.
+        vertex: u32,
+        /// Its position among the vertex's coordinates.
+        coordinate: usize,
+        /// The number as given (`NaN`, `inf`, `-inf`).
+        value: String,
+    },
 }
 
 /// An updatable simplicial complex; see the module documentation.
@@ -561,29 +571,73 @@ impl LiveComplex {
     }
 
     /// Sets the coordinates of a live vertex; `xyz` must have [`LiveComplex::coord_dim`]
-    /// numbers. O(1).
+    /// finite numbers. Refused, changing nothing: [`Refusal::UnknownVertex`] (a removed or
+    /// out-of-range vertex), [`Refusal::CoordinateDimension`], [`Refusal::NonFiniteCoordinate`].
+    /// Not an edit of the topology: handles, dense indices and lent views stay valid. A
+    /// [`LiveComplex::split`] puts back the coordinates a and b had before the contraction it
+    /// undoes (also over a later setting of a's). O(coord_dim).
     pub fn set_coords(&mut self, v: VertexId, xyz: &[f64]) -> Result<(), Refusal> {
         self.check_vertex(v.0)?;
-        self.check_coords(xyz)?;
+        self.check_coords_of(v.0, xyz)?;
         let k = self.coord_dim;
         self.coords[v.index() * k..(v.index() + 1) * k].copy_from_slice(xyz);
         Ok(())
     }
 
-    fn check_coords(&self, xyz: &[f64]) -> Result<(), Refusal> {
+    /// Every vertex slot's coordinates, slot after slot ([`LiveComplex::coord_dim`] numbers
+    /// each; a removed vertex's are its last ones, meaningless): the array itself, lent, so a
+    /// pass over all vertices reads it without a call per vertex. O(1).
+    pub fn all_coords(&self) -> &[f64] {
+        &self.coords
+    }
+
+    /// Sets every vertex slot's coordinates at once from `data`, slot after slot:
+    /// `vertex_slots() × coord_dim()` finite numbers (those of removed vertices are stored and
+    /// never read). Refused, changing nothing: [`Refusal::CoordinateDimension`] (`given` the
+    /// length, `dim` the length needed), [`Refusal::NonFiniteCoordinate`] (the first one). Not
+    /// an edit of the topology (as [`LiveComplex::set_coords`]). O(vertex slots), no
+    /// allocation: the array is overwritten in place.
+    pub fn set_all_coords(&mut self, data: &[f64]) -> Result<(), Refusal> {
+        if data.len() != self.coords.len() {
+            return Err(Refusal::CoordinateDimension {
+                given: data.len(),
+                dim: self.coords.len(),
+            });
+        }
+        if let Some(i) = data.iter().position(|x| !x.is_finite()) {
+            let k = self.coord_dim.max(1);
+            return Err(Refusal::NonFiniteCoordinate {
+                vertex: (i / k) as u32,
+                coordinate: i % k,
+                value: data[i].to_string(),
+            });
+        }
+        self.coords.copy_from_slice(data);
+        Ok(())
+    }
+
+    /// `xyz` as the coordinates of vertex `v` (live or about to be): the right length, finite.
+    fn check_coords_of(&self, v: u32, xyz: &[f64]) -> Result<(), Refusal> {
         if xyz.len() != self.coord_dim {
             return Err(Refusal::CoordinateDimension {
                 given: xyz.len(),
                 dim: self.coord_dim,
             });
         }
+        if let Some(i) = xyz.iter().position(|x| !x.is_finite()) {
+            return Err(Refusal::NonFiniteCoordinate {
+                vertex: v,
+                coordinate: i,
+                value: xyz[i].to_string(),
+            });
+        }
         Ok(())
     }
 
-    /// Adds an isolated vertex with coordinates `xyz` ([`LiveComplex::coord_dim`] numbers).
-    /// Amortised O(1).
+    /// Adds an isolated vertex with coordinates `xyz` ([`LiveComplex::coord_dim`] finite
+    /// numbers). Amortised O(1).
     pub fn add_vertex(&mut self, xyz: &[f64]) -> Result<VertexId, Refusal> {
-        self.check_coords(xyz)?;
+        self.check_coords_of(self.vertex_slots(), xyz)?;
         self.renumbered();
         let v = self.vertex_slots();
         if v >= DEAD {

@@ -124,6 +124,23 @@ impl LiveComplex {
         Ok(self.face_handle(t.raw, ((1u32 << (t.dim() + 1)) - 1) as u16))
     }
 
+    /// Top simplex `t` (a top id of the handle API, as [`Navigate::top`] takes) with its
+    /// vertices in their stored order — the input winding, b replaced by a in place after a
+    /// contraction — lent from the top table: no copy, no allocation; the borrow ends at the
+    /// next edit. [`Navigate::top_as_given`] gives the same ids by value. `InvalidHandle` for a
+    /// removed slot, and for an isolated vertex (a top 0-simplex: its id is the top id's slot,
+    /// and no row of a table holds it). O(1).
+    pub fn top_as_given_slice(&self, t: TopId) -> Result<&[u32], QueryError> {
+        let h = self.top(t)?;
+        if h.form() == HandleForm::Dense {
+            return Err(invalid(
+                h,
+                "an isolated vertex (top 0-simplex) has no stored row: it is its own id",
+            ));
+        }
+        Ok(self.top_raw(t.0))
+    }
+
     /// The handle's simplex, ascending, after checking it.
     fn handle_vertices(&self, h: SimplexHandle) -> Result<Vertices, QueryError> {
         let h = self.live_form(h)?;
