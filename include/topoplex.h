@@ -834,6 +834,23 @@ TpxStatus tpx_handle(const struct TpxStructure *s,
                      struct TpxSimplex *out);
 
 /**
+ * The dense index of `*h` into `*out`: its rank among the simplices of its dimension in
+ * ascending lexicographic order (a vertex: its id) — the index `tpx_handle` takes back, that
+ * `tpx_related` writes and the relation views are indexed by, and that the caller's
+ * per-dimension arrays can use. For the nine structures it is `h->index`; the live complex's
+ * handles above vertices are not their index (they last across edits), and this gives the
+ * index of its numbering of the moment, valid until its next edit. Errors: NULL_ARGUMENT,
+ * FOREIGN_HANDLE, STALE_GENERATION, INVALID_HANDLE, STALE_HANDLE; `*out` written only on
+ * success. O(1) (the live complex: O(p log n_p), the dimension's table built on first use).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_simplex_index(const struct TpxStructure *s,
+                            const struct TpxSimplex *h,
+                            uint32_t *out);
+
+/**
  * The vertex ids of `*h`, ascending, into `buf` (p + 1 of them; `*out_len` = p + 1).
  * Errors: NULL_ARGUMENT, FOREIGN_HANDLE, INVALID_HANDLE, BUFFER_TOO_SMALL. O(p).
  *
