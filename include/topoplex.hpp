@@ -844,12 +844,16 @@ class Structure : private detail::StructureOwner, public StructureView {
 static_assert(detail::move_only<Structure>, "Structure: a move-only owner");
 
 /* Per-simplex user data for the p-simplices of one structure, indexed by handle (dense index),
- * as pmp and geometry-central do: a std::vector<T> of count(p) entries. */
+ * as pmp and geometry-central do: a std::vector<T> of count(p) entries. A handle that is its
+ * index (the nine structures, the ranges over indices) costs nothing to look up; a live
+ * complex's lasting handle (from locate(), handle(p, i) with p > 0) is converted by one call
+ * (tpx_simplex_index: its index until the next edit). On a Live from which vertices were
+ * removed, vertex indices are slots: size vertex data with Live::vertex_slots(). */
 template <class T>
 class SimplexData {
  public:
   SimplexData(const StructureView &s, std::uint32_t p, const T &init = T())
-      : dim_(p), data_(s.count(p), init) {}
+      : s_(s.get()), dim_(p), data_(s.count(p), init) {}
   T &operator[](Simplex h) { return data_.at(check(h)); }
   const T &operator[](Simplex h) const { return data_.at(check(h)); }
   T &operator[](std::uint32_t i) { return data_[i]; }
@@ -860,8 +864,12 @@ class SimplexData {
  private:
   std::size_t check(Simplex h) const {
     if (h.dim() != dim_) throw Error(TPX_STATUS_WRONG_HANDLE_KIND, "handle of another dimension");
+    if ((h.raw().meta >> 8) != 0) {
+      return detail::get<std::uint32_t>(tpx_simplex_index, s_, &h.raw());
+    }
     return h.index();
   }
+  const TpxStructure *s_;
   std::uint32_t dim_;
   std::vector<T> data_;
 };
