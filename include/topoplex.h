@@ -1650,6 +1650,17 @@ TpxStatus tpx_structure_build(const struct TpxComplex *c, uint32_t kind, struct 
 TpxStatus tpx_kind_from_name(const char *name, uint32_t *out);
 
 /**
+ * The name of kind `kind` (`TPX_KIND_*`) into `*out`: the static NUL-terminated string the
+ * CLI's `--structure` takes (`"ig"` .. `"iastar"`; never freed, valid for the process), the
+ * inverse of `tpx_kind_from_name`. Errors: NULL_ARGUMENT, UNKNOWN_KIND; `*out` written only on
+ * success. O(1), no allocation.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_kind_name(uint32_t kind, const char **out);
+
+/**
  * Releases a structure. NULL is a no-op.
  *
  * # Safety

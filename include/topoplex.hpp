@@ -149,6 +149,10 @@ constexpr bool move_only = std::is_nothrow_move_constructible<C>::value &&
 inline Kind kind_from_name(const std::string &name) {
   return static_cast<Kind>(detail::get<std::uint32_t>(tpx_kind_from_name, name.c_str()));
 }
+/* The CLI name of `kind` ("ig" .. "iastar"; tpx_kind_name); throws UNKNOWN_KIND otherwise. */
+inline std::string kind_name(Kind kind) {
+  return detail::get<const char *>(tpx_kind_name, static_cast<std::uint32_t>(kind));
+}
 
 /* A non-owning view of one simplex: its vertex ids (ascending, or in winding order where the
  * call says so). */

@@ -646,10 +646,16 @@ static void test_live_handles(void) {
 static void test_kind_names(void) {
   static const char *names[] = {"ig", "sig", "ia", "iqm", "nmia", "ts", "pe", "le", "de", "iastar"};
   uint32_t k, out = 99;
+  const char *name = NULL;
   for (k = 0; k < 10; ++k) {
     CHECK_STATUS(tpx_kind_from_name(names[k], &out), TPX_STATUS_OK);
     CHECK(out == k);
+    CHECK_STATUS(tpx_kind_name(k, &name), TPX_STATUS_OK);
+    CHECK(name != NULL && strcmp(name, names[k]) == 0);
   }
+  name = NULL;
+  CHECK_STATUS(tpx_kind_name(10, &name), TPX_STATUS_UNKNOWN_KIND);
+  CHECK(name == NULL);
   CHECK_STATUS(tpx_kind_from_name("IaStar", &out), TPX_STATUS_OK);
   CHECK(out == TPX_KIND_IASTAR);
   CHECK_STATUS(tpx_kind_from_name("PE", &out), TPX_STATUS_OK);

@@ -397,6 +397,10 @@ TEST(Wrapper, KindFromNameKnowsEveryCliName) {
   EXPECT_EQ(topoplex::kind_from_name("IaStar"), Kind::IASTAR);
   EXPECT_EQ(topoplex::kind_from_name("NMIA"), Kind::NMIA);
   EXPECT_EQ(status_of([] { topoplex::kind_from_name("halfedge"); }), TPX_STATUS_UNKNOWN_KIND);
+  for (Kind k : {Kind::IG, Kind::SIG, Kind::IA, Kind::IQM, Kind::NMIA, Kind::TS, Kind::PE,
+                 Kind::LE, Kind::DE, Kind::IASTAR})
+    EXPECT_EQ(topoplex::kind_from_name(topoplex::kind_name(k)), k);
+  EXPECT_EQ(topoplex::kind_name(Kind::IASTAR), "iastar");
 }
 
 // The live complex answers the shared navigation (StructureView) as a built IG does: the same

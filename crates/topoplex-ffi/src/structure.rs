@@ -174,6 +174,28 @@ pub unsafe extern "C" fn tpx_kind_from_name(
     })
 }
 
+/// The name of kind `kind` (`TPX_KIND_*`) into `*out`: the static NUL-terminated string the
+/// CLI's `--structure` takes (`"ig"` .. `"iastar"`; never freed, valid for the process), the
+/// inverse of `tpx_kind_from_name`. Errors: NULL_ARGUMENT, UNKNOWN_KIND; `*out` written only on
+/// success. O(1), no allocation.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_kind_name(kind: u32, out: *mut *const std::ffi::c_char) -> TpxStatus {
+    const NAMES: [&std::ffi::CStr; 10] = [
+        c"ig", c"sig", c"ia", c"iqm", c"nmia", c"ts", c"pe", c"le", c"de", c"iastar",
+    ];
+    guard(|| {
+        let out = out_ptr(out, "out")?;
+        let k = kind_from_u32(kind)?;
+        let name = NAMES[k.abi() as usize];
+        debug_assert_eq!(name.to_str(), Ok(k.name()));
+        *out = name.as_ptr();
+        Ok(())
+    })
+}
+
 /// Releases a structure. NULL is a no-op.
 ///
 /// # Safety

@@ -1540,4 +1540,19 @@ fn kind_names_map_to_their_tpx_kind_numbers_in_any_case() {
         TpxStatus::NullArgument
     );
     assert_eq!(out, 77);
+    // And back: each kind's name is the one from_name takes.
+    for k in topoplex::relation::StructureKind::NAMED {
+        let mut name = null();
+        assert_eq!(unsafe { tpx_kind_name(k.abi(), &mut name) }, TpxStatus::Ok);
+        assert_eq!(
+            unsafe { std::ffi::CStr::from_ptr(name) }.to_str(),
+            Ok(k.name())
+        );
+    }
+    let mut name = null();
+    assert_eq!(
+        unsafe { tpx_kind_name(10, &mut name) },
+        TpxStatus::UnknownKind
+    );
+    assert!(name.is_null());
 }
