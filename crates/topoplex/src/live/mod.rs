@@ -95,6 +95,14 @@
 //! per check. Costs per operation: the `nav` module (O(1) checks and reads, `locate` O(d·k_v),
 //! relations as above plus O(d·k) to name each answer of dimension ≤ p, answers lexicographic,
 //! no allocation once warm).
+//!
+//! # Dense indices
+//! The index half of the handle API (`handle(p, i)`, `index_of`, `related_ids`,
+//! `related_batch`, `degree_batch`, `relation_view`) numbers the simplices above vertices by
+//! lexicographic rank, as the nine structures do, from tables built on first use and dropped by
+//! every edit (module `dense`: storage and costs; setting coordinates keeps them). A vertex's
+//! index is its slot. Indices above vertices, lent views and dense handles made from indices
+//! are valid until the next edit; the handles above are what lasts across edits.
 
 use std::fmt;
 
