@@ -549,6 +549,8 @@ class RelationView {
     const std::uint32_t a = v_.offsets[i], b = v_.offsets[i + 1];
     return SimplexSpan(v_.ids + a, b - a, q_, owner_);
   }
+  /* By a handle that is its index (the nine structures, handles made from indices). A live
+   * complex's lasting handle is not: use view[live.index(h)]. */
   SimplexSpan operator[](Simplex h) const noexcept { return (*this)[h.index()]; }
   /* |R_{p,q}| of the p-simplex of dense index i. O(1). */
   std::uint32_t degree(std::uint32_t i) const noexcept { return v_.offsets[i + 1] - v_.offsets[i]; }
@@ -929,8 +931,8 @@ class Undo {
 };
 static_assert(detail::move_only<Undo>, "Undo: a move-only owner");
 
-/* Handles over a borrowed array of TpxSimplex (answers of the live complex, whose simplices
- * above vertices have no dense index). Iterating yields Simplex values; no allocation. */
+/* Handles over a borrowed array of TpxSimplex (answers of the live complex that last across
+ * edits, unlike its indices). Iterating yields Simplex values; no allocation. */
 class HandleSpan {
  public:
   class iterator {

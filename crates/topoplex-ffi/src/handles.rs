@@ -40,7 +40,10 @@ use topoplex::scratch::Scratch;
 /// `meta` holds the dimension in its low 8 bits (`meta & 0xff`); the other bits are 0 for the
 /// nine built structures. The live complex (`tpx_live_structure`) names a simplex above its
 /// vertices by a top simplex (`index`: dimension in the top 4 bits, slot below) and a mask of its
-/// vertices (`meta` bits 16..32, form 1 in bits 8..16). `owner` is the stamp of the structure
+/// vertices (`meta` bits 16..32, form 1 in bits 8..16), so that the handle lasts across edits;
+/// its dense index is then `tpx_simplex_index` (valid until the next edit), and a handle
+/// `{i, p, owner}` built from an index (form 0) is accepted too, naming the p-simplex of index
+/// i at the time of use. `owner` is the stamp of the structure
 /// that made it. A handle of a built structure stays valid as long as its structure lives; one of
 /// a live complex names its simplex (or, across a contraction, its image) while that simplex
 /// exists — also when the top simplex naming it was removed, at the cost of locating it again on

@@ -25,8 +25,10 @@
 //! index from a lexicographic table of that dimension built once, on the first request that
 //! needs it (O(n_p log n_p) time, (p + 1)·n_p integers, then O(p log n_p) per handle lookup);
 //! a caller that never asks for that dimension never pays for it. [`HandleForm::TopFace`] (a
-//! top simplex plus a bit mask of its vertices) is reserved for structures that prefer not to
-//! number implicit simplices (an editable structure, for instance); none of the nine uses it.
+//! top simplex plus a bit mask of its vertices) is for structures whose handles must outlive
+//! edits (the live complex); none of the nine uses it. Such a structure still has dense indices
+//! ([`Navigate::index_of`], [`Navigate::handle`]), numbered as above by tables built on demand,
+//! valid until its next edit (`crate::live`, module `dense`).
 //!
 //! `u32::MAX` means "none" for every id ([`VertexId::NONE`], [`TopId::NONE`],
 //! [`SimplexHandle::NONE`]).
@@ -572,8 +574,8 @@ pub trait Navigate: Topology {
     /// R_{p,q} of many handles at once, of any dimensions (mixed), as one CSR of handles: for
     /// each handle of `hs`, its answer (as [`Navigate::related`] gives it, in `order`) is
     /// appended to `out` and the end of that answer in `out` to `ends`. Works for every
-    /// structure, the live complex included (whose simplices above vertices have no dense index
-    /// for [`Navigate::related_batch`]). Errors as [`Navigate::related`] for the first handle
+    /// structure; on the live complex the answers last across edits, unlike the dense indices
+    /// of [`Navigate::related_batch`]. Errors as [`Navigate::related`] for the first handle
     /// that fails; then `out` and `ends` hold a prefix. Cost: one [`Navigate::visit`] per handle;
     /// no allocation beyond `out` and `ends`.
     fn related_handles_batch(
