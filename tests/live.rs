@@ -750,6 +750,12 @@ fn assert_dense_indices_match_the_oracle(live: &LiveComplex, o: &Oracle, slots: 
             }
         }
         let count = o.levels[p].len() as u32;
+        // The count read from the built table (O(1)) is the oracle's too.
+        assert_eq!(
+            n.count(p),
+            count as usize,
+            "count({p}) with its table built"
+        );
         assert!(matches!(
             n.handle(p, if p == 0 { live.vertex_slots() } else { count }),
             Err(QueryError::InvalidHandle { .. })

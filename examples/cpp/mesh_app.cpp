@@ -25,13 +25,14 @@ int main(int argc, char **argv) {
     const topoplex::Kind kind = topoplex::kind_from_name(argc > 3 ? argv[3] : "ts");
     const topoplex::Structure mesh(complex, kind);
     const std::size_t dim = complex.coord_dim();
+    const std::uint32_t n = complex.vertex_count();
     std::vector<double> xyz = complex.coords();
 
     // Smoothing: each vertex moves to the mean of its one-ring (VV, read from the view).
     const topoplex::RelationView vv = mesh.view(0, 0);
     std::vector<double> next(xyz.size());
     for (int round = 0; round < 10; ++round) {
-      for (std::uint32_t v = 0; v < complex.vertex_count(); ++v) {
+      for (std::uint32_t v = 0; v < n; ++v) {
         const topoplex::SimplexSpan ring = vv[v];
         for (std::size_t k = 0; k < dim; ++k) {
           double sum = 0;
@@ -44,7 +45,7 @@ int main(int argc, char **argv) {
 
     // Valence histogram; boundary and non-manifold edges by degree.
     std::map<std::size_t, std::size_t> valence;
-    for (std::uint32_t v = 0; v < complex.vertex_count(); ++v) ++valence[vv.degree(v)];
+    for (std::uint32_t v = 0; v < n; ++v) ++valence[vv.degree(v)];
     std::vector<std::uint32_t> edges(mesh.count(1)), faces_at_edge;
     for (std::uint32_t e = 0; e < edges.size(); ++e) edges[e] = e;
     mesh.degrees(1, edges, 2, faces_at_edge);  // one call for every edge, counts only
@@ -54,11 +55,12 @@ int main(int argc, char **argv) {
       nonmanifold += k > 2;
     }
 
-    // Face neighbours as indices, and per-face data indexed by handle.
+    // Face neighbours as indices (FF, read from the view), per-face data indexed by them.
     topoplex::SimplexData<std::uint64_t> sum(mesh, 2);
     std::uint64_t checksum = 0;
     const topoplex::RelationView ff = mesh.view(2, 2);
-    for (std::uint32_t f = 0; f < mesh.count(2); ++f) {
+    const std::size_t faces = mesh.count(2);
+    for (std::uint32_t f = 0; f < faces; ++f) {
       for (topoplex::Simplex g : ff[f]) sum[f] += g.index();
       checksum += sum[f] * (f + 1);
     }
@@ -69,7 +71,7 @@ int main(int argc, char **argv) {
 
     std::printf("vertices %u, faces %zu, boundary edges %zu, non-manifold edges %zu, "
                 "triangles at vertex 0: %zu, checksum %llu\nvalence:",
-                complex.vertex_count(), mesh.count(2), boundary, nonmanifold, around0,
+                n, faces, boundary, nonmanifold, around0,
                 static_cast<unsigned long long>(checksum));
     for (const auto &kv : valence) std::printf(" %zu:%zu", kv.first, kv.second);
     std::printf("\n");

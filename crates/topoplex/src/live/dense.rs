@@ -97,6 +97,11 @@ impl LiveComplex {
         })
     }
 
+    /// n_p (p ≥ 1) when this state's table of p-simplices is built, without building it.
+    pub(super) fn counted(&self, p: usize) -> Option<usize> {
+        self.dense.tables.get(p)?.get().map(SimplexTable::len)
+    }
+
     /// Number of dense indices of dimension p: vertex slots for p = 0, n_p above.
     pub(super) fn index_count(&self, p: usize) -> usize {
         if p == 0 {

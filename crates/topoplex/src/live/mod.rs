@@ -50,7 +50,8 @@
 //! - R_{p,p}, p > 0: every p-simplex sharing a facet with σ contains σ's first or second vertex:
 //!   scan both stars, O(d²·(k_v + k_w) + m log m).
 //! - `count(p)`, `simplices(p)`: enumerate the p-faces of every live top, sort, dedup:
-//!   O(Σ_t C(|t|, p+1) log) — not cached, since edits would invalidate it.
+//!   O(Σ_t C(|t|, p+1) log) — not cached, since edits would invalidate it; `count(p)` is O(1)
+//!   while the dense index of dimension p is built (module `dense`, dropped by each edit).
 //!
 //! # Cost of each operation
 //! - [`LiveComplex::insert_top`] σ: validate, refuse if present (O(d·k_v)), retire the top
@@ -803,6 +804,8 @@ impl Topology for LiveComplex {
         vertex_count: self.vertex_slots();
         count(p): if p == 0 {
             self.live_vertices as usize
+        } else if let Some(n) = self.counted(p) {
+            n // O(1) while the dense table of this state is built
         } else {
             let mut out = Vec::new();
             self.simplices(p, &mut out);
