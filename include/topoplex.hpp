@@ -739,9 +739,16 @@ class StructureView {
   }
   /* Top simplex t with its vertices as given in the input (its winding). */
   std::vector<std::uint32_t> top_as_given(std::uint32_t t) const {
-    std::vector<std::uint32_t> out(16);
-    detail::fill(out, tpx_top_as_given, s_, t);
+    std::vector<std::uint32_t> out;
+    top_as_given(t, out);
     return out;
+  }
+  /* The same into `out`, reusing its capacity: no allocation once it holds 16 ids (a pass
+   * over every top simplex; Complex::top_oriented and Live::top_vertices lend without copy). */
+  void top_as_given(std::uint32_t t, std::vector<std::uint32_t> &out) const {
+    if (out.capacity() < 16) out.reserve(16);
+    out.resize(out.capacity());
+    detail::fill(out, tpx_top_as_given, s_, t);
   }
 
   /* Cyclic order. The manifold fans of triangles around vertex v (a complex of dimension <= 2),

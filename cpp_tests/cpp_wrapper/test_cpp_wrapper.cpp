@@ -479,6 +479,14 @@ TEST(Wrapper, CoordinatesAreSettableAndWindingsLent) {
   const std::uint32_t t = live.top_id(live.locate({2, 3, 4}));
   EXPECT_EQ(live.top_vertices(t).to_vector(), (Ids{4, 2, 3}));
   EXPECT_EQ(live.top_vertices(t).to_vector(), live.top_as_given(t));
+  Ids reused;
+  live.as_structure().top_as_given(t, reused);
+  EXPECT_EQ(reused, (Ids{4, 2, 3}));
+  const Structure ig(c, Kind::IG);
+  for (std::uint32_t k = 0; k < ig.top_total(); ++k) {
+    ig.top_as_given(k, reused);
+    EXPECT_EQ(reused, ig.top_as_given(k));
+  }
 }
 
 // The decomposition class: the bowtie splits into two components at its pinch vertex.
