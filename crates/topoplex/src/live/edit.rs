@@ -146,6 +146,7 @@ impl LiveComplex {
     /// simplex, a vertex not live, σ already in the complex (as a top simplex or a face), or a
     /// single vertex (vertices are added by [`LiveComplex::add_vertex`]). Cost: module doc.
     pub fn insert_top(&mut self, sigma: &[u32]) -> Result<TopId, Refusal> {
+        self.renumbered();
         self.check_simplex(sigma)?;
         if self.holds(sigma) {
             return Err(Refusal::AlreadyPresent {
@@ -173,6 +174,7 @@ impl LiveComplex {
     /// For a single isolated vertex, removes the vertex. Refused: invalid simplex, a vertex not
     /// live, σ not in the complex, σ a proper face of another simplex. Cost: module doc.
     pub fn remove_top(&mut self, sigma: &[u32]) -> Result<(), Refusal> {
+        self.renumbered();
         let k = self.check_simplex(sigma)?;
         if let Some(raw) = self.find_top(k.as_slice()) {
             let (p, slot) = unpack(raw);
@@ -210,6 +212,7 @@ impl LiveComplex {
     /// Removes the top simplex `t` (see [`LiveComplex::remove_top`]). Refused: a handle from
     /// before `compact()` or of a removed top simplex.
     pub fn remove_top_id(&mut self, t: TopId) -> Result<(), Refusal> {
+        self.renumbered();
         self.check_top(t)?;
         let (p, slot) = unpack(t.raw);
         let s = self.detach(p, slot as u32);
@@ -270,9 +273,10 @@ impl LiveComplex {
         mode: ContractMode,
         new_position: Option<&[f64]>,
     ) -> Result<UndoRecord, Refusal> {
+        self.renumbered();
         self.can_contract(a, b, mode)?;
         if let Some(xyz) = new_position {
-            self.check_coords(xyz)?;
+            self.check_coords_of(a.0, xyz)?;
         }
         let k = self.coord_dim;
         let mut undo = UndoRecord {
@@ -417,6 +421,7 @@ impl LiveComplex {
     /// before a `compact()`, was applied already, or later edits changed what it would restore
     /// (a created top simplex removed or a restored one now a face of another simplex).
     pub fn split(&mut self, undo: &UndoRecord) -> Result<(), Refusal> {
+        self.renumbered();
         self.check_undo(undo)?;
         for &raw in &undo.inserted.raw {
             let (p, slot) = unpack(raw);
@@ -504,6 +509,7 @@ impl LiveComplex {
             .iter()
             .map(|s| self.holds_simplex(s))
             .collect();
+        self.renumbered();
         let (vmap, n) = self.vertex_map();
         let mut maps = CompactMaps {
             vertices: vmap,
