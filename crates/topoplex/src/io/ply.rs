@@ -341,7 +341,10 @@ mod tests {
              last of its 4 values)"
         );
         let e = err(&format!("{HEAD}{FACE}0 0\n1 0 7 8\n0 1\n3 0 1 2\n"));
-        assert!(e.starts_with("10: PLY: vertex #1 has 2 more value(s)"), "{e}");
+        assert!(
+            e.starts_with("10: PLY: vertex #1 has 2 more value(s)"),
+            "{e}"
+        );
     }
 
     #[test]
@@ -366,8 +369,8 @@ mod tests {
         let e = err(&format!("{head}{FACE}0 0\n1 1e309\n0 1\n3 0 1 2\n"));
         assert!(e.contains("too large for a 64-bit float"), "{e}");
         // nan and inf spelled so are read, as every reader does; not for an integer type.
-        let raw = parse(format!("{HEAD}{FACE}nan 0\n-inf 0\n0 Infinity\n3 0 1 2\n").as_bytes())
-            .unwrap();
+        let raw =
+            parse(format!("{HEAD}{FACE}nan 0\n-inf 0\n0 Infinity\n3 0 1 2\n").as_bytes()).unwrap();
         let d = raw.coords.unwrap().data;
         assert!(d[0].is_nan() && d[2] == f64::NEG_INFINITY && d[5] == f64::INFINITY);
         let e = err(&format!("{HEAD}{FACE}0 0\n1 0\n0 1\n3 0 nan 2\n"));
@@ -402,7 +405,10 @@ mod tests {
         let raw = parse(format!("{head}8 0 1 2 2 4 4 5 1\n").as_bytes()).unwrap();
         assert_eq!(raw.ids, [0, 1, 2, 4, 5, 1]);
         let e = err(&format!("{head}5 0 1 2 -1 4\n"));
-        assert_eq!(e, "0: tristrips #0: strip #1 has 1 vertex ids; a strip needs at least 3");
+        assert_eq!(
+            e,
+            "0: tristrips #0: strip #1 has 1 vertex ids; a strip needs at least 3"
+        );
     }
 
     #[test]

@@ -354,9 +354,9 @@ impl Float {
 pub(crate) fn real_as(tok: &[u8], ty: Float) -> Result<f64, RealError> {
     let x = match ty {
         Float::F64 => return real(tok),
-        Float::F32 => f64::from(
-            fast_float2::parse::<f32, _>(tok).map_err(|_| RealError::NotNumber)?,
-        ),
+        Float::F32 => {
+            f64::from(fast_float2::parse::<f32, _>(tok).map_err(|_| RealError::NotNumber)?)
+        }
     };
     if in_range(x, tok) {
         Ok(x)
@@ -602,7 +602,10 @@ mod tests {
         assert_eq!(real_as(b"1e39", Float::F64), Ok(1e39));
         assert_eq!(real_as(b"1e-400", Float::F64), Err(RealError::Underflow));
         let msg = real_error_as(RealError::Underflow, "1e-50", "a vertex coordinate", f);
-        assert!(msg.to_string().contains("too small for a 32-bit float"), "{msg}");
+        assert!(
+            msg.to_string().contains("too small for a 32-bit float"),
+            "{msg}"
+        );
     }
 
     #[test]

@@ -49,7 +49,10 @@ fn is_number(t: &[u8]) -> bool {
 
 /// Whether `t` spells a NaN or an infinity (`nan`, `inf`, `infinity`, any case, signed).
 fn is_non_finite(t: &[u8]) -> bool {
-    let t = t.strip_prefix(b"-").or_else(|| t.strip_prefix(b"+")).unwrap_or(t);
+    let t = t
+        .strip_prefix(b"-")
+        .or_else(|| t.strip_prefix(b"+"))
+        .unwrap_or(t);
     ["nan", "inf", "infinity"]
         .iter()
         .any(|w| t.eq_ignore_ascii_case(w.as_bytes()))
@@ -75,14 +78,7 @@ fn type_name(ty: &ScalarType) -> &'static str {
 /// is refused; `nan` and `inf` spelled so are accepted (as in every reader).
 fn scalar(t: &str, ty: &ScalarType, what: &dyn Fn() -> String) -> Result<f64, String> {
     let int = |ok: Option<f64>| {
-        ok.ok_or_else(|| {
-            format!(
-                "'{}' is not a {} ({})",
-                echo(t),
-                type_name(ty),
-                what()
-            )
-        })
+        ok.ok_or_else(|| format!("'{}' is not a {} ({})", echo(t), type_name(ty), what()))
     };
     let real = |f: Float| {
         parse_real(t, &what(), f).map_err(|e| match e {
@@ -304,8 +300,8 @@ fn read_line(
             }
             PropertyType::List(count_ty, ty) => {
                 let t = next(count_ty, prop)?;
-                let count = scalar(t, count_ty, &|| format!("list length of {}", what()))
-                    .map_err(bad)?;
+                let count =
+                    scalar(t, count_ty, &|| format!("list length of {}", what())).map_err(bad)?;
                 if count < 0.0 || count.fract() != 0.0 {
                     return Err(bad(format!(
                         "list length '{t}' is not a count ({})",
@@ -428,7 +424,10 @@ impl Kept {
                 // An element that lists vertex ids but is none of the above would be dropped.
                 let ids = ["vertex_indices", "vertex_index", "vertex1", "vertex2"];
                 if def.count > 0
-                    && let Some((p, _)) = def.properties.iter().find(|(k, _)| ids.contains(&k.as_str()))
+                    && let Some((p, _)) = def
+                        .properties
+                        .iter()
+                        .find(|(k, _)| ids.contains(&k.as_str()))
                 {
                     return Err(at0(syntax(format!(
                         "PLY: element '{}' has a '{}' property (vertex ids) but is not an element \
@@ -511,17 +510,10 @@ impl Kept {
             self.list.clear();
             let read = match records {
                 Records::Text(lines) => match lines.next_line() {
-                    Some((l, n)) => read_line(
-                        l,
-                        n,
-                        name,
-                        i,
-                        def,
-                        wanted,
-                        &mut self.vals,
-                        &mut self.list,
-                    )
-                    .map(|()| 0),
+                    Some((l, n)) => {
+                        read_line(l, n, name, i, def, wanted, &mut self.vals, &mut self.list)
+                            .map(|()| 0)
+                    }
                     None => Ok(u32::try_from(lines.line).unwrap_or(u32::MAX)),
                 },
                 Records::Binary { rest, big_endian } => read_binary(
