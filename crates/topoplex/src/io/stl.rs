@@ -129,7 +129,7 @@ pub fn parse(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
                 0,
                 syntax(format!(
                     "{what}: the header declares {n} triangles (84 + 50 × {n} = {size} bytes) \
-                     but the file has {} bytes ({whole} whole triangles){}",
+                     but the file has {} bytes ({whole} whole triangle(s)){}",
                     bytes.len(),
                     if text {
                         "; not ASCII either (it holds NUL bytes)"
@@ -520,12 +520,12 @@ mod tests {
         assert_eq!(
             err(&binary_file(3, 2)),
             "0: truncated binary STL: the header declares 3 triangles (84 + 50 × 3 = 234 bytes) \
-             but the file has 184 bytes (2 whole triangles); not ASCII either (no 'solid' at the \
+             but the file has 184 bytes (2 whole triangle(s)); not ASCII either (no 'solid' at the \
              start)"
         );
         let mut cut = binary_file(2, 2);
         cut.truncate(150);
-        assert!(err(&cut).contains("the file has 150 bytes (1 whole triangles)"));
+        assert!(err(&cut).contains("the file has 150 bytes (1 whole triangle(s))"));
         assert!(err(&binary_file(1, 2)).starts_with(
             "0: binary STL with bytes after its last triangle: the header declares 1 triangles"
         ));
