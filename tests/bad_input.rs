@@ -649,9 +649,11 @@ fn exact_reader_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
         (
             "element count disagreeing with the blocks",
             "count.msh",
-            t("$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n\
+            t(
+                "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n\
                0 0 0\n1 0 0\n0 1 0\n$EndNodes\n$Elements\n1 2 1 1\n2 1 2 1\n1 1 2 3\n\
-               $EndElements\n"),
+               $EndElements\n",
+            ),
         ),
     ]
 }

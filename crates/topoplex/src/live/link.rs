@@ -41,11 +41,7 @@ impl LiveComplex {
         self.check_vertex(a.0)?;
         self.check_vertex(b.0)?;
         let (a, b) = (a.0, b.0);
-        if a == b
-            || !self.star[a as usize]
-                .iter()
-                .any(|&r| self.top_raw(r).contains(&b))
-        {
+        if a == b || !self.joined(a, b) {
             return Err(Refusal::NotAnEdge { a, b });
         }
         let found = SCRATCH.with(|s| match s.try_borrow_mut() {
@@ -63,9 +59,76 @@ impl LiveComplex {
         }
     }
 
+    /// Whether some top holds both a and b: the smaller of the two stars scanned.
+    fn joined(&self, a: u32, b: u32) -> bool {
+        let (small, other) = if self.star[a as usize].len() <= self.star[b as usize].len() {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        self.star[small as usize]
+            .iter()
+            .any(|&r| self.top_raw(r).contains(&other))
+    }
+
+    /// A vertex w ∈ Lk(a) ∩ Lk(b) outside Lk(ab), looked for from the smaller star only: the
+    /// vertices of the tops of St(b) (b the smaller) that no top through a and b holds, each
+    /// tested for an edge to a by [`LiveComplex::joined`] (the smaller of St(w), St(a)). Costs
+    /// O(d·k_b + Σ_w d·min(k_w, k_a)), not O(d·k_a): a vertex with a huge star (simplify's
+    /// contractions gather thousands of tops into one vertex) does not make every refusal
+    /// scan it. A 0-dimensional violation is a lowest-dimensional one, so it is the answer
+    /// when it exists; `None` says only that there is none of dimension 0.
+    fn vertex_violation(&self, a: u32, b: u32, s: &mut Scratch) -> Option<u32> {
+        let (a, b) = if self.star[b as usize].len() <= self.star[a as usize].len() {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        let n = self.star.len();
+        if s.stamp.len() < n {
+            s.stamp.resize(n, 0);
+            s.index.resize(n, 0);
+        }
+        if s.epoch >= u32::MAX - 2 {
+            s.stamp.iter_mut().for_each(|x| *x = 0);
+            s.epoch = 0;
+        }
+        s.epoch += 2;
+        let (tried, in_ab) = (s.epoch - 1, s.epoch);
+        let star_b = || self.star[b as usize].iter().map(|&r| self.top_raw(r));
+        for t in star_b().filter(|t| t.contains(&a)) {
+            for &v in t {
+                s.stamp[v as usize] = in_ab;
+            }
+        }
+        for t in star_b().filter(|t| !t.contains(&a)) {
+            for &w in t {
+                let st = &mut s.stamp[w as usize];
+                if w == b || *st == in_ab || *st == tried {
+                    continue;
+                }
+                *st = tried;
+                if self.joined(a, w) {
+                    return Some(w);
+                }
+            }
+        }
+        None
+    }
+
     /// The common vertices C, then the word or list test (module doc); with `coned`, when the
-    /// plain test passes, the same test again with the boundary facets' cones added.
+    /// plain test passes, the same test again with the boundary facets' cones added. A
+    /// 0-dimensional violation is looked for first from the smaller star
+    /// ([`LiveComplex::vertex_violation`]).
     fn first_violation(&self, a: u32, b: u32, coned: bool, s: &mut Scratch) -> Option<Vec<u32>> {
+        if let Some(w) = self.vertex_violation(a, b, s) {
+            return Some(vec![w]);
+        }
+        self.full_violation(a, b, coned, s)
+    }
+
+    /// [`LiveComplex::first_violation`] without the 0-dimensional shortcut.
+    fn full_violation(&self, a: u32, b: u32, coned: bool, s: &mut Scratch) -> Option<Vec<u32>> {
         let fa = || self.star[a as usize].iter().map(|&r| self.top_raw(r));
         let fb = || self.star[b as usize].iter().map(|&r| self.top_raw(r));
         common_vertices(fa(), fb(), a, b, self.star.len(), s);
@@ -626,7 +689,48 @@ mod tests {
         assert_eq!(open, [1 << 3; 6]);
     }
 
+    /// On every edge of `simplices`: the 0-dimensional shortcut finds a vertex exactly when
+    /// the full test's lowest violation has dimension 0, and that vertex is one.
+    fn assert_vertex_shortcut_agrees(n: u32, simplices: &[Vec<u32>]) {
+        let refs: Vec<&[u32]> = simplices.iter().map(Vec::as_slice).collect();
+        let Ok(c) = Complex::from_simplices(n, &refs) else {
+            return;
+        };
+        let live = LiveComplex::from_complex(&c);
+        let mut s = Scratch::default();
+        for [a, b] in live.edges() {
+            for (a, b) in [(a, b), (b, a)] {
+                let quick = live.vertex_violation(a, b, &mut s);
+                let full = live.full_violation(a, b, false, &mut s);
+                match (quick, &full) {
+                    (None, None) => {}
+                    (None, Some(f)) => assert!(f.len() > 1, "{a} {b}: missed {f:?}"),
+                    (Some(w), Some(f)) => {
+                        assert_eq!(f.len(), 1, "{a} {b}: {w} but full {f:?}");
+                        assert!(live.joined(a, w) && live.joined(b, w));
+                        assert!(!live.star[a as usize].iter().any(|&r| {
+                            let t = live.top_raw(r);
+                            t.contains(&b) && t.contains(&w)
+                        }));
+                    }
+                    (Some(w), None) => panic!("{a} {b}: {w} but the full test passes"),
+                }
+            }
+        }
+    }
+
     proptest! {
+        #[test]
+        fn vertex_shortcut_matches_the_full_link_test(
+            simplices in proptest::collection::vec(
+                proptest::collection::btree_set(0u32..8, 2..=4),
+                1..14,
+            )
+        ) {
+            let s: Vec<Vec<u32>> = simplices.into_iter().map(|t| t.into_iter().collect()).collect();
+            assert_vertex_shortcut_agrees(8, &s);
+        }
+
         /// Random mixed-dimensional complexes (up to 3-simplices on 7 vertices, so facets are
         /// shared often, and larger tops hold smaller tops' facets).
         #[test]
