@@ -382,11 +382,9 @@ mod tests {
 
     #[test]
     fn tetra_elements_are_tetrahedra() {
-        let text = format!(
-            "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n\
+        let text = "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n\
              property float z\nelement tetra 2\nproperty list uchar int vertex_indices\n\
-             end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n4 0 1 2 3\n4 1 2 3 4\n"
-        );
+             end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n4 0 1 2 3\n4 1 2 3 4\n";
         let raw = parse(text.as_bytes()).unwrap();
         assert_eq!(raw.ids, [0, 1, 2, 3, 1, 2, 3, 4]);
         let e = err(&text.replace("4 1 2 3 4\n", "3 1 2 3\n"));

@@ -168,10 +168,7 @@ fn ascii(bytes: &[u8]) -> Res<RawInput> {
     let mut w = Welder::new(bytes.len() / 42 + 1).map_err(|k| (0, k))?;
     let mut inp = Input::new(bytes);
     let mut solids = 0usize;
-    loop {
-        let Some((tok, l)) = inp.token() else {
-            break;
-        };
+    while let Some((tok, l)) = inp.token() {
         if !tok.eq_ignore_ascii_case("solid") {
             let what = if solids == 0 {
                 "'solid'"

@@ -276,7 +276,7 @@ fn read_line(
         })?;
         seen += 1;
         let float = matches!(ty, ScalarType::Float | ScalarType::Double);
-        if !is_number(t) && !(float && is_non_finite(t)) {
+        if !(is_number(t) || float && is_non_finite(t)) {
             return Err(bad(format!(
                 "'{}' is not a number ({}, declared {})",
                 echo(t),
