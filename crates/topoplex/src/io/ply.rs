@@ -21,7 +21,7 @@
 //! * Every value is checked against its declared type: a line with more values than the
 //!   element's properties is refused, as is a `float` (`double`) that the type could hold only
 //!   as infinity or 0 (`1e39`, `1e-50` for `float`; the check shared by all readers,
-//!   [`super::parse_real`]); `nan` and `inf` are read.
+//!   `io::parse_real`); `nan` and `inf` are read.
 //! * Errors carry the line where the parser knows it (ASCII); otherwise the message names the
 //!   element and its index. Declared counts allocate at most what the parser caps them to.
 //!

@@ -17,7 +17,7 @@
 //!   `endloop`, `endfacet`), then `endsolid name`; keywords in any case; **every solid** of a
 //!   file is read (several solids in one file are common), their corners welded together.
 //!   A number that a 32-bit float can hold only as infinity or 0 (`1e39`, `1e-50`) is refused
-//!   (the check shared by all readers, [`super::parse_real`]), as is anything out of order,
+//!   (the check shared by all readers, `io::parse_real`), as is anything out of order,
 //!   naming the line and what was expected.
 //!
 //! Storage while reading: the coordinates, the listing and a hash map from corner bits to

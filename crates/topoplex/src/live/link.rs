@@ -17,8 +17,16 @@
 //!
 //! The test on the complex coned over its boundary (`link_condition_with_boundary`) runs on the
 //! same words: ω takes one more bit, and each boundary facet f through a or b (a facet of a top
-//! of the star that no other top of that star holds — O(d²·k²) per star, compared pairwise) adds
-//! the word of f \ {a, b} with ω's bit to F_a, F_b or F_ab. It runs after the plain test on the
+//! of the star that no other top of that star holds — found by sorting order-free hashes of the
+//! star's facets, O(d·k·log(d·k)) per star, `LiveComplex::star_boundary`) adds the word of
+//! f \ {a, b} with ω's bit to F_a, F_b or F_ab.
+//!
+//! Before any of this, a 0-dimensional violation (a vertex w joined to a and to b with no top
+//! holding a, b and w) is looked for from the smaller star alone: each vertex of St(b) outside
+//! the tops through a and b is tested for an edge to a by scanning the smaller of St(w), St(a)
+//! (O(d·k_b + Σ_w d·min(k_w, k_a))). Most refusals are found there, so a vertex with a huge
+//! star (simplify gathers thousands of tops into one) does not make every refusal scan it; the
+//! edge test {a, b} itself scans the smaller star. It runs after the plain test on the
 //! same masks, so it too allocates nothing once warm (past 64 common vertices it falls back to
 //! the lists).
 
@@ -557,8 +565,8 @@ impl LiveComplex {
     /// interior), so contractions that pass it keep manifoldness and the boundary's topology;
     /// on any complex it implies [`LiveComplex::link_condition`]. A failure naming ω reports it
     /// as [`OMEGA`]; a failure of the plain test is reported as that test reports it (it is
-    /// run first). Cost: the plain test, then O(d²·k_a² + d²·k_b²) for the boundary facets and
-    /// the word test again; allocates nothing once this thread's scratch is warm (up to 63
+    /// run first). Cost: the plain test, then O(d·k·log(d·k)) for each star's boundary facets
+    /// and the word test again; allocates nothing once this thread's scratch is warm (up to 63
     /// common vertices).
     pub fn link_condition_with_boundary(&self, a: VertexId, b: VertexId) -> Result<(), Refusal> {
         self.checked_link(a, b, true)
