@@ -220,7 +220,7 @@ fn a_listed_boundary_triangle_keeps_its_reference_beside_its_tetrahedron() {
 fn malformed_data_sections_name_the_line_and_the_array() {
     let head = "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n\
                 0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n";
-    let cases: [(&str, &str, u32); 4] = [
+    let cases: [(&str, &str, u32); 5] = [
         (
             "CELL_DATA 2\nSCALARS region int 1\nLOOKUP_TABLE default\n1 2\n",
             "CELL_DATA 2 for 1 cells",
@@ -233,7 +233,14 @@ fn malformed_data_sections_name_the_line_and_the_array() {
         ),
         (
             "POINT_DATA 3\nSCALARS t float 1\nLOOKUP_TABLE default\n1 1e39 2\n",
-            "'1e39' overflows float among the values of SCALARS 't'",
+            "number '1e39' is too large for a 32-bit float (among the values of SCALARS 't', \
+             declared float; it would become infinite)",
+            14,
+        ),
+        (
+            "POINT_DATA 3\nSCALARS t float 1\nLOOKUP_TABLE default\n1 1e-50 2\n",
+            "number '1e-50' is too small for a 32-bit float (among the values of SCALARS 't', \
+             declared float; it would become 0)",
             14,
         ),
         (

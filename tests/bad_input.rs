@@ -315,6 +315,7 @@ fn cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
         ),
     ];
     cases.extend(new_format_cases());
+    cases.extend(exact_reader_cases());
     cases.extend(data_cases());
     cases
 }
@@ -550,6 +551,195 @@ fn new_format_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             "binary MSH in the other byte order",
             "big-endian.msh",
             b"$MeshFormat\n4.1 1 8\n\x00\x00\x00\x01\n$EndMeshFormat\n".to_vec(),
+        ),
+    ]
+}
+
+/// Issue 27 item 4: numbers exact in every reader (the declared float type included), no
+/// element dropped silently, plain messages.
+fn exact_reader_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
+    let t = |s: &str| s.as_bytes().to_vec();
+    let ply = |y: &str, elements: &str, body: &str| {
+        format!(
+            "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+             property float z\n{elements}end_header\n0 0 0\n1 {y} 0\n0 1 0\n0 0 1\n{body}"
+        )
+        .into_bytes()
+    };
+    let face = "element face 1\nproperty list uchar int vertex_indices\n";
+    let stl_facet = |x: &str| {
+        format!(
+            "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex {x} 0 0\nvertex 0 1 0\n\
+             endloop\nendfacet\n"
+        )
+    };
+    let vtk = |version: &str, ty: &str, x: &str, cells: &str| {
+        format!(
+            "# vtk DataFile Version {version}\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n\
+             POINTS 3 {ty}\n0 0 0 {x} 0 0 0 1 0\n{cells}"
+        )
+        .into_bytes()
+    };
+    let cells4 = "CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n";
+    let msh2 = |nodes: &str, elements: &str| {
+        format!(
+            "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n{nodes}$EndNodes\n\
+             $Elements\n1\n{elements}$EndElements\n"
+        )
+        .into_bytes()
+    };
+    let nodes = "1 0 0 0\n2 1 0 0\n3 0 1 0\n";
+    let triangle = "1 2 2 0 1 1 2 3\n";
+    // A binary STL declaring 2 triangles with 1.
+    let mut stl_cut = vec![0u8; 80];
+    stl_cut.extend_from_slice(&2u32.to_le_bytes());
+    stl_cut.extend_from_slice(&[0u8; 50]);
+    vec![
+        (
+            "number a declared 32-bit float cannot hold",
+            "float-overflow.ply",
+            ply("1e39", face, "3 0 1 2\n"),
+        ),
+        (
+            "number a declared 32-bit float cannot hold",
+            "float-underflow.ply",
+            ply("1e-400", face, "3 0 1 2\n"),
+        ),
+        (
+            "number a declared 32-bit float cannot hold",
+            "float-underflow.stl",
+            format!("solid a\n{}endsolid a\n", stl_facet("1e-50")).into_bytes(),
+        ),
+        (
+            "number a declared 32-bit float cannot hold",
+            "float-overflow.vtk",
+            vtk("4.2", "float", "1e39", cells4),
+        ),
+        (
+            "number a declared 32-bit float cannot hold",
+            "float-overflow.vtu",
+            t(
+                "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\"><UnstructuredGrid>\
+               <Piece NumberOfPoints=\"1\" NumberOfCells=\"1\"><Points>\
+               <DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 1e39 0</DataArray>\
+               </Points><Cells><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0</DataArray>\
+               <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">1</DataArray>\
+               <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">1</DataArray>\
+               </Cells></Piece></UnstructuredGrid></VTKFile>\n",
+            ),
+        ),
+        (
+            "coordinate that overflows a double",
+            "overflow.vtk",
+            vtk("4.2", "double", "1e309", cells4),
+        ),
+        (
+            "coordinate that underflows to 0",
+            "underflow.vtk",
+            vtk("4.2", "double", "1e-400", cells4),
+        ),
+        (
+            "coordinate that overflows a double",
+            "overflow.msh",
+            msh2("1 0 0 0\n2 1e309 0 0\n3 0 1 0\n", triangle),
+        ),
+        (
+            "coordinate that underflows to 0",
+            "underflow.msh",
+            msh2("1 0 0 0\n2 1e-400 0 0\n3 0 1 0\n", triangle),
+        ),
+        (
+            "NaN / inf coordinates in ASCII PLY (accepted, as in every reader)",
+            "nan.ply",
+            ply("nan", face, "3 0 1 2\n"),
+        ),
+        (
+            "extra value on an element line",
+            "extra-value.ply",
+            ply("0", face, "3 0 1 2 3\n"),
+        ),
+        (
+            "extra value on an element line",
+            "extra-value.msh",
+            msh2(nodes, "1 2 2 0 1 1 2 3 3\n"),
+        ),
+        (
+            "PLY tetra elements (accepted: tetrahedra)",
+            "tetra.ply",
+            ply(
+                "0",
+                "element tetra 1\nproperty list uchar int vertex_indices\n",
+                "4 0 1 2 3\n",
+            ),
+        ),
+        (
+            "PLY tristrips (accepted: each strip's triangles)",
+            "tristrips.ply",
+            ply(
+                "0",
+                "element tristrips 1\nproperty list int int vertex_indices\n",
+                "4 0 1 2 3\n",
+            ),
+        ),
+        (
+            "PLY element with vertex ids that is not read",
+            "polyline.ply",
+            ply(
+                "0",
+                "element polyline 1\nproperty list uchar int vertex_indices\n",
+                "4 0 1 2 3\n",
+            ),
+        ),
+        (
+            "several ASCII STL solids (accepted: all read)",
+            "two-solids.stl",
+            format!(
+                "solid a\n{}endsolid a\nsolid b\n{}endsolid b\n",
+                stl_facet("1"),
+                stl_facet("2")
+            )
+            .into_bytes(),
+        ),
+        ("truncated binary STL", "cut.stl", stl_cut),
+        (
+            "one-line OFF (accepted)",
+            "one-line.off",
+            t("OFF 3 1 0 0 0 0 1 0 0 0 1 0 3 0 1 2"),
+        ),
+        (
+            "unsupported legacy VTK version",
+            "version.vtk",
+            vtk("9.9", "double", "1", cells4),
+        ),
+        (
+            "VTK 5.1 offsets not covering the connectivity",
+            "offsets.vtk",
+            vtk(
+                "5.1",
+                "double",
+                "1",
+                "CELLS 2 5\nOFFSETS vtktypeint64\n1 4\nCONNECTIVITY vtktypeint64\n9 0 1 2 9\n\
+                 CELL_TYPES 1\n5\n",
+            ),
+        ),
+        (
+            "section shorter than declared",
+            "short-node.msh",
+            msh2("1 0 0 0\n2 1 0 0\n3 0 1\n", triangle),
+        ),
+        (
+            "element type that is not a simplex type",
+            "type99.msh",
+            msh2(nodes, "1 99 2 0 1 1 2 3\n"),
+        ),
+        (
+            "element count disagreeing with the blocks",
+            "count.msh",
+            t(
+                "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n\
+               0 0 0\n1 0 0\n0 1 0\n$EndNodes\n$Elements\n1 2 1 1\n2 1 2 1\n1 1 2 3\n\
+               $EndElements\n",
+            ),
         ),
     ]
 }

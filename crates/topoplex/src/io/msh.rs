@@ -30,6 +30,7 @@ use rustc_hash::FxHashMap;
 use super::bytes::Input;
 use super::write::{check_coord_dim, check_max_len, push_f64, vertex_count};
 use super::{Coords, RawInput, ReadErrorKind, echo, no_room, parse_integer, syntax};
+use super::{Float, parse_real};
 use crate::complex::{Attribute, LabelName, Location, Values, table};
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
@@ -55,7 +56,19 @@ fn simplex_len(t: i64) -> Result<usize, String> {
         5 => return Err("hexahedron".into()),
         6 => return Err("prism".into()),
         7 => return Err("pyramid".into()),
-        _ => return Err(format!("type {t}, not a first-order simplex")),
+        _ => return Err(format!("type {t}")),
+    })
+}
+
+/// The message for a `$...` section keyword met where `what` was expected: the section ended
+/// before the entries it declared (or an entry was cut short), not a bad number.
+fn section_ended(tok: &str, what: &str) -> Option<ReadErrorKind> {
+    tok.starts_with('$').then(|| {
+        syntax(format!(
+            "the section ends ('{}') where {what} was expected: fewer entries than declared, or \
+             an entry with fewer values than its type has",
+            echo(tok)
+        ))
     })
 }
 
@@ -104,7 +117,12 @@ impl<'a> Reader<'a> {
             Ok(v) => Ok((v.clamp(i64::MIN.into(), i64::MAX.into()) as i64, l)),
             Err(_) => Err((
                 l,
-                syntax(format!("'{tok}' where {what} (an integer) was expected")),
+                section_ended(tok, what).unwrap_or_else(|| {
+                    syntax(format!(
+                        "'{}' where {what} (an integer) was expected",
+                        echo(tok)
+                    ))
+                }),
             )),
         }
     }
@@ -128,19 +146,23 @@ impl<'a> Reader<'a> {
             return Ok(f64::from_le_bytes(b.try_into().unwrap()));
         }
         let (tok, l) = self.inp.expect_token("a node coordinate")?;
-        tok.parse().map_err(|_| {
-            (
-                l,
-                syntax(format!("'{tok}' where a node coordinate was expected")),
-            )
-        })
+        // The shared check: a value a double holds only as inf or 0 is refused.
+        parse_real(tok, "a node coordinate", Float::F64)
+            .map_err(|k| (l, section_ended(tok, "a node coordinate").unwrap_or(k)))
     }
 
     /// After a binary block: the newline before the `$End` keyword.
     fn end(&mut self, keyword: &str) -> Res<()> {
         let (tok, l) = self.inp.expect_token(keyword)?;
         if tok != keyword {
-            return Err((l, syntax(format!("expected {keyword}, found '{tok}'"))));
+            return Err((
+                l,
+                syntax(format!(
+                    "expected {keyword} after the declared entries, found '{}' (an entry with \
+                     more values than its type has, or more entries than declared)",
+                    echo(tok)
+                )),
+            ));
         }
         Ok(())
     }
@@ -363,7 +385,14 @@ impl<'a> Reader<'a> {
         simplex_len(t).map_err(|name| {
             (
                 line,
-                syntax(format!("element {tag} is a {name}, which is not a simplex")),
+                syntax(if name.starts_with("type ") {
+                    format!(
+                        "element {tag} has {name}, not a first-order simplex type (15 point, 1 \
+                         line, 2 triangle, 4 tetrahedron)"
+                    )
+                } else {
+                    format!("element {tag} is a {name}, which is not a simplex")
+                }),
             )
         })
     }
@@ -421,14 +450,12 @@ impl<'a> Reader<'a> {
     fn elements_v4(&mut self, line: u32) -> Res<()> {
         self.enter_binary_block();
         let blocks = self.count("the element block count", line)?;
-        for what in [
-            "the element count",
-            "the minimum element tag",
-            "the maximum element tag",
-        ] {
+        let declared = self.count("the element count", line)?;
+        for what in ["the minimum element tag", "the maximum element tag"] {
             self.count(what, line)?;
         }
         let mut nodes = Vec::with_capacity(4);
+        let mut total = 0usize;
         for _ in 0..blocks {
             let (dim, _) = self.int(4, "an entity dimension", line)?;
             let (entity, l) = self.int(4, "an entity tag", line)?;
@@ -440,6 +467,7 @@ impl<'a> Reader<'a> {
                 .unwrap_or_default();
             let (t, l) = self.int(4, "an element type", line)?;
             let k = self.count("the block's element count", line)?;
+            total = total.saturating_add(k);
             for _ in 0..k {
                 let (tag, l) = self.int(8, "an element tag", l)?;
                 let len = self.simplex_len(tag, t, l)?;
@@ -449,6 +477,14 @@ impl<'a> Reader<'a> {
                 }
                 self.element((tag, t, l), &nodes, &physical, geometrical)?;
             }
+        }
+        if total != declared {
+            return Err((
+                line,
+                syntax(format!(
+                    "$Elements declares {declared} elements but its {blocks} blocks hold {total}"
+                )),
+            ));
         }
         self.end("$EndElements")
     }

@@ -122,7 +122,8 @@ fn add_piece(
             })?;
         if cell.len() != len {
             return Err(err(format!(
-                "piece {piece}, cell #{i} of type {t:?} has {} ids, expected {len}",
+                "piece {piece}, cell #{i} (VTK type {}) has {} ids, expected {len}",
+                t as u8,
                 cell.len()
             )));
         }
@@ -146,6 +147,19 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
     }
 }
 
+/// vtkio's error text without its Rust debug wrappers: `Custom("missing field `@version`")`
+/// becomes the quoted text, `UnexpectedEof` "unexpected end of file".
+fn plain_vtkio(msg: &str) -> String {
+    let mut s = msg.replace("Deserialization error: ", "");
+    while let Some(i) = s.find("Custom(\"") {
+        let Some(j) = s[i + 8..].find("\")") else {
+            break;
+        };
+        s = format!("{}{}{}", &s[..i], &s[i + 8..i + 8 + j], &s[i + 8 + j + 2..]);
+    }
+    s.replace("UnexpectedEof", "unexpected end of file")
+}
+
 /// Parses a `.vtu` file with vtkio.
 fn parse_vtkio(bytes: &[u8]) -> Res<RawInput> {
     // vtkio's arrays are allocated infallibly: its peak is probed first (address space, see
@@ -156,7 +170,7 @@ fn parse_vtkio(bytes: &[u8]) -> Res<RawInput> {
     // its panic is caught here and reported as a parse error, without the panic hook's report.
     let parsed = caught_quietly(|| Vtk::parse_xml(bytes))
         .map_err(|_| err("VTU: malformed data array (vtkio failed on it: a caught panic)"))?;
-    let vtk = parsed.map_err(|e| err(format!("VTU: {}", echo(e.to_string()))))?;
+    let vtk = parsed.map_err(|e| err(format!("VTU: {}", echo(plain_vtkio(&e.to_string())))))?;
     let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else {
         return Err(err(
             "not an UnstructuredGrid (only unstructured grids are read)",
@@ -409,13 +423,13 @@ mod tests {
             Ok(ascii::Taken::No)
         ));
         assert!(matches!(ascii::parse(b""), Ok(ascii::Taken::No)));
-        // vtkio's messages for those stay (docs/bad-input.md).
+        // vtkio's messages for those stay, without their Rust debug wrappers.
         assert!(
             parse(b"")
                 .unwrap_err()
                 .1
                 .to_string()
-                .contains("UnexpectedEof")
+                .contains("XML error: unexpected end of file")
         );
     }
 

@@ -13,6 +13,7 @@ use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
 
 use super::super::{Coords, RawInput, ReadErrorKind, capped_len, echo, no_room, syntax};
+use super::super::{Float, parse_real};
 use super::super::{check_integer, parse_count, parse_f64, parse_id};
 use crate::complex::table;
 
@@ -389,10 +390,9 @@ impl Fill<'_> {
             Target::Points(real) => {
                 let v = match real {
                     Real::F64 => parse_f64(tok, "a point coordinate")?,
-                    Real::F32 => match tok.parse::<f32>() {
-                        Ok(v) => f64::from(v),
-                        Err(_) => parse_f64(tok, "a point coordinate")? as f32 as f64,
-                    },
+                    // The shared check: a value a 32-bit float holds only as inf or 0 is
+                    // refused.
+                    Real::F32 => parse_real(tok, "a point coordinate", Float::F32)?,
                     Real::Int => {
                         check_integer(tok, "point coordinate")?;
                         parse_f64(tok, "a point coordinate")?
