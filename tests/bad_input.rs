@@ -401,7 +401,76 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             "data-before.vtk",
             vtk("SCALARS region int 1\nLOOKUP_TABLE default\n1\n"),
         ),
+        (
+            "data not held (refused, never skipped)",
+            "data-string.vtu",
+            vtu(
+                1,
+                "<DataArray type=\"String\" Name=\"names\" format=\"ascii\">a b c</DataArray>\n",
+                "",
+            ),
+        ),
+        (
+            "data too wide",
+            "data-components.vtu",
+            vtu(
+                1,
+                "",
+                "<DataArray type=\"Float64\" Name=\"w\" NumberOfComponents=\"10\" format=\"ascii\">0</DataArray>\n",
+            ),
+        ),
+        (
+            "data value overflows its type",
+            "data-uint64.vtu",
+            vtu(
+                1,
+                "<DataArray type=\"UInt64\" Name=\"id\" format=\"ascii\">1 2 9223372036854775808</DataArray>\n",
+                "",
+            ),
+        ),
+        (
+            "data count mismatch",
+            "data-count.vtu",
+            vtu(
+                1,
+                "",
+                "<DataArray type=\"Int32\" Name=\"region\" format=\"ascii\">1 2</DataArray>\n",
+            ),
+        ),
+        (
+            "data missing from a piece",
+            "data-pieces.vtu",
+            vtu(
+                2,
+                "<DataArray type=\"Int32\" Name=\"id\" format=\"ascii\">1 2 3</DataArray>\n",
+                "",
+            ),
+        ),
     ]
+}
+
+/// A `.vtu` of `pieces` pieces, each a triangle; the first with `point` and `cell` data arrays.
+fn vtu(pieces: usize, point: &str, cell: &str) -> Vec<u8> {
+    let piece = |point: &str, cell: &str| {
+        format!(
+            "<Piece NumberOfPoints=\"3\" NumberOfCells=\"1\">\n<PointData>\n{point}</PointData>\n\
+             <Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\
+             0 0 0 1 0 0 0 1 0</DataArray>\n</Points>\n<Cells>\n\
+             <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray>\n\
+             <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3</DataArray>\n\
+             <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">5</DataArray>\n\
+             </Cells>\n<CellData>\n{cell}</CellData>\n</Piece>\n"
+        )
+    };
+    let mut body = piece(point, cell);
+    for _ in 1..pieces {
+        body += &piece("", "");
+    }
+    format!(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\">\n\
+         <UnstructuredGrid>\n{body}</UnstructuredGrid>\n</VTKFile>\n"
+    )
+    .into_bytes()
 }
 
 /// The readers of the formats issue 15 added (PLY, STL, legacy VTK, VTU, Gmsh MSH).

@@ -141,7 +141,8 @@ impl Format {
     /// Whether this format holds attribute `a` (in its own convention, see the table of
     /// [`self`](crate::io::write)): MEDIT `medit:ref` (integers within 32 bits), Gmsh
     /// `gmsh:physical` and `gmsh:geometrical` on the listed simplices (the same), legacy VTK any
-    /// point or cell data whose name has no blank.
+    /// point or cell data whose name has no blank, VTU any point or cell data whose name has no
+    /// control character (an XML attribute value; tabs and newlines would read back as blanks).
     pub fn holds(self, a: &Attribute) -> bool {
         let int32 = a.components == 1
             && match &a.values {
@@ -160,6 +161,7 @@ impl Format {
                 .name
                 .bytes()
                 .any(|b| b.is_ascii_whitespace() || b.is_ascii_control()),
+            Format::Vtu => !a.name.is_empty() && !a.name.chars().any(char::is_control),
             _ => false,
         }
     }
