@@ -129,6 +129,46 @@ proptest! {
         }
     }
 
+    /// Gmsh `$NodeData`/`$ElementData`: `f64` fields of 1 to 9 components on the vertices and
+    /// the listed elements, several time steps of one name (`NAME@STEP`) among them, beside
+    /// physical tags, come back bit for bit in MSH 4.1 and 2.2, ASCII and binary (NaN,
+    /// infinities and subnormals included).
+    #[test]
+    fn gmsh_node_and_element_data_with_time_steps_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
+        let mut raw = random_listing(seed, n, count, true, false);
+        let mut rng = common::Rng((seed ^ 4) | 1);
+        let m = raw.simplex_count();
+        let specials = [f64::NAN, f64::NEG_INFINITY, -0.0, 5e-324, 1e300, -1.5];
+        let real = |rng: &mut common::Rng, i: usize| {
+            if rng.below(5) == 0 { specials[i % specials.len()] } else { rng.next() as f64 / 7.0 - 1e9 }
+        };
+        for location in [Location::Vertices, Location::Listed] {
+            let count = if location == Location::Vertices { n as usize } else { m };
+            let steps = rng.below(4);
+            let mut names: Vec<String> = (0..steps).map(|s| format!("u@{}", s * 3)).collect();
+            if steps == 1 {
+                names[0] = "u".into();
+            }
+            names.push("velocity field".into());
+            for name in names {
+                let c = 1 + rng.below(9);
+                let values = (0..count * c).map(|i| real(&mut rng, i)).collect();
+                raw.attributes.insert(Attribute { name, location, components: c, values: Values::F64(values) });
+            }
+        }
+        raw.attributes.insert(Attribute::labels("gmsh:physical", Location::Listed, labels(&mut rng, m)));
+        raw.attributes.check(n as usize, m).unwrap();
+        let dir = Scratch::new("msh-data");
+        for f in [Format::Msh2, Format::Msh2Binary] {
+            prop_assert_eq!(round_trip(&raw, f, &dir.0), Ok(()));
+        }
+        // MSH 4.1 keeps physical tags per entity: without them, every field comes back.
+        raw.attributes.remove("gmsh:physical");
+        for f in [Format::Msh, Format::MshBinary] {
+            prop_assert_eq!(round_trip(&raw, f, &dir.0), Ok(()));
+        }
+    }
+
     /// Point and cell data of every type and 1 to 9 components come back bit for bit through
     /// legacy VTK, ASCII and binary, and VTU (NaN, infinities and subnormals included).
     #[test]

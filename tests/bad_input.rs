@@ -329,6 +329,14 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
     };
     let msh2 = |body: &str| format!("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n{body}").into_bytes();
     let medit = |body: &str| format!("MeshVersionFormatted 2\nDimension 3\n{body}").into_bytes();
+    let nodes = "$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n";
+    // A $NodeData section 't' (time step 0) of `comps` components declaring `count` rows.
+    let node_data = |comps: usize, count: usize, rows: &[&str]| {
+        format!(
+            "$NodeData\n1\n\"t\"\n1\n0\n3\n0\n{comps}\n{count}\n{}\n$EndNodeData\n",
+            rows.join("\n")
+        )
+    };
     vec![
         (
             "data count mismatch",
@@ -386,10 +394,40 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
         ),
         (
             "data not held (refused, never skipped)",
-            "nodedata.msh",
-            msh2(
-                "$Nodes\n1\n1 0 0 0\n$EndNodes\n$NodeData\n1\n\"t\"\n1\n0\n3\n0\n1\n1\n1 5\n$EndNodeData\n",
-            ),
+            "elementnodedata.msh",
+            msh2(&format!(
+                "{nodes}$Elements\n1\n1 15 2 0 1 1\n$EndElements\n$ElementNodeData\n1\n\"t\"\n1\n0\n3\n0\n1\n1\n1 1 5\n$EndElementNodeData\n"
+            )),
+        ),
+        (
+            "data count mismatch",
+            "nodedata-count.msh",
+            msh2(&format!("{nodes}{}", node_data(1, 2, &["1 5"]))),
+        ),
+        (
+            "partial data (refused: nothing holds \"no value\")",
+            "nodedata-partial.msh",
+            msh2(&format!("{nodes}{}", node_data(1, 1, &["2 5"]))),
+        ),
+        (
+            "unknown node or element in data",
+            "nodedata-node.msh",
+            msh2(&format!("{nodes}{}", node_data(1, 2, &["1 5", "3 6"]))),
+        ),
+        (
+            "data too wide",
+            "nodedata-components.msh",
+            msh2(&format!(
+                "{nodes}{}",
+                node_data(10, 2, &["1 0 0 0 0 0 0 0 0 0 0", "2 0 0 0 0 0 0 0 0 0 0"])
+            )),
+        ),
+        (
+            "data in the wrong place",
+            "elementdata-before.msh",
+            msh2(&format!(
+                "{nodes}$ElementData\n1\n\"v\"\n0\n3\n0\n1\n1\n1 5\n$EndElementData\n"
+            )),
         ),
         (
             "data not held (refused, never skipped)",
