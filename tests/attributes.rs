@@ -245,6 +245,13 @@ fn vtu_ascii_and_base64_paths_read_the_same_data() {
             .values,
         Values::I64(vec![4294967295, 0])
     );
+    // Any name without control characters is held, XML's special characters included.
+    let mut ours = ours;
+    ours.attributes.insert(Attribute::labels(
+        "q\"u'o<t>&e ü",
+        Location::Listed,
+        vec![-1, 1],
+    ));
     let written = dir.0.join("base64.vtu");
     write_raw(&ours, &written, None).unwrap();
     let bytes = std::fs::read(&written).unwrap();

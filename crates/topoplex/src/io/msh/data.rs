@@ -471,4 +471,35 @@ mod tests {
                 .starts_with("$ElementData before $Elements")
         );
     }
+
+    /// Names with `@` come back as they were: a lone `u@3`, `v@1`/`v@2` beside a plain `v`,
+    /// `w@01` (not a canonical step), and a true series `x@0`/`x@5` (written as steps of `x`).
+    #[test]
+    fn step_suffixes_round_trip_whatever_their_siblings() {
+        let mut raw = crate::complex::RawInput::new();
+        raw.vertex_count = Some(2);
+        raw.push(&[0, 1], 0);
+        let names = ["u@3", "v", "v@1", "v@2", "w@01", "x@0", "x@5"];
+        for (k, name) in names.iter().enumerate() {
+            raw.attributes.insert(Attribute {
+                name: name.to_string(),
+                location: Location::Vertices,
+                components: 1,
+                values: Values::F64(vec![k as f64, -(k as f64)]),
+            });
+        }
+        for v4 in [false, true] {
+            let mut out = Vec::new();
+            super::super::write(&raw, v4, false, &mut out).unwrap();
+            let text = String::from_utf8(out).unwrap();
+            assert!(text.contains("\"x\"\n1\n0\n3\n5\n"), "{text}");
+            assert!(text.contains("\"v@1\"\n1\n0\n3\n0\n"), "{text}");
+            let back = parse(text.as_bytes()).unwrap();
+            assert!(
+                back.attributes.bits_eq(&raw.attributes),
+                "{:?}",
+                back.attributes
+            );
+        }
+    }
 }
