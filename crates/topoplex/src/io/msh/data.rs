@@ -24,7 +24,7 @@
 
 use rustc_hash::FxHashMap;
 
-use super::super::{echo, no_room, parse_f64, syntax};
+use super::super::{ReadErrorKind, echo, no_room, parse_f64, syntax};
 use super::{GEOMETRICAL, PHYSICAL, Reader, Res, Writer};
 use crate::complex::attributes::MAX_COMPONENTS;
 use crate::complex::{Attribute, Location, Values, table};
@@ -135,12 +135,9 @@ impl Reader<'_> {
         table::try_reserve_exact(&mut values, total).map_err(room)?;
         values.resize(total, f64::NAN);
         let mut seen = vec![false; want];
+        let tag_what = format!("a {} tag of {what}", &entities[..entities.len() - 1]);
         for _ in 0..count {
-            let (tag, l) = self.int(
-                4,
-                &format!("a {} tag of {what}", &entities[..entities.len() - 1]),
-                line,
-            )?;
+            let (tag, l) = self.int(4, &tag_what, line)?;
             let i = if nodes {
                 u64::try_from(tag)
                     .ok()
@@ -289,7 +286,11 @@ impl Reader<'_> {
             return Ok(f64::from_le_bytes(b.try_into().unwrap_or([0; 8])));
         }
         let (tok, l) = self.inp.expect_token("a data value")?;
-        parse_f64(tok, &format!("a value of {what}")).map_err(|k| (l, k))
+        // The section is named only when a value is refused (nothing formatted per value).
+        parse_f64(tok, "a data value").map_err(|e| match e {
+            ReadErrorKind::Syntax(m) => (l, syntax(format!("{m} in {what}"))),
+            e => (l, e),
+        })
     }
 }
 

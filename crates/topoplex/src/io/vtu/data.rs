@@ -261,13 +261,20 @@ impl Data {
             )
         };
         let room = no_room("an attribute's values");
+        // The array is named only when a number is refused (nothing formatted per number).
+        let real = |tok: &str| {
+            parse_f64(tok, "a data value").map_err(|e| match e {
+                ReadErrorKind::Syntax(m) => syntax(format!("{m} among {}", what())),
+                e => e,
+            })
+        };
         match &mut a.attr.values {
             Values::F64(v) => {
-                let x = parse_f64(tok, &what())?;
+                let x = real(tok)?;
                 table::try_push(v, x).map_err(room)
             }
             Values::F32(v) => {
-                let wide = parse_f64(tok, &what())?;
+                let wide = real(tok)?;
                 let x = tok.parse::<f32>().unwrap_or(wide as f32);
                 if wide.is_finite() && !x.is_finite() {
                     return Err(syntax(format!(
