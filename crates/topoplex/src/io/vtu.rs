@@ -831,4 +831,79 @@ mod tests {
         assert!(ours.attributes.bits_eq(&theirs.attributes));
         ours
     }
+
+    /// Standard base64 with padding (for hand-made appended data).
+    fn base64(bytes: &[u8]) -> String {
+        const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+        let mut out = String::new();
+        for c in bytes.chunks(3) {
+            let n = (u32::from(c[0]) << 16)
+                | (u32::from(*c.get(1).unwrap_or(&0)) << 8)
+                | u32::from(*c.get(2).unwrap_or(&0));
+            for k in 0..4 {
+                out.push(if k <= c.len() {
+                    A[(n >> (18 - 6 * k) & 63) as usize] as char
+                } else {
+                    '='
+                });
+            }
+        }
+        out
+    }
+
+    /// Appended base64 data goes through vtkio: point and cell data come back in their own
+    /// types. (Raw appended data is not read: vtkio is built without its `binary` feature.)
+    #[test]
+    fn appended_data_is_read_in_its_own_types() {
+        let mut blob = String::new();
+        let mut offsets = Vec::new();
+        let mut block = |bytes: Vec<u8>| {
+            offsets.push(blob.len());
+            let mut b = (bytes.len() as u32).to_le_bytes().to_vec();
+            b.extend_from_slice(&bytes);
+            blob += &base64(&b);
+        };
+        let le = |xs: &[f64]| xs.iter().flat_map(|x| x.to_le_bytes()).collect::<Vec<u8>>();
+        block(le(&[1.5, f64::NAN, -2.0]));
+        block(le(&[0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0]));
+        block([0i32, 1, 2].iter().flat_map(|x| x.to_le_bytes()).collect());
+        block(3i32.to_le_bytes().to_vec());
+        block(vec![5u8]);
+        block(vec![(-3i8) as u8]);
+        let arr = |ty: &str, name: &str, comps: usize, k: usize| {
+            format!(
+                "<DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{comps}\" \
+                 format=\"appended\" offset=\"{}\"/>\n",
+                offsets[k]
+            )
+        };
+        let mut file = format!(
+            "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" \
+             byte_order=\"LittleEndian\" header_type=\"UInt32\">\n<UnstructuredGrid>\n\
+             <Piece NumberOfPoints=\"3\" NumberOfCells=\"1\">\n<PointData>\n{}</PointData>\n\
+             <Points>\n{}</Points>\n<Cells>\n{}{}{}</Cells>\n<CellData>\n{}</CellData>\n</Piece>\n\
+             </UnstructuredGrid>\n<AppendedData encoding=\"base64\">\n_",
+            arr("Float64", "t", 1, 0),
+            arr("Float64", "Points", 3, 1),
+            arr("Int32", "connectivity", 1, 2),
+            arr("Int32", "offsets", 1, 3),
+            arr("UInt8", "types", 1, 4),
+            arr("Int8", "region", 1, 5),
+        )
+        .into_bytes();
+        file.extend_from_slice(blob.as_bytes());
+        file.extend_from_slice(b"\n</AppendedData>\n</VTKFile>\n");
+        assert!(matches!(ascii::parse(&file), Ok(ascii::Taken::No)));
+        let raw = parse(&file).unwrap();
+        assert_eq!(raw.simplex(0), [0, 1, 2]);
+        let t = raw.attributes.get("t", Location::Vertices).unwrap();
+        assert!(t.values.bits_eq(&Values::F64(vec![1.5, f64::NAN, -2.0])));
+        assert_eq!(
+            raw.attributes
+                .get("region", Location::Listed)
+                .unwrap()
+                .values,
+            Values::I32(vec![-3])
+        );
+    }
 }
