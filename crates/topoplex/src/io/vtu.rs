@@ -197,14 +197,8 @@ fn piece_array(
         ))
     })?;
     // The declaration was checked by `data::scan`; this repeats it on what vtkio made of it.
-    let components = components.to_string();
-    let (name, _, components) = data::declared(
-        location,
-        Some(&name),
-        Some(b"Float64"),
-        Some(components.as_bytes()),
-    )
-    .map_err(at)?;
+    let components =
+        data::checked_components(location, &name, components.to_string().as_bytes()).map_err(at)?;
     let i = arrays
         .open(piece, location, name, kind, components)
         .map_err(at)?;

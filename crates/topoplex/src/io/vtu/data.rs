@@ -141,18 +141,29 @@ pub(super) fn declared(
     };
     let components = match components {
         None => 1,
-        Some(c) => std::str::from_utf8(c)
-            .ok()
-            .and_then(|c| c.trim().parse::<usize>().ok())
-            .filter(|c| (1..=MAX_COMPONENTS).contains(c))
-            .ok_or_else(|| {
-                format!(
-                    "{s} array '{e}' has NumberOfComponents=\"{}\"; 1 to {MAX_COMPONENTS} are held",
-                    echo(c)
-                )
-            })?,
+        Some(c) => checked_components(location, &name, c)?,
     };
     Ok((name, kind, components))
+}
+
+/// A `NumberOfComponents` value checked: 1 to [`MAX_COMPONENTS`].
+pub(super) fn checked_components(
+    location: Location,
+    name: &str,
+    text: &[u8],
+) -> Result<usize, String> {
+    std::str::from_utf8(text)
+        .ok()
+        .and_then(|c| c.trim().parse::<usize>().ok())
+        .filter(|c| (1..=MAX_COMPONENTS).contains(c))
+        .ok_or_else(|| {
+            format!(
+                "{} array '{}' has NumberOfComponents=\"{}\"; 1 to {MAX_COMPONENTS} are held",
+                section(location),
+                echo(name),
+                echo(text)
+            )
+        })
 }
 
 /// One array being filled: the attribute, the kind of the current piece's declaration, the
