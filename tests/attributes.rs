@@ -129,10 +129,50 @@ proptest! {
         }
     }
 
-    /// Point and cell data of every type and 1 to 9 components come back bit for bit through
-    /// legacy VTK, ASCII and binary (NaN, infinities and subnormals included).
+    /// Gmsh `$NodeData`/`$ElementData`: `f64` fields of 1 to 9 components on the vertices and
+    /// the listed elements, several time steps of one name (`NAME@STEP`) among them, beside
+    /// physical tags, come back bit for bit in MSH 4.1 and 2.2, ASCII and binary (NaN,
+    /// infinities and subnormals included).
     #[test]
-    fn vtk_point_and_cell_data_of_every_type_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
+    fn gmsh_node_and_element_data_with_time_steps_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
+        let mut raw = random_listing(seed, n, count, true, false);
+        let mut rng = common::Rng((seed ^ 4) | 1);
+        let m = raw.simplex_count();
+        let specials = [f64::NAN, f64::NEG_INFINITY, -0.0, 5e-324, 1e300, -1.5];
+        let real = |rng: &mut common::Rng, i: usize| {
+            if rng.below(5) == 0 { specials[i % specials.len()] } else { rng.next() as f64 / 7.0 - 1e9 }
+        };
+        for location in [Location::Vertices, Location::Listed] {
+            let count = if location == Location::Vertices { n as usize } else { m };
+            let steps = rng.below(4);
+            let mut names: Vec<String> = (0..steps).map(|s| format!("u@{}", s * 3)).collect();
+            if steps == 1 {
+                names[0] = "u".into();
+            }
+            names.push("velocity field".into());
+            for name in names {
+                let c = 1 + rng.below(9);
+                let values = (0..count * c).map(|i| real(&mut rng, i)).collect();
+                raw.attributes.insert(Attribute { name, location, components: c, values: Values::F64(values) });
+            }
+        }
+        raw.attributes.insert(Attribute::labels("gmsh:physical", Location::Listed, labels(&mut rng, m)));
+        raw.attributes.check(n as usize, m).unwrap();
+        let dir = Scratch::new("msh-data");
+        for f in [Format::Msh2, Format::Msh2Binary] {
+            prop_assert_eq!(round_trip(&raw, f, &dir.0), Ok(()));
+        }
+        // MSH 4.1 keeps physical tags per entity: without them, every field comes back.
+        raw.attributes.remove("gmsh:physical");
+        for f in [Format::Msh, Format::MshBinary] {
+            prop_assert_eq!(round_trip(&raw, f, &dir.0), Ok(()));
+        }
+    }
+
+    /// Point and cell data of every type and 1 to 9 components come back bit for bit through
+    /// legacy VTK, ASCII and binary, and VTU (NaN, infinities and subnormals included).
+    #[test]
+    fn vtk_and_vtu_point_and_cell_data_of_every_type_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
         let mut raw = random_listing(seed, n, count, true, false);
         let mut rng = common::Rng((seed ^ 3) | 1);
         let m = raw.simplex_count();
@@ -152,10 +192,82 @@ proptest! {
         }
         raw.attributes.check(n as usize, m).unwrap();
         let dir = Scratch::new("vtk");
-        for f in [Format::Vtk, Format::VtkBinary] {
+        for f in [Format::Vtk, Format::VtkBinary, Format::Vtu] {
             prop_assert_eq!(round_trip(&raw, f, &dir.0), Ok(()));
         }
     }
+}
+
+/// The same data as an ASCII `.vtu` written by hand (our streaming reader) and as the base64
+/// `.vtu` our writer makes of it (the vtkio path) reads alike, bit for bit; a name no VTU holds
+/// (a control character) is refused by the writer.
+#[test]
+fn vtu_ascii_and_base64_paths_read_the_same_data() {
+    let array = |ty: &str, name: &str, comps: usize, body: &str| {
+        format!(
+            "<DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{comps}\" \
+             format=\"ascii\">{body}</DataArray>\n"
+        )
+    };
+    let text = format!(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\">\n\
+         <UnstructuredGrid>\n<Piece NumberOfPoints=\"4\" NumberOfCells=\"2\">\n<PointData>\n{}{}\
+         </PointData>\n<Points>\n{}</Points>\n<Cells>\n{}{}{}</Cells>\n<CellData>\n{}{}\
+         </CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n",
+        array("Float64", "temperature &lt;K&gt;", 1, "1e-310 -0 NaN -inf"),
+        array("Int8", "flag", 3, "-128 0 127 1 2 3 4 5 6 7 8 9"),
+        array("Float64", "", 3, "0 0 0 1 0 0 0 1 0 1 1 1"),
+        array("Int64", "connectivity", 1, "0 1 2 1 3"),
+        array("Int64", "offsets", 1, "3 5"),
+        array("UInt8", "types", 1, "5 3"),
+        array("UInt32", "region", 1, "4294967295 0"),
+        array("Float32", "stress", 9, &"0.1 3.4028235e38 1e-45 ".repeat(6)),
+    );
+    let dir = Scratch::new("vtu-paths");
+    let hand = dir.0.join("hand.vtu");
+    std::fs::write(&hand, &text).unwrap();
+    let ours = read_path(&hand).unwrap();
+    assert_eq!(ours.attributes.iter().count(), 4);
+    let t = ours
+        .attributes
+        .get("temperature <K>", Location::Vertices)
+        .unwrap();
+    let Values::F64(v) = &t.values else {
+        panic!("{t:?}")
+    };
+    assert_eq!(v[0].to_bits(), 1e-310f64.to_bits());
+    assert_eq!(v[1].to_bits(), (-0.0f64).to_bits());
+    assert!(v[2].is_nan() && v[3] == f64::NEG_INFINITY);
+    assert_eq!(
+        ours.attributes
+            .get("region", Location::Listed)
+            .unwrap()
+            .values,
+        Values::I64(vec![4294967295, 0])
+    );
+    // Any name without control characters is held, XML's special characters included.
+    let mut ours = ours;
+    ours.attributes.insert(Attribute::labels(
+        "q\"u'o<t>&e ü",
+        Location::Listed,
+        vec![-1, 1],
+    ));
+    let written = dir.0.join("base64.vtu");
+    write_raw(&ours, &written, None).unwrap();
+    let bytes = std::fs::read(&written).unwrap();
+    let body = String::from_utf8_lossy(&bytes);
+    assert!(!body.contains("format=\"ascii\"") && body.contains("format=\"binary\""));
+    let theirs = read_path(&written).unwrap();
+    assert_eq!(simplices(&theirs), simplices(&ours));
+    assert!(theirs.attributes.bits_eq(&ours.attributes));
+    let mut bad = ours.clone();
+    bad.attributes
+        .insert(Attribute::labels("tab\there", Location::Listed, vec![1, 2]));
+    let e = write_raw(&bad, &dir.0.join("bad.vtu"), None)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("'tab\\there'") || e.contains("tab"), "{e}");
+    assert!(!dir.0.join("bad.vtu").exists());
 }
 
 /// Every format that does not hold an attribute refuses it, naming it and a format that does,

@@ -330,6 +330,14 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
     };
     let msh2 = |body: &str| format!("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n{body}").into_bytes();
     let medit = |body: &str| format!("MeshVersionFormatted 2\nDimension 3\n{body}").into_bytes();
+    let nodes = "$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n";
+    // A $NodeData section 't' (time step 0) of `comps` components declaring `count` rows.
+    let node_data = |comps: usize, count: usize, rows: &[&str]| {
+        format!(
+            "$NodeData\n1\n\"t\"\n1\n0\n3\n0\n{comps}\n{count}\n{}\n$EndNodeData\n",
+            rows.join("\n")
+        )
+    };
     vec![
         (
             "data count mismatch",
@@ -387,10 +395,40 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
         ),
         (
             "data not held (refused, never skipped)",
-            "nodedata.msh",
-            msh2(
-                "$Nodes\n1\n1 0 0 0\n$EndNodes\n$NodeData\n1\n\"t\"\n1\n0\n3\n0\n1\n1\n1 5\n$EndNodeData\n",
-            ),
+            "elementnodedata.msh",
+            msh2(&format!(
+                "{nodes}$Elements\n1\n1 15 2 0 1 1\n$EndElements\n$ElementNodeData\n1\n\"t\"\n1\n0\n3\n0\n1\n1\n1 1 5\n$EndElementNodeData\n"
+            )),
+        ),
+        (
+            "data count mismatch",
+            "nodedata-count.msh",
+            msh2(&format!("{nodes}{}", node_data(1, 2, &["1 5"]))),
+        ),
+        (
+            "partial data (refused: nothing holds \"no value\")",
+            "nodedata-partial.msh",
+            msh2(&format!("{nodes}{}", node_data(1, 1, &["2 5"]))),
+        ),
+        (
+            "unknown node or element in data",
+            "nodedata-node.msh",
+            msh2(&format!("{nodes}{}", node_data(1, 2, &["1 5", "3 6"]))),
+        ),
+        (
+            "data too wide",
+            "nodedata-components.msh",
+            msh2(&format!(
+                "{nodes}{}",
+                node_data(10, 2, &["1 0 0 0 0 0 0 0 0 0 0", "2 0 0 0 0 0 0 0 0 0 0"])
+            )),
+        ),
+        (
+            "data in the wrong place",
+            "elementdata-before.msh",
+            msh2(&format!(
+                "{nodes}$ElementData\n1\n\"v\"\n0\n3\n0\n1\n1\n1 5\n$EndElementData\n"
+            )),
         ),
         (
             "data not held (refused, never skipped)",
@@ -402,7 +440,76 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             "data-before.vtk",
             vtk("SCALARS region int 1\nLOOKUP_TABLE default\n1\n"),
         ),
+        (
+            "data not held (refused, never skipped)",
+            "data-string.vtu",
+            vtu(
+                1,
+                "<DataArray type=\"String\" Name=\"names\" format=\"ascii\">a b c</DataArray>\n",
+                "",
+            ),
+        ),
+        (
+            "data too wide",
+            "data-components.vtu",
+            vtu(
+                1,
+                "",
+                "<DataArray type=\"Float64\" Name=\"w\" NumberOfComponents=\"10\" format=\"ascii\">0</DataArray>\n",
+            ),
+        ),
+        (
+            "data value overflows its type",
+            "data-uint64.vtu",
+            vtu(
+                1,
+                "<DataArray type=\"UInt64\" Name=\"id\" format=\"ascii\">1 2 9223372036854775808</DataArray>\n",
+                "",
+            ),
+        ),
+        (
+            "data count mismatch",
+            "data-count.vtu",
+            vtu(
+                1,
+                "",
+                "<DataArray type=\"Int32\" Name=\"region\" format=\"ascii\">1 2</DataArray>\n",
+            ),
+        ),
+        (
+            "data missing from a piece",
+            "data-pieces.vtu",
+            vtu(
+                2,
+                "<DataArray type=\"Int32\" Name=\"id\" format=\"ascii\">1 2 3</DataArray>\n",
+                "",
+            ),
+        ),
     ]
+}
+
+/// A `.vtu` of `pieces` pieces, each a triangle; the first with `point` and `cell` data arrays.
+fn vtu(pieces: usize, point: &str, cell: &str) -> Vec<u8> {
+    let piece = |point: &str, cell: &str| {
+        format!(
+            "<Piece NumberOfPoints=\"3\" NumberOfCells=\"1\">\n<PointData>\n{point}</PointData>\n\
+             <Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\
+             0 0 0 1 0 0 0 1 0</DataArray>\n</Points>\n<Cells>\n\
+             <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray>\n\
+             <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3</DataArray>\n\
+             <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">5</DataArray>\n\
+             </Cells>\n<CellData>\n{cell}</CellData>\n</Piece>\n"
+        )
+    };
+    let mut body = piece(point, cell);
+    for _ in 1..pieces {
+        body += &piece("", "");
+    }
+    format!(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\">\n\
+         <UnstructuredGrid>\n{body}</UnstructuredGrid>\n</VTKFile>\n"
+    )
+    .into_bytes()
 }
 
 /// The readers of the formats issue 15 added (PLY, STL, legacy VTK, VTU, Gmsh MSH).

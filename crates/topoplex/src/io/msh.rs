@@ -14,7 +14,10 @@
 //!   any other type (quadrangle 3, hexahedron 5, prism 6, pyramid 7, higher-order elements) is
 //!   refused naming the element's tag and line. Tags (physical, elementary) are ignored. A node
 //!   tag not in `$Nodes` is an error naming the element.
-//! * Other sections (`$Entities`, `$PhysicalNames`, `$NodeData`, ...) are skipped to their
+//! * `$NodeData` and `$ElementData` are read as `f64` fields (`msh/data.rs`: every time step
+//!   kept, `NAME@STEP` when a name has several; partial data refused); `$ElementNodeData` is
+//!   refused.
+//! * Other sections (`$Entities`, `$PhysicalNames`, ...) are skipped to their
 //!   `$End` line. Counts allocate at most what the bytes left could hold.
 //! * Errors in a binary block name the line of its section keyword.
 //!
@@ -23,7 +26,8 @@
 //! element physical tag 0 and elementary tag 1; version 4.1 puts all nodes in one block of a
 //! 3-dimensional entity and the elements in one block per run of equal type (entity tag 1 of
 //! that dimension), so the listing order is kept across dimensions; no `$Entities` section.
-//! Holds points, edges, triangles and tetrahedra, and at most 3 coordinates.
+//! Holds points, edges, triangles and tetrahedra, and at most 3 coordinates; `f64` attributes
+//! are written as `$NodeData`/`$ElementData` after the elements (`msh/data.rs`).
 
 use rustc_hash::FxHashMap;
 
@@ -32,6 +36,9 @@ use super::write::{check_coord_dim, check_max_len, push_f64, vertex_count};
 use super::{Coords, RawInput, ReadErrorKind, echo, no_room, parse_integer, syntax};
 use super::{Float, parse_real};
 use crate::complex::{Attribute, LabelName, Location, Values, table};
+
+mod data;
+pub(crate) use data::holds as holds_data;
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
@@ -93,6 +100,10 @@ struct Reader<'a> {
     physical_width: usize,
     /// Version 4 `$Entities`: (dimension, tag) → physical tags.
     entities: FxHashMap<(i64, i64), Vec<i32>>,
+    /// The element tags, for `$ElementData`.
+    elements: data::ElementTags,
+    /// The `$NodeData` and `$ElementData` sections read.
+    data: Vec<data::Section>,
 }
 
 impl<'a> Reader<'a> {
@@ -279,6 +290,7 @@ impl<'a> Reader<'a> {
         self.raw
             .try_push(&ids[..nodes.len()], line)
             .map_err(|k| (line, k))?;
+        self.elements.push(tag, line)?;
         let room = |b| (line, no_room("the element tags")(b));
         for k in 0..self.physical_width {
             table::try_push(&mut self.physical, physical.get(k).copied().unwrap_or(0))
@@ -561,9 +573,11 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
         geometrical: Vec::new(),
         physical_width: 1,
         entities: FxHashMap::default(),
+        elements: data::ElementTags::default(),
+        data: Vec::new(),
     };
     r.end("$EndMeshFormat")?;
-    let mut seen_nodes = false;
+    let (mut seen_nodes, mut seen_elements) = (false, false);
     while let Some((kw, l)) = r.inp.token() {
         match kw {
             "$Nodes" if seen_nodes => return Err((l, syntax("a second $Nodes section"))),
@@ -574,15 +588,22 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
             "$Elements" if !seen_nodes => {
                 return Err((l, syntax("$Elements before $Nodes")));
             }
-            "$Elements" => r.elements(l)?,
+            "$Elements" => {
+                r.elements(l)?;
+                seen_elements = true;
+            }
             "$PhysicalNames" => r.physical_names(l)?,
             "$Entities" => r.entities(l)?,
-            "$NodeData" | "$ElementData" | "$ElementNodeData" => {
+            "$NodeData" if !seen_nodes => return Err((l, syntax("$NodeData before $Nodes"))),
+            "$NodeData" => r.data_section(true, l, seen_elements)?,
+            "$ElementData" => r.data_section(false, l, seen_elements)?,
+            "$ElementNodeData" => {
                 return Err((
                     l,
                     syntax(format!(
-                        "{kw}: Gmsh post-processing data is not read yet, and reading the mesh \
-                         without it would drop it; remove the section to read the mesh alone"
+                        "{kw}: Gmsh per-element-node data is not read (no attribute holds it), \
+                         and reading the mesh without it would drop it; remove the section to \
+                         read the mesh alone"
                     )),
                 ));
             }
@@ -618,6 +639,7 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
             geometrical,
         ));
     }
+    data::attributes(r.data, &mut raw.attributes);
     Ok(raw)
 }
 
@@ -648,6 +670,7 @@ pub(crate) fn write(
     }
     w.nodes(raw, n, v4, tags.node_entity);
     w.elements(raw, v4, &tags);
+    w.data_sections(raw);
     Ok(())
 }
 
