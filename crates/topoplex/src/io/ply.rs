@@ -5,7 +5,7 @@
 //!
 //! Reading:
 //! * `vertex` elements give the vertices; their `x`, `y` and optional `z` properties (any
-//!   numeric type) the coordinates (dimension 3, or 2 without `z`). Other properties are ignored.
+//!   numeric type) the coordinates (dimension 3, or 2 without `z`).
 //! * `face` elements with a `vertex_indices` (or `vertex_index`) list of 1, 2 or 3 ids are a
 //!   vertex, an edge, a triangle; more is [`ReadErrorKind::Polygon`], none an error. Ids are
 //!   0-based; a negative id is [`ReadErrorKind::NegativeId`].
@@ -18,6 +18,14 @@
 //! * Other elements are ignored, unless they have a vertex-id property (`vertex_indices`,
 //!   `vertex_index`, `vertex1`, `vertex2`): those are refused rather than dropped. Faces,
 //!   tetras and strips come before edges in the listing.
+//! * Every other scalar property of `vertex`, `face`, `tetra`, `tristrips` and `edge` elements
+//!   (normals, colours, `quality`, user properties) is an attribute
+//!   ([`crate::complex::attributes`]) of one component named as the property: on the vertices
+//!   for `vertex`, else on the listed simplices (the triangles of a strip share the strip's
+//!   values). Types are kept exactly: `char`, `uchar`, `short`, `ushort`, `int` as `i32`,
+//!   `uint` as `i64`, `float` as `f32`, `double` as `f64`. A listed property must be on every
+//!   element that lists simplices (one value per listed simplex, never padded) with one type;
+//!   a list property other than the vertex ids is refused naming it, never dropped.
 //! * Every value is checked against its declared type: a line with more values than the
 //!   element's properties is refused, as is a `float` (`double`) that the type could hold only
 //!   as infinity or 0 (`1e39`, `1e-50` for `float`; the check shared by all readers,
@@ -30,6 +38,11 @@
 //! vertex1 vertex2` for the edges, each in listing order. Holds vertices, edges and triangles,
 //! and at most 3 coordinates; listed 0-simplices are left to the vertex count. ASCII PLY
 //! refuses non-finite coordinates (PLY readers do not parse `inf` or `nan`); binary keeps them.
+//! Attributes of one component become properties after those ([`holds`]): vertex ones on
+//! `vertex`, listed ones on both `face` and `edge`, each value beside its simplex (so the
+//! triangles-then-edges order read back carries the data with it); `i32` as `int`, `i64` as
+//! `uint` (held only when every value fits), `f32` as `float`, `f64` as `double`. Refused:
+//! listed data beside listed 0-simplices (not written), and non-finite reals in ASCII.
 
 use ply_rs_bw::parser::Parser;
 use ply_rs_bw::ply::{
@@ -40,6 +53,7 @@ use ply_rs_bw::writer::Writer;
 
 use super::write::{check_coord_dim, check_max_len, vertex_count};
 use super::{RawInput, ReadErrorKind, echo, syntax};
+use crate::complex::{Attribute, Location, Values};
 
 mod body;
 
@@ -185,7 +199,7 @@ fn via_crate(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
     Ok(raw)
 }
 
-fn element(name: &str, count: usize, props: &[(&str, PropertyType)]) -> ElementDef {
+fn element(name: &str, count: usize, props: &[(String, PropertyType)]) -> ElementDef {
     let mut e = ElementDef::new(name.to_string());
     e.count = count;
     for (p, t) in props {
@@ -194,7 +208,88 @@ fn element(name: &str, count: usize, props: &[(&str, PropertyType)]) -> ElementD
     e
 }
 
-/// Writes `raw` as PLY, ASCII or binary little-endian.
+/// Property names PLY keeps for coordinates and vertex ids, which no attribute may take.
+const RESERVED: [&str; 7] = [
+    "x",
+    "y",
+    "z",
+    "vertex_indices",
+    "vertex_index",
+    "vertex1",
+    "vertex2",
+];
+
+/// Whether PLY holds attribute `a` ([`super::write::Format::holds`]): one component, a name
+/// that is a PLY property name (printable ASCII without blanks, not a coordinate or vertex-id
+/// property), and a type PLY has: `i32` (`int`), `f32` (`float`), `f64` (`double`), `i64`
+/// whose values all fit `uint` (what a `uint` property reads as).
+pub(crate) fn holds(a: &Attribute) -> bool {
+    a.components == 1
+        && !a.name.is_empty()
+        && a.name.bytes().all(|b| b.is_ascii_graphic())
+        && !RESERVED.contains(&a.name.as_str())
+        && match &a.values {
+            Values::I64(v) => v.iter().all(|&x| u32::try_from(x).is_ok()),
+            _ => true,
+        }
+}
+
+/// The PLY type an attribute is written as (see [`holds`]).
+fn scalar_type(v: &Values) -> PropertyType {
+    PropertyType::Scalar(match v {
+        Values::I32(_) => ScalarType::Int,
+        Values::I64(_) => ScalarType::UInt,
+        Values::F32(_) => ScalarType::Float,
+        Values::F64(_) => ScalarType::Double,
+    })
+}
+
+/// Element `i` of 1-component values as a PLY property (an `i64` fits `uint`: [`holds`]).
+fn property(v: &Values, i: usize) -> Property {
+    match v {
+        Values::I32(v) => Property::Int(v[i]),
+        Values::I64(v) => Property::UInt(u32::try_from(v[i]).unwrap_or(u32::MAX)),
+        Values::F32(v) => Property::Float(v[i]),
+        Values::F64(v) => Property::Double(v[i]),
+    }
+}
+
+/// The vertex and the listed attributes of `raw` (each held: checked by the caller), refused
+/// when they would not come back: listed data beside listed 0-simplices (which PLY leaves to
+/// the vertex count), non-finite reals in ASCII.
+fn data(raw: &RawInput, binary: bool) -> Result<(Vec<&Attribute>, Vec<&Attribute>), String> {
+    let mut at = (Vec::new(), Vec::new());
+    for a in raw.attributes.iter() {
+        if !binary
+            && let Some(i) =
+                (0..a.values.len()).find(|&i| a.values.real(i).is_some_and(|x| !x.is_finite()))
+        {
+            return Err(format!(
+                "attribute {} has a non-finite value at element {i}, which PLY readers do not \
+                 accept in ASCII (use ply-binary)",
+                a.describe()
+            ));
+        }
+        match a.location {
+            Location::Vertices => at.0.push(a),
+            Location::Listed => {
+                if let Some(i) = (0..raw.simplex_count()).find(|&i| raw.simplex(i).len() == 1) {
+                    return Err(format!(
+                        "attribute {} is on the listed simplices, and simplex #{i} {} is a \
+                         vertex, which PLY does not list (its value would be lost)",
+                        a.describe(),
+                        super::write::show(raw.simplex(i))
+                    ));
+                }
+                at.1.push(a);
+            }
+        }
+    }
+    Ok(at)
+}
+
+/// Writes `raw` as PLY, ASCII or binary little-endian, with its attributes as properties:
+/// vertex ones on `vertex`, listed ones on `face` and `edge` (each value with its simplex).
 pub(crate) fn write(raw: &RawInput, binary: bool, out: &mut Vec<u8>) -> Result<(), String> {
     check_max_len(
         raw,
@@ -255,19 +350,48 @@ pub(crate) fn write(raw: &RawInput, binary: bool, out: &mut Vec<u8>) -> Result<(
         e.insert("vertex2".to_string(), Property::Int(id(raw.simplex(i)[1])?));
         edges.push(e);
     }
-    let xyz = [("x", double.clone()), ("y", double.clone()), ("z", double)];
-    ply.header.elements.add(element("vertex", n, &xyz));
+    let (vertex_data, listed_data) = data(raw, binary)?;
+    for a in &vertex_data {
+        for (v, e) in vertices.iter_mut().enumerate() {
+            e.insert(a.name.clone(), property(&a.values, v));
+        }
+    }
+    for a in &listed_data {
+        for (i, e) in rows(3).zip(faces.iter_mut()) {
+            e.insert(a.name.clone(), property(&a.values, i));
+        }
+        for (i, e) in rows(2).zip(edges.iter_mut()) {
+            e.insert(a.name.clone(), property(&a.values, i));
+        }
+    }
+    let declared = |base: Vec<(&'static str, PropertyType)>, data: &[&Attribute]| {
+        let mut props: Vec<(String, PropertyType)> =
+            base.into_iter().map(|(k, t)| (k.to_string(), t)).collect();
+        props.extend(
+            data.iter()
+                .map(|a| (a.name.clone(), scalar_type(&a.values))),
+        );
+        props
+    };
+    let xyz = vec![("x", double.clone()), ("y", double.clone()), ("z", double)];
+    ply.header
+        .elements
+        .add(element("vertex", n, &declared(xyz, &vertex_data)));
     ply.payload.insert("vertex".to_string(), vertices);
     if !faces.is_empty() {
         let list = PropertyType::List(ScalarType::UChar, ScalarType::Int);
+        let props = declared(vec![("vertex_indices", list)], &listed_data);
         ply.header
             .elements
-            .add(element("face", faces.len(), &[("vertex_indices", list)]));
+            .add(element("face", faces.len(), &props));
         ply.payload.insert("face".to_string(), faces);
     }
     if !edges.is_empty() {
-        let ends = [("vertex1", int.clone()), ("vertex2", int)];
-        ply.header.elements.add(element("edge", edges.len(), &ends));
+        let ends = vec![("vertex1", int.clone()), ("vertex2", int)];
+        let props = declared(ends, &listed_data);
+        ply.header
+            .elements
+            .add(element("edge", edges.len(), &props));
         ply.payload.insert("edge".to_string(), edges);
     }
     Writer::new()
@@ -460,5 +584,86 @@ mod tests {
             }
         }
         assert!(read >= 8, "only {read} binary cases read");
+    }
+
+    /// Extra vertex, face and edge properties of every scalar type: read as attributes of the
+    /// mapped type (values exact), listed ones in listing order (faces, then edges, whatever
+    /// the elements' order), and written back in both encodings to the same attributes.
+    #[test]
+    fn extra_properties_are_attributes_and_come_back_in_both_encodings() {
+        let text = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n\
+             property uchar red\nproperty float quality\nproperty uint id\n\
+             element edge 1\nproperty int vertex1\nproperty int vertex2\nproperty short region\n\
+             element face 2\nproperty list uchar int vertex_indices\nproperty short region\n\
+             property double w\nend_header\n\
+             0 0 255 0.1 4294967295\n1 0 0 -1e-3 0\n0 1 7 3.4028235e38 12\n0 1 -5\n\
+             3 0 1 2 9 0.25\n2 1 2 -32768 1e300\n";
+        let e = err(&text.replace("property double w\n", ""));
+        assert!(e.contains("has 1 more value"), "{e}");
+        // The edge lacks `w`: refused, naming both.
+        let e = err(text);
+        assert_eq!(
+            e,
+            "0: PLY: property 'w' of element 'face' is not on element 'edge', which lists \
+             simplices too; an attribute has a value for every listed simplex, so it is refused \
+             rather than padded"
+        );
+        let text = text
+            .replace(
+                "property short region\nelement face",
+                "property short region\nproperty double w\nelement face",
+            )
+            .replace("0 1 -5\n", "0 1 -5 -0\n");
+        let raw = parse(text.as_bytes()).unwrap();
+        assert_eq!(raw.ids, [0, 1, 2, 1, 2, 0, 1]);
+        let at = &raw.attributes;
+        let v = |n| &at.get(n, Location::Vertices).unwrap().values;
+        let l = |n| &at.get(n, Location::Listed).unwrap().values;
+        assert_eq!(v("red"), &Values::I32(vec![255, 0, 7]));
+        assert_eq!(v("quality"), &Values::F32(vec![0.1, -1e-3, f32::MAX]));
+        assert_eq!(v("id"), &Values::I64(vec![4294967295, 0, 12]));
+        assert_eq!(l("region"), &Values::I32(vec![9, -32768, -5]));
+        assert!(l("w").bits_eq(&Values::F64(vec![0.25, 1e300, -0.0])));
+        assert_eq!(at.iter().count(), 5);
+        for binary in [false, true] {
+            let mut out = Vec::new();
+            write(&raw, binary, &mut out).unwrap();
+            let back = parse(&out).unwrap();
+            assert_eq!(back.ids, raw.ids);
+            assert!(back.attributes.bits_eq(at), "{:?}", back.attributes);
+        }
+    }
+
+    #[test]
+    fn a_list_property_other_than_the_vertex_ids_is_refused_naming_it() {
+        let e = err(&format!(
+            "{HEAD}element face 1\nproperty list uchar int vertex_indices\n\
+             property list uchar float texcoord\nend_header\n0 0\n1 0\n0 1\n3 0 1 2 2 0 0\n"
+        ));
+        assert!(
+            e.starts_with("0: PLY: property 'texcoord' of element 'face' is a list"),
+            "{e}"
+        );
+        let e = err(&HEAD.replace(
+            "property float y\n",
+            "property float y\nproperty list uchar int n\nend_header\n0 0 0\n1 0 0\n0 1 0\n",
+        ));
+        assert!(
+            e.contains("property 'n' of element 'vertex' is a list"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_strip_s_triangles_share_its_values() {
+        let text = "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n\
+             element tristrips 1\nproperty list int int vertex_indices\nproperty int part\n\
+             element face 1\nproperty list uchar int vertex_indices\nproperty int part\n\
+             end_header\n0 0\n1 0\n0 1\n1 1\n2 2\n4 0 1 2 3 6\n3 2 3 4 8\n";
+        let raw = parse(text.as_bytes()).unwrap();
+        assert_eq!(
+            raw.attributes.get("part", Location::Listed).unwrap().values,
+            Values::I32(vec![6, 6, 8])
+        );
     }
 }

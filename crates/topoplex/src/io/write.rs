@@ -15,7 +15,7 @@
 //! | OBJ | 0..=2 (`p`, `l`, `f`), in listing order | at most 3 |
 //! | MEDIT | 1..=3, grouped by dimension (sections) | 2 (`Dimension 2`) or 3 |
 //! | `.simplices` | any | any |
-//! | PLY ([`super::ply`]) | 1..=2, triangles then edges | at most 3 (`double`); finite in ASCII |
+//! | PLY ([`super::ply`]) | 1..=2, triangles then edges (listed data follows its simplex) | at most 3 (`double`); finite in ASCII |
 //! | STL ([`super::stl`]) | 2 only, covering every vertex | at most 3, distinct, exactly `f32` |
 //! | VTK ([`super::vtk`]), VTU ([`super::vtu`]) | 0..=3, in listing order | at most 3 |
 //! | Gmsh MSH ([`super::msh`]) | 0..=3, in listing order | at most 3 |
@@ -144,7 +144,8 @@ impl Format {
     /// `f64` field as `$NodeData`/`$ElementData` (a name without `\"` or control characters;
     /// `f32` and integer fields are not widened: write VTK or VTU), legacy VTK any
     /// point or cell data whose name has no blank, VTU any point or cell data whose name has no
-    /// control character (an XML attribute value; tabs and newlines would read back as blanks).
+    /// control character (an XML attribute value; tabs and newlines would read back as blanks),
+    /// PLY any 1-component attribute as a property of its type (see `ply::holds`).
     pub fn holds(self, a: &Attribute) -> bool {
         let int32 = a.components == 1
             && match &a.values {
@@ -165,6 +166,7 @@ impl Format {
                 .bytes()
                 .any(|b| b.is_ascii_whitespace() || b.is_ascii_control()),
             Format::Vtu => !a.name.is_empty() && !a.name.chars().any(char::is_control),
+            Format::Ply | Format::PlyBinary => super::ply::holds(a),
             _ => false,
         }
     }

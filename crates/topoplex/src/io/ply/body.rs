@@ -13,6 +13,7 @@ use super::super::{
 };
 use super::id;
 use crate::complex::table;
+use crate::complex::{Attribute, Location, ValueType, Values};
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
@@ -102,6 +103,9 @@ fn scalar(t: &str, ty: &ScalarType, what: &dyn Fn() -> String) -> Result<f64, St
 struct Wanted<'h> {
     def: &'h ElementDef,
     keys: Vec<Option<usize>>,
+    /// Keys from this one on are extra properties kept as attributes: a `float` among them is
+    /// parsed as an `f32` directly (exact, no double rounding through `f64`).
+    extra_from: usize,
 }
 
 impl<'h> Wanted<'h> {
@@ -114,7 +118,19 @@ impl<'h> Wanted<'h> {
                     .position(|(k, _)| alts.contains(&k.as_str()))
             })
             .collect();
-        Wanted { def, keys }
+        Wanted {
+            def,
+            keys,
+            extra_from: names.len(),
+        }
+    }
+
+    /// Adds the scalar properties `extras` (indices into the element's properties) as kept
+    /// extra properties, after the named ones.
+    fn with_extras(mut self, extras: &[usize]) -> Self {
+        self.extra_from = self.keys.len();
+        self.keys.extend(extras.iter().map(|&p| Some(p)));
+        self
     }
 }
 
@@ -295,7 +311,13 @@ fn read_line(
                 let t = next(ty, prop)?;
                 let x = scalar(t, ty, &what).map_err(bad)?;
                 if let Some(s) = slot {
-                    vals[s] = x;
+                    vals[s] = match ty {
+                        // Checked by `scalar`; read again as an `f32` for an exact attribute.
+                        ScalarType::Float if s >= wanted.extra_from => {
+                            t.parse::<f32>().map_or(x, f64::from)
+                        }
+                        _ => x,
+                    };
                 }
             }
             PropertyType::List(count_ty, ty) => {
@@ -382,7 +404,15 @@ struct Kept {
     edges: Vec<u32>,
     vertex_count: usize,
     /// The wanted scalar properties of the element being read.
-    vals: [f64; 3],
+    vals: Vec<f64>,
+    /// The extra properties (attributes) read so far, and for the element being read the
+    /// column of each of its extra properties (in key order after the named ones).
+    columns: Vec<Column>,
+    current: Vec<usize>,
+    /// The slot in `vals` of the first extra property.
+    extra_base: usize,
+    /// Each element that lists simplices: its name, part, entry count and extra properties.
+    listers: Vec<(String, Part, usize, Vec<String>)>,
     /// The wanted list property's entries of the element being read.
     list: Vec<f64>,
     /// Elements any reservation may be made for: bounded by the bytes left.
@@ -400,7 +430,11 @@ impl Kept {
             },
             edges: Vec::new(),
             vertex_count: 0,
-            vals: [0.0f64; 3],
+            vals: vec![0.0f64; 3],
+            columns: Vec::new(),
+            current: Vec::new(),
+            extra_base: 0,
+            listers: Vec::new(),
             list: Vec::new(),
             // Every element line takes at least 2 bytes (a binary element at least 1), so the
             // bytes left bound every reservation.
@@ -416,31 +450,104 @@ impl Kept {
     /// The properties kept of element `name`, checked, and the room for its `def.count`
     /// entries reserved.
     fn prepare<'h>(&mut self, name: &str, def: &'h ElementDef) -> Res<Wanted<'h>> {
-        match name {
-            "vertex" => self.prepare_vertices(def),
-            "face" | "tetra" | "tristrips" => self.prepare_faces(name, def),
-            "edge" => self.prepare_edges(def),
-            _ => {
-                // An element that lists vertex ids but is none of the above would be dropped.
-                let ids = ["vertex_indices", "vertex_index", "vertex1", "vertex2"];
-                if def.count > 0
-                    && let Some((p, _)) = def
-                        .properties
-                        .iter()
-                        .find(|(k, _)| ids.contains(&k.as_str()))
-                {
+        let (w, part) = match name {
+            "vertex" => (self.prepare_vertices(def)?, Part::Vertices),
+            "face" | "tetra" | "tristrips" => (self.prepare_faces(name, def)?, Part::Faces),
+            "edge" => (self.prepare_edges(def)?, Part::Edges),
+            _ => return self.prepare_other(name, def),
+        };
+        self.prepare_extras(name, def, w, part)
+    }
+
+    /// The element's properties beyond coordinates and vertex ids, kept as attributes: each
+    /// scalar one gets its column (created, or continued from an element of the same part and
+    /// value type); a list one is refused.
+    fn prepare_extras<'h>(
+        &mut self,
+        name: &str,
+        def: &'h ElementDef,
+        w: Wanted<'h>,
+        part: Part,
+    ) -> Res<Wanted<'h>> {
+        let mut extras = Vec::new();
+        self.current.clear();
+        let mut names = Vec::new();
+        for (p, (prop, pdef)) in def.properties.iter().enumerate() {
+            if w.keys.contains(&Some(p)) {
+                continue;
+            }
+            let ty = match &pdef.data_type {
+                PropertyType::Scalar(ty) => value_type(ty),
+                PropertyType::List(..) => {
                     return Err(at0(syntax(format!(
-                        "PLY: element '{}' has a '{}' property (vertex ids) but is not an element \
-                         Topoplex reads (vertex, face, edge, tetra, tristrips); refusing it rather \
-                         than dropping its {} entries",
-                        echo(name),
-                        echo(p),
-                        def.count
+                        "PLY: property '{}' of element '{}' is a list; Topoplex keeps a list \
+                         only as the vertex ids, and refuses it rather than dropping it",
+                        echo(prop),
+                        echo(name)
                     ))));
                 }
-                Ok(Wanted::new(def, &[]))
-            }
+            };
+            let col = match self
+                .columns
+                .iter()
+                .position(|c| c.part == part && c.name == *prop)
+            {
+                Some(k) if self.columns[k].values.value_type() != ty => {
+                    return Err(at0(syntax(format!(
+                        "PLY: property '{}' of element '{}' is {}, but an element before it \
+                         lists simplices with it as {}; an attribute has one type",
+                        echo(prop),
+                        echo(name),
+                        ty.name(),
+                        self.columns[k].values.value_type().name()
+                    ))));
+                }
+                Some(k) => k,
+                None => {
+                    self.columns.push(Column {
+                        name: prop.clone(),
+                        element: name.to_string(),
+                        part,
+                        values: empty_values(ty),
+                    });
+                    self.columns.len() - 1
+                }
+            };
+            extras.push(p);
+            self.current.push(col);
+            names.push(prop.clone());
         }
+        if part != Part::Vertices {
+            self.listers
+                .push((name.to_string(), part, def.count, names));
+        }
+        let w = w.with_extras(&extras);
+        self.vals.resize(w.keys.len().max(3), 0.0);
+        self.extra_base = w.extra_from;
+        Ok(w)
+    }
+
+    /// An element Topoplex does not read: refused when it lists vertex ids, else ignored.
+    fn prepare_other<'h>(&mut self, name: &str, def: &'h ElementDef) -> Res<Wanted<'h>> {
+        self.current.clear();
+        // An element that lists vertex ids but is none of the above would be dropped.
+        let ids = ["vertex_indices", "vertex_index", "vertex1", "vertex2"];
+        if def.count > 0
+            && let Some((p, _)) = def
+                .properties
+                .iter()
+                .find(|(k, _)| ids.contains(&k.as_str()))
+        {
+            return Err(at0(syntax(format!(
+                "PLY: element '{}' has a '{}' property (vertex ids) but is not an element \
+                 Topoplex reads (vertex, face, edge, tetra, tristrips); refusing it rather \
+                 than dropping its {} entries",
+                echo(name),
+                echo(p),
+                def.count
+            ))));
+        }
+        Ok(Wanted::new(def, &[]))
     }
 
     /// `x`, `y` and (for 3 coordinates) `z`, which must be scalars.
@@ -553,6 +660,30 @@ impl Kept {
     /// Entry `i` of element `name`, just read into `vals` and `list`, kept.
     #[inline]
     fn keep(&mut self, name: &str, i: usize) -> Res<()> {
+        let before = self.raw.simplex_count();
+        self.keep_simplices(name, i)?;
+        if self.current.is_empty() {
+            return Ok(());
+        }
+        // One row per vertex or edge, per simplex for faces (a strip's triangles share its).
+        let rows = match name {
+            "vertex" | "edge" => 1,
+            _ => self.raw.simplex_count() - before,
+        };
+        let base = self.extra_base;
+        for (j, &c) in self.current.iter().enumerate() {
+            let x = self.vals[base + j];
+            let col = &mut self.columns[c];
+            for _ in 0..rows {
+                push_value(&mut col.values, x).map_err(|b| at0(no_room("a property")(b)))?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Entry `i` of element `name`, its coordinates or simplices kept.
+    #[inline]
+    fn keep_simplices(&mut self, name: &str, i: usize) -> Res<()> {
         match name {
             "vertex" => table::try_extend(&mut self.coords.data, &self.vals[..self.coords.dim])
                 .map_err(|b| at0(no_room("the vertex coordinates")(b)))?,
@@ -579,8 +710,11 @@ impl Kept {
             coords,
             edges,
             vertex_count,
+            columns,
+            listers,
             ..
         } = self;
+        let faces = raw.simplex_count();
         raw.vertex_count =
             Some(u32::try_from(vertex_count).map_err(|_| at0(syntax("more than 2^32 vertices")))?);
         raw.coords = Some(coords);
@@ -589,8 +723,136 @@ impl Kept {
         for e in edges.chunks_exact(2) {
             raw.push(e, 0);
         }
+        attributes(&mut raw, columns, &listers, faces, edges.len() / 2)?;
         Ok(raw)
     }
+}
+
+/// Which part of the listing an element's entries make (vertices are not listed).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Part {
+    Vertices,
+    /// `face`, `tetra`, `tristrips`: listed first.
+    Faces,
+    /// `edge`: listed after the faces.
+    Edges,
+}
+
+/// The values of one extra property over one part, in reading order.
+struct Column {
+    name: String,
+    /// The first element that has it, for messages.
+    element: String,
+    part: Part,
+    values: Values,
+}
+
+/// The attribute type a PLY scalar type is kept as: every integer type up to `int` as `i32`,
+/// `uint` as `i64`, `float` as `f32`, `double` as `f64` (exact).
+fn value_type(ty: &ScalarType) -> ValueType {
+    match ty {
+        ScalarType::Char
+        | ScalarType::UChar
+        | ScalarType::Short
+        | ScalarType::UShort
+        | ScalarType::Int => ValueType::I32,
+        ScalarType::UInt => ValueType::I64,
+        ScalarType::Float => ValueType::F32,
+        ScalarType::Double => ValueType::F64,
+    }
+}
+
+fn empty_values(ty: ValueType) -> Values {
+    match ty {
+        ValueType::I32 => Values::I32(Vec::new()),
+        ValueType::I64 => Values::I64(Vec::new()),
+        ValueType::F32 => Values::F32(Vec::new()),
+        ValueType::F64 => Values::F64(Vec::new()),
+    }
+}
+
+/// Appends `x` (a value of the column's PLY type, so exact in it) to `v`.
+fn push_value(v: &mut Values, x: f64) -> Result<(), usize> {
+    match v {
+        Values::I32(v) => table::try_push(v, x as i32),
+        Values::I64(v) => table::try_push(v, x as i64),
+        Values::F32(v) => table::try_push(v, x as f32),
+        Values::F64(v) => table::try_push(v, x),
+    }
+}
+
+/// The columns as attributes of `raw`: vertex ones as they are, and for each property of the
+/// listing elements its face part then its edge part, one value per listed simplex; a property
+/// some listing element (with entries) lacks is refused, naming it and the element.
+fn attributes(
+    raw: &mut RawInput,
+    columns: Vec<Column>,
+    listers: &[(String, Part, usize, Vec<String>)],
+    faces: usize,
+    edges: usize,
+) -> Res<()> {
+    let mut listed: Vec<Column> = Vec::new();
+    for c in columns {
+        if c.part == Part::Vertices {
+            raw.attributes.insert(Attribute {
+                name: c.name,
+                location: Location::Vertices,
+                components: 1,
+                values: c.values,
+            });
+        } else {
+            listed.push(c);
+        }
+    }
+    // Face parts first (the listing's order), each followed by its edge part.
+    listed.sort_by_key(|c| c.part == Part::Edges);
+    let mut done: Vec<String> = Vec::new();
+    for k in 0..listed.len() {
+        let name = listed[k].name.clone();
+        if done.contains(&name) {
+            continue;
+        }
+        if let Some((lister, ..)) = listers
+            .iter()
+            .find(|(_, _, count, props)| *count > 0 && !props.contains(&name))
+        {
+            return Err(at0(syntax(format!(
+                "PLY: property '{}' of element '{}' is not on element '{}', which lists \
+                 simplices too; an attribute has a value for every listed simplex, so it is \
+                 refused rather than padded",
+                echo(&name),
+                echo(&listed[k].element),
+                echo(lister)
+            ))));
+        }
+        let mut values = listed[k].values.empty_like();
+        for c in listed.iter().filter(|c| c.name == name) {
+            if let Some(other) = listed
+                .iter()
+                .find(|o| o.name == name && o.values.value_type() != c.values.value_type())
+            {
+                return Err(at0(syntax(format!(
+                    "PLY: property '{}' is {} on element '{}' and {} on element '{}'; an \
+                     attribute has one type",
+                    echo(&name),
+                    c.values.value_type().name(),
+                    echo(&c.element),
+                    other.values.value_type().name(),
+                    echo(&other.element)
+                ))));
+            }
+            values.append(&c.values);
+        }
+        debug_assert_eq!(values.len(), faces + edges);
+        raw.attributes.insert(Attribute {
+            name: name.clone(),
+            location: Location::Listed,
+            components: 1,
+            values,
+        });
+        done.push(name);
+    }
+    Ok(())
 }
 
 /// An error at no particular line (line 0).
