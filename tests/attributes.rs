@@ -198,6 +198,125 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// Vertex and listed properties of every type PLY holds (`int`, `uint`, `float`,
+    /// `double`) on a random listing of edges and triangles (listed faces and repeats included,
+    /// in any order) come back bit for bit in ASCII and binary PLY: the writer lays out
+    /// triangles then edges, each value beside its simplex, so the data read back is the
+    /// original's permuted the same way as the listing.
+    #[test]
+    fn ply_vertex_and_face_properties_of_every_type_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
+        let mut rows = random_listing(seed, n, count, false, false);
+        // PLY lists triangles and edges: keep those.
+        let mut raw = RawInput::new();
+        raw.vertex_count = rows.vertex_count;
+        raw.coords = rows.coords.take();
+        for s in simplices(&rows).iter().filter(|s| s.len() <= 3) {
+            raw.push(s, 0);
+        }
+        let mut rng = common::Rng((seed ^ 5) | 1);
+        let m = raw.simplex_count();
+        for (k, location) in [Location::Vertices, Location::Listed].into_iter().enumerate() {
+            let len = if location == Location::Vertices { n as usize } else { m };
+            let mut add = |name: &str, values: Values| {
+                raw.attributes.insert(Attribute { name: format!("{name}_{k}"), location, components: 1, values });
+            };
+            add("int", Values::I32((0..len).map(|_| rng.next() as i32).collect()));
+            add("uint", Values::I64((0..len).map(|_| i64::from(rng.next() as u32)).collect()));
+            add("float", Values::F32((0..len).map(|_| f32::from_bits(rng.next() as u32 & 0x7f7f_ffff) * if rng.below(2) == 0 { -1.0 } else { 1.0 }).collect()));
+            add("double", Values::F64((0..len).map(|_| f64::from_bits(rng.next() & 0x7fef_ffff_ffff_ffff)).collect()));
+        }
+        raw.attributes.check(n as usize, m).unwrap();
+        // What the file lists: triangles, then edges, each in listing order.
+        let order: Vec<usize> = (0..m).filter(|&i| raw.simplex(i).len() == 3)
+            .chain((0..m).filter(|&i| raw.simplex(i).len() == 2)).collect();
+        let mut want = RawInput::new();
+        for &i in &order {
+            want.push(raw.simplex(i), 0);
+        }
+        want.attributes = raw.attributes.pick(0..n as usize, order.iter().copied());
+        let dir = Scratch::new("ply");
+        for f in [Format::Ply, Format::PlyBinary] {
+            let path = dir.0.join("r.ply");
+            write_raw(&raw, &path, Some(f)).unwrap();
+            let back = read_path(&path).unwrap();
+            prop_assert_eq!(simplices(&back), simplices(&want));
+            prop_assert!(back.attributes.bits_eq(&want.attributes), "{}: {:?}\nread back as\n{:?}", f.name(), want.attributes, back.attributes);
+        }
+    }
+}
+
+/// What PLY cannot hold is refused naming the attribute, and nothing is written: several
+/// components, a name that is no PLY property name or is a coordinate's, an `i64` beyond
+/// `uint`, listed data beside a listed vertex, a non-finite real in ASCII (binary keeps it).
+#[test]
+fn ply_refuses_data_it_cannot_hold() {
+    let mut base = RawInput::new();
+    base.vertex_count = Some(3);
+    base.push(&[0, 1, 2], 0);
+    let dir = Scratch::new("ply-refuse");
+    let path = dir.0.join("x.ply");
+    let vertices = |name: &str, components: usize, values: Values| {
+        let mut raw = base.clone();
+        raw.attributes.insert(Attribute {
+            name: name.into(),
+            location: Location::Vertices,
+            components,
+            values,
+        });
+        raw
+    };
+    let mut point = base.clone();
+    point.push(&[1], 0);
+    point
+        .attributes
+        .insert(Attribute::labels("region", Location::Listed, vec![1, 2]));
+    let cases = [
+        (
+            vertices("normal", 3, Values::F32(vec![0.0; 9])),
+            Format::PlyBinary,
+            "'normal'",
+        ),
+        (
+            vertices("two words", 1, Values::I32(vec![0; 3])),
+            Format::Ply,
+            "'two words'",
+        ),
+        (
+            vertices("x", 1, Values::I32(vec![0; 3])),
+            Format::Ply,
+            "'x'",
+        ),
+        (
+            vertices("big", 1, Values::I64(vec![0, 1, 1 << 32])),
+            Format::PlyBinary,
+            "'big'",
+        ),
+        (point, Format::PlyBinary, "simplex #1 [1] is a vertex"),
+        (
+            vertices("q", 1, Values::F64(vec![0.0, f64::NAN, 1.0])),
+            Format::Ply,
+            "non-finite value at element 1",
+        ),
+    ];
+    for (raw, f, says) in cases {
+        let e = write_raw(&raw, &path, Some(f)).unwrap_err().to_string();
+        assert!(e.contains(says), "{e}");
+        assert!(!path.exists(), "{e}: a file was written");
+    }
+    // Binary PLY keeps the NaN, bit for bit.
+    let raw = vertices("q", 1, Values::F64(vec![0.0, f64::NAN, 1.0]));
+    write_raw(&raw, &path, Some(Format::PlyBinary)).unwrap();
+    assert!(
+        read_path(&path)
+            .unwrap()
+            .attributes
+            .bits_eq(&raw.attributes)
+    );
+}
+
 /// The same data as an ASCII `.vtu` written by hand (our streaming reader) and as the base64
 /// `.vtu` our writer makes of it (the vtkio path) reads alike, bit for bit; a name no VTU holds
 /// (a control character) is refused by the writer.

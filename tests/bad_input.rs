@@ -331,6 +331,10 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
     let msh2 = |body: &str| format!("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n{body}").into_bytes();
     let medit = |body: &str| format!("MeshVersionFormatted 2\nDimension 3\n{body}").into_bytes();
     let nodes = "$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n";
+    let ply = |body: &str| format!("ply\nformat ascii 1.0\n{body}").into_bytes();
+    // A PLY header up to the face element's vertex ids (3 vertices, 1 face).
+    let ply_tri = "element vertex 3\nproperty float x\nproperty float y\nelement face 1\n\
+                   property list uchar int vertex_indices\n";
     // A $NodeData section 't' (time step 0) of `comps` components declaring `count` rows.
     let node_data = |comps: usize, count: usize, rows: &[&str]| {
         format!(
@@ -428,6 +432,34 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             "elementdata-before.msh",
             msh2(&format!(
                 "{nodes}$ElementData\n1\n\"v\"\n0\n3\n0\n1\n1\n1 5\n$EndElementData\n"
+            )),
+        ),
+        (
+            "data not held (refused, never skipped)",
+            "list-property.ply",
+            ply(&format!(
+                "{ply_tri}property list uchar float texcoord\nend_header\n0 0\n1 0\n0 1\n3 0 1 2 2 0 1\n"
+            )),
+        ),
+        (
+            "partial data (refused: nothing holds \"no value\")",
+            "property-partial.ply",
+            ply(&format!(
+                "{ply_tri}property uchar red\nelement edge 1\nproperty int vertex1\nproperty int vertex2\nend_header\n0 0\n1 0\n0 1\n3 0 1 2 9\n0 1\n"
+            )),
+        ),
+        (
+            "data of the wrong type",
+            "property-types.ply",
+            ply(&format!(
+                "{ply_tri}property uchar red\nelement edge 1\nproperty int vertex1\nproperty int vertex2\nproperty float red\nend_header\n0 0\n1 0\n0 1\n3 0 1 2 9\n0 1 0.5\n"
+            )),
+        ),
+        (
+            "data value overflows its type",
+            "property-range.ply",
+            ply(&format!(
+                "{ply_tri}property uchar red\nend_header\n0 0\n1 0\n0 1\n3 0 1 2 256\n"
             )),
         ),
         (

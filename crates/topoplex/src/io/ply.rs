@@ -140,7 +140,7 @@ pub fn parse(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
         Encoding::BinaryBigEndian => Some(true),
         Encoding::BinaryLittleEndian => Some(false),
     };
-    body::parse_body(&header, body, first_line, binary)
+    body::parse_body(&header, &bytes[..header_len], body, first_line, binary)
 }
 
 #[cfg(test)]
@@ -378,7 +378,8 @@ pub(crate) fn write(raw: &RawInput, binary: bool, out: &mut Vec<u8>) -> Result<(
         .elements
         .add(element("vertex", n, &declared(xyz, &vertex_data)));
     ply.payload.insert("vertex".to_string(), vertices);
-    if !faces.is_empty() {
+    // Listed data on no face or edge: an empty `face` element still declares it.
+    if !faces.is_empty() || (edges.is_empty() && !listed_data.is_empty()) {
         let list = PropertyType::List(ScalarType::UChar, ScalarType::Int);
         let props = declared(vec![("vertex_indices", list)], &listed_data);
         ply.header
@@ -600,11 +601,11 @@ mod tests {
              3 0 1 2 9 0.25\n2 1 2 -32768 1e300\n";
         let e = err(&text.replace("property double w\n", ""));
         assert!(e.contains("has 1 more value"), "{e}");
-        // The edge lacks `w`: refused, naming both.
+        // The edge lacks `w`: refused, naming both and the line declaring it.
         let e = err(text);
         assert_eq!(
             e,
-            "0: PLY: property 'w' of element 'face' is not on element 'edge', which lists \
+            "16: PLY: property 'w' of element 'face' is not on element 'edge', which lists \
              simplices too; an attribute has a value for every listed simplex, so it is refused \
              rather than padded"
         );
@@ -641,7 +642,7 @@ mod tests {
              property list uchar float texcoord\nend_header\n0 0\n1 0\n0 1\n3 0 1 2 2 0 0\n"
         ));
         assert!(
-            e.starts_with("0: PLY: property 'texcoord' of element 'face' is a list"),
+            e.starts_with("8: PLY: property 'texcoord' of element 'face' is a list"),
             "{e}"
         );
         let e = err(&HEAD.replace(

@@ -373,6 +373,7 @@ fn id_of(x: f64, what: &str) -> Result<u32, ReadErrorKind> {
 /// `binary` is `None`, else binary, big-endian when `Some(true)`.
 pub(super) fn parse_body(
     header: &Header,
+    header_text: &[u8],
     body: &[u8],
     first_line: usize,
     binary: Option<bool>,
@@ -388,6 +389,7 @@ pub(super) fn parse_body(
         },
     };
     let mut kept = Kept::new(body.len(), binary.is_some());
+    kept.declared = declarations(header_text);
     for (name, def) in &header.elements {
         let wanted = kept.prepare(name, def)?;
         kept.read_elements(&mut records, name, def, &wanted)?;
@@ -411,6 +413,8 @@ struct Kept {
     current: Vec<usize>,
     /// The slot in `vals` of the first extra property.
     extra_base: usize,
+    /// Each property declaration of the header: element, property, line.
+    declared: Vec<(String, String, u32)>,
     /// Each element that lists simplices: its name, part, entry count and extra properties.
     listers: Vec<(String, Part, usize, Vec<String>)>,
     /// The wanted list property's entries of the element being read.
@@ -434,6 +438,7 @@ impl Kept {
             columns: Vec::new(),
             current: Vec::new(),
             extra_base: 0,
+            declared: Vec::new(),
             listers: Vec::new(),
             list: Vec::new(),
             // Every element line takes at least 2 bytes (a binary element at least 1), so the
@@ -479,12 +484,15 @@ impl Kept {
             let ty = match &pdef.data_type {
                 PropertyType::Scalar(ty) => value_type(ty),
                 PropertyType::List(..) => {
-                    return Err(at0(syntax(format!(
-                        "PLY: property '{}' of element '{}' is a list; Topoplex keeps a list \
+                    return Err((
+                        line_of(&self.declared, name, prop),
+                        syntax(format!(
+                            "PLY: property '{}' of element '{}' is a list; Topoplex keeps a list \
                          only as the vertex ids, and refuses it rather than dropping it",
-                        echo(prop),
-                        echo(name)
-                    ))));
+                            echo(prop),
+                            echo(name)
+                        )),
+                    ));
                 }
             };
             let col = match self
@@ -493,14 +501,17 @@ impl Kept {
                 .position(|c| c.part == part && c.name == *prop)
             {
                 Some(k) if self.columns[k].values.value_type() != ty => {
-                    return Err(at0(syntax(format!(
-                        "PLY: property '{}' of element '{}' is {}, but an element before it \
+                    return Err((
+                        line_of(&self.declared, name, prop),
+                        syntax(format!(
+                            "PLY: property '{}' of element '{}' is {}, but an element before it \
                          lists simplices with it as {}; an attribute has one type",
-                        echo(prop),
-                        echo(name),
-                        ty.name(),
-                        self.columns[k].values.value_type().name()
-                    ))));
+                            echo(prop),
+                            echo(name),
+                            ty.name(),
+                            self.columns[k].values.value_type().name()
+                        )),
+                    ));
                 }
                 Some(k) => k,
                 None => {
@@ -712,6 +723,7 @@ impl Kept {
             vertex_count,
             columns,
             listers,
+            declared,
             ..
         } = self;
         let faces = raw.simplex_count();
@@ -723,9 +735,44 @@ impl Kept {
         for e in edges.chunks_exact(2) {
             raw.push(e, 0);
         }
-        attributes(&mut raw, columns, &listers, faces, edges.len() / 2)?;
+        attributes(
+            &mut raw,
+            columns,
+            &listers,
+            &declared,
+            faces + edges.len() / 2,
+        )?;
         Ok(raw)
     }
+}
+
+/// Each `property` line of a header (`header`: its bytes, from `ply` on): the element it is
+/// in, its name, its line (1-based).
+fn declarations(header: &[u8]) -> Vec<(String, String, u32)> {
+    let mut out = Vec::new();
+    let mut element = String::new();
+    for (i, l) in header.split(|&c| c == b'\n').enumerate() {
+        let l = String::from_utf8_lossy(l);
+        let words: Vec<&str> = l.split_whitespace().collect();
+        match words.as_slice() {
+            ["element", name, ..] => element = (*name).to_string(),
+            ["property", .., name] => out.push((
+                element.clone(),
+                (*name).to_string(),
+                u32::try_from(i + 1).unwrap_or(u32::MAX),
+            )),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// The header line declaring property `prop` of element `element` (0 when not found).
+fn line_of(declared: &[(String, String, u32)], element: &str, prop: &str) -> u32 {
+    declared
+        .iter()
+        .find(|(e, p, _)| e == element && p == prop)
+        .map_or(0, |d| d.2)
 }
 
 /// Which part of the listing an element's entries make (vertices are not listed).
@@ -788,8 +835,8 @@ fn attributes(
     raw: &mut RawInput,
     columns: Vec<Column>,
     listers: &[(String, Part, usize, Vec<String>)],
-    faces: usize,
-    edges: usize,
+    declared: &[(String, String, u32)],
+    listed_count: usize,
 ) -> Res<()> {
     let mut listed: Vec<Column> = Vec::new();
     for c in columns {
@@ -816,14 +863,18 @@ fn attributes(
             .iter()
             .find(|(_, _, count, props)| *count > 0 && !props.contains(&name))
         {
-            return Err(at0(syntax(format!(
-                "PLY: property '{}' of element '{}' is not on element '{}', which lists \
+            let line = line_of(declared, &listed[k].element, &name);
+            return Err((
+                line,
+                syntax(format!(
+                    "PLY: property '{}' of element '{}' is not on element '{}', which lists \
                  simplices too; an attribute has a value for every listed simplex, so it is \
                  refused rather than padded",
-                echo(&name),
-                echo(&listed[k].element),
-                echo(lister)
-            ))));
+                    echo(&name),
+                    echo(&listed[k].element),
+                    echo(lister)
+                )),
+            ));
         }
         let mut values = listed[k].values.empty_like();
         for c in listed.iter().filter(|c| c.name == name) {
@@ -831,19 +882,23 @@ fn attributes(
                 .iter()
                 .find(|o| o.name == name && o.values.value_type() != c.values.value_type())
             {
-                return Err(at0(syntax(format!(
-                    "PLY: property '{}' is {} on element '{}' and {} on element '{}'; an \
+                let line = line_of(declared, &other.element, &name);
+                return Err((
+                    line,
+                    syntax(format!(
+                        "PLY: property '{}' is {} on element '{}' and {} on element '{}'; an \
                      attribute has one type",
-                    echo(&name),
-                    c.values.value_type().name(),
-                    echo(&c.element),
-                    other.values.value_type().name(),
-                    echo(&other.element)
-                ))));
+                        echo(&name),
+                        c.values.value_type().name(),
+                        echo(&c.element),
+                        other.values.value_type().name(),
+                        echo(&other.element)
+                    )),
+                ));
             }
             values.append(&c.values);
         }
-        debug_assert_eq!(values.len(), faces + edges);
+        debug_assert_eq!(values.len(), listed_count);
         raw.attributes.insert(Attribute {
             name: name.clone(),
             location: Location::Listed,
