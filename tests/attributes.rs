@@ -317,6 +317,137 @@ fn ply_refuses_data_it_cannot_hold() {
     );
 }
 
+/// Random runs of labels for `len` listed simplices, numbered in order of first appearance
+/// (OBJ's numbering), -1 for a leading run when `lead`; the labels used.
+fn runs(rng: &mut common::Rng, len: usize, lead: bool) -> (Vec<i32>, i32) {
+    let mut out = Vec::with_capacity(len);
+    let mut used = 0i32;
+    let mut current = if lead { -1 } else { 0 };
+    used += i32::from(!lead);
+    for i in 0..len {
+        // Without a leading run, label 0 comes first.
+        if (lead || i > 0) && rng.below(3) == 0 {
+            let pick = rng.below(used as usize + 1) as i32;
+            current = pick;
+            if pick == used {
+                used += 1;
+            }
+        }
+        out.push(current);
+    }
+    (out, used)
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// OBJ objects, groups (names of several words included), materials and smoothing groups
+    /// on random listings of points, edges and triangles come back bit for bit, names included.
+    #[test]
+    fn obj_groups_objects_materials_and_smoothing_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
+        let rows = random_listing(seed, n, count, true, false);
+        let mut raw = RawInput::new();
+        raw.vertex_count = rows.vertex_count;
+        raw.coords = rows.coords.clone();
+        for s in simplices(&rows).iter().filter(|s| s.len() <= 3) {
+            raw.push(s, 0);
+        }
+        let m = raw.simplex_count();
+        let mut rng = common::Rng((seed ^ 7) | 1);
+        for (k, attr) in ["obj:object", "obj:group", "obj:material"].into_iter().enumerate() {
+            let lead = rng.below(2) == 0;
+            let (labels, used) = runs(&mut rng, m, lead);
+            if used == 0 {
+                continue;
+            }
+            raw.attributes.insert(Attribute::labels(attr, Location::Listed, labels));
+            for label in 0..used {
+                raw.attributes.add_label_name(LabelName {
+                    attribute: attr.into(),
+                    dimension: None,
+                    label: i64::from(label),
+                    name: if k == 1 && label % 2 == 1 { format!("part {label} of {k}") } else { format!("{attr}-{label}") },
+                });
+            }
+        }
+        let smooth: Vec<i32> = runs(&mut rng, m, false).0.into_iter().map(|x| x * 3).collect();
+        raw.attributes.insert(Attribute::labels("obj:smoothing", Location::Listed, smooth));
+        raw.attributes.check(n as usize, m).unwrap();
+        let dir = Scratch::new("obj");
+        prop_assert_eq!(round_trip(&raw, Format::Obj, &dir.0), Ok(()));
+    }
+}
+
+/// OBJ labels numbered otherwise than by first appearance read back renumbered, each simplex
+/// keeping its name; labels OBJ cannot write are refused naming the attribute and simplex.
+#[test]
+fn obj_labels_keep_their_names_and_unwritable_ones_are_refused() {
+    let mut raw = RawInput::new();
+    raw.vertex_count = Some(3);
+    for s in [[0u32, 1, 2], [0, 1, 2], [0, 1, 2]] {
+        raw.push(&s, 0);
+    }
+    let named = |labels: Vec<i32>, names: &[(i64, &str)]| {
+        let mut r = raw.clone();
+        r.attributes
+            .insert(Attribute::labels("obj:group", Location::Listed, labels));
+        for &(label, name) in names {
+            r.attributes.add_label_name(LabelName {
+                attribute: "obj:group".into(),
+                dimension: None,
+                label,
+                name: name.into(),
+            });
+        }
+        r
+    };
+    let dir = Scratch::new("obj-names");
+    let path = dir.0.join("g.obj");
+    let r = named(vec![7, 3, 7], &[(3, "three"), (7, "seven")]);
+    write_raw(&r, &path, Some(Format::Obj)).unwrap();
+    let back = read_path(&path).unwrap();
+    let names = |r: &RawInput| -> Vec<String> {
+        let a = r.attributes.get("obj:group", Location::Listed).unwrap();
+        (0..3)
+            .map(|i| {
+                r.attributes
+                    .label_name("obj:group", 2, a.label(i).unwrap())
+                    .unwrap()
+                    .to_string()
+            })
+            .collect()
+    };
+    assert_eq!(names(&back), ["seven", "three", "seven"]);
+    assert_eq!(names(&back), names(&r));
+    for (r, says) in [
+        (
+            named(vec![0, 1, 0], &[(0, "a")]),
+            "simplex #1 has label 1, which has no name",
+        ),
+        (
+            named(vec![0, -1, 0], &[(0, "a")]),
+            "simplex #1 has label -1",
+        ),
+        (named(vec![0, 0, 0], &[(0, "a # b")]), "named 'a # b'"),
+        (named(vec![0, 0, 0], &[(0, " a")]), "named ' a'"),
+    ] {
+        let e = write_raw(&r, &path, Some(Format::Obj))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("'obj:group'") && e.contains(says), "{e}");
+    }
+    let mut r = raw.clone();
+    r.attributes.insert(Attribute::labels(
+        "obj:smoothing",
+        Location::Listed,
+        vec![1, -2, 1],
+    ));
+    let e = write_raw(&r, &path, Some(Format::Obj))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("simplex #1 has label -2"), "{e}");
+}
+
 /// The same data as an ASCII `.vtu` written by hand (our streaming reader) and as the base64
 /// `.vtu` our writer makes of it (the vtkio path) reads alike, bit for bit; a name no VTU holds
 /// (a control character) is refused by the writer.

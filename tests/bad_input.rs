@@ -365,6 +365,16 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
         ),
         (
             "data of the wrong type",
+            "smoothing.obj",
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\ns 1.5\nf 1 2 3\n".to_vec(),
+        ),
+        (
+            "data not held (refused, never skipped)",
+            "usemtl-nameless.obj",
+            b"v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl\nf 1 2 3\n".to_vec(),
+        ),
+        (
+            "data of the wrong type",
             "ref-real.mesh",
             medit("Vertices\n1\n0 0 0 1.5\n"),
         ),

@@ -17,7 +17,15 @@
 //! * Free-form elements `curv curv2 surf` are refused (an error naming the statement): they are
 //!   geometry a simplicial complex cannot hold, and dropping them would read the file as less
 //!   than it is.
-//! * Ignored statements: `vt vn vp o g s usemtl mtllib cstype deg bmat step parm trim hole scrv
+//! * Grouping statements are labels on the listed simplices (`i32`, one per simplex, for the
+//!   simplices after the statement): `o NAME` → `obj:object`, `g NAME...` → `obj:group`,
+//!   `usemtl NAME` → `obj:material`, each label the index of the name in order of first
+//!   appearance (a [`LabelName`] names it; the names of a `g` line joined by one space are one
+//!   name — a simplex in several groups has that combined group —, `g` alone is `default`),
+//!   -1 before the kind's first statement; `s N` / `s off` → `obj:smoothing`, the number (`off`
+//!   0, which is also the value before any `s`). An attribute exists only when its statement
+//!   occurs. A nameless `o` or `usemtl`, or an `s` that is not `off` or a number, is an error.
+//! * Ignored statements: `vt vn vp mtllib cstype deg bmat step parm trim hole scrv
 //!   sp end con mg bevel c_interp d_interp lod maplib usemap shadow_obj trace_obj ctech stech`
 //!   (their arguments are not checked). Any other keyword is an error.
 //! * `#` starts a comment; a line ending in `\` (blanks and a comment may follow it) continues
@@ -32,7 +40,7 @@ use super::scan::{self, Scanner};
 use super::{
     Coords, IntError, RawInput, ReadErrorKind, echo, no_room, parse_f64, parse_integer, syntax,
 };
-use crate::complex::table;
+use crate::complex::{Attribute, LabelName, Location, table};
 
 /// Statements that carry nothing a simplicial complex keeps (texture and normal vertices,
 /// grouping, materials, display attributes, and the free-form attribute and body statements,
@@ -42,10 +50,6 @@ const IGNORED: &[&str] = &[
     "vt",
     "vn",
     "vp",
-    "o",
-    "g",
-    "s",
-    "usemtl",
     "mtllib",
     "cstype",
     "deg",
@@ -176,6 +180,109 @@ struct State {
     seen: u32,
     /// Scratch for the ids of one `l` statement.
     ids: Vec<u32>,
+    /// Each `o`, `g`, `usemtl` and `s` statement: (listed simplices before it, which of
+    /// [`LABELS`], label).
+    changes: Vec<(usize, usize, i32)>,
+    /// The names of each of the first three of [`LABELS`], in order of first appearance.
+    names: [Vec<String>; 3],
+}
+
+/// The label attributes of OBJ's grouping statements, in the order the writer writes them:
+/// `o` objects, `g` groups, `usemtl` materials (each label the index of the name in order of
+/// first appearance, named by a [`LabelName`]), `s` smoothing groups (the group number, `off`
+/// 0).
+pub(crate) const LABELS: [(&str, &str); 4] = [
+    ("o", "obj:object"),
+    ("g", "obj:group"),
+    ("usemtl", "obj:material"),
+    ("s", "obj:smoothing"),
+];
+
+/// A grouping statement's label: its names joined by a space (`g` alone: `default`), as the
+/// index of that name, or the smoothing group's number (`off`: 0).
+fn grouping(s: &mut Scanner<'_>, k: usize, st: &mut State) -> Result<(), ReadErrorKind> {
+    let mut words: Vec<&str> = Vec::new();
+    while let Some((tok, _)) = s.token_in_line() {
+        words.push(tok);
+    }
+    let label = if k == 3 {
+        match words.as_slice() {
+            ["off"] => 0,
+            [n] => match parse_integer(n) {
+                Ok(v) if (0..=i128::from(i32::MAX)).contains(&v) => v as i32,
+                _ => {
+                    return Err(syntax(format!(
+                        "smoothing group '{}' is not 'off' or a number 0 to {}",
+                        echo(n),
+                        i32::MAX
+                    )));
+                }
+            },
+            _ => {
+                return Err(syntax(format!(
+                    "an `s` statement takes one smoothing group ('off' or a number), not {}",
+                    words.len()
+                )));
+            }
+        }
+    } else {
+        let name = if words.is_empty() {
+            if k == 1 {
+                "default".to_string()
+            } else {
+                return Err(syntax(format!("`{}` statement with no name", LABELS[k].0)));
+            }
+        } else {
+            words.join(" ")
+        };
+        let names = &mut st.names[k];
+        match names.iter().position(|n| *n == name) {
+            Some(i) => i as i32,
+            None => {
+                names.push(name);
+                i32::try_from(names.len() - 1).map_err(|_| syntax("too many names"))?
+            }
+        }
+    };
+    st.changes.push((st.raw.simplex_count(), k, label));
+    Ok(())
+}
+
+/// The labels the grouping statements give the listed simplices: one attribute per statement
+/// kind that occurs, -1 before a kind's first statement (0 for `s`), with the names.
+fn grouping_attributes(st: &mut State) {
+    let m = st.raw.simplex_count();
+    for (k, (_, attr)) in LABELS.iter().enumerate() {
+        if !st.changes.iter().any(|c| c.1 == k) {
+            continue;
+        }
+        let mut values = Vec::with_capacity(m);
+        let mut current = if k == 3 { 0 } else { -1 };
+        let mut changes = st.changes.iter().filter(|c| c.1 == k).peekable();
+        for i in 0..m {
+            while let Some(&&(at, _, label)) = changes.peek() {
+                if at > i {
+                    break;
+                }
+                current = label;
+                changes.next();
+            }
+            values.push(current);
+        }
+        st.raw
+            .attributes
+            .insert(Attribute::labels(attr, Location::Listed, values));
+        if k < 3 {
+            for (label, name) in std::mem::take(&mut st.names[k]).into_iter().enumerate() {
+                st.raw.attributes.add_label_name(LabelName {
+                    attribute: (*attr).to_string(),
+                    dimension: None,
+                    label: label as i64,
+                    name,
+                });
+            }
+        }
+    }
 }
 
 /// Reads an OBJ file's text.
@@ -186,6 +293,8 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
         data: Vec::new(),
         seen: 0,
         ids: Vec::new(),
+        changes: Vec::new(),
+        names: Default::default(),
     };
     let mut statements = 0usize;
     loop {
@@ -214,6 +323,7 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     if statements == 0 {
         return Err((s.eof_line(), syntax("file is empty (no OBJ statements)")));
     }
+    grouping_attributes(&mut st);
     let mut raw = st.raw;
     raw.vertex_count = Some(st.seen);
     raw.coords = Some(Coords {
@@ -281,6 +391,7 @@ fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), R
             }
             Ok(())
         }
+        k if let Some(g) = LABELS.iter().position(|l| l.0 == k) => grouping(s, g, st),
         k if FREE_FORM.contains(&k) => Err(syntax(format!(
             "free-form element '{k}' (a curve or surface) is not supported: only v, f, l and p \
              statements make simplices"
@@ -372,6 +483,35 @@ mod tests {
         assert_eq!(c.data, [0., 0., 0., 1., 0., 0., 0., 1., 0., 0., 0., 1.]);
         assert_eq!(simplices(&r), [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]]);
         assert_eq!(r.lines, [13, 14, 15, 16]);
+    }
+
+    #[test]
+    fn grouping_statements_are_labels_with_names() {
+        let r = ok(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\no thing\ng a  b\nusemtl red\ns 4\n\
+                    l 1 2 3\ng\nf 1 2 3\ng a b\ns off\nusemtl blue\np 1\n",
+        );
+        let at = &r.attributes;
+        let labels = |n| match &at.get(n, Location::Listed).unwrap().values {
+            crate::complex::Values::I32(v) => v.clone(),
+            v => panic!("{v:?}"),
+        };
+        assert_eq!(labels("obj:object"), [-1, 0, 0, 0, 0]);
+        assert_eq!(labels("obj:group"), [-1, 0, 0, 1, 0]);
+        assert_eq!(labels("obj:material"), [-1, 0, 0, 0, 1]);
+        assert_eq!(labels("obj:smoothing"), [0, 4, 4, 4, 0]);
+        assert_eq!(at.label_name("obj:group", 2, 0), Some("a b"));
+        assert_eq!(at.label_name("obj:group", 2, 1), Some("default"));
+        assert_eq!(at.label_name("obj:material", 1, 1), Some("blue"));
+        assert_eq!(at.label_name("obj:object", 1, 0), Some("thing"));
+        // No grouping statement: no attribute.
+        assert!(ok("v 0 0 0\np 1\n").attributes.is_empty());
+        err(
+            "v 0 0 0\ns x\n",
+            2,
+            "smoothing group 'x' is not 'off' or a number 0 to 2147483647",
+        );
+        err("v 0 0 0\nusemtl\n", 2, "`usemtl` statement with no name");
     }
 
     #[test]

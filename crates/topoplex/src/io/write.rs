@@ -145,7 +145,9 @@ impl Format {
     /// `f32` and integer fields are not widened: write VTK or VTU), legacy VTK any
     /// point or cell data whose name has no blank, VTU any point or cell data whose name has no
     /// control character (an XML attribute value; tabs and newlines would read back as blanks),
-    /// PLY any 1-component attribute as a property of its type (see `ply::holds`).
+    /// PLY any 1-component attribute as a property of its type (see `ply::holds`), OBJ its
+    /// grouping labels (`obj:object`, `obj:group`, `obj:material`, `obj:smoothing`, `i32` on
+    /// the listed simplices; names checked when written).
     pub fn holds(self, a: &Attribute) -> bool {
         let int32 = a.components == 1
             && match &a.values {
@@ -167,6 +169,12 @@ impl Format {
                 .any(|b| b.is_ascii_whitespace() || b.is_ascii_control()),
             Format::Vtu => !a.name.is_empty() && !a.name.chars().any(char::is_control),
             Format::Ply | Format::PlyBinary => super::ply::holds(a),
+            Format::Obj => {
+                a.location == Location::Listed
+                    && a.components == 1
+                    && matches!(a.values, Values::I32(_))
+                    && super::obj::LABELS.iter().any(|l| l.1 == a.name)
+            }
             _ => false,
         }
     }
