@@ -317,6 +317,44 @@ fn ply_refuses_data_it_cannot_hold() {
     );
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// OFF vertex normals, colours and texture coordinates, and face colours of 1, 3 or 4
+    /// numbers (NaN, infinities and subnormals included) on random listings of points, edges
+    /// and triangles come back bit for bit.
+    #[test]
+    fn off_vertex_and_face_colours_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
+        let rows = random_listing(seed, n, count, true, false);
+        let mut raw = RawInput::new();
+        raw.vertex_count = rows.vertex_count;
+        raw.coords = rows.coords.clone();
+        for s in simplices(&rows).iter().filter(|s| s.len() <= 3) {
+            raw.push(s, 0);
+        }
+        let m = raw.simplex_count();
+        let mut rng = common::Rng((seed ^ 11) | 1);
+        let specials = [f64::NAN, f64::INFINITY, -0.0, 5e-324, 255.0, 0.5];
+        let mut reals = |len: usize| -> Values {
+            Values::F64((0..len).map(|i| if rng.below(4) == 0 { specials[i % specials.len()] } else { rng.next() as f64 / 3.0 }).collect())
+        };
+        for (name, c) in [("off:normal", 3), ("off:color", 4), ("off:texture", 2)] {
+            if seed % 3 != 0 || name == "off:color" {
+                let values = reals(n as usize * c);
+                raw.attributes.insert(Attribute { name: name.into(), location: Location::Vertices, components: c, values });
+            }
+        }
+        if m > 0 {
+            let c = [1, 3, 4][(seed % 3) as usize];
+            let values = reals(m * c);
+            raw.attributes.insert(Attribute { name: "off:color".into(), location: Location::Listed, components: c, values });
+        }
+        raw.attributes.check(n as usize, m).unwrap();
+        let dir = Scratch::new("off");
+        prop_assert_eq!(round_trip(&raw, Format::Off, &dir.0), Ok(()));
+    }
+}
+
 /// Random runs of labels for `len` listed simplices, numbered in order of first appearance
 /// (OBJ's numbering), -1 for a leading run when `lead`; the labels used.
 fn runs(rng: &mut common::Rng, len: usize, lead: bool) -> (Vec<i32>, i32) {

@@ -364,6 +364,16 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             vtk("CELL_DATA 1\nSCALARS region int 1\nLOOKUP_TABLE default\nnan\n"),
         ),
         (
+            "partial data (refused: nothing holds \"no value\")",
+            "face-colours.off",
+            b"OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 255 0 0\n2 0 1\n".to_vec(),
+        ),
+        (
+            "data too wide",
+            "normals.off",
+            format!("NnOFF\n10\n1 0 0\n{}\n", ["0"; 20].join(" ")).into_bytes(),
+        ),
+        (
             "data of the wrong type",
             "smoothing.obj",
             b"v 0 0 0\nv 1 0 0\nv 0 1 0\ns 1.5\nf 1 2 3\n".to_vec(),

@@ -13,7 +13,8 @@
 //! * The reader is token-based: items may share a line or spread over several lines (the header
 //!   may be followed by the counts on the same line). The exceptions: a face colour, which
 //!   Geomview defines as the rest of the line holding the face's last vertex id: it must be 0,
-//!   1, 3 or 4 numbers (integers or floats), which are checked to be numbers and then ignored;
+//!   1, 3 or 4 numbers (integers or floats), kept as the attribute `off:color` on the listed
+//!   simplices (`f64`, as many components; every face has one of one width, or none has);
 //!   the edge count, which is optional at the end of the counts' line; and vertex lines, which
 //!   must each hold whole vertices, the last vertex ending its line (so that colours or normals
 //!   without their header prefix are refused on the line that shows them, not lines later).
@@ -22,7 +23,9 @@
 //! * Vertex coordinates: 3 per vertex; 4 for `4OFF`; `Ndim` for `nOFF`; `Ndim + 1` for `4nOFF`
 //!   (the homogeneous component is kept as read). Normals (`N`) have 3 numbers, or as many as
 //!   the vertex coordinates for `nOFF`; colours (`C`) 4 numbers; texture coordinates (`ST`) 2.
-//!   Only the coordinates are kept.
+//!   Beyond the coordinates they are attributes on the vertices (`f64`): `off:normal`,
+//!   `off:color`, `off:texture` (normals of more than 9 numbers are refused). Files with them
+//!   (or with face colours) are read by the serial reader.
 //! * Numbers are parsed as `f64`; `nan`, `inf` and `infinity` are accepted, since topology does
 //!   not use coordinates, but a finite number that would become infinite or 0 is an error.
 //! * A face with k = 1, 2, 3 ids is a vertex, an edge, a triangle. k > 3 is
@@ -42,7 +45,8 @@ use super::{
     Coords, IntError, RawInput, ReadErrorKind, capped_len, echo, no_room, parse_count, parse_f64,
     parse_integer, syntax, try_with_capacity,
 };
-use crate::complex::table;
+use crate::complex::attributes::MAX_COMPONENTS;
+use crate::complex::{Attribute, Location, Values, table};
 
 /// The prefixes of an OFF header keyword.
 #[derive(Debug, Default, Clone, Copy)]
@@ -83,20 +87,30 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     let (nv, nf) = counts(&mut t)?;
     let counts_line = t.line();
     let layout = Layout::new(h, dim);
-    let (data, widest, last_line) = match vertices_in_parallel(&mut t, text, nv, &layout) {
-        Some(data) => (data, layout.per_vertex, 0),
+    let (data, extra, widest, last_line) = match vertices_in_parallel(&mut t, text, nv, &layout) {
+        Some(data) => (data, Vec::new(), layout.per_vertex, 0),
         None => vertices(&mut t, nv, &layout, counts_line)?,
     };
     let mut raw = RawInput::new();
     raw.vertex_count = Some(nv);
     raw.coords = Some(Coords { dim, data });
+    vertex_attributes(&mut raw, &layout, extra).map_err(|k| (counts_line, k))?;
+    let mut colours = FaceColours::default();
     let cap = capped_len(nf as usize, t.len());
     raw.try_reserve(cap, cap.saturating_mul(3).min(t.len()))
         .map_err(|k| (counts_line, k))?;
     if !faces_in_parallel(&mut t, text, nf, &mut raw) {
-        faces(&mut t, nf, &mut raw, last_line, |(l, k)| {
+        faces(&mut t, nf, &mut raw, last_line, &mut colours, |(l, k)| {
             first_face_hint(l, k, widest, &layout)
         })?;
+    }
+    if colours.width > 0 {
+        raw.attributes.insert(Attribute {
+            name: COLOR.to_string(),
+            location: Location::Listed,
+            components: colours.width,
+            values: Values::F64(colours.values),
+        });
     }
     if let Some((tok, l)) = t.token() {
         return Err((
@@ -254,10 +268,13 @@ fn vertices(
     nv: u32,
     layout: &Layout,
     counts_line: u32,
-) -> Res<(Vec<f64>, usize, u32)> {
+) -> Res<(Vec<f64>, Vec<f64>, usize, u32)> {
     let (dim, per_vertex) = (layout.dim, layout.per_vertex);
     let cap = capped_len((nv as usize).saturating_mul(dim), t.len());
     let mut data = try_with_capacity(cap, "the vertex coordinates").map_err(|k| (t.line(), k))?;
+    let cap = capped_len((nv as usize).saturating_mul(per_vertex - dim), t.len());
+    let mut extra =
+        try_with_capacity(cap, "the vertex normals and colours").map_err(|k| (t.line(), k))?;
     // (line, numbers read on it) for the line holding the vertex numbers read last.
     let mut on_line = (0u32, 0usize);
     let mut widest = 0;
@@ -287,6 +304,9 @@ fn vertices(
             if j < dim {
                 table::try_push(&mut data, x)
                     .map_err(|b| (l, no_room("the vertex coordinates")(b)))?;
+            } else {
+                table::try_push(&mut extra, x)
+                    .map_err(|b| (l, no_room("the vertex normals and colours")(b)))?;
             }
         }
     }
@@ -310,7 +330,7 @@ fn vertices(
         }
         check_whole_vertices(on_line, layout)?;
     }
-    Ok((data, widest.max(on_line.1), on_line.0))
+    Ok((data, extra, widest.max(on_line.1), on_line.0))
 }
 
 /// The body of a section of `n` entries that starts on the line after the scanner's (nothing
@@ -334,6 +354,10 @@ fn vertices_in_parallel(
     nv: u32,
     layout: &Layout,
 ) -> Option<Vec<f64>> {
+    // Normals, colours and texture coordinates are kept by the serial reader.
+    if layout.per_vertex != layout.dim {
+        return None;
+    }
     let body = section_body(t, text, nv)?;
     let (dim, per_vertex) = (layout.dim, layout.per_vertex);
     let len = (nv as usize).checked_mul(dim)?;
@@ -399,7 +423,8 @@ fn faces_in_parallel(t: &mut Scanner<'_>, text: &str, nf: u32, raw: &mut RawInpu
             parse_f64(tok, "").ok()?;
             colour += 1;
         }
-        matches!(colour, 0 | 1 | 3 | 4).then_some(())
+        // A colour is kept by the serial reader.
+        (colour == 0).then_some(())
     });
     if !read {
         raw.ids.truncate(base);
@@ -477,17 +502,25 @@ fn faces(
     nf: u32,
     raw: &mut RawInput,
     vertex_line: u32,
+    colours: &mut FaceColours,
     hint: impl Fn((u32, ReadErrorKind)) -> (u32, ReadErrorKind),
 ) -> Res<()> {
     for f in 0..nf {
-        face(t, f, nf, raw, vertex_line).map_err(|e| if f == 0 { hint(e) } else { e })?;
+        face(t, f, nf, raw, vertex_line, colours).map_err(|e| if f == 0 { hint(e) } else { e })?;
     }
     Ok(())
 }
 
 /// Reads face `f` (0-based) of `nf`; its colour unless it starts on `vertex_line`.
 #[inline]
-fn face(t: &mut Scanner<'_>, f: u32, nf: u32, raw: &mut RawInput, vertex_line: u32) -> Res<()> {
+fn face(
+    t: &mut Scanner<'_>,
+    f: u32,
+    nf: u32,
+    raw: &mut RawInput,
+    vertex_line: u32,
+    colours: &mut FaceColours,
+) -> Res<()> {
     let (k, face_line) = match t.digits(true) {
         Some((k, l)) => (face_size_of(i128::from(k)).map_err(|e| (l, e))?, l),
         None => {
@@ -512,9 +545,13 @@ fn face(t: &mut Scanner<'_>, f: u32, nf: u32, raw: &mut RawInput, vertex_line: u
             }
         };
     }
-    if face_line != vertex_line {
-        face_colour(t, f, k)?;
-    }
+    let line = t.line();
+    let n = if face_line != vertex_line {
+        face_colour(t, f, k, &mut colours.scratch)?
+    } else {
+        0
+    };
+    colours.keep(f, n, line)?;
     raw.try_push(&ids[..k], face_line)
         .map_err(|e| (face_line, e))
 }
@@ -558,11 +595,14 @@ fn face_size_of(k: i128) -> Result<usize, ReadErrorKind> {
 
 /// Checks the optional colour after face `f`'s `k` ids: the rest of the line, 0, 1, 3 or 4
 /// numbers.
-fn face_colour(t: &mut Scanner<'_>, f: u32, k: usize) -> Res<()> {
+fn face_colour(t: &mut Scanner<'_>, f: u32, k: usize, into: &mut [f64; 4]) -> Res<usize> {
     let line = t.line();
     let mut n = 0;
     while let Some((tok, l)) = t.token_in_line() {
-        parse_f64(tok, "a face colour component").map_err(|e| (l, e))?;
+        let x = parse_f64(tok, "a face colour component").map_err(|e| (l, e))?;
+        if let Some(slot) = into.get_mut(n) {
+            *slot = x;
+        }
         n += 1;
     }
     if !matches!(n, 0 | 1 | 3 | 4) {
@@ -575,6 +615,86 @@ fn face_colour(t: &mut Scanner<'_>, f: u32, k: usize) -> Res<()> {
             )),
         ));
     }
+    Ok(n)
+}
+
+/// The attribute name of OFF colours, on the vertices (`C`) and on the faces.
+pub(crate) const COLOR: &str = "off:color";
+/// The attribute name of OFF vertex normals (`N`).
+pub(crate) const NORMAL: &str = "off:normal";
+/// The attribute name of OFF texture coordinates (`ST`).
+pub(crate) const TEXTURE: &str = "off:texture";
+
+/// The face colours read so far: every face has one of the same width, or none has.
+#[derive(Default)]
+struct FaceColours {
+    /// The colour width of the first face (0: none).
+    width: usize,
+    values: Vec<f64>,
+    /// The colour of the face being read.
+    scratch: [f64; 4],
+}
+
+impl FaceColours {
+    /// Keeps face `f`'s colour of `n` numbers (in `scratch`), read on `line`.
+    fn keep(&mut self, f: u32, n: usize, line: u32) -> Res<()> {
+        if f == 0 {
+            self.width = n;
+        } else if n != self.width {
+            return Err((
+                line,
+                syntax(format!(
+                    "face {} has a colour of {n} numbers where face 1 has {}; a colour is kept \
+                     for every face or none (an attribute has one width)",
+                    f + 1,
+                    self.width
+                )),
+            ));
+        }
+        table::try_extend(&mut self.values, &self.scratch[..n])
+            .map_err(|b| (line, no_room("the face colours")(b)))
+    }
+}
+
+/// The vertex numbers after the coordinates (`extra`, `per_vertex - dim` a vertex) as the
+/// `off:normal`, `off:color` and `off:texture` attributes.
+fn vertex_attributes(
+    raw: &mut RawInput,
+    layout: &Layout,
+    extra: Vec<f64>,
+) -> Result<(), ReadErrorKind> {
+    let width = layout.per_vertex - layout.dim;
+    if width == 0 {
+        return Ok(());
+    }
+    let texture = width - layout.normal - layout.colour;
+    let mut start = 0;
+    for (name, c) in [
+        (NORMAL, layout.normal),
+        (COLOR, layout.colour),
+        (TEXTURE, texture),
+    ] {
+        if c == 0 {
+            continue;
+        }
+        if c > MAX_COMPONENTS {
+            return Err(syntax(format!(
+                "vertex normals of {c} numbers: an attribute has at most {MAX_COMPONENTS} \
+                 components, so they are refused rather than dropped"
+            )));
+        }
+        let values = extra
+            .chunks_exact(width)
+            .flat_map(|v| v[start..start + c].iter().copied())
+            .collect();
+        raw.attributes.insert(Attribute {
+            name: name.to_string(),
+            location: Location::Vertices,
+            components: c,
+            values: Values::F64(values),
+        });
+        start += c;
+    }
     Ok(())
 }
 
@@ -586,6 +706,41 @@ mod tests {
 
     const TETRA: &str =
         "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 1 2\n3 0 1 3\n3 0 2 3\n3 1 2 3\n";
+
+    #[test]
+    fn vertex_normals_colours_texture_and_face_colours_are_attributes() {
+        let r = ok(
+            "STCNOFF\n3 2\n0 0 0 0 0 1 1 0 0 1 0.5 0.5\n1 0 0 0 0 1 0 1 0 1 1 0\n\
+                    0 1 0 0 0 1 0 0 1 0.5 0 1\n3 0 1 2 255 0 0\n2 0 1 0 255 0\n",
+        );
+        let at = &r.attributes;
+        let v = |name, location| at.get(name, location).unwrap();
+        assert_eq!(
+            v(NORMAL, Location::Vertices).values,
+            Values::F64([0., 0., 1.].repeat(3))
+        );
+        assert_eq!(v(COLOR, Location::Vertices).components, 4);
+        assert_eq!(
+            v(COLOR, Location::Vertices).values,
+            Values::F64(vec![1., 0., 0., 1., 0., 1., 0., 1., 0., 0., 1., 0.5])
+        );
+        assert_eq!(
+            v(TEXTURE, Location::Vertices).values,
+            Values::F64(vec![0.5, 0.5, 1., 0., 0., 1.])
+        );
+        let faces = v(COLOR, Location::Listed);
+        assert_eq!(
+            (faces.components, faces.element(1)),
+            (3, Some(vec![0., 255., 0.]))
+        );
+        // No face colour: no attribute; a colour on some faces only is refused.
+        assert!(ok(TETRA).attributes.is_empty());
+        err(
+            "OFF\n3 2\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 1 0 0\n2 0 1\n",
+            7,
+            "face 2 has a colour of 0 numbers where face 1 has 3",
+        );
+    }
 
     #[test]
     fn plain() {
@@ -608,9 +763,15 @@ mod tests {
         // Several faces on the line, and a final newline.
         let r = ok("OFF 4 2 0 0 0 0 1 0 0 0 1 0 0 0 1 3 0 1 2 3 1 2 3\n");
         assert_eq!(simplices(&r), [[0, 1, 2], [1, 2, 3]]);
-        // Faces on lines of their own after one-line vertices keep their colours.
-        let r = ok("OFF 3 2 0 0 0 0 1 0 0 0 1 0 3 0 1 2\n2 0 1 0.5 0.5 0.5\n");
+        // Faces on lines of their own after one-line vertices keep their colours: every face
+        // (the one on the vertex line has none) or none.
+        let r = ok("OFF 3 2 0 0 0 0 1 0 0 0 1 0 3 0 1 2\n2 0 1\n");
         assert_eq!(r.ids, [0, 1, 2, 0, 1]);
+        err(
+            "OFF 3 2 0 0 0 0 1 0 0 0 1 0 3 0 1 2\n2 0 1 0.5 0.5 0.5\n",
+            2,
+            "face 2 has a colour of 3 numbers where face 1 has 0",
+        );
         // A count that disagrees is still refused.
         assert!(parse("OFF 3 1 0 0 0 0 1 0 0 0 1 0 3 0 1 2 7").is_err());
         // Vertices on lines of their own keep the line checks (colours without C).
@@ -704,10 +865,19 @@ mod tests {
     #[test]
     fn colours_after_face_ids() {
         let text = "OFF\n3 4 0\n0 0 0\n1 0 0\n0 1 0\n\
-                    3 0 1 2 7\n3 0 1 2 255 0 0\n3 0 1 2 1.0 0.5 0.25 1\n3 0 1 2\n";
+                    3 0 1 2 7 0 0 1\n3 0 1 2 255 0 0 9\n3 0 1 2 1.0 0.5 0.25 1\n3 0 1 2 0 0 0 0\n";
         let r = ok(text);
         assert_eq!(r.simplex_count(), 4);
         assert_eq!(r.lines, [6, 7, 8, 9]);
+        let c = r.attributes.get(COLOR, Location::Listed).unwrap();
+        assert_eq!(c.element(2), Some(vec![1.0, 0.5, 0.25, 1.0]));
+        // Geomview allows faces of different colour widths (0, 1, 3, 4); one attribute cannot
+        // hold them, so they are refused rather than padded or dropped.
+        err(
+            "OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 7\n3 0 1 2 255 0 0\n",
+            7,
+            "face 2 has a colour of 3 numbers where face 1 has 1",
+        );
     }
 
     #[test]

@@ -147,7 +147,9 @@ impl Format {
     /// control character (an XML attribute value; tabs and newlines would read back as blanks),
     /// PLY any 1-component attribute as a property of its type (see `ply::holds`), OBJ its
     /// grouping labels (`obj:object`, `obj:group`, `obj:material`, `obj:smoothing`, `i32` on
-    /// the listed simplices; names checked when written).
+    /// the listed simplices; names checked when written), OFF `off:normal`, `off:color`,
+    /// `off:texture` (`f64`) on the vertices and `off:color` (`f64`, 1, 3 or 4 components) on
+    /// the listed simplices.
     pub fn holds(self, a: &Attribute) -> bool {
         let int32 = a.components == 1
             && match &a.values {
@@ -169,6 +171,7 @@ impl Format {
                 .any(|b| b.is_ascii_whitespace() || b.is_ascii_control()),
             Format::Vtu => !a.name.is_empty() && !a.name.chars().any(char::is_control),
             Format::Ply | Format::PlyBinary => super::ply::holds(a),
+            Format::Off => off::holds(a),
             Format::Obj => {
                 a.location == Location::Listed
                     && a.components == 1

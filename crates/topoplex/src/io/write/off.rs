@@ -1,8 +1,34 @@
 //! OFF writer: `OFF` (3 coordinates per vertex, fewer padded with zeros, zeros without
 //! coordinates) or `nOFF` with the dimension (more than 3); then one face per simplex, `k ids`,
-//! in listing order. Holds vertices, edges and triangles.
+//! in listing order. Holds vertices, edges and triangles. The attributes `off:normal`,
+//! `off:color`, `off:texture` on the vertices (`f64`; as many normal components as coordinates
+//! are written, 4 colour components, 2 texture coordinates) make the `N`, `C`, `ST` prefixes and
+//! follow each vertex's coordinates; `off:color` on the listed simplices (`f64`, 1, 3 or 4
+//! components) follows each face's ids.
 
-use super::{RawInput, check_max_len, push_ids, push_point, vertex_count};
+use super::{RawInput, check_max_len, push_f64, push_ids, push_point, vertex_count};
+use crate::complex::{Attribute, Location, Values};
+use crate::io::off::{COLOR, NORMAL, TEXTURE};
+
+/// Whether OFF holds `a` (see the module doc; widths that depend on the coordinates are
+/// checked when writing).
+pub(crate) fn holds(a: &Attribute) -> bool {
+    matches!(a.values, Values::F64(_))
+        && match a.location {
+            Location::Vertices => [NORMAL, COLOR, TEXTURE].contains(&a.name.as_str()),
+            Location::Listed => a.name == COLOR && matches!(a.components, 1 | 3 | 4),
+        }
+}
+
+/// Appends element `i` of `a` (f64 values), each number after a blank.
+fn push_element(out: &mut Vec<u8>, a: Option<&Attribute>, i: usize) {
+    let Some(a) = a else { return };
+    let Values::F64(v) = &a.values else { return };
+    for &x in &v[i * a.components..(i + 1) * a.components] {
+        out.push(b' ');
+        push_f64(out, x);
+    }
+}
 
 pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
     check_max_len(
@@ -12,6 +38,33 @@ pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
     )?;
     let coords = raw.coords.as_ref();
     let width = coords.map_or(3, |c| c.dim.max(3));
+    let at = |name| raw.attributes.get(name, Location::Vertices);
+    let (normal, colour, texture) = (at(NORMAL), at(COLOR), at(TEXTURE));
+    for (a, want) in [(normal, width), (colour, 4), (texture, 2)] {
+        if let Some(a) = a
+            && a.components != want
+        {
+            return Err(format!(
+                "attribute {} has {} components; OFF writes {want} for it here",
+                a.describe(),
+                a.components
+            ));
+        }
+    }
+    let face_colour = raw.attributes.get(COLOR, Location::Listed);
+    if let Some(a) = face_colour
+        && raw.simplex_count() == 0
+    {
+        return Err(format!(
+            "attribute {} is on no face; OFF keeps a face colour only beside a face",
+            a.describe()
+        ));
+    }
+    for (a, prefix) in [(texture, "ST"), (colour, "C"), (normal, "N")] {
+        if a.is_some() {
+            out.extend_from_slice(prefix.as_bytes());
+        }
+    }
     if width == 3 {
         out.extend_from_slice(b"OFF\n");
     } else {
@@ -21,6 +74,9 @@ pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
     out.extend_from_slice(format!("{n} {} 0\n", raw.simplex_count()).as_bytes());
     for v in 0..n {
         push_point(out, coords, v, width);
+        for a in [normal, colour, texture] {
+            push_element(out, a, v);
+        }
         out.push(b'\n');
     }
     for i in 0..raw.simplex_count() {
@@ -28,6 +84,7 @@ pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
         out.extend_from_slice(s.len().to_string().as_bytes());
         out.push(b' ');
         push_ids(out, s, 0);
+        push_element(out, face_colour, i);
         out.push(b'\n');
     }
     Ok(())
