@@ -416,6 +416,81 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// ASCII STL solids: triangles (a chain covering every vertex, then random ones, repeats
+    /// included) labelled by runs of named solids, one run or many, come back bit for bit.
+    #[test]
+    fn stl_solid_names_round_trip(seed in any::<u64>(), n in 4u32..30, count in 0usize..30) {
+        let base = random_listing(seed, n, 1, false, false);
+        let mut raw = RawInput::new();
+        raw.vertex_count = base.vertex_count;
+        raw.coords = base.coords;
+        let mut rng = common::Rng((seed ^ 13) | 1);
+        for v in 0..n - 2 {
+            raw.push(&[v, v + 1, v + 2], 0);
+        }
+        for _ in 0..count {
+            let a = rng.below(n as usize - 2) as u32;
+            raw.push(&[a, a + 1 + rng.below((n - a - 2) as usize) as u32, n - 1], 0);
+        }
+        let m = raw.simplex_count();
+        let (labels, used) = runs(&mut rng, m, false);
+        raw.attributes.insert(Attribute::labels("stl:solid", Location::Listed, labels));
+        for label in 0..used {
+            raw.attributes.add_label_name(LabelName {
+                attribute: "stl:solid".into(),
+                dimension: None,
+                label: i64::from(label),
+                name: format!("part {label}"),
+            });
+        }
+        raw.attributes.check(n as usize, m).unwrap();
+        let dir = Scratch::new("stl");
+        prop_assert_eq!(round_trip(&raw, Format::Stl, &dir.0), Ok(()));
+    }
+}
+
+/// STL solids that cannot be written are refused naming the attribute: in binary STL, a label
+/// without a name, a name with a newline.
+#[test]
+fn stl_refuses_solid_labels_it_cannot_write() {
+    let mut raw = RawInput::new();
+    raw.vertex_count = Some(3);
+    raw.coords = Some(Coords {
+        dim: 3,
+        data: vec![0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0],
+    });
+    raw.push(&[0, 1, 2], 0);
+    raw.attributes
+        .insert(Attribute::labels("stl:solid", Location::Listed, vec![0]));
+    let dir = Scratch::new("stl-refuse");
+    let path = dir.0.join("s.stl");
+    let e = write_raw(&raw, &path, Some(Format::Stl))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("'stl:solid'") && e.contains("label 0, which has no name"),
+        "{e}"
+    );
+    raw.attributes.add_label_name(LabelName {
+        attribute: "stl:solid".into(),
+        dimension: None,
+        label: 0,
+        name: "two\nlines".into(),
+    });
+    let e = write_raw(&raw, &path, Some(Format::Stl))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("would not read back as itself"), "{e}");
+    let e = write_raw(&raw, &path, Some(Format::StlBinary))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("'stl:solid'") && e.contains(" .stl,"), "{e}");
+    assert!(!path.exists());
+}
+
 /// OBJ labels numbered otherwise than by first appearance read back renumbered, each simplex
 /// keeping its name; labels OBJ cannot write are refused naming the attribute and simplex.
 #[test]

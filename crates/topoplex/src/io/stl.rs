@@ -16,6 +16,10 @@
 //! * ASCII: `solid name`, then facets (`facet normal x y z`, `outer loop`, three `vertex x y z`,
 //!   `endloop`, `endfacet`), then `endsolid name`; keywords in any case; **every solid** of a
 //!   file is read (several solids in one file are common), their corners welded together.
+//!   With several solids, each triangle gets the label `stl:solid` (`i32`, on the listed
+//!   simplices): the index of its solid's name (the rest of the `solid` line, trimmed) in order
+//!   of first appearance, named by a label name. A file of one solid has no label: its name
+//!   names the file, like a comment, and is not kept.
 //!   A number that a 32-bit float can hold only as infinity or 0 (`1e39`, `1e-50`) is refused
 //!   (the check shared by all readers, `io::parse_real`), as is anything out of order,
 //!   naming the line and what was expected.
@@ -28,7 +32,11 @@
 //! tetrahedron or isolated vertex), with at most 3 coordinates per vertex that are exactly
 //! 32-bit floats and pairwise distinct (else they would read back welded). Normals are the
 //! normalised cross product of the winding (zero for a degenerate triangle). ASCII coordinates
-//! are the shortest decimals that read back to the same 32-bit float.
+//! are the shortest decimals that read back to the same 32-bit float. ASCII writes one solid
+//! `topoplex`, or with `stl:solid` one solid per run of triangles of one label, named by the
+//! label's name (and an empty second solid when there is one run, so that the file reads back
+//! labelled); a label without a name, or a name with control characters or outer blanks, is
+//! refused. Binary STL holds no attribute.
 
 use std::collections::HashMap;
 
@@ -40,6 +48,7 @@ use super::{
     Coords, Float, RawInput, ReadErrorKind, echo, no_room, parse_real, syntax, try_with_capacity,
 };
 use crate::complex::table;
+use crate::complex::{Attribute, LabelName, Location};
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
@@ -168,6 +177,9 @@ fn ascii(bytes: &[u8]) -> Res<RawInput> {
     let mut w = Welder::new(bytes.len() / 42 + 1).map_err(|k| (0, k))?;
     let mut inp = Input::new(bytes);
     let mut solids = 0usize;
+    // The distinct solid names in order, and where each solid starts with its label.
+    let mut names: Vec<String> = Vec::new();
+    let mut starts: Vec<(usize, i32)> = Vec::new();
     while let Some((tok, l)) = inp.token() {
         if !tok.eq_ignore_ascii_case("solid") {
             let what = if solids == 0 {
@@ -177,7 +189,17 @@ fn ascii(bytes: &[u8]) -> Res<RawInput> {
             };
             return Err((l, syntax(format!("expected {what}, found '{}'", echo(tok)))));
         }
-        inp.rest_of_line(); // the solid's name
+        let name = String::from_utf8_lossy(inp.rest_of_line())
+            .trim()
+            .to_string();
+        let label = match names.iter().position(|n| *n == name) {
+            Some(i) => i,
+            None => {
+                names.push(name);
+                names.len() - 1
+            }
+        };
+        starts.push((w.raw.simplex_count(), label as i32));
         solids += 1;
         loop {
             let (tok, l) = inp.expect_token("'facet' or 'endsolid'")?;
@@ -238,8 +260,31 @@ fn ascii(bytes: &[u8]) -> Res<RawInput> {
             w.facet(corners, facet_line).map_err(|k| (facet_line, k))?;
         }
     }
-    Ok(w.into_raw())
+    let mut raw = w.into_raw();
+    if solids >= 2 {
+        let m = raw.simplex_count();
+        let mut labels = try_with_capacity(m, "the solid labels").map_err(|k| (0, k))?;
+        for (k, &(start, label)) in starts.iter().enumerate() {
+            let end = starts.get(k + 1).map_or(m, |s| s.0);
+            labels.extend(std::iter::repeat_n(label, end - start));
+        }
+        raw.attributes
+            .insert(Attribute::labels(SOLID, Location::Listed, labels));
+        for (label, name) in names.into_iter().enumerate() {
+            raw.attributes.add_label_name(LabelName {
+                attribute: SOLID.to_string(),
+                dimension: None,
+                label: label as i64,
+                name,
+            });
+        }
+    }
+    Ok(raw)
 }
+
+/// The label of each triangle's solid in an ASCII file of several solids (the index of the
+/// solid's name in order of first appearance, named by a [`LabelName`]).
+pub(crate) const SOLID: &str = "stl:solid";
 
 /// The next token, which must be `word` (any case).
 fn keyword(inp: &mut Input, word: &str) -> Res<()> {
@@ -368,10 +413,51 @@ fn push_xyz(out: &mut Vec<u8>, p: [f32; 3]) {
     out.push(b'\n');
 }
 
-/// Writes `raw` as ASCII STL.
+/// The solid names of each triangle from the `stl:solid` labels, checked: every label named,
+/// each name a line that reads back as itself.
+fn solid_names(raw: &RawInput) -> Result<Option<Vec<&str>>, String> {
+    let Some(a) = raw.attributes.get(SOLID, Location::Listed) else {
+        return Ok(None);
+    };
+    let mut out = Vec::with_capacity(raw.simplex_count());
+    for i in 0..raw.simplex_count() {
+        let label = a.label(i).unwrap_or(i64::MIN);
+        let Some(name) = raw.attributes.label_name(SOLID, 2, label) else {
+            return Err(format!(
+                "attribute {}: triangle #{i} has label {label}, which has no name to write",
+                a.describe()
+            ));
+        };
+        if name.trim() != name || name.chars().any(char::is_control) {
+            return Err(format!(
+                "attribute {}: solid name '{}' would not read back as itself",
+                a.describe(),
+                echo(name)
+            ));
+        }
+        out.push(name);
+    }
+    Ok(Some(out))
+}
+
+/// Writes `raw` as ASCII STL: one solid `topoplex`, or with `stl:solid` labels one solid per
+/// run of triangles of one label, named by it (an empty second solid when there is one run,
+/// so that the file has several solids and reads back labelled).
 pub(crate) fn write_ascii(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
-    out.extend_from_slice(b"solid topoplex\n");
-    for t in triangles(raw)? {
+    let names = solid_names(raw)?;
+    let tris = triangles(raw)?;
+    let name = |i: usize| names.as_ref().map_or("topoplex", |n| n[i]);
+    let mut open: Option<&str> = None;
+    let mut solids = 0;
+    for (i, t) in tris.into_iter().enumerate() {
+        if open != Some(name(i)) {
+            if let Some(n) = open {
+                out.extend_from_slice(format!("endsolid {n}\n").as_bytes());
+            }
+            out.extend_from_slice(format!("solid {}\n", name(i)).as_bytes());
+            open = Some(name(i));
+            solids += 1;
+        }
         out.extend_from_slice(b"facet normal");
         push_xyz(out, normal(t));
         out.extend_from_slice(b"outer loop\n");
@@ -381,7 +467,15 @@ pub(crate) fn write_ascii(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), Strin
         }
         out.extend_from_slice(b"endloop\nendfacet\n");
     }
-    out.extend_from_slice(b"endsolid topoplex\n");
+    let last = open.unwrap_or("topoplex");
+    if open.is_none() {
+        out.extend_from_slice(b"solid topoplex\n");
+        solids += 1;
+    }
+    out.extend_from_slice(format!("endsolid {last}\n").as_bytes());
+    if names.is_some() && solids < 2 {
+        out.extend_from_slice(format!("solid {last}\nendsolid {last}\n").as_bytes());
+    }
     Ok(())
 }
 
@@ -416,6 +510,36 @@ mod tests {
         let upper = format!("SOLID\n{}ENDSOLID", facet("0 0 0", "1 0 0", "0 1 0"))
             .replace("vertex", "VERTEX");
         assert_eq!(parse(upper.as_bytes()).unwrap().ids, [0, 1, 2]);
+    }
+
+    #[test]
+    fn several_solids_label_their_triangles_by_name() {
+        let f = facet("0 0 0", "1 0 0", "0 1 0");
+        let g = facet("0 0 0", "1 0 0", "0 0 1");
+        let text = format!(
+            "solid a\n{f}{g}endsolid a\nsolid  b c \r\n{g}endsolid\nsolid a\n{f}endsolid a\n"
+        );
+        let raw = parse(text.as_bytes()).unwrap();
+        let at = &raw.attributes;
+        let a = at.get(SOLID, Location::Listed).unwrap();
+        assert_eq!(
+            (0..4).map(|i| a.label(i).unwrap()).collect::<Vec<_>>(),
+            [0, 0, 1, 0]
+        );
+        assert_eq!(at.label_name(SOLID, 2, 1), Some("b c"));
+        // Written back as solids, read back the same.
+        let mut out = Vec::new();
+        write_ascii(&raw, &mut out).unwrap();
+        let back = parse(&out).unwrap();
+        assert!(
+            back.attributes.bits_eq(at),
+            "{}",
+            String::from_utf8_lossy(&out)
+        );
+        assert_eq!(back.ids, raw.ids);
+        // One solid: no label.
+        let one = parse(format!("solid a\n{f}endsolid a\n").as_bytes()).unwrap();
+        assert!(one.attributes.is_empty());
     }
 
     #[test]

@@ -149,7 +149,7 @@ impl Format {
     /// grouping labels (`obj:object`, `obj:group`, `obj:material`, `obj:smoothing`, `i32` on
     /// the listed simplices; names checked when written), OFF `off:normal`, `off:color`,
     /// `off:texture` (`f64`) on the vertices and `off:color` (`f64`, 1, 3 or 4 components) on
-    /// the listed simplices.
+    /// the listed simplices, ASCII STL `stl:solid` (`i32` on the listed triangles, named).
     pub fn holds(self, a: &Attribute) -> bool {
         let int32 = a.components == 1
             && match &a.values {
@@ -172,6 +172,12 @@ impl Format {
             Format::Vtu => !a.name.is_empty() && !a.name.chars().any(char::is_control),
             Format::Ply | Format::PlyBinary => super::ply::holds(a),
             Format::Off => off::holds(a),
+            Format::Stl => {
+                a.name == super::stl::SOLID
+                    && a.location == Location::Listed
+                    && a.components == 1
+                    && matches!(a.values, Values::I32(_))
+            }
             Format::Obj => {
                 a.location == Location::Listed
                     && a.components == 1
