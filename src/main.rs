@@ -410,7 +410,6 @@ fn save(file: &Path, structure: Option<&str>, out: &Path, data: &DropData) -> Re
     not_the_input(file, out, "--out ")?;
     let mut complex = load(file)?;
     data.apply(&mut complex)?;
-    refuse_data(&complex, "save (.tpx)")?;
     let built = match kind {
         Some(k) if topoplex::store::is_saved_path(file) => Some(load_structure(file, k)?),
         Some(k) => Some(topoplex::build(k, &complex).map_err(|e| e.to_string())?),
