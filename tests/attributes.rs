@@ -816,8 +816,8 @@ fn labelled_meshes_read_alike_in_every_format_gmsh_wrote_and_survive_our_writers
 
 /// The CLI keeps the data it can and refuses the rest: `convert` to a format without it exits 1
 /// naming the attribute, `--drop-data` drops it by name or all, naming an absent one is an
-/// error, a verb that does not carry data yet (`save`) refuses instead of dropping it, and
-/// `simplify` carries it.
+/// error, `save` and `simplify` carry it, and a verb that does not (`convert --census`)
+/// refuses instead of dropping it.
 #[test]
 fn cli_convert_keeps_refuses_or_drops_data_on_request() {
     let dir = Scratch::new("cli");
@@ -865,13 +865,14 @@ fn cli_convert_keeps_refuses_or_drops_data_on_request() {
         err.contains("no such attribute") && err.contains("'medit:ref'"),
         "{err}"
     );
-    let (code, err) = run(&["save", inp, "--out", &p("s.tpx")]);
+    // save keeps the data; --census, which writes its own fields, refuses it.
+    assert_eq!(run(&["save", inp, "--out", &p("s.tpx")]).0, Some(0));
+    assert_eq!(run(&["convert", &p("s.tpx"), &p("t.mesh")]).0, Some(0));
+    let back = read_path(&dir.0.join("t.mesh")).unwrap();
+    assert_eq!(listed_labels(&back.attributes, "medit:ref"), vec![5]);
+    let (code, err) = run(&["convert", inp, &p("c.vtk"), "--census"]);
     assert_eq!(code, Some(1));
     assert!(err.contains("does not carry attributes yet"), "{err}");
-    assert_eq!(
-        run(&["save", inp, "--out", &p("s.tpx"), "--drop-data", "all"]).0,
-        Some(0)
-    );
     // simplify carries the data: the one triangle keeps reference 5.
     assert_eq!(
         run(&["simplify", inp, "--out", &p("s.mesh"), "--ratio", "1"]).0,
@@ -1077,5 +1078,116 @@ proptest! {
             live.validate().unwrap();
             prop_assert_eq!(labels_of(&live), want.clone());
         }
+    }
+}
+
+/// `decompose` keeps the data: the bowtie (two triangles pinched at a vertex, two components)
+/// with a label per triangle, a listed edge with its own label and a vertex field — each
+/// component's tops carry their triangle's label, the listed edge goes to the component holding
+/// it, and every vertex copy carries its vertex's value.
+#[test]
+fn decompose_gives_each_component_its_tops_faces_and_vertex_copies_data() {
+    use topoplex::structures::iqm::Iqm;
+    //   0       3
+    //   | \   / |      triangles [0 1 2] (label 10) and [2 3 4] (label 20), pinched at 2;
+    //   |  2    |      the edge [3 4] listed too (label 7)
+    //   | /   \ |
+    //   1       4
+    let mut c = common::complex_of(5, &[vec![0, 1, 2], vec![2, 3, 4], vec![3, 4]]);
+    let mut at = Attributes::new();
+    at.insert(Attribute::labels(
+        "region",
+        Location::Listed,
+        vec![10, 20, 7],
+    ));
+    at.insert(Attribute {
+        name: "weight".into(),
+        location: Location::Vertices,
+        components: 1,
+        values: Values::F64(vec![0.5, 1.5, 2.5, 3.5, 4.5]),
+    });
+    c.set_attributes(at).unwrap();
+    let dec = Iqm::build(&c).unwrap().decomposition();
+    assert_eq!(dec.components.len(), 2);
+    let dir = Scratch::new("decompose");
+    let paths = topoplex::decompose::write_components_of(&dec, &c, &dir.0, None).unwrap();
+    let mut seen = Vec::new();
+    for (piece, path) in dec.components.iter().zip(&paths) {
+        let back = read_path(path).unwrap();
+        let region = back.attributes.get("region", Location::Listed).unwrap();
+        let weight = back.attributes.get("weight", Location::Vertices).unwrap();
+        for (local, &v) in piece.original.iter().enumerate() {
+            assert_eq!(weight.values.real(local), Some(f64::from(v) + 0.5));
+        }
+        for i in 0..back.simplex_count() {
+            let original: Vec<u32> = back
+                .simplex(i)
+                .iter()
+                .map(|&l| piece.original[l as usize])
+                .collect();
+            seen.push((key(&original), region.label(i).unwrap()));
+        }
+    }
+    seen.sort();
+    assert_eq!(
+        seen,
+        vec![(vec![0, 1, 2], 10), (vec![2, 3, 4], 20), (vec![3, 4], 7)]
+    );
+}
+
+/// `.tpx` keeps every attribute bit for bit (random listings with every type, 1–9 components,
+/// label names), with and without a saved structure, and a saved live complex opens back with
+/// its data.
+#[test]
+fn saved_files_keep_attributes_and_the_live_complex_its_data() {
+    use topoplex::live::LiveComplex;
+    use topoplex::store::{Saved, save};
+    let dir = Scratch::new("tpx");
+    for seed in 1..6u64 {
+        let mut raw = random_listing(seed, 12, 20, true, false);
+        let mut rng = common::Rng(seed | 1);
+        let m = raw.simplex_count();
+        raw.attributes.insert(Attribute::labels(
+            "region",
+            Location::Listed,
+            labels(&mut rng, m),
+        ));
+        raw.attributes.insert(Attribute {
+            name: "v".into(),
+            location: Location::Vertices,
+            components: 3,
+            values: Values::F32((0..36).map(|i| i as f32 / 3.0).collect()),
+        });
+        raw.attributes.insert(Attribute {
+            name: "w".into(),
+            location: Location::Listed,
+            components: 9,
+            values: Values::I64((0..m as i64 * 9).map(|i| i * 1_000_000_007).collect()),
+        });
+        raw.attributes.add_label_name(LabelName {
+            attribute: "region".into(),
+            dimension: None,
+            label: 3,
+            name: "three".into(),
+        });
+        let c = Complex::from_raw(&raw, None).unwrap();
+        let ig = topoplex::build(topoplex::StructureKind::Ig, &c).unwrap();
+        for structure in [None, Some(ig.as_ref())] {
+            let path = dir.0.join("a.tpx");
+            save(&path, &c, structure).unwrap();
+            let back = Saved::open(&path).unwrap().complex().unwrap();
+            assert!(back.attributes().bits_eq(c.attributes()), "seed {seed}");
+        }
+        let live = LiveComplex::try_from_complex(&c).unwrap();
+        let path = dir.0.join("l.tpx");
+        live.save(&path).unwrap();
+        let opened = LiveComplex::open(&path).unwrap();
+        assert!(
+            opened
+                .to_complex()
+                .attributes()
+                .bits_eq(live.to_complex().attributes()),
+            "seed {seed}: the live complex's data"
+        );
     }
 }

@@ -1,7 +1,7 @@
 //! The saved format `.tpx`: a complex and, optionally, one structure built on it, opened back
 //! zero-copy by memory mapping.
 //!
-//! # Layout (version 1)
+//! # Layout (version 2)
 //! All integers are in the byte order named by the header (the writer's; every platform we ship
 //! is little-endian) and vertex/simplex ids are 32 bits wide.
 //!
@@ -9,7 +9,7 @@
 //! |---|---|
 //! | 0..8 | magic `\x89TPX\r\n\x1a\n` (the high byte and the line endings expose text-mode transfers) |
 //! | 8..12 | byte-order mark `0x01020304` as written by the writer |
-//! | 12..16 | format version (1) |
+//! | 12..16 | format version (2; files of version 1 are read too) |
 //! | 16..20 | id width in bits (32) |
 //! | 20..24 | content: 0 = complex only, 1 + `TPX_KIND_*` = complex and that structure |
 //! | 24..28 | number of sections |
@@ -21,8 +21,10 @@
 //!
 //! Each section holds one array: 64-byte aligned, described in the table by 32 bytes (offset,
 //! element count, element size in bytes (1..=64), zero, XXH3-64 of its bytes); padding is zero. The complex comes first (its
-//! vertex count, coordinates and the simplices as listed), then the structure's arrays in the
-//! order its `save` wrote them.
+//! vertex count, coordinates, the simplices as listed and, since version 2, its attributes —
+//! labels and fields, copied on open like the listing; a complex without any is laid out as in
+//! version 1), then the structure's arrays in the order its `save` wrote them. A saved live
+//! complex gets its data back from the complex saved beside it.
 //!
 //! # Checksums and validation: what opening costs
 //! Opening reads and checks the header and the section table (their checksum, then every
@@ -233,7 +235,8 @@ impl Saved {
     /// same complex, numbering and statistics as the one saved. Cost: a normalisation.
     pub fn complex(&self) -> Result<Complex, StoreError> {
         let mut r = self.reader(1);
-        let c = persist::load_complex(&mut r)?;
+        let mut c = persist::load_complex(&mut r)?;
+        persist::load_attributes(&mut r, &mut c, self.structure_first)?;
         if r.next != self.structure_first {
             return Err(r.corrupt("the complex's sections do not end where the structure's begin"));
         }
@@ -357,7 +360,9 @@ impl LiveComplex {
     /// [`LiveComplex::open`] of an opened file.
     pub fn open_saved(saved: &Saved) -> Result<LiveComplex, StoreError> {
         let kind = crate::relation::StructureKind::IaStar;
-        if let Some(live) = saved.structure_as::<LiveComplex>(kind)? {
+        if let Some(mut live) = saved.structure_as::<LiveComplex>(kind)? {
+            let complex = saved.complex()?;
+            live.attach_data(&complex);
             return Ok(live);
         }
         LiveComplex::try_from_complex(&saved.complex()?).map_err(|source| StoreError::Build {
