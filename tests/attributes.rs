@@ -452,6 +452,23 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// `.simplices` labels (`s ... : L`, any `i64`) on random listings of every dimension come
+    /// back bit for bit.
+    #[test]
+    fn simplices_labels_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
+        let mut raw = random_listing(seed, n, count, true, false);
+        let mut rng = common::Rng((seed ^ 17) | 1);
+        let m = raw.simplex_count();
+        let values = (0..m).map(|i| if i % 5 == 4 { i64::MIN } else { rng.next() as i64 }).collect();
+        raw.attributes.insert(Attribute { name: "simplices:label".into(), location: Location::Listed, components: 1, values: Values::I64(values) });
+        let dir = Scratch::new("simplices");
+        prop_assert_eq!(round_trip(&raw, Format::Simplices, &dir.0), Ok(()));
+    }
+}
+
 /// STL solids that cannot be written are refused naming the attribute: in binary STL, a label
 /// without a name, a name with a newline.
 #[test]

@@ -374,6 +374,16 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             format!("NnOFF\n10\n1 0 0\n{}\n", ["0"; 20].join(" ")).into_bytes(),
         ),
         (
+            "partial data (refused: nothing holds \"no value\")",
+            "labels-partial.simplices",
+            b"s 0 1 2 : 7\ns 1 2\n".to_vec(),
+        ),
+        (
+            "data of the wrong type",
+            "label-real.simplices",
+            b"s 0 1 2 : 1.5\n".to_vec(),
+        ),
+        (
             "data of the wrong type",
             "smoothing.obj",
             b"v 0 0 0\nv 1 0 0\nv 0 1 0\ns 1.5\nf 1 2 3\n".to_vec(),

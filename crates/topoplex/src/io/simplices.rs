@@ -16,6 +16,9 @@
 //!   (`1e309`, `1e-400`) is an error.
 //! * `s a b c ...` declares a simplex by at least one 0-based vertex id (ids must fit in 32 bits;
 //!   a negative id is [`ReadErrorKind::NegativeId`]). Each simplex is recorded at its line.
+//! * `s a b c : L` gives the simplex an integer label `L` (`i64`), the attribute
+//!   `simplices:label` on the listed simplices: blanks around the `:`, the label ends the line.
+//!   Every `s` line has a label or none has (nothing holds "no label").
 //! * `v` and `s` lines may be interleaved in any order.
 //! * With `v` lines the vertex count is their number and the coordinates have dimension k (none
 //!   when k = 0). Without `v` lines the vertex count is `None`: the vertices are `0..=max id`.
@@ -26,7 +29,68 @@
 use super::chunked;
 use super::scan::{self, Scanner};
 use super::{Coords, RawInput, ReadErrorKind, echo, no_room, parse_f64, syntax};
-use crate::complex::table;
+use crate::complex::{Attribute, Location, Values, table};
+
+/// The attribute of the labels after `:` on `s` lines.
+pub(crate) const LABEL: &str = "simplices:label";
+
+/// The labels of the `s` lines read so far: every line has one, or none has.
+#[derive(Default)]
+struct Labels {
+    /// `None` before the first `s` line or when it has no label.
+    values: Option<Vec<i64>>,
+    /// The line of the first `s` line.
+    first: Option<u32>,
+}
+
+impl Labels {
+    fn keep(&mut self, label: Option<i64>, line: u32) -> Result<(), ReadErrorKind> {
+        let first = *self.first.get_or_insert(line);
+        match (&mut self.values, label) {
+            (Some(v), Some(l)) => {
+                table::try_push(v, l).map_err(no_room("the simplex labels"))?;
+            }
+            (None, None) => {}
+            (None, Some(l)) if first == line => self.values = Some(vec![l]),
+            (v, _) => {
+                let (this, that) = if v.is_some() {
+                    ("has no label", "has one")
+                } else {
+                    ("has a label", "has none")
+                };
+                return Err(syntax(format!(
+                    "s line {this}, but the first s line (line {first}) {that}: every s line \
+                     has a label or none has"
+                )));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The label after an `s` line's `:`: one integer that fits 64 bits, ending the line.
+fn read_label(s: &mut Scanner<'_>) -> Result<i64, ReadErrorKind> {
+    let Some((tok, _)) = s.token_in_line() else {
+        return Err(syntax("s line ends after ':'; expected a label"));
+    };
+    let label = match super::parse_integer(tok) {
+        Ok(v) => i64::try_from(v).ok(),
+        Err(_) => None,
+    }
+    .ok_or_else(|| {
+        syntax(format!(
+            "label '{}' after ':' is not an integer that fits 64 bits",
+            echo(tok)
+        ))
+    })?;
+    if let Some((tok, _)) = s.token_in_line() {
+        return Err(syntax(format!(
+            "'{}' after the label of an s line (the label ends it)",
+            echo(tok)
+        )));
+    }
+    Ok(label)
+}
 
 /// Reads a `.simplices` file's text. A large file is read on several threads (ranges of whole
 /// lines counted, then parsed into arrays reserved at their size), with the same result and the
@@ -218,6 +282,8 @@ fn parse_serially(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     let mut first_v: Option<(usize, u32)> = None;
     let mut vertices: u32 = 0;
     let mut ids = Vec::new();
+    let mut labels = Labels::default();
+    let mut label = None;
     loop {
         if let Some((keyword, line)) = s.token_in_line() {
             let err = |k: ReadErrorKind| (line, k);
@@ -258,6 +324,10 @@ fn parse_serially(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
                         let id = match s.digits(false) {
                             Some((v, _)) => scan::id_value(v, false),
                             None => match s.token_in_line() {
+                                Some((":", _)) => {
+                                    label = Some(read_label(&mut s).map_err(err)?);
+                                    break;
+                                }
                                 Some((tok, _)) => scan::id(tok, false),
                                 None => break,
                             },
@@ -269,6 +339,7 @@ fn parse_serially(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
                         return Err(err(syntax("s line with no vertex ids")));
                     }
                     raw.try_push(&ids, line).map_err(err)?;
+                    labels.keep(label.take(), line).map_err(err)?;
                 }
                 k => {
                     return Err(err(syntax(format!(
@@ -283,6 +354,14 @@ fn parse_serially(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
         }
     }
 
+    if let Some(values) = labels.values {
+        raw.attributes.insert(Attribute {
+            name: LABEL.to_string(),
+            location: Location::Listed,
+            components: 1,
+            values: Values::I64(values),
+        });
+    }
     match first_v {
         None if raw.simplex_count() == 0 => {
             Err((s.eof_line(), syntax("file is empty (no `v` or `s` lines)")))
@@ -301,6 +380,46 @@ mod tests {
     use super::*;
 
     reader_test_helpers!();
+
+    #[test]
+    fn labels_after_a_colon_are_an_i64_attribute() {
+        let r = ok("v\nv\nv\ns 0 1 2 : 7\ns 1 2\t:\t-9223372036854775808 # min\n");
+        assert_eq!(simplices(&r), [vec![0, 1, 2], vec![1, 2]]);
+        let a = r.attributes.get(LABEL, Location::Listed).unwrap();
+        assert_eq!(a.values, Values::I64(vec![7, i64::MIN]));
+        assert!(ok("s 0 1\n").attributes.is_empty());
+        err(
+            "s 0 1 : 7\ns 1 2\n",
+            2,
+            "s line has no label, but the first s line (line 1) has one",
+        );
+        err(
+            "s 0 1\ns 1 2 : 7\n",
+            2,
+            "s line has a label, but the first s line (line 1) has none",
+        );
+        err("s 0 1 :\n", 1, "s line ends after ':'");
+        err(
+            "s 0 1 : 1.5\n",
+            1,
+            "label '1.5' after ':' is not an integer",
+        );
+        err(
+            "s 0 1 : 9223372036854775808\n",
+            1,
+            "not an integer that fits 64 bits",
+        );
+        err("s 0 1 : 7 8\n", 1, "'8' after the label of an s line");
+        // Written back, read back the same (ids and labels).
+        let mut out = Vec::new();
+        super::super::write::Format::Simplices
+            .write(&r)
+            .map(|b| out = b)
+            .unwrap();
+        let back = ok(std::str::from_utf8(&out).unwrap());
+        assert!(back.attributes.bits_eq(&r.attributes));
+        assert_eq!(back.ids, r.ids);
+    }
 
     #[test]
     fn with_v_lines() {

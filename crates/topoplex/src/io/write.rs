@@ -149,7 +149,7 @@ impl Format {
     /// grouping labels (`obj:object`, `obj:group`, `obj:material`, `obj:smoothing`, `i32` on
     /// the listed simplices; names checked when written), OFF `off:normal`, `off:color`,
     /// `off:texture` (`f64`) on the vertices and `off:color` (`f64`, 1, 3 or 4 components) on
-    /// the listed simplices, ASCII STL `stl:solid` (`i32` on the listed triangles, named).
+    /// the listed simplices, `.simplices` `simplices:label` (`i64` on the listed simplices), ASCII STL `stl:solid` (`i32` on the listed triangles, named).
     pub fn holds(self, a: &Attribute) -> bool {
         let int32 = a.components == 1
             && match &a.values {
@@ -172,6 +172,12 @@ impl Format {
             Format::Vtu => !a.name.is_empty() && !a.name.chars().any(char::is_control),
             Format::Ply | Format::PlyBinary => super::ply::holds(a),
             Format::Off => off::holds(a),
+            Format::Simplices => {
+                a.name == super::simplices::LABEL
+                    && a.location == Location::Listed
+                    && a.components == 1
+                    && matches!(a.values, Values::I64(_))
+            }
             Format::Stl => {
                 a.name == super::stl::SOLID
                     && a.location == Location::Listed
@@ -192,12 +198,16 @@ impl Format {
     /// [`WriteErrorKind::CannotHold`]: the attribute, the formats that hold it, and how to drop
     /// it.
     /// Whether this format holds the names of the labels of attribute `attribute` (Gmsh's
-    /// `$PhysicalNames` for `gmsh:physical`).
+    /// `$PhysicalNames` for `gmsh:physical`; OBJ's `o`, `g`, `usemtl` names for `obj:object`,
+    /// `obj:group`, `obj:material`; ASCII STL's solid names for `stl:solid`).
     pub fn holds_label_names(self, attribute: &str) -> bool {
         match self {
             Format::Msh | Format::MshBinary | Format::Msh2 | Format::Msh2Binary => {
                 attribute == super::msh::PHYSICAL
             }
+            // The names are the statements' and the solids' own.
+            Format::Obj => super::obj::LABELS[..3].iter().any(|l| l.1 == attribute),
+            Format::Stl => attribute == super::stl::SOLID,
             _ => false,
         }
     }
