@@ -1,10 +1,11 @@
 //! `topoplex`: report on a complex and dump its relations through any structure.
 //!
 //! Error contract: every failure — a usage error, an unreadable input, an output that cannot be
-//! written (closed pipe, full disk) — exits 1 with one bounded, escaped line on stderr
-//! (`topoplex: ...`); nothing panics on I/O. A subcommand is a function returning
-//! `Result<(), String>` called from [`run`]; it reads inputs with [`load`] (which applies
-//! `--max-simplices`) and writes stdout with [`print`] or through [`output_error`].
+//! written (full disk) — exits 1 with one bounded, escaped line on stderr (`topoplex: ...`);
+//! nothing panics on I/O; a closed pipe on stdout (`... | head -1`) ends the run quietly with
+//! exit 0 ([`BROKEN_PIPE`]). A subcommand is a function returning `Result<(), String>` called
+//! from [`run`]; it reads inputs with [`load`] (which applies `--max-simplices` and `--verify`)
+//! and writes stdout with [`print`] or through [`output_error`].
 
 use std::io::{BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -35,6 +36,11 @@ struct Cli {
     /// Threads for building structures, 1 to 256 (default: TOPOPLEX_THREADS, else every core).
     #[arg(long, global = true, value_name = "N")]
     threads: Option<usize>,
+    /// Check a saved (.tpx) input fully before using it, as `verify` does: every checksum, the
+    /// complex, the structure's invariants and its agreement with the complex (reads the whole
+    /// file). Mesh inputs are always checked fully by reading them.
+    #[arg(long, global = true)]
+    verify: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -85,7 +91,8 @@ enum Command {
         #[arg(long)]
         out: PathBuf,
     },
-    /// Check a .tpx file fully: every section's checksum and the saved structure's invariants.
+    /// Check a saved file fully: every section's checksum, the saved complex, the saved
+    /// structure's invariants, and that the structure is the one its complex builds.
     Verify {
         /// The .tpx file.
         file: PathBuf,
@@ -164,12 +171,20 @@ fn parse_pq(s: &str) -> Result<(usize, usize), String> {
 /// CLI can be run several times in one process, as the CLI fuzz target does).
 static BUDGET: Mutex<Option<u64>> = Mutex::new(None);
 
+/// `--verify` (an atomic for the same reason as [`BUDGET`]).
+static VERIFY: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// The `Err` of a write to a closed pipe (`topoplex relation ... | head -1`): [`main`] exits
+/// quietly with status 0, as ripgrep does (the reader wanted no more).
+pub const BROKEN_PIPE: &str = "writing output: broken pipe";
+
 fn main() -> ExitCode {
     // Keeps `simplify`'s peak RSS at its live heap: glibc's default dynamic mmap threshold left
     // ~40 MB of freed memory resident on a 1.2M-triangle mesh (docs/benchmarks.md).
     topoplex::sys::fix_malloc_thresholds_for_executable();
     match cli(std::env::args_os()) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(msg) if msg == BROKEN_PIPE => ExitCode::SUCCESS,
         Err(msg) => fail(&msg),
     }
 }
@@ -184,6 +199,7 @@ pub fn cli(args: impl IntoIterator<Item = std::ffi::OsString>) -> Result<(), Str
         Err(outcome) => return outcome,
     };
     *BUDGET.lock().unwrap_or_else(|e| e.into_inner()) = cli.max_simplices;
+    VERIFY.store(cli.verify, std::sync::atomic::Ordering::Relaxed);
     topoplex::parallel::threads_from_env()?;
     if let Some(n) = cli.threads {
         let n = topoplex::parallel::check_threads(n).map_err(|e| format!("--threads: {e}"))?;
@@ -280,6 +296,9 @@ fn usage_line(rendered: &str) -> String {
 
 /// The message for a failed write to stdout (closed pipe, full disk).
 fn output_error(e: std::io::Error) -> String {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        return BROKEN_PIPE.to_string();
+    }
     format!("writing output: {e}")
 }
 
@@ -294,12 +313,17 @@ fn print(text: &str) -> Result<(), String> {
 /// Reads and normalises `file` under the `--max-simplices` budget (a `.tpx` gives its saved
 /// complex).
 fn load(file: &Path) -> Result<Complex, String> {
-    topoplex::store::open_complex(file, budget()).map_err(|e| e.to_string())
+    topoplex::store::open_complex_with(file, budget(), verifying()).map_err(|e| e.to_string())
 }
 
 /// The structure of `kind` for `file`: a saved one is mapped, not rebuilt.
 fn load_structure(file: &Path, kind: StructureKind) -> Result<Box<dyn Topology>, String> {
-    topoplex::store::open_structure(file, kind, budget()).map_err(|e| e.to_string())
+    topoplex::store::open_structure_with(file, kind, budget(), verifying())
+        .map_err(|e| e.to_string())
+}
+
+fn verifying() -> bool {
+    VERIFY.load(std::sync::atomic::Ordering::Relaxed)
 }
 
 fn budget() -> Budget {
@@ -309,7 +333,8 @@ fn budget() -> Budget {
 }
 
 fn parse_kind(structure: &str) -> Result<StructureKind, String> {
-    StructureKind::from_name(structure).ok_or_else(|| {
+    // Case-insensitive, as --format is.
+    StructureKind::from_name(&structure.to_ascii_lowercase()).ok_or_else(|| {
         let names: Vec<&str> = StructureKind::NAMED.iter().map(|k| k.name()).collect();
         format!(
             "unknown structure `{}` (expected one of: {})",
@@ -661,10 +686,32 @@ fn dump_relation(
         }
         None => {
             let mut all = Vec::new();
-            topo.simplices(p, &mut all);
+            topoplex::error::caught_quietly(std::panic::AssertUnwindSafe(|| {
+                topo.simplices(p, &mut all)
+            }))
+            .map_err(|_| corrupt_answer(&file))?;
             all
         }
     };
+    // A saved file's structure is queried in place, checked only in shape unless --verify:
+    // arrays altered behind their checksums may break a query (never a read out of bounds),
+    // which is reported as the file's fault, not as a crash.
+    let answered = topoplex::error::caught_quietly(std::panic::AssertUnwindSafe(|| {
+        write_relation(topo.as_ref(), &sigmas, p, q)
+    }));
+    answered.unwrap_or_else(|_| Err(corrupt_answer(&file)))
+}
+
+/// The message for a query that broke on a saved file's arrays.
+fn corrupt_answer(file: &Path) -> String {
+    format!(
+        "{}: corrupt saved file: inconsistent arrays met while answering (`topoplex verify` names the first)",
+        echo_path(file)
+    )
+}
+
+/// Writes R_{p,q} of every p-simplex of `sigmas` (rows of p + 1 ids) to stdout.
+fn write_relation(topo: &dyn Topology, sigmas: &[u32], p: usize, q: usize) -> Result<(), String> {
     let stdout = std::io::stdout();
     let mut w = BufWriter::new(stdout.lock());
     let mut out = Vec::new();
