@@ -90,6 +90,8 @@ enum Command {
         /// The .tpx file to write.
         #[arg(long)]
         out: PathBuf,
+        #[command(flatten)]
+        data: DropData,
     },
     /// Check a saved file fully: every section's checksum, the saved complex, the saved
     /// structure's invariants, and that the structure is the one its complex builds.
@@ -114,10 +116,14 @@ enum Command {
         /// dimension; refused, writing nothing, if it cannot hold a component.
         #[arg(long)]
         format: Option<String>,
+        #[command(flatten)]
+        data: DropData,
     },
     /// Read INPUT and write it to OUTPUT (formats by extension): the top simplices in input
-    /// order and winding, isolated vertices and wire edges kept, coordinates bit for bit. A
-    /// format that cannot hold the complex is refused with the reason.
+    /// order and winding, isolated vertices and wire edges kept, coordinates bit for bit, and
+    /// every attribute (labels, fields; with listed-simplex data every listed simplex is
+    /// written). A format that cannot hold the complex or an attribute is refused with the
+    /// reason, writing nothing.
     Convert {
         input: PathBuf,
         output: PathBuf,
@@ -130,6 +136,8 @@ enum Command {
         /// role and iqm_component for ParaView.
         #[arg(long)]
         census: bool,
+        #[command(flatten)]
+        data: DropData,
     },
     /// Quadric-error edge-contraction simplification (Garland–Heckbert, any dimension) down to
     /// about RATIO × the input's top simplices; the output format follows its extension (any
@@ -146,7 +154,63 @@ enum Command {
         /// are kept.
         #[arg(long)]
         preserve_topology: bool,
+        #[command(flatten)]
+        data: DropData,
     },
+}
+
+/// `--drop-data`, on every command that writes: attributes the output should not carry.
+#[derive(clap::Args, Debug, Default)]
+struct DropData {
+    /// Drop the attribute NAME (labels or fields, e.g. medit:ref, gmsh:physical) before
+    /// writing, or every attribute with `all`; repeatable. Without it, an attribute the output
+    /// cannot hold is an error, never dropped silently.
+    #[arg(long = "drop-data", value_name = "NAME|all")]
+    names: Vec<String>,
+}
+
+impl DropData {
+    /// Removes the named attributes from `complex`; naming one it does not have is an error
+    /// listing those it has.
+    fn apply(&self, complex: &mut Complex) -> Result<(), String> {
+        if self.names.is_empty() {
+            return Ok(());
+        }
+        let mut at = complex.take_attributes();
+        for name in &self.names {
+            if name == "all" {
+                at.clear();
+            } else if !at.remove(name) {
+                let mut have: Vec<String> =
+                    at.iter().map(|a| format!("'{}'", echo(&a.name))).collect();
+                have.dedup();
+                return Err(format!(
+                    "--drop-data '{}': the input has no such attribute ({})",
+                    echo(name),
+                    if have.is_empty() {
+                        "it has none".to_string()
+                    } else {
+                        format!("it has {}", have.join(", "))
+                    }
+                ));
+            }
+        }
+        complex.set_attributes(at).map_err(|e| e.to_string())
+    }
+}
+
+/// Refuses to go on when `complex` carries attributes that `what` does not carry yet: never
+/// dropped silently.
+fn refuse_data(complex: &Complex, what: &str) -> Result<(), String> {
+    match complex.attributes().iter().next() {
+        None => Ok(()),
+        Some(a) => Err(format!(
+            "{what} does not carry attributes yet, and the input has {}; drop them explicitly \
+             with --drop-data '{}' (or all)",
+            a.describe(),
+            echo(&a.name)
+        )),
+    }
 }
 
 fn parse_max_simplices(s: &str) -> Result<u64, String> {
@@ -228,25 +292,29 @@ fn run(command: Command) -> Result<(), String> {
             out,
             force,
             format,
-        } => decompose(&file, &out, force, format.as_deref()),
+            data,
+        } => decompose(&file, &out, force, format.as_deref(), &data),
         Command::Convert {
             input,
             output,
             format,
             census,
-        } => convert(&input, &output, format.as_deref(), census),
+            data,
+        } => convert(&input, &output, format.as_deref(), census, &data),
         Command::Save {
             file,
             structure,
             out,
-        } => save(&file, structure.as_deref(), &out),
+            data,
+        } => save(&file, structure.as_deref(), &out, &data),
         Command::Verify { file } => verify(&file),
         Command::Simplify {
             input,
             out,
             ratio,
             preserve_topology,
-        } => simplify(&input, &out, ratio, preserve_topology),
+            data,
+        } => simplify(&input, &out, ratio, preserve_topology, &data),
     }
 }
 
@@ -344,12 +412,14 @@ fn parse_kind(structure: &str) -> Result<StructureKind, String> {
     })
 }
 
-fn save(file: &Path, structure: Option<&str>, out: &Path) -> Result<(), String> {
+fn save(file: &Path, structure: Option<&str>, out: &Path, data: &DropData) -> Result<(), String> {
     // The live complex (`iastar`) is saved too, to be opened back editable.
     let kind = structure.map(parse_kind).transpose()?;
     // Writing over the input would truncate it under its own memory map (a .tpx input).
     not_the_input(file, out, "--out ")?;
-    let complex = load(file)?;
+    let mut complex = load(file)?;
+    data.apply(&mut complex)?;
+    refuse_data(&complex, "save (.tpx)")?;
     let built = match kind {
         Some(k) if topoplex::store::is_saved_path(file) => Some(load_structure(file, k)?),
         Some(k) => Some(topoplex::build(k, &complex).map_err(|e| e.to_string())?),
@@ -486,7 +556,13 @@ fn output_format(name: &str) -> Result<Format, String> {
     })
 }
 
-fn convert(input: &Path, output: &Path, format: Option<&str>, census: bool) -> Result<(), String> {
+fn convert(
+    input: &Path,
+    output: &Path,
+    format: Option<&str>,
+    census: bool,
+    data: &DropData,
+) -> Result<(), String> {
     let format = format.map(output_format).transpose()?;
     if census && Format::from_path(output) != Some(Format::Vtk) {
         return Err(format!(
@@ -496,17 +572,27 @@ fn convert(input: &Path, output: &Path, format: Option<&str>, census: bool) -> R
     }
     // The input's content beyond the complex (OBJ normals, PLY properties, ...) would be lost.
     not_the_input(input, output, "")?;
-    let complex = load(input)?;
+    let mut complex = load(input)?;
+    data.apply(&mut complex)?;
     if census {
+        refuse_data(&complex, "convert --census")?;
         return topoplex_cli::report::census_vtk::write_census_vtk(&complex, output)
             .map_err(|e| e.to_string());
     }
     topoplex::io::write::write_complex(&complex, output, format).map_err(|e| e.to_string())
 }
 
-fn decompose(file: &Path, out: &Path, force: bool, format: Option<&str>) -> Result<(), String> {
+fn decompose(
+    file: &Path,
+    out: &Path,
+    force: bool,
+    format: Option<&str>,
+    data: &DropData,
+) -> Result<(), String> {
     let format = format.map(output_format).transpose()?;
-    let complex = load(file)?;
+    let mut complex = load(file)?;
+    data.apply(&mut complex)?;
+    refuse_data(&complex, "decompose")?;
     prepare_out_dir(file, out, force)?;
     let iqm = topoplex::structures::iqm::Iqm::build(&complex).map_err(|e| e.to_string())?;
     let dec = iqm.decomposition();
@@ -596,7 +682,13 @@ fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
     }
 }
 
-fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Result<(), String> {
+fn simplify(
+    input: &Path,
+    out: &Path,
+    ratio: f64,
+    preserve_topology: bool,
+    data: &DropData,
+) -> Result<(), String> {
     use topoplex::io::write::write_complex;
     use topoplex::simplify::{Options, check_output, simplify_owned};
     if !(ratio > 0.0 && ratio <= 1.0) {
@@ -607,7 +699,9 @@ fn simplify(input: &Path, out: &Path, ratio: f64, preserve_topology: bool) -> Re
         preserve_topology,
     };
     not_the_input(input, out, "--out ")?;
-    let complex = load(input)?;
+    let mut complex = load(input)?;
+    data.apply(&mut complex)?;
+    refuse_data(&complex, "simplify")?;
     // Refuse an unknown or unfit format and an unwritable output before the work, not after.
     let existed = out.exists();
     check_output(out, &complex).map_err(|e| e.to_string())?;

@@ -315,7 +315,93 @@ fn cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
         ),
     ];
     cases.extend(new_format_cases());
+    cases.extend(data_cases());
     cases
+}
+
+/// Malformed data sections (issue 26): counts, types and values an attribute cannot hold, and
+/// data no reader keeps yet, each refused naming the line and the array.
+fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
+    let tri = "POINTS 3 double\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n";
+    let vtk = |body: &str| {
+        format!("# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n{tri}{body}")
+            .into_bytes()
+    };
+    let msh2 = |body: &str| format!("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n{body}").into_bytes();
+    let medit = |body: &str| format!("MeshVersionFormatted 2\nDimension 3\n{body}").into_bytes();
+    vec![
+        (
+            "data count mismatch",
+            "data-count.vtk",
+            vtk("CELL_DATA 2\nSCALARS region int 1\nLOOKUP_TABLE default\n1 2\n"),
+        ),
+        (
+            "data count mismatch",
+            "field-count.vtk",
+            vtk("POINT_DATA 3\nFIELD f 1\nt 1 2 double\n0 1\n"),
+        ),
+        (
+            "data of the wrong type",
+            "data-real.vtk",
+            vtk("CELL_DATA 1\nSCALARS region int 1\nLOOKUP_TABLE default\n1.5\n"),
+        ),
+        (
+            "data of the wrong type",
+            "data-nan-label.vtk",
+            vtk("CELL_DATA 1\nSCALARS region int 1\nLOOKUP_TABLE default\nnan\n"),
+        ),
+        (
+            "data of the wrong type",
+            "ref-real.mesh",
+            medit("Vertices\n1\n0 0 0 1.5\n"),
+        ),
+        (
+            "data value overflows its type",
+            "data-overflow.vtk",
+            vtk("POINT_DATA 3\nSCALARS t float 1\nLOOKUP_TABLE default\n1 1e39 2\n"),
+        ),
+        (
+            "data value overflows its type",
+            "ref-range.mesh",
+            medit("Vertices\n1\n0 0 0 4294967296\n"),
+        ),
+        (
+            "data value overflows its type",
+            "tag-range.msh",
+            msh2(
+                "$Nodes\n1\n1 0 0 0\n$EndNodes\n$Elements\n1\n1 15 2 3000000000 1 1\n$EndElements\n",
+            ),
+        ),
+        (
+            "data too wide",
+            "data-components.vtk",
+            vtk(
+                "POINT_DATA 3\nFIELD f 1\nt 10 3 double\n0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0 0\n",
+            ),
+        ),
+        (
+            "data not held (refused, never skipped)",
+            "data-lut.vtk",
+            vtk("CELL_DATA 1\nLOOKUP_TABLE lut 1\n0 0 0 1\n"),
+        ),
+        (
+            "data not held (refused, never skipped)",
+            "nodedata.msh",
+            msh2(
+                "$Nodes\n1\n1 0 0 0\n$EndNodes\n$NodeData\n1\n\"t\"\n1\n0\n3\n0\n1\n1\n1 5\n$EndNodeData\n",
+            ),
+        ),
+        (
+            "data not held (refused, never skipped)",
+            "names.msh",
+            msh2("$PhysicalNames\n1\n2 1 unquoted\n$EndPhysicalNames\n"),
+        ),
+        (
+            "data in the wrong place",
+            "data-before.vtk",
+            vtk("SCALARS region int 1\nLOOKUP_TABLE default\n1\n"),
+        ),
+    ]
 }
 
 /// The readers of the formats issue 15 added (PLY, STL, legacy VTK, VTU, Gmsh MSH).

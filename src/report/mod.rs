@@ -89,6 +89,70 @@ pub struct Dataset {
     pub sample: Sample,
     /// One entry per kind, in [`StructureKind::ALL`] order.
     pub structures: Vec<StructureResult>,
+    /// The complex's attributes, in the order the file gives them.
+    pub attributes: Vec<AttributeSummary>,
+}
+
+/// What `report` says of one attribute: where it is, its type, and for integer labels the
+/// distinct values with their counts and names.
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct AttributeSummary {
+    /// The attribute's name (`medit:ref`, `gmsh:physical`, a VTK array's name...).
+    pub name: String,
+    /// `vertices` or `listed simplices`.
+    pub on: &'static str,
+    /// `i32`, `i64`, `f32` or `f64`.
+    #[serde(rename = "type")]
+    pub value_type: &'static str,
+    /// Numbers per element.
+    pub components: usize,
+    /// Elements (vertices, or simplices as listed).
+    pub elements: usize,
+    /// Integer labels: each distinct value (first component), how many elements carry it, and
+    /// its name when the file names it (for one dimension: the listed simplices' with the
+    /// label); empty for reals.
+    pub labels: Vec<LabelCount>,
+}
+
+/// One distinct label of an [`AttributeSummary`].
+#[derive(Debug, Clone, serde::Serialize)]
+pub struct LabelCount {
+    /// The value.
+    pub label: i64,
+    /// Elements carrying it.
+    pub count: usize,
+    /// Its names (a Gmsh physical group's, per dimension), if any.
+    pub names: Vec<String>,
+}
+
+impl AttributeSummary {
+    /// The summary of each attribute of `complex`.
+    pub fn of(complex: &Complex) -> Vec<AttributeSummary> {
+        let at = complex.attributes();
+        at.iter()
+            .map(|a| AttributeSummary {
+                name: a.name.clone(),
+                on: a.location.describe(),
+                value_type: a.values.value_type().name(),
+                components: a.components,
+                elements: a.element_count(),
+                labels: a
+                    .label_counts()
+                    .into_iter()
+                    .map(|(label, count)| LabelCount {
+                        label,
+                        count,
+                        names: at
+                            .label_names()
+                            .iter()
+                            .filter(|n| n.attribute == a.name && n.label == label)
+                            .map(|n| n.name.clone())
+                            .collect(),
+                    })
+                    .collect(),
+            })
+            .collect()
+    }
 }
 
 impl Dataset {
@@ -117,6 +181,7 @@ impl Dataset {
             census,
             sample,
             structures,
+            attributes: AttributeSummary::of(complex),
         })
     }
 }

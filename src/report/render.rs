@@ -111,6 +111,48 @@ fn census_table(s: &mut String, datasets: &[Dataset]) {
     );
 }
 
+/// The attributes of a dataset, a line each: name, where, type × components, and for labels
+/// the distinct values with their counts (the first 12; `report --json` gives all).
+fn attribute_lines(s: &mut String, d: &Dataset) {
+    if d.attributes.is_empty() {
+        let _ = writeln!(s, "- attributes: none");
+        return;
+    }
+    let _ = writeln!(s, "- attributes:");
+    for a in &d.attributes {
+        let mut labels: Vec<String> = a
+            .labels
+            .iter()
+            .take(12)
+            .map(|l| {
+                let names = if l.names.is_empty() {
+                    String::new()
+                } else {
+                    format!(" \"{}\"", l.names.join("\" / \""))
+                };
+                format!("{}{names}: {}", l.label, l.count)
+            })
+            .collect();
+        if a.labels.len() > 12 {
+            labels.push(format!("... ({} distinct)", a.labels.len()));
+        }
+        let labels = if labels.is_empty() {
+            String::new()
+        } else {
+            format!("; labels {}", labels.join(", "))
+        };
+        let _ = writeln!(
+            s,
+            "  - `{}` on {} {}, {} × {}{labels}",
+            cell(&a.name),
+            a.elements,
+            a.on,
+            a.value_type,
+            a.components
+        );
+    }
+}
+
 /// What follows a census's non-manifold counts: the links approximated, and those left
 /// unclassified with the first of them.
 fn link_notes(c: &Census) -> String {
@@ -192,6 +234,7 @@ fn dataset_section(s: &mut String, d: &Dataset) {
     if let Err(e) = &c.iqm_components {
         let _ = writeln!(s, "- IQM decomposition: {e}");
     }
+    attribute_lines(s, d);
     let _ = writeln!(s, "- timing sample: {}\n", sample_text(d));
     let _ = writeln!(
         s,
@@ -311,6 +354,7 @@ pub fn json_value(d: &Dataset) -> Value {
         "census": census,
         "sample": d.sample,
         "structures": structs,
+        "attributes": d.attributes,
     })
 }
 

@@ -114,6 +114,28 @@ pub fn shared_files() -> Vec<PathBuf> {
     files
 }
 
+/// A scratch directory under the temp dir (named by the process, `tag` and the thread, so
+/// parallel tests do not meet), removed on drop.
+pub struct Scratch(pub PathBuf);
+
+impl Scratch {
+    pub fn new(tag: &str) -> Scratch {
+        let dir = std::env::temp_dir().join(format!(
+            "topoplex-test-{}-{tag}-{:?}",
+            std::process::id(),
+            std::thread::current().id()
+        ));
+        std::fs::create_dir_all(&dir).unwrap();
+        Scratch(dir)
+    }
+}
+
+impl Drop for Scratch {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
 /// Checks that the generated `table` stands between `<!-- {section}:begin -->` and
 /// `<!-- {section}:end -->` in docs/bad-input.md, or writes it there when
 /// `TOPOPLEX_WRITE_BAD_INPUT_DOC` is set. `test` names the test target that regenerates it.

@@ -2,6 +2,7 @@
 //! ([`RawInput`]), and the coordinates the complex keeps ([`Coords`]). Readers ([`crate::io`])
 //! stand above this and produce it; [`super::Complex::from_input`] normalises it.
 
+use super::Attributes;
 use crate::alloc;
 use crate::error::{ReadErrorKind, no_room};
 
@@ -29,6 +30,9 @@ pub struct RawInput {
     pub offsets: Vec<usize>,
     /// 1-based line of each simplex in the file (0 when not from a file).
     pub lines: Vec<u32>,
+    /// Named data on the vertices and on the simplices in the order pushed
+    /// ([`super::attributes`]).
+    pub attributes: Attributes,
 }
 
 impl RawInput {

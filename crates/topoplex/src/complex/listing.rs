@@ -23,6 +23,9 @@ pub(super) struct Listing {
     pub(super) ids: Vec<u32>,
     pub(super) offsets: Offsets,
     maps: std::sync::OnceLock<ListingMaps>,
+    /// The listings absorbed as faces, by ascending vertex ids then listing: built on first
+    /// use by [`Complex::listed_index`].
+    faces: std::sync::OnceLock<Vec<(Box<[u32]>, usize)>>,
 }
 
 /// Where each listed simplex's ids start in [`Listing::ids`].
@@ -249,6 +252,44 @@ impl Complex {
     pub fn top_listing(&self, p: usize, i: u32) -> Option<usize> {
         let f = self.listing_maps().first[p][i as usize];
         (f != u32::MAX).then_some(f as usize)
+    }
+
+    /// The first listing of the simplex with vertices `simplex` (any order): for a top simplex
+    /// its first listing ([`Complex::top_listing`]), for a face listed on its own (absorbed) its
+    /// first listing; `None` when the simplex was never listed. Its attribute values are element
+    /// `listed_index` of the [`super::Location::Listed`] attributes.
+    ///
+    /// Cost: a search in the top table of its dimension (the listing ↔ top maps built on first
+    /// use), then, when the simplex is not a top, a binary search among the absorbed listings
+    /// (an index of them built on first use: O(a log a) for a absorbed listings, their ids
+    /// plus 24 bytes each).
+    pub fn listed_index(&self, simplex: &[u32]) -> Option<usize> {
+        let mut buf = [0u32; MAX_DIMENSION + 1];
+        let sorted = buf.get_mut(..simplex.len())?;
+        sorted.copy_from_slice(simplex);
+        sorted.sort_unstable();
+        let p = sorted.len().checked_sub(1)?;
+        if let Some(i) = self.tops(p).find(sorted) {
+            return self.top_listing(p, i);
+        }
+        let faces = self.listing.faces.get_or_init(|| {
+            let maps = self.listing_maps();
+            let mut faces: Vec<(Box<[u32]>, usize)> = (0..self.input_count())
+                .filter(|&i| maps.top[i] == NONE_TOP)
+                .map(|i| {
+                    let mut ids: Box<[u32]> = self.input_simplex(i).into();
+                    ids.sort_unstable();
+                    (ids, i)
+                })
+                .collect();
+            faces.sort_unstable();
+            faces
+        });
+        let at = faces.partition_point(|(ids, _)| **ids < *sorted);
+        faces
+            .get(at)
+            .filter(|(ids, _)| **ids == *sorted)
+            .map(|&(_, i)| i)
     }
 
     /// Top p-simplex `i` with its vertices in the order of its first listing (its input

@@ -50,12 +50,16 @@ use std::path::{Path, PathBuf};
 
 use crate::error::ReadError;
 
+pub mod attributes;
 mod blocks;
 mod closure;
 mod input;
 mod listing;
 mod normalise;
 pub mod table;
+pub use attributes::{
+    Attribute, AttributeError, Attributes, LabelName, Location, ValueType, Values,
+};
 pub(crate) use blocks::Want;
 pub use input::{Coords, RawInput};
 use listing::Listing;
@@ -198,6 +202,14 @@ pub enum ComplexError {
         /// The file, if the input came from one.
         file: Option<PathBuf>,
     },
+    /// An attribute does not fit the vertices or the listing.
+    #[error("{}{error}", .file.as_ref().map(|p| format!("{}: ", crate::error::echo_path(p))).unwrap_or_default())]
+    Attribute {
+        /// What does not fit.
+        error: AttributeError,
+        /// The file, if the input came from one.
+        file: Option<PathBuf>,
+    },
     /// The coordinate array does not match the vertex count.
     #[error("coordinates: {0}")]
     Coordinates(String),
@@ -251,6 +263,8 @@ pub struct Complex {
     source: Option<PathBuf>,
     /// The simplices as listed: order and vertex order (winding) exactly as given.
     listing: Listing,
+    /// Named data on the vertices and the listed simplices ([`attributes`]).
+    attributes: Attributes,
 }
 
 impl Complex {
@@ -282,6 +296,30 @@ impl Complex {
     /// The file the complex was read from, if any.
     pub fn source(&self) -> Option<&Path> {
         self.source.as_deref()
+    }
+
+    /// The named data on the vertices and the listed simplices ([`attributes`]).
+    pub fn attributes(&self) -> &Attributes {
+        &self.attributes
+    }
+
+    /// The named data, to add, replace or drop attributes: they must still fit
+    /// ([`Attributes::check`] against [`Complex::vertex_count`] and [`Complex::input_count`]),
+    /// which [`Complex::set_attributes`] checks.
+    pub fn take_attributes(&mut self) -> Attributes {
+        std::mem::take(&mut self.attributes)
+    }
+
+    /// Replaces the named data, checked against the vertices and the listing.
+    pub fn set_attributes(&mut self, attributes: Attributes) -> Result<(), ComplexError> {
+        attributes
+            .check(self.n_vertices as usize, self.input_count())
+            .map_err(|error| ComplexError::Attribute {
+                error,
+                file: self.source.clone(),
+            })?;
+        self.attributes = attributes;
+        Ok(())
     }
 
     /// Top p-simplices (empty table for `p > dimension`).

@@ -36,6 +36,7 @@ impl Complex {
         let mut c = Complex::normalise_raw(&raw, file, coords, budget, false)?;
         c.listing.ids = raw.ids;
         c.listing.offsets = Offsets::from_vec(raw.offsets);
+        c.set_attributes(raw.attributes)?;
         Ok(c)
     }
 
@@ -51,7 +52,9 @@ impl Complex {
         file: Option<&Path>,
         budget: Budget,
     ) -> Result<Complex, ComplexError> {
-        Complex::normalise_raw(raw, file, raw.coords.clone(), budget, true)
+        let mut c = Complex::normalise_raw(raw, file, raw.coords.clone(), budget, true)?;
+        c.set_attributes(raw.attributes.clone())?;
+        Ok(c)
     }
 
     /// [`Complex::from_raw_with`] with the coordinates given apart; the listing is left empty
@@ -207,6 +210,7 @@ impl Complex {
             stats,
             source: file.map(Path::to_path_buf),
             listing,
+            attributes: Default::default(),
         })
     }
 }

@@ -105,27 +105,49 @@ pub(crate) fn fill<T: Send>(
     per: usize,
     entry: impl Fn(&mut Scanner<'_>, &mut [T]) -> Option<()> + Sync + Send,
 ) -> bool {
+    fill_with_side::<T, ()>(text, body, out, per, &mut [], |sc, items, _| {
+        entry(sc, items)
+    })
+}
+
+/// [`fill`] with one more value per line kept apart in `side` (a MEDIT element's reference
+/// beside its vertex ids): `side` is empty (nothing kept; `entry` gets `None`) or holds one
+/// slot per line.
+pub(crate) fn fill_with_side<T: Send, S: Send>(
+    text: &str,
+    body: &Body,
+    out: &mut [T],
+    per: usize,
+    side: &mut [S],
+    entry: impl Fn(&mut Scanner<'_>, &mut [T], Option<&mut S>) -> Option<()> + Sync + Send,
+) -> bool {
     use rayon::prelude::*;
-    let run = |r: usize, part: &mut [T]| -> bool {
+    let run = |r: usize, part: &mut [T], mut side: Option<&mut [S]>| -> bool {
         let (a, z) = (body.cuts[r], body.cuts[r + 1]);
         let first = body.first_line + (r * body.step) as u32;
         let mut sc = Scanner::at_line(&text[..z], a, first);
-        for items in part.chunks_mut(per.max(1)) {
-            if entry(&mut sc, items).is_none() || sc.token_in_line().is_some() {
+        for (k, items) in part.chunks_mut(per.max(1)).enumerate() {
+            let slot = side.as_deref_mut().and_then(|s| s.get_mut(k));
+            if entry(&mut sc, items, slot).is_none() || sc.token_in_line().is_some() {
                 return false;
             }
             sc.next_line();
         }
         sc.pos() == z
     };
-    if per == 0 || out.len() != per * body.lines {
+    if per == 0 || out.len() != per * body.lines || !(side.is_empty() || side.len() == body.lines) {
         debug_assert!(false, "the output does not match the lines");
         return false;
     }
     let read = crate::parallel::install(|| {
-        out.par_chunks_mut(per * body.step)
-            .enumerate()
-            .all(|(r, part)| run(r, part))
+        let parts = out.par_chunks_mut(per * body.step).enumerate();
+        if side.is_empty() {
+            parts.all(|(r, part)| run(r, part, None))
+        } else {
+            parts
+                .zip(side.par_chunks_mut(body.step))
+                .all(|((r, part), side)| run(r, part, Some(side)))
+        }
     });
     if read {
         note_section();

@@ -7,8 +7,8 @@
 //!
 //! | section | entry |
 //! |---|---|
-//! | `Vertices` | d coordinates and a reference |
-//! | `Edges`, `Triangles`, `Tetrahedra` | 2, 3, 4 vertex ids (1-based) and a reference |
+//! | `Vertices` | d coordinates and a reference (kept: `medit:ref`) |
+//! | `Edges`, `Triangles`, `Tetrahedra` | 2, 3, 4 vertex ids (1-based) and a reference (kept: `medit:ref`) |
 //! | `Corners`, `Ridges`, `RequiredVertices`, `RequiredEdges`, `RequiredTriangles` | 1 integer (skipped) |
 //! | `Normals`, `Tangents` | d numbers (skipped) |
 //! | `NormalAtVertices`, `TangentAtVertices` | 2 integers (skipped) |
@@ -25,8 +25,11 @@
 //!   value as written). Ids beyond the vertex count are left to the complex model.
 //! * Coordinates are parsed as `f64`; `nan`, `inf` and `infinity` are accepted, since topology
 //!   does not use coordinates, but a finite number that would become infinite or 0 (`1e309`,
-//!   `1e-400`) is an error. References must be integers and are ignored. Lines end in LF, CRLF
-//!   or a lone CR.
+//!   `1e-400`) is an error. Lines end in LF, CRLF or a lone CR.
+//! * References must be integers that fit in 32 bits; they are kept as the `i32` attribute
+//!   `medit:ref` on the vertices and on the listed simplices (meshio's name), each unless all of
+//!   its references are 0 (MEDIT's "no reference", which the writer writes where an element has
+//!   none, so nothing is lost).
 //! * Only one `Vertices` section is allowed; element sections may repeat (they add up). Without a
 //!   `Vertices` section the vertex count is 0.
 //! * A section ending before its count is reached is an error naming the file's last line.
@@ -38,6 +41,10 @@ use super::{
     parse_integer, syntax, try_with_capacity,
 };
 use crate::complex::table;
+use crate::complex::{Attribute, Location};
+
+/// The attribute name of MEDIT references (meshio's).
+pub const REF: &str = "medit:ref";
 
 /// What one number of a section entry is.
 #[derive(Clone, Copy, PartialEq)]
@@ -46,7 +53,7 @@ enum Item {
     Id,
     /// Coordinate, kept.
     Coord,
-    /// Reference number: integer, ignored.
+    /// Reference number: a 32-bit integer, kept apart.
     Ref,
     /// Other integer, ignored.
     Int,
@@ -87,7 +94,7 @@ impl<'a> Reader<'a> {
         keyword: &str,
         count: u32,
         items: &[Item],
-        mut entry: impl FnMut(&[u32], &[f64], u32) -> Result<(), ReadErrorKind>,
+        mut entry: impl FnMut(&[u32], &[f64], i32, u32) -> Result<(), ReadErrorKind>,
     ) -> Res<()> {
         let (name, names) = nouns(keyword);
         let mut ids = Vec::with_capacity(items.len());
@@ -96,8 +103,9 @@ impl<'a> Reader<'a> {
             ids.clear();
             xs.clear();
             let mut first_line = 0;
+            let mut reference = 0;
             for (j, &item) in items.iter().enumerate() {
-                let l = match self.fast_item(item, &mut ids, &mut xs) {
+                let l = match self.fast_item(item, &mut ids, &mut xs, &mut reference) {
                     Some(r) => r?,
                     None => {
                         let Some((tok, l)) = self.t.token() else {
@@ -121,7 +129,7 @@ impl<'a> Reader<'a> {
                             Item::Coord => {
                                 parse_f64(tok, "a vertex coordinate").map(|x| xs.push(x))
                             }
-                            Item::Ref => check_integer(tok, "reference number"),
+                            Item::Ref => reference_value(tok).map(|r| reference = r),
                             Item::Int => {
                                 check_integer(tok, "").map_err(|_| int_entry_error(tok, keyword))
                             }
@@ -135,7 +143,7 @@ impl<'a> Reader<'a> {
                     first_line = l;
                 }
             }
-            entry(&ids, &xs, first_line).map_err(|k| (first_line, k))?;
+            entry(&ids, &xs, reference, first_line).map_err(|k| (first_line, k))?;
         }
         Ok(())
     }
@@ -143,7 +151,13 @@ impl<'a> Reader<'a> {
     /// Fast path for one number of an entry (see [`Scanner::digits`]): `None` leaves the token
     /// to the general path. Returns the number's line.
     #[inline]
-    fn fast_item(&mut self, item: Item, ids: &mut Vec<u32>, xs: &mut Vec<f64>) -> Option<Res<u32>> {
+    fn fast_item(
+        &mut self,
+        item: Item,
+        ids: &mut Vec<u32>,
+        xs: &mut Vec<f64>,
+        reference: &mut i32,
+    ) -> Option<Res<u32>> {
         match item {
             Item::Id => self.t.digits(true).map(|(v, l)| {
                 let id = scan::id_value(v, true).map_err(|k| (l, k))?;
@@ -154,25 +168,34 @@ impl<'a> Reader<'a> {
                 xs.push(x);
                 Ok(l)
             }),
-            Item::Ref | Item::Int => self.t.digits(true).map(|(_, l)| Ok(l)),
+            Item::Ref => self.t.digits(true).map(|(v, l)| {
+                *reference = i32::try_from(v).map_err(|_| (l, reference_range(v)))?;
+                Ok(l)
+            }),
+            Item::Int => self.t.digits(true).map(|(_, l)| Ok(l)),
             Item::Real => self.t.real(true).map(|(_, l)| Ok(l)),
         }
     }
 
     /// Reads a section's `count` entries on several threads when it is large and laid out one
     /// entry per line (see [`chunked`]): the `per` kept numbers of each entry (ids or
-    /// coordinates) appended to `out`, whose capacity must be reserved, and the scanner moved
-    /// past the section. `None` (nothing appended, the scanner unmoved) otherwise: the serial
-    /// [`Reader::entries`] then reads the section, errors included.
+    /// coordinates) appended to `out` and each entry's reference to `refs`, whose capacities
+    /// must be reserved, and the scanner moved past the section. `None` (nothing appended, the
+    /// scanner unmoved) otherwise: the serial [`Reader::entries`] then reads the section,
+    /// errors included.
     fn parallel_entries<T: Kept>(
         &mut self,
         count: u32,
         items: &[Item],
         out: &mut Vec<T>,
         per: usize,
+        refs: &mut Vec<i32>,
     ) -> Option<chunked::Body> {
         let n = count as usize;
-        if !crate::parallel::splits(n) || out.capacity() - out.len() < n.checked_mul(per)? {
+        if !crate::parallel::splits(n)
+            || out.capacity() - out.len() < n.checked_mul(per)?
+            || refs.capacity() - refs.len() < n
+        {
             return None;
         }
         // The entries start on the next line: nothing but a comment may follow the count.
@@ -181,23 +204,34 @@ impl<'a> Reader<'a> {
             return None;
         }
         let body = chunked::body(self.text, sc.pos(), sc.line(), n)?;
-        let base = out.len();
+        let (base, ref_base) = (out.len(), refs.len());
         chunked::extend_filled(out, n * per, T::default());
-        let read = chunked::fill(self.text, &body, &mut out[base..], per, |sc, slot| {
-            let mut kept = 0;
-            for &item in items {
-                match item_in_line(sc, item)? {
-                    Num::Skip => {}
-                    num => {
-                        *slot.get_mut(kept)? = T::from_num(num)?;
-                        kept += 1;
+        chunked::extend_filled(refs, n, 0);
+        let (slots, ref_slots) = (&mut out[base..], &mut refs[ref_base..]);
+        let read = chunked::fill_with_side(
+            self.text,
+            &body,
+            slots,
+            per,
+            ref_slots,
+            |sc, slot, mut r| {
+                let mut kept = 0;
+                for &item in items {
+                    match item_in_line(sc, item)? {
+                        Num::Skip => {}
+                        Num::Ref(v) => *r.as_deref_mut()? = v,
+                        num => {
+                            *slot.get_mut(kept)? = T::from_num(num)?;
+                            kept += 1;
+                        }
                     }
                 }
-            }
-            Some(()).filter(|_| kept == per)
-        });
+                Some(()).filter(|_| kept == per)
+            },
+        );
         if !read {
             out.truncate(base);
+            refs.truncate(ref_base);
             return None;
         }
         self.t.place(body.end.0, body.end.1);
@@ -225,7 +259,11 @@ fn item_in_line(sc: &mut Scanner<'_>, item: Item) -> Option<Num> {
                 Num::Skip
             })
         }
-        Item::Ref | Item::Int => match sc.digits(false) {
+        Item::Ref => match sc.digits(false) {
+            Some((v, _)) => i32::try_from(v).ok().map(Num::Ref),
+            None => reference_value(sc.token_in_line()?.0).ok().map(Num::Ref),
+        },
+        Item::Int => match sc.digits(false) {
             Some(_) => Some(Num::Skip),
             None => check_integer(sc.token_in_line()?.0, "")
                 .ok()
@@ -234,12 +272,36 @@ fn item_in_line(sc: &mut Scanner<'_>, item: Item) -> Option<Num> {
     }
 }
 
-/// A number of an entry read on a thread: a vertex id, a coordinate, or one that is skipped.
+/// A number of an entry read on a thread: a vertex id, a coordinate, a reference, or one that
+/// is skipped.
 #[derive(Clone, Copy)]
 enum Num {
     Id(u32),
     X(f64),
+    Ref(i32),
     Skip,
+}
+
+/// A reference number: an integer that fits in 32 bits (libMeshb's and meshio's `int`).
+fn reference_value(tok: &str) -> Result<i32, ReadErrorKind> {
+    check_integer(tok, "reference number")?;
+    match parse_integer(tok) {
+        Ok(v) => i32::try_from(v).map_err(|_| {
+            syntax(format!(
+                "reference number '{}' does not fit in 32 bits (attribute 'medit:ref' holds i32)",
+                echo(tok)
+            ))
+        }),
+        Err(_) => Err(syntax(format!(
+            "reference number '{}' does not fit in 32 bits (attribute 'medit:ref' holds i32)",
+            echo(tok)
+        ))),
+    }
+}
+
+/// The error for a reference of the fast path above `i32::MAX`.
+fn reference_range(v: u64) -> ReadErrorKind {
+    reference_value(&v.to_string()).unwrap_err()
 }
 
 /// What an entry keeps: vertex ids (`u32`) or coordinates (`f64`).
@@ -272,6 +334,7 @@ fn elements_in_parallel(
     count: u32,
     items: &[Item],
     raw: &mut RawInput,
+    refs: &mut Vec<i32>,
 ) -> bool {
     let (n, k) = (count as usize, items.len() - 1);
     let room = |len: usize, cap: usize| cap - len >= n;
@@ -281,7 +344,7 @@ fn elements_in_parallel(
         return false;
     }
     let base = raw.ids.len();
-    let Some(body) = r.parallel_entries(count, items, &mut raw.ids, k) else {
+    let Some(body) = r.parallel_entries(count, items, &mut raw.ids, k, refs) else {
         return false;
     };
     // One entry a line: offsets and lines follow from the position.
@@ -339,6 +402,7 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     let mut mesh = Mesh {
         dim,
         raw: RawInput::new(),
+        refs: Vec::new(),
         vertices: None,
     };
     while let Some((kw, l)) = r.t.token() {
@@ -355,21 +419,33 @@ struct Mesh {
     dim: usize,
     /// The element sections' simplices.
     raw: RawInput,
-    /// The `Vertices` section, once read: its count and coordinates.
-    vertices: Option<(u32, Vec<f64>)>,
+    /// The element sections' references, one per simplex of `raw`.
+    refs: Vec<i32>,
+    /// The `Vertices` section, once read: its count, coordinates and references.
+    vertices: Option<(u32, Vec<f64>, Vec<i32>)>,
 }
 
 impl Mesh {
-    /// The simplices with the vertex count and coordinates (none without a `Vertices` section).
+    /// The simplices with the vertex count, coordinates (none without a `Vertices` section)
+    /// and references: `medit:ref` on the vertices and on the listed simplices, each kept
+    /// unless all its references are 0 (MEDIT's "no reference", which the writer writes where
+    /// there is none: nothing is lost).
     fn into_raw(self) -> RawInput {
         let Mesh {
             dim,
             mut raw,
+            refs,
             vertices,
         } = self;
-        let (n, data) = vertices.unwrap_or_default();
+        let (n, data, vertex_refs) = vertices.unwrap_or_default();
         raw.vertex_count = Some(n);
         raw.coords = Some(Coords { dim, data });
+        for (location, refs) in [(Location::Vertices, vertex_refs), (Location::Listed, refs)] {
+            if refs.iter().any(|&r| r != 0) {
+                raw.attributes
+                    .insert(Attribute::labels(REF, location, refs));
+            }
+        }
         raw
     }
 }
@@ -452,9 +528,9 @@ impl<'a> Reader<'a> {
                 return Ok(false);
             }
             "vertices" => self.vertices(kw, l, mesh)?,
-            "edges" => self.elements(kw, l, 2, &mut mesh.raw)?,
-            "triangles" => self.elements(kw, l, 3, &mut mesh.raw)?,
-            "tetrahedra" => self.elements(kw, l, 4, &mut mesh.raw)?,
+            "edges" => self.elements(kw, l, 2, mesh)?,
+            "triangles" => self.elements(kw, l, 3, mesh)?,
+            "tetrahedra" => self.elements(kw, l, 4, mesh)?,
             "corners" | "ridges" | "requiredvertices" | "requirededges" | "requiredtriangles" => {
                 self.skipped(kw, &[Item::Int])?;
             }
@@ -487,26 +563,39 @@ impl<'a> Reader<'a> {
         let n = self.count(kw)?;
         let cap = capped((n as usize).saturating_mul(dim), self.text);
         let mut data = try_with_capacity(cap, "the vertex coordinates").map_err(|k| (l, k))?;
-        if self.parallel_entries(n, &items, &mut data, dim).is_none() {
-            self.entries(kw, n, &items, |_, xs, _| {
-                table::try_extend(&mut data, xs).map_err(no_room("the vertex coordinates"))
+        let mut refs = try_with_capacity(capped(n as usize, self.text), "the vertex references")
+            .map_err(|k| (l, k))?;
+        if self
+            .parallel_entries(n, &items, &mut data, dim, &mut refs)
+            .is_none()
+        {
+            self.entries(kw, n, &items, |_, xs, r, _| {
+                table::try_extend(&mut data, xs).map_err(no_room("the vertex coordinates"))?;
+                table::try_push(&mut refs, r).map_err(no_room("the vertex references"))
             })?;
         }
-        mesh.vertices = Some((n, data));
+        mesh.vertices = Some((n, data, refs));
         Ok(())
     }
 
-    /// An element section (at line `l`) of simplices of `k` vertices, appended to `raw`.
-    fn elements(&mut self, kw: &str, l: u32, k: usize, raw: &mut RawInput) -> Res<()> {
+    /// An element section (at line `l`) of simplices of `k` vertices, appended to `mesh`'s
+    /// simplices and references.
+    fn elements(&mut self, kw: &str, l: u32, k: usize, mesh: &mut Mesh) -> Res<()> {
         let n = self.count(kw)?;
         let cap = capped(n as usize, self.text);
+        let (raw, refs) = (&mut mesh.raw, &mut mesh.refs);
         raw.try_reserve(cap, cap.saturating_mul(k).min(self.text.len()))
             .map_err(|e| (l, e))?;
+        table::try_reserve_exact(refs, cap)
+            .map_err(|bytes| (l, no_room("the element references")(bytes)))?;
         let items: Vec<Item> = std::iter::repeat_n(Item::Id, k)
             .chain([Item::Ref])
             .collect();
-        if !elements_in_parallel(self, n, &items, raw) {
-            self.entries(kw, n, &items, |ids, _, line| raw.try_push(ids, line))?;
+        if !elements_in_parallel(self, n, &items, raw, refs) {
+            self.entries(kw, n, &items, |ids, _, r, line| {
+                raw.try_push(ids, line)?;
+                table::try_push(refs, r).map_err(no_room("the element references"))
+            })?;
         }
         Ok(())
     }
@@ -532,7 +621,7 @@ impl<'a> Reader<'a> {
     /// A section whose entries (laid out as `items`) are checked and dropped.
     fn skipped(&mut self, kw: &str, items: &[Item]) -> Res<()> {
         let n = self.count(kw)?;
-        self.entries(kw, n, items, |_, _, _| Ok(()))
+        self.entries(kw, n, items, |_, _, _, _| Ok(()))
     }
 }
 

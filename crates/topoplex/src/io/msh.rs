@@ -29,8 +29,8 @@ use rustc_hash::FxHashMap;
 
 use super::bytes::Input;
 use super::write::{check_coord_dim, check_max_len, push_f64, vertex_count};
-use super::{Coords, RawInput, ReadErrorKind, no_room, parse_integer, syntax};
-use crate::complex::table;
+use super::{Coords, RawInput, ReadErrorKind, echo, no_room, parse_integer, syntax};
+use crate::complex::{Attribute, LabelName, Location, Values, table};
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
@@ -59,6 +59,11 @@ fn simplex_len(t: i64) -> Result<usize, String> {
     })
 }
 
+/// The attribute name of Gmsh physical tags (meshio's).
+pub const PHYSICAL: &str = "gmsh:physical";
+/// The attribute name of Gmsh elementary (geometrical entity) tags (meshio's).
+pub const GEOMETRICAL: &str = "gmsh:geometrical";
+
 /// Version, binary, and the reading state.
 struct Reader<'a> {
     inp: Input<'a>,
@@ -67,6 +72,14 @@ struct Reader<'a> {
     tags: FxHashMap<u64, u32>,
     coords: Vec<f64>,
     raw: RawInput,
+    /// Per element, its physical tags (`physical_width` each, 0 where it has fewer).
+    physical: Vec<i32>,
+    /// Per element, its elementary tag.
+    geometrical: Vec<i32>,
+    /// Physical tags per element: 1, or the most any entity of `$Entities` has.
+    physical_width: usize,
+    /// Version 4 `$Entities`: (dimension, tag) → physical tags.
+    entities: FxHashMap<(i64, i64), Vec<i32>>,
 }
 
 impl<'a> Reader<'a> {
@@ -218,8 +231,15 @@ impl<'a> Reader<'a> {
             .map_err(|b| (line, no_room("the vertex coordinates")(b)))
     }
 
-    /// One element: its node tags mapped to vertex ids.
-    fn element(&mut self, tag: i64, t: i64, nodes: &[i64], line: u32) -> Res<()> {
+    /// One element: its node tags mapped to vertex ids, and its tags (`physical`, at most
+    /// [`Reader::physical_width`], and `geometrical`).
+    fn element(
+        &mut self,
+        (tag, t, line): (i64, i64, u32),
+        nodes: &[i64],
+        physical: &[i32],
+        geometrical: i32,
+    ) -> Res<()> {
         let mut ids = [0u32; 4];
         for (id, &node) in ids.iter_mut().zip(nodes) {
             *id = u64::try_from(node)
@@ -236,7 +256,107 @@ impl<'a> Reader<'a> {
         }
         self.raw
             .try_push(&ids[..nodes.len()], line)
-            .map_err(|k| (line, k))
+            .map_err(|k| (line, k))?;
+        let room = |b| (line, no_room("the element tags")(b));
+        for k in 0..self.physical_width {
+            table::try_push(&mut self.physical, physical.get(k).copied().unwrap_or(0))
+                .map_err(room)?;
+        }
+        table::try_push(&mut self.geometrical, geometrical).map_err(room)
+    }
+
+    /// A tag that must fit Gmsh's `int`.
+    fn tag32(v: i64, what: &str, line: u32) -> Res<i32> {
+        i32::try_from(v).map_err(|_| {
+            (
+                line,
+                syntax(format!("{what} {v} does not fit in 32 bits (Gmsh's int)")),
+            )
+        })
+    }
+
+    /// `$PhysicalNames`: a count, then lines `dimension tag "name"`.
+    fn physical_names(&mut self, line: u32) -> Res<()> {
+        let binary = std::mem::replace(&mut self.inp.binary, false);
+        let n = self.count("the physical name count", line)?;
+        for _ in 0..n {
+            let (dim, l) = self.int(4, "a physical group's dimension", line)?;
+            let (tag, _) = self.int(4, "a physical tag", l)?;
+            let dimension = u8::try_from(dim).ok().filter(|&d| d <= 3).ok_or_else(|| {
+                (
+                    l,
+                    syntax(format!("physical group dimension {dim} is not 0 to 3")),
+                )
+            })?;
+            let rest = self.inp.rest_of_line();
+            let text = String::from_utf8_lossy(rest);
+            let text = text.trim();
+            let name = text
+                .strip_prefix('"')
+                .and_then(|t| t.strip_suffix('"'))
+                .ok_or_else(|| {
+                    (
+                        l,
+                        syntax(format!(
+                            "physical group ({dim}, {tag}): expected its name in double quotes, \
+                             found '{}'",
+                            echo(text)
+                        )),
+                    )
+                })?;
+            self.raw.attributes.add_label_name(LabelName {
+                attribute: PHYSICAL.into(),
+                dimension: Some(dimension),
+                label: tag,
+                name: name.to_string(),
+            });
+        }
+        self.inp.binary = binary;
+        self.end("$EndPhysicalNames")
+    }
+
+    /// Version 4 `$Entities`: points, curves, surfaces, volumes, each with its physical tags
+    /// (bounding boxes and bounding entities skipped).
+    fn entities(&mut self, line: u32) -> Res<()> {
+        if !self.v4 {
+            return self.skip("$Entities", line);
+        }
+        self.enter_binary_block();
+        let mut counts = [0usize; 4];
+        for (d, c) in counts.iter_mut().enumerate() {
+            *c = self.count(
+                [
+                    "the point count",
+                    "the curve count",
+                    "the surface count",
+                    "the volume count",
+                ][d],
+                line,
+            )?;
+        }
+        for (dim, &count) in counts.iter().enumerate() {
+            for _ in 0..count {
+                let (tag, l) = self.int(4, "an entity tag", line)?;
+                for _ in 0..if dim == 0 { 3 } else { 6 } {
+                    self.real(l)?;
+                }
+                let np = self.count("the entity's physical tag count", l)?;
+                let mut physical = Vec::new();
+                for _ in 0..np.min(self.inp.left()) {
+                    let (p, l) = self.int(4, "a physical tag", l)?;
+                    physical.push(Self::tag32(p, "physical tag", l)?);
+                }
+                if dim > 0 {
+                    let nb = self.count("the entity's bounding entity count", l)?;
+                    for _ in 0..nb.min(self.inp.left()) {
+                        self.int(4, "a bounding entity tag", l)?;
+                    }
+                }
+                self.physical_width = self.physical_width.max(physical.len());
+                self.entities.insert((dim as i64, tag), physical);
+            }
+        }
+        self.end("$EndEntities")
     }
 
     fn simplex_len(&self, tag: i64, t: i64, line: u32) -> Res<usize> {
@@ -278,14 +398,20 @@ impl<'a> Reader<'a> {
                     )
                 };
                 let len = self.simplex_len(tag, t, l)?;
-                for _ in 0..ntags.max(0) {
-                    self.int(4, "an element tag", l)?;
+                // Tags: physical, elementary, then partition data (skipped).
+                let mut tags = [0i32; 2];
+                for k in 0..ntags.max(0) {
+                    let (v, l) = self.int(4, "an element tag", l)?;
+                    if let Some(slot) = tags.get_mut(k as usize) {
+                        let what = ["physical tag", "elementary tag"][k as usize];
+                        *slot = Self::tag32(v, what, l)?;
+                    }
                 }
                 nodes.clear();
                 for _ in 0..len {
                     nodes.push(self.int(4, "a node tag", l)?.0);
                 }
-                self.element(tag, t, &nodes, l)?;
+                self.element((tag, t, l), &nodes, &tags[..1], tags[1])?;
             }
             read += count.max(1);
         }
@@ -304,8 +430,14 @@ impl<'a> Reader<'a> {
         }
         let mut nodes = Vec::with_capacity(4);
         for _ in 0..blocks {
-            self.int(4, "an entity dimension", line)?;
-            self.int(4, "an entity tag", line)?;
+            let (dim, _) = self.int(4, "an entity dimension", line)?;
+            let (entity, l) = self.int(4, "an entity tag", line)?;
+            let geometrical = Self::tag32(entity, "entity tag", l)?;
+            let physical = self
+                .entities
+                .get(&(dim, entity))
+                .cloned()
+                .unwrap_or_default();
             let (t, l) = self.int(4, "an element type", line)?;
             let k = self.count("the block's element count", line)?;
             for _ in 0..k {
@@ -315,7 +447,7 @@ impl<'a> Reader<'a> {
                 for _ in 0..len {
                     nodes.push(self.int(8, "a node tag", l)?.0);
                 }
-                self.element(tag, t, &nodes, l)?;
+                self.element((tag, t, l), &nodes, &physical, geometrical)?;
             }
         }
         self.end("$EndElements")
@@ -389,6 +521,10 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
         tags: FxHashMap::default(),
         coords: Vec::new(),
         raw: RawInput::new(),
+        physical: Vec::new(),
+        geometrical: Vec::new(),
+        physical_width: 1,
+        entities: FxHashMap::default(),
     };
     r.end("$EndMeshFormat")?;
     let mut seen_nodes = false;
@@ -403,6 +539,17 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
                 return Err((l, syntax("$Elements before $Nodes")));
             }
             "$Elements" => r.elements(l)?,
+            "$PhysicalNames" => r.physical_names(l)?,
+            "$Entities" => r.entities(l)?,
+            "$NodeData" | "$ElementData" | "$ElementNodeData" => {
+                return Err((
+                    l,
+                    syntax(format!(
+                        "{kw}: Gmsh post-processing data is not read yet, and reading the mesh \
+                         without it would drop it; remove the section to read the mesh alone"
+                    )),
+                ));
+            }
             k if k.starts_with('$') && !k.starts_with("$End") && k.len() > 1 => {
                 let k = k.to_string();
                 r.skip(&k, l)?;
@@ -416,7 +563,26 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
         dim: 3,
         data: r.coords,
     });
-    Ok(r.raw)
+    // Kept unless equal to what the writer writes without them (physical 0, elementary 1),
+    // so that nothing is lost either way.
+    let mut raw = r.raw;
+    let (physical, geometrical) = (r.physical, r.geometrical);
+    if physical.iter().any(|&p| p != 0) || !raw.attributes.label_names().is_empty() {
+        raw.attributes.insert(Attribute {
+            name: PHYSICAL.into(),
+            location: Location::Listed,
+            components: r.physical_width,
+            values: Values::I32(physical),
+        });
+    }
+    if geometrical.iter().any(|&g| g != 1) {
+        raw.attributes.insert(Attribute::labels(
+            GEOMETRICAL,
+            Location::Listed,
+            geometrical,
+        ));
+    }
+    Ok(raw)
 }
 
 /// Writes `raw` as MSH 2.2 or 4.1, ASCII or binary (little-endian).
@@ -437,19 +603,110 @@ pub(crate) fn write(
     if !v4 && (n > i32::MAX as usize || m > i32::MAX as usize) {
         return Err("more than 2^31 nodes or elements (use version 4.1)".into());
     }
+    let tags = Tags::of(raw, v4)?;
     let mut w = Writer { out, binary };
     w.format(v4);
-    w.nodes(raw, n, v4);
-    w.elements(raw, v4);
+    w.physical_names(raw);
+    if v4 {
+        w.entities(&tags);
+    }
+    w.nodes(raw, n, v4, tags.node_entity);
+    w.elements(raw, v4, &tags);
     Ok(())
 }
 
-/// The runs of consecutive simplices of `raw` of equal length, as `(start, end)`.
-fn equal_length_runs(raw: &RawInput) -> Vec<(usize, usize)> {
+/// The tags the writer gives each element: physical (`gmsh:physical`, else 0) and elementary
+/// (`gmsh:geometrical`; else in version 4 one entity per physical tag and dimension, numbered
+/// from 1 in order of appearance; else 1), and, in version 4, the `$Entities` they make.
+struct Tags {
+    physical: Vec<i32>,
+    elementary: Vec<i32>,
+    /// (dimension, entity tag, physical tag) in order of first use; empty when the file has no
+    /// physical tag (then no `$Entities` section is written).
+    entities: Vec<(usize, i32, i32)>,
+    /// The entity of the node block: the first highest-dimensional element's.
+    node_entity: (i32, i32),
+}
+
+impl Tags {
+    fn of(raw: &RawInput, v4: bool) -> Result<Tags, String> {
+        let m = raw.simplex_count();
+        let labels = |name| {
+            raw.attributes.get(name, Location::Listed).map(|a| {
+                (0..m)
+                    .map(|i| a.label(i).unwrap_or(0) as i32)
+                    .collect::<Vec<i32>>()
+            })
+        };
+        let given = labels(GEOMETRICAL);
+        let physical = labels(PHYSICAL).unwrap_or_else(|| vec![0; m]);
+        let has_physical = raw.attributes.get(PHYSICAL, Location::Listed).is_some();
+        let elementary = match given {
+            Some(g) => g,
+            None if v4 && has_physical => {
+                let mut numbers: FxHashMap<(usize, i32), i32> = FxHashMap::default();
+                let mut next = [1i32; 4];
+                (0..m)
+                    .map(|i| {
+                        let d = raw.simplex(i).len() - 1;
+                        *numbers.entry((d, physical[i])).or_insert_with(|| {
+                            next[d] += 1;
+                            next[d] - 1
+                        })
+                    })
+                    .collect()
+            }
+            None => vec![1; m],
+        };
+        let mut entities: Vec<(usize, i32, i32)> = Vec::new();
+        if v4 && has_physical {
+            let mut seen: FxHashMap<(usize, i32), (i32, usize)> = FxHashMap::default();
+            for i in 0..m {
+                let d = raw.simplex(i).len() - 1;
+                match seen.get(&(d, elementary[i])) {
+                    Some(&(p, first)) if p != physical[i] => {
+                        return Err(format!(
+                            "simplices {first} and {i} of the listing are in entity ({d}, {}) \
+                             with different '{PHYSICAL}' labels {p} and {}: MSH 4.1 keeps \
+                             physical groups per entity (write msh2, or give the entities apart \
+                             in '{GEOMETRICAL}')",
+                            elementary[i], physical[i]
+                        ));
+                    }
+                    Some(_) => {}
+                    None => {
+                        seen.insert((d, elementary[i]), (physical[i], i));
+                        entities.push((d, elementary[i], physical[i]));
+                    }
+                }
+            }
+        }
+        let top = (0..m).max_by_key(|&i| (raw.simplex(i).len(), std::cmp::Reverse(i)));
+        let node_entity = match top {
+            Some(i) if !entities.is_empty() => ((raw.simplex(i).len() - 1) as i32, elementary[i]),
+            _ => (3, 1),
+        };
+        Ok(Tags {
+            physical,
+            elementary,
+            entities,
+            node_entity,
+        })
+    }
+}
+
+/// The runs of consecutive simplices of `raw` of equal length and elementary tag, as
+/// `(start, end)`.
+fn equal_length_runs(raw: &RawInput, elementary: &[i32]) -> Vec<(usize, usize)> {
     let mut runs: Vec<(usize, usize)> = Vec::new();
     for i in 0..raw.simplex_count() {
         match runs.last_mut() {
-            Some((start, end)) if raw.simplex(*start).len() == raw.simplex(i).len() => *end = i + 1,
+            Some((start, end))
+                if raw.simplex(*start).len() == raw.simplex(i).len()
+                    && elementary[*start] == elementary[i] =>
+            {
+                *end = i + 1
+            }
             _ => runs.push((i, i + 1)),
         }
     }
@@ -470,13 +727,82 @@ impl Writer<'_> {
         self.out.extend_from_slice(b"$EndMeshFormat\n");
     }
 
+    /// `$PhysicalNames` (always ASCII), when `raw` names physical tags: a name without a
+    /// dimension is written for each dimension whose elements carry its tag.
+    fn physical_names(&mut self, raw: &RawInput) {
+        let at = &raw.attributes;
+        let physical = at.get(PHYSICAL, Location::Listed);
+        let mut rows: Vec<(u8, i64, &str)> = Vec::new();
+        for n in at.label_names().iter().filter(|n| n.attribute == PHYSICAL) {
+            match n.dimension {
+                Some(d) => rows.push((d, n.label, &n.name)),
+                None => {
+                    for d in 0..=3u8 {
+                        let used = physical.is_some_and(|a| {
+                            (0..raw.simplex_count()).any(|i| {
+                                raw.simplex(i).len() == usize::from(d) + 1
+                                    && a.label(i) == Some(n.label)
+                            })
+                        });
+                        if used {
+                            rows.push((d, n.label, &n.name));
+                        }
+                    }
+                }
+            }
+        }
+        if rows.is_empty() {
+            return;
+        }
+        self.out
+            .extend_from_slice(format!("$PhysicalNames\n{}\n", rows.len()).as_bytes());
+        for (d, label, name) in rows {
+            self.out
+                .extend_from_slice(format!("{d} {label} \"{name}\"\n").as_bytes());
+        }
+        self.out.extend_from_slice(b"$EndPhysicalNames\n");
+    }
+
+    /// Version 4 `$Entities` with each entity's physical tag (bounding boxes zero, no bounding
+    /// entities: Gmsh reads such discrete entities).
+    fn entities(&mut self, tags: &Tags) {
+        if tags.entities.is_empty() {
+            return;
+        }
+        let mut counts = [0u64; 4];
+        for &(d, _, _) in &tags.entities {
+            counts[d] += 1;
+        }
+        self.out.extend_from_slice(b"$Entities\n");
+        self.sizes(&counts);
+        for dim in 0..4 {
+            for &(_, tag, p) in tags.entities.iter().filter(|e| e.0 == dim) {
+                self.ints(&[tag]);
+                self.reals_open(&vec![0.0; if dim == 0 { 3 } else { 6 }]);
+                let physical: &[i32] = if p == 0 {
+                    &[]
+                } else {
+                    std::slice::from_ref(&p)
+                };
+                self.sizes_open(&[physical.len() as u64]);
+                self.ints(physical);
+                if dim > 0 {
+                    self.sizes_open(&[0]);
+                }
+                self.line();
+            }
+        }
+        self.close_block();
+        self.out.extend_from_slice(b"$EndEntities\n");
+    }
+
     /// The `$Nodes` section: the `n` vertices, tagged 1..=n, with 3 coordinates each (0 where
-    /// `raw` has fewer).
-    fn nodes(&mut self, raw: &RawInput, n: usize, v4: bool) {
+    /// `raw` has fewer), in one block of entity `entity` in version 4.
+    fn nodes(&mut self, raw: &RawInput, n: usize, v4: bool, entity: (i32, i32)) {
         self.out.extend_from_slice(b"$Nodes\n");
         if v4 {
             self.sizes(&[1, n as u64, 1, n as u64]);
-            self.ints(&[3, 1, 0]);
+            self.ints(&[entity.0, entity.1, 0]);
             self.sizes(&[n as u64]);
             for v in 0..n {
                 self.sizes(&[v as u64 + 1]);
@@ -503,12 +829,12 @@ impl Writer<'_> {
     }
 
     /// The `$Elements` section: the simplices of `raw`, tagged 1..=m, a block per run of equal
-    /// length (version 4, binary version 2).
-    fn elements(&mut self, raw: &RawInput, v4: bool) {
+    /// length and elementary tag (version 4, binary version 2).
+    fn elements(&mut self, raw: &RawInput, v4: bool, tags: &Tags) {
         let m = raw.simplex_count();
         let binary = self.binary;
         self.out.extend_from_slice(b"$Elements\n");
-        let runs = equal_length_runs(raw);
+        let runs = equal_length_runs(raw, &tags.elementary);
         if v4 {
             self.sizes(&[runs.len() as u64, m as u64, 1, m as u64]);
         } else {
@@ -518,7 +844,7 @@ impl Writer<'_> {
             let len = raw.simplex(start).len();
             let t = element_type(len);
             if v4 {
-                self.ints(&[len as i32 - 1, 1, t]);
+                self.ints(&[len as i32 - 1, tags.elementary[start], t]);
                 self.sizes(&[(end - start) as u64]);
             } else if binary {
                 self.ints(&[t, (end - start) as i32, 2]);
@@ -529,11 +855,12 @@ impl Writer<'_> {
                     let row: Vec<u64> = std::iter::once(i as u64 + 1).chain(ids).collect();
                     self.sizes(&row);
                 } else {
-                    // Tags: physical 0, elementary 1; the type is in the block header in binary.
+                    // Tags: physical, elementary; the type is in the block header in binary.
+                    let (p, e) = (i64::from(tags.physical[i]), i64::from(tags.elementary[i]));
                     let head: &[i64] = if binary {
-                        &[0, 1]
+                        &[p, e]
                     } else {
-                        &[i64::from(t), 2, 0, 1]
+                        &[i64::from(t), 2, p, e]
                     };
                     let row: Vec<i64> = std::iter::once(i as i64 + 1)
                         .chain(head.iter().copied())
@@ -571,16 +898,29 @@ impl Writer<'_> {
         self.line();
     }
 
-    /// A record of ints, then a size_t follows on the same line in ASCII.
-    fn ints(&mut self, xs: &[i32]) {
-        for x in xs {
+    /// Numbers that more numbers follow on the same ASCII line: `le` gives a number's
+    /// little-endian bytes, `text` writes it in ASCII.
+    fn open<T: Copy, const N: usize>(
+        &mut self,
+        xs: &[T],
+        le: fn(T) -> [u8; N],
+        text: fn(&mut Vec<u8>, T),
+    ) {
+        for &x in xs {
             if self.binary {
-                self.out.extend_from_slice(&x.to_le_bytes());
+                self.out.extend_from_slice(&le(x));
             } else {
-                self.out.extend_from_slice(x.to_string().as_bytes());
+                text(self.out, x);
                 self.out.push(b' ');
             }
         }
+    }
+
+    /// A record of ints, then a size_t follows on the same line in ASCII.
+    fn ints(&mut self, xs: &[i32]) {
+        self.open(xs, i32::to_le_bytes, |o, x| {
+            o.extend_from_slice(x.to_string().as_bytes())
+        });
     }
 
     /// Ints (version 2) that more numbers follow on the same ASCII line.
@@ -598,6 +938,18 @@ impl Writer<'_> {
         if !self.binary {
             self.out.push(b' ');
         }
+    }
+
+    /// Size_t values that more numbers follow on the same ASCII line.
+    fn sizes_open(&mut self, xs: &[u64]) {
+        self.open(xs, u64::to_le_bytes, |o, x| {
+            o.extend_from_slice(x.to_string().as_bytes())
+        });
+    }
+
+    /// Reals that more numbers follow on the same ASCII line.
+    fn reals_open(&mut self, xs: &[f64]) {
+        self.open(xs, f64::to_le_bytes, push_f64);
     }
 
     /// Node coordinates: a whole line in ASCII.

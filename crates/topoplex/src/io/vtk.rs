@@ -37,9 +37,11 @@
 use super::bytes::Input;
 use super::write::{check_coord_dim, check_max_len, push_f64, push_ids, vertex_count};
 use super::{
-    Coords, IntError, RawInput, ReadErrorKind, no_room, parse_integer, syntax, try_with_capacity,
+    Coords, IntError, RawInput, ReadErrorKind, echo, no_room, parse_integer, syntax,
+    try_with_capacity,
 };
-use crate::complex::table;
+use crate::complex::attributes::MAX_COMPONENTS;
+use crate::complex::{Attribute, Location, Values, table};
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
@@ -88,7 +90,7 @@ fn data_type(ty: &str, line: u32) -> Res<(usize, bool)> {
     })
 }
 
-impl Input<'_> {
+impl<'a> Input<'a> {
     /// `n` numbers of `ty` (a VTK data type name), collected.
     fn numbers(&mut self, n: usize, ty: &str, line: u32, what: &str) -> Res<Vec<f64>> {
         let (size, _) = data_type(ty, line)?;
@@ -140,18 +142,35 @@ impl Input<'_> {
         Ok(())
     }
 
-    #[allow(clippy::too_many_arguments)]
-    fn binary_numbers(
+    /// Hands `n` ASCII tokens to `f` with their lines; the file ending first is an error.
+    fn each_token(
         &mut self,
         n: usize,
-        ty: &str,
+        what: &str,
+        mut f: impl FnMut(&'a str, u32) -> Res<()>,
+    ) -> Res<()> {
+        for i in 0..n {
+            let (tok, l) = self.token().ok_or_else(|| {
+                (
+                    self.line.max(1),
+                    syntax(format!("file ends after {i} of the {n} {what}")),
+                )
+            })?;
+            f(tok, l)?;
+        }
+        Ok(())
+    }
+
+    /// The `n × size` bytes of a binary block, which starts after the newline that ends the
+    /// keyword line `line`; consumed.
+    fn binary_block(
+        &mut self,
+        n: usize,
         size: usize,
-        float: bool,
+        ty: &str,
         line: u32,
         what: &str,
-        mut f: impl FnMut(usize, f64) -> Res<()>,
-    ) -> Res<()> {
-        // The block starts after the keyword line's newline.
+    ) -> Res<&'a [u8]> {
         self.rest_of_line();
         let bytes = n
             .checked_mul(size)
@@ -165,27 +184,46 @@ impl Input<'_> {
                     )),
                 )
             })?;
+        let block = &self.b[self.pos..self.pos + bytes];
+        self.pos += bytes;
+        Ok(block)
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn binary_numbers(
+        &mut self,
+        n: usize,
+        ty: &str,
+        size: usize,
+        float: bool,
+        line: u32,
+        what: &str,
+        mut f: impl FnMut(usize, f64) -> Res<()>,
+    ) -> Res<()> {
+        let block = self.binary_block(n, size, ty, line, what)?;
         let signed = !ty.starts_with("unsigned") && !ty.contains("uint");
-        for (i, c) in self.b[self.pos..self.pos + bytes]
-            .chunks_exact(size)
-            .enumerate()
-        {
+        for (i, c) in block.chunks_exact(size).enumerate() {
             let x = match (size, float) {
                 (4, true) => f64::from(f32::from_be_bytes(c.try_into().unwrap())),
                 (8, true) => f64::from_be_bytes(c.try_into().unwrap()),
-                (1, _) if signed => f64::from(c[0] as i8),
-                (1, _) => f64::from(c[0]),
-                (2, _) if signed => f64::from(i16::from_be_bytes(c.try_into().unwrap())),
-                (2, _) => f64::from(u16::from_be_bytes(c.try_into().unwrap())),
-                (4, _) if signed => f64::from(i32::from_be_bytes(c.try_into().unwrap())),
-                (4, _) => f64::from(u32::from_be_bytes(c.try_into().unwrap())),
-                (_, _) if signed => i64::from_be_bytes(c.try_into().unwrap()) as f64,
-                (_, _) => u64::from_be_bytes(c.try_into().unwrap()) as f64,
+                _ => be_integer(c, signed) as f64,
             };
             f(i, x)?;
         }
-        self.pos += bytes;
         Ok(())
+    }
+}
+
+/// A big-endian integer of 1, 2, 4 or 8 bytes, exactly.
+fn be_integer(c: &[u8], signed: bool) -> i128 {
+    let mut b = [0u8; 8];
+    b[8 - c.len()..].copy_from_slice(c);
+    let unsigned = u64::from_be_bytes(b);
+    let bits = 8 * c.len() as u32;
+    if signed && unsigned >> (bits - 1) & 1 == 1 {
+        i128::from(unsigned) - (1i128 << bits)
+    } else {
+        i128::from(unsigned)
     }
 }
 
@@ -486,7 +524,272 @@ fn read_sections(inp: &mut Input, version5: bool) -> Res<RawInput> {
         dim: 3,
         data: points,
     });
+    read_data(inp, &mut raw)?;
     Ok(raw)
+}
+
+/// The point and cell data after `CELL_TYPES`: `POINT_DATA n` and `CELL_DATA m` sections of
+/// `SCALARS` (with their `LOOKUP_TABLE` line), `VECTORS`, `NORMALS`, `TENSORS`,
+/// `TEXTURE_COORDINATES`, `COLOR_SCALARS` and `FIELD` arrays, each kept as an attribute of its
+/// name on the vertices or the listed simplices ([`crate::complex::attributes`]). `METADATA`
+/// blocks are skipped; anything else (a `LOOKUP_TABLE` definition, another dataset section) is
+/// an error naming it.
+fn read_data(inp: &mut Input, raw: &mut RawInput) -> Res<()> {
+    let n = raw.vertex_count.unwrap_or(0) as usize;
+    let m = raw.simplex_count();
+    let mut at: Option<(Location, usize)> = None;
+    while let Some((kw, l)) = inp.token() {
+        let upper = kw.to_ascii_uppercase();
+        match upper.as_str() {
+            "POINT_DATA" | "CELL_DATA" => {
+                let count = inp.count(kw)?;
+                let (location, want, what) = if upper == "POINT_DATA" {
+                    (Location::Vertices, n, "points")
+                } else {
+                    (Location::Listed, m, "cells")
+                };
+                if count != want {
+                    return Err((l, syntax(format!("{kw} {count} for {want} {what}"))));
+                }
+                at = Some((location, want));
+            }
+            "METADATA" => {
+                inp.rest_of_line();
+                while inp.left() > 0 && !inp.rest_of_line().trim_ascii().is_empty() {}
+            }
+            _ => {
+                let Some((location, count)) = at else {
+                    return Err((
+                        l,
+                        syntax(format!(
+                            "unexpected '{}' after CELL_TYPES (expected POINT_DATA or CELL_DATA)",
+                            echo(kw)
+                        )),
+                    ));
+                };
+                for a in data_arrays(inp, &upper, kw, l, location, count)? {
+                    if raw.attributes.get(&a.name, location).is_some() {
+                        return Err((
+                            l,
+                            syntax(format!(
+                                "a second array named '{}' in the {} data",
+                                echo(&a.name),
+                                if location == Location::Vertices {
+                                    "point"
+                                } else {
+                                    "cell"
+                                }
+                            )),
+                        ));
+                    }
+                    raw.attributes.insert(a);
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// One data section's arrays (`FIELD` holds several), `count` elements each.
+fn data_arrays(
+    inp: &mut Input,
+    upper: &str,
+    kw: &str,
+    l: u32,
+    location: Location,
+    count: usize,
+) -> Res<Vec<Attribute>> {
+    let one =
+        |inp: &mut Input, name: &str, ty: &str, components: usize, what: &str| -> Res<Attribute> {
+            if !(1..=MAX_COMPONENTS).contains(&components) {
+                return Err((
+                    l,
+                    syntax(format!(
+                        "array '{}' has {components} components; 1 to {MAX_COMPONENTS} are held",
+                        echo(name)
+                    )),
+                ));
+            }
+            let total = count
+                .checked_mul(components)
+                .ok_or((l, syntax("array too large")))?;
+            let values = inp.values(total, ty, l, &format!("values of {what} '{}'", echo(name)))?;
+            Ok(Attribute {
+                name: name.to_string(),
+                location,
+                components,
+                values,
+            })
+        };
+    let (name, _) = inp.expect_token(&format!("the name after {kw}"))?;
+    let name = name.to_string();
+    Ok(match upper {
+        "SCALARS" => {
+            let (ty, _) = inp.expect_token("the SCALARS data type")?;
+            let ty = ty.to_string();
+            // An optional component count, then the LOOKUP_TABLE line.
+            let rest = String::from_utf8_lossy(inp.rest_of_line())
+                .trim()
+                .to_string();
+            let components = if rest.is_empty() {
+                1
+            } else {
+                rest.parse::<usize>().map_err(|_| {
+                    (
+                        l,
+                        syntax(format!(
+                            "SCALARS '{}': '{}' is not a component count",
+                            echo(&name),
+                            echo(&rest)
+                        )),
+                    )
+                })?
+            };
+            let (lt, ll) = inp.expect_token("LOOKUP_TABLE")?;
+            if !lt.eq_ignore_ascii_case("LOOKUP_TABLE") {
+                return Err((
+                    ll,
+                    syntax(format!(
+                        "expected LOOKUP_TABLE after SCALARS '{}', found '{}'",
+                        echo(&name),
+                        echo(lt)
+                    )),
+                ));
+            }
+            inp.expect_token("the lookup table's name")?;
+            vec![one(inp, &name, &ty, components, "SCALARS")?]
+        }
+        "VECTORS" | "NORMALS" | "TENSORS" => {
+            let (ty, _) = inp.expect_token(&format!("the {kw} data type"))?;
+            let ty = ty.to_string();
+            let k = if upper == "TENSORS" { 9 } else { 3 };
+            vec![one(inp, &name, &ty, k, kw)?]
+        }
+        "TEXTURE_COORDINATES" => {
+            let k = inp.count("TEXTURE_COORDINATES")?;
+            let (ty, _) = inp.expect_token("the TEXTURE_COORDINATES data type")?;
+            let ty = ty.to_string();
+            vec![one(inp, &name, &ty, k, kw)?]
+        }
+        "COLOR_SCALARS" => {
+            let k = inp.count("COLOR_SCALARS")?;
+            let ty = if inp.binary { "unsigned_char" } else { "float" };
+            vec![one(inp, &name, ty, k, kw)?]
+        }
+        "FIELD" => {
+            let arrays = inp.count("FIELD")?;
+            let mut out = Vec::new();
+            for _ in 0..arrays {
+                let (array, al) = inp.expect_token("a FIELD array's name")?;
+                let array = array.to_string();
+                let k = inp.count("the array's component count")?;
+                let tuples = inp.count("the array's tuple count")?;
+                let (ty, _) = inp.expect_token("the array's data type")?;
+                let ty = ty.to_string();
+                if tuples != count {
+                    return Err((
+                        al,
+                        syntax(format!(
+                            "FIELD array '{}' has {tuples} tuples for {count} elements",
+                            echo(&array)
+                        )),
+                    ));
+                }
+                out.push(one(inp, &array, &ty, k, "FIELD array")?);
+            }
+            out
+        }
+        _ => {
+            return Err((
+                l,
+                syntax(format!(
+                    "unsupported data section '{}' (SCALARS, VECTORS, NORMALS, TENSORS, \
+                     TEXTURE_COORDINATES, COLOR_SCALARS and FIELD are read)",
+                    echo(kw)
+                )),
+            ));
+        }
+    })
+}
+
+impl Input<'_> {
+    /// `n` numbers of VTK type `ty` kept exactly: integer types up to 32 bits (and `bit`) as
+    /// `i32`, wider ones as `i64`, `float` as `f32` (a finite number that overflows it is an
+    /// error), `double` as `f64`.
+    fn values(&mut self, n: usize, ty: &str, line: u32, what: &str) -> Res<Values> {
+        let lower = ty.to_ascii_lowercase();
+        let (size, float) = data_type(ty, line)?;
+        let cap = n.min(self.left() / size.min(2) + 1);
+        let room = |b| (line, no_room("an attribute's values")(b));
+        let bad = |tok: &str, l: u32| {
+            (
+                l,
+                syntax(format!(
+                    "'{}' is not of type {ty} among the {what}",
+                    echo(tok)
+                )),
+            )
+        };
+        if float {
+            let mut xs: Vec<f64> =
+                try_with_capacity(cap, "an attribute's values").map_err(|k| (line, k))?;
+            if self.binary {
+                self.binary_numbers(n, ty, size, true, line, what, |_, x| {
+                    table::try_push(&mut xs, x).map_err(room)
+                })?;
+            } else {
+                self.each_token(n, what, |tok, l| {
+                    let x: f64 = tok.parse().map_err(|_| bad(tok, l))?;
+                    if size == 4 && x.is_finite() && !(x as f32).is_finite() {
+                        return Err((
+                            l,
+                            syntax(format!("'{}' overflows float among the {what}", echo(tok))),
+                        ));
+                    }
+                    table::try_push(&mut xs, x).map_err(room)
+                })?;
+            }
+            return Ok(if size == 4 {
+                Values::F32(xs.into_iter().map(|x| x as f32).collect())
+            } else {
+                Values::F64(xs)
+            });
+        }
+        let wide = size == 8 || lower == "unsigned_int" || lower == "vtktypeuint32";
+        let mut xs: Vec<i64> =
+            try_with_capacity(cap, "an attribute's values").map_err(|k| (line, k))?;
+        if self.binary {
+            let block = self.binary_block(n, size, ty, line, what)?;
+            let signed = !lower.starts_with("unsigned") && !lower.contains("uint");
+            for c in block.chunks_exact(size) {
+                let x = i64::try_from(be_integer(c, signed))
+                    .map_err(|_| (line, syntax(format!("a {ty} above 2^63 among the {what}"))))?;
+                table::try_push(&mut xs, x).map_err(room)?;
+            }
+        } else {
+            self.each_token(n, what, |tok, l| {
+                let x = parse_integer(tok)
+                    .ok()
+                    .and_then(|v| i64::try_from(v).ok())
+                    .ok_or_else(|| bad(tok, l))?;
+                if !wide && i32::try_from(x).is_err() {
+                    return Err((
+                        l,
+                        syntax(format!(
+                            "'{}' does not fit {ty} among the {what}",
+                            echo(tok)
+                        )),
+                    ));
+                }
+                table::try_push(&mut xs, x).map_err(room)
+            })?;
+        }
+        Ok(if wide {
+            Values::I64(xs)
+        } else {
+            Values::I32(xs.into_iter().map(|x| x as i32).collect())
+        })
+    }
 }
 
 /// A named integer field: one value per point or per cell.
@@ -554,8 +857,88 @@ pub fn write_with_fields(
     );
     push_points(out, raw, n, binary);
     push_cells(out, raw, binary);
-    push_fields(out, binary, "POINT_DATA", n, point_fields)?;
-    push_fields(out, binary, "CELL_DATA", m, cell_fields)
+    for (keyword, count, fields, location) in [
+        ("POINT_DATA", n, point_fields, Location::Vertices),
+        ("CELL_DATA", m, cell_fields, Location::Listed),
+    ] {
+        let attrs: Vec<&Attribute> = raw
+            .attributes
+            .iter()
+            .filter(|a| a.location == location)
+            .collect();
+        if !attrs.is_empty() || !fields.is_empty() {
+            out.extend_from_slice(format!("{keyword} {count}\n").as_bytes());
+        }
+        for a in attrs {
+            push_attribute(out, binary, a);
+        }
+        push_fields(out, binary, keyword, count, fields)?;
+    }
+    Ok(())
+}
+
+/// An attribute as `SCALARS` (1 to 4 components, the legacy format's limit) or else a
+/// one-array `FIELD`, in its own type: `int`, `vtktypeint64`, `float`, `double`.
+fn push_attribute(out: &mut Vec<u8>, binary: bool, a: &Attribute) {
+    let ty = match a.values {
+        Values::I32(_) => "int",
+        Values::I64(_) => "vtktypeint64",
+        Values::F32(_) => "float",
+        Values::F64(_) => "double",
+    };
+    let (name, k) = (&a.name, a.components);
+    let head = if k <= 4 {
+        format!("SCALARS {name} {ty} {k}\nLOOKUP_TABLE default\n")
+    } else {
+        format!("FIELD FieldData 1\n{name} {k} {} {ty}\n", a.element_count())
+    };
+    out.extend_from_slice(head.as_bytes());
+    let mut ascii = |i: usize, s: &dyn Fn(&mut Vec<u8>)| {
+        if i > 0 {
+            out.push(if i.is_multiple_of(k) { b'\n' } else { b' ' });
+        }
+        s(out);
+    };
+    match (&a.values, binary) {
+        (Values::I32(v), true) => v
+            .iter()
+            .for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
+        (Values::I64(v), true) => v
+            .iter()
+            .for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
+        (Values::F32(v), true) => v
+            .iter()
+            .for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
+        (Values::F64(v), true) => v
+            .iter()
+            .for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
+        (Values::I32(v), false) => {
+            for (i, x) in v.iter().enumerate() {
+                ascii(i, &|o| o.extend_from_slice(x.to_string().as_bytes()));
+            }
+        }
+        (Values::I64(v), false) => {
+            for (i, x) in v.iter().enumerate() {
+                ascii(i, &|o| o.extend_from_slice(x.to_string().as_bytes()));
+            }
+        }
+        (Values::F32(v), false) => {
+            for (i, &x) in v.iter().enumerate() {
+                // The shortest decimal that reads back as the same f32.
+                ascii(i, &|o| {
+                    let mut b = ryu::Buffer::new();
+                    let s = b.format(x);
+                    o.extend_from_slice(s.strip_suffix(".0").unwrap_or(s).as_bytes());
+                });
+            }
+        }
+        (Values::F64(v), false) => {
+            for (i, &x) in v.iter().enumerate() {
+                ascii(i, &|o| push_f64(o, x));
+            }
+        }
+    }
+    out.push(b'\n');
 }
 
 /// The coordinates of the `n` points, 3 a point (0 where `raw` has fewer).
@@ -618,10 +1001,6 @@ fn push_fields(
     count: usize,
     fields: &[Field],
 ) -> Result<(), String> {
-    if fields.is_empty() {
-        return Ok(());
-    }
-    out.extend_from_slice(format!("{keyword} {count}\n").as_bytes());
     for f in fields {
         if f.values.len() != count {
             return Err(format!(

@@ -29,7 +29,7 @@
 use std::path::{Path, PathBuf};
 
 use super::{Coords, RawInput};
-use crate::complex::Complex;
+use crate::complex::{Attribute, Complex, Location, Values};
 
 mod medit;
 mod obj;
@@ -138,12 +138,72 @@ impl Format {
         Format::ALL.into_iter().find(|f| f.extension() == ext)
     }
 
-    /// Serialises `raw` in this format. Errors: [`WriteErrorKind::CannotHold`].
+    /// Whether this format holds attribute `a` (in its own convention, see the table of
+    /// [`self`](crate::io::write)): MEDIT `medit:ref` (integers within 32 bits), Gmsh
+    /// `gmsh:physical` and `gmsh:geometrical` on the listed simplices (the same), legacy VTK any
+    /// point or cell data whose name has no blank.
+    pub fn holds(self, a: &Attribute) -> bool {
+        let int32 = a.components == 1
+            && match &a.values {
+                Values::I32(_) => true,
+                Values::I64(v) => v.iter().all(|&x| i32::try_from(x).is_ok()),
+                _ => false,
+            };
+        match self {
+            Format::Medit => a.name == super::medit::REF && int32,
+            Format::Msh | Format::MshBinary | Format::Msh2 | Format::Msh2Binary => {
+                a.location == Location::Listed
+                    && (a.name == super::msh::PHYSICAL || a.name == super::msh::GEOMETRICAL)
+                    && int32
+            }
+            Format::Vtk | Format::VtkBinary => !a
+                .name
+                .bytes()
+                .any(|b| b.is_ascii_whitespace() || b.is_ascii_control()),
+            _ => false,
+        }
+    }
+
+    /// The first attribute of `raw` this format does not hold, as the reason for
+    /// [`WriteErrorKind::CannotHold`]: the attribute, the formats that hold it, and how to drop
+    /// it.
+    fn check_attributes(self, raw: &RawInput) -> Result<(), String> {
+        let Some(a) = raw.attributes.iter().find(|a| !self.holds(a)) else {
+            return Ok(());
+        };
+        let mut can: Vec<&str> = Format::ALL
+            .into_iter()
+            .filter(|f| f.holds(a))
+            .map(|f| f.extension())
+            .collect();
+        can.dedup();
+        let can = if can.is_empty() {
+            "no format here holds it".to_string()
+        } else {
+            format!(
+                "write {}",
+                can.iter()
+                    .map(|e| format!(".{e}"))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            )
+        };
+        Err(format!(
+            "attribute {}: {can}, or drop it explicitly (CLI: --drop-data '{}' or all)",
+            a.describe(),
+            crate::error::echo(&a.name)
+        ))
+    }
+
+    /// Serialises `raw` in this format, attributes included. Errors:
+    /// [`WriteErrorKind::CannotHold`] (a simplex, the coordinates or an attribute the format
+    /// cannot hold; nothing is written).
     pub fn write(self, raw: &RawInput) -> Result<Vec<u8>, WriteErrorKind> {
         let refuse = |reason| WriteErrorKind::CannotHold {
             format: self.name(),
             reason,
         };
+        self.check_attributes(raw).map_err(refuse)?;
         let mut out = Vec::new();
         match self {
             Format::Off => off::write(raw, &mut out),
@@ -211,15 +271,28 @@ impl WriteError {
     }
 }
 
-/// The complex as a listing: every vertex, its coordinates, and the top simplices in input
-/// order with their input winding ([`Complex::tops_as_given`]). Reading back what a writer made
-/// of it gives the same listing (within a dimension, for formats with one section per cell type).
+/// The complex as a listing: every vertex, its coordinates, its attributes, and the top
+/// simplices in input order with their input winding ([`Complex::tops_as_given`]) — or, when
+/// the complex carries attributes on its listed simplices, every listed simplex as given
+/// (absorbed faces and repeats included, each with its data: a boundary triangle's reference
+/// is written with it). Reading back what a writer made of it gives the same listing (within a
+/// dimension, for formats with one section per cell type).
 pub fn listing(c: &Complex) -> RawInput {
     let mut raw = RawInput::new();
     raw.vertex_count = Some(c.vertex_count());
     raw.coords = c.coords().cloned();
-    for (_, _, _, s) in c.tops_as_given() {
-        raw.push(s, 0);
+    raw.attributes = c.attributes().clone();
+    if c.attributes()
+        .iter()
+        .any(|a| a.location == Location::Listed)
+    {
+        for i in 0..c.input_count() {
+            raw.push(c.input_simplex(i), 0);
+        }
+    } else {
+        for (_, _, _, s) in c.tops_as_given() {
+            raw.push(s, 0);
+        }
     }
     raw
 }

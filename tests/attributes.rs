@@ -1,0 +1,409 @@
+//! Attributes (labels and fields) through the readers, the writers, the complex and the CLI:
+//! random listings with random data written in every format that holds them and read back bit
+//! for bit; the labelled meshes of `../shared/data/labelled` read alike by the three writers
+//! Gmsh used (MSH 4.1 and 2.2, MEDIT, legacy VTK) and kept through our own round trips; every
+//! "cannot hold" refused with the attribute's name and nothing written.
+
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+use proptest::prelude::*;
+use topoplex::Complex;
+use topoplex::complex::{Attribute, Attributes, LabelName, Location, Values};
+use topoplex::io::write::{Format, listing, write_complex, write_raw};
+use topoplex::io::{Coords, RawInput, read_path};
+
+use common::Scratch;
+
+fn simplices(r: &RawInput) -> Vec<Vec<u32>> {
+    (0..r.simplex_count())
+        .map(|i| r.simplex(i).to_vec())
+        .collect()
+}
+
+/// A listing of `n` vertices with coordinates: random simplices of 1 to 4 vertices (0-simplices
+/// only when `points`), grouped by size ascending when `grouped` (MEDIT's sections), faces of
+/// other listed simplices and repeats included.
+fn random_listing(seed: u64, n: u32, count: usize, points: bool, grouped: bool) -> RawInput {
+    let mut rng = common::Rng((seed) | 1);
+    let mut rows: Vec<Vec<u32>> = Vec::new();
+    for _ in 0..count {
+        let lo = if points { 1 } else { 2 };
+        let k = lo + rng.below(5 - lo);
+        let mut s: Vec<u32> = Vec::new();
+        while s.len() < k {
+            let v = rng.below(n as usize) as u32;
+            if !s.contains(&v) {
+                s.push(v);
+            }
+        }
+        rows.push(s);
+        if rng.below(4) == 0 {
+            let last = rows.last().unwrap().clone();
+            if last.len() > 2 {
+                rows.push(last[..last.len() - 1].to_vec()); // a listed face
+            } else {
+                rows.push(last); // a repeat
+            }
+        }
+    }
+    if grouped {
+        rows.sort_by_key(Vec::len);
+    }
+    let mut raw = RawInput::new();
+    raw.vertex_count = Some(n);
+    raw.coords = Some(Coords {
+        dim: 3,
+        data: (0..n as usize * 3).map(|i| i as f64 * 0.25).collect(),
+    });
+    for r in &rows {
+        raw.push(r, 0);
+    }
+    raw
+}
+
+/// Nonzero labels (0 is MEDIT's and Gmsh's "none", which the readers do not keep).
+fn labels(rng: &mut common::Rng, len: usize) -> Vec<i32> {
+    (0..len).map(|_| 1 + rng.below(7) as i32).collect()
+}
+
+/// Writes `raw` as `format`, reads it back, and checks listing, coordinates and attributes.
+fn round_trip(raw: &RawInput, format: Format, dir: &Path) -> Result<(), String> {
+    let path = dir.join(format!("r.{}", format.extension()));
+    write_raw(raw, &path, Some(format)).map_err(|e| e.to_string())?;
+    let back = read_path(&path).map_err(|e| e.to_string())?;
+    if simplices(&back) != simplices(raw) {
+        return Err(format!("{}: the listing changed", format.name()));
+    }
+    if !back.attributes.bits_eq(&raw.attributes) {
+        return Err(format!(
+            "{}: attributes changed:\n{:?}\nread back as\n{:?}",
+            format.name(),
+            raw.attributes,
+            back.attributes
+        ));
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// MEDIT references on vertices and on listed edges, triangles and tetrahedra (faces and
+    /// repeats included) come back bit for bit.
+    #[test]
+    fn medit_references_on_vertices_and_listed_simplices_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
+        let mut raw = random_listing(seed, n, count, false, true);
+        let mut rng = common::Rng((seed ^ 1) | 1);
+        let m = raw.simplex_count();
+        raw.attributes.insert(Attribute::labels("medit:ref", Location::Vertices, labels(&mut rng, n as usize)));
+        raw.attributes.insert(Attribute::labels("medit:ref", Location::Listed, labels(&mut rng, m)));
+        let dir = Scratch::new("medit");
+        prop_assert_eq!(round_trip(&raw, Format::Medit, &dir.0), Ok(()));
+    }
+
+    /// Gmsh physical and elementary tags, with physical group names, come back bit for bit in
+    /// MSH 4.1 and 2.2, ASCII and binary (physical tags constant per entity, as 4.1 keeps them).
+    #[test]
+    fn gmsh_physical_and_elementary_tags_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
+        let mut raw = random_listing(seed, n, count, true, false);
+        let mut rng = common::Rng((seed ^ 2) | 1);
+        let m = raw.simplex_count();
+        let geometrical: Vec<i32> = labels(&mut rng, m).iter().map(|g| g + 1).collect();
+        let physical: Vec<i32> = (0..m)
+            .map(|i| (raw.simplex(i).len() as i32) * 10 + geometrical[i] % 3)
+            .collect();
+        raw.attributes.insert(Attribute::labels("gmsh:geometrical", Location::Listed, geometrical));
+        raw.attributes.insert(Attribute::labels("gmsh:physical", Location::Listed, physical.clone()));
+        raw.attributes.add_label_name(LabelName {
+            attribute: "gmsh:physical".into(),
+            dimension: Some(raw.simplex(0).len() as u8 - 1),
+            label: i64::from(physical[0]),
+            name: "first group".into(),
+        });
+        let dir = Scratch::new("msh");
+        for f in [Format::Msh, Format::MshBinary, Format::Msh2, Format::Msh2Binary] {
+            prop_assert_eq!(round_trip(&raw, f, &dir.0), Ok(()));
+        }
+    }
+
+    /// Point and cell data of every type and 1 to 9 components come back bit for bit through
+    /// legacy VTK, ASCII and binary (NaN, infinities and subnormals included).
+    #[test]
+    fn vtk_point_and_cell_data_of_every_type_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
+        let mut raw = random_listing(seed, n, count, true, false);
+        let mut rng = common::Rng((seed ^ 3) | 1);
+        let m = raw.simplex_count();
+        let specials = [f64::NAN, f64::INFINITY, -0.0, 5e-324, 1e300, -1.5];
+        for (k, location) in [Location::Vertices, Location::Listed].into_iter().enumerate() {
+            let count = if location == Location::Vertices { n as usize } else { m };
+            let c = 1 + rng.below(9);
+            let reals: Vec<f64> = (0..count * c)
+                .map(|i| if rng.below(5) == 0 { specials[i % specials.len()] } else { rng.next() as f64 / 7.0 })
+                .collect();
+            raw.attributes.insert(Attribute { name: format!("f64_{k}"), location, components: c, values: Values::F64(reals.clone()) });
+            raw.attributes.insert(Attribute { name: format!("f32_{k}"), location, components: 1 + rng.below(9), values: Values::F32(vec![]) });
+            let a = raw.attributes.get(&format!("f32_{k}"), location).unwrap().components;
+            raw.attributes.insert(Attribute { name: format!("f32_{k}"), location, components: a, values: Values::F32((0..count * a).map(|i| reals[i % reals.len()] as f32).collect()) });
+            raw.attributes.insert(Attribute { name: format!("i64_{k}"), location, components: 2, values: Values::I64((0..count * 2).map(|_| rng.next() as i64).collect()) });
+            raw.attributes.insert(Attribute { name: format!("i32_{k}"), location, components: 1, values: Values::I32((0..count).map(|_| rng.next() as i32).collect()) });
+        }
+        raw.attributes.check(n as usize, m).unwrap();
+        let dir = Scratch::new("vtk");
+        for f in [Format::Vtk, Format::VtkBinary] {
+            prop_assert_eq!(round_trip(&raw, f, &dir.0), Ok(()));
+        }
+    }
+}
+
+/// Every format that does not hold an attribute refuses it, naming it and a format that does,
+/// and writes nothing; dropped explicitly, the rest is written.
+#[test]
+fn formats_that_cannot_hold_an_attribute_refuse_it_and_write_nothing() {
+    let mut raw = random_listing(7, 6, 5, false, true);
+    raw.attributes.insert(Attribute::labels(
+        "medit:ref",
+        Location::Vertices,
+        vec![1; 6],
+    ));
+    let dir = Scratch::new("refuse");
+    for f in Format::ALL {
+        let path = dir.0.join(format!("x.{}", f.extension()));
+        let r = write_raw(&raw, &path, Some(f));
+        if f.holds(raw.attributes.iter().next().unwrap()) {
+            continue;
+        }
+        let e = r.expect_err(f.name()).to_string();
+        assert!(
+            e.contains("'medit:ref'") && e.contains(".mesh"),
+            "{}: {e}",
+            f.name()
+        );
+        assert!(!path.exists(), "{}: a file was written", f.name());
+    }
+}
+
+/// A boundary triangle listed with a reference beside its tetrahedron keeps it: reachable by
+/// its vertices (in any order), written back with the tetrahedron; a face never listed has no
+/// listing.
+#[test]
+fn a_listed_boundary_triangle_keeps_its_reference_beside_its_tetrahedron() {
+    let text = "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 0\n1 0 0 0\n0 1 0 0\n\
+                0 0 1 0\nTriangles\n1\n1 2 3 7\nTetrahedra\n1\n1 2 3 4 9\nEnd\n";
+    let dir = Scratch::new("face");
+    let path = dir.0.join("t.mesh");
+    std::fs::write(&path, text).unwrap();
+    let c = Complex::from_path(&path).unwrap();
+    assert_eq!(c.top_counts(), vec![0, 0, 0, 1]);
+    let refs = c.attributes().get("medit:ref", Location::Listed).unwrap();
+    let face = c.listed_index(&[2, 0, 1]).unwrap();
+    assert_eq!(refs.label(face), Some(7));
+    let tet = c.listed_index(&[3, 2, 1, 0]).unwrap();
+    assert_eq!(refs.label(tet), Some(9));
+    assert_eq!(c.listed_index(&[0, 1, 3]), None);
+    assert!(
+        c.attributes()
+            .get("medit:ref", Location::Vertices)
+            .is_none()
+    );
+    let out = dir.0.join("back.mesh");
+    write_complex(&c, &out, None).unwrap();
+    let back = read_path(&out).unwrap();
+    assert_eq!(simplices(&back), vec![vec![0, 1, 2], vec![0, 1, 2, 3]]);
+    assert!(back.attributes.bits_eq(&listing(&c).attributes));
+}
+
+/// Malformed data is an error naming the file's line and the array.
+#[test]
+fn malformed_data_sections_name_the_line_and_the_array() {
+    let head = "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n\
+                0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n";
+    let cases: [(&str, &str, u32); 4] = [
+        (
+            "CELL_DATA 2\nSCALARS region int 1\nLOOKUP_TABLE default\n1 2\n",
+            "CELL_DATA 2 for 1 cells",
+            11,
+        ),
+        (
+            "CELL_DATA 1\nSCALARS region int 1\nLOOKUP_TABLE default\n1.5\n",
+            "'1.5' is not of type int among the values of SCALARS 'region'",
+            14,
+        ),
+        (
+            "POINT_DATA 3\nSCALARS t float 1\nLOOKUP_TABLE default\n1 1e39 2\n",
+            "'1e39' overflows float among the values of SCALARS 't'",
+            14,
+        ),
+        (
+            "CELL_DATA 1\nLOOKUP_TABLE lut 1\n0 0 0 1\n",
+            "unsupported data section 'LOOKUP_TABLE'",
+            12,
+        ),
+    ];
+    let dir = Scratch::new("malformed");
+    for (body, want, line) in cases {
+        let path = dir.0.join("m.vtk");
+        std::fs::write(&path, format!("{head}{body}")).unwrap();
+        let e = read_path(&path).unwrap_err().to_string();
+        assert!(e.contains(want), "{e}");
+        assert!(e.contains(&format!(":{line}:")), "{e}");
+    }
+    let medit = "MeshVersionFormatted 2\nDimension 3\nVertices\n1\n0 0 0 4294967296\nEnd\n";
+    let path = dir.0.join("m.mesh");
+    std::fs::write(&path, medit).unwrap();
+    let e = read_path(&path).unwrap_err().to_string();
+    assert!(
+        e.contains("does not fit in 32 bits") && e.contains(":5:"),
+        "{e}"
+    );
+    let msh = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n1\n2 1 unquoted\n$EndPhysicalNames\n";
+    let path = dir.0.join("m.msh");
+    std::fs::write(&path, msh).unwrap();
+    let e = read_path(&path).unwrap_err().to_string();
+    assert!(
+        e.contains("physical group (2, 1)") && e.contains(":6:"),
+        "{e}"
+    );
+}
+
+/// The labelled meshes: the same Gmsh mesh written by Gmsh as MSH 4.1 and 2.2 reads with the
+/// same tags and names; Gmsh's MEDIT references equal its elementary tags and its VTK
+/// `CellEntityIds` its physical tags, element for element; every one survives our own writers.
+#[test]
+fn labelled_meshes_read_alike_in_every_format_gmsh_wrote_and_survive_our_writers() {
+    let Some(data) = common::shared_data().map(|d| d.join("labelled")) else {
+        eprintln!("../shared/data is absent: skipping the labelled meshes");
+        return;
+    };
+    if !data.is_dir() {
+        eprintln!("../shared/data/labelled is absent: skipping");
+        return;
+    }
+    let read = |name: &str| read_path(&data.join(name)).unwrap();
+    let (v4, v2) = (read("gmsh_t15.msh"), read("gmsh_t15_v22.msh"));
+    assert_eq!(simplices(&v4), simplices(&v2));
+    assert!(v4.attributes.bits_eq(&v2.attributes));
+    assert_eq!(v4.attributes.label_names().len(), 5);
+    let listed = |r: &RawInput, name: &str| {
+        r.attributes
+            .get(name, Location::Listed)
+            .unwrap()
+            .values
+            .clone()
+    };
+    let (msh, mesh) = (read("gmsh_t16.msh"), read("gmsh_t16.mesh"));
+    assert_eq!(msh.simplex_count(), mesh.simplex_count());
+    let by_dim = |r: &RawInput, name: &str| {
+        let v = listed(r, name);
+        let mut rows: Vec<(usize, i64)> = (0..r.simplex_count())
+            .map(|i| (r.simplex(i).len(), v.integer(i).unwrap()))
+            .collect();
+        rows.sort_by_key(|x| x.0);
+        rows
+    };
+    assert_eq!(by_dim(&msh, "gmsh:geometrical"), by_dim(&mesh, "medit:ref"));
+    let (t2, t2vtk) = (read("gmsh_t2.msh"), read("gmsh_t2.vtk"));
+    assert_eq!(simplices(&t2), simplices(&t2vtk));
+    assert!(listed(&t2, "gmsh:physical").bits_eq(&listed(&t2vtk, "CellEntityIds")));
+    let dir = Scratch::new("labelled");
+    for (file, formats) in [
+        (
+            "gmsh_t2.msh",
+            &[
+                Format::Msh,
+                Format::MshBinary,
+                Format::Msh2,
+                Format::Msh2Binary,
+            ][..],
+        ),
+        ("gmsh_t15.msh", &[Format::Msh, Format::Msh2Binary][..]),
+        ("gmsh_t16.msh", &[Format::Msh, Format::Msh2][..]),
+        ("gmsh_t5.msh", &[Format::MshBinary][..]),
+        ("gmsh_t16.mesh", &[Format::Medit][..]),
+        ("gmsh_t2.vtk", &[Format::Vtk, Format::VtkBinary][..]),
+    ] {
+        let c = Complex::from_path(&data.join(file)).unwrap();
+        let raw = listing(&c);
+        for &f in formats {
+            round_trip(&raw, f, &dir.0).unwrap_or_else(|e| panic!("{file}: {e}"));
+        }
+    }
+}
+
+/// The CLI keeps the data it can and refuses the rest: `convert` to a format without it exits 1
+/// naming the attribute, `--drop-data` drops it by name or all, naming an absent one is an
+/// error, and a verb that does not carry data yet refuses instead of dropping it.
+#[test]
+fn cli_convert_keeps_refuses_or_drops_data_on_request() {
+    let dir = Scratch::new("cli");
+    let input = dir.0.join("in.mesh");
+    std::fs::write(
+        &input,
+        "MeshVersionFormatted 2\nDimension 3\nVertices\n3\n0 0 0 1\n1 0 0 2\n0 1 0 3\n\
+         Triangles\n1\n1 2 3 5\nEnd\n",
+    )
+    .unwrap();
+    let run = |args: &[&str]| {
+        let o = Command::new(env!("CARGO_BIN_EXE_topoplex"))
+            .args(args)
+            .output()
+            .unwrap();
+        (
+            o.status.code(),
+            String::from_utf8_lossy(&o.stderr).to_string(),
+        )
+    };
+    let p = |name: &str| dir.0.join(name).to_str().unwrap().to_string();
+    let inp = input.to_str().unwrap();
+    let (code, err) = run(&["convert", inp, &p("a.off")]);
+    assert_eq!(code, Some(1));
+    assert!(
+        err.contains("'medit:ref'") && err.contains("--drop-data"),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(!dir.0.join("a.off").exists());
+    assert_eq!(run(&["convert", inp, &p("a.vtk")]).0, Some(0));
+    let back = read_path(&dir.0.join("a.vtk")).unwrap();
+    assert_eq!(listed_labels(&back.attributes, "medit:ref"), vec![5]);
+    assert_eq!(
+        run(&["convert", inp, &p("b.off"), "--drop-data", "medit:ref"]).0,
+        Some(0)
+    );
+    assert_eq!(
+        run(&["convert", inp, &p("c.off"), "--drop-data", "all"]).0,
+        Some(0)
+    );
+    let (code, err) = run(&["convert", inp, &p("d.off"), "--drop-data", "nothing"]);
+    assert_eq!(code, Some(1));
+    assert!(
+        err.contains("no such attribute") && err.contains("'medit:ref'"),
+        "{err}"
+    );
+    let (code, err) = run(&["simplify", inp, "--out", &p("s.mesh"), "--ratio", "1"]);
+    assert_eq!(code, Some(1));
+    assert!(err.contains("does not carry attributes yet"), "{err}");
+    assert_eq!(
+        run(&[
+            "simplify",
+            inp,
+            "--out",
+            &p("s.mesh"),
+            "--ratio",
+            "1",
+            "--drop-data",
+            "all"
+        ])
+        .0,
+        Some(0)
+    );
+}
+
+fn listed_labels(at: &Attributes, name: &str) -> Vec<i64> {
+    let a = at.get(name, Location::Listed).unwrap();
+    (0..a.element_count())
+        .map(|i| a.label(i).unwrap())
+        .collect()
+}
