@@ -485,7 +485,7 @@ impl Progress {
 fn report(files: &[PathBuf], json: bool, csv: bool, svg: Option<&Path>) -> Result<(), String> {
     use topoplex_cli::report::{Dataset, render};
     // Per dataset: reading, the census, and each structure's build and four families.
-    let per_file = 2 + 5 * StructureKind::ALL.len() as u64;
+    let per_file = 2 + 5 * StructureKind::NAMED.len() as u64;
     let progress = Progress::new(per_file * files.len().max(1) as u64);
     let mut datasets = Vec::new();
     let run = |name: &str, file: Option<&str>, complex: &Complex| {
