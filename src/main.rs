@@ -257,7 +257,11 @@ fn main() -> ExitCode {
 /// of exit 1, which [`main`] writes as one line. Also run in-process by the CLI fuzz target
 /// (fuzz/fuzz_targets/cli_args.rs), which includes this file as a module.
 pub fn cli(args: impl IntoIterator<Item = std::ffi::OsString>) -> Result<(), String> {
-    let cli = Cli::try_parse_from(args).map_err(|e| clap_outcome(&e));
+    use clap::FromArgMatches;
+    let cli = command()
+        .try_get_matches_from(args)
+        .and_then(|m| Cli::from_arg_matches(&m))
+        .map_err(|e| clap_outcome(&e));
     let cli = match cli {
         Ok(cli) => cli,
         Err(outcome) => return outcome,
@@ -270,6 +274,64 @@ pub fn cli(args: impl IntoIterator<Item = std::ffi::OsString>) -> Result<(), Str
         topoplex::parallel::set_threads(n);
     }
     run(cli.command)
+}
+
+/// The extensions read and written, from the one format table ([`Format::ALL`]): `.off, .obj,
+/// ... or .msh`.
+fn extensions() -> String {
+    let mut exts: Vec<&str> = Vec::new();
+    for f in Format::ALL {
+        if !exts.contains(&f.extension()) {
+            exts.push(f.extension());
+        }
+    }
+    let dotted: Vec<String> = exts.iter().map(|e| format!(".{e}")).collect();
+    match dotted.split_last() {
+        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+        None => String::new(),
+    }
+}
+
+/// The CLI's clap command, its help texts on formats written from the format table, so that
+/// they name every format the readers and writers know.
+fn command() -> clap::Command {
+    let input = format!(
+        "Input: {} (by extension), or a saved file (known by its magic number, .tpx)",
+        extensions()
+    );
+    let names: Vec<&str> = Format::ALL.iter().map(|f| f.name()).collect();
+    let format = format!(
+        "Output format, one of: {} (instead of OUTPUT's extension)",
+        names.join(", ")
+    );
+    let output = format!("Output file: {} (format by extension)", extensions());
+    let patch = |c: clap::Command| {
+        match c.get_name() {
+        "report" => c.mut_arg("files", |a| {
+            a.help(format!(
+                "{input}; without any, a built-in example complex with a wire edge, a dangling triangle, a tetrahedron and a non-manifold vertex and edge"
+            ))
+        }),
+        "relation" | "save" | "decompose" => c.mut_arg("file", |a| a.help(&input)),
+        "convert" => c
+            .mut_arg("input", |a| a.help(&input))
+            .mut_arg("output", |a| a.help(&output))
+            .mut_arg("format", |a| a.help(&format)),
+        "simplify" => c
+            .mut_arg("input", |a| a.help(&input))
+            .mut_arg("out", |a| a.help(&output)),
+        _ => c,
+    }
+    };
+    // Every subcommand in its order (mut_subcommand moves the one it changes to the end).
+    let cli = Cli::command();
+    let names: Vec<String> = cli
+        .get_subcommands()
+        .map(|c| c.get_name().to_string())
+        .collect();
+    names
+        .iter()
+        .fold(cli, |cli, name| cli.mut_subcommand(name, patch))
 }
 
 /// One arm per subcommand.
@@ -334,7 +396,7 @@ fn clap_outcome(e: &clap::Error) -> Result<(), String> {
     match e.kind() {
         ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => print(&e.render().to_string()),
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            let names: Vec<String> = Cli::command()
+            let names: Vec<String> = command()
                 .get_subcommands()
                 .map(|c| c.get_name().to_string())
                 .filter(|n| n != "help")

@@ -2,7 +2,8 @@
 //! refused with one line naming the file (never exit 101), `--verify` checks an input fully,
 //! `verify` catches a structure that no longer matches its complex, and the magic number, not
 //! the extension, makes a saved file. Also the papercuts of item 6 met on the same path:
-//! `--structure` in any case and a closed pipe on stdout; and the C ABI's `TPX_OPEN_VERIFY`.
+//! `--structure` in any case, a closed pipe on stdout, help texts naming every format; and the
+//! C ABI's `TPX_OPEN_VERIFY`.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -292,5 +293,39 @@ fn the_c_abi_verifies_on_request_and_opens_a_flipped_file_in_shape_only_without(
         tpx_complex_free(c);
         let st = tpx_complex_open_flags(cgood.as_ptr(), 8, &mut c);
         assert_eq!(st, TpxStatus::InvalidArgument);
+    }
+}
+
+#[test]
+fn help_texts_name_every_format_of_the_format_table() {
+    use topoplex::io::write::Format;
+    for cmd in [
+        "report",
+        "relation",
+        "save",
+        "decompose",
+        "convert",
+        "simplify",
+    ] {
+        let o = topoplex(&[cmd, "--help"]);
+        assert!(o.status.success(), "{cmd}: {}", stderr(&o));
+        let help = String::from_utf8_lossy(&o.stdout);
+        for f in Format::ALL {
+            let ext = format!(".{}", f.extension());
+            assert!(help.contains(&ext), "{cmd} --help omits {ext}:\n{help}");
+        }
+        assert!(
+            help.contains("saved file"),
+            "{cmd} --help omits saved files"
+        );
+    }
+    let convert = topoplex(&["convert", "--help"]);
+    let help = String::from_utf8_lossy(&convert.stdout);
+    for f in Format::ALL {
+        assert!(
+            help.contains(f.name()),
+            "convert --help omits --format {}",
+            f.name()
+        );
     }
 }
