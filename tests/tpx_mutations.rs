@@ -62,6 +62,7 @@ fn saved(c: &Complex, s: Option<&dyn Topology>, name: &str) -> Vec<u8> {
     save(&path, c, s).unwrap();
     let bytes = std::fs::read(&path).unwrap();
     std::fs::remove_file(&path).unwrap();
+    let _ = std::fs::remove_dir(&dir);
     bytes
 }
 

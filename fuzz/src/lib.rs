@@ -118,5 +118,6 @@ pub fn saved_seeds() -> Vec<(Complex, Vec<u8>, Vec<String>)> {
             seeds.push((c.clone(), bytes, want));
         }
     }
+    let _ = std::fs::remove_dir(&dir);
     seeds
 }
