@@ -62,8 +62,9 @@
 #define TPX_KIND_DE 8
 
 /**
- * The live complex (`TpxLive`, IA*-like and updatable). `tpx_structure_build` does not take it:
- * a live complex is built with `tpx_live_from_complex`; the number names it in messages.
+ * The live complex (IA*-like). Works wherever a kind is taken: `tpx_structure_build` and
+ * `tpx_structure_open` give it as an immutable `TpxStructure`; the editable one is a `TpxLive`
+ * (`tpx_live_from_complex`, `tpx_live_open`), navigated through `tpx_live_structure`.
  */
 #define TPX_KIND_IASTAR 9
 
@@ -355,9 +356,8 @@ enum TpxStatus
    */
   TPX_STATUS_STALE_GENERATION = 52,
   /**
-   * The answer holds simplices that have no dense index (the live complex numbers only its
-   * vertices densely): use the handle-writing twin (`tpx_related_handles`,
-   * `tpx_cyclic_handles`) or ask for vertices.
+   * No longer returned: the live complex, which once numbered only its vertices densely, now
+   * numbers every dimension (until its next edit). Kept so that the number is never reused.
    */
   TPX_STATUS_NOT_DENSE = 53,
 };
@@ -433,7 +433,10 @@ typedef struct TpxInputStats {
  * `meta` holds the dimension in its low 8 bits (`meta & 0xff`); the other bits are 0 for the
  * nine built structures. The live complex (`tpx_live_structure`) names a simplex above its
  * vertices by a top simplex (`index`: dimension in the top 4 bits, slot below) and a mask of its
- * vertices (`meta` bits 16..32, form 1 in bits 8..16). `owner` is the stamp of the structure
+ * vertices (`meta` bits 16..32, form 1 in bits 8..16), so that the handle lasts across edits;
+ * its dense index is then `tpx_simplex_index` (valid until the next edit), and a handle
+ * `{i, p, owner}` built from an index (form 0) is accepted too, naming the p-simplex of index
+ * i at the time of use. `owner` is the stamp of the structure
  * that made it. A handle of a built structure stays valid as long as its structure lives; one of
  * a live complex names its simplex (or, across a contraction, its image) while that simplex
  * exists — also when the top simplex naming it was removed, at the cost of locating it again on
@@ -460,7 +463,7 @@ typedef struct TpxSimplex {
  * iterating answers in the caller's own loop with no call per query (the C++
  * `Structure::view` ranges do): the answer of the p-simplex of dense index i is
  * `ids[offsets[i] .. offsets[i + 1]]`, in natural order. The arrays belong to the structure
- * and live as long as it does.
+ * and live as long as it does (the live complex: until its next edit).
  */
 typedef struct TpxRelationView {
   /**
@@ -685,6 +688,39 @@ TpxStatus tpx_complex_top_simplices(const struct TpxComplex *c,
                                     size_t *out_len);
 
 /**
+ * Replaces the vertex coordinates of `c` by `data[0 .. len]`: `dim` doubles per vertex, vertex
+ * after vertex (`len` = vertex count × `dim`, `dim` ≥ 1; a complex without coordinates gains
+ * them), so that an application moves its vertices without building a new complex. Structures
+ * built from `c` before keep what they were built with. Errors: NULL_ARGUMENT (`data` may be
+ * NULL only when `len` is 0), INVALID_ARGUMENT (wrong length, `dim` 0, a NaN or infinite
+ * number: the message names its vertex), TOO_LARGE (a new dimension's array cannot be
+ * allocated); on error nothing changes. Not to be called while another thread reads `c`.
+ * Cost: O(len); no allocation when `dim` is the current one.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `data` holds `len` doubles.
+ */
+TpxStatus tpx_complex_set_coords(struct TpxComplex *c, size_t dim, const double *data, size_t len);
+
+/**
+ * Top p-simplex `i` of `c` (the i-th of `tpx_complex_top_simplices(c, p)`) with its vertices in
+ * its input winding (the order of its first listing), lent: `*out` points into the complex's
+ * own listing, `*out_len` = p + 1 ids, valid until `tpx_complex_free` (setting coordinates
+ * does not move it). An isolated vertex no simplex lists lends itself. Errors: NULL_ARGUMENT,
+ * DIMENSION_OUT_OF_RANGE (p > d), INVALID_ARGUMENT (`i` ≥ the number of top p-simplices); the
+ * outputs are written only on success. O(1) (the first call builds the listing maps,
+ * O(Σ (p+1) log n_p)); no copy.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_complex_top_oriented(const struct TpxComplex *c,
+                                   uint32_t p,
+                                   uint32_t i,
+                                   const uint32_t **out,
+                                   size_t *out_len);
+
+/**
  * Cuts the complex `c` into its IQM components (see `src/structures/iqm.rs` for the
  * definitions): each component is regular and an initial quasi-manifold, and vertices are
  * split into one copy per manifold-connected part of their star.
@@ -789,7 +825,9 @@ TpxStatus tpx_locate(const struct TpxStructure *s,
 
 /**
  * The handle of the p-simplex of dense index `index` into `*out` (for a vertex: p = 0, index =
- * its id). Errors: INVALID_HANDLE (p > d or index >= n_p). O(1).
+ * its id). Errors: INVALID_HANDLE (p > d or index >= n_p). O(1); on the live complex, for
+ * p > 0, the handle lasting across edits of the simplex of that rank now (its table built on
+ * first use), O(p + d·k_v).
  *
  * # Safety
  * Non-NULL pointers must be valid.
@@ -798,6 +836,23 @@ TpxStatus tpx_handle(const struct TpxStructure *s,
                      uint32_t p,
                      uint32_t index,
                      struct TpxSimplex *out);
+
+/**
+ * The dense index of `*h` into `*out`: its rank among the simplices of its dimension in
+ * ascending lexicographic order (a vertex: its id) — the index `tpx_handle` takes back, that
+ * `tpx_related` writes and the relation views are indexed by, and that the caller's
+ * per-dimension arrays can use. For the nine structures it is `h->index`; the live complex's
+ * handles above vertices are not their index (they last across edits), and this gives the
+ * index of its numbering of the moment, valid until its next edit. Errors: NULL_ARGUMENT,
+ * FOREIGN_HANDLE, STALE_GENERATION, INVALID_HANDLE, STALE_HANDLE; `*out` written only on
+ * success. O(1) (the live complex: O(p log n_p), the dimension's table built on first use).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_simplex_index(const struct TpxStructure *s,
+                            const struct TpxSimplex *h,
+                            uint32_t *out);
 
 /**
  * The vertex ids of `*h`, ascending, into `buf` (p + 1 of them; `*out_len` = p + 1).
@@ -858,9 +913,9 @@ TpxStatus tpx_top_as_given(const struct TpxStructure *s,
 /**
  * R_{p,q}(*h) (p = the handle's dimension) as dense indices of q-simplices into `buf`, in
  * `order` (`TPX_ORDER_*`); `*out_len` = the number written. Errors: FOREIGN_HANDLE,
- * INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), NOT_DENSE (q > 0 on
- * the live complex: use `tpx_related_handles`), BUFFER_TOO_SMALL
- * (nothing written; `*out_len` = needed). Cost: the structure's walk (module docs), plus a sort
+ * INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), BUFFER_TOO_SMALL
+ * (nothing written; `*out_len` = needed). On the live complex, indices above vertices are its
+ * numbering until the next edit (module doc). Cost: the structure's walk (module docs), plus a sort
  * for lexicographic order; rows a structure stores (the IG's boundaries and co-boundaries, the
  * IA's adjacency, the radial cycles' FF) are copied straight into `buf` (see `ffi::direct`).
  * No allocation once this thread's buffers have grown to the answer.
@@ -881,8 +936,8 @@ TpxStatus tpx_related(const struct TpxStructure *s,
  * `indices[0 .. count]`, `offsets[0 .. count + 1]` receives the start of each answer in `buf`
  * (`offsets[count]` = total) and `buf` the dense q-indices, each answer in `order`.
  * Errors: INVALID_HANDLE (p > d or an index out of range), DIMENSION_OUT_OF_RANGE,
- * BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`;
- * NOT_DENSE for q > 0 on the live complex (use `tpx_related_handles_batch`).
+ * BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`
+ * (the live complex: indices valid until its next edit, module doc).
  * `offsets` must hold `count + 1` entries. Cost: one walk per index (TS, PE, LE, DE answer
  * VV, VF and FF in one loop with no call per answer); allocation-free once this thread's buffer
  * has grown to the total.
@@ -918,7 +973,7 @@ TpxStatus tpx_degree(const struct TpxStructure *s,
  * |R_{p,q}| of the p-simplices of dense indices `indices[0 .. count]` into `degrees[0 ..
  * count]`, without writing any answer (a valence histogram, boundary and non-manifold edge
  * lists read degrees only). Errors: NULL_ARGUMENT, INVALID_HANDLE (p > d or an index out of
- * range), DIMENSION_OUT_OF_RANGE (q > d), NOT_DENSE (the live complex, q > 0); nothing is
+ * range; on the live complex a removed vertex), DIMENSION_OUT_OF_RANGE (q > d); nothing is
  * written on error. Cost: for relations the IG stores (R_{p,p±1}, and R_{0,0} = the edges at
  * a vertex) O(1) per index from its offsets; otherwise the walk of each answer, counted in a
  * scratch buffer (no answer copied out). No allocation once this thread's scratch is warm.
@@ -942,8 +997,14 @@ TpxStatus tpx_degree_batch(const struct TpxStructure *s,
  * p-simplex), `4 (n_p + 1) + 4 Σ|R_{p,q}|` bytes kept with the
  * structure (`built` = 1, `bytes`) — and later calls are O(1). Each answer is in natural order,
  * the same as `tpx_related` (TPX_ORDER_NATURAL). Errors: NULL_ARGUMENT,
- * DIMENSION_OUT_OF_RANGE (p or q > d), NOT_DENSE (the live complex), TOO_LARGE (the index does
- * not fit in memory or its offsets in 32 bits); `*out` is written only on success.
+ * DIMENSION_OUT_OF_RANGE (p or q > d), TOO_LARGE (the index does not fit in memory or its
+ * offsets in 32 bits); `*out` is written only on success.
+ *
+ * The live complex lends views too, built the same way, but they (and its indices above
+ * vertices) are valid only until its next edit — insert, remove, contract, split, add vertex,
+ * compact; setting coordinates keeps them — which drops them (after an edit, ask again: one
+ * walk). Its vertex rows are its vertex slots (`count` = `tpx_live_vertex_slots`), a removed
+ * vertex's row empty.
  *
  * # Safety
  * Non-NULL pointers must be valid.
@@ -991,8 +1052,7 @@ TpxStatus tpx_simplex_test(const struct TpxStructure *s,
  * `items[offsets[k] .. offsets[k+1]]` (dense indices of triangles, or of tetrahedra for q = 3),
  * `flags[k]` has `TPX_GROUP_CLOSED` and `TPX_GROUP_ORIENTED`; `*out_items` and `*out_groups`
  * receive the counts. `offsets` needs `groups + 1` entries. Errors: WRONG_HANDLE_KIND (not a
- * vertex / not an edge), DIMENSION_OUT_OF_RANGE, NOT_DENSE (the live complex: use
- * `tpx_cyclic_handles`), BUFFER_TOO_SMALL (nothing written; the needed counts in `*out_items`
+ * vertex / not an edge), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL (nothing written; the needed counts in `*out_items`
  * and `*out_groups`). Cost: the star of the vertex or edge. No allocation once this thread's
  * buffers are warm.
  *
@@ -1012,8 +1072,8 @@ TpxStatus tpx_cyclic(const struct TpxStructure *s,
                      size_t *out_groups);
 
 /**
- * `tpx_cyclic` with the items written as handles (`TpxSimplex`): works for every structure,
- * the live complex included (whose simplices above vertices have no dense index). Same
+ * `tpx_cyclic` with the items written as handles (`TpxSimplex`), which on the live complex
+ * last across edits (its indices do not). Same
  * arguments, errors and cost; `items` has room for `items_len` handles.
  *
  * # Safety
@@ -1219,7 +1279,10 @@ TpxStatus tpx_live_coord_dim(const struct TpxLive *l, size_t *out);
 
 /**
  * Sets the coordinates of live vertex `v` from `xyz[0 .. len]` (`len` must be the coordinate
- * dimension). Errors: NULL_ARGUMENT, DEAD_VERTEX, INVALID_ARGUMENT (wrong length). O(1).
+ * dimension). Not an edit of the topology: handles, dense indices and lent views stay valid;
+ * a later `tpx_live_split` puts back the coordinates its contraction's a and b had. Errors:
+ * NULL_ARGUMENT, DEAD_VERTEX, INVALID_ARGUMENT (wrong length, a NaN or infinite number);
+ * on error nothing changes. O(1).
  *
  * # Safety
  * Non-NULL pointers must be valid; `xyz` has `len` doubles.
@@ -1227,8 +1290,54 @@ TpxStatus tpx_live_coord_dim(const struct TpxLive *l, size_t *out);
 TpxStatus tpx_live_set_coords(struct TpxLive *l, uint32_t v, const double *xyz, size_t len);
 
 /**
+ * Sets the coordinates of every vertex slot at once from `data[0 .. len]`, slot after slot
+ * (`len` = `tpx_live_vertex_slots` × `tpx_live_coord_dim`; the numbers of removed vertices are
+ * stored and never read). Not an edit of the topology: handles, dense indices and lent views
+ * stay valid. Errors: NULL_ARGUMENT (`data` may be NULL only when `len` is 0),
+ * INVALID_ARGUMENT (wrong length, or a NaN or infinite number: the message names its vertex
+ * and coordinate); on error nothing changes. Needs exclusive access. Cost: O(len), no
+ * allocation (the array is overwritten in place, so a pointer from `tpx_live_all_coords`
+ * stays valid and reads the new numbers).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `data` has `len` doubles.
+ */
+TpxStatus tpx_live_set_all_coords(struct TpxLive *l, const double *data, size_t len);
+
+/**
+ * Lends the coordinates of every vertex slot, slot after slot (`tpx_live_coord_dim` doubles
+ * each; a removed vertex's are meaningless): `*out` points into the live complex's own array,
+ * `*out_len` = slots × coord_dim. Valid until the next edit that adds or drops vertex slots
+ * (`tpx_live_add_vertex`, `tpx_live_compact`) or `tpx_live_free`; setting coordinates writes
+ * through it in place. Errors: NULL_ARGUMENT; outputs written only on success. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_all_coords(const struct TpxLive *l, const double **out, size_t *out_len);
+
+/**
+ * Lends top simplex `top` (a top id of `tpx_live_structure`'s numbering, as `tpx_top` and
+ * `tpx_top_id` use: dimension in the top 4 bits, slot below) with its vertices in stored
+ * order — the input winding, b replaced by a in place after contractions — without a copy:
+ * `*out` points into the live complex's top table, `*out_len` = p + 1 ids, valid until the
+ * next edit (insert, remove, contract, split, add vertex, compact) or `tpx_live_free`. For a
+ * whole-mesh pass in winding order (writing faces, per-face normals) with no call per vertex
+ * and no buffer. Errors: NULL_ARGUMENT, INVALID_HANDLE (no live top in that slot, or an
+ * isolated vertex, which has no stored row: it is its own id); outputs written only on
+ * success. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_top_vertices(const struct TpxLive *l,
+                                uint32_t top,
+                                const uint32_t **out,
+                                size_t *out_len);
+
+/**
  * Adds an isolated vertex at `xyz[0 .. len]`; its id into `*out`. Errors: NULL_ARGUMENT,
- * INVALID_ARGUMENT (wrong length). Amortised O(1).
+ * INVALID_ARGUMENT (wrong length, a NaN or infinite number). Amortised O(1).
  *
  * # Safety
  * Non-NULL pointers must be valid; `xyz` has `len` doubles.
@@ -1352,12 +1461,24 @@ TpxStatus tpx_live_validate(const struct TpxLive *l);
  * structure — `tpx_locate`, `tpx_simplex_vertices`, `tpx_related_handles`, `tpx_degree`,
  * `tpx_star`, `tpx_simplex_test`, `tpx_cyclic_handles`, `tpx_top`, `tpx_top_id`,
  * `tpx_top_as_given`, and the vertex-id functions (`tpx_relation`, `tpx_structure_count`, ...).
- * Handles stay valid across edits while the simplex's naming top simplex lives (STALE_HANDLE
- * afterwards) and until `tpx_live_compact` (STALE_GENERATION afterwards). A vertex's handle index
- * is its id; other simplices have no dense index (`tpx_related` and `tpx_cyclic` answer
- * NOT_DENSE for them: use the `_handles` twins). Top ids are not dense either: dimension in the
- * top 4 bits, slot below (an isolated vertex v: `v`). Not to be used while another thread edits
- * the live complex. O(1).
+ * The index functions too: `tpx_handle(p, i)`, `tpx_related`, `tpx_related_batch`,
+ * `tpx_degree_batch`, `tpx_cyclic`, `tpx_relation_view`.
+ *
+ * Why a lent structure rather than a second family of functions: one set of navigation
+ * functions (and one C++ class) serves every kind, so code written for a built structure runs
+ * on the editable one unchanged; the view costs nothing (it is the live complex behind the
+ * relation API) and is the same object across edits, so a `const TpxStructure *` taken once
+ * stays usable. `tpx_structure_build(c, TPX_KIND_IASTAR, ..)` gives the same navigation on a
+ * live complex nobody edits.
+ *
+ * Across edits: handles (`TpxSimplex` from `tpx_locate`, `tpx_handle`, the `_handles`
+ * functions) name their simplex while it exists — STALE_HANDLE once it is gone, and
+ * STALE_GENERATION for any handle after `tpx_live_compact`. A vertex's index is its id, stable
+ * until `tpx_live_compact`. Indices above vertices are lexicographic ranks of the moment: every
+ * edit (not a coordinate change) renumbers them and drops lent views, so use them, and
+ * handles `{i, q, owner}` made from them, only until the next edit. Top ids are not dense:
+ * dimension in the top 4 bits, slot below (an isolated vertex v: `v`). Not to be used while
+ * another thread edits the live complex. O(1).
  *
  * # Safety
  * Non-NULL pointers must be valid.
@@ -1517,6 +1638,10 @@ TpxStatus tpx_set_threads(uint32_t threads);
 /**
  * Builds a structure of `kind` (`TPX_KIND_*`) for the complex `c`.
  *
+ * `TPX_KIND_IASTAR` builds the live complex's structure (the same as `tpx_live_from_complex`
+ * makes, behind `tpx_live_structure`), answering every function that takes a structure; a
+ * `TpxStructure` is never edited, so to edit, build a `TpxLive` instead.
+ *
  * On success `*out` receives a new structure owned by the caller (free with
  * `tpx_structure_free`); it does not borrow `c`, which may be freed first.
  * Errors: NULL_ARGUMENT, UNKNOWN_KIND, NOT_IMPLEMENTED, UNSUPPORTED_COMPLEX (message names the
@@ -1527,6 +1652,30 @@ TpxStatus tpx_set_threads(uint32_t threads);
  * Non-NULL pointers must be valid (a live complex; a writable handle pointer).
  */
 TpxStatus tpx_structure_build(const struct TpxComplex *c, uint32_t kind, struct TpxStructure **out);
+
+/**
+ * The kind (`TPX_KIND_*`) named `name` into `*out`: the names the `topoplex` CLI's
+ * `--structure` takes (`ig`, `sig`, `ia`, `iqm`, `nmia`, `ts`, `pe`, `le`, `de`, `iastar`),
+ * ASCII case ignored — the library's one name map, so that a client need not write its own.
+ * Errors: NULL_ARGUMENT, INVALID_ARGUMENT (not UTF-8), UNKNOWN_KIND (no kind has this name;
+ * the message echoes it, capped and escaped); `*out` is written only on success. O(length of
+ * `name`); no allocation on success.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `name` must be NUL-terminated.
+ */
+TpxStatus tpx_kind_from_name(const char *name, uint32_t *out);
+
+/**
+ * The name of kind `kind` (`TPX_KIND_*`) into `*out`: the static NUL-terminated string the
+ * CLI's `--structure` takes (`"ig"` .. `"iastar"`; never freed, valid for the process), the
+ * inverse of `tpx_kind_from_name`. Errors: NULL_ARGUMENT, UNKNOWN_KIND; `*out` written only on
+ * success. O(1), no allocation.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_kind_name(uint32_t kind, const char **out);
 
 /**
  * Releases a structure. NULL is a no-op.

@@ -39,6 +39,8 @@ enum class Kind : std::uint32_t {
   PE = TPX_KIND_PE,
   LE = TPX_KIND_LE,
   DE = TPX_KIND_DE,
+  /* The live complex: a Structure of this kind is an IA* nobody edits; Live edits one. */
+  IASTAR = TPX_KIND_IASTAR,
 };
 
 /* Output formats (values of TPX_FORMAT_*); FromExtension picks one from the file name. */
@@ -139,7 +141,21 @@ constexpr bool move_only = std::is_nothrow_move_constructible<C>::value &&
                            !std::is_copy_assignable<C>::value;
 }  // namespace detail
 
-/* A non-owning view of one simplex: its ascending vertex ids. */
+/* The kind named `name` as the topoplex CLI's --structure takes it ("ig", "PE", "iastar"; ASCII
+ * case ignored): tpx_kind_from_name, the library's one name map. Throws Error
+ * (TPX_STATUS_UNKNOWN_KIND, the message listing the names) for any other name. A free function
+ * because Kind is a C++ enum, which cannot have members; Kind::from_name reads as
+ * kind_from_name. */
+inline Kind kind_from_name(const std::string &name) {
+  return static_cast<Kind>(detail::get<std::uint32_t>(tpx_kind_from_name, name.c_str()));
+}
+/* The CLI name of `kind` ("ig" .. "iastar"; tpx_kind_name); throws UNKNOWN_KIND otherwise. */
+inline std::string kind_name(Kind kind) {
+  return detail::get<const char *>(tpx_kind_name, static_cast<std::uint32_t>(kind));
+}
+
+/* A non-owning view of one simplex: its vertex ids (ascending, or in winding order where the
+ * call says so). */
 class SimplexView {
  public:
   SimplexView() = default;
@@ -227,6 +243,22 @@ class Rows {
   std::size_t arity_ = 1;
 };
 
+/* A non-owning view of coordinates: n doubles (coord_dim per vertex, vertex after vertex). */
+class CoordsView {
+ public:
+  CoordsView() = default;
+  CoordsView(const double *xyz, std::size_t n) : xyz_(xyz), n_(n) {}
+  const double *begin() const noexcept { return xyz_; }
+  const double *end() const noexcept { return xyz_ + n_; }
+  const double *data() const noexcept { return xyz_; }
+  std::size_t size() const noexcept { return n_; }
+  double operator[](std::size_t i) const noexcept { return xyz_[i]; }
+
+ private:
+  const double *xyz_ = nullptr;
+  std::size_t n_ = 0;
+};
+
 /* A normalised simplicial complex (owns a TpxComplex). */
 class Live;
 
@@ -297,6 +329,21 @@ class Complex {
     return out;
   }
 
+  /* Replaces the coordinates: `dim` numbers per vertex, vertex-major (vertex_count() * dim
+   * finite numbers; a complex without coordinates gains them). Throws Error
+   * (TPX_STATUS_INVALID_ARGUMENT naming the problem) and changes nothing otherwise. Structures
+   * built before keep what they were built with. No allocation when dim is coord_dim(). */
+  void set_coords(const std::vector<double> &xyz, std::size_t dim) {
+    detail::check(tpx_complex_set_coords(c_.get(), dim, xyz.data(), xyz.size()));
+  }
+  /* Top p-simplex i (of top_simplices(p)) with its vertices in input winding, lent from the
+   * complex (valid while it lives): no copy. */
+  SimplexView top_oriented(std::uint32_t p, std::uint32_t i) const {
+    const std::uint32_t *ids = nullptr;
+    std::size_t n = 0;
+    detail::check(tpx_complex_top_oriented(c_.get(), p, i, &ids, &n));
+    return SimplexView(ids, n);
+  }
   /* The coordinates, vertex-major (coord_dim() per vertex); empty without coordinates. */
   std::vector<double> coords() const {
     std::vector<double> buf(coord_dim() * vertex_count());
@@ -374,7 +421,7 @@ class RelationTable {
   std::size_t ids_size() const noexcept { return n_ids_; }
 
  private:
-  friend class Structure;
+  friend class StructureView;
   RelationTable(TpxRelationTable *t, std::size_t arity) noexcept : t_(t), arity_(arity) {
     offsets_ = tpx_relation_table_offsets(t, &n_offsets_);
     ids_ = tpx_relation_table_ids(t, &n_ids_);
@@ -502,6 +549,8 @@ class RelationView {
     const std::uint32_t a = v_.offsets[i], b = v_.offsets[i + 1];
     return SimplexSpan(v_.ids + a, b - a, q_, owner_);
   }
+  /* By a handle that is its index (the nine structures, handles made from indices). A live
+   * complex's lasting handle is not: use view[live.index(h)]. */
   SimplexSpan operator[](Simplex h) const noexcept { return (*this)[h.index()]; }
   /* |R_{p,q}| of the p-simplex of dense index i. O(1). */
   std::uint32_t degree(std::uint32_t i) const noexcept { return v_.offsets[i + 1] - v_.offsets[i]; }
@@ -534,53 +583,49 @@ class Fans {
   }
 
  private:
-  friend class Structure;
+  friend class StructureView;
   std::vector<std::uint32_t> items_, offsets_, flags_;
   std::size_t items_n_ = 0, groups_ = 0;
   std::uint32_t dim_ = 2, owner_ = 0;
 };
 
-/* A built structure (owns a TpxStructure). Independent of the Complex once built. */
-class Structure {
+/* The navigation of one structure, without owning it: every const query of a built Structure
+ * (which is one) and of a Live complex (Live::as_structure(), over tpx_live_structure), so that
+ * code written against it runs on any kind, the editable one included. Copy it freely; it is
+ * valid while its structure lives. On a live complex, indices above vertices (handle(p, i),
+ * related ids, view(p, q), degrees, index(h)) are its numbering until the next edit, which
+ * drops lent views; handles from locate() and the Live handle calls last across edits; after
+ * Live::compact() take a new StructureView (the owner stamp changes). */
+class StructureView {
  public:
-  Structure(const Complex &c, Kind kind)
-      : Structure(detail::get<TpxStructure *>(tpx_structure_build, c.get(),
-                                              static_cast<std::uint32_t>(kind))) {}
-  /* The structure of `kind` saved in a .tpx file, memory-mapped: opening costs O(sections)
-   * (O(file) with verify: every checksum and invariant checked first); arrays are paged in as
-   * queries touch them and the mapping lives as long as the Structure. A file holding another
-   * kind or only a complex gets the structure built from its saved complex instead. */
-  static Structure open(const std::string &path, Kind kind, bool verify = false) {
-    return Structure(detail::get<TpxStructure *>(tpx_structure_open, path.c_str(),
-                                                 static_cast<std::uint32_t>(kind),
-                                                 verify ? TPX_OPEN_VERIFY : 0u));
-  }
+  explicit StructureView(const TpxStructure *s)
+      : s_(s), stamp_(detail::get<std::uint32_t>(tpx_structure_stamp, s)) {}
 
   Kind kind() const {
-    return static_cast<Kind>(detail::get<std::uint32_t>(tpx_structure_kind, s_.get()));
+    return static_cast<Kind>(detail::get<std::uint32_t>(tpx_structure_kind, s_));
   }
   std::uint32_t dimension() const {
-    return detail::get<std::uint32_t>(tpx_structure_dimension, s_.get());
+    return detail::get<std::uint32_t>(tpx_structure_dimension, s_);
   }
   std::size_t count(std::uint32_t p) const {
-    return detail::get<std::size_t>(tpx_structure_count, s_.get(), p);
+    return detail::get<std::size_t>(tpx_structure_count, s_, p);
   }
   std::size_t top_count(std::uint32_t p) const {
-    return detail::get<std::size_t>(tpx_structure_top_count, s_.get(), p);
+    return detail::get<std::size_t>(tpx_structure_top_count, s_, p);
   }
-  TpxStorage storage() const { return detail::get<TpxStorage>(tpx_structure_storage, s_.get()); }
+  TpxStorage storage() const { return detail::get<TpxStorage>(tpx_structure_storage, s_); }
 
   /* Every p-simplex in ascending lexicographic order. */
   Rows simplices(std::uint32_t p) const {
     std::vector<std::uint32_t> buf((p + 1) * count(p));
-    detail::fill(buf, tpx_structure_simplices, s_.get(), p);
+    detail::fill(buf, tpx_structure_simplices, s_, p);
     return Rows(std::move(buf), p + 1);
   }
 
   /* R_{p,q}(simplex), p = simplex.size() - 1, in ascending lexicographic order. */
   Rows relation(const std::vector<std::uint32_t> &simplex, std::uint32_t q) const {
     std::vector<std::uint32_t> buf(16 * (q + 1));
-    detail::fill(buf, tpx_relation, s_.get(), simplex.data(), simplex.size(), q);
+    detail::fill(buf, tpx_relation, s_, simplex.data(), simplex.size(), q);
     return Rows(std::move(buf), q + 1);
   }
   Rows relation(std::initializer_list<std::uint32_t> simplex, std::uint32_t q) const {
@@ -589,7 +634,7 @@ class Structure {
 
   /* R_{p,q} of every p-simplex at once. */
   RelationTable relation_table(std::uint32_t p, std::uint32_t q) const {
-    return RelationTable(detail::get<TpxRelationTable *>(tpx_relation_table, s_.get(), p, q),
+    return RelationTable(detail::get<TpxRelationTable *>(tpx_relation_table, s_, p, q),
                          q + 1);
   }
 
@@ -598,7 +643,7 @@ class Structure {
 
   /* The handle of the simplex with these vertex ids (any order); throws NOT_IN_COMPLEX. */
   Simplex locate(const std::uint32_t *ids, std::size_t n) const {
-    return Simplex(detail::get<TpxSimplex>(tpx_locate, s_.get(), ids, n));
+    return Simplex(detail::get<TpxSimplex>(tpx_locate, s_, ids, n));
   }
   Simplex locate(const std::vector<std::uint32_t> &ids) const {
     return locate(ids.data(), ids.size());
@@ -608,7 +653,7 @@ class Structure {
   }
   /* The p-simplex of dense index i (checked). vertex(v) = handle(0, v). */
   Simplex handle(std::uint32_t p, std::uint32_t i) const {
-    return Simplex(detail::get<TpxSimplex>(tpx_handle, s_.get(), p, i));
+    return Simplex(detail::get<TpxSimplex>(tpx_handle, s_, p, i));
   }
   Simplex vertex(std::uint32_t v) const { return handle(0, v); }
   /* The owner stamp every handle of this structure carries. */
@@ -617,7 +662,7 @@ class Structure {
   /* Vertex ids of h, ascending, into `out` (reused). */
   void vertices(Simplex h, std::vector<std::uint32_t> &out) const {
     out.resize(16);
-    detail::fill(out, tpx_simplex_vertices, s_.get(), &h.raw());
+    detail::fill(out, tpx_simplex_vertices, s_, &h.raw());
   }
   std::vector<std::uint32_t> vertices(Simplex h) const {
     std::vector<std::uint32_t> out;
@@ -631,7 +676,7 @@ class Structure {
                Order order = Order::Natural) const {
     if (out.capacity() < 16) out.reserve(16);
     out.resize(out.capacity());
-    detail::fill(out, tpx_related, s_.get(), &h.raw(), q, static_cast<std::uint32_t>(order));
+    detail::fill(out, tpx_related, s_, &h.raw(), q, static_cast<std::uint32_t>(order));
   }
   /* R_{p,q}(h) as a range of handles. */
   SimplexList related(Simplex h, std::uint32_t q, Order order = Order::Natural) const {
@@ -657,24 +702,24 @@ class Structure {
     offsets.resize(indices.size() + 1);
     if (ids.empty()) ids.resize(indices.size() * 8 + 16);
     const auto o = static_cast<std::uint32_t>(order);
-    detail::fill(ids, tpx_related_batch, s_.get(), p, indices.data(), indices.size(), q, o,
+    detail::fill(ids, tpx_related_batch, s_, p, indices.data(), indices.size(), q, o,
                  offsets.data());
   }
   /* R_{p,q} of every p-simplex, lent as a RelationView iterated inline (see RelationView for
    * its cost: the first call for a relation the structure does not store builds an index). */
   RelationView view(std::uint32_t p, std::uint32_t q) const {
-    return RelationView(detail::get<TpxRelationView>(tpx_relation_view, s_.get(), p, q), q, stamp_);
+    return RelationView(detail::get<TpxRelationView>(tpx_relation_view, s_, p, q), q, stamp_);
   }
   /* |R_{p,q}| of the p-simplices of dense indices `indices` into `out` (resized), counts only
    * (tpx_degree_batch: O(1) each for relations the IG stores). */
   void degrees(std::uint32_t p, const std::vector<std::uint32_t> &indices, std::uint32_t q,
                std::vector<std::uint32_t> &out) const {
     out.resize(indices.size());
-    detail::check(tpx_degree_batch(s_.get(), p, indices.data(), indices.size(), q, out.data()));
+    detail::check(tpx_degree_batch(s_, p, indices.data(), indices.size(), q, out.data()));
   }
   /* |R_{p,q}(h)| without writing the answer. */
   std::size_t degree(Simplex h, std::uint32_t q) const {
-    return detail::get<std::size_t>(tpx_degree, s_.get(), &h.raw(), q);
+    return detail::get<std::size_t>(tpx_degree, s_, &h.raw(), q);
   }
   bool is_boundary(Simplex h) const { return test(h, 0); }
   bool is_manifold(Simplex h) const { return test(h, 1); }
@@ -684,19 +729,26 @@ class Structure {
 
   /* Top simplices: ids 0..top_total()-1 (dimension ascending, lexicographic within; the same
    * for every structure of one complex). */
-  std::uint32_t top_total() const { return detail::get<std::uint32_t>(tpx_top_total, s_.get()); }
+  std::uint32_t top_total() const { return detail::get<std::uint32_t>(tpx_top_total, s_); }
   Simplex top(std::uint32_t t) const {
-    return Simplex(detail::get<TpxSimplex>(tpx_top, s_.get(), t));
+    return Simplex(detail::get<TpxSimplex>(tpx_top, s_, t));
   }
   /* The top id of h, or UINT32_MAX when h is not a top simplex. */
   std::uint32_t top_id(Simplex h) const {
-    return detail::get<std::uint32_t>(tpx_top_id, s_.get(), &h.raw());
+    return detail::get<std::uint32_t>(tpx_top_id, s_, &h.raw());
   }
   /* Top simplex t with its vertices as given in the input (its winding). */
   std::vector<std::uint32_t> top_as_given(std::uint32_t t) const {
-    std::vector<std::uint32_t> out(16);
-    detail::fill(out, tpx_top_as_given, s_.get(), t);
+    std::vector<std::uint32_t> out;
+    top_as_given(t, out);
     return out;
+  }
+  /* The same into `out`, reusing its capacity: no allocation once it holds 16 ids (a pass
+   * over every top simplex; Complex::top_oriented and Live::top_vertices lend without copy). */
+  void top_as_given(std::uint32_t t, std::vector<std::uint32_t> &out) const {
+    if (out.capacity() < 16) out.reserve(16);
+    out.resize(out.capacity());
+    detail::fill(out, tpx_top_as_given, s_, t);
   }
 
   /* Cyclic order. The manifold fans of triangles around vertex v (a complex of dimension <= 2),
@@ -727,21 +779,25 @@ class Structure {
   /* Saves this structure with `c`, the complex it was built from (the file pairs them), to a
    * .tpx file: one pass over the listing and the structure's arrays. */
   void save(const Complex &c, const std::string &path) const {
-    detail::check(tpx_save(c.get(), s_.get(), path.c_str()));
+    detail::check(tpx_save(c.get(), s_, path.c_str()));
   }
 
-  const TpxStructure *get() const noexcept { return s_.get(); }
+  /* The dense index of h: its lexicographic rank among the simplices of its dimension (a
+   * vertex: its id). h.index() for the nine structures; on a live complex, whose handles above
+   * vertices last across edits and are not indices, its index until the next edit. */
+  std::uint32_t index(Simplex h) const {
+    return detail::get<std::uint32_t>(tpx_simplex_index, s_, &h.raw());
+  }
 
- private:
-  /* Takes ownership of s first, so that s is freed when reading its stamp fails. */
-  explicit Structure(TpxStructure *s)
-      : s_(s), stamp_(detail::get<std::uint32_t>(tpx_structure_stamp, s)) {}
+  const TpxStructure *get() const noexcept { return s_; }
+
+ protected:
   bool test(Simplex h, std::uint32_t what) const {
-    return detail::get<std::uint32_t>(tpx_simplex_test, s_.get(), &h.raw(), what) != 0;
+    return detail::get<std::uint32_t>(tpx_simplex_test, s_, &h.raw(), what) != 0;
   }
   std::vector<Simplex> star_or_link(Simplex h, std::uint32_t link, Order o) const {
     std::vector<TpxSimplex> buf(64);
-    detail::fill(buf, tpx_star, s_.get(), &h.raw(), link, static_cast<std::uint32_t>(o));
+    detail::fill(buf, tpx_star, s_, &h.raw(), link, static_cast<std::uint32_t>(o));
     return std::vector<Simplex>(buf.begin(), buf.end());
   }
   void cyclic(Simplex h, std::uint32_t q, std::uint32_t dim, Fans &f) const {
@@ -749,13 +805,13 @@ class Structure {
     if (f.flags_.size() < 4) f.flags_.resize(4);
     f.offsets_.resize(f.flags_.size() + 1);
     std::size_t ni = 0, ng = 0;
-    TpxStatus st = tpx_cyclic(s_.get(), &h.raw(), q, f.items_.data(), f.items_.size(),
+    TpxStatus st = tpx_cyclic(s_, &h.raw(), q, f.items_.data(), f.items_.size(),
                               f.offsets_.data(), f.flags_.data(), f.flags_.size(), &ni, &ng);
     if (st == TPX_STATUS_BUFFER_TOO_SMALL) {
       if (f.items_.size() < ni) f.items_.resize(ni);
       if (f.flags_.size() < ng) f.flags_.resize(ng);
       f.offsets_.resize(f.flags_.size() + 1);
-      st = tpx_cyclic(s_.get(), &h.raw(), q, f.items_.data(), f.items_.size(), f.offsets_.data(),
+      st = tpx_cyclic(s_, &h.raw(), q, f.items_.data(), f.items_.size(), f.offsets_.data(),
                       f.flags_.data(), f.flags_.size(), &ni, &ng);
     }
     detail::check(st);
@@ -765,18 +821,52 @@ class Structure {
     f.owner_ = stamp_;
   }
 
-  detail::Owned<TpxStructure, tpx_structure_free> s_;
+  const TpxStructure *s_ = nullptr;
   std::uint32_t stamp_ = 0;
+};
+
+namespace detail {
+/* The owner a Structure holds, as its first base so that it owns the pointer before the
+ * StructureView base reads the stamp (a failure there frees it). */
+struct StructureOwner {
+  Owned<TpxStructure, tpx_structure_free> owned;
+};
+}  // namespace detail
+
+/* A built structure (owns a TpxStructure). Independent of the Complex once built. Every kind,
+ * Kind::IASTAR included (an IA* live complex nobody edits: for editing, use Live). */
+class Structure : private detail::StructureOwner, public StructureView {
+ public:
+  Structure(const Complex &c, Kind kind)
+      : Structure(detail::get<TpxStructure *>(tpx_structure_build, c.get(),
+                                              static_cast<std::uint32_t>(kind))) {}
+  /* The structure of `kind` saved in a .tpx file, memory-mapped: opening costs O(sections)
+   * (O(file) with verify: every checksum and invariant checked first); arrays are paged in as
+   * queries touch them and the mapping lives as long as the Structure. A file holding another
+   * kind or only a complex gets the structure built from its saved complex instead. */
+  static Structure open(const std::string &path, Kind kind, bool verify = false) {
+    return Structure(detail::get<TpxStructure *>(tpx_structure_open, path.c_str(),
+                                                 static_cast<std::uint32_t>(kind),
+                                                 verify ? TPX_OPEN_VERIFY : 0u));
+  }
+
+ private:
+  /* Takes ownership of s first, so that s is freed when reading its stamp fails. */
+  explicit Structure(TpxStructure *s) : detail::StructureOwner{detail::Owned<TpxStructure, tpx_structure_free>(s)}, StructureView(s) {}
 };
 static_assert(detail::move_only<Structure>, "Structure: a move-only owner");
 
 /* Per-simplex user data for the p-simplices of one structure, indexed by handle (dense index),
- * as pmp and geometry-central do: a std::vector<T> of count(p) entries. */
+ * as pmp and geometry-central do: a std::vector<T> of count(p) entries. A handle that is its
+ * index (the nine structures, the ranges over indices) costs nothing to look up; a live
+ * complex's lasting handle (from locate(), handle(p, i) with p > 0) is converted by one call
+ * (tpx_simplex_index: its index until the next edit). On a Live from which vertices were
+ * removed, vertex indices are slots: size vertex data with Live::vertex_slots(). */
 template <class T>
 class SimplexData {
  public:
-  SimplexData(const Structure &s, std::uint32_t p, const T &init = T())
-      : dim_(p), data_(s.count(p), init) {}
+  SimplexData(const StructureView &s, std::uint32_t p, const T &init = T())
+      : s_(s.get()), dim_(p), data_(s.count(p), init) {}
   T &operator[](Simplex h) { return data_.at(check(h)); }
   const T &operator[](Simplex h) const { return data_.at(check(h)); }
   T &operator[](std::uint32_t i) { return data_[i]; }
@@ -787,8 +877,12 @@ class SimplexData {
  private:
   std::size_t check(Simplex h) const {
     if (h.dim() != dim_) throw Error(TPX_STATUS_WRONG_HANDLE_KIND, "handle of another dimension");
+    if ((h.raw().meta >> 8) != 0) {
+      return detail::get<std::uint32_t>(tpx_simplex_index, s_, &h.raw());
+    }
     return h.index();
   }
+  const TpxStructure *s_;
   std::uint32_t dim_;
   std::vector<T> data_;
 };
@@ -844,8 +938,8 @@ class Undo {
 };
 static_assert(detail::move_only<Undo>, "Undo: a move-only owner");
 
-/* Handles over a borrowed array of TpxSimplex (answers of the live complex, whose simplices
- * above vertices have no dense index). Iterating yields Simplex values; no allocation. */
+/* Handles over a borrowed array of TpxSimplex (answers of the live complex that last across
+ * edits, unlike its indices). Iterating yields Simplex values; no allocation. */
 class HandleSpan {
  public:
   class iterator {
@@ -993,8 +1087,25 @@ class Live {
     detail::check(tpx_live_coords(l_.get(), v, xyz.data(), xyz.size(), &len));
     return xyz;
   }
+  std::size_t coord_dim() const { return detail::get<std::size_t>(tpx_live_coord_dim, l_.get()); }
+  /* Moves live vertex v (coord_dim() finite numbers). Not an edit of the topology: handles,
+   * indices and views stay valid. */
   void set_coords(std::uint32_t v, const std::vector<double> &xyz) {
     detail::check(tpx_live_set_coords(l_.get(), v, xyz.data(), xyz.size()));
+  }
+  /* Moves every vertex at once: vertex_slots() * coord_dim() finite numbers, slot after slot
+   * (a removed vertex's are stored and never read). No allocation. */
+  void set_all_coords(const double *xyz, std::size_t n) {
+    detail::check(tpx_live_set_all_coords(l_.get(), xyz, n));
+  }
+  void set_all_coords(const std::vector<double> &xyz) { set_all_coords(xyz.data(), xyz.size()); }
+  /* Every slot's coordinates, lent (coord_dim() per slot; valid until add_vertex, compact or
+   * the Live's end; set_coords writes through it): a whole-mesh pass reads them with no call. */
+  CoordsView all_coords() const {
+    const double *xyz = nullptr;
+    std::size_t n = 0;
+    detail::check(tpx_live_all_coords(l_.get(), &xyz, &n));
+    return CoordsView(xyz, n);
   }
   std::uint32_t add_vertex(const std::vector<double> &xyz) {
     return detail::get<std::uint32_t>(tpx_live_add_vertex, l_.get(), xyz.data(), xyz.size());
@@ -1141,6 +1252,33 @@ class Live {
     std::vector<std::uint32_t> out(16);
     detail::fill(out, tpx_top_as_given, structure(), t);
     return out;
+  }
+  /* The same ids lent from the live complex's top table, no copy (tpx_live_top_vertices):
+   * valid until the next edit. t: a top id of dimension >= 1 (top_id, Structure::top). */
+  SimplexView top_vertices(std::uint32_t t) const {
+    const std::uint32_t *ids = nullptr;
+    std::size_t n = 0;
+    detail::check(tpx_live_top_vertices(l_.get(), t, &ids, &n));
+    return SimplexView(ids, n);
+  }
+
+  /* ---- the navigation every structure shares (StructureView over tpx_live_structure) ----
+   * Everything a built Structure answers — count, simplices, handle(p, i), related ids and
+   * batches, view(p, q), degrees, index(h), cyclic order — answered by this live complex.
+   * Its indices above vertices are lexicographic ranks of the moment: use them, views and the
+   * handles SimplexList makes from them only until the next edit (vertex indices are slots,
+   * stable until compact()). Take a new one after compact(). */
+  StructureView as_structure() const { return StructureView(structure()); }
+  std::size_t count(std::uint32_t p) const { return as_structure().count(p); }
+  /* The p-simplex of index i (for p > 0, named so that the handle lasts across edits). */
+  Simplex handle(std::uint32_t p, std::uint32_t i) const { return as_structure().handle(p, i); }
+  std::uint32_t index(Simplex h) const { return as_structure().index(h); }
+  /* R_{p,q} of every p-simplex lent as a RelationView (valid until the next edit). Vertex rows
+   * are slots (vertex_slots() of them, a removed vertex's empty). */
+  RelationView view(std::uint32_t p, std::uint32_t q) const { return as_structure().view(p, q); }
+  void degrees(std::uint32_t p, const std::vector<std::uint32_t> &indices, std::uint32_t q,
+               std::vector<std::uint32_t> &out) const {
+    as_structure().degrees(p, indices, q, out);
   }
   /* Manifold fans of triangles around vertex v (a complex of dimension <= 2), each
    * counter-clockwise by the winding where oriented; `fans` is reused. */

@@ -154,6 +154,11 @@ enum Command {
         /// are kept.
         #[arg(long)]
         preserve_topology: bool,
+        /// Keep the regions of this integer label (e.g. gmsh:physical, medit:ref) apart: no
+        /// contraction merges two regions across their interface or erases one; interface
+        /// vertices move only along their interface, corners where three or more meet stay.
+        #[arg(long, value_name = "NAME")]
+        keep_regions: Option<String>,
         #[command(flatten)]
         data: DropData,
     },
@@ -375,8 +380,14 @@ fn run(command: Command) -> Result<(), String> {
             out,
             ratio,
             preserve_topology,
+            keep_regions,
             data,
-        } => simplify(&input, &out, ratio, preserve_topology, &data),
+        } => simplify(
+            &input,
+            &out,
+            (ratio, preserve_topology, keep_regions.as_deref()),
+            &data,
+        ),
     }
 }
 
@@ -747,8 +758,7 @@ fn same_file(a: &std::fs::Metadata, b: &std::fs::Metadata) -> bool {
 fn simplify(
     input: &Path,
     out: &Path,
-    ratio: f64,
-    preserve_topology: bool,
+    (ratio, preserve_topology, keep_regions): (f64, bool, Option<&str>),
     data: &DropData,
 ) -> Result<(), String> {
     use topoplex::io::write::write_complex;
@@ -759,11 +769,11 @@ fn simplify(
     let options = Options {
         ratio,
         preserve_topology,
+        keep_regions: keep_regions.map(str::to_string),
     };
     not_the_input(input, out, "--out ")?;
     let mut complex = load(input)?;
     data.apply(&mut complex)?;
-    refuse_data(&complex, "simplify")?;
     // Refuse an unknown or unfit format and an unwritable output before the work, not after.
     let existed = out.exists();
     check_output(out, &complex).map_err(|e| e.to_string())?;
@@ -789,7 +799,7 @@ fn simplify(
         }
     };
     let st = s.stats;
-    let refused = if preserve_topology {
+    let mut refused = if preserve_topology {
         format!(
             ", {} refused by the link condition ({} retry rounds)",
             st.refused, st.refills
@@ -797,6 +807,9 @@ fn simplify(
     } else {
         String::new()
     };
+    if options.keep_regions.is_some() {
+        refused += &format!(", {} refused to keep the regions", st.refused_regions);
+    }
     print(&format!(
         "{} -> {} top simplices (target {}), {} contractions{refused}; wrote {}\n",
         st.input_tops,

@@ -388,6 +388,7 @@ fn live_operations(s: *const TpxStructure, hs: &[TpxSimplex], d: u32, t: &mut Ta
     let mut handles = vec![TpxSimplex::default(); 4096];
     let mut offsets = vec![0u32; hs.len() + 1];
     let mut verts = [0u32; 16];
+    let mut ids = vec![0u32; 4096];
     let mut len = 0usize;
     for (k, h) in hs.iter().enumerate() {
         let name = |op: &str| format!("live: {op} of handle {k}");
@@ -414,7 +415,27 @@ fn live_operations(s: *const TpxStructure, hs: &[TpxSimplex], d: u32, t: &mut Ta
                 || name(&format!("tpx_degree q={q}")),
                 || unsafe { tpx_degree(s, h, q, &mut len) },
             );
+            // Dense indices of the live complex (its tables built by the warming pass).
+            t.call(
+                || name(&format!("tpx_related q={q}")),
+                || unsafe {
+                    tpx_related(
+                        s,
+                        h,
+                        q,
+                        TPX_ORDER_NATURAL,
+                        ids.as_mut_ptr(),
+                        ids.len(),
+                        &mut len,
+                    )
+                },
+            );
         }
+        let mut index = 0u32;
+        t.call(
+            || name("tpx_simplex_index"),
+            || unsafe { tpx_simplex_index(s, h, &mut index) },
+        );
         t.call(
             || name("tpx_star"),
             || unsafe {

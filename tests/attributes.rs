@@ -129,10 +129,50 @@ proptest! {
         }
     }
 
-    /// Point and cell data of every type and 1 to 9 components come back bit for bit through
-    /// legacy VTK, ASCII and binary (NaN, infinities and subnormals included).
+    /// Gmsh `$NodeData`/`$ElementData`: `f64` fields of 1 to 9 components on the vertices and
+    /// the listed elements, several time steps of one name (`NAME@STEP`) among them, beside
+    /// physical tags, come back bit for bit in MSH 4.1 and 2.2, ASCII and binary (NaN,
+    /// infinities and subnormals included).
     #[test]
-    fn vtk_point_and_cell_data_of_every_type_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
+    fn gmsh_node_and_element_data_with_time_steps_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
+        let mut raw = random_listing(seed, n, count, true, false);
+        let mut rng = common::Rng((seed ^ 4) | 1);
+        let m = raw.simplex_count();
+        let specials = [f64::NAN, f64::NEG_INFINITY, -0.0, 5e-324, 1e300, -1.5];
+        let real = |rng: &mut common::Rng, i: usize| {
+            if rng.below(5) == 0 { specials[i % specials.len()] } else { rng.next() as f64 / 7.0 - 1e9 }
+        };
+        for location in [Location::Vertices, Location::Listed] {
+            let count = if location == Location::Vertices { n as usize } else { m };
+            let steps = rng.below(4);
+            let mut names: Vec<String> = (0..steps).map(|s| format!("u@{}", s * 3)).collect();
+            if steps == 1 {
+                names[0] = "u".into();
+            }
+            names.push("velocity field".into());
+            for name in names {
+                let c = 1 + rng.below(9);
+                let values = (0..count * c).map(|i| real(&mut rng, i)).collect();
+                raw.attributes.insert(Attribute { name, location, components: c, values: Values::F64(values) });
+            }
+        }
+        raw.attributes.insert(Attribute::labels("gmsh:physical", Location::Listed, labels(&mut rng, m)));
+        raw.attributes.check(n as usize, m).unwrap();
+        let dir = Scratch::new("msh-data");
+        for f in [Format::Msh2, Format::Msh2Binary] {
+            prop_assert_eq!(round_trip(&raw, f, &dir.0), Ok(()));
+        }
+        // MSH 4.1 keeps physical tags per entity: without them, every field comes back.
+        raw.attributes.remove("gmsh:physical");
+        for f in [Format::Msh, Format::MshBinary] {
+            prop_assert_eq!(round_trip(&raw, f, &dir.0), Ok(()));
+        }
+    }
+
+    /// Point and cell data of every type and 1 to 9 components come back bit for bit through
+    /// legacy VTK, ASCII and binary, and VTU (NaN, infinities and subnormals included).
+    #[test]
+    fn vtk_and_vtu_point_and_cell_data_of_every_type_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
         let mut raw = random_listing(seed, n, count, true, false);
         let mut rng = common::Rng((seed ^ 3) | 1);
         let m = raw.simplex_count();
@@ -152,10 +192,82 @@ proptest! {
         }
         raw.attributes.check(n as usize, m).unwrap();
         let dir = Scratch::new("vtk");
-        for f in [Format::Vtk, Format::VtkBinary] {
+        for f in [Format::Vtk, Format::VtkBinary, Format::Vtu] {
             prop_assert_eq!(round_trip(&raw, f, &dir.0), Ok(()));
         }
     }
+}
+
+/// The same data as an ASCII `.vtu` written by hand (our streaming reader) and as the base64
+/// `.vtu` our writer makes of it (the vtkio path) reads alike, bit for bit; a name no VTU holds
+/// (a control character) is refused by the writer.
+#[test]
+fn vtu_ascii_and_base64_paths_read_the_same_data() {
+    let array = |ty: &str, name: &str, comps: usize, body: &str| {
+        format!(
+            "<DataArray type=\"{ty}\" Name=\"{name}\" NumberOfComponents=\"{comps}\" \
+             format=\"ascii\">{body}</DataArray>\n"
+        )
+    };
+    let text = format!(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\">\n\
+         <UnstructuredGrid>\n<Piece NumberOfPoints=\"4\" NumberOfCells=\"2\">\n<PointData>\n{}{}\
+         </PointData>\n<Points>\n{}</Points>\n<Cells>\n{}{}{}</Cells>\n<CellData>\n{}{}\
+         </CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n",
+        array("Float64", "temperature &lt;K&gt;", 1, "1e-310 -0 NaN -inf"),
+        array("Int8", "flag", 3, "-128 0 127 1 2 3 4 5 6 7 8 9"),
+        array("Float64", "", 3, "0 0 0 1 0 0 0 1 0 1 1 1"),
+        array("Int64", "connectivity", 1, "0 1 2 1 3"),
+        array("Int64", "offsets", 1, "3 5"),
+        array("UInt8", "types", 1, "5 3"),
+        array("UInt32", "region", 1, "4294967295 0"),
+        array("Float32", "stress", 9, &"0.1 3.4028235e38 1e-45 ".repeat(6)),
+    );
+    let dir = Scratch::new("vtu-paths");
+    let hand = dir.0.join("hand.vtu");
+    std::fs::write(&hand, &text).unwrap();
+    let ours = read_path(&hand).unwrap();
+    assert_eq!(ours.attributes.iter().count(), 4);
+    let t = ours
+        .attributes
+        .get("temperature <K>", Location::Vertices)
+        .unwrap();
+    let Values::F64(v) = &t.values else {
+        panic!("{t:?}")
+    };
+    assert_eq!(v[0].to_bits(), 1e-310f64.to_bits());
+    assert_eq!(v[1].to_bits(), (-0.0f64).to_bits());
+    assert!(v[2].is_nan() && v[3] == f64::NEG_INFINITY);
+    assert_eq!(
+        ours.attributes
+            .get("region", Location::Listed)
+            .unwrap()
+            .values,
+        Values::I64(vec![4294967295, 0])
+    );
+    // Any name without control characters is held, XML's special characters included.
+    let mut ours = ours;
+    ours.attributes.insert(Attribute::labels(
+        "q\"u'o<t>&e ü",
+        Location::Listed,
+        vec![-1, 1],
+    ));
+    let written = dir.0.join("base64.vtu");
+    write_raw(&ours, &written, None).unwrap();
+    let bytes = std::fs::read(&written).unwrap();
+    let body = String::from_utf8_lossy(&bytes);
+    assert!(!body.contains("format=\"ascii\"") && body.contains("format=\"binary\""));
+    let theirs = read_path(&written).unwrap();
+    assert_eq!(simplices(&theirs), simplices(&ours));
+    assert!(theirs.attributes.bits_eq(&ours.attributes));
+    let mut bad = ours.clone();
+    bad.attributes
+        .insert(Attribute::labels("tab\there", Location::Listed, vec![1, 2]));
+    let e = write_raw(&bad, &dir.0.join("bad.vtu"), None)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("'tab\\there'") || e.contains("tab"), "{e}");
+    assert!(!dir.0.join("bad.vtu").exists());
 }
 
 /// Every format that does not hold an attribute refuses it, naming it and a format that does,
@@ -220,7 +332,7 @@ fn a_listed_boundary_triangle_keeps_its_reference_beside_its_tetrahedron() {
 fn malformed_data_sections_name_the_line_and_the_array() {
     let head = "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 3 double\n\
                 0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n";
-    let cases: [(&str, &str, u32); 4] = [
+    let cases: [(&str, &str, u32); 5] = [
         (
             "CELL_DATA 2\nSCALARS region int 1\nLOOKUP_TABLE default\n1 2\n",
             "CELL_DATA 2 for 1 cells",
@@ -233,7 +345,14 @@ fn malformed_data_sections_name_the_line_and_the_array() {
         ),
         (
             "POINT_DATA 3\nSCALARS t float 1\nLOOKUP_TABLE default\n1 1e39 2\n",
-            "'1e39' overflows float among the values of SCALARS 't'",
+            "number '1e39' is too large for a 32-bit float (among the values of SCALARS 't', \
+             declared float; it would become infinite)",
+            14,
+        ),
+        (
+            "POINT_DATA 3\nSCALARS t float 1\nLOOKUP_TABLE default\n1 1e-50 2\n",
+            "number '1e-50' is too small for a 32-bit float (among the values of SCALARS 't', \
+             declared float; it would become 0)",
             14,
         ),
         (
@@ -334,7 +453,8 @@ fn labelled_meshes_read_alike_in_every_format_gmsh_wrote_and_survive_our_writers
 
 /// The CLI keeps the data it can and refuses the rest: `convert` to a format without it exits 1
 /// naming the attribute, `--drop-data` drops it by name or all, naming an absent one is an
-/// error, and a verb that does not carry data yet refuses instead of dropping it.
+/// error, a verb that does not carry data yet (`save`) refuses instead of dropping it, and
+/// `simplify` carries it.
 #[test]
 fn cli_convert_keeps_refuses_or_drops_data_on_request() {
     let dir = Scratch::new("cli");
@@ -382,23 +502,20 @@ fn cli_convert_keeps_refuses_or_drops_data_on_request() {
         err.contains("no such attribute") && err.contains("'medit:ref'"),
         "{err}"
     );
-    let (code, err) = run(&["simplify", inp, "--out", &p("s.mesh"), "--ratio", "1"]);
+    let (code, err) = run(&["save", inp, "--out", &p("s.tpx")]);
     assert_eq!(code, Some(1));
     assert!(err.contains("does not carry attributes yet"), "{err}");
     assert_eq!(
-        run(&[
-            "simplify",
-            inp,
-            "--out",
-            &p("s.mesh"),
-            "--ratio",
-            "1",
-            "--drop-data",
-            "all"
-        ])
-        .0,
+        run(&["save", inp, "--out", &p("s.tpx"), "--drop-data", "all"]).0,
         Some(0)
     );
+    // simplify carries the data: the one triangle keeps reference 5.
+    assert_eq!(
+        run(&["simplify", inp, "--out", &p("s.mesh"), "--ratio", "1"]).0,
+        Some(0)
+    );
+    let back = read_path(&dir.0.join("s.mesh")).unwrap();
+    assert_eq!(listed_labels(&back.attributes, "medit:ref"), vec![5]);
 }
 
 fn listed_labels(at: &Attributes, name: &str) -> Vec<i64> {
@@ -406,4 +523,196 @@ fn listed_labels(at: &Attributes, name: &str) -> Vec<i64> {
     (0..a.element_count())
         .map(|i| a.label(i).unwrap())
         .collect()
+}
+
+/// The expected labels of a live complex: each top's label by its vertex set, and the listed
+/// faces' labels as a multiset of (vertex set, label) — moved by each edit as the data module
+/// says, by brute force over whole sets.
+#[derive(Debug, Clone, PartialEq)]
+struct Labels {
+    tops: std::collections::BTreeMap<Vec<u32>, i64>,
+    faces: Vec<(Vec<u32>, i64)>,
+    /// The vertex field: vertex → value.
+    field: std::collections::BTreeMap<u32, f64>,
+}
+
+fn key(s: &[u32]) -> Vec<u32> {
+    let mut v = s.to_vec();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+/// What `live` says: every live top's label, every listed face's (through `to_complex`), every
+/// live vertex's field value.
+fn labels_of(live: &topoplex::live::LiveComplex) -> Labels {
+    use topoplex::live::VertexId;
+    let tops = live
+        .tops()
+        .map(|(t, s)| {
+            let v = live.top_values("region", t).unwrap().unwrap();
+            assert_eq!(v.len(), 1);
+            (key(s), v.integer(0).unwrap())
+        })
+        .collect();
+    let c = live.to_complex();
+    let a = c.attributes().get("region", Location::Listed).unwrap();
+    let live_tops: std::collections::BTreeSet<Vec<u32>> =
+        live.tops().map(|(_, s)| key(s)).collect();
+    // to_complex renumbers vertices densely: map back by the live vertex order.
+    let ids: Vec<u32> = live.vertices().map(|v| v.0).collect();
+    let mut faces: Vec<(Vec<u32>, i64)> = (live_tops.len()..c.input_count())
+        .map(|i| {
+            let s: Vec<u32> = c
+                .input_simplex(i)
+                .iter()
+                .map(|&v| ids[v as usize])
+                .collect();
+            (key(&s), a.label(i).unwrap())
+        })
+        .collect();
+    faces.sort();
+    let field = live
+        .vertices()
+        .map(|v| {
+            let x = live
+                .vertex_values("weight", VertexId(v.0))
+                .unwrap()
+                .unwrap();
+            (v.0, x.real(0).unwrap())
+        })
+        .collect();
+    Labels { tops, faces, field }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Random complexes to dimension 6 with random labels on every listed simplex and a random
+    /// vertex field, through random contractions (link-checked and free), splits, insertions,
+    /// removals and compactions: after each edit every surviving top keeps its label (an image
+    /// its preimage's), listed faces are renamed or retired with the edge, the survivor keeps
+    /// its field value, a split restores everything exactly, compact remaps, and
+    /// `to_complex` writes the same labels.
+    #[test]
+    fn labels_and_fields_survive_random_edits_of_the_live_complex(
+        (n, simplices) in common::random_input(6, 9, 14),
+        seed in any::<u64>(),
+        steps in proptest::collection::vec((0u8..6, any::<u32>(), any::<u32>()), 1..12),
+    ) {
+        use topoplex::Topology;
+        use topoplex::live::{ContractMode, LiveComplex, VertexId};
+        let mut rng = common::Rng(seed | 1);
+        let mut c = common::complex_of(n, &simplices);
+        let m = c.input_count();
+        let mut at = Attributes::new();
+        at.insert(Attribute::labels("region", Location::Listed, labels(&mut rng, m)));
+        at.insert(Attribute {
+            name: "weight".into(),
+            location: Location::Vertices,
+            components: 1,
+            values: Values::F64((0..n).map(|v| f64::from(v) + 0.5).collect()),
+        });
+        c.set_attributes(at).unwrap();
+        let mut live = LiveComplex::try_from_complex(&c).unwrap();
+        let average = seed % 2 == 0;
+        if average {
+            live.set_vertex_policy(topoplex::live::VertexPolicy::Average);
+        }
+        live.validate().unwrap();
+        // The listed labels at the start: tops by their first listing, faces the others.
+        let mut want = labels_of(&live);
+        let region = c.attributes().get("region", Location::Listed).unwrap();
+        for (s, l) in &want.tops {
+            prop_assert_eq!(Some(region.label(c.listed_index(s).unwrap()).unwrap()), Some(*l));
+        }
+        let mut undo_stack = Vec::new();
+        for (op, x, y) in steps {
+            let verts: Vec<u32> = live.vertices().map(|v| v.0).collect();
+            let (a, b) = (verts[x as usize % verts.len()], verts[y as usize % verts.len()]);
+            match op {
+                0 | 1 => {
+                    let mode = if op == 0 { ContractMode::PreserveTopology } else { ContractMode::Free };
+                    let before = want.clone();
+                    let Ok(undo) = live.contract(VertexId(a), VertexId(b), mode, None) else { continue };
+                    let image = |s: &[u32]| key(&s.iter().map(|&v| if v == b { a } else { v }).collect::<Vec<_>>());
+                    let now: std::collections::BTreeSet<Vec<u32>> = live.tops().map(|(_, s)| key(s)).collect();
+                    // Tops without b stay as they are (a free contraction may retire an image
+                    // of St(b) into one of them); each image of St(b) that is a top takes its
+                    // preimage's label; two images never coincide.
+                    let mut tops = std::collections::BTreeMap::new();
+                    for (s, l) in before.tops.iter().filter(|(s, _)| !s.contains(&b)) {
+                        if now.contains(s) {
+                            tops.insert(s.clone(), *l);
+                        }
+                    }
+                    let mut images = std::collections::BTreeSet::new();
+                    for (s, l) in before.tops.iter().filter(|(s, _)| s.contains(&b)) {
+                        let img = image(s);
+                        prop_assert!(images.insert(img.clone()), "two images {:?}", img);
+                        if now.contains(&img) && !tops.contains_key(&img) {
+                            tops.insert(img, *l);
+                        }
+                    }
+                    for s in &now {
+                        prop_assert!(tops.contains_key(s), "top {:?} has no preimage", s);
+                    }
+                    want.tops = tops;
+                    let fb = want.field.remove(&b).unwrap();
+                    if average {
+                        let fa = want.field.get_mut(&a).unwrap();
+                        *fa = (*fa + fb) / 2.0;
+                    }
+                    let mut faces: Vec<(Vec<u32>, i64)> = before.faces.iter()
+                        .filter(|(s, _)| !(s.contains(&a) && s.contains(&b)))
+                        .map(|(s, l)| (image(s), *l))
+                        .collect();
+                    // Records through the collapsed edge go; the others exist when their image does.
+                    let model_has = |s: &Vec<u32>| s.len() == 1 || now.iter().any(|t| s.iter().all(|v| t.contains(v)));
+                    faces.retain(|(s, _)| model_has(s));
+                    faces.sort();
+                    want.faces = faces;
+                    undo_stack.push((undo, before));
+                }
+                2 => {
+                    if let Some((undo, before)) = undo_stack.pop() {
+                        live.split(&undo).unwrap();
+                        want = before;
+                    }
+                }
+                3 => {
+                    let s = key(&[a, b]);
+                    if s.len() == 2 && live.insert_top(&s).is_ok() {
+                        // Inserted: label unset (0); the tops it absorbed go.
+                        undo_stack.clear();
+                        want = labels_of(&live);
+                        prop_assert_eq!(want.tops.get(&s).copied(), Some(0));
+                    }
+                }
+                4 => {
+                    let tops: Vec<Vec<u32>> = live.tops().map(|(_, s)| s.to_vec()).collect();
+                    if !tops.is_empty() {
+                        let t = &tops[x as usize % tops.len()];
+                        live.remove_top(t).unwrap();
+                        undo_stack.clear();
+                        want.tops.remove(&key(t));
+                        let now: Vec<Vec<u32>> = live.tops().map(|(_, s)| key(s)).collect();
+                        let alive: std::collections::BTreeSet<u32> = live.vertices().map(|v| v.0).collect();
+                        want.faces.retain(|(s, _)| if s.len() == 1 { alive.contains(&s[0]) } else { now.iter().any(|t| s.iter().all(|v| t.contains(v))) });
+                    }
+                }
+                _ => {
+                    let maps = live.compact();
+                    undo_stack.clear();
+                    let map = |v: u32| maps.vertices[v as usize];
+                    want.tops = want.tops.iter().map(|(s, l)| (key(&s.iter().map(|&v| map(v)).collect::<Vec<_>>()), *l)).collect();
+                    want.faces = want.faces.iter().map(|(s, l)| (key(&s.iter().map(|&v| map(v)).collect::<Vec<_>>()), *l)).collect();
+                    want.faces.sort();
+                    want.field = want.field.iter().map(|(&v, &x)| (map(v), x)).collect();
+                }
+            }
+            live.validate().unwrap();
+            prop_assert_eq!(labels_of(&live), want.clone());
+        }
+    }
 }

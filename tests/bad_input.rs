@@ -315,6 +315,7 @@ fn cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
         ),
     ];
     cases.extend(new_format_cases());
+    cases.extend(exact_reader_cases());
     cases.extend(data_cases());
     cases
 }
@@ -329,6 +330,14 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
     };
     let msh2 = |body: &str| format!("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n{body}").into_bytes();
     let medit = |body: &str| format!("MeshVersionFormatted 2\nDimension 3\n{body}").into_bytes();
+    let nodes = "$Nodes\n2\n1 0 0 0\n2 1 0 0\n$EndNodes\n";
+    // A $NodeData section 't' (time step 0) of `comps` components declaring `count` rows.
+    let node_data = |comps: usize, count: usize, rows: &[&str]| {
+        format!(
+            "$NodeData\n1\n\"t\"\n1\n0\n3\n0\n{comps}\n{count}\n{}\n$EndNodeData\n",
+            rows.join("\n")
+        )
+    };
     vec![
         (
             "data count mismatch",
@@ -386,10 +395,40 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
         ),
         (
             "data not held (refused, never skipped)",
-            "nodedata.msh",
-            msh2(
-                "$Nodes\n1\n1 0 0 0\n$EndNodes\n$NodeData\n1\n\"t\"\n1\n0\n3\n0\n1\n1\n1 5\n$EndNodeData\n",
-            ),
+            "elementnodedata.msh",
+            msh2(&format!(
+                "{nodes}$Elements\n1\n1 15 2 0 1 1\n$EndElements\n$ElementNodeData\n1\n\"t\"\n1\n0\n3\n0\n1\n1\n1 1 5\n$EndElementNodeData\n"
+            )),
+        ),
+        (
+            "data count mismatch",
+            "nodedata-count.msh",
+            msh2(&format!("{nodes}{}", node_data(1, 2, &["1 5"]))),
+        ),
+        (
+            "partial data (refused: nothing holds \"no value\")",
+            "nodedata-partial.msh",
+            msh2(&format!("{nodes}{}", node_data(1, 1, &["2 5"]))),
+        ),
+        (
+            "unknown node or element in data",
+            "nodedata-node.msh",
+            msh2(&format!("{nodes}{}", node_data(1, 2, &["1 5", "3 6"]))),
+        ),
+        (
+            "data too wide",
+            "nodedata-components.msh",
+            msh2(&format!(
+                "{nodes}{}",
+                node_data(10, 2, &["1 0 0 0 0 0 0 0 0 0 0", "2 0 0 0 0 0 0 0 0 0 0"])
+            )),
+        ),
+        (
+            "data in the wrong place",
+            "elementdata-before.msh",
+            msh2(&format!(
+                "{nodes}$ElementData\n1\n\"v\"\n0\n3\n0\n1\n1\n1 5\n$EndElementData\n"
+            )),
         ),
         (
             "data not held (refused, never skipped)",
@@ -401,7 +440,76 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             "data-before.vtk",
             vtk("SCALARS region int 1\nLOOKUP_TABLE default\n1\n"),
         ),
+        (
+            "data not held (refused, never skipped)",
+            "data-string.vtu",
+            vtu(
+                1,
+                "<DataArray type=\"String\" Name=\"names\" format=\"ascii\">a b c</DataArray>\n",
+                "",
+            ),
+        ),
+        (
+            "data too wide",
+            "data-components.vtu",
+            vtu(
+                1,
+                "",
+                "<DataArray type=\"Float64\" Name=\"w\" NumberOfComponents=\"10\" format=\"ascii\">0</DataArray>\n",
+            ),
+        ),
+        (
+            "data value overflows its type",
+            "data-uint64.vtu",
+            vtu(
+                1,
+                "<DataArray type=\"UInt64\" Name=\"id\" format=\"ascii\">1 2 9223372036854775808</DataArray>\n",
+                "",
+            ),
+        ),
+        (
+            "data count mismatch",
+            "data-count.vtu",
+            vtu(
+                1,
+                "",
+                "<DataArray type=\"Int32\" Name=\"region\" format=\"ascii\">1 2</DataArray>\n",
+            ),
+        ),
+        (
+            "data missing from a piece",
+            "data-pieces.vtu",
+            vtu(
+                2,
+                "<DataArray type=\"Int32\" Name=\"id\" format=\"ascii\">1 2 3</DataArray>\n",
+                "",
+            ),
+        ),
     ]
+}
+
+/// A `.vtu` of `pieces` pieces, each a triangle; the first with `point` and `cell` data arrays.
+fn vtu(pieces: usize, point: &str, cell: &str) -> Vec<u8> {
+    let piece = |point: &str, cell: &str| {
+        format!(
+            "<Piece NumberOfPoints=\"3\" NumberOfCells=\"1\">\n<PointData>\n{point}</PointData>\n\
+             <Points>\n<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\
+             0 0 0 1 0 0 0 1 0</DataArray>\n</Points>\n<Cells>\n\
+             <DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">0 1 2</DataArray>\n\
+             <DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">3</DataArray>\n\
+             <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">5</DataArray>\n\
+             </Cells>\n<CellData>\n{cell}</CellData>\n</Piece>\n"
+        )
+    };
+    let mut body = piece(point, cell);
+    for _ in 1..pieces {
+        body += &piece("", "");
+    }
+    format!(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\">\n\
+         <UnstructuredGrid>\n{body}</UnstructuredGrid>\n</VTKFile>\n"
+    )
+    .into_bytes()
 }
 
 /// The readers of the formats issue 15 added (PLY, STL, legacy VTK, VTU, Gmsh MSH).
@@ -550,6 +658,195 @@ fn new_format_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             "binary MSH in the other byte order",
             "big-endian.msh",
             b"$MeshFormat\n4.1 1 8\n\x00\x00\x00\x01\n$EndMeshFormat\n".to_vec(),
+        ),
+    ]
+}
+
+/// Issue 27 item 4: numbers exact in every reader (the declared float type included), no
+/// element dropped silently, plain messages.
+fn exact_reader_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
+    let t = |s: &str| s.as_bytes().to_vec();
+    let ply = |y: &str, elements: &str, body: &str| {
+        format!(
+            "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+             property float z\n{elements}end_header\n0 0 0\n1 {y} 0\n0 1 0\n0 0 1\n{body}"
+        )
+        .into_bytes()
+    };
+    let face = "element face 1\nproperty list uchar int vertex_indices\n";
+    let stl_facet = |x: &str| {
+        format!(
+            "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex {x} 0 0\nvertex 0 1 0\n\
+             endloop\nendfacet\n"
+        )
+    };
+    let vtk = |version: &str, ty: &str, x: &str, cells: &str| {
+        format!(
+            "# vtk DataFile Version {version}\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n\
+             POINTS 3 {ty}\n0 0 0 {x} 0 0 0 1 0\n{cells}"
+        )
+        .into_bytes()
+    };
+    let cells4 = "CELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n";
+    let msh2 = |nodes: &str, elements: &str| {
+        format!(
+            "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n{nodes}$EndNodes\n\
+             $Elements\n1\n{elements}$EndElements\n"
+        )
+        .into_bytes()
+    };
+    let nodes = "1 0 0 0\n2 1 0 0\n3 0 1 0\n";
+    let triangle = "1 2 2 0 1 1 2 3\n";
+    // A binary STL declaring 2 triangles with 1.
+    let mut stl_cut = vec![0u8; 80];
+    stl_cut.extend_from_slice(&2u32.to_le_bytes());
+    stl_cut.extend_from_slice(&[0u8; 50]);
+    vec![
+        (
+            "number a declared 32-bit float cannot hold",
+            "float-overflow.ply",
+            ply("1e39", face, "3 0 1 2\n"),
+        ),
+        (
+            "number a declared 32-bit float cannot hold",
+            "float-underflow.ply",
+            ply("1e-400", face, "3 0 1 2\n"),
+        ),
+        (
+            "number a declared 32-bit float cannot hold",
+            "float-underflow.stl",
+            format!("solid a\n{}endsolid a\n", stl_facet("1e-50")).into_bytes(),
+        ),
+        (
+            "number a declared 32-bit float cannot hold",
+            "float-overflow.vtk",
+            vtk("4.2", "float", "1e39", cells4),
+        ),
+        (
+            "number a declared 32-bit float cannot hold",
+            "float-overflow.vtu",
+            t(
+                "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\"><UnstructuredGrid>\
+               <Piece NumberOfPoints=\"1\" NumberOfCells=\"1\"><Points>\
+               <DataArray type=\"Float32\" NumberOfComponents=\"3\" format=\"ascii\">0 1e39 0</DataArray>\
+               </Points><Cells><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0</DataArray>\
+               <DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">1</DataArray>\
+               <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">1</DataArray>\
+               </Cells></Piece></UnstructuredGrid></VTKFile>\n",
+            ),
+        ),
+        (
+            "coordinate that overflows a double",
+            "overflow.vtk",
+            vtk("4.2", "double", "1e309", cells4),
+        ),
+        (
+            "coordinate that underflows to 0",
+            "underflow.vtk",
+            vtk("4.2", "double", "1e-400", cells4),
+        ),
+        (
+            "coordinate that overflows a double",
+            "overflow.msh",
+            msh2("1 0 0 0\n2 1e309 0 0\n3 0 1 0\n", triangle),
+        ),
+        (
+            "coordinate that underflows to 0",
+            "underflow.msh",
+            msh2("1 0 0 0\n2 1e-400 0 0\n3 0 1 0\n", triangle),
+        ),
+        (
+            "NaN / inf coordinates in ASCII PLY (accepted, as in every reader)",
+            "nan.ply",
+            ply("nan", face, "3 0 1 2\n"),
+        ),
+        (
+            "extra value on an element line",
+            "extra-value.ply",
+            ply("0", face, "3 0 1 2 3\n"),
+        ),
+        (
+            "extra value on an element line",
+            "extra-value.msh",
+            msh2(nodes, "1 2 2 0 1 1 2 3 3\n"),
+        ),
+        (
+            "PLY tetra elements (accepted: tetrahedra)",
+            "tetra.ply",
+            ply(
+                "0",
+                "element tetra 1\nproperty list uchar int vertex_indices\n",
+                "4 0 1 2 3\n",
+            ),
+        ),
+        (
+            "PLY tristrips (accepted: each strip's triangles)",
+            "tristrips.ply",
+            ply(
+                "0",
+                "element tristrips 1\nproperty list int int vertex_indices\n",
+                "4 0 1 2 3\n",
+            ),
+        ),
+        (
+            "PLY element with vertex ids that is not read",
+            "polyline.ply",
+            ply(
+                "0",
+                "element polyline 1\nproperty list uchar int vertex_indices\n",
+                "4 0 1 2 3\n",
+            ),
+        ),
+        (
+            "several ASCII STL solids (accepted: all read)",
+            "two-solids.stl",
+            format!(
+                "solid a\n{}endsolid a\nsolid b\n{}endsolid b\n",
+                stl_facet("1"),
+                stl_facet("2")
+            )
+            .into_bytes(),
+        ),
+        ("truncated binary STL", "cut.stl", stl_cut),
+        (
+            "one-line OFF (accepted)",
+            "one-line.off",
+            t("OFF 3 1 0 0 0 0 1 0 0 0 1 0 3 0 1 2"),
+        ),
+        (
+            "unsupported legacy VTK version",
+            "version.vtk",
+            vtk("9.9", "double", "1", cells4),
+        ),
+        (
+            "VTK 5.1 offsets not covering the connectivity",
+            "offsets.vtk",
+            vtk(
+                "5.1",
+                "double",
+                "1",
+                "CELLS 2 5\nOFFSETS vtktypeint64\n1 4\nCONNECTIVITY vtktypeint64\n9 0 1 2 9\n\
+                 CELL_TYPES 1\n5\n",
+            ),
+        ),
+        (
+            "section shorter than declared",
+            "short-node.msh",
+            msh2("1 0 0 0\n2 1 0 0\n3 0 1\n", triangle),
+        ),
+        (
+            "element type that is not a simplex type",
+            "type99.msh",
+            msh2(nodes, "1 99 2 0 1 1 2 3\n"),
+        ),
+        (
+            "element count disagreeing with the blocks",
+            "count.msh",
+            t(
+                "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 3 1 3\n2 1 0 3\n1\n2\n3\n\
+               0 0 0\n1 0 0\n0 1 0\n$EndNodes\n$Elements\n1 2 1 1\n2 1 2 1\n1 1 2 3\n\
+               $EndElements\n",
+            ),
         ),
     ]
 }

@@ -368,7 +368,7 @@ fn grid_files(dir: &std::path::Path, k: u32) -> Vec<(String, std::path::PathBuf)
 /// The readers' row: a file of a few MB in each format read under the same margins. The
 /// smallest margin refuses (`TooLarge`: the file's buffer or a first output array), the largest
 /// reads, and no try aborts on an allocation above [`SMALL`] (a reader's output arrays, the
-/// crates' arrays behind vtkio and stl_io probed first, `.tpx` copies and mapping).
+/// crates' arrays behind vtkio probed first, `.tpx` copies and mapping).
 #[test]
 fn every_reader_under_an_address_space_limit_says_too_large() {
     if let Ok(spec) = std::env::var(CHILD) {

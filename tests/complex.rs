@@ -309,3 +309,47 @@ fn long_listings_of_repeats_dedup_in_blocks_with_the_same_result() {
         );
     }
 }
+
+/// Setting a complex's coordinates: the whole array replaced in place (same dimension) or with
+/// a new dimension (a complex without coordinates gains them); wrong lengths, dimension 0 and
+/// non-finite numbers are refused naming the problem, and change nothing; the topology and the
+/// listing are untouched.
+#[test]
+fn set_coords_replaces_the_array_and_refuses_bad_input_unchanged() {
+    let mut c = Complex::from_simplices(4, &[&[2, 1, 0], &[2, 3]]).unwrap();
+    assert!(c.coords().is_none());
+    let before_tops = c.top_counts();
+    let xyz: Vec<f64> = (0..12).map(|k| k as f64 * 0.5).collect();
+    c.set_coords(3, &xyz).unwrap();
+    assert_eq!(
+        (c.coords().unwrap().dim, &c.coords().unwrap().data),
+        (3, &xyz)
+    );
+    let moved: Vec<f64> = xyz.iter().map(|x| x + 1.0).collect();
+    c.set_coords(3, &moved).unwrap();
+    assert_eq!(c.coords().unwrap().data, moved);
+    let flat: Vec<f64> = (0..8).map(f64::from).collect();
+    c.set_coords(2, &flat).unwrap();
+    assert_eq!(
+        (c.coords().unwrap().dim, &c.coords().unwrap().data),
+        (2, &flat)
+    );
+    let refused = |c: &mut Complex, dim: usize, data: &[f64]| match c.set_coords(dim, data) {
+        Err(ComplexError::Coordinates(m)) => m,
+        other => panic!("expected a refusal, got {other:?}"),
+    };
+    assert!(refused(&mut c, 2, &flat[..7]).contains("7 numbers given for 4 vertices"));
+    assert!(refused(&mut c, 0, &[]).contains("dimension at least 1"));
+    let mut bad = flat.clone();
+    bad[5] = f64::NAN;
+    assert_eq!(
+        refused(&mut c, 2, &bad),
+        "coordinate 1 of vertex 2 is NaN, not a finite number"
+    );
+    assert_eq!(
+        (c.coords().unwrap().dim, &c.coords().unwrap().data),
+        (2, &flat)
+    );
+    assert_eq!(c.top_counts(), before_tops);
+    assert_eq!(c.top_oriented(2, 0), &[2, 1, 0]);
+}

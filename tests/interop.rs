@@ -28,6 +28,11 @@ type Cells = BTreeMap<String, Vec<Vec<u32>>>;
 /// Runs the helper once for all `jobs` (mode, file, meshio format); per job, its JSON output
 /// as (points, cells).
 fn meshio(jobs: &[(&str, PathBuf, &str)]) -> Vec<(Vec<[f64; 3]>, Cells)> {
+    meshio_lines(jobs).iter().map(|l| parse_answer(l)).collect()
+}
+
+/// Runs the helper once for all `jobs`; per job, its output line.
+fn meshio_lines(jobs: &[(&str, PathBuf, &str)]) -> Vec<String> {
     use std::io::Write;
     let script = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/interop/meshio_check.py");
     let mut child = Command::new("python3")
@@ -54,9 +59,112 @@ fn meshio(jobs: &[(&str, PathBuf, &str)]) -> Vec<(Vec<[f64; 3]>, Cells)> {
         String::from_utf8_lossy(&o.stderr)
     );
     let text = String::from_utf8(o.stdout).unwrap();
-    let answers: Vec<_> = text.lines().map(parse_answer).collect();
+    let answers: Vec<String> = text.lines().map(str::to_string).collect();
     assert_eq!(answers.len(), jobs.len());
     answers
+}
+
+/// Point or cell data as meshio gives it: name → values (exact, as strings of reprs parsed).
+type Data = BTreeMap<String, Vec<u64>>;
+
+/// A `readdata`/`writedata` answer: (point data, cell data), each value's f64 bits.
+fn parse_data(line: &str) -> (Data, Data) {
+    let json: serde_json::Value = serde_json::from_str(line).unwrap();
+    let get = |key: &str| -> Data {
+        json[key]
+            .as_object()
+            .unwrap()
+            .iter()
+            .map(|(k, v)| {
+                let xs = v.as_array().unwrap().iter().map(|x| {
+                    let x: f64 = x.as_str().unwrap().parse().unwrap();
+                    // Every NaN alike: Python prints them all as 'nan'.
+                    if x.is_nan() {
+                        f64::NAN.to_bits()
+                    } else {
+                        x.to_bits()
+                    }
+                });
+                (k.clone(), xs.collect())
+            })
+            .collect()
+    };
+    (get("point_data"), get("cell_data"))
+}
+
+/// Our attributes in meshio's terms: the vertex ones as point data, the listed ones as cell
+/// data (numbers as f64 bits, NaNs alike), the gmsh:* tag arrays left out.
+fn our_data(c: &Complex) -> (Data, Data) {
+    let (mut point, mut cell) = (Data::new(), Data::new());
+    for a in c
+        .attributes()
+        .iter()
+        .filter(|a| !a.name.starts_with("gmsh:"))
+    {
+        let xs = (0..a.values.len())
+            .map(|i| {
+                let x = a.values.real(i).unwrap();
+                if x.is_nan() {
+                    f64::NAN.to_bits()
+                } else {
+                    x.to_bits()
+                }
+            })
+            .collect();
+        match a.location {
+            topoplex::complex::Location::Vertices => point.insert(a.name.clone(), xs),
+            topoplex::complex::Location::Listed => cell.insert(a.name.clone(), xs),
+        };
+    }
+    (point, cell)
+}
+
+/// Point and cell data: what meshio writes (VTU binary, MSH 2.2 and 4.1 binary) Topoplex reads
+/// with the same values, and what Topoplex writes of it meshio reads with the same values.
+#[test]
+fn point_and_cell_data_read_alike_by_meshio_and_topoplex_both_ways() {
+    if !meshio_present() {
+        return;
+    }
+    let dir = scratch("data");
+    let formats = [
+        (Format::Vtu, "vtu-binary"),
+        (Format::Msh2Binary, "gmsh22-binary"),
+        (Format::MshBinary, "gmsh-binary"),
+        (Format::Msh, "gmsh-binary"),
+    ];
+    let theirs: Vec<_> = formats
+        .iter()
+        .enumerate()
+        .map(|(i, &(f, name))| {
+            (
+                "writedata",
+                dir.0.join(format!("theirs-{i}.{}", f.extension())),
+                name,
+            )
+        })
+        .collect();
+    let written = meshio_lines(&theirs);
+    let mut ours = Vec::new();
+    for ((&(format, name), (_, path, _)), line) in formats.iter().zip(&theirs).zip(&written) {
+        let c = Complex::from_path(path).unwrap_or_else(|e| panic!("{name}: {e}"));
+        let want = parse_data(line);
+        assert!(!want.0.is_empty() && !want.1.is_empty(), "{name}");
+        assert_eq!(our_data(&c), want, "{name}: what we read of meshio's file");
+        let out = dir
+            .0
+            .join(format!("ours-{}.{}", format.name(), format.extension()));
+        write_complex(&c, &out, Some(format)).unwrap();
+        ours.push(("readdata", out, name));
+    }
+    for ((&(format, _), line), want) in formats.iter().zip(meshio_lines(&ours)).zip(&written) {
+        assert_eq!(
+            parse_data(&line),
+            parse_data(want),
+            "{}: what meshio reads of ours",
+            format.name()
+        );
+    }
 }
 
 fn parse_answer(line: &str) -> (Vec<[f64; 3]>, Cells) {

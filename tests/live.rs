@@ -705,7 +705,106 @@ fn assert_handles_match_the_oracle(live: &LiveComplex) {
     let tops: usize = o.tops.iter().map(Vec::len).sum();
     assert_eq!(n.top_total() as usize, tops);
     assert_batches_match_the_oracle(live, &o, &to_dense);
+    assert_dense_indices_match_the_oracle(live, &o, &slots);
     assert_cyclic_order_matches_a_compacted_copy(live, &c);
+}
+
+/// The index half of the handle API on the live complex equals the oracle's lexicographic ranks
+/// (vertices: their slots): `handle(p, i)` names the oracle's i-th p-simplex and `index_of`
+/// takes it back; `related_ids` and `related_batch` answer the oracle's relation as ranks,
+/// `degree_batch` its sizes, and every relation view its rows (a removed vertex's row empty).
+fn assert_dense_indices_match_the_oracle(live: &LiveComplex, o: &Oracle, slots: &[u32]) {
+    let n: &dyn Navigate = live;
+    let d = o.dimension();
+    let rank = |row: &[u32]| oracle_rank(o, slots, row);
+    let to_slots = |r: &[u32]| -> Vec<u32> { r.iter().map(|&v| slots[v as usize]).collect() };
+    // Indices of dimension p: slots for vertices (removed ones included), ranks above.
+    let indices = |p: usize| -> Vec<u32> {
+        if p == 0 {
+            (0..live.vertex_slots()).collect()
+        } else {
+            (0..o.levels[p].len() as u32).collect()
+        }
+    };
+    let mut ids = Vec::new();
+    for p in 0..=d {
+        for (i, row) in o.levels[p].iter().enumerate() {
+            let given = to_slots(row);
+            let i = if p == 0 { given[0] } else { i as u32 };
+            let h = n.handle(p, i).unwrap();
+            assert_eq!(*n.vertices_of(h).unwrap(), given[..], "handle({p}, {i})");
+            assert_eq!(n.locate(&given), Ok(h), "handle({p}, {i}) is canonical");
+            assert_eq!(n.index_of(h), Ok(i));
+            // A dense handle made from the index (as the C++ ranges make them) names it too.
+            let dh = SimplexHandle::dense(p, i).with_generation(Navigate::generation(live));
+            assert_eq!(*n.vertices_of(dh).unwrap(), given[..]);
+            for q in 0..=d {
+                ids.clear();
+                n.related_ids(h, q, Order::Natural, &mut ids).unwrap();
+                let want: Vec<u32> = o
+                    .relation(row, q)
+                    .iter()
+                    .map(|r| rank(&to_slots(r)))
+                    .collect();
+                assert_eq!(ids, want, "related_ids R_{{{p},{q}}}({given:?})");
+            }
+        }
+        let count = o.levels[p].len() as u32;
+        // The count read from the built table (O(1)) is the oracle's too.
+        assert_eq!(
+            n.count(p),
+            count as usize,
+            "count({p}) with its table built"
+        );
+        assert!(matches!(
+            n.handle(p, if p == 0 { live.vertex_slots() } else { count }),
+            Err(QueryError::InvalidHandle { .. })
+        ));
+        let all = indices(p);
+        let live_ones: Vec<u32> = all
+            .iter()
+            .copied()
+            .filter(|&i| p > 0 || live.is_live(VertexId(i)))
+            .collect();
+        for q in 0..=d {
+            let view = n.relation_view(p, q).unwrap().unwrap();
+            assert_eq!(view.len(), all.len());
+            let (mut batch, mut ends) = (Vec::new(), Vec::new());
+            n.related_batch(
+                p,
+                &live_ones,
+                q,
+                Order::Lexicographic,
+                &mut batch,
+                &mut ends,
+            )
+            .unwrap();
+            let mut degrees = vec![0u32; live_ones.len()];
+            n.degree_batch(p, &live_ones, q, &mut degrees).unwrap();
+            let mut start = 0;
+            for (k, &i) in live_ones.iter().enumerate() {
+                ids.clear();
+                n.related_ids(n.handle(p, i).unwrap(), q, Order::Natural, &mut ids)
+                    .unwrap();
+                assert_eq!(view.get(i as usize), &ids[..], "view R_{{{p},{q}}} of {i}");
+                assert_eq!(
+                    &batch[start..ends[k]],
+                    &ids[..],
+                    "batch R_{{{p},{q}}} of {i}"
+                );
+                assert_eq!(degrees[k] as usize, ids.len());
+                start = ends[k];
+            }
+            for &i in all.iter().filter(|i| !live_ones.contains(i)) {
+                assert!(view.get(i as usize).is_empty(), "removed vertex {i}");
+                assert!(matches!(
+                    n.degree_batch(p, &[i], q, &mut [0]),
+                    Err(QueryError::StaleHandle { .. })
+                ));
+            }
+        }
+    }
+    assert!(n.handle_bytes() > 0, "tables and views are counted");
 }
 
 /// `related_handles_batch` over every simplex at once (all dimensions mixed, in an order that is
@@ -1076,12 +1175,31 @@ fn c_handles(
         .collect()
 }
 
+/// The dense index of a simplex of `live` (ids are slots) by brute force: a vertex's slot, else
+/// the rank of its row among the oracle's q-simplices of the rebuilt complex (whose vertex
+/// renumbering keeps order, so ranks are the same).
+fn oracle_rank(o: &Oracle, slots: &[u32], row: &[u32]) -> u32 {
+    if row.len() == 1 {
+        return row[0];
+    }
+    let dense: Vec<u32> = row
+        .iter()
+        .map(|v| slots.binary_search(v).unwrap() as u32)
+        .collect();
+    o.levels[row.len() - 1].binary_search(&dense).unwrap() as u32
+}
+
 /// Every navigation function of the C ABI on the live complex's view answers what the Rust
-/// API answers (as vertex rows), and the index-writing ones say NOT_DENSE above vertices.
+/// API answers (as vertex rows), and the index-writing ones answer the oracle's ranks.
 fn c_navigation_matches(l: *const topoplex_ffi::TpxLive, rust: &LiveComplex) {
     use topoplex_ffi::*;
     let s = c_view(l);
     let d = rust.dimension();
+    let o = Oracle::new(&rust.to_complex());
+    let slots: Vec<u32> = rust.vertices().map(|v| v.0).collect();
+    let ranks = |rows: Vec<Vec<u32>>| -> Vec<u32> {
+        rows.iter().map(|r| oracle_rank(&o, &slots, r)).collect()
+    };
     let rows = |hs: &[TpxSimplex]| -> Vec<Vec<u32>> {
         hs.iter()
             .map(|h| {
@@ -1125,14 +1243,8 @@ fn c_navigation_matches(l: *const topoplex_ffi::TpxLive, rust: &LiveComplex) {
                     64,
                     &mut len,
                 );
-                assert_eq!(
-                    st,
-                    if q == 0 {
-                        TpxStatus::Ok
-                    } else {
-                        TpxStatus::NotDense
-                    }
-                );
+                assert_eq!(st, TpxStatus::Ok);
+                assert_eq!(ids[..len], ranks(rows_of(rust, &rbuf))[..], "ids R_q={q}");
             }
         }
         for link in [0, 1] {
@@ -1209,7 +1321,8 @@ fn c_navigation_matches(l: *const topoplex_ffi::TpxLive, rust: &LiveComplex) {
                 &mut ni,
                 &mut ng,
             );
-            assert_eq!(st, TpxStatus::NotDense);
+            assert_eq!(st, TpxStatus::Ok);
+            assert_eq!(items[..ni], ranks(rows_of(rust, &fans.items))[..]);
         }
     }
     c_batches_match(l, rust);
@@ -1217,7 +1330,7 @@ fn c_navigation_matches(l: *const topoplex_ffi::TpxLive, rust: &LiveComplex) {
 
 /// `tpx_related_handles_batch` over every simplex (dimensions mixed) equals the Rust API's
 /// per-handle answers; a too-small buffer writes nothing and says the size; a handle of another
-/// structure is refused with its position; `tpx_related_batch` says NOT_DENSE above vertices.
+/// structure is refused with its position; `tpx_related_batch` of a vertex answers ranks.
 fn c_batches_match(l: *const topoplex_ffi::TpxLive, rust: &LiveComplex) {
     use topoplex_ffi::*;
     let s = c_view(l);
@@ -1273,7 +1386,7 @@ fn c_batches_match(l: *const topoplex_ffi::TpxLive, rust: &LiveComplex) {
             assert_eq!((st, need), (TpxStatus::BufferTooSmall, len));
             assert_eq!(offsets, before, "offsets written on an error");
         }
-        let mut ids = [0u32; 8];
+        let mut ids = [0u32; 256];
         let mut one = [0u32; 2];
         // SAFETY: as above; one vertex index.
         let st = unsafe {
@@ -1286,16 +1399,22 @@ fn c_batches_match(l: *const topoplex_ffi::TpxLive, rust: &LiveComplex) {
                 TPX_ORDER_NATURAL,
                 one.as_mut_ptr(),
                 ids.as_mut_ptr(),
-                8,
+                ids.len(),
                 &mut len,
             )
         };
-        let want = if q == 0 {
-            TpxStatus::Ok
-        } else {
-            TpxStatus::NotDense
-        };
-        assert_eq!(st, want);
+        assert_eq!(st, TpxStatus::Ok);
+        let v = rows[rows.len() - 1][0];
+        let rh = rust.vertex(VertexId(v)).unwrap();
+        rust.related(rh, q as usize, Order::Natural, &mut rbuf)
+            .unwrap();
+        let o = Oracle::new(&rust.to_complex());
+        let slots: Vec<u32> = rust.vertices().map(|v| v.0).collect();
+        let want: Vec<u32> = rows_of(rust, &rbuf)
+            .iter()
+            .map(|r| oracle_rank(&o, &slots, r))
+            .collect();
+        assert_eq!((&ids[..len], one[1] as usize), (&want[..], len));
     }
     let mut foreign = hs.clone();
     foreign[hs.len() / 2].owner ^= 0x5a5a;
@@ -1650,4 +1769,199 @@ fn c_abi_live_functions_refuse_null() {
         tpx_live_free(l);
         tpx_complex_free(c);
     }
+}
+
+/// One step of the coordinate property test.
+#[derive(Debug, Clone)]
+enum CoordOp {
+    /// Set one live vertex's coordinates.
+    Set(prop::sample::Index, f64, f64),
+    /// Set every slot's coordinates from a seed.
+    SetAll(f64),
+    /// Free contraction of b into a, with a new position for a or not.
+    Contract(prop::sample::Index, prop::sample::Index, Option<(f64, f64)>),
+    /// Undo the last contraction still undoable.
+    Split,
+    Compact,
+    /// A refused setting: NaN / infinity, wrong length, a removed vertex.
+    Refused(prop::sample::Index, u8),
+}
+
+fn coord_op() -> impl Strategy<Value = CoordOp> {
+    let x = -1e6f64..1e6;
+    prop_oneof![
+        3 => (any::<prop::sample::Index>(), x.clone(), x.clone()).prop_map(|(i, a, b)| CoordOp::Set(i, a, b)),
+        1 => x.clone().prop_map(CoordOp::SetAll),
+        3 => (any::<prop::sample::Index>(), any::<prop::sample::Index>(), proptest::option::of((x.clone(), x)))
+            .prop_map(|(a, b, p)| CoordOp::Contract(a, b, p)),
+        2 => Just(CoordOp::Split),
+        1 => Just(CoordOp::Compact),
+        2 => (any::<prop::sample::Index>(), 0u8..5).prop_map(|(i, k)| CoordOp::Refused(i, k)),
+    ]
+}
+
+/// The live complex's coordinates equal `want` (per slot, `None` for a removed vertex): one at
+/// a time, as the lent whole array, and through `to_complex`.
+fn assert_coords(live: &LiveComplex, want: &[Option<[f64; 2]>]) {
+    assert_eq!(live.vertex_slots() as usize, want.len());
+    let all = live.all_coords();
+    assert_eq!(all.len(), 2 * want.len());
+    let mut dense = Vec::new();
+    for (v, w) in want.iter().enumerate() {
+        assert_eq!(live.is_live(VertexId(v as u32)), w.is_some(), "vertex {v}");
+        if let Some(w) = w {
+            assert_eq!(
+                live.coords(VertexId(v as u32)).unwrap(),
+                &w[..],
+                "vertex {v}"
+            );
+            assert_eq!(&all[2 * v..2 * v + 2], &w[..]);
+            dense.extend_from_slice(w);
+        }
+    }
+    assert_eq!(live.to_complex().coords().unwrap().data, dense);
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
+    /// Coordinates set one vertex at a time and as a whole array follow free contractions (a
+    /// keeps or takes the given position, b goes), splits (a and b get back what they had
+    /// before the contraction), compaction (renumbered with the vertices); refused settings
+    /// change nothing; setting coordinates keeps the dense tables (not an edit of the
+    /// topology); and the navigation still equals the oracle after all of it.
+    #[test]
+    fn coordinates_set_per_vertex_and_whole_follow_edits_and_navigation_matches_the_oracle(
+        (n, list) in common::random_input(6, 8, 7),
+        ops in proptest::collection::vec(coord_op(), 1..12),
+    ) {
+        let c = with_coords(n, &list);
+        let mut live = LiveComplex::from_complex(&c);
+        let mut want: Vec<Option<[f64; 2]>> =
+            (0..n).map(|v| Some([v as f64, (v * v) as f64])).collect();
+        // Undo records with the coordinates of a and b before their contraction.
+        let mut undos: Vec<(topoplex::live::UndoRecord, [f64; 2], [f64; 2])> = Vec::new();
+        assert_coords(&live, &want);
+        for op in &ops {
+            let alive: Vec<u32> = live.vertices().map(|v| v.0).collect();
+            match op {
+                CoordOp::Set(i, x, y) => {
+                    let v = alive[i.index(alive.len())];
+                    live.relation_view(0, 0).unwrap();
+                    let bytes = Navigate::handle_bytes(&live);
+                    live.set_coords(VertexId(v), &[*x, *y]).unwrap();
+                    want[v as usize] = Some([*x, *y]);
+                    prop_assert_eq!(Navigate::handle_bytes(&live), bytes);
+                }
+                CoordOp::SetAll(seed) => {
+                    let data: Vec<f64> = (0..2 * want.len()).map(|k| seed + k as f64).collect();
+                    live.set_all_coords(&data).unwrap();
+                    for (v, w) in want.iter_mut().enumerate() {
+                        if w.is_some() {
+                            *w = Some([data[2 * v], data[2 * v + 1]]);
+                        }
+                    }
+                }
+                CoordOp::Contract(i, j, pos) => {
+                    let (a, b) = (alive[i.index(alive.len())], alive[j.index(alive.len())]);
+                    if a == b {
+                        continue;
+                    }
+                    let (wa, wb) = (want[a as usize].unwrap(), want[b as usize].unwrap());
+                    let p = pos.map(|(x, y)| [x, y]);
+                    let undo = live
+                        .contract(VertexId(a), VertexId(b), ContractMode::Free, p.as_ref().map(|p| &p[..]))
+                        .unwrap();
+                    undos.push((undo, wa, wb));
+                    want[b as usize] = None;
+                    if let Some(p) = p {
+                        want[a as usize] = Some(p);
+                    }
+                }
+                CoordOp::Split => {
+                    if let Some((undo, wa, wb)) = undos.pop() {
+                        let before = live.clone();
+                        match live.split(&undo) {
+                            Ok(()) => {
+                                want[undo.a.index()] = Some(wa);
+                                want[undo.b.index()] = Some(wb);
+                            }
+                            Err(Refusal::StaleHandle(_)) => assert_same_state(&live, &before),
+                            Err(e) => panic!("split: {e}"),
+                        }
+                    }
+                }
+                CoordOp::Compact => {
+                    let maps = live.compact();
+                    let mut next = vec![None; live.vertex_slots() as usize];
+                    for (old, &new) in maps.vertices.iter().enumerate() {
+                        if new != u32::MAX {
+                            next[new as usize] = want[old];
+                        }
+                    }
+                    want = next;
+                    undos.clear();
+                }
+                CoordOp::Refused(i, kind) => {
+                    let v = alive[i.index(alive.len())];
+                    let before = live.clone();
+                    let dead = (0..live.vertex_slots()).find(|&u| !live.is_live(VertexId(u)));
+                    let r = match kind {
+                        0 => live.set_coords(VertexId(v), &[f64::NAN, 0.0]),
+                        1 => live.set_coords(VertexId(v), &[0.0]),
+                        2 => {
+                            let mut data = vec![0.0; 2 * want.len()];
+                            let k = i.index(data.len());
+                            data[k] = f64::INFINITY;
+                            live.set_all_coords(&data)
+                        }
+                        3 => live.set_all_coords(&vec![0.0; 2 * want.len() + 1]),
+                        _ => live.set_coords(VertexId(dead.unwrap_or(live.vertex_slots())), &[0.0, 0.0]),
+                    };
+                    match (kind, r) {
+                        (0 | 2, Err(Refusal::NonFiniteCoordinate { .. })) => {}
+                        (1 | 3, Err(Refusal::CoordinateDimension { .. })) => {}
+                        (4, Err(Refusal::UnknownVertex { .. })) => {}
+                        (k, other) => panic!("refusal {k}: {other:?}"),
+                    }
+                    assert_same_state(&live, &before);
+                }
+            }
+            assert_coords(&live, &want);
+        }
+        assert_handles_match_the_oracle(&live);
+    }
+}
+
+/// Moving a vertex of a contraction's a after the contraction: the split puts back a's
+/// position from before it (the undo record holds it), and keeps a third vertex's new one.
+#[test]
+fn split_restores_the_contracted_pair_positions_and_keeps_other_moves() {
+    let mut live = bowtie();
+    let undo = live
+        .contract(
+            VertexId(0),
+            VertexId(1),
+            ContractMode::PreserveTopology,
+            Some(&[9.0, 9.0]),
+        )
+        .unwrap();
+    live.set_coords(VertexId(0), &[7.0, 7.0]).unwrap();
+    live.set_coords(VertexId(3), &[5.0, 5.0]).unwrap();
+    assert!(matches!(
+        live.set_coords(VertexId(1), &[1.0, 1.0]),
+        Err(Refusal::UnknownVertex { vertex: 1, .. })
+    ));
+    live.split(&undo).unwrap();
+    assert_eq!(live.coords(VertexId(0)).unwrap(), &[0.0, 0.0]);
+    assert_eq!(live.coords(VertexId(1)).unwrap(), &[1.0, 1.0]);
+    assert_eq!(live.coords(VertexId(3)).unwrap(), &[5.0, 5.0]);
+    let err = live.set_all_coords(&[0.0; 14 - 1]).unwrap_err();
+    assert_eq!(err, Refusal::CoordinateDimension { given: 13, dim: 14 });
+    let mut data = [0.0; 14];
+    data[7] = f64::NEG_INFINITY;
+    assert_eq!(
+        live.set_all_coords(&data).unwrap_err().to_string(),
+        "coordinate 1 of vertex 3 is -inf, not a finite number"
+    );
+    assert_eq!(live.coords(VertexId(3)).unwrap(), &[5.0, 5.0]);
 }

@@ -32,10 +32,7 @@ fn with_coords(n: u32, simplices: &[&[u32]], xyz: &[f64], dim: usize) -> Complex
 }
 
 fn opts(ratio: f64, preserve_topology: bool) -> Options {
-    Options {
-        ratio,
-        preserve_topology,
-    }
+    Options::new(ratio, preserve_topology)
 }
 
 /// Simplifies on a live complex, validates it, and returns the result as a complex (checked by
@@ -641,6 +638,204 @@ fn tempdir(name: &str) -> std::path::PathBuf {
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d
+}
+
+// ---------------------------------------------------------------------------------------------
+// --keep-regions.
+
+/// The label of each top simplex by its listing (`name`, listed attribute), tops in
+/// [`Complex::tops_as_given`] order.
+fn labelled_tops(c: &Complex, name: &str) -> Vec<(Vec<u32>, i64)> {
+    use topoplex::complex::Location;
+    let a = c.attributes().get(name, Location::Listed).unwrap();
+    c.tops_as_given()
+        .filter(|t| t.1 > 0)
+        .map(|(i, _, _, s)| (s.to_vec(), a.label(i).unwrap()))
+        .collect()
+}
+
+/// The pairs of labels whose top simplices share a facet (a region interface).
+fn interfaces(tops: &[(Vec<u32>, i64)]) -> std::collections::BTreeSet<(i64, i64)> {
+    let mut at: HashMap<Vec<u32>, Vec<i64>> = HashMap::new();
+    for (s, l) in tops {
+        for skip in 0..s.len() {
+            let mut f: Vec<u32> = s
+                .iter()
+                .enumerate()
+                .filter(|&(i, _)| i != skip)
+                .map(|(_, &v)| v)
+                .collect();
+            f.sort_unstable();
+            at.entry(f).or_default().push(*l);
+        }
+    }
+    let mut out = std::collections::BTreeSet::new();
+    for labels in at.values() {
+        for &a in labels {
+            for &b in labels {
+                if a < b {
+                    out.insert((a, b));
+                }
+            }
+        }
+    }
+    out
+}
+
+/// Each region's Betti numbers (the closure of its top simplices, over its own vertices).
+fn region_betti(tops: &[(Vec<u32>, i64)]) -> std::collections::BTreeMap<i64, Vec<usize>> {
+    let mut by: std::collections::BTreeMap<i64, Vec<Vec<u32>>> = Default::default();
+    for (s, l) in tops {
+        by.entry(*l).or_default().push(s.clone());
+    }
+    by.into_iter()
+        .map(|(l, mut ss)| {
+            let mut ids: Vec<u32> = ss.concat();
+            ids.sort_unstable();
+            ids.dedup();
+            for s in &mut ss {
+                for v in s.iter_mut() {
+                    *v = ids.binary_search(v).unwrap() as u32;
+                }
+            }
+            (l, betti(&common::complex_of(ids.len() as u32, &ss)))
+        })
+        .collect()
+}
+
+/// The positions (as bits) of the vertices where three or more regions meet.
+fn corners(c: &Complex, tops: &[(Vec<u32>, i64)]) -> std::collections::BTreeSet<Vec<u64>> {
+    let mut at: HashMap<u32, std::collections::BTreeSet<i64>> = HashMap::new();
+    for (s, l) in tops {
+        for &v in s {
+            at.entry(v).or_default().insert(*l);
+        }
+    }
+    let xyz = c.coords().unwrap();
+    at.into_iter()
+        .filter(|(_, ls)| ls.len() >= 3)
+        .map(|(v, _)| {
+            xyz.data[v as usize * xyz.dim..(v as usize + 1) * xyz.dim]
+                .iter()
+                .map(|x| x.to_bits())
+                .collect()
+        })
+        .collect()
+}
+
+/// A 6×6×6 tetrahedral grid cut into four regions (x and y halves: four regions meet along a
+/// line), with coordinates.
+fn four_regions() -> Complex {
+    use topoplex::complex::{Attribute, Attributes, Location};
+    let k = 6u32;
+    let n = k + 1;
+    let id = |[x, y, z]: [u32; 3]| (x * n + y) * n + z;
+    let tets: Vec<[u32; 4]> = topoplex::fixtures::freudenthal_grid(k, id).collect();
+    let coords: Vec<f64> = (0..n * n * n)
+        .flat_map(|v| {
+            [
+                f64::from(v / (n * n)),
+                f64::from(v / n % n),
+                f64::from(v % n),
+            ]
+        })
+        .collect();
+    let mut c = Complex::from_arrays(
+        n * n * n,
+        &tets.concat(),
+        &(0..=tets.len()).map(|i| i * 4).collect::<Vec<_>>(),
+        Some(Coords {
+            dim: 3,
+            data: coords,
+        }),
+    )
+    .unwrap();
+    let labels: Vec<i32> = tets
+        .iter()
+        .map(|t| {
+            let (x, y) = t
+                .iter()
+                .fold((0, 0), |(x, y), &v| (x + v / (n * n), y + v / n % n));
+            1 + i32::from(x * 2 > 4 * k) + 2 * i32::from(y * 2 > 4 * k)
+        })
+        .collect();
+    let mut at = Attributes::new();
+    at.insert(Attribute::labels("region", Location::Listed, labels));
+    c.set_attributes(at).unwrap();
+    c
+}
+
+/// `keep_regions` on four regions of a grid and on the six-volume mesh of
+/// ../shared/data/labelled (Gmsh's t16, MEDIT references): every interface present before is
+/// present after, each region keeps its Betti numbers, no region is erased, and the count
+/// reaches its target within 1 %.
+#[test]
+fn keep_regions_keeps_every_interface_and_each_regions_betti_numbers() {
+    let mut cases = vec![("four regions".to_string(), four_regions(), "region")];
+    if let Some(d) = common::shared_data() {
+        let f = d.join("labelled/gmsh_t16.mesh");
+        if f.exists() {
+            cases.push((
+                "gmsh_t16.mesh".into(),
+                Complex::from_path(&f).unwrap(),
+                "medit:ref",
+            ));
+        }
+    }
+    for (name, c, attr) in cases {
+        let before = labelled_tops(&c, attr);
+        let options = Options {
+            keep_regions: Some(attr.to_string()),
+            ..Options::new(0.5, true)
+        };
+        let out = simplify(&c, &options, &mut |_, _| {}).unwrap();
+        let after = labelled_tops(&out.complex, attr);
+        assert_eq!(
+            interfaces(&after),
+            interfaces(&before),
+            "{name}: interfaces"
+        );
+        assert_eq!(
+            corners(&out.complex, &after),
+            corners(&c, &before),
+            "{name}: corners"
+        );
+        assert_eq!(
+            region_betti(&after),
+            region_betti(&before),
+            "{name}: region Betti numbers"
+        );
+        let st = out.stats;
+        let off = st.output_tops.abs_diff(st.target_tops) as f64 / st.target_tops as f64;
+        assert!(
+            off <= 0.01,
+            "{name}: {} tops for a target of {} ({st:?})",
+            st.output_tops,
+            st.target_tops
+        );
+        assert!(
+            st.refused_regions > 0,
+            "{name}: the regions constrained nothing ({st:?})"
+        );
+    }
+}
+
+/// Without `keep_regions` the line where the grid's four regions meet is simplified away (so
+/// the test above can fail), and a name that is not a label attribute is refused.
+#[test]
+fn without_keep_regions_interfaces_move_and_unknown_names_are_refused() {
+    let c = four_regions();
+    let before = labelled_tops(&c, "region");
+    let out = simplify(&c, &Options::new(0.3, true), &mut |_, _| {}).unwrap();
+    let after = labelled_tops(&out.complex, "region");
+    assert_eq!(corners(&c, &before).len(), 7);
+    assert_ne!(corners(&out.complex, &after), corners(&c, &before));
+    let options = Options {
+        keep_regions: Some("nothing".into()),
+        ..Options::new(0.5, true)
+    };
+    let e = simplify(&c, &options, &mut |_, _| {}).unwrap_err();
+    assert!(matches!(e, SimplifyError::Regions { .. }), "{e}");
 }
 
 // ---------------------------------------------------------------------------------------------

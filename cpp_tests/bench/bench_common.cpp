@@ -176,29 +176,26 @@ void set_elements(benchmark::State& state, uint64_t per_iteration) {
 void note(const std::string& what) { std::fprintf(stderr, "note: %s\n", what.c_str()); }
 
 std::vector<Kind> kinds_from_env() {
-  static const char* names[] = {"ig", "sig", "ia", "iqm", "nmia", "ts", "pe", "le", "de"};
-  static_assert(TPX_KIND_DE == 8, "one name per kind");
+  // Names both ways through the library (tpx_kind_name, tpx_kind_from_name): no map here.
   std::vector<Kind> all;
-  for (uint32_t k = 0; k <= TPX_KIND_DE; ++k) all.push_back({k, names[k]});
+  for (uint32_t k = 0; k <= TPX_KIND_DE; ++k) {
+    const char* name = nullptr;
+    tpx_check(tpx_kind_name(k, &name), "tpx_kind_name");
+    all.push_back({k, name});
+  }
   const char* env = std::getenv("TOPOPLEX_BENCH_KINDS");
   if (env == nullptr || *env == '\0') return all;
   std::vector<Kind> out;
   std::stringstream ss(env);
   std::string name;
   while (std::getline(ss, name, ',')) {
-    if (name.empty() || name == "iastar") continue;
-    bool found = false;
-    for (auto& k : all)
-      if (k.name == name) {
-        out.push_back(k);
-        found = true;
-      }
-    if (!found) {
-      std::fprintf(stderr,
-                   "TOPOPLEX_BENCH_KINDS: unknown kind '%s' (kinds: ig,sig,ia,iqm,nmia,ts,pe,le,de,iastar)\n",
-                   name.c_str());
+    uint32_t k = 0;
+    if (name.empty()) continue;
+    if (tpx_kind_from_name(name.c_str(), &k) != TPX_STATUS_OK) {
+      std::fprintf(stderr, "TOPOPLEX_BENCH_KINDS: %s\n", tpx_last_error_message());
       std::exit(2);
     }
+    if (k <= TPX_KIND_DE) out.push_back(all[k]);  // iastar: see live_from_env
   }
   return out;
 }
@@ -208,8 +205,9 @@ bool live_from_env() {
   if (env == nullptr || *env == '\0') return true;
   std::stringstream ss(env);
   std::string name;
+  uint32_t k = 0;
   while (std::getline(ss, name, ','))
-    if (name == "iastar") return true;
+    if (tpx_kind_from_name(name.c_str(), &k) == TPX_STATUS_OK && k == TPX_KIND_IASTAR) return true;
   return false;
 }
 

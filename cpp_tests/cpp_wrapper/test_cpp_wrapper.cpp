@@ -11,7 +11,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -386,6 +389,104 @@ TEST(Wrapper, LiveNavigatesByHandlesAcrossEdits) {
   EXPECT_EQ(status_of([&] { live.degree(e, 2); }), TPX_STATUS_STALE_GENERATION);
   // A triangle fan after compaction: around 4 only the wire 4-5 remains.
   EXPECT_EQ(live.related(live.vertex(4), 0).size(), 1u);
+}
+
+// Names map to kinds in any ASCII case; an unknown name throws UNKNOWN_KIND.
+TEST(Wrapper, KindFromNameKnowsEveryCliName) {
+  EXPECT_EQ(topoplex::kind_from_name("pe"), Kind::PE);
+  EXPECT_EQ(topoplex::kind_from_name("IaStar"), Kind::IASTAR);
+  EXPECT_EQ(topoplex::kind_from_name("NMIA"), Kind::NMIA);
+  EXPECT_EQ(status_of([] { topoplex::kind_from_name("halfedge"); }), TPX_STATUS_UNKNOWN_KIND);
+  for (Kind k : {Kind::IG, Kind::SIG, Kind::IA, Kind::IQM, Kind::NMIA, Kind::TS, Kind::PE,
+                 Kind::LE, Kind::DE, Kind::IASTAR})
+    EXPECT_EQ(topoplex::kind_from_name(topoplex::kind_name(k)), k);
+  EXPECT_EQ(topoplex::kind_name(Kind::IASTAR), "iastar");
+}
+
+// The live complex answers the shared navigation (StructureView) as a built IG does: the same
+// counts, handle(p, i) simplices, index(h), views (as sets: natural orders differ) and degrees;
+// before and after an edit, which renumbers; Kind::IASTAR builds a Structure that does too.
+TEST(Wrapper, LiveSharesTheStructureNavigationAcrossEdits) {
+  const auto same_as_ig = [](const topoplex::StructureView &s, const Complex &c) {
+    const Structure ig(c, Kind::IG);
+    for (std::uint32_t p = 0; p <= ig.dimension(); ++p) {
+      ASSERT_EQ(s.count(p), ig.count(p));
+      Ids all;
+      for (std::uint32_t i = 0; i < ig.count(p); ++i) {
+        EXPECT_EQ(s.vertices(s.handle(p, i)), ig.vertices(ig.handle(p, i)));
+        EXPECT_EQ(s.index(s.handle(p, i)), i);
+        all.push_back(i);
+      }
+      for (std::uint32_t q = 0; q <= ig.dimension(); ++q) {
+        const topoplex::RelationView a = s.view(p, q), b = ig.view(p, q);
+        ASSERT_EQ(a.size(), b.size());
+        for (std::uint32_t i = 0; i < a.size(); ++i) {
+          Ids x, y;
+          for (auto h : a[i]) x.push_back(h.index());
+          for (auto h : b[i]) y.push_back(h.index());
+          std::sort(y.begin(), y.end());
+          EXPECT_EQ(x, y) << "R_" << p << q << " of " << i;
+        }
+        Ids da, db;
+        s.degrees(p, all, q, da);
+        ig.degrees(p, all, q, db);
+        EXPECT_EQ(da, db);
+      }
+    }
+  };
+  const Complex c = fixture();
+  same_as_ig(Structure(c, Kind::IASTAR), c);
+  topoplex::Live live(c);
+  same_as_ig(live.as_structure(), c);
+  // Per-face data through a lasting handle of the live complex: converted to its index.
+  topoplex::SimplexData<int> mark(live.as_structure(), 2);
+  mark[live.locate({2, 3, 4})] = 7;
+  EXPECT_EQ(mark[4u], 7);  // triangles 012 013 023 123 234
+  live.contract(0, 1, topoplex::ContractMode::Free);
+  live.compact();
+  same_as_ig(live.as_structure(), live.to_complex());
+}
+
+// Coordinates set on a Complex and on a Live (one vertex, all at once; lent), refused when not
+// finite or of the wrong length; windings lent as views.
+TEST(Wrapper, CoordinatesAreSettableAndWindingsLent) {
+  Complex c = fixture();
+  std::vector<double> xyz(12);
+  for (std::size_t i = 0; i < xyz.size(); ++i) xyz[i] = 0.25 * double(i);
+  c.set_coords(xyz, 2);
+  EXPECT_EQ(c.coord_dim(), 2u);
+  EXPECT_EQ(c.coords(), xyz);
+  std::vector<double> bad = xyz;
+  bad[3] = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(status_of([&] { c.set_coords(bad, 2); }), TPX_STATUS_INVALID_ARGUMENT);
+  EXPECT_EQ(status_of([&] { c.set_coords(xyz, 3); }), TPX_STATUS_INVALID_ARGUMENT);
+  EXPECT_EQ(c.coords(), xyz);
+  EXPECT_EQ(c.top_oriented(2, 0).to_vector(), (Ids{4, 2, 3}));
+
+  topoplex::Live live(c);
+  const topoplex::CoordsView all = live.all_coords();
+  EXPECT_EQ(std::vector<double>(all.begin(), all.end()), xyz);
+  std::vector<double> moved(xyz.size(), 1.5);
+  live.set_all_coords(moved);
+  EXPECT_EQ(std::vector<double>(all.begin(), all.end()), moved);  // written through
+  live.set_coords(5, {9.0, 8.0});
+  EXPECT_EQ(live.coords(5), (std::vector<double>{9.0, 8.0}));
+  EXPECT_EQ(all[10], 9.0);
+  EXPECT_EQ(status_of([&] { live.set_coords(5, {std::nan(""), 0.0}); }),
+            TPX_STATUS_INVALID_ARGUMENT);
+  EXPECT_EQ(status_of([&] { live.set_all_coords(xyz.data(), 11); }), TPX_STATUS_INVALID_ARGUMENT);
+  EXPECT_EQ(live.coords(5), (std::vector<double>{9.0, 8.0}));
+  const std::uint32_t t = live.top_id(live.locate({2, 3, 4}));
+  EXPECT_EQ(live.top_vertices(t).to_vector(), (Ids{4, 2, 3}));
+  EXPECT_EQ(live.top_vertices(t).to_vector(), live.top_as_given(t));
+  Ids reused;
+  live.as_structure().top_as_given(t, reused);
+  EXPECT_EQ(reused, (Ids{4, 2, 3}));
+  const Structure ig(c, Kind::IG);
+  for (std::uint32_t k = 0; k < ig.top_total(); ++k) {
+    ig.top_as_given(k, reused);
+    EXPECT_EQ(reused, ig.top_as_given(k));
+  }
 }
 
 // The decomposition class: the bowtie splits into two components at its pinch vertex.

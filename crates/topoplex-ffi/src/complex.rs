@@ -349,3 +349,77 @@ pub unsafe extern "C" fn tpx_complex_top_simplices(
         write_buffer(c.complex.tops(p as usize).as_flat(), buf, buf_len, out_len)
     })
 }
+
+/// Replaces the vertex coordinates of `c` by `data[0 .. len]`: `dim` doubles per vertex, vertex
+/// after vertex (`len` = vertex count × `dim`, `dim` ≥ 1; a complex without coordinates gains
+/// them), so that an application moves its vertices without building a new complex. Structures
+/// built from `c` before keep what they were built with. Errors: NULL_ARGUMENT (`data` may be
+/// NULL only when `len` is 0), INVALID_ARGUMENT (wrong length, `dim` 0, a NaN or infinite
+/// number: the message names its vertex), TOO_LARGE (a new dimension's array cannot be
+/// allocated); on error nothing changes. Not to be called while another thread reads `c`.
+/// Cost: O(len); no allocation when `dim` is the current one.
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `data` holds `len` doubles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_set_coords(
+    c: *mut TpxComplex,
+    dim: usize,
+    data: *const f64,
+    len: usize,
+) -> TpxStatus {
+    guard(|| {
+        let c = out_ptr(c, "c")?;
+        let data = in_slice(data, len, "data")?;
+        c.complex.set_coords(dim, data).map_err(|e| {
+            let f = complex_failure(e.clone());
+            match e {
+                ComplexError::Coordinates(_) => Failure::new(TpxStatus::InvalidArgument, f.message),
+                _ => f,
+            }
+        })
+    })
+}
+
+/// Top p-simplex `i` of `c` (the i-th of `tpx_complex_top_simplices(c, p)`) with its vertices in
+/// its input winding (the order of its first listing), lent: `*out` points into the complex's
+/// own listing, `*out_len` = p + 1 ids, valid until `tpx_complex_free` (setting coordinates
+/// does not move it). An isolated vertex no simplex lists lends itself. Errors: NULL_ARGUMENT,
+/// DIMENSION_OUT_OF_RANGE (p > d), INVALID_ARGUMENT (`i` ≥ the number of top p-simplices); the
+/// outputs are written only on success. O(1) (the first call builds the listing maps,
+/// O(Σ (p+1) log n_p)); no copy.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_top_oriented(
+    c: *const TpxComplex,
+    p: u32,
+    i: u32,
+    out: *mut *const u32,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let c = &handle(c, "c")?.complex;
+        let out = out_ptr(out, "out")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let d = c.dimension();
+        if p as usize > d {
+            return Err(Failure::new(
+                TpxStatus::DimensionOutOfRange,
+                format!("p = {p} is above the complex's dimension {d}"),
+            ));
+        }
+        let n = c.tops(p as usize).len();
+        if i as usize >= n {
+            return Err(Failure::new(
+                TpxStatus::InvalidArgument,
+                format!("top {p}-simplex {i}: the complex has {n}"),
+            ));
+        }
+        let row = c.top_oriented(p as usize, i);
+        *out = row.as_ptr();
+        *out_len = row.len();
+        Ok(())
+    })
+}

@@ -5,10 +5,15 @@
 //! FOREIGN_HANDLE (its `owner` stamp differs), an index or dimension out of range INVALID_HANDLE,
 //! a handle of the wrong dimension for the call WRONG_HANDLE_KIND — never undefined behaviour.
 //! Answers of one dimension are written as dense indices (`uint32_t`): the q-simplex of index i
-//! is the handle `{i, q, owner}` (`tpx_handle` builds it checked). The live complex has dense
-//! indices only for its vertices: `tpx_related_handles`, `tpx_related_handles_batch` and
-//! `tpx_cyclic_handles` write whole handles and work for every structure; the index-writing
-//! functions answer NOT_DENSE there.
+//! is the handle `{i, q, owner}` (`tpx_handle` builds it checked). Every structure, the live
+//! complex included, answers both forms: the live complex's handles above vertices are not
+//! their index (a top simplex and a vertex mask, lasting across edits), so it numbers those
+//! simplices on demand — lexicographic ranks, as the nine do, built on first use and
+//! renumbered by each edit (`topoplex::live`, module `dense`): its indices above vertices, and
+//! the handles `{i, q, owner}` made from them, are valid until the next edit. The
+//! handle-writing twins (`tpx_related_handles`, `tpx_related_handles_batch`,
+//! `tpx_cyclic_handles`) give handles that last across edits instead. NOT_DENSE is no longer
+//! returned by any function (its number stays reserved).
 //!
 //! No allocation on the query path: every function here, on success, allocates nothing once
 //! this thread's buffers have grown to the answers asked (answer buffers and walk scratch are
@@ -35,7 +40,10 @@ use topoplex::scratch::Scratch;
 /// `meta` holds the dimension in its low 8 bits (`meta & 0xff`); the other bits are 0 for the
 /// nine built structures. The live complex (`tpx_live_structure`) names a simplex above its
 /// vertices by a top simplex (`index`: dimension in the top 4 bits, slot below) and a mask of its
-/// vertices (`meta` bits 16..32, form 1 in bits 8..16). `owner` is the stamp of the structure
+/// vertices (`meta` bits 16..32, form 1 in bits 8..16), so that the handle lasts across edits;
+/// its dense index is then `tpx_simplex_index` (valid until the next edit), and a handle
+/// `{i, p, owner}` built from an index (form 0) is accepted too, naming the p-simplex of index
+/// i at the time of use. `owner` is the stamp of the structure
 /// that made it. A handle of a built structure stays valid as long as its structure lives; one of
 /// a live complex names its simplex (or, across a contraction, its image) while that simplex
 /// exists — also when the top simplex naming it was removed, at the cost of locating it again on
@@ -184,7 +192,9 @@ pub unsafe extern "C" fn tpx_locate(
 }
 
 /// The handle of the p-simplex of dense index `index` into `*out` (for a vertex: p = 0, index =
-/// its id). Errors: INVALID_HANDLE (p > d or index >= n_p). O(1).
+/// its id). Errors: INVALID_HANDLE (p > d or index >= n_p). O(1); on the live complex, for
+/// p > 0, the handle lasting across edits of the simplex of that rank now (its table built on
+/// first use), O(p + d·k_v).
 ///
 /// # Safety
 /// Non-NULL pointers must be valid.
@@ -202,6 +212,33 @@ pub unsafe extern "C" fn tpx_handle(
             .handle(p.min(255) as usize, index)
             .map_err(query_failure)?;
         *out = wrap(s, h);
+        Ok(())
+    })
+}
+
+/// The dense index of `*h` into `*out`: its rank among the simplices of its dimension in
+/// ascending lexicographic order (a vertex: its id) — the index `tpx_handle` takes back, that
+/// `tpx_related` writes and the relation views are indexed by, and that the caller's
+/// per-dimension arrays can use. For the nine structures it is `h->index`; the live complex's
+/// handles above vertices are not their index (they last across edits), and this gives the
+/// index of its numbering of the moment, valid until its next edit. Errors: NULL_ARGUMENT,
+/// FOREIGN_HANDLE, STALE_GENERATION, INVALID_HANDLE, STALE_HANDLE; `*out` written only on
+/// success. O(1) (the live complex: O(p log n_p), the dimension's table built on first use).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_simplex_index(
+    s: *const TpxStructure,
+    h: *const TpxSimplex,
+    out: *mut u32,
+) -> TpxStatus {
+    guard(|| {
+        let s = handle(s, "s")?;
+        let h = handle(h, "h")?;
+        let out = out_ptr(out, "out")?;
+        let n = nav(s)?;
+        *out = n.index_of(unwrap_owned(s, n, h)?).map_err(query_failure)?;
         Ok(())
     })
 }
@@ -312,9 +349,9 @@ pub unsafe extern "C" fn tpx_top_as_given(
 
 /// R_{p,q}(*h) (p = the handle's dimension) as dense indices of q-simplices into `buf`, in
 /// `order` (`TPX_ORDER_*`); `*out_len` = the number written. Errors: FOREIGN_HANDLE,
-/// INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), NOT_DENSE (q > 0 on
-/// the live complex: use `tpx_related_handles`), BUFFER_TOO_SMALL
-/// (nothing written; `*out_len` = needed). Cost: the structure's walk (module docs), plus a sort
+/// INVALID_HANDLE, DIMENSION_OUT_OF_RANGE (q > d), INVALID_ARGUMENT (order), BUFFER_TOO_SMALL
+/// (nothing written; `*out_len` = needed). On the live complex, indices above vertices are its
+/// numbering until the next edit (module doc). Cost: the structure's walk (module docs), plus a sort
 /// for lexicographic order; rows a structure stores (the IG's boundaries and co-boundaries, the
 /// IA's adjacency, the radial cycles' FF) are copied straight into `buf` (see `ffi::direct`).
 /// No allocation once this thread's buffers have grown to the answer.
@@ -345,7 +382,8 @@ trait Written: Copy + 'static {
     const KEPT: &'static std::thread::LocalKey<RefCell<Vec<Self::Kept>>>;
     /// The items' name in messages.
     const NAME: &'static str;
-    /// Whether these are dense indices, which the live complex has only for its vertices.
+    /// Whether these are dense indices (which the live complex's handles above vertices are
+    /// not: they are converted through `Navigate::index_of`).
     const DENSE: bool;
     /// R_{p,q}(h) by the full path (the structure's walk).
     const WALK: Walk<Self::Kept>;
@@ -444,9 +482,6 @@ fn related_into<U: Written>(
     }
     let order = order_arg(order);
     answer_into(s, h, buf, buf_len, out_len, |n, sh, v| {
-        if U::DENSE {
-            dense_answers(n, q)?;
-        }
         (U::WALK)(n, sh, q as usize, order?, v).map_err(query_failure)
     })
 }
@@ -492,20 +527,6 @@ fn answer_into<U: Written>(
     })
 }
 
-/// NOT_DENSE when answers of dimension q have no dense index in this structure (the live
-/// complex above its vertices).
-fn dense_answers(n: &dyn Navigate, q: u32) -> Result<(), Failure> {
-    if q > 0 && !n.dense() {
-        return Err(Failure::new(
-            TpxStatus::NotDense,
-            format!(
-                "{q}-simplices of this structure have no dense index: use tpx_related_handles / tpx_related_handles_batch / tpx_cyclic_handles"
-            ),
-        ));
-    }
-    Ok(())
-}
-
 fn too_small(need: usize, have: usize, out_len: &mut usize) -> Result<(), Failure> {
     *out_len = need;
     Err(Failure::new(
@@ -518,8 +539,8 @@ fn too_small(need: usize, have: usize, out_len: &mut usize) -> Result<(), Failur
 /// `indices[0 .. count]`, `offsets[0 .. count + 1]` receives the start of each answer in `buf`
 /// (`offsets[count]` = total) and `buf` the dense q-indices, each answer in `order`.
 /// Errors: INVALID_HANDLE (p > d or an index out of range), DIMENSION_OUT_OF_RANGE,
-/// BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`;
-/// NOT_DENSE for q > 0 on the live complex (use `tpx_related_handles_batch`).
+/// BUFFER_TOO_SMALL (nothing written; `*out_len` = needed length of `buf`), as `tpx_related`
+/// (the live complex: indices valid until its next edit, module doc).
 /// `offsets` must hold `count + 1` entries. Cost: one walk per index (TS, PE, LE, DE answer
 /// VV, VF and FF in one loop with no call per answer); allocation-free once this thread's buffer
 /// has grown to the total.
@@ -544,7 +565,6 @@ pub unsafe extern "C" fn tpx_related_batch(
     let inputs = (indices, count, "indices");
     let out = (offsets, buf, buf_len, out_len);
     batch_into(s, inputs, order, out, |_, n, indices, order, ids, ends| {
-        dense_answers(n, q)?;
         let p = (p as usize).min(MAX_DIMENSION + 1);
         let too_large = |_| Failure::new(TpxStatus::TooLarge, "offsets do not fit in memory");
         ends.try_reserve(count).map_err(too_large)?;
@@ -633,7 +653,7 @@ pub unsafe extern "C" fn tpx_degree(
 /// |R_{p,q}| of the p-simplices of dense indices `indices[0 .. count]` into `degrees[0 ..
 /// count]`, without writing any answer (a valence histogram, boundary and non-manifold edge
 /// lists read degrees only). Errors: NULL_ARGUMENT, INVALID_HANDLE (p > d or an index out of
-/// range), DIMENSION_OUT_OF_RANGE (q > d), NOT_DENSE (the live complex, q > 0); nothing is
+/// range; on the live complex a removed vertex), DIMENSION_OUT_OF_RANGE (q > d); nothing is
 /// written on error. Cost: for relations the IG stores (R_{p,p±1}, and R_{0,0} = the edges at
 /// a vertex) O(1) per index from its offsets; otherwise the walk of each answer, counted in a
 /// scratch buffer (no answer copied out). No allocation once this thread's scratch is warm.
@@ -656,7 +676,6 @@ pub unsafe extern "C" fn tpx_degree_batch(
             return Err(Failure::null("degrees"));
         }
         let n = nav(s)?;
-        dense_answers(n, q)?;
         let p = (p as usize).min(MAX_DIMENSION + 1);
         // Counted aside first: an error leaves `degrees` untouched.
         with_answer(|k| {
@@ -684,7 +703,7 @@ fn write_slice<T: Copy>(data: &[T], out: *mut T) {
 /// iterating answers in the caller's own loop with no call per query (the C++
 /// `Structure::view` ranges do): the answer of the p-simplex of dense index i is
 /// `ids[offsets[i] .. offsets[i + 1]]`, in natural order. The arrays belong to the structure
-/// and live as long as it does.
+/// and live as long as it does (the live complex: until its next edit).
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct TpxRelationView {
@@ -708,8 +727,14 @@ pub struct TpxRelationView {
 /// p-simplex), `4 (n_p + 1) + 4 Σ|R_{p,q}|` bytes kept with the
 /// structure (`built` = 1, `bytes`) — and later calls are O(1). Each answer is in natural order,
 /// the same as `tpx_related` (TPX_ORDER_NATURAL). Errors: NULL_ARGUMENT,
-/// DIMENSION_OUT_OF_RANGE (p or q > d), NOT_DENSE (the live complex), TOO_LARGE (the index does
-/// not fit in memory or its offsets in 32 bits); `*out` is written only on success.
+/// DIMENSION_OUT_OF_RANGE (p or q > d), TOO_LARGE (the index does not fit in memory or its
+/// offsets in 32 bits); `*out` is written only on success.
+///
+/// The live complex lends views too, built the same way, but they (and its indices above
+/// vertices) are valid only until its next edit — insert, remove, contract, split, add vertex,
+/// compact; setting coordinates keeps them — which drops them (after an edit, ask again: one
+/// walk). Its vertex rows are its vertex slots (`count` = `tpx_live_vertex_slots`), a removed
+/// vertex's row empty.
 ///
 /// # Safety
 /// Non-NULL pointers must be valid.
@@ -724,19 +749,12 @@ pub unsafe extern "C" fn tpx_relation_view(
         let s = handle(s, "s")?;
         let out = out_ptr(out, "out")?;
         let n = nav(s)?;
-        let not_dense = || {
-            Failure::new(
-                TpxStatus::NotDense,
-                "this structure has no dense index for its simplices above vertices: no relation view",
-            )
-        };
-        if !n.dense() {
-            return Err(not_dense());
-        }
         let v = n
             .relation_view(p as usize, q as usize)
             .map_err(query_failure)?
-            .ok_or_else(not_dense)?;
+            .ok_or_else(|| {
+                Failure::new(TpxStatus::NotDense, "this structure lends no relation view")
+            })?;
         *out = TpxRelationView {
             offsets: v.offsets().as_ptr(),
             ids: v.ids().as_ptr(),
@@ -818,8 +836,7 @@ pub unsafe extern "C" fn tpx_simplex_test(
 /// `items[offsets[k] .. offsets[k+1]]` (dense indices of triangles, or of tetrahedra for q = 3),
 /// `flags[k]` has `TPX_GROUP_CLOSED` and `TPX_GROUP_ORIENTED`; `*out_items` and `*out_groups`
 /// receive the counts. `offsets` needs `groups + 1` entries. Errors: WRONG_HANDLE_KIND (not a
-/// vertex / not an edge), DIMENSION_OUT_OF_RANGE, NOT_DENSE (the live complex: use
-/// `tpx_cyclic_handles`), BUFFER_TOO_SMALL (nothing written; the needed counts in `*out_items`
+/// vertex / not an edge), DIMENSION_OUT_OF_RANGE, BUFFER_TOO_SMALL (nothing written; the needed counts in `*out_items`
 /// and `*out_groups`). Cost: the star of the vertex or edge. No allocation once this thread's
 /// buffers are warm.
 ///
@@ -885,12 +902,6 @@ fn cyclic_checked<U: Written>(
     q: u32,
     o: CyclicOut<U>,
 ) -> Result<(), Failure> {
-    if U::DENSE && !nav(s)?.dense() {
-        return Err(Failure::new(
-            TpxStatus::NotDense,
-            "this structure's triangles and tetrahedra have no dense index: use tpx_cyclic_handles",
-        ));
-    }
     let h = handle(h, "h")?;
     let out_items = out_ptr(o.out_items, "out_items")?;
     let out_groups = out_ptr(o.out_groups, "out_groups")?;
@@ -914,6 +925,12 @@ fn cyclic_checked<U: Written>(
         }
         if (ni > 0 && items.is_null()) || offsets.is_null() || (ng > 0 && flags.is_null()) {
             return Err(Failure::null("items, offsets or flags"));
+        }
+        if U::DENSE && !n.dense() {
+            // Handles that are not their index (the live complex): written as their index.
+            for x in fans.items.iter_mut() {
+                *x = SimplexHandle::dense(x.dim(), n.index_of(*x).map_err(query_failure)?);
+            }
         }
         for (i, &x) in fans.items.iter().enumerate() {
             // SAFETY: room for items_len >= ni entries.
@@ -940,8 +957,8 @@ fn cyclic_checked<U: Written>(
     })
 }
 
-/// `tpx_cyclic` with the items written as handles (`TpxSimplex`): works for every structure,
-/// the live complex included (whose simplices above vertices have no dense index). Same
+/// `tpx_cyclic` with the items written as handles (`TpxSimplex`), which on the live complex
+/// last across edits (its indices do not). Same
 /// arguments, errors and cost; `items` has room for `items_len` handles.
 ///
 /// # Safety

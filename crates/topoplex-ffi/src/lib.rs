@@ -150,9 +150,8 @@ pub enum TpxStatus {
     /// A handle from before `tpx_live_compact` (live complex): the compaction renumbered every
     /// id, so it names nothing any more; map the ids or locate again.
     StaleGeneration = 52,
-    /// The answer holds simplices that have no dense index (the live complex numbers only its
-    /// vertices densely): use the handle-writing twin (`tpx_related_handles`,
-    /// `tpx_cyclic_handles`) or ask for vertices.
+    /// No longer returned: the live complex, which once numbered only its vertices densely, now
+    /// numbers every dimension (until its next edit). Kept so that the number is never reused.
     NotDense = 53,
 }
 
@@ -174,8 +173,9 @@ pub const TPX_KIND_PE: u32 = 6;
 pub const TPX_KIND_LE: u32 = 7;
 /// Directed Edge structure.
 pub const TPX_KIND_DE: u32 = 8;
-/// The live complex (`TpxLive`, IA*-like and updatable). `tpx_structure_build` does not take it:
-/// a live complex is built with `tpx_live_from_complex`; the number names it in messages.
+/// The live complex (IA*-like). Works wherever a kind is taken: `tpx_structure_build` and
+/// `tpx_structure_open` give it as an immutable `TpxStructure`; the editable one is a `TpxLive`
+/// (`tpx_live_from_complex`, `tpx_live_open`), navigated through `tpx_live_structure`.
 pub const TPX_KIND_IASTAR: u32 = 9;
 
 /// A failure on its way to C: the status and the message for `tpx_last_error_message`.

@@ -74,6 +74,7 @@ fn refusal(e: Refusal) -> Failure {
         Refusal::NotInComplex { .. } => TpxStatus::NotInComplex,
         Refusal::StaleHandle(_) => TpxStatus::StaleUndo,
         Refusal::CoordinateDimension { .. } => TpxStatus::InvalidArgument,
+        Refusal::NonFiniteCoordinate { .. } => TpxStatus::InvalidArgument,
     };
     Failure::new(status, e.to_string())
 }
@@ -269,7 +270,10 @@ pub unsafe extern "C" fn tpx_live_coord_dim(l: *const TpxLive, out: *mut usize) 
 }
 
 /// Sets the coordinates of live vertex `v` from `xyz[0 .. len]` (`len` must be the coordinate
-/// dimension). Errors: NULL_ARGUMENT, DEAD_VERTEX, INVALID_ARGUMENT (wrong length). O(1).
+/// dimension). Not an edit of the topology: handles, dense indices and lent views stay valid;
+/// a later `tpx_live_split` puts back the coordinates its contraction's a and b had. Errors:
+/// NULL_ARGUMENT, DEAD_VERTEX, INVALID_ARGUMENT (wrong length, a NaN or infinite number);
+/// on error nothing changes. O(1).
 ///
 /// # Safety
 /// Non-NULL pointers must be valid; `xyz` has `len` doubles.
@@ -287,8 +291,90 @@ pub unsafe extern "C" fn tpx_live_set_coords(
     })
 }
 
+/// Sets the coordinates of every vertex slot at once from `data[0 .. len]`, slot after slot
+/// (`len` = `tpx_live_vertex_slots` × `tpx_live_coord_dim`; the numbers of removed vertices are
+/// stored and never read). Not an edit of the topology: handles, dense indices and lent views
+/// stay valid. Errors: NULL_ARGUMENT (`data` may be NULL only when `len` is 0),
+/// INVALID_ARGUMENT (wrong length, or a NaN or infinite number: the message names its vertex
+/// and coordinate); on error nothing changes. Needs exclusive access. Cost: O(len), no
+/// allocation (the array is overwritten in place, so a pointer from `tpx_live_all_coords`
+/// stays valid and reads the new numbers).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `data` has `len` doubles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_set_all_coords(
+    l: *mut TpxLive,
+    data: *const f64,
+    len: usize,
+) -> TpxStatus {
+    guard(|| {
+        let live = live_mut(l)?;
+        let data = in_slice(data, len, "data")?;
+        live.set_all_coords(data).map_err(refusal)
+    })
+}
+
+/// Lends the coordinates of every vertex slot, slot after slot (`tpx_live_coord_dim` doubles
+/// each; a removed vertex's are meaningless): `*out` points into the live complex's own array,
+/// `*out_len` = slots × coord_dim. Valid until the next edit that adds or drops vertex slots
+/// (`tpx_live_add_vertex`, `tpx_live_compact`) or `tpx_live_free`; setting coordinates writes
+/// through it in place. Errors: NULL_ARGUMENT; outputs written only on success. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_all_coords(
+    l: *const TpxLive,
+    out: *mut *const f64,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        let out = out_ptr(out, "out")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let all = l.live().all_coords();
+        *out = all.as_ptr();
+        *out_len = all.len();
+        Ok(())
+    })
+}
+
+/// Lends top simplex `top` (a top id of `tpx_live_structure`'s numbering, as `tpx_top` and
+/// `tpx_top_id` use: dimension in the top 4 bits, slot below) with its vertices in stored
+/// order — the input winding, b replaced by a in place after contractions — without a copy:
+/// `*out` points into the live complex's top table, `*out_len` = p + 1 ids, valid until the
+/// next edit (insert, remove, contract, split, add vertex, compact) or `tpx_live_free`. For a
+/// whole-mesh pass in winding order (writing faces, per-face normals) with no call per vertex
+/// and no buffer. Errors: NULL_ARGUMENT, INVALID_HANDLE (no live top in that slot, or an
+/// isolated vertex, which has no stored row: it is its own id); outputs written only on
+/// success. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_top_vertices(
+    l: *const TpxLive,
+    top: u32,
+    out: *mut *const u32,
+    out_len: *mut usize,
+) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        let out = out_ptr(out, "out")?;
+        let out_len = out_ptr(out_len, "out_len")?;
+        let row = l
+            .live()
+            .top_as_given_slice(topoplex::relation::handle::TopId(top))
+            .map_err(super::structure::query_failure)?;
+        *out = row.as_ptr();
+        *out_len = row.len();
+        Ok(())
+    })
+}
+
 /// Adds an isolated vertex at `xyz[0 .. len]`; its id into `*out`. Errors: NULL_ARGUMENT,
-/// INVALID_ARGUMENT (wrong length). Amortised O(1).
+/// INVALID_ARGUMENT (wrong length, a NaN or infinite number). Amortised O(1).
 ///
 /// # Safety
 /// Non-NULL pointers must be valid; `xyz` has `len` doubles.
@@ -528,12 +614,24 @@ pub unsafe extern "C" fn tpx_live_validate(l: *const TpxLive) -> TpxStatus {
 /// structure — `tpx_locate`, `tpx_simplex_vertices`, `tpx_related_handles`, `tpx_degree`,
 /// `tpx_star`, `tpx_simplex_test`, `tpx_cyclic_handles`, `tpx_top`, `tpx_top_id`,
 /// `tpx_top_as_given`, and the vertex-id functions (`tpx_relation`, `tpx_structure_count`, ...).
-/// Handles stay valid across edits while the simplex's naming top simplex lives (STALE_HANDLE
-/// afterwards) and until `tpx_live_compact` (STALE_GENERATION afterwards). A vertex's handle index
-/// is its id; other simplices have no dense index (`tpx_related` and `tpx_cyclic` answer
-/// NOT_DENSE for them: use the `_handles` twins). Top ids are not dense either: dimension in the
-/// top 4 bits, slot below (an isolated vertex v: `v`). Not to be used while another thread edits
-/// the live complex. O(1).
+/// The index functions too: `tpx_handle(p, i)`, `tpx_related`, `tpx_related_batch`,
+/// `tpx_degree_batch`, `tpx_cyclic`, `tpx_relation_view`.
+///
+/// Why a lent structure rather than a second family of functions: one set of navigation
+/// functions (and one C++ class) serves every kind, so code written for a built structure runs
+/// on the editable one unchanged; the view costs nothing (it is the live complex behind the
+/// relation API) and is the same object across edits, so a `const TpxStructure *` taken once
+/// stays usable. `tpx_structure_build(c, TPX_KIND_IASTAR, ..)` gives the same navigation on a
+/// live complex nobody edits.
+///
+/// Across edits: handles (`TpxSimplex` from `tpx_locate`, `tpx_handle`, the `_handles`
+/// functions) name their simplex while it exists — STALE_HANDLE once it is gone, and
+/// STALE_GENERATION for any handle after `tpx_live_compact`. A vertex's index is its id, stable
+/// until `tpx_live_compact`. Indices above vertices are lexicographic ranks of the moment: every
+/// edit (not a coordinate change) renumbers them and drops lent views, so use them, and
+/// handles `{i, q, owner}` made from them, only until the next edit. Top ids are not dense:
+/// dimension in the top 4 bits, slot below (an isolated vertex v: `v`). Not to be used while
+/// another thread edits the live complex. O(1).
 ///
 /// # Safety
 /// Non-NULL pointers must be valid.

@@ -21,10 +21,7 @@ fn options(ratio: f64, preserve_topology: bool) -> Result<Options, Failure> {
     if !(ratio > 0.0 && ratio <= 1.0) {
         return Err(simplify_failure(SimplifyError::Ratio(ratio)));
     }
-    Ok(Options {
-        ratio,
-        preserve_topology,
-    })
+    Ok(Options::new(ratio, preserve_topology))
 }
 
 /// Simplifies `complex` by quadric-error edge contraction (Garland–Heckbert, generalised to

@@ -61,7 +61,7 @@ pub(crate) fn kind_from_u32(kind: u32) -> Result<StructureKind, Failure> {
     StructureKind::from_abi(kind).ok_or_else(|| {
         Failure::new(
             TpxStatus::UnknownKind,
-            format!("unknown structure kind {kind} (expected 0..=8, TPX_KIND_*)"),
+            format!("unknown structure kind {kind} (expected 0..=9, TPX_KIND_*)"),
         )
     })
 }
@@ -106,6 +106,10 @@ fn dimension_arg(topo: &dyn Topology, p: u32, what: &str) -> Result<usize, Failu
 
 /// Builds a structure of `kind` (`TPX_KIND_*`) for the complex `c`.
 ///
+/// `TPX_KIND_IASTAR` builds the live complex's structure (the same as `tpx_live_from_complex`
+/// makes, behind `tpx_live_structure`), answering every function that takes a structure; a
+/// `TpxStructure` is never edited, so to edit, build a `TpxLive` instead.
+///
 /// On success `*out` receives a new structure owned by the caller (free with
 /// `tpx_structure_free`); it does not borrow `c`, which may be freed first.
 /// Errors: NULL_ARGUMENT, UNKNOWN_KIND, NOT_IMPLEMENTED, UNSUPPORTED_COMPLEX (message names the
@@ -124,6 +128,71 @@ pub unsafe extern "C" fn tpx_structure_build(
         let kind = kind_from_u32(kind)?;
         let topo = build(kind, &c.complex).map_err(build_failure)?;
         Ok(TpxStructure::new(topo))
+    })
+}
+
+/// The kind (`TPX_KIND_*`) named `name` into `*out`: the names the `topoplex` CLI's
+/// `--structure` takes (`ig`, `sig`, `ia`, `iqm`, `nmia`, `ts`, `pe`, `le`, `de`, `iastar`),
+/// ASCII case ignored — the library's one name map, so that a client need not write its own.
+/// Errors: NULL_ARGUMENT, INVALID_ARGUMENT (not UTF-8), UNKNOWN_KIND (no kind has this name;
+/// the message echoes it, capped and escaped); `*out` is written only on success. O(length of
+/// `name`); no allocation on success.
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `name` must be NUL-terminated.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_kind_from_name(
+    name: *const std::ffi::c_char,
+    out: *mut u32,
+) -> TpxStatus {
+    guard(|| {
+        let out = out_ptr(out, "out")?;
+        if name.is_null() {
+            return Err(super::Failure::null("name"));
+        }
+        // SAFETY: a non-NULL `name` is NUL-terminated (documented contract).
+        let bytes = unsafe { std::ffi::CStr::from_ptr(name) }.to_bytes();
+        let text = std::str::from_utf8(bytes).map_err(|e| {
+            Failure::new(
+                TpxStatus::InvalidArgument,
+                format!("structure name is not valid UTF-8: {e}"),
+            )
+        })?;
+        let kind = StructureKind::from_name(text).ok_or_else(|| {
+            let names: Vec<&str> = StructureKind::NAMED.iter().map(|k| k.name()).collect();
+            Failure::new(
+                TpxStatus::UnknownKind,
+                format!(
+                    "unknown structure name `{}` (expected one of {})",
+                    topoplex::error::echo(bytes),
+                    names.join(", ")
+                ),
+            )
+        })?;
+        *out = kind.abi();
+        Ok(())
+    })
+}
+
+/// The name of kind `kind` (`TPX_KIND_*`) into `*out`: the static NUL-terminated string the
+/// CLI's `--structure` takes (`"ig"` .. `"iastar"`; never freed, valid for the process), the
+/// inverse of `tpx_kind_from_name`. Errors: NULL_ARGUMENT, UNKNOWN_KIND; `*out` written only on
+/// success. O(1), no allocation.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_kind_name(kind: u32, out: *mut *const std::ffi::c_char) -> TpxStatus {
+    const NAMES: [&std::ffi::CStr; 10] = [
+        c"ig", c"sig", c"ia", c"iqm", c"nmia", c"ts", c"pe", c"le", c"de", c"iastar",
+    ];
+    guard(|| {
+        let out = out_ptr(out, "out")?;
+        let k = kind_from_u32(kind)?;
+        let name = NAMES[k.abi() as usize];
+        debug_assert_eq!(name.to_str(), Ok(k.name()));
+        *out = name.as_ptr();
+        Ok(())
     })
 }
 

@@ -547,13 +547,14 @@ fn kinds_and_query_errors_map_to_statuses() {
     let c = tet_triangle_wire();
     let mut s = null_mut();
     unsafe {
-        assert_eq!(tpx_structure_build(c, 9, &mut s), TpxStatus::UnknownKind);
+        assert_eq!(tpx_structure_build(c, 10, &mut s), TpxStatus::UnknownKind);
+        assert!(last_error().contains("0..=9"), "{}", last_error());
         assert_eq!(
             tpx_structure_build(c, u32::MAX, &mut s),
             TpxStatus::UnknownKind
         );
         assert!(s.is_null());
-        for kind in 0..9 {
+        for kind in 0..=TPX_KIND_IASTAR {
             let st = tpx_structure_build(c, kind, &mut s);
             // Kinds land one by one; each either builds or says so.
             match st {
@@ -1081,11 +1082,12 @@ fn kind_numbers_are_the_tpx_kind_constants() {
         (K::Pe, TPX_KIND_PE),
         (K::Le, TPX_KIND_LE),
         (K::De, TPX_KIND_DE),
+        (K::IaStar, TPX_KIND_IASTAR),
     ];
     for (k, n) in pairs {
         assert_eq!((k.abi(), K::from_abi(n)), (n, Some(k)));
     }
-    assert_eq!(K::from_abi(9), None);
+    assert_eq!(K::from_abi(10), None);
 }
 
 /// The input listing through the C ABI: a repeated triangle and an absorbed edge are counted,
@@ -1217,8 +1219,27 @@ fn relation_views_and_degree_batches_match_tpx_related() {
         assert_eq!(tpx_live_from_complex(c, &mut live), TpxStatus::Ok);
         let mut ls = null();
         assert_eq!(tpx_live_structure(live, &mut ls), TpxStatus::Ok);
-        assert_eq!(tpx_relation_view(ls, 0, 0, &mut v), TpxStatus::NotDense);
-        assert_eq!(v.count, 77);
+        // The live complex numbers as the IG does (lexicographic ranks; its vertices are
+        // its slots, none removed here): its views and degrees are the IG's.
+        for (p, q) in [(0, 0), (1, 2), (2, 1), (2, 2), (0, 3)] {
+            let mut lv = std::mem::MaybeUninit::<TpxRelationView>::zeroed();
+            assert_eq!(tpx_relation_view(ls, p, q, lv.as_mut_ptr()), TpxStatus::Ok);
+            let lv = lv.assume_init();
+            let iv = view(p, q);
+            assert_eq!((lv.count, lv.built), (iv.count, 1), "R_{{{p},{q}}}");
+            // Natural orders differ (the live complex's is lexicographic): the same sets.
+            for i in 0..iv.count {
+                let mut want = answer(&iv, i);
+                want.sort_unstable();
+                assert_eq!(answer(&lv, i), want, "R_{{{p},{q}}} of {i}");
+            }
+            let idx: Vec<u32> = (0..iv.count as u32).collect();
+            let mut ld = vec![0u32; idx.len()];
+            let st = tpx_degree_batch(ls, p, idx.as_ptr(), idx.len(), q, ld.as_mut_ptr());
+            assert_eq!(st, TpxStatus::Ok);
+            let want: Vec<u32> = (0..iv.count).map(|i| answer(&iv, i).len() as u32).collect();
+            assert_eq!(ld, want, "degrees R_{{{p},{q}}}");
+        }
         tpx_live_free(live);
         tpx_structure_free(s);
         tpx_complex_free(c);
@@ -1479,4 +1500,59 @@ fn tpx_related_fast_path_matches_the_rust_api_on_every_kind() {
         "only {built} kinds took the disk"
     );
     unsafe { tpx_complex_free(c) };
+}
+
+/// `tpx_kind_from_name` knows every CLI name in any ASCII case, and refuses unknown names
+/// (echoed in the message), NULL, and non-UTF-8 bytes, leaving `*out` untouched.
+#[test]
+fn kind_names_map_to_their_tpx_kind_numbers_in_any_case() {
+    use std::ffi::CString;
+    for k in topoplex::relation::StructureKind::NAMED {
+        for name in [k.name().to_string(), k.name().to_ascii_uppercase()] {
+            let c = CString::new(name.clone()).unwrap();
+            let mut out = u32::MAX;
+            assert_eq!(
+                unsafe { tpx_kind_from_name(c.as_ptr(), &mut out) },
+                TpxStatus::Ok,
+                "{name}"
+            );
+            assert_eq!(out, k.abi(), "{name}");
+        }
+    }
+    let mut out = 77u32;
+    let bad = CString::new("tetgen\n").unwrap();
+    assert_eq!(
+        unsafe { tpx_kind_from_name(bad.as_ptr(), &mut out) },
+        TpxStatus::UnknownKind
+    );
+    assert!(last_error().contains("`tetgen\\n`"), "{}", last_error());
+    let not_utf8 = [0xffu8, 0];
+    assert_eq!(
+        unsafe { tpx_kind_from_name(not_utf8.as_ptr().cast(), &mut out) },
+        TpxStatus::InvalidArgument
+    );
+    assert_eq!(
+        unsafe { tpx_kind_from_name(null(), &mut out) },
+        TpxStatus::NullArgument
+    );
+    assert_eq!(
+        unsafe { tpx_kind_from_name(bad.as_ptr(), null_mut()) },
+        TpxStatus::NullArgument
+    );
+    assert_eq!(out, 77);
+    // And back: each kind's name is the one from_name takes.
+    for k in topoplex::relation::StructureKind::NAMED {
+        let mut name = null();
+        assert_eq!(unsafe { tpx_kind_name(k.abi(), &mut name) }, TpxStatus::Ok);
+        assert_eq!(
+            unsafe { std::ffi::CStr::from_ptr(name) }.to_str(),
+            Ok(k.name())
+        );
+    }
+    let mut name = null();
+    assert_eq!(
+        unsafe { tpx_kind_name(10, &mut name) },
+        TpxStatus::UnknownKind
+    );
+    assert!(name.is_null());
 }

@@ -191,6 +191,133 @@ impl Values {
     }
 }
 
+/// A number type of [`Values`]: what a new element gets (0 for labels, NaN for reals) and the
+/// mean of two (the first for labels).
+trait Number: Copy {
+    const UNSET: Self;
+    fn mean(a: Self, b: Self) -> Self;
+}
+
+impl Number for i32 {
+    const UNSET: i32 = 0;
+    fn mean(a: i32, _: i32) -> i32 {
+        a
+    }
+}
+
+impl Number for i64 {
+    const UNSET: i64 = 0;
+    fn mean(a: i64, _: i64) -> i64 {
+        a
+    }
+}
+
+impl Number for f32 {
+    const UNSET: f32 = f32::NAN;
+    fn mean(a: f32, b: f32) -> f32 {
+        (a + b) / 2.0
+    }
+}
+
+impl Number for f64 {
+    const UNSET: f64 = f64::NAN;
+    fn mean(a: f64, b: f64) -> f64 {
+        (a + b) / 2.0
+    }
+}
+
+/// `$body` with `$v` bound to the values' vector, whatever their type.
+macro_rules! each_type {
+    ($values:expr, $v:ident => $body:expr) => {
+        match $values {
+            Values::I32($v) => $body,
+            Values::I64($v) => $body,
+            Values::F32($v) => $body,
+            Values::F64($v) => $body,
+        }
+    };
+}
+
+/// Row operations (a row: the `c` numbers of one element), used by the live complex to keep
+/// data beside its slots.
+impl Values {
+    /// No number, of the same type.
+    pub fn empty_like(&self) -> Values {
+        each_type!(self, _v => self.pick(std::iter::empty(), 1))
+    }
+
+    /// Appends a row: a copy of row `from`, or unset numbers (0 for labels, NaN for reals).
+    pub fn push_row(&mut self, c: usize, from: Option<usize>) {
+        fn go<T: Number>(v: &mut Vec<T>, c: usize, from: Option<usize>) {
+            match from {
+                Some(i) => v.extend_from_within(i * c..(i + 1) * c),
+                None => v.extend(std::iter::repeat_n(T::UNSET, c)),
+            }
+        }
+        each_type!(self, v => go(v, c, from))
+    }
+
+    /// Row `i` as its own one-row values.
+    pub fn row(&self, i: usize, c: usize) -> Values {
+        self.pick(std::iter::once(i), c)
+    }
+
+    /// Sets row `i` from a one-row `row` of the same type (another type is ignored).
+    pub fn set_row(&mut self, i: usize, c: usize, row: &Values) {
+        match (self, row) {
+            (Values::I32(v), Values::I32(r)) => v[i * c..(i + 1) * c].copy_from_slice(r),
+            (Values::I64(v), Values::I64(r)) => v[i * c..(i + 1) * c].copy_from_slice(r),
+            (Values::F32(v), Values::F32(r)) => v[i * c..(i + 1) * c].copy_from_slice(r),
+            (Values::F64(v), Values::F64(r)) => v[i * c..(i + 1) * c].copy_from_slice(r),
+            _ => {}
+        }
+    }
+
+    /// Row `a` becomes the mean of rows `a` and `b` (reals), or stays (labels).
+    pub fn merge_rows(&mut self, a: usize, b: usize, c: usize) {
+        fn go<T: Number>(v: &mut [T], a: usize, b: usize, c: usize) {
+            for k in 0..c {
+                v[a * c + k] = T::mean(v[a * c + k], v[b * c + k]);
+            }
+        }
+        each_type!(self, v => go(v, a, b, c))
+    }
+
+    /// Sets row `i` from `f64`s (rounded to the type; integers truncated).
+    pub fn set_row_f64(&mut self, i: usize, row: &[f64]) {
+        let c = row.len();
+        match self {
+            Values::I32(v) => {
+                for (x, &y) in v[i * c..(i + 1) * c].iter_mut().zip(row) {
+                    *x = y as i32;
+                }
+            }
+            Values::I64(v) => {
+                for (x, &y) in v[i * c..(i + 1) * c].iter_mut().zip(row) {
+                    *x = y as i64;
+                }
+            }
+            Values::F32(v) => {
+                for (x, &y) in v[i * c..(i + 1) * c].iter_mut().zip(row) {
+                    *x = y as f32;
+                }
+            }
+            Values::F64(v) => v[i * c..(i + 1) * c].copy_from_slice(row),
+        }
+    }
+
+    /// Appends every row of `other` (same type; another type is ignored).
+    pub fn append(&mut self, other: &Values) {
+        match (self, other) {
+            (Values::I32(v), Values::I32(r)) => v.extend_from_slice(r),
+            (Values::I64(v), Values::I64(r)) => v.extend_from_slice(r),
+            (Values::F32(v), Values::F32(r)) => v.extend_from_slice(r),
+            (Values::F64(v), Values::F64(r)) => v.extend_from_slice(r),
+            _ => {}
+        }
+    }
+}
+
 /// One named array of data on the vertices or on the listed simplices.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Attribute {
@@ -335,6 +462,11 @@ impl Attributes {
             Some(b) => *b = a,
             None => self.list.push(a),
         }
+    }
+
+    /// Builds attributes from a list and label names (not checked: see [`Attributes::check`]).
+    pub fn from_parts(list: Vec<Attribute>, names: Vec<LabelName>) -> Attributes {
+        Attributes { list, names }
     }
 
     /// The names of label values.

@@ -288,6 +288,47 @@ impl Complex {
         (self.coords.dim > 0).then_some(&self.coords)
     }
 
+    /// Replaces the vertex coordinates by `data`: `dim` numbers per vertex, vertex after vertex
+    /// (`vertex_count() × dim` finite numbers, `dim ≥ 1`; a complex without coordinates gains
+    /// them), so that an application moves vertices without rebuilding the complex. Refused with
+    /// [`ComplexError::Coordinates`] naming the problem (wrong length, `dim` 0, the first
+    /// non-finite number with its vertex), nothing changed. Structures built before keep what
+    /// they were built with (TS, PE, LE, DE order edges by angle at build). O(n·dim); no
+    /// allocation when `dim` is the current one (the array is overwritten in place), else one
+    /// reserved fallibly (`ComplexError::OutOfMemory`).
+    pub fn set_coords(&mut self, dim: usize, data: &[f64]) -> Result<(), ComplexError> {
+        let n = self.n_vertices as usize;
+        if dim == 0 || Some(data.len()) != n.checked_mul(dim) {
+            return Err(ComplexError::Coordinates(format!(
+                "{} numbers given for {n} vertices of dimension {dim}: expected {n} × {dim} (dimension at least 1)",
+                data.len()
+            )));
+        }
+        if let Some(i) = data.iter().position(|x| !x.is_finite()) {
+            return Err(ComplexError::Coordinates(format!(
+                "coordinate {} of vertex {} is {}, not a finite number",
+                i % dim,
+                i / dim,
+                data[i]
+            )));
+        }
+        if dim == self.coords.dim {
+            self.coords.data.copy_from_slice(data);
+            return Ok(());
+        }
+        let mut fresh = Vec::new();
+        fresh
+            .try_reserve_exact(data.len())
+            .map_err(|_| ComplexError::OutOfMemory {
+                file: self.source.clone(),
+                what: "coordinates",
+                bytes: 8 * data.len() as u64,
+            })?;
+        fresh.extend_from_slice(data);
+        self.coords = Coords { dim, data: fresh };
+        Ok(())
+    }
+
     /// What normalisation absorbed (duplicates, faces of other listed simplices).
     pub fn stats(&self) -> InputStats {
         self.stats

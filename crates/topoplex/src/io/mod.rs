@@ -49,6 +49,7 @@ pub mod obj;
 pub mod off;
 pub mod ply;
 mod scan;
+pub(crate) use scan::Float;
 pub mod simplices;
 pub mod stl;
 pub mod vtk;
@@ -434,6 +435,13 @@ pub(crate) fn parse_count(tok: &str, what: &str) -> Result<u32, ReadErrorKind> {
 /// infinite or 0 in an `f64` (`1e309`, `1e-400`) is an error.
 pub(crate) fn parse_f64(tok: &str, what: &str) -> Result<f64, ReadErrorKind> {
     scan::real_or_err(tok, what)
+}
+
+/// Parses a floating-point number of the format's declared type `ty` (`what` names it): as
+/// [`parse_f64`], and refused when `ty` could hold it only as infinity or 0 (`1e39`, `1e-50`
+/// for a 32-bit float). The one check every reader uses for declared float types.
+pub(crate) fn parse_real(tok: &str, what: &str, ty: Float) -> Result<f64, ReadErrorKind> {
+    scan::real_or_err_as(tok, what, ty)
 }
 
 /// Checks that a token is an integer (`what` names it, e.g. "reference number"); its value is

@@ -14,7 +14,10 @@
 //!   any other type (quadrangle 3, hexahedron 5, prism 6, pyramid 7, higher-order elements) is
 //!   refused naming the element's tag and line. Tags (physical, elementary) are ignored. A node
 //!   tag not in `$Nodes` is an error naming the element.
-//! * Other sections (`$Entities`, `$PhysicalNames`, `$NodeData`, ...) are skipped to their
+//! * `$NodeData` and `$ElementData` are read as `f64` fields (`msh/data.rs`: every time step
+//!   kept, `NAME@STEP` when a name has several; partial data refused); `$ElementNodeData` is
+//!   refused.
+//! * Other sections (`$Entities`, `$PhysicalNames`, ...) are skipped to their
 //!   `$End` line. Counts allocate at most what the bytes left could hold.
 //! * Errors in a binary block name the line of its section keyword.
 //!
@@ -23,14 +26,19 @@
 //! element physical tag 0 and elementary tag 1; version 4.1 puts all nodes in one block of a
 //! 3-dimensional entity and the elements in one block per run of equal type (entity tag 1 of
 //! that dimension), so the listing order is kept across dimensions; no `$Entities` section.
-//! Holds points, edges, triangles and tetrahedra, and at most 3 coordinates.
+//! Holds points, edges, triangles and tetrahedra, and at most 3 coordinates; `f64` attributes
+//! are written as `$NodeData`/`$ElementData` after the elements (`msh/data.rs`).
 
 use rustc_hash::FxHashMap;
 
 use super::bytes::Input;
 use super::write::{check_coord_dim, check_max_len, push_f64, vertex_count};
 use super::{Coords, RawInput, ReadErrorKind, echo, no_room, parse_integer, syntax};
+use super::{Float, parse_real};
 use crate::complex::{Attribute, LabelName, Location, Values, table};
+
+mod data;
+pub(crate) use data::holds as holds_data;
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
@@ -55,7 +63,19 @@ fn simplex_len(t: i64) -> Result<usize, String> {
         5 => return Err("hexahedron".into()),
         6 => return Err("prism".into()),
         7 => return Err("pyramid".into()),
-        _ => return Err(format!("type {t}, not a first-order simplex")),
+        _ => return Err(format!("type {t}")),
+    })
+}
+
+/// The message for a `$...` section keyword met where `what` was expected: the section ended
+/// before the entries it declared (or an entry was cut short), not a bad number.
+fn section_ended(tok: &str, what: &str) -> Option<ReadErrorKind> {
+    tok.starts_with('$').then(|| {
+        syntax(format!(
+            "the section ends ('{}') where {what} was expected: fewer entries than declared, or \
+             an entry with fewer values than its type has",
+            echo(tok)
+        ))
     })
 }
 
@@ -80,6 +100,10 @@ struct Reader<'a> {
     physical_width: usize,
     /// Version 4 `$Entities`: (dimension, tag) → physical tags.
     entities: FxHashMap<(i64, i64), Vec<i32>>,
+    /// The element tags, for `$ElementData`.
+    elements: data::ElementTags,
+    /// The `$NodeData` and `$ElementData` sections read.
+    data: Vec<data::Section>,
 }
 
 impl<'a> Reader<'a> {
@@ -104,7 +128,12 @@ impl<'a> Reader<'a> {
             Ok(v) => Ok((v.clamp(i64::MIN.into(), i64::MAX.into()) as i64, l)),
             Err(_) => Err((
                 l,
-                syntax(format!("'{tok}' where {what} (an integer) was expected")),
+                section_ended(tok, what).unwrap_or_else(|| {
+                    syntax(format!(
+                        "'{}' where {what} (an integer) was expected",
+                        echo(tok)
+                    ))
+                }),
             )),
         }
     }
@@ -128,19 +157,23 @@ impl<'a> Reader<'a> {
             return Ok(f64::from_le_bytes(b.try_into().unwrap()));
         }
         let (tok, l) = self.inp.expect_token("a node coordinate")?;
-        tok.parse().map_err(|_| {
-            (
-                l,
-                syntax(format!("'{tok}' where a node coordinate was expected")),
-            )
-        })
+        // The shared check: a value a double holds only as inf or 0 is refused.
+        parse_real(tok, "a node coordinate", Float::F64)
+            .map_err(|k| (l, section_ended(tok, "a node coordinate").unwrap_or(k)))
     }
 
     /// After a binary block: the newline before the `$End` keyword.
     fn end(&mut self, keyword: &str) -> Res<()> {
         let (tok, l) = self.inp.expect_token(keyword)?;
         if tok != keyword {
-            return Err((l, syntax(format!("expected {keyword}, found '{tok}'"))));
+            return Err((
+                l,
+                syntax(format!(
+                    "expected {keyword} after the declared entries, found '{}' (an entry with \
+                     more values than its type has, or more entries than declared)",
+                    echo(tok)
+                )),
+            ));
         }
         Ok(())
     }
@@ -257,6 +290,7 @@ impl<'a> Reader<'a> {
         self.raw
             .try_push(&ids[..nodes.len()], line)
             .map_err(|k| (line, k))?;
+        self.elements.push(tag, line)?;
         let room = |b| (line, no_room("the element tags")(b));
         for k in 0..self.physical_width {
             table::try_push(&mut self.physical, physical.get(k).copied().unwrap_or(0))
@@ -363,7 +397,14 @@ impl<'a> Reader<'a> {
         simplex_len(t).map_err(|name| {
             (
                 line,
-                syntax(format!("element {tag} is a {name}, which is not a simplex")),
+                syntax(if name.starts_with("type ") {
+                    format!(
+                        "element {tag} has {name}, not a first-order simplex type (15 point, 1 \
+                         line, 2 triangle, 4 tetrahedron)"
+                    )
+                } else {
+                    format!("element {tag} is a {name}, which is not a simplex")
+                }),
             )
         })
     }
@@ -421,14 +462,12 @@ impl<'a> Reader<'a> {
     fn elements_v4(&mut self, line: u32) -> Res<()> {
         self.enter_binary_block();
         let blocks = self.count("the element block count", line)?;
-        for what in [
-            "the element count",
-            "the minimum element tag",
-            "the maximum element tag",
-        ] {
+        let declared = self.count("the element count", line)?;
+        for what in ["the minimum element tag", "the maximum element tag"] {
             self.count(what, line)?;
         }
         let mut nodes = Vec::with_capacity(4);
+        let mut total = 0usize;
         for _ in 0..blocks {
             let (dim, _) = self.int(4, "an entity dimension", line)?;
             let (entity, l) = self.int(4, "an entity tag", line)?;
@@ -440,6 +479,7 @@ impl<'a> Reader<'a> {
                 .unwrap_or_default();
             let (t, l) = self.int(4, "an element type", line)?;
             let k = self.count("the block's element count", line)?;
+            total = total.saturating_add(k);
             for _ in 0..k {
                 let (tag, l) = self.int(8, "an element tag", l)?;
                 let len = self.simplex_len(tag, t, l)?;
@@ -449,6 +489,14 @@ impl<'a> Reader<'a> {
                 }
                 self.element((tag, t, l), &nodes, &physical, geometrical)?;
             }
+        }
+        if total != declared {
+            return Err((
+                line,
+                syntax(format!(
+                    "$Elements declares {declared} elements but its {blocks} blocks hold {total}"
+                )),
+            ));
         }
         self.end("$EndElements")
     }
@@ -525,9 +573,11 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
         geometrical: Vec::new(),
         physical_width: 1,
         entities: FxHashMap::default(),
+        elements: data::ElementTags::default(),
+        data: Vec::new(),
     };
     r.end("$EndMeshFormat")?;
-    let mut seen_nodes = false;
+    let (mut seen_nodes, mut seen_elements) = (false, false);
     while let Some((kw, l)) = r.inp.token() {
         match kw {
             "$Nodes" if seen_nodes => return Err((l, syntax("a second $Nodes section"))),
@@ -538,15 +588,22 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
             "$Elements" if !seen_nodes => {
                 return Err((l, syntax("$Elements before $Nodes")));
             }
-            "$Elements" => r.elements(l)?,
+            "$Elements" => {
+                r.elements(l)?;
+                seen_elements = true;
+            }
             "$PhysicalNames" => r.physical_names(l)?,
             "$Entities" => r.entities(l)?,
-            "$NodeData" | "$ElementData" | "$ElementNodeData" => {
+            "$NodeData" if !seen_nodes => return Err((l, syntax("$NodeData before $Nodes"))),
+            "$NodeData" => r.data_section(true, l, seen_elements)?,
+            "$ElementData" => r.data_section(false, l, seen_elements)?,
+            "$ElementNodeData" => {
                 return Err((
                     l,
                     syntax(format!(
-                        "{kw}: Gmsh post-processing data is not read yet, and reading the mesh \
-                         without it would drop it; remove the section to read the mesh alone"
+                        "{kw}: Gmsh per-element-node data is not read (no attribute holds it), \
+                         and reading the mesh without it would drop it; remove the section to \
+                         read the mesh alone"
                     )),
                 ));
             }
@@ -582,6 +639,7 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
             geometrical,
         ));
     }
+    data::attributes(r.data, &mut raw.attributes);
     Ok(raw)
 }
 
@@ -612,6 +670,7 @@ pub(crate) fn write(
     }
     w.nodes(raw, n, v4, tags.node_entity);
     w.elements(raw, v4, &tags);
+    w.data_sections(raw);
     Ok(())
 }
 

@@ -17,6 +17,8 @@
 //!   the edge count, which is optional at the end of the counts' line; and vertex lines, which
 //!   must each hold whole vertices, the last vertex ending its line (so that colours or normals
 //!   without their header prefix are refused on the line that shows them, not lines later).
+//!   A file whose first vertex is on the counts' line does not use lines (a one-line OFF):
+//!   its lines are not checked, and faces starting on the last vertex's line have no colour.
 //! * Vertex coordinates: 3 per vertex; 4 for `4OFF`; `Ndim` for `nOFF`; `Ndim + 1` for `4nOFF`
 //!   (the homogeneous component is kept as read). Normals (`N`) have 3 numbers, or as many as
 //!   the vertex coordinates for `nOFF`; colours (`C`) 4 numbers; texture coordinates (`ST`) 2.
@@ -81,9 +83,9 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     let (nv, nf) = counts(&mut t)?;
     let counts_line = t.line();
     let layout = Layout::new(h, dim);
-    let (data, widest) = match vertices_in_parallel(&mut t, text, nv, &layout) {
-        Some(data) => (data, layout.per_vertex),
-        None => vertices(&mut t, nv, &layout)?,
+    let (data, widest, last_line) = match vertices_in_parallel(&mut t, text, nv, &layout) {
+        Some(data) => (data, layout.per_vertex, 0),
+        None => vertices(&mut t, nv, &layout, counts_line)?,
     };
     let mut raw = RawInput::new();
     raw.vertex_count = Some(nv);
@@ -92,7 +94,7 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     raw.try_reserve(cap, cap.saturating_mul(3).min(t.len()))
         .map_err(|k| (counts_line, k))?;
     if !faces_in_parallel(&mut t, text, nf, &mut raw) {
-        faces(&mut t, nf, &mut raw, |(l, k)| {
+        faces(&mut t, nf, &mut raw, last_line, |(l, k)| {
             first_face_hint(l, k, widest, &layout)
         })?;
     }
@@ -242,14 +244,24 @@ impl Layout {
 /// Reads `nv` vertices, keeping their coordinates. Vertices may share a line, but each line
 /// holds whole vertices: extra numbers on a line (colours or normals without their header
 /// prefix) are an error on that line rather than a shift that surfaces lines later.
-/// Also returns the most vertex numbers one line held.
-fn vertices(t: &mut Scanner<'_>, nv: u32, layout: &Layout) -> Res<(Vec<f64>, usize)> {
+/// Also returns the most vertex numbers one line held, and the line of the last vertex number.
+///
+/// The exception: a file whose vertices start on the counts' line (`counts_line`; a one-line
+/// OFF such as `OFF 3 1 0 0 0 0 1 0 0 0 1 0 3 0 1 2`) does not use lines to separate its
+/// items, so its lines are not checked, and the faces may follow the last vertex on its line.
+fn vertices(
+    t: &mut Scanner<'_>,
+    nv: u32,
+    layout: &Layout,
+    counts_line: u32,
+) -> Res<(Vec<f64>, usize, u32)> {
     let (dim, per_vertex) = (layout.dim, layout.per_vertex);
     let cap = capped_len((nv as usize).saturating_mul(dim), t.len());
     let mut data = try_with_capacity(cap, "the vertex coordinates").map_err(|k| (t.line(), k))?;
     // (line, numbers read on it) for the line holding the vertex numbers read last.
     let mut on_line = (0u32, 0usize);
     let mut widest = 0;
+    let mut compact = false;
     for i in 0..nv {
         for j in 0..per_vertex {
             let (x, l) = match t.real(true) {
@@ -261,8 +273,13 @@ fn vertices(t: &mut Scanner<'_>, nv: u32, layout: &Layout) -> Res<(Vec<f64>, usi
                     (parse_f64(tok, layout.what(j)).map_err(|k| (l, k))?, l)
                 }
             };
+            if i == 0 && j == 0 && l == counts_line {
+                compact = true;
+            }
             if l != on_line.0 {
-                check_whole_vertices(on_line, layout)?;
+                if !compact {
+                    check_whole_vertices(on_line, layout)?;
+                }
                 on_line = (l, 0);
             }
             on_line.1 += 1;
@@ -274,7 +291,7 @@ fn vertices(t: &mut Scanner<'_>, nv: u32, layout: &Layout) -> Res<(Vec<f64>, usi
         }
     }
     // The last vertex line must end with its last vertex.
-    if nv > 0 {
+    if nv > 0 && !compact {
         let mut extra = 0;
         while t.token_in_line().is_some() {
             extra += 1;
@@ -293,7 +310,7 @@ fn vertices(t: &mut Scanner<'_>, nv: u32, layout: &Layout) -> Res<(Vec<f64>, usi
         }
         check_whole_vertices(on_line, layout)?;
     }
-    Ok((data, widest.max(on_line.1)))
+    Ok((data, widest.max(on_line.1), on_line.0))
 }
 
 /// The body of a section of `n` entries that starts on the line after the scanner's (nothing
@@ -453,22 +470,24 @@ fn check_whole_vertices((line, n): (u32, usize), layout: &Layout) -> Res<()> {
 }
 
 /// Reads `nf` faces into `raw`, each recorded at the line of its vertex count; `hint` amends an
-/// error in the first face.
+/// error in the first face. A face starting on `vertex_line` (the line of the last vertex
+/// number: a one-line file) has no colour: the rest of that line holds the next faces.
 fn faces(
     t: &mut Scanner<'_>,
     nf: u32,
     raw: &mut RawInput,
+    vertex_line: u32,
     hint: impl Fn((u32, ReadErrorKind)) -> (u32, ReadErrorKind),
 ) -> Res<()> {
     for f in 0..nf {
-        face(t, f, nf, raw).map_err(|e| if f == 0 { hint(e) } else { e })?;
+        face(t, f, nf, raw, vertex_line).map_err(|e| if f == 0 { hint(e) } else { e })?;
     }
     Ok(())
 }
 
-/// Reads face `f` (0-based) of `nf`.
+/// Reads face `f` (0-based) of `nf`; its colour unless it starts on `vertex_line`.
 #[inline]
-fn face(t: &mut Scanner<'_>, f: u32, nf: u32, raw: &mut RawInput) -> Res<()> {
+fn face(t: &mut Scanner<'_>, f: u32, nf: u32, raw: &mut RawInput, vertex_line: u32) -> Res<()> {
     let (k, face_line) = match t.digits(true) {
         Some((k, l)) => (face_size_of(i128::from(k)).map_err(|e| (l, e))?, l),
         None => {
@@ -493,7 +512,9 @@ fn face(t: &mut Scanner<'_>, f: u32, nf: u32, raw: &mut RawInput) -> Res<()> {
             }
         };
     }
-    face_colour(t, f, k)?;
+    if face_line != vertex_line {
+        face_colour(t, f, k)?;
+    }
     raw.try_push(&ids[..k], face_line)
         .map_err(|e| (face_line, e))
 }
@@ -576,6 +597,26 @@ mod tests {
         assert_eq!(c.data[9..], [0.0, 0.0, 1.0]);
         assert_eq!(simplices(&r), [[0, 1, 2], [0, 1, 3], [0, 2, 3], [1, 2, 3]]);
         assert_eq!(r.lines, [7, 8, 9, 10]);
+    }
+
+    #[test]
+    fn one_line_off_is_read() {
+        let r = ok("OFF 3 1 0 0 0 0 1 0 0 0 1 0 3 0 1 2");
+        assert_eq!(r.vertex_count, Some(3));
+        assert_eq!(r.coords.as_ref().unwrap().data[3..6], [1.0, 0.0, 0.0]);
+        assert_eq!(simplices(&r), [[0, 1, 2]]);
+        // Several faces on the line, and a final newline.
+        let r = ok("OFF 4 2 0 0 0 0 1 0 0 0 1 0 0 0 1 3 0 1 2 3 1 2 3\n");
+        assert_eq!(simplices(&r), [[0, 1, 2], [1, 2, 3]]);
+        // Faces on lines of their own after one-line vertices keep their colours.
+        let r = ok("OFF 3 2 0 0 0 0 1 0 0 0 1 0 3 0 1 2\n2 0 1 0.5 0.5 0.5\n");
+        assert_eq!(r.ids, [0, 1, 2, 0, 1]);
+        // A count that disagrees is still refused.
+        assert!(parse("OFF 3 1 0 0 0 0 1 0 0 0 1 0 3 0 1 2 7").is_err());
+        // Vertices on lines of their own keep the line checks (colours without C).
+        let e = parse("OFF\n3 1 0\n0 0 0 1 1 1 1\n1 0 0 1 1 1 1\n0 1 0 1 1 1 1\n3 0 1 2\n")
+            .unwrap_err();
+        assert_eq!(e.0, 3);
     }
 
     #[test]

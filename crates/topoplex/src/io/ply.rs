@@ -9,8 +9,19 @@
 //! * `face` elements with a `vertex_indices` (or `vertex_index`) list of 1, 2 or 3 ids are a
 //!   vertex, an edge, a triangle; more is [`ReadErrorKind::Polygon`], none an error. Ids are
 //!   0-based; a negative id is [`ReadErrorKind::NegativeId`].
+//! * `tetra` elements with a `vertex_indices` list of exactly 4 ids are tetrahedra.
+//! * `tristrips` elements are read as their triangles: the `vertex_indices` list holds strips
+//!   separated by -1, every 3 consecutive ids of a strip make a triangle, a triangle that
+//!   repeats an id (a degenerate join between strips) is skipped, a strip of fewer than 3 ids
+//!   is refused.
 //! * `edge` elements with `vertex1` and `vertex2` are edges.
-//! * Other elements are ignored. Faces come before edges in the listing.
+//! * Other elements are ignored, unless they have a vertex-id property (`vertex_indices`,
+//!   `vertex_index`, `vertex1`, `vertex2`): those are refused rather than dropped. Faces,
+//!   tetras and strips come before edges in the listing.
+//! * Every value is checked against its declared type: a line with more values than the
+//!   element's properties is refused, as is a `float` (`double`) that the type could hold only
+//!   as infinity or 0 (`1e39`, `1e-50` for `float`; the check shared by all readers,
+//!   `io::parse_real`); `nan` and `inf` are read.
 //! * Errors carry the line where the parser knows it (ASCII); otherwise the message names the
 //!   element and its index. Declared counts allocate at most what the parser caps them to.
 //!
@@ -270,7 +281,9 @@ mod tests {
     use super::*;
 
     /// ASCII bodies read by the streaming reader and by the crate: the same simplices and
-    /// coordinates, or both refused.
+    /// coordinates, or both refused. (Where the reader is stricter than the crate — extra
+    /// values on a line, floats the declared type cannot hold — or reads more — `nan`,
+    /// `tetra`, `tristrips` — the cases are in the tests below.)
     const HEAD: &str =
         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n";
 
@@ -285,7 +298,7 @@ mod tests {
         "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n",
         "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 x\n0 1\n3 0 1 2\n",
         "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 .5\n0 1\n3 0 1 2\n",
-        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0\t0 7\r\n1.5e3 -0\n0 +1\n3 0 1 2 9\n",
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0\t0\r\n1.5e3 -0\n0 +1\n3 0 1 2\n",
         "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n0\n",
         "element other 1\nproperty float w\nend_header\n0 0\n1 0\n0 1\n5\n",
         "element edge 1\nproperty float vertex1\nproperty float vertex2\nend_header\n0 0\n1 0\n0 1\n0 1.5\n",
@@ -310,6 +323,104 @@ mod tests {
             }
         }
         assert!(both_ok >= 4, "only {both_ok} cases read");
+    }
+
+    fn err(text: &str) -> String {
+        let (line, kind) = parse(text.as_bytes()).unwrap_err();
+        format!("{line}: {kind}")
+    }
+
+    const FACE: &str = "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+
+    #[test]
+    fn an_extra_value_on_a_face_or_vertex_line_is_refused_naming_the_element() {
+        let e = err(&format!("{HEAD}{FACE}0 0\n1 0\n0 1\n3 0 1 2 9\n"));
+        assert_eq!(
+            e,
+            "12: PLY: face #0 has 1 more value(s) than its properties declare ('9' follows the \
+             last of its 4 values)"
+        );
+        let e = err(&format!("{HEAD}{FACE}0 0\n1 0 7 8\n0 1\n3 0 1 2\n"));
+        assert!(
+            e.starts_with("10: PLY: vertex #1 has 2 more value(s)"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn floats_the_declared_type_cannot_hold_are_refused_and_nan_is_read() {
+        for (tok, what) in [
+            ("1e39", "too large for a 32-bit float"),
+            ("1e309", "too large for a 32-bit float"),
+            ("1e-50", "too small for a 32-bit float"),
+            ("1e-400", "too small for a 32-bit float"),
+        ] {
+            let e = err(&format!("{HEAD}{FACE}0 0\n1 {tok}\n0 1\n3 0 1 2\n"));
+            assert!(
+                e.starts_with(&format!("10: PLY: number '{tok}' is {what}"))
+                    && e.contains("property 'y' of vertex #1"),
+                "{e}"
+            );
+        }
+        // Declared double: 1e39 is exact enough, 1e309 is not.
+        let head = HEAD.replace("float", "double");
+        let raw = parse(format!("{head}{FACE}0 0\n1 1e39\n0 1\n3 0 1 2\n").as_bytes()).unwrap();
+        assert_eq!(raw.coords.unwrap().data[3], 1e39);
+        let e = err(&format!("{head}{FACE}0 0\n1 1e309\n0 1\n3 0 1 2\n"));
+        assert!(e.contains("too large for a 64-bit float"), "{e}");
+        // nan and inf spelled so are read, as every reader does; not for an integer type.
+        let raw =
+            parse(format!("{HEAD}{FACE}nan 0\n-inf 0\n0 Infinity\n3 0 1 2\n").as_bytes()).unwrap();
+        let d = raw.coords.unwrap().data;
+        assert!(d[0].is_nan() && d[2] == f64::NEG_INFINITY && d[5] == f64::INFINITY);
+        let e = err(&format!("{HEAD}{FACE}0 0\n1 0\n0 1\n3 0 nan 2\n"));
+        assert_eq!(
+            e,
+            "12: PLY: 'nan' is not a number (property 'vertex_indices' of face #0, declared int)"
+        );
+    }
+
+    #[test]
+    fn tetra_elements_are_tetrahedra() {
+        let text = "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n\
+             property float z\nelement tetra 2\nproperty list uchar int vertex_indices\n\
+             end_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n1 1 1\n4 0 1 2 3\n4 1 2 3 4\n";
+        let raw = parse(text.as_bytes()).unwrap();
+        assert_eq!(raw.ids, [0, 1, 2, 3, 1, 2, 3, 4]);
+        let e = err(&text.replace("4 1 2 3 4\n", "3 1 2 3\n"));
+        assert_eq!(e, "0: tetra #1 has 3 vertex ids; a tetra element lists 4");
+    }
+
+    #[test]
+    fn tristrips_are_read_as_their_triangles() {
+        let head = "ply\nformat ascii 1.0\nelement vertex 6\nproperty float x\n\
+                    property float y\nelement tristrips 1\nproperty list int int vertex_indices\n\
+                    end_header\n0 0\n1 0\n0 1\n1 1\n2 0\n2 1\n";
+        // Two strips: 0 1 2 3 (triangles 012, 123) and 4 5 1 (triangle 451).
+        let raw = parse(format!("{head}8 0 1 2 3 -1 4 5 1\n").as_bytes()).unwrap();
+        assert_eq!(raw.ids, [0, 1, 2, 1, 2, 3, 4, 5, 1]);
+        // A strip stitched by repeated ids: the degenerate joins make no triangle.
+        let raw = parse(format!("{head}8 0 1 2 2 4 4 5 1\n").as_bytes()).unwrap();
+        assert_eq!(raw.ids, [0, 1, 2, 4, 5, 1]);
+        let e = err(&format!("{head}5 0 1 2 -1 4\n"));
+        assert_eq!(
+            e,
+            "0: tristrips #0: strip #1 has 1 vertex ids; a strip needs at least 3"
+        );
+    }
+
+    #[test]
+    fn an_unknown_element_listing_vertex_ids_is_refused_not_dropped() {
+        let e = err(&format!(
+            "{HEAD}element polyline 1\nproperty list uchar int vertex_indices\nend_header\n\
+             0 0\n1 0\n0 1\n3 0 1 2\n"
+        ));
+        assert!(
+            e.starts_with("0: PLY: element 'polyline' has a 'vertex_indices' property"),
+            "{e}"
+        );
+        // Elements without vertex ids (materials, cameras) are still ignored.
+        assert!(parse(format!("{HEAD}{}", CASES[11]).as_bytes()).is_ok());
     }
 
     /// The cases the crate reads, written by the crate in both byte orders: the streaming

@@ -328,6 +328,45 @@ pub(crate) fn real(tok: &[u8]) -> Result<f64, RealError> {
     }
 }
 
+/// The floating-point type a format declares for its numbers (PLY `float`/`double`, VTK
+/// `float`/`double`, STL's 32-bit floats): a number is refused when that type cannot hold it
+/// as written, not only when `f64` cannot.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Float {
+    F32,
+    F64,
+}
+
+impl Float {
+    /// The type's width in bits, for messages.
+    pub(crate) fn bits(self) -> u32 {
+        match self {
+            Float::F32 => 32,
+            Float::F64 => 64,
+        }
+    }
+}
+
+/// Parses a real number as [`real`] does, rounded to the declared type `ty` (one rounding,
+/// from the decimal): a finite number that `ty` can only hold as infinity or as 0 (`1e39`,
+/// `1e-50` as a 32-bit float) is an error; the value is returned widened to `f64` exactly.
+#[inline]
+pub(crate) fn real_as(tok: &[u8], ty: Float) -> Result<f64, RealError> {
+    let x = match ty {
+        Float::F64 => return real(tok),
+        Float::F32 => {
+            f64::from(fast_float2::parse::<f32, _>(tok).map_err(|_| RealError::NotNumber)?)
+        }
+    };
+    if in_range(x, tok) {
+        Ok(x)
+    } else if x == 0.0 {
+        Err(RealError::Underflow)
+    } else {
+        Err(RealError::Overflow)
+    }
+}
+
 /// Whether `x`, parsed from `tok`, is what `tok` says: not infinite unless spelled so, not 0
 /// unless its digits are.
 #[inline]
@@ -411,17 +450,29 @@ pub(crate) fn real_or_err(tok: &str, what: &str) -> Result<f64, ReadErrorKind> {
     real(tok.as_bytes()).map_err(|e| real_error(e, tok, what))
 }
 
+/// Parses a real number of the declared type `ty` where `what` was expected.
+#[inline]
+pub(crate) fn real_or_err_as(tok: &str, what: &str, ty: Float) -> Result<f64, ReadErrorKind> {
+    real_as(tok.as_bytes(), ty).map_err(|e| real_error_as(e, tok, what, ty))
+}
+
 /// The message for a token that [`real`] refused.
 pub(crate) fn real_error(e: RealError, tok: &str, what: &str) -> ReadErrorKind {
+    real_error_as(e, tok, what, Float::F64)
+}
+
+/// The message for a token that [`real_as`] refused for the type `ty`.
+pub(crate) fn real_error_as(e: RealError, tok: &str, what: &str, ty: Float) -> ReadErrorKind {
     let tok = echo(tok);
+    let bits = ty.bits();
     syntax(match e {
         RealError::NotNumber => format!("non-numeric token '{tok}' where {what} was expected"),
         RealError::Overflow => format!(
-            "number '{tok}' is too large for a 64-bit float ({what}; it would become infinite)"
+            "number '{tok}' is too large for a {bits}-bit float ({what}; it would become infinite)"
         ),
-        RealError::Underflow => {
-            format!("number '{tok}' is too small for a 64-bit float ({what}; it would become 0)")
-        }
+        RealError::Underflow => format!(
+            "number '{tok}' is too small for a {bits}-bit float ({what}; it would become 0)"
+        ),
     })
 }
 
@@ -529,6 +580,32 @@ mod tests {
         for bad in [&b""[..], b"x", b"1.2.3", b"1e", b"--1", b"1 ", b"infinit"] {
             assert_eq!(real(bad), Err(RealError::NotNumber), "{bad:?}");
         }
+    }
+
+    #[test]
+    fn reals_of_a_declared_32_bit_type() {
+        let f = Float::F32;
+        assert_eq!(real_as(b"1.5", f), Ok(1.5));
+        assert_eq!(real_as(b"0.1", f), Ok(f64::from(0.1f32)));
+        assert_eq!(real_as(b"3.4028235e38", f), Ok(f64::from(f32::MAX)));
+        assert_eq!(real_as(b"1e39", f), Err(RealError::Overflow));
+        assert_eq!(real_as(b"-1e39", f), Err(RealError::Overflow));
+        assert_eq!(real_as(b"1e309", f), Err(RealError::Overflow));
+        assert_eq!(real_as(b"1e-50", f), Err(RealError::Underflow));
+        assert_eq!(real_as(b"1e-400", f), Err(RealError::Underflow));
+        assert_eq!(real_as(b"1e-40", f), Ok(f64::from(1e-40f32))); // subnormal: kept
+        assert_eq!(real_as(b"0e99", f), Ok(0.0));
+        assert!(real_as(b"nan", f).unwrap().is_nan());
+        assert_eq!(real_as(b"-inf", f), Ok(f64::NEG_INFINITY));
+        assert_eq!(real_as(b"x", f), Err(RealError::NotNumber));
+        // The 64-bit type is `real`.
+        assert_eq!(real_as(b"1e39", Float::F64), Ok(1e39));
+        assert_eq!(real_as(b"1e-400", Float::F64), Err(RealError::Underflow));
+        let msg = real_error_as(RealError::Underflow, "1e-50", "a vertex coordinate", f);
+        assert!(
+            msg.to_string().contains("too small for a 32-bit float"),
+            "{msg}"
+        );
     }
 
     #[test]

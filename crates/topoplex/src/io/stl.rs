@@ -1,4 +1,4 @@
-//! STL (`.stl`, ASCII and binary), read with the `stl_io` crate, binary written with it and
+//! STL (`.stl`, ASCII and binary), read here; binary written with the `stl_io` crate and
 //! ASCII written here (`stl_io` writes binary only).
 //!
 //! STL lists triangles, each with its own three corner points, and shares no vertices.
@@ -6,11 +6,23 @@
 //! Reading: corners with **exactly equal coordinates** (the same 32-bit floats, bit for bit) are
 //! welded into one vertex; vertices are numbered in order of first appearance. Nothing closer
 //! than equal is welded, so nearly equal corners stay distinct vertices. Coordinates are 32-bit
-//! floats, widened to `f64` exactly. Normals are ignored. A facet whose corners weld together is
-//! a simplex that repeats a vertex (refused by the complex model, naming the facet by its
-//! position). `stl_io` reports errors without a line; an empty solid is refused (no vertices).
-//! A file is binary when its size is 84 + 50 × the triangle count at byte 80, whatever its
-//! header says, and ASCII otherwise.
+//! floats, widened to `f64` exactly. Normals are checked as numbers and ignored. A facet whose
+//! corners weld together is a simplex that repeats a vertex (refused by the complex model,
+//! naming the facet by its line in ASCII, its position in binary). An empty solid is refused
+//! (no vertices).
+//! * A file is binary when its size is 84 + 50 × the triangle count at byte 80, whatever its
+//!   header says; else ASCII when it starts with `solid`; else binary whose size disagrees with
+//!   its count, refused with both (a truncated file says so).
+//! * ASCII: `solid name`, then facets (`facet normal x y z`, `outer loop`, three `vertex x y z`,
+//!   `endloop`, `endfacet`), then `endsolid name`; keywords in any case; **every solid** of a
+//!   file is read (several solids in one file are common), their corners welded together.
+//!   A number that a 32-bit float can hold only as infinity or 0 (`1e39`, `1e-50`) is refused
+//!   (the check shared by all readers, `io::parse_real`), as is anything out of order,
+//!   naming the line and what was expected.
+//!
+//! Storage while reading: the coordinates, the listing and a hash map from corner bits to
+//! vertex ids (about 20 bytes a vertex), all reserved fallibly; the file's bytes are read in
+//! place. Time: linear in the file.
 //!
 //! Writing: refused unless the complex is a set of triangles covering every vertex (no edge,
 //! tetrahedron or isolated vertex), with at most 3 coordinates per vertex that are exactly
@@ -18,71 +30,237 @@
 //! normalised cross product of the winding (zero for a degenerate triangle). ASCII coordinates
 //! are the shortest decimals that read back to the same 32-bit float.
 
-use std::borrow::Cow;
-use std::io::Cursor;
+use std::collections::HashMap;
 
 use stl_io::{Normal, Triangle, Vertex};
 
+use super::bytes::Input;
 use super::write::{check_coord_dim, show, vertex_count};
-use super::{Coords, RawInput, ReadErrorKind, no_room, syntax, try_with_capacity};
-use crate::complex::table::headroom;
+use super::{
+    Coords, Float, RawInput, ReadErrorKind, echo, no_room, parse_real, syntax, try_with_capacity,
+};
+use crate::complex::table;
 
-/// The bytes as `stl_io` tells them apart: it takes any file starting with `solid ` for ASCII
-/// and anything else for binary. A binary file whose 80-byte header starts with `solid` (many
-/// exporters write one) gets a blank header; an ASCII `solid` with no name gets a space.
-fn for_stl_io(bytes: &[u8]) -> Result<Cow<'_, [u8]>, ReadErrorKind> {
-    let binary_size = bytes
-        .get(80..84)
-        .map(|c| 84 + 50 * u64::from(u32::from_le_bytes(c.try_into().unwrap())));
-    if binary_size == Some(bytes.len() as u64) {
-        if bytes.starts_with(b"solid") {
-            let mut b = try_with_capacity(bytes.len(), "a copy of the file")?;
-            b.extend_from_slice(bytes);
-            b[..80].fill(0);
-            return Ok(Cow::Owned(b));
-        }
-    } else if bytes.starts_with(b"solid") && matches!(bytes.get(5), Some(b'\n' | b'\r')) {
-        let mut b = try_with_capacity(bytes.len() + 1, "a copy of the file")?;
-        b.extend_from_slice(b"solid ");
-        b.extend_from_slice(&bytes[5..]);
-        return Ok(Cow::Owned(b));
+type Res<T> = Result<T, (u32, ReadErrorKind)>;
+
+/// Corners welded as they come: each distinct corner (by its bits) gets the next id.
+struct Welder {
+    ids: HashMap<[u32; 3], u32>,
+    coords: Vec<f64>,
+    raw: RawInput,
+}
+
+impl Welder {
+    /// Room for `triangles` facets (a bound the file's size gives).
+    fn new(triangles: usize) -> Result<Welder, ReadErrorKind> {
+        let mut ids = HashMap::new();
+        // About one vertex for every two triangles in a closed mesh; more grow as needed.
+        ids.try_reserve(triangles / 2 + 1)
+            .map_err(|_| no_room("the corner index")(triangles / 2 * 20))?;
+        let coords = try_with_capacity((triangles / 2 + 1) * 3, "the vertex coordinates")?;
+        let mut raw = RawInput::new();
+        raw.try_reserve(triangles, triangles * 3)?;
+        Ok(Welder { ids, coords, raw })
     }
-    Ok(Cow::Borrowed(bytes))
+
+    /// The id of corner `p`, a new one when it was not seen before.
+    fn corner(&mut self, p: [f32; 3]) -> Result<u32, ReadErrorKind> {
+        let key = p.map(f32::to_bits);
+        if let Some(&v) = self.ids.get(&key) {
+            return Ok(v);
+        }
+        let v = u32::try_from(self.ids.len()).map_err(|_| syntax("more than 2^32 vertices"))?;
+        self.ids
+            .try_reserve(1)
+            .map_err(|_| no_room("the corner index")(self.ids.len() * 20))?;
+        self.ids.insert(key, v);
+        table::try_extend(&mut self.coords, &p.map(f64::from))
+            .map_err(no_room("the vertex coordinates"))?;
+        Ok(v)
+    }
+
+    fn facet(&mut self, corners: [[f32; 3]; 3], line: u32) -> Result<(), ReadErrorKind> {
+        let mut ids = [0u32; 3];
+        for (v, p) in ids.iter_mut().zip(corners) {
+            *v = self.corner(p)?;
+        }
+        self.raw.try_push(&ids, line)
+    }
+
+    fn into_raw(self) -> RawInput {
+        let mut raw = self.raw;
+        // Ids are below 2^32 (checked as they were made).
+        raw.vertex_count = Some(self.ids.len() as u32);
+        raw.coords = Some(Coords {
+            dim: 3,
+            data: self.coords,
+        });
+        raw
+    }
 }
 
 /// Parses an STL file, welding exactly equal corners.
 pub fn parse(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
-    if bytes.len() < 84 && !bytes.starts_with(b"solid") {
-        return Err((
+    let declared = bytes
+        .get(80..84)
+        .map(|c| u32::from_le_bytes(c.try_into().unwrap()));
+    let binary_size = declared.map(|n| 84 + 50 * u64::from(n));
+    if binary_size == Some(bytes.len() as u64) {
+        return binary(bytes).map_err(|k| (0, k));
+    }
+    let text = bytes.starts_with(b"solid") || bytes.starts_with(b"SOLID");
+    // A binary file may start with `solid` too (many exporters write it in the header): one
+    // with a NUL byte that is not ASCII gets the binary message below.
+    if text {
+        match ascii(bytes) {
+            Err(_) if declared.is_some() && memchr::memchr(0, bytes).is_some() => {}
+            r => return r,
+        }
+    }
+    match (declared, binary_size) {
+        (Some(n), Some(size)) => {
+            let whole = (bytes.len() - 84) / 50;
+            let what = if (bytes.len() as u64) < size {
+                "truncated binary STL"
+            } else {
+                "binary STL with bytes after its last triangle"
+            };
+            Err((
+                0,
+                syntax(format!(
+                    "{what}: the header declares {n} triangles (84 + 50 × {n} = {size} bytes) \
+                     but the file has {} bytes ({whole} whole triangle(s)){}",
+                    bytes.len(),
+                    if text {
+                        "; not ASCII either (it holds NUL bytes)"
+                    } else {
+                        "; not ASCII either (no 'solid' at the start)"
+                    }
+                )),
+            ))
+        }
+        _ => Err((
             0,
             syntax(format!(
                 "{} bytes: too short for binary STL (84-byte header) and no ASCII 'solid'",
                 bytes.len()
             )),
-        ));
+        )),
     }
-    let bytes = for_stl_io(bytes).map_err(|k| (0, k))?;
-    // The crate's arrays are allocated infallibly: their peak is probed first (3 times the
-    // file; reading and normalising a 980,000-triangle grid peaks at 2.7 × binary, 1.9 × ASCII
-    // STL), so that a file too large for memory is refused rather than an abort.
-    headroom(bytes.len().saturating_mul(3)).map_err(|b| (0, no_room("reading STL")(b)))?;
-    let mesh =
-        stl_io::read_stl(&mut Cursor::new(bytes)).map_err(|e| (0, syntax(format!("STL: {e}"))))?;
-    let mut raw = RawInput::new();
-    let n =
-        u32::try_from(mesh.vertices.len()).map_err(|_| (0, syntax("more than 2^32 vertices")))?;
-    raw.vertex_count = Some(n);
-    let mut data =
-        try_with_capacity(mesh.vertices.len() * 3, "the vertex coordinates").map_err(|k| (0, k))?;
-    data.extend(mesh.vertices.iter().flat_map(|v| v.0.map(f64::from)));
-    raw.coords = Some(Coords { dim: 3, data });
-    raw.try_reserve(mesh.faces.len(), mesh.faces.len() * 3)
-        .map_err(|k| (0, k))?;
-    for f in &mesh.faces {
-        // Ids are below n, which fits in u32.
-        raw.push(&f.vertices.map(|v| v as u32), 0);
+}
+
+/// A binary STL of the right size: 80 bytes of header, the count, 50 bytes a triangle (normal,
+/// three corners, attribute bytes), little-endian 32-bit floats.
+fn binary(bytes: &[u8]) -> Result<RawInput, ReadErrorKind> {
+    let body = &bytes[84..];
+    let mut w = Welder::new(body.len() / 50)?;
+    let f = |b: &[u8], k: usize| f32::from_le_bytes(b[4 * k..4 * k + 4].try_into().unwrap());
+    for t in body.chunks_exact(50) {
+        let corner = |c: usize| [f(t, 3 * c + 3), f(t, 3 * c + 4), f(t, 3 * c + 5)];
+        w.facet([corner(0), corner(1), corner(2)], 0)?;
     }
-    Ok(raw)
+    Ok(w.into_raw())
+}
+
+/// An ASCII STL: every solid in the file.
+fn ascii(bytes: &[u8]) -> Res<RawInput> {
+    // Each facet takes at least 7 lines of at least 6 bytes.
+    let mut w = Welder::new(bytes.len() / 42 + 1).map_err(|k| (0, k))?;
+    let mut inp = Input::new(bytes);
+    let mut solids = 0usize;
+    while let Some((tok, l)) = inp.token() {
+        if !tok.eq_ignore_ascii_case("solid") {
+            let what = if solids == 0 {
+                "'solid'"
+            } else {
+                "'solid' (another solid) or the end of the file"
+            };
+            return Err((l, syntax(format!("expected {what}, found '{}'", echo(tok)))));
+        }
+        inp.rest_of_line(); // the solid's name
+        solids += 1;
+        loop {
+            let (tok, l) = inp.expect_token("'facet' or 'endsolid'")?;
+            if tok.eq_ignore_ascii_case("endsolid") {
+                // Its name, if any, ends the line.
+                if inp.line == l {
+                    inp.rest_of_line();
+                }
+                break;
+            }
+            let facet_line = l;
+            if !tok.eq_ignore_ascii_case("facet") {
+                return Err((
+                    l,
+                    syntax(format!(
+                        "expected 'facet' or 'endsolid', found '{}'",
+                        echo(tok)
+                    )),
+                ));
+            }
+            keyword(&mut inp, "normal")?;
+            for _ in 0..3 {
+                number(&mut inp, "a normal component")?;
+            }
+            keyword(&mut inp, "outer")?;
+            keyword(&mut inp, "loop")?;
+            let mut corners = [[0f32; 3]; 3];
+            for (k, c) in corners.iter_mut().enumerate() {
+                let (tok, l) = inp.expect_token("'vertex'")?;
+                if !tok.eq_ignore_ascii_case("vertex") {
+                    return Err((
+                        l,
+                        syntax(format!(
+                            "expected 'vertex' (corner {} of 3 of a facet), found '{}'",
+                            k + 1,
+                            echo(tok)
+                        )),
+                    ));
+                }
+                for x in c.iter_mut() {
+                    *x = number(&mut inp, "a vertex coordinate")?;
+                }
+            }
+            let (tok, l) = inp.expect_token("'endloop'")?;
+            if tok.eq_ignore_ascii_case("vertex") {
+                return Err((
+                    l,
+                    syntax("a facet with more than 3 vertices (STL facets are triangles)"),
+                ));
+            }
+            if !tok.eq_ignore_ascii_case("endloop") {
+                return Err((
+                    l,
+                    syntax(format!("expected 'endloop', found '{}'", echo(tok))),
+                ));
+            }
+            keyword(&mut inp, "endfacet")?;
+            w.facet(corners, facet_line).map_err(|k| (facet_line, k))?;
+        }
+    }
+    Ok(w.into_raw())
+}
+
+/// The next token, which must be `word` (any case).
+fn keyword(inp: &mut Input, word: &str) -> Res<()> {
+    let (tok, l) = inp.expect_token(&format!("'{word}'"))?;
+    if tok.eq_ignore_ascii_case(word) {
+        Ok(())
+    } else {
+        Err((
+            l,
+            syntax(format!("expected '{word}', found '{}'", echo(tok))),
+        ))
+    }
+}
+
+/// The next token as a 32-bit float (`what` names it).
+fn number(inp: &mut Input, what: &str) -> Res<f32> {
+    let (tok, l) = inp.expect_token(what)?;
+    // Exact: the value was rounded to a 32-bit float once.
+    parse_real(tok, what, Float::F32)
+        .map(|x| x as f32)
+        .map_err(|k| (l, k))
 }
 
 /// The vertex's coordinates as 32-bit floats, or why they are not exactly that.
@@ -205,4 +383,160 @@ pub(crate) fn write_ascii(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), Strin
     }
     out.extend_from_slice(b"endsolid topoplex\n");
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn facet(a: &str, b: &str, c: &str) -> String {
+        format!(
+            "facet normal 0 0 1\nouter loop\nvertex {a}\nvertex {b}\nvertex {c}\nendloop\nendfacet\n"
+        )
+    }
+
+    fn err(bytes: &[u8]) -> String {
+        let (line, kind) = parse(bytes).unwrap_err();
+        format!("{line}: {kind}")
+    }
+
+    #[test]
+    fn every_solid_of_an_ascii_file_is_read_and_welded() {
+        let text = format!(
+            "solid a\n{}endsolid a\nsolid b\n{}{}endsolid b\n",
+            facet("0 0 0", "1 0 0", "0 1 0"),
+            facet("1 0 0", "0 1 0", "1 1 0"),
+            facet("5 5 5", "6 5 5", "5 6 5"),
+        );
+        let raw = parse(text.as_bytes()).unwrap();
+        assert_eq!(raw.ids, [0, 1, 2, 1, 2, 3, 4, 5, 6]);
+        assert_eq!(raw.vertex_count, Some(7));
+        assert_eq!(&raw.coords.unwrap().data[9..12], &[1.0, 1.0, 0.0]);
+        // Keywords in any case, a solid without a name, and no final newline.
+        let upper = format!("SOLID\n{}ENDSOLID", facet("0 0 0", "1 0 0", "0 1 0"))
+            .replace("vertex", "VERTEX");
+        assert_eq!(parse(upper.as_bytes()).unwrap().ids, [0, 1, 2]);
+    }
+
+    #[test]
+    fn ascii_numbers_a_32_bit_float_cannot_hold_are_refused() {
+        for (tok, what) in [
+            ("1e-50", "too small for a 32-bit float"),
+            ("1e39", "too large for a 32-bit float"),
+            ("1e-400", "too small for a 32-bit float"),
+        ] {
+            let text = format!(
+                "solid\n{}endsolid\n",
+                facet("0 0 0", &format!("1 {tok} 0"), "0 1 0")
+            );
+            let e = err(text.as_bytes());
+            assert_eq!(
+                e,
+                format!(
+                    "5: number '{tok}' is {what} (a vertex coordinate; it would become {})",
+                    if what.contains("small") {
+                        "0"
+                    } else {
+                        "infinite"
+                    }
+                )
+            );
+        }
+        // Normals are numbers too.
+        let text = format!("solid\n{}endsolid\n", facet("0 0 0", "1 0 0", "0 1 0"))
+            .replace("normal 0 0 1", "normal 0 0 1e39");
+        assert!(
+            err(text.as_bytes()).starts_with(
+                "2: number '1e39' is too large for a 32-bit float (a normal component"
+            )
+        );
+        // Subnormal 32-bit floats, nan and inf are read.
+        let text = format!(
+            "solid\n{}endsolid\n",
+            facet("1e-40 0 0", "nan 0 0", "inf 0 0")
+        );
+        let d = parse(text.as_bytes()).unwrap().coords.unwrap().data;
+        assert_eq!(d[0], f64::from(1e-40f32));
+        assert!(d[3].is_nan() && d[6].is_infinite());
+    }
+
+    #[test]
+    fn ascii_structure_errors_name_the_line_and_what_was_expected() {
+        let one = facet("0 0 0", "1 0 0", "0 1 0");
+        let cases = [
+            (
+                format!("solid\n{one}"),
+                "9: file ends early; expected 'facet' or 'endsolid'",
+            ),
+            (
+                format!("solid\n{one}endsolid\nxyz\n"),
+                "10: expected 'solid' (another solid) or the end of the file, found 'xyz'",
+            ),
+            (
+                format!("solid\n{}endsolid\n", one.replace("outer loop", "outer")),
+                "4: expected 'loop', found 'vertex'",
+            ),
+            (
+                format!(
+                    "solid\n{}endsolid\n",
+                    one.replace("endloop", "vertex 1 1 0\nendloop")
+                ),
+                "7: a facet with more than 3 vertices (STL facets are triangles)",
+            ),
+            (
+                format!(
+                    "solid\n{}endsolid\n",
+                    one.replace("vertex 1 0 0", "vertex 1 0")
+                ),
+                "6: non-numeric token 'vertex' where a vertex coordinate was expected",
+            ),
+        ];
+        for (text, want) in &cases {
+            assert_eq!(err(text.as_bytes()), *want);
+        }
+    }
+
+    fn binary_file(declared: u32, triangles: usize) -> Vec<u8> {
+        let mut b = vec![0u8; 80];
+        b.extend_from_slice(&declared.to_le_bytes());
+        for t in 0..triangles {
+            b.extend_from_slice(&[0u8; 12]);
+            for p in [[0f32, 0., 0.], [1., 0., 0.], [0., 1. + t as f32, 0.]] {
+                for x in p {
+                    b.extend_from_slice(&x.to_le_bytes());
+                }
+            }
+            b.extend_from_slice(&[0u8; 2]);
+        }
+        b
+    }
+
+    #[test]
+    fn a_binary_file_whose_size_disagrees_with_its_count_says_so_with_the_counts() {
+        assert_eq!(parse(&binary_file(2, 2)).unwrap().ids, [0, 1, 2, 0, 1, 3]);
+        assert_eq!(
+            err(&binary_file(3, 2)),
+            "0: truncated binary STL: the header declares 3 triangles (84 + 50 × 3 = 234 bytes) \
+             but the file has 184 bytes (2 whole triangle(s)); not ASCII either (no 'solid' at the \
+             start)"
+        );
+        let mut cut = binary_file(2, 2);
+        cut.truncate(150);
+        assert!(err(&cut).contains("the file has 150 bytes (1 whole triangle(s))"));
+        assert!(err(&binary_file(1, 2)).starts_with(
+            "0: binary STL with bytes after its last triangle: the header declares 1 triangles"
+        ));
+        // A header starting with `solid`, truncated: still the binary message.
+        let mut solid = binary_file(3, 2);
+        solid[..6].copy_from_slice(b"solid ");
+        assert!(
+            err(&solid).ends_with("not ASCII either (it holds NUL bytes)"),
+            "{}",
+            err(&solid)
+        );
+        // ... and of the right size, read as binary.
+        let mut solid = binary_file(2, 2);
+        solid[..6].copy_from_slice(b"solid ");
+        assert_eq!(parse(&solid).unwrap().ids, [0, 1, 2, 0, 1, 3]);
+    }
 }

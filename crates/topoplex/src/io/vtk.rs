@@ -40,6 +40,7 @@ use super::{
     Coords, IntError, RawInput, ReadErrorKind, echo, no_room, parse_integer, syntax,
     try_with_capacity,
 };
+use super::{Float, parse_real};
 use crate::complex::attributes::MAX_COMPONENTS;
 use crate::complex::{Attribute, Location, Values, table};
 
@@ -126,7 +127,10 @@ impl<'a> Input<'a> {
                 ));
             };
             let x = if float {
-                tok.parse::<f64>().ok()
+                // The shared check: a value the declared type holds only as inf or 0 is refused.
+                let f = if size == 4 { Float::F32 } else { Float::F64 };
+                let what = format!("one of the {what}, declared {ty}");
+                Some(parse_real(tok, &what, f).map_err(|k| (l, k))?)
             } else {
                 match parse_integer(tok) {
                     Ok(v) => Some(v as f64),
@@ -279,6 +283,20 @@ fn read_cells5(inp: &mut Input, a: usize, b: usize, line: u32, raw: &mut RawInpu
     let bad_offsets = offsets
         .windows(2)
         .position(|w| !(0.0 <= w[0] && w[0] <= w[1] && w[1] <= b as f64));
+    // Cells cover the connectivity exactly (as VTK's own reader requires): entries before the
+    // first offset or after the last would be dropped silently.
+    if bad_offsets.is_none()
+        && let (Some(&first), Some(&last)) = (offsets.first(), offsets.last())
+        && (first != 0.0 || last != b as f64)
+    {
+        return Err((
+            l,
+            syntax(format!(
+                "OFFSETS run from {first} to {last}, but they must run from 0 to the {b} \
+                 CONNECTIVITY entries (entries outside the cells would be dropped)"
+            )),
+        ));
+    }
     let good = &offsets[..bad_offsets.map_or(offsets.len(), |i| i + 1)];
     let (start, end) = match good {
         [first, .., last] => (*first as usize, *last as usize),
@@ -424,11 +442,22 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
                 syntax("expected '# vtk DataFile Version x.y' on the first line"),
             )
         })?;
-    let version5 = version
-        .split('.')
-        .next()
-        .and_then(|m| m.parse::<u32>().ok())
-        >= Some(5);
+    // Versions 1.0 to 5.1 (5.1 brought OFFSETS and CONNECTIVITY); any other is refused
+    // rather than read by guesswork.
+    let (major, minor) = version
+        .split_once('.')
+        .and_then(|(a, b)| Some((a.parse::<u32>().ok()?, b.parse::<u32>().ok()?)))
+        .filter(|&(a, b)| (1..=4).contains(&a) || (a == 5 && b <= 1))
+        .ok_or_else(|| {
+            (
+                1,
+                syntax(format!(
+                    "unsupported legacy VTK version '{}' (versions 1.0 to 5.1 are read)",
+                    echo(version)
+                )),
+            )
+        })?;
+    let version5 = (major, minor) >= (5, 0);
     inp.rest_of_line(); // title
     let (mode, l) = inp.expect_token("ASCII or BINARY")?;
     inp.binary = match mode.to_ascii_uppercase().as_str() {
@@ -739,13 +768,17 @@ impl Input<'_> {
                 })?;
             } else {
                 self.each_token(n, what, |tok, l| {
-                    let x: f64 = tok.parse().map_err(|_| bad(tok, l))?;
-                    if size == 4 && x.is_finite() && !(x as f32).is_finite() {
-                        return Err((
-                            l,
-                            syntax(format!("'{}' overflows float among the {what}", echo(tok))),
-                        ));
-                    }
+                    // The readers' shared check: a value the declared type holds only as
+                    // inf or 0 is refused (one rounding, to the declared type).
+                    let f = if size == 4 { Float::F32 } else { Float::F64 };
+                    let x = match super::scan::real_as(tok.as_bytes(), f) {
+                        Ok(x) => x,
+                        Err(super::scan::RealError::NotNumber) => return Err(bad(tok, l)),
+                        Err(e) => {
+                            let what = format!("among the {what}, declared {ty}");
+                            return Err((l, super::scan::real_error_as(e, tok, &what, f)));
+                        }
+                    };
                     table::try_push(&mut xs, x).map_err(room)
                 })?;
             }
@@ -1083,7 +1116,8 @@ mod tests {
     }
 
     /// Version 5 (OFFSETS / CONNECTIVITY) with the connectivity streamed: cell `i` is
-    /// `offsets[i]..offsets[i + 1]` (the first offset need not be 0); a bad id in a cell before
+    /// `offsets[i]..offsets[i + 1]`, the offsets running from 0 to the connectivity's size
+    /// (else entries would be dropped: refused); a bad id in a cell before
     /// the first bad offset pair is reported first, else the offsets, else a malformed number
     /// anywhere in the block before both.
     #[test]
@@ -1095,11 +1129,11 @@ mod tests {
             )
         };
         //   2
-        //   | \        cells: triangle 0 1 2, edge 1 2 (offsets 1..4..6 of 7 entries)
+        //   | \        cells: triangle 0 1 2, edge 1 2 (offsets 0..3..5 of 5 entries)
         //   0---1
         let raw = parse(
             v5(
-                "CELLS 3 7\nOFFSETS vtktypeint64\n1 4 6\nCONNECTIVITY vtktypeint64\n9 0 1 2 1 2 9\n\
+                "CELLS 3 5\nOFFSETS vtktypeint64\n0 3 5\nCONNECTIVITY vtktypeint64\n0 1 2 1 2\n\
                 CELL_TYPES 2\n5 3\n",
             )
             .as_bytes(),
@@ -1115,6 +1149,18 @@ mod tests {
             let (l, k) = parse(v5(cells).as_bytes()).unwrap_err();
             (l, k.to_string())
         };
+        // Offsets not from 0, or not to the end: entries outside the cells are not dropped.
+        for offsets in ["1 4 6", "0 3 5"] {
+            let (l, m) = err(&format!(
+                "CELLS 3 7\nOFFSETS vtktypeint64\n{offsets}\nCONNECTIVITY vtktypeint64\n\
+                 9 0 1 2 1 2 9\nCELL_TYPES 2\n5 3\n"
+            ));
+            assert_eq!(l, 8);
+            assert!(
+                m.starts_with("OFFSETS run from ") && m.contains("the 7 CONNECTIVITY"),
+                "{m}"
+            );
+        }
         // Cell 1's offsets are out of range (7 > 6 entries); cell 0 has a bad id: cell 0 first.
         let (l, m) = err(
             "CELLS 3 6\nOFFSETS int\n0 3 7\nCONNECTIVITY int\n0 -1 2 0 1 2\nCELL_TYPES 2\n5 5\n",

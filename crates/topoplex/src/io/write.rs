@@ -140,8 +140,11 @@ impl Format {
 
     /// Whether this format holds attribute `a` (in its own convention, see the table of
     /// [`self`](crate::io::write)): MEDIT `medit:ref` (integers within 32 bits), Gmsh
-    /// `gmsh:physical` and `gmsh:geometrical` on the listed simplices (the same), legacy VTK any
-    /// point or cell data whose name has no blank.
+    /// `gmsh:physical` and `gmsh:geometrical` on the listed simplices (the same) and any other
+    /// `f64` field as `$NodeData`/`$ElementData` (a name without `\"` or control characters;
+    /// `f32` and integer fields are not widened: write VTK or VTU), legacy VTK any
+    /// point or cell data whose name has no blank, VTU any point or cell data whose name has no
+    /// control character (an XML attribute value; tabs and newlines would read back as blanks).
     pub fn holds(self, a: &Attribute) -> bool {
         let int32 = a.components == 1
             && match &a.values {
@@ -152,14 +155,16 @@ impl Format {
         match self {
             Format::Medit => a.name == super::medit::REF && int32,
             Format::Msh | Format::MshBinary | Format::Msh2 | Format::Msh2Binary => {
-                a.location == Location::Listed
+                (a.location == Location::Listed
                     && (a.name == super::msh::PHYSICAL || a.name == super::msh::GEOMETRICAL)
-                    && int32
+                    && int32)
+                    || super::msh::holds_data(a)
             }
             Format::Vtk | Format::VtkBinary => !a
                 .name
                 .bytes()
                 .any(|b| b.is_ascii_whitespace() || b.is_ascii_control()),
+            Format::Vtu => !a.name.is_empty() && !a.name.chars().any(char::is_control),
             _ => false,
         }
     }

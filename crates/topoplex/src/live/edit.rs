@@ -38,6 +38,8 @@ pub struct UndoRecord {
     removed: TopList,
     /// Top simplices the contraction created (a moved top is in both lists, same slot).
     inserted: TopList,
+    /// What the contraction changed in the data (`data` module); none without data.
+    data: Option<super::data::DataUndo>,
 }
 
 /// Top simplices as packed ids and their vertices, in two flat arrays (a contraction's undo
@@ -70,6 +72,23 @@ impl TopList {
 }
 
 impl UndoRecord {
+    /// The (dimension, slot) of each top simplex the contraction retired (their data stays in
+    /// the tombstoned slots: [`LiveComplex::slot_label`]).
+    pub fn removed_slots(&self) -> impl Iterator<Item = (usize, u32)> + '_ {
+        self.removed.raw.iter().map(|&raw| {
+            let (p, slot) = unpack(raw);
+            (p, slot as u32)
+        })
+    }
+
+    /// The (dimension, slot) of each top simplex the contraction created or moved.
+    pub fn inserted_slots(&self) -> impl Iterator<Item = (usize, u32)> + '_ {
+        self.inserted.raw.iter().map(|&raw| {
+            let (p, slot) = unpack(raw);
+            (p, slot as u32)
+        })
+    }
+
     /// Top simplices the contraction removed (those of St(b), and those of St(a) that became
     /// faces of an image), with their vertices before the contraction. A top of St(b) whose
     /// image stays a top is listed here with b and in [`UndoRecord::inserted_tops`] with a:
@@ -127,6 +146,7 @@ impl LiveComplex {
     /// simplex, a vertex not live, σ already in the complex (as a top simplex or a face), or a
     /// single vertex (vertices are added by [`LiveComplex::add_vertex`]). Cost: module doc.
     pub fn insert_top(&mut self, sigma: &[u32]) -> Result<TopId, Refusal> {
+        self.renumbered();
         self.check_simplex(sigma)?;
         if self.holds(sigma) {
             return Err(Refusal::AlreadyPresent {
@@ -154,10 +174,12 @@ impl LiveComplex {
     /// For a single isolated vertex, removes the vertex. Refused: invalid simplex, a vertex not
     /// live, σ not in the complex, σ a proper face of another simplex. Cost: module doc.
     pub fn remove_top(&mut self, sigma: &[u32]) -> Result<(), Refusal> {
+        self.renumbered();
         let k = self.check_simplex(sigma)?;
         if let Some(raw) = self.find_top(k.as_slice()) {
             let (p, slot) = unpack(raw);
-            self.detach(p, slot as u32);
+            let s = self.detach(p, slot as u32);
+            self.retire_vanished_records(&s);
             return Ok(());
         }
         if let Some(raw) = self.top_containing(sigma) {
@@ -179,6 +201,7 @@ impl LiveComplex {
                     why: "the last vertex of the complex cannot be removed",
                 });
             }
+            self.retire_vanished_records(sigma);
             return Ok(());
         }
         Err(Refusal::NotInComplex {
@@ -189,10 +212,27 @@ impl LiveComplex {
     /// Removes the top simplex `t` (see [`LiveComplex::remove_top`]). Refused: a handle from
     /// before `compact()` or of a removed top simplex.
     pub fn remove_top_id(&mut self, t: TopId) -> Result<(), Refusal> {
+        self.renumbered();
         self.check_top(t)?;
         let (p, slot) = unpack(t.raw);
-        self.detach(p, slot as u32);
+        let s = self.detach(p, slot as u32);
+        self.retire_vanished_records(&s);
         Ok(())
+    }
+
+    /// After a removal of `s`: the listed faces' records through its vertices whose simplex went
+    /// with it are retired (their data goes with the simplex). O(records at s's vertices).
+    fn retire_vanished_records(&mut self, s: &[u32]) {
+        if self.data.is_empty() {
+            return;
+        }
+        let gone: Vec<u32> = self
+            .data
+            .records_at(s)
+            .filter(|&(_, ids)| !self.holds_simplex(ids))
+            .map(|(r, _)| r)
+            .collect();
+        self.data.retire(&gone);
     }
 
     /// Whether contracting {a, b} is allowed in `mode`, without changing anything: both live and
@@ -233,9 +273,10 @@ impl LiveComplex {
         mode: ContractMode,
         new_position: Option<&[f64]>,
     ) -> Result<UndoRecord, Refusal> {
+        self.renumbered();
         self.can_contract(a, b, mode)?;
         if let Some(xyz) = new_position {
-            self.check_coords(xyz)?;
+            self.check_coords_of(a.0, xyz)?;
         }
         let k = self.coord_dim;
         let mut undo = UndoRecord {
@@ -249,6 +290,7 @@ impl LiveComplex {
                 .collect(),
             removed: TopList::default(),
             inserted: TopList::default(),
+            data: (!self.data.is_empty()).then(|| self.data.contract(a.0, b.0)),
         };
         let linked = mode != ContractMode::Free;
         self.image_star_of_b(a.0, b.0, linked);
@@ -365,7 +407,7 @@ impl LiveComplex {
             }
         }
         for img in images.iter().filter(|img| img.kept && img.degenerate) {
-            let slot = self.push_top(img.as_slice());
+            let slot = self.push_top_from(img.as_slice(), Some(img.from));
             undo.inserted
                 .push(pack(img.len as usize - 1, slot), img.as_slice());
         }
@@ -379,6 +421,7 @@ impl LiveComplex {
     /// before a `compact()`, was applied already, or later edits changed what it would restore
     /// (a created top simplex removed or a restored one now a face of another simplex).
     pub fn split(&mut self, undo: &UndoRecord) -> Result<(), Refusal> {
+        self.renumbered();
         self.check_undo(undo)?;
         for &raw in &undo.inserted.raw {
             let (p, slot) = unpack(raw);
@@ -397,6 +440,9 @@ impl LiveComplex {
         self.coords[undo.a.index() * k..(undo.a.index() + 1) * k]
             .copy_from_slice(&undo.coords[..k]);
         self.coords[b * k..(b + 1) * k].copy_from_slice(&undo.coords[k..]);
+        if let Some(d) = &undo.data {
+            self.data.split(undo.a.0, d);
+        }
         Ok(())
     }
 
@@ -457,6 +503,13 @@ impl LiveComplex {
     /// order (the numbering of [`LiveComplex::to_complex`]). Every [`TopId`] and [`UndoRecord`]
     /// issued before is refused afterwards; vertex ids must be mapped by the caller. O(size).
     pub fn compact(&mut self) -> CompactMaps {
+        let records: Vec<bool> = self
+            .data
+            .record_ids()
+            .iter()
+            .map(|s| self.holds_simplex(s))
+            .collect();
+        self.renumbered();
         let (vmap, n) = self.vertex_map();
         let mut maps = CompactMaps {
             vertices: vmap,
@@ -492,6 +545,7 @@ impl LiveComplex {
             }
         }
         self.star.retain_packed(&self.alive);
+        self.data.compact(&maps.vertices, &maps.tops, &records);
         self.coords = coords;
         self.alive = vec![true; n as usize];
         self.epoch = self.epoch.wrapping_add(1);

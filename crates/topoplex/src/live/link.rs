@@ -17,8 +17,16 @@
 //!
 //! The test on the complex coned over its boundary (`link_condition_with_boundary`) runs on the
 //! same words: ω takes one more bit, and each boundary facet f through a or b (a facet of a top
-//! of the star that no other top of that star holds — O(d²·k²) per star, compared pairwise) adds
-//! the word of f \ {a, b} with ω's bit to F_a, F_b or F_ab. It runs after the plain test on the
+//! of the star that no other top of that star holds — found by sorting order-free hashes of the
+//! star's facets, O(d·k·log(d·k)) per star, `LiveComplex::star_boundary`) adds the word of
+//! f \ {a, b} with ω's bit to F_a, F_b or F_ab.
+//!
+//! Before any of this, a 0-dimensional violation (a vertex w joined to a and to b with no top
+//! holding a, b and w) is looked for from the smaller star alone: each vertex of St(b) outside
+//! the tops through a and b is tested for an edge to a by scanning the smaller of St(w), St(a)
+//! (O(d·k_b + Σ_w d·min(k_w, k_a))). Most refusals are found there, so a vertex with a huge
+//! star (simplify gathers thousands of tops into one) does not make every refusal scan it; the
+//! edge test {a, b} itself scans the smaller star. It runs after the plain test on the
 //! same masks, so it too allocates nothing once warm (past 64 common vertices it falls back to
 //! the lists).
 
@@ -41,11 +49,7 @@ impl LiveComplex {
         self.check_vertex(a.0)?;
         self.check_vertex(b.0)?;
         let (a, b) = (a.0, b.0);
-        if a == b
-            || !self.star[a as usize]
-                .iter()
-                .any(|&r| self.top_raw(r).contains(&b))
-        {
+        if a == b || !self.joined(a, b) {
             return Err(Refusal::NotAnEdge { a, b });
         }
         let found = SCRATCH.with(|s| match s.try_borrow_mut() {
@@ -63,9 +67,76 @@ impl LiveComplex {
         }
     }
 
+    /// Whether some top holds both a and b: the smaller of the two stars scanned.
+    fn joined(&self, a: u32, b: u32) -> bool {
+        let (small, other) = if self.star[a as usize].len() <= self.star[b as usize].len() {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        self.star[small as usize]
+            .iter()
+            .any(|&r| self.top_raw(r).contains(&other))
+    }
+
+    /// A vertex w ∈ Lk(a) ∩ Lk(b) outside Lk(ab), looked for from the smaller star only: the
+    /// vertices of the tops of St(b) (b the smaller) that no top through a and b holds, each
+    /// tested for an edge to a by [`LiveComplex::joined`] (the smaller of St(w), St(a)). Costs
+    /// O(d·k_b + Σ_w d·min(k_w, k_a)), not O(d·k_a): a vertex with a huge star (simplify's
+    /// contractions gather thousands of tops into one vertex) does not make every refusal
+    /// scan it. A 0-dimensional violation is a lowest-dimensional one, so it is the answer
+    /// when it exists; `None` says only that there is none of dimension 0.
+    fn vertex_violation(&self, a: u32, b: u32, s: &mut Scratch) -> Option<u32> {
+        let (a, b) = if self.star[b as usize].len() <= self.star[a as usize].len() {
+            (a, b)
+        } else {
+            (b, a)
+        };
+        let n = self.star.len();
+        if s.stamp.len() < n {
+            s.stamp.resize(n, 0);
+            s.index.resize(n, 0);
+        }
+        if s.epoch >= u32::MAX - 2 {
+            s.stamp.iter_mut().for_each(|x| *x = 0);
+            s.epoch = 0;
+        }
+        s.epoch += 2;
+        let (tried, in_ab) = (s.epoch - 1, s.epoch);
+        let star_b = || self.star[b as usize].iter().map(|&r| self.top_raw(r));
+        for t in star_b().filter(|t| t.contains(&a)) {
+            for &v in t {
+                s.stamp[v as usize] = in_ab;
+            }
+        }
+        for t in star_b().filter(|t| !t.contains(&a)) {
+            for &w in t {
+                let st = &mut s.stamp[w as usize];
+                if w == b || *st == in_ab || *st == tried {
+                    continue;
+                }
+                *st = tried;
+                if self.joined(a, w) {
+                    return Some(w);
+                }
+            }
+        }
+        None
+    }
+
     /// The common vertices C, then the word or list test (module doc); with `coned`, when the
-    /// plain test passes, the same test again with the boundary facets' cones added.
+    /// plain test passes, the same test again with the boundary facets' cones added. A
+    /// 0-dimensional violation is looked for first from the smaller star
+    /// ([`LiveComplex::vertex_violation`]).
     fn first_violation(&self, a: u32, b: u32, coned: bool, s: &mut Scratch) -> Option<Vec<u32>> {
+        if let Some(w) = self.vertex_violation(a, b, s) {
+            return Some(vec![w]);
+        }
+        self.full_violation(a, b, coned, s)
+    }
+
+    /// [`LiveComplex::first_violation`] without the 0-dimensional shortcut.
+    fn full_violation(&self, a: u32, b: u32, coned: bool, s: &mut Scratch) -> Option<Vec<u32>> {
         let fa = || self.star[a as usize].iter().map(|&r| self.top_raw(r));
         let fb = || self.star[b as usize].iter().map(|&r| self.top_raw(r));
         common_vertices(fa(), fb(), a, b, self.star.len(), s);
@@ -121,9 +192,11 @@ impl LiveComplex {
     /// the families: at a, to F_ab when b ∈ f, else to F_a; at b, to F_b when a ∉ f.
     fn boundary_cones(&self, a: u32, b: u32, s: &mut Scratch) {
         let omega = 1u64 << s.index_omega;
-        for &r in self.star[a as usize].iter() {
+        let mut open = std::mem::take(&mut s.open);
+        self.star_boundary(a, &mut s.facets, &mut open);
+        for (&r, &open) in self.star[a as usize].iter().zip(&open) {
             let t = self.top_raw(r);
-            let (m, open) = (s.mask(t), self.boundary_positions(a, r));
+            let m = s.mask(t);
             for (j, &x) in t.iter().enumerate() {
                 if open >> j & 1 == 1 {
                     let w = s.without(m, x) | omega;
@@ -135,9 +208,10 @@ impl LiveComplex {
                 }
             }
         }
-        for &r in self.star[b as usize].iter() {
+        self.star_boundary(b, &mut s.facets, &mut open);
+        for (&r, &open) in self.star[b as usize].iter().zip(&open) {
             let t = self.top_raw(r);
-            let (m, open) = (s.mask(t), self.boundary_positions(b, r));
+            let m = s.mask(t);
             for (j, &x) in t.iter().enumerate() {
                 // f = t \ {x} must not hold a.
                 if open >> j & 1 == 1 && (x == a || !t.contains(&a)) {
@@ -145,10 +219,97 @@ impl LiveComplex {
                 }
             }
         }
+        s.open = open;
+    }
+
+    /// For every top of St(v), in star order, into `open`: the positions j whose facet
+    /// t \ {t[j]} (j not v's position) is on the boundary, held by no other top of St(v)
+    /// (every top holding it holds v), as bits.
+    ///
+    /// Each facet through v gets an order-free hash of its vertex set (the sum of a mix of its
+    /// ids: the top's sum minus the left-out vertex's, O(d) a top); sorting the hashes brings
+    /// equal facets together, and only facets of equal hash are compared, so a star of k tops
+    /// of dimension d costs O(d·k·log(d·k) + d²·(facet pairs of equal hash)) rather than the
+    /// O(d²·k²) of comparing every pair of tops. A facet can also lie in a larger top of a
+    /// mixed-dimensional star without being its facet: only there are the smaller tops'
+    /// facets compared with each larger top. `facets` is scratch; nothing is allocated once
+    /// warm.
+    fn star_boundary(&self, v: u32, facets: &mut Vec<(u64, usize)>, open: &mut Vec<u32>) {
+        let star = &self.star[v as usize];
+        open.clear();
+        facets.clear();
+        let (mut shortest, mut longest) = (usize::MAX, 0);
+        for (i, &r) in star.iter().enumerate() {
+            let t = self.top_raw(r);
+            shortest = shortest.min(t.len());
+            longest = longest.max(t.len());
+            let own = t.iter().position(|&x| x == v).map_or(0, |j| 1 << j);
+            open.push(((1u32 << t.len()) - 1) & !own);
+            let sum = t.iter().fold(0u64, |h, &x| h.wrapping_add(mix(x)));
+            let size = (t.len() as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15);
+            for (j, &x) in t.iter().enumerate() {
+                if x != v {
+                    facets.push((sum.wrapping_sub(mix(x)).wrapping_add(size), i << 4 | j));
+                }
+            }
+        }
+        facets.sort_unstable();
+        let facet_of = |e: usize| (self.top_raw(star[e >> 4]), e & 15);
+        let mut start = 0;
+        while start < facets.len() {
+            let key = facets[start].0;
+            let end = start + facets[start..].iter().take_while(|f| f.0 == key).count();
+            for p in start..end {
+                for q in p + 1..end {
+                    let (e, f) = (facets[p].1, facets[q].1);
+                    let ((t, j), (u, l)) = (facet_of(e), facet_of(f));
+                    // Same size (the hash holds it), so t \ {t[j]} ⊆ u \ {u[l]} is equality.
+                    let same = t.len() == u.len()
+                        && t.iter()
+                            .enumerate()
+                            .all(|(k, x)| k == j || (u.contains(x) && *x != u[l]));
+                    if same {
+                        open[e >> 4] &= !(1 << j);
+                        open[f >> 4] &= !(1 << l);
+                    }
+                }
+            }
+            start = end;
+        }
+        if shortest == longest {
+            return;
+        }
+        // Mixed dimensions: a facet of a smaller top inside a larger top.
+        for (i, &r) in star.iter().enumerate() {
+            let t = self.top_raw(r);
+            if t.len() == longest || open[i] == 0 {
+                continue;
+            }
+            for &o in star.iter() {
+                let other = self.top_raw(o);
+                if other.len() <= t.len() {
+                    continue;
+                }
+                // t \ {t[j]} ⊆ other iff t[j] is t's only vertex missing from other.
+                let (mut missing, mut at) = (0, 0);
+                for (j, x) in t.iter().enumerate() {
+                    if !other.contains(x) {
+                        missing += 1;
+                        at = j;
+                    }
+                }
+                if missing == 1 {
+                    open[i] &= !(1 << at);
+                }
+            }
+        }
     }
 
     /// The positions j of top `raw` ∈ St(v) whose facet t \ {t[j]} (j not v's position) is on
     /// the boundary: held by no other top of St(v) (every top holding it holds v). As bits.
+    /// Every pair of tops compared, O(d²·k) a top: the oracle [`LiveComplex::star_boundary`]
+    /// is tested against.
+    #[cfg(test)]
     fn boundary_positions(&self, v: u32, raw: u32) -> u32 {
         let t = self.top_raw(raw);
         let mut shared = 0u32;
@@ -178,6 +339,15 @@ impl LiveComplex {
     }
 }
 
+/// A 64-bit mix of a vertex id (SplitMix64's finaliser), summed into order-free facet hashes.
+#[inline]
+fn mix(x: u32) -> u64 {
+    let mut z = u64::from(x).wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
 /// The tops of St(a) through b.
 fn fa_through<'a>(l: &'a LiveComplex, a: u32, b: u32) -> impl Iterator<Item = &'a [u32]> + 'a {
     l.star[a as usize]
@@ -200,6 +370,9 @@ struct Scratch {
     ma: Vec<u64>,
     mb: Vec<u64>,
     mz: Vec<u64>,
+    /// [`LiveComplex::star_boundary`]'s facet hashes and its answer.
+    facets: Vec<(u64, usize)>,
+    open: Vec<u32>,
 }
 
 impl Scratch {
@@ -392,8 +565,8 @@ impl LiveComplex {
     /// interior), so contractions that pass it keep manifoldness and the boundary's topology;
     /// on any complex it implies [`LiveComplex::link_condition`]. A failure naming ω reports it
     /// as [`OMEGA`]; a failure of the plain test is reported as that test reports it (it is
-    /// run first). Cost: the plain test, then O(d²·k_a² + d²·k_b²) for the boundary facets and
-    /// the word test again; allocates nothing once this thread's scratch is warm (up to 63
+    /// run first). Cost: the plain test, then O(d·k·log(d·k)) for each star's boundary facets
+    /// and the word test again; allocates nothing once this thread's scratch is warm (up to 63
     /// common vertices).
     pub fn link_condition_with_boundary(&self, a: VertexId, b: VertexId) -> Result<(), Refusal> {
         self.checked_link(a, b, true)
@@ -444,19 +617,139 @@ impl LiveComplex {
         lists::first_violation(&common, &refs(&fa), &refs(&fb), &refs(&fab))
     }
 
-    /// The boundary facets through v: facets f ∋ v of a top t ∈ St*(v) that no other top holds.
+    /// The boundary facets through v: facets f ∋ v of a top t ∈ St*(v) that no other top holds
+    /// ([`LiveComplex::star_boundary`]).
     fn boundary_facets(&self, v: u32) -> impl Iterator<Item = Vec<u32>> + '_ {
+        let (mut facets, mut open) = (Vec::new(), Vec::new());
+        self.star_boundary(v, &mut facets, &mut open);
         let star = &self.star[v as usize];
-        star.iter().flat_map(move |&raw| {
+        star.iter().zip(open).flat_map(move |(&raw, open)| {
             let t = self.top_raw(raw);
-            t.iter()
-                .filter(move |&&x| x != v)
-                .map(move |&x| t.iter().copied().filter(|&y| y != x).collect::<Vec<u32>>())
-                .filter(move |f| !star.iter().any(|&o| o != raw && subset(f, self.top_raw(o))))
+            (0..t.len())
+                .filter(move |j| open >> j & 1 == 1)
+                .map(move |j| {
+                    t.iter()
+                        .enumerate()
+                        .filter(|&(k, _)| k != j)
+                        .map(|(_, &y)| y)
+                        .collect::<Vec<u32>>()
+                })
         })
     }
 }
 
 fn refs(f: &[Vec<u32>]) -> Vec<&[u32]> {
     f.iter().map(Vec::as_slice).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::complex::Complex;
+    use proptest::prelude::*;
+
+    /// The boundary positions of every top of every star, by hashing and by comparing every
+    /// pair (the oracle), on `simplices` over `n` vertices.
+    fn assert_star_boundaries_agree(n: u32, simplices: &[Vec<u32>]) {
+        let refs: Vec<&[u32]> = simplices.iter().map(Vec::as_slice).collect();
+        let Ok(c) = Complex::from_simplices(n, &refs) else {
+            return;
+        };
+        let live = LiveComplex::from_complex(&c);
+        let (mut facets, mut open) = (Vec::new(), Vec::new());
+        for v in 0..n {
+            live.star_boundary(v, &mut facets, &mut open);
+            let star = &live.star[v as usize];
+            assert_eq!(open.len(), star.len());
+            for (&r, &got) in star.iter().zip(&open) {
+                assert_eq!(
+                    got,
+                    live.boundary_positions(v, r),
+                    "vertex {v}, top {:?}",
+                    live.top_raw(r)
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn star_boundary_of_a_closed_and_an_open_tetrahedral_fan() {
+        // Six tetrahedra around the cube's diagonal 0-7: no facet through 0 or 7 is interior
+        // except the six fins; removing one tetrahedron opens the fan.
+        let fan = [
+            [0, 1, 3, 7],
+            [0, 3, 2, 7],
+            [0, 2, 6, 7],
+            [0, 6, 4, 7],
+            [0, 4, 5, 7],
+            [0, 5, 1, 7],
+        ];
+        let all: Vec<Vec<u32>> = fan.iter().map(|t| t.to_vec()).collect();
+        assert_star_boundaries_agree(8, &all);
+        assert_star_boundaries_agree(8, &all[1..]);
+        let c =
+            Complex::from_simplices(8, &fan.iter().map(|t| &t[..]).collect::<Vec<_>>()).unwrap();
+        let live = LiveComplex::from_complex(&c);
+        let (mut facets, mut open) = (Vec::new(), Vec::new());
+        live.star_boundary(0, &mut facets, &mut open);
+        // Through 0, each tetrahedron shares its two fins (through 0 and 7) with its
+        // neighbours; its one boundary facet leaves out 7, at position 3.
+        assert_eq!(open, [1 << 3; 6]);
+    }
+
+    /// On every edge of `simplices`: the 0-dimensional shortcut finds a vertex exactly when
+    /// the full test's lowest violation has dimension 0, and that vertex is one.
+    fn assert_vertex_shortcut_agrees(n: u32, simplices: &[Vec<u32>]) {
+        let refs: Vec<&[u32]> = simplices.iter().map(Vec::as_slice).collect();
+        let Ok(c) = Complex::from_simplices(n, &refs) else {
+            return;
+        };
+        let live = LiveComplex::from_complex(&c);
+        let mut s = Scratch::default();
+        for [a, b] in live.edges() {
+            for (a, b) in [(a, b), (b, a)] {
+                let quick = live.vertex_violation(a, b, &mut s);
+                let full = live.full_violation(a, b, false, &mut s);
+                match (quick, &full) {
+                    (None, None) => {}
+                    (None, Some(f)) => assert!(f.len() > 1, "{a} {b}: missed {f:?}"),
+                    (Some(w), Some(f)) => {
+                        assert_eq!(f.len(), 1, "{a} {b}: {w} but full {f:?}");
+                        assert!(live.joined(a, w) && live.joined(b, w));
+                        assert!(!live.star[a as usize].iter().any(|&r| {
+                            let t = live.top_raw(r);
+                            t.contains(&b) && t.contains(&w)
+                        }));
+                    }
+                    (Some(w), None) => panic!("{a} {b}: {w} but the full test passes"),
+                }
+            }
+        }
+    }
+
+    proptest! {
+        #[test]
+        fn vertex_shortcut_matches_the_full_link_test(
+            simplices in proptest::collection::vec(
+                proptest::collection::btree_set(0u32..8, 2..=4),
+                1..14,
+            )
+        ) {
+            let s: Vec<Vec<u32>> = simplices.into_iter().map(|t| t.into_iter().collect()).collect();
+            assert_vertex_shortcut_agrees(8, &s);
+        }
+
+        /// Random mixed-dimensional complexes (up to 3-simplices on 7 vertices, so facets are
+        /// shared often, and larger tops hold smaller tops' facets).
+        #[test]
+        fn star_boundary_matches_comparing_every_pair(
+            simplices in proptest::collection::vec(
+                proptest::collection::btree_set(0u32..7, 2..=4),
+                1..14,
+            )
+        ) {
+            let s: Vec<Vec<u32>> = simplices.into_iter().map(|t| t.into_iter().collect()).collect();
+            assert_star_boundaries_agree(7, &s);
+        }
+    }
 }

@@ -50,7 +50,8 @@
 //! - R_{p,p}, p > 0: every p-simplex sharing a facet with σ contains σ's first or second vertex:
 //!   scan both stars, O(d²·(k_v + k_w) + m log m).
 //! - `count(p)`, `simplices(p)`: enumerate the p-faces of every live top, sort, dedup:
-//!   O(Σ_t C(|t|, p+1) log) — not cached, since edits would invalidate it.
+//!   O(Σ_t C(|t|, p+1) log) — not cached, since edits would invalidate it; `count(p)` is O(1)
+//!   while the dense index of dimension p is built (module `dense`, dropped by each edit).
 //!
 //! # Cost of each operation
 //! - [`LiveComplex::insert_top`] σ: validate, refuse if present (O(d·k_v)), retire the top
@@ -75,6 +76,12 @@
 //! - [`LiveComplex::split`]: the same order as the contraction it undoes.
 //! - [`LiveComplex::compact`]: O(size), renumbers vertices and slots densely and returns the maps.
 //!
+//! # Data
+//! The complex's attributes (labels and fields, [`crate::complex::attributes`]) travel with it:
+//! a row per vertex slot and per top slot, and a record per other listed simplex with data, kept
+//! through insert, remove, contraction, split and `compact()` ([`data`] says how and at what
+//! cost); [`LiveComplex::to_complex`] writes them back.
+//!
 //! # Handles and invalidation
 //! [`VertexId`]s and [`TopId`]s stay valid across every edit until [`LiveComplex::compact`]
 //! (tombstones keep the slots; a top moved by a contraction keeps its id and names its image);
@@ -95,6 +102,14 @@
 //! per check. Costs per operation: the `nav` module (O(1) checks and reads, `locate` O(d·k_v),
 //! relations as above plus O(d·k) to name each answer of dimension ≤ p, answers lexicographic,
 //! no allocation once warm).
+//!
+//! # Dense indices
+//! The index half of the handle API (`handle(p, i)`, `index_of`, `related_ids`,
+//! `related_batch`, `degree_batch`, `relation_view`) numbers the simplices above vertices by
+//! lexicographic rank, as the nine structures do, from tables built on first use and dropped by
+//! every edit (module `dense`: storage and costs; setting coordinates keeps them). A vertex's
+//! index is its slot. Indices above vertices, lent views and dense handles made from indices
+//! are valid until the next edit; the handles above are what lasts across edits.
 
 use std::fmt;
 
@@ -105,6 +120,8 @@ use crate::structures::common::{too_large, try_copy, try_vec, try_with_capacity}
 use crate::structures::ia::faces_containing as faces;
 
 mod build;
+pub mod data;
+mod dense;
 mod edit;
 pub mod link;
 mod nav;
@@ -113,6 +130,7 @@ mod store;
 
 use stars::Stars;
 
+pub use data::VertexPolicy;
 pub use edit::{CompactMaps, ContractMode, UndoRecord};
 
 /// "No vertex" marker.
@@ -234,6 +252,16 @@ pub enum Refusal {
         /// Coordinates per vertex.
         dim: usize,
     },
+    /// A coordinate given is NaN or infinite (nothing was changed).
+    #[error("coordinate {coordinate} of vertex {vertex} is {value}, not a finite number")]
+    NonFiniteCoordinate {
+        /// The vertex it was for.
+        vertex: u32,
+        /// Its position among the vertex's coordinates.
+        coordinate: usize,
+        /// The number as given (`NaN`, `inf`, `-inf`).
+        value: String,
+    },
 }
 
 /// An updatable simplicial complex; see the module documentation.
@@ -255,6 +283,11 @@ pub struct LiveComplex {
     epoch: u32,
     /// Contraction scratch: the images of St(b), kept between edits to avoid allocating.
     images: Vec<Image>,
+    /// The attributes carried beside the slots (`data` module); empty without data.
+    data: data::LiveData,
+    /// Dense indices above vertices and lent views, built on first use, dropped by each edit
+    /// (`dense` module).
+    dense: dense::DenseIndex,
 }
 
 /// A top simplex's image under a contraction: at most 16 ids inline, in stored order.
@@ -351,7 +384,7 @@ impl LiveComplex {
         }
         let parts = build::from_listing(complex, n)?;
         let (coord_dim, coords) = Self::coords_of(complex)?;
-        Ok(LiveComplex {
+        let mut live = LiveComplex {
             tops: parts.tops,
             live_tops: parts.live_tops,
             alive: try_vec(StructureKind::IaStar, true, n, "vertex flags")?,
@@ -361,7 +394,11 @@ impl LiveComplex {
             coords,
             epoch: 0,
             images: Vec::new(),
-        })
+            data: data::LiveData::default(),
+            dense: Default::default(),
+        };
+        live.data = data::LiveData::of(complex, &live);
+        Ok(live)
     }
 
     fn check_vertex_count(complex: &Complex) -> Result<usize, BuildError> {
@@ -430,20 +467,30 @@ impl LiveComplex {
             coords,
             epoch: 0,
             images: Vec::new(),
+            data: data::LiveData::default(),
+            dense: Default::default(),
         };
         for (_, s) in complex.tops_listed() {
             live.push_top(s);
         }
+        live.data = data::LiveData::of(complex, &live);
         Ok(live)
     }
 
     /// Appends a slot for `s` (not checked) and enters it in its vertices' stars.
     fn push_top(&mut self, s: &[u32]) -> u32 {
+        self.push_top_from(s, None)
+    }
+
+    /// [`LiveComplex::push_top`] whose data row is a copy of top `from`'s (packed id), or
+    /// unset.
+    fn push_top_from(&mut self, s: &[u32], from: Option<u32>) -> u32 {
         let p = s.len() - 1;
         let slot = (self.tops[p].len() / (p + 1)) as u32;
         assert!(slot <= SLOT_MASK, "more than 2^28 top {p}-simplices");
         self.tops[p].extend_from_slice(s);
         self.attach(p, slot);
+        self.data.push_top(p, from.map(unpack));
         slot
     }
 
@@ -555,29 +602,74 @@ impl LiveComplex {
     }
 
     /// Sets the coordinates of a live vertex; `xyz` must have [`LiveComplex::coord_dim`]
-    /// numbers. O(1).
+    /// finite numbers. Refused, changing nothing: [`Refusal::UnknownVertex`] (a removed or
+    /// out-of-range vertex), [`Refusal::CoordinateDimension`], [`Refusal::NonFiniteCoordinate`].
+    /// Not an edit of the topology: handles, dense indices and lent views stay valid. A
+    /// [`LiveComplex::split`] puts back the coordinates a and b had before the contraction it
+    /// undoes (also over a later setting of a's). O(coord_dim).
     pub fn set_coords(&mut self, v: VertexId, xyz: &[f64]) -> Result<(), Refusal> {
         self.check_vertex(v.0)?;
-        self.check_coords(xyz)?;
+        self.check_coords_of(v.0, xyz)?;
         let k = self.coord_dim;
         self.coords[v.index() * k..(v.index() + 1) * k].copy_from_slice(xyz);
         Ok(())
     }
 
-    fn check_coords(&self, xyz: &[f64]) -> Result<(), Refusal> {
+    /// Every vertex slot's coordinates, slot after slot ([`LiveComplex::coord_dim`] numbers
+    /// each; a removed vertex's are its last ones, meaningless): the array itself, lent, so a
+    /// pass over all vertices reads it without a call per vertex. O(1).
+    pub fn all_coords(&self) -> &[f64] {
+        &self.coords
+    }
+
+    /// Sets every vertex slot's coordinates at once from `data`, slot after slot:
+    /// `vertex_slots() × coord_dim()` finite numbers (those of removed vertices are stored and
+    /// never read). Refused, changing nothing: [`Refusal::CoordinateDimension`] (`given` the
+    /// length, `dim` the length needed), [`Refusal::NonFiniteCoordinate`] (the first one). Not
+    /// an edit of the topology (as [`LiveComplex::set_coords`]). O(vertex slots), no
+    /// allocation: the array is overwritten in place.
+    pub fn set_all_coords(&mut self, data: &[f64]) -> Result<(), Refusal> {
+        if data.len() != self.coords.len() {
+            return Err(Refusal::CoordinateDimension {
+                given: data.len(),
+                dim: self.coords.len(),
+            });
+        }
+        if let Some(i) = data.iter().position(|x| !x.is_finite()) {
+            let k = self.coord_dim.max(1);
+            return Err(Refusal::NonFiniteCoordinate {
+                vertex: (i / k) as u32,
+                coordinate: i % k,
+                value: data[i].to_string(),
+            });
+        }
+        self.coords.copy_from_slice(data);
+        Ok(())
+    }
+
+    /// `xyz` as the coordinates of vertex `v` (live or about to be): the right length, finite.
+    fn check_coords_of(&self, v: u32, xyz: &[f64]) -> Result<(), Refusal> {
         if xyz.len() != self.coord_dim {
             return Err(Refusal::CoordinateDimension {
                 given: xyz.len(),
                 dim: self.coord_dim,
             });
         }
+        if let Some(i) = xyz.iter().position(|x| !x.is_finite()) {
+            return Err(Refusal::NonFiniteCoordinate {
+                vertex: v,
+                coordinate: i,
+                value: xyz[i].to_string(),
+            });
+        }
         Ok(())
     }
 
-    /// Adds an isolated vertex with coordinates `xyz` ([`LiveComplex::coord_dim`] numbers).
-    /// Amortised O(1).
+    /// Adds an isolated vertex with coordinates `xyz` ([`LiveComplex::coord_dim`] finite
+    /// numbers). Amortised O(1).
     pub fn add_vertex(&mut self, xyz: &[f64]) -> Result<VertexId, Refusal> {
-        self.check_coords(xyz)?;
+        self.check_coords_of(self.vertex_slots(), xyz)?;
+        self.renumbered();
         let v = self.vertex_slots();
         if v >= DEAD {
             return Err(Refusal::StaleHandle("vertex slots exhausted".into()));
@@ -585,6 +677,7 @@ impl LiveComplex {
         self.alive.push(true);
         self.star.add_vertex();
         self.coords.extend_from_slice(xyz);
+        self.data.push_vertex();
         self.live_vertices += 1;
         Ok(VertexId(v))
     }
@@ -648,9 +741,17 @@ impl LiveComplex {
         let (map, n) = self.vertex_map();
         let mut ids = Vec::new();
         let mut offsets = vec![0usize];
-        for (_, s) in self.tops() {
+        let mut live_slots: Vec<Vec<usize>> = vec![Vec::new(); MAX_DIMENSION + 1];
+        for (t, s) in self.tops() {
             ids.extend(s.iter().map(|&v| map[v as usize]));
             offsets.push(ids.len());
+            live_slots[t.dim()].push(t.slot() as usize);
+        }
+        let mut records = Vec::new();
+        for (r, s) in self.data.live_records(|s| self.holds_simplex(s)) {
+            ids.extend(s.iter().map(|&v| map[v as usize]));
+            offsets.push(ids.len());
+            records.push(r);
         }
         let coords = (self.coord_dim > 0).then(|| crate::complex::Coords {
             dim: self.coord_dim,
@@ -663,8 +764,13 @@ impl LiveComplex {
                 })
                 .collect(),
         });
-        Complex::from_arrays(n, &ids, &offsets, coords)
-            .expect("a live complex is a valid complex (has a vertex, ids in range)")
+        let mut c = Complex::from_arrays(n, &ids, &offsets, coords)
+            .expect("a live complex is a valid complex (has a vertex, ids in range)");
+        if !self.data.is_empty() {
+            c.set_attributes(self.data.attributes(&self.alive, &live_slots, &records))
+                .expect("the live data has a row per live vertex, top and record");
+        }
+        c
     }
 
     /// Old vertex slot → dense id (`NONE` for removed ones), and the live count.
@@ -734,6 +840,8 @@ impl Topology for LiveComplex {
         vertex_count: self.vertex_slots();
         count(p): if p == 0 {
             self.live_vertices as usize
+        } else if let Some(n) = self.counted(p) {
+            n // O(1) while the dense table of this state is built
         } else {
             let mut out = Vec::new();
             self.simplices(p, &mut out);
@@ -856,6 +964,7 @@ impl LiveComplex {
         if self.star.len() != n || self.coords.len() != n * self.coord_dim {
             return Err("per-vertex arrays disagree on the vertex count".into());
         }
+        self.data.check(n, &self.tops)?;
         let live = self.alive.iter().filter(|&&a| a).count();
         if live != self.live_vertices as usize || live == 0 {
             return Err(format!(

@@ -52,7 +52,7 @@ use std::cell::RefCell;
 use super::{DEAD, Key, LiveComplex, NONE, pack, subset, unpack};
 use crate::complex::MAX_DIMENSION;
 use crate::relation::handle::{
-    HandleForm, Navigate, Order, SimplexHandle, TopId, VertexId, Vertices,
+    HandleForm, Navigate, Order, RelationView, SimplexHandle, TopId, VertexId, Vertices,
 };
 use crate::relation::{QueryError, Topology, normalize_simplex};
 use crate::structures::common::{Scratch, faces_containing};
@@ -124,6 +124,23 @@ impl LiveComplex {
         Ok(self.face_handle(t.raw, ((1u32 << (t.dim() + 1)) - 1) as u16))
     }
 
+    /// Top simplex `t` (a top id of the handle API, as [`Navigate::top`] takes) with its
+    /// vertices in their stored order — the input winding, b replaced by a in place after a
+    /// contraction — lent from the top table: no copy, no allocation; the borrow ends at the
+    /// next edit. [`Navigate::top_as_given`] gives the same ids by value. `InvalidHandle` for a
+    /// removed slot, and for an isolated vertex (a top 0-simplex: its id is the top id's slot,
+    /// and no row of a table holds it). O(1).
+    pub fn top_as_given_slice(&self, t: TopId) -> Result<&[u32], QueryError> {
+        let h = self.top(t)?;
+        if h.form() == HandleForm::Dense {
+            return Err(invalid(
+                h,
+                "an isolated vertex (top 0-simplex) has no stored row: it is its own id",
+            ));
+        }
+        Ok(self.top_raw(t.0))
+    }
+
     /// The handle's simplex, ascending, after checking it.
     fn handle_vertices(&self, h: SimplexHandle) -> Result<Vertices, QueryError> {
         let h = self.live_form(h)?;
@@ -149,6 +166,13 @@ impl LiveComplex {
     /// `StaleHandle`: a vertex of it was removed, or the simplex itself is gone.
     fn live_form(&self, h: SimplexHandle) -> Result<SimplexHandle, QueryError> {
         self.check_form(h)?;
+        if h.form() == HandleForm::Dense && h.dim() > 0 {
+            // An index of the numbering of the moment (`dense` module): named canonically.
+            let row = self.table(h.dim()).get(h.index() as usize);
+            return Ok(self
+                .canonical(row)
+                .expect("a row of the table is a simplex"));
+        }
         if h.form() == HandleForm::Dense || self.top_raw(h.index())[0] < DEAD {
             return Ok(h);
         }
@@ -197,7 +221,12 @@ impl LiveComplex {
         }
         if h.form() == HandleForm::Dense {
             if h.dim() != 0 {
-                return Err(invalid(h, "the live complex numbers only vertices densely"));
+                if h.dim() > Topology::dimension(self)
+                    || h.index() as usize >= self.index_count(h.dim())
+                {
+                    return Err(invalid(h, "index beyond the simplices of its dimension"));
+                }
+                return Ok(());
             }
             if h.index() >= self.vertex_slots() {
                 return Err(invalid(h, "vertex beyond the vertex slots"));
@@ -357,17 +386,76 @@ impl Navigate for LiveComplex {
         self.canonical(s).ok_or_else(not_in)
     }
 
-    /// Vertices only (`p = 0`): the live complex numbers no other dimension densely; locate
-    /// other simplices or take them from navigation answers.
+    /// A vertex: its slot. Above vertices: the p-simplex of rank `index` in the numbering of
+    /// the moment (`dense` module; its table built on first use), named canonically by a top
+    /// simplex, so that the handle lasts across edits even though the index does not.
     fn handle(&self, p: usize, index: u32) -> Result<SimplexHandle, QueryError> {
-        if p != 0 {
-            return Err(invalid(
-                SimplexHandle::dense(p.min(MAX_DIMENSION), index),
-                "the live complex numbers only vertices densely (locate other simplices)",
-            ));
+        let h = SimplexHandle::dense(p.min(MAX_DIMENSION), index).with_generation(self.epoch);
+        if p > MAX_DIMENSION {
+            return Err(invalid(h, "dimension above the complex's"));
         }
-        let h = self.vertex_handle(index);
-        Navigate::check(self, h).map(|_| h)
+        self.live_form(h)
+    }
+
+    /// A vertex: its slot; above: the rank of its vertices in the numbering of the moment
+    /// (`dense` module), O(p log n_p) once the table is built.
+    fn index_of(&self, h: SimplexHandle) -> Result<u32, QueryError> {
+        let h = self.live_form(h)?;
+        if h.form() == HandleForm::Dense {
+            return Ok(h.index());
+        }
+        Ok(self.rank_of(&self.handle_vertices(h)?))
+    }
+
+    /// The walk of `visit`, each answer's index found by [`Navigate::index_of`] (its vertices
+    /// read from its handle, then a binary search): both orders cost the same, answers come
+    /// lexicographic, which is also ascending index order.
+    fn related_ids(
+        &self,
+        h: SimplexHandle,
+        q: usize,
+        _order: Order,
+        ids: &mut Vec<u32>,
+    ) -> Result<(), QueryError> {
+        if q == 0 {
+            return self.visit(h, 0, &mut |x| ids.push(x.index()));
+        }
+        if q <= Topology::dimension(self) {
+            self.table(q); // built before the walk, not inside its visitor
+        }
+        let mut failed = None;
+        self.visit(h, q, &mut |x| match self.dense_of(x) {
+            Ok(i) => ids.push(i),
+            Err(e) => failed = Some(e),
+        })?;
+        failed.map_or(Ok(()), Err)
+    }
+
+    /// One `related_ids` per index.
+    fn related_batch(
+        &self,
+        p: usize,
+        indices: &[u32],
+        q: usize,
+        order: Order,
+        ids: &mut Vec<u32>,
+        ends: &mut Vec<usize>,
+    ) -> Result<(), QueryError> {
+        for &i in indices {
+            let h = Navigate::handle(self, p, i)?;
+            self.related_ids(h, q, order, ids)?;
+            ends.push(ids.len());
+        }
+        Ok(())
+    }
+
+    /// Built on first use, valid until the next edit (`dense` module).
+    fn relation_view(&self, p: usize, q: usize) -> Result<Option<RelationView<'_>>, QueryError> {
+        let d = Topology::dimension(self);
+        if p > d || q > d {
+            return Err(QueryError::DimensionOutOfRange { p, q, dim: d });
+        }
+        self.dense_view(p, q).map(Some)
     }
 
     /// O(1) through a live top; through a removed one, O(d·k_v) (it is located again: module doc).
@@ -424,8 +512,9 @@ impl Navigate for LiveComplex {
         Ok(Vertices::from_slice(self.top_raw(t.0)))
     }
 
+    /// The dense numbering's tables and views built since the last edit (`dense` module).
     fn handle_bytes(&self) -> u64 {
-        0
+        self.dense.bytes()
     }
 
     fn generation(&self) -> u32 {

@@ -130,6 +130,8 @@ impl LiveComplex {
             coords,
             epoch: 0,
             images: Vec::new(),
+            data: super::data::LiveData::default(),
+            dense: Default::default(),
         };
         for (i, t) in tables.iter().enumerate() {
             for s in t.chunks_exact(i + 2) {

@@ -25,8 +25,10 @@
 //! index from a lexicographic table of that dimension built once, on the first request that
 //! needs it (O(n_p log n_p) time, (p + 1)·n_p integers, then O(p log n_p) per handle lookup);
 //! a caller that never asks for that dimension never pays for it. [`HandleForm::TopFace`] (a
-//! top simplex plus a bit mask of its vertices) is reserved for structures that prefer not to
-//! number implicit simplices (an editable structure, for instance); none of the nine uses it.
+//! top simplex plus a bit mask of its vertices) is for structures whose handles must outlive
+//! edits (the live complex); none of the nine uses it. Such a structure still has dense indices
+//! ([`Navigate::index_of`], [`Navigate::handle`]), numbered as above by tables built on demand,
+//! valid until its next edit (`crate::live`, module `dense`).
 //!
 //! `u32::MAX` means "none" for every id ([`VertexId::NONE`], [`TopId::NONE`],
 //! [`SimplexHandle::NONE`]).
@@ -501,9 +503,21 @@ pub trait Navigate: Topology {
     }
 
     /// Whether every handle this structure gives out is dense (true for the nine; the live
-    /// complex names simplices of dimension ≥ 1 by a top simplex and a vertex mask).
+    /// complex names simplices of dimension ≥ 1 by a top simplex and a vertex mask). Every
+    /// structure has dense indices all the same ([`Navigate::index_of`], [`Navigate::handle`]);
+    /// this says whether a handle *is* its index.
     fn dense(&self) -> bool {
         true
+    }
+
+    /// The dense index of `h`: its rank among the simplices of its dimension in ascending
+    /// lexicographic order (a vertex: its id), the index [`Navigate::handle`] takes back and
+    /// `related_ids`, `related_batch`, `degree_batch` and [`Navigate::relation_view`] use.
+    /// Checked as [`Navigate::check`]. O(1) for dense handles; the live complex finds it in
+    /// its numbering of the moment (O(p log n_p), see `live::dense`).
+    fn index_of(&self, h: SimplexHandle) -> Result<u32, QueryError> {
+        self.check(h)?;
+        Ok(h.index())
     }
 
     /// Heap bytes of the handle bookkeeping (windings, tables built on first use), which
@@ -560,8 +574,8 @@ pub trait Navigate: Topology {
     /// R_{p,q} of many handles at once, of any dimensions (mixed), as one CSR of handles: for
     /// each handle of `hs`, its answer (as [`Navigate::related`] gives it, in `order`) is
     /// appended to `out` and the end of that answer in `out` to `ends`. Works for every
-    /// structure, the live complex included (whose simplices above vertices have no dense index
-    /// for [`Navigate::related_batch`]). Errors as [`Navigate::related`] for the first handle
+    /// structure; on the live complex the answers last across edits, unlike the dense indices
+    /// of [`Navigate::related_batch`]. Errors as [`Navigate::related`] for the first handle
     /// that fails; then `out` and `ends` hold a prefix. Cost: one [`Navigate::visit`] per handle;
     /// no allocation beyond `out` and `ends`.
     fn related_handles_batch(
@@ -621,8 +635,9 @@ pub trait Navigate: Topology {
     /// index of R_{p,q} — one walk over every p-simplex (the cost of `related_batch` over all
     /// of them), its arrays grown fallibly (`TooLarge`) — kept until the structure is dropped
     /// (`4 (n_p + 1) + 4 · Σ|R_{p,q}|` bytes, in [`Navigate::handle_bytes`]); later calls are
-    /// O(1). `DimensionOutOfRange` for p or q above the dimension. `Ok(None)` for structures
-    /// without dense handles (the live complex).
+    /// O(1). `DimensionOutOfRange` for p or q above the dimension. `Ok(None)` for a structure
+    /// that lends no view (none of this crate's: the live complex lends one valid until its
+    /// next edit, see `live::dense`).
     fn relation_view(&self, _p: usize, _q: usize) -> Result<Option<RelationView<'_>>, QueryError> {
         Ok(None)
     }

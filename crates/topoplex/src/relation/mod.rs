@@ -77,9 +77,10 @@ impl StructureKind {
         self as u32
     }
 
-    /// The kind of C ABI number `n`, if any.
+    /// The kind of C ABI number `n`, if any: the nine of [`StructureKind::ALL`] and the live
+    /// complex (9), which builds, saves and opens as any kind does.
     pub fn from_abi(n: u32) -> Option<StructureKind> {
-        StructureKind::ALL.into_iter().find(|k| k.abi() == n)
+        StructureKind::NAMED.into_iter().find(|k| k.abi() == n)
     }
 
     /// The CLI name (`ig`, `sig`, ...).
@@ -109,9 +110,14 @@ impl StructureKind {
         named
     };
 
-    /// The kind whose CLI name is `name` (any of [`StructureKind::NAMED`], `iastar` included).
+    /// The kind whose CLI name is `name`, ASCII case ignored (`pe`, `PE`, `IaStar`: any of
+    /// [`StructureKind::NAMED`], the live complex included): the one map from names to kinds,
+    /// behind the CLI's `--structure`, `tpx_kind_from_name` and the C++ `Kind::from_name`.
+    /// O(1) (ten comparisons).
     pub fn from_name(name: &str) -> Option<StructureKind> {
-        StructureKind::NAMED.into_iter().find(|k| k.name() == name)
+        StructureKind::NAMED
+            .into_iter()
+            .find(|k| k.name().eq_ignore_ascii_case(name))
     }
 }
 
@@ -484,6 +490,22 @@ mod tests {
         for k in StructureKind::NAMED {
             assert_eq!(StructureKind::from_name(k.name()), Some(k));
         }
-        assert_eq!(StructureKind::from_name("IG"), None);
+        assert_eq!(StructureKind::from_name("IG"), Some(StructureKind::Ig));
+        assert_eq!(
+            StructureKind::from_name("IaStar"),
+            Some(StructureKind::IaStar)
+        );
+        for bad in ["", "i", "igx", " ig", "ia*", "iastar\0"] {
+            assert_eq!(StructureKind::from_name(bad), None, "{bad:?}");
+        }
+    }
+
+    #[test]
+    fn every_named_kind_is_found_by_its_abi_number_and_no_other_number_is() {
+        for k in StructureKind::NAMED {
+            assert_eq!(StructureKind::from_abi(k.abi()), Some(k));
+        }
+        assert_eq!(StructureKind::from_abi(10), None);
+        assert_eq!(StructureKind::from_abi(u32::MAX), None);
     }
 }

@@ -27,6 +27,20 @@
 //!    It stops once the live top simplices are at most `ceil(ratio × input top simplices)`.
 //! 4. [`LiveComplex::to_complex`], for any writer or any of the nine structures.
 //!
+//! # Data and regions
+//! The live complex carries the input's attributes through every contraction (the
+//! [`crate::live::data`] module): each surviving top keeps its labels, a top that drops a
+//! dimension keeps its preimage's, listed faces are renamed with the edge, and the output
+//! complex has them all. With [`Options::keep_regions`] (an integer label of the listed
+//! simplices, such as `gmsh:physical` or `medit:ref`), a contraction of b into a must leave the
+//! regions apart (`Regions::allow`, tried in both directions): b lies in the closure of at most
+//! two labels (an interface or an interior vertex, never a corner where three or more meet —
+//! labels of the listed faces through b count, by dimension), the tops and listed faces through
+//! the edge carry exactly b's labels (so an interface vertex moves only along its interface),
+//! and no label loses its last tops with the edge. When a has more labels than b, a stays where
+//! it is. Refusals are counted in [`Stats::refused_regions`]; each check costs O(k_a + k_b)
+//! plus the listed faces at the two vertices.
+//!
 //! # Cost
 //! Step 1 O(Σ_σ d² (n² + d·k_v)), step 2 O(E (n³ + log E)), step 3 per contraction the
 //! [`LiveComplex::contract`] cost plus O(deg(a) (n³ + log E)) for the new costs. Memory beyond
@@ -58,13 +72,28 @@ use quadric::{QuadricSpace, sum_into};
 pub const MAX_TOPS_PER_DIMENSION: usize = 1 << 27;
 
 /// What to simplify to.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Options {
     /// Fraction of the input's top simplices to keep, in (0, 1].
     pub ratio: f64,
     /// Contract only edges satisfying the link condition in every dimension: the Betti numbers
     /// are kept, and a 2- or 3-manifold stays one.
     pub preserve_topology: bool,
+    /// Keep the regions of this integer label attribute of the listed simplices apart (module
+    /// doc, "Data and regions"): no contraction erases a region or merges two across their
+    /// interface.
+    pub keep_regions: Option<String>,
+}
+
+impl Options {
+    /// Down to `ratio`, link-checked when `preserve_topology`, without regions.
+    pub fn new(ratio: f64, preserve_topology: bool) -> Options {
+        Options {
+            ratio,
+            preserve_topology,
+            keep_regions: None,
+        }
+    }
 }
 
 /// Why a complex was not simplified.
@@ -78,6 +107,16 @@ pub enum SimplifyError {
     NoCoordinates {
         /// The input file, when known.
         file: Option<std::path::PathBuf>,
+    },
+    /// `keep_regions` names no integer label attribute of the listed simplices.
+    #[error("{}--keep-regions {name}: {why}", source_prefix(.file))]
+    Regions {
+        /// The input file, when known.
+        file: Option<std::path::PathBuf>,
+        /// The attribute asked for.
+        name: String,
+        /// What the input has instead.
+        why: String,
     },
     /// A coordinate is NaN or infinite.
     #[error("{}vertex {vertex} has a non-finite coordinate", source_prefix(.file))]
@@ -132,6 +171,8 @@ pub struct Stats {
     /// Times the queue ran dry and the refused edges whose neighbourhood had changed since were
     /// queued again.
     pub refills: usize,
+    /// Contractions refused to keep the regions apart (with `keep_regions`).
+    pub refused_regions: usize,
 }
 
 /// The simplified complex and what it took.
@@ -210,7 +251,12 @@ pub fn simplify_live(
         return Err(SimplifyError::NoCoordinates { file: None });
     }
     let input_tops = top_count(live);
+    let regions = match &options.keep_regions {
+        Some(name) => Some(Regions::of(live, name)?),
+        None => None,
+    };
     let mut state = State::try_new(live, options).map_err(memory)?;
+    state.regions = regions;
     state.stats.input_tops = input_tops;
     state.stats.target_tops = ((options.ratio * input_tops as f64).ceil() as usize).max(1);
     init_quadrics(&mut state);
@@ -317,6 +363,106 @@ struct State<'a> {
     tops: usize,
     stats: Stats,
     scratch: Scratch,
+    /// With `keep_regions`: the label attribute and the live tops per label.
+    regions: Option<Regions>,
+}
+
+/// `keep_regions`'s state: which label attribute, and how many live tops carry each label.
+struct Regions {
+    attr: usize,
+    counts: rustc_hash::FxHashMap<i64, usize>,
+}
+
+impl Regions {
+    fn of(live: &LiveComplex, name: &str) -> Result<Regions, SimplifyError> {
+        let attr = live
+            .label_attribute(name)
+            .ok_or_else(|| SimplifyError::Regions {
+                file: None,
+                name: name.to_string(),
+                why: "no integer label attribute of that name on the listed simplices".into(),
+            })?;
+        let mut counts = rustc_hash::FxHashMap::default();
+        for (t, _) in live.tops() {
+            *counts
+                .entry(live.slot_label(attr, t.dim(), t.slot()))
+                .or_insert(0) += 1;
+        }
+        Ok(Regions { attr, counts })
+    }
+
+    /// The (dimension, label) pairs of the live tops and listed faces through `v` (through both
+    /// `v` and `with` when given), sorted, each once, into `out`.
+    fn labels(&self, live: &LiveComplex, v: u32, with: Option<u32>, out: &mut Vec<(usize, i64)>) {
+        out.clear();
+        let through = |s: &[u32]| with.is_none_or(|w| s.contains(&w));
+        if let Ok(star) = live.vertex_star(VertexId(v)) {
+            for t in star {
+                if live.top_vertices(t).is_ok_and(through) {
+                    out.push((t.dim(), live.slot_label(self.attr, t.dim(), t.slot())));
+                }
+            }
+        }
+        for (s, label) in live.record_labels_at(self.attr, v) {
+            if through(s) {
+                out.push((s.len() - 1, label));
+            }
+        }
+        out.sort_unstable();
+        out.dedup();
+    }
+
+    /// Whether `gone` may move onto `keep` without touching a region interface, and if so
+    /// whether the survivor must stay where `keep` is (it is on more interfaces than `gone`).
+    /// `gone` must lie on at most two regions' closure (an interface, not a corner where three
+    /// or more meet), the edge must carry exactly `gone`'s labels (so an interface vertex moves
+    /// only along its interface), and no label may lose its last tops with the edge.
+    fn allow(
+        &self,
+        live: &LiveComplex,
+        keep: u32,
+        gone: u32,
+        scratch: &mut [Vec<(usize, i64)>; 2],
+    ) -> Option<bool> {
+        let [at_gone, on_edge] = scratch;
+        self.labels(live, gone, None, at_gone);
+        if at_gone.len() > 2 {
+            return None;
+        }
+        self.labels(live, gone, Some(keep), on_edge);
+        if on_edge != at_gone {
+            return None;
+        }
+        // Tops through the edge, per label: they go with it (a conservative bound).
+        let star = live.vertex_star(VertexId(gone)).ok()?;
+        let mut through: Vec<i64> = star
+            .filter(|&t| live.top_vertices(t).is_ok_and(|s| s.contains(&keep)))
+            .map(|t| live.slot_label(self.attr, t.dim(), t.slot()))
+            .collect();
+        through.sort_unstable();
+        for run in through.chunk_by(|x, y| x == y) {
+            if self.counts.get(&run[0]).copied().unwrap_or(0) <= run.len() {
+                return None;
+            }
+        }
+        self.labels(live, keep, None, on_edge);
+        Some(on_edge != at_gone)
+    }
+
+    /// After a contraction: the retired tops' labels out, the created ones' in.
+    fn update(&mut self, live: &LiveComplex, undo: &crate::live::UndoRecord) {
+        for (p, slot) in undo.removed_slots() {
+            if let Some(c) = self.counts.get_mut(&live.slot_label(self.attr, p, slot)) {
+                *c -= 1;
+            }
+        }
+        for (p, slot) in undo.inserted_slots() {
+            *self
+                .counts
+                .entry(live.slot_label(self.attr, p, slot))
+                .or_insert(0) += 1;
+        }
+    }
 }
 
 /// Buffers reused by every cost evaluation and quadric construction.
@@ -330,6 +476,8 @@ struct Scratch {
     mark: Vec<u32>,
     mark_stamp: u32,
     ring: Vec<u32>,
+    /// Region labels of a vertex and of an edge (`keep_regions`).
+    labels: [Vec<(usize, i64)>; 2],
 }
 
 impl<'a> State<'a> {
@@ -360,6 +508,7 @@ impl<'a> State<'a> {
             parked: Vec::new(),
             tops,
             stats: Stats::default(),
+            regions: None,
             scratch: Scratch {
                 q: vec![0.0; space.len()],
                 x: vec![0.0; n],
@@ -638,8 +787,32 @@ fn contract_edge(state: &mut State, entry: Entry) -> bool {
             .map(|s| s.count())
             .unwrap_or(0)
     };
-    let (keep, gone) = if star(a) >= star(b) { (a, b) } else { (b, a) };
+    let (mut keep, mut gone) = if star(a) >= star(b) { (a, b) } else { (b, a) };
+    let mut stay = false;
+    if let Some(regions) = &state.regions {
+        let mut labels = std::mem::take(&mut state.scratch.labels);
+        let way = match regions.allow(state.live, keep, gone, &mut labels) {
+            Some(s) => Some((keep, gone, s)),
+            None => regions
+                .allow(state.live, gone, keep, &mut labels)
+                .map(|s| (gone, keep, s)),
+        };
+        state.scratch.labels = labels;
+        match way {
+            Some((k, g, s)) => (keep, gone, stay) = (k, g, s),
+            None => {
+                state.stats.refused_regions += 1;
+                return false;
+            }
+        }
+    }
     state.cost(keep, gone);
+    if stay {
+        // The survivor is on more interfaces than the vertex it absorbs: it stays put.
+        let at = state.point(keep).to_vec();
+        state.scratch.x.clear();
+        state.scratch.x.extend_from_slice(&at);
+    }
     let x = std::mem::take(&mut state.scratch.x);
     let result = state
         .live
@@ -655,6 +828,9 @@ fn contract_edge(state: &mut State, entry: Entry) -> bool {
         }
         Err(e) => panic!("contracting live edge {{{keep}, {gone}}}: {e}"),
     };
+    if let Some(regions) = &mut state.regions {
+        regions.update(state.live, &undo);
+    }
     let removed = undo.removed_tops().count();
     let inserted = undo.inserted_tops().count();
     state.tops =

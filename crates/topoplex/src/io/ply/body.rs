@@ -8,7 +8,9 @@
 
 use ply_rs_bw::ply::{ElementDef, Header, PropertyType, ScalarType};
 
-use super::super::{Coords, RawInput, ReadErrorKind, echo, no_room, syntax, try_with_capacity};
+use super::super::{
+    Coords, Float, RawInput, ReadErrorKind, echo, no_room, parse_real, syntax, try_with_capacity,
+};
 use super::id;
 use crate::complex::table;
 
@@ -45,18 +47,55 @@ fn is_number(t: &[u8]) -> bool {
     i == t.len()
 }
 
-/// `t` parsed as the scalar type `ty`, as a float (every PLY scalar fits one exactly).
-fn scalar(t: &str, ty: &ScalarType) -> Option<f64> {
-    Some(match ty {
-        ScalarType::Char => t.parse::<i8>().ok()?.into(),
-        ScalarType::UChar => t.parse::<u8>().ok()?.into(),
-        ScalarType::Short => t.parse::<i16>().ok()?.into(),
-        ScalarType::UShort => t.parse::<u16>().ok()?.into(),
-        ScalarType::Int => t.parse::<i32>().ok()?.into(),
-        ScalarType::UInt => t.parse::<u32>().ok()?.into(),
-        ScalarType::Float => t.parse::<f32>().ok()?.into(),
-        ScalarType::Double => t.parse::<f64>().ok()?,
-    })
+/// Whether `t` spells a NaN or an infinity (`nan`, `inf`, `infinity`, any case, signed).
+fn is_non_finite(t: &[u8]) -> bool {
+    let t = t
+        .strip_prefix(b"-")
+        .or_else(|| t.strip_prefix(b"+"))
+        .unwrap_or(t);
+    ["nan", "inf", "infinity"]
+        .iter()
+        .any(|w| t.eq_ignore_ascii_case(w.as_bytes()))
+}
+
+/// The PLY name of a scalar type, for messages.
+fn type_name(ty: &ScalarType) -> &'static str {
+    match ty {
+        ScalarType::Char => "char",
+        ScalarType::UChar => "uchar",
+        ScalarType::Short => "short",
+        ScalarType::UShort => "ushort",
+        ScalarType::Int => "int",
+        ScalarType::UInt => "uint",
+        ScalarType::Float => "float",
+        ScalarType::Double => "double",
+    }
+}
+
+/// `t` parsed as the scalar type `ty`, as a float (every PLY scalar fits one exactly); `what`
+/// names the value for the message. Floats go through the readers' shared check
+/// ([`super::super::parse_real`]): a value the declared type would turn into infinity or 0
+/// is refused; `nan` and `inf` spelled so are accepted (as in every reader).
+fn scalar(t: &str, ty: &ScalarType, what: &dyn Fn() -> String) -> Result<f64, String> {
+    let int = |ok: Option<f64>| {
+        ok.ok_or_else(|| format!("'{}' is not a {} ({})", echo(t), type_name(ty), what()))
+    };
+    let real = |f: Float| {
+        parse_real(t, &what(), f).map_err(|e| match e {
+            ReadErrorKind::Syntax(m) => m,
+            e => e.to_string(),
+        })
+    };
+    match ty {
+        ScalarType::Char => int(t.parse::<i8>().ok().map(f64::from)),
+        ScalarType::UChar => int(t.parse::<u8>().ok().map(f64::from)),
+        ScalarType::Short => int(t.parse::<i16>().ok().map(f64::from)),
+        ScalarType::UShort => int(t.parse::<u16>().ok().map(f64::from)),
+        ScalarType::Int => int(t.parse::<i32>().ok().map(f64::from)),
+        ScalarType::UInt => int(t.parse::<u32>().ok().map(f64::from)),
+        ScalarType::Float => real(Float::F32),
+        ScalarType::Double => real(Float::F64),
+    }
 }
 
 /// What is kept of an element's properties: the index of each wanted one, if present.
@@ -196,16 +235,21 @@ fn read_binary(
 }
 
 /// One element line's values: the wanted properties as floats (lists: their entries appended
-/// to `list`), checked against the property types.
+/// to `list`), each token checked against its property's type. Entry `index` of element
+/// `name` names the line's values in messages; a line with more values than the element's
+/// properties declare is refused (nothing is dropped silently).
+#[allow(clippy::too_many_arguments)]
 fn read_line(
     l: &[u8],
     line: u32,
+    name: &str,
+    index: usize,
     def: &ElementDef,
     wanted: &Wanted,
     vals: &mut [f64],
     list: &mut Vec<f64>,
 ) -> Res<()> {
-    let bad = |msg: String| (line, syntax(format!("PLY: {}", echo(&msg))));
+    let bad = |msg: String| (line, syntax(format!("PLY: {msg}")));
     let mut body = l;
     while let Some((&c, r)) = body.split_last() {
         if c == b'\n' || c == b'\r' {
@@ -217,45 +261,56 @@ fn read_line(
     let mut toks = body
         .split(|&c| c == b' ' || c == b'\t')
         .filter(|t| !t.is_empty());
-    // The crate checks the whole line's grammar first.
-    if body
-        .split(|&c| c == b' ' || c == b'\t')
-        .any(|t| !t.is_empty() && !is_number(t))
-    {
-        return Err(bad(format!(
-            "Couldn't read element line '{}'",
-            String::from_utf8_lossy(body)
-        )));
-    }
-    let mut next = |ty: &dyn std::fmt::Debug| {
-        toks.next()
-            .map(|t| std::str::from_utf8(t).unwrap_or(""))
-            .ok_or_else(|| {
-                bad(format!(
-                    "expected element of type '{ty:?}', but found nothing"
-                ))
-            })
+    let mut seen = 0usize;
+    // The next token, checked to be a number as the PLY grammar has it (`nan` and `inf` too
+    // where the type is a float), as text.
+    let mut next = |ty: &ScalarType, prop: &str| -> Res<&str> {
+        let what = || format!("property '{}' of {} #{index}", echo(prop), echo(name));
+        let t = toks.next().ok_or_else(|| {
+            bad(format!(
+                "{} #{index} ends after {seen} values; expected a {} for {}",
+                echo(name),
+                type_name(ty),
+                what()
+            ))
+        })?;
+        seen += 1;
+        let float = matches!(ty, ScalarType::Float | ScalarType::Double);
+        if !(is_number(t) || float && is_non_finite(t)) {
+            return Err(bad(format!(
+                "'{}' is not a number ({}, declared {})",
+                echo(t),
+                what(),
+                type_name(ty)
+            )));
+        }
+        // The grammar admits ASCII only.
+        Ok(std::str::from_utf8(t).unwrap_or(""))
     };
-    for (p, (name, prop)) in def.properties.iter().enumerate() {
+    for (p, (prop, def_p)) in def.properties.iter().enumerate() {
         let slot = wanted.keys.iter().position(|&k| k == Some(p));
-        match &prop.data_type {
+        let what = || format!("property '{}' of {} #{index}", echo(prop), echo(name));
+        match &def_p.data_type {
             PropertyType::Scalar(ty) => {
-                let t = next(ty)?;
-                let x = scalar(t, ty)
-                    .ok_or_else(|| bad(format!("'{t}' is no {ty:?} (property '{name}')")))?;
+                let t = next(ty, prop)?;
+                let x = scalar(t, ty, &what).map_err(bad)?;
                 if let Some(s) = slot {
                     vals[s] = x;
                 }
             }
             PropertyType::List(count_ty, ty) => {
-                let t = next(count_ty)?;
-                let count: usize = t
-                    .parse()
-                    .map_err(|_| bad(format!("'{t}' is no list length (property '{name}')")))?;
-                for _ in 0..count {
-                    let t = next(ty)?;
-                    let x = scalar(t, ty)
-                        .ok_or_else(|| bad(format!("'{t}' is no {ty:?} (property '{name}')")))?;
+                let t = next(count_ty, prop)?;
+                let count =
+                    scalar(t, count_ty, &|| format!("list length of {}", what())).map_err(bad)?;
+                if count < 0.0 || count.fract() != 0.0 {
+                    return Err(bad(format!(
+                        "list length '{t}' is not a count ({})",
+                        what()
+                    )));
+                }
+                for _ in 0..count as u64 {
+                    let t = next(ty, prop)?;
+                    let x = scalar(t, ty, &what).map_err(bad)?;
                     if slot.is_some() {
                         table::try_push(list, x)
                             .map_err(|b| (line, no_room("a list property's entries")(b)))?;
@@ -263,6 +318,15 @@ fn read_line(
                 }
             }
         }
+    }
+    if let Some(t) = toks.next() {
+        let more = 1 + toks.count();
+        return Err(bad(format!(
+            "{} #{index} has {more} more value(s) than its properties declare ('{}' follows \
+             the last of its {seen} values)",
+            echo(name),
+            echo(t)
+        )));
     }
     Ok(())
 }
@@ -354,9 +418,28 @@ impl Kept {
     fn prepare<'h>(&mut self, name: &str, def: &'h ElementDef) -> Res<Wanted<'h>> {
         match name {
             "vertex" => self.prepare_vertices(def),
-            "face" => self.prepare_faces(def),
+            "face" | "tetra" | "tristrips" => self.prepare_faces(name, def),
             "edge" => self.prepare_edges(def),
-            _ => Ok(Wanted::new(def, &[])),
+            _ => {
+                // An element that lists vertex ids but is none of the above would be dropped.
+                let ids = ["vertex_indices", "vertex_index", "vertex1", "vertex2"];
+                if def.count > 0
+                    && let Some((p, _)) = def
+                        .properties
+                        .iter()
+                        .find(|(k, _)| ids.contains(&k.as_str()))
+                {
+                    return Err(at0(syntax(format!(
+                        "PLY: element '{}' has a '{}' property (vertex ids) but is not an element \
+                         Topoplex reads (vertex, face, edge, tetra, tristrips); refusing it rather \
+                         than dropping its {} entries",
+                        echo(name),
+                        echo(p),
+                        def.count
+                    ))));
+                }
+                Ok(Wanted::new(def, &[]))
+            }
         }
     }
 
@@ -382,17 +465,18 @@ impl Kept {
         Ok(w)
     }
 
-    /// `vertex_indices` (or `vertex_index`), which must be a list of integers.
-    fn prepare_faces<'h>(&mut self, def: &'h ElementDef) -> Res<Wanted<'h>> {
+    /// `vertex_indices` (or `vertex_index`) of a `face`, `tetra` or `tristrips` element, which
+    /// must be a list of integers.
+    fn prepare_faces<'h>(&mut self, name: &str, def: &'h ElementDef) -> Res<Wanted<'h>> {
         let w = Wanted::new(def, &[&["vertex_indices", "vertex_index"]]);
         match w.keys[0].map(|p| &def.properties[p].data_type) {
             _ if def.count == 0 => {}
-            None => return Err(at0(syntax("face #0 has no vertex_indices list"))),
+            None => return Err(at0(syntax(format!("{name} #0 has no vertex_indices list")))),
             Some(PropertyType::List(_, ScalarType::Float | ScalarType::Double))
             | Some(PropertyType::Scalar(_)) => {
-                return Err(at0(syntax(
-                    "face #0: vertex_indices is not a list of integers",
-                )));
+                return Err(at0(syntax(format!(
+                    "{name} #0: vertex_indices is not a list of integers"
+                ))));
             }
             Some(PropertyType::List(..)) => {}
         }
@@ -427,7 +511,8 @@ impl Kept {
             let read = match records {
                 Records::Text(lines) => match lines.next_line() {
                     Some((l, n)) => {
-                        read_line(l, n, def, wanted, &mut self.vals, &mut self.list).map(|()| 0)
+                        read_line(l, n, name, i, def, wanted, &mut self.vals, &mut self.list)
+                            .map(|()| 0)
                     }
                     None => Ok(u32::try_from(lines.line).unwrap_or(u32::MAX)),
                 },
@@ -472,6 +557,8 @@ impl Kept {
             "vertex" => table::try_extend(&mut self.coords.data, &self.vals[..self.coords.dim])
                 .map_err(|b| at0(no_room("the vertex coordinates")(b)))?,
             "face" => push_face(&mut self.raw, &self.list, i)?,
+            "tetra" => push_tetra(&mut self.raw, &self.list, i)?,
+            "tristrips" => push_strips(&mut self.raw, &self.list, i)?,
             "edge" => {
                 for x in [self.vals[0], self.vals[1]] {
                     let v = id_of(x, "")
@@ -529,4 +616,63 @@ fn push_face(raw: &mut RawInput, list: &[f64], i: usize) -> Res<()> {
             ReadErrorKind::Polygon(k)
         )))),
     }
+}
+
+/// Tetra `i` with ids `list` as a tetrahedron of `raw`: exactly 4 ids.
+fn push_tetra(raw: &mut RawInput, list: &[f64], i: usize) -> Res<()> {
+    let what = || format!("tetra #{i}");
+    if list.len() != 4 {
+        return Err(at0(syntax(format!(
+            "tetra #{i} has {} vertex ids; a tetra element lists 4",
+            list.len()
+        ))));
+    }
+    let mut ids = [0u32; 4];
+    for (v, &x) in ids.iter_mut().zip(list) {
+        *v = id_of(x, "").map_err(|_| at0(id_of(x, &what()).unwrap_err()))?;
+    }
+    raw.try_push(&ids, 0).map_err(at0)
+}
+
+/// Tristrips entry `i` as triangles of `raw`: its `vertex_indices` list holds strips separated
+/// by -1, and every 3 consecutive ids of a strip are a triangle (orientation, which alternates
+/// along a strip, is not kept: simplices are vertex sets). A triangle of a strip that repeats
+/// a vertex is a degenerate join between strips (the way writers stitch strips without -1)
+/// and is not a simplex, so it is skipped; a strip of 1 or 2 ids makes no triangle and is
+/// refused.
+fn push_strips(raw: &mut RawInput, list: &[f64], i: usize) -> Res<()> {
+    let what = || format!("tristrips #{i}");
+    let mut strip = [0u32; 2];
+    let mut len = 0usize;
+    let mut strip_index = 0usize;
+    let short = |len: usize, k: usize| {
+        at0(syntax(format!(
+            "tristrips #{i}: strip #{k} has {len} vertex ids; a strip needs at least 3"
+        )))
+    };
+    for &x in list {
+        if x == -1.0 {
+            if len < 3 {
+                return Err(short(len, strip_index));
+            }
+            len = 0;
+            strip_index += 1;
+            continue;
+        }
+        let v = id_of(x, "").map_err(|_| at0(id_of(x, &what()).unwrap_err()))?;
+        if len >= 2 {
+            let t = [strip[0], strip[1], v];
+            if t[0] != t[1] && t[1] != t[2] && t[0] != t[2] {
+                raw.try_push(&t, 0).map_err(at0)?;
+            }
+            strip = [strip[1], v];
+        } else {
+            strip[len] = v;
+        }
+        len += 1;
+    }
+    if len < 3 && (len > 0 || strip_index == 0) {
+        return Err(short(len, strip_index));
+    }
+    Ok(())
 }

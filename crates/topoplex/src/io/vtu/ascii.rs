@@ -13,8 +13,10 @@ use quick_xml::Reader;
 use quick_xml::events::{BytesStart, Event};
 
 use super::super::{Coords, RawInput, ReadErrorKind, capped_len, echo, no_room, syntax};
+use super::super::{Float, parse_real};
 use super::super::{check_integer, parse_count, parse_f64, parse_id};
-use crate::complex::table;
+use super::data::{self, Data};
+use crate::complex::{Location, table};
 
 type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
@@ -55,7 +57,9 @@ enum Target {
     Connectivity,
     Offsets,
     Types,
-    /// Point or cell data, or an array we do not read: its text is skipped.
+    /// Point or cell data: the array's index in [`Data`], and whether it is point data.
+    Data(usize, Location),
+    /// An array we do not read: its text is skipped.
     Skip,
 }
 
@@ -63,6 +67,8 @@ enum Target {
 #[derive(Default)]
 struct Piece {
     index: usize,
+    /// The line of its `<Piece>` tag.
+    line: u32,
     points: usize,
     cells: usize,
     /// Points of the pieces before (this piece's ids are shifted by it).
@@ -93,6 +99,8 @@ struct State<'a> {
     target: Option<Target>,
     raw: RawInput,
     data: Vec<f64>,
+    /// The point and cell data arrays.
+    arrays: Data,
 }
 
 /// Reads `bytes` when every data array is ASCII (see the module doc).
@@ -110,6 +118,7 @@ pub(super) fn parse(bytes: &[u8]) -> Res<Taken> {
         target: None,
         raw: RawInput::new(),
         data: Vec::new(),
+        arrays: Data::default(),
     };
     match s.run() {
         Ok(()) => s.finish().map(Taken::Yes),
@@ -203,12 +212,19 @@ impl State<'_> {
             b"Piece" => self.start_piece(attr("NumberOfPoints"), attr("NumberOfCells"), pos)?,
             b"Points" => self.section = "Points",
             b"Cells" => self.section = "Cells",
-            b"PointData" | b"CellData" => self.section = "",
+            b"PointData" => self.section = "PointData",
+            b"CellData" => self.section = "CellData",
             b"DataArray" => {
+                // A data array's declaration is checked here whatever its format: vtkio would
+                // read a String array as Float64.
+                let declared = self.data_array(e, pos)?;
                 if attr("format").as_deref() != Some(b"ascii") {
                     return Err(Stop::Vtkio);
                 }
-                let target = self.target_of(attr("type"), attr("Name"));
+                let target = match declared {
+                    Some(t) => t,
+                    None => self.target_of(attr("type"), attr("Name")),
+                };
                 self.target = Some(target);
             }
             _ => {}
@@ -246,6 +262,7 @@ impl State<'_> {
             .map_err(|_| Stop::Err(line, syntax("more than 2^32 points")))?;
         self.piece = Some(Piece {
             index,
+            line,
             points,
             cells,
             point_base,
@@ -254,6 +271,29 @@ impl State<'_> {
             ..Piece::default()
         });
         Ok(())
+    }
+
+    /// A point or cell data array's declaration, checked, and its place in [`Data`] (`None`
+    /// outside `PointData` and `CellData`).
+    fn data_array(&mut self, e: &BytesStart, pos: usize) -> Result<Option<Target>, Stop> {
+        let location = match self.section {
+            "PointData" => Location::Vertices,
+            "CellData" => Location::Listed,
+            _ => return Ok(None),
+        };
+        let Some(piece) = self.piece.as_ref() else {
+            return Ok(None);
+        };
+        let index = piece.index;
+        self.started = true;
+        let line = self.line_at(pos);
+        let (name, kind, components) =
+            data::declaration(e, location).map_err(|m| Stop::Err(line, syntax(m)))?;
+        let i = self
+            .arrays
+            .open(index, location, name, kind, components)
+            .map_err(|m| Stop::Err(line, syntax(m)))?;
+        Ok(Some(Target::Data(i, location)))
     }
 
     /// Which array a `DataArray` of this `type` and `Name` fills.
@@ -292,6 +332,7 @@ impl State<'_> {
             piece,
             raw: &mut self.raw,
             data: &mut self.data,
+            arrays: &mut self.arrays,
         };
         fill.reserve(text.len()).map_err(|k| Stop::Err(line, k))?;
         let mut i = 0;
@@ -324,15 +365,28 @@ impl State<'_> {
         match name {
             b"DataArray" => {
                 if let (Some(t), Some(piece)) = (self.target.take(), self.piece.as_mut()) {
-                    let msg = piece.close_array(t);
+                    let msg = match t {
+                        Target::Data(i, location) => {
+                            let n = match location {
+                                Location::Vertices => piece.points,
+                                Location::Listed => piece.cells,
+                            };
+                            self.arrays.close(i, piece.index, n).err()
+                        }
+                        t => piece.close_array(t),
+                    };
                     if let Some(msg) = msg {
                         return Err(Stop::Err(self.line_at(pos), syntax(msg)));
                     }
                 }
             }
-            b"Points" | b"Cells" => self.section = "",
+            b"Points" | b"Cells" | b"PointData" | b"CellData" => self.section = "",
             b"Piece" => {
                 if let Some(piece) = self.piece.take() {
+                    // A missing array is reported at the piece's tag, as the vtkio path does.
+                    self.arrays
+                        .end_piece(piece.index)
+                        .map_err(|m| Stop::Err(piece.line, syntax(m)))?;
                     let line = self.line_at(pos);
                     piece
                         .check_cells(&mut self.raw)
@@ -347,6 +401,7 @@ impl State<'_> {
     /// Step 5: the coordinates placed in the output.
     fn finish(self) -> Res<RawInput> {
         let mut raw = self.raw;
+        self.arrays.into_attributes(&mut raw.attributes);
         let n = self.data.len() / 3;
         raw.vertex_count =
             Some(u32::try_from(n).map_err(|_| (0, syntax("more than 2^32 points")))?);
@@ -364,6 +419,7 @@ struct Fill<'s> {
     piece: &'s mut Piece,
     raw: &'s mut RawInput,
     data: &'s mut Vec<f64>,
+    arrays: &'s mut Data,
 }
 
 impl Fill<'_> {
@@ -378,6 +434,13 @@ impl Fill<'_> {
                 let n = n.min(self.piece.cells.saturating_sub(lens.len()));
                 table::try_reserve_exact(lens, n).map_err(no_room("the cell types"))
             }
+            Target::Data(i, location) => {
+                let elements = match location {
+                    Location::Vertices => self.piece.points,
+                    Location::Listed => self.piece.cells,
+                };
+                self.arrays.reserve(i, n.min(elements.saturating_mul(9)))
+            }
             // Declared counts reserved these at the piece.
             _ => Ok(()),
         }
@@ -389,10 +452,9 @@ impl Fill<'_> {
             Target::Points(real) => {
                 let v = match real {
                     Real::F64 => parse_f64(tok, "a point coordinate")?,
-                    Real::F32 => match tok.parse::<f32>() {
-                        Ok(v) => f64::from(v),
-                        Err(_) => parse_f64(tok, "a point coordinate")? as f32 as f64,
-                    },
+                    // The shared check: a value a 32-bit float holds only as inf or 0 is
+                    // refused.
+                    Real::F32 => parse_real(tok, "a point coordinate", Float::F32)?,
                     Real::Int => {
                         check_integer(tok, "point coordinate")?;
                         parse_f64(tok, "a point coordinate")?
@@ -429,6 +491,7 @@ impl Fill<'_> {
                 })?;
                 table::try_push(lens, len).map_err(no_room("the cell types"))
             }
+            Target::Data(i, _) => self.arrays.push_token(i, tok),
             Target::Skip => Ok(()),
         }
     }
@@ -454,7 +517,7 @@ impl Piece {
                 let n = self.lens.get_or_insert_with(Vec::new).len();
                 (n, self.cells, "cell types")
             }
-            Target::Skip => return None,
+            Target::Data(..) | Target::Skip => return None,
         };
         (n != want).then(|| {
             format!(
