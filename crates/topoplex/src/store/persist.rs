@@ -39,27 +39,17 @@ fn save_attributes(at: &Attributes, w: &mut Writer) {
             Location::Vertices => 0,
             Location::Listed => 1,
         });
+        // The type's code, the components, then the values as a typed section.
+        fn typed<T: bytemuck::Pod>(w: &mut Writer, code: u64, components: usize, v: &[T]) {
+            w.scalar(code);
+            w.scalar(components as u64);
+            w.section(v);
+        }
         match &a.values {
-            Values::I32(v) => {
-                w.scalar(0);
-                w.scalar(a.components as u64);
-                w.section(v);
-            }
-            Values::I64(v) => {
-                w.scalar(1);
-                w.scalar(a.components as u64);
-                w.section(v);
-            }
-            Values::F32(v) => {
-                w.scalar(2);
-                w.scalar(a.components as u64);
-                w.section(v);
-            }
-            Values::F64(v) => {
-                w.scalar(3);
-                w.scalar(a.components as u64);
-                w.section(v);
-            }
+            Values::I32(v) => typed(w, 0, a.components, v),
+            Values::I64(v) => typed(w, 1, a.components, v),
+            Values::F32(v) => typed(w, 2, a.components, v),
+            Values::F64(v) => typed(w, 3, a.components, v),
         }
     }
     w.scalar(at.label_names().len() as u64);
