@@ -99,7 +99,10 @@
  */
 #define TPX_VALUE_F64 3
 
-
+/**
+ * `tpx_complex_listed_index`'s answer for a simplex that was never listed (`SIZE_MAX`).
+ */
+#define TPX_NOT_LISTED SIZE_MAX
 
 /**
  * `tpx_live_set_vertex_policy`: a contraction {a, b} → a leaves a's vertex values as they are

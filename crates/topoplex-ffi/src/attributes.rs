@@ -32,7 +32,9 @@ pub const TPX_VALUE_F32: u32 = 2;
 pub const TPX_VALUE_F64: u32 = 3;
 
 /// `tpx_complex_listed_index`'s answer for a simplex that was never listed (`SIZE_MAX`).
-pub const TPX_NOT_LISTED: usize = usize::MAX;
+pub const TPX_NOT_LISTED: usize = SIZE_MAX;
+
+const SIZE_MAX: usize = usize::MAX;
 
 /// `tpx_live_set_vertex_policy`: a contraction {a, b} → a leaves a's vertex values as they are
 /// (the default; b's stay in b's slot for a split).
