@@ -161,8 +161,9 @@ enum Command {
 #[derive(clap::Args, Debug, Default)]
 struct DropData {
     /// Drop the attribute NAME (labels or fields, e.g. medit:ref, gmsh:physical) before
-    /// writing, or every attribute with `all`; repeatable. Without it, an attribute the output
-    /// cannot hold is an error, never dropped silently.
+    /// writing, every attribute with `all`, or only the names of labels (Gmsh's
+    /// $PhysicalNames) with `label-names`; repeatable. Without it, data the output cannot hold
+    /// is an error, never dropped silently.
     #[arg(long = "drop-data", value_name = "NAME|all")]
     names: Vec<String>,
 }
@@ -178,6 +179,10 @@ impl DropData {
         for name in &self.names {
             if name == "all" {
                 at.clear();
+            } else if name == "label-names" && at.find(name).is_none() {
+                if !at.remove_label_names() {
+                    return Err("--drop-data label-names: the input names no labels".into());
+                }
             } else if !at.remove(name) {
                 let mut have: Vec<String> =
                     at.iter().map(|a| format!("'{}'", echo(&a.name))).collect();
@@ -578,15 +583,12 @@ fn decompose(
     let format = format.map(output_format).transpose()?;
     let mut complex = load(file)?;
     data.apply(&mut complex)?;
-    refuse_data(&complex, "decompose")?;
+
     prepare_out_dir(file, out, force)?;
     let iqm = topoplex::structures::iqm::Iqm::build(&complex).map_err(|e| e.to_string())?;
     let dec = iqm.decomposition();
-    let paths = match format {
-        None => topoplex::decompose::write_components(&dec, complex.coords(), out),
-        Some(f) => topoplex::decompose::write_components_as(&dec, complex.coords(), out, f),
-    }
-    .map_err(|e| e.to_string())?;
+    let paths = topoplex::decompose::write_components_of(&dec, &complex, out, format)
+        .map_err(|e| e.to_string())?;
     print(&format!(
         "{} components, {} split vertices ({} vertex copies in all); wrote {} files to {}\n",
         dec.components.len(),

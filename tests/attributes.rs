@@ -716,3 +716,57 @@ proptest! {
         }
     }
 }
+
+/// `decompose` keeps the data: the bowtie (two triangles pinched at a vertex, two components)
+/// with a label per triangle, a listed edge with its own label and a vertex field — each
+/// component's tops carry their triangle's label, the listed edge goes to the component holding
+/// it, and every vertex copy carries its vertex's value.
+#[test]
+fn decompose_gives_each_component_its_tops_faces_and_vertex_copies_data() {
+    use topoplex::structures::iqm::Iqm;
+    //   0       3
+    //   | \   / |      triangles [0 1 2] (label 10) and [2 3 4] (label 20), pinched at 2;
+    //   |  2    |      the edge [3 4] listed too (label 7)
+    //   | /   \ |
+    //   1       4
+    let mut c = common::complex_of(5, &[vec![0, 1, 2], vec![2, 3, 4], vec![3, 4]]);
+    let mut at = Attributes::new();
+    at.insert(Attribute::labels(
+        "region",
+        Location::Listed,
+        vec![10, 20, 7],
+    ));
+    at.insert(Attribute {
+        name: "weight".into(),
+        location: Location::Vertices,
+        components: 1,
+        values: Values::F64(vec![0.5, 1.5, 2.5, 3.5, 4.5]),
+    });
+    c.set_attributes(at).unwrap();
+    let dec = Iqm::build(&c).unwrap().decomposition();
+    assert_eq!(dec.components.len(), 2);
+    let dir = Scratch::new("decompose");
+    let paths = topoplex::decompose::write_components_of(&dec, &c, &dir.0, None).unwrap();
+    let mut seen = Vec::new();
+    for (piece, path) in dec.components.iter().zip(&paths) {
+        let back = read_path(path).unwrap();
+        let region = back.attributes.get("region", Location::Listed).unwrap();
+        let weight = back.attributes.get("weight", Location::Vertices).unwrap();
+        for (local, &v) in piece.original.iter().enumerate() {
+            assert_eq!(weight.values.real(local), Some(f64::from(v) + 0.5));
+        }
+        for i in 0..back.simplex_count() {
+            let original: Vec<u32> = back
+                .simplex(i)
+                .iter()
+                .map(|&l| piece.original[l as usize])
+                .collect();
+            seen.push((key(&original), region.label(i).unwrap()));
+        }
+    }
+    seen.sort();
+    assert_eq!(
+        seen,
+        vec![(vec![0, 1, 2], 10), (vec![2, 3, 4], 20), (vec![3, 4], 7)]
+    );
+}

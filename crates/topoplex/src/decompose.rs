@@ -14,10 +14,23 @@
 //!   "split_vertices": [ { "vertex": 0, "copies": [ { "component": 0, "local_id": 0 } ] } ] }
 //! ```
 //! `original_ids[j]` is the original vertex of local vertex j of that component.
+//!
+//! # Data
+//! [`write_components_of`] takes the complex and gives each component its data
+//! ([`crate::complex::attributes`]): a vertex copy the row of the vertex it copies; a top the
+//! row of its first listing; a listed face with data (absorbed by the closure) a row in every
+//! component holding it (all its vertices in the component and it a face of one of the
+//! component's tops), written after the tops. By default a component whose data its
+//! dimension's format cannot hold goes to the first of Gmsh MSH, VTK, VTU and MEDIT that holds
+//! it (or else its dimension's format, which refuses, naming what it cannot hold).
+//! Cost: O(tops + listed faces × their faces' lookups), a hash set of one dimension's faces per
+//! component that has listed faces.
 
 use std::path::{Path, PathBuf};
 
-use crate::complex::{Coords, RawInput};
+use rustc_hash::FxHashSet;
+
+use crate::complex::{Complex, Coords, Location, RawInput};
 use crate::io::write::{Format, WriteError};
 use crate::structures::iqm::{ComponentPiece, Decomposition};
 
@@ -113,6 +126,85 @@ pub fn is_decomposition_file(name: &str) -> bool {
         && i.bytes().all(|b| b.is_ascii_digit())
 }
 
+/// The data of one component of `complex`'s decomposition (module doc, "Data"): the vertex rows
+/// of its copies, its tops' rows, then its listed faces' rows, with those faces appended to
+/// `raw` (whose tops are already there).
+fn component_data(piece: &ComponentPiece, complex: &Complex, raw: &mut RawInput) {
+    let at = complex.attributes();
+    if at.is_empty() {
+        return;
+    }
+    let w = piece.dimension + 1;
+    let original =
+        |s: &[u32]| -> Vec<u32> { s.iter().map(|&v| piece.original[v as usize]).collect() };
+    let mut listed: Vec<usize> = piece
+        .tops
+        .chunks_exact(w)
+        .map(|row| {
+            complex
+                .listed_index(&original(row))
+                .expect("a component's top is a top of the complex, which is listed")
+        })
+        .collect();
+    if at.iter().any(|a| a.location == Location::Listed) {
+        // Listed faces: every listing that is not a top's first listing, when the component
+        // holds it.
+        let local: rustc_hash::FxHashMap<u32, u32> = piece
+            .original
+            .iter()
+            .enumerate()
+            .map(|(l, &v)| (v, l as u32))
+            .collect();
+        let firsts: FxHashSet<usize> = listed.iter().copied().collect();
+        let mut faces: Vec<FxHashSet<Vec<u32>>> = vec![FxHashSet::default(); w + 1];
+        for i in 0..complex.input_count() {
+            let s = complex.input_simplex(i);
+            if firsts.contains(&i) || s.len() > w {
+                continue;
+            }
+            let Some(mut ids) = s
+                .iter()
+                .map(|v| local.get(v).copied())
+                .collect::<Option<Vec<u32>>>()
+            else {
+                continue;
+            };
+            let k = ids.len();
+            if faces[k].is_empty() {
+                faces[k] = piece
+                    .tops
+                    .chunks_exact(w)
+                    .flat_map(|row| sorted_subsets(row, k))
+                    .collect();
+            }
+            let given = ids.clone();
+            ids.sort_unstable();
+            if faces[k].contains(&ids) {
+                raw.push(&given, 0);
+                listed.push(i);
+            }
+        }
+    }
+    raw.attributes = at.pick(
+        piece.original.iter().map(|&v| v as usize),
+        listed.iter().copied(),
+    );
+}
+
+/// The `k`-vertex subsets of `row` (at most 16 vertices), each ascending.
+fn sorted_subsets(row: &[u32], k: usize) -> impl Iterator<Item = Vec<u32>> + '_ {
+    (0u32..1 << row.len())
+        .filter(move |m| m.count_ones() as usize == k)
+        .map(move |m| {
+            let mut s: Vec<u32> = (0..row.len())
+                .filter(|i| m >> i & 1 == 1)
+                .map(|i| row[i])
+                .collect();
+            s.sort_unstable();
+            s
+        })
+}
+
 /// Writes every component of `dec` into `dir` (created if missing) and `gluing.json`; returns
 /// the paths written, components first. `coords` are the original complex's coordinates. Each
 /// component's format follows its dimension (see the module documentation).
@@ -137,23 +229,63 @@ pub fn write_components_as(
     write_components_with(dec, coords, dir, |_| format)
 }
 
+/// [`write_components`] for `complex`'s decomposition `dec`, each component with its data
+/// (module doc, "Data"), in `format` or by default by its dimension and data.
+pub fn write_components_of(
+    dec: &Decomposition,
+    complex: &Complex,
+    dir: &Path,
+    format: Option<Format>,
+) -> Result<Vec<PathBuf>, WriteError> {
+    let coords = complex.coords();
+    write_pieces(dec, coords, dir, |piece| {
+        let mut raw = component_listing(piece, coords);
+        component_data(piece, complex, &mut raw);
+        let format = format.unwrap_or_else(|| {
+            let by_dimension = default_format(piece.dimension, coords);
+            let holds = |f: Format| f.holds_data(&raw);
+            [
+                by_dimension,
+                Format::Vtk,
+                Format::Vtu,
+                Format::Medit,
+                Format::Msh,
+            ]
+            .into_iter()
+            .find(|&f| holds(f) && (f == by_dimension || piece.dimension <= 3))
+            .unwrap_or(by_dimension)
+        });
+        (format, raw)
+    })
+}
+
 fn write_components_with(
     dec: &Decomposition,
     coords: Option<&Coords>,
     dir: &Path,
     format_of: impl Fn(&ComponentPiece) -> Format,
 ) -> Result<Vec<PathBuf>, WriteError> {
+    write_pieces(dec, coords, dir, |piece| {
+        (format_of(piece), component_listing(piece, coords))
+    })
+}
+
+/// Writes the components as `listing_of` lays each out, then `gluing.json`.
+fn write_pieces(
+    dec: &Decomposition,
+    coords: Option<&Coords>,
+    dir: &Path,
+    listing_of: impl Fn(&ComponentPiece) -> (Format, RawInput),
+) -> Result<Vec<PathBuf>, WriteError> {
     // Serialise first, so that a refusal leaves no partial output.
     let mut files = Vec::with_capacity(dec.components.len());
     for (i, piece) in dec.components.iter().enumerate() {
-        let format = format_of(piece);
+        let (format, raw) = listing_of(piece);
         let name = format!("component_{i}.{}", format.extension());
-        let bytes = format
-            .write(&component_listing(piece, coords))
-            .map_err(|kind| WriteError {
-                path: dir.join(&name),
-                kind,
-            })?;
+        let bytes = format.write(&raw).map_err(|kind| WriteError {
+            path: dir.join(&name),
+            kind,
+        })?;
         files.push((name, bytes));
     }
     std::fs::create_dir_all(dir).map_err(|e| WriteError::io(dir, e))?;

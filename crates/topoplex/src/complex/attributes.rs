@@ -500,6 +500,13 @@ impl Attributes {
         before != self.list.len() + self.names.len()
     }
 
+    /// Removes every label name (the labels stay); whether there was any.
+    pub fn remove_label_names(&mut self) -> bool {
+        let had = !self.names.is_empty();
+        self.names.clear();
+        had
+    }
+
     /// Removes everything.
     pub fn clear(&mut self) {
         self.list.clear();

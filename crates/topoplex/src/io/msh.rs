@@ -12,22 +12,32 @@
 //!   parametric coordinates are skipped.
 //! * `$Elements`: types 15 (point), 1 (line), 2 (triangle), 4 (tetrahedron) are simplices;
 //!   any other type (quadrangle 3, hexahedron 5, prism 6, pyramid 7, higher-order elements) is
-//!   refused naming the element's tag and line. Tags (physical, elementary) are ignored. A node
-//!   tag not in `$Nodes` is an error naming the element.
+//!   refused naming the element's tag and line. A node tag not in `$Nodes` is an error naming
+//!   the element.
+//! * Tags become the `i32` attributes `gmsh:physical` and `gmsh:geometrical` on the listed
+//!   simplices (meshio's names): in version 2.2 an element's first two tags (further ones,
+//!   partitions, are skipped); in 4.1 the elementary tag is the block's entity and the physical
+//!   tags the entity's in `$Entities` (an entity in several physical groups gives
+//!   `gmsh:physical` that many components, 0 where an element has fewer). `$PhysicalNames`
+//!   become label names of `gmsh:physical` per dimension. An array equal to what the writer
+//!   writes without it (physical 0, elementary 1 everywhere) is not kept: nothing is lost.
 //! * `$NodeData` and `$ElementData` are read as `f64` fields (`msh/data.rs`: every time step
 //!   kept, `NAME@STEP` when a name has several; partial data refused); `$ElementNodeData` is
 //!   refused.
-//! * Other sections (`$Entities`, `$PhysicalNames`, ...) are skipped to their
-//!   `$End` line. Counts allocate at most what the bytes left could hold.
+//! * Other sections are skipped to their `$End` line. Counts allocate at most what the bytes
+//!   left could hold.
 //! * Errors in a binary block name the line of its section keyword.
 //!
 //! Writing: nodes tagged 1..=n in vertex order (3 coordinates, fewer padded with zeros, zeros
-//! without coordinates), elements tagged 1..=m in listing order. Version 2.2 gives each
-//! element physical tag 0 and elementary tag 1; version 4.1 puts all nodes in one block of a
-//! 3-dimensional entity and the elements in one block per run of equal type (entity tag 1 of
-//! that dimension), so the listing order is kept across dimensions; no `$Entities` section.
-//! Holds points, edges, triangles and tetrahedra, and at most 3 coordinates; `f64` attributes
-//! are written as `$NodeData`/`$ElementData` after the elements (`msh/data.rs`).
+//! without coordinates), elements tagged 1..=m in listing order, `$PhysicalNames` when
+//! `gmsh:physical` has label names. Version 2.2 gives each element its `gmsh:physical` (else 0)
+//! and `gmsh:geometrical` (else 1) tags; version 4.1 puts all nodes in one block and the
+//! elements in one block per run of equal type and entity, so the listing order is kept across
+//! dimensions. The entity is the `gmsh:geometrical` tag, else (with `gmsh:physical`) one entity
+//! per physical tag and dimension, else 1; with `gmsh:physical` an `$Entities` section gives each
+//! entity its physical tag — elements of one entity with different physical tags cannot be held
+//! (write 2.2). Holds points, edges, triangles and tetrahedra, and at most 3 coordinates;
+//! `f64` attributes are written as `$NodeData`/`$ElementData` after the elements (`msh/data.rs`).
 
 use rustc_hash::FxHashMap;
 

@@ -172,7 +172,49 @@ impl Format {
     /// The first attribute of `raw` this format does not hold, as the reason for
     /// [`WriteErrorKind::CannotHold`]: the attribute, the formats that hold it, and how to drop
     /// it.
+    /// Whether this format holds the names of the labels of attribute `attribute` (Gmsh's
+    /// `$PhysicalNames` for `gmsh:physical`).
+    pub fn holds_label_names(self, attribute: &str) -> bool {
+        match self {
+            Format::Msh | Format::MshBinary | Format::Msh2 | Format::Msh2Binary => {
+                attribute == super::msh::PHYSICAL
+            }
+            _ => false,
+        }
+    }
+
+    /// Whether this format holds every attribute and label name of `raw`.
+    pub fn holds_data(self, raw: &RawInput) -> bool {
+        self.check_attributes(raw).is_ok()
+    }
+
     fn check_attributes(self, raw: &RawInput) -> Result<(), String> {
+        if let Some(n) = raw
+            .attributes
+            .label_names()
+            .iter()
+            .find(|n| !self.holds_label_names(&n.attribute))
+        {
+            let mut can: Vec<String> = Format::ALL
+                .into_iter()
+                .filter(|f| f.holds_label_names(&n.attribute))
+                .map(|f| format!(".{}", f.extension()))
+                .collect();
+            can.dedup();
+            let count = raw.attributes.label_names().len();
+            return Err(format!(
+                "the names of the labels of '{}' ({count}, such as {} = '{}'): {}drop them \
+                 explicitly (CLI: --drop-data label-names keeps the labels)",
+                crate::error::echo(&n.attribute),
+                n.label,
+                crate::error::echo(&n.name),
+                if can.is_empty() {
+                    String::new()
+                } else {
+                    format!("write {}, or ", can.join(", "))
+                }
+            ));
+        }
         let Some(a) = raw.attributes.iter().find(|a| !self.holds(a)) else {
             return Ok(());
         };
