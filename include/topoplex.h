@@ -746,9 +746,10 @@ TpxStatus tpx_live_top_values(const struct TpxLive *l,
 
 /**
  * Sets the values of listed attribute `name` on live top `top` to `data[0 .. len]` (`len` =
- * its components; doubles rounded to the attribute's type, labels truncated toward zero).
- * Errors (nothing changes): NULL_ARGUMENT, INVALID_HANDLE / STALE_GENERATION,
- * NO_SUCH_ATTRIBUTE, INVALID_ARGUMENT (`len` is not the components). Needs exclusive access
+ * its components; doubles rounded to `float` for a `TPX_VALUE_F32` attribute, and exact
+ * integers within the type for a label attribute). Errors (nothing changes): NULL_ARGUMENT,
+ * INVALID_HANDLE / STALE_GENERATION, NO_SUCH_ATTRIBUTE, INVALID_ARGUMENT (`len` is not the
+ * components; for labels, a number with a fraction, NaN, infinite or out of the type's range). Needs exclusive access
  * to `l`. O(star of the top's first vertex + components).
  *
  * # Safety

@@ -510,9 +510,10 @@ pub unsafe extern "C" fn tpx_live_top_values(
 }
 
 /// Sets the values of listed attribute `name` on live top `top` to `data[0 .. len]` (`len` =
-/// its components; doubles rounded to the attribute's type, labels truncated toward zero).
-/// Errors (nothing changes): NULL_ARGUMENT, INVALID_HANDLE / STALE_GENERATION,
-/// NO_SUCH_ATTRIBUTE, INVALID_ARGUMENT (`len` is not the components). Needs exclusive access
+/// its components; doubles rounded to `float` for a `TPX_VALUE_F32` attribute, and exact
+/// integers within the type for a label attribute). Errors (nothing changes): NULL_ARGUMENT,
+/// INVALID_HANDLE / STALE_GENERATION, NO_SUCH_ATTRIBUTE, INVALID_ARGUMENT (`len` is not the
+/// components; for labels, a number with a fraction, NaN, infinite or out of the type's range). Needs exclusive access
 /// to `l`. O(star of the top's first vertex + components).
 ///
 /// # Safety
@@ -541,6 +542,26 @@ pub unsafe extern "C" fn tpx_live_set_top_values(
                     "attribute '{}' has {} components, {len} numbers given",
                     topoplex::error::echo(name),
                     row.len()
+                ),
+            ));
+        }
+        let range = match row.value_type() {
+            ValueType::I32 => Some((f64::from(i32::MIN), f64::from(i32::MAX))),
+            ValueType::I64 => Some((-(2f64.powi(63)), 2f64.powi(63) - 1024.0)),
+            _ => None,
+        };
+        if let Some((lo, hi)) = range
+            && let Some(k) = data
+                .iter()
+                .position(|&y| y.fract() != 0.0 || !(lo..=hi).contains(&y))
+        {
+            return Err(Failure::new(
+                TpxStatus::InvalidArgument,
+                format!(
+                    "attribute '{}' holds {} labels: number {k} ({}) is not one",
+                    topoplex::error::echo(name),
+                    row.value_type().name(),
+                    data[k]
                 ),
             ));
         }

@@ -2010,6 +2010,23 @@ fn live_top_and_vertex_values_by_handle_survive_into_the_complex() {
         unsafe { tpx_live_set_top_values(l, c"ref".as_ptr(), t123, [1.0, 2.0].as_ptr(), 2) },
         TpxStatus::InvalidArgument
     );
+    for label in [1.5, f64::NAN, f64::INFINITY, 2147483648.0] {
+        let st = unsafe { tpx_live_set_top_values(l, c"ref".as_ptr(), t123, [label].as_ptr(), 1) };
+        assert_eq!(st, TpxStatus::InvalidArgument, "{label}");
+        assert!(last_error().contains("i32 labels"), "{}", last_error());
+    }
+    assert_eq!(
+        unsafe { tpx_live_set_top_values(l, c"ref".as_ptr(), t123, [-2147483648.0].as_ptr(), 1) },
+        TpxStatus::Ok
+    );
+    assert_eq!(
+        live_row(l, c"ref", Some(t123), 0),
+        (TpxStatus::Ok, vec![-2147483648.0])
+    );
+    assert_eq!(
+        unsafe { tpx_live_set_top_values(l, c"ref".as_ptr(), t123, [42.0].as_ptr(), 1) },
+        TpxStatus::Ok
+    );
     assert_eq!(
         unsafe { tpx_live_set_top_values(l, c"nope".as_ptr(), t123, [1.0].as_ptr(), 1) },
         TpxStatus::NoSuchAttribute
