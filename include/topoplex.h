@@ -154,8 +154,9 @@
 #define TPX_CONTRACT_PRESERVE_MANIFOLD 2
 
 /**
- * `tpx_structure_open` flag: check every section's checksum and the structure's invariants
- * before returning (reads the whole file).
+ * `tpx_structure_open`, `tpx_live_open` and `tpx_complex_open_flags` flag: check the whole
+ * file before returning (every section's checksum, the saved complex, the structure's
+ * invariants and its agreement with the complex; reads the whole file and builds).
  */
 #define TPX_OPEN_VERIFY 1
 
@@ -1855,6 +1856,19 @@ TpxStatus tpx_structure_open(const char *path,
  * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
  */
 TpxStatus tpx_complex_open(const char *path, struct TpxComplex **out);
+
+/**
+ * `tpx_complex_open` with `flags`: with `TPX_OPEN_VERIFY`, the whole file is checked first
+ * (every checksum, the saved complex, the saved structure's invariants and its agreement with
+ * the complex, as `topoplex verify` does). On success `*out` receives a new complex owned by
+ * the caller (free with `tpx_complex_free`). Errors: as `tpx_complex_open`, plus
+ * INVALID_ARGUMENT for an unknown flag. Cost: a normalisation of the saved listing; with
+ * VERIFY, O(file size) plus a build of the saved structure's kind.
+ *
+ * # Safety
+ * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+ */
+TpxStatus tpx_complex_open_flags(const char *path, uint32_t flags, struct TpxComplex **out);
 
 /**
  * Saves the live complex `l` with its complex to `path` (`.tpx`). Saving compacts a copy on the

@@ -9,9 +9,19 @@ cd "$(dirname "$0")/.."
 scripts/install-deps.sh cmake ninja-build pkg-config valgrind libopenmesh-dev libcgal-dev \
   libgudhi-dev libgtest-dev libcgal-demo libbenchmark-dev
 # Python meshio: the independent reader and writer of tests/interop.rs (skipped without it).
-python3 -c "import meshio" 2>/dev/null || python3 -m pip install --quiet meshio ||
-  python3 -m pip install --quiet --break-system-packages meshio ||
-  echo "meshio not installed: tests/interop.rs will skip its checks"
+# Never installed into the user's Python: when the system's python3 lacks it, into a venv of
+# the suite's own under the target directory, put first on PATH for the tests.
+if ! python3 -c "import meshio" 2>/dev/null; then
+  venv=${CARGO_TARGET_DIR:-target}/test-venv
+  if { [ -x "$venv/bin/python3" ] || python3 -m venv "$venv"; } &&
+     { "$venv/bin/python3" -c "import meshio" 2>/dev/null ||
+       "$venv/bin/python3" -m pip install --quiet meshio; }; then
+    PATH="$(cd "$venv/bin" && pwd):$PATH"
+    export PATH
+  else
+    echo "meshio not installed: tests/interop.rs will skip its checks"
+  fi
+fi
 
 echo "== lint gates: formatting, clippy, docs (missing_docs is denied on the public API)"
 # Each crate's lib.rs has #![warn(missing_docs)]; -D warnings turns it (and every clippy lint)
@@ -37,7 +47,7 @@ else
   echo "MIRI NOT RUN: no nightly toolchain with the miri component on this machine"
 fi
 
-echo "== fuzz smoke (differential: readers, every structure vs the oracle)"
+echo "== fuzz smoke (differential: readers, every structure vs the oracle, altered saved files)"
 scripts/fuzz-smoke.sh 5
 
 echo "== CLI smoke"

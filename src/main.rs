@@ -1,10 +1,11 @@
 //! `topoplex`: report on a complex and dump its relations through any structure.
 //!
 //! Error contract: every failure — a usage error, an unreadable input, an output that cannot be
-//! written (closed pipe, full disk) — exits 1 with one bounded, escaped line on stderr
-//! (`topoplex: ...`); nothing panics on I/O. A subcommand is a function returning
-//! `Result<(), String>` called from [`run`]; it reads inputs with [`load`] (which applies
-//! `--max-simplices`) and writes stdout with [`print`] or through [`output_error`].
+//! written (full disk) — exits 1 with one bounded, escaped line on stderr (`topoplex: ...`);
+//! nothing panics on I/O; a closed pipe on stdout (`... | head -1`) ends the run quietly with
+//! exit 0 ([`BROKEN_PIPE`]). A subcommand is a function returning `Result<(), String>` called
+//! from [`run`]; it reads inputs with [`load`] (which applies `--max-simplices` and `--verify`)
+//! and writes stdout with [`print`] or through [`output_error`].
 
 use std::io::{BufWriter, IsTerminal, Write};
 use std::path::{Path, PathBuf};
@@ -35,6 +36,11 @@ struct Cli {
     /// Threads for building structures, 1 to 256 (default: TOPOPLEX_THREADS, else every core).
     #[arg(long, global = true, value_name = "N")]
     threads: Option<usize>,
+    /// Check a saved (.tpx) input fully before using it, as `verify` does: every checksum, the
+    /// complex, the structure's invariants and its agreement with the complex (reads the whole
+    /// file). Mesh inputs are always checked fully by reading them.
+    #[arg(long, global = true)]
+    verify: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -87,7 +93,8 @@ enum Command {
         #[command(flatten)]
         data: DropData,
     },
-    /// Check a .tpx file fully: every section's checksum and the saved structure's invariants.
+    /// Check a saved file fully: every section's checksum, the saved complex, the saved
+    /// structure's invariants, and that the structure is the one its complex builds.
     Verify {
         /// The .tpx file.
         file: PathBuf,
@@ -238,12 +245,20 @@ fn parse_pq(s: &str) -> Result<(usize, usize), String> {
 /// CLI can be run several times in one process, as the CLI fuzz target does).
 static BUDGET: Mutex<Option<u64>> = Mutex::new(None);
 
+/// `--verify` (an atomic for the same reason as [`BUDGET`]).
+static VERIFY: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// The `Err` of a write to a closed pipe (`topoplex relation ... | head -1`): [`main`] exits
+/// quietly with status 0, as ripgrep does (the reader wanted no more).
+pub const BROKEN_PIPE: &str = "writing output: broken pipe";
+
 fn main() -> ExitCode {
     // Keeps `simplify`'s peak RSS at its live heap: glibc's default dynamic mmap threshold left
     // ~40 MB of freed memory resident on a 1.2M-triangle mesh (docs/benchmarks.md).
     topoplex::sys::fix_malloc_thresholds_for_executable();
     match cli(std::env::args_os()) {
         Ok(()) => ExitCode::SUCCESS,
+        Err(msg) if msg == BROKEN_PIPE => ExitCode::SUCCESS,
         Err(msg) => fail(&msg),
     }
 }
@@ -252,18 +267,81 @@ fn main() -> ExitCode {
 /// of exit 1, which [`main`] writes as one line. Also run in-process by the CLI fuzz target
 /// (fuzz/fuzz_targets/cli_args.rs), which includes this file as a module.
 pub fn cli(args: impl IntoIterator<Item = std::ffi::OsString>) -> Result<(), String> {
-    let cli = Cli::try_parse_from(args).map_err(|e| clap_outcome(&e));
+    use clap::FromArgMatches;
+    let cli = command()
+        .try_get_matches_from(args)
+        .and_then(|m| Cli::from_arg_matches(&m))
+        .map_err(|e| clap_outcome(&e));
     let cli = match cli {
         Ok(cli) => cli,
         Err(outcome) => return outcome,
     };
     *BUDGET.lock().unwrap_or_else(|e| e.into_inner()) = cli.max_simplices;
+    VERIFY.store(cli.verify, std::sync::atomic::Ordering::Relaxed);
     topoplex::parallel::threads_from_env()?;
     if let Some(n) = cli.threads {
         let n = topoplex::parallel::check_threads(n).map_err(|e| format!("--threads: {e}"))?;
         topoplex::parallel::set_threads(n);
     }
     run(cli.command)
+}
+
+/// The extensions read and written, from the one format table ([`Format::ALL`]): `.off, .obj,
+/// ... or .msh`.
+fn extensions() -> String {
+    let mut exts: Vec<&str> = Vec::new();
+    for f in Format::ALL {
+        if !exts.contains(&f.extension()) {
+            exts.push(f.extension());
+        }
+    }
+    let dotted: Vec<String> = exts.iter().map(|e| format!(".{e}")).collect();
+    match dotted.split_last() {
+        Some((last, rest)) => format!("{} or {last}", rest.join(", ")),
+        None => String::new(),
+    }
+}
+
+/// The CLI's clap command, its help texts on formats written from the format table, so that
+/// they name every format the readers and writers know.
+fn command() -> clap::Command {
+    let input = format!(
+        "Input: {} (by extension), or a saved file (known by its magic number, .tpx)",
+        extensions()
+    );
+    let names: Vec<&str> = Format::ALL.iter().map(|f| f.name()).collect();
+    let format = format!(
+        "Output format, one of: {} (instead of OUTPUT's extension)",
+        names.join(", ")
+    );
+    let output = format!("Output file: {} (format by extension)", extensions());
+    let patch = |c: clap::Command| {
+        match c.get_name() {
+        "report" => c.mut_arg("files", |a| {
+            a.help(format!(
+                "{input}; without any, a built-in example complex with a wire edge, a dangling triangle, a tetrahedron and a non-manifold vertex and edge"
+            ))
+        }),
+        "relation" | "save" | "decompose" => c.mut_arg("file", |a| a.help(&input)),
+        "convert" => c
+            .mut_arg("input", |a| a.help(&input))
+            .mut_arg("output", |a| a.help(&output))
+            .mut_arg("format", |a| a.help(&format)),
+        "simplify" => c
+            .mut_arg("input", |a| a.help(&input))
+            .mut_arg("out", |a| a.help(&output)),
+        _ => c,
+    }
+    };
+    // Every subcommand in its order (mut_subcommand moves the one it changes to the end).
+    let cli = Cli::command();
+    let names: Vec<String> = cli
+        .get_subcommands()
+        .map(|c| c.get_name().to_string())
+        .collect();
+    names
+        .iter()
+        .fold(cli, |cli, name| cli.mut_subcommand(name, patch))
 }
 
 /// One arm per subcommand.
@@ -334,7 +412,7 @@ fn clap_outcome(e: &clap::Error) -> Result<(), String> {
     match e.kind() {
         ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => print(&e.render().to_string()),
         ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
-            let names: Vec<String> = Cli::command()
+            let names: Vec<String> = command()
                 .get_subcommands()
                 .map(|c| c.get_name().to_string())
                 .filter(|n| n != "help")
@@ -364,6 +442,9 @@ fn usage_line(rendered: &str) -> String {
 
 /// The message for a failed write to stdout (closed pipe, full disk).
 fn output_error(e: std::io::Error) -> String {
+    if e.kind() == std::io::ErrorKind::BrokenPipe {
+        return BROKEN_PIPE.to_string();
+    }
     format!("writing output: {e}")
 }
 
@@ -378,12 +459,17 @@ fn print(text: &str) -> Result<(), String> {
 /// Reads and normalises `file` under the `--max-simplices` budget (a `.tpx` gives its saved
 /// complex).
 fn load(file: &Path) -> Result<Complex, String> {
-    topoplex::store::open_complex(file, budget()).map_err(|e| e.to_string())
+    topoplex::store::open_complex_with(file, budget(), verifying()).map_err(|e| e.to_string())
 }
 
 /// The structure of `kind` for `file`: a saved one is mapped, not rebuilt.
 fn load_structure(file: &Path, kind: StructureKind) -> Result<Box<dyn Topology>, String> {
-    topoplex::store::open_structure(file, kind, budget()).map_err(|e| e.to_string())
+    topoplex::store::open_structure_with(file, kind, budget(), verifying())
+        .map_err(|e| e.to_string())
+}
+
+fn verifying() -> bool {
+    VERIFY.load(std::sync::atomic::Ordering::Relaxed)
 }
 
 fn budget() -> Budget {
@@ -393,7 +479,8 @@ fn budget() -> Budget {
 }
 
 fn parse_kind(structure: &str) -> Result<StructureKind, String> {
-    StructureKind::from_name(structure).ok_or_else(|| {
+    // Case-insensitive, as --format is.
+    StructureKind::from_name(&structure.to_ascii_lowercase()).ok_or_else(|| {
         let names: Vec<&str> = StructureKind::NAMED.iter().map(|k| k.name()).collect();
         format!(
             "unknown structure `{}` (expected one of: {})",
@@ -410,7 +497,6 @@ fn save(file: &Path, structure: Option<&str>, out: &Path, data: &DropData) -> Re
     not_the_input(file, out, "--out ")?;
     let mut complex = load(file)?;
     data.apply(&mut complex)?;
-    refuse_data(&complex, "save (.tpx)")?;
     let built = match kind {
         Some(k) if topoplex::store::is_saved_path(file) => Some(load_structure(file, k)?),
         Some(k) => Some(topoplex::build(k, &complex).map_err(|e| e.to_string())?),
@@ -476,7 +562,7 @@ impl Progress {
 fn report(files: &[PathBuf], json: bool, csv: bool, svg: Option<&Path>) -> Result<(), String> {
     use topoplex_cli::report::{Dataset, render};
     // Per dataset: reading, the census, and each structure's build and four families.
-    let per_file = 2 + 5 * StructureKind::ALL.len() as u64;
+    let per_file = 2 + 5 * StructureKind::NAMED.len() as u64;
     let progress = Progress::new(per_file * files.len().max(1) as u64);
     let mut datasets = Vec::new();
     let run = |name: &str, file: Option<&str>, complex: &Complex| {
@@ -770,10 +856,32 @@ fn dump_relation(
         }
         None => {
             let mut all = Vec::new();
-            topo.simplices(p, &mut all);
+            topoplex::error::caught_quietly(std::panic::AssertUnwindSafe(|| {
+                topo.simplices(p, &mut all)
+            }))
+            .map_err(|_| corrupt_answer(&file))?;
             all
         }
     };
+    // A saved file's structure is queried in place, checked only in shape unless --verify:
+    // arrays altered behind their checksums may break a query (never a read out of bounds),
+    // which is reported as the file's fault, not as a crash.
+    let answered = topoplex::error::caught_quietly(std::panic::AssertUnwindSafe(|| {
+        write_relation(topo.as_ref(), &sigmas, p, q)
+    }));
+    answered.unwrap_or_else(|_| Err(corrupt_answer(&file)))
+}
+
+/// The message for a query that broke on a saved file's arrays.
+fn corrupt_answer(file: &Path) -> String {
+    format!(
+        "{}: corrupt saved file: inconsistent arrays met while answering (`topoplex verify` names the first)",
+        echo_path(file)
+    )
+}
+
+/// Writes R_{p,q} of every p-simplex of `sigmas` (rows of p + 1 ids) to stdout.
+fn write_relation(topo: &dyn Topology, sigmas: &[u32], p: usize, q: usize) -> Result<(), String> {
     let stdout = std::io::stdout();
     let mut w = BufWriter::new(stdout.lock());
     let mut out = Vec::new();

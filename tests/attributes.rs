@@ -453,8 +453,8 @@ fn labelled_meshes_read_alike_in_every_format_gmsh_wrote_and_survive_our_writers
 
 /// The CLI keeps the data it can and refuses the rest: `convert` to a format without it exits 1
 /// naming the attribute, `--drop-data` drops it by name or all, naming an absent one is an
-/// error, a verb that does not carry data yet (`save`) refuses instead of dropping it, and
-/// `simplify` carries it.
+/// error, `save` and `simplify` carry it, and a verb that does not (`convert --census`)
+/// refuses instead of dropping it.
 #[test]
 fn cli_convert_keeps_refuses_or_drops_data_on_request() {
     let dir = Scratch::new("cli");
@@ -502,13 +502,14 @@ fn cli_convert_keeps_refuses_or_drops_data_on_request() {
         err.contains("no such attribute") && err.contains("'medit:ref'"),
         "{err}"
     );
-    let (code, err) = run(&["save", inp, "--out", &p("s.tpx")]);
+    // save keeps the data; --census, which writes its own fields, refuses it.
+    assert_eq!(run(&["save", inp, "--out", &p("s.tpx")]).0, Some(0));
+    assert_eq!(run(&["convert", &p("s.tpx"), &p("t.mesh")]).0, Some(0));
+    let back = read_path(&dir.0.join("t.mesh")).unwrap();
+    assert_eq!(listed_labels(&back.attributes, "medit:ref"), vec![5]);
+    let (code, err) = run(&["convert", inp, &p("c.vtk"), "--census"]);
     assert_eq!(code, Some(1));
     assert!(err.contains("does not carry attributes yet"), "{err}");
-    assert_eq!(
-        run(&["save", inp, "--out", &p("s.tpx"), "--drop-data", "all"]).0,
-        Some(0)
-    );
     // simplify carries the data: the one triangle keeps reference 5.
     assert_eq!(
         run(&["simplify", inp, "--out", &p("s.mesh"), "--ratio", "1"]).0,
@@ -769,4 +770,61 @@ fn decompose_gives_each_component_its_tops_faces_and_vertex_copies_data() {
         seen,
         vec![(vec![0, 1, 2], 10), (vec![2, 3, 4], 20), (vec![3, 4], 7)]
     );
+}
+
+/// `.tpx` keeps every attribute bit for bit (random listings with every type, 1–9 components,
+/// label names), with and without a saved structure, and a saved live complex opens back with
+/// its data.
+#[test]
+fn saved_files_keep_attributes_and_the_live_complex_its_data() {
+    use topoplex::live::LiveComplex;
+    use topoplex::store::{Saved, save};
+    let dir = Scratch::new("tpx");
+    for seed in 1..6u64 {
+        let mut raw = random_listing(seed, 12, 20, true, false);
+        let mut rng = common::Rng(seed | 1);
+        let m = raw.simplex_count();
+        raw.attributes.insert(Attribute::labels(
+            "region",
+            Location::Listed,
+            labels(&mut rng, m),
+        ));
+        raw.attributes.insert(Attribute {
+            name: "v".into(),
+            location: Location::Vertices,
+            components: 3,
+            values: Values::F32((0..36).map(|i| i as f32 / 3.0).collect()),
+        });
+        raw.attributes.insert(Attribute {
+            name: "w".into(),
+            location: Location::Listed,
+            components: 9,
+            values: Values::I64((0..m as i64 * 9).map(|i| i * 1_000_000_007).collect()),
+        });
+        raw.attributes.add_label_name(LabelName {
+            attribute: "region".into(),
+            dimension: None,
+            label: 3,
+            name: "three".into(),
+        });
+        let c = Complex::from_raw(&raw, None).unwrap();
+        let ig = topoplex::build(topoplex::StructureKind::Ig, &c).unwrap();
+        for structure in [None, Some(ig.as_ref())] {
+            let path = dir.0.join("a.tpx");
+            save(&path, &c, structure).unwrap();
+            let back = Saved::open(&path).unwrap().complex().unwrap();
+            assert!(back.attributes().bits_eq(c.attributes()), "seed {seed}");
+        }
+        let live = LiveComplex::try_from_complex(&c).unwrap();
+        let path = dir.0.join("l.tpx");
+        live.save(&path).unwrap();
+        let opened = LiveComplex::open(&path).unwrap();
+        assert!(
+            opened
+                .to_complex()
+                .attributes()
+                .bits_eq(live.to_complex().attributes()),
+            "seed {seed}: the live complex's data"
+        );
+    }
 }

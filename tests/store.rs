@@ -148,9 +148,9 @@ fn foreign_truncated_wrong_version_and_swapped_files_are_refused() {
     assert!(msg(open_bytes(b"OFF\n3 1 0\n")).contains("not a topoplex saved file"));
     assert!(msg(open_bytes(&good[..40])).contains("truncated"));
     assert!(msg(open_bytes(&good[..good.len() - 1])).contains("truncated"));
-    let mut v2 = good.clone();
-    v2[12..16].copy_from_slice(&2u32.to_ne_bytes());
-    assert!(msg(open_bytes(&v2)).contains("format version 2"));
+    let mut v3 = good.clone();
+    v3[12..16].copy_from_slice(&3u32.to_ne_bytes());
+    assert!(msg(open_bytes(&v3)).contains("format version 3"));
     let mut swapped = good.clone();
     swapped[8..12].copy_from_slice(&0x0102_0304u32.swap_bytes().to_ne_bytes());
     assert!(msg(open_bytes(&swapped)).contains("byte order"));

@@ -82,10 +82,26 @@ const VOCABULARY: &[&str] = &[
     "out.tpx",
     "outdir",
     "=",
+    // Issue 27: thread counts at and past the cap, the full check, saved files by magic, and
+    // output paths that are a directory, a nested path or the input itself.
+    "4",
+    "1024",
+    "1025",
+    "100000",
+    "18446744073709551616",
+    "--verify",
+    "iastar",
+    "IA",
+    "a.bin",
+    "out.bin",
+    ".",
+    "outdir/out.off",
+    "a.tpx.partial",
 ];
 
 /// The fixtures: three triangles (OFF, converted to each other format) and a tetrahedron with a
-/// dangling triangle and a wire edge (`.simplices`, saved with its SIG as `a.tpx`).
+/// dangling triangle and a wire edge (`.simplices`, saved with its SIG as `a.tpx` and with its
+/// NMIA as `a.bin`, a saved file known by its magic number).
 fn setup() {
     let dir = std::env::temp_dir().join(format!("topoplex-fuzz-cli-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
@@ -104,6 +120,7 @@ fn setup() {
         ("a.vtk", None),
         ("a.msh", None),
         ("a.tpx", Some("sig")),
+        ("a.bin", Some("nmia")),
     ] {
         let args: Vec<OsString> = match extra {
             None => ["topoplex", "convert", "a.off", to]

@@ -11,7 +11,7 @@ use std::fmt::Write as _;
 use super::Dataset;
 use super::timing::Family;
 
-/// One color per structure (Tableau 10), in [`topoplex::StructureKind::ALL`] order.
+/// One color per structure (Tableau 10), in [`topoplex::StructureKind::NAMED`] order.
 const COLORS: [&str; 10] = [
     "#4e79a7", "#f28e2b", "#e15759", "#76b7b2", "#59a14f", "#edc948", "#b07aa1", "#ff9da7",
     "#9c755f", "#bab0ac",

@@ -9,8 +9,9 @@ use super::structure::{TpxStructure, build_failure, kind_from_u32};
 use super::{Failure, TpxStatus, guard, handle, open_into, path_arg};
 use topoplex::store::{Saved, StoreError, save};
 
-/// `tpx_structure_open` flag: check every section's checksum and the structure's invariants
-/// before returning (reads the whole file).
+/// `tpx_structure_open`, `tpx_live_open` and `tpx_complex_open_flags` flag: check the whole
+/// file before returning (every section's checksum, the saved complex, the structure's
+/// invariants and its agreement with the complex; reads the whole file and builds).
 pub const TPX_OPEN_VERIFY: u32 = 1;
 
 pub(crate) fn store_failure(e: StoreError) -> Failure {
@@ -110,6 +111,28 @@ pub unsafe extern "C" fn tpx_complex_open(
 ) -> TpxStatus {
     open_into(path, out, |path| {
         let saved = Saved::open(path).map_err(store_failure)?;
+        let complex = saved.complex().map_err(store_failure)?;
+        Ok(TpxComplex { complex })
+    })
+}
+
+/// `tpx_complex_open` with `flags`: with `TPX_OPEN_VERIFY`, the whole file is checked first
+/// (every checksum, the saved complex, the saved structure's invariants and its agreement with
+/// the complex, as `topoplex verify` does). On success `*out` receives a new complex owned by
+/// the caller (free with `tpx_complex_free`). Errors: as `tpx_complex_open`, plus
+/// INVALID_ARGUMENT for an unknown flag. Cost: a normalisation of the saved listing; with
+/// VERIFY, O(file size) plus a build of the saved structure's kind.
+///
+/// # Safety
+/// `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_open_flags(
+    path: *const c_char,
+    flags: u32,
+    out: *mut *mut TpxComplex,
+) -> TpxStatus {
+    open_into(path, out, |path| {
+        let saved = open_saved(path, flags)?;
         let complex = saved.complex().map_err(store_failure)?;
         Ok(TpxComplex { complex })
     })

@@ -19,8 +19,9 @@ pub use field::Field;
 
 /// First bytes of every `.tpx` file.
 pub const MAGIC: [u8; 8] = *b"\x89TPX\r\n\x1a\n";
-/// The format version this build writes and reads.
-pub const VERSION: u32 = 1;
+/// The format version this build writes; it reads every version from 1 up to it (version 2
+/// added the complex's attributes after its source; a version-1 file has none).
+pub const VERSION: u32 = 2;
 /// Written as a native `u32`; read back swapped on a host of the other byte order.
 const BYTE_ORDER_MARK: u32 = 0x0102_0304;
 pub(crate) const HEADER_LEN: usize = 64;
@@ -55,7 +56,7 @@ pub enum StoreError {
         what: String,
     },
     /// The file was written by another format version.
-    #[error("{}: saved file format version {found}, this build reads version {supported}", crate::error::echo_path(.path))]
+    #[error("{}: saved file format version {found}, this build reads versions 1 to {supported}", crate::error::echo_path(.path))]
     WrongVersion {
         /// The file.
         path: PathBuf,
@@ -503,7 +504,7 @@ fn check_fixed_fields(
         }
         m => return Err(corrupt(format!("byte-order mark {m:#010x}"))),
     }
-    if u32_at(12) != VERSION {
+    if !(1..=VERSION).contains(&u32_at(12)) {
         return Err(StoreError::WrongVersion {
             path: path.to_path_buf(),
             found: u32_at(12),

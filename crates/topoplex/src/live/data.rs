@@ -500,6 +500,13 @@ impl LiveComplex {
             })
     }
 
+    /// Takes its data from `complex`, the complex it was saved beside (the same slots, in
+    /// [`LiveComplex::to_complex`]'s order: a compacted live complex saved with its own
+    /// `to_complex()`).
+    pub(crate) fn attach_data(&mut self, complex: &Complex) {
+        self.data = LiveData::of(complex, self);
+    }
+
     /// Whether the simplex `s` (vertex ids in any order, live vertices) is in the complex.
     pub(super) fn holds_simplex(&self, s: &[u32]) -> bool {
         s.iter()

@@ -1,7 +1,7 @@
 //! The saved format `.tpx`: a complex and, optionally, one structure built on it, opened back
 //! zero-copy by memory mapping.
 //!
-//! # Layout (version 1)
+//! # Layout (version 2)
 //! All integers are in the byte order named by the header (the writer's; every platform we ship
 //! is little-endian) and vertex/simplex ids are 32 bits wide.
 //!
@@ -9,7 +9,7 @@
 //! |---|---|
 //! | 0..8 | magic `\x89TPX\r\n\x1a\n` (the high byte and the line endings expose text-mode transfers) |
 //! | 8..12 | byte-order mark `0x01020304` as written by the writer |
-//! | 12..16 | format version (1) |
+//! | 12..16 | format version (2; files of version 1 are read too) |
 //! | 16..20 | id width in bits (32) |
 //! | 20..24 | content: 0 = complex only, 1 + `TPX_KIND_*` = complex and that structure |
 //! | 24..28 | number of sections |
@@ -21,20 +21,27 @@
 //!
 //! Each section holds one array: 64-byte aligned, described in the table by 32 bytes (offset,
 //! element count, element size in bytes (1..=64), zero, XXH3-64 of its bytes); padding is zero. The complex comes first (its
-//! vertex count, coordinates and the simplices as listed), then the structure's arrays in the
-//! order its `save` wrote them.
+//! vertex count, coordinates, the simplices as listed and, since version 2, its attributes —
+//! labels and fields, copied on open like the listing; a complex without any is laid out as in
+//! version 1), then the structure's arrays in the order its `save` wrote them. A saved live
+//! complex gets its data back from the complex saved beside it.
 //!
 //! # Checksums and validation: what opening costs
-//! Opening reads and checks the header and the section table (their checksum, then every
-//! section's offset, length and alignment against the file's length), so no array view can
-//! point outside the file whatever its bytes. The structure's arrays are then views into the
-//! mapped file: opening touches a few pages, whatever the file's size. Section checksums are
-//! *not* read on open, since that would read the whole file; [`Saved::verify`] checks them all
-//! and then runs the structure's `validate()`. Until then a file whose header is intact but
-//! whose arrays were altered gives wrong answers or a query error, never an out-of-bounds read
-//! (every access is bounds-checked; the C ABI turns a panic into `TPX_STATUS_PANIC`). The
-//! complex is rebuilt from its listing when asked for ([`Saved::complex`]), which validates it
-//! fully.
+//! A saved file is known by its magic number, whatever its name ([`is_saved_path`]). Opening
+//! reads and checks the header and the section table (their checksum, then every section's
+//! offset, length and alignment against the file's length), so no array view can point outside
+//! the file whatever its bytes. Loading the structure checks its shape (each `Persist` impl's
+//! `check`: array lengths against counts and dimension, per-dimension tables), so no count it
+//! reports is made up. The structure's arrays are then views into the mapped file: opening
+//! touches a few pages, whatever the file's size. Section checksums and the values inside the
+//! arrays are *not* read on open, since that would read the whole file; [`Saved::verify`]
+//! (and [`Saved::open_checked`], `--verify`, `TPX_OPEN_VERIFY`) checks them all, rebuilds the
+//! complex, runs the structure's `validate()` and compares it with a structure built afresh
+//! from the complex. Until then a file whose header is intact but whose arrays were altered
+//! gives wrong answers or a query may panic on an inconsistent index, never an out-of-bounds
+//! read (every access is bounds-checked; the CLI reports such a panic as a corrupt file, the C
+//! ABI as `TPX_STATUS_PANIC`). The complex is rebuilt from its listing when asked for
+//! ([`Saved::complex`]), which validates it fully.
 //!
 //! # The live complex
 //! The live complex (content code 10, kind `iastar`) is saved compacted (no tombstones; ids as
@@ -119,35 +126,69 @@ pub enum OpenError {
     Build(#[from] crate::relation::BuildError),
 }
 
-/// The one door for an input path, used by the CLI and the C ABI alike: a `.tpx` saved file
-/// gives its complex (rebuilt from the saved listing), any other path is read by extension
-/// ([`Complex::from_path_with`], normalised under `budget`).
+/// The one door for an input path, used by the CLI and the C ABI alike: a saved file
+/// ([`is_saved_path`]: by its magic number, whatever its extension) gives its complex (rebuilt
+/// from the saved listing), any other path is read by extension ([`Complex::from_path_with`],
+/// normalised under `budget`).
 pub fn open_complex(path: &Path, budget: crate::complex::Budget) -> Result<Complex, OpenError> {
+    open_complex_with(path, budget, false)
+}
+
+/// [`open_complex`], and with `verify` a saved file is first checked fully ([`Saved::verify`]:
+/// checksums, invariants, structure against complex; O(file size) and more). A mesh file is
+/// always checked fully by reading it, so `verify` changes nothing for one.
+pub fn open_complex_with(
+    path: &Path,
+    budget: crate::complex::Budget,
+    verify: bool,
+) -> Result<Complex, OpenError> {
     if is_saved_path(path) {
-        return Ok(Saved::open(path)?.complex()?);
+        return Ok(Saved::open_checked(path, verify)?.complex()?);
     }
     Ok(Complex::from_path_with(path, budget)?)
 }
 
-/// A structure of `kind` for an input path: a `.tpx` file's saved structure is mapped when it is
-/// of that kind (else built from the saved complex); any other path is read under `budget` and
+/// A structure of `kind` for an input path: a saved file's structure is mapped when it is of
+/// that kind (else built from the saved complex); any other path is read under `budget` and
 /// built.
 pub fn open_structure(
     path: &Path,
     kind: StructureKind,
     budget: crate::complex::Budget,
 ) -> Result<Box<dyn Topology>, OpenError> {
+    open_structure_with(path, kind, budget, false)
+}
+
+/// [`open_structure`], and with `verify` a saved file is first checked fully
+/// ([`open_complex_with`]).
+pub fn open_structure_with(
+    path: &Path,
+    kind: StructureKind,
+    budget: crate::complex::Budget,
+    verify: bool,
+) -> Result<Box<dyn Topology>, OpenError> {
     if is_saved_path(path) {
-        return Ok(Saved::open(path)?.structure_of(kind)?);
+        return Ok(Saved::open_checked(path, verify)?.structure_of(kind)?);
     }
     let complex = Complex::from_path_with(path, budget)?;
     Ok(crate::family::build(kind, &complex)?)
 }
 
-/// Whether `path` names a saved file (by extension `.tpx`).
+/// Whether `path` names a saved file: its extension is `.tpx`, or it is a regular file whose
+/// first bytes are the magic number [`MAGIC`] (so `save --out x.bin` opens back). Cost: one
+/// `stat` and, without the extension, a read of 8 bytes; a FIFO or device is never opened here.
 pub fn is_saved_path(path: &Path) -> bool {
-    path.extension()
+    if path
+        .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("tpx"))
+    {
+        return true;
+    }
+    let Ok((mut file, _)) = crate::io::open_regular(path) else {
+        return false;
+    };
+    let mut head = [0u8; MAGIC.len()];
+    io::Read::read_exact(&mut file, &mut head).is_ok() && head == MAGIC
 }
 
 impl Saved {
@@ -174,6 +215,15 @@ impl Saved {
             _ => io_err(e),
         })?;
         Saved::from_backing(path, Backing::Map(map))
+    }
+
+    /// [`Saved::open`], then with `verify` [`Saved::verify`] before returning.
+    pub fn open_checked(path: &Path, verify: bool) -> Result<Saved, StoreError> {
+        let saved = Saved::open(path)?;
+        if verify {
+            saved.verify()?;
+        }
+        Ok(saved)
     }
 
     /// Opens saved bytes held in memory (copied into aligned words); `name` stands for the file
@@ -233,7 +283,8 @@ impl Saved {
     /// same complex, numbering and statistics as the one saved. Cost: a normalisation.
     pub fn complex(&self) -> Result<Complex, StoreError> {
         let mut r = self.reader(1);
-        let c = persist::load_complex(&mut r)?;
+        let mut c = persist::load_complex(&mut r)?;
+        persist::load_attributes(&mut r, &mut c, self.structure_first)?;
         if r.next != self.structure_first {
             return Err(r.corrupt("the complex's sections do not end where the structure's begin"));
         }
@@ -249,7 +300,21 @@ impl Saved {
         let mut r = self.reader(self.structure_first);
         let s = crate::family::load(kind, &mut r)?;
         r.done()?;
+        self.same_vertex_count(s.vertex_count())?;
         Ok(Some(s))
+    }
+
+    /// The saved structure's vertex count against the saved complex's (section 1, one number):
+    /// a cheap check that the two belong together.
+    fn same_vertex_count(&self, n: u32) -> Result<(), StoreError> {
+        let mut r = self.reader(1);
+        let saved = r.scalar()?;
+        if saved != u64::from(n) {
+            return Err(self.corrupt(format!(
+                "the saved structure has {n} vertices, the saved complex {saved}"
+            )));
+        }
+        Ok(())
     }
 
     /// The file's path (as opened).
@@ -287,8 +352,11 @@ impl Saved {
         })
     }
 
-    /// Checks every section's checksum (reads the whole file), then the saved structure's
-    /// invariants (`validate()`). Cost: O(file size) plus the structure's validation.
+    /// Checks every section's checksum (reads the whole file), rebuilds the saved complex from
+    /// its listing (validating it as any input), checks the saved structure's invariants
+    /// (`validate()`), and that it agrees with the saved complex: a structure built afresh
+    /// from it gives the same simplices and the same answer to every relation of every simplex.
+    /// Cost: O(file size) plus a normalisation, a build and every relation of both structures.
     pub fn verify(&self) -> Result<(), StoreError> {
         let bytes = self.sections.backing.bytes();
         // Padding between sections must be zero, so that every byte of the file is checked.
@@ -308,16 +376,42 @@ impl Saved {
         if bytes[covered.min(table)..table].iter().any(|&b| b != 0) {
             return Err(self.corrupt("non-zero padding before the section table"));
         }
+        // The complex is rebuilt from its listing, so validated like any input.
+        let complex = self.complex()?;
         if let Some(s) = self.structure()? {
             // A hostile file whose checksums were recomputed may still break an invariant that
             // `validate` indexes through: its panic is an answer here, not a crash.
+            let kind = s.kind();
             let checked =
                 crate::error::caught_quietly(std::panic::AssertUnwindSafe(|| s.validate()));
             match checked {
                 Ok(Ok(())) => {}
-                Ok(Err(e)) => return Err(self.corrupt(format!("saved {}: {e}", s.kind()))),
+                Ok(Err(e)) => return Err(self.corrupt(format!("saved {kind}: {e}"))),
                 Err(_) => {
-                    return Err(self.corrupt(format!("saved {}: inconsistent arrays", s.kind())));
+                    return Err(self.corrupt(format!("saved {kind}: inconsistent arrays")));
+                }
+            }
+            // A valid structure of another complex (both sections resealed): every relation of
+            // a structure built afresh from the saved complex must be the saved one's.
+            let fresh =
+                crate::family::build(kind, &complex).map_err(|source| StoreError::Build {
+                    path: self.sections.path.clone(),
+                    source,
+                })?;
+            let agree = crate::error::caught_quietly(std::panic::AssertUnwindSafe(|| {
+                crate::oracle::compare_structures(fresh.as_ref(), s.as_ref())
+            }));
+            match agree {
+                Ok(Ok(())) => {}
+                Ok(Err(e)) => {
+                    return Err(self.corrupt(format!(
+                        "saved {kind} does not match the saved complex: {e}"
+                    )));
+                }
+                Err(_) => {
+                    return Err(self.corrupt(format!(
+                        "saved {kind} does not match the saved complex (inconsistent arrays)"
+                    )));
                 }
             }
         }
@@ -330,6 +424,44 @@ impl Saved {
             what: what.into(),
         }
     }
+}
+
+/// Rewrites the checksums of saved bytes after an edit (every section's whose place lies inside
+/// the bytes, then the header's), so that an edit reaches the checks behind them: for tests and
+/// fuzzing of what opening and `verify` catch beyond a checksum. Returns `false`, leaving the
+/// bytes as they are, when they have no readable header or section table. Cost: O(bytes).
+#[doc(hidden)]
+pub fn reseal(bytes: &mut [u8]) -> bool {
+    if bytes.len() < HEADER_LEN {
+        return false;
+    }
+    let u64_at = |b: &[u8], o: usize| u64::from_ne_bytes(b[o..o + 8].try_into().unwrap());
+    let n = u32::from_ne_bytes(bytes[24..28].try_into().unwrap()) as usize;
+    let table = u64_at(bytes, 40);
+    let Some(end) = usize::try_from(table)
+        .ok()
+        .and_then(|t| n.checked_mul(32).and_then(|l| l.checked_add(t)))
+        .filter(|&end| end <= bytes.len() && table >= HEADER_LEN as u64)
+    else {
+        return false;
+    };
+    let table = table as usize;
+    for i in 0..n {
+        let at = table + 32 * i;
+        let (offset, count) = (u64_at(bytes, at), u64_at(bytes, at + 8));
+        let size = u32::from_ne_bytes(bytes[at + 16..at + 20].try_into().unwrap()) as u64;
+        let span = count
+            .checked_mul(size)
+            .and_then(|l| l.checked_add(offset))
+            .filter(|&e| e <= bytes.len() as u64);
+        if let Some(e) = span {
+            let sum = xxhash_rust::xxh3::xxh3_64(&bytes[offset as usize..e as usize]);
+            bytes[at + 24..at + 32].copy_from_slice(&sum.to_ne_bytes());
+        }
+    }
+    let sum = crate::codec::head_checksum(&bytes[..48], &bytes[table..end]);
+    bytes[48..56].copy_from_slice(&sum.to_ne_bytes());
+    true
 }
 
 /// Coordinates as saved: dimension, then the numbers.
@@ -357,7 +489,9 @@ impl LiveComplex {
     /// [`LiveComplex::open`] of an opened file.
     pub fn open_saved(saved: &Saved) -> Result<LiveComplex, StoreError> {
         let kind = crate::relation::StructureKind::IaStar;
-        if let Some(live) = saved.structure_as::<LiveComplex>(kind)? {
+        if let Some(mut live) = saved.structure_as::<LiveComplex>(kind)? {
+            let complex = saved.complex()?;
+            live.attach_data(&complex);
             return Ok(live);
         }
         LiveComplex::try_from_complex(&saved.complex()?).map_err(|source| StoreError::Build {

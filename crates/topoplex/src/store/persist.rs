@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use super::{Reader, StoreError, Writer, coords_of};
 use crate::complex::Complex;
 use crate::complex::Coords;
+use crate::complex::{Attribute, Attributes, LabelName, Location, Values};
 
 /// Vertex count, coordinates, the listing as given (ids and offsets) and the source path: all
 /// the complex model needs to rebuild the same complex.
@@ -18,6 +19,119 @@ pub(super) fn save_complex(c: &Complex, w: &mut Writer) {
     w.usizes_from(count + 1, (0..=count).map(offset));
     let source = c.source().map(|p| p.to_string_lossy().into_owned());
     w.u8s(source.unwrap_or_default().as_bytes());
+    save_attributes(c.attributes(), w);
+}
+
+/// The attributes (version 2; nothing for a complex without any, so such a file is laid out as
+/// version 1 wrote it): a count, then per attribute its name, location (0 vertices, 1 listed),
+/// type (0 i32, 1 i64, 2 f32, 3 f64), components and values (a typed section), then a count
+/// of label names and per name its attribute, dimension (`u64::MAX`: none), label (the `i64`'s
+/// bits) and name.
+fn save_attributes(at: &Attributes, w: &mut Writer) {
+    if at.is_empty() {
+        return;
+    }
+    let list: Vec<&Attribute> = at.iter().collect();
+    w.scalar(list.len() as u64);
+    for a in list {
+        w.u8s(a.name.as_bytes());
+        w.scalar(match a.location {
+            Location::Vertices => 0,
+            Location::Listed => 1,
+        });
+        // The type's code, the components, then the values as a typed section.
+        fn typed<T: bytemuck::Pod>(w: &mut Writer, code: u64, components: usize, v: &[T]) {
+            w.scalar(code);
+            w.scalar(components as u64);
+            w.section(v);
+        }
+        match &a.values {
+            Values::I32(v) => typed(w, 0, a.components, v),
+            Values::I64(v) => typed(w, 1, a.components, v),
+            Values::F32(v) => typed(w, 2, a.components, v),
+            Values::F64(v) => typed(w, 3, a.components, v),
+        }
+    }
+    w.scalar(at.label_names().len() as u64);
+    for n in at.label_names() {
+        w.u8s(n.attribute.as_bytes());
+        w.scalar(n.dimension.map_or(u64::MAX, u64::from));
+        w.scalar(n.label as u64);
+        w.u8s(n.name.as_bytes());
+    }
+}
+
+/// The attributes [`save_attributes`] wrote, when sections are left before `end` (a file of
+/// version 1, or of a complex without attributes, has none); checked against the complex.
+pub(super) fn load_attributes(
+    r: &mut Reader,
+    c: &mut Complex,
+    end: usize,
+) -> Result<(), StoreError> {
+    if r.next >= end {
+        return Ok(());
+    }
+    let text = |r: &mut Reader, what: &str| -> Result<String, StoreError> {
+        let bytes = r.u8s()?;
+        String::from_utf8(r.copy(&bytes)?).map_err(|_| r.corrupt(format!("{what} is not UTF-8")))
+    };
+    let count = r.bounded(1 << 16, "attribute count")?;
+    let mut list = Vec::new();
+    for _ in 0..count {
+        let name = text(r, "an attribute's name")?;
+        let location = match r.bounded(1, "attribute location")? {
+            0 => Location::Vertices,
+            _ => Location::Listed,
+        };
+        let ty = r.bounded(3, "attribute type")?;
+        let components = r.bounded(
+            crate::complex::attributes::MAX_COMPONENTS as u64,
+            "attribute components",
+        )? as usize;
+        let values = match ty {
+            0 => {
+                let a = r.arr::<i32>()?;
+                Values::I32(r.copy(&a)?)
+            }
+            1 => {
+                let a = r.arr::<i64>()?;
+                Values::I64(r.copy(&a)?)
+            }
+            2 => {
+                let a = r.arr::<f32>()?;
+                Values::F32(r.copy(&a)?)
+            }
+            _ => {
+                let a = r.arr::<f64>()?;
+                Values::F64(r.copy(&a)?)
+            }
+        };
+        list.push(Attribute {
+            name,
+            location,
+            components,
+            values,
+        });
+    }
+    let names = r.bounded(1 << 24, "label name count")?;
+    let mut label_names = Vec::new();
+    for _ in 0..names {
+        let attribute = text(r, "a label name's attribute")?;
+        let dimension = match r.scalar()? {
+            u64::MAX => None,
+            d => Some(u8::try_from(d).map_err(|_| r.corrupt(format!("label dimension {d}")))?),
+        };
+        let label = r.scalar()? as i64;
+        let name = text(r, "a label name")?;
+        label_names.push(LabelName {
+            attribute,
+            dimension,
+            label,
+            name,
+        });
+    }
+    c.set_attributes(Attributes::from_parts(list, label_names))
+        .map_err(|e| r.corrupt(format!("attributes: {e}")))
 }
 
 pub(super) fn load_complex(r: &mut Reader) -> Result<Complex, StoreError> {
@@ -54,4 +168,32 @@ pub(super) fn load_complex(r: &mut Reader) -> Result<Complex, StoreError> {
         })?;
     c.set_source(source);
     Ok(c)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::codec::head_checksum;
+
+    /// A file of version 1 (the same layout as a version-2 file of a complex without
+    /// attributes, the version field 1) still opens, and gives the same complex.
+    #[test]
+    fn a_version_1_file_still_opens() {
+        let c = crate::fixtures::builtin_example();
+        let dir = std::env::temp_dir().join(format!("topoplex-v1-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("v1.tpx");
+        super::super::save(&path, &c, None).unwrap();
+        let mut bytes = std::fs::read(&path).unwrap();
+        assert_eq!(u32::from_ne_bytes(bytes[12..16].try_into().unwrap()), 2);
+        bytes[12..16].copy_from_slice(&1u32.to_ne_bytes());
+        let n = u32::from_ne_bytes(bytes[24..28].try_into().unwrap()) as usize;
+        let table = u64::from_ne_bytes(bytes[40..48].try_into().unwrap()) as usize;
+        let sum = head_checksum(&bytes[..48], &bytes[table..table + 32 * n]);
+        bytes[48..56].copy_from_slice(&sum.to_ne_bytes());
+        std::fs::write(&path, &bytes).unwrap();
+        let back = super::super::Saved::open(&path).unwrap().complex().unwrap();
+        assert_eq!(back.top_counts(), c.top_counts());
+        assert!(back.attributes().is_empty());
+        std::fs::remove_dir_all(&dir).ok();
+    }
 }

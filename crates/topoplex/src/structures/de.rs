@@ -331,6 +331,9 @@ crate::persist_fields!(DirectedEdge {
     comp_de,
     locator, nav
 } check |s| {
+    if s.dim > 2 {
+        return Err(format!("dimension {} above 2", s.dim));
+    }
     if s.de_start.len() != s.de_end.len() || s.de_next.len() != s.de_start.len() {
         return Err("directed-edge arrays of different lengths".into());
     }

@@ -908,6 +908,9 @@ impl Topology for IndexedAdjacency {
 
 crate::persist_fields!(IndexedAdjacency { d, n, tops, adj, vstar_off, vstar, counts, nav } check |s| {
     let d = s.d;
+    if d > crate::complex::MAX_DIMENSION {
+        return Err(format!("dimension {d} above {}", crate::complex::MAX_DIMENSION));
+    }
     if s.tops.arity() != d + 1 || s.adj.len() != (d + 1) * s.tops.len() || s.counts.len() != d + 1 {
         return Err(format!("top table, adjacency or counts do not fit dimension {d}"));
     }

@@ -417,5 +417,10 @@ crate::persist_fields!(IncidenceGraph { tables, boundary, cob_offsets, cob, top_
     if levels == 0 || s.boundary.len() != levels || s.cob_offsets.len() + 1 != levels || s.cob.len() + 1 != levels || s.top_counts.len() != levels {
         return Err("per-dimension tables of different lengths".into());
     }
+    for (p, t) in s.tables.iter().enumerate() {
+        if t.arity() != p + 1 || (p > 0 && s.boundary[p].len() != t.len() * (p + 1)) {
+            return Err(format!("{p}-simplex table or boundary rows of the wrong shape"));
+        }
+    }
     Ok(())
 });

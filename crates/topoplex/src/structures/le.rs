@@ -175,8 +175,16 @@ impl TriTopo for LoopEdgeUse {
     fn star_corners(&self, v: u32, out: &mut Vec<u32>) {
         let first = self.vertex_eu[v as usize];
         let mut u = first;
+        // A ring holds each edge-use once: a longer one (a saved file's arrays altered) stops
+        // with a panic the CLI and the C ABI report, not an answer growing without bound.
+        let most = self.eu_vnext.len();
+        let start = out.len();
         loop {
             out.push(u);
+            assert!(
+                out.len() - start <= most,
+                "vertex ring does not close (inconsistent arrays)"
+            );
             u = self.eu_vnext[u as usize];
             if u == first {
                 break;

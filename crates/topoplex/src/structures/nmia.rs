@@ -1052,6 +1052,9 @@ crate::persist_fields!(NonManifoldIa {
     vstar,
     counts, nav
 } check |s| {
+    if s.d > 3 {
+        return Err(format!("dimension {} above 3", s.d));
+    }
     if s.counts.len() != s.d + 1 || s.adj.len() != 4 * s.tets.len() || s.link_keys.len() != s.link_next.len() {
         return Err("arrays of the wrong length for the simplex counts".into());
     }

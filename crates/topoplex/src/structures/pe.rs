@@ -392,6 +392,9 @@ crate::persist_fields!(PartialEntities {
     vertex_off,
     vertex_pe, nav
 } check |s| {
+    if s.dim > 2 {
+        return Err(format!("dimension {} above 2", s.dim));
+    }
     if s.face_pe.len() != s.n_tris as usize || s.vertex_off.len() != s.n as usize + 1 {
         return Err("arrays of the wrong length for the triangles and vertices".into());
     }

@@ -527,6 +527,20 @@ pub enum EdgeAt {
     Wire,
 }
 
+/// The next slot of a radial walk, counting its steps: a cycle longer than there are slots
+/// (only a saved file's arrays altered behind their checksums make one) stops the walk with a
+/// panic, which the CLI and the C ABI report as such, instead of looping and growing the answer
+/// without bound.
+#[inline]
+fn next_in_cycle<T: TriTopo + ?Sized>(topo: &T, r: u32, steps: &mut u32) -> u32 {
+    *steps += 1;
+    assert!(
+        *steps <= topo.n_tris().saturating_mul(3),
+        "radial cycle does not close (inconsistent arrays)"
+    );
+    topo.radial_next(r)
+}
+
 /// The primitive operations each 2D structure provides; every relation is derived from them.
 #[doc(hidden)]
 pub trait TriTopo {
@@ -574,13 +588,13 @@ pub(crate) fn walk_star<T: TriTopo + ?Sized>(
             if !seen_edge.insert(other) {
                 continue;
             }
-            let mut r = topo.radial_next(s);
+            let (mut r, mut steps) = (topo.radial_next(s), 0u32);
             while r != s {
                 let t2 = r / 3;
                 if seen_tri.insert(t2) {
                     out.push(corner(t2, topo.tri(t2), v));
                 }
-                r = topo.radial_next(r);
+                r = next_in_cycle(topo, r, &mut steps);
             }
         }
     }
@@ -657,10 +671,10 @@ pub(crate) fn fast_visit<T: TriTopo + ?Sized>(
         (2, 2) => {
             let t = h.index();
             for s in 3 * t..3 * t + 3 {
-                let mut r = topo.radial_next(s);
+                let (mut r, mut steps) = (topo.radial_next(s), 0u32);
                 while r != s {
                     visit(SimplexHandle::dense(2, r / 3));
-                    r = topo.radial_next(r);
+                    r = next_in_cycle(topo, r, &mut steps);
                 }
             }
         }
@@ -692,10 +706,10 @@ pub(crate) fn fast_into<T: TriTopo + ?Sized>(
         }
         (2, 2) => {
             for s in 3 * i..3 * i + 3 {
-                let mut r = topo.radial_next(s);
+                let (mut r, mut steps) = (topo.radial_next(s), 0u32);
                 while r != s {
                     ids.push(r / 3);
-                    r = topo.radial_next(r);
+                    r = next_in_cycle(topo, r, &mut steps);
                 }
             }
         }
@@ -739,10 +753,10 @@ fn neighbours<T: TriTopo + ?Sized>(topo: &T, v: u32, out: &mut Vec<u32>) {
 /// smallest triangle id): O(k) for an edge in k triangles.
 pub(crate) fn cycle<T: TriTopo + ?Sized>(topo: &T, s: u32, out: &mut Vec<u32>) {
     let start = out.len();
-    let mut r = s;
+    let (mut r, mut steps) = (s, 0u32);
     loop {
         out.push(r);
-        r = topo.radial_next(r);
+        r = next_in_cycle(topo, r, &mut steps);
         if r == s {
             break;
         }
@@ -851,10 +865,10 @@ pub(crate) fn query<T: TriTopo + ?Sized>(
                 _ => {
                     for i in 0..3 {
                         let s = 3 * t + i;
-                        let mut r = topo.radial_next(s);
+                        let (mut r, mut steps) = (topo.radial_next(s), 0u32);
                         while r != s {
                             out.extend_from_slice(&topo.tri(r / 3));
-                            r = topo.radial_next(r);
+                            r = next_in_cycle(topo, r, &mut steps);
                         }
                     }
                 }

@@ -1386,5 +1386,16 @@ crate::persist_fields!(Sig { first, boundary, cob, top_counts, nav } check |s| {
     if s.first.len() != d + 2 || s.boundary.len() != d + 1 || s.cob.len() != d {
         return Err(format!("tables of {} dimensions for dimension {d}", s.first.len()));
     }
+    // The lookup table gives every count: it must ascend from 0 and agree with the boundary
+    // rows (whose lengths the file bounds), so that no count read from it is made up.
+    if s.first[0] != 0 || s.first.windows(2).any(|w| w[0] > w[1]) {
+        return Err("the lookup table of first ids does not ascend from 0".into());
+    }
+    for p in 1..=d {
+        let n = (s.first[p + 1] - s.first[p]) as usize;
+        if s.boundary[p].len() != n * (p + 1) || s.top_counts[p] > n {
+            return Err(format!("{p}-simplex boundary rows do not fit the lookup table"));
+        }
+    }
     Ok(())
 });
