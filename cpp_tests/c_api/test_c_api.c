@@ -899,7 +899,7 @@ static void test_attributes(void) {
   CHECK_STATUS(tpx_complex_set_attribute(c, "ref", TPX_LOCATION_LISTED, TPX_VALUE_I32, 1, ref, 2),
                TPX_STATUS_INVALID_ARGUMENT);
   CHECK(message_contains("'ref'") && message_contains("2 numbers"));
-  CHECK_STATUS(tpx_complex_set_attribute(c, "v", TPX_LOCATION_VERTICES, TPX_VALUE_F64, 10, velocity, 60),
+  CHECK_STATUS(tpx_complex_set_attribute(c, "v", TPX_LOCATION_VERTICES, TPX_VALUE_F64, 10, velocity, 18),
                TPX_STATUS_INVALID_ARGUMENT);
   CHECK_STATUS(tpx_complex_set_attribute(c, "v", TPX_LOCATION_VERTICES, TPX_VALUE_F64, 3, NULL, 18),
                TPX_STATUS_NULL_ARGUMENT);

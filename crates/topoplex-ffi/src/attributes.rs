@@ -280,13 +280,6 @@ pub unsafe extern "C" fn tpx_complex_set_attribute(
         let c = out_ptr(c, "c")?;
         let name = name_arg(name, "name")?;
         let location = location_arg(location)?;
-        let values = copy_values(value_type, data, count)?;
-        let new = Attribute {
-            name: name.to_string(),
-            location,
-            components,
-            values,
-        };
         let vertices = c.complex.vertex_count() as usize;
         let listed = c.complex.input_count();
         let invalid = |e: topoplex::complex::AttributeError| {
@@ -313,12 +306,31 @@ pub unsafe extern "C" fn tpx_complex_set_attribute(
         } else {
             None
         };
+        // Checked before reading `data`: a wrong count never reads past the caller's array.
         if let Some(reason) = shape {
+            let type_name = match value_type {
+                TPX_VALUE_I32 => "i32",
+                TPX_VALUE_I64 => "i64",
+                TPX_VALUE_F32 => "f32",
+                TPX_VALUE_F64 => "f64",
+                _ => "an unknown type",
+            };
             return Err(invalid(topoplex::complex::AttributeError {
-                attribute: new.describe(),
+                attribute: format!(
+                    "'{}' (on {}, {type_name} × {components})",
+                    topoplex::error::echo(name),
+                    location.describe()
+                ),
                 reason,
             }));
         }
+        let values = copy_values(value_type, data, count)?;
+        let new = Attribute {
+            name: name.to_string(),
+            location,
+            components,
+            values,
+        };
         let mut attributes = c.complex.take_attributes();
         let old = attributes
             .get(name, location)
