@@ -69,6 +69,54 @@
 #define TPX_KIND_IASTAR 9
 
 /**
+ * Attribute location: one element per vertex id `0 .. n`.
+ */
+#define TPX_LOCATION_VERTICES 0
+
+/**
+ * Attribute location: one element per simplex as listed, in input order (the listing of
+ * `tpx_complex_listed_index`).
+ */
+#define TPX_LOCATION_LISTED 1
+
+/**
+ * Attribute value type: `int32_t` (labels).
+ */
+#define TPX_VALUE_I32 0
+
+/**
+ * Attribute value type: `int64_t` (labels).
+ */
+#define TPX_VALUE_I64 1
+
+/**
+ * Attribute value type: `float`.
+ */
+#define TPX_VALUE_F32 2
+
+/**
+ * Attribute value type: `double`.
+ */
+#define TPX_VALUE_F64 3
+
+/**
+ * `tpx_complex_listed_index`'s answer for a simplex that was never listed (`SIZE_MAX`).
+ */
+#define TPX_NOT_LISTED SIZE_MAX
+
+/**
+ * `tpx_live_set_vertex_policy`: a contraction {a, b} → a leaves a's vertex values as they are
+ * (the default; b's stay in b's slot for a split).
+ */
+#define TPX_VERTEX_SURVIVOR 0
+
+/**
+ * `tpx_live_set_vertex_policy`: a contraction {a, b} → a sets a's real vertex values to the
+ * mean of a's and b's; labels stay a's.
+ */
+#define TPX_VERTEX_AVERAGE 1
+
+/**
  * Answer order of the navigation functions: the structure's natural order.
  */
 #define TPX_ORDER_NATURAL 0
@@ -360,6 +408,10 @@ enum TpxStatus
    * numbers every dimension (until its next edit). Kept so that the number is never reused.
    */
   TPX_STATUS_NOT_DENSE = 53,
+  /**
+   * No attribute of that name (at that location); the message names it.
+   */
+  TPX_STATUS_NO_SUCH_ATTRIBUTE = 54,
 };
 #ifndef __cplusplus
 #if __STDC_VERSION__ >= 202311L
@@ -406,6 +458,37 @@ typedef struct TpxStructure TpxStructure;
  * `tpx_undo_free`; it does not borrow the live complex.
  */
 typedef struct TpxUndo TpxUndo;
+
+/**
+ * What one attribute of a complex is (`tpx_complex_attribute_info`).
+ */
+typedef struct TpxAttributeInfo {
+  /**
+   * The name's UTF-8 bytes, lent (not NUL-terminated): valid while the complex lives and
+   * none of its attributes is set or removed.
+   */
+  const char *name;
+  /**
+   * Length of `name` in bytes.
+   */
+  size_t name_len;
+  /**
+   * `TPX_LOCATION_VERTICES` or `TPX_LOCATION_LISTED`.
+   */
+  uint32_t location;
+  /**
+   * `TPX_VALUE_I32`, `TPX_VALUE_I64`, `TPX_VALUE_F32` or `TPX_VALUE_F64`.
+   */
+  uint32_t value_type;
+  /**
+   * Numbers per element (1 to 9).
+   */
+  size_t components;
+  /**
+   * Elements: the vertex count, or the number of listed simplices.
+   */
+  size_t elements;
+} TpxAttributeInfo;
 
 /**
  * What normalising the input absorbed (`TpxComplex`'s input statistics).
@@ -521,6 +604,190 @@ const char *tpx_version(void);
  * this thread; copy it to keep it. Never NULL.
  */
 const char *tpx_last_error_message(void);
+
+/**
+ * Number of attributes of `c` into `*out` (indices `0 .. count` for the functions below, in
+ * the order a file gives them, then those set). O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_complex_attribute_count(const struct TpxComplex *c, size_t *out);
+
+/**
+ * What attribute `i` of `c` is into `*out` (its name lent, see `TpxAttributeInfo`). Errors:
+ * NULL_ARGUMENT, INVALID_ARGUMENT (`i` ≥ `tpx_complex_attribute_count`). O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_complex_attribute_info(const struct TpxComplex *c,
+                                     size_t i,
+                                     struct TpxAttributeInfo *out);
+
+/**
+ * The index of the attribute called `name` (NUL-terminated UTF-8) at `location` into
+ * `*out`. Errors: NULL_ARGUMENT, INVALID_ARGUMENT (unknown location, name not UTF-8),
+ * NO_SUCH_ATTRIBUTE. O(attributes × name length).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `name` NUL-terminated.
+ */
+TpxStatus tpx_complex_attribute_find(const struct TpxComplex *c,
+                                     const char *name,
+                                     uint32_t location,
+                                     size_t *out);
+
+/**
+ * Lends the values of attribute `i` without a copy: `*out` points at the first number,
+ * `*out_len` = elements × components numbers, of the attribute's type (cast `*out` to
+ * `const int32_t *`, `const int64_t *`, `const float *` or `const double *` by
+ * `TpxAttributeInfo::value_type`), element after element. Owned by the complex: valid until
+ * `tpx_complex_free`, `tpx_complex_set_attribute` or `tpx_complex_remove_attribute` on it.
+ * An attribute of no element lends a non-NULL dangling pointer with length 0. Errors:
+ * NULL_ARGUMENT, INVALID_ARGUMENT (`i` out of range). O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_complex_attribute_data(const struct TpxComplex *c,
+                                     size_t i,
+                                     const void **out,
+                                     size_t *out_len);
+
+/**
+ * Sets attribute `name` (NUL-terminated UTF-8) at `location` of `c` to a copy of `data[0 ..
+ * count]`: `count` numbers of `value_type`, `components` (1 to 9) per element, element after
+ * element — one element per vertex (`TPX_LOCATION_VERTICES`, `count` = vertex count ×
+ * components) or per listed simplex in input order (`TPX_LOCATION_LISTED`, `count` =
+ * `TpxInputStats::input_simplices` × components). An attribute of the same name and location
+ * is replaced (pointers lent from `c`'s attributes die); writers then carry it
+ * (`tpx_complex_write`) or refuse it with FORMAT_CANNOT_HOLD. Errors (nothing changes):
+ * NULL_ARGUMENT (`data` may be NULL only when `count` is 0), INVALID_ARGUMENT (unknown
+ * location or type, name empty or not UTF-8, components out of 1..9, `count` not the elements
+ * × components, a label name left naming no integer attribute: the message names the
+ * attribute), TOO_LARGE (the copy cannot be allocated). Not to be called while another thread
+ * reads `c`. Cost: O(count) copy; the replaced attribute is dropped.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `data` holds `count` numbers of `value_type`.
+ */
+TpxStatus tpx_complex_set_attribute(struct TpxComplex *c,
+                                    const char *name,
+                                    uint32_t location,
+                                    uint32_t value_type,
+                                    size_t components,
+                                    const void *data,
+                                    size_t count);
+
+/**
+ * Removes the attributes called `name` (NUL-terminated UTF-8) at both locations and the names
+ * of their labels. Pointers lent from `c`'s attributes die. Errors: NULL_ARGUMENT,
+ * INVALID_ARGUMENT (name not UTF-8), NO_SUCH_ATTRIBUTE (nothing of that name; nothing
+ * changes). Not to be called while another thread reads `c`. O(attributes).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `name` NUL-terminated.
+ */
+TpxStatus tpx_complex_remove_attribute(struct TpxComplex *c, const char *name);
+
+/**
+ * The listing of the simplex with vertices `ids[0 .. len]` (any order) into `*out`: the
+ * element of its values in the `TPX_LOCATION_LISTED` attributes — a top simplex's first
+ * listing, or the first listing of a face listed on its own — or `TPX_NOT_LISTED`
+ * (`SIZE_MAX`) for a simplex of the complex that was never listed, or no simplex of it.
+ * Errors: NULL_ARGUMENT, INVALID_SIMPLEX (empty, more than 16 vertices, a repeated or
+ * out-of-range vertex). Cost: a binary search in the top table (the first call builds the
+ * listing maps), then for a non-top one among the absorbed listings (an index built on first
+ * use, O(a log a)).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `ids` holds `len` ids.
+ */
+TpxStatus tpx_complex_listed_index(const struct TpxComplex *c,
+                                   const uint32_t *ids,
+                                   size_t len,
+                                   size_t *out);
+
+/**
+ * The name of label `label` of integer attribute `attribute` (NUL-terminated UTF-8) for
+ * simplices of `dimension` (Gmsh `$PhysicalNames`), lent: `*out` points at its UTF-8 bytes
+ * (not NUL-terminated), `*out_len` bytes, valid while `c` lives and none of its attributes is
+ * set or removed; `*out` = NULL and `*out_len` = 0 when that label has no name. Errors:
+ * NULL_ARGUMENT, INVALID_ARGUMENT (name not UTF-8). O(label names).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `attribute` NUL-terminated.
+ */
+TpxStatus tpx_complex_label_name(const struct TpxComplex *c,
+                                 const char *attribute,
+                                 uint32_t dimension,
+                                 int64_t label,
+                                 const char **out,
+                                 size_t *out_len);
+
+/**
+ * The values of listed attribute `name` (NUL-terminated UTF-8) on live top `top` (a top id of
+ * `tpx_live_structure`'s numbering, as `tpx_live_top_vertices` takes; not an isolated vertex),
+ * as doubles (labels converted, exact up to 2^53), copied into `buf` (`buf_len` doubles);
+ * `*out_len` = the attribute's components. A top made by an edit has labels 0 and reals NaN
+ * until set; a contraction's survivors keep theirs. Errors: NULL_ARGUMENT, INVALID_HANDLE /
+ * STALE_GENERATION (no live top there), NO_SUCH_ATTRIBUTE (no listed attribute of that
+ * name), BUFFER_TOO_SMALL (`*out_len` = components). O(star of the top's first vertex).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` has room for `buf_len` doubles.
+ */
+TpxStatus tpx_live_top_values(const struct TpxLive *l,
+                              const char *name,
+                              uint32_t top,
+                              double *buf,
+                              size_t buf_len,
+                              size_t *out_len);
+
+/**
+ * Sets the values of listed attribute `name` on live top `top` to `data[0 .. len]` (`len` =
+ * its components; doubles rounded to `float` for a `TPX_VALUE_F32` attribute, and exact
+ * integers within the type for a label attribute). Errors (nothing changes): NULL_ARGUMENT,
+ * INVALID_HANDLE / STALE_GENERATION, NO_SUCH_ATTRIBUTE, INVALID_ARGUMENT (`len` is not the
+ * components; for labels, a number with a fraction, NaN, infinite or out of the type's range). Needs exclusive access
+ * to `l`. O(star of the top's first vertex + components).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `data` holds `len` doubles.
+ */
+TpxStatus tpx_live_set_top_values(struct TpxLive *l,
+                                  const char *name,
+                                  uint32_t top,
+                                  const double *data,
+                                  size_t len);
+
+/**
+ * The values of vertex attribute `name` on live vertex `v`, as doubles, copied into `buf`
+ * (`buf_len` doubles); `*out_len` = components. A vertex added by an edit has labels 0 and
+ * reals NaN. Errors: NULL_ARGUMENT, DEAD_VERTEX, NO_SUCH_ATTRIBUTE, BUFFER_TOO_SMALL. O(1)
+ * plus the attribute lookup.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `buf` has room for `buf_len` doubles.
+ */
+TpxStatus tpx_live_vertex_values(const struct TpxLive *l,
+                                 const char *name,
+                                 uint32_t v,
+                                 double *buf,
+                                 size_t buf_len,
+                                 size_t *out_len);
+
+/**
+ * What later contractions {a, b} → a do to a's vertex values: `TPX_VERTEX_SURVIVOR` (the
+ * default: a keeps its own) or `TPX_VERTEX_AVERAGE` (reals become the mean of a's and b's;
+ * labels stay a's). Errors: NULL_ARGUMENT, INVALID_ARGUMENT (another number). Needs exclusive
+ * access to `l`. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_set_vertex_policy(struct TpxLive *l, uint32_t policy);
 
 /**
  * Builds a complex from simplices given as arrays: simplex `i` is

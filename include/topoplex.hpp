@@ -63,6 +63,37 @@ enum class Format : std::uint32_t {
   VTU = TPX_FORMAT_VTU,
 };
 
+/* Where an attribute's elements are (values of TPX_LOCATION_*): one per vertex id, or one per
+ * simplex as listed, in input order (Complex::listed_index gives a simplex's listing). */
+enum class Location : std::uint32_t {
+  Vertices = TPX_LOCATION_VERTICES,
+  Listed = TPX_LOCATION_LISTED,
+};
+
+/* The type of an attribute's numbers (values of TPX_VALUE_*). */
+enum class ValueType : std::uint32_t {
+  I32 = TPX_VALUE_I32,
+  I64 = TPX_VALUE_I64,
+  F32 = TPX_VALUE_F32,
+  F64 = TPX_VALUE_F64,
+};
+
+/* What Live contractions {a, b} -> a do to a's vertex values (values of TPX_VERTEX_*). */
+enum class VertexPolicy : std::uint32_t {
+  Survivor = TPX_VERTEX_SURVIVOR, /* a keeps its own (the default) */
+  Average = TPX_VERTEX_AVERAGE,   /* reals: the mean of a's and b's; labels stay a's */
+};
+
+/* One attribute of a Complex (Complex::attributes): the name copied, the rest as the library
+ * reports it (TpxAttributeInfo). */
+struct AttributeInfo {
+  std::string name;
+  Location location;
+  ValueType type;
+  std::size_t components; /* numbers per element, 1 to 9 */
+  std::size_t elements;   /* vertex count, or number of listed simplices */
+};
+
 /* A failed call: the TpxStatus and tpx_last_error_message() at the time of failure. */
 class Error : public std::runtime_error {
  public:
@@ -79,6 +110,36 @@ inline void check(TpxStatus status) {
   if (status != TPX_STATUS_OK) {
     throw Error(status, tpx_last_error_message());
   }
+}
+
+/* The ValueType of a C++ number type: int32_t, int64_t, float, double. */
+template <class T>
+struct value_type_of;
+template <>
+struct value_type_of<std::int32_t> {
+  static constexpr ValueType value = ValueType::I32;
+};
+template <>
+struct value_type_of<std::int64_t> {
+  static constexpr ValueType value = ValueType::I64;
+};
+template <>
+struct value_type_of<float> {
+  static constexpr ValueType value = ValueType::F32;
+};
+template <>
+struct value_type_of<double> {
+  static constexpr ValueType value = ValueType::F64;
+};
+
+inline const char *value_type_name(ValueType t) {
+  switch (t) {
+    case ValueType::I32: return "int32_t";
+    case ValueType::I64: return "int64_t";
+    case ValueType::F32: return "float";
+    case ValueType::F64: return "double";
+  }
+  return "?";
 }
 
 /* The value a C call writes through its last (out) parameter: fn(args..., &value), checked.
@@ -260,6 +321,34 @@ class CoordsView {
 };
 
 /* A normalised simplicial complex (owns a TpxComplex). */
+/* The numbers of one attribute, lent from its Complex without a copy (Complex::attribute<T>):
+ * size() numbers of type T, components() per element, element after element. Valid while the
+ * Complex lives and none of its attributes is set or removed (set_attribute,
+ * remove_attribute); a view does not own anything and costs nothing to copy. */
+template <class T>
+class AttributeView {
+ public:
+  AttributeView() = default;
+  AttributeView(const T *data, std::size_t size, std::size_t components)
+      : data_(data), size_(size), components_(components) {}
+  const T *data() const noexcept { return data_; }
+  std::size_t size() const noexcept { return size_; }
+  bool empty() const noexcept { return size_ == 0; }
+  std::size_t components() const noexcept { return components_; }
+  std::size_t elements() const noexcept { return components_ == 0 ? 0 : size_ / components_; }
+  const T &operator[](std::size_t i) const noexcept { return data_[i]; }
+  /* The first number of element e (components() numbers follow). */
+  const T *element(std::size_t e) const noexcept { return data_ + e * components_; }
+  const T *begin() const noexcept { return data_; }
+  const T *end() const noexcept { return data_ + size_; }
+  std::vector<T> to_vector() const { return std::vector<T>(begin(), end()); }
+
+ private:
+  const T *data_ = nullptr;
+  std::size_t size_ = 0;
+  std::size_t components_ = 0;
+};
+
 class Live;
 
 class Complex {
@@ -366,6 +455,77 @@ class Complex {
   void save(const std::string &path) const {
     detail::check(tpx_save(c_.get(), nullptr, path.c_str()));
   }
+  /* ---- attributes: named labels and fields on the vertices and the listed simplices ---- */
+
+  /* Every attribute, in order (index i of tpx_complex_attribute_info): names copied. O(count). */
+  std::vector<AttributeInfo> attributes() const {
+    const std::size_t n = detail::get<std::size_t>(tpx_complex_attribute_count, c_.get());
+    std::vector<AttributeInfo> out;
+    out.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const TpxAttributeInfo a = detail::get<TpxAttributeInfo>(tpx_complex_attribute_info, c_.get(), i);
+      out.push_back(AttributeInfo{std::string(a.name, a.name_len), static_cast<Location>(a.location),
+                                  static_cast<ValueType>(a.value_type), a.components, a.elements});
+    }
+    return out;
+  }
+  /* The values of attribute `name` at `location`, lent (see AttributeView: valid while this
+   * Complex lives and its attributes are not changed). T must be the stored type (int32_t,
+   * int64_t, float, double): otherwise Error TPX_STATUS_INVALID_ARGUMENT naming both; no such
+   * attribute: TPX_STATUS_NO_SUCH_ATTRIBUTE. O(attributes); no copy. */
+  template <class T>
+  AttributeView<T> attribute(const std::string &name, Location location) const {
+    const std::size_t i = detail::get<std::size_t>(tpx_complex_attribute_find, c_.get(), name.c_str(),
+                                                   static_cast<std::uint32_t>(location));
+    const TpxAttributeInfo a = detail::get<TpxAttributeInfo>(tpx_complex_attribute_info, c_.get(), i);
+    const ValueType want = detail::value_type_of<T>::value;
+    if (static_cast<ValueType>(a.value_type) != want) {
+      throw Error(TPX_STATUS_INVALID_ARGUMENT,
+                  "attribute '" + name + "' holds " +
+                      detail::value_type_name(static_cast<ValueType>(a.value_type)) + ", not " +
+                      detail::value_type_name(want));
+    }
+    const void *p = nullptr;
+    std::size_t n = 0;
+    detail::check(tpx_complex_attribute_data(c_.get(), i, &p, &n));
+    return AttributeView<T>(static_cast<const T *>(p), n, a.components);
+  }
+  /* Sets attribute `name` at `location` to a copy of data[0 .. n] (`components` numbers per
+   * element: n = vertex_count() or input_stats().input_simplices, times components), replacing
+   * one of the same name and location (views of it die). Writers then carry it or refuse the
+   * format. Throws Error (TPX_STATUS_INVALID_ARGUMENT naming the attribute) and changes nothing
+   * otherwise. O(n). */
+  template <class T>
+  void set_attribute(const std::string &name, Location location, std::size_t components,
+                     const T *data, std::size_t n) {
+    detail::check(tpx_complex_set_attribute(c_.get(), name.c_str(), static_cast<std::uint32_t>(location),
+                                            static_cast<std::uint32_t>(detail::value_type_of<T>::value),
+                                            components, data, n));
+  }
+  template <class T>
+  void set_attribute(const std::string &name, Location location, std::size_t components,
+                     const std::vector<T> &data) {
+    set_attribute(name, location, components, data.data(), data.size());
+  }
+  /* Removes the attributes called `name` (both locations) and their label names (views of
+   * them die); TPX_STATUS_NO_SUCH_ATTRIBUTE when there is none. O(attributes). */
+  void remove_attribute(const std::string &name) {
+    detail::check(tpx_complex_remove_attribute(c_.get(), name.c_str()));
+  }
+  /* The listing of a simplex (vertex ids in any order): its element in the Location::Listed
+   * attributes, or TPX_NOT_LISTED for one never listed. O(log n) after the first call. */
+  std::size_t listed_index(const std::vector<std::uint32_t> &simplex) const {
+    return detail::get<std::size_t>(tpx_complex_listed_index, c_.get(), simplex.data(), simplex.size());
+  }
+  /* The name of `label` of integer attribute `attribute` for simplices of `dimension`
+   * (Gmsh $PhysicalNames), copied; empty when it has none. */
+  std::string label_name(const std::string &attribute, std::uint32_t dimension, std::int64_t label) const {
+    const char *p = nullptr;
+    std::size_t n = 0;
+    detail::check(tpx_complex_label_name(c_.get(), attribute.c_str(), dimension, label, &p, &n));
+    return p ? std::string(p, n) : std::string();
+  }
+
   const TpxComplex *get() const noexcept { return c_.get(); }
 
  private:
@@ -1156,6 +1316,33 @@ class Live {
     return Complex(detail::get<TpxComplex *>(tpx_live_to_complex, l_.get()));
   }
   void validate() const { detail::check(tpx_live_validate(l_.get())); }
+
+  /* ---- attributes by handle (the Complex's attributes carried along edits) ---- */
+
+  /* The values of listed attribute `name` on live top t (a top id of dimension >= 1: top_id),
+   * copied as doubles (labels exact up to 2^53). A top made by an edit has labels 0 and reals
+   * NaN. O(star of its first vertex). */
+  std::vector<double> top_values(const std::string &name, std::uint32_t t) const {
+    std::vector<double> out(9);
+    detail::fill(out, tpx_live_top_values, l_.get(), name.c_str(), t);
+    return out;
+  }
+  /* Sets them (as many numbers as the attribute's components; rounded to its type). Throws
+   * TPX_STATUS_NO_SUCH_ATTRIBUTE, TPX_STATUS_INVALID_ARGUMENT (wrong length), a handle status;
+   * nothing changes then. */
+  void set_top_values(const std::string &name, std::uint32_t t, const std::vector<double> &values) {
+    detail::check(tpx_live_set_top_values(l_.get(), name.c_str(), t, values.data(), values.size()));
+  }
+  /* The values of vertex attribute `name` on live vertex v, copied as doubles. */
+  std::vector<double> vertex_values(const std::string &name, std::uint32_t v) const {
+    std::vector<double> out(9);
+    detail::fill(out, tpx_live_vertex_values, l_.get(), name.c_str(), v);
+    return out;
+  }
+  /* What later contractions do to the survivor's vertex values. */
+  void set_vertex_policy(VertexPolicy policy) {
+    detail::check(tpx_live_set_vertex_policy(l_.get(), static_cast<std::uint32_t>(policy)));
+  }
 
   /* ---- handles: the same navigation as Structure (see tpx_live_structure) ----
    * A vertex's handle index is its id; other simplices are named through a top simplex.

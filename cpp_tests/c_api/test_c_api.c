@@ -806,6 +806,136 @@ static void test_coordinates_and_windings(void) {
   tpx_complex_free(c);
 }
 
+/* Attributes on the fixture, set from arrays: per vertex a 3-vector of doubles (a NaN payload and
+ * a negative zero among them), per listing (tetrahedron, triangle, edge) an int32 label and a
+ * float. Enumerated, found, lent; written to legacy VTK (ASCII and binary) and read back, each
+ * attribute is the same name, location, type, shape and bytes (ASCII: a NaN reads back as a
+ * NaN, its payload lost to the text). OFF cannot hold them; a name with
+ * a blank is refused by VTK; wrong counts and unknown names are refused with their status. */
+/* Whether numbers k of a and b are the same bits; with `nan_payloads` 0, any two NaNs are the
+ * same (text cannot carry a NaN's payload). */
+static int same_number(const void *a, const void *b, uint32_t type, size_t k, int nan_payloads) {
+  if (type == TPX_VALUE_F64 && !nan_payloads && isnan(((const double *)a)[k]))
+    return isnan(((const double *)b)[k]);
+  if (type == TPX_VALUE_F32 && !nan_payloads && isnan(((const float *)a)[k]))
+    return isnan(((const float *)b)[k]);
+  if (type == TPX_VALUE_I32 || type == TPX_VALUE_F32)
+    return memcmp((const char *)a + 4 * k, (const char *)b + 4 * k, 4) == 0;
+  return memcmp((const char *)a + 8 * k, (const char *)b + 8 * k, 8) == 0;
+}
+
+static void check_same_attributes(const TpxComplex *a, const TpxComplex *b, int nan_payloads) {
+  size_t n = 0, m = 0, i;
+  CHECK_STATUS(tpx_complex_attribute_count(a, &n), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_attribute_count(b, &m), TPX_STATUS_OK);
+  CHECK(n == m);
+  for (i = 0; i < n; ++i) {
+    TpxAttributeInfo x, y;
+    char name[64];
+    size_t j = SIZE_MAX, len_x = 0, len_y = 0, k, same = 0;
+    const void *px = NULL, *py = NULL;
+    CHECK_STATUS(tpx_complex_attribute_info(a, i, &x), TPX_STATUS_OK);
+    CHECK(x.name_len < sizeof name);
+    memcpy(name, x.name, x.name_len);
+    name[x.name_len] = '\0';
+    CHECK_STATUS(tpx_complex_attribute_find(b, name, x.location, &j), TPX_STATUS_OK);
+    if (j == SIZE_MAX) continue;
+    CHECK_STATUS(tpx_complex_attribute_info(b, j, &y), TPX_STATUS_OK);
+    CHECK(y.value_type == x.value_type && y.components == x.components && y.elements == x.elements);
+    CHECK_STATUS(tpx_complex_attribute_data(a, i, &px, &len_x), TPX_STATUS_OK);
+    CHECK_STATUS(tpx_complex_attribute_data(b, j, &py, &len_y), TPX_STATUS_OK);
+    CHECK(len_x == len_y && len_x == x.elements * x.components);
+    for (k = 0; k < len_x && k < len_y; ++k) same += (size_t)same_number(px, py, x.value_type, k, nan_payloads);
+    CHECK(same == len_x);
+  }
+}
+
+static void test_attributes(void) {
+  TpxComplex *c = fixture();
+  TpxComplex *back = NULL;
+  double velocity[18];
+  const int32_t ref[3] = {7, -2, 2147483647};
+  const float quality[3] = {0.25f, -1.5f, 3e38f};
+  uint64_t nan_bits = 0x7ff80000deadbeefULL;
+  size_t n = 99, i, len = 0, at = 0;
+  TpxAttributeInfo info;
+  const void *data = NULL;
+  const uint32_t tet[] = {1, 0, 3, 2}, edge23[] = {3, 2}, edge01[] = {0, 1}, repeated[] = {4, 4};
+  for (i = 0; i < 18; ++i) velocity[i] = (double)i / 3.0 - 2.0;
+  memcpy(&velocity[4], &nan_bits, sizeof nan_bits);
+  velocity[7] = -0.0;
+
+  CHECK_STATUS(tpx_complex_attribute_count(c, &n), TPX_STATUS_OK);
+  CHECK(n == 0);
+  CHECK_STATUS(tpx_complex_set_attribute(c, "velocity", TPX_LOCATION_VERTICES, TPX_VALUE_F64, 3, velocity, 18),
+               TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_set_attribute(c, "ref", TPX_LOCATION_LISTED, TPX_VALUE_I32, 1, ref, 3), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_set_attribute(c, "quality", TPX_LOCATION_LISTED, TPX_VALUE_F32, 1, quality, 3),
+               TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_attribute_count(c, &n), TPX_STATUS_OK);
+  CHECK(n == 3);
+  CHECK_STATUS(tpx_complex_attribute_info(c, 1, &info), TPX_STATUS_OK);
+  CHECK(info.name_len == 3 && memcmp(info.name, "ref", 3) == 0);
+  CHECK(info.location == TPX_LOCATION_LISTED && info.value_type == TPX_VALUE_I32);
+  CHECK(info.components == 1 && info.elements == 3);
+  CHECK_STATUS(tpx_complex_attribute_data(c, 0, &data, &len), TPX_STATUS_OK);
+  CHECK(len == 18 && memcmp(data, velocity, sizeof velocity) == 0);
+  CHECK_STATUS(tpx_complex_attribute_find(c, "quality", TPX_LOCATION_LISTED, &at), TPX_STATUS_OK);
+  CHECK(at == 2);
+
+  /* The listing of a simplex: the tetrahedron is listing 0, edge 2-3 only a face (never listed). */
+  CHECK_STATUS(tpx_complex_listed_index(c, tet, 4, &at), TPX_STATUS_OK);
+  CHECK(at == 0);
+  CHECK_STATUS(tpx_complex_listed_index(c, edge23, 2, &at), TPX_STATUS_OK);
+  CHECK(at == TPX_NOT_LISTED);
+  CHECK_STATUS(tpx_complex_listed_index(c, edge01, 2, &at), TPX_STATUS_OK);
+  CHECK(at == TPX_NOT_LISTED);
+  CHECK_STATUS(tpx_complex_listed_index(c, repeated, 2, &at), TPX_STATUS_INVALID_SIMPLEX);
+
+  /* Refusals: nothing changes. */
+  at = 12345;
+  CHECK_STATUS(tpx_complex_attribute_find(c, "ref", TPX_LOCATION_VERTICES, &at), TPX_STATUS_NO_SUCH_ATTRIBUTE);
+  CHECK(at == 12345 && message_contains("'ref'"));
+  CHECK_STATUS(tpx_complex_set_attribute(c, "ref", TPX_LOCATION_LISTED, TPX_VALUE_I32, 1, ref, 2),
+               TPX_STATUS_INVALID_ARGUMENT);
+  CHECK(message_contains("'ref'") && message_contains("2 numbers"));
+  CHECK_STATUS(tpx_complex_set_attribute(c, "v", TPX_LOCATION_VERTICES, TPX_VALUE_F64, 10, velocity, 18),
+               TPX_STATUS_INVALID_ARGUMENT);
+  CHECK_STATUS(tpx_complex_set_attribute(c, "v", TPX_LOCATION_VERTICES, TPX_VALUE_F64, 3, NULL, 18),
+               TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_complex_remove_attribute(c, "nothing"), TPX_STATUS_NO_SUCH_ATTRIBUTE);
+  CHECK_STATUS(tpx_complex_attribute_info(c, 3, &info), TPX_STATUS_INVALID_ARGUMENT);
+  CHECK_STATUS(tpx_complex_attribute_count(c, &n), TPX_STATUS_OK);
+  CHECK(n == 3);
+
+  /* Written and read back, bit for bit. */
+  CHECK_STATUS(tpx_complex_write(c, "tpx_c_attributes.vtk", TPX_FORMAT_VTK), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_from_file("tpx_c_attributes.vtk", &back), TPX_STATUS_OK);
+  if (back) check_same_attributes(c, back, 0);
+  tpx_complex_free(back);
+  back = NULL;
+  CHECK_STATUS(tpx_complex_write(c, "tpx_c_attributes_bin.vtk", TPX_FORMAT_VTK_BINARY), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_from_file("tpx_c_attributes_bin.vtk", &back), TPX_STATUS_OK);
+  if (back) check_same_attributes(c, back, 1);
+  tpx_complex_free(back);
+  remove("tpx_c_attributes.vtk");
+  remove("tpx_c_attributes_bin.vtk");
+
+  /* A format that cannot hold them refuses; so does VTK for a name with a blank. */
+  CHECK_STATUS(tpx_complex_write(c, "tpx_c_attributes.msh", TPX_FORMAT_MSH), TPX_STATUS_FORMAT_CANNOT_HOLD);
+  CHECK(message_contains("velocity") || message_contains("ref") || message_contains("quality"));
+  CHECK_STATUS(tpx_complex_set_attribute(c, "two words", TPX_LOCATION_LISTED, TPX_VALUE_I32, 1, ref, 3),
+               TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_write(c, "tpx_c_attributes.vtk", TPX_FORMAT_VTK), TPX_STATUS_FORMAT_CANNOT_HOLD);
+  CHECK(message_contains("two words"));
+  CHECK_STATUS(tpx_complex_remove_attribute(c, "two words"), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_attribute_count(c, &n), TPX_STATUS_OK);
+  CHECK(n == 3);
+  remove("tpx_c_attributes.msh");
+  remove("tpx_c_attributes.vtk");
+  tpx_complex_free(c);
+}
+
 int main(void) {
   test_version();
   test_complex_lifecycle();
@@ -824,6 +954,7 @@ int main(void) {
   test_kind_names();
   test_iastar_structure();
   test_coordinates_and_windings();
+  test_attributes();
   printf("%d passed, %d failed\n", g_passed, g_failed);
   return g_failed == 0 ? 0 : 1;
 }

@@ -30,6 +30,7 @@ use std::ffi::{CString, c_char};
 use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+mod attributes;
 mod complex;
 mod decomposition;
 mod direct;
@@ -42,6 +43,7 @@ mod structure;
 mod tests;
 mod write;
 
+pub use attributes::*;
 pub use complex::*;
 pub use decomposition::*;
 pub use handles::*;
@@ -153,6 +155,8 @@ pub enum TpxStatus {
     /// No longer returned: the live complex, which once numbered only its vertices densely, now
     /// numbers every dimension (until its next edit). Kept so that the number is never reused.
     NotDense = 53,
+    /// No attribute of that name (at that location); the message names it.
+    NoSuchAttribute = 54,
 }
 
 /// Incidence Graph.

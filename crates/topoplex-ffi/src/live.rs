@@ -48,7 +48,7 @@ impl TpxLive {
             .expect("a TpxLive holds a LiveComplex")
     }
 
-    fn live_mut(&mut self) -> &mut LiveComplex {
+    pub(crate) fn live_mut(&mut self) -> &mut LiveComplex {
         self.view
             .topo
             .as_any_mut()
@@ -63,7 +63,7 @@ pub struct TpxUndo {
     undo: UndoRecord,
 }
 
-fn refusal(e: Refusal) -> Failure {
+pub(crate) fn refusal(e: Refusal) -> Failure {
     let status = match &e {
         Refusal::InvalidSimplex { .. } => TpxStatus::InvalidSimplex,
         Refusal::UnknownVertex { .. } => TpxStatus::DeadVertex,

@@ -1556,3 +1556,550 @@ fn kind_names_map_to_their_tpx_kind_numbers_in_any_case() {
     );
     assert!(name.is_null());
 }
+
+// Attributes (`attributes.rs`).
+
+/// Two triangles 012 and 213 sharing edge 1-2, which is also listed on its own (an absorbed
+/// face, listing 2), and a repeat of 012 (listing 3):
+///
+/// ```text
+///     0 --- 1
+///      \  / | \
+///       2 --+-- 3      (012, 213; edge 12 listed; 012 listed twice)
+/// ```
+fn two_triangles_with_listed_edge() -> *mut TpxComplex {
+    complex(4, &[&[0, 1, 2], &[2, 1, 3], &[1, 2], &[2, 0, 1]])
+}
+
+fn set_attr<T>(
+    c: *mut TpxComplex,
+    name: &CStr,
+    location: u32,
+    ty: u32,
+    k: usize,
+    v: &[T],
+) -> TpxStatus {
+    unsafe {
+        tpx_complex_set_attribute(
+            c,
+            name.as_ptr(),
+            location,
+            ty,
+            k,
+            v.as_ptr().cast(),
+            v.len(),
+        )
+    }
+}
+
+fn attribute_count(c: *const TpxComplex) -> usize {
+    let mut n = usize::MAX;
+    assert_eq!(
+        unsafe { tpx_complex_attribute_count(c, &mut n) },
+        TpxStatus::Ok
+    );
+    n
+}
+
+fn info(c: *const TpxComplex, i: usize) -> TpxAttributeInfo {
+    let mut out = TpxAttributeInfo {
+        name: null(),
+        name_len: 0,
+        location: u32::MAX,
+        value_type: u32::MAX,
+        components: 0,
+        elements: 0,
+    };
+    assert_eq!(
+        unsafe { tpx_complex_attribute_info(c, i, &mut out) },
+        TpxStatus::Ok,
+        "{}",
+        last_error()
+    );
+    out
+}
+
+fn info_name(i: &TpxAttributeInfo) -> String {
+    let bytes = unsafe { std::slice::from_raw_parts(i.name.cast::<u8>(), i.name_len) };
+    String::from_utf8(bytes.to_vec()).unwrap()
+}
+
+/// The numbers of attribute `i`, lent, copied out as `T`.
+fn lent<T: Copy>(c: *const TpxComplex, i: usize) -> Vec<T> {
+    let mut p = null();
+    let mut n = 0;
+    assert_eq!(
+        unsafe { tpx_complex_attribute_data(c, i, &mut p, &mut n) },
+        TpxStatus::Ok
+    );
+    unsafe { std::slice::from_raw_parts(p.cast::<T>(), n) }.to_vec()
+}
+
+#[test]
+fn attributes_set_from_arrays_are_enumerated_found_and_lent_bit_for_bit() {
+    let c = two_triangles_with_listed_edge();
+    assert_eq!(TpxStatus::NoSuchAttribute as u32, 54);
+    assert_eq!(attribute_count(c), 0);
+    // Three components per vertex, with a NaN payload and a negative zero to check bits.
+    let velocity: Vec<f64> = vec![
+        1.5,
+        -0.0,
+        f64::from_bits(0x7ff8_0000_dead_beef),
+        2.0,
+        3.0,
+        4.0,
+        -1e300,
+        5e-324,
+        0.1,
+        7.0,
+        8.0,
+        9.0,
+    ];
+    let refs: Vec<i32> = vec![7, -8, 9, i32::MIN];
+    assert_eq!(
+        set_attr(
+            c,
+            c"velocity",
+            TPX_LOCATION_VERTICES,
+            TPX_VALUE_F64,
+            3,
+            &velocity
+        ),
+        TpxStatus::Ok,
+        "{}",
+        last_error()
+    );
+    assert_eq!(
+        set_attr(
+            c,
+            c"medit:ref",
+            TPX_LOCATION_LISTED,
+            TPX_VALUE_I32,
+            1,
+            &refs
+        ),
+        TpxStatus::Ok,
+        "{}",
+        last_error()
+    );
+    assert_eq!(attribute_count(c), 2);
+    let (a, b) = (info(c, 0), info(c, 1));
+    assert_eq!(info_name(&a), "velocity");
+    assert_eq!(
+        (a.location, a.value_type, a.components, a.elements),
+        (TPX_LOCATION_VERTICES, TPX_VALUE_F64, 3, 4)
+    );
+    assert_eq!(info_name(&b), "medit:ref");
+    assert_eq!(
+        (b.location, b.value_type, b.components, b.elements),
+        (TPX_LOCATION_LISTED, TPX_VALUE_I32, 1, 4)
+    );
+    let got: Vec<f64> = lent(c, 0);
+    assert_eq!(
+        got.iter().map(|x| x.to_bits()).collect::<Vec<_>>(),
+        velocity.iter().map(|x| x.to_bits()).collect::<Vec<_>>()
+    );
+    assert_eq!(lent::<i32>(c, 1), refs);
+    let mut at = usize::MAX;
+    assert_eq!(
+        unsafe {
+            tpx_complex_attribute_find(c, c"medit:ref".as_ptr(), TPX_LOCATION_LISTED, &mut at)
+        },
+        TpxStatus::Ok
+    );
+    assert_eq!(at, 1);
+    // The same name at the other location is another attribute: absent here.
+    at = 77;
+    assert_eq!(
+        unsafe {
+            tpx_complex_attribute_find(c, c"medit:ref".as_ptr(), TPX_LOCATION_VERTICES, &mut at)
+        },
+        TpxStatus::NoSuchAttribute
+    );
+    assert!(last_error().contains("medit:ref"), "{}", last_error());
+    assert_eq!(at, 77, "output written on failure");
+    // Replacing keeps the position and changes the type.
+    let wide: Vec<i64> = vec![1 << 40, 2, 3, -4];
+    assert_eq!(
+        set_attr(
+            c,
+            c"medit:ref",
+            TPX_LOCATION_LISTED,
+            TPX_VALUE_I64,
+            1,
+            &wide
+        ),
+        TpxStatus::Ok
+    );
+    assert_eq!(attribute_count(c), 2);
+    assert_eq!(info(c, 1).value_type, TPX_VALUE_I64);
+    assert_eq!(lent::<i64>(c, 1), wide);
+    // Removing takes both locations; a second time there is nothing to remove.
+    assert_eq!(
+        unsafe { tpx_complex_remove_attribute(c, c"velocity".as_ptr()) },
+        TpxStatus::Ok
+    );
+    assert_eq!(attribute_count(c), 1);
+    assert_eq!(info_name(&info(c, 0)), "medit:ref");
+    assert_eq!(
+        unsafe { tpx_complex_remove_attribute(c, c"velocity".as_ptr()) },
+        TpxStatus::NoSuchAttribute
+    );
+    unsafe { tpx_complex_free(c) };
+}
+
+#[test]
+fn attribute_refusals_name_the_attribute_and_change_nothing() {
+    let c = two_triangles_with_listed_edge();
+    let refs: Vec<i32> = vec![1, 2, 3, 4];
+    assert_eq!(
+        set_attr(c, c"ref", TPX_LOCATION_LISTED, TPX_VALUE_I32, 1, &refs),
+        TpxStatus::Ok
+    );
+    let cases: Vec<(TpxStatus, &CStr, u32, u32, usize, usize, &str)> = vec![
+        // (status, name, location, type, components, count, message part)
+        (
+            TpxStatus::InvalidArgument,
+            c"ref",
+            TPX_LOCATION_LISTED,
+            TPX_VALUE_I32,
+            1,
+            3,
+            "3 numbers",
+        ),
+        (
+            TpxStatus::InvalidArgument,
+            c"temp",
+            TPX_LOCATION_VERTICES,
+            TPX_VALUE_F32,
+            1,
+            5,
+            "'temp'",
+        ),
+        (
+            TpxStatus::InvalidArgument,
+            c"t",
+            TPX_LOCATION_VERTICES,
+            TPX_VALUE_F32,
+            0,
+            0,
+            "0 components",
+        ),
+        (
+            TpxStatus::InvalidArgument,
+            c"t",
+            TPX_LOCATION_VERTICES,
+            TPX_VALUE_F32,
+            10,
+            40,
+            "10 components",
+        ),
+        (
+            TpxStatus::InvalidArgument,
+            c"",
+            TPX_LOCATION_VERTICES,
+            TPX_VALUE_F32,
+            1,
+            4,
+            "name is empty",
+        ),
+        (
+            TpxStatus::InvalidArgument,
+            c"t",
+            2,
+            TPX_VALUE_F32,
+            1,
+            4,
+            "location 2",
+        ),
+        (
+            TpxStatus::InvalidArgument,
+            c"t",
+            TPX_LOCATION_VERTICES,
+            4,
+            1,
+            4,
+            "value type 4",
+        ),
+    ];
+    let data = [0u64; 64];
+    for (want, name, loc, ty, k, count, says) in cases {
+        let st = unsafe {
+            tpx_complex_set_attribute(c, name.as_ptr(), loc, ty, k, data.as_ptr().cast(), count)
+        };
+        assert_eq!(st, want, "{name:?} {loc} {ty} {k} {count}");
+        assert!(last_error().contains(says), "{}", last_error());
+        assert_eq!(attribute_count(c), 1);
+        assert_eq!(lent::<i32>(c, 0), refs);
+    }
+    let st = unsafe {
+        tpx_complex_set_attribute(
+            c,
+            c"t".as_ptr(),
+            TPX_LOCATION_VERTICES,
+            TPX_VALUE_F64,
+            1,
+            null(),
+            4,
+        )
+    };
+    assert_eq!(st, TpxStatus::NullArgument);
+    let st = unsafe {
+        tpx_complex_set_attribute(
+            c,
+            null(),
+            TPX_LOCATION_VERTICES,
+            TPX_VALUE_F64,
+            1,
+            data.as_ptr().cast(),
+            4,
+        )
+    };
+    assert_eq!(st, TpxStatus::NullArgument);
+    // A named label keeps its attribute integer: replacing it by reals is refused, and the
+    // labels stay as they were.
+    let mut attrs = unsafe { (*c).complex.take_attributes() };
+    attrs.add_label_name(topoplex::complex::LabelName {
+        attribute: "ref".into(),
+        dimension: Some(2),
+        label: 3,
+        name: "wall".into(),
+    });
+    unsafe { (*c).complex.set_attributes(attrs) }.unwrap();
+    let reals = [0.5f64; 4];
+    assert_eq!(
+        set_attr(c, c"ref", TPX_LOCATION_LISTED, TPX_VALUE_F64, 1, &reals),
+        TpxStatus::InvalidArgument
+    );
+    assert!(last_error().contains("wall"), "{}", last_error());
+    assert_eq!(info(c, 0).value_type, TPX_VALUE_I32);
+    assert_eq!(lent::<i32>(c, 0), refs);
+    let (mut p, mut n) = (null(), 99);
+    assert_eq!(
+        unsafe { tpx_complex_label_name(c, c"ref".as_ptr(), 2, 3, &mut p, &mut n) },
+        TpxStatus::Ok
+    );
+    assert_eq!(
+        unsafe { std::slice::from_raw_parts(p.cast::<u8>(), n) },
+        b"wall"
+    );
+    // Another dimension, another label: no name.
+    for (d, l) in [(1, 3), (2, 4)] {
+        assert_eq!(
+            unsafe { tpx_complex_label_name(c, c"ref".as_ptr(), d, l, &mut p, &mut n) },
+            TpxStatus::Ok
+        );
+        assert!(p.is_null() && n == 0);
+    }
+    // Removing the attribute removes its label names too.
+    assert_eq!(
+        unsafe { tpx_complex_remove_attribute(c, c"ref".as_ptr()) },
+        TpxStatus::Ok
+    );
+    assert!(unsafe { (*c).complex.attributes() }.is_empty());
+    unsafe { tpx_complex_free(c) };
+}
+
+#[test]
+fn listed_index_is_the_first_listing_of_every_simplex_of_the_closure() {
+    let c = two_triangles_with_listed_edge();
+    let cx = unsafe { &(*c).complex };
+    // Every simplex over 4 vertices (subsets), against a scan of the listing.
+    for mask in 1u32..16 {
+        let s: Vec<u32> = (0..4).filter(|v| mask >> v & 1 == 1).collect();
+        let oracle = (0..cx.input_count()).find(|&i| {
+            let mut l = cx.input_simplex(i).to_vec();
+            l.sort_unstable();
+            l == s
+        });
+        // Given in descending order: the order does not matter.
+        let rev: Vec<u32> = s.iter().rev().copied().collect();
+        let mut got = 12345;
+        assert_eq!(
+            unsafe { tpx_complex_listed_index(c, rev.as_ptr(), rev.len(), &mut got) },
+            TpxStatus::Ok
+        );
+        assert_eq!(got, oracle.unwrap_or(TPX_NOT_LISTED), "{s:?}");
+    }
+    for bad in [&[][..], &[1, 1], &[0, 4]] {
+        let mut got = 12345;
+        assert_eq!(
+            unsafe { tpx_complex_listed_index(c, bad.as_ptr(), bad.len(), &mut got) },
+            TpxStatus::InvalidSimplex,
+            "{bad:?}"
+        );
+        assert_eq!(got, 12345);
+    }
+    unsafe { tpx_complex_free(c) };
+}
+
+/// The live top id of the top simplex `sigma`.
+fn live_top_id(l: *const TpxLive, sigma: &[u32]) -> u32 {
+    let mut s = null();
+    assert_eq!(unsafe { tpx_live_structure(l, &mut s) }, TpxStatus::Ok);
+    let mut h = TpxSimplex {
+        index: 0,
+        meta: 0,
+        owner: 0,
+    };
+    assert_eq!(
+        unsafe { tpx_locate(s, sigma.as_ptr(), sigma.len(), &mut h) },
+        TpxStatus::Ok,
+        "{}",
+        last_error()
+    );
+    let mut t = 0;
+    assert_eq!(unsafe { tpx_top_id(s, &h, &mut t) }, TpxStatus::Ok);
+    t
+}
+
+fn live_row(l: *const TpxLive, name: &CStr, top: Option<u32>, v: u32) -> (TpxStatus, Vec<f64>) {
+    let mut buf = [f64::NAN; 4];
+    let mut n = 0;
+    let st = match top {
+        Some(t) => unsafe { tpx_live_top_values(l, name.as_ptr(), t, buf.as_mut_ptr(), 4, &mut n) },
+        None => unsafe { tpx_live_vertex_values(l, name.as_ptr(), v, buf.as_mut_ptr(), 4, &mut n) },
+    };
+    (st, buf[..n].to_vec())
+}
+
+#[test]
+fn live_top_and_vertex_values_by_handle_survive_into_the_complex() {
+    let c = two_triangles_with_listed_edge();
+    let refs: Vec<i32> = vec![10, 20, 30, 40];
+    let temp: Vec<f32> = vec![1.0, 2.0, 6.0, 8.0];
+    assert_eq!(
+        set_attr(c, c"ref", TPX_LOCATION_LISTED, TPX_VALUE_I32, 1, &refs),
+        TpxStatus::Ok
+    );
+    assert_eq!(
+        set_attr(c, c"temp", TPX_LOCATION_VERTICES, TPX_VALUE_F32, 1, &temp),
+        TpxStatus::Ok
+    );
+    let mut l = null_mut();
+    assert_eq!(unsafe { tpx_live_from_complex(c, &mut l) }, TpxStatus::Ok);
+    let t012 = live_top_id(l, &[0, 1, 2]);
+    let t123 = live_top_id(l, &[1, 2, 3]);
+    // A top's values are those of its first listing.
+    assert_eq!(
+        live_row(l, c"ref", Some(t012), 0),
+        (TpxStatus::Ok, vec![10.0])
+    );
+    assert_eq!(
+        live_row(l, c"ref", Some(t123), 0),
+        (TpxStatus::Ok, vec![20.0])
+    );
+    for v in 0..4 {
+        assert_eq!(
+            live_row(l, c"temp", None, v),
+            (TpxStatus::Ok, vec![f64::from(temp[v as usize])])
+        );
+    }
+    assert_eq!(
+        unsafe { tpx_live_set_top_values(l, c"ref".as_ptr(), t123, [42.0].as_ptr(), 1) },
+        TpxStatus::Ok,
+        "{}",
+        last_error()
+    );
+    assert_eq!(
+        live_row(l, c"ref", Some(t123), 0),
+        (TpxStatus::Ok, vec![42.0])
+    );
+    // Refusals change nothing.
+    assert_eq!(
+        unsafe { tpx_live_set_top_values(l, c"ref".as_ptr(), t123, [1.0, 2.0].as_ptr(), 2) },
+        TpxStatus::InvalidArgument
+    );
+    for label in [1.5, f64::NAN, f64::INFINITY, 2147483648.0] {
+        let st = unsafe { tpx_live_set_top_values(l, c"ref".as_ptr(), t123, [label].as_ptr(), 1) };
+        assert_eq!(st, TpxStatus::InvalidArgument, "{label}");
+        assert!(last_error().contains("i32 labels"), "{}", last_error());
+    }
+    assert_eq!(
+        unsafe { tpx_live_set_top_values(l, c"ref".as_ptr(), t123, [-2147483648.0].as_ptr(), 1) },
+        TpxStatus::Ok
+    );
+    assert_eq!(
+        live_row(l, c"ref", Some(t123), 0),
+        (TpxStatus::Ok, vec![-2147483648.0])
+    );
+    assert_eq!(
+        unsafe { tpx_live_set_top_values(l, c"ref".as_ptr(), t123, [42.0].as_ptr(), 1) },
+        TpxStatus::Ok
+    );
+    assert_eq!(
+        unsafe { tpx_live_set_top_values(l, c"nope".as_ptr(), t123, [1.0].as_ptr(), 1) },
+        TpxStatus::NoSuchAttribute
+    );
+    assert!(last_error().contains("nope"));
+    assert_eq!(
+        live_row(l, c"temp", Some(t123), 0).0,
+        TpxStatus::NoSuchAttribute
+    );
+    assert_eq!(live_row(l, c"ref", None, 0).0, TpxStatus::NoSuchAttribute);
+    assert_eq!(live_row(l, c"temp", None, 9).0, TpxStatus::DeadVertex);
+    assert_eq!(
+        live_row(l, c"ref", Some(t123 + 5), 0).0,
+        TpxStatus::InvalidHandle
+    );
+    assert_eq!(
+        live_row(l, c"ref", Some(t123), 0),
+        (TpxStatus::Ok, vec![42.0])
+    );
+    let mut n = 0;
+    assert_eq!(
+        unsafe { tpx_live_top_values(l, c"ref".as_ptr(), t123, null_mut(), 0, &mut n) },
+        TpxStatus::BufferTooSmall
+    );
+    assert_eq!(n, 1);
+    // Averaging contraction of edge 1-2: vertex 1 gets the mean of 1 and 2.
+    assert_eq!(
+        unsafe { tpx_live_set_vertex_policy(l, 7) },
+        TpxStatus::InvalidArgument
+    );
+    assert_eq!(
+        unsafe { tpx_live_set_vertex_policy(l, TPX_VERTEX_AVERAGE) },
+        TpxStatus::Ok
+    );
+    let mut undo = null_mut();
+    let st = unsafe {
+        tpx_live_contract(
+            l,
+            1,
+            2,
+            TPX_CONTRACT_PRESERVE_TOPOLOGY,
+            null(),
+            0,
+            &mut undo,
+        )
+    };
+    assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+    let mean = (f64::from(temp[1]) + f64::from(temp[2])) / 2.0;
+    assert_eq!(live_row(l, c"temp", None, 1), (TpxStatus::Ok, vec![mean]));
+    unsafe { tpx_undo_free(undo) };
+    unsafe { tpx_live_free(l) };
+    // Without the contraction, a set value reaches the complex made from the live one.
+    let mut l = null_mut();
+    assert_eq!(unsafe { tpx_live_from_complex(c, &mut l) }, TpxStatus::Ok);
+    let t123 = live_top_id(l, &[1, 2, 3]);
+    assert_eq!(
+        unsafe { tpx_live_set_top_values(l, c"ref".as_ptr(), t123, [-5.0].as_ptr(), 1) },
+        TpxStatus::Ok
+    );
+    let mut back = null_mut();
+    assert_eq!(unsafe { tpx_live_to_complex(l, &mut back) }, TpxStatus::Ok);
+    let mut i = usize::MAX;
+    assert_eq!(
+        unsafe { tpx_complex_listed_index(back, [3, 2, 1].as_ptr(), 3, &mut i) },
+        TpxStatus::Ok
+    );
+    let mut at = 0;
+    assert_eq!(
+        unsafe { tpx_complex_attribute_find(back, c"ref".as_ptr(), TPX_LOCATION_LISTED, &mut at) },
+        TpxStatus::Ok
+    );
+    assert_eq!(lent::<i32>(back, at)[i], -5);
+    unsafe { tpx_complex_free(back) };
+    unsafe { tpx_live_free(l) };
+    unsafe { tpx_complex_free(c) };
+}
