@@ -38,7 +38,7 @@
 //! vertex1 vertex2` for the edges, each in listing order. Holds vertices, edges and triangles,
 //! and at most 3 coordinates; listed 0-simplices are left to the vertex count. ASCII PLY
 //! refuses non-finite coordinates (PLY readers do not parse `inf` or `nan`); binary keeps them.
-//! Attributes of one component become properties after those ([`holds`]): vertex ones on
+//! Attributes of one component become properties after those (`holds`, which [`super::write::Format::holds`] asks): vertex ones on
 //! `vertex`, listed ones on both `face` and `edge`, each value beside its simplex (so the
 //! triangles-then-edges order read back carries the data with it); `i32` as `int`, `i64` as
 //! `uint` (held only when every value fits), `f32` as `float`, `f64` as `double`. Refused:
