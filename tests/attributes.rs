@@ -1150,6 +1150,16 @@ fn decompose_gives_each_component_its_tops_faces_and_vertex_copies_data() {
         seen,
         vec![(vec![0, 1, 2], 10), (vec![2, 3, 4], 20), (vec![3, 4], 7)]
     );
+    // A vertex no simplex lists (only counted) is a component of its own, with unset labels.
+    let mut c = common::complex_of(4, &[vec![0, 1, 2]]);
+    let mut at = Attributes::new();
+    at.insert(Attribute::labels("region", Location::Listed, vec![10]));
+    c.set_attributes(at).unwrap();
+    let dec = Iqm::build(&c).unwrap().decomposition();
+    let dir = Scratch::new("decompose-isolated");
+    let vtk = Some(topoplex::io::write::Format::Vtk);
+    let paths = topoplex::decompose::write_components_of(&dec, &c, &dir.0, vtk).unwrap();
+    assert_eq!(paths.len(), dec.components.len() + 1);
 }
 
 /// `.tpx` keeps every attribute bit for bit (random listings with every type, 1–9 components,

@@ -137,14 +137,13 @@ fn component_data(piece: &ComponentPiece, complex: &Complex, raw: &mut RawInput)
     let w = piece.dimension + 1;
     let original =
         |s: &[u32]| -> Vec<u32> { s.iter().map(|&v| piece.original[v as usize]).collect() };
+    // A top no listing names (an isolated vertex the input only counted) gets unset numbers:
+    // the row past the listing's end, appended to a copy of the listed attributes.
+    let unlisted = complex.input_count();
     let mut listed: Vec<usize> = piece
         .tops
         .chunks_exact(w)
-        .map(|row| {
-            complex
-                .listed_index(&original(row))
-                .expect("a component's top is a top of the complex, which is listed")
-        })
+        .map(|row| complex.listed_index(&original(row)).unwrap_or(unlisted))
         .collect();
     if at.iter().any(|a| a.location == Location::Listed) {
         // Listed faces: every listing that is not a top's first listing, when the component
@@ -185,6 +184,24 @@ fn component_data(piece: &ComponentPiece, complex: &Complex, raw: &mut RawInput)
             }
         }
     }
+    let extended;
+    let at = if listed.contains(&unlisted) {
+        extended = crate::complex::Attributes::from_parts(
+            at.iter()
+                .map(|a| {
+                    let mut a = a.clone();
+                    if a.location == Location::Listed {
+                        a.values.push_row(a.components, None);
+                    }
+                    a
+                })
+                .collect(),
+            at.label_names().to_vec(),
+        );
+        &extended
+    } else {
+        at
+    };
     raw.attributes = at.pick(
         piece.original.iter().map(|&v| v as usize),
         listed.iter().copied(),
