@@ -524,10 +524,14 @@ fn complex_errors_map_to_statuses_with_evidence() {
         let st = tpx_complex_from_arrays(1, null(), null(), 0, [0.0].as_ptr(), 0, &mut out);
         assert_eq!(st, TpxStatus::InvalidArgument);
         assert!(out.is_null());
-        // Unknown extension: refused before any file access.
-        let st = tpx_complex_from_file(c"mesh.txt".as_ptr(), &mut out);
-        assert_eq!(st, TpxStatus::ParseError);
-        assert!(last_error().contains("mesh.txt"), "{}", last_error());
+        // Unknown extension: refused after the file is probed for the .tpx magic (a file
+        // access Miri's isolation does not allow).
+        #[cfg(not(miri))]
+        {
+            let st = tpx_complex_from_file(c"mesh.txt".as_ptr(), &mut out);
+            assert_eq!(st, TpxStatus::ParseError);
+            assert!(last_error().contains("mesh.txt"), "{}", last_error());
+        }
         let st = tpx_complex_from_file(c"bad\xff.off".as_ptr(), &mut out);
         assert_eq!(st, TpxStatus::InvalidArgument);
         assert!(out.is_null());
