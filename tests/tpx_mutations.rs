@@ -8,37 +8,8 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use std::path::Path;
 
 use topoplex::error::caught_quietly;
-use topoplex::relation::sort_rows;
 use topoplex::store::{Saved, reseal, save};
 use topoplex::{Complex, StructureKind, Topology, build, fixtures};
-
-/// Every answer a structure gives about the simplices of `c`: counts, listings, and every
-/// relation of every simplex (Err answers included, as text).
-fn answers(s: &dyn Topology, c: &Complex) -> Vec<String> {
-    let mut out = Vec::new();
-    let mut buf = Vec::new();
-    let d = s.dimension();
-    out.push(format!("d {d} n {}", s.vertex_count()));
-    for p in 0..=d.min(4) {
-        out.push(format!("count {p} {} {}", s.count(p), s.top_count(p)));
-        buf.clear();
-        s.simplices(p, &mut buf);
-        out.push(format!("simplices {p} {buf:?}"));
-    }
-    let closure = c.closure();
-    for sigma in closure.iter().flat_map(|t| t.iter()) {
-        out.push(format!("contains {sigma:?} {}", s.contains(sigma)));
-        for q in 0..=d.min(4) {
-            // As the CLI prints them: rows sorted (a structure's own order may vary).
-            let r = s.relation(sigma, q, &mut buf).map(|()| {
-                sort_rows(&mut buf, q + 1);
-                buf.clone()
-            });
-            out.push(format!("R {sigma:?} {q} {r:?}"));
-        }
-    }
-    out
-}
 
 /// The complexes drawn: a tetrahedron with a dangling triangle and wire (every 3D structure)
 /// and three triangles on an edge (the 2D ones too).
@@ -139,7 +110,9 @@ fn outcome(bytes: &[u8], c: &Complex, want: &[String]) -> Result<&'static str, S
             Ok(None) => return Ok("complex only"),
             Err(_) => return Ok("refused on load"),
         };
-        let got = caught_quietly(AssertUnwindSafe(|| answers(s.as_ref(), c)));
+        let got = caught_quietly(AssertUnwindSafe(|| {
+            topoplex::testing::answers(s.as_ref(), c)
+        }));
         if got.as_deref().is_ok_and(|got| got == want) {
             return Ok("same answers");
         }
@@ -172,7 +145,7 @@ fn altered_saved_files_are_refused_or_answer_alike_never_a_panic() {
         for kind in StructureKind::NAMED {
             let Ok(s) = build(kind, &c) else { continue };
             let good = saved(&c, Some(s.as_ref()), &format!("{kind}"));
-            let want = answers(s.as_ref(), &c);
+            let want = topoplex::testing::answers(s.as_ref(), &c);
             for (change, bytes) in alterations(&good) {
                 tried += 1;
                 if let Err(e) = outcome(&bytes, &c, &want) {

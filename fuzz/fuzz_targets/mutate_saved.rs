@@ -12,7 +12,7 @@ use std::sync::OnceLock;
 use libfuzzer_sys::fuzz_target;
 use topoplex::error::caught_quietly;
 use topoplex::store::{Saved, reseal};
-use topoplex_fuzz_support::{saved_answers, saved_seeds};
+use topoplex_fuzz_support::saved_seeds;
 
 fuzz_target!(|data: &[u8]| {
     static SEEDS: OnceLock<Vec<(topoplex::Complex, Vec<u8>, Vec<String>)>> = OnceLock::new();
@@ -48,7 +48,7 @@ fuzz_target!(|data: &[u8]| {
         Ok(Some(s)) => s,
         _ => return,
     };
-    let got = caught_quietly(AssertUnwindSafe(|| saved_answers(s.as_ref(), complex)));
+    let got = caught_quietly(AssertUnwindSafe(|| topoplex::testing::answers(s.as_ref(), complex)));
     if got.as_ref().is_ok_and(|got| got == want) {
         return;
     }

@@ -70,33 +70,6 @@ pub fn decode(data: &[u8]) -> (u32, Vec<Vec<u32>>) {
     (n, list)
 }
 
-/// Every answer a structure gives about the simplices of `c`, as text: counts, listings, and
-/// every relation of every simplex (rows sorted, as the CLI prints them; errors as text).
-pub fn saved_answers(s: &dyn topoplex::Topology, c: &Complex) -> Vec<String> {
-    let mut out = Vec::new();
-    let mut buf = Vec::new();
-    let d = s.dimension();
-    out.push(format!("d {d} n {}", s.vertex_count()));
-    for p in 0..=d.min(4) {
-        out.push(format!("count {p} {} {}", s.count(p), s.top_count(p)));
-        buf.clear();
-        s.simplices(p, &mut buf);
-        out.push(format!("simplices {p} {buf:?}"));
-    }
-    let closure = c.closure();
-    for sigma in closure.iter().flat_map(|t| t.iter()) {
-        out.push(format!("contains {sigma:?} {}", s.contains(sigma)));
-        for q in 0..=d.min(4) {
-            let r = s.relation(sigma, q, &mut buf).map(|()| {
-                topoplex::relation::sort_rows(&mut buf, q + 1);
-                buf.clone()
-            });
-            out.push(format!("R {sigma:?} {q} {r:?}"));
-        }
-    }
-    out
-}
-
 /// The valid saved files the `.tpx` mutation target alters: every structure that accepts a
 /// tetrahedron with a dangling triangle and a wire, or three triangles on an edge, saved with
 /// its complex, with the complex and the unaltered file's answers.
@@ -114,7 +87,7 @@ pub fn saved_seeds() -> Vec<(Complex, Vec<u8>, Vec<String>)> {
             topoplex::store::save(&path, &c, Some(s.as_ref())).unwrap();
             let bytes = std::fs::read(&path).unwrap();
             std::fs::remove_file(&path).unwrap();
-            let want = saved_answers(s.as_ref(), &c);
+            let want = topoplex::testing::answers(s.as_ref(), &c);
             seeds.push((c.clone(), bytes, want));
         }
     }
