@@ -225,23 +225,15 @@ pub unsafe extern "C" fn tpx_complex_attribute_data(
 
 /// A copy of `count` numbers of type `value_type` at `data`.
 fn copy_values(value_type: u32, data: *const c_void, count: usize) -> Result<Values, Failure> {
+    // The `count` numbers at `data`, read as `T`.
+    fn copied<T: Copy>(data: *const c_void, count: usize) -> Result<Vec<T>, Failure> {
+        try_copy(in_slice(data.cast::<T>(), count, "data")?, "data")
+    }
     Ok(match value_type {
-        TPX_VALUE_I32 => Values::I32(try_copy(
-            in_slice(data.cast::<i32>(), count, "data")?,
-            "data",
-        )?),
-        TPX_VALUE_I64 => Values::I64(try_copy(
-            in_slice(data.cast::<i64>(), count, "data")?,
-            "data",
-        )?),
-        TPX_VALUE_F32 => Values::F32(try_copy(
-            in_slice(data.cast::<f32>(), count, "data")?,
-            "data",
-        )?),
-        TPX_VALUE_F64 => Values::F64(try_copy(
-            in_slice(data.cast::<f64>(), count, "data")?,
-            "data",
-        )?),
+        TPX_VALUE_I32 => Values::I32(copied(data, count)?),
+        TPX_VALUE_I64 => Values::I64(copied(data, count)?),
+        TPX_VALUE_F32 => Values::F32(copied(data, count)?),
+        TPX_VALUE_F64 => Values::F64(copied(data, count)?),
         _ => {
             return Err(Failure::new(
                 TpxStatus::InvalidArgument,
