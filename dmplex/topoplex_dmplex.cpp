@@ -1,0 +1,584 @@
+// The PETSc DMPlex bridge (include/topoplex_dmplex.hpp): one rank's DMPlex part <-> a Topoplex
+// complex over the C ABI's C++ wrapper. Conventions and costs are in the header and docs/dmplex.md.
+#include "topoplex_dmplex.hpp"
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+
+namespace topoplex {
+namespace dmplex {
+
+namespace {
+
+void petsc_check(PetscErrorCode ierr, const char *call) {
+  if (ierr != 0) {
+    std::ostringstream m;
+    m << "PETSc call " << call << " failed with error " << static_cast<int>(ierr);
+    throw Error(Code::Petsc, m.str());
+  }
+}
+#define TPX_PETSC(call) petsc_check((call), #call)
+
+// Tetrahedra: PETSc's cone order is Topoplex's winding with vertices 0 and 1 swapped.
+void petsc_winding(std::vector<std::uint32_t> &vs) {
+  if (vs.size() == 4) std::swap(vs[0], vs[1]);
+}
+
+bool skipped_label(const char *name) {
+  const std::string n(name);
+  return n == "depth" || n == "celltype";
+}
+
+std::vector<std::uint32_t> sorted(std::vector<std::uint32_t> v) {
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+}  // namespace
+
+PetscInt overlap_needed(std::uint32_t p, std::uint32_t q) { return q < p ? 0 : 1; }
+
+std::size_t RankMesh::KeyHash::operator()(const std::vector<std::uint32_t> &k) const noexcept {
+  std::uint64_t h = 0x9e3779b97f4a7c15ull ^ k.size();
+  for (std::uint32_t x : k) {
+    h ^= x + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+  }
+  return static_cast<std::size_t>(h);
+}
+
+RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
+  int rank = 0, size = 1;
+  MPI_Comm_rank(comm, &rank);
+  MPI_Comm_size(comm, &size);
+
+  PetscInt pStart, pEnd, vStart, vEnd, depth;
+  TPX_PETSC(DMPlexGetChart(dm, &pStart, &pEnd));
+  TPX_PETSC(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  TPX_PETSC(DMPlexGetDepth(dm, &depth));
+  DMPlexInterpolatedFlag interp;
+  TPX_PETSC(DMPlexIsInterpolated(dm, &interp));
+  PetscInt overlap = 0;
+  TPX_PETSC(DMPlexGetOverlap(dm, &overlap));
+  const std::size_t npoints = static_cast<std::size_t>(pEnd - pStart);
+
+  // Every point's simplex (closure vertices in closure order); tops in Topoplex winding.
+  std::vector<std::vector<std::uint32_t>> point_simplex(npoints);
+  std::vector<PetscInt> tops;
+  std::vector<std::uint32_t> ids;
+  std::vector<std::size_t> offsets{0};
+  for (PetscInt p = pStart; p < pEnd; ++p) {
+    PetscInt support = 0;
+    TPX_PETSC(DMPlexGetSupportSize(dm, p, &support));
+    const bool top = support == 0;
+    // Vertices of a non-interpolated DM's non-top points do not exist: only tops and vertices
+    // have closures worth walking, except when interpolated (every point is a simplex).
+    if (!top && !(p >= vStart && p < vEnd) && interp == DMPLEX_INTERPOLATED_NONE) continue;
+    std::vector<std::uint32_t> &vs = point_simplex[static_cast<std::size_t>(p - pStart)];
+    if (p >= vStart && p < vEnd) {
+      vs.push_back(static_cast<std::uint32_t>(p - vStart));
+    } else {
+      PetscInt n = 0;
+      PetscInt *closure = nullptr;
+      TPX_PETSC(DMPlexGetTransitiveClosure(dm, p, PETSC_TRUE, &n, &closure));
+      for (PetscInt k = 0; k < n; ++k) {
+        const PetscInt q = closure[2 * k];
+        if (q >= vStart && q < vEnd) vs.push_back(static_cast<std::uint32_t>(q - vStart));
+      }
+      TPX_PETSC(DMPlexRestoreTransitiveClosure(dm, p, PETSC_TRUE, &n, &closure));
+      PetscInt pdepth = 0;
+      TPX_PETSC(DMPlexGetPointDepth(dm, p, &pdepth));
+      DMPolytopeType ct;
+      TPX_PETSC(DMPlexGetCellType(dm, p, &ct));
+      // Interpolated points: a simplex has depth + 1 vertices. Depth-1 points of a
+      // non-interpolated DM: the cell type tells a tetrahedron from a quadrilateral.
+      bool simplex = false;
+      if (pdepth >= 2) {
+        simplex = vs.size() == static_cast<std::size_t>(pdepth) + 1;
+      } else {
+        simplex = (ct == DM_POLYTOPE_SEGMENT && vs.size() == 2) ||
+                  (ct == DM_POLYTOPE_TRIANGLE && vs.size() == 3) ||
+                  (ct == DM_POLYTOPE_TETRAHEDRON && vs.size() == 4);
+      }
+      if (!simplex) {
+        std::ostringstream m;
+        m << "DMPlex point " << p << " (rank " << rank << ") is a " << DMPolytopeTypes[ct] << " with "
+          << vs.size() << " vertices at depth " << pdepth
+          << ": Topoplex holds simplicial complexes only (points, segments, triangles, tetrahedra)";
+        throw Error(Code::NotSimplicial, m.str());
+      }
+      if (top) petsc_winding(vs);
+    }
+    if (top) {
+      tops.push_back(p);
+      ids.insert(ids.end(), vs.begin(), vs.end());
+      offsets.push_back(ids.size());
+    }
+  }
+
+  // Labels: integer values per point; points with a value that are not listed yet (faces of an
+  // interpolated DM) are listed after the tops.
+  struct LabelValues {
+    std::string name;
+    std::vector<std::pair<PetscInt, PetscInt>> point_value;
+  };
+  std::vector<LabelValues> labels;
+  if (options.labels) {
+    PetscInt nlabels = 0;
+    TPX_PETSC(DMGetNumLabels(dm, &nlabels));
+    for (PetscInt l = 0; l < nlabels; ++l) {
+      const char *name = nullptr;
+      TPX_PETSC(DMGetLabelName(dm, l, &name));
+      if (skipped_label(name)) continue;
+      DMLabel label;
+      TPX_PETSC(DMGetLabelByNum(dm, l, &label));
+      LabelValues lv{name, {}};
+      IS valueIS;
+      TPX_PETSC(DMLabelGetValueIS(label, &valueIS));
+      PetscInt nvalues = 0;
+      const PetscInt *values = nullptr;
+      TPX_PETSC(ISGetLocalSize(valueIS, &nvalues));
+      TPX_PETSC(ISGetIndices(valueIS, &values));
+      for (PetscInt i = 0; i < nvalues; ++i) {
+        IS pointIS;
+        TPX_PETSC(DMLabelGetStratumIS(label, values[i], &pointIS));
+        if (!pointIS) continue;
+        PetscInt n = 0;
+        const PetscInt *pts = nullptr;
+        TPX_PETSC(ISGetLocalSize(pointIS, &n));
+        TPX_PETSC(ISGetIndices(pointIS, &pts));
+        for (PetscInt k = 0; k < n; ++k) {
+          if (pts[k] >= pStart && pts[k] < pEnd) lv.point_value.emplace_back(pts[k], values[i]);
+        }
+        TPX_PETSC(ISRestoreIndices(pointIS, &pts));
+        TPX_PETSC(ISDestroy(&pointIS));
+      }
+      TPX_PETSC(ISRestoreIndices(valueIS, &values));
+      TPX_PETSC(ISDestroy(&valueIS));
+      std::sort(lv.point_value.begin(), lv.point_value.end());
+      for (std::size_t k = 1; k < lv.point_value.size(); ++k) {
+        if (lv.point_value[k].first == lv.point_value[k - 1].first) {
+          std::ostringstream m;
+          m << "DMLabel '" << name << "' gives point " << lv.point_value[k].first << " two values ("
+            << lv.point_value[k - 1].second << " and " << lv.point_value[k].second
+            << "): a Topoplex attribute holds one value per simplex";
+          throw Error(Code::Refused, m.str());
+        }
+      }
+      if (!lv.point_value.empty()) labels.push_back(std::move(lv));
+    }
+  }
+  std::vector<std::size_t> point_listing(npoints, NO_LISTING);
+  std::vector<PetscInt> listed_point = tops;
+  for (std::size_t i = 0; i < tops.size(); ++i) point_listing[static_cast<std::size_t>(tops[i] - pStart)] = i;
+  for (const LabelValues &lv : labels) {
+    for (const auto &pv : lv.point_value) {
+      const PetscInt p = pv.first;
+      const std::size_t ip = static_cast<std::size_t>(p - pStart);
+      if ((p >= vStart && p < vEnd) || point_listing[ip] != NO_LISTING) continue;
+      if (point_simplex[ip].empty()) continue;  // not a simplex here (non-interpolated face)
+      point_listing[ip] = listed_point.size();
+      listed_point.push_back(p);
+      ids.insert(ids.end(), point_simplex[ip].begin(), point_simplex[ip].end());
+      offsets.push_back(ids.size());
+    }
+  }
+
+  // Coordinates of the vertices (none when the DM has none).
+  std::vector<double> coords;
+  std::size_t cdim = 0;
+  if (options.coordinates) {
+    Vec local = nullptr;
+    TPX_PETSC(DMGetCoordinatesLocal(dm, &local));
+    if (local) {
+      PetscInt d = 0;
+      TPX_PETSC(DMGetCoordinateDim(dm, &d));
+      PetscSection section;
+      TPX_PETSC(DMGetCoordinateSection(dm, &section));
+      const PetscScalar *a = nullptr;
+      TPX_PETSC(VecGetArrayRead(local, &a));
+      cdim = static_cast<std::size_t>(d);
+      coords.resize(cdim * static_cast<std::size_t>(vEnd - vStart));
+      for (PetscInt v = vStart; v < vEnd; ++v) {
+        PetscInt off = 0, dof = 0;
+        TPX_PETSC(PetscSectionGetDof(section, v, &dof));
+        TPX_PETSC(PetscSectionGetOffset(section, v, &off));
+        if (dof != d) {
+          VecRestoreArrayRead(local, &a);
+          std::ostringstream m;
+          m << "DMPlex vertex point " << v << " has " << dof << " coordinates, not " << d;
+          throw Error(Code::Refused, m.str());
+        }
+        for (PetscInt k = 0; k < d; ++k) {
+          coords[static_cast<std::size_t>(v - vStart) * cdim + static_cast<std::size_t>(k)] =
+              static_cast<double>(PetscRealPart(a[off + k]));
+        }
+      }
+      TPX_PETSC(VecRestoreArrayRead(local, &a));
+    }
+  }
+
+  RankMesh out(Complex::from_arrays(static_cast<std::uint32_t>(vEnd - vStart), ids, offsets, coords, cdim));
+  out.rank_ = rank;
+  out.size_ = size;
+  out.overlap_ = overlap;
+  out.interpolated_ = interp == DMPLEX_INTERPOLATED_FULL;
+  out.p_start_ = pStart;
+  out.p_end_ = pEnd;
+  out.v_start_ = vStart;
+  out.v_end_ = vEnd;
+  out.vertex_point_.resize(static_cast<std::size_t>(vEnd - vStart));
+  for (PetscInt v = vStart; v < vEnd; ++v) out.vertex_point_[static_cast<std::size_t>(v - vStart)] = v;
+  out.listed_point_ = std::move(listed_point);
+  out.point_listing_ = std::move(point_listing);
+
+  // Attributes from the labels.
+  const std::size_t nlisted = out.listed_point_.size();
+  for (const LabelValues &lv : labels) {
+    std::vector<std::int32_t> at_vertices(out.vertex_point_.size(), -1), at_listed(nlisted, -1);
+    bool any_vertex = false, any_listed = false;
+    for (const auto &pv : lv.point_value) {
+      const PetscInt p = pv.first;
+      const std::int32_t value = static_cast<std::int32_t>(pv.second);
+      if (p >= vStart && p < vEnd) {
+        at_vertices[static_cast<std::size_t>(p - vStart)] = value;
+        any_vertex = true;
+      }
+      const std::size_t i = out.point_listing_[static_cast<std::size_t>(p - pStart)];
+      if (i != NO_LISTING) {
+        at_listed[i] = value;
+        any_listed = true;
+      }
+    }
+    if (any_vertex) out.complex_.set_attribute(lv.name, Location::Vertices, 1, at_vertices);
+    if (any_listed) out.complex_.set_attribute(lv.name, Location::Listed, 1, at_listed);
+  }
+
+  // Owners from the point SF: leaves are ghosts owned by their root's rank.
+  out.point_owner_.assign(npoints, rank);
+  PetscSF sf;
+  TPX_PETSC(DMGetPointSF(dm, &sf));
+  PetscInt nroots = -1, nleaves = 0;
+  const PetscInt *ilocal = nullptr;
+  const PetscSFNode *iremote = nullptr;
+  TPX_PETSC(PetscSFGetGraph(sf, &nroots, &nleaves, &ilocal, &iremote));
+  if (nroots >= 0) {
+    for (PetscInt i = 0; i < nleaves; ++i) {
+      const PetscInt p = ilocal ? ilocal[i] : i;
+      if (p >= pStart && p < pEnd) out.point_owner_[static_cast<std::size_t>(p - pStart)] = static_cast<int>(iremote[i].rank);
+    }
+  }
+
+  // Global vertex numbers (collective).
+  IS numbering;
+  TPX_PETSC(DMPlexGetVertexNumbering(dm, &numbering));
+  const PetscInt *gn = nullptr;
+  PetscInt ngn = 0;
+  TPX_PETSC(ISGetLocalSize(numbering, &ngn));
+  TPX_PETSC(ISGetIndices(numbering, &gn));
+  out.global_vertex_.resize(out.vertex_point_.size());
+  for (std::size_t v = 0; v < out.global_vertex_.size() && static_cast<PetscInt>(v) < ngn; ++v) {
+    out.global_vertex_[v] = gn[v] < 0 ? -(gn[v] + 1) : gn[v];
+  }
+  TPX_PETSC(ISRestoreIndices(numbering, &gn));
+
+  for (std::size_t ip = 0; ip < npoints; ++ip) {
+    if (!point_simplex[ip].empty()) out.simplex_point_.emplace(sorted(point_simplex[ip]), pStart + static_cast<PetscInt>(ip));
+  }
+  out.point_simplex_ = std::move(point_simplex);
+  return out;
+}
+
+PetscInt RankMesh::point_of_vertex(std::uint32_t v) const {
+  if (v >= vertex_point_.size()) {
+    throw Error(Code::InvalidArgument, "vertex " + std::to_string(v) + " out of range (" +
+                                           std::to_string(vertex_point_.size()) + " vertices)");
+  }
+  return vertex_point_[v];
+}
+
+std::uint32_t RankMesh::vertex_of_point(PetscInt p) const {
+  return p >= v_start_ && p < v_end_ ? static_cast<std::uint32_t>(p - v_start_) : NO_VERTEX;
+}
+
+PetscInt RankMesh::point_of_listing(std::size_t i) const {
+  if (i >= listed_point_.size()) {
+    throw Error(Code::InvalidArgument, "listing " + std::to_string(i) + " out of range (" +
+                                           std::to_string(listed_point_.size()) + " listed)");
+  }
+  return listed_point_[i];
+}
+
+std::size_t RankMesh::listing_of_point(PetscInt p) const {
+  return p >= p_start_ && p < p_end_ ? point_listing_[static_cast<std::size_t>(p - p_start_)] : NO_LISTING;
+}
+
+PetscInt RankMesh::point_of(std::vector<std::uint32_t> simplex) const {
+  std::sort(simplex.begin(), simplex.end());
+  const auto it = simplex_point_.find(simplex);
+  return it == simplex_point_.end() ? NO_POINT : it->second;
+}
+
+std::vector<std::uint32_t> RankMesh::simplex_of_point(PetscInt p) const {
+  if (p < p_start_ || p >= p_end_) {
+    throw Error(Code::InvalidArgument, "point " + std::to_string(p) + " outside the chart [" +
+                                           std::to_string(p_start_) + ", " + std::to_string(p_end_) + ")");
+  }
+  const auto &vs = point_simplex_[static_cast<std::size_t>(p - p_start_)];
+  if (vs.empty()) {
+    throw Error(Code::InvalidArgument, "point " + std::to_string(p) +
+                                           " is a face of a non-interpolated DM: no vertices kept");
+  }
+  return vs;
+}
+
+int RankMesh::point_owner(PetscInt p) const {
+  if (p < p_start_ || p >= p_end_) {
+    throw Error(Code::InvalidArgument, "point " + std::to_string(p) + " outside the chart [" +
+                                           std::to_string(p_start_) + ", " + std::to_string(p_end_) + ")");
+  }
+  return point_owner_[static_cast<std::size_t>(p - p_start_)];
+}
+
+int RankMesh::owner(const StructureView &s, const std::vector<std::uint32_t> &simplex) const {
+  const PetscInt p = point_of(simplex);
+  if (p != NO_POINT) return point_owner(p);
+  if (simplex.empty()) throw Error(Code::InvalidArgument, "owner of an empty simplex");
+  // No point: the smallest rank owning a cell (a top) that contains the simplex.
+  int best = -1;
+  const std::uint32_t d = s.dimension();
+  for (std::uint32_t q = static_cast<std::uint32_t>(simplex.size()); q <= d; ++q) {
+    for (auto row : s.relation(simplex, q)) {
+      const std::vector<std::uint32_t> cell(row.begin(), row.end());
+      const PetscInt c = point_of(cell);
+      if (c == NO_POINT || listing_of_point(c) == NO_LISTING) continue;
+      const int o = point_owner(c);
+      if (best < 0 || o < best) best = o;
+    }
+  }
+  if (best < 0) throw Error(Code::InvalidArgument, "simplex is in no cell of this rank");
+  // A rank that owns no cell around the simplex may see part of its star only: the smallest
+  // owner it sees (not this rank: it owns none of them), a ghost here either way.
+  return best;
+}
+
+PetscInt RankMesh::global_vertex(std::uint32_t v) const {
+  if (v >= global_vertex_.size()) throw Error(Code::InvalidArgument, "vertex " + std::to_string(v) + " out of range");
+  return global_vertex_[v];
+}
+
+Rows RankMesh::owned_relation(const StructureView &s, const std::vector<std::uint32_t> &simplex,
+                              std::uint32_t q) const {
+  const std::uint32_t p = static_cast<std::uint32_t>(simplex.size()) - 1;
+  if (size_ > 1 && overlap_ < overlap_needed(p, q)) {
+    std::ostringstream m;
+    m << "R(" << p << "," << q << ") needs overlap " << overlap_needed(p, q) << " to be exact on rank "
+      << rank_ << ", the DM has overlap " << overlap_;
+    throw Error(Code::OverlapTooSmall, m.str());
+  }
+  if (!owned(s, simplex)) {
+    std::ostringstream m;
+    m << "simplex {";
+    for (std::size_t i = 0; i < simplex.size(); ++i) m << (i ? "," : "") << simplex[i];
+    m << "} is a ghost on rank " << rank_ << ": its relations may be cut by the overlap";
+    throw Error(Code::Ghost, m.str());
+  }
+  if (q > s.dimension()) return Rows({}, q + 1);
+  return s.relation(simplex, q);
+}
+
+DM to_dm(MPI_Comm comm, const Complex *complex, const ExportOptions &options, int root) {
+  int rank = 0;
+  MPI_Comm_rank(comm, &rank);
+  // Root decides; the others learn the dimensions and whether to refuse (collective either way).
+  std::vector<std::vector<std::uint32_t>> cells;  // vertex ids, PETSc winding
+  std::vector<std::size_t> cell_listing;
+  long header[5] = {0, 0, 0, 0, 0};  // dim, nverts, cdim, refused, top-dimension count
+  std::string refusal;
+  if (rank == root) {
+    if (!complex) throw Error(Code::InvalidArgument, "to_dm: no complex on the root rank");
+    const TpxInputStats st = complex->input_stats();
+    std::vector<bool> dims(complex->dimension() + 1, false);
+    for (std::size_t i = 0; i < st.input_simplices; ++i) {
+      std::uint32_t top = 0;
+      std::vector<std::uint32_t> vs = complex->input_simplex(i, top);
+      if (top == UINT32_MAX || vs.size() < 2) continue;
+      dims[vs.size() - 1] = true;
+      petsc_winding(vs);
+      cells.push_back(std::move(vs));
+      cell_listing.push_back(i);
+    }
+    header[0] = static_cast<long>(complex->dimension());
+    header[1] = static_cast<long>(complex->vertex_count());
+    header[2] = static_cast<long>(complex->coord_dim());
+    header[4] = static_cast<long>(std::count(dims.begin(), dims.end(), true));
+    if (options.interpolate && header[4] > 1) {
+      header[3] = 1;
+    }
+  }
+  MPI_Bcast(header, 5, MPI_LONG, root, comm);
+  if (header[3]) {
+    throw Error(Code::Refused,
+                "to_dm: the complex has top simplices of " + std::to_string(header[4]) +
+                    " dimensions; DMPlexInterpolate needs one cell dimension (export it with "
+                    "interpolate = false: a cell-vertex DM holds mixed dimensions)");
+  }
+  const PetscInt dim = static_cast<PetscInt>(header[0]);
+  const PetscInt nverts = rank == root ? static_cast<PetscInt>(header[1]) : 0;
+  const PetscInt ncells = static_cast<PetscInt>(cells.size());
+
+  DM dm;
+  TPX_PETSC(DMCreate(comm, &dm));
+  TPX_PETSC(DMSetType(dm, DMPLEX));
+  TPX_PETSC(DMSetDimension(dm, dim));
+  TPX_PETSC(DMPlexSetChart(dm, 0, ncells + nverts));
+  for (PetscInt c = 0; c < ncells; ++c) TPX_PETSC(DMPlexSetConeSize(dm, c, static_cast<PetscInt>(cells[static_cast<std::size_t>(c)].size())));
+  TPX_PETSC(DMSetUp(dm));
+  std::vector<PetscInt> cone;
+  for (PetscInt c = 0; c < ncells; ++c) {
+    cone.clear();
+    for (std::uint32_t v : cells[static_cast<std::size_t>(c)]) cone.push_back(ncells + static_cast<PetscInt>(v));
+    TPX_PETSC(DMPlexSetCone(dm, c, cone.data()));
+  }
+  TPX_PETSC(DMPlexSymmetrize(dm));
+  TPX_PETSC(DMPlexStratify(dm));
+  if (header[2] > 0) {
+    std::vector<PetscReal> xyz;
+    if (rank == root) {
+      const std::vector<double> c = complex->coords();
+      xyz.assign(c.begin(), c.end());
+    }
+    TPX_PETSC(DMPlexBuildCoordinatesFromCellList(dm, static_cast<PetscInt>(header[2]), xyz.data()));
+  }
+  if (options.interpolate) {
+    DM idm;
+    TPX_PETSC(DMPlexInterpolate(dm, &idm));
+    TPX_PETSC(DMPlexCopyCoordinates(dm, idm));
+    TPX_PETSC(DMDestroy(&dm));
+    dm = idm;
+  }
+
+  // Labels from integer one-component attributes (root only; DMPlexDistribute sends them on).
+  if (options.labels && rank == root) {
+    PetscInt pStart, pEnd, vStart, vEnd;
+    TPX_PETSC(DMPlexGetChart(dm, &pStart, &pEnd));
+    TPX_PETSC(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+    // Simplex (sorted vertex ids) -> point, for every point.
+    std::map<std::vector<std::uint32_t>, PetscInt> point_of;
+    for (PetscInt p = pStart; p < pEnd; ++p) {
+      std::vector<std::uint32_t> vs;
+      if (p >= vStart && p < vEnd) {
+        vs.push_back(static_cast<std::uint32_t>(p - vStart));
+      } else {
+        PetscInt n = 0;
+        PetscInt *closure = nullptr;
+        TPX_PETSC(DMPlexGetTransitiveClosure(dm, p, PETSC_TRUE, &n, &closure));
+        for (PetscInt k = 0; k < n; ++k) {
+          if (closure[2 * k] >= vStart && closure[2 * k] < vEnd) vs.push_back(static_cast<std::uint32_t>(closure[2 * k] - vStart));
+        }
+        TPX_PETSC(DMPlexRestoreTransitiveClosure(dm, p, PETSC_TRUE, &n, &closure));
+      }
+      point_of.emplace(sorted(vs), p);
+    }
+    const TpxInputStats st = complex->input_stats();
+    for (const AttributeInfo &a : complex->attributes()) {
+      if (a.components != 1 || (a.type != ValueType::I32 && a.type != ValueType::I64)) continue;
+      DMLabel label;
+      TPX_PETSC(DMCreateLabel(dm, a.name.c_str()));
+      TPX_PETSC(DMGetLabel(dm, a.name.c_str(), &label));
+      auto set = [&](PetscInt p, std::int64_t value, const std::string &what) {
+        if (value == -1) return;
+        PetscInt old = -1;
+        TPX_PETSC(DMLabelGetValue(label, p, &old));
+        if (old == value) return;
+        if (old != -1) {
+          throw Error(Code::Refused, "to_dm: attribute '" + a.name + "' gives point " + std::to_string(p) + " (" +
+                                         what + ") the values " + std::to_string(old) + " and " +
+                                         std::to_string(value));
+        }
+        TPX_PETSC(DMLabelSetValue(label, p, static_cast<PetscInt>(value)));
+      };
+      auto value_at = [&](std::size_t i) -> std::int64_t {
+        if (a.type == ValueType::I32) return complex->attribute<std::int32_t>(a.name, a.location)[i];
+        return complex->attribute<std::int64_t>(a.name, a.location)[i];
+      };
+      if (a.location == Location::Vertices) {
+        for (std::uint32_t v = 0; v < complex->vertex_count(); ++v) set(vStart + static_cast<PetscInt>(v), value_at(v), "vertex " + std::to_string(v));
+      } else {
+        for (std::size_t i = 0; i < st.input_simplices; ++i) {
+          const std::int64_t value = value_at(i);
+          if (value == -1) continue;
+          std::uint32_t top = 0;
+          const std::vector<std::uint32_t> vs = complex->input_simplex(i, top);
+          const auto it = point_of.find(sorted(vs));
+          if (it == point_of.end()) {
+            throw Error(Code::Refused, "to_dm: attribute '" + a.name + "' labels listed simplex " + std::to_string(i) +
+                                           ", a face with no DMPlex point in a non-interpolated DM (export with "
+                                           "interpolate = true)");
+          }
+          set(it->second, value, "listed simplex " + std::to_string(i));
+        }
+      }
+    }
+  }
+  return dm;
+}
+
+DM distribute(DM serial, PetscInt overlap, PetscSF *migration) {
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(serial));
+  // A vertex in no cell would be dropped by the migration (cells and their closures move).
+  PetscInt pStart, pEnd, vStart, vEnd, dropped = -1;
+  TPX_PETSC(DMPlexGetChart(serial, &pStart, &pEnd));
+  TPX_PETSC(DMPlexGetDepthStratum(serial, 0, &vStart, &vEnd));
+  PetscInt depth = 0;
+  TPX_PETSC(DMPlexGetDepth(serial, &depth));
+  if (depth > 0) {
+    for (PetscInt v = vStart; v < vEnd && dropped < 0; ++v) {
+      PetscInt support = 0;
+      TPX_PETSC(DMPlexGetSupportSize(serial, v, &support));
+      if (support == 0) dropped = v;
+    }
+  }
+  PetscInt any = dropped;
+  MPI_Allreduce(&dropped, &any, 1, MPIU_INT, MPI_MAX, comm);
+  if (any >= 0) {
+    throw Error(Code::Refused, "distribute: vertex point " + std::to_string(any) +
+                                   " is in no cell; DMPlexDistribute moves cells and their closures, so it would be lost");
+  }
+  DM parallel = nullptr;
+  PetscSF sf = nullptr;
+  TPX_PETSC(DMPlexDistribute(serial, overlap, migration ? &sf : nullptr, &parallel));
+  if (!parallel) {  // one rank: PETSc leaves the DM where it is
+    TPX_PETSC(DMClone(serial, &parallel));
+    if (migration) {
+      TPX_PETSC(PetscSFCreate(comm, &sf));
+      std::vector<PetscSFNode> remote(static_cast<std::size_t>(pEnd - pStart));
+      for (PetscInt p = pStart; p < pEnd; ++p) {
+        remote[static_cast<std::size_t>(p - pStart)].rank = 0;
+        remote[static_cast<std::size_t>(p - pStart)].index = p;
+      }
+      TPX_PETSC(PetscSFSetGraph(sf, pEnd - pStart, pEnd - pStart, nullptr, PETSC_COPY_VALUES, remote.data(), PETSC_COPY_VALUES));
+    }
+  }
+  if (migration) *migration = sf;
+  return parallel;
+}
+
+std::vector<PetscInt> serial_points(DM local, PetscSF migration) {
+  PetscInt pStart, pEnd;
+  TPX_PETSC(DMPlexGetChart(local, &pStart, &pEnd));
+  std::vector<PetscInt> out(static_cast<std::size_t>(pEnd - pStart), -1);
+  PetscInt nroots = 0, nleaves = 0;
+  const PetscInt *ilocal = nullptr;
+  const PetscSFNode *iremote = nullptr;
+  TPX_PETSC(PetscSFGetGraph(migration, &nroots, &nleaves, &ilocal, &iremote));
+  for (PetscInt i = 0; i < nleaves; ++i) {
+    const PetscInt p = ilocal ? ilocal[i] : i;
+    if (p >= pStart && p < pEnd) out[static_cast<std::size_t>(p - pStart)] = iremote[i].index;
+  }
+  return out;
+}
+
+}  // namespace dmplex
+}  // namespace topoplex
