@@ -219,7 +219,10 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
     }
   }
 
-  RankMesh out(Complex::from_arrays(static_cast<std::uint32_t>(vEnd - vStart), ids, offsets, coords, cdim));
+  RankMesh out;
+  if (vEnd > vStart) {
+    out.complex_.emplace(Complex::from_arrays(static_cast<std::uint32_t>(vEnd - vStart), ids, offsets, coords, cdim));
+  }
   out.rank_ = rank;
   out.size_ = size;
   out.overlap_ = overlap;
@@ -251,8 +254,8 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
         any_listed = true;
       }
     }
-    if (any_vertex) out.complex_.set_attribute(lv.name, Location::Vertices, 1, at_vertices);
-    if (any_listed) out.complex_.set_attribute(lv.name, Location::Listed, 1, at_listed);
+    if (any_vertex) out.complex_->set_attribute(lv.name, Location::Vertices, 1, at_vertices);
+    if (any_listed) out.complex_->set_attribute(lv.name, Location::Listed, 1, at_listed);
   }
 
   // Owners from the point SF: leaves are ghosts owned by their root's rank.
@@ -288,6 +291,16 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   }
   out.point_simplex_ = std::move(point_simplex);
   return out;
+}
+
+const Complex &RankMesh::complex() const {
+  if (!complex_) throw Error(Code::Refused, "rank " + std::to_string(rank_) + " holds no point: no complex");
+  return *complex_;
+}
+
+Complex &RankMesh::complex() {
+  if (!complex_) throw Error(Code::Refused, "rank " + std::to_string(rank_) + " holds no point: no complex");
+  return *complex_;
 }
 
 PetscInt RankMesh::point_of_vertex(std::uint32_t v) const {
@@ -527,24 +540,40 @@ DM to_dm(MPI_Comm comm, const Complex *complex, const ExportOptions &options, in
 
 DM distribute(DM serial, PetscInt overlap, PetscSF *migration) {
   MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(serial));
-  // A vertex in no cell would be dropped by the migration (cells and their closures move).
-  PetscInt pStart, pEnd, vStart, vEnd, dropped = -1;
+  // What PETSc 3.18's DMPlexDistribute cannot carry (checked on every rank, refused on all):
+  //  - a point with no support that is not a cell (height 0): an isolated vertex, or a dangling
+  //    lower-dimensional simplex of an interpolated DM: only cells and their closures migrate;
+  //  - cells of several dimensions: DMPlexStratifyMigrationSF orders the received points by the
+  //    cell types of the DM's dimension only, and fails ("ilocal has duplicate entries").
+  PetscInt pStart, pEnd, cStart, cEnd;
   TPX_PETSC(DMPlexGetChart(serial, &pStart, &pEnd));
-  TPX_PETSC(DMPlexGetDepthStratum(serial, 0, &vStart, &vEnd));
-  PetscInt depth = 0;
-  TPX_PETSC(DMPlexGetDepth(serial, &depth));
-  if (depth > 0) {
-    for (PetscInt v = vStart; v < vEnd && dropped < 0; ++v) {
-      PetscInt support = 0;
-      TPX_PETSC(DMPlexGetSupportSize(serial, v, &support));
-      if (support == 0) dropped = v;
+  TPX_PETSC(DMPlexGetHeightStratum(serial, 0, &cStart, &cEnd));
+  long bad[2] = {-1, -1};  // a lost point, a cell of another dimension
+  PetscInt cdim = -1;
+  for (PetscInt p = pStart; p < pEnd; ++p) {
+    PetscInt support = 0;
+    TPX_PETSC(DMPlexGetSupportSize(serial, p, &support));
+    const bool cell = p >= cStart && p < cEnd;
+    if (support == 0 && !cell && bad[0] < 0) bad[0] = p;
+    if (cell) {
+      DMPolytopeType ct;
+      TPX_PETSC(DMPlexGetCellType(serial, p, &ct));
+      const PetscInt d = DMPolytopeTypeGetDim(ct);
+      if (cdim < 0) cdim = d;
+      if (d != cdim && bad[1] < 0) bad[1] = p;
     }
   }
-  PetscInt any = dropped;
-  MPI_Allreduce(&dropped, &any, 1, MPIU_INT, MPI_MAX, comm);
-  if (any >= 0) {
-    throw Error(Code::Refused, "distribute: vertex point " + std::to_string(any) +
-                                   " is in no cell; DMPlexDistribute moves cells and their closures, so it would be lost");
+  long any[2];
+  MPI_Allreduce(bad, any, 2, MPI_LONG, MPI_MAX, comm);
+  if (any[0] >= 0) {
+    throw Error(Code::Refused, "distribute: point " + std::to_string(any[0]) +
+                                   " has no support and is not a cell; DMPlexDistribute moves cells and their "
+                                   "closures only, so it would be lost");
+  }
+  if (any[1] >= 0) {
+    throw Error(Code::Refused, "distribute: cell " + std::to_string(any[1]) +
+                                   " has another dimension than the first cell; PETSc 3.18's DMPlexDistribute "
+                                   "cannot migrate cells of several dimensions");
   }
   DM parallel = nullptr;
   PetscSF sf = nullptr;

@@ -36,6 +36,7 @@
 #include <petscsf.h>
 
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -91,8 +92,11 @@ class RankMesh {
    * first non-simplicial cell, Refused for a point in two strata of one label. */
   static RankMesh from_dm(DM dm, const ImportOptions &options = {});
 
-  const Complex &complex() const noexcept { return complex_; }
-  Complex &complex() noexcept { return complex_; }
+  /* A rank with no point (a serial DM's other ranks, a tiny mesh on many ranks) has no complex:
+   * Topoplex complexes have at least one vertex. complex() then throws Refused. */
+  bool empty() const noexcept { return !complex_.has_value(); }
+  const Complex &complex() const;
+  Complex &complex();
 
   int rank() const noexcept { return rank_; }
   int size() const noexcept { return size_; }
@@ -134,11 +138,11 @@ class RankMesh {
                       std::uint32_t q) const;
 
  private:
-  RankMesh(Complex c) : complex_(std::move(c)) {}
+  RankMesh() = default;
   struct KeyHash {
     std::size_t operator()(const std::vector<std::uint32_t> &k) const noexcept;
   };
-  Complex complex_;
+  std::optional<Complex> complex_;
   int rank_ = 0, size_ = 1;
   PetscInt overlap_ = 0;
   bool interpolated_ = false;
@@ -168,8 +172,11 @@ DM to_dm(MPI_Comm comm, const Complex *complex, const ExportOptions &options = {
 
 /* DMPlexDistribute(serial, overlap): the returned DM (the caller destroys both), and the
  * migration SF (serial point of each local point) when `migration` is not null. Collective.
- * Throws Refused when the serial DM has a vertex in no cell (DMPlexDistribute migrates cells and
- * their closures only, so such a vertex would be lost) or on one rank returns a copy. */
+ * On one rank, a clone and the identity SF. Throws Refused (on every rank) for what PETSc 3.18's
+ * DMPlexDistribute cannot carry: a point with no support that is not a cell (an isolated vertex,
+ * a dangling lower-dimensional simplex: only cells and their closures migrate), and cells of
+ * several dimensions (the migration orders points by the cell types of the DM's dimension and
+ * fails). Such complexes are imported fine on one rank (RankMesh::from_dm). */
 DM distribute(DM serial, PetscInt overlap, PetscSF *migration = nullptr);
 
 /* The serial point (root index) of every local point of a DM from distribute(): the leaves of the
