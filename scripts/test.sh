@@ -8,6 +8,9 @@ cd "$(dirname "$0")/.."
 
 scripts/install-deps.sh cmake ninja-build pkg-config valgrind libopenmesh-dev libcgal-dev \
   libgudhi-dev libgtest-dev libcgal-demo libbenchmark-dev
+# PETSc 3.18 + OpenMPI for the optional DMPlex bridge (Topoplex::dmplex) and its MPI tests
+# (cpp_tests/dmplex, run by scripts/cpp-tests.sh in the uninstrumented pass); ~25 s to install.
+scripts/install-deps.sh libpetsc-real-dev openmpi-bin
 # Python meshio: the independent reader and writer of tests/interop.rs (skipped without it).
 # Never installed into the user's Python: when the system's python3 lacks it, into a venv of
 # the suite's own under the target directory, put first on PATH for the tests.
