@@ -5,6 +5,8 @@
 #      (default: a temporary directory), and check the installed SONAME;
 #   2. configure, build and ctest cpp_tests/ against that prefix;
 #   3. the same with TOPOPLEX_SANITIZE=ON (ASan + UBSan, LeakSanitizer on).
+# When PETSc and MPI are installed, step 1 also installs the DMPlex bridge and step 2 runs its MPI
+# tests (cpp_tests/dmplex, mpiexec -n 1, 2, 4); step 3 leaves them out (MPI under ASan is noise).
 # Needs cmake, ninja-build, libgtest-dev, pkg-config and a C/C++ compiler (Debian packages).
 # Cargo's target dir is $CARGO_TARGET_DIR or the repository's target/, so dependencies built by
 # other cargo runs are reused.
