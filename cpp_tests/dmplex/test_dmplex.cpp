@@ -492,6 +492,32 @@ void non_simplicial_cells_are_refused() {
   }
 }
 
+void reference_cells_simplices_in_others_refused_by_name() {
+  for (DMPolytopeType ct : {DM_POLYTOPE_SEGMENT, DM_POLYTOPE_TRIANGLE, DM_POLYTOPE_TETRAHEDRON}) {
+    DM dm;
+    PetscCallAbort(PETSC_COMM_SELF, DMPlexCreateReferenceCell(PETSC_COMM_SELF, ct, &dm));
+    const dx::RankMesh rm = dx::RankMesh::from_dm(dm);
+    const std::uint32_t d = static_cast<std::uint32_t>(DMPolytopeTypeGetDim(ct));
+    CHECK(rm.complex().dimension() == d);
+    CHECK(rm.complex().top_count(d) == 1);
+    CHECK(rm.interpolated());  // reference cells are interpolated (a segment trivially)
+    PetscCallAbort(PETSC_COMM_SELF, DMDestroy(&dm));
+  }
+  for (DMPolytopeType ct : {DM_POLYTOPE_QUADRILATERAL, DM_POLYTOPE_HEXAHEDRON, DM_POLYTOPE_TRI_PRISM,
+                            DM_POLYTOPE_PYRAMID}) {
+    DM dm;
+    PetscCallAbort(PETSC_COMM_SELF, DMPlexCreateReferenceCell(PETSC_COMM_SELF, ct, &dm));
+    try {
+      dx::RankMesh::from_dm(dm);
+      CHECK_MSG(false, DMPolytopeTypes[ct] << " accepted");
+    } catch (const dx::Error &e) {
+      CHECK(e.code() == dx::Code::NotSimplicial);
+      CHECK_MSG(std::string(e.what()).find(DMPolytopeTypes[ct]) != std::string::npos, e.what());
+    }
+    PetscCallAbort(PETSC_COMM_SELF, DMDestroy(&dm));
+  }
+}
+
 void refusals_are_clear() {
   const tp::Complex m = mixed(true);
   // Interpolation of mixed dimensions: refused on every rank.
@@ -620,6 +646,7 @@ int main(int argc, char **argv) {
       {"owned_relations_equal_serial_answers_with_overlap_1", owned_relations_equal_serial_answers_with_overlap_1},
       {"overlap_0_cuts_stars_and_is_refused", overlap_0_cuts_stars_and_is_refused},
       {"non_simplicial_cells_are_refused", non_simplicial_cells_are_refused},
+      {"reference_cells_simplices_in_others_refused_by_name", reference_cells_simplices_in_others_refused_by_name},
       {"refusals_are_clear", refusals_are_clear},
       {"dm_without_coordinates_gives_a_complex_without", dm_without_coordinates_gives_a_complex_without},
       {"gmsh_file_read_by_petsc_matches_topoplex_reader", gmsh_file_read_by_petsc_matches_topoplex_reader},
