@@ -572,6 +572,67 @@ typedef struct TpxRelationView {
 } TpxRelationView;
 
 /**
+ * The live complex's own arrays, lent (see `tpx_live_arrays`). Every pointer points into the
+ * live complex and is valid until its next edit (insert, remove, contract, split, add vertex,
+ * set coordinates of the whole array, compact) or `tpx_live_free`; an empty array may be a
+ * dangling non-NULL pointer with length 0.
+ *
+ * Layout (the C++ `topoplex::MeshView` walks it inline):
+ * - a top p-simplex (p ≥ 1) is named by its packed id `p << 28 | slot` (`tpx_live_top_vertices`'
+ *   argument); `tops[p]` holds p + 1 vertex ids per slot in stored order (the input winding),
+ *   `top_lens[p]` ids in all; a removed slot (tombstone) has bit 31 set on its first id and is
+ *   in no star. `tops[0]` is empty.
+ * - vertex slot v's star, the packed ids of the live tops of dimension ≥ 1 through v, in no
+ *   particular order (an edit may reorder it), is
+ *   `star_words[star_blocks[3v] .. star_blocks[3v] + star_blocks[3v + 1]]`
+ *   (`star_blocks[3v + 2]` is the block's capacity).
+ * - `alive[v]` (v < `vertex_slots`): the slot holds a vertex; a live vertex with an empty star
+ *   is an isolated vertex. Its coordinates are `coords[v * coord_dim ..][.. coord_dim]`.
+ */
+typedef struct TpxLiveArrays {
+  /**
+   * Per dimension 0..=15: the top table (see above).
+   */
+  const uint32_t *tops[16];
+  /**
+   * Per dimension: ids in `tops[p]` (slots × (p + 1)).
+   */
+  size_t top_lens[16];
+  /**
+   * The star arena.
+   */
+  const uint32_t *star_words;
+  /**
+   * Words in `star_words`.
+   */
+  size_t star_words_len;
+  /**
+   * 3 words per vertex slot: start, length, capacity of its star.
+   */
+  const uint32_t *star_blocks;
+  /**
+   * Per vertex slot: 1 when it holds a live vertex.
+   */
+  const bool *alive;
+  /**
+   * Vertex slots (live or not).
+   */
+  uint32_t vertex_slots;
+  /**
+   * The compaction count (the handles' generation).
+   */
+  uint32_t generation;
+  /**
+   * `vertex_slots * coord_dim` numbers.
+   */
+  const double *coords;
+  /**
+   * Numbers per vertex (0 when the complex has no coordinates).
+   */
+  size_t coord_dim;
+} TpxLiveArrays;
+
+/**
  * Storage of a structure: what the papers count and what the process really holds.
  */
 typedef struct TpxStorage {
@@ -1601,6 +1662,19 @@ TpxStatus tpx_live_top_vertices(const struct TpxLive *l,
                                 uint32_t top,
                                 const uint32_t **out,
                                 size_t *out_len);
+
+/**
+ * Lends the live complex's arrays into `*out` (a caller-owned struct filled in; nothing is
+ * allocated or copied): the top tables, the vertex stars, the live flags and the coordinates,
+ * valid until the next edit (see `TpxLiveArrays`). With them a caller walks the complex with
+ * no call per query: a vertex's tops, a top's vertices in winding, the tops through a simplex
+ * (filter the smallest star of its vertices), the one-ring (the other vertices of a star).
+ * Errors: NULL_ARGUMENT; `*out` written only on success. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_arrays(const struct TpxLive *l, struct TpxLiveArrays *out);
 
 /**
  * Adds an isolated vertex at `xyz[0 .. len]`; its id into `*out`. Errors: NULL_ARGUMENT,

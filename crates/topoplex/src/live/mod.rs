@@ -290,6 +290,36 @@ pub struct LiveComplex {
     dense: dense::DenseIndex,
 }
 
+/// The arrays of a [`LiveComplex`] as stored ([`LiveComplex::arrays`]): what every navigation
+/// reads, for callers that walk them inline. Layout (the module doc's storage):
+/// - a top p-simplex is named by its packed id `p << 28 | slot`, the raw value of a
+///   [`crate::relation::handle::TopId`] and of `tpx_live_top_vertices`' argument;
+/// - St*(v), the live tops of dimension ≥ 1 through vertex slot v, is
+///   `star_words[start .. start + len]` with `start = star_blocks[3v]`,
+///   `len = star_blocks[3v + 1]` (`star_blocks[3v + 2]` is the block's capacity), in no
+///   particular order (an edit may reorder it);
+/// - a vertex slot is live when `alive[v]`; an isolated vertex is a live vertex with an empty
+///   star; its coordinates are `coords[v·coord_dim ..][.. coord_dim]`.
+#[derive(Debug, Clone, Copy)]
+pub struct LiveArrays<'a> {
+    /// `tops[p]`, p ≥ 1: p + 1 vertex ids per slot in stored order (the input winding). A
+    /// removed slot (a tombstone, never in a star) has bit 31 set on its first id. `tops[0]` is
+    /// empty.
+    pub tops: [&'a [u32]; MAX_DIMENSION + 1],
+    /// The star arena (packed top ids), addressed through `star_blocks`.
+    pub star_words: &'a [u32],
+    /// Start, length and capacity of each vertex slot's star block: 3 words per slot.
+    pub star_blocks: &'a [u32],
+    /// Per vertex slot: live or not.
+    pub alive: &'a [bool],
+    /// `coord_dim` numbers per vertex slot.
+    pub coords: &'a [f64],
+    /// Coordinates per vertex (0 when the complex has none).
+    pub coord_dim: usize,
+    /// The compaction count (the handles' generation).
+    pub generation: u32,
+}
+
 /// A top simplex's image under a contraction: at most 16 ids inline, in stored order.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct Image {
@@ -586,6 +616,23 @@ impl LiveComplex {
                 vertex: v,
                 slots: self.vertex_slots(),
             })
+        }
+    }
+
+    /// The complex's own arrays, lent for navigation without a call per query (the C ABI's
+    /// `tpx_live_arrays`, the C++ `topoplex::MeshView`, which navigates them inline). Nothing
+    /// is copied or built: O(1). The borrow ends at the next edit, which may move any array
+    /// (setting coordinates writes in place, so C callers keep their pointers across it).
+    pub fn arrays(&self) -> LiveArrays<'_> {
+        let (star_words, star_blocks) = self.star.lend();
+        LiveArrays {
+            tops: std::array::from_fn(|p| self.tops.get(p).map_or(&[][..], |t| &t[..])),
+            star_words,
+            star_blocks,
+            alive: &self.alive,
+            coords: &self.coords,
+            coord_dim: self.coord_dim,
+            generation: self.epoch,
         }
     }
 
