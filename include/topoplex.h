@@ -573,9 +573,9 @@ typedef struct TpxRelationView {
 
 /**
  * The live complex's own arrays, lent (see `tpx_live_arrays`). Every pointer points into the
- * live complex and is valid until its next edit (insert, remove, contract, split, add vertex,
- * set coordinates of the whole array, compact) or `tpx_live_free`; an empty array may be a
- * dangling non-NULL pointer with length 0.
+ * live complex and is valid until its next edit of the topology (insert, remove, contract,
+ * split, add vertex, compact) or `tpx_live_free`; setting coordinates writes in place and
+ * keeps every pointer valid. An empty array may be a dangling non-NULL pointer with length 0.
  *
  * Layout (the C++ `topoplex::MeshView` walks it inline):
  * - a top p-simplex (p ≥ 1) is named by its packed id `p << 28 | slot` (`tpx_live_top_vertices`'
@@ -2179,6 +2179,19 @@ void tpx_relation_table_free(struct TpxRelationTable *t);
  * `c` must be NULL or a live complex; `path` NULL or a NUL-terminated string.
  */
 TpxStatus tpx_complex_write(const struct TpxComplex *c, const char *path, uint32_t format);
+
+/**
+ * Writes the live complex `l` to the file `path` as `tpx_complex_write` writes
+ * `tpx_live_to_complex`'s complex (the same bytes: live vertices renumbered densely in
+ * ascending id order, tops in dimension-then-slot order with their winding, then each other
+ * listed simplex that carries data, coordinates and attributes), without building that
+ * complex: the memory above the live complex is its listing (4 bytes per id, 12 per simplex)
+ * and the file's bytes. Errors as `tpx_complex_write`. Cost: linear in the live complex.
+ *
+ * # Safety
+ * `l` must be NULL or a live complex; `path` NULL or a NUL-terminated string.
+ */
+TpxStatus tpx_live_write(const struct TpxLive *l, const char *path, uint32_t format);
 
 #ifdef __cplusplus
 }  // extern "C"

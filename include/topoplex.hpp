@@ -1337,11 +1337,24 @@ class MeshView {
    * m log m), m the candidates. */
   void neighbours(std::uint32_t v, std::vector<std::uint32_t> &out) const {
     out.clear();
-    for (TopRef t : star(v))
-      for (std::uint32_t w : vertices(t))
-        if (w != v) out.push_back(w);
-    std::sort(out.begin(), out.end());
-    out.erase(std::unique(out.begin(), out.end()), out.end());
+    const TopSpan st = star(v);
+    if (st.size() > 16) {  // a hub: sort once
+      for (TopRef t : st)
+        for (std::uint32_t w : vertices(t))
+          if (w != v) out.push_back(w);
+      std::sort(out.begin(), out.end());
+      out.erase(std::unique(out.begin(), out.end()), out.end());
+      return;
+    }
+    // A typical star (a handful of tops): insert each candidate in place, ascending, once.
+    for (TopRef t : st)
+      for (std::uint32_t w : vertices(t)) {
+        if (w == v) continue;
+        std::size_t i = out.size();
+        while (i > 0 && out[i - 1] > w) --i;
+        if (i > 0 && out[i - 1] == w) continue;
+        out.insert(out.begin() + static_cast<std::ptrdiff_t>(i), w);
+      }
   }
   /* Calls f(TopRef u) for every live top u of t's dimension sharing a facet (all but one
    * vertex) with live top t: for a pure triangle mesh the faces across t's edges (FF), for a
@@ -1534,6 +1547,12 @@ class Live {
     std::vector<std::uint32_t> map(vertex_slots());
     detail::fill(map, tpx_live_compact, l_.get());
     return map;
+  }
+  /* Writes the live complex as to_complex().write(path, format) would (the same bytes),
+   * without building that complex (tpx_live_write): the memory above the live complex is its
+   * listing and the file's bytes. */
+  void write(const std::string &path, Format format = Format::FromExtension) const {
+    detail::check(tpx_live_write(l_.get(), path.c_str(), static_cast<std::uint32_t>(format)));
   }
   /* A frozen copy, to build any Structure from. */
   Complex to_complex() const {

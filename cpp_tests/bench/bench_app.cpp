@@ -47,13 +47,15 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-long peak_rss_kib() {
+// VmHWM (the process's peak RSS so far) or VmRSS (now), in KiB.
+long status_kib(const char *field) {
   std::ifstream in("/proc/self/status");
   std::string line;
   while (std::getline(in, line))
-    if (line.rfind("VmHWM:", 0) == 0) return std::stol(line.substr(6));
+    if (line.rfind(field, 0) == 0) return std::stol(line.substr(std::strlen(field)));
   return -1;
 }
+long peak_rss_kib() { return status_kib("VmHWM:"); }
 
 // A face's key independent of numbering: its sorted vertex ids mixed.
 std::uint64_t face_key(std::array<std::uint32_t, 3> v) {
@@ -68,6 +70,7 @@ struct Result {
   double coord_sum = 0;
   std::uint64_t ff_sum = 0, ff_each_sum = 0;
   std::size_t boundary = 0, nonmanifold = 0, valence_hash = 0, faces = 0;
+  long load_peak_kib = 0, kept_kib = 0;  // peak RSS of the load; RSS held after it
 };
 
 Result run_openmesh(const char *in, const char *out) {
@@ -76,6 +79,8 @@ Result run_openmesh(const char *in, const char *out) {
   OMesh mesh;
   if (!OpenMesh::IO::read_mesh(mesh, in)) throw std::runtime_error("OpenMesh cannot read it");
   r.ms["load"] = ms_since(t0);
+  r.load_peak_kib = peak_rss_kib();
+  r.kept_kib = status_kib("VmRSS:");
 
   t0 = Clock::now();
   std::vector<OMesh::Point> next(mesh.n_vertices());
@@ -142,24 +147,25 @@ Result run_topoplex(const char *in, const char *out) {
     return topoplex::Live(c);
   }();
   r.ms["load"] = ms_since(t0);
+  r.load_peak_kib = peak_rss_kib();
+  r.kept_kib = status_kib("VmRSS:");
 
   t0 = Clock::now();
   const std::size_t dim = live.coord_dim(), slots = live.vertex_slots();
-  std::vector<double> xyz(live.all_coords().begin(), live.all_coords().end()), next(xyz.size());
+  std::vector<double> next(slots * dim);
   std::vector<std::uint32_t> ring;
   for (int round = 0; round < 10; ++round) {
-    const topoplex::MeshView m = live.mesh();
+    const topoplex::MeshView m = live.mesh();  // coordinates read from the mesh itself
     for (std::uint32_t v = 0; v < slots; ++v) {
       if (!m.is_vertex(v)) continue;
       m.neighbours(v, ring);
       for (std::size_t k = 0; k < dim; ++k) {
         double s = 0;
-        for (std::uint32_t w : ring) s += xyz[w * dim + k];
-        next[v * dim + k] = ring.empty() ? xyz[v * dim + k] : s / double(ring.size());
+        for (std::uint32_t w : ring) s += m.coords(w)[k];
+        next[v * dim + k] = ring.empty() ? m.coords(v)[k] : s / double(ring.size());
       }
     }
-    live.set_all_coords(next.data(), next.size());
-    xyz.swap(next);
+    live.set_all_coords(next.data(), next.size());  // in place: m stays valid
   }
   r.ms["smooth"] = ms_since(t0);
 
@@ -201,10 +207,10 @@ Result run_topoplex(const char *in, const char *out) {
   for (std::uint32_t f = 0; f < faces; ++f) r.ff_each_sum += sum[f] * key[f];
   r.faces = faces;
 
-  for (double x : xyz) r.coord_sum += x;
+  for (double x : live.all_coords()) r.coord_sum += x;
   if (out) {
     t0 = Clock::now();
-    live.to_complex().write(out);
+    live.write(out);
     r.ms["write"] = ms_since(t0);
   }
   return r;
@@ -225,6 +231,7 @@ int main(int argc, char **argv) {
     r.ms["total"] = ms_since(t0);
     std::printf("lib=%s faces=%zu", argv[1], r.faces);
     for (const auto &kv : r.ms) std::printf(" %s_ms=%.3f", kv.first.c_str(), kv.second);
+    std::printf(" load_peak_kib=%ld kept_kib=%ld", r.load_peak_kib, r.kept_kib);
     std::printf(" peak_rss_kib=%ld coord_sum=%.9g ff_sum=%llu ff_each_sum=%llu boundary=%zu "
                 "nonmanifold=%zu valence_hash=%zu\n",
                 peak_rss_kib(), r.coord_sum, static_cast<unsigned long long>(r.ff_sum),

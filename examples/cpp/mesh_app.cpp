@@ -5,8 +5,8 @@
 //
 // Every pass reads the mesh's own arrays inline (topoplex::MeshView: no library call per query,
 // no index beyond what the mesh stores); the smoothed coordinates go back into the mesh after
-// each round (Live::set_all_coords, in place) and the library's writer writes it: top simplices
-// in input order and winding, coordinates bit for bit, format from the name.
+// each round (Live::set_all_coords, in place) and the library's writer writes it (Live::write):
+// top simplices in input order and winding, coordinates bit for bit, format from the name.
 //
 //   mesh_app INPUT [OUTPUT]
 #include <topoplex.hpp>
@@ -25,10 +25,10 @@ int main(int argc, char **argv) {
     topoplex::Live mesh(topoplex::Complex::from_file(argv[1]));
     const std::size_t dim = mesh.coord_dim();
     const std::uint32_t slots = mesh.vertex_slots();
-    std::vector<double> xyz(mesh.all_coords().begin(), mesh.all_coords().end());
 
-    // Smoothing: each vertex moves to the mean of its one-ring.
-    std::vector<double> next(xyz.size());
+    // Smoothing: each vertex moves to the mean of its one-ring, read from the mesh's own
+    // coordinates; the new ones go back into the mesh after each round.
+    std::vector<double> next(std::size_t(slots) * dim);
     std::vector<std::uint32_t> ring;  // reused: no allocation once warm
     for (int round = 0; round < 10; ++round) {
       const topoplex::MeshView m = mesh.mesh();
@@ -37,12 +37,11 @@ int main(int argc, char **argv) {
         m.neighbours(v, ring);
         for (std::size_t k = 0; k < dim; ++k) {
           double sum = 0;
-          for (std::uint32_t w : ring) sum += xyz[w * dim + k];
-          next[v * dim + k] = ring.empty() ? xyz[v * dim + k] : sum / ring.size();
+          for (std::uint32_t w : ring) sum += m.coords(w)[k];
+          next[v * dim + k] = ring.empty() ? m.coords(v)[k] : sum / ring.size();
         }
       }
-      mesh.set_all_coords(next.data(), next.size());  // in place: views stay valid
-      xyz.swap(next);
+      mesh.set_all_coords(next.data(), next.size());  // in place: m stays valid
     }
 
     // Valence histogram; boundary and non-manifold edges: one pass over every edge with the
@@ -61,7 +60,8 @@ int main(int argc, char **argv) {
     for (std::uint32_t v = 0; v < slots; ++v)
       if (m.is_vertex(v)) ++valence[valence_of[v]];
 
-    // Face neighbours: per-face data indexed by the face's slot (its place in the input), the
+    // Face neighbours: per-face data indexed by the face's slot (after a build, its place
+    // among the input's top simplices; kept across edits until compact()), the
     // neighbours of face f across its edges (every other triangle at a non-manifold edge).
     const std::uint32_t faces = m.slots(2);
     std::vector<std::uint64_t> sum(faces);
@@ -81,8 +81,9 @@ int main(int argc, char **argv) {
     for (const auto &kv : valence) std::printf(" %zu:%zu", kv.first, kv.second);
     std::printf("\n");
 
-    // Write back with the library's writer: every top simplex once, in input order and winding.
-    if (argc > 2) mesh.to_complex().write(argv[2]);
+    // Write back with the library's writer: every top simplex once, in input order and
+    // winding, straight from the mesh (no frozen complex built).
+    if (argc > 2) mesh.write(argv[2]);
   } catch (const std::exception &e) {
     std::fprintf(stderr, "mesh_app: %s\n", e.what());
     return 1;

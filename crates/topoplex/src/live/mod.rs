@@ -113,7 +113,7 @@
 
 use std::fmt;
 
-use crate::complex::{Complex, MAX_DIMENSION};
+use crate::complex::{Complex, MAX_DIMENSION, RawInput};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 use crate::structures::BuildError;
 use crate::structures::common::{too_large, try_copy, try_vec, try_with_capacity};
@@ -785,22 +785,51 @@ impl LiveComplex {
     /// their winding, coordinates kept. Freeze it into any of the nine structures with
     /// [`crate::build`]. O(size).
     pub fn to_complex(&self) -> Complex {
+        let raw = self.to_listing();
+        let n = raw.vertex_count.unwrap_or(0);
+        let mut c = Complex::from_arrays(n, &raw.ids, &raw.offsets, raw.coords)
+            .expect("a live complex is a valid complex (has a vertex, ids in range)");
+        if !self.data.is_empty() {
+            c.set_attributes(raw.attributes)
+                .expect("the live data has a row per live vertex, top and record");
+        }
+        c
+    }
+
+    /// The complex as a listing, what a writer takes: the numbering of
+    /// [`LiveComplex::to_complex`], every live top in dimension-then-slot order with its
+    /// winding, then each other listed simplex that carries data and still exists, the
+    /// coordinates and the attributes. O(size), no complex built (no sorting, no closure).
+    pub fn to_listing(&self) -> RawInput {
         let (map, n) = self.vertex_map();
-        let mut ids = Vec::new();
-        let mut offsets = vec![0usize];
+        let mut raw = RawInput::new();
+        raw.vertex_count = Some(n);
+        let mut row = Vec::with_capacity(MAX_DIMENSION + 1);
         let mut live_slots: Vec<Vec<usize>> = vec![Vec::new(); MAX_DIMENSION + 1];
+        let tops: usize = self.live_tops.iter().sum();
+        let ids: usize = (1..=MAX_DIMENSION)
+            .map(|p| (p + 1) * self.live_tops[p])
+            .sum();
+        raw.ids.reserve_exact(ids);
+        raw.offsets.reserve_exact(tops + 1);
+        raw.lines.reserve_exact(tops);
+        let mut push = |raw: &mut RawInput, s: &[u32]| {
+            row.clear();
+            row.extend(s.iter().map(|&v| map[v as usize]));
+            raw.push(&row, 0);
+        };
         for (t, s) in self.tops() {
-            ids.extend(s.iter().map(|&v| map[v as usize]));
-            offsets.push(ids.len());
-            live_slots[t.dim()].push(t.slot() as usize);
+            push(&mut raw, s);
+            if !self.data.is_empty() {
+                live_slots[t.dim()].push(t.slot() as usize);
+            }
         }
         let mut records = Vec::new();
         for (r, s) in self.data.live_records(|s| self.holds_simplex(s)) {
-            ids.extend(s.iter().map(|&v| map[v as usize]));
-            offsets.push(ids.len());
+            push(&mut raw, s);
             records.push(r);
         }
-        let coords = (self.coord_dim > 0).then(|| crate::complex::Coords {
+        raw.coords = (self.coord_dim > 0).then(|| crate::complex::Coords {
             dim: self.coord_dim,
             data: (0..self.vertex_slots() as usize)
                 .filter(|&v| self.alive[v])
@@ -811,13 +840,22 @@ impl LiveComplex {
                 })
                 .collect(),
         });
-        let mut c = Complex::from_arrays(n, &ids, &offsets, coords)
-            .expect("a live complex is a valid complex (has a vertex, ids in range)");
         if !self.data.is_empty() {
-            c.set_attributes(self.data.attributes(&self.alive, &live_slots, &records))
-                .expect("the live data has a row per live vertex, top and record");
+            raw.attributes = self.data.attributes(&self.alive, &live_slots, &records);
         }
-        c
+        raw
+    }
+
+    /// Writes the complex to `path` in `format` (by default the one its extension names), as
+    /// writing [`LiveComplex::to_complex`] would, but from [`LiveComplex::to_listing`]: no
+    /// complex is built, so the memory above the live complex is the listing (4 bytes per id,
+    /// 12 per simplex) and the file's bytes. Nothing is written when the format cannot hold it.
+    pub fn write(
+        &self,
+        path: &std::path::Path,
+        format: Option<crate::io::write::Format>,
+    ) -> Result<(), crate::io::write::WriteError> {
+        crate::io::write::write_raw(&self.to_listing(), path, format)
     }
 
     /// Old vertex slot → dense id (`NONE` for removed ones), and the live count.
