@@ -1969,6 +1969,27 @@ TpxStatus tpx_live_save(const struct TpxLive *l, const char *path);
 TpxStatus tpx_live_open(const char *path, uint32_t flags, struct TpxLive **out);
 
 /**
+ * Reads any input file into a new editable live complex — the application's mesh — the format
+ * chosen as `tpx_complex_from_file` chooses it (`.off` ... `.msh`, or a saved `.tpx`, opened as
+ * `tpx_live_open` opens it; `flags`: `TPX_OPEN_VERIFY` for a saved file, else 0). A mesh file
+ * whose listing is plain (a declared vertex count, no data arrays, every simplex 2 to 16
+ * distinct vertices, none listed twice or a face of another: the usual mesh) is read straight
+ * into the live complex, with no `TpxComplex` built: the process's peak is the file's bytes
+ * plus the reader's listing, then the listing plus the live complex. Any other file is
+ * normalised as `tpx_complex_from_file` does (default budget) and built from that complex.
+ * Either way the same live complex as `tpx_live_from_complex(tpx_complex_from_file(path))`:
+ * the same vertex ids, each top simplex in its slot in input order with its winding.
+ *
+ * On success `*out` receives a new live complex owned by the caller (free with
+ * `tpx_live_free`). Errors: as `tpx_complex_from_file` and `tpx_live_open`; INVALID_ARGUMENT
+ * for unknown flags. Cost: linear in the file plus the build.
+ *
+ * # Safety
+ * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+ */
+TpxStatus tpx_live_from_file(const char *path, uint32_t flags, struct TpxLive **out);
+
+/**
  * Sets the number of threads later builds use, 1 to 256 (`0` or more than 256 is
  * INVALID_ARGUMENT, the count unchanged). Without a call, the
  * `TOPOPLEX_THREADS` environment variable, else every core. Builds give the same structure

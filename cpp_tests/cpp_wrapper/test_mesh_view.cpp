@@ -9,6 +9,9 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <string>
 #include <map>
 #include <random>
 #include <set>
@@ -251,6 +254,62 @@ TEST(MeshView, RandomNonManifoldComplexesBeforeAndAfterEdits) {
     }
     live.compact();
     ASSERT_NO_FATAL_FAILURE(check(live, rng)) << "round " << round << " after compact";
+  }
+}
+
+// Live::from_file gives the live complex Live(Complex::from_file) gives: the same slots,
+// windings and coordinates, whether the file is read straight into it (a plain listing) or
+// normalised first (a repeated triangle, which the complex absorbs); a bad file is the same error.
+TEST(MeshView, FromFileEqualsLiveOfTheComplex) {
+  const std::string data = TPX_TEST_DATA_DIR;
+  const std::string repeated = testing::TempDir() + "tpx_repeated_triangle.off";
+  {
+    std::ofstream f(repeated);
+    f << "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n1 1 1\n3 0 1 2\n3 2 1 3\n3 0 1 2\n";
+  }
+  for (const std::string &path :
+       {data + "/../../cpp_wrapper/data/grid_fin.off", data + "/tet_triangle_wire.simplices",
+        repeated}) {
+    const topoplex::Live direct = topoplex::Live::from_file(path);
+    const topoplex::Live via(topoplex::Complex::from_file(path));
+    direct.validate();
+    ASSERT_EQ(direct.vertex_slots(), via.vertex_slots()) << path;
+    const MeshView a = direct.mesh(), b = via.mesh();
+    for (std::uint32_t p = 1; p <= 15; ++p) {
+      ASSERT_EQ(a.slots(p), b.slots(p)) << path << " dimension " << p;
+      for (std::uint32_t s = 0; s < a.slots(p); ++s)
+        EXPECT_EQ(a.vertices(TopRef(p, s)).to_vector(), b.vertices(TopRef(p, s)).to_vector());
+    }
+    ASSERT_EQ(direct.coord_dim(), via.coord_dim());
+    const auto xa = direct.all_coords(), xb = via.all_coords();
+    EXPECT_TRUE(std::equal(xa.begin(), xa.end(), xb.begin(), xb.end())) << path;
+    for (std::uint32_t v = 0; v < a.vertex_slots(); ++v) {
+      std::vector<TopRef> sa(a.star(v).begin(), a.star(v).end()),
+          sb(b.star(v).begin(), b.star(v).end());
+      std::sort(sa.begin(), sa.end());
+      std::sort(sb.begin(), sb.end());
+      EXPECT_EQ(sa, sb) << path << " star of " << v;
+    }
+  }
+  std::remove(repeated.c_str());
+  for (const char *bad : {"/garbage.off", "/repeated_vertex.simplices", "/missing.off"}) {
+    TpxStatus direct = TPX_STATUS_OK, via = TPX_STATUS_OK;
+    std::string what_direct, what_via;
+    try {
+      topoplex::Live::from_file(data + bad);
+    } catch (const topoplex::Error &e) {
+      direct = e.status();
+      what_direct = e.what();
+    }
+    try {
+      topoplex::Complex::from_file(data + bad);
+    } catch (const topoplex::Error &e) {
+      via = e.status();
+      what_via = e.what();
+    }
+    EXPECT_NE(direct, TPX_STATUS_OK) << bad;
+    EXPECT_EQ(direct, via) << bad;
+    EXPECT_EQ(what_direct, what_via) << bad;
   }
 }
 

@@ -21,8 +21,8 @@ int main(int argc, char **argv) {
     return 1;
   }
   try {
-    // The file read once; the application keeps only the mesh.
-    topoplex::Live mesh(topoplex::Complex::from_file(argv[1]));
+    // The file read straight into the mesh (no frozen complex kept or built for a plain file).
+    topoplex::Live mesh = topoplex::Live::from_file(argv[1]);
     const std::size_t dim = mesh.coord_dim();
     const std::uint32_t slots = mesh.vertex_slots();
 

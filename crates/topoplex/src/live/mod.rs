@@ -431,6 +431,17 @@ impl LiveComplex {
         Ok(live)
     }
 
+    /// A reader's listing straight into a live complex, when it is plain (a declared vertex
+    /// count, no attributes, every simplex 2 to 16 distinct ids below the count, none listed
+    /// twice or a face of another — the usual mesh file): the same live complex as
+    /// [`LiveComplex::try_from_complex`] of its normalised complex, without the complex (no
+    /// sort, no closure bound, the complex's memory never taken). `None` for any other listing:
+    /// normalise it ([`Complex::from_input`]) and build from the complex, which also names what
+    /// is wrong with a bad one. `crate::store::open_live` does both.
+    pub fn from_plain_listing(raw: &RawInput) -> Option<Result<LiveComplex, BuildError>> {
+        build::from_plain_listing(raw)
+    }
+
     fn check_vertex_count(complex: &Complex) -> Result<usize, BuildError> {
         let n = complex.vertex_count() as usize;
         if n > DEAD as usize {
