@@ -82,9 +82,10 @@ struct ImportOptions {
 };
 
 /* One rank's part of a DMPlex as a Topoplex complex, with the maps between DM points and
- * Topoplex ids and each simplex's owner. Memory: the complex, plus 4 B per vertex and per
- * listing (point maps), 4 B per local point (owners), and a hash of the simplices that are
- * points (tops, plus every simplex when the DM is interpolated). */
+ * Topoplex ids and each simplex's owner. Memory: the complex, plus per local point an owner
+ * (4 B), a listing index (8 B) and its vertex list (a std::vector), per vertex its point and global
+ * number (16 B), and a hash from each simplex that is a point to the point (every point when the
+ * DM is interpolated): more than the complex itself for an interpolated DM (docs/dmplex.md). */
 class RankMesh {
  public:
   /* Collective on the DM's communicator (global vertex numbering). Cost: O(points x closure)
@@ -103,7 +104,7 @@ class RankMesh {
   PetscInt overlap() const noexcept { return overlap_; }
   bool interpolated() const noexcept { return interpolated_; }
 
-  /* ---- point <-> Topoplex ids (O(1) each, O(log n) hash for point_of) ---- */
+  /* ---- point <-> Topoplex ids (O(1) each; point_of: a hash lookup) ---- */
   std::uint32_t vertex_count() const noexcept { return static_cast<std::uint32_t>(vertex_point_.size()); }
   PetscInt point_of_vertex(std::uint32_t v) const;
   std::uint32_t vertex_of_point(PetscInt p) const; /* NO_VERTEX when p is not a vertex */
