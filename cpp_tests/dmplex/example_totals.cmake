@@ -1,0 +1,21 @@
+# cmake -DMPIEXEC=.. -DEXE=.. -DMESH=.. -P example_totals.cmake: the example's "total" line and
+# star-cell sum are the same on 1 and 2 ranks, and the star-cell sum is 4 x the tetrahedra.
+foreach(n 1 2)
+  execute_process(COMMAND ${MPIEXEC} -n ${n} --oversubscribe ${EXE} ${MESH}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "example on ${n} ranks failed (${rc}):\n${out}\n${err}")
+  endif()
+  string(REGEX MATCH "total[^\n]*" total_${n} "${out}")
+  string(REGEX MATCH "summed: ([0-9]+)" _ "${out}")
+  set(cells_${n} "${CMAKE_MATCH_1}")
+  message(STATUS "${n} ranks: ${total_${n}}; star cells ${cells_${n}}")
+endforeach()
+if(NOT total_1 STREQUAL total_2 OR NOT cells_1 STREQUAL cells_2 OR total_1 STREQUAL "")
+  message(FATAL_ERROR "totals differ between 1 and 2 ranks")
+endif()
+string(REGEX MATCH "total +[0-9]+ +([0-9]+)" _ "${total_1}")
+math(EXPR _want "4 * ${CMAKE_MATCH_1}")
+if(NOT cells_1 EQUAL _want)
+  message(FATAL_ERROR "star cells ${cells_1} != 4 x ${CMAKE_MATCH_1} tops")
+endif()
