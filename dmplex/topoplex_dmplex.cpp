@@ -61,6 +61,9 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   TPX_PETSC(DMPlexIsInterpolated(dm, &interp));
   PetscInt overlap = 0;
   TPX_PETSC(DMPlexGetOverlap(dm, &overlap));
+  // The adjacency the overlap was grown with (DMPlexDistribute copies it to the parallel DM).
+  PetscBool use_cone = PETSC_FALSE, use_closure = PETSC_TRUE;
+  TPX_PETSC(DMGetBasicAdjacency(dm, &use_cone, &use_closure));
   const std::size_t npoints = static_cast<std::size_t>(pEnd - pStart);
 
   // Every point's simplex (closure vertices in closure order); tops in Topoplex winding.
@@ -226,6 +229,7 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   out.rank_ = rank;
   out.size_ = size;
   out.overlap_ = overlap;
+  out.vertex_adjacency_ = !use_cone && use_closure;
   out.interpolated_ = interp == DMPLEX_INTERPOLATED_FULL;
   out.p_start_ = pStart;
   out.p_end_ = pEnd;
@@ -384,6 +388,13 @@ PetscInt RankMesh::global_vertex(std::uint32_t v) const {
 Rows RankMesh::owned_relation(const StructureView &s, const std::vector<std::uint32_t> &simplex,
                               std::uint32_t q) const {
   const std::uint32_t p = static_cast<std::uint32_t>(simplex.size()) - 1;
+  if (size_ > 1 && q >= p && overlap_ > 0 && !vertex_adjacency_) {
+    std::ostringstream m;
+    m << "R(" << p << "," << q << ") on rank " << rank_
+      << ": the overlap was grown with an adjacency other than PETSc's default (useCone = false, "
+         "useClosure = true), so layers need not hold whole vertex stars";
+    throw Error(Code::OverlapTooSmall, m.str());
+  }
   if (size_ > 1 && overlap_ < overlap_needed(p, q)) {
     std::ostringstream m;
     m << "R(" << p << "," << q << ") needs overlap " << overlap_needed(p, q) << " to be exact on rank "

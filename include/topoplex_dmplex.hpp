@@ -69,7 +69,8 @@ constexpr std::size_t NO_LISTING = SIZE_MAX;
 constexpr PetscInt NO_POINT = -1;
 
 /* The overlap a relation R_{p,q} of an OWNED simplex needs to be answered on the rank exactly as
- * on the whole mesh: 0 for the boundary (q < p: the closure is always local), 1 for everything
+ * on the whole mesh, with PETSc's default adjacency (DMSetBasicAdjacency(dm, PETSC_FALSE,
+ * PETSC_TRUE): an overlap layer is every cell sharing a vertex with the cells inside it): 0 for the boundary (q < p: the closure is always local), 1 for everything
  * else (coboundary q > p, adjacency q == p, star, link: all inside the stars of the simplex's
  * vertices, which overlap 1 brings whole because every owned simplex lies in an owned cell).
  * Two-step questions (relations of the simplices a first answer returned, vertex 2-rings) need 2.
@@ -133,8 +134,10 @@ class RankMesh {
   PetscInt global_vertex(std::uint32_t v) const;
 
   /* R_{p,q} of an owned p-simplex through `s`: throws Ghost for a ghost simplex and
-   * OverlapTooSmall when overlap() < overlap_needed(p, q) on more than one rank; then the
-   * answer equals the one on the whole mesh (through global numbers). */
+   * OverlapTooSmall when overlap() < overlap_needed(p, q) on more than one rank, or for q >= p
+   * when the DM's adjacency is not PETSc's default (useCone = false, useClosure = true: overlap
+   * layers of cells sharing a vertex; a face adjacency grows thinner layers); otherwise the answer
+   * equals the one on the whole mesh (through global numbers). */
   Rows owned_relation(const StructureView &s, const std::vector<std::uint32_t> &simplex,
                       std::uint32_t q) const;
 
@@ -146,6 +149,7 @@ class RankMesh {
   std::optional<Complex> complex_;
   int rank_ = 0, size_ = 1;
   PetscInt overlap_ = 0;
+  bool vertex_adjacency_ = true; /* the DM's basic adjacency is PETSc's default (FEM) */
   bool interpolated_ = false;
   PetscInt p_start_ = 0, p_end_ = 0, v_start_ = 0, v_end_ = 0;
   std::vector<PetscInt> vertex_point_;   /* v -> point */

@@ -477,6 +477,28 @@ void overlap_0_cuts_stars_and_is_refused() {
   CHECK_MSG(any == 1, "with overlap 0 some owned vertex's star must be cut on some rank");
 }
 
+void face_adjacency_overlap_is_refused() {
+  if (g_size == 1) return;
+  // Overlap grown by face adjacency (finite volumes): layers of face neighbours need not hold a
+  // vertex's star, so owned_relation refuses q >= p; the boundary (q < p) is still answered.
+  const tp::Complex c = freudenthal(2);
+  DM serial = dx::to_dm(PETSC_COMM_WORLD, g_rank == 0 ? &c : nullptr, dx::ExportOptions{true, false});
+  PetscCallAbort(PETSC_COMM_WORLD, DMSetBasicAdjacency(serial, PETSC_TRUE, PETSC_FALSE));
+  DM local = dx::distribute(serial, 1);
+  const dx::RankMesh rm = dx::RankMesh::from_dm(local);
+  if (!rm.empty()) {
+    tp::Structure s(rm.complex(), tp::Kind::IG);
+    for (auto r : s.simplices(1)) {
+      const Simplex e(r.begin(), r.end());
+      if (!rm.owned(s, e)) continue;
+      CHECK(code_of([&] { rm.owned_relation(s, e, 3); }) == dx::Code::OverlapTooSmall);
+      CHECK(rm.owned_relation(s, e, 0).size() == 2);
+    }
+  }
+  PetscCallAbort(PETSC_COMM_WORLD, DMDestroy(&local));
+  PetscCallAbort(PETSC_COMM_WORLD, DMDestroy(&serial));
+}
+
 void non_simplicial_cells_are_refused() {
   for (PetscBool interpolate : {PETSC_FALSE, PETSC_TRUE}) {
     DM box;
@@ -645,6 +667,7 @@ int main(int argc, char **argv) {
       {"interpolated_closure_order_is_the_cell_list_order", interpolated_closure_order_is_the_cell_list_order},
       {"owned_relations_equal_serial_answers_with_overlap_1", owned_relations_equal_serial_answers_with_overlap_1},
       {"overlap_0_cuts_stars_and_is_refused", overlap_0_cuts_stars_and_is_refused},
+      {"face_adjacency_overlap_is_refused", face_adjacency_overlap_is_refused},
       {"non_simplicial_cells_are_refused", non_simplicial_cells_are_refused},
       {"reference_cells_simplices_in_others_refused_by_name", reference_cells_simplices_in_others_refused_by_name},
       {"refusals_are_clear", refusals_are_clear},
