@@ -405,12 +405,23 @@ void serial_round_trip_keeps_simplices_winding_and_labels() {
     d.set_attribute("gmsh:physical", tp::Location::Listed, 1, physical);
     cases.push_back({"tets interpolated with labelled faces", std::move(d), true});
   }
+  {  // a .tpx file (the CLI's `topoplex save`), opened and exported
+    char path[] = "/tmp/topoplex-dmplex-XXXXXX.tpx";
+    const int fd = mkstemps(path, 4);
+    CHECK(fd >= 0);
+    close(fd);
+    std::remove(path);
+    freudenthal(2).save(path);
+    cases.push_back({"tets from a .tpx", tp::Complex::open(path), true});
+    std::remove(path);
+  }
   for (const Case &k : cases) {
     DM dm = dx::to_dm(PETSC_COMM_SELF, &k.c, dx::ExportOptions{k.interpolate, true});
     const dx::RankMesh rm = dx::RankMesh::from_dm(dm);
     CHECK_MSG(rm.interpolated() == (k.interpolate && k.c.dimension() > 1), k.name);
     CHECK_MSG(rm.complex().vertex_count() == k.c.vertex_count(), k.name);
     CHECK_MSG(tops_wound(rm.complex()) == tops_wound(k.c), k.name << ": tops or winding differ");
+    CHECK_MSG(!label_values(k.c, "gmsh:physical").empty(), k.name << ": a case without labels");
     CHECK_MSG(rm.complex().coords() == k.c.coords(), k.name);
     for (const char *label : {"gmsh:physical", "medit:ref"}) {
       CHECK_MSG(label_values(rm.complex(), label) == label_values(k.c, label), k.name << ": label " << label);
