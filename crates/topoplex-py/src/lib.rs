@@ -86,9 +86,14 @@ fn complex_fail(e: topoplex::ComplexError) -> Fail {
     }
 }
 
+/// A file that cannot be opened or whose content is malformed is a `ReadError` (the message
+/// names the file and line); only running out of memory is not.
 fn open_fail(e: topoplex::store::OpenError) -> Fail {
+    use topoplex::ComplexError as E;
     match e {
-        topoplex::store::OpenError::Read(c) => complex_fail(c),
+        topoplex::store::OpenError::Read(c @ (E::TooLarge { .. } | E::OutOfMemory { .. })) => {
+            Fail::Memory(c.to_string())
+        }
         other => Fail::Read(other.to_string()),
     }
 }

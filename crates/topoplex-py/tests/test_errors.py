@@ -56,7 +56,7 @@ def test_nan_coordinates_do_not_crash():
 
 
 def test_queries_out_of_range_raise():
-    s = topoplex.Complex.from_arrays(np.array([[0, 1, 2]])).build("ig")
+    s = topoplex.Complex.from_arrays(np.array([[0, 1, 2]]), n_vertices=4).build("ig")
     with pytest.raises(topoplex.InputError, match="not in the complex"):
         s.locate([0, 3])
     with pytest.raises(topoplex.InputError):
@@ -65,7 +65,9 @@ def test_queries_out_of_range_raise():
         s.relation(1, 2, simplices=[0, 99])
     with pytest.raises(topoplex.InputError, match="negative"):
         s.relation(1, 2, simplices=[-1])
-    assert s.locate(np.array([[0, 1], [0, 5]]))[0] == 0
+    with pytest.raises(topoplex.InputError, match="uses vertex 9"):
+        s.locate([0, 9])
+    assert s.locate(np.array([[0, 1], [0, 3]])).tolist() == [0, -1]
     with pytest.raises(topoplex.InputError, match="unknown structure"):
         topoplex.Complex.from_arrays(np.array([[0, 1]])).build("nope")
 

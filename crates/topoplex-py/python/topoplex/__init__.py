@@ -18,9 +18,9 @@ Relations come back as CSR pairs ``(offsets, ids)`` of numpy arrays.
 >>> [ids[offsets[v]:offsets[v + 1]].tolist() for v in range(5)]
 [[0], [0, 1], [0, 1], [1], []]
 >>> int(ig.locate([2, 1]))                    # the edge [1 2]'s dense index
-3
+2
 >>> ig.degree(1, 2).tolist()                  # triangles per edge: [1 2] has two
-[1, 1, 0, 2, 1, 0]
+[1, 1, 2, 1, 1, 0]
 
 Arrays in: C-contiguous arrays of the right dtype (uint32 ids, float64 points) are read in
 place; anything else is converted once (``np.ascontiguousarray``). Arrays out are Rust vectors
@@ -114,28 +114,34 @@ def _points(a: Any, name: str = "points") -> np.ndarray:
 
 
 def _csr(simplices: Any, name: str = "simplices") -> Tuple[np.ndarray, np.ndarray]:
-    """Simplices given as one (n, k) array, a list of them, or a CSR pair ``(offsets, ids)``,
-    as ``(ids uint32, offsets uintp)``."""
+    """Simplices as ``(ids uint32, offsets uintp)``, given as one (n, k) array (or nested
+    list), a list of such blocks (a 1-D block is one simplex), or a CSR pair: a *tuple* of two
+    1-D numpy arrays ``(offsets, ids)``."""
+    if (
+        isinstance(simplices, tuple)
+        and len(simplices) == 2
+        and all(isinstance(x, np.ndarray) and x.ndim == 1 for x in simplices)
+    ):
+        offsets, ids = simplices[0], _ids(simplices[1], name)
+        if offsets.size == 0 or offsets.dtype.kind not in "iu":
+            raise InputError(f"{name}: CSR offsets must be a non-empty 1-D integer array")
+        if int(offsets[0]) != 0 or np.any(np.diff(offsets.astype(np.int64)) < 0) or int(offsets[-1]) != ids.size:
+            raise InputError(
+                f"{name}: CSR offsets must start at 0, not decrease and end at len(ids) = {ids.size}"
+            )
+        return ids, np.ascontiguousarray(offsets, dtype=np.uintp)
     if isinstance(simplices, np.ndarray):
         blocks = [simplices]
     else:
-        seq = list(simplices)
-        if len(seq) == 2 and all(np.ndim(x) == 1 for x in seq) and not all(
-            np.isscalar(x) for x in seq
-        ):
-            offsets = np.asarray(seq[0])
-            ids = _ids(seq[1], name)
-            if offsets.ndim != 1 or offsets.size == 0 or offsets.dtype.kind not in "iu":
-                raise InputError(f"{name}: CSR offsets must be a non-empty 1-D integer array")
-            if int(offsets[0]) != 0 or np.any(np.diff(offsets) < 0) or int(offsets[-1]) != ids.size:
-                raise InputError(
-                    f"{name}: CSR offsets must start at 0, not decrease and end at len(ids) = {ids.size}"
-                )
-            return ids, np.ascontiguousarray(offsets, dtype=np.uintp)
-        if seq and all(np.ndim(x) == 0 for x in seq):
-            blocks = [np.asarray([seq])]
+        try:
+            whole = np.asarray(simplices)
+        except ValueError:  # ragged: a list of blocks
+            whole = None
+        if whole is not None and whole.dtype != object and whole.ndim == 2:
+            blocks = [whole]
         else:
-            blocks = [np.asarray(b) for b in seq]
+            blocks = [np.asarray(b) for b in simplices]
+            blocks = [b.reshape(1, -1) if b.ndim == 1 and b.size else b for b in blocks]
     ids_parts: List[np.ndarray] = []
     sizes: List[np.ndarray] = []
     for b in blocks:
@@ -364,6 +370,8 @@ class Structure:
         gives an int64 array, -1 for rows that are not simplices of the complex. A single
         simplex not in the complex raises :class:`InputError`."""
         arr = np.asarray(vertices)
+        if arr.size == 0:
+            raise InputError("locate: a simplex with no vertex")
         if arr.ndim == 1:
             return int(self._s._locate(_ids(arr, "vertices").reshape(1, -1), False)[0])
         if arr.ndim != 2:
@@ -477,7 +485,8 @@ class Structure:
         return {"vertices": v, "tops": list(tops)}
 
     def live_tops(self) -> List[np.ndarray]:
-        """The live mesh's top simplices as given (winding), one (n, p+1) array per p."""
+        """The live mesh's top simplices of dimension >= 1 as given (winding): item p is an
+        (n, p+1) array (item 0 is empty: an isolated vertex is a vertex with an empty star)."""
         return list(self._s._live_tops())
 
     def simplify(

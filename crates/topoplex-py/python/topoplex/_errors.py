@@ -27,8 +27,8 @@ class FileError(TopoplexError, OSError):
 
 
 class ReadError(FileError):
-    """A file could not be read: missing, unreadable, or malformed (the message names the line
-    or cell)."""
+    """A file could not be read: missing, unreadable, or malformed (bad syntax, ids out of
+    range; the message names the file and the line or cell)."""
 
 
 class WriteError(FileError):
