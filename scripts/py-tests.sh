@@ -18,8 +18,13 @@ if ! "$py" -c "import maturin, numpy, pytest, hypothesis, gudhi, meshio, trimesh
   "$py" -m pip install --quiet --disable-pip-version-check \
     'maturin>=1.9.4,<2' numpy pytest hypothesis gudhi meshio trimesh scipy
 fi
-VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" \
-  maturin develop --quiet --profile ci -m crates/topoplex-py/Cargo.toml
+# maturin's and pip's chatter goes to a log, shown only when the build fails.
+log="$venv/maturin.log"
+if ! VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" \
+  maturin develop --profile ci -m crates/topoplex-py/Cargo.toml >"$log" 2>&1; then
+  cat "$log"
+  exit 1
+fi
 cd crates/topoplex-py
 # -p no:cacheprovider: no .pytest_cache in the source tree.
 "$py" -m pytest -q -p no:cacheprovider --doctest-modules python/topoplex tests

@@ -129,3 +129,31 @@ def test_arrays_out_own_their_memory_and_outlive_their_structure():
     assert rows.tolist() == [[0, 1], [0, 2], [1, 2], [1, 3], [2, 3]]
     assert rows.base is not None and rows.flags.c_contiguous and rows.dtype == np.uint32
     assert ids.tolist() == [0, 0, 0, 1, 1, 1]
+
+
+def test_a_forked_child_queries_and_exits():
+    import os
+    import sys
+
+    if not hasattr(os, "fork"):
+        pytest.skip("no fork")
+    s = topoplex.Complex.from_arrays(np.array([[0, 1, 2, 3], [1, 2, 3, 4]])).build("sig")
+    want = s.relation(0, 3)[1].tolist()
+    s.relation(1, 2)  # the parent has used the library (and its pool) before the fork
+    pid = os.fork()
+    if pid == 0:
+        code = 0 if s.relation(0, 3)[1].tolist() == want else 3
+        os._exit(code)
+    import time
+
+    deadline = time.monotonic() + 60
+    while True:
+        done, status = os.waitpid(pid, os.WNOHANG)
+        if done:
+            break
+        if time.monotonic() > deadline:
+            os.kill(pid, 9)
+            pytest.fail("the forked child hung")
+        time.sleep(0.05)
+    assert os.waitstatus_to_exitcode(status) == 0
+    sys.stdout.flush()

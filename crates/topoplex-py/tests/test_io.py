@@ -105,3 +105,23 @@ def test_decompose_writes_components_and_gluing(tmp_path):
     assert "gluing.json" in names and len(names) == 3
     total = sum(topoplex.read(p).count(2) for p in paths if not p.endswith(".json"))
     assert total == 2
+
+
+def test_attributes_set_read_written_and_removed(tmp_path):
+    c = fan()
+    heat = np.linspace(0, 1, 6)
+    region = np.array([1, 1, 2, 2, 3], dtype=np.int32)
+    c2 = c.with_attribute("heat", "vertices", heat).with_attribute("region", "listed", region)
+    assert c.attributes == {}
+    where, got = c2.attributes["heat"]
+    assert where == "vertices" and np.array_equal(got, heat)
+    assert c2.attributes["region"][1].tolist() == region.tolist()
+    c2.write(tmp_path / "d.vtu")
+    back = topoplex.read(tmp_path / "d.vtu")
+    assert np.array_equal(back.attributes["heat"][1], heat)
+    assert back.attributes["region"][1].tolist() == region.tolist()
+    assert "heat" not in c2.without_attribute("heat").attributes
+    with pytest.raises(KeyError):
+        c.without_attribute("heat")
+    with pytest.raises(ValueError):
+        c.with_attribute("short", "vertices", np.zeros(2))

@@ -442,7 +442,10 @@ class Structure:
         if vertices is None:
             self._s._set_points(pts)
         else:
-            self._s._set_point_rows(_ids(np.asarray(vertices).reshape(-1), "vertices"), pts)
+            ids = _ids(np.asarray(vertices).reshape(-1), "vertices")
+            if ids.size != pts.shape[0]:
+                raise InputError(f"set_points: {pts.shape[0]} rows of points for {ids.size} vertices")
+            self._s._set_point_rows(ids, pts)
 
     def insert(self, simplices: Any) -> int:
         """Inserts top simplices (an (n, k) array, a list of them, or a CSR pair), in order;
