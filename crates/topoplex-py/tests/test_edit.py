@@ -4,7 +4,7 @@ simplify."""
 
 import numpy as np
 import pytest
-from hypothesis import given, strategies as st
+from hypothesis import event, given, strategies as st
 
 import topoplex
 from oracle import Oracle, blocks_of, closure, complexes
@@ -133,3 +133,35 @@ def test_simplify_reduces_tops_and_keeps_topology_when_asked():
     s = topoplex.simplify(live, 0.5, preserve_topology=True)
     assert s["contractions"] > 0
     live.validate()
+
+
+@given(complexes(max_vertices=8, max_dim=4), st.data())
+def test_contracting_an_edge_gives_the_oracles_image_complex_and_split_undoes_it(drawn, data):
+    tops, n = drawn
+    o = Oracle(tops, n)
+    if o.dim < 1 or not o.by_dim[1]:
+        return
+    a, b = data.draw(st.sampled_from(o.by_dim[1]))
+    live = topoplex.Complex.from_arrays(blocks_of(tops), n_vertices=n).live()
+    mode = data.draw(st.sampled_from(["topology", "free"]))
+    allowed = live.can_contract(a, b, mode)
+    event(f"{mode}: {'contracted' if allowed else 'refused'}")
+    if not allowed:
+        with pytest.raises(topoplex.EditRefused):
+            live.contract([[a, b]], mode=mode)
+        return
+    (undo,) = live.contract([[a, b]], mode=mode)
+    live.validate()
+    images = [tuple(sorted({a if v == b else v for v in t})) for t in tops]
+    assert tops_of(live) == oracle_tops(images)
+    # The live mesh keeps b's slot (a tombstone) until compact(): its vertex rows stay.
+    after = Oracle(images, n)
+    for p in range(1, after.dim + 1):
+        assert live.simplices(p).tolist() == [list(x) for x in after.by_dim[p]]
+        for q in range(1, after.dim + 1):
+            off, ids = live.relation(p, q)
+            eoff, eids = after.csr(p, q)
+            assert off.tolist() == eoff.tolist() and ids.tolist() == eids.tolist()
+    live.split(undo)
+    live.validate()
+    assert tops_of(live) == oracle_tops(tops)
