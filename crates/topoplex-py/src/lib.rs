@@ -490,6 +490,16 @@ impl PyStructure {
         }
     }
 
+    /// The dense p-indices of every p-simplex, in the order of `simplices(p)`: `0..count(p)`,
+    /// except for the vertices of the live mesh, which are named by their ids, removed ones
+    /// skipped until `compact()`.
+    fn all_indices(&self, p: usize) -> Vec<u32> {
+        match &self.inner {
+            Inner::Live(l) if p == 0 => l.vertices().map(|v| v.0).collect(),
+            _ => (0..self.topo().count(p) as u32).collect(),
+        }
+    }
+
     fn check_dim(&self, p: usize, q: usize) -> Result<(), Fail> {
         let dim = self.topo().dimension();
         if p > dim || q > dim {
@@ -502,11 +512,11 @@ impl PyStructure {
     }
 }
 
-/// The selected indices, or all `0..n`.
-fn indices_or_all(sel: Option<&[u32]>, n: usize) -> std::borrow::Cow<'_, [u32]> {
+/// The selected indices, or all of them (`PyStructure::all_indices`).
+fn indices_or_all(sel: Option<&[u32]>, all: Vec<u32>) -> std::borrow::Cow<'_, [u32]> {
     match sel {
         Some(s) => std::borrow::Cow::Borrowed(s),
-        None => std::borrow::Cow::Owned((0..n as u32).collect()),
+        None => std::borrow::Cow::Owned(all),
     }
 }
 
@@ -613,10 +623,14 @@ impl PyStructure {
             Some(s) => Some(s.as_slice()?),
             None => None,
         };
-        let n = self.topo().count(p);
+        let all = if sel.is_none() {
+            self.all_indices(p)
+        } else {
+            Vec::new()
+        };
         let (offsets, ids) = py
             .detach(|| {
-                let idx = indices_or_all(sel, n);
+                let idx = indices_or_all(sel, all);
                 let mut ids = Vec::new();
                 let mut ends = Vec::with_capacity(idx.len());
                 nav.related_batch(p, &idx, q, order, &mut ids, &mut ends)?;
@@ -644,10 +658,14 @@ impl PyStructure {
             Some(s) => Some(s.as_slice()?),
             None => None,
         };
-        let n = self.topo().count(p);
+        let all = if sel.is_none() {
+            self.all_indices(p)
+        } else {
+            Vec::new()
+        };
         let out = py
             .detach(|| {
-                let idx = indices_or_all(sel, n);
+                let idx = indices_or_all(sel, all);
                 let mut out = vec![0u32; idx.len()];
                 nav.degree_batch(p, &idx, q, &mut out)?;
                 Ok(out)
@@ -691,12 +709,12 @@ impl PyStructure {
     fn winding<'py>(&self, py: Python<'py>, p: usize) -> PyResult<Bound<'py, PyAny>> {
         self.check_dim(p, p)?;
         let nav = self.nav()?;
-        let n = self.topo().count(p);
+        let all = self.all_indices(p);
         let out = py
             .detach(|| {
-                let mut out = vec![1i8; n];
-                for (i, o) in out.iter_mut().enumerate() {
-                    let h = nav.handle(p, i as u32)?;
+                let mut out = vec![1i8; all.len()];
+                for (&i, o) in all.iter().zip(out.iter_mut()) {
+                    let h = nav.handle(p, i)?;
                     if let Some(t) = nav.top_id(h)? {
                         let given = nav.top_as_given(t)?;
                         *o = parity(&given);

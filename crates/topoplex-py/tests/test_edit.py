@@ -154,11 +154,19 @@ def test_contracting_an_edge_gives_the_oracles_image_complex_and_split_undoes_it
     live.validate()
     images = [tuple(sorted({a if v == b else v for v in t})) for t in tops]
     assert tops_of(live) == oracle_tops(images)
-    # The live mesh keeps b's slot (a tombstone) until compact(): its vertex rows stay.
+    # The live mesh names vertices by id: b's slot is a tombstone until compact(), skipped
+    # by simplices(0) and by the rows of relation(0, q).
     after = Oracle(images, n)
+    alive = [v for v in range(n) if v != b]
+    assert live.simplices(0).ravel().tolist() == alive
+    for q in range(after.dim + 1):
+        off, ids = live.relation(0, q)
+        eoff, eids = after.csr(0, q, alive)
+        assert off.tolist() == eoff.tolist() and ids.tolist() == eids.tolist()
+        assert live.degree(0, q).tolist() == np.diff(eoff).tolist()
     for p in range(1, after.dim + 1):
         assert live.simplices(p).tolist() == [list(x) for x in after.by_dim[p]]
-        for q in range(1, after.dim + 1):
+        for q in range(after.dim + 1):
             off, ids = live.relation(p, q)
             eoff, eids = after.csr(p, q)
             assert off.tolist() == eoff.tolist() and ids.tolist() == eids.tolist()

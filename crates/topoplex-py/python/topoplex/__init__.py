@@ -303,7 +303,9 @@ class Structure:
     """A structure of the survey, or the live editable mesh (``kind == "iastar"``).
 
     Simplices are named by dense indices (rows of :meth:`simplices`); relations come back as
-    CSR pairs. On the live mesh, dense indices are those of the moment: an edit renumbers them.
+    CSR pairs. On the live mesh, dense indices are those of the moment: an edit renumbers them;
+    its vertices are named by their ids (slots), and a removed vertex's slot is skipped by
+    ``simplices(0)`` and by the rows of ``relation(0, q)`` until :meth:`compact`.
 
     >>> import topoplex
     >>> s = topoplex.Complex.from_arrays([[0, 1, 2], [0, 1, 3], [0, 1, 4]]).build("ts")
