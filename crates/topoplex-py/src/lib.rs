@@ -201,6 +201,7 @@ impl PyComplex {
     ) -> PyResult<PyComplex> {
         let ids = ids.as_slice()?;
         let offsets = offsets.as_slice()?;
+        check_csr(ids, offsets)?;
         let coords = match &points {
             Some(p) => Some(Coords {
                 dim: p.shape()[1],
@@ -509,6 +510,21 @@ impl PyStructure {
             )));
         }
         Ok(())
+    }
+}
+
+/// Checks a CSR of simplices: offsets start at 0, never decrease and end at `ids.len()`.
+fn check_csr(ids: &[u32], offsets: &[usize]) -> Result<(), Fail> {
+    let ok = offsets.first() == Some(&0)
+        && offsets.windows(2).all(|w| w[0] <= w[1])
+        && offsets.last() == Some(&ids.len());
+    if ok {
+        Ok(())
+    } else {
+        Err(Fail::Input(format!(
+            "CSR offsets must start at 0, not decrease and end at len(ids) = {}",
+            ids.len()
+        )))
     }
 }
 
@@ -851,6 +867,7 @@ impl PyStructure {
     ) -> PyResult<usize> {
         let ids = ids.as_slice()?;
         let offsets = offsets.as_slice()?;
+        check_csr(ids, offsets)?;
         let l = self.live_mut()?;
         py.detach(|| {
             for (i, w) in offsets.windows(2).enumerate() {
@@ -871,6 +888,7 @@ impl PyStructure {
     ) -> PyResult<usize> {
         let ids = ids.as_slice()?;
         let offsets = offsets.as_slice()?;
+        check_csr(ids, offsets)?;
         let l = self.live_mut()?;
         py.detach(|| {
             for (i, w) in offsets.windows(2).enumerate() {
@@ -913,6 +931,14 @@ impl PyStructure {
         let mode = parse_mode(mode)?;
         let pairs = pairs.as_slice()?;
         let pos = match &positions {
+            Some(p) if p.shape()[0] * 2 != pairs.len() => {
+                return Err(Fail::Input(format!(
+                    "positions: {} rows for {} pairs",
+                    p.shape()[0],
+                    pairs.len() / 2
+                ))
+                .into());
+            }
             Some(p) => Some((p.as_slice()?, p.shape()[1])),
             None => None,
         };

@@ -157,3 +157,17 @@ def test_a_forked_child_queries_and_exits():
         time.sleep(0.05)
     assert os.waitstatus_to_exitcode(status) == 0
     sys.stdout.flush()
+
+
+def test_the_extension_checks_its_arrays_itself():
+    # The private entry points the package calls, given what the package would refuse: an
+    # InputError, never a panic or a crash.
+    from topoplex import _core
+
+    ids = np.array([0, 1, 2], dtype=np.uint32)
+    for offsets in ([1, 3], [0, 2, 1, 3], [0, 5]):
+        with pytest.raises(topoplex.InputError, match="CSR"):
+            _core.Complex._from_csr(3, ids, np.array(offsets, dtype=np.uintp), None)
+    live = topoplex.Complex.from_arrays(np.array([[0, 1, 2], [1, 2, 3]])).live()
+    with pytest.raises(topoplex.InputError, match="positions"):
+        live._s._contract(np.array([[1, 2]], dtype=np.uint32), "free", np.zeros((2, 3)))

@@ -23,8 +23,9 @@ Relations come back as CSR pairs ``(offsets, ids)`` of numpy arrays.
 [1, 1, 2, 1, 1, 0]
 
 Arrays in: C-contiguous arrays of the right dtype (uint32 ids, float64 points) are read in
-place; anything else is converted once (``np.ascontiguousarray``). Arrays out are Rust vectors
-moved into numpy, never copied twice. Long calls release the GIL. Errors are
+place; anything else is converted once (``np.ascontiguousarray``). Answers (simplices,
+relations, degrees, remaps) are Rust vectors moved into numpy, never copied; ``points`` and
+``attributes`` are copied once out of the complex that owns them. Long calls release the GIL. Errors are
 :class:`TopoplexError` subclasses (also ``ValueError``, ``OSError`` or ``MemoryError``).
 """
 
