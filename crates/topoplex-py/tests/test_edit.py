@@ -173,3 +173,12 @@ def test_contracting_an_edge_gives_the_oracles_image_complex_and_split_undoes_it
     live.split(undo)
     live.validate()
     assert tops_of(live) == oracle_tops(tops)
+
+
+def test_the_live_mesh_carries_vertex_data_through_a_contraction():
+    c = grid_mesh().with_attribute("id", "vertices", np.arange(16, dtype=np.int64))
+    live = c.live()
+    live.contract([[5, 6]])
+    where, ids = live.attributes["id"]
+    # Vertex 6 is gone; the others keep their values in the renumbered complex.
+    assert where == "vertices" and ids.tolist() == [v for v in range(16) if v != 6]

@@ -431,6 +431,12 @@ class Structure:
         """The complex it holds (the live mesh: its current complex, renumbered densely)."""
         return Complex(self._s.to_complex())
 
+    @property
+    def attributes(self) -> Dict[str, Tuple[str, np.ndarray]]:
+        """The attributes (as :attr:`Complex.attributes`) of the complex it holds; the live
+        mesh's carried through its edits, in the numbering of :meth:`to_complex`."""
+        return self.to_complex().attributes
+
     # ---- the live mesh ----
 
     @property
