@@ -125,3 +125,10 @@ def test_attributes_set_read_written_and_removed(tmp_path):
         c.without_attribute("heat")
     with pytest.raises(ValueError):
         c.with_attribute("short", "vertices", np.zeros(2))
+
+
+def test_meshio_refuses_a_simplex_it_has_no_cell_type_for():
+    pytest.importorskip("meshio")
+    c = topoplex.Complex.from_arrays(np.array([[0, 1, 2, 3, 4]]))
+    with pytest.raises(topoplex.InputError, match="5 vertices"):
+        c.to_meshio()

@@ -96,3 +96,18 @@ def test_radial_order_around_a_non_manifold_edge_lists_its_three_triangles():
         cycles = s.radial(0, 1)
         got = sorted(int(i) for cyc in cycles for i in cyc)
         assert got == [0, 1, 2], kind
+
+
+@given(complexes(max_dim=4))
+def test_natural_order_holds_the_same_answers_as_sorted_order(drawn):
+    tops, n = drawn
+    c = topoplex.Complex.from_arrays(blocks_of(tops), n_vertices=n)
+    for kind in ("ig", "iastar"):
+        s = c.build(kind)
+        for p in range(c.dimension + 1):
+            for q in range(c.dimension + 1):
+                a_off, a = s.relation(p, q, order="natural")
+                b_off, b = s.relation(p, q)
+                assert a_off.tolist() == b_off.tolist()
+                for i in range(len(a_off) - 1):
+                    assert sorted(a[a_off[i]:a_off[i + 1]].tolist()) == b[b_off[i]:b_off[i + 1]].tolist()
