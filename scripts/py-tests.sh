@@ -10,13 +10,17 @@ cd "$(dirname "$0")/.."
 target=${CARGO_TARGET_DIR:-target}
 mkdir -p "$target"
 venv=$(cd "$target" && pwd)/py-venv
+# Without a venv or PyPI (as tests/interop.rs does without meshio) the stage says so loudly and
+# is skipped; a build or test failure fails it.
+skip() { echo "PYTHON TESTS NOT RUN: $*"; exit 0; }
 if [ ! -x "$venv/bin/python3" ]; then
-  python3 -m venv "$venv"
+  python3 -m venv "$venv" || skip "python3 -m venv failed (install python3-venv)"
 fi
 py="$venv/bin/python3"
 if ! "$py" -c "import maturin, numpy, pytest, hypothesis, gudhi, meshio, trimesh, scipy" 2>/dev/null; then
   "$py" -m pip install --quiet --disable-pip-version-check \
-    'maturin>=1.9.4,<2' numpy pytest hypothesis gudhi meshio trimesh scipy
+    'maturin>=1.9.4,<2' numpy pytest hypothesis gudhi meshio trimesh scipy ||
+    skip "the test dependencies could not be installed from PyPI"
 fi
 # maturin's and pip's chatter goes to a log, shown only when the build fails.
 log="$venv/maturin.log"
