@@ -111,3 +111,17 @@ def test_natural_order_holds_the_same_answers_as_sorted_order(drawn):
                 assert a_off.tolist() == b_off.tolist()
                 for i in range(len(a_off) - 1):
                     assert sorted(a[a_off[i]:a_off[i + 1]].tolist()) == b[b_off[i]:b_off[i + 1]].tolist()
+
+
+@pytest.mark.parametrize("kind", ["ig", "ts", "pe", "de", "iastar"])
+def test_fans_around_a_bowtie_vertex_are_its_two_wings_each_joined_through_edges(kind):
+    # Vertex 0 pinches two wings of two triangles each: two fans.
+    c = topoplex.Complex.from_arrays(np.array([[0, 1, 2], [0, 2, 3], [0, 4, 5], [0, 5, 6]]))
+    s = c.build(kind)
+    fans = [sorted(f.tolist()) for f in s.fans(0)]
+    tris = s.simplices(2).tolist()
+    wings = sorted(fans)
+    assert [[tris[i] for i in w] for w in wings] == [[[0, 1, 2], [0, 2, 3]], [[0, 4, 5], [0, 5, 6]]]
+    # Vertex 2 is inside one wing: one fan, its star.
+    off, ids = s.relation(0, 2)
+    assert [sorted(f.tolist()) for f in s.fans(2)] == [ids[off[2]:off[3]].tolist()]
