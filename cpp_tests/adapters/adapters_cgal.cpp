@@ -5,6 +5,9 @@
 // normals and areas brought back and checked against a direct computation.
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Labeled_mesh_domain_3.h>
+#include <CGAL/Mesh_complex_3_in_triangulation_3.h>
+#include <CGAL/Mesh_triangulation_3.h>
 #include <CGAL/Polygon_mesh_processing/compute_normal.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -199,6 +202,75 @@ TEST(TriangulationAdapter, DelaunayCellsBecomeListedTetrahedraInOrder) {
     EXPECT_EQ(st.relation(tri, 3).size(), on_hull ? 1u : 2u);
   }
   EXPECT_GT(hull, 0u);
+}
+
+// A Mesh_complex_3_in_triangulation_3 labelled by hand (two subdomains split at x = 0.5, the
+// facets between different subdomains or the outside in the complex): its cells in complex
+// listed in order with their subdomain, then its facets with their pair of subdomains, each
+// facet (c, i) wound so that its normal points into c (c's fourth vertex on the positive side:
+// CGAL's vertex_triple_index order), coordinates bit for bit.
+TEST(TriangulationAdapter, C3t3CellsAndFacetsComeWithSubdomainAndPatchLabels) {
+  using Domain = CGAL::Labeled_mesh_domain_3<K>;
+  using MTr = CGAL::Mesh_triangulation_3<Domain>::type;
+  using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<MTr>;
+  C3t3 c3t3;
+  MTr &tr = c3t3.triangulation();
+  std::uint64_t s = 17;
+  for (int i = 0; i < 80; ++i)
+    tr.insert(MTr::Weighted_point(MTr::Bare_point(fixtures::unit(s), fixtures::unit(s), fixtures::unit(s)), 0));
+  auto label = [&](MTr::Cell_handle c) {
+    if (tr.is_infinite(c)) return 0;
+    double x = 0;
+    for (int k = 0; k < 4; ++k) x += tr.point(c, k).x();
+    return x < 2.0 ? 1 : (x < 2.6 ? 0 : 2);  // a slab in the middle stays outside the complex
+  };
+  for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c)
+    if (label(c) != 0) c3t3.add_to_complex(c, label(c));
+  for (auto f = tr.finite_facets_begin(); f != tr.finite_facets_end(); ++f) {
+    const int a = label(f->first), b = label(tr.mirror_facet(*f).first);
+    if (a != b) c3t3.add_to_complex(*f, C3t3::Surface_patch_index(std::min(a, b), std::max(a, b)));
+  }
+  ASSERT_GT(c3t3.number_of_cells_in_complex(), 0u);
+  ASSERT_GT(c3t3.number_of_facets_in_complex(), 0u);
+
+  const topoplex::Complex c = cg::c3t3_to_complex(c3t3);
+  std::map<MTr::Vertex_handle, std::uint32_t> id;
+  std::vector<double> xyz;
+  for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v) {
+    id.emplace(v, std::uint32_t(id.size()));
+    xyz.insert(xyz.end(), {v->point().x(), v->point().y(), v->point().z()});
+  }
+  EXPECT_EQ(c.coords(), xyz);
+  const auto listed = fixtures::listing(c);
+  ASSERT_EQ(listed.size(), c3t3.number_of_cells_in_complex() + c3t3.number_of_facets_in_complex());
+  const auto sub = c.attribute<std::int32_t>("c3t3:subdomain", topoplex::Location::Listed);
+  const auto patch = c.attribute<std::int32_t>("c3t3:patch", topoplex::Location::Listed);
+  ASSERT_EQ(patch.components(), 2u);
+  std::size_t i = 0;
+  for (auto cell = c3t3.cells_in_complex_begin(); cell != c3t3.cells_in_complex_end(); ++cell, ++i) {
+    std::vector<std::uint32_t> want;
+    for (int k = 0; k < 4; ++k) want.push_back(id.at(cell->vertex(k)));
+    EXPECT_EQ(listed[i], want);
+    EXPECT_EQ(sub[i], label(cell));
+    EXPECT_EQ(patch.element(i)[0], 0);
+  }
+  for (auto f = c3t3.facets_in_complex_begin(); f != c3t3.facets_in_complex_end(); ++f, ++i) {
+    ASSERT_EQ(listed[i].size(), 3u);
+    std::set<std::uint32_t> got(listed[i].begin(), listed[i].end()), want;
+    for (int k = 0; k < 4; ++k)
+      if (k != f->second) want.insert(id.at(f->first->vertex(k)));
+    EXPECT_EQ(got, want);
+    const auto p = [&](std::uint32_t v) { return K::Point_3(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]); };
+    const K::Point_3 fourth = f->first->vertex(f->second)->point().point();
+    if (!tr.is_infinite(f->first->vertex(f->second)))
+      EXPECT_EQ(CGAL::orientation(p(listed[i][0]), p(listed[i][1]), p(listed[i][2]), fourth),
+                CGAL::POSITIVE);
+    EXPECT_EQ(sub[i], 0);
+    const auto sp = c3t3.surface_patch_index(*f);
+    EXPECT_EQ(patch.element(i)[0], sp.first);
+    EXPECT_EQ(patch.element(i)[1], sp.second);
+  }
+  EXPECT_EQ(c.top_count(3), c3t3.number_of_cells_in_complex());
 }
 
 // The surface parts of the non-manifold fixture and of the real non-manifold meshes as

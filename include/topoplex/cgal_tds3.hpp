@@ -10,8 +10,9 @@
  * (c3t3_to_complex; all finite cells with all_cells), in iteration order, each with the vertex
  * order vertex(0..3) (CGAL's positive orientation); coordinates through CGAL::to_double of the
  * point (a weighted point's bare point). c3t3_to_complex lists after the cells the facets in the
- * complex, each oriented as Triangulation_utils_3::vertex_triple_index(i, 0..2) orders it from
- * its cell, and carries the labels as listed attributes: "c3t3:subdomain" (i32; the cell's
+ * complex, each facet (c, i) as Triangulation_utils_3::vertex_triple_index(i, 0..2) orders it:
+ * wound so that its normal (right-hand rule) points into c, the cell the C3T3 iterates it from
+ * (which side that is, CGAL does not fix), and carries the labels as listed attributes: "c3t3:subdomain" (i32; the cell's
  * Subdomain_index, 0 on the facets) and "c3t3:patch" (i32, 1 component for an integral
  * Surface_patch_index, 2 for a pair; 0 on the cells). Feature edges and corners (edges and
  * vertices in complex) are not listed.
