@@ -572,6 +572,67 @@ typedef struct TpxRelationView {
 } TpxRelationView;
 
 /**
+ * The live complex's own arrays, lent (see `tpx_live_arrays`). Every pointer points into the
+ * live complex and is valid until its next edit of the topology (insert, remove, contract,
+ * split, add vertex, compact) or `tpx_live_free`; setting coordinates writes in place and
+ * keeps every pointer valid. An empty array may be a dangling non-NULL pointer with length 0.
+ *
+ * Layout (the C++ `topoplex::MeshView` walks it inline):
+ * - a top p-simplex (p ≥ 1) is named by its packed id `p << 28 | slot` (`tpx_live_top_vertices`'
+ *   argument); `tops[p]` holds p + 1 vertex ids per slot in stored order (the input winding),
+ *   `top_lens[p]` ids in all; a removed slot (tombstone) has bit 31 set on its first id and is
+ *   in no star. `tops[0]` is empty.
+ * - vertex slot v's star, the packed ids of the live tops of dimension ≥ 1 through v, in no
+ *   particular order (an edit may reorder it), is
+ *   `star_words[star_blocks[3v] .. star_blocks[3v] + star_blocks[3v + 1]]`
+ *   (`star_blocks[3v + 2]` is the block's capacity).
+ * - `alive[v]` (v < `vertex_slots`): the slot holds a vertex; a live vertex with an empty star
+ *   is an isolated vertex. Its coordinates are `coords[v * coord_dim ..][.. coord_dim]`.
+ */
+typedef struct TpxLiveArrays {
+  /**
+   * Per dimension 0..=15: the top table (see above).
+   */
+  const uint32_t *tops[16];
+  /**
+   * Per dimension: ids in `tops[p]` (slots × (p + 1)).
+   */
+  size_t top_lens[16];
+  /**
+   * The star arena.
+   */
+  const uint32_t *star_words;
+  /**
+   * Words in `star_words`.
+   */
+  size_t star_words_len;
+  /**
+   * 3 words per vertex slot: start, length, capacity of its star.
+   */
+  const uint32_t *star_blocks;
+  /**
+   * Per vertex slot: 1 when it holds a live vertex.
+   */
+  const bool *alive;
+  /**
+   * Vertex slots (live or not).
+   */
+  uint32_t vertex_slots;
+  /**
+   * The compaction count (the handles' generation).
+   */
+  uint32_t generation;
+  /**
+   * `vertex_slots * coord_dim` numbers.
+   */
+  const double *coords;
+  /**
+   * Numbers per vertex (0 when the complex has no coordinates).
+   */
+  size_t coord_dim;
+} TpxLiveArrays;
+
+/**
  * Storage of a structure: what the papers count and what the process really holds.
  */
 typedef struct TpxStorage {
@@ -1603,6 +1664,19 @@ TpxStatus tpx_live_top_vertices(const struct TpxLive *l,
                                 size_t *out_len);
 
 /**
+ * Lends the live complex's arrays into `*out` (a caller-owned struct filled in; nothing is
+ * allocated or copied): the top tables, the vertex stars, the live flags and the coordinates,
+ * valid until the next edit (see `TpxLiveArrays`). With them a caller walks the complex with
+ * no call per query: a vertex's tops, a top's vertices in winding, the tops through a simplex
+ * (filter the smallest star of its vertices), the one-ring (the other vertices of a star).
+ * Errors: NULL_ARGUMENT; `*out` written only on success. O(1).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_arrays(const struct TpxLive *l, struct TpxLiveArrays *out);
+
+/**
  * Adds an isolated vertex at `xyz[0 .. len]`; its id into `*out`. Errors: NULL_ARGUMENT,
  * INVALID_ARGUMENT (wrong length, a NaN or infinite number). Amortised O(1).
  *
@@ -1895,6 +1969,27 @@ TpxStatus tpx_live_save(const struct TpxLive *l, const char *path);
 TpxStatus tpx_live_open(const char *path, uint32_t flags, struct TpxLive **out);
 
 /**
+ * Reads any input file into a new editable live complex — the application's mesh — the format
+ * chosen as `tpx_complex_from_file` chooses it (`.off` ... `.msh`, or a saved `.tpx`, opened as
+ * `tpx_live_open` opens it; `flags`: `TPX_OPEN_VERIFY` for a saved file, else 0). A mesh file
+ * whose listing is plain (a declared vertex count, no data arrays, every simplex 2 to 16
+ * distinct vertices, none listed twice or a face of another: the usual mesh) is read straight
+ * into the live complex, with no `TpxComplex` built: the process's peak is the file's bytes
+ * plus the reader's listing, then the listing plus the live complex. Any other file is
+ * normalised as `tpx_complex_from_file` does (default budget) and built from that complex.
+ * Either way the same live complex as `tpx_live_from_complex(tpx_complex_from_file(path))`:
+ * the same vertex ids, each top simplex in its slot in input order with its winding.
+ *
+ * On success `*out` receives a new live complex owned by the caller (free with
+ * `tpx_live_free`). Errors: as `tpx_complex_from_file` and `tpx_live_open`; INVALID_ARGUMENT
+ * for unknown flags. Cost: linear in the file plus the build.
+ *
+ * # Safety
+ * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+ */
+TpxStatus tpx_live_from_file(const char *path, uint32_t flags, struct TpxLive **out);
+
+/**
  * Sets the number of threads later builds use, 1 to 256 (`0` or more than 256 is
  * INVALID_ARGUMENT, the count unchanged). Without a call, the
  * `TOPOPLEX_THREADS` environment variable, else every core. Builds give the same structure
@@ -2105,6 +2200,19 @@ void tpx_relation_table_free(struct TpxRelationTable *t);
  * `c` must be NULL or a live complex; `path` NULL or a NUL-terminated string.
  */
 TpxStatus tpx_complex_write(const struct TpxComplex *c, const char *path, uint32_t format);
+
+/**
+ * Writes the live complex `l` to the file `path` as `tpx_complex_write` writes
+ * `tpx_live_to_complex`'s complex (the same bytes: live vertices renumbered densely in
+ * ascending id order, tops in dimension-then-slot order with their winding, then each other
+ * listed simplex that carries data, coordinates and attributes), without building that
+ * complex: the memory above the live complex is its listing (4 bytes per id, 12 per simplex)
+ * and the file's bytes. Errors as `tpx_complex_write`. Cost: linear in the live complex.
+ *
+ * # Safety
+ * `l` must be NULL or a live complex; `path` NULL or a NUL-terminated string.
+ */
+TpxStatus tpx_live_write(const struct TpxLive *l, const char *path, uint32_t format);
 
 #ifdef __cplusplus
 }  // extern "C"

@@ -16,6 +16,7 @@
 
 #include "topoplex.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <initializer_list>
@@ -1198,6 +1199,242 @@ class HandleBatch {
   std::size_t asked_ = 0, items_n_ = 0;
 };
 
+/* A top simplex of a live complex named by its packed id, as its stars hold it: dimension
+ * (>= 1) in the top 4 bits, slot below (the top ids of Live::top_id / tpx_live_top_vertices). */
+class TopRef {
+ public:
+  constexpr TopRef() = default;
+  constexpr explicit TopRef(std::uint32_t raw) noexcept : raw_(raw) {}
+  constexpr TopRef(std::uint32_t p, std::uint32_t slot) noexcept : raw_(p << 28 | slot) {}
+  constexpr std::uint32_t raw() const noexcept { return raw_; }
+  constexpr std::uint32_t dim() const noexcept { return raw_ >> 28; }
+  constexpr std::uint32_t slot() const noexcept { return raw_ & 0x0FFFFFFFu; }
+  constexpr bool operator==(TopRef o) const noexcept { return raw_ == o.raw_; }
+  constexpr bool operator!=(TopRef o) const noexcept { return raw_ != o.raw_; }
+  constexpr bool operator<(TopRef o) const noexcept { return raw_ < o.raw_; }
+
+ private:
+  std::uint32_t raw_ = UINT32_MAX;
+};
+
+/* The tops through one vertex, lent from the star arena (in no particular order). */
+class TopSpan {
+ public:
+  class iterator {
+   public:
+    using iterator_category = std::random_access_iterator_tag;
+    using value_type = TopRef;
+    using difference_type = std::ptrdiff_t;
+    using pointer = void;
+    using reference = TopRef;
+    iterator() = default;
+    explicit iterator(const std::uint32_t *p) : p_(p) {}
+    TopRef operator*() const noexcept { return TopRef(*p_); }
+    iterator &operator++() noexcept { ++p_; return *this; }
+    iterator operator++(int) noexcept { iterator t = *this; ++p_; return t; }
+    difference_type operator-(iterator o) const noexcept { return p_ - o.p_; }
+    bool operator==(iterator o) const noexcept { return p_ == o.p_; }
+    bool operator!=(iterator o) const noexcept { return p_ != o.p_; }
+
+   private:
+    const std::uint32_t *p_ = nullptr;
+  };
+  TopSpan() = default;
+  TopSpan(const std::uint32_t *raw, std::size_t n) : raw_(raw), n_(n) {}
+  iterator begin() const noexcept { return iterator(raw_); }
+  iterator end() const noexcept { return iterator(raw_ + n_); }
+  std::size_t size() const noexcept { return n_; }
+  bool empty() const noexcept { return n_ == 0; }
+  TopRef operator[](std::size_t i) const noexcept { return TopRef(raw_[i]); }
+
+ private:
+  const std::uint32_t *raw_ = nullptr;
+  std::size_t n_ = 0;
+};
+
+/* The live complex's own arrays (tpx_live_arrays), navigated inline: no library call per
+ * query, no index beyond what the live complex stores, no allocation except the caller's
+ * reused output vectors. Take one with Live::mesh(); it is valid until the next edit of the
+ * topology (insert, remove, contract, split, add_vertex, compact) — setting coordinates writes
+ * in place and keeps it valid — so take a new one after each edit (O(1)).
+ *
+ * What is stored: the top simplices per dimension in winding order (a removed slot is a
+ * tombstone), and per vertex its star St*(v), the tops of dimension >= 1 through v. Every other
+ * simplex is a vertex subset of a top. Costs below: k_v = |St*(v)|, d the dimension; "the
+ * smallest star" is that of the simplex's vertex with the fewest tops.
+ *
+ * Many threads may read one MeshView at once (it is a set of const pointers). */
+class MeshView {
+ public:
+  MeshView() = default;
+  explicit MeshView(const TpxLiveArrays &a) noexcept : a_(a) {}
+
+  std::uint32_t vertex_slots() const noexcept { return a_.vertex_slots; }
+  /* Slot v holds a live vertex. O(1). */
+  bool is_vertex(std::uint32_t v) const noexcept { return v < a_.vertex_slots && a_.alive[v]; }
+  std::size_t coord_dim() const noexcept { return a_.coord_dim; }
+  /* Vertex v's coord_dim() numbers. O(1). */
+  const double *coords(std::uint32_t v) const noexcept { return a_.coords + v * a_.coord_dim; }
+  std::uint32_t generation() const noexcept { return a_.generation; }
+
+  /* Slots of dimension p's top table (live or tombstoned): iterate s < slots(p) and skip
+   * !is_top(TopRef(p, s)). O(1). */
+  std::uint32_t slots(std::uint32_t p) const noexcept {
+    return p == 0 || p > 15 ? 0 : static_cast<std::uint32_t>(a_.top_lens[p] / (p + 1));
+  }
+  /* t names a live top (its slot exists and is not a tombstone). O(1). */
+  bool is_top(TopRef t) const noexcept {
+    const std::uint32_t p = t.dim();
+    return p >= 1 && t.slot() < slots(p) && (a_.tops[p][t.slot() * (p + 1)] >> 31) == 0;
+  }
+  /* The vertices of live top t in stored order: the input winding (b replaced by a in place
+   * after a contraction). O(1), no copy. */
+  SimplexView vertices(TopRef t) const noexcept {
+    const std::uint32_t p = t.dim();
+    return SimplexView(a_.tops[p] + std::size_t(t.slot()) * (p + 1), p + 1);
+  }
+  /* St*(v): the live tops of dimension >= 1 through vertex v, in no particular order (empty
+   * for an isolated vertex). O(1), no copy. */
+  TopSpan star(std::uint32_t v) const noexcept {
+    const std::uint32_t *b = a_.star_blocks + 3 * std::size_t(v);
+    return TopSpan(a_.star_words + b[0], b[1]);
+  }
+  /* Whether top t holds vertex v. O(d). */
+  bool holds(TopRef t, std::uint32_t v) const noexcept {
+    for (std::uint32_t w : vertices(t))
+      if (w == v) return true;
+    return false;
+  }
+  /* Calls f(TopRef) for every live top holding every vertex of s[0..n) (n >= 1, live distinct
+   * vertices; any order): the tops of the simplex's star. O(d·n·k) over the smallest star. */
+  template <class F>
+  void for_each_top_holding(const std::uint32_t *s, std::size_t n, F &&f) const {
+    std::uint32_t best = s[0];
+    for (std::size_t i = 1; i < n; ++i)
+      if (star(s[i]).size() < star(best).size()) best = s[i];
+    for (TopRef t : star(best)) {
+      bool all = true;
+      for (std::size_t i = 0; i < n && all; ++i) all = s[i] == best || holds(t, s[i]);
+      if (all) f(t);
+    }
+  }
+  /* The number of live tops of dimension p holding all of s[0..n) (p = 0: every dimension).
+   * For a pure triangle mesh, with s an edge and p = 2: 1 on the boundary, 2 inside, more at a
+   * non-manifold edge. Cost as for_each_top_holding, no allocation. */
+  std::size_t tops_holding(const std::uint32_t *s, std::size_t n, std::uint32_t p = 0) const {
+    std::size_t k = 0;
+    for_each_top_holding(s, n, [&](TopRef t) { k += p == 0 || t.dim() == p; });
+    return k;
+  }
+  /* Whether s[0..n) (live distinct vertices) is a simplex of the complex. O(d·n·k). */
+  bool is_simplex(const std::uint32_t *s, std::size_t n) const {
+    if (n == 1) return is_vertex(s[0]);
+    bool found = false;
+    for_each_top_holding(s, n, [&](TopRef) { found = true; });
+    return found;
+  }
+  /* R_{0,0}(v): the vertices sharing an edge with v, ascending, into `out` (reused). O(d·k_v +
+   * m log m), m the candidates. */
+  void neighbours(std::uint32_t v, std::vector<std::uint32_t> &out) const {
+    out.clear();
+    const TopSpan st = star(v);
+    if (st.size() > 16) {  // a hub: sort once
+      for (TopRef t : st)
+        for (std::uint32_t w : vertices(t))
+          if (w != v) out.push_back(w);
+      std::sort(out.begin(), out.end());
+      out.erase(std::unique(out.begin(), out.end()), out.end());
+      return;
+    }
+    // A typical star (a handful of tops): insert each candidate in place, ascending, once.
+    for (TopRef t : st)
+      for (std::uint32_t w : vertices(t)) {
+        if (w == v) continue;
+        std::size_t i = out.size();
+        while (i > 0 && out[i - 1] > w) --i;
+        if (i > 0 && out[i - 1] == w) continue;
+        out.insert(out.begin() + static_cast<std::ptrdiff_t>(i), w);
+      }
+  }
+  /* Calls f(TopRef u) for every live top u of t's dimension sharing a facet (all but one
+   * vertex) with live top t: for a pure triangle mesh the faces across t's edges (FF), for a
+   * tetrahedral mesh the tetrahedra across its triangles (TT); across a non-manifold facet
+   * every other top through it. Each u once (two distinct p-simplices share at most one
+   * facet). Order: facet by facet, the facet without t's i-th stored vertex for i = 0, 1, ....
+   * O(d²·k) per facet over its smallest star, no allocation. */
+  template <class F>
+  void for_each_adjacent_top(TopRef t, F &&f) const {
+    const SimplexView vt = vertices(t);
+    const std::uint32_t p = t.dim();
+    std::uint32_t facet[16];
+    for (std::uint32_t skip = 0; skip <= p; ++skip) {
+      std::size_t n = 0;
+      for (std::uint32_t i = 0; i <= p; ++i)
+        if (i != skip) facet[n++] = vt[i];
+      for_each_top_holding(facet, n, [&](TopRef u) {
+        if (u.dim() == p && u != t) f(u);
+      });
+    }
+  }
+  /* The same into `out` (reused). */
+  void adjacent_tops(TopRef t, std::vector<TopRef> &out) const {
+    out.clear();
+    for_each_adjacent_top(t, [&](TopRef u) { out.push_back(u); });
+  }
+  /* Whole-mesh pass: calls f(a, b, m) once for every edge {a, b} (a < b) with m the number of
+   * live top p-simplices holding it (p >= 1; edges held only by tops of other dimensions get
+   * m = 0). With p = 2 on a triangle mesh: m == 1 on the boundary, m > 2 at a non-manifold
+   * edge. `scratch` is reused. O(Σ_v d·k_v log). */
+  template <class F>
+  void for_each_edge(std::uint32_t p, std::vector<std::uint64_t> &scratch, F &&f) const {
+    for (std::uint32_t a = 0; a < a_.vertex_slots; ++a) {
+      if (!a_.alive[a]) continue;
+      scratch.clear();
+      for (TopRef t : star(a))
+        for (std::uint32_t w : vertices(t))
+          if (w > a) scratch.push_back(std::uint64_t(w) << 1 | (t.dim() == p));
+      std::sort(scratch.begin(), scratch.end());
+      for (std::size_t i = 0; i < scratch.size();) {
+        const std::uint32_t b = static_cast<std::uint32_t>(scratch[i] >> 1);
+        std::size_t m = 0;
+        for (; i < scratch.size() && (scratch[i] >> 1) == b; ++i) m += scratch[i] & 1;
+        f(a, b, m);
+      }
+    }
+  }
+  /* Whole-mesh pass: calls f(t, u) for every ordered pair of live top triangles sharing an
+   * edge (each unordered pair twice: (t, u) and (u, t)) — every face's neighbour faces as one
+   * batch, found per vertex rather than per face. `scratch` is reused. O(Σ_v k_v log k_v +
+   * pairs). */
+  template <class F>
+  void for_each_adjacent_triangle_pair(std::vector<std::uint64_t> &scratch, F &&f) const {
+    for (std::uint32_t a = 0; a < a_.vertex_slots; ++a) {
+      if (!a_.alive[a]) continue;
+      scratch.clear();
+      for (TopRef t : star(a)) {
+        if (t.dim() != 2) continue;
+        for (std::uint32_t w : vertices(t))
+          if (w > a) scratch.push_back(std::uint64_t(w) << 32 | t.raw());
+      }
+      std::sort(scratch.begin(), scratch.end());
+      for (std::size_t i = 0; i < scratch.size();) {
+        std::size_t j = i;
+        while (j < scratch.size() && (scratch[j] >> 32) == (scratch[i] >> 32)) ++j;
+        for (std::size_t x = i; x < j; ++x)
+          for (std::size_t y = i; y < j; ++y)
+            if (x != y)
+              f(TopRef(static_cast<std::uint32_t>(scratch[x])),
+                TopRef(static_cast<std::uint32_t>(scratch[y])));
+        i = j;
+      }
+    }
+  }
+  const TpxLiveArrays &arrays() const noexcept { return a_; }
+
+ private:
+  TpxLiveArrays a_{};
+};
+
 /* An updatable complex (any dimension, non-manifold): insert/remove top simplices, contract
  * edges (link-checked or free), split (undo), move vertices. Edits need exclusive access; a
  * refused edit throws Error (status says why: TPX_STATUS_NOT_AN_EDGE,
@@ -1206,6 +1443,13 @@ class Live {
  public:
   explicit Live(const Complex &c)
       : l_(detail::get<TpxLive *>(tpx_live_from_complex, c.get())) {}
+  /* The mesh of any input file (tpx_live_from_file): a plain mesh file (the usual case) read
+   * straight into the live complex with no frozen complex built; a .tpx as open(); anything
+   * else normalised first. The same live complex as Live(Complex::from_file(path)). */
+  static Live from_file(const std::string &path, bool verify = false) {
+    return Live(detail::get<TpxLive *>(tpx_live_from_file, path.c_str(),
+                                       verify ? TPX_OPEN_VERIFY : 0u));
+  }
   /* An editable live complex from a .tpx file: the saved live complex if it holds one, else one
    * built from its saved complex. Arrays are copied out (editable): O(size). */
   static Live open(const std::string &path, bool verify = false) {
@@ -1311,6 +1555,12 @@ class Live {
     detail::fill(map, tpx_live_compact, l_.get());
     return map;
   }
+  /* Writes the live complex as to_complex().write(path, format) would (the same bytes),
+   * without building that complex (tpx_live_write): the memory above the live complex is its
+   * listing and the file's bytes. */
+  void write(const std::string &path, Format format = Format::FromExtension) const {
+    detail::check(tpx_live_write(l_.get(), path.c_str(), static_cast<std::uint32_t>(format)));
+  }
   /* A frozen copy, to build any Structure from. */
   Complex to_complex() const {
     return Complex(detail::get<TpxComplex *>(tpx_live_to_complex, l_.get()));
@@ -1351,6 +1601,10 @@ class Live {
    * into a it names the image (b replaced by a); it is refused once the simplex is gone
    * (STALE_HANDLE) and after compact() (STALE_GENERATION). Answers come lexicographic (both
    * orders cost the same). */
+
+  /* The live complex's arrays for inline navigation (MeshView): O(1), nothing copied; valid
+   * until the next edit of the topology. The fast path for every pass over the mesh. */
+  MeshView mesh() const { return MeshView(detail::get<TpxLiveArrays>(tpx_live_arrays, l_.get())); }
 
   /* The live complex seen as a borrowed structure (never free it), for the tpx_* handle calls. */
   const TpxStructure *structure() const {

@@ -8,6 +8,7 @@
 #      1%) on surf-*.off, topoplex_bench_tets on tet-*.mesh, topoplex_bench_contract (issue 14:
 #      link-checked contractions per second next to OpenMesh's collapses) on the 300×300
 #      triangle grid and topoplex_bench_gudhi on every dataset, JSON into the results directory;
+#      the application of issue 25 on OpenMesh and on the mesh (scripts/bench_app.py, app.md);
 #      then peak RSS and time of whole simplify processes (simplify_rss.tsv, simplify_cli.tsv);
 #   4. `cargo bench --bench structures` (criterion, Rust API), if that bench exists, and its
 #      tables (benches/structures_table.py) into RESULTS/criterion.md; then `cargo bench --bench
@@ -100,7 +101,7 @@ cp "$data/datasets.tsv" "$results/" 2>/dev/null || true
 
 echo "== build the benchmark programs (cpp_tests/bench) against $prefix"
 programs=(topoplex_bench_surface topoplex_bench_tets topoplex_bench_gudhi topoplex_bench_simplify
-          topoplex_bench_contract)
+          topoplex_bench_contract topoplex_bench_app)
 if [ ! -f "$root/cpp_tests/bench/CMakeLists.txt" ]; then
   echo "cpp_tests/bench is missing: no side-by-side runs" >&2
   failed+=("cpp_tests/bench missing")
@@ -160,6 +161,17 @@ if [ -n "$bench_bin" ]; then
   echo "== side-by-side benchmarks into $results"
   for f in $(datasets 'surf-*.off'); do run topoplex_bench_surface surface "$f"; done
   for f in $(datasets 'tet-*.mesh'); do run topoplex_bench_tets tets "$f"; done
+  # Issue 25: the whole application (load, smoothing, stats, face neighbours, write) on
+  # OpenMesh and on the mesh, one process per run, peak RSS per process; the surfaces and the
+  # non-manifold meshes of ../shared/data when present. RESULTS/app.md.
+  if [ -x "$bench_bin/topoplex_bench_app" ]; then
+    echo "-- app"
+    shared=$root/../shared/data
+    python3 "$root/scripts/bench_app.py" "$bench_bin/topoplex_bench_app" \
+      --runs "$([ "$quick" = 1 ] && echo 2 || echo 5)" $(datasets 'surf-*.off') \
+      $(ls "$shared"/nonmanifold/*.obj 2>/dev/null) | tee "$results/app.md" \
+      || failed+=("bench_app.py")
+  fi
   # Issue 14: simplification to 1% next to OpenMesh's Decimater and CGAL's SMS.
   for f in $(datasets 'surf-*.off'); do run topoplex_bench_simplify simplify "$f"; done
   # Peak RSS of the whole process, one library per process (same soup loaded first), into

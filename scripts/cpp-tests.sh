@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # C/C++ tests of the installed package:
-#   1. configure, build (one `cargo rustc -p topoplex-ffi --release --lib`) and install Topoplex
+#   1. configure, build (one `cargo rustc -p topoplex-ffi --lib`, profile $TOPOPLEX_CARGO_PROFILE,
+#      default release) and install Topoplex
 #      into PREFIX_DIR
 #      (default: a temporary directory), and check the installed SONAME;
 #   2. configure, build and ctest cpp_tests/ against that prefix;
@@ -22,7 +23,8 @@ trap cleanup EXIT
 
 echo "== build and install Topoplex into $prefix"
 cmake -S "$root" -B "$work/build" -G Ninja \
-  -DTOPOPLEX_CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$root/target}"
+  -DTOPOPLEX_CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$root/target}" \
+  -DTOPOPLEX_CARGO_PROFILE="${TOPOPLEX_CARGO_PROFILE:-release}"
 cmake --build "$work/build"
 cmake --install "$work/build" --prefix "$prefix"
 

@@ -5,6 +5,8 @@
 # and the C/C++ cross-checks (plain and under AddressSanitizer + UndefinedBehaviorSanitizer).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# Each stage says when it starts, so a slow stage shows in the log (CI has 30 minutes for all).
+stage() { echo "== $* [${SECONDS}s]"; }
 
 scripts/install-deps.sh cmake ninja-build pkg-config valgrind libopenmesh-dev libcgal-dev \
   libgudhi-dev libgtest-dev libcgal-demo libbenchmark-dev
@@ -23,21 +25,21 @@ if ! python3 -c "import meshio" 2>/dev/null; then
   fi
 fi
 
-echo "== lint gates: formatting, clippy, docs (missing_docs is denied on the public API)"
+stage "lint gates: formatting, clippy, docs (missing_docs is denied on the public API)"
 # Each crate's lib.rs has #![warn(missing_docs)]; -D warnings turns it (and every clippy lint)
 # into an error here, as rustls-ffi's and petgraph's CI do.
 cargo fmt --all --check
 cargo clippy --workspace --all-targets -- -D warnings
 RUSTDOCFLAGS="-D warnings" cargo doc --no-deps --workspace
 
-echo "== cargo test (the workspace: core, C ABI, CLI; unit, property, layering, real data)"
+stage "cargo test (the workspace: core, C ABI, CLI; unit, property, layering, real data)"
 # The C library first: the C ABI crate's header test holds libtopoplex_ffi.so's exported symbols
 # to include/topoplex.h (cargo test links the tests against the rlib only).
 cargo build --profile ci --workspace
 cargo test --profile ci --workspace --all-targets
 cargo test --profile ci --workspace --doc
 
-echo "== Miri on the FFI layer's unit tests"
+stage "Miri on the FFI layer's unit tests"
 # Needs the nightly toolchain's miri component; rustup fetches it when it can.
 if rustup toolchain list 2>/dev/null | grep -q nightly &&
    { rustup component list --toolchain nightly --installed 2>/dev/null | grep -q '^miri' ||
@@ -47,17 +49,18 @@ else
   echo "MIRI NOT RUN: no nightly toolchain with the miri component on this machine"
 fi
 
-echo "== fuzz smoke (differential: readers, every structure vs the oracle, altered saved files)"
+stage "fuzz smoke (differential: readers, every structure vs the oracle, altered saved files)"
 scripts/fuzz-smoke.sh 5
 
-echo "== CLI smoke"
+stage "CLI smoke"
 cargo build --profile ci --bin topoplex
 cli=${CARGO_TARGET_DIR:-target}/ci/topoplex
 "$cli" report >/dev/null
 "$cli" report --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["dimension"] == 3 and "ig" in d["structures"]'
 
 if [ -x scripts/cpp-tests.sh ]; then
-  echo "== C/C++ package and cross-checks"
-  scripts/cpp-tests.sh
+  stage "C/C++ package and cross-checks"
+  # The ci profile: the library's core is the one `cargo build --profile ci` compiled above.
+  TOPOPLEX_CARGO_PROFILE=ci scripts/cpp-tests.sh
 fi
-echo "== all tests passed"
+stage "all tests passed"

@@ -1094,6 +1094,12 @@ proptest! {
             }
             live.validate().unwrap();
             prop_assert_eq!(labels_of(&live), want.clone());
+            // What the live complex writes (no complex built) is what its complex would write.
+            let raw = live.to_listing();
+            let via = topoplex::io::write::listing(&live.to_complex());
+            prop_assert_eq!((&raw.ids, &raw.offsets, raw.vertex_count), (&via.ids, &via.offsets, via.vertex_count));
+            prop_assert_eq!(raw.coords.as_ref().map(|c| &c.data), via.coords.as_ref().map(|c| &c.data));
+            prop_assert!(raw.attributes.bits_eq(&via.attributes));
         }
     }
 }

@@ -1,14 +1,14 @@
-// The small geometry application of issue 13, on handles: load a triangle mesh, 10 rounds of
-// Laplacian smoothing over one-rings, a valence histogram with the boundary and non-manifold
-// edges, a checksum over every face's neighbouring faces, then write the mesh back with its
-// input winding and order. No re-parsing, no binary search: per-vertex data is indexed by
-// handle. Every whole-mesh pass takes the fastest path the API offers: lent relation views read
-// inline (no library call per query; a one-time index for relations the structure does not
-// store, 4 bytes per id) and one batch call for all edge degrees. The smoothed coordinates go
-// back into the complex (Complex::set_coords, no rebuild) and the library's writer writes it:
+// The small geometry application of issue 13, on the mesh (topoplex::Live): load a triangle
+// mesh, 10 rounds of Laplacian smoothing over one-rings, a valence histogram with the boundary
+// and non-manifold edges, every face's neighbouring faces summed into per-face data, then write
+// the mesh back with its input winding and order. Non-manifold input is taken as it is.
+//
+// Every pass reads the mesh's own arrays inline (topoplex::MeshView: no library call per query,
+// no index beyond what the mesh stores); the smoothed coordinates go back into the mesh after
+// each round (Live::set_all_coords, in place) and the library's writer writes it (Live::write):
 // top simplices in input order and winding, coordinates bit for bit, format from the name.
 //
-//   mesh_app INPUT [OUTPUT] [STRUCTURE]   (STRUCTURE: a --structure name, default ts)
+//   mesh_app INPUT [OUTPUT]
 #include <topoplex.hpp>
 
 #include <cstdio>
@@ -17,71 +17,73 @@
 
 int main(int argc, char **argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: mesh_app INPUT [OUTPUT] [STRUCTURE]\n");
+    std::fprintf(stderr, "usage: mesh_app INPUT [OUTPUT]\n");
     return 1;
   }
   try {
-    topoplex::Complex complex = topoplex::Complex::from_file(argv[1]);
-    const topoplex::Kind kind = topoplex::kind_from_name(argc > 3 ? argv[3] : "ts");
-    const topoplex::Structure mesh(complex, kind);
-    const std::size_t dim = complex.coord_dim();
-    const std::uint32_t n = complex.vertex_count();
-    std::vector<double> xyz = complex.coords();
+    // The file read straight into the mesh (no frozen complex kept or built for a plain file).
+    topoplex::Live mesh = topoplex::Live::from_file(argv[1]);
+    const std::size_t dim = mesh.coord_dim();
+    const std::uint32_t slots = mesh.vertex_slots();
 
-    // Smoothing: each vertex moves to the mean of its one-ring (VV, read from the view).
-    const topoplex::RelationView vv = mesh.view(0, 0);
-    std::vector<double> next(xyz.size());
+    // Smoothing: each vertex moves to the mean of its one-ring, read from the mesh's own
+    // coordinates; the new ones go back into the mesh after each round.
+    std::vector<double> next(std::size_t(slots) * dim);
+    std::vector<std::uint32_t> ring;  // reused: no allocation once warm
     for (int round = 0; round < 10; ++round) {
-      for (std::uint32_t v = 0; v < n; ++v) {
-        const topoplex::SimplexSpan ring = vv[v];
+      const topoplex::MeshView m = mesh.mesh();
+      for (std::uint32_t v = 0; v < slots; ++v) {
+        if (!m.is_vertex(v)) continue;
+        m.neighbours(v, ring);
         for (std::size_t k = 0; k < dim; ++k) {
           double sum = 0;
-          for (topoplex::Simplex w : ring) sum += xyz[w.index() * dim + k];
-          next[v * dim + k] = ring.empty() ? xyz[v * dim + k] : sum / ring.size();
+          for (std::uint32_t w : ring) sum += m.coords(w)[k];
+          next[v * dim + k] = ring.empty() ? m.coords(v)[k] : sum / ring.size();
         }
       }
-      xyz.swap(next);
+      mesh.set_all_coords(next.data(), next.size());  // in place: m stays valid
     }
 
-    // Valence histogram; boundary and non-manifold edges by degree.
-    std::map<std::size_t, std::size_t> valence;
-    for (std::uint32_t v = 0; v < n; ++v) ++valence[vv.degree(v)];
-    std::vector<std::uint32_t> edges(mesh.count(1)), faces_at_edge;
-    for (std::uint32_t e = 0; e < edges.size(); ++e) edges[e] = e;
-    mesh.degrees(1, edges, 2, faces_at_edge);  // one call for every edge, counts only
+    // Valence histogram; boundary and non-manifold edges: one pass over every edge with the
+    // number of triangles through it.
+    const topoplex::MeshView m = mesh.mesh();
+    std::vector<std::uint32_t> valence_of(slots);
+    std::vector<std::uint64_t> scratch;
     std::size_t boundary = 0, nonmanifold = 0;
-    for (std::uint32_t k : faces_at_edge) {
-      boundary += k == 1;
-      nonmanifold += k > 2;
-    }
+    m.for_each_edge(2, scratch, [&](std::uint32_t a, std::uint32_t b, std::size_t triangles) {
+      ++valence_of[a];
+      ++valence_of[b];
+      boundary += triangles == 1;
+      nonmanifold += triangles > 2;
+    });
+    std::map<std::size_t, std::size_t> valence;
+    for (std::uint32_t v = 0; v < slots; ++v)
+      if (m.is_vertex(v)) ++valence[valence_of[v]];
 
-    // Face neighbours as indices (FF, read from the view), per-face data indexed by them.
-    topoplex::SimplexData<std::uint64_t> sum(mesh, 2);
+    // Face neighbours: per-face data indexed by the face's slot (after a build, its place
+    // among the input's top simplices; kept across edits until compact()), the
+    // neighbours of face f across its edges (every other triangle at a non-manifold edge).
+    const std::uint32_t faces = m.slots(2);
+    std::vector<std::uint64_t> sum(faces);
+    for (std::uint32_t f = 0; f < faces; ++f)
+      m.for_each_adjacent_top(topoplex::TopRef(2, f),
+                              [&](topoplex::TopRef g) { sum[f] += g.slot() + 1; });
     std::uint64_t checksum = 0;
-    const topoplex::RelationView ff = mesh.view(2, 2);
-    const std::size_t faces = mesh.count(2);
-    for (std::uint32_t f = 0; f < faces; ++f) {
-      for (topoplex::Simplex g : ff[f]) sum[f] += g.index();
-      checksum += sum[f] * (f + 1);
-    }
+    for (std::uint32_t f = 0; f < faces; ++f) checksum += sum[f] * (f + 1);
 
-    // Circulator: the triangles around vertex 0, fan by fan, counter-clockwise.
-    std::size_t around0 = 0;
-    for (auto t : mesh.triangles_around(mesh.vertex(0))) around0 += t.dim() == 2;
+    // Circulator: the tops around vertex 0.
+    const std::size_t around0 = m.is_vertex(0) ? m.star(0).size() : 0;
 
-    std::printf("vertices %u, faces %zu, boundary edges %zu, non-manifold edges %zu, "
-                "triangles at vertex 0: %zu, checksum %llu\nvalence:",
-                n, faces, boundary, nonmanifold, around0,
+    std::printf("vertices %u, faces %u, boundary edges %zu, non-manifold edges %zu, "
+                "tops at vertex 0: %zu, checksum %llu\nvalence:",
+                mesh.vertex_count(), faces, boundary, nonmanifold, around0,
                 static_cast<unsigned long long>(checksum));
     for (const auto &kv : valence) std::printf(" %zu:%zu", kv.first, kv.second);
     std::printf("\n");
 
-    // Write back with the library's writer: the smoothed coordinates set on the complex (in
-    // place, no rebuild), every top simplex once in input order and winding.
-    if (argc > 2) {
-      if (dim > 0) complex.set_coords(xyz, dim);
-      complex.write(argv[2]);
-    }
+    // Write back with the library's writer: every top simplex once, in input order and
+    // winding, straight from the mesh (no frozen complex built).
+    if (argc > 2) mesh.write(argv[2]);
   } catch (const std::exception &e) {
     std::fprintf(stderr, "mesh_app: %s\n", e.what());
     return 1;

@@ -373,6 +373,78 @@ pub unsafe extern "C" fn tpx_live_top_vertices(
     })
 }
 
+/// The live complex's own arrays, lent (see `tpx_live_arrays`). Every pointer points into the
+/// live complex and is valid until its next edit of the topology (insert, remove, contract,
+/// split, add vertex, compact) or `tpx_live_free`; setting coordinates writes in place and
+/// keeps every pointer valid. An empty array may be a dangling non-NULL pointer with length 0.
+///
+/// Layout (the C++ `topoplex::MeshView` walks it inline):
+/// - a top p-simplex (p ≥ 1) is named by its packed id `p << 28 | slot` (`tpx_live_top_vertices`'
+///   argument); `tops[p]` holds p + 1 vertex ids per slot in stored order (the input winding),
+///   `top_lens[p]` ids in all; a removed slot (tombstone) has bit 31 set on its first id and is
+///   in no star. `tops[0]` is empty.
+/// - vertex slot v's star, the packed ids of the live tops of dimension ≥ 1 through v, in no
+///   particular order (an edit may reorder it), is
+///   `star_words[star_blocks[3v] .. star_blocks[3v] + star_blocks[3v + 1]]`
+///   (`star_blocks[3v + 2]` is the block's capacity).
+/// - `alive[v]` (v < `vertex_slots`): the slot holds a vertex; a live vertex with an empty star
+///   is an isolated vertex. Its coordinates are `coords[v * coord_dim ..][.. coord_dim]`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct TpxLiveArrays {
+    /// Per dimension 0..=15: the top table (see above).
+    pub tops: [*const u32; 16],
+    /// Per dimension: ids in `tops[p]` (slots × (p + 1)).
+    pub top_lens: [usize; 16],
+    /// The star arena.
+    pub star_words: *const u32,
+    /// Words in `star_words`.
+    pub star_words_len: usize,
+    /// 3 words per vertex slot: start, length, capacity of its star.
+    pub star_blocks: *const u32,
+    /// Per vertex slot: 1 when it holds a live vertex.
+    pub alive: *const bool,
+    /// Vertex slots (live or not).
+    pub vertex_slots: u32,
+    /// The compaction count (the handles' generation).
+    pub generation: u32,
+    /// `vertex_slots * coord_dim` numbers.
+    pub coords: *const f64,
+    /// Numbers per vertex (0 when the complex has no coordinates).
+    pub coord_dim: usize,
+}
+
+/// Lends the live complex's arrays into `*out` (a caller-owned struct filled in; nothing is
+/// allocated or copied): the top tables, the vertex stars, the live flags and the coordinates,
+/// valid until the next edit (see `TpxLiveArrays`). With them a caller walks the complex with
+/// no call per query: a vertex's tops, a top's vertices in winding, the tops through a simplex
+/// (filter the smallest star of its vertices), the one-ring (the other vertices of a star).
+/// Errors: NULL_ARGUMENT; `*out` written only on success. O(1).
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_arrays(l: *const TpxLive, out: *mut TpxLiveArrays) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        let out = out_ptr(out, "out")?;
+        let a = l.live().arrays();
+        *out = TpxLiveArrays {
+            tops: std::array::from_fn(|p| a.tops[p].as_ptr()),
+            top_lens: std::array::from_fn(|p| a.tops[p].len()),
+            star_words: a.star_words.as_ptr(),
+            star_words_len: a.star_words.len(),
+            star_blocks: a.star_blocks.as_ptr(),
+            alive: a.alive.as_ptr(),
+            vertex_slots: a.alive.len() as u32,
+            generation: a.generation,
+            coords: a.coords.as_ptr(),
+            coord_dim: a.coord_dim,
+        };
+        Ok(())
+    })
+}
+
 /// Adds an isolated vertex at `xyz[0 .. len]`; its id into `*out`. Errors: NULL_ARGUMENT,
 /// INVALID_ARGUMENT (wrong length, a NaN or infinite number). Amortised O(1).
 ///

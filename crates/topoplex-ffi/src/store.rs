@@ -30,13 +30,19 @@ pub(crate) fn store_failure(e: StoreError) -> Failure {
 
 /// The saved file at `path`, opened with `flags` (`TPX_OPEN_VERIFY` or 0) checked first and
 /// verified when asked.
-fn open_saved(path: &Path, flags: u32) -> Result<Saved, Failure> {
+/// Whether `flags` ask for a full check (`TPX_OPEN_VERIFY`); any other bit is INVALID_ARGUMENT.
+fn verify_flag(flags: u32) -> Result<bool, Failure> {
     if flags & !TPX_OPEN_VERIFY != 0 {
         return Err(Failure::new(
             TpxStatus::InvalidArgument,
             format!("unknown flags {flags:#x} (only TPX_OPEN_VERIFY = 1)"),
         ));
     }
+    Ok(flags & TPX_OPEN_VERIFY != 0)
+}
+
+fn open_saved(path: &Path, flags: u32) -> Result<Saved, Failure> {
+    verify_flag(flags)?;
     let saved = Saved::open(path).map_err(store_failure)?;
     if flags & TPX_OPEN_VERIFY != 0 {
         saved.verify().map_err(store_failure)?;
@@ -172,6 +178,37 @@ pub unsafe extern "C" fn tpx_live_open(
     open_into(path, out, |path| {
         let saved = open_saved(path, flags)?;
         let live = topoplex::live::LiveComplex::open_saved(&saved).map_err(store_failure)?;
+        Ok(TpxLive::new(live))
+    })
+}
+
+/// Reads any input file into a new editable live complex — the application's mesh — the format
+/// chosen as `tpx_complex_from_file` chooses it (`.off` ... `.msh`, or a saved `.tpx`, opened as
+/// `tpx_live_open` opens it; `flags`: `TPX_OPEN_VERIFY` for a saved file, else 0). A mesh file
+/// whose listing is plain (a declared vertex count, no data arrays, every simplex 2 to 16
+/// distinct vertices, none listed twice or a face of another: the usual mesh) is read straight
+/// into the live complex, with no `TpxComplex` built: the process's peak is the file's bytes
+/// plus the reader's listing, then the listing plus the live complex. Any other file is
+/// normalised as `tpx_complex_from_file` does (default budget) and built from that complex.
+/// Either way the same live complex as `tpx_live_from_complex(tpx_complex_from_file(path))`:
+/// the same vertex ids, each top simplex in its slot in input order with its winding.
+///
+/// On success `*out` receives a new live complex owned by the caller (free with
+/// `tpx_live_free`). Errors: as `tpx_complex_from_file` and `tpx_live_open`; INVALID_ARGUMENT
+/// for unknown flags. Cost: linear in the file plus the build.
+///
+/// # Safety
+/// `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_from_file(
+    path: *const c_char,
+    flags: u32,
+    out: *mut *mut TpxLive,
+) -> TpxStatus {
+    open_into(path, out, |path| {
+        let verify = verify_flag(flags)?;
+        let live =
+            topoplex::store::open_live(path, verify).map_err(super::complex::open_failure)?;
         Ok(TpxLive::new(live))
     })
 }

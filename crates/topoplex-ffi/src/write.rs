@@ -1,10 +1,11 @@
-//! Writing a `TpxComplex` to a file (`tpx_complex_write`).
+//! Writing a `TpxComplex` or a `TpxLive` to a file (`tpx_complex_write`, `tpx_live_write`).
 
 use std::ffi::c_char;
 
 use super::complex::TpxComplex;
+use super::live::TpxLive;
 use super::{Failure, TpxStatus, guard, handle, path_arg};
-use topoplex::io::write::{Format, WriteErrorKind, write_complex};
+use topoplex::io::write::{Format, WriteError, WriteErrorKind, write_complex};
 
 /// The format named by the output file's extension (`tpx_complex_write`).
 pub const TPX_FORMAT_FROM_EXTENSION: u32 = 0;
@@ -82,13 +83,38 @@ pub unsafe extern "C" fn tpx_complex_write(
         let c = handle(c, "c")?;
         let path = path_arg(path, "path")?;
         let format = format_from_u32(format)?;
-        write_complex(&c.complex, path, format).map_err(|e| {
-            let status = match e.kind {
-                WriteErrorKind::Io(_) => TpxStatus::IoError,
-                WriteErrorKind::UnknownExtension => TpxStatus::UnknownFormat,
-                WriteErrorKind::CannotHold { .. } => TpxStatus::FormatCannotHold,
-            };
-            Failure::new(status, e.to_string())
-        })
+        write_complex(&c.complex, path, format).map_err(write_failure)
+    })
+}
+
+fn write_failure(e: WriteError) -> Failure {
+    let status = match e.kind {
+        WriteErrorKind::Io(_) => TpxStatus::IoError,
+        WriteErrorKind::UnknownExtension => TpxStatus::UnknownFormat,
+        WriteErrorKind::CannotHold { .. } => TpxStatus::FormatCannotHold,
+    };
+    Failure::new(status, e.to_string())
+}
+
+/// Writes the live complex `l` to the file `path` as `tpx_complex_write` writes
+/// `tpx_live_to_complex`'s complex (the same bytes: live vertices renumbered densely in
+/// ascending id order, tops in dimension-then-slot order with their winding, then each other
+/// listed simplex that carries data, coordinates and attributes), without building that
+/// complex: the memory above the live complex is its listing (4 bytes per id, 12 per simplex)
+/// and the file's bytes. Errors as `tpx_complex_write`. Cost: linear in the live complex.
+///
+/// # Safety
+/// `l` must be NULL or a live complex; `path` NULL or a NUL-terminated string.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_write(
+    l: *const TpxLive,
+    path: *const c_char,
+    format: u32,
+) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        let path = path_arg(path, "path")?;
+        let format = format_from_u32(format)?;
+        l.live().write(path, format).map_err(write_failure)
     })
 }

@@ -11,11 +11,11 @@
 //! into their tables, and the inversion's two passes (the parallel part): O(Σ_t |t|) work, 4
 //! bytes a listed simplex and 4 a vertex (plus 4 a vertex per thread when split) of scratch.
 
-use super::{NONE, SLOT_MASK, pack};
-use crate::complex::{Complex, MAX_DIMENSION};
+use super::{DEAD, LiveComplex, NONE, SLOT_MASK, pack};
+use crate::complex::{Complex, MAX_DIMENSION, RawInput};
 use crate::relation::StructureKind;
 use crate::structures::BuildError;
-use crate::structures::common::{too_large, try_with_capacity};
+use crate::structures::common::{too_large, try_copy, try_with_capacity};
 
 use super::stars::Stars;
 
@@ -119,6 +119,133 @@ fn copy_tops(
     Ok((tops, packed))
 }
 
+/// A reader's listing as a live complex with no complex in between, when the listing is plain:
+/// a declared vertex count (1 to 2^31), no attributes, coordinates of that count, and every
+/// simplex 2 to 16 distinct ids below the count, none listed twice or a face of another — so
+/// each is a top and gets its slot in listing order with its winding, as
+/// `LiveComplex::try_from_complex` of the normalised complex would give it. `None` for any
+/// other listing (the complex's path normalises it and names what is wrong).
+///
+/// Cost: two passes over the listing, the stars by pushes, and the absorption check (each top
+/// against the tops through its vertex of smallest star: O(Σ_t d²·k)); memory the live complex
+/// itself plus 4 bytes a vertex, nothing sorted and no complex kept.
+pub(super) fn from_plain_listing(raw: &RawInput) -> Option<Result<LiveComplex, BuildError>> {
+    let n = raw.vertex_count? as usize;
+    if n == 0 || n > DEAD as usize || !raw.attributes.is_empty() {
+        return None;
+    }
+    let (coord_dim, coord_len) = raw
+        .coords
+        .as_ref()
+        .map_or((0, 0), |c| (c.dim, c.data.len()));
+    if coord_len != n * coord_dim {
+        return None;
+    }
+    let mut per_dim = [0usize; MAX_DIMENSION + 1];
+    for i in 0..raw.simplex_count() {
+        let s = raw.simplex(i);
+        if s.len() < 2 || s.len() > MAX_DIMENSION + 1 {
+            return None;
+        }
+        for (k, &v) in s.iter().enumerate() {
+            if v as usize >= n || s[..k].contains(&v) {
+                return None;
+            }
+        }
+        per_dim[s.len() - 1] += 1;
+    }
+    match build_plain(raw, n, &per_dim) {
+        Ok(live) if live.absorbs_a_top() => None,
+        built => Some(built),
+    }
+}
+
+/// The tables and stars of a checked plain listing.
+fn build_plain(
+    raw: &RawInput,
+    n: usize,
+    per_dim: &[usize; MAX_DIMENSION + 1],
+) -> Result<LiveComplex, BuildError> {
+    let mut tops: Vec<Vec<u32>> = try_with_capacity(K, MAX_DIMENSION + 1, "top arrays")?;
+    for (p, &count) in per_dim.iter().enumerate() {
+        if count > SLOT_MASK as usize + 1 {
+            return Err(BuildError::TooLarge {
+                kind: K,
+                what: format!("{count} top {p}-simplices (at most 2^28 per dimension)"),
+            });
+        }
+        tops.push(try_with_capacity(
+            K,
+            count.saturating_mul(p + 1),
+            &format!("top {p}-simplex vertices"),
+        )?);
+    }
+    let mut degree: Vec<u32> = crate::structures::common::try_vec(K, 0, n, "vertex degrees")?;
+    for i in 0..raw.simplex_count() {
+        let s = raw.simplex(i);
+        tops[s.len() - 1].extend_from_slice(s);
+        for &v in s {
+            degree[v as usize] += 1;
+        }
+    }
+    let entries: usize = degree.iter().map(|&k| k as usize).sum();
+    if entries > u32::MAX as usize {
+        return Err(too_large(K, entries * 4, "star entries (at most 2^32)"));
+    }
+    let mut star = Stars::with_degrees(K, &degree)?;
+    drop(degree);
+    for (p, table) in tops.iter().enumerate().skip(1) {
+        for (slot, s) in table.chunks_exact(p + 1).enumerate() {
+            for &v in s {
+                star.push(v, pack(p, slot as u32));
+            }
+        }
+    }
+    let (coord_dim, coords) = match &raw.coords {
+        Some(c) => (c.dim, try_copy(K, &c.data, "coordinates")?),
+        None => (0, Vec::new()),
+    };
+    let mut live_tops = *per_dim;
+    live_tops[0] = 0;
+    Ok(LiveComplex {
+        tops,
+        live_tops,
+        alive: crate::structures::common::try_vec(K, true, n, "vertex flags")?,
+        live_vertices: n as u32,
+        star,
+        coord_dim,
+        coords,
+        epoch: 0,
+        images: Vec::new(),
+        data: super::data::LiveData::default(),
+        dense: Default::default(),
+    })
+}
+
+impl LiveComplex {
+    /// Whether some top is listed twice or is a face of another (then the listing was not plain:
+    /// a complex must absorb it). Each top against the tops through its vertex of smallest star.
+    fn absorbs_a_top(&self) -> bool {
+        (1..=MAX_DIMENSION).any(|p| {
+            self.tops[p]
+                .chunks_exact(p + 1)
+                .enumerate()
+                .any(|(slot, s)| {
+                    let me = pack(p, slot as u32);
+                    let v = *s
+                        .iter()
+                        .min_by_key(|&&v| self.star[v as usize].len())
+                        .expect("a top has vertices");
+                    self.star[v as usize].iter().any(|&other| {
+                        other != me
+                            && super::unpack(other).0 >= p
+                            && super::subset(s, self.top_raw(other))
+                    })
+                })
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::super::LiveComplex;
@@ -160,6 +287,54 @@ mod tests {
         // Drawn: the triangle 0 1 2 and its edge 1 0 listed too (the listing maps are needed).
         out.push(Complex::from_simplices(4, &[&[0, 1, 2][..], &[1, 0], &[3]]).unwrap());
         out
+    }
+
+    /// Every random complex listed as a reader would give it: a plain listing (its top
+    /// simplices, each once, with coordinates) builds the same live complex as its normalised
+    /// complex; a listing with a repeat, a face beside its top or a 1-vertex simplex is not
+    /// plain and is left to the complex.
+    #[test]
+    fn a_plain_listing_builds_what_its_complex_builds() {
+        let mut plain = 0;
+        for c in complexes() {
+            let n = c.vertex_count();
+            let mut raw = crate::complex::RawInput::new();
+            raw.vertex_count = Some(n);
+            raw.coords = Some(crate::complex::Coords {
+                dim: 2,
+                data: (0..2 * n).map(f64::from).collect(),
+            });
+            for i in 0..c.input_count() {
+                raw.push(c.input_simplex(i), 1);
+            }
+            let want = LiveComplex::try_from_complex(
+                &Complex::from_input(raw.clone(), None, Default::default()).unwrap(),
+            )
+            .unwrap();
+            let tops_only = !c.tops_listed_needs_maps()
+                && (0..c.input_count()).all(|i| c.input_simplex(i).len() > 1);
+            match LiveComplex::from_plain_listing(&raw) {
+                None => assert!(!tops_only, "a listing of tops only was not taken as plain"),
+                Some(built) => {
+                    let built = built.unwrap();
+                    assert!(
+                        tops_only,
+                        "a listing with repeats or faces was taken as plain"
+                    );
+                    built.check_invariants().unwrap();
+                    assert_eq!(built.tops, want.tops);
+                    assert_eq!(built.coords, want.coords);
+                    for v in 0..n as usize {
+                        let (mut a, mut b) = (built.star[v].to_vec(), want.star[v].to_vec());
+                        a.sort_unstable();
+                        b.sort_unstable();
+                        assert_eq!(a, b, "star of {v}");
+                    }
+                    plain += 1;
+                }
+            }
+        }
+        assert!(plain >= 30, "only {plain} plain listings");
     }
 
     #[test]

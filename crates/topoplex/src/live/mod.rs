@@ -113,7 +113,7 @@
 
 use std::fmt;
 
-use crate::complex::{Complex, MAX_DIMENSION};
+use crate::complex::{Complex, MAX_DIMENSION, RawInput};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 use crate::structures::BuildError;
 use crate::structures::common::{too_large, try_copy, try_vec, try_with_capacity};
@@ -290,6 +290,36 @@ pub struct LiveComplex {
     dense: dense::DenseIndex,
 }
 
+/// The arrays of a [`LiveComplex`] as stored ([`LiveComplex::arrays`]): what every navigation
+/// reads, for callers that walk them inline. Layout (the module doc's storage):
+/// - a top p-simplex is named by its packed id `p << 28 | slot`, the raw value of a
+///   [`crate::relation::handle::TopId`] and of `tpx_live_top_vertices`' argument;
+/// - St*(v), the live tops of dimension ≥ 1 through vertex slot v, is
+///   `star_words[start .. start + len]` with `start = star_blocks[3v]`,
+///   `len = star_blocks[3v + 1]` (`star_blocks[3v + 2]` is the block's capacity), in no
+///   particular order (an edit may reorder it);
+/// - a vertex slot is live when `alive[v]`; an isolated vertex is a live vertex with an empty
+///   star; its coordinates are `coords[v·coord_dim ..][.. coord_dim]`.
+#[derive(Debug, Clone, Copy)]
+pub struct LiveArrays<'a> {
+    /// `tops[p]`, p ≥ 1: p + 1 vertex ids per slot in stored order (the input winding). A
+    /// removed slot (a tombstone, never in a star) has bit 31 set on its first id. `tops[0]` is
+    /// empty.
+    pub tops: [&'a [u32]; MAX_DIMENSION + 1],
+    /// The star arena (packed top ids), addressed through `star_blocks`.
+    pub star_words: &'a [u32],
+    /// Start, length and capacity of each vertex slot's star block: 3 words per slot.
+    pub star_blocks: &'a [u32],
+    /// Per vertex slot: live or not.
+    pub alive: &'a [bool],
+    /// `coord_dim` numbers per vertex slot.
+    pub coords: &'a [f64],
+    /// Coordinates per vertex (0 when the complex has none).
+    pub coord_dim: usize,
+    /// The compaction count (the handles' generation).
+    pub generation: u32,
+}
+
 /// A top simplex's image under a contraction: at most 16 ids inline, in stored order.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct Image {
@@ -399,6 +429,17 @@ impl LiveComplex {
         };
         live.data = data::LiveData::of(complex, &live);
         Ok(live)
+    }
+
+    /// A reader's listing straight into a live complex, when it is plain (a declared vertex
+    /// count, no attributes, every simplex 2 to 16 distinct ids below the count, none listed
+    /// twice or a face of another — the usual mesh file): the same live complex as
+    /// [`LiveComplex::try_from_complex`] of its normalised complex, without the complex (no
+    /// sort, no closure bound, the complex's memory never taken). `None` for any other listing:
+    /// normalise it ([`Complex::from_input`]) and build from the complex, which also names what
+    /// is wrong with a bad one. `crate::store::open_live` does both.
+    pub fn from_plain_listing(raw: &RawInput) -> Option<Result<LiveComplex, BuildError>> {
+        build::from_plain_listing(raw)
     }
 
     fn check_vertex_count(complex: &Complex) -> Result<usize, BuildError> {
@@ -589,6 +630,23 @@ impl LiveComplex {
         }
     }
 
+    /// The complex's own arrays, lent for navigation without a call per query (the C ABI's
+    /// `tpx_live_arrays`, the C++ `topoplex::MeshView`, which navigates them inline). Nothing
+    /// is copied or built: O(1). The borrow ends at the next edit, which may move any array
+    /// (setting coordinates writes in place, so C callers keep their pointers across it).
+    pub fn arrays(&self) -> LiveArrays<'_> {
+        let (star_words, star_blocks) = self.star.lend();
+        LiveArrays {
+            tops: std::array::from_fn(|p| self.tops.get(p).map_or(&[][..], |t| &t[..])),
+            star_words,
+            star_blocks,
+            alive: &self.alive,
+            coords: &self.coords,
+            coord_dim: self.coord_dim,
+            generation: self.epoch,
+        }
+    }
+
     /// Coordinates per vertex (0 when the complex has none).
     pub fn coord_dim(&self) -> usize {
         self.coord_dim
@@ -738,22 +796,51 @@ impl LiveComplex {
     /// their winding, coordinates kept. Freeze it into any of the nine structures with
     /// [`crate::build`]. O(size).
     pub fn to_complex(&self) -> Complex {
+        let raw = self.to_listing();
+        let n = raw.vertex_count.unwrap_or(0);
+        let mut c = Complex::from_arrays(n, &raw.ids, &raw.offsets, raw.coords)
+            .expect("a live complex is a valid complex (has a vertex, ids in range)");
+        if !self.data.is_empty() {
+            c.set_attributes(raw.attributes)
+                .expect("the live data has a row per live vertex, top and record");
+        }
+        c
+    }
+
+    /// The complex as a listing, what a writer takes: the numbering of
+    /// [`LiveComplex::to_complex`], every live top in dimension-then-slot order with its
+    /// winding, then each other listed simplex that carries data and still exists, the
+    /// coordinates and the attributes. O(size), no complex built (no sorting, no closure).
+    pub fn to_listing(&self) -> RawInput {
         let (map, n) = self.vertex_map();
-        let mut ids = Vec::new();
-        let mut offsets = vec![0usize];
+        let mut raw = RawInput::new();
+        raw.vertex_count = Some(n);
+        let mut row = Vec::with_capacity(MAX_DIMENSION + 1);
         let mut live_slots: Vec<Vec<usize>> = vec![Vec::new(); MAX_DIMENSION + 1];
+        let tops: usize = self.live_tops.iter().sum();
+        let ids: usize = (1..=MAX_DIMENSION)
+            .map(|p| (p + 1) * self.live_tops[p])
+            .sum();
+        raw.ids.reserve_exact(ids);
+        raw.offsets.reserve_exact(tops + 1);
+        raw.lines.reserve_exact(tops);
+        let mut push = |raw: &mut RawInput, s: &[u32]| {
+            row.clear();
+            row.extend(s.iter().map(|&v| map[v as usize]));
+            raw.push(&row, 0);
+        };
         for (t, s) in self.tops() {
-            ids.extend(s.iter().map(|&v| map[v as usize]));
-            offsets.push(ids.len());
-            live_slots[t.dim()].push(t.slot() as usize);
+            push(&mut raw, s);
+            if !self.data.is_empty() {
+                live_slots[t.dim()].push(t.slot() as usize);
+            }
         }
         let mut records = Vec::new();
         for (r, s) in self.data.live_records(|s| self.holds_simplex(s)) {
-            ids.extend(s.iter().map(|&v| map[v as usize]));
-            offsets.push(ids.len());
+            push(&mut raw, s);
             records.push(r);
         }
-        let coords = (self.coord_dim > 0).then(|| crate::complex::Coords {
+        raw.coords = (self.coord_dim > 0).then(|| crate::complex::Coords {
             dim: self.coord_dim,
             data: (0..self.vertex_slots() as usize)
                 .filter(|&v| self.alive[v])
@@ -764,13 +851,22 @@ impl LiveComplex {
                 })
                 .collect(),
         });
-        let mut c = Complex::from_arrays(n, &ids, &offsets, coords)
-            .expect("a live complex is a valid complex (has a vertex, ids in range)");
         if !self.data.is_empty() {
-            c.set_attributes(self.data.attributes(&self.alive, &live_slots, &records))
-                .expect("the live data has a row per live vertex, top and record");
+            raw.attributes = self.data.attributes(&self.alive, &live_slots, &records);
         }
-        c
+        raw
+    }
+
+    /// Writes the complex to `path` in `format` (by default the one its extension names), as
+    /// writing [`LiveComplex::to_complex`] would, but from [`LiveComplex::to_listing`]: no
+    /// complex is built, so the memory above the live complex is the listing (4 bytes per id,
+    /// 12 per simplex) and the file's bytes. Nothing is written when the format cannot hold it.
+    pub fn write(
+        &self,
+        path: &std::path::Path,
+        format: Option<crate::io::write::Format>,
+    ) -> Result<(), crate::io::write::WriteError> {
+        crate::io::write::write_raw(&self.to_listing(), path, format)
     }
 
     /// Old vertex slot → dense id (`NONE` for removed ones), and the live count.

@@ -39,8 +39,10 @@ const END: u32 = u32::MAX;
 /// Size classes: 8 small ones and four per doubling from 8 to 2^32.
 const CLASSES: usize = 8 + 4 * 29;
 
-/// One vertex's block in the arena.
-#[derive(Debug, Clone, Copy, Default)]
+/// One vertex's block in the arena. `repr(C)` and plain words, so the block table can be lent
+/// as three `u32`s per vertex ([`Stars::lend`]).
+#[derive(Debug, Clone, Copy, Default, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C)]
 struct Block {
     start: u32,
     len: u32,
@@ -159,6 +161,12 @@ impl Stars {
     /// Every vertex's star, by vertex slot.
     pub(crate) fn iter(&self) -> impl Iterator<Item = &[u32]> + '_ {
         (0..self.blocks.len()).map(move |v| &self[v])
+    }
+
+    /// The arena and the block table as plain words (start, length, capacity per vertex slot),
+    /// for inline navigation ([`super::LiveArrays`]). O(1), nothing copied.
+    pub(crate) fn lend(&self) -> (&[u32], &[u32]) {
+        (&self.words, bytemuck::cast_slice(&self.blocks))
     }
 
     /// Total entries over all stars. O(vertices).
@@ -302,6 +310,10 @@ impl Stars {
                 let s = b.start as usize;
                 starts[s / 64] |= 1 << (s % 64);
                 b.start = std::mem::replace(&mut self.words[s], v as u32);
+            } else {
+                // An empty block's start must stay inside the shrunk arena: St*(v) is the
+                // slice words[start .. start], which panics past the end.
+                b.start = 0;
             }
         }
         let mut to = 0usize;
@@ -463,6 +475,22 @@ mod tests {
         s.retain_packed(&[false, true, true]);
         s.check().unwrap();
         assert_eq!((s.len(), &s[0], s.words.len()), (2, &[30, 31, 32][..], 3));
+    }
+
+    /// An isolated vertex built last (degree 0: its block starts at the arena's end, 4) keeps a
+    /// readable, empty star after a compaction shrinks the arena below that start.
+    #[test]
+    fn an_empty_star_after_the_arena_shrinks() {
+        let mut s = Stars::with_degrees(K, &[4, 0]).unwrap();
+        for x in 0..4 {
+            s.push(0, x);
+        }
+        s.release(0);
+        s.push(0, 7);
+        s.compact_arena();
+        s.check().unwrap();
+        assert_eq!(s.words.len(), 1);
+        assert_eq!((&s[0], &s[1]), (&[7][..], &[][..]));
     }
 
     /// One star growing one entry at a time to 10,000 entries beside a neighbour that keeps

@@ -148,6 +148,25 @@ pub fn open_complex_with(
     Ok(Complex::from_path_with(path, budget)?)
 }
 
+/// An editable live complex for an input path: a saved file's live complex (or one built from
+/// its saved complex; with `verify`, the file checked fully first); a mesh file read straight
+/// into the live complex when its listing is plain ([`LiveComplex::from_plain_listing`]: no
+/// complex built, so the peak is the file's bytes and the reader's listing, then the listing
+/// and the live complex), else normalised under the default budget and built from the complex.
+/// Cost: O(file) plus the build.
+pub fn open_live(path: &Path, verify: bool) -> Result<LiveComplex, OpenError> {
+    if is_saved_path(path) {
+        let saved = Saved::open_checked(path, verify)?;
+        return Ok(LiveComplex::open_saved(&saved)?);
+    }
+    let raw = crate::io::read_path(path).map_err(ComplexError::from)?;
+    if let Some(live) = LiveComplex::from_plain_listing(&raw) {
+        return Ok(live?);
+    }
+    let complex = Complex::from_input(raw, Some(path), crate::complex::Budget::default())?;
+    Ok(LiveComplex::try_from_complex(&complex)?)
+}
+
 /// A structure of `kind` for an input path: a saved file's structure is mapped when it is of
 /// that kind (else built from the saved complex); any other path is read under `budget` and
 /// built.

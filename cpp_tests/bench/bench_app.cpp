@@ -1,0 +1,242 @@
+// topoplex_bench_app LIB INPUT [OUTPUT]: the small mesh application of issue 25, written once
+// on OpenMesh and once on Topoplex's live mesh as each library's guide recommends, so that a
+// driver (scripts/bench_app.sh) can time the two side by side, phase by phase, each in its own
+// process (so that each process's peak RSS is that application's alone).
+//
+// LIB: `openmesh` (TriMesh with double coordinates, faces and vertices in file order) or
+//      `topoplex` (topoplex::Live and its inline MeshView; no survey structure built).
+// Phases (each timed once, wall clock):
+//   load     read the file into the application's mesh (Topoplex: Live::from_file, which reads
+//            a plain mesh file straight into the live complex)
+//   smooth   10 rounds of Laplacian smoothing: every vertex to the mean of its one-ring, the new
+//            positions written back into the mesh after each round
+//   stats    valence histogram, boundary and non-manifold edge counts
+//   ff       every face's neighbour faces, summed into per-face data (one pass over all faces:
+//            OpenMesh's ff_range per face; Topoplex's whole-mesh pair pass)
+//   ff_each  the same per face by a per-face query (Topoplex: MeshView::for_each_adjacent_top;
+//            OpenMesh: ff_range again), for the per-call cost
+//   write    write the mesh back (OFF; Topoplex: Live::write, no frozen complex built)
+// Output: one line of `key=value` pairs: the phase times in ms, the process's peak RSS in KiB
+// (VmHWM) and checksums that do not depend on either library's numbering (the driver compares
+// them between the two).
+#include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
+
+#include <topoplex.hpp>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+struct DoubleTraits : public OpenMesh::DefaultTraits {
+  typedef OpenMesh::Vec3d Point;
+};
+using OMesh = OpenMesh::TriMesh_ArrayKernelT<DoubleTraits>;
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+// VmHWM (the process's peak RSS so far) or VmRSS (now), in KiB.
+long status_kib(const char *field) {
+  std::ifstream in("/proc/self/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind(field, 0) == 0) return std::stol(line.substr(std::strlen(field)));
+  return -1;
+}
+long peak_rss_kib() { return status_kib("VmHWM:"); }
+
+// A face's key independent of numbering: its sorted vertex ids mixed.
+std::uint64_t face_key(std::array<std::uint32_t, 3> v) {
+  std::sort(v.begin(), v.end());
+  std::uint64_t h = 1469598103934665603ull;
+  for (std::uint32_t x : v) h = (h ^ x) * 1099511628211ull;
+  return h;
+}
+
+struct Result {
+  std::map<std::string, double> ms;
+  double coord_sum = 0;
+  std::uint64_t ff_sum = 0, ff_each_sum = 0;
+  std::size_t boundary = 0, nonmanifold = 0, valence_hash = 0, faces = 0;
+  long load_peak_kib = 0, kept_kib = 0;  // peak RSS of the load; RSS held after it
+};
+
+Result run_openmesh(const char *in, const char *out) {
+  Result r;
+  auto t0 = Clock::now();
+  OMesh mesh;
+  if (!OpenMesh::IO::read_mesh(mesh, in)) throw std::runtime_error("OpenMesh cannot read it");
+  r.ms["load"] = ms_since(t0);
+  r.load_peak_kib = peak_rss_kib();
+  r.kept_kib = status_kib("VmRSS:");
+
+  t0 = Clock::now();
+  std::vector<OMesh::Point> next(mesh.n_vertices());
+  for (int round = 0; round < 10; ++round) {
+    for (auto v : mesh.vertices()) {
+      OMesh::Point sum(0, 0, 0);
+      std::size_t k = 0;
+      for (auto w : mesh.vv_range(v)) {
+        sum += mesh.point(w);
+        ++k;
+      }
+      next[v.idx()] = k ? sum / double(k) : mesh.point(v);
+    }
+    for (auto v : mesh.vertices()) mesh.set_point(v, next[v.idx()]);
+  }
+  r.ms["smooth"] = ms_since(t0);
+
+  t0 = Clock::now();
+  std::map<std::size_t, std::size_t> valence;
+  for (auto v : mesh.vertices()) ++valence[mesh.valence(v)];
+  for (auto e : mesh.edges()) r.boundary += mesh.is_boundary(e);
+  // A half-edge mesh holds no non-manifold edge (OpenMesh refuses those faces when reading).
+  r.ms["stats"] = ms_since(t0);
+  for (auto &kv : valence) r.valence_hash = r.valence_hash * 31 + kv.first * 1000003 + kv.second;
+
+  std::vector<std::uint64_t> key(mesh.n_faces());
+  for (auto f : mesh.faces()) {
+    std::array<std::uint32_t, 3> v{};
+    int i = 0;
+    for (auto w : mesh.fv_range(f)) v[i++] = static_cast<std::uint32_t>(w.idx());
+    key[f.idx()] = face_key(v);
+  }
+  t0 = Clock::now();
+  std::vector<std::uint64_t> sum(mesh.n_faces());
+  for (auto f : mesh.faces())
+    for (auto g : mesh.ff_range(f)) sum[f.idx()] += key[g.idx()];
+  r.ms["ff"] = ms_since(t0);
+  for (auto f : mesh.faces()) r.ff_sum += sum[f.idx()] * key[f.idx()];
+  t0 = Clock::now();
+  std::fill(sum.begin(), sum.end(), 0);
+  for (auto f : mesh.faces())
+    for (auto g : mesh.ff_range(f)) sum[f.idx()] += key[g.idx()];
+  r.ms["ff_each"] = ms_since(t0);
+  for (auto f : mesh.faces()) r.ff_each_sum += sum[f.idx()] * key[f.idx()];
+  r.faces = mesh.n_faces();
+
+  for (auto v : mesh.vertices())
+    for (int k = 0; k < 3; ++k) r.coord_sum += mesh.point(v)[k];
+  if (out) {
+    t0 = Clock::now();
+    OpenMesh::IO::Options opt;
+    if (!OpenMesh::IO::write_mesh(mesh, out, opt, 17))
+      throw std::runtime_error("OpenMesh cannot write it");
+    r.ms["write"] = ms_since(t0);
+  }
+  return r;
+}
+
+Result run_topoplex(const char *in, const char *out) {
+  Result r;
+  auto t0 = Clock::now();
+  topoplex::Live live = topoplex::Live::from_file(in);
+  r.ms["load"] = ms_since(t0);
+  r.load_peak_kib = peak_rss_kib();
+  r.kept_kib = status_kib("VmRSS:");
+
+  t0 = Clock::now();
+  const std::size_t dim = live.coord_dim(), slots = live.vertex_slots();
+  std::vector<double> next(slots * dim);
+  std::vector<std::uint32_t> ring;
+  for (int round = 0; round < 10; ++round) {
+    const topoplex::MeshView m = live.mesh();  // coordinates read from the mesh itself
+    for (std::uint32_t v = 0; v < slots; ++v) {
+      if (!m.is_vertex(v)) continue;
+      m.neighbours(v, ring);
+      for (std::size_t k = 0; k < dim; ++k) {
+        double s = 0;
+        for (std::uint32_t w : ring) s += m.coords(w)[k];
+        next[v * dim + k] = ring.empty() ? m.coords(v)[k] : s / double(ring.size());
+      }
+    }
+    live.set_all_coords(next.data(), next.size());  // in place: m stays valid
+  }
+  r.ms["smooth"] = ms_since(t0);
+
+  t0 = Clock::now();
+  const topoplex::MeshView m = live.mesh();
+  std::vector<std::uint32_t> degree(slots);
+  std::vector<std::uint64_t> scratch;
+  m.for_each_edge(2, scratch, [&](std::uint32_t a, std::uint32_t b, std::size_t k) {
+    ++degree[a];
+    ++degree[b];
+    r.boundary += k == 1;
+    r.nonmanifold += k > 2;
+  });
+  std::map<std::size_t, std::size_t> valence;
+  for (std::uint32_t v = 0; v < slots; ++v)
+    if (m.is_vertex(v)) ++valence[degree[v]];
+  r.ms["stats"] = ms_since(t0);
+  for (auto &kv : valence) r.valence_hash = r.valence_hash * 31 + kv.first * 1000003 + kv.second;
+
+  const std::uint32_t faces = m.slots(2);
+  std::vector<std::uint64_t> key(faces);
+  for (std::uint32_t f = 0; f < faces; ++f) {
+    const topoplex::SimplexView v = m.vertices(topoplex::TopRef(2, f));
+    key[f] = face_key({v[0], v[1], v[2]});
+  }
+  t0 = Clock::now();
+  std::vector<std::uint64_t> sum(faces);
+  m.for_each_adjacent_triangle_pair(scratch, [&](topoplex::TopRef t, topoplex::TopRef u) {
+    sum[t.slot()] += key[u.slot()];
+  });
+  r.ms["ff"] = ms_since(t0);
+  for (std::uint32_t f = 0; f < faces; ++f) r.ff_sum += sum[f] * key[f];
+  t0 = Clock::now();
+  std::fill(sum.begin(), sum.end(), 0);
+  for (std::uint32_t f = 0; f < faces; ++f)
+    m.for_each_adjacent_top(topoplex::TopRef(2, f),
+                            [&](topoplex::TopRef u) { sum[f] += key[u.slot()]; });
+  r.ms["ff_each"] = ms_since(t0);
+  for (std::uint32_t f = 0; f < faces; ++f) r.ff_each_sum += sum[f] * key[f];
+  r.faces = faces;
+
+  for (double x : live.all_coords()) r.coord_sum += x;
+  if (out) {
+    t0 = Clock::now();
+    live.write(out);
+    r.ms["write"] = ms_since(t0);
+  }
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  if (argc < 3 || (std::strcmp(argv[1], "openmesh") != 0 && std::strcmp(argv[1], "topoplex") != 0)) {
+    std::fprintf(stderr, "usage: topoplex_bench_app openmesh|topoplex INPUT.off [OUTPUT.off]\n");
+    return 2;
+  }
+  try {
+    const char *out = argc > 3 ? argv[3] : nullptr;
+    const auto t0 = Clock::now();
+    Result r = std::strcmp(argv[1], "openmesh") == 0 ? run_openmesh(argv[2], out)
+                                                      : run_topoplex(argv[2], out);
+    r.ms["total"] = ms_since(t0);
+    std::printf("lib=%s faces=%zu", argv[1], r.faces);
+    for (const auto &kv : r.ms) std::printf(" %s_ms=%.3f", kv.first.c_str(), kv.second);
+    std::printf(" load_peak_kib=%ld kept_kib=%ld", r.load_peak_kib, r.kept_kib);
+    std::printf(" peak_rss_kib=%ld coord_sum=%.9g ff_sum=%llu ff_each_sum=%llu boundary=%zu "
+                "nonmanifold=%zu valence_hash=%zu\n",
+                peak_rss_kib(), r.coord_sum, static_cast<unsigned long long>(r.ff_sum),
+                static_cast<unsigned long long>(r.ff_each_sum), r.boundary, r.nonmanifold,
+                r.valence_hash);
+  } catch (const std::exception &e) {
+    std::fprintf(stderr, "topoplex_bench_app: %s: %s\n", argv[2], e.what());
+    return 1;
+  }
+  return 0;
+}

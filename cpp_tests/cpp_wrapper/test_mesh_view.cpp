@@ -1,0 +1,339 @@
+// topoplex::MeshView (the live complex's arrays navigated inline in the header) against a
+// brute-force oracle computed from the live complex's top simplices as the library lists them
+// (Live::top_simplices): random non-manifold, mixed-dimensional complexes to dimension 6,
+// before and after random sequences of insertions, removals, contractions, coordinate changes
+// and compact().
+#include "topoplex.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <string>
+#include <map>
+#include <random>
+#include <set>
+#include <thread>
+#include <utility>
+#include <vector>
+
+namespace {
+
+using Ids = std::vector<std::uint32_t>;
+using topoplex::MeshView;
+using topoplex::TopRef;
+
+Ids sorted(Ids s) {
+  std::sort(s.begin(), s.end());
+  return s;
+}
+
+bool subset(const Ids &small, const Ids &big) {  // both sorted
+  return std::includes(big.begin(), big.end(), small.begin(), small.end());
+}
+
+// The oracle: every live top (sorted vertices) and the live vertices, from the per-call API.
+struct Oracle {
+  std::vector<Ids> tops;
+  std::vector<bool> alive;
+
+  explicit Oracle(const topoplex::Live &live) {
+    for (std::uint32_t p = 1; p <= 15; ++p)
+      for (auto s : live.top_simplices(p)) tops.push_back(sorted(s.to_vector()));
+    alive.resize(live.vertex_slots());
+    for (std::uint32_t v = 0; v < alive.size(); ++v) alive[v] = live.is_vertex(v);
+  }
+  std::vector<Ids> holding(const Ids &s) const {
+    std::vector<Ids> out;
+    for (const Ids &t : tops)
+      if (subset(sorted(s), t)) out.push_back(t);
+    std::sort(out.begin(), out.end());
+    return out;
+  }
+};
+
+Ids top_set(const MeshView &m, TopRef t) { return sorted(m.vertices(t).to_vector()); }
+
+// Every MeshView answer against the oracle.
+void check(const topoplex::Live &live, std::mt19937 &rng) {
+  live.validate();
+  const Oracle o(live);
+  const MeshView m = live.mesh();
+  ASSERT_EQ(m.vertex_slots(), o.alive.size());
+  // The top tables: the live slots hold exactly the listed tops, in the same winding.
+  std::vector<Ids> from_view;
+  for (std::uint32_t p = 1; p <= 15; ++p) {
+    std::vector<Ids> wound;
+    for (std::uint32_t s = 0; s < m.slots(p); ++s)
+      if (m.is_top(TopRef(p, s))) {
+        wound.push_back(m.vertices(TopRef(p, s)).to_vector());
+        from_view.push_back(sorted(wound.back()));
+        EXPECT_EQ(live.top_vertices(TopRef(p, s).raw()).to_vector(), wound.back());
+      }
+    std::vector<Ids> listed;
+    for (auto s : live.top_simplices(p)) listed.push_back(s.to_vector());
+    std::sort(wound.begin(), wound.end());
+    std::sort(listed.begin(), listed.end());
+    EXPECT_EQ(wound, listed) << "winding of the top " << p << "-simplices";
+  }
+  std::sort(from_view.begin(), from_view.end());
+  std::vector<Ids> all = o.tops;
+  std::sort(all.begin(), all.end());
+  ASSERT_EQ(from_view, all);
+
+  Ids ring;
+  for (std::uint32_t v = 0; v < m.vertex_slots(); ++v) {
+    ASSERT_EQ(m.is_vertex(v), bool(o.alive[v]));
+    if (!o.alive[v]) continue;
+    // Star and one-ring.
+    std::vector<Ids> star;
+    for (TopRef t : m.star(v)) {
+      EXPECT_TRUE(m.is_top(t));
+      EXPECT_TRUE(m.holds(t, v));
+      star.push_back(top_set(m, t));
+    }
+    std::sort(star.begin(), star.end());
+    EXPECT_EQ(star, o.holding({v})) << "star of " << v;
+    std::set<std::uint32_t> expect;
+    for (const Ids &t : o.holding({v}))
+      for (std::uint32_t w : t)
+        if (w != v) expect.insert(w);
+    m.neighbours(v, ring);
+    EXPECT_EQ(ring, Ids(expect.begin(), expect.end())) << "one-ring of " << v;
+    Ids by_call;
+    for (auto r : live.relation({v}, 0)) by_call.push_back(r[0]);
+    EXPECT_EQ(ring, by_call);
+    if (m.coord_dim() > 0) {
+      const std::vector<double> xyz = live.coords(v);
+      EXPECT_TRUE(std::equal(xyz.begin(), xyz.end(), m.coords(v)));
+    }
+  }
+
+  // Tops holding a simplex, simplex membership: faces of tops and random vertex sets.
+  std::vector<std::uint32_t> live_vertices;
+  for (std::uint32_t v = 0; v < o.alive.size(); ++v)
+    if (o.alive[v]) live_vertices.push_back(v);
+  for (int trial = 0; trial < 40 && !live_vertices.empty(); ++trial) {
+    Ids s;
+    if (trial % 2 == 0 && !o.tops.empty()) {
+      const Ids &t = o.tops[rng() % o.tops.size()];
+      for (std::uint32_t w : t)
+        if (rng() % 2) s.push_back(w);
+      if (s.empty()) s.push_back(t[0]);
+    } else {
+      std::shuffle(live_vertices.begin(), live_vertices.end(), rng);
+      s.assign(live_vertices.begin(),
+               live_vertices.begin() + std::min<std::size_t>(1 + rng() % 3, live_vertices.size()));
+    }
+    std::vector<Ids> got;
+    m.for_each_top_holding(s.data(), s.size(), [&](TopRef t) { got.push_back(top_set(m, t)); });
+    std::sort(got.begin(), got.end());
+    const std::vector<Ids> want = o.holding(s);
+    EXPECT_EQ(got, want);
+    for (std::uint32_t p = 0; p <= 6; ++p) {
+      std::size_t k = 0;
+      for (const Ids &t : want) k += p == 0 || t.size() == p + 1;
+      EXPECT_EQ(m.tops_holding(s.data(), s.size(), p), k);
+    }
+    EXPECT_EQ(m.is_simplex(s.data(), s.size()), s.size() == 1 || !want.empty());
+  }
+
+  // Adjacent tops: the same dimension, sharing all but one vertex.
+  std::vector<TopRef> adj;
+  for (std::uint32_t p = 1; p <= 15; ++p)
+    for (std::uint32_t s = 0; s < m.slots(p); ++s) {
+      const TopRef t(p, s);
+      if (!m.is_top(t)) continue;
+      const Ids me = top_set(m, t);
+      m.adjacent_tops(t, adj);
+      std::vector<Ids> got;
+      for (TopRef u : adj) got.push_back(top_set(m, u));
+      std::sort(got.begin(), got.end());
+      std::vector<Ids> want;
+      for (const Ids &u : o.tops) {
+        if (u.size() != me.size() || u == me) continue;
+        Ids common;
+        std::set_intersection(me.begin(), me.end(), u.begin(), u.end(),
+                              std::back_inserter(common));
+        if (common.size() == p) want.push_back(u);
+      }
+      std::sort(want.begin(), want.end());
+      EXPECT_EQ(got, want) << "tops adjacent to a top " << p << "-simplex";
+    }
+
+  // Whole-mesh passes: edges with their top-triangle counts; adjacent triangle pairs.
+  std::vector<std::uint64_t> scratch;
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> edges, want_edges;
+  m.for_each_edge(2, scratch, [&](std::uint32_t a, std::uint32_t b, std::size_t k) {
+    EXPECT_TRUE(edges.emplace(std::make_pair(a, b), k).second) << "edge twice";
+  });
+  for (const Ids &t : o.tops)
+    for (std::size_t i = 0; i < t.size(); ++i)
+      for (std::size_t j = i + 1; j < t.size(); ++j) {
+        auto &k = want_edges[{t[i], t[j]}];
+        k += t.size() == 3;
+      }
+  EXPECT_EQ(edges, want_edges);
+  std::multiset<std::pair<Ids, Ids>> pairs, want_pairs;
+  m.for_each_adjacent_triangle_pair(scratch, [&](TopRef t, TopRef u) {
+    pairs.emplace(top_set(m, t), top_set(m, u));
+  });
+  for (const Ids &t : o.tops)
+    for (const Ids &u : o.tops) {
+      if (t.size() != 3 || u.size() != 3 || t == u) continue;
+      Ids common;
+      std::set_intersection(t.begin(), t.end(), u.begin(), u.end(), std::back_inserter(common));
+      if (common.size() == 2) want_pairs.emplace(t, u);
+    }
+  EXPECT_EQ(pairs, want_pairs);
+}
+
+// A random complex on n vertices: simplices of dimension 1..max_dim drawn from a small vertex
+// pool (so they meet along non-manifold faces), plus an isolated vertex.
+topoplex::Complex random_complex(std::mt19937 &rng, std::uint32_t n, std::uint32_t max_dim) {
+  std::vector<Ids> simplices;
+  const std::size_t count = 3 + rng() % 8;
+  for (std::size_t i = 0; i < count; ++i) {
+    Ids pool(n - 1);
+    for (std::uint32_t v = 0; v + 1 < n; ++v) pool[v] = v;
+    std::shuffle(pool.begin(), pool.end(), rng);
+    const std::size_t k = 2 + rng() % std::min<std::size_t>(max_dim, n - 2);
+    simplices.emplace_back(pool.begin(), pool.begin() + k);
+  }
+  simplices.push_back({n - 1});
+  std::vector<double> xyz(3 * n);
+  for (double &x : xyz) x = double(rng() % 1000) / 10;
+  std::vector<std::uint32_t> ids;
+  std::vector<std::size_t> offsets{0};
+  for (const auto &s : simplices) {
+    ids.insert(ids.end(), s.begin(), s.end());
+    offsets.push_back(ids.size());
+  }
+  return topoplex::Complex::from_arrays(n, ids, offsets, xyz, 3);
+}
+
+TEST(MeshView, RandomNonManifoldComplexesBeforeAndAfterEdits) {
+  std::mt19937 rng(20261202);
+  for (int round = 0; round < 60; ++round) {
+    const std::uint32_t n = 6 + rng() % 8;
+    topoplex::Live live(random_complex(rng, n, 2 + round % 5));  // dimensions 2..6
+    ASSERT_NO_FATAL_FAILURE(check(live, rng));
+    for (int edit = 0; edit < 12; ++edit) {
+      const Oracle o(live);
+      std::vector<std::uint32_t> vs;
+      for (std::uint32_t v = 0; v < o.alive.size(); ++v)
+        if (o.alive[v]) vs.push_back(v);
+      try {
+        switch (rng() % 5) {
+          case 0: {  // insert a random simplex (refused when present or absorbed by a top)
+            std::shuffle(vs.begin(), vs.end(), rng);
+            vs.resize(std::min<std::size_t>(vs.size(), 2 + rng() % 3));
+            live.insert_top(vs);
+            break;
+          }
+          case 1:
+            if (!o.tops.empty()) live.remove_top(o.tops[rng() % o.tops.size()]);
+            break;
+          case 2:
+          case 3: {  // contract an edge of a top, link-checked or free
+            if (o.tops.empty()) break;
+            const Ids &t = o.tops[rng() % o.tops.size()];
+            live.contract(t[0], t[1], rng() % 2 ? topoplex::ContractMode::Free
+                                                : topoplex::ContractMode::PreserveTopology);
+            break;
+          }
+          default:  // move a vertex: the MeshView of before stays valid
+            if (!vs.empty()) live.set_coords(vs[rng() % vs.size()], {1.5, -2.0, 0.25});
+        }
+      } catch (const topoplex::Error &) {
+        // A refused edit leaves the complex unchanged; the check below still holds.
+      }
+      ASSERT_NO_FATAL_FAILURE(check(live, rng)) << "round " << round << " edit " << edit;
+    }
+    live.compact();
+    ASSERT_NO_FATAL_FAILURE(check(live, rng)) << "round " << round << " after compact";
+  }
+}
+
+// Live::from_file gives the live complex Live(Complex::from_file) gives: the same slots,
+// windings and coordinates, whether the file is read straight into it (a plain listing) or
+// normalised first (a repeated triangle, which the complex absorbs); a bad file is the same error.
+TEST(MeshView, FromFileEqualsLiveOfTheComplex) {
+  const std::string data = TPX_TEST_DATA_DIR;
+  const std::string repeated = testing::TempDir() + "tpx_repeated_triangle.off";
+  {
+    std::ofstream f(repeated);
+    f << "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n1 1 1\n3 0 1 2\n3 2 1 3\n3 0 1 2\n";
+  }
+  for (const std::string &path :
+       {data + "/../../cpp_wrapper/data/grid_fin.off", data + "/tet_triangle_wire.simplices",
+        repeated}) {
+    const topoplex::Live direct = topoplex::Live::from_file(path);
+    const topoplex::Live via(topoplex::Complex::from_file(path));
+    direct.validate();
+    ASSERT_EQ(direct.vertex_slots(), via.vertex_slots()) << path;
+    const MeshView a = direct.mesh(), b = via.mesh();
+    for (std::uint32_t p = 1; p <= 15; ++p) {
+      ASSERT_EQ(a.slots(p), b.slots(p)) << path << " dimension " << p;
+      for (std::uint32_t s = 0; s < a.slots(p); ++s)
+        EXPECT_EQ(a.vertices(TopRef(p, s)).to_vector(), b.vertices(TopRef(p, s)).to_vector());
+    }
+    ASSERT_EQ(direct.coord_dim(), via.coord_dim());
+    const auto xa = direct.all_coords(), xb = via.all_coords();
+    EXPECT_TRUE(std::equal(xa.begin(), xa.end(), xb.begin(), xb.end())) << path;
+    for (std::uint32_t v = 0; v < a.vertex_slots(); ++v) {
+      std::vector<TopRef> sa(a.star(v).begin(), a.star(v).end()),
+          sb(b.star(v).begin(), b.star(v).end());
+      std::sort(sa.begin(), sa.end());
+      std::sort(sb.begin(), sb.end());
+      EXPECT_EQ(sa, sb) << path << " star of " << v;
+    }
+  }
+  std::remove(repeated.c_str());
+  for (const char *bad : {"/garbage.off", "/repeated_vertex.simplices", "/missing.off"}) {
+    TpxStatus direct = TPX_STATUS_OK, via = TPX_STATUS_OK;
+    std::string what_direct, what_via;
+    try {
+      topoplex::Live::from_file(data + bad);
+    } catch (const topoplex::Error &e) {
+      direct = e.status();
+      what_direct = e.what();
+    }
+    try {
+      topoplex::Complex::from_file(data + bad);
+    } catch (const topoplex::Error &e) {
+      via = e.status();
+      what_via = e.what();
+    }
+    EXPECT_NE(direct, TPX_STATUS_OK) << bad;
+    EXPECT_EQ(direct, via) << bad;
+    EXPECT_EQ(what_direct, what_via) << bad;
+  }
+}
+
+// Reads from several threads at once: one MeshView, const pointers only.
+TEST(MeshView, OneViewReadFromFourThreads) {
+  std::mt19937 rng(7);
+  topoplex::Live live(random_complex(rng, 12, 4));
+  const MeshView m = live.mesh();
+  std::vector<std::size_t> sums(4);
+  std::vector<std::thread> threads;
+  for (std::size_t i = 0; i < sums.size(); ++i)
+    threads.emplace_back([&, i] {
+      Ids ring;
+      for (std::uint32_t v = 0; v < m.vertex_slots(); ++v)
+        if (m.is_vertex(v)) {
+          m.neighbours(v, ring);
+          sums[i] += ring.size();
+        }
+    });
+  for (auto &t : threads) t.join();
+  std::size_t want = 0;
+  for (std::uint32_t v = 0; v < live.vertex_slots(); ++v)
+    if (live.is_vertex(v)) want += live.relation({v}, 0).size();
+  for (std::size_t s : sums) EXPECT_EQ(s, want);
+}
+
+}  // namespace

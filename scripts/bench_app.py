@@ -1,0 +1,95 @@
+#!/usr/bin/env python3
+"""The application benchmark of issue 25: topoplex_bench_app on OpenMesh and on Topoplex's mesh,
+side by side, one process per run (so each peak RSS is that application's alone), runs of the
+two libraries alternated so that a change in the machine's load hits both.
+
+Prints a Markdown table: per input, each phase's median time for both libraries and the ratio
+Topoplex / OpenMesh (below 1 = Topoplex faster), the whole application's, and the ratio of peak
+RSS. The answers (valence histogram, boundary edges, face neighbours by a numbering-free key,
+smoothed coordinates to 1e-9) must agree, else the input is marked: OpenMesh drops the faces
+of a non-manifold input when it reads it, and only Topoplex's figures are shown then.
+
+usage: scripts/bench_app.py BIN [--runs N] INPUT.off...
+"""
+import argparse
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+
+PHASES = ["load", "smooth", "stats", "ff", "ff_each", "write", "total"]
+EXACT = ["faces", "boundary", "valence_hash", "ff_sum", "ff_each_sum"]
+
+
+def run(binary, lib, path, out):
+    p = subprocess.run([binary, lib, path, out], capture_output=True, text=True)
+    if p.returncode != 0:
+        return None, p.stderr.strip()
+    kv = dict(item.split("=", 1) for item in p.stdout.split())
+    return kv, ""
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("binary")
+    ap.add_argument("inputs", nargs="+")
+    ap.add_argument("--runs", type=int, default=5)
+    a = ap.parse_args()
+    load = os.getloadavg()
+    print(f"load average at start: {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}; "
+          f"{a.runs} runs per library and input, alternated; medians")
+    print()
+    head = "| input | faces | " + " | ".join(PHASES) + " | peak RSS | note |"
+    print(head)
+    print("|" + "---|" * (head.count("|") - 1))
+    tmp = tempfile.mkdtemp()
+    for path in a.inputs:
+        res = {"openmesh": [], "topoplex": []}
+        err = {}
+        for _ in range(a.runs):
+            for lib in ("openmesh", "topoplex"):
+                kv, e = run(a.binary, lib, path, os.path.join(tmp, f"{lib}.off"))
+                if kv is None:
+                    err[lib] = e
+                else:
+                    res[lib].append(kv)
+        name = os.path.basename(path)
+        if not res["topoplex"]:
+            print(f"| {name} | | " + " | " * len(PHASES) + f" | Topoplex failed: {err.get('topoplex')} |")
+            continue
+        t, o = res["topoplex"], res["openmesh"]
+
+        def med(rows, key):
+            return statistics.median(float(r[key]) for r in rows if key in r)
+
+        same = bool(o) and all(t[0][k] == o[0][k] for k in EXACT) and abs(
+            float(t[0]["coord_sum"]) - float(o[0]["coord_sum"])
+        ) <= 1e-9 * max(1.0, abs(float(o[0]["coord_sum"])))
+        cells = []
+        for ph in PHASES:
+            key = ph + "_ms"
+            tm = med(t, key)
+            if same:
+                om = med(o, key)
+                cells.append(f"{tm / om:.2f} ({tm:.1f} / {om:.1f} ms)")
+            else:
+                cells.append(f"{tm:.1f} ms")
+        trss = med(t, "peak_rss_kib") / 1024
+        if same:
+            orss = med(o, "peak_rss_kib") / 1024
+            cells.append(f"{trss / orss:.2f} ({trss:.0f} / {orss:.0f} MiB)")
+            note = ""
+        else:
+            cells.append(f"{trss:.0f} MiB")
+            note = ("OpenMesh cannot read it" if not o else
+                    "OpenMesh's answers differ (it drops non-manifold faces): Topoplex alone")
+        print(f"| {name} | {t[0]['faces']} | " + " | ".join(cells) + f" | {note} |")
+        sys.stdout.flush()
+    load = os.getloadavg()
+    print()
+    print(f"load average at end: {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}")
+
+
+if __name__ == "__main__":
+    main()
