@@ -261,10 +261,11 @@ TEST(TriangulationAdapter, C3t3CellsAndFacetsComeWithSubdomainAndPatchLabels) {
       if (k != f->second) want.insert(id.at(f->first->vertex(k)));
     EXPECT_EQ(got, want);
     const auto p = [&](std::uint32_t v) { return K::Point_3(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]); };
-    const K::Point_3 fourth = f->first->vertex(f->second)->point().point();
-    if (!tr.is_infinite(f->first->vertex(f->second)))
+    if (!tr.is_infinite(f->first->vertex(f->second))) {
+      const K::Point_3 fourth = f->first->vertex(f->second)->point().point();
       EXPECT_EQ(CGAL::orientation(p(listed[i][0]), p(listed[i][1]), p(listed[i][2]), fourth),
                 CGAL::POSITIVE);
+    }
     EXPECT_EQ(sub[i], 0);
     const auto sp = c3t3.surface_patch_index(*f);
     EXPECT_EQ(patch.element(i)[0], sp.first);

@@ -3,6 +3,7 @@
 // compared element by element (vertex order, winding, coordinates bit for bit, property values),
 // refusals, and a per-part OpenMesh computation brought back and checked against a direct one.
 #include <OpenMesh/Core/IO/MeshIO.hh>
+#include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <gudhi/Simplex_tree.h>
 #include <topoplex/gudhi.hpp>
@@ -139,6 +140,31 @@ TEST(OpenMeshAdapter, PropertyOfAnUnheldTypeIsRefusedOrLeftBehindByName) {
   EXPECT_EQ(c.attributes().size(), 0u);
 }
 
+TEST(OpenMeshAdapter, PolyMeshTrianglesGoBothWaysAndAQuadIsRefused) {
+  using Poly = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
+  Poly p;
+  std::vector<Poly::VertexHandle> v;
+  for (int i = 0; i < 5; ++i) v.push_back(p.add_vertex(Poly::Point(i, i * i, 0.5 * i)));
+  p.add_face(v[3], v[0], v[1]);
+  p.add_face(v[1], v[2], v[3]);
+  const topoplex::Complex c = om::to_complex(p);
+  EXPECT_EQ(fixtures::listing(c), (std::vector<std::vector<std::uint32_t>>{{3, 0, 1}, {1, 2, 3}}));
+  EXPECT_EQ(c.vertex_count(), 5u);  // vertex 4 isolated
+  const Poly back = om::to_openmesh<Poly>(c);
+  ASSERT_EQ(back.n_faces(), 2u);
+  EXPECT_EQ(fixtures::listing(om::to_complex(back)), fixtures::listing(c));
+  Poly quad;
+  std::vector<Poly::VertexHandle> q;
+  for (int i = 0; i < 4; ++i) q.push_back(quad.add_vertex(Poly::Point(i % 2, i / 2, 0)));
+  quad.add_face(q[0], q[1], q[3], q[2]);
+  try {
+    om::to_complex(quad);
+    FAIL() << "a quad went into a complex";
+  } catch (const topoplex::Refused &e) {
+    EXPECT_NE(std::string(e.what()).find("face 0 has 4 vertices"), std::string::npos) << e.what();
+  }
+}
+
 TEST(OpenMeshAdapter, RealSurfacesGoToOpenMeshAndBackUnchanged) {
   int ran = 0;
   for (const char *name : {"surfaces/elephant.off", "surfaces/fandisk.off", "nonmanifold/tet.obj"}) {
@@ -226,6 +252,11 @@ TEST(OpenMeshParts, NonManifoldFixtureSmoothedAndNormalsPerPartComeBackRight) {
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(per_triangle[3 * t + k], want[k], 1e-12) << t;
   }
   const std::vector<double> got = iqm.gather_coords(moved, xyz);
+  // Values of the wrong shape are refused, naming what was wrong.
+  EXPECT_THROW(iqm.gather_coords({}, xyz), topoplex::Error);
+  EXPECT_THROW(iqm.gather_coords(moved, std::vector<double>(3)), topoplex::Error);
+  EXPECT_THROW(iqm.gather_faces(std::vector<std::vector<double>>(3), 3), topoplex::Error);
+  EXPECT_THROW(topoplex::SurfaceParts::to_listed(c, std::vector<double>(2), 3, 0.0), topoplex::Error);
   const std::vector<double> want = fixtures::umbrella_oracle(c, partition);
   ASSERT_EQ(got.size(), want.size());
   for (std::size_t i = 0; i < got.size(); ++i) EXPECT_NEAR(got[i], want[i], 1e-12) << i;

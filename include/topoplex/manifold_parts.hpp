@@ -30,6 +30,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <cstddef>
 #include <numeric>
 #include <string>
 #include <utility>
@@ -164,6 +165,7 @@ class SurfaceParts {
                                     const std::vector<double> &original,
                                     std::size_t dim = 3) const {
     check_parts(per_part.size());
+    check_size(original.size(), std::size_t(n_vertices_) * dim, SIZE_MAX, "original coordinates");
     std::vector<double> sum(std::size_t(n_vertices_) * dim, 0.0), out = original;
     std::vector<std::uint32_t> copies(n_vertices_, 0);
     std::vector<std::uint8_t> differ(n_vertices_, 0);
@@ -217,6 +219,8 @@ class SurfaceParts {
                                   std::size_t k, T fill = T()) {
     const std::size_t n = c.input_stats().input_simplices;
     const std::size_t first = c.dimension() >= 2 ? c.top_count(0) + c.top_count(1) : 0;
+    check_size(per_triangle.size(), (c.dimension() >= 2 ? c.top_count(2) : 0) * k, SIZE_MAX,
+               "per-triangle values");
     std::vector<T> out(n * k, fill);
     std::uint32_t buf[16];
     for (std::size_t i = 0; i < n; ++i) {
@@ -353,10 +357,10 @@ class SurfaceParts {
   }
   static void check_size(std::size_t got, std::size_t want, std::size_t part, const char *what) {
     if (got != want)
-      throw Error(TPX_STATUS_INVALID_ARGUMENT, std::string(what) + " of surface part " +
-                                                   std::to_string(part) + ": " +
-                                                   std::to_string(got) + " numbers, expected " +
-                                                   std::to_string(want));
+      throw Error(TPX_STATUS_INVALID_ARGUMENT,
+                  std::string(what) +
+                      (part == SIZE_MAX ? std::string() : " of surface part " + std::to_string(part)) +
+                      ": " + std::to_string(got) + " numbers, expected " + std::to_string(want));
   }
 
   std::vector<SurfacePart> parts_;
