@@ -106,6 +106,27 @@ TEST(OpenMeshAdapter, MeshToComplexAndBackKeepsOrderWindingPointsAndProperties) 
     for (int k = 0; k < 3; ++k) EXPECT_EQ(fn.element(f.idx())[k], m.normal(f)[k]);
   }
 
+  // Topoplex answers on the adapted mesh: each face's neighbours across edges (R_{2,2}) and each
+  // vertex's one-ring (R_{0,0}) are OpenMesh's.
+  const topoplex::Structure st(c, topoplex::Kind::TS);  // the grid has an isolated vertex
+  auto sorted_face = [&](Mesh::FaceHandle f) {
+    std::vector<std::uint32_t> ids = face_ids(m, f);
+    std::sort(ids.begin(), ids.end());
+    return ids;
+  };
+  for (auto f : m.faces()) {
+    std::set<std::vector<std::uint32_t>> want, got;
+    for (auto g : m.ff_range(f)) want.insert(sorted_face(g));
+    for (auto row : st.relation(sorted_face(f), 2)) got.insert(row.to_vector());
+    EXPECT_EQ(got, want) << "face " << f.idx();
+  }
+  for (auto v : m.vertices()) {
+    std::set<std::uint32_t> want, got;
+    for (auto u : m.vv_range(v)) want.insert(std::uint32_t(u.idx()));
+    for (auto row : st.relation({std::uint32_t(v.idx())}, 0)) got.insert(row[0]);
+    EXPECT_EQ(got, want) << "vertex " << v.idx();
+  }
+
   const Mesh back = om::to_openmesh<Mesh>(c);
   expect_same_mesh(m, back);
   OpenMesh::VPropHandleT<double> weight2;
