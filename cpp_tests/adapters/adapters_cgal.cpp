@@ -272,6 +272,55 @@ TEST(TriangulationAdapter, C3t3CellsAndFacetsComeWithSubdomainAndPatchLabels) {
     EXPECT_EQ(patch.element(i)[1], sp.second);
   }
   EXPECT_EQ(c.top_count(3), c3t3.number_of_cells_in_complex());
+
+#ifdef TOPOPLEX_HAVE_COMPLEX_TO_C3T3
+  // Back: every finite cell (subdomain 0 outside the complex) to a new C3T3 and out again: the
+  // same vertices, cells in order with their subdomains, and facets with their patches.
+  const topoplex::Complex all = cg::c3t3_to_complex(c3t3, true);
+  C3t3 again;
+  EXPECT_EQ(cg::complex_to_c3t3(all, again), 0u);  // CGAL's cells are positive already
+  EXPECT_TRUE(again.triangulation().is_valid());
+  EXPECT_EQ(again.number_of_cells_in_complex(), c3t3.number_of_cells_in_complex());
+  EXPECT_EQ(again.number_of_facets_in_complex(), c3t3.number_of_facets_in_complex());
+  const topoplex::Complex all2 = cg::c3t3_to_complex(again, true);
+  EXPECT_EQ(all2.coords(), all.coords());
+  const auto l1 = fixtures::listing(all), l2 = fixtures::listing(all2);
+  const auto s1 = all.attribute<std::int32_t>("c3t3:subdomain", topoplex::Location::Listed);
+  const auto s2 = all2.attribute<std::int32_t>("c3t3:subdomain", topoplex::Location::Listed);
+  const auto p1 = all.attribute<std::int32_t>("c3t3:patch", topoplex::Location::Listed);
+  const auto p2 = all2.attribute<std::int32_t>("c3t3:patch", topoplex::Location::Listed);
+  ASSERT_EQ(l1.size(), l2.size());
+  std::set<std::pair<std::vector<std::uint32_t>, std::pair<int, int>>> f1, f2;
+  for (std::size_t j = 0; j < l1.size(); ++j) {
+    if (l1[j].size() == 4) {
+      EXPECT_EQ(l2[j], l1[j]);
+      EXPECT_EQ(s2[j], s1[j]);
+      continue;
+    }
+    std::vector<std::uint32_t> a = l1[j], b = l2[j];
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    f1.emplace(a, std::make_pair(p1.element(j)[0], p1.element(j)[1]));
+    f2.emplace(b, std::make_pair(p2.element(j)[0], p2.element(j)[1]));
+  }
+  EXPECT_EQ(f1, f2);
+  // A negatively oriented tetrahedron is turned (and counted); a triangle in three tetrahedra,
+  // a triangle complex and a complex without coordinates are refused.
+  const std::vector<double> corners{0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1, -1, -1, 1};
+  const topoplex::Complex negative = topoplex::Complex::from_arrays(4, {0, 2, 1, 3}, {0, 4},
+      std::vector<double>(corners.begin(), corners.begin() + 12), 3);
+  C3t3 one;
+  EXPECT_EQ(cg::complex_to_c3t3(negative, one), 1u);
+  EXPECT_EQ(one.number_of_cells_in_complex(), 1u);
+  const topoplex::Complex three = topoplex::Complex::from_arrays(
+      6, {0, 1, 2, 3, 0, 2, 1, 4, 0, 1, 2, 5}, {0, 4, 8, 12}, corners, 3);
+  EXPECT_THROW(cg::complex_to_c3t3(three, one), topoplex::Refused);
+  EXPECT_EQ(one.number_of_cells_in_complex(), 0u);
+  EXPECT_THROW(cg::complex_to_c3t3(topoplex::Complex::from_simplices(3, {{0, 1, 2}}), one),
+               topoplex::Refused);
+  EXPECT_THROW(cg::complex_to_c3t3(topoplex::Complex::from_simplices(4, {{0, 1, 2, 3}}), one),
+               topoplex::Refused);
+#endif
 }
 
 // The surface parts of the non-manifold fixture and of the real non-manifold meshes as
