@@ -1,5 +1,5 @@
 /*
- * CGAL Triangulation_3 and Mesh_complex_3_in_triangulation_3 -> Topoplex, in memory. Include
+ * CGAL Triangulation_3 and Mesh_complex_3_in_triangulation_3 <-> Topoplex, in memory. Include
  * only where CGAL is found (find_package(CGAL), link CGAL::CGAL).
  *
  *   topoplex::Complex c = topoplex::cgal::triangulation_to_complex(tr);   // finite cells
