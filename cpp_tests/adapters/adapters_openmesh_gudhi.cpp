@@ -294,6 +294,41 @@ TEST(OpenMeshParts, NonManifoldFixtureSmoothedAndNormalsPerPartComeBackRight) {
   for (int k = 0; k < 3; ++k) EXPECT_EQ(listed.element(c.listed_index({7, 8}))[k], 0.0);
 }
 
+// A caller's cut: the 6 x 6 grid cut along its column of edges at x index 3 gives two parts,
+// the cells left and right of it, the 7 vertices on the cut in both; both go into OpenMesh and
+// unchanged coordinates come back bit for bit.
+TEST(OpenMeshParts, GridCutAlongAChosenLineGivesTheTwoSides) {
+  const int n = 6, cut_at = 3;
+  const topoplex::Complex c = om::to_complex(grid_mesh(n));
+  auto id = [&](int i, int j) { return std::uint32_t(j * (n + 1) + i); };
+  std::vector<std::array<std::uint32_t, 2>> line;
+  for (int j = 0; j < n; ++j) line.push_back({id(cut_at, j + 1), id(cut_at, j)});
+  const topoplex::SurfaceParts parts = topoplex::SurfaceParts::cut(c, line);
+  const auto partition = fixtures::check_parts(c, parts);
+  // Oracle: a triangle is left of the line when all its vertices have x index <= cut_at.
+  std::set<std::uint32_t> left, right;
+  const topoplex::Rows tris = c.top_simplices(2);
+  for (std::uint32_t t = 0; t < tris.size(); ++t) {
+    bool is_left = true;
+    for (std::uint32_t v : tris[t]) is_left &= int(v % (n + 1)) <= cut_at;
+    (is_left ? left : right).insert(t);
+  }
+  EXPECT_EQ(partition, (std::set<std::set<std::uint32_t>>{left, right}));
+  EXPECT_EQ(parts.left_out(), 1u);  // the isolated vertex
+  const std::vector<double> xyz = c.coords();
+  std::vector<std::vector<double>> same;
+  std::vector<int> copies(c.vertex_count(), 0);
+  for (const auto &p : parts.parts()) {
+    const Mesh m = om::part_to_openmesh<Mesh>(p, xyz);
+    EXPECT_EQ(m.n_vertices(), std::size_t((cut_at + 1) * (n + 1)));
+    same.push_back(om::coordinates(m));
+    for (std::uint32_t v : p.original_vertex) ++copies[v];
+  }
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) EXPECT_EQ(copies[id(i, j)], i == cut_at ? 2 : 1);
+  EXPECT_EQ(parts.gather_coords(same, xyz), xyz);
+}
+
 // Real non-manifold meshes: every part goes into OpenMesh (or is refused by name when it cannot
 // be oriented); the IQM and cut partitions agree.
 TEST(OpenMeshParts, RealNonManifoldMeshesSplitIntoPartsOpenMeshHolds) {
