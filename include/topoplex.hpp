@@ -1359,22 +1359,34 @@ class MeshView {
   /* Calls f(TopRef u) for every live top u of t's dimension sharing a facet (all but one
    * vertex) with live top t: for a pure triangle mesh the faces across t's edges (FF), for a
    * tetrahedral mesh the tetrahedra across its triangles (TT); across a non-manifold facet
-   * every other top through it. Each u once (two distinct p-simplices share at most one
-   * facet). Order: facet by facet, the facet without t's i-th stored vertex for i = 0, 1, ....
-   * O(d²·k) per facet over its smallest star, no allocation. */
+   * every other top through it. Each u once (two distinct p-simplices share at most one facet),
+   * in no particular order. Two star scans: the tops through x (t's vertex of smallest star)
+   * sharing p vertices with t, then those through y (the next smallest) that miss x — the
+   * ones across the facet opposite x. O(d²·(k_x + k_y)), no allocation. */
   template <class F>
   void for_each_adjacent_top(TopRef t, F &&f) const {
     const SimplexView vt = vertices(t);
     const std::uint32_t p = t.dim();
-    std::uint32_t facet[16];
-    for (std::uint32_t skip = 0; skip <= p; ++skip) {
-      std::size_t n = 0;
-      for (std::uint32_t i = 0; i <= p; ++i)
-        if (i != skip) facet[n++] = vt[i];
-      for_each_top_holding(facet, n, [&](TopRef u) {
-        if (u.dim() == p && u != t) f(u);
-      });
+    std::uint32_t x = vt[0], y = vt[1];
+    if (star(y).size() < star(x).size()) std::swap(x, y);
+    for (std::uint32_t i = 2; i <= p; ++i) {
+      const std::size_t k = star(vt[i]).size();
+      if (k < star(x).size()) {
+        y = x;
+        x = vt[i];
+      } else if (k < star(y).size()) {
+        y = vt[i];
+      }
     }
+    const auto shares_a_facet = [&](TopRef u) {
+      std::uint32_t common = 0;
+      for (std::uint32_t w : vertices(u)) common += holds(t, w);
+      return common == p;
+    };
+    for (TopRef u : star(x))
+      if (u.dim() == p && u != t && shares_a_facet(u)) f(u);
+    for (TopRef u : star(y))
+      if (u.dim() == p && !holds(u, x) && shares_a_facet(u)) f(u);
   }
   /* The same into `out` (reused). */
   void adjacent_tops(TopRef t, std::vector<TopRef> &out) const {

@@ -6,7 +6,8 @@ two libraries alternated so that a change in the machine's load hits both.
 Prints a Markdown table: per input, each phase's median time for both libraries and the ratio
 Topoplex / OpenMesh (below 1 = Topoplex faster), the whole application's, and the ratio of peak
 RSS. The answers (valence histogram, boundary edges, face neighbours by a numbering-free key,
-smoothed coordinates to 1e-9) must agree, else the input is marked: OpenMesh drops the faces
+the smoothed coordinates' sum to 1e-6 relative: OpenMesh's OFF reader parses single-precision
+floats even into double points) must agree, else the input is marked: OpenMesh drops the faces
 of a non-manifold input when it reads it, and only Topoplex's figures are shown then.
 
 usage: scripts/bench_app.py BIN [--runs N] INPUT.off...
@@ -45,6 +46,15 @@ def main():
     print("|" + "---|" * (head.count("|") - 1))
     tmp = tempfile.mkdtemp()
     for path in a.inputs:
+        if path.endswith(".off"):
+            # OpenMesh 9.0's OFF reader reads no face after a comment line (the generated
+            # datasets have one under the header): both libraries read the same copy without.
+            with open(path) as f:
+                lines = [ln for ln in f if not ln.startswith("#")]
+            copy = os.path.join(tmp, os.path.basename(path))
+            with open(copy, "w") as f:
+                f.writelines(lines)
+            path = copy
         res = {"openmesh": [], "topoplex": []}
         err = {}
         for _ in range(a.runs):
@@ -65,7 +75,7 @@ def main():
 
         same = bool(o) and all(t[0][k] == o[0][k] for k in EXACT) and abs(
             float(t[0]["coord_sum"]) - float(o[0]["coord_sum"])
-        ) <= 1e-9 * max(1.0, abs(float(o[0]["coord_sum"])))
+        ) <= 1e-6 * max(1.0, abs(float(o[0]["coord_sum"])))
         cells = []
         for ph in PHASES:
             key = ph + "_ms"

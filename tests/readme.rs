@@ -26,8 +26,8 @@ fn readme_cpp_live_example_is_examples_cpp_live_cpp() {
         .split("```cpp\n")
         .skip(1)
         .filter_map(|b| b.split("\n```").next())
-        .find(|b| b.contains("topoplex::Live"))
-        .expect("a ```cpp block with topoplex::Live in the README");
+        .find(|b| b.contains("topoplex::Live") && b.contains("int main"))
+        .expect("a whole ```cpp program with topoplex::Live in the README");
     assert_eq!(
         block,
         example.trim_end(),

@@ -18,6 +18,8 @@
 //          over its CSR; `FF_index_view`: the lent view, see below)
 //   <op>_batch  VF/VV/FF as one tpx_related_batch over every simplex
 //   <op>_view   VF/VV/FF/FF_index read inline from a lent relation view (bench_common.hpp)
+//   tpx_mesh     VF/VV/FF on the mesh (the live complex) read inline through MeshView, per
+//          element, nothing prebuilt
 // The peers' heap includes their vertex coordinates (OpenMesh 3 floats, CGAL 3 doubles per
 // vertex; counter `geometry_bytes`), Topoplex's structures hold none.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -31,6 +33,7 @@
 #include <sstream>
 
 #include "bench_halfedge.hpp"
+#include "topoplex.hpp"
 
 namespace {
 
@@ -353,6 +356,74 @@ int main(int argc, char** argv) {
       });
       add_view_walk(op.name, lib, [lib, make] { return slot().get<Built>(lib, make).s.get(); }, op.p, op.q);
     }
+  }
+  // The mesh (the live complex) walked per element inline through its lent arrays
+  // (topoplex::MeshView): no library call per query and no prebuilt view, what an application
+  // on the mesh does. VF: the triangles of each vertex's star; VV: its one-ring; FF: the tops
+  // across each triangle's edges.
+  {
+    const std::string lib = "tpx_mesh";
+    struct MeshBuilt {
+      LivePtr live;
+      TpxLiveArrays arrays{};
+    };
+    const std::function<std::unique_ptr<MeshBuilt>()> make = [] {
+      auto b = std::make_unique<MeshBuilt>();
+      TpxStatus st = TPX_STATUS_OK;
+      b->live = live_from_soup(soup, &st);
+      if (!b->live || tpx_live_arrays(b->live.get(), &b->arrays) != TPX_STATUS_OK) {
+        std::fprintf(stderr, "tpx_mesh: the live complex refused the soup: %s\n", tpx_message().c_str());
+        std::exit(1);
+      }
+      return b;
+    };
+    add("VF", lib, Unit::Walk, [=](benchmark::State& state) {
+      const topoplex::MeshView m(slot().get<MeshBuilt>(lib, make).arrays);
+      uint64_t count = 0, sum = 0;
+      for (auto _ : state) {
+        count = 0;
+        for (uint32_t v = 0; v < m.vertex_slots(); ++v)
+          for (topoplex::TopRef t : m.star(v))
+            if (t.dim() == 2) {
+              sum += t.slot();
+              ++count;
+            }
+        benchmark::DoNotOptimize(sum);
+      }
+      check_count(state, "VF", lib, count);
+      set_elements(state, count);
+    });
+    add("VV", lib, Unit::Walk, [=](benchmark::State& state) {
+      const topoplex::MeshView m(slot().get<MeshBuilt>(lib, make).arrays);
+      std::vector<uint32_t> ring;
+      uint64_t count = 0, sum = 0;
+      for (auto _ : state) {
+        count = 0;
+        for (uint32_t v = 0; v < m.vertex_slots(); ++v) {
+          m.neighbours(v, ring);
+          for (uint32_t w : ring) sum += w;
+          count += ring.size();
+        }
+        benchmark::DoNotOptimize(sum);
+      }
+      check_count(state, "VV", lib, count);
+      set_elements(state, count);
+    });
+    add("FF", lib, Unit::Walk, [=](benchmark::State& state) {
+      const topoplex::MeshView m(slot().get<MeshBuilt>(lib, make).arrays);
+      uint64_t count = 0, sum = 0;
+      for (auto _ : state) {
+        count = 0;
+        for (uint32_t f = 0; f < m.slots(2); ++f)
+          m.for_each_adjacent_top(topoplex::TopRef(2, f), [&](topoplex::TopRef u) {
+            sum += u.slot();
+            ++count;
+          });
+        benchmark::DoNotOptimize(sum);
+      }
+      check_count(state, "FF", lib, count);
+      set_elements(state, count);
+    });
   }
   // The whole-mesh passes through the handle API: one tpx_degree / tpx_related per handle
   // (`stats`, `FF_index`), and the same with one tpx_related_batch per relation (`_batch`).

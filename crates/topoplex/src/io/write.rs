@@ -275,34 +275,103 @@ impl Format {
     /// [`WriteErrorKind::CannotHold`] (a simplex, the coordinates or an attribute the format
     /// cannot hold; nothing is written).
     pub fn write(self, raw: &RawInput) -> Result<Vec<u8>, WriteErrorKind> {
+        let mut out = Out::memory();
+        self.write_into(raw, &mut out)?;
+        Ok(out.buf)
+    }
+
+    /// [`Format::write`] into `out`, which the text writers (OFF, OBJ, MEDIT, `.simplices`)
+    /// hand to its file piece by piece as they go; the others build the whole file first.
+    fn write_into(self, raw: &RawInput, out: &mut Out) -> Result<(), WriteErrorKind> {
         let refuse = |reason| WriteErrorKind::CannotHold {
             format: self.name(),
             reason,
         };
         self.check_attributes(raw).map_err(refuse)?;
-        let mut out = Vec::new();
         match self {
-            Format::Off => off::write(raw, &mut out),
-            Format::Obj => obj::write(raw, &mut out),
-            Format::Medit => medit::write(raw, &mut out),
+            Format::Off => off::write(raw, out),
+            Format::Obj => obj::write(raw, out),
+            Format::Medit => medit::write(raw, out),
             Format::Simplices => {
-                simplices::write(raw, &mut out);
+                simplices::write(raw, out);
                 Ok(())
             }
-            Format::Ply => super::ply::write(raw, false, &mut out),
-            Format::PlyBinary => super::ply::write(raw, true, &mut out),
-            Format::Stl => super::stl::write_ascii(raw, &mut out),
-            Format::StlBinary => super::stl::write_binary(raw, &mut out),
-            Format::Vtk => super::vtk::write(raw, false, &mut out),
-            Format::VtkBinary => super::vtk::write(raw, true, &mut out),
-            Format::Vtu => super::vtu::write(raw, &mut out),
-            Format::Msh => super::msh::write(raw, true, false, &mut out),
-            Format::MshBinary => super::msh::write(raw, true, true, &mut out),
-            Format::Msh2 => super::msh::write(raw, false, false, &mut out),
-            Format::Msh2Binary => super::msh::write(raw, false, true, &mut out),
+            Format::Ply => super::ply::write(raw, false, out),
+            Format::PlyBinary => super::ply::write(raw, true, out),
+            Format::Stl => super::stl::write_ascii(raw, out),
+            Format::StlBinary => super::stl::write_binary(raw, out),
+            Format::Vtk => super::vtk::write(raw, false, out),
+            Format::VtkBinary => super::vtk::write(raw, true, out),
+            Format::Vtu => super::vtu::write(raw, out),
+            Format::Msh => super::msh::write(raw, true, false, out),
+            Format::MshBinary => super::msh::write(raw, true, true, out),
+            Format::Msh2 => super::msh::write(raw, false, false, out),
+            Format::Msh2Binary => super::msh::write(raw, false, true, out),
         }
         .map_err(refuse)?;
-        Ok(out)
+        Ok(())
+    }
+}
+
+/// Bytes a text writer gathers before it hands them to the file.
+const SPILL: usize = 1 << 20;
+
+/// A writer's output: bytes gathered in memory and, when writing a file, handed to it in pieces
+/// of about [`SPILL`] bytes as the writer goes ([`Out::spill`]), so that writing a large mesh
+/// costs a piece of memory rather than the whole file. Derefs to the buffer, so a writer
+/// pushes bytes as into any `Vec<u8>`. The first I/O error is kept and reported at the end.
+pub(crate) struct Out {
+    buf: Vec<u8>,
+    file: Option<std::fs::File>,
+    error: Option<std::io::Error>,
+}
+
+impl Out {
+    fn memory() -> Out {
+        Out {
+            buf: Vec::new(),
+            file: None,
+            error: None,
+        }
+    }
+
+    /// Hands the gathered bytes to the file once they pass [`SPILL`] (nothing in memory).
+    pub(crate) fn spill(&mut self) {
+        if self.buf.len() < SPILL {
+            return;
+        }
+        if let Some(file) = &mut self.file {
+            if self.error.is_none()
+                && let Err(e) = std::io::Write::write_all(file, &self.buf)
+            {
+                self.error = Some(e);
+            }
+            self.buf.clear();
+        }
+    }
+
+    /// Writes what is left; the first I/O error, if any.
+    fn finish(mut self) -> std::io::Result<()> {
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        if let Some(file) = &mut self.file {
+            std::io::Write::write_all(file, &self.buf)?;
+        }
+        Ok(())
+    }
+}
+
+impl std::ops::Deref for Out {
+    type Target = Vec<u8>;
+    fn deref(&self) -> &Vec<u8> {
+        &self.buf
+    }
+}
+
+impl std::ops::DerefMut for Out {
+    fn deref_mut(&mut self) -> &mut Vec<u8> {
+        &mut self.buf
     }
 }
 
@@ -388,9 +457,32 @@ pub fn write_raw(raw: &RawInput, path: &Path, format: Option<Format>) -> Result<
     let format = format
         .or_else(|| Format::from_path(path))
         .ok_or_else(|| err(WriteErrorKind::UnknownExtension))?;
-    super::check_output(path).map_err(|e| WriteError::io(path, e))?;
-    let bytes = format.write(raw).map_err(err)?;
-    std::fs::write(path, bytes).map_err(|e| WriteError::io(path, e))
+    // Written beside `path` under a temporary name, then renamed: a refusal or an I/O error
+    // midway leaves no half file under the name. The rename would replace a device or a pipe
+    // under either name by a regular file, so both must be regular or absent.
+    let mut tmp = path.as_os_str().to_owned();
+    tmp.push(".partial");
+    let tmp = std::path::PathBuf::from(tmp);
+    for p in [path, &tmp] {
+        super::check_output(p).map_err(|e| WriteError::io(path, e))?;
+    }
+    let file = std::fs::File::create(&tmp).map_err(|e| WriteError::io(path, e))?;
+    let mut out = Out {
+        buf: Vec::new(),
+        file: Some(file),
+        error: None,
+    };
+    let done = match format.write_into(raw, &mut out) {
+        Ok(()) => out
+            .finish()
+            .and_then(|()| std::fs::rename(&tmp, path))
+            .map_err(|e| WriteError::io(path, e)),
+        Err(kind) => Err(err(kind)),
+    };
+    if done.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    done
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -424,7 +516,7 @@ pub(crate) fn push_ids(out: &mut Vec<u8>, s: &[u32], base: u64) {
         if i > 0 {
             out.push(b' ');
         }
-        out.extend_from_slice((u64::from(v) + base).to_string().as_bytes());
+        out.extend_from_slice(itoa::Buffer::new().format(u64::from(v) + base).as_bytes());
     }
 }
 

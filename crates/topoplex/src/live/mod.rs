@@ -103,6 +103,14 @@
 //! relations as above plus O(d·k) to name each answer of dimension ≤ p, answers lexicographic,
 //! no allocation once warm).
 //!
+//! # Lent arrays, reading and writing
+//! [`LiveComplex::arrays`] lends the tables, the star arena and its block table, the live
+//! flags and the coordinates as they are stored ([`LiveArrays`]; C `tpx_live_arrays`), for
+//! callers that navigate them inline (the C++ `topoplex::MeshView`): O(1), valid until the next
+//! edit of the topology. [`LiveComplex::from_plain_listing`] builds the live complex straight
+//! from a reader's listing when it is plain (the usual mesh file: no complex, no sort), and
+//! [`LiveComplex::write`] writes it from [`LiveComplex::to_listing`] without building a complex.
+//!
 //! # Dense indices
 //! The index half of the handle API (`handle(p, i)`, `index_of`, `related_ids`,
 //! `related_batch`, `degree_batch`, `relation_view`) numbers the simplices above vertices by
@@ -815,7 +823,6 @@ impl LiveComplex {
         let (map, n) = self.vertex_map();
         let mut raw = RawInput::new();
         raw.vertex_count = Some(n);
-        let mut row = Vec::with_capacity(MAX_DIMENSION + 1);
         let mut live_slots: Vec<Vec<usize>> = vec![Vec::new(); MAX_DIMENSION + 1];
         let tops: usize = self.live_tops.iter().sum();
         let ids: usize = (1..=MAX_DIMENSION)
@@ -823,11 +830,10 @@ impl LiveComplex {
             .sum();
         raw.ids.reserve_exact(ids);
         raw.offsets.reserve_exact(tops + 1);
-        raw.lines.reserve_exact(tops);
-        let mut push = |raw: &mut RawInput, s: &[u32]| {
-            row.clear();
-            row.extend(s.iter().map(|&v| map[v as usize]));
-            raw.push(&row, 0);
+        // No line numbers: nothing was read from a file, and writers do not read them.
+        let push = |raw: &mut RawInput, s: &[u32]| {
+            raw.ids.extend(s.iter().map(|&v| map[v as usize]));
+            raw.offsets.push(raw.ids.len());
         };
         for (t, s) in self.tops() {
             push(&mut raw, s);
@@ -840,16 +846,13 @@ impl LiveComplex {
             push(&mut raw, s);
             records.push(r);
         }
-        raw.coords = (self.coord_dim > 0).then(|| crate::complex::Coords {
-            dim: self.coord_dim,
-            data: (0..self.vertex_slots() as usize)
-                .filter(|&v| self.alive[v])
-                .flat_map(|v| {
-                    self.coords[v * self.coord_dim..(v + 1) * self.coord_dim]
-                        .iter()
-                        .copied()
-                })
-                .collect(),
+        raw.coords = (self.coord_dim > 0).then(|| {
+            let k = self.coord_dim;
+            let mut data = Vec::with_capacity(n as usize * k);
+            for v in (0..self.vertex_slots() as usize).filter(|&v| self.alive[v]) {
+                data.extend_from_slice(&self.coords[v * k..(v + 1) * k]);
+            }
+            crate::complex::Coords { dim: k, data }
         });
         if !self.data.is_empty() {
             raw.attributes = self.data.attributes(&self.alive, &live_slots, &records);

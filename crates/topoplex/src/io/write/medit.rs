@@ -9,7 +9,7 @@ use super::{RawInput, check_coord_dim, check_max_len, push_ids, push_point, vert
 use crate::complex::Location;
 use crate::io::medit::REF;
 
-pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
+pub(super) fn write(raw: &RawInput, out: &mut super::Out) -> Result<(), String> {
     check_max_len(
         raw,
         4,
@@ -44,6 +44,7 @@ pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
     for v in 0..n {
         push_point(out, coords, v, width);
         out.extend_from_slice(format!(" {}\n", vertex_ref(v)).as_bytes());
+        out.spill();
     }
     for (len, keyword) in [(2, "Edges"), (3, "Triangles"), (4, "Tetrahedra")] {
         let rows = (0..raw.simplex_count()).filter(|&i| raw.simplex(i).len() == len);
@@ -55,6 +56,7 @@ pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
         for i in rows {
             push_ids(out, raw.simplex(i), 1);
             out.extend_from_slice(format!(" {}\n", listed_ref(i)).as_bytes());
+            out.spill();
         }
     }
     out.extend_from_slice(b"End\n");

@@ -78,7 +78,7 @@ fn groupings(raw: &RawInput) -> Result<Vec<Grouping<'_>>, String> {
     Ok(out)
 }
 
-pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
+pub(super) fn write(raw: &RawInput, out: &mut super::Out) -> Result<(), String> {
     check_max_len(
         raw,
         3,
@@ -96,6 +96,7 @@ pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
         out.extend_from_slice(b"v ");
         push_point(out, coords, v, 3);
         out.push(b'\n');
+        out.spill();
     }
     for i in 0..raw.simplex_count() {
         for (g, (k, attr, labels)) in groups.iter().enumerate() {
@@ -125,6 +126,7 @@ pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
         out.push(b' ');
         push_ids(out, s, 1);
         out.push(b'\n');
+        out.spill();
     }
     // Names no simplex used (and smoothing on an empty listing) last, so that they come back.
     for (k, attr, labels) in &groups {

@@ -30,7 +30,7 @@ fn push_element(out: &mut Vec<u8>, a: Option<&Attribute>, i: usize) {
     }
 }
 
-pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
+pub(super) fn write(raw: &RawInput, out: &mut super::Out) -> Result<(), String> {
     check_max_len(
         raw,
         3,
@@ -78,14 +78,16 @@ pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
             push_element(out, a, v);
         }
         out.push(b'\n');
+        out.spill();
     }
     for i in 0..raw.simplex_count() {
         let s = raw.simplex(i);
-        out.extend_from_slice(s.len().to_string().as_bytes());
+        push_ids(out, &[s.len() as u32], 0);
         out.push(b' ');
         push_ids(out, s, 0);
         push_element(out, face_colour, i);
         out.push(b'\n');
+        out.spill();
     }
     Ok(())
 }

@@ -7,7 +7,7 @@ use super::{RawInput, push_ids, push_point, vertex_count};
 use crate::complex::{Location, Values};
 use crate::io::simplices::LABEL;
 
-pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) {
+pub(super) fn write(raw: &RawInput, out: &mut super::Out) {
     let coords = raw.coords.as_ref();
     let width = coords.map_or(0, |c| c.dim);
     for v in 0..vertex_count(raw) {
@@ -17,6 +17,7 @@ pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) {
             push_point(out, coords, v, width);
         }
         out.push(b'\n');
+        out.spill();
     }
     let labels = match raw
         .attributes
@@ -34,5 +35,6 @@ pub(super) fn write(raw: &RawInput, out: &mut Vec<u8>) {
             out.extend_from_slice(format!(" : {}", v[i]).as_bytes());
         }
         out.push(b'\n');
+        out.spill();
     }
 }
