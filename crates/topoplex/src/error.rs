@@ -159,9 +159,10 @@ pub enum ReadErrorKind {
     NegativeId(i64),
 }
 
-/// A reader error naming the file and the 1-based line (line 0: the file as a whole).
+/// A reader error naming the file and the 1-based line (line 0: the file as a whole, shown as
+/// `file: what`, with no line).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{}:{line}: {kind}", echo_path(path))]
+#[error("{}{}: {kind}", echo_path(path), line_part(*line))]
 pub struct ReadError {
     /// The file.
     pub path: PathBuf,
@@ -169,6 +170,15 @@ pub struct ReadError {
     pub line: u32,
     /// What was wrong.
     pub kind: ReadErrorKind,
+}
+
+/// `:LINE` for a line of the file, nothing for the file as a whole (line 0).
+fn line_part(line: u32) -> String {
+    if line == 0 {
+        String::new()
+    } else {
+        format!(":{line}")
+    }
 }
 
 /// The [`ReadErrorKind::TooLarge`] of an allocation of `what` (a reader's output array) that

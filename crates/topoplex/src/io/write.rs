@@ -383,7 +383,8 @@ pub enum WriteErrorKind {
     Io(String),
     /// The extension names no format.
     #[error(
-        "unknown output extension (expected .off, .obj, .mesh, .simplices, .ply, .stl or .vtk)"
+        "unknown output extension (expected .off, .obj, .mesh, .simplices, .ply, .stl, .vtk, \
+         .vtu or .msh)"
     )]
     UnknownExtension,
     /// The format cannot hold the complex; `reason` names the first offending simplex or what
