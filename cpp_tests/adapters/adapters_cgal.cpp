@@ -101,6 +101,28 @@ TEST(SurfaceMeshAdapter, MeshToComplexAndBackKeepsOrderWindingPointsAndMaps) {
   }
 }
 
+// Listed values go to the face made from their listing; those of listings that make no face
+// are refused, or left behind by name.
+TEST(SurfaceMeshAdapter, ListedValuesFollowTheirListingAndTheRestAreNamed) {
+  const topoplex::Complex c = fixtures::listed_beside();
+  EXPECT_THROW(cg::to_surface_mesh<SM>(c), topoplex::Refused);
+  std::vector<topoplex::Dropped> dropped;
+  const SM m = cg::to_surface_mesh<SM>(c, &dropped);
+  ASSERT_EQ(dropped.size(), 1u);
+  EXPECT_EQ(dropped[0].name, "label");
+  ASSERT_EQ(m.number_of_faces(), 2u);
+  EXPECT_EQ(face_ids(m, FI(1)), (std::vector<std::uint32_t>{1, 3, 2}));
+  const auto label = m.property_map<FI, std::int32_t>("label");
+  ASSERT_TRUE(label.second);
+  EXPECT_EQ(label.first[FI(0)], 10);
+  EXPECT_EQ(label.first[FI(1)], 12);
+  // A Polyhedron_3 holds no attribute at all.
+  EXPECT_THROW(cg::to_polyhedron<Poly>(c), topoplex::Refused);
+  dropped.clear();
+  EXPECT_EQ(cg::to_polyhedron<Poly>(c, &dropped).size_of_facets(), 2u);
+  ASSERT_EQ(dropped.size(), 1u);
+}
+
 TEST(SurfaceMeshAdapter, GarbageAndUnheldMapsAreRefused) {
   SM m = grid_mesh(2);
   m.add_property_map<VI, std::string>("v:name", "");

@@ -161,6 +161,25 @@ TEST(OpenMeshAdapter, PropertyOfAnUnheldTypeIsRefusedOrLeftBehindByName) {
   EXPECT_EQ(c.attributes().size(), 0u);
 }
 
+// Listed values go to the face made from their listing; the values of listings that make no
+// face (an edge listed beside its triangles, a repeated triangle) are refused, or left behind
+// by name.
+TEST(OpenMeshAdapter, ListedValuesFollowTheirListingAndTheRestAreNamed) {
+  const topoplex::Complex c = fixtures::listed_beside();
+  EXPECT_THROW(om::to_openmesh<Mesh>(c), topoplex::Refused);
+  std::vector<topoplex::Dropped> dropped;
+  const Mesh m = om::to_openmesh<Mesh>(c, &dropped);
+  ASSERT_EQ(dropped.size(), 1u);
+  EXPECT_EQ(dropped[0].name, "label");
+  ASSERT_EQ(m.n_faces(), 2u);
+  EXPECT_EQ(face_ids(m, Mesh::FaceHandle(0)), (std::vector<std::uint32_t>{0, 1, 2}));
+  EXPECT_EQ(face_ids(m, Mesh::FaceHandle(1)), (std::vector<std::uint32_t>{1, 3, 2}));
+  OpenMesh::FPropHandleT<int> label;
+  ASSERT_TRUE(m.get_property_handle(label, "label"));
+  EXPECT_EQ(m.property(label, Mesh::FaceHandle(0)), 10);
+  EXPECT_EQ(m.property(label, Mesh::FaceHandle(1)), 12);
+}
+
 TEST(OpenMeshAdapter, PolyMeshTrianglesGoBothWaysAndAQuadIsRefused) {
   using Poly = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
   Poly p;

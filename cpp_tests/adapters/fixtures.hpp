@@ -67,6 +67,18 @@ struct NonManifold {
   }
 };
 
+// Two triangles listed with an edge of theirs between them and one repeated, each listing with
+// its own label (10 + listing index): the faces a mesh gets are listings 0 and 2 (the edge and
+// the repeat have no face of their own).
+inline topoplex::Complex listed_beside() {
+  topoplex::Complex c = topoplex::Complex::from_arrays(
+      4, {0, 1, 2, 1, 2, 1, 3, 2, 0, 1, 2}, {0, 3, 5, 8, 11},
+      {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0.5}, 3);
+  c.set_attribute<std::int32_t>("label", topoplex::Location::Listed, 1,
+                                std::vector<std::int32_t>{10, 11, 12, 13});
+  return c;
+}
+
 inline Tri sorted(Tri t) {
   std::sort(t.begin(), t.end());
   return t;
