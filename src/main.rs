@@ -136,6 +136,12 @@ enum Command {
         /// role and iqm_component for ParaView.
         #[arg(long)]
         census: bool,
+        /// Round every coordinate to the nearest 32-bit float before writing (what STL
+        /// stores: without it STL refuses coordinates that are not exactly such floats).
+        /// Opt-in because it changes the numbers; a coordinate beyond the 32-bit range is
+        /// refused, and vertices that then coincide are still refused by STL.
+        #[arg(long, conflicts_with = "census")]
+        round_f32: bool,
         #[command(flatten)]
         data: DropData,
     },
@@ -371,8 +377,9 @@ fn run(command: Command) -> Result<(), String> {
             output,
             format,
             census,
+            round_f32,
             data,
-        } => convert(&input, &output, format.as_deref(), census, &data),
+        } => convert(&input, &output, format.as_deref(), census, round_f32, &data),
         Command::Save {
             file,
             structure,
@@ -638,6 +645,7 @@ fn convert(
     output: &Path,
     format: Option<&str>,
     census: bool,
+    round_f32: bool,
     data: &DropData,
 ) -> Result<(), String> {
     let format = format.map(output_format).transpose()?;
@@ -656,7 +664,33 @@ fn convert(
         return topoplex_cli::report::census_vtk::write_census_vtk(&complex, output)
             .map_err(|e| e.to_string());
     }
+    if round_f32 {
+        round_coords_to_f32(&mut complex, input)?;
+    }
     topoplex::io::write::write_complex(&complex, output, format).map_err(|e| e.to_string())
+}
+
+/// `convert --round-f32`: every coordinate to the nearest 32-bit float; one beyond that range
+/// (it would become infinite) is refused, naming the vertex.
+fn round_coords_to_f32(complex: &mut topoplex::Complex, input: &Path) -> Result<(), String> {
+    let Some(c) = complex.coords() else {
+        return Ok(());
+    };
+    let dim = c.dim;
+    let mut data = Vec::with_capacity(c.data.len());
+    for (i, &x) in c.data.iter().enumerate() {
+        let r = x as f32;
+        if x.is_finite() && !r.is_finite() {
+            return Err(format!(
+                "{}: --round-f32: vertex {} coordinate {} = {x:e} is beyond the 32-bit float range",
+                echo_path(input),
+                i / dim,
+                i % dim
+            ));
+        }
+        data.push(f64::from(r));
+    }
+    complex.set_coords(dim, &data).map_err(|e| e.to_string())
 }
 
 fn decompose(

@@ -376,6 +376,53 @@ fn convert_refuses_what_the_format_cannot_hold() {
     );
 }
 
+/// `convert --round-f32`: STL refuses 0.1 (not a 32-bit float) without it; with it every
+/// coordinate becomes the nearest 32-bit float, which reads back exactly; a coordinate beyond
+/// the 32-bit range is refused, naming the vertex, and nothing is written.
+#[test]
+fn convert_round_f32_rounds_for_stl_and_refuses_what_does_not_fit() {
+    let off = temp_file(
+        "round.off",
+        "OFF\n3 1 0\n0.1 0 0\n1 0.3 0\n0 1 0.7\n3 0 1 2\n",
+    );
+    let stl = off.with_extension("stl");
+    let o = run(&["convert", off.to_str().unwrap(), stl.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        stderr(&o).contains("not exactly a 32-bit float"),
+        "{}",
+        stderr(&o)
+    );
+    let o = run(&[
+        "convert",
+        off.to_str().unwrap(),
+        stl.to_str().unwrap(),
+        "--round-f32",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let back = topoplex::Complex::from_path(&stl).unwrap();
+    let want: Vec<f64> = [0.1, 0.0, 0.0, 1.0, 0.3, 0.0, 0.0, 1.0, 0.7]
+        .iter()
+        .map(|&x| f64::from(x as f32))
+        .collect();
+    assert_eq!(back.coords().unwrap().data, want);
+    let far = temp_file("far.off", "OFF\n3 1 0\n0 0 0\n1 1e300 0\n0 1 0\n3 0 1 2\n");
+    let far_stl = far.with_extension("stl");
+    let o = run(&[
+        "convert",
+        far.to_str().unwrap(),
+        far_stl.to_str().unwrap(),
+        "--round-f32",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(
+        e.contains("vertex 1 coordinate 1 = 1e300") && e.lines().count() == 1,
+        "{e}"
+    );
+    assert!(!far_stl.exists());
+}
+
 #[test]
 fn decompose_writes_components_in_a_chosen_format() {
     let (out, _) = decompose_bowtie("bowtie-fmt.simplices", "bowtie-obj", &["--format", "obj"]);

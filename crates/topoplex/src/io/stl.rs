@@ -318,7 +318,7 @@ fn corner(raw: &RawInput, v: u32) -> Result<[f32; 3], String> {
             if f64::from(*x).to_bits() != want.to_bits() {
                 return Err(format!(
                     "vertex {v} coordinate {want:e} is not exactly a 32-bit float (STL stores \
-                     32-bit floats; use .ply, .vtk or .msh to keep it)"
+                     32-bit floats; use .ply, .vtk or .msh to keep it, or `convert --round-f32` to round)"
                 ));
             }
         }
