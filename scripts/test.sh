@@ -58,6 +58,11 @@ cli=${CARGO_TARGET_DIR:-target}/ci/topoplex
 "$cli" report >/dev/null
 "$cli" report --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["dimension"] == 3 and "ig" in d["structures"]'
 
+stage "Python"
+# The package `topoplex` (crates/topoplex-py): its venv under the target directory, maturin,
+# pytest + hypothesis against the oracle and GUDHI, meshio/trimesh/scipy round trips.
+scripts/py-tests.sh
+
 if [ -x scripts/cpp-tests.sh ]; then
   stage "C/C++ package and cross-checks"
   # The ci profile: the library's core is the one `cargo build --profile ci` compiled above.

@@ -1,0 +1,1190 @@
+//! The Python extension module `topoplex._core`: PyO3 classes over the core library, imported by
+//! the pure-Python package `topoplex` (python/topoplex/__init__.py), which adds the array
+//! checks, scipy matrices and the meshio, GUDHI and trimesh converters on top.
+//!
+//! Arrays leave Rust without a second copy: each answer is a `Vec` moved into a numpy array
+//! (`PyArray::from_vec`), and 2-D answers are reshaped views of it. Arrays come in as
+//! C-contiguous arrays of the exact dtype (the Python layer converts anything else once) and are
+//! read in place. Every call that walks the complex releases the GIL (`Python::detach`), so
+//! Python threads query one structure in parallel. Errors become the exceptions of
+//! `topoplex._errors` with the library's message.
+
+use std::path::PathBuf;
+use std::sync::{Arc, OnceLock};
+
+use numpy::{
+    PyArray1, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
+    ndarray::Dim,
+};
+use pyo3::prelude::*;
+use pyo3::types::{PyDict, PyList, PyType};
+use topoplex::complex::{Attribute, Attributes, Coords, Location, Values};
+use topoplex::live::{ContractMode, LiveComplex, UndoRecord};
+use topoplex::{Budget, Complex, Navigate, Order, StructureKind, Topology, VertexId};
+
+/// A failure on the Rust side, named by the Python exception class it becomes
+/// (`topoplex._errors`), with the library's message.
+#[derive(Debug)]
+enum Fail {
+    /// Bad input: arrays, ids, simplices not in the complex, a refused kind (`InputError`).
+    Input(String),
+    /// A structure's domain excludes the complex (`DomainError`).
+    Domain(String),
+    /// A live edit was refused, the mesh unchanged (`EditRefused`).
+    Refused(String),
+    /// A file could not be read (`ReadError`).
+    Read(String),
+    /// A file could not be written (`WriteError`).
+    Write(String),
+    /// Too large for memory or for 32-bit ids (`TopoplexMemoryError`).
+    Memory(String),
+}
+
+impl From<Fail> for PyErr {
+    fn from(f: Fail) -> PyErr {
+        let (class, msg) = match f {
+            Fail::Input(m) => ("InputError", m),
+            Fail::Domain(m) => ("DomainError", m),
+            Fail::Refused(m) => ("EditRefused", m),
+            Fail::Read(m) => ("ReadError", m),
+            Fail::Write(m) => ("WriteError", m),
+            Fail::Memory(m) => ("TopoplexMemoryError", m),
+        };
+        Python::attach(|py| {
+            match py
+                .import("topoplex._errors")
+                .and_then(|m| m.getattr(class))
+                .and_then(|t| Ok(t.cast_into::<PyType>()?))
+            {
+                Ok(t) => PyErr::from_type(t, msg),
+                Err(e) => e,
+            }
+        })
+    }
+}
+
+fn query_fail(e: topoplex::QueryError) -> Fail {
+    match e {
+        topoplex::QueryError::TooLarge { .. } => Fail::Memory(e.to_string()),
+        _ => Fail::Input(e.to_string()),
+    }
+}
+
+fn build_fail(e: topoplex::BuildError) -> Fail {
+    match e {
+        topoplex::BuildError::TooLarge { .. } => Fail::Memory(e.to_string()),
+        _ => Fail::Domain(e.to_string()),
+    }
+}
+
+fn complex_fail(e: topoplex::ComplexError) -> Fail {
+    use topoplex::ComplexError as E;
+    match e {
+        E::Read(_) => Fail::Read(e.to_string()),
+        E::TooLarge { .. } | E::OutOfMemory { .. } => Fail::Memory(e.to_string()),
+        _ => Fail::Input(e.to_string()),
+    }
+}
+
+/// A file that cannot be opened or whose content is malformed is a `ReadError` (the message
+/// names the file and line); only running out of memory is not.
+fn open_fail(e: topoplex::store::OpenError) -> Fail {
+    use topoplex::ComplexError as E;
+    match e {
+        topoplex::store::OpenError::Read(c @ (E::TooLarge { .. } | E::OutOfMemory { .. })) => {
+            Fail::Memory(c.to_string())
+        }
+        other => Fail::Read(other.to_string()),
+    }
+}
+
+fn kind_of(name: &str) -> Result<StructureKind, Fail> {
+    StructureKind::from_name(name).ok_or_else(|| {
+        let names: Vec<&str> = StructureKind::NAMED.iter().map(|k| k.name()).collect();
+        Fail::Input(format!(
+            "unknown structure {name:?}: one of {}",
+            names.join(", ")
+        ))
+    })
+}
+
+/// A `Vec` moved into a 1-D numpy array (no copy).
+fn vec1<T: numpy::Element>(py: Python<'_>, v: Vec<T>) -> Bound<'_, PyArray1<T>> {
+    PyArray1::from_vec(py, v)
+}
+
+/// A `Vec` of `rows × cols` moved into numpy and viewed as a 2-D C-contiguous array (no copy:
+/// the view's base is the 1-D array that owns the `Vec`).
+fn vec2<T: numpy::Element>(py: Python<'_>, v: Vec<T>, cols: usize) -> PyResult<Bound<'_, PyAny>> {
+    let rows = v.len().checked_div(cols).unwrap_or(0);
+    let a = PyArray1::from_vec(py, v);
+    Ok(a.reshape(Dim([rows, cols]))?.into_any())
+}
+
+/// An immutable simplicial complex: the closure of the simplices given, with optional vertex
+/// coordinates and attributes. Made by `topoplex.read`, `topoplex.open` or
+/// `Complex.from_arrays`.
+#[pyclass(module = "topoplex._core", name = "Complex", frozen)]
+struct PyComplex {
+    inner: Arc<Complex>,
+    /// The incidence graph, built on the first call that needs every simplex.
+    ig: OnceLock<Result<Box<dyn Topology>, String>>,
+}
+
+impl PyComplex {
+    fn wrap(c: Complex) -> PyComplex {
+        PyComplex {
+            inner: Arc::new(c),
+            ig: OnceLock::new(),
+        }
+    }
+
+    fn ig(&self, py: Python<'_>) -> Result<&dyn Topology, Fail> {
+        let got = py.detach(|| {
+            self.ig.get_or_init(|| {
+                topoplex::build(StructureKind::Ig, &self.inner).map_err(|e| e.to_string())
+            })
+        });
+        match got {
+            Ok(s) => Ok(s.as_ref()),
+            Err(m) => Err(Fail::Memory(m.clone())),
+        }
+    }
+}
+
+fn location_name(l: Location) -> &'static str {
+    match l {
+        Location::Vertices => "vertices",
+        Location::Listed => "listed",
+    }
+}
+
+/// The attributes as a dict: name → (location, array of shape (n,) or (n, components)).
+fn attributes_dict<'py>(py: Python<'py>, attrs: &Attributes) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    for a in attrs.iter() {
+        let c = a.components;
+        let arr = match &a.values {
+            Values::I32(v) => vec2(py, v.clone(), c)?,
+            Values::I64(v) => vec2(py, v.clone(), c)?,
+            Values::F32(v) => vec2(py, v.clone(), c)?,
+            Values::F64(v) => vec2(py, v.clone(), c)?,
+        };
+        let arr = if c == 1 {
+            arr.call_method1("reshape", (-1,))?
+        } else {
+            arr
+        };
+        d.set_item(&a.name, (location_name(a.location), arr))?;
+    }
+    Ok(d)
+}
+
+fn coords_array<'py>(py: Python<'py>, c: Option<&Coords>) -> PyResult<Option<Bound<'py, PyAny>>> {
+    match c {
+        Some(c) if c.dim > 0 => Ok(Some(vec2(py, c.data.clone(), c.dim)?)),
+        _ => Ok(None),
+    }
+}
+
+#[pymethods]
+impl PyComplex {
+    /// Builds from a CSR of simplices: simplex i is `ids[offsets[i]:offsets[i+1]]`.
+    #[staticmethod]
+    #[pyo3(signature = (n_vertices, ids, offsets, points=None))]
+    fn _from_csr(
+        py: Python<'_>,
+        n_vertices: u32,
+        ids: PyReadonlyArray1<'_, u32>,
+        offsets: PyReadonlyArray1<'_, usize>,
+        points: Option<PyReadonlyArray2<'_, f64>>,
+    ) -> PyResult<PyComplex> {
+        let ids = ids.as_slice()?;
+        let offsets = offsets.as_slice()?;
+        check_csr(ids, offsets)?;
+        let coords = match &points {
+            Some(p) => Some(Coords {
+                dim: p.shape()[1],
+                data: p.as_slice()?.to_vec(),
+            }),
+            None => None,
+        };
+        let c = py
+            .detach(|| Complex::from_arrays(n_vertices, ids, offsets, coords))
+            .map_err(complex_fail)?;
+        Ok(PyComplex::wrap(c))
+    }
+
+    /// Reads a mesh file (by extension) or a saved `.tpx` file.
+    #[staticmethod]
+    fn _read(py: Python<'_>, path: PathBuf) -> PyResult<PyComplex> {
+        let c = py
+            .detach(|| topoplex::store::open_complex(&path, Budget::default()))
+            .map_err(open_fail)?;
+        Ok(PyComplex::wrap(c))
+    }
+
+    /// Number of vertices (ids are `0..vertex_count`).
+    #[getter]
+    fn vertex_count(&self) -> u32 {
+        self.inner.vertex_count()
+    }
+
+    /// The dimension (the largest simplex's, 0 for vertices only).
+    #[getter]
+    fn dimension(&self) -> usize {
+        self.inner.dimension()
+    }
+
+    /// Vertex coordinates as a float64 array of shape (n, k), or None.
+    #[getter]
+    fn points<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        coords_array(py, self.inner.coords())
+    }
+
+    /// Attributes as a dict: name → (location, array); location is "vertices" or "listed".
+    #[getter]
+    fn attributes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        attributes_dict(py, self.inner.attributes())
+    }
+
+    /// Number of p-simplices.
+    fn count(&self, py: Python<'_>, p: usize) -> PyResult<usize> {
+        if p > self.inner.dimension() {
+            return Ok(0);
+        }
+        Ok(self.ig(py)?.count(p))
+    }
+
+    /// Every p-simplex as rows of p+1 ascending ids, in ascending lexicographic order.
+    fn simplices<'py>(&self, py: Python<'py>, p: usize) -> PyResult<Bound<'py, PyAny>> {
+        let ig = self.ig(py)?;
+        let mut out = Vec::new();
+        if p <= self.inner.dimension() {
+            py.detach(|| ig.simplices(p, &mut out));
+        }
+        vec2(py, out, p + 1)
+    }
+
+    /// The top p-simplices (faces of no other simplex), rows of ascending ids.
+    fn tops<'py>(&self, py: Python<'py>, p: usize) -> PyResult<Bound<'py, PyAny>> {
+        let mut out = Vec::new();
+        if p <= self.inner.dimension() {
+            let t = self.inner.tops(p);
+            for i in 0..t.len() {
+                out.extend_from_slice(t.get(i));
+            }
+        }
+        vec2(py, out, p + 1)
+    }
+
+    /// Writes the complex (its simplices as listed, with their winding and data) to a file;
+    /// the format by the extension or by `format` (off, obj, mesh, simplices, ply, stl, vtk,
+    /// vtu, msh, ...).
+    #[pyo3(signature = (path, format=None))]
+    fn write(&self, py: Python<'_>, path: PathBuf, format: Option<&str>) -> PyResult<()> {
+        let format = match format {
+            Some(f) => Some(
+                topoplex::io::write::Format::from_name(f)
+                    .ok_or_else(|| Fail::Input(format!("unknown format {f:?}")))?,
+            ),
+            None => None,
+        };
+        py.detach(|| topoplex::io::write::write_complex(&self.inner, &path, format))
+            .map_err(|e| Fail::Write(e.to_string()))?;
+        Ok(())
+    }
+
+    /// Builds a structure of the survey by name (ig, sig, ia, iqm, nmia, ts, pe, le, de) or the
+    /// live mesh (iastar).
+    fn build(&self, py: Python<'_>, kind: &str) -> PyResult<PyStructure> {
+        let kind = kind_of(kind)?;
+        if kind == StructureKind::IaStar {
+            return self.live(py);
+        }
+        let s = py
+            .detach(|| topoplex::build(kind, &self.inner))
+            .map_err(build_fail)?;
+        Ok(PyStructure {
+            inner: Inner::Fixed(s),
+            complex: Some(self.inner.clone()),
+        })
+    }
+
+    /// The live (editable) mesh of this complex.
+    fn live(&self, py: Python<'_>) -> PyResult<PyStructure> {
+        let l = py
+            .detach(|| LiveComplex::try_from_complex(&self.inner))
+            .map_err(build_fail)?;
+        Ok(PyStructure {
+            inner: Inner::Live(Box::new(l)),
+            complex: None,
+        })
+    }
+
+    /// A copy with attribute `name` set (replacing one of that name).
+    fn _with_attribute(
+        &self,
+        name: &str,
+        location: &str,
+        values: Bound<'_, PyAny>,
+    ) -> PyResult<PyComplex> {
+        let location = match location {
+            "vertices" => Location::Vertices,
+            "listed" => Location::Listed,
+            other => {
+                return Err(
+                    Fail::Input(format!("location {other:?}: \"vertices\" or \"listed\"")).into(),
+                );
+            }
+        };
+        let (values, components) = values_of(&values)?;
+        let mut c = (*self.inner).clone();
+        let mut attrs = c.take_attributes();
+        attrs.remove(name);
+        attrs.insert(Attribute {
+            name: name.to_string(),
+            location,
+            components,
+            values,
+        });
+        c.set_attributes(attrs).map_err(complex_fail)?;
+        Ok(PyComplex::wrap(c))
+    }
+
+    /// A copy without attribute `name` (KeyError when it has none).
+    fn _without_attribute(&self, name: &str) -> PyResult<PyComplex> {
+        let mut c = (*self.inner).clone();
+        let mut attrs = c.take_attributes();
+        if !attrs.remove(name) {
+            return Err(pyo3::exceptions::PyKeyError::new_err(name.to_string()));
+        }
+        c.set_attributes(attrs).map_err(complex_fail)?;
+        Ok(PyComplex::wrap(c))
+    }
+
+    /// Saves the complex, and `structure` when given, as a `.tpx` file.
+    #[pyo3(signature = (path, structure=None))]
+    fn _save(
+        &self,
+        py: Python<'_>,
+        path: PathBuf,
+        structure: Option<PyRef<'_, PyStructure>>,
+    ) -> PyResult<()> {
+        let s = structure.as_ref().map(|s| s.topo());
+        py.detach(|| topoplex::store::save(&path, &self.inner, s))
+            .map_err(|e| Fail::Write(e.to_string()))?;
+        Ok(())
+    }
+
+    /// The simplices as listed (input order, each with its vertex order as given, repeats and
+    /// faces included): a CSR pair `(offsets, ids)`. Attributes on "listed" are per row.
+    fn listed<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        let c = &self.inner;
+        let n = c.input_count();
+        let mut offsets = Vec::with_capacity(n + 1);
+        let mut ids = Vec::new();
+        offsets.push(0i64);
+        for i in 0..n {
+            ids.extend_from_slice(c.input_simplex(i));
+            offsets.push(ids.len() as i64);
+        }
+        Ok((vec1(py, offsets).into_any(), vec1(py, ids).into_any()))
+    }
+
+    /// Census: dimension, vertex count, simplices and top simplices per dimension.
+    fn census<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let ig = self.ig(py)?;
+        census(py, ig)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<topoplex.Complex: {} vertices, dimension {}, tops {:?}>",
+            self.inner.vertex_count(),
+            self.inner.dimension(),
+            self.inner.top_counts()
+        )
+    }
+}
+
+/// An attribute's values from a C-contiguous numpy array of int32, int64, float32 or float64,
+/// shape (n,) or (n, c).
+fn values_of(a: &Bound<'_, PyAny>) -> PyResult<(Values, usize)> {
+    let shape: Vec<usize> = a.getattr("shape")?.extract()?;
+    let comps = if shape.len() == 2 { shape[1] } else { 1 };
+    let flat = a.call_method1("reshape", (-1,))?;
+    if let Ok(v) = flat.extract::<PyReadonlyArray1<'_, i32>>() {
+        return Ok((Values::I32(v.as_slice()?.to_vec()), comps));
+    }
+    if let Ok(v) = flat.extract::<PyReadonlyArray1<'_, i64>>() {
+        return Ok((Values::I64(v.as_slice()?.to_vec()), comps));
+    }
+    if let Ok(v) = flat.extract::<PyReadonlyArray1<'_, f32>>() {
+        return Ok((Values::F32(v.as_slice()?.to_vec()), comps));
+    }
+    if let Ok(v) = flat.extract::<PyReadonlyArray1<'_, f64>>() {
+        return Ok((Values::F64(v.as_slice()?.to_vec()), comps));
+    }
+    Err(Fail::Input("attribute values: int32, int64, float32 or float64 array".into()).into())
+}
+
+fn census<'py>(py: Python<'py>, t: &dyn Topology) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    let dim = t.dimension();
+    d.set_item("dimension", dim)?;
+    d.set_item("vertices", t.vertex_count())?;
+    let counts: Vec<usize> = (0..=dim).map(|p| t.count(p)).collect();
+    let tops: Vec<usize> = (0..=dim).map(|p| t.top_count(p)).collect();
+    d.set_item("simplices", counts)?;
+    d.set_item("tops", tops)?;
+    Ok(d)
+}
+
+enum Inner {
+    Fixed(Box<dyn Topology>),
+    Live(Box<LiveComplex>),
+}
+
+/// A built structure (one of the survey's nine, by name) or the live editable mesh
+/// (`iastar`). Every p-simplex has a dense index: its rank among the p-simplices in ascending
+/// lexicographic order of its sorted vertex ids (a vertex: its id), as `simplices(p)` lists
+/// them.
+#[pyclass(module = "topoplex._core", name = "Structure")]
+struct PyStructure {
+    inner: Inner,
+    /// The complex it was built on (None for the live mesh, whose complex changes).
+    complex: Option<Arc<Complex>>,
+}
+
+impl PyStructure {
+    fn topo(&self) -> &dyn Topology {
+        match &self.inner {
+            Inner::Fixed(s) => s.as_ref(),
+            Inner::Live(l) => l.as_ref(),
+        }
+    }
+
+    fn nav(&self) -> Result<&dyn Navigate, Fail> {
+        self.topo()
+            .as_navigate()
+            .ok_or_else(|| Fail::Input(format!("{} has no navigation", self.topo().kind())))
+    }
+
+    fn live_mut(&mut self) -> Result<&mut LiveComplex, Fail> {
+        match &mut self.inner {
+            Inner::Live(l) => Ok(l),
+            Inner::Fixed(s) => Err(Fail::Input(format!(
+                "structure `{}` is not editable: edit the live mesh (complex.live())",
+                s.kind()
+            ))),
+        }
+    }
+
+    fn live_ref(&self) -> Result<&LiveComplex, Fail> {
+        match &self.inner {
+            Inner::Live(l) => Ok(l),
+            Inner::Fixed(s) => Err(Fail::Input(format!(
+                "structure `{}` is not the live mesh",
+                s.kind()
+            ))),
+        }
+    }
+
+    /// The dense p-indices of every p-simplex, in the order of `simplices(p)`: `0..count(p)`,
+    /// except for the vertices of the live mesh, which are named by their ids, removed ones
+    /// skipped until `compact()`.
+    fn all_indices(&self, p: usize) -> Vec<u32> {
+        match &self.inner {
+            Inner::Live(l) if p == 0 => l.vertices().map(|v| v.0).collect(),
+            _ => (0..self.topo().count(p) as u32).collect(),
+        }
+    }
+
+    fn check_dim(&self, p: usize, q: usize) -> Result<(), Fail> {
+        let dim = self.topo().dimension();
+        if p > dim || q > dim {
+            return Err(Fail::Input(format!(
+                "relation R_{{{p},{q}}}: dimension {} is above the complex's dimension {dim}",
+                p.max(q)
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// Checks a CSR of simplices: offsets start at 0, never decrease and end at `ids.len()`.
+fn check_csr(ids: &[u32], offsets: &[usize]) -> Result<(), Fail> {
+    let ok = offsets.first() == Some(&0)
+        && offsets.windows(2).all(|w| w[0] <= w[1])
+        && offsets.last() == Some(&ids.len());
+    if ok {
+        Ok(())
+    } else {
+        Err(Fail::Input(format!(
+            "CSR offsets must start at 0, not decrease and end at len(ids) = {}",
+            ids.len()
+        )))
+    }
+}
+
+/// The selected indices, or all of them (`PyStructure::all_indices`).
+fn indices_or_all(sel: Option<&[u32]>, all: Vec<u32>) -> std::borrow::Cow<'_, [u32]> {
+    match sel {
+        Some(s) => std::borrow::Cow::Borrowed(s),
+        None => std::borrow::Cow::Owned(all),
+    }
+}
+
+fn parse_mode(mode: &str) -> Result<ContractMode, Fail> {
+    match mode {
+        "topology" => Ok(ContractMode::PreserveTopology),
+        "manifold" => Ok(ContractMode::PreserveManifold),
+        "free" => Ok(ContractMode::Free),
+        other => Err(Fail::Input(format!(
+            "contract mode {other:?}: \"topology\", \"manifold\" or \"free\""
+        ))),
+    }
+}
+
+/// What `Structure.contract` returns per contraction: the record `Structure.split` undoes it
+/// with.
+#[pyclass(module = "topoplex._core", name = "Undo", frozen)]
+struct PyUndo {
+    record: UndoRecord,
+}
+
+#[pymethods]
+impl PyUndo {
+    /// The kept vertex a and the removed vertex b of the contraction.
+    #[getter]
+    fn edge(&self) -> (u32, u32) {
+        (self.record.a.0, self.record.b.0)
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "<topoplex.Undo: {} contracted into {}>",
+            self.record.b.0, self.record.a.0
+        )
+    }
+}
+
+#[pymethods]
+impl PyStructure {
+    /// The structure's name: ig, sig, ia, iqm, nmia, ts, pe, le, de or iastar.
+    #[getter]
+    fn kind(&self) -> &'static str {
+        self.topo().kind().name()
+    }
+
+    /// The dimension of the complex.
+    #[getter]
+    fn dimension(&self) -> usize {
+        self.topo().dimension()
+    }
+
+    /// Number of vertex ids (for the live mesh: slots, removed vertices included until
+    /// `compact()`).
+    #[getter]
+    fn vertex_count(&self) -> u32 {
+        self.topo().vertex_count()
+    }
+
+    /// Whether the structure can be edited (the live mesh).
+    #[getter]
+    fn editable(&self) -> bool {
+        matches!(self.inner, Inner::Live(_))
+    }
+
+    /// Number of p-simplices.
+    fn count(&self, p: usize) -> usize {
+        if p > self.topo().dimension() {
+            return 0;
+        }
+        self.topo().count(p)
+    }
+
+    /// Every p-simplex as an (n_p, p+1) uint32 array of ascending ids, in ascending
+    /// lexicographic order (row i is the simplex of dense index i).
+    fn simplices<'py>(&self, py: Python<'py>, p: usize) -> PyResult<Bound<'py, PyAny>> {
+        let t = self.topo();
+        let mut out = Vec::new();
+        if p <= t.dimension() {
+            py.detach(|| t.simplices(p, &mut out));
+        }
+        vec2(py, out, p + 1)
+    }
+
+    /// R_{p,q} as a CSR pair `(offsets, ids)` (int64, uint32): the answer of the i-th selected
+    /// p-simplex is `ids[offsets[i]:offsets[i+1]]`, dense q-indices in ascending order
+    /// (`order="natural"`: the structure's own walk order, cheaper).
+    #[pyo3(signature = (p, q, simplices=None, order="sorted"))]
+    fn _relation<'py>(
+        &self,
+        py: Python<'py>,
+        p: usize,
+        q: usize,
+        simplices: Option<PyReadonlyArray1<'_, u32>>,
+        order: &str,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        self.check_dim(p, q)?;
+        let order = match order {
+            "sorted" => Order::Lexicographic,
+            "natural" => Order::Natural,
+            o => return Err(Fail::Input(format!("order {o:?}: \"sorted\" or \"natural\"")).into()),
+        };
+        let nav = self.nav()?;
+        let sel = match &simplices {
+            Some(s) => Some(s.as_slice()?),
+            None => None,
+        };
+        let all = if sel.is_none() {
+            self.all_indices(p)
+        } else {
+            Vec::new()
+        };
+        let (offsets, ids) = py
+            .detach(|| {
+                let idx = indices_or_all(sel, all);
+                let mut ids = Vec::new();
+                let mut ends = Vec::with_capacity(idx.len());
+                nav.related_batch(p, &idx, q, order, &mut ids, &mut ends)?;
+                let mut offsets = Vec::with_capacity(ends.len() + 1);
+                offsets.push(0i64);
+                offsets.extend(ends.iter().map(|&e| e as i64));
+                Ok((offsets, ids))
+            })
+            .map_err(query_fail)?;
+        Ok((vec1(py, offsets).into_any(), vec1(py, ids).into_any()))
+    }
+
+    /// |R_{p,q}| of every p-simplex (or of the dense indices `simplices`) as uint32.
+    #[pyo3(signature = (p, q, simplices=None))]
+    fn _degree<'py>(
+        &self,
+        py: Python<'py>,
+        p: usize,
+        q: usize,
+        simplices: Option<PyReadonlyArray1<'_, u32>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        self.check_dim(p, q)?;
+        let nav = self.nav()?;
+        let sel = match &simplices {
+            Some(s) => Some(s.as_slice()?),
+            None => None,
+        };
+        let all = if sel.is_none() {
+            self.all_indices(p)
+        } else {
+            Vec::new()
+        };
+        let out = py
+            .detach(|| {
+                let idx = indices_or_all(sel, all);
+                let mut out = vec![0u32; idx.len()];
+                nav.degree_batch(p, &idx, q, &mut out)?;
+                Ok(out)
+            })
+            .map_err(query_fail)?;
+        Ok(vec1(py, out).into_any())
+    }
+
+    /// Dense indices of the simplices given as rows of vertex ids (any order within a row);
+    /// -1 where a row is not a simplex of the complex when `missing_ok`, else InputError.
+    fn _locate<'py>(
+        &self,
+        py: Python<'py>,
+        rows: PyReadonlyArray2<'_, u32>,
+        missing_ok: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let nav = self.nav()?;
+        let k = rows.shape()[1];
+        let flat = rows.as_slice()?;
+        let out = py
+            .detach(|| {
+                let mut out = Vec::with_capacity(flat.len() / k.max(1));
+                for row in flat.chunks_exact(k.max(1)) {
+                    match nav.locate(row).and_then(|h| nav.index_of(h)) {
+                        Ok(i) => out.push(i64::from(i)),
+                        Err(topoplex::QueryError::NotInComplex { .. }) if missing_ok => {
+                            out.push(-1)
+                        }
+                        Err(e) => return Err(e),
+                    }
+                }
+                Ok(out)
+            })
+            .map_err(query_fail)?;
+        Ok(vec1(py, out).into_any())
+    }
+
+    /// +1 or -1 per p-simplex: the parity of the winding a top simplex was given with (its
+    /// vertex order as listed against the ascending order); +1 for simplices that are not
+    /// top (their orientation is the ascending order).
+    fn winding<'py>(&self, py: Python<'py>, p: usize) -> PyResult<Bound<'py, PyAny>> {
+        self.check_dim(p, p)?;
+        let nav = self.nav()?;
+        let all = self.all_indices(p);
+        let out = py
+            .detach(|| {
+                let mut out = vec![1i8; all.len()];
+                for (&i, o) in all.iter().zip(out.iter_mut()) {
+                    let h = nav.handle(p, i)?;
+                    if let Some(t) = nav.top_id(h)? {
+                        let given = nav.top_as_given(t)?;
+                        *o = parity(&given);
+                    }
+                }
+                Ok(out)
+            })
+            .map_err(query_fail)?;
+        Ok(vec1(py, out).into_any())
+    }
+
+    /// The fans around vertex `v`: a list of arrays, each the dense indices of the top
+    /// simplices of one fan in cyclic order (dimension-2 complexes).
+    fn fans<'py>(&self, py: Python<'py>, v: u32) -> PyResult<Bound<'py, PyList>> {
+        let nav = self.nav()?;
+        let mut fans = topoplex::Fans::default();
+        let h = nav.vertex(VertexId(v)).map_err(query_fail)?;
+        nav.fans_around(h, &mut fans).map_err(query_fail)?;
+        fans_list(py, nav, &fans)
+    }
+
+    /// The q-simplices around edge (a, b) in radial order, grouped by cycle (a list of arrays
+    /// of dense q-indices).
+    #[pyo3(signature = (a, b, q=2))]
+    fn radial<'py>(
+        &self,
+        py: Python<'py>,
+        a: u32,
+        b: u32,
+        q: usize,
+    ) -> PyResult<Bound<'py, PyList>> {
+        let nav = self.nav()?;
+        let mut fans = topoplex::Fans::default();
+        let h = nav.locate(&[a, b]).map_err(query_fail)?;
+        nav.around_edge(h, q, &mut fans).map_err(query_fail)?;
+        fans_list(py, nav, &fans)
+    }
+
+    /// Storage and census as a dict: kind, dimension, vertices, simplices and tops per
+    /// dimension, integers and bits the papers count, heap bytes, and the structure's own
+    /// figures.
+    fn report<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let t = self.topo();
+        let d = census(py, t)?;
+        d.set_item("kind", t.kind().name())?;
+        let s = t.storage();
+        d.set_item("integers", s.integers)?;
+        d.set_item("bits", s.bits)?;
+        d.set_item("bytes", s.bytes)?;
+        let more = PyDict::new(py);
+        for (k, v) in t.summary() {
+            more.set_item(k, v)?;
+        }
+        d.set_item("summary", more)?;
+        Ok(d)
+    }
+
+    /// Census: dimension, vertex count, simplices and top simplices per dimension.
+    fn census<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        census(py, self.topo())
+    }
+
+    /// Checks the structure's invariants; InputError naming the first broken one.
+    fn validate(&self, py: Python<'_>) -> PyResult<()> {
+        let t = self.topo();
+        py.detach(|| t.validate()).map_err(Fail::Input)?;
+        Ok(())
+    }
+
+    /// The complex the structure holds (for the live mesh: its current complex, vertices
+    /// renumbered densely as `compact()` would).
+    fn to_complex(&self, py: Python<'_>) -> PyComplex {
+        match (&self.inner, &self.complex) {
+            (_, Some(c)) => PyComplex {
+                inner: c.clone(),
+                ig: OnceLock::new(),
+            },
+            (Inner::Live(l), None) => PyComplex::wrap(py.detach(|| l.to_complex())),
+            (Inner::Fixed(_), None) => unreachable!("a built structure keeps its complex"),
+        }
+    }
+
+    // ---- the live mesh ----
+
+    /// Vertex coordinates of the live mesh as a float64 (slots, k) array (removed vertices'
+    /// rows included until `compact()`), or None.
+    #[getter]
+    fn points<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        match &self.inner {
+            Inner::Live(l) => {
+                let k = l.coord_dim();
+                if k == 0 {
+                    return Ok(None);
+                }
+                Ok(Some(vec2(py, l.all_coords().to_vec(), k)?))
+            }
+            Inner::Fixed(_) => coords_array(py, self.complex.as_ref().and_then(|c| c.coords())),
+        }
+    }
+
+    /// Sets every vertex's coordinates from a float64 (slots, k) array.
+    fn _set_points(&mut self, points: PyReadonlyArray2<'_, f64>) -> PyResult<()> {
+        let l = self.live_mut()?;
+        l.set_all_coords(points.as_slice()?)
+            .map_err(|e| Fail::Refused(e.to_string()))?;
+        Ok(())
+    }
+
+    /// Sets the coordinates of the vertices `ids` (rows of `points`).
+    fn _set_point_rows(
+        &mut self,
+        ids: PyReadonlyArray1<'_, u32>,
+        points: PyReadonlyArray2<'_, f64>,
+    ) -> PyResult<()> {
+        let l = self.live_mut()?;
+        let k = points.shape()[1];
+        for (v, xyz) in ids
+            .as_slice()?
+            .iter()
+            .zip(points.as_slice()?.chunks_exact(k.max(1)))
+        {
+            l.set_coords(VertexId(*v), xyz)
+                .map_err(|e| Fail::Refused(e.to_string()))?;
+        }
+        Ok(())
+    }
+
+    /// Inserts top simplices given as a CSR (ids, offsets); returns the number inserted.
+    fn _insert(
+        &mut self,
+        py: Python<'_>,
+        ids: PyReadonlyArray1<'_, u32>,
+        offsets: PyReadonlyArray1<'_, usize>,
+    ) -> PyResult<usize> {
+        let ids = ids.as_slice()?;
+        let offsets = offsets.as_slice()?;
+        check_csr(ids, offsets)?;
+        let l = self.live_mut()?;
+        py.detach(|| {
+            for (i, w) in offsets.windows(2).enumerate() {
+                l.insert_top(&ids[w[0]..w[1]])
+                    .map_err(|e| Fail::Refused(format!("row {i}: {e}")))?;
+            }
+            Ok::<_, Fail>(offsets.len().saturating_sub(1))
+        })
+        .map_err(PyErr::from)
+    }
+
+    /// Removes top simplices given as a CSR (ids, offsets); returns the number removed.
+    fn _remove(
+        &mut self,
+        py: Python<'_>,
+        ids: PyReadonlyArray1<'_, u32>,
+        offsets: PyReadonlyArray1<'_, usize>,
+    ) -> PyResult<usize> {
+        let ids = ids.as_slice()?;
+        let offsets = offsets.as_slice()?;
+        check_csr(ids, offsets)?;
+        let l = self.live_mut()?;
+        py.detach(|| {
+            for (i, w) in offsets.windows(2).enumerate() {
+                l.remove_top(&ids[w[0]..w[1]])
+                    .map_err(|e| Fail::Refused(format!("row {i}: {e}")))?;
+            }
+            Ok::<_, Fail>(offsets.len().saturating_sub(1))
+        })
+        .map_err(PyErr::from)
+    }
+
+    /// Adds a vertex (isolated) with coordinates `xyz`; returns its id.
+    fn _add_vertex(&mut self, xyz: PyReadonlyArray1<'_, f64>) -> PyResult<u32> {
+        let l = self.live_mut()?;
+        let v = l
+            .add_vertex(xyz.as_slice()?)
+            .map_err(|e| Fail::Refused(e.to_string()))?;
+        Ok(v.0)
+    }
+
+    /// Whether contracting b into a is allowed in `mode` (nothing changes).
+    #[pyo3(signature = (a, b, mode="topology"))]
+    fn can_contract(&self, a: u32, b: u32, mode: &str) -> PyResult<bool> {
+        let mode = parse_mode(mode)?;
+        Ok(self
+            .live_ref()?
+            .can_contract(VertexId(a), VertexId(b), mode)
+            .is_ok())
+    }
+
+    /// Contracts each pair (a, b) of `pairs` (b into a) in order; returns the undo records.
+    #[pyo3(signature = (pairs, mode="topology", positions=None))]
+    fn _contract(
+        &mut self,
+        py: Python<'_>,
+        pairs: PyReadonlyArray2<'_, u32>,
+        mode: &str,
+        positions: Option<PyReadonlyArray2<'_, f64>>,
+    ) -> PyResult<Vec<PyUndo>> {
+        let mode = parse_mode(mode)?;
+        let pairs = pairs.as_slice()?;
+        let pos = match &positions {
+            Some(p) if p.shape()[0] * 2 != pairs.len() => {
+                return Err(Fail::Input(format!(
+                    "positions: {} rows for {} pairs",
+                    p.shape()[0],
+                    pairs.len() / 2
+                ))
+                .into());
+            }
+            Some(p) => Some((p.as_slice()?, p.shape()[1])),
+            None => None,
+        };
+        let l = self.live_mut()?;
+        let undos = py.detach(|| {
+            let mut undos = Vec::new();
+            for (i, ab) in pairs.chunks_exact(2).enumerate() {
+                let xyz = pos.map(|(d, k)| &d[i * k..(i + 1) * k]);
+                let u = l
+                    .contract(VertexId(ab[0]), VertexId(ab[1]), mode, xyz)
+                    .map_err(|e| Fail::Refused(format!("pair {i}: {e}")))?;
+                undos.push(u);
+            }
+            Ok::<_, Fail>(undos)
+        })?;
+        Ok(undos.into_iter().map(|record| PyUndo { record }).collect())
+    }
+
+    /// Undoes a contraction (vertex split), from its undo record.
+    fn split(&mut self, py: Python<'_>, undo: PyRef<'_, PyUndo>) -> PyResult<()> {
+        let l = self.live_mut()?;
+        let r = &undo.record;
+        py.detach(|| l.split(r))
+            .map_err(|e| Fail::Refused(e.to_string()))?;
+        Ok(())
+    }
+
+    /// Drops removed vertices and top simplices, renumbering densely; returns the remap
+    /// `(vertices, tops)`: `vertices[old] = new` (uint32, 2**32-1 for a removed vertex) and
+    /// `tops[p][old slot] = new slot`.
+    fn _compact<'py>(
+        &mut self,
+        py: Python<'py>,
+    ) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyList>)> {
+        let l = self.live_mut()?;
+        let maps = py.detach(|| l.compact());
+        let tops = PyList::empty(py);
+        for t in maps.tops {
+            tops.append(vec1(py, t))?;
+        }
+        Ok((vec1(py, maps.vertices).into_any(), tops))
+    }
+
+    /// The live mesh's top simplices as given (with their winding): a list, per dimension, of
+    /// (n, p+1) arrays.
+    fn _live_tops<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyList>> {
+        let l = self.live_ref()?;
+        let dim = l.dimension();
+        let mut per: Vec<Vec<u32>> = vec![Vec::new(); dim + 1];
+        for (_, vs) in l.tops() {
+            per[vs.len() - 1].extend_from_slice(vs);
+        }
+        let out = PyList::empty(py);
+        for (p, v) in per.into_iter().enumerate() {
+            out.append(vec2(py, v, p + 1)?)?;
+        }
+        Ok(out)
+    }
+
+    /// Simplifies the live mesh in place to about `ratio` of its top simplices (quadric
+    /// decimation); returns the statistics.
+    #[pyo3(signature = (ratio, preserve_topology=false, keep_regions=None))]
+    fn _simplify<'py>(
+        &mut self,
+        py: Python<'py>,
+        ratio: f64,
+        preserve_topology: bool,
+        keep_regions: Option<String>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let l = self.live_mut()?;
+        let mut o = topoplex::simplify::Options::new(ratio, preserve_topology);
+        o.keep_regions = keep_regions;
+        let stats = py
+            .detach(|| topoplex::simplify::simplify_live(l, &o, &mut |_, _| {}))
+            .map_err(simplify_fail)?;
+        stats_dict(py, &stats)
+    }
+
+    /// Saves the structure with its complex as a `.tpx` file (the live mesh with its data).
+    fn _save(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        let done = match (&self.inner, &self.complex) {
+            (Inner::Live(l), _) => py.detach(|| l.save(&path)),
+            (Inner::Fixed(s), Some(c)) => {
+                py.detach(|| topoplex::store::save(&path, c, Some(s.as_ref())))
+            }
+            (Inner::Fixed(_), None) => unreachable!("a built structure keeps its complex"),
+        };
+        done.map_err(|e| Fail::Write(e.to_string()))?;
+        Ok(())
+    }
+
+    fn __repr__(&self) -> String {
+        let t = self.topo();
+        let counts: Vec<usize> = (0..=t.dimension()).map(|p| t.count(p)).collect();
+        format!("<topoplex.Structure {}: simplices {:?}>", t.kind(), counts)
+    }
+}
+
+fn parity(given: &[u32]) -> i8 {
+    let mut inversions = 0usize;
+    for i in 0..given.len() {
+        for j in i + 1..given.len() {
+            if given[i] > given[j] {
+                inversions += 1;
+            }
+        }
+    }
+    if inversions.is_multiple_of(2) { 1 } else { -1 }
+}
+
+fn fans_list<'py>(
+    py: Python<'py>,
+    nav: &dyn Navigate,
+    fans: &topoplex::Fans,
+) -> PyResult<Bound<'py, PyList>> {
+    let out = PyList::empty(py);
+    for k in 0..fans.len() {
+        let mut idx = Vec::with_capacity(fans.group(k).len());
+        for &h in fans.group(k) {
+            idx.push(nav.index_of(h).map_err(query_fail)?);
+        }
+        out.append(vec1(py, idx))?;
+    }
+    Ok(out)
+}
+
+fn simplify_fail(e: topoplex::simplify::SimplifyError) -> Fail {
+    use topoplex::simplify::SimplifyError as E;
+    match e {
+        E::Memory { .. } | E::TooLarge { .. } => Fail::Memory(e.to_string()),
+        _ => Fail::Input(e.to_string()),
+    }
+}
+
+fn stats_dict<'py>(py: Python<'py>, s: &topoplex::simplify::Stats) -> PyResult<Bound<'py, PyDict>> {
+    let d = PyDict::new(py);
+    d.set_item("input_tops", s.input_tops)?;
+    d.set_item("target_tops", s.target_tops)?;
+    d.set_item("output_tops", s.output_tops)?;
+    d.set_item("contractions", s.contractions)?;
+    d.set_item("refused", s.refused)?;
+    d.set_item("refills", s.refills)?;
+    d.set_item("refused_regions", s.refused_regions)?;
+    Ok(d)
+}
+
+/// Opens a saved `.tpx` file: its structure when it holds one of `kind` (mapped), else the
+/// structure `kind` built from its complex; `kind=None` gives the saved structure, or the
+/// complex when the file holds none.
+#[pyfunction]
+#[pyo3(signature = (path, kind=None))]
+fn _open(py: Python<'_>, path: PathBuf, kind: Option<&str>) -> PyResult<Py<PyAny>> {
+    let kind = kind.map(kind_of).transpose()?;
+    let read = |e: topoplex::store::StoreError| Fail::Read(e.to_string());
+    let (complex, structure) = py.detach(|| {
+        let saved = topoplex::store::Saved::open(&path).map_err(read)?;
+        let complex = saved.complex().map_err(read)?;
+        let s = match kind {
+            Some(StructureKind::IaStar) => Some(Inner::Live(Box::new(
+                LiveComplex::open_saved(&saved).map_err(read)?,
+            ))),
+            Some(k) => Some(Inner::Fixed(saved.structure_of(k).map_err(read)?)),
+            None => match saved.kind() {
+                Some(StructureKind::IaStar) => Some(Inner::Live(Box::new(
+                    LiveComplex::open_saved(&saved).map_err(read)?,
+                ))),
+                Some(_) => saved.structure().map_err(read)?.map(Inner::Fixed),
+                None => None,
+            },
+        };
+        Ok::<_, Fail>((complex, s))
+    })?;
+    Ok(match structure {
+        Some(inner) => {
+            let complex = match inner {
+                Inner::Live(_) => None,
+                Inner::Fixed(_) => Some(Arc::new(complex)),
+            };
+            Py::new(py, PyStructure { inner, complex })?.into_any()
+        }
+        None => Py::new(py, PyComplex::wrap(complex))?.into_any(),
+    })
+}
+
+/// Simplifies a complex to about `ratio` of its top simplices; returns (complex, stats).
+#[pyfunction]
+#[pyo3(signature = (complex, ratio, preserve_topology=false, keep_regions=None))]
+fn _simplify<'py>(
+    py: Python<'py>,
+    complex: PyRef<'_, PyComplex>,
+    ratio: f64,
+    preserve_topology: bool,
+    keep_regions: Option<String>,
+) -> PyResult<(PyComplex, Bound<'py, PyDict>)> {
+    let mut o = topoplex::simplify::Options::new(ratio, preserve_topology);
+    o.keep_regions = keep_regions;
+    let c = complex.inner.clone();
+    let out = py
+        .detach(|| topoplex::simplify::simplify(&c, &o, &mut |_, _| {}))
+        .map_err(simplify_fail)?;
+    let stats = stats_dict(py, &out.stats)?;
+    Ok((PyComplex::wrap(out.complex), stats))
+}
+
+/// Cuts a complex into its IQM components and writes them, with `gluing.json`, into `out`;
+/// returns the paths written (components first).
+#[pyfunction]
+#[pyo3(signature = (complex, out, format=None))]
+fn _decompose(
+    py: Python<'_>,
+    complex: PyRef<'_, PyComplex>,
+    out: PathBuf,
+    format: Option<&str>,
+) -> PyResult<Vec<PathBuf>> {
+    let format = match format {
+        Some(f) => Some(
+            topoplex::io::write::Format::from_name(f)
+                .ok_or_else(|| Fail::Input(format!("unknown format {f:?}")))?,
+        ),
+        None => None,
+    };
+    let c = complex.inner.clone();
+    let paths = py.detach(|| {
+        let iqm = topoplex::structures::iqm::Iqm::build(&c).map_err(build_fail)?;
+        let dec = iqm.decomposition();
+        topoplex::decompose::write_components_of(&dec, &c, &out, format)
+            .map_err(|e| Fail::Write(e.to_string()))
+    })?;
+    Ok(paths)
+}
+
+/// The names of the structures, the survey's nine then the live mesh.
+#[pyfunction]
+fn structure_names() -> Vec<&'static str> {
+    StructureKind::NAMED.iter().map(|k| k.name()).collect()
+}
+
+/// The extension module.
+#[pymodule]
+fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_class::<PyComplex>()?;
+    m.add_class::<PyStructure>()?;
+    m.add_class::<PyUndo>()?;
+    m.add_function(wrap_pyfunction!(_open, m)?)?;
+    m.add_function(wrap_pyfunction!(_simplify, m)?)?;
+    m.add_function(wrap_pyfunction!(_decompose, m)?)?;
+    m.add_function(wrap_pyfunction!(structure_names, m)?)?;
+    Ok(())
+}
