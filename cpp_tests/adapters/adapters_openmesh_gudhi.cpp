@@ -180,6 +180,21 @@ TEST(OpenMeshAdapter, ListedValuesFollowTheirListingAndTheRestAreNamed) {
   EXPECT_EQ(m.property(label, Mesh::FaceHandle(1)), 12);
 }
 
+// A mesh with float points (OpenMesh's default traits) gets each coordinate rounded to float,
+// and gives that float back exactly.
+TEST(OpenMeshAdapter, FloatPointsRoundOnTheWayInAndComeBackExactly) {
+  using FMesh = OpenMesh::TriMesh_ArrayKernelT<>;
+  const std::vector<double> xyz{0.1, 0.2, 0.3, 1.0 / 3, 0, 0, 0, 2.0 / 3, 1e-7};
+  const topoplex::Complex c = topoplex::Complex::from_arrays(3, {0, 1, 2}, {0, 3}, xyz, 3);
+  const FMesh m = om::to_openmesh<FMesh>(c);
+  for (int v = 0; v < 3; ++v)
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(m.point(FMesh::VertexHandle(v))[k], static_cast<float>(xyz[3 * v + k]));
+  const std::vector<double> back = om::to_complex(m).coords();
+  for (std::size_t i = 0; i < xyz.size(); ++i)
+    EXPECT_EQ(back[i], double(static_cast<float>(xyz[i])));
+}
+
 TEST(OpenMeshAdapter, PolyMeshTrianglesGoBothWaysAndAQuadIsRefused) {
   using Poly = OpenMesh::PolyMesh_ArrayKernelT<DoubleTraits>;
   Poly p;
