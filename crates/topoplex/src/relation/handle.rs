@@ -514,7 +514,10 @@ pub trait Navigate: Topology {
     /// lexicographic order (a vertex: its id), the index [`Navigate::handle`] takes back and
     /// `related_ids`, `related_batch`, `degree_batch` and [`Navigate::relation_view`] use.
     /// Checked as [`Navigate::check`]. O(1) for dense handles; the live complex finds it in
-    /// its numbering of the moment (O(p log n_p), see `live::dense`).
+    /// its numbering of the moment (O(p log n_p), see `live::dense`). A vertex's index is its
+    /// id, also in the live complex, whose ids are slots: after a vertex is removed, and until
+    /// `compact()`, vertex indices run to the slot count with gaps (a removed slot's index is
+    /// refused), so walk the live vertices' ids rather than `0..count(0)`.
     fn index_of(&self, h: SimplexHandle) -> Result<u32, QueryError> {
         self.check(h)?;
         Ok(h.index())

@@ -1,0 +1,322 @@
+/*
+ * Topoplex <-> OpenMesh (TriMesh_ArrayKernelT, PolyMesh_ArrayKernelT, any traits), in memory.
+ * Include only where OpenMesh is found (find_package(OpenMesh), link OpenMeshCore).
+ *
+ *   OpenMesh::TriMesh_ArrayKernelT<> m = ...;
+ *   topoplex::Complex c = topoplex::openmesh::to_complex(m);          // vertices, faces, props
+ *   auto m2 = topoplex::openmesh::to_openmesh<OpenMesh::TriMesh_ArrayKernelT<>>(c);
+ *
+ * Kept: vertex i is OpenMesh vertex i; listed simplex f is face f with the vertices its
+ * circulator gives from the face's halfedge (OpenMesh keeps the order add_face was given, so
+ * each direction gives the other's order and winding back); coordinates as the mesh's Point
+ * scalars (double points: bit for bit; float points: a double is rounded to float on the way in).
+ * Properties <-> attributes, names kept: vertex properties <-> Location::Vertices, face
+ * properties <-> Location::Listed; types int (i32), int64_t (i64), float (f32), double (f64),
+ * and OpenMesh::VectorT<float|double, 2..4> (2 to 4 components), the standard "v:normals" and
+ * "f:normals" included (requested on the way back). Internal properties ("v:points", status
+ * bits, the "<vprop>"-style connectivity) are not data and are not copied.
+ *
+ * Refused (topoplex::Refused): a polygon of more than 3 vertices; deleted elements not yet
+ * garbage-collected; a complex of dimension > 2, with a wire edge, or more than 3 coordinates;
+ * a triangle OpenMesh's add_face rejects (an edge in a third triangle, a vertex whose fan is
+ * already closed, a winding opposite to a neighbour's): the exception names it, and the mesh is
+ * cleared. A vertex joining several open fans (a bowtie) is accepted, as OpenMesh accepts it:
+ * a non-manifold vertex its algorithms may not expect; SurfaceParts splits it. Left behind only into a caller's `std::vector<Dropped>*`, refused otherwise: a
+ * property of another type, an edge, halfedge or mesh property, listed values on listings that
+ * are no face (edges listed beside their triangles, repeats). Label names are not carried.
+ *
+ * Cost: one pass over the vertices and one over the faces each way, arrays reserved first
+ * (O(V + F) time; the complex's arrays plus one copy of the ids and coordinates while building),
+ * plus O(V + F) per carried property. For non-manifold complexes see manifold_parts.hpp and
+ * part_to_openmesh below.
+ */
+#ifndef TOPOPLEX_OPENMESH_HPP
+#define TOPOPLEX_OPENMESH_HPP
+
+#include "adapter.hpp"
+#include "manifold_parts.hpp"
+
+#include <OpenMesh/Core/Geometry/VectorT.hh>
+#include <OpenMesh/Core/Utils/Property.hh>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace topoplex {
+namespace openmesh {
+namespace detail {
+
+inline bool internal_property(const std::string &n) {
+  return n.empty() || n.front() == '<' || n == "v:points" ||
+         (n.size() > 7 && n.compare(n.size() - 7, 7, ":status") == 0);
+}
+
+/* Copies property `p` (n elements) into attribute p->name() when it holds T (one of the four
+ * scalars) or VectorT<S, N>; false when it holds another type. */
+template <class T>
+bool scalar_to_attribute(Complex &c, const OpenMesh::BaseProperty *p, Location loc) {
+  auto *q = dynamic_cast<const OpenMesh::PropertyT<T> *>(p);
+  if (q == nullptr) return false;
+  const auto &d = q->data_vector();
+  c.set_attribute<T>(p->name(), loc, 1, d.data(), d.size());
+  return true;
+}
+
+template <class S, int N>
+bool vector_to_attribute(Complex &c, const OpenMesh::BaseProperty *p, Location loc) {
+  auto *q = dynamic_cast<const OpenMesh::PropertyT<OpenMesh::VectorT<S, N>> *>(p);
+  if (q == nullptr) return false;
+  const auto &d = q->data_vector();
+  std::vector<S> flat;
+  flat.reserve(d.size() * N);
+  for (const auto &x : d)
+    for (int k = 0; k < N; ++k) flat.push_back(x[k]);
+  c.set_attribute<S>(p->name(), loc, N, flat);
+  return true;
+}
+
+inline bool property_to_attribute(Complex &c, const OpenMesh::BaseProperty *p, Location loc) {
+  return scalar_to_attribute<std::int32_t>(c, p, loc) ||
+         scalar_to_attribute<std::int64_t>(c, p, loc) || scalar_to_attribute<float>(c, p, loc) ||
+         scalar_to_attribute<double>(c, p, loc) || vector_to_attribute<float, 2>(c, p, loc) ||
+         vector_to_attribute<float, 3>(c, p, loc) || vector_to_attribute<float, 4>(c, p, loc) ||
+         vector_to_attribute<double, 2>(c, p, loc) || vector_to_attribute<double, 3>(c, p, loc) ||
+         vector_to_attribute<double, 4>(c, p, loc);
+}
+
+template <class It>
+void properties_to_attributes(Complex &c, It first, It last, Location loc, const char *where,
+                              std::vector<Dropped> *dropped) {
+  for (; first != last; ++first) {
+    const OpenMesh::BaseProperty *p = *first;
+    if (p == nullptr || internal_property(p->name())) continue;
+    if (!property_to_attribute(c, p, loc)) {
+      adapt::drop(dropped, p->name(),
+                  std::string("OpenMesh ") + where +
+                      " property of a type Topoplex attributes do not hold (int, int64_t, float, "
+                      "double, VectorT<float|double, 2..4>)");
+    }
+  }
+}
+
+template <class It>
+void refuse_properties(It first, It last, const char *where, std::vector<Dropped> *dropped) {
+  for (; first != last; ++first) {
+    const OpenMesh::BaseProperty *p = *first;
+    if (p == nullptr || internal_property(p->name())) continue;
+    adapt::drop(dropped, p->name(),
+                std::string("OpenMesh ") + where +
+                    " property: Topoplex attributes are on vertices and listed simplices");
+  }
+}
+
+/* Has the mesh a property called `name` (of any type) at the elements of `Handle`? */
+template <class Mesh, class Handle>
+bool has_named(const Mesh &m, const std::string &name) {
+  if constexpr (std::is_same<Handle, OpenMesh::VertexHandle>::value) {
+    for (auto it = m.vprops_begin(); it != m.vprops_end(); ++it)
+      if (*it && (*it)->name() == name) return true;
+  } else {
+    for (auto it = m.fprops_begin(); it != m.fprops_end(); ++it)
+      if (*it && (*it)->name() == name) return true;
+  }
+  return false;
+}
+
+/* Writes `values` (element e of the property = element index[e] of the view, or e when index is
+ * null) into the property `name` of type X at the elements of Handle, adding it when absent. */
+template <class X, class Mesh, class Handle, class T>
+bool fill_property(Mesh &m, const std::string &name, const AttributeView<T> &values,
+                   const std::vector<std::size_t> *index, std::size_t n, Handle) {
+  using PH = typename std::conditional<std::is_same<Handle, OpenMesh::VertexHandle>::value,
+                                       OpenMesh::VPropHandleT<X>, OpenMesh::FPropHandleT<X>>::type;
+  PH ph;
+  if (!m.get_property_handle(ph, name)) {
+    if (has_named<Mesh, Handle>(m, name)) return false;  // held with another type
+    m.add_property(ph, name);
+  }
+  auto &d = m.property(ph).data_vector();
+  const std::size_t k = values.components();
+  for (std::size_t e = 0; e < n; ++e) {
+    const T *x = values.element(index ? (*index)[e] : e);
+    if constexpr (std::is_arithmetic<X>::value) {
+      d[e] = x[0];
+    } else {
+      for (std::size_t j = 0; j < k; ++j) d[e][int(j)] = x[j];
+    }
+  }
+  return true;
+}
+
+template <class Mesh, class Handle, class T>
+bool attribute_to_property(Mesh &m, const std::string &name, const AttributeView<T> &v,
+                           const std::vector<std::size_t> *index, std::size_t n, Handle h) {
+  const std::size_t k = v.components();
+  if (k == 1) return fill_property<T>(m, name, v, index, n, h);
+  if constexpr (std::is_floating_point<T>::value) {
+    if (k == 2) return fill_property<OpenMesh::VectorT<T, 2>>(m, name, v, index, n, h);
+    if (k == 3) return fill_property<OpenMesh::VectorT<T, 3>>(m, name, v, index, n, h);
+    if (k == 4) return fill_property<OpenMesh::VectorT<T, 4>>(m, name, v, index, n, h);
+  }
+  return false;
+}
+
+/* Adds the faces of `tris` (3 ids per face over vertex handles 0..) to m; on a rejected face,
+ * clears m and throws naming it (`what(f)` describes face f for the message). */
+template <class Mesh, class What>
+void add_faces(Mesh &m, const std::vector<std::uint32_t> &tris, What what) {
+  std::vector<typename Mesh::VertexHandle> fv(3);
+  for (std::size_t f = 0; 3 * f < tris.size(); ++f) {
+    for (int k = 0; k < 3; ++k) fv[k] = typename Mesh::VertexHandle(int(tris[3 * f + k]));
+    if (!m.add_face(fv).is_valid()) {
+      m.clear();
+      throw Refused("OpenMesh refused triangle " + adapt::ids_text(&tris[3 * f], 3) + " (" +
+                    what(f) +
+                    "): an edge in a third triangle, a vertex whose fan is already closed, or a "
+                    "winding opposite to a neighbour's; topoplex/manifold_parts.hpp splits a complex "
+                    "into parts a half-edge mesh holds");
+    }
+  }
+}
+
+}  // namespace detail
+
+/* The complex of an OpenMesh mesh (triangles; isolated vertices kept), with its vertex and face
+ * properties as attributes. See the header comment for what is refused. */
+template <class Mesh>
+Complex to_complex(const Mesh &m, std::vector<Dropped> *dropped = nullptr) {
+  const std::size_t nv = m.n_vertices(), nf = m.n_faces();
+  if ((m.has_vertex_status() && nv != 0) || (m.has_face_status() && nf != 0)) {
+    for (auto v : m.all_vertices())
+      if (m.has_vertex_status() && m.status(v).deleted())
+        throw Refused("OpenMesh vertex " + std::to_string(v.idx()) +
+                      " is deleted: call garbage_collection() first");
+    for (auto f : m.all_faces())
+      if (m.has_face_status() && m.status(f).deleted())
+        throw Refused("OpenMesh face " + std::to_string(f.idx()) +
+                      " is deleted: call garbage_collection() first");
+  }
+  std::vector<std::uint32_t> ids;
+  std::vector<std::size_t> offsets;
+  std::vector<double> xyz;
+  ids.reserve(3 * nf);
+  offsets.reserve(nf + 1);
+  xyz.reserve(3 * nv);
+  offsets.push_back(0);
+  for (auto f : m.all_faces()) {
+    for (auto v : m.fv_range(f)) ids.push_back(std::uint32_t(v.idx()));
+    if (ids.size() - offsets.back() != 3) {
+      throw Refused("OpenMesh face " + std::to_string(f.idx()) + " has " +
+                    std::to_string(ids.size() - offsets.back()) +
+                    " vertices: Topoplex holds simplices (triangulate the mesh first)");
+    }
+    offsets.push_back(ids.size());
+  }
+  for (auto v : m.all_vertices()) {
+    const auto &p = m.point(v);
+    for (int k = 0; k < 3; ++k) xyz.push_back(double(p[k]));
+  }
+  Complex c = Complex::from_arrays(std::uint32_t(nv), ids, offsets, xyz, 3);
+  detail::properties_to_attributes(c, m.vprops_begin(), m.vprops_end(), Location::Vertices,
+                                   "vertex", dropped);
+  detail::properties_to_attributes(c, m.fprops_begin(), m.fprops_end(), Location::Listed, "face",
+                                   dropped);
+  detail::refuse_properties(m.eprops_begin(), m.eprops_end(), "edge", dropped);
+  detail::refuse_properties(m.hprops_begin(), m.hprops_end(), "halfedge", dropped);
+  detail::refuse_properties(m.mprops_begin(), m.mprops_end(), "mesh", dropped);
+  return c;
+}
+
+/* Fills `m` (cleared first) with the complex: vertex i, face f = the f-th listed triangle (a
+ * repeated listing once), attributes as properties. See the header comment for refusals. */
+template <class Mesh>
+void to_openmesh(const Complex &c, Mesh &m, std::vector<Dropped> *dropped = nullptr) {
+  const adapt::SurfaceListing s = adapt::surface_listing(c, "OpenMesh");
+  const std::vector<double> xyz = adapt::xyz3(c, "OpenMesh");
+  const std::size_t nv = c.vertex_count(), nf = s.listing.size();
+  m.clear();
+  m.reserve(nv, nv + nf + 2, nf);  // Euler: E ~ V + F for a closed surface
+  using Scalar = typename Mesh::Point::value_type;
+  for (std::size_t v = 0; v < nv; ++v) {
+    m.add_vertex(typename Mesh::Point(Scalar(xyz[3 * v]), Scalar(xyz[3 * v + 1]),
+                                      Scalar(xyz[3 * v + 2])));
+  }
+  detail::add_faces(m, s.triangles, [&](std::size_t f) {
+    return "listed simplex " + std::to_string(s.listing[f]);
+  });
+  for (const AttributeInfo &a : c.attributes()) {
+    const bool vertices = a.location == Location::Vertices;
+    if (a.name == "v:normals" && vertices) m.request_vertex_normals();
+    if (a.name == "f:normals" && !vertices) m.request_face_normals();
+    bool ok = false;
+    adapt::with_values(c, a, [&](const auto &view) {
+      ok = vertices ? detail::attribute_to_property(m, a.name, view, nullptr, nv,
+                                                    OpenMesh::VertexHandle())
+                    : detail::attribute_to_property(m, a.name, view, &s.listing, nf,
+                                                    OpenMesh::FaceHandle());
+    });
+    if (!ok) {
+      adapt::drop(dropped, a.name,
+                  "no OpenMesh property holds it (1 number, or 2 to 4 reals per element; a "
+                  "property of that name and another type exists)");
+    } else if (!vertices && s.other_listings != 0) {
+      adapt::drop(dropped, a.name,
+                  "its values on " + std::to_string(s.other_listings) +
+                      " listed simplices that are no face of the mesh (edges or vertices listed "
+                      "beside their triangles, repeated listings)");
+    }
+  }
+}
+
+template <class Mesh>
+Mesh to_openmesh(const Complex &c, std::vector<Dropped> *dropped = nullptr) {
+  Mesh m;
+  to_openmesh(c, m, dropped);
+  return m;
+}
+
+/* ---- manifold parts (manifold_parts.hpp) as OpenMesh meshes ---- */
+
+/* Part `p` as a mesh: local vertex i is mesh vertex i at its original vertex's coordinates
+ * (`xyz`: 3 per original vertex, e.g. adapt::xyz3(c)), face f is the part's face f (oriented:
+ * Part::flipped says which were turned). Refused: a non-orientable part. O(part). */
+template <class Mesh>
+void part_to_openmesh(const SurfacePart &p, const std::vector<double> &xyz, Mesh &m) {
+  if (!p.problem.empty()) throw Refused("OpenMesh cannot hold it: " + p.problem);
+  m.clear();
+  m.reserve(p.original_vertex.size(), p.original_vertex.size() + p.face_count() + 2,
+            p.face_count());
+  using Scalar = typename Mesh::Point::value_type;
+  for (std::uint32_t o : p.original_vertex) {
+    m.add_vertex(typename Mesh::Point(Scalar(xyz[3 * o]), Scalar(xyz[3 * o + 1]),
+                                      Scalar(xyz[3 * o + 2])));
+  }
+  detail::add_faces(m, p.triangles, [&](std::size_t f) {
+    return "face " + std::to_string(f) + " of surface part " + std::to_string(p.index);
+  });
+}
+
+template <class Mesh>
+Mesh part_to_openmesh(const SurfacePart &p, const std::vector<double> &xyz) {
+  Mesh m;
+  part_to_openmesh(p, xyz, m);
+  return m;
+}
+
+/* The mesh's vertex coordinates, 3 per vertex (to give back with SurfaceParts::gather). */
+template <class Mesh>
+std::vector<double> coordinates(const Mesh &m) {
+  std::vector<double> out;
+  out.reserve(3 * m.n_vertices());
+  for (auto v : m.all_vertices()) {
+    const auto &p = m.point(v);
+    for (int k = 0; k < 3; ++k) out.push_back(double(p[k]));
+  }
+  return out;
+}
+
+}  // namespace openmesh
+}  // namespace topoplex
+
+#endif /* TOPOPLEX_OPENMESH_HPP */
