@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # C/C++ tests of the installed package:
-#   1. configure, build (one `cargo rustc -p topoplex-ffi --lib`, profile $TOPOPLEX_CARGO_PROFILE,
-#      default release) and install Topoplex
+#   1. configure, build (one `cargo build -p topoplex-ffi --lib`, profile $TOPOPLEX_CARGO_PROFILE,
+#      default release; none with TOPOPLEX_CARGO_PREBUILT=ON) and install Topoplex
 #      into PREFIX_DIR
 #      (default: a temporary directory), and check the installed SONAME;
 #   2. configure, build and ctest cpp_tests/ against that prefix;
@@ -26,7 +26,8 @@ trap cleanup EXIT
 echo "== build and install Topoplex into $prefix"
 cmake -S "$root" -B "$work/build" -G Ninja \
   -DTOPOPLEX_CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$root/target}" \
-  -DTOPOPLEX_CARGO_PROFILE="${TOPOPLEX_CARGO_PROFILE:-release}"
+  -DTOPOPLEX_CARGO_PROFILE="${TOPOPLEX_CARGO_PROFILE:-release}" \
+  -DTOPOPLEX_CARGO_PREBUILT="${TOPOPLEX_CARGO_PREBUILT:-OFF}"
 cmake --build "$work/build"
 cmake --install "$work/build" --prefix "$prefix"
 
