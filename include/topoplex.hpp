@@ -1293,8 +1293,8 @@ class MeshView {
     const std::uint32_t p = t.dim();
     return SimplexView(a_.tops[p] + std::size_t(t.slot()) * (p + 1), p + 1);
   }
-  /* St*(v): the live tops of dimension >= 1 through vertex v, in no particular order (empty
-   * for an isolated vertex). O(1), no copy. */
+  /* St*(v): the live tops of dimension >= 1 through vertex slot v < vertex_slots(), in no
+   * particular order (empty for an isolated vertex and for a removed slot). O(1), no copy. */
   TopSpan star(std::uint32_t v) const noexcept {
     const std::uint32_t *b = a_.star_blocks + 3 * std::size_t(v);
     return TopSpan(a_.star_words + b[0], b[1]);
