@@ -52,7 +52,7 @@ impl crate::parallel::Incidences for TopsOfListing<'_> {
 /// `n` vertices. Fallible as `LiveComplex::try_from_complex`.
 pub(super) fn from_listing(complex: &Complex, n: usize) -> Result<Parts, BuildError> {
     let listed = complex.input_count();
-    let live_tops = count_tops(complex)?;
+    let live_tops = count_tops(complex);
     let (tops, packed) = copy_tops(complex, &live_tops)?;
     let entries: usize = (1..=MAX_DIMENSION).map(|p| (p + 1) * live_tops[p]).sum();
     if entries > u32::MAX as usize {
@@ -73,13 +73,22 @@ pub(super) fn from_listing(complex: &Complex, n: usize) -> Result<Parts, BuildEr
     })
 }
 
-/// Top p-simplices per dimension (p ≥ 1), each within the 2^28 slots a dimension has.
-fn count_tops(complex: &Complex) -> Result<[usize; MAX_DIMENSION + 1], BuildError> {
+/// Top p-simplices per dimension (p ≥ 1; the slot bound is checked by [`empty_tables`]).
+fn count_tops(complex: &Complex) -> [usize; MAX_DIMENSION + 1] {
     let mut per_dim = [0usize; MAX_DIMENSION + 1];
     for i in 0..complex.input_count() {
         per_dim[complex.input_simplex(i).len() - 1] += 1;
     }
     per_dim[0] = 0;
+    per_dim
+}
+
+/// Empty top tables for `per_dim[p]` top p-simplices, each reserved exactly (fallibly), or
+/// [`BuildError::TooLarge`] past the 2^28 slots a dimension has.
+pub(super) fn empty_tables(
+    per_dim: &[usize; MAX_DIMENSION + 1],
+) -> Result<Vec<Vec<u32>>, BuildError> {
+    let mut tops: Vec<Vec<u32>> = try_with_capacity(K, MAX_DIMENSION + 1, "top arrays")?;
     for (p, &count) in per_dim.iter().enumerate() {
         if count > SLOT_MASK as usize + 1 {
             return Err(BuildError::TooLarge {
@@ -87,8 +96,13 @@ fn count_tops(complex: &Complex) -> Result<[usize; MAX_DIMENSION + 1], BuildErro
                 what: format!("{count} top {p}-simplices (at most 2^28 per dimension)"),
             });
         }
+        tops.push(try_with_capacity(
+            K,
+            count.saturating_mul(p + 1),
+            &format!("top {p}-simplex vertices"),
+        )?);
     }
-    Ok(per_dim)
+    Ok(tops)
 }
 
 /// The top tables (each top in its dimension's next slot, in listing order, with its winding)
@@ -97,14 +111,7 @@ fn copy_tops(
     complex: &Complex,
     per_dim: &[usize; MAX_DIMENSION + 1],
 ) -> Result<(Vec<Vec<u32>>, Vec<u32>), BuildError> {
-    let mut tops: Vec<Vec<u32>> = try_with_capacity(K, MAX_DIMENSION + 1, "top arrays")?;
-    for (p, &count) in per_dim.iter().enumerate() {
-        tops.push(try_with_capacity(
-            K,
-            count.saturating_mul(p + 1),
-            &format!("top {p}-simplex vertices"),
-        )?);
-    }
+    let mut tops = empty_tables(per_dim)?;
     let mut packed = try_with_capacity(K, complex.input_count(), "listing's top ids")?;
     for i in 0..complex.input_count() {
         let s = complex.input_simplex(i);
@@ -166,20 +173,7 @@ fn build_plain(
     n: usize,
     per_dim: &[usize; MAX_DIMENSION + 1],
 ) -> Result<LiveComplex, BuildError> {
-    let mut tops: Vec<Vec<u32>> = try_with_capacity(K, MAX_DIMENSION + 1, "top arrays")?;
-    for (p, &count) in per_dim.iter().enumerate() {
-        if count > SLOT_MASK as usize + 1 {
-            return Err(BuildError::TooLarge {
-                kind: K,
-                what: format!("{count} top {p}-simplices (at most 2^28 per dimension)"),
-            });
-        }
-        tops.push(try_with_capacity(
-            K,
-            count.saturating_mul(p + 1),
-            &format!("top {p}-simplex vertices"),
-        )?);
-    }
+    let mut tops = empty_tables(per_dim)?;
     let mut degree: Vec<u32> = crate::structures::common::try_vec(K, 0, n, "vertex degrees")?;
     for i in 0..raw.simplex_count() {
         let s = raw.simplex(i);

@@ -124,7 +124,7 @@ use std::fmt;
 use crate::complex::{Complex, MAX_DIMENSION, RawInput};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 use crate::structures::BuildError;
-use crate::structures::common::{too_large, try_copy, try_vec, try_with_capacity};
+use crate::structures::common::{too_large, try_copy, try_vec};
 use crate::structures::ia::faces_containing as faces;
 
 mod build;
@@ -490,20 +490,7 @@ impl LiveComplex {
                 degree[v as usize] += 1;
             }
         }
-        let mut tops = try_with_capacity(K, MAX_DIMENSION + 1, "top arrays")?;
-        for (p, &count) in per_dim.iter().enumerate() {
-            if count > SLOT_MASK as usize + 1 {
-                return Err(BuildError::TooLarge {
-                    kind: K,
-                    what: format!("{count} top {p}-simplices (at most 2^28 per dimension)"),
-                });
-            }
-            tops.push(try_with_capacity(
-                K,
-                count.saturating_mul(p + 1),
-                &format!("top {p}-simplex vertices"),
-            )?);
-        }
+        let tops = build::empty_tables(&per_dim)?;
         let star = Stars::with_degrees(K, &degree)?;
         drop(degree);
         let mut live = LiveComplex {
