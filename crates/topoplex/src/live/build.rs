@@ -28,6 +28,31 @@ pub(super) struct Parts {
     pub(super) star: Stars,
 }
 
+impl Parts {
+    /// The live complex over these parts: `n` live vertices, generation 0, no data yet. The
+    /// vertex flags are allocated fallibly.
+    pub(super) fn into_live(
+        self,
+        n: usize,
+        coord_dim: usize,
+        coords: Vec<f64>,
+    ) -> Result<LiveComplex, BuildError> {
+        Ok(LiveComplex {
+            tops: self.tops,
+            live_tops: self.live_tops,
+            alive: crate::structures::common::try_vec(K, true, n, "vertex flags")?,
+            live_vertices: n as u32,
+            star: self.star,
+            coord_dim,
+            coords,
+            epoch: 0,
+            images: Vec::new(),
+            data: super::data::LiveData::default(),
+            dense: Default::default(),
+        })
+    }
+}
+
 /// Listing entry `i`'s packed top id (`NONE` for a listed vertex), the visit the inversion
 /// makes over a range of the listing.
 struct TopsOfListing<'a> {
@@ -201,19 +226,12 @@ fn build_plain(
     };
     let mut live_tops = *per_dim;
     live_tops[0] = 0;
-    Ok(LiveComplex {
+    Parts {
         tops,
         live_tops,
-        alive: crate::structures::common::try_vec(K, true, n, "vertex flags")?,
-        live_vertices: n as u32,
         star,
-        coord_dim,
-        coords,
-        epoch: 0,
-        images: Vec::new(),
-        data: super::data::LiveData::default(),
-        dense: Default::default(),
-    })
+    }
+    .into_live(n, coord_dim, coords)
 }
 
 impl LiveComplex {

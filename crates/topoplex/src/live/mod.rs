@@ -422,19 +422,7 @@ impl LiveComplex {
         }
         let parts = build::from_listing(complex, n)?;
         let (coord_dim, coords) = Self::coords_of(complex)?;
-        let mut live = LiveComplex {
-            tops: parts.tops,
-            live_tops: parts.live_tops,
-            alive: try_vec(StructureKind::IaStar, true, n, "vertex flags")?,
-            live_vertices: n as u32,
-            star: parts.star,
-            coord_dim,
-            coords,
-            epoch: 0,
-            images: Vec::new(),
-            data: data::LiveData::default(),
-            dense: Default::default(),
-        };
+        let mut live = parts.into_live(n, coord_dim, coords)?;
         live.data = data::LiveData::of(complex, &live);
         Ok(live)
     }
@@ -493,19 +481,12 @@ impl LiveComplex {
         let tops = build::empty_tables(&per_dim)?;
         let star = Stars::with_degrees(K, &degree)?;
         drop(degree);
-        let mut live = LiveComplex {
+        let mut live = build::Parts {
             tops,
             live_tops: [0; MAX_DIMENSION + 1],
-            alive: try_vec(K, true, n, "vertex flags")?,
-            live_vertices: n as u32,
             star,
-            coord_dim,
-            coords,
-            epoch: 0,
-            images: Vec::new(),
-            data: data::LiveData::default(),
-            dense: Default::default(),
-        };
+        }
+        .into_live(n, coord_dim, coords)?;
         for (_, s) in complex.tops_listed() {
             live.push_top(s);
         }

@@ -113,7 +113,8 @@ impl LiveComplex {
                 degree[v as usize] += 1;
             }
         }
-        let mut live = LiveComplex {
+        // Sizes probed by the caller (`headroom`), so a failure here is a panic, not an abort.
+        let mut live = super::build::Parts {
             tops: (0..=MAX_DIMENSION)
                 .map(|p| match p {
                     0 => Vec::new(),
@@ -121,18 +122,12 @@ impl LiveComplex {
                 })
                 .collect(),
             live_tops: [0; MAX_DIMENSION + 1],
-            alive: vec![true; n as usize],
-            live_vertices: n,
             // The degrees come from the file's tables, which are in memory already.
             star: Stars::with_degrees(crate::relation::StructureKind::IaStar, &degree)
                 .unwrap_or_else(|e| panic!("{e}")),
-            coord_dim,
-            coords,
-            epoch: 0,
-            images: Vec::new(),
-            data: super::data::LiveData::default(),
-            dense: Default::default(),
-        };
+        }
+        .into_live(n as usize, coord_dim, coords)
+        .unwrap_or_else(|e| panic!("{e}"));
         for (i, t) in tables.iter().enumerate() {
             for s in t.chunks_exact(i + 2) {
                 live.push_top(s);
