@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Every structure's `topoplex relation` dump equals the IG's, line by line, for every P,Q on
 # every file of a data folder (default ../shared/data). Structures that refuse a file are listed
-# with their reason. The test suite does the same on moderate files (tests/cli.rs); this is the
+# with their reason. The test suite does the same on moderate files (tests/it/cli.rs); this is the
 # full run over all of the real data.
 #   usage: scripts/compare-cli.sh [DATA_DIR]
 set -euo pipefail

@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 target=${CARGO_TARGET_DIR:-target}
 mkdir -p "$target"
 venv=$(cd "$target" && pwd)/py-venv
-# Without a venv or PyPI (as tests/interop.rs does without meshio) the stage says so loudly and
+# Without a venv or PyPI (as tests/it/interop.rs does without meshio) the stage says so loudly and
 # is skipped; a build or test failure fails it.
 skip() { echo "PYTHON TESTS NOT RUN: $*"; exit 0; }
 if [ ! -x "$venv/bin/python3" ]; then

@@ -13,7 +13,7 @@ scripts/install-deps.sh cmake ninja-build pkg-config valgrind libopenmesh-dev li
 # PETSc 3.18 + OpenMPI for the optional DMPlex bridge (Topoplex::dmplex) and its MPI tests
 # (cpp_tests/dmplex, run by scripts/cpp-tests.sh in the uninstrumented pass); ~25 s to install.
 scripts/install-deps.sh libpetsc-real-dev openmpi-bin
-# Python meshio: the independent reader and writer of tests/interop.rs (skipped without it).
+# Python meshio: the independent reader and writer of tests/it/interop.rs (skipped without it).
 # Never installed into the user's Python: when the system's python3 lacks it, into a venv of
 # the suite's own under the target directory, put first on PATH for the tests.
 if ! python3 -c "import meshio" 2>/dev/null; then
@@ -24,7 +24,7 @@ if ! python3 -c "import meshio" 2>/dev/null; then
     PATH="$(cd "$venv/bin" && pwd):$PATH"
     export PATH
   else
-    echo "meshio not installed: tests/interop.rs will skip its checks"
+    echo "meshio not installed: tests/it/interop.rs will skip its checks"
   fi
 fi
 

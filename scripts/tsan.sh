@@ -8,4 +8,4 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 host=$(rustc -vV | sed -n 's/^host: //p')
 RUSTFLAGS="-Zsanitizer=thread" CARGO_TARGET_DIR=${CARGO_TARGET_DIR:-target}/tsan \
-  cargo +nightly test -Zbuild-std --target "$host" --profile ci --test structures eight_threads
+  cargo +nightly test -Zbuild-std --target "$host" --profile ci --test it structures::eight_threads

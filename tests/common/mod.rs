@@ -140,6 +140,12 @@ impl Drop for Scratch {
 /// `<!-- {section}:end -->` in docs/bad-input.md, or writes it there when
 /// `TOPOPLEX_WRITE_BAD_INPUT_DOC` is set. `test` names the test target that regenerates it.
 pub fn check_bad_input_doc(section: &str, table: &str, test: &str) {
+    // One table at a time: the tables of tests/it/bad_input.rs and tests/it/hardening.rs live in
+    // one file and one process, and a regeneration reads, edits and writes the whole file.
+    static DOC: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    let _one = DOC
+        .lock()
+        .unwrap_or_else(std::sync::PoisonError::into_inner);
     let doc_path = format!("{}/docs/bad-input.md", env!("CARGO_MANIFEST_DIR"));
     let doc = std::fs::read_to_string(&doc_path).unwrap_or_default();
     let (begin, end) = (

@@ -1,5 +1,5 @@
 //! Brute-force checks of handle navigation shared by the handle tests of the nine structures
-//! (tests/handles.rs) and of the live complex (tests/live.rs).
+//! (tests/it/handles.rs) and of the live complex (tests/it/live.rs).
 
 use std::collections::BTreeSet;
 

@@ -1,4 +1,4 @@
-"""Independent reader and writer for tests/interop.rs: Python meshio.
+"""Independent reader and writer for tests/it/interop.rs: Python meshio.
 
 usage: meshio_check.py < JOBS, one job a line (one Python start for all of them):
        read FILE FORMAT      prints the mesh meshio reads, as one JSON line

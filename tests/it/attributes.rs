@@ -4,7 +4,7 @@
 //! Gmsh used (MSH 4.1 and 2.2, MEDIT, legacy VTK) and kept through our own round trips; every
 //! "cannot hold" refused with the attribute's name and nothing written.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 use std::process::Command;

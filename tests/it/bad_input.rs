@@ -1,8 +1,8 @@
 //! The bad-input catalogue: every class of bad file tried on every reader, with the exact error
 //! it gets. `docs/bad-input.md` holds the generated table; this test fails when the table is
-//! stale (regenerate: `TOPOPLEX_WRITE_BAD_INPUT_DOC=1 cargo test --test bad_input`).
+//! stale (regenerate: `TOPOPLEX_WRITE_BAD_INPUT_DOC=1 cargo test --test it bad_input::`).
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 
@@ -973,5 +973,5 @@ fn every_bad_input_gets_the_catalogued_error() {
     }
     std::fs::remove_dir_all(&dir).ok();
     let table = format!("| class | file | what `Complex::from_path` says |\n|---|---|---|\n{rows}");
-    common::check_bad_input_doc("readers", &table, "bad_input");
+    common::check_bad_input_doc("readers", &table, "it bad_input::");
 }

@@ -1,7 +1,7 @@
 //! The `topoplex` binary as a user runs it: output formats, exit codes, one-line errors, and
 //! `relation --structure X` equal to `--structure ig` line by line.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

@@ -3,7 +3,7 @@
 //! the same order with the same winding and bit-identical coordinates. A format that refuses
 //! must have a reason the complex really has.
 
-mod common;
+use crate::common;
 
 use std::path::Path;
 
@@ -219,7 +219,7 @@ fn shared_data_round_trips_through_every_format() {
             continue; // documented error cases (quad meshes)
         };
         // The shape through every format; the labelled meshes' data round trips through the
-        // formats that hold it in tests/attributes.rs.
+        // formats that hold it in tests/it/attributes.rs.
         c.take_attributes();
         let name = file.file_stem().unwrap().to_string_lossy().into_owned();
         round_trip_all(&c, &name);

@@ -2,7 +2,7 @@
 //! vertex-id relation API and the brute-force oracle, on fixtures, random non-manifold complexes
 //! up to dimension 6 and the real data; fans and edge clusters are checked against brute force.
 
-mod common;
+use crate::common;
 
 use common::nav::{
     check_around_edges, check_fans, oracle_boundary, oracle_manifold, rows_of, sorted,

@@ -3,9 +3,9 @@
 //! through the `topoplex` binary; every failure must be exit 1 with one line on stderr and no
 //! panic. `docs/bad-input.md` holds the generated table (between `<!-- cli:begin -->` and
 //! `<!-- cli:end -->`); this test fails when it is stale (regenerate:
-//! `TOPOPLEX_WRITE_BAD_INPUT_DOC=1 cargo test --test hardening`).
+//! `TOPOPLEX_WRITE_BAD_INPUT_DOC=1 cargo test --test it hardening::`).
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
@@ -495,5 +495,5 @@ fn every_hostile_cli_case_gets_the_catalogued_outcome() {
         ));
     }
     std::fs::remove_dir_all(&dir).ok();
-    common::check_bad_input_doc("cli", &table, "hardening");
+    common::check_bad_input_doc("cli", &table, "it hardening::");
 }

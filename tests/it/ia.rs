@@ -2,7 +2,7 @@
 //! of dimensions 0–6 (pinched vertices and several components included), correct refusals on
 //! random arbitrary complexes, and the IG on the real data when present.
 
-mod common;
+use crate::common;
 use common::{Rng, rel, show};
 
 use std::collections::{BTreeMap, BTreeSet};

@@ -1,7 +1,7 @@
 //! Incidence Graph against exact answers on drawn fixtures, the oracle on random non-manifold
 //! complexes, and the real data when present.
 
-mod common;
+use crate::common;
 
 use proptest::prelude::*;
 use topoplex::oracle::check_structure;

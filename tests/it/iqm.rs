@@ -2,7 +2,7 @@
 //! implementation), exact decompositions of the survey's figures, every relation against the
 //! oracle, the component writers, and the real data against the IG when present.
 
-mod common;
+use crate::common;
 
 use std::collections::{BTreeMap, BTreeSet, HashMap};
 

@@ -2,7 +2,7 @@
 //! on random non-manifold complexes checked after every step against a set-of-simplices model,
 //! a rebuild from scratch, the oracle, and a brute-force link condition.
 
-mod common;
+use crate::common;
 
 use std::collections::{BTreeMap, BTreeSet};
 

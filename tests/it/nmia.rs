@@ -2,7 +2,7 @@
 //! edge-based cluster, restricted-star component, radial order), the oracle and a brute-force
 //! storage count on random mixed 3-complexes, and the IG on the real data when present.
 
-mod common;
+use crate::common;
 use common::{rel, show};
 
 use proptest::prelude::*;

@@ -2,7 +2,7 @@
 //! and the command's output formats (Markdown, JSON, CSV, SVG) on drawn fixtures, several files
 //! at once, and a missing file. No timing is checked.
 
-mod common;
+use crate::common;
 
 use std::path::PathBuf;
 use std::process::{Command, Output};

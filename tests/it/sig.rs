@@ -2,7 +2,7 @@
 //! storage against the paper's formulas with clusters counted by the oracle, both builds equal,
 //! the oracle on random non-manifold complexes, and the IG on the real data when present.
 
-mod common;
+use crate::common;
 
 use proptest::prelude::*;
 use topoplex::oracle::{Oracle, check_structure, compare_structures};

@@ -2,7 +2,7 @@
 //! numbers (Z/2) and 2-/3-manifoldness must hold; small drawn fixtures with exact answers, real
 //! data from ../shared/data when present, the refusals, and the CLI.
 
-mod common;
+use crate::common;
 
 use std::collections::HashMap;
 use std::process::Command;

@@ -2,7 +2,7 @@
 //! relation exactly like the structure freshly built; the complex comes back identical; damaged,
 //! foreign, truncated and wrong-version files are refused with an error naming what is wrong.
 
-mod common;
+use crate::common;
 
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -93,7 +93,7 @@ proptest! {
 #[test]
 fn real_data_reopens_with_the_same_relations() {
     // Files up to 300 kB: every relation of every structure is compared, and the larger files
-    // are already checked against the IG by tests/structures.rs (the suite's time budget).
+    // are already checked against the IG by tests/it/structures.rs (the suite's time budget).
     for path in common::shared_files() {
         if std::fs::metadata(&path).map_or(true, |m| m.len() > 300_000) {
             continue;

@@ -2,7 +2,7 @@
 //! complexes) and like the IG (real data), and answers the same from 8 threads at once.
 //! Structures that cannot encode a complex must say so with `Unsupported`, never a wrong answer.
 
-mod common;
+use crate::common;
 
 use std::sync::Arc;
 

@@ -2,7 +2,7 @@
 //! fans with known angles, storage formulas against counts computed here from the oracle, the
 //! oracle on random non-manifold 2-complexes, and the IG on the real data when present.
 
-mod common;
+use crate::common;
 
 use std::collections::{BTreeMap, BTreeSet};
 
