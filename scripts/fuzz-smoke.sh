@@ -11,6 +11,10 @@ cd "$(dirname "$0")/../fuzz"
 secs=${1:-5}
 target=$(rustc -vV | sed -n 's/^host: //p')
 export CARGO_TARGET_DIR=${FUZZ_TARGET_DIR:-$PWD/target}
+# The smoke build is optimised less than `cargo fuzz run -O` (opt-level 1 rather than 3; the
+# instrumentation, debug assertions and overflow checks are the same): the build is most of the
+# smoke's time and a few seconds per target need no peak speed. FUZZ_OPT_LEVEL=3 for the full one.
+export CARGO_PROFILE_RELEASE_OPT_LEVEL=${FUZZ_OPT_LEVEL:-1}
 # --target keeps the instrumentation out of build scripts, as cargo fuzz does.
 RUSTFLAGS="-Cpasses=sancov-module -Cllvm-args=-sanitizer-coverage-level=4 \
 -Cllvm-args=-sanitizer-coverage-inline-8bit-counters -Cllvm-args=-sanitizer-coverage-pc-table \
@@ -18,14 +22,29 @@ RUSTFLAGS="-Cpasses=sancov-module -Cllvm-args=-sanitizer-coverage-level=4 \
   cargo build --release --locked --target "$target" --bins
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
+# Each target is one single-threaded process: FUZZ_JOBS (default: the number of cores) run at once.
+jobs=${FUZZ_JOBS:-$(nproc)}
+run() {
+  local t=$1
+  # TMPDIR: the CLI target writes its fixtures and outputs in a scratch directory under it.
+  if TMPDIR="$work/tmp-$t" "$CARGO_TARGET_DIR/$target/release/$t" "$work/$t" -max_total_time="$secs" \
+      -rss_limit_mb=2048 -max_len=8192 -artifact_prefix=artifacts/"$t"/ >"$work/$t.log" 2>&1; then
+    echo ok >"$work/$t.status"
+  fi
+}
+targets=()
 for src in fuzz_targets/*.rs; do
   t=$(basename "$src" .rs)
-  mkdir -p "$work/$t" artifacts/"$t"
+  targets+=("$t")
+  mkdir -p "$work/$t" "$work/tmp-$t" artifacts/"$t"
   cp -r corpus/"$t"/. "$work/$t"/
+  while [ "$(jobs -rp | wc -l)" -ge "$jobs" ]; do wait -n || true; done
+  run "$t" &
+done
+wait
+for t in "${targets[@]}"; do
   echo "== fuzz $t (${secs}s)"
-  # TMPDIR: the CLI target writes its fixtures and outputs in a scratch directory under it.
-  if ! TMPDIR="$work" "$CARGO_TARGET_DIR/$target/release/$t" "$work/$t" -max_total_time="$secs" -rss_limit_mb=2048 \
-      -max_len=8192 -artifact_prefix=artifacts/"$t"/ >"$work/$t.log" 2>&1; then
+  if [ ! -f "$work/$t.status" ]; then
     tail -40 "$work/$t.log"
     echo "fuzz target $t failed (reproducer under fuzz/artifacts/$t)"
     exit 1
