@@ -5,7 +5,8 @@
 #      into PREFIX_DIR
 #      (default: a temporary directory), and check the installed SONAME;
 #   2. configure, build and ctest cpp_tests/ against that prefix;
-#   3. the same with TOPOPLEX_SANITIZE=ON (ASan + UBSan, LeakSanitizer on).
+#   3. the same with TOPOPLEX_SANITIZE=ON (ASan + UBSan, LeakSanitizer on), built while the tests
+#      of step 2 and valgrind run.
 # When PETSc and MPI are installed, step 1 also installs the DMPlex bridge and step 2 runs its MPI
 # tests (cpp_tests/dmplex, mpiexec -n 1, 2, 4); step 3 leaves them out (MPI under ASan is noise).
 # Needs cmake, ninja-build, libgtest-dev, pkg-config and a C/C++ compiler (Debian packages).
@@ -43,20 +44,46 @@ echo "SONAME $soname"
 export ASAN_OPTIONS=detect_leaks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
+# Both configurations are configured first. The uninstrumented tests and valgrind (one process
+# at a time, one core) run while the instrumented configuration builds on the others: the two
+# share nothing but the installed prefix, which neither writes. Each check runs as before; only
+# the order of the log changes (the uninstrumented pass's log is printed once it is done).
 for sanitize in OFF ON; do
-  echo "== cpp_tests (TOPOPLEX_SANITIZE=$sanitize)"
-  build="$work/tests-$sanitize"
-  cmake -S "$root/cpp_tests" -B "$build" -G Ninja \
+  cmake -S "$root/cpp_tests" -B "$work/tests-$sanitize" -G Ninja \
     -DCMAKE_PREFIX_PATH="$prefix" -DTOPOPLEX_SANITIZE="$sanitize"
-  cmake --build "$build"
-  ctest --test-dir "$build" --output-on-failure
-  if [ "$sanitize" = OFF ]; then
-    # valgrind memcheck on the uninstrumented build: zero errors, zero definite/indirect leaks.
-    echo "== valgrind memcheck"
-    for t in c_api/test_c_api_shared c_api/test_threads; do
-      valgrind -q --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=definite,indirect \
-        "$build/$t" >"$work/valgrind.log" 2>&1 || { cat "$work/valgrind.log"; echo "valgrind: $t failed" >&2; exit 1; }
-      echo "valgrind: $t clean"
-    done
-  fi
 done
+
+echo "== cpp_tests (TOPOPLEX_SANITIZE=OFF): build"
+cmake --build "$work/tests-OFF"
+
+uninstrumented_checks() {
+  local build="$work/tests-OFF"
+  echo "== cpp_tests (TOPOPLEX_SANITIZE=OFF): ctest"
+  ctest --test-dir "$build" --output-on-failure || return 1
+  # valgrind memcheck on the uninstrumented build: zero errors, zero definite/indirect leaks.
+  # In a directory of its own: test_c_api writes its files into the working directory.
+  echo "== valgrind memcheck"
+  mkdir -p "$work/valgrind"
+  for t in c_api/test_c_api_shared c_api/test_threads; do
+    (cd "$work/valgrind" && valgrind -q --error-exitcode=1 --leak-check=full \
+      --errors-for-leak-kinds=definite,indirect "$build/$t") >"$work/valgrind.log" 2>&1 ||
+      { cat "$work/valgrind.log"; echo "valgrind: $t failed" >&2; return 1; }
+    echo "valgrind: $t clean"
+  done
+}
+uninstrumented_checks >"$work/uninstrumented.log" 2>&1 &
+checks=$!
+
+echo "== cpp_tests (TOPOPLEX_SANITIZE=ON): build (the uninstrumented tests run meanwhile)"
+built=0
+cmake --build "$work/tests-ON" || built=$?
+passed=0
+wait "$checks" || passed=$?
+cat "$work/uninstrumented.log"
+if [ "$passed" != 0 ]; then
+  echo "cpp_tests (TOPOPLEX_SANITIZE=OFF) or valgrind failed" >&2
+  exit 1
+fi
+[ "$built" = 0 ] || exit "$built"
+echo "== cpp_tests (TOPOPLEX_SANITIZE=ON): ctest"
+ctest --test-dir "$work/tests-ON" --output-on-failure
