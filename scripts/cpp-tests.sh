@@ -4,8 +4,10 @@
 #      default release; none with TOPOPLEX_CARGO_PREBUILT=ON) and install Topoplex
 #      into PREFIX_DIR
 #      (default: a temporary directory), and check the installed SONAME;
-#   2. configure, build and ctest cpp_tests/ against that prefix;
-#   3. the same with TOPOPLEX_SANITIZE=ON (ASan + UBSan, LeakSanitizer on), built while the tests
+#   2. configure, build and ctest cpp_tests/ against that prefix (the peer cross-checks left to
+#      step 3);
+#   3. the same with TOPOPLEX_SANITIZE=ON (ASan + UBSan, LeakSanitizer on) and the peer
+#      cross-checks (CGAL, GUDHI, OpenMesh), built while the tests
 #      of step 2 and valgrind run.
 # When PETSc and MPI are installed, step 1 also installs the DMPlex bridge and step 2 runs its MPI
 # tests (cpp_tests/dmplex, mpiexec -n 1, 2, 4); step 3 leaves them out (MPI under ASan is noise).
@@ -48,9 +50,16 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # at a time, one core) run while the instrumented configuration builds on the others: the two
 # share nothing but the installed prefix, which neither writes. Each check runs as before; only
 # the order of the log changes (the uninstrumented pass's log is printed once it is done).
+# The peer cross-checks (cpp_tests/peers, cpp_tests/decompose: CGAL, GUDHI, OpenMesh; no -Werror,
+# so their compilation checks nothing the sanitizer pass's does not) are built and run in the
+# sanitizer pass only: the same assertions under ASan and UBSan, their CGAL-heavy sources compiled
+# once. Everything else is built in both passes; the adapters and examples (-Werror) must compile
+# cleanly without the sanitizer flags too.
 for sanitize in OFF ON; do
+  peers=ON
+  [ "$sanitize" = ON ] || peers=OFF
   cmake -S "$root/cpp_tests" -B "$work/tests-$sanitize" -G Ninja \
-    -DCMAKE_PREFIX_PATH="$prefix" -DTOPOPLEX_SANITIZE="$sanitize"
+    -DCMAKE_PREFIX_PATH="$prefix" -DTOPOPLEX_SANITIZE="$sanitize" -DTOPOPLEX_PEERS="$peers"
 done
 
 echo "== cpp_tests (TOPOPLEX_SANITIZE=OFF): build"
