@@ -364,20 +364,7 @@ int main(int argc, char** argv) {
   // across each triangle's edges.
   {
     const std::string lib = "tpx_mesh";
-    struct MeshBuilt {
-      LivePtr live;
-      TpxLiveArrays arrays{};
-    };
-    const std::function<std::unique_ptr<MeshBuilt>()> make = [] {
-      auto b = std::make_unique<MeshBuilt>();
-      TpxStatus st = TPX_STATUS_OK;
-      b->live = live_from_soup(soup, &st);
-      if (!b->live || tpx_live_arrays(b->live.get(), &b->arrays) != TPX_STATUS_OK) {
-        std::fprintf(stderr, "tpx_mesh: the live complex refused the soup: %s\n", tpx_message().c_str());
-        std::exit(1);
-      }
-      return b;
-    };
+    const std::function<std::unique_ptr<MeshBuilt>()> make = [] { return mesh_or_abort(soup); };
     add("VF", lib, Unit::Walk, [=](benchmark::State& state) {
       const topoplex::MeshView m(slot().get<MeshBuilt>(lib, make).arrays);
       uint64_t count = 0, sum = 0;

@@ -358,20 +358,7 @@ int main(int argc, char** argv) {
   }
   {
     const std::string lib = "tpx_mesh";
-    struct MeshBuilt {
-      LivePtr live;
-      TpxLiveArrays arrays{};
-    };
-    const std::function<std::unique_ptr<MeshBuilt>()> make = [] {
-      auto b = std::make_unique<MeshBuilt>();
-      TpxStatus st = TPX_STATUS_OK;
-      b->live = live_from_soup(soup, &st);
-      if (!b->live || tpx_live_arrays(b->live.get(), &b->arrays) != TPX_STATUS_OK) {
-        std::fprintf(stderr, "tpx_mesh: the live complex refused the soup: %s\n", tpx_message().c_str());
-        std::exit(1);
-      }
-      return b;
-    };
+    const std::function<std::unique_ptr<MeshBuilt>()> make = [] { return mesh_or_abort(soup); };
     // Each op's count and a sum of what it saw (kept from the optimiser).
     const auto op = [&](const std::string& name, std::function<uint64_t(const topoplex::MeshView&, uint64_t&)> pass) {
       add(name, lib, Unit::Walk, [=](benchmark::State& state) {
