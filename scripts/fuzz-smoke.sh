@@ -11,10 +11,6 @@ cd "$(dirname "$0")/../fuzz"
 secs=${1:-5}
 target=$(rustc -vV | sed -n 's/^host: //p')
 export CARGO_TARGET_DIR=${FUZZ_TARGET_DIR:-$PWD/target}
-# The smoke build is optimised less than `cargo fuzz run -O` (opt-level 1 rather than 3; the
-# instrumentation, debug assertions and overflow checks are the same): the build is most of the
-# smoke's time and a few seconds per target need no peak speed. FUZZ_OPT_LEVEL=3 for the full one.
-export CARGO_PROFILE_RELEASE_OPT_LEVEL=${FUZZ_OPT_LEVEL:-1}
 # --target keeps the instrumentation out of build scripts, as cargo fuzz does.
 RUSTFLAGS="-Cpasses=sancov-module -Cllvm-args=-sanitizer-coverage-level=4 \
 -Cllvm-args=-sanitizer-coverage-inline-8bit-counters -Cllvm-args=-sanitizer-coverage-pc-table \
