@@ -52,6 +52,7 @@ mod scan;
 pub(crate) use scan::Float;
 pub mod simplices;
 pub mod stl;
+pub mod triangulate;
 pub mod vtk;
 pub mod vtu;
 pub mod write;
@@ -73,9 +74,65 @@ impl Complex {
 
     /// Reads and normalises a file (format by extension) under `budget`.
     pub fn from_path_with(path: &Path, budget: Budget) -> Result<Complex, ComplexError> {
-        let raw = read_path(path)?;
+        Complex::from_path_options(path, budget, ReadOptions::default())
+    }
+
+    /// Reads (with `options`) and normalises a file (format by extension) under `budget`.
+    pub fn from_path_options(
+        path: &Path,
+        budget: Budget,
+        options: ReadOptions,
+    ) -> Result<Complex, ComplexError> {
+        let raw = read_path_with(path, options)?;
         Complex::from_input(raw, Some(path), budget)
     }
+}
+
+/// How to read a file beyond its format.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ReadOptions {
+    /// Fan every convex planar polygon into triangles (CLI `--triangulate`): faces of more than
+    /// 3 vertices in OFF, OBJ and PLY, polygon (7) and quad (9) cells in legacy VTK; a polygon
+    /// that is not convex and planar is refused with the reason ([`triangulate`]). Without it
+    /// polygons are refused ([`ReadErrorKind::Polygon`]). Other formats read as without it.
+    pub triangulate: bool,
+}
+
+/// [`read_path`] with `options`.
+pub fn read_path_with(path: &Path, options: ReadOptions) -> Result<RawInput, ReadError> {
+    if !options.triangulate {
+        return read_path(path);
+    }
+    let err = |line, kind| ReadError {
+        path: path.to_path_buf(),
+        line,
+        kind,
+    };
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
+        .unwrap_or_default();
+    let raw = match ext.as_str() {
+        "off" | "obj" => {
+            let bytes = read_file(path).map_err(|k| err(0, k))?;
+            let text = utf8_text(&bytes).map_err(|(line, k)| err(line, k))?;
+            match ext.as_str() {
+                "off" => off::parse_keeping(text, true),
+                _ => obj::parse_keeping(text, true),
+            }
+        }
+        "ply" | "vtk" => {
+            let bytes = read_file(path).map_err(|k| err(0, k))?;
+            match ext.as_str() {
+                "ply" => ply::parse_keeping(&bytes, true),
+                _ => vtk::parse_keeping(&bytes, true),
+            }
+        }
+        _ => return read_path(path),
+    };
+    raw.and_then(triangulate::fan_polygons)
+        .map_err(|(line, kind)| err(line, kind))
 }
 
 /// Reads a file, choosing the reader by extension.
