@@ -138,7 +138,9 @@ pub fn read_path_with(path: &Path, options: ReadOptions) -> Result<RawInput, Rea
 /// Reads a file, choosing the reader by extension.
 ///
 /// Only regular files are read (see [`read_file`]); the text must be UTF-8 (a leading
-/// byte-order mark is skipped). Peak memory: the file's bytes plus the reader's output.
+/// byte-order mark is skipped). Peak memory: the file's bytes plus the reader's output; a
+/// `.simplices` file of 32 MiB or more is read in blocks of about 8 MiB (twice: counted, then
+/// parsed into arrays of their exact size), so its peak is the output and one block.
 pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
     let err = |line, kind| ReadError {
         path: path.to_path_buf(),
@@ -157,6 +159,13 @@ pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
         "simplices" => simplices::parse,
         _ => return read_binary_capable(path, &ext),
     };
+    #[cfg(unix)]
+    if ext == "simplices"
+        && std::fs::metadata(path).is_ok_and(|m| m.is_file() && m.len() >= simplices::BLOCKS_FROM)
+        && let Some(raw) = simplices::read_in_blocks(path)
+    {
+        return Ok(raw);
+    }
     let bytes = read_file(path).map_err(|k| err(0, k))?;
     let text = utf8_text(&bytes).map_err(|(line, k)| err(line, k))?;
     parse(text).map_err(|(line, kind)| err(line, kind))
