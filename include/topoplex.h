@@ -117,6 +117,12 @@
 #define TPX_VERTEX_AVERAGE 1
 
 /**
+ * `tpx_complex_from_file_flags`' flag: fan every convex planar polygon of a mesh file into
+ * triangles (the CLI's `--triangulate`).
+ */
+#define TPX_READ_TRIANGULATE 1
+
+/**
  * Answer order of the navigation functions: the structure's natural order.
  */
 #define TPX_ORDER_NATURAL 0
@@ -926,6 +932,27 @@ TpxStatus tpx_complex_from_file(const char *path, struct TpxComplex **out);
 TpxStatus tpx_complex_from_file_budget(const char *path,
                                        uint64_t max_simplices,
                                        struct TpxComplex **out);
+
+/**
+ * `tpx_complex_from_file_budget` with read `flags`, 0 or `TPX_READ_TRIANGULATE`: faces of more
+ * than 3 vertices in OFF, OBJ and PLY and polygon and quad cells in legacy VTK are fanned into
+ * triangles from their first vertex, each keeping the polygon's winding, line and listed
+ * attributes; a polygon that is not planar (beyond 1e-6 × its size), not convex, degenerate,
+ * repeats a vertex or has no coordinates is PARSE_ERROR naming file, line, polygon and why.
+ * Other formats and saved (`.tpx`) files read as without the flag.
+ *
+ * On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
+ * Errors: as `tpx_complex_from_file_budget`, plus INVALID_ARGUMENT for an unknown flag
+ * (nothing read). Cost: as it, plus O(k) for each polygon of k vertices and a copy of the
+ * listing when there are polygons.
+ *
+ * # Safety
+ * `path`, if non-NULL, must be a NUL-terminated string; `out` must be valid for writes.
+ */
+TpxStatus tpx_complex_from_file_flags(const char *path,
+                                      uint64_t max_simplices,
+                                      uint32_t flags,
+                                      struct TpxComplex **out);
 
 /**
  * Releases a complex. NULL is a no-op. Structures built from it stay valid (they own their
