@@ -935,7 +935,8 @@ TpxStatus tpx_complex_from_file_budget(const char *path,
 
 /**
  * `tpx_complex_from_file_budget` with read `flags`, 0 or `TPX_READ_TRIANGULATE`: faces of more
- * than 3 vertices in OFF, OBJ and PLY and polygon and quad cells in legacy VTK are fanned into
+ * than 3 vertices in OFF, OBJ and PLY, polygon and quad cells in legacy VTK and Gmsh quadrangles
+ * are fanned into
  * triangles from their first vertex, each keeping the polygon's winding, line and listed
  * attributes; a polygon that is not planar (beyond 1e-6 × its size), not convex, degenerate,
  * repeats a vertex or has no coordinates is PARSE_ERROR naming file, line, polygon and why.

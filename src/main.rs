@@ -43,9 +43,10 @@ struct Cli {
     verify: bool,
     /// Fan every convex planar polygon of a mesh input into triangles from its first vertex
     /// (winding and the polygon's labels and fields kept on each triangle): faces of more than
-    /// 3 vertices in OFF, OBJ and PLY, polygon and quad cells in legacy VTK. A polygon that is
-    /// not planar (beyond 1e-6 × its size), not convex, degenerate, repeats a vertex or has no
-    /// coordinates is refused with the reason. Without it, polygons are refused.
+    /// 3 vertices in OFF, OBJ and PLY, polygon and quad cells in legacy VTK, Gmsh quadrangles.
+    /// A polygon that is not planar (beyond 1e-6 × its size), not convex, degenerate, repeats a
+    /// vertex or has no coordinates is refused with the reason. Without it, polygons are
+    /// refused.
     #[arg(long, global = true)]
     triangulate: bool,
     #[command(subcommand)]

@@ -1083,6 +1083,23 @@ fn triangulate_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             t("4OFF\n4 1 0\n0 0 0 0\n1 0 0 0\n1 1 0 0\n0 1 0 0\n4 0 1 2 3\n"),
         ),
         (
+            "quadrangle (fanned, tags kept)",
+            "quad.msh",
+            t(
+                "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n\
+               4 0 1 0\n$EndNodes\n$Elements\n1\n1 3 2 7 1 1 2 3 4\n$EndElements\n",
+            ),
+        ),
+        (
+            "non-convex quadrangle",
+            "arrow.msh",
+            t(
+                "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n\
+               3 0.2 0.2 0\n4 0 1 0\n$EndNodes\n$Elements\n1\n1 3 2 7 1 1 2 3 4\n\
+               $EndElements\n",
+            ),
+        ),
+        (
             "polygon in a format not fanned (refused as without the flag)",
             "quad.mesh",
             t(

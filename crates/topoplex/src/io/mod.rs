@@ -93,7 +93,8 @@ impl Complex {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
 pub struct ReadOptions {
     /// Fan every convex planar polygon into triangles (CLI `--triangulate`): faces of more than
-    /// 3 vertices in OFF, OBJ and PLY, polygon (7) and quad (9) cells in legacy VTK; a polygon
+    /// 3 vertices in OFF, OBJ and PLY, polygon (7) and quad (9) cells in legacy VTK, Gmsh
+    /// quadrangles; a polygon
     /// that is not convex and planar is refused with the reason ([`triangulate`]). Without it
     /// polygons are refused ([`ReadErrorKind::Polygon`]). Other formats read as without it.
     pub triangulate: bool,
@@ -123,11 +124,12 @@ pub fn read_path_with(path: &Path, options: ReadOptions) -> Result<RawInput, Rea
                 _ => obj::parse_keeping(text, true),
             }
         }
-        "ply" | "vtk" => {
+        "ply" | "vtk" | "msh" => {
             let bytes = read_file(path).map_err(|k| err(0, k))?;
             match ext.as_str() {
                 "ply" => ply::parse_keeping(&bytes, true),
-                _ => vtk::parse_keeping(&bytes, true),
+                "vtk" => vtk::parse_keeping(&bytes, true),
+                _ => msh::parse_keeping(&bytes, true),
             }
         }
         _ => return read_path(path),
