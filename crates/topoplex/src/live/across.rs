@@ -146,20 +146,28 @@ impl LiveComplex {
                         continue;
                     }
                     let t = self.top_raw(u);
-                    for i in 0..=p {
-                        let facet = t
-                            .iter()
-                            .enumerate()
-                            .filter(|&(j, _)| j != i)
-                            .map(|(_, &w)| w);
-                        if t[i] == a || facet.clone().min() != Some(a) {
-                            continue;
-                        }
+                    let at = t
+                        .iter()
+                        .position(|&w| w == a)
+                        .expect("a top of a's star holds a");
+                    // The facets through a (opposite each other vertex i) that a owns: its
+                    // other vertices all above a.
+                    'facet: for i in (0..=p).filter(|&i| i != at) {
                         let mut rest = [u32::MAX; 2];
-                        for (k, w) in facet.filter(|&w| w != a).enumerate() {
+                        let mut k = 0;
+                        for (m, &w) in t.iter().enumerate() {
+                            if m == i || m == at {
+                                continue;
+                            }
+                            if w < a {
+                                continue 'facet;
+                            }
                             rest[k] = w;
+                            k += 1;
                         }
-                        rest.sort_unstable();
+                        if rest[0] > rest[1] {
+                            rest.swap(0, 1);
+                        }
                         let key = (u64::from(rest[0]) << 32) | u64::from(rest[1]);
                         facets.push((key, u, slot * (p + 1) + i));
                     }
