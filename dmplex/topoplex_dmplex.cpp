@@ -303,16 +303,27 @@ const Complex &RankMesh::complex() const {
 }
 
 Complex &RankMesh::complex() {
-  if (!complex_) throw Error(Code::Refused, "rank " + std::to_string(rank_) + " holds no point: no complex");
-  return *complex_;
+  return const_cast<Complex &>(static_cast<const RankMesh &>(*this).complex());
 }
 
-PetscInt RankMesh::point_of_vertex(std::uint32_t v) const {
-  if (v >= vertex_point_.size()) {
-    throw Error(Code::InvalidArgument, "vertex " + std::to_string(v) + " out of range (" +
-                                           std::to_string(vertex_point_.size()) + " vertices)");
+namespace {
+
+// points[i], or InvalidArgument naming `what` i and the `count` there are ("listing 9 out of
+// range (4 listed)").
+PetscInt point_at(const std::vector<PetscInt> &points, std::size_t i, const char *what,
+                  const char *count) {
+  if (i >= points.size()) {
+    throw Error(Code::InvalidArgument, std::string(what) + " " + std::to_string(i) +
+                                           " out of range (" + std::to_string(points.size()) +
+                                           " " + count + ")");
   }
-  return vertex_point_[v];
+  return points[i];
+}
+
+}  // namespace
+
+PetscInt RankMesh::point_of_vertex(std::uint32_t v) const {
+  return point_at(vertex_point_, v, "vertex", "vertices");
 }
 
 std::uint32_t RankMesh::vertex_of_point(PetscInt p) const {
@@ -320,11 +331,7 @@ std::uint32_t RankMesh::vertex_of_point(PetscInt p) const {
 }
 
 PetscInt RankMesh::point_of_listing(std::size_t i) const {
-  if (i >= listed_point_.size()) {
-    throw Error(Code::InvalidArgument, "listing " + std::to_string(i) + " out of range (" +
-                                           std::to_string(listed_point_.size()) + " listed)");
-  }
-  return listed_point_[i];
+  return point_at(listed_point_, i, "listing", "listed");
 }
 
 std::size_t RankMesh::listing_of_point(PetscInt p) const {
