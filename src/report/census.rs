@@ -514,14 +514,7 @@ fn pseudo_manifold_shape(
     work.spend(rows.ids.len() * arity)?;
     let mut facets: Vec<u32> = Vec::with_capacity(rows.len() * arity * k);
     for r in rows.iter() {
-        for skip in 0..arity {
-            facets.extend(
-                r.iter()
-                    .enumerate()
-                    .filter(|&(i, _)| i != skip)
-                    .map(|(_, &x)| x),
-            );
-        }
+        topoplex::complex::push_facets(r, &mut facets);
     }
     let facets = counted_rows(k, &facets);
     if facets.iter().any(|&(_, c)| c > 2) {
