@@ -1362,7 +1362,9 @@ class MeshView {
    * every other top through it. Each u once (two distinct p-simplices share at most one facet),
    * in no particular order. Two star scans: the tops through x (t's vertex of smallest star)
    * sharing p vertices with t, then those through y (the next smallest) that miss x — the
-   * ones across the facet opposite x. O(d²·(k_x + k_y)), no allocation. */
+   * ones across the facet opposite x. O(d²·(k_x + k_y)), no allocation; for edges and
+   * triangles whose vertices' stars hold at most 16 tops, whether a top holds a vertex is read
+   * from that vertex's star (O(d·k²), the stars' cache lines only). */
   template <class F>
   void for_each_adjacent_top(TopRef t, F &&f) const {
     const SimplexView vt = vertices(t);
@@ -1377,6 +1379,29 @@ class MeshView {
       } else if (k < star(y).size()) {
         y = vt[i];
       }
+    }
+    bool small = p <= 2;
+    for (std::uint32_t w : vt) small = small && star(w).size() <= 16;
+    if (small) {
+      // Edges and triangles whose stars are small (a surface's usual vertices): whether u holds
+      // w is a scan of w's star, in cache lines already read, rather than a load of u's
+      // vertices from elsewhere in the table.
+      const auto in_star = [&](std::uint32_t w, TopRef u) {
+        for (TopRef s : star(w))
+          if (s == u) return true;
+        return false;
+      };
+      const auto one_miss = [&](TopRef u) {
+        std::uint32_t missed = 0;
+        for (std::uint32_t w : vt)
+          if (!in_star(w, u) && ++missed > 1) return false;
+        return missed == 1;
+      };
+      for (TopRef u : star(x))
+        if (u.dim() == p && u != t && one_miss(u)) f(u);
+      for (TopRef u : star(y))
+        if (u.dim() == p && !in_star(x, u) && one_miss(u)) f(u);
+      return;
     }
     const auto shares_a_facet = [&](TopRef u) {
       std::uint32_t common = 0;

@@ -83,3 +83,21 @@ impl RawInput {
         &self.ids[self.offsets[i]..self.offsets[i + 1]]
     }
 }
+
+/// A plain mesh file as a streaming reader hands it over, already in the arrays a mesh keeps:
+/// every listed simplex a top of its dimension, in listing order, with no listing kept beside
+/// them (`crate::io::plain`). The reader has checked that each simplex has 2 to
+/// `MAX_DIMENSION + 1` distinct ids below `vertex_count`; whether one repeats another or is a
+/// face of another is left to the builder (then the file is read again the general way).
+#[derive(Debug, Clone, PartialEq)]
+pub(crate) struct PlainTables {
+    /// Vertices the file declares (at least 1).
+    pub(crate) vertex_count: u32,
+    /// Their coordinates, `vertex_count × dim` numbers.
+    pub(crate) coords: Coords,
+    /// `tops[p]`: the listed p-simplices' ids, `p + 1` each, as written (winding kept);
+    /// `tops[0]` is empty.
+    pub(crate) tops: Vec<Vec<u32>>,
+    /// `uses[v]`: how many listed simplices hold vertex `v`.
+    pub(crate) uses: Vec<u32>,
+}

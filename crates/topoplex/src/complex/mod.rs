@@ -61,6 +61,7 @@ pub use attributes::{
     Attribute, AttributeError, Attributes, LabelName, Location, ValueType, Values,
 };
 pub(crate) use blocks::Want;
+pub(crate) use input::PlainTables;
 pub use input::{Coords, RawInput};
 use listing::Listing;
 pub use table::{SimplexTable, is_subset, push_facet, push_facets, sort_dedup_rows, write_facets};

@@ -47,6 +47,7 @@ pub mod medit;
 pub mod msh;
 pub mod obj;
 pub mod off;
+pub(crate) mod plain;
 pub mod ply;
 mod scan;
 pub(crate) use scan::Float;
@@ -465,10 +466,10 @@ mod tests {
     use std::path::PathBuf;
 
     /// A file under the temp dir, removed on drop.
-    struct TempFile(PathBuf);
+    pub(super) struct TempFile(pub(super) PathBuf);
 
     impl TempFile {
-        fn new(name: &str, bytes: &[u8]) -> TempFile {
+        pub(super) fn new(name: &str, bytes: &[u8]) -> TempFile {
             let path = std::env::temp_dir()
                 .join(format!("topoplex-io-test-{}-{name}", std::process::id()));
             std::fs::write(&path, bytes).unwrap();

@@ -50,7 +50,7 @@ use crate::complex::{Attribute, Location, Values, table};
 
 /// The prefixes of an OFF header keyword.
 #[derive(Debug, Default, Clone, Copy)]
-struct Header {
+pub(super) struct Header {
     texture: bool,
     colour: bool,
     normals: bool,
@@ -59,6 +59,11 @@ struct Header {
 }
 
 impl Header {
+    /// No prefix: the keyword is `OFF` itself (3 coordinates, nothing else per vertex).
+    pub(super) fn is_plain(&self) -> bool {
+        !(self.texture || self.colour || self.normals || self.four || self.ndim)
+    }
+
     fn parse(tok: &str) -> Option<Header> {
         let mut s = tok;
         let mut flag = |prefix: &str| match s.strip_prefix(prefix) {
@@ -125,7 +130,7 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
     Ok(raw)
 }
 
-type Res<T> = Result<T, (u32, ReadErrorKind)>;
+pub(super) type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
 /// The next token, or an "ends early" error with the given message.
 fn next_or<'a>(t: &mut Scanner<'a>, msg: impl FnOnce() -> String) -> Res<(&'a str, u32)> {
@@ -136,7 +141,7 @@ fn next_or<'a>(t: &mut Scanner<'a>, msg: impl FnOnce() -> String) -> Res<(&'a st
 }
 
 /// The header keyword; `OFF BINARY` is refused.
-fn header(t: &mut Scanner<'_>) -> Res<Header> {
+pub(super) fn header(t: &mut Scanner<'_>) -> Res<Header> {
     let Some((head, head_line)) = t.token() else {
         return Err((
             t.eof_line(),
@@ -175,7 +180,7 @@ fn dimension(t: &mut Scanner<'_>, h: Header) -> Res<usize> {
 
 /// `NVertices NFaces [NEdges]`. The edge count is ignored, and may be left out when the face
 /// count ends its line (many writers omit it); otherwise it must be a non-negative integer.
-fn counts(t: &mut Scanner<'_>) -> Res<(u32, u32)> {
+pub(super) fn counts(t: &mut Scanner<'_>) -> Res<(u32, u32)> {
     let (tok, l) = next_or(t, || {
         "file ends after the header; expected the vertex count".into()
     })?;

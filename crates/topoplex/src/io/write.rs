@@ -451,13 +451,25 @@ pub fn write_complex(c: &Complex, path: &Path, format: Option<Format>) -> Result
 
 /// Writes a listing to `path` in `format` (by default the one its extension names).
 pub fn write_raw(raw: &RawInput, path: &Path, format: Option<Format>) -> Result<(), WriteError> {
+    let format = format
+        .or_else(|| Format::from_path(path))
+        .ok_or_else(|| WriteError {
+            path: path.to_path_buf(),
+            kind: WriteErrorKind::UnknownExtension,
+        })?;
+    write_file(path, |out| format.write_into(raw, out))
+}
+
+/// Writes to `path` what `write` puts into its [`Out`], which hands it to the file piece by
+/// piece; nothing is left under `path` when `write` refuses or an I/O error occurs.
+pub(crate) fn write_file(
+    path: &Path,
+    write: impl FnOnce(&mut Out) -> Result<(), WriteErrorKind>,
+) -> Result<(), WriteError> {
     let err = |kind| WriteError {
         path: path.to_path_buf(),
         kind,
     };
-    let format = format
-        .or_else(|| Format::from_path(path))
-        .ok_or_else(|| err(WriteErrorKind::UnknownExtension))?;
     // Written beside `path` under a temporary name, then renamed: a refusal or an I/O error
     // midway leaves no half file under the name. The rename would replace a device or a pipe
     // under either name by a regular file, so both must be regular or absent.
@@ -473,7 +485,7 @@ pub fn write_raw(raw: &RawInput, path: &Path, format: Option<Format>) -> Result<
         file: Some(file),
         error: None,
     };
-    let done = match format.write_into(raw, &mut out) {
+    let done = match write(&mut out) {
         Ok(()) => out
             .finish()
             .and_then(|()| std::fs::rename(&tmp, path))
@@ -500,15 +512,37 @@ pub(crate) fn push_f64(out: &mut Vec<u8>, x: f64) {
 /// Appends `width` coordinates of vertex `v`, space-separated, padded with zeros (all zeros
 /// without coordinates).
 pub(crate) fn push_point(out: &mut Vec<u8>, coords: Option<&Coords>, v: usize, width: usize) {
+    let xs = coords.map_or(&[][..], |c| &c.data[v * c.dim..(v + 1) * c.dim]);
+    push_numbers(out, xs, width);
+}
+
+/// Appends `width` numbers, `xs` then zeros, space-separated.
+fn push_numbers(out: &mut Vec<u8>, xs: &[f64], width: usize) {
     for i in 0..width {
         if i > 0 {
             out.push(b' ');
         }
-        let x = coords
-            .filter(|c| i < c.dim)
-            .map_or(0.0, |c| c.data[v * c.dim + i]);
-        push_f64(out, x);
+        push_f64(out, xs.get(i).copied().unwrap_or(0.0));
     }
+}
+
+/// Writes an OFF file of `n` vertices, vertex v's coordinates `coords(v)` (at most 3, padded
+/// with zeros; asked for in order), and `m` faces, edges and triangles, their ids through `id`,
+/// straight from a mesh's arrays with no listing: the live complex's writer. The same bytes as
+/// [`write_raw`] of the listing they would make (no attributes).
+pub(crate) fn write_plain_off<'a, 's>(
+    path: &Path,
+    n: usize,
+    mut coords: impl FnMut(usize) -> &'a [f64],
+    m: usize,
+    faces: impl Iterator<Item = &'s [u32]>,
+    id: impl Fn(u32) -> u32,
+) -> Result<(), WriteError> {
+    write_file(path, |out| {
+        let vertex = |out: &mut Vec<u8>, v| push_numbers(out, coords(v), 3);
+        off::write_lines(out, "", 3, n, vertex, m, faces, id, |_, _| {});
+        Ok(())
+    })
 }
 
 /// Appends the ids of `s` plus `base`, space-separated.

@@ -12,7 +12,7 @@
 //! bytes a listed simplex and 4 a vertex (plus 4 a vertex per thread when split) of scratch.
 
 use super::{DEAD, LiveComplex, NONE, SLOT_MASK, pack};
-use crate::complex::{Complex, MAX_DIMENSION, RawInput};
+use crate::complex::{Complex, MAX_DIMENSION, PlainTables, RawInput};
 use crate::relation::StructureKind;
 use crate::structures::BuildError;
 use crate::structures::common::{too_large, try_copy, try_with_capacity};
@@ -113,14 +113,9 @@ fn count_tops(complex: &Complex) -> [usize; MAX_DIMENSION + 1] {
 pub(super) fn empty_tables(
     per_dim: &[usize; MAX_DIMENSION + 1],
 ) -> Result<Vec<Vec<u32>>, BuildError> {
+    check_slots(per_dim)?;
     let mut tops: Vec<Vec<u32>> = try_with_capacity(K, MAX_DIMENSION + 1, "top arrays")?;
     for (p, &count) in per_dim.iter().enumerate() {
-        if count > SLOT_MASK as usize + 1 {
-            return Err(BuildError::TooLarge {
-                kind: K,
-                what: format!("{count} top {p}-simplices (at most 2^28 per dimension)"),
-            });
-        }
         tops.push(try_with_capacity(
             K,
             count.saturating_mul(p + 1),
@@ -128,6 +123,23 @@ pub(super) fn empty_tables(
         )?);
     }
     Ok(tops)
+}
+
+/// [`BuildError::TooLarge`] when a dimension holds more tops than its 2^28 slots.
+fn check_slots(per_dim: &[usize; MAX_DIMENSION + 1]) -> Result<(), BuildError> {
+    match per_dim
+        .iter()
+        .position(|&count| count > SLOT_MASK as usize + 1)
+    {
+        Some(p) => Err(BuildError::TooLarge {
+            kind: K,
+            what: format!(
+                "{} top {p}-simplices (at most 2^28 per dimension)",
+                per_dim[p]
+            ),
+        }),
+        None => Ok(()),
+    }
 }
 
 /// The top tables (each top in its dimension's next slot, in listing order, with its winding)
@@ -199,20 +211,38 @@ fn build_plain(
     per_dim: &[usize; MAX_DIMENSION + 1],
 ) -> Result<LiveComplex, BuildError> {
     let mut tops = empty_tables(per_dim)?;
-    let mut degree: Vec<u32> = crate::structures::common::try_vec(K, 0, n, "vertex degrees")?;
+    let mut uses: Vec<u32> = crate::structures::common::try_vec(K, 0, n, "vertex degrees")?;
     for i in 0..raw.simplex_count() {
         let s = raw.simplex(i);
         tops[s.len() - 1].extend_from_slice(s);
         for &v in s {
-            degree[v as usize] += 1;
+            uses[v as usize] += 1;
         }
     }
-    let entries: usize = degree.iter().map(|&k| k as usize).sum();
+    let (coord_dim, coords) = match &raw.coords {
+        Some(c) => (c.dim, try_copy(K, &c.data, "coordinates")?),
+        None => (0, Vec::new()),
+    };
+    with_stars(tops, per_dim, uses, n, coord_dim, coords)
+}
+
+/// The live complex over filled top tables (`per_dim[p]` tops in `tops[p]`, listing order) and
+/// each vertex's use count: the stars reserved exactly from the counts, then filled table by
+/// table, slot by slot (the order [`build_plain`] and the streamed tables share).
+fn with_stars(
+    tops: Vec<Vec<u32>>,
+    per_dim: &[usize; MAX_DIMENSION + 1],
+    uses: Vec<u32>,
+    n: usize,
+    coord_dim: usize,
+    coords: Vec<f64>,
+) -> Result<LiveComplex, BuildError> {
+    let entries: usize = uses.iter().map(|&k| k as usize).sum();
     if entries > u32::MAX as usize {
         return Err(too_large(K, entries * 4, "star entries (at most 2^32)"));
     }
-    let mut star = Stars::with_degrees(K, &degree)?;
-    drop(degree);
+    let mut star = Stars::with_degrees(K, &uses)?;
+    drop(uses);
     for (p, table) in tops.iter().enumerate().skip(1) {
         for (slot, s) in table.chunks_exact(p + 1).enumerate() {
             for &v in s {
@@ -220,10 +250,6 @@ fn build_plain(
             }
         }
     }
-    let (coord_dim, coords) = match &raw.coords {
-        Some(c) => (c.dim, try_copy(K, &c.data, "coordinates")?),
-        None => (0, Vec::new()),
-    };
     let mut live_tops = *per_dim;
     live_tops[0] = 0;
     Parts {
@@ -232,6 +258,29 @@ fn build_plain(
         star,
     }
     .into_live(n, coord_dim, coords)
+}
+
+/// A streamed plain file's tables ([`PlainTables`]: tops and coordinates moved in, not copied)
+/// as a live complex; `None` when a top repeats another or is a face of another (the file must
+/// be read the general way, so that a complex absorbs it). Cost: the stars' two passes and the
+/// absorption check, as [`from_plain_listing`]; memory the live complex and nothing else.
+pub(super) fn from_plain_tables(t: PlainTables) -> Option<Result<LiveComplex, BuildError>> {
+    let n = t.vertex_count as usize;
+    if n == 0 || n > DEAD as usize || t.tops.len() > MAX_DIMENSION + 1 {
+        return None;
+    }
+    let mut per_dim = [0usize; MAX_DIMENSION + 1];
+    for (p, table) in t.tops.iter().enumerate().skip(1) {
+        per_dim[p] = table.len() / (p + 1);
+    }
+    let mut tops = t.tops;
+    tops.resize_with(MAX_DIMENSION + 1, Vec::new);
+    let built = check_slots(&per_dim)
+        .and_then(|()| with_stars(tops, &per_dim, t.uses, n, t.coords.dim, t.coords.data));
+    match built {
+        Ok(live) if live.absorbs_a_top() => None,
+        built => Some(built),
+    }
 }
 
 impl LiveComplex {
@@ -347,6 +396,72 @@ mod tests {
             }
         }
         assert!(plain >= 30, "only {plain} plain listings");
+    }
+
+    /// Random edge-and-triangle listings written as OFF files, some with a triangle repeated or
+    /// an edge of a triangle listed too: streamed into tables and built, each is the live
+    /// complex the general read builds (tables, coordinates, stars entry for entry), or is left
+    /// to the general read exactly when that read finds it not plain.
+    #[test]
+    fn a_streamed_off_file_builds_what_the_general_read_builds() {
+        let mut below = crate::complex::xorshift_below(0x0ff_5eed);
+        let path = std::env::temp_dir().join(format!("topoplex-live-{}.off", std::process::id()));
+        let (mut streamed, mut left) = (0, 0);
+        for _ in 0..300 {
+            let n = 8 + below(20) as u32;
+            let mut text = String::new();
+            let mut rows: Vec<Vec<u32>> = Vec::new();
+            for _ in 0..1 + below(12) {
+                let k = 2 + below(2) as usize;
+                let mut s: Vec<u32> = Vec::new();
+                while s.len() < k {
+                    let v = below(u64::from(n)) as u32;
+                    if !s.contains(&v) {
+                        s.push(v);
+                    }
+                }
+                rows.push(s);
+            }
+            if below(4) == 0 {
+                let again = rows[below(rows.len() as u64) as usize].clone();
+                rows.push(again[..2].to_vec());
+            }
+            text.push_str(&format!("OFF\n{n} {} 0\n", rows.len()));
+            for v in 0..n {
+                text.push_str(&format!("{v} {} 0.5\n", v * v));
+            }
+            for s in &rows {
+                let ids: Vec<String> = s.iter().map(u32::to_string).collect();
+                text.push_str(&format!("{} {}\n", s.len(), ids.join(" ")));
+            }
+            std::fs::write(&path, &text).unwrap();
+            let raw = crate::io::read_path(&path).unwrap();
+            let general = LiveComplex::from_plain_listing(&raw).map(Result::unwrap);
+            let tables = crate::io::plain::read_off(&path).expect("drawn plain");
+            match (LiveComplex::from_plain_tables(tables), general) {
+                (Some(built), Some(want)) => {
+                    let built = built.unwrap();
+                    built.check_invariants().unwrap();
+                    assert_eq!(built.tops, want.tops, "{text}");
+                    assert_eq!(built.coords, want.coords, "{text}");
+                    for v in 0..n as usize {
+                        assert_eq!(built.star[v], want.star[v], "star of {v}: {text}");
+                    }
+                    streamed += 1;
+                }
+                (None, None) => left += 1,
+                (built, want) => panic!(
+                    "streamed {}, general {}: {text}",
+                    built.is_some(),
+                    want.is_some()
+                ),
+            }
+        }
+        let _ = std::fs::remove_file(&path);
+        assert!(
+            streamed > 150 && left > 20,
+            "{streamed} streamed, {left} left"
+        );
     }
 
     #[test]

@@ -438,6 +438,14 @@ impl LiveComplex {
         build::from_plain_listing(raw)
     }
 
+    /// A streamed plain file's tables as a live complex, the tables moved in (no copy): `None`
+    /// when a top repeats another or is a face of another, for the general read.
+    pub(crate) fn from_plain_tables(
+        tables: crate::complex::PlainTables,
+    ) -> Option<Result<LiveComplex, BuildError>> {
+        build::from_plain_tables(tables)
+    }
+
     fn check_vertex_count(complex: &Complex) -> Result<usize, BuildError> {
         let n = complex.vertex_count() as usize;
         if n > DEAD as usize {
@@ -832,12 +840,44 @@ impl LiveComplex {
     /// writing [`LiveComplex::to_complex`] would, but from [`LiveComplex::to_listing`]: no
     /// complex is built, so the memory above the live complex is the listing (4 bytes per id,
     /// 12 per simplex) and the file's bytes. Nothing is written when the format cannot hold it.
+    ///
+    /// An OFF file of edges and triangles (at most 3 coordinates, no attributes) is written
+    /// straight from the tables, with no listing: the memory above the live complex is a 1 MiB
+    /// piece of the file (and 4 bytes a vertex slot once vertices were removed).
     pub fn write(
         &self,
         path: &std::path::Path,
         format: Option<crate::io::write::Format>,
     ) -> Result<(), crate::io::write::WriteError> {
-        crate::io::write::write_raw(&self.to_listing(), path, format)
+        use crate::io::write::{Format, write_plain_off, write_raw};
+        let format = format.or_else(|| Format::from_path(path));
+        let plain = format == Some(Format::Off)
+            && self.data.is_empty()
+            && self.coord_dim <= 3
+            && self.live_tops[3..].iter().all(|&k| k == 0);
+        if !plain {
+            return write_raw(&self.to_listing(), path, format);
+        }
+        // Dense vertex ids as `to_listing` numbers them: the slots, unless some were removed.
+        let gaps = self.live_vertices != self.vertex_slots();
+        let map = if gaps {
+            self.vertex_map().0
+        } else {
+            Vec::new()
+        };
+        let k = self.coord_dim;
+        let mut slot = 0;
+        let coords = |_| {
+            while !self.alive[slot] {
+                slot += 1;
+            }
+            slot += 1;
+            &self.coords[(slot - 1) * k..slot * k]
+        };
+        let m: usize = self.live_tops.iter().sum();
+        let faces = self.tops().map(|(_, s)| s);
+        let id = |v: u32| if gaps { map[v as usize] } else { v };
+        write_plain_off(path, self.live_vertices as usize, coords, m, faces, id)
     }
 
     /// Old vertex slot → dense id (`NONE` for removed ones), and the live count.

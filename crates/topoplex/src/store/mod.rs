@@ -149,15 +149,23 @@ pub fn open_complex_with(
 }
 
 /// An editable live complex for an input path: a saved file's live complex (or one built from
-/// its saved complex; with `verify`, the file checked fully first); a mesh file read straight
-/// into the live complex when its listing is plain ([`LiveComplex::from_plain_listing`]: no
-/// complex built, so the peak is the file's bytes and the reader's listing, then the listing
-/// and the live complex), else normalised under the default budget and built from the complex.
-/// Cost: O(file) plus the build.
+/// its saved complex; with `verify`, the file checked fully first); a plain OFF file streamed
+/// into the live complex's arrays (`io::plain`: no copy of the file, no listing, so the peak is
+/// the live complex and a 1 MiB buffer); another mesh file read straight into the live complex
+/// when its listing is plain ([`LiveComplex::from_plain_listing`]: no complex built, so the peak
+/// is the file's bytes and the reader's listing, then the listing and the live complex); else
+/// normalised under the default budget and built from the complex. Cost: O(file) plus the
+/// build (a plain-looking OFF file that turns out not to be, e.g. a top listed twice, is read
+/// twice).
 pub fn open_live(path: &Path, verify: bool) -> Result<LiveComplex, OpenError> {
     if is_saved_path(path) {
         let saved = Saved::open_checked(path, verify)?;
         return Ok(LiveComplex::open_saved(&saved)?);
+    }
+    if let Some(tables) = crate::io::plain::read_off(path)
+        && let Some(live) = LiveComplex::from_plain_tables(tables)
+    {
+        return Ok(live?);
     }
     let raw = crate::io::read_path(path).map_err(ComplexError::from)?;
     if let Some(live) = LiveComplex::from_plain_listing(&raw) {

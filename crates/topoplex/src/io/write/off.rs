@@ -60,34 +60,74 @@ pub(super) fn write(raw: &RawInput, out: &mut super::Out) -> Result<(), String> 
             a.describe()
         ));
     }
-    for (a, prefix) in [(texture, "ST"), (colour, "C"), (normal, "N")] {
+    let mut prefix = String::new();
+    for (a, letters) in [(texture, "ST"), (colour, "C"), (normal, "N")] {
         if a.is_some() {
-            out.extend_from_slice(prefix.as_bytes());
+            prefix.push_str(letters);
         }
     }
+    let vertex = |out: &mut Vec<u8>, v: usize| {
+        push_point(out, coords, v, width);
+        for a in [normal, colour, texture] {
+            push_element(out, a, v);
+        }
+    };
+    let faces = (0..raw.simplex_count()).map(|i| raw.simplex(i));
+    let colour = |out: &mut Vec<u8>, i: usize| push_element(out, face_colour, i);
+    let m = raw.simplex_count();
+    write_lines(
+        out,
+        &prefix,
+        width,
+        vertex_count(raw),
+        vertex,
+        m,
+        faces,
+        |v| v,
+        colour,
+    );
+    Ok(())
+}
+
+/// The lines of an OFF file: the header keyword (`prefix` before it) for `width` numbers a
+/// vertex, the counts, `n` vertex lines (`vertex(out, v)` writes vertex v's numbers) and the `m`
+/// faces `k ids` with each id through `id` and `extra(out, i)` after face i's ids. Handed to the
+/// file line by line ([`super::Out::spill`]). Shared by [`write`] and the live complex's writer,
+/// which writes from its own arrays with no listing.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn write_lines<'s>(
+    out: &mut super::Out,
+    prefix: &str,
+    width: usize,
+    n: usize,
+    mut vertex: impl FnMut(&mut Vec<u8>, usize),
+    m: usize,
+    faces: impl Iterator<Item = &'s [u32]>,
+    id: impl Fn(u32) -> u32,
+    mut extra: impl FnMut(&mut Vec<u8>, usize),
+) {
+    out.extend_from_slice(prefix.as_bytes());
     if width == 3 {
         out.extend_from_slice(b"OFF\n");
     } else {
         out.extend_from_slice(format!("nOFF\n{width}\n").as_bytes());
     }
-    let n = vertex_count(raw);
-    out.extend_from_slice(format!("{n} {} 0\n", raw.simplex_count()).as_bytes());
+    out.extend_from_slice(format!("{n} {m} 0\n").as_bytes());
     for v in 0..n {
-        push_point(out, coords, v, width);
-        for a in [normal, colour, texture] {
-            push_element(out, a, v);
-        }
+        vertex(out, v);
         out.push(b'\n');
         out.spill();
     }
-    for i in 0..raw.simplex_count() {
-        let s = raw.simplex(i);
+    let mut ids = [0u32; 3];
+    for (i, s) in faces.enumerate() {
+        for (x, &v) in ids.iter_mut().zip(s) {
+            *x = id(v);
+        }
         push_ids(out, &[s.len() as u32], 0);
         out.push(b' ');
-        push_ids(out, s, 0);
-        push_element(out, face_colour, i);
+        push_ids(out, &ids[..s.len()], 0);
+        extra(out, i);
         out.push(b'\n');
         out.spill();
     }
-    Ok(())
 }
