@@ -154,6 +154,17 @@
 #define TPX_CONTRACT_PRESERVE_MANIFOLD 2
 
 /**
+ * `TpxLiveAdjacency` entry: no other top of the same dimension across this facet.
+ */
+#define TPX_ACROSS_NONE UINT32_MAX
+
+/**
+ * `TpxLiveAdjacency` entry: two or more tops of the same dimension across this facet (a
+ * non-manifold facet): scan a star of the facet for them.
+ */
+#define TPX_ACROSS_MANY (UINT32_MAX - 1)
+
+/**
  * `tpx_structure_open`, `tpx_live_open` and `tpx_complex_open_flags` flag: check the whole
  * file before returning (every section's checksum, the saved complex, the structure's
  * invariants and its agreement with the complex; reads the whole file and builds).
@@ -631,6 +642,30 @@ typedef struct TpxLiveArrays {
    */
   size_t coord_dim;
 } TpxLiveArrays;
+
+/**
+ * The tops across each facet, lent (see `tpx_live_adjacency`). For the live top of dimension p
+ * in slot s (packed id `p << 28 | s`) and i ≤ p, `across[p][s * (p + 1) + i]` says what lies
+ * across its facet opposite its i-th stored vertex (`TpxLiveArrays::tops[p][s * (p + 1) + i]`),
+ * among the live tops of dimension p: `TPX_ACROSS_NONE` (a boundary facet, or one only tops of
+ * other dimensions share), the packed id of the one other top, or `TPX_ACROSS_MANY`. Entries of
+ * a tombstoned slot are `TPX_ACROSS_NONE`. Valid as `TpxLiveArrays` is: until the next edit of
+ * the topology (setting coordinates keeps it).
+ */
+typedef struct TpxLiveAdjacency {
+  /**
+   * Per dimension 0..=15: `p + 1` entries per slot of the top table (`tops[0]`: empty).
+   */
+  const uint32_t *across[16];
+  /**
+   * Per dimension: entries in `across[p]` (the same as `TpxLiveArrays::top_lens[p]`).
+   */
+  size_t across_lens[16];
+  /**
+   * Heap bytes of the index (4 per vertex of every top slot).
+   */
+  uint64_t bytes;
+} TpxLiveAdjacency;
 
 /**
  * Storage of a structure: what the papers count and what the process really holds.
@@ -1675,6 +1710,22 @@ TpxStatus tpx_live_top_vertices(const struct TpxLive *l,
  * Non-NULL pointers must be valid.
  */
 TpxStatus tpx_live_arrays(const struct TpxLive *l, struct TpxLiveArrays *out);
+
+/**
+ * Lends the tops across each facet of every top into `*out` (a caller-owned struct filled in):
+ * an index built on the first call after an edit, kept with the live complex until its next
+ * edit of the topology, so that FF (faces across a triangle's edges), TT (tetrahedra across a
+ * tetrahedron's triangles) and the same in any dimension are one read each (see
+ * `TpxLiveAdjacency`; C++ `topoplex::MeshView` uses it when given). Errors: NULL_ARGUMENT,
+ * TOO_LARGE (its memory cannot be had); `*out` written only on success. Cost: the first call
+ * after an edit O(Σ_t d²·k) over every top t (k the smallest star of a facet's vertices) on
+ * the library's threads, 4 bytes per vertex of every top slot; later calls O(1).
+ * Not to be called while another thread edits the live complex.
+ *
+ * # Safety
+ * Non-NULL pointers must be valid.
+ */
+TpxStatus tpx_live_adjacency(const struct TpxLive *l, struct TpxLiveAdjacency *out);
 
 /**
  * Adds an isolated vertex at `xyz[0 .. len]`; its id into `*out`. Errors: NULL_ARGUMENT,

@@ -1263,11 +1263,24 @@ class TopSpan {
  * simplex is a vertex subset of a top. Costs below: k_v = |St*(v)|, d the dimension; "the
  * smallest star" is that of the simplex's vertex with the fewest tops.
  *
+ * With the facet adjacency (Live::mesh_with_adjacency(), tpx_live_adjacency: an index of 4 bytes
+ * per vertex of every top, built on request and dropped by the next edit), the tops across a
+ * top's facets (FF, TT) are read rather than found by star scans.
+ *
  * Many threads may read one MeshView at once (it is a set of const pointers). */
 class MeshView {
  public:
   MeshView() = default;
   explicit MeshView(const TpxLiveArrays &a) noexcept : a_(a) {}
+  /* With the facet adjacency of the same state of the same live complex. */
+  MeshView(const TpxLiveArrays &a, const TpxLiveAdjacency &adj) noexcept : a_(a), adj_(adj), has_adj_(true) {}
+  bool has_adjacency() const noexcept { return has_adj_; }
+  /* What lies across the facet of live top t opposite its i-th vertex (i <= t.dim()), among the
+   * live tops of t's dimension: TPX_ACROSS_NONE, the one other top's packed id, or
+   * TPX_ACROSS_MANY (a non-manifold facet). Needs has_adjacency(). O(1). */
+  std::uint32_t across(TopRef t, std::uint32_t i) const noexcept {
+    return adj_.across[t.dim()][std::size_t(t.slot()) * (t.dim() + 1) + i];
+  }
 
   std::uint32_t vertex_slots() const noexcept { return a_.vertex_slots; }
   /* Slot v holds a live vertex. O(1). */
@@ -1333,6 +1346,84 @@ class MeshView {
     for_each_top_holding(s, n, [&](TopRef) { found = true; });
     return found;
   }
+  /* Whether the simplex s[0..n) (live distinct vertices of a simplex of the mesh) lies on the
+   * boundary, as tpx_simplex_test's 0 says: s, or a simplex of its star, is not a top and has
+   * exactly one coface one dimension up (a surface's boundary edges, their vertices and
+   * triangles; a dangling end of a wire). `scratch` is reused. O(Σ_τ k·d) over the simplices τ
+   * of the star, each τ's cofaces from its smallest star. */
+  bool is_boundary(const std::uint32_t *s, std::size_t n, std::vector<std::uint32_t> &scratch) const {
+    // The simplices of the star: s with every subset of a top's other vertices.
+    bool found = false;
+    for_each_top_holding(s, n, [&](TopRef t) {
+      if (found) return;
+      std::uint32_t rest[16];
+      std::size_t r = 0;
+      for (std::uint32_t w : vertices(t))
+        if (std::find(s, s + n, w) == s + n) rest[r++] = w;
+      for (std::uint32_t mask = 0; mask < (1u << r) && !found; ++mask) {
+        scratch.assign(s, s + n);
+        for (std::size_t i = 0; i < r; ++i)
+          if (mask >> i & 1) scratch.push_back(rest[i]);
+        found = one_coface_up(scratch);
+      }
+    });
+    return found;
+  }
+  /* Whether the simplex s[0..n) is manifold, as tpx_simplex_test's 1 says: its star is pure
+   * (every top through s has the same dimension) and its link (those tops without s) is a
+   * connected pseudo-manifold: for a link of points, one or two; else every facet of the link
+   * in one or two of its simplices, and the link connected through them. A top is manifold.
+   * `scratch` is reused (plus a union-find of k entries). O(k²·d³) over the tops through s (k
+   * of them): for the small stars of meshes. */
+  bool is_manifold(const std::uint32_t *s, std::size_t n, std::vector<std::uint32_t> &scratch) const {
+    scratch.clear();
+    std::size_t arity = 0;
+    bool pure = true;
+    for_each_top_holding(s, n, [&](TopRef t) {
+      const std::size_t k = t.dim() + 1 - n;
+      if (scratch.empty() && arity == 0) arity = k;
+      pure = pure && k == arity;
+      for (std::uint32_t w : vertices(t))
+        if (std::find(s, s + n, w) == s + n) scratch.push_back(w);
+    });
+    if (!pure) return false;
+    if (arity == 0 || scratch.empty()) return true;
+    const std::size_t m = scratch.size() / arity;
+    if (arity == 1) return m <= 2;
+    // Rows i, j share a facet when they have arity - 1 vertices in common; a facet of row i in
+    // more than one other row is in three rows or more.
+    const auto common = [&](std::size_t i, std::size_t j) {
+      std::size_t c = 0;
+      for (std::size_t a = 0; a < arity; ++a)
+        for (std::size_t b = 0; b < arity; ++b) c += scratch[i * arity + a] == scratch[j * arity + b];
+      return c;
+    };
+    std::vector<std::uint32_t> root(m);
+    for (std::size_t i = 0; i < m; ++i) root[i] = static_cast<std::uint32_t>(i);
+    const auto find = [&](std::uint32_t x) {
+      while (root[x] != x) x = root[x] = root[root[x]];
+      return x;
+    };
+    for (std::size_t i = 0; i < m; ++i) {
+      // For each facet of row i (without its entry a), how many other rows hold it.
+      for (std::size_t a = 0; a < arity; ++a) {
+        std::size_t holders = 0;
+        for (std::size_t j = 0; j < m; ++j) {
+          if (j == i || common(i, j) != arity - 1) continue;
+          bool has = true;
+          for (std::size_t b = 0; b < arity && has; ++b)
+            if (b != a) has = std::find(&scratch[j * arity], &scratch[j * arity] + arity, scratch[i * arity + b]) !=
+                              &scratch[j * arity] + arity;
+          if (!has) continue;
+          if (++holders > 1) return false;
+          root[find(static_cast<std::uint32_t>(i))] = find(static_cast<std::uint32_t>(j));
+        }
+      }
+    }
+    for (std::size_t i = 1; i < m; ++i)
+      if (find(static_cast<std::uint32_t>(i)) != find(0)) return false;
+    return true;
+  }
   /* R_{0,0}(v): the vertices sharing an edge with v, ascending, into `out` (reused). O(d·k_v +
    * m log m), m the candidates. */
   void neighbours(std::uint32_t v, std::vector<std::uint32_t> &out) const {
@@ -1364,11 +1455,31 @@ class MeshView {
    * sharing p vertices with t, then those through y (the next smallest) that miss x — the
    * ones across the facet opposite x. O(d²·(k_x + k_y)), no allocation; for edges and
    * triangles whose vertices' stars hold at most 16 tops, whether a top holds a vertex is read
-   * from that vertex's star (O(d·k²), the stars' cache lines only). */
+   * from that vertex's star (O(d·k²), the stars' cache lines only). With the facet adjacency
+   * (has_adjacency()): O(d), plus the smallest star's scan at each non-manifold facet. */
   template <class F>
   void for_each_adjacent_top(TopRef t, F &&f) const {
     const SimplexView vt = vertices(t);
     const std::uint32_t p = t.dim();
+    if (has_adj_) {
+      for (std::uint32_t i = 0; i <= p; ++i) {
+        const std::uint32_t e = across(t, i);
+        if (e == TPX_ACROSS_NONE) continue;
+        if (e != TPX_ACROSS_MANY) {
+          f(TopRef(e));
+          continue;
+        }
+        // A non-manifold facet: every other top of dimension p through it.
+        std::uint32_t facet[16];
+        std::size_t n = 0;
+        for (std::uint32_t j = 0; j <= p; ++j)
+          if (j != i) facet[n++] = vt[j];
+        for_each_top_holding(facet, n, [&](TopRef u) {
+          if (u.dim() == p && u != t) f(u);
+        });
+      }
+      return;
+    }
     std::uint32_t x = vt[0], y = vt[1];
     if (star(y).size() < star(x).size()) std::swap(x, y);
     for (std::uint32_t i = 2; i <= p; ++i) {
@@ -1469,7 +1580,25 @@ class MeshView {
   const TpxLiveArrays &arrays() const noexcept { return a_; }
 
  private:
+  /* Whether the simplex tau (distinct vertices) is not a top and has exactly one coface one
+   * dimension up: the tops through it add exactly one distinct vertex among them. */
+  bool one_coface_up(const std::vector<std::uint32_t> &tau) const {
+    bool top = false, two = false;
+    std::uint32_t first = 0xffffffffu;
+    for_each_top_holding(tau.data(), tau.size(), [&](TopRef t) {
+      if (t.dim() + 1 == tau.size()) top = true;
+      for (std::uint32_t w : vertices(t)) {
+        if (std::find(tau.begin(), tau.end(), w) != tau.end()) continue;
+        if (first == 0xffffffffu) first = w;
+        else if (w != first) two = true;
+      }
+    });
+    return !top && !two && first != 0xffffffffu;
+  }
+
   TpxLiveArrays a_{};
+  TpxLiveAdjacency adj_{};
+  bool has_adj_ = false;
 };
 
 /* An updatable complex (any dimension, non-manifold): insert/remove top simplices, contract
@@ -1642,6 +1771,13 @@ class Live {
   /* The live complex's arrays for inline navigation (MeshView): O(1), nothing copied; valid
    * until the next edit of the topology. The fast path for every pass over the mesh. */
   MeshView mesh() const { return MeshView(detail::get<TpxLiveArrays>(tpx_live_arrays, l_.get())); }
+  /* The mesh with its facet adjacency (tpx_live_adjacency: built on the first call after an
+   * edit, O(Σ_t d²·k), 4 bytes per vertex of every top; then O(1)): FF and TT become
+   * reads. Valid as mesh() is, until the next edit of the topology. */
+  MeshView mesh_with_adjacency() const {
+    return MeshView(detail::get<TpxLiveArrays>(tpx_live_arrays, l_.get()),
+                    detail::get<TpxLiveAdjacency>(tpx_live_adjacency, l_.get()));
+  }
 
   /* The live complex seen as a borrowed structure (never free it), for the tpx_* handle calls. */
   const TpxStructure *structure() const {

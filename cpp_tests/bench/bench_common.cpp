@@ -304,6 +304,17 @@ LivePtr live_from_soup(const Soup& soup, TpxStatus* st) {
   return LivePtr(l);
 }
 
+std::unique_ptr<MeshBuilt> mesh_or_abort(const Soup& soup) {
+  auto b = std::make_unique<MeshBuilt>();
+  TpxStatus st = TPX_STATUS_OK;
+  b->live = live_from_soup(soup, &st);
+  if (!b->live || tpx_live_arrays(b->live.get(), &b->arrays) != TPX_STATUS_OK) {
+    std::fprintf(stderr, "tpx_mesh: the live complex refused the soup: %s\n", tpx_message().c_str());
+    std::exit(1);
+  }
+  return b;
+}
+
 StructurePtr load_structure(const std::string& path, uint32_t kind, TpxStatus* st) {
   TpxComplex* c = nullptr;
   *st = tpx_complex_from_file(path.c_str(), &c);

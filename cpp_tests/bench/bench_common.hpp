@@ -142,6 +142,13 @@ uint64_t soup_simplex_count(const Soup& soup);
 // The live complex's `build`: tpx_complex_from_arrays + tpx_live_from_complex, complex freed, as
 // build_from_soup. Returns null (status in *st) on a refusal.
 LivePtr live_from_soup(const Soup& soup, TpxStatus* st);
+// The mesh of `soup` (live_from_soup) with its lent arrays (tpx_live_arrays), for the `tpx_mesh`
+// walks; aborts the program with the library's message on a refusal.
+struct MeshBuilt {
+  LivePtr live;
+  TpxLiveArrays arrays{};
+};
+std::unique_ptr<MeshBuilt> mesh_or_abort(const Soup& soup);
 // The kinds of kinds_from_env() that encode `soup`; each refusal is noted on stderr.
 std::vector<Kind> kinds_that_build(const Soup& soup);
 // Topoplex's `load`: tpx_complex_from_file + tpx_structure_build, complex freed.

@@ -19,7 +19,8 @@
 //   <op>_batch  VF/VV/FF as one tpx_related_batch over every simplex
 //   <op>_view   VF/VV/FF/FF_index read inline from a lent relation view (bench_common.hpp)
 //   tpx_mesh     VF/VV/FF on the mesh (the live complex) read inline through MeshView, per
-//          element, nothing prebuilt
+//          element, nothing prebuilt; `tpx_mesh_adj`: FF read from the mesh's facet adjacency
+//          (tpx_live_adjacency, built before the timing; its bytes in `index_bytes`)
 // The peers' heap includes their vertex coordinates (OpenMesh 3 floats, CGAL 3 doubles per
 // vertex; counter `geometry_bytes`), Topoplex's structures hold none.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -348,20 +349,7 @@ int main(int argc, char** argv) {
   // across each triangle's edges.
   {
     const std::string lib = "tpx_mesh";
-    struct MeshBuilt {
-      LivePtr live;
-      TpxLiveArrays arrays{};
-    };
-    const std::function<std::unique_ptr<MeshBuilt>()> make = [] {
-      auto b = std::make_unique<MeshBuilt>();
-      TpxStatus st = TPX_STATUS_OK;
-      b->live = live_from_soup(soup, &st);
-      if (!b->live || tpx_live_arrays(b->live.get(), &b->arrays) != TPX_STATUS_OK) {
-        std::fprintf(stderr, "tpx_mesh: the live complex refused the soup: %s\n", tpx_message().c_str());
-        std::exit(1);
-      }
-      return b;
-    };
+    const std::function<std::unique_ptr<MeshBuilt>()> make = [] { return mesh_or_abort(soup); };
     add("VF", lib, Unit::Walk, [=](benchmark::State& state) {
       const topoplex::MeshView m(slot().get<MeshBuilt>(lib, make).arrays);
       uint64_t count = 0, sum = 0;
@@ -394,21 +382,31 @@ int main(int argc, char** argv) {
       check_count(state, "VV", lib, count);
       set_elements(state, count);
     });
-    add("FF", lib, Unit::Walk, [=](benchmark::State& state) {
-      const topoplex::MeshView m(slot().get<MeshBuilt>(lib, make).arrays);
-      uint64_t count = 0, sum = 0;
-      for (auto _ : state) {
-        count = 0;
-        for (uint32_t f = 0; f < m.slots(2); ++f)
-          m.for_each_adjacent_top(topoplex::TopRef(2, f), [&](topoplex::TopRef u) {
-            sum += u.slot();
-            ++count;
-          });
-        benchmark::DoNotOptimize(sum);
-      }
-      check_count(state, "FF", lib, count);
-      set_elements(state, count);
-    });
+    for (const bool with_adj : {false, true}) {
+      const std::string name = with_adj ? "tpx_mesh_adj" : lib;
+      add("FF", name, Unit::Walk, [=](benchmark::State& state) {
+        const MeshBuilt& b = slot().get<MeshBuilt>(lib, make);
+        TpxLiveAdjacency adj{};
+        if (with_adj && tpx_live_adjacency(b.live.get(), &adj) != TPX_STATUS_OK) {
+          state.SkipWithError("tpx_live_adjacency failed");
+          return;
+        }
+        const topoplex::MeshView m = with_adj ? topoplex::MeshView(b.arrays, adj) : topoplex::MeshView(b.arrays);
+        uint64_t count = 0, sum = 0;
+        for (auto _ : state) {
+          count = 0;
+          for (uint32_t f = 0; f < m.slots(2); ++f)
+            m.for_each_adjacent_top(topoplex::TopRef(2, f), [&](topoplex::TopRef u) {
+              sum += u.slot();
+              ++count;
+            });
+          benchmark::DoNotOptimize(sum);
+        }
+        check_count(state, "FF", name, count);
+        set_elements(state, count);
+        if (with_adj) state.counters["index_bytes"] = double(adj.bytes);
+      });
+    }
   }
   // The whole-mesh passes through the handle API: one tpx_degree / tpx_related per handle
   // (`stats`, `FF_index`), and the same with one tpx_related_batch per relation (`_batch`).

@@ -9,6 +9,12 @@
 //               tpx_complex_from_arrays + tpx_structure_build; CGAL: t3_from_tets below)
 //   star_cells  R_{0,3} of every vertex (CGAL finite_incident_cells)
 //   star_edges  R_{0,1} of every vertex (CGAL finite_incident_edges)
+//   TT          every tetrahedron's neighbours across its triangles (CGAL: each finite cell's
+//               finite neighbor(i); Topoplex: the mesh only)
+// `tpx_mesh` is the mesh (the live complex) read inline through topoplex::MeshView, per element,
+// nothing prebuilt: star_cells = the tetrahedra of each vertex's star, star_edges = its
+// neighbours, TT = for_each_adjacent_top; `tpx_mesh_adj`: TT read from the mesh's facet
+// adjacency (tpx_live_adjacency, built before the timing; its bytes in `index_bytes`).
 // The triangulation is CGAL::Triangulation_3<Epick> with its default (lightest) vertex and cell
 // bases; its heap includes the points (3 doubles per vertex, counter `geometry_bytes`).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -23,6 +29,7 @@
 #include <sstream>
 
 #include "bench_common.hpp"
+#include "topoplex.hpp"
 
 namespace {
 
@@ -221,6 +228,13 @@ uint64_t t3_star_cells(const T3Walk& w) {
   return n;
 }
 
+uint64_t t3_tt(const T3Walk& w) {
+  uint64_t n = 0;
+  for (Ch c : w.tr->finite_cell_handles())
+    for (int i = 0; i < 4; ++i) n += !w.tr->is_infinite(c->neighbor(i));
+  return n;
+}
+
 uint64_t t3_star_edges(const T3Walk& w) {
   std::vector<T3::Edge> edges;
   uint64_t n = 0;
@@ -301,7 +315,8 @@ int main(int argc, char** argv) {
 
   if (have_t3) {
     const std::function<std::unique_ptr<T3Walk>()> make = [] { return t3_walk_of(tets); };
-    for (auto [op, fn] : {std::make_pair("star_cells", &t3_star_cells), std::make_pair("star_edges", &t3_star_edges)}) {
+    for (auto [op, fn] : {std::make_pair("star_cells", &t3_star_cells), std::make_pair("star_edges", &t3_star_edges),
+                          std::make_pair("TT", &t3_tt)}) {
       add_walk(op, "cgal_t3", make, fn);
     }
   }
@@ -329,6 +344,70 @@ int main(int argc, char** argv) {
       });
       add_view_walk(name, lib, [lib, make] { return slot().get<Built>(lib, make).s.get(); }, 0, q);
     }
+  }
+  {
+    const std::string lib = "tpx_mesh";
+    const std::function<std::unique_ptr<MeshBuilt>()> make = [] { return mesh_or_abort(soup); };
+    // Each op's count and a sum of what it saw (kept from the optimiser).
+    const auto op = [&](const std::string& name, std::function<uint64_t(const topoplex::MeshView&, uint64_t&)> pass) {
+      add(name, lib, Unit::Walk, [=](benchmark::State& state) {
+        const topoplex::MeshView m(slot().get<MeshBuilt>(lib, make).arrays);
+        uint64_t count = 0, sum = 0;
+        for (auto _ : state) {
+          count = pass(m, sum);
+          benchmark::DoNotOptimize(sum);
+        }
+        check_count(state, name, lib, count);
+        set_elements(state, count);
+      });
+    };
+    op("star_cells", [](const topoplex::MeshView& m, uint64_t& sum) {
+      uint64_t n = 0;
+      for (uint32_t v = 0; v < m.vertex_slots(); ++v)
+        for (topoplex::TopRef t : m.star(v))
+          if (t.dim() == 3) {
+            sum += t.slot();
+            ++n;
+          }
+      return n;
+    });
+    op("star_edges", [](const topoplex::MeshView& m, uint64_t& sum) {
+      std::vector<uint32_t> ring;
+      uint64_t n = 0;
+      for (uint32_t v = 0; v < m.vertex_slots(); ++v) {
+        m.neighbours(v, ring);
+        for (uint32_t w : ring) sum += w;
+        n += ring.size();
+      }
+      return n;
+    });
+    const auto tt = [](const topoplex::MeshView& m, uint64_t& sum) {
+      uint64_t n = 0;
+      for (uint32_t t = 0; t < m.slots(3); ++t)
+        m.for_each_adjacent_top(topoplex::TopRef(3, t), [&](topoplex::TopRef u) {
+          sum += u.slot();
+          ++n;
+        });
+      return n;
+    };
+    op("TT", tt);
+    add("TT", "tpx_mesh_adj", Unit::Walk, [=](benchmark::State& state) {
+      const MeshBuilt& b = slot().get<MeshBuilt>(lib, make);
+      TpxLiveAdjacency adj{};
+      if (tpx_live_adjacency(b.live.get(), &adj) != TPX_STATUS_OK) {
+        state.SkipWithError("tpx_live_adjacency failed");
+        return;
+      }
+      const topoplex::MeshView m(b.arrays, adj);
+      uint64_t count = 0, sum = 0;
+      for (auto _ : state) {
+        count = tt(m, sum);
+        benchmark::DoNotOptimize(sum);
+      }
+      check_count(state, "TT", "tpx_mesh_adj", count);
+      set_elements(state, count);
+      state.counters["index_bytes"] = double(adj.bytes);
+    });
   }
   return run();
 }

@@ -138,19 +138,48 @@ void check(const topoplex::Live &live, std::mt19937 &rng) {
       EXPECT_EQ(m.tops_holding(s.data(), s.size(), p), k);
     }
     EXPECT_EQ(m.is_simplex(s.data(), s.size()), s.size() == 1 || !want.empty());
+    if (!want.empty()) {
+      // Boundary and manifold tests inline, as the library's handle functions answer them.
+      const topoplex::Simplex h = live.locate(s);
+      Ids scratch_ids;
+      EXPECT_EQ(m.is_boundary(s.data(), s.size(), scratch_ids), live.is_boundary(h)) << "boundary";
+      EXPECT_EQ(m.is_manifold(s.data(), s.size(), scratch_ids), live.is_manifold(h)) << "manifold";
+    }
   }
 
-  // Adjacent tops: the same dimension, sharing all but one vertex.
+  // Adjacent tops: the same dimension, sharing all but one vertex; from the stars, and read
+  // from the facet adjacency (each facet's entry: none, the one top across, or many).
   std::vector<TopRef> adj;
+  const MeshView with = live.mesh_with_adjacency();
+  ASSERT_TRUE(with.has_adjacency());
   for (std::uint32_t p = 1; p <= 15; ++p)
     for (std::uint32_t s = 0; s < m.slots(p); ++s) {
       const TopRef t(p, s);
       if (!m.is_top(t)) continue;
       const Ids me = top_set(m, t);
+      for (std::uint32_t i = 0; i <= p; ++i) {
+        Ids facet = m.vertices(t).to_vector();
+        facet.erase(facet.begin() + i);
+        std::sort(facet.begin(), facet.end());
+        std::size_t across = 0;
+        for (const Ids &u : o.tops)
+          across += u.size() == me.size() && u != me &&
+                    std::includes(u.begin(), u.end(), facet.begin(), facet.end());
+        const std::uint32_t e = with.across(t, i);
+        if (across == 0) EXPECT_EQ(e, TPX_ACROSS_NONE);
+        else if (across > 1) EXPECT_EQ(e, TPX_ACROSS_MANY);
+        else EXPECT_TRUE(e != TPX_ACROSS_NONE && e != TPX_ACROSS_MANY && m.is_top(TopRef(e)));
+      }
+      std::vector<TopRef> read;
+      with.adjacent_tops(t, read);
+      std::vector<Ids> got_read;
+      for (TopRef u : read) got_read.push_back(top_set(m, u));
+      std::sort(got_read.begin(), got_read.end());
       m.adjacent_tops(t, adj);
       std::vector<Ids> got;
       for (TopRef u : adj) got.push_back(top_set(m, u));
       std::sort(got.begin(), got.end());
+      EXPECT_EQ(got_read, got) << "tops adjacent to a top " << p << "-simplex, read";
       std::vector<Ids> want;
       for (const Ids &u : o.tops) {
         if (u.size() != me.size() || u == me) continue;

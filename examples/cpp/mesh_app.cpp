@@ -62,12 +62,14 @@ int main(int argc, char **argv) {
 
     // Face neighbours: per-face data indexed by the face's slot (after a build, its place
     // among the input's top simplices; kept across edits until compact()), the
-    // neighbours of face f across its edges (every other triangle at a non-manifold edge).
-    const std::uint32_t faces = m.slots(2);
+    // neighbours of face f across its edges (every other triangle at a non-manifold edge),
+    // read from the facet adjacency the mesh builds on request (12 bytes a triangle).
+    const topoplex::MeshView ma = mesh.mesh_with_adjacency();
+    const std::uint32_t faces = ma.slots(2);
     std::vector<std::uint64_t> sum(faces);
     for (std::uint32_t f = 0; f < faces; ++f)
-      m.for_each_adjacent_top(topoplex::TopRef(2, f),
-                              [&](topoplex::TopRef g) { sum[f] += g.slot() + 1; });
+      ma.for_each_adjacent_top(topoplex::TopRef(2, f),
+                               [&](topoplex::TopRef g) { sum[f] += g.slot() + 1; });
     std::uint64_t checksum = 0;
     for (std::uint32_t f = 0; f < faces; ++f) checksum += sum[f] * (f + 1);
 

@@ -445,6 +445,63 @@ pub unsafe extern "C" fn tpx_live_arrays(l: *const TpxLive, out: *mut TpxLiveArr
     })
 }
 
+/// `TpxLiveAdjacency` entry: no other top of the same dimension across this facet.
+pub const TPX_ACROSS_NONE: u32 = u32::MAX;
+/// `TpxLiveAdjacency` entry: two or more tops of the same dimension across this facet (a
+/// non-manifold facet): scan a star of the facet for them.
+pub const TPX_ACROSS_MANY: u32 = u32::MAX - 1;
+
+/// The tops across each facet, lent (see `tpx_live_adjacency`). For the live top of dimension p
+/// in slot s (packed id `p << 28 | s`) and i ≤ p, `across[p][s * (p + 1) + i]` says what lies
+/// across its facet opposite its i-th stored vertex (`TpxLiveArrays::tops[p][s * (p + 1) + i]`),
+/// among the live tops of dimension p: `TPX_ACROSS_NONE` (a boundary facet, or one only tops of
+/// other dimensions share), the packed id of the one other top, or `TPX_ACROSS_MANY`. Entries of
+/// a tombstoned slot are `TPX_ACROSS_NONE`. Valid as `TpxLiveArrays` is: until the next edit of
+/// the topology (setting coordinates keeps it).
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct TpxLiveAdjacency {
+    /// Per dimension 0..=15: `p + 1` entries per slot of the top table (`tops[0]`: empty).
+    pub across: [*const u32; 16],
+    /// Per dimension: entries in `across[p]` (the same as `TpxLiveArrays::top_lens[p]`).
+    pub across_lens: [usize; 16],
+    /// Heap bytes of the index (4 per vertex of every top slot).
+    pub bytes: u64,
+}
+
+/// Lends the tops across each facet of every top into `*out` (a caller-owned struct filled in):
+/// an index built on the first call after an edit, kept with the live complex until its next
+/// edit of the topology, so that FF (faces across a triangle's edges), TT (tetrahedra across a
+/// tetrahedron's triangles) and the same in any dimension are one read each (see
+/// `TpxLiveAdjacency`; C++ `topoplex::MeshView` uses it when given). Errors: NULL_ARGUMENT,
+/// TOO_LARGE (its memory cannot be had); `*out` written only on success. Cost: the first call
+/// after an edit O(Σ_t d²·k) over every top t (k the smallest star of a facet's vertices) on
+/// the library's threads, 4 bytes per vertex of every top slot; later calls O(1).
+/// Not to be called while another thread edits the live complex.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_adjacency(
+    l: *const TpxLive,
+    out: *mut TpxLiveAdjacency,
+) -> TpxStatus {
+    guard(|| {
+        let l = handle(l, "l")?;
+        let out = out_ptr(out, "out")?;
+        let a = l
+            .live()
+            .adjacency()
+            .map_err(crate::structure::build_failure)?;
+        *out = TpxLiveAdjacency {
+            across: std::array::from_fn(|p| a.rows[p].as_ptr()),
+            across_lens: std::array::from_fn(|p| a.rows[p].len()),
+            bytes: a.bytes,
+        };
+        Ok(())
+    })
+}
+
 /// Adds an isolated vertex at `xyz[0 .. len]`; its id into `*out`. Errors: NULL_ARGUMENT,
 /// INVALID_ARGUMENT (wrong length, a NaN or infinite number). Amortised O(1).
 ///

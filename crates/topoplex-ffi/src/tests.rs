@@ -2107,3 +2107,58 @@ fn live_top_and_vertex_values_by_handle_survive_into_the_complex() {
     unsafe { tpx_live_free(l) };
     unsafe { tpx_complex_free(c) };
 }
+
+/// Three triangles on the edge 0-1 and a fourth, 0 2 5, across the edge 0-2 of the first: the
+/// lent facet adjacency names the one triangle across a manifold edge, says MANY across the
+/// non-manifold edge and NONE on the boundary; NULL arguments are refused with the output
+/// untouched; after a contraction the next call describes the new state.
+#[test]
+fn the_facet_adjacency_is_lent_and_follows_edits() {
+    let c = complex(6, &[&[0, 1, 2], &[0, 1, 3], &[0, 1, 4], &[0, 2, 5]]);
+    let mut l = null_mut();
+    assert_eq!(unsafe { tpx_live_from_complex(c, &mut l) }, TpxStatus::Ok);
+    let mut adj = TpxLiveAdjacency {
+        across: [null(); 16],
+        across_lens: [7; 16],
+        bytes: 7,
+    };
+    assert_eq!(
+        unsafe { tpx_live_adjacency(null(), &mut adj) },
+        TpxStatus::NullArgument
+    );
+    assert_eq!(
+        unsafe { tpx_live_adjacency(l, null_mut()) },
+        TpxStatus::NullArgument
+    );
+    assert_eq!(
+        (adj.across_lens[2], adj.bytes),
+        (7, 7),
+        "output written on a refusal"
+    );
+    assert_eq!(unsafe { tpx_live_adjacency(l, &mut adj) }, TpxStatus::Ok);
+    assert_eq!(adj.across_lens[2], 12);
+    assert_eq!(adj.bytes, 4 * 12);
+    let row = |adj: &TpxLiveAdjacency, slot: usize| -> Vec<u32> {
+        let all = unsafe { std::slice::from_raw_parts(adj.across[2], adj.across_lens[2]) };
+        all[3 * slot..3 * slot + 3].to_vec()
+    };
+    let t012 = live_top_id(l, &[0, 1, 2]);
+    let t025 = live_top_id(l, &[0, 2, 5]);
+    assert_eq!(t012 >> 28, 2);
+    // 0 1 2: across from 0 (edge 1 2) none, from 1 (edge 0 2) the triangle 0 2 5, from 2
+    // (edge 0 1) the two other triangles on it.
+    assert_eq!(
+        row(&adj, (t012 & 0x0fff_ffff) as usize),
+        [TPX_ACROSS_NONE, t025, TPX_ACROSS_MANY]
+    );
+    // Contracting 5 into 2 removes the triangle 0 2 5: the edge 0 2 is a boundary again.
+    let st = unsafe { tpx_live_contract(l, 2, 5, TPX_CONTRACT_FREE, null(), 0, null_mut()) };
+    assert_eq!(st, TpxStatus::Ok);
+    assert_eq!(unsafe { tpx_live_adjacency(l, &mut adj) }, TpxStatus::Ok);
+    let t012 = live_top_id(l, &[0, 1, 2]);
+    assert_eq!(row(&adj, (t012 & 0x0fff_ffff) as usize)[1], TPX_ACROSS_NONE);
+    unsafe {
+        tpx_live_free(l);
+        tpx_complex_free(c);
+    }
+}

@@ -46,6 +46,8 @@ pub(super) struct DenseIndex {
     /// Views built for [`Navigate::relation_view`], slot `p (d + 1) + q` for the dimension d
     /// the complex had when the first was asked (no edit since, so d has not changed).
     views: OnceLock<Box<[OnceLock<Csr>]>>,
+    /// The tops across each facet (module `across`), when asked.
+    across: OnceLock<super::across::Across>,
 }
 
 /// A clone starts with no tables: they are caches, rebuilt on use.
@@ -56,8 +58,17 @@ impl Clone for DenseIndex {
 }
 
 impl DenseIndex {
-    /// Heap bytes of the tables and views built so far.
+    /// The facet adjacency's place (module `across`).
+    pub(super) fn across(&self) -> &OnceLock<super::across::Across> {
+        &self.across
+    }
+
+    /// Heap bytes of the tables, views and facet adjacency built so far.
     pub(super) fn bytes(&self) -> u64 {
+        self.bytes_of_numbering() + self.across.get().map_or(0, |a| a.bytes())
+    }
+
+    fn bytes_of_numbering(&self) -> u64 {
         let tables: usize = self
             .tables
             .iter()

@@ -127,6 +127,7 @@ use crate::structures::BuildError;
 use crate::structures::common::{too_large, try_copy, try_vec};
 use crate::structures::ia::faces_containing as faces;
 
+mod across;
 mod build;
 pub mod data;
 mod dense;
@@ -138,6 +139,7 @@ mod store;
 
 use stars::Stars;
 
+pub use across::{ACROSS_MANY, ACROSS_NONE, Adjacency};
 pub use data::VertexPolicy;
 pub use edit::{CompactMaps, ContractMode, UndoRecord};
 

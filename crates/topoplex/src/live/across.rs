@@ -1,0 +1,317 @@
+//! The tops across each facet: an opt-in index of the live complex, so that face-to-face
+//! navigation (FF on a surface, TT on a tetrahedral mesh, the same in any dimension) is a read
+//! rather than two star scans.
+//!
+//! # What it encodes
+//! For a live top t of dimension p ≥ 1 in slot s and each i ≤ p, entry `rows[p][s·(p+1) + i]`
+//! names what lies across the facet of t opposite its i-th stored vertex (t without `tops[p][s·(p+1)
+//! + i]`), among the live tops of the same dimension p: [`ACROSS_NONE`] when no other does (a
+//! boundary facet, or one that only tops of other dimensions share), the packed top id
+//! (`p << 28 | slot`, as the stars hold them) when exactly one does (a manifold facet), and
+//! [`ACROSS_MANY`] when two or more do (a non-manifold facet: the caller scans a star for them).
+//! A tombstoned slot's entries are [`ACROSS_NONE`].
+//!
+//! # Storage and cost
+//! Nothing until asked ([`LiveComplex::adjacency`]); then 4 bytes per vertex of every top slot
+//! (`4 Σ_p (p+1)·slots_p`: 12 bytes a triangle, 16 a tetrahedron), reported by
+//! `Navigate::handle_bytes`. Built on several threads when large. Up to tetrahedra, facet by
+//! facet: each facet is met once, at its smallest vertex, among the tops of that vertex's star,
+//! and the facets a vertex owns are matched by sorting, O(Σ_v k_v·d log(k_v·d)). Above, top by
+//! top: for each facet a scan of the smallest star of its vertices for the tops holding the
+//! others, O(Σ_t d²·k), reading whether a top holds a vertex from that vertex's star when it is
+//! short. Like the dense numbering
+//! (module `dense`) it belongs to one state: every topological edit drops it, setting
+//! coordinates keeps it, and a query builds it behind a `OnceLock` from `&self`.
+
+use std::sync::OnceLock;
+
+use super::{LiveComplex, NONE, SLOT_MASK, pack, unpack};
+use crate::complex::MAX_DIMENSION;
+use crate::relation::StructureKind;
+use crate::structures::BuildError;
+
+/// Across a facet: no other top of the same dimension.
+pub const ACROSS_NONE: u32 = NONE;
+/// Across a facet: two or more other tops of the same dimension (a non-manifold facet).
+pub const ACROSS_MANY: u32 = u32::MAX - 1;
+
+/// The built index of one state (see the module doc).
+#[derive(Debug, Default)]
+pub(super) struct Across {
+    rows: Vec<Vec<u32>>,
+}
+
+impl Across {
+    pub(super) fn bytes(&self) -> u64 {
+        self.rows.iter().map(|r| 4 * r.capacity() as u64).sum()
+    }
+}
+
+/// The index lent: `rows[p]` holds `p + 1` entries per slot of dimension p's top table (see the
+/// module doc for what an entry says), `rows[0]` is empty.
+#[derive(Debug, Clone, Copy)]
+pub struct Adjacency<'a> {
+    /// Per dimension, the entries of every slot.
+    pub rows: [&'a [u32]; MAX_DIMENSION + 1],
+    /// Heap bytes of the index.
+    pub bytes: u64,
+}
+
+impl Adjacency<'_> {
+    /// What lies across the facet of top `t` (dimension p, slot s) opposite its i-th vertex: an
+    /// entry as the module doc says. O(1).
+    pub fn across(&self, p: usize, slot: u32, i: usize) -> u32 {
+        self.rows[p][slot as usize * (p + 1) + i]
+    }
+}
+
+impl LiveComplex {
+    /// The tops across each facet of every top (module doc), built on the first call after an
+    /// edit and kept until the next one. [`BuildError::TooLarge`] when its memory cannot be had
+    /// (or a 15-dimensional table so full that a top id would read as [`ACROSS_MANY`]).
+    /// Cost: the first call O(Σ_t d²·k) on [`crate::parallel::threads`] threads (module doc),
+    /// the others O(1).
+    pub fn adjacency(&self) -> Result<Adjacency<'_>, BuildError> {
+        let lock: &OnceLock<Across> = self.dense.across();
+        if lock.get().is_none() {
+            let built = self.build_across()?;
+            let _ = lock.set(built);
+        }
+        let across = lock.get().expect("set above");
+        let mut rows: [&[u32]; MAX_DIMENSION + 1] = [&[]; MAX_DIMENSION + 1];
+        for (p, r) in across.rows.iter().enumerate() {
+            rows[p] = r;
+        }
+        Ok(Adjacency {
+            rows,
+            bytes: across.bytes(),
+        })
+    }
+
+    /// Every dimension's entries, each top's filled in turn ([`LiveComplex::fill_across`]).
+    fn build_across(&self) -> Result<Across, BuildError> {
+        use rayon::prelude::*;
+        const K: StructureKind = StructureKind::IaStar;
+        let mut rows = Vec::with_capacity(MAX_DIMENSION + 1);
+        rows.push(Vec::new());
+        for p in 1..=MAX_DIMENSION {
+            let table = &self.tops[p];
+            if p == MAX_DIMENSION && table.len() / (p + 1) >= SLOT_MASK as usize - 1 {
+                return Err(BuildError::TooLarge {
+                    kind: K,
+                    what: "a 15-dimensional top table of 2^28 - 1 slots or more".into(),
+                });
+            }
+            let mut row =
+                crate::structures::common::try_vec(K, NONE, table.len(), "facet adjacency")?;
+            if p <= 3 {
+                row = self.across_by_owners(p, row);
+            } else {
+                let fill = |(slot, out): (usize, &mut [u32])| self.fill_across(p, slot, out);
+                if crate::parallel::splits(table.len() / (p + 1)) {
+                    crate::parallel::install(|| {
+                        row.par_chunks_mut(p + 1).enumerate().for_each(fill)
+                    });
+                } else {
+                    row.chunks_mut(p + 1).enumerate().for_each(fill);
+                }
+            }
+            rows.push(row);
+        }
+        Ok(Across { rows })
+    }
+
+    /// Dimension p's entries (p ≤ 3; `row` all `NONE`) facet by facet rather than top by top:
+    /// each facet is met at its smallest vertex a, whose star holds every top through it; the
+    /// facets a owns are sorted by their other vertices and matched in runs (one top: none
+    /// across; two: each other; more: many). Each entry is written once, by its facet's owner,
+    /// so vertex ranges run on several threads; the row goes through atomics, converted in place.
+    /// O(Σ_v k_v·d log(k_v·d)) with no read of a top beyond the stars' own.
+    fn across_by_owners(&self, p: usize, row: Vec<u32>) -> Vec<u32> {
+        use rayon::prelude::*;
+        use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
+        let cells: Vec<AtomicU32> = row.into_iter().map(AtomicU32::new).collect();
+        let owned_by = |range: std::ops::Range<usize>| {
+            // (the facet's other vertices, packed; the top; its entry)
+            let mut facets: Vec<(u64, u32, usize)> = Vec::new();
+            for a in range {
+                if !self.alive[a] {
+                    continue;
+                }
+                facets.clear();
+                let a = a as u32;
+                for &u in self.star[a as usize].iter() {
+                    let (q, slot) = unpack(u);
+                    if q != p {
+                        continue;
+                    }
+                    let t = self.top_raw(u);
+                    for i in 0..=p {
+                        let facet = t
+                            .iter()
+                            .enumerate()
+                            .filter(|&(j, _)| j != i)
+                            .map(|(_, &w)| w);
+                        if t[i] == a || facet.clone().min() != Some(a) {
+                            continue;
+                        }
+                        let mut rest = [u32::MAX; 2];
+                        for (k, w) in facet.filter(|&w| w != a).enumerate() {
+                            rest[k] = w;
+                        }
+                        rest.sort_unstable();
+                        let key = (u64::from(rest[0]) << 32) | u64::from(rest[1]);
+                        facets.push((key, u, slot * (p + 1) + i));
+                    }
+                }
+                facets.sort_unstable();
+                for run in facets.chunk_by(|x, y| x.0 == y.0) {
+                    match run {
+                        [_] => {}
+                        [x, y] => {
+                            cells[x.2].store(y.1, Relaxed);
+                            cells[y.2].store(x.1, Relaxed);
+                        }
+                        _ => run
+                            .iter()
+                            .for_each(|x| cells[x.2].store(ACROSS_MANY, Relaxed)),
+                    }
+                }
+            }
+        };
+        let ranges = crate::parallel::ranges(self.alive.len());
+        if ranges.len() > 1 {
+            crate::parallel::install(|| ranges.into_par_iter().for_each(owned_by));
+        } else {
+            ranges.into_iter().for_each(owned_by);
+        }
+        cells.into_iter().map(AtomicU32::into_inner).collect()
+    }
+
+    /// The entries of top slot `slot` of dimension p into `out` (`p + 1`, all `NONE` on entry):
+    /// for each facet, the tops of dimension p through its vertex of smallest star that hold
+    /// its other vertices. Whether a top u holds a vertex w is read from w's star when that is
+    /// short (the star's cache lines are already near; a surface's usual case), else from u's
+    /// vertices.
+    fn fill_across(&self, p: usize, slot: usize, out: &mut [u32]) {
+        const SHORT: usize = 16;
+        let t = &self.tops[p][slot * (p + 1)..(slot + 1) * (p + 1)];
+        if t[0] >= super::DEAD {
+            return;
+        }
+        let me = pack(p, slot as u32);
+        // Each vertex's star read from the block table once.
+        let mut stars: [&[u32]; MAX_DIMENSION + 1] = [&[]; MAX_DIMENSION + 1];
+        for (j, &w) in t.iter().enumerate() {
+            stars[j] = &self.star[w as usize];
+        }
+        let holds = |u: u32, j: usize| {
+            if stars[j].len() <= SHORT {
+                stars[j].contains(&u)
+            } else {
+                self.top_raw(u).contains(&t[j])
+            }
+        };
+        for (i, entry) in out.iter_mut().enumerate() {
+            let x = (0..=p)
+                .filter(|&j| j != i)
+                .min_by_key(|&j| stars[j].len())
+                .expect("a facet has a vertex");
+            for &u in stars[x] {
+                if u != me && unpack(u).0 == p && (0..=p).all(|j| j == i || j == x || holds(u, j)) {
+                    *entry = if *entry == NONE { u } else { ACROSS_MANY };
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{ACROSS_MANY, ACROSS_NONE};
+    use crate::complex::{Complex, xorshift_below};
+    use crate::live::{ContractMode, LiveComplex, VertexId};
+
+    /// The entries a brute force gives: every other live top of the same dimension holding the
+    /// facet, counted over all tops.
+    /// Returns how many non-manifold facets it met.
+    fn check(live: &LiveComplex) -> usize {
+        let mut many = 0;
+        let adj = live.adjacency().unwrap();
+        let tops: Vec<_> = live.tops().map(|(t, s)| (t, s.to_vec())).collect();
+        for (t, s) in &tops {
+            let p = t.dim();
+            for i in 0..=p {
+                let facet: Vec<u32> = (0..=p).filter(|&j| j != i).map(|j| s[j]).collect();
+                let others: Vec<u32> = tops
+                    .iter()
+                    .filter(|(u, vu)| {
+                        u != t && u.dim() == p && facet.iter().all(|w| vu.contains(w))
+                    })
+                    .map(|(u, _)| super::pack(p, u.slot()))
+                    .collect();
+                let want = match others.len() {
+                    0 => ACROSS_NONE,
+                    1 => others[0],
+                    _ => ACROSS_MANY,
+                };
+                assert_eq!(adj.across(p, t.slot(), i), want, "top {s:?} facet {i}");
+                many += usize::from(want == ACROSS_MANY);
+            }
+        }
+        many
+    }
+
+    /// Random non-manifold complexes to dimension 4 over a few vertices (so facets are shared by
+    /// none, one or several tops, of the same dimension or not): the index equals the brute
+    /// force when built, and after each of a run of random contractions, removals and inserts
+    /// (each edit drops it; the next call builds it for the new state).
+    #[test]
+    fn the_tops_across_each_facet_equal_brute_force_across_edits() {
+        let mut below = xorshift_below(0xacc0_55ed);
+        let mut many = 0;
+        for _ in 0..200 {
+            let n = 4 + below(8) as u32;
+            let mut rows: Vec<Vec<u32>> = Vec::new();
+            for _ in 0..1 + below(14) {
+                let len = 2 + below(4) as usize;
+                let mut s: Vec<u32> = Vec::new();
+                while s.len() < len.min(n as usize) {
+                    let v = below(u64::from(n)) as u32;
+                    if !s.contains(&v) {
+                        s.push(v);
+                    }
+                }
+                rows.push(s);
+            }
+            let refs: Vec<&[u32]> = rows.iter().map(Vec::as_slice).collect();
+            let mut live = LiveComplex::from_complex(&Complex::from_simplices(n, &refs).unwrap());
+            many += check(&live);
+            for _ in 0..6 {
+                let vs: Vec<VertexId> = live.vertices().collect();
+                let (a, b) = (
+                    vs[below(vs.len() as u64) as usize],
+                    vs[below(vs.len() as u64) as usize],
+                );
+                match below(3) {
+                    0 if a != b => {
+                        let _ = live.contract(a, b, ContractMode::Free, None);
+                    }
+                    1 => {
+                        let top: Option<Vec<u32>> = live.tops().next().map(|(_, s)| s.to_vec());
+                        if let Some(s) = top {
+                            live.remove_top(&s).unwrap();
+                        }
+                    }
+                    _ => {
+                        let c = vs[below(vs.len() as u64) as usize];
+                        let _ = live.insert_top(&[a.0, b.0, c.0]);
+                    }
+                }
+                live.check_invariants().unwrap();
+                many += check(&live);
+            }
+        }
+        assert!(many > 50, "only {many} non-manifold facets met");
+    }
+}
