@@ -99,17 +99,7 @@ impl LiveComplex {
         } else {
             (b, a)
         };
-        let n = self.star.len();
-        if s.stamp.len() < n {
-            s.stamp.resize(n, 0);
-            s.index.resize(n, 0);
-        }
-        if s.epoch >= u32::MAX - 2 {
-            s.stamp.iter_mut().for_each(|x| *x = 0);
-            s.epoch = 0;
-        }
-        s.epoch += 2;
-        let (tried, in_ab) = (s.epoch - 1, s.epoch);
+        let (tried, in_ab) = s.fresh_stamps(self.star.len());
         let star_b = || self.star[b as usize].iter().map(|&r| self.top_raw(r));
         for t in star_b().filter(|t| t.contains(&a)) {
             for &v in t {
@@ -484,16 +474,8 @@ impl LiveComplex {
                 if other.len() <= t.len() {
                     continue;
                 }
-                // t \ {t[j]} ⊆ other iff t[j] is t's only vertex missing from other.
-                let (mut missing, mut at) = (0, 0);
-                for (j, x) in t.iter().enumerate() {
-                    if !other.contains(x) {
-                        missing += 1;
-                        at = j;
-                    }
-                }
-                if missing == 1 {
-                    open[i] &= !(1 << at);
+                if let Some(j) = facet_inside(t, other) {
+                    open[i] &= !(1 << j);
                 }
             }
         }
@@ -515,16 +497,8 @@ impl LiveComplex {
             if other.len() + 1 < t.len() {
                 continue;
             }
-            // t \ {t[j]} ⊆ other iff t[j] is t's only vertex missing from other.
-            let (mut missing, mut at) = (0, 0);
-            for (j, x) in t.iter().enumerate() {
-                if !other.contains(x) {
-                    missing += 1;
-                    at = j;
-                }
-            }
-            if missing == 1 {
-                shared |= 1 << at;
+            if let Some(j) = facet_inside(t, other) {
+                shared |= 1 << j;
             }
         }
         let all = (1u32 << t.len()) - 1;
@@ -539,6 +513,16 @@ const BIG_STAR: usize = 64;
 
 /// See [`BIG_STAR`].
 const STAR_SKEW: usize = 4;
+
+/// The position j such that the facet of `t` without its j-th vertex lies in `other`, if one
+/// does: that vertex is then the only one of `t` missing from `other`. O(|t|·|other|).
+fn facet_inside(t: &[u32], other: &[u32]) -> Option<usize> {
+    let mut missing = t.iter().enumerate().filter(|(_, x)| !other.contains(x));
+    match (missing.next(), missing.next()) {
+        (Some((j, _)), None) => Some(j),
+        _ => None,
+    }
+}
 
 /// A 64-bit mix of a vertex id (SplitMix64's finaliser), summed into order-free facet hashes.
 #[inline]
@@ -577,6 +561,21 @@ struct Scratch {
 }
 
 impl Scratch {
+    /// Two stamps no vertex of 0..n carries yet, `(epoch - 1, epoch)` (the stamps sized to n,
+    /// cleared when the epoch would wrap).
+    fn fresh_stamps(&mut self, n: usize) -> (u32, u32) {
+        if self.stamp.len() < n {
+            self.stamp.resize(n, 0);
+            self.index.resize(n, 0);
+        }
+        if self.epoch >= u32::MAX - 2 {
+            self.stamp.iter_mut().for_each(|x| *x = 0);
+            self.epoch = 0;
+        }
+        self.epoch += 2;
+        (self.epoch - 1, self.epoch)
+    }
+
     /// The common vertices of `t` as a word.
     #[inline]
     fn mask(&self, t: &[u32]) -> u64 {
@@ -611,16 +610,7 @@ fn common_vertices<'a>(
     n: usize,
     s: &mut Scratch,
 ) {
-    if s.stamp.len() < n {
-        s.stamp.resize(n, 0);
-        s.index.resize(n, 0);
-    }
-    if s.epoch >= u32::MAX - 2 {
-        s.stamp.iter_mut().for_each(|x| *x = 0);
-        s.epoch = 0;
-    }
-    s.epoch += 2;
-    let (in_a, common) = (s.epoch - 1, s.epoch);
+    let (in_a, common) = s.fresh_stamps(n);
     for t in fa {
         for &v in t {
             s.stamp[v as usize] = in_a;
