@@ -178,6 +178,13 @@
 #define TPX_OPEN_VERIFY 1
 
 /**
+ * `tpx_live_from_file` flag: fan each convex planar polygon of a mesh file into triangles and
+ * refuse the other polygons with the reason, as `TPX_READ_TRIANGULATE` does for
+ * `tpx_complex_from_file_flags`.
+ */
+#define TPX_OPEN_TRIANGULATE 2
+
+/**
  * The format named by the output file's extension (`tpx_complex_write`).
  */
 #define TPX_FORMAT_FROM_EXTENSION 0
@@ -2050,7 +2057,10 @@ TpxStatus tpx_live_open(const char *path, uint32_t flags, struct TpxLive **out);
 /**
  * Reads any input file into a new editable live complex — the application's mesh — the format
  * chosen as `tpx_complex_from_file` chooses it (`.off` ... `.msh`, or a saved `.tpx`, opened as
- * `tpx_live_open` opens it; `flags`: `TPX_OPEN_VERIFY` for a saved file, else 0). A mesh file
+ * `tpx_live_open` opens it; `flags`: `TPX_OPEN_VERIFY` for a saved file, `TPX_OPEN_TRIANGULATE`
+ * to fan convex planar polygons, or 0). A plain OFF file (the header `OFF`, one vertex or face
+ * a line, edges and triangles of distinct ids) is streamed into the live complex's arrays: the
+ * peak is the live complex and a 1 MiB buffer. Another mesh file
  * whose listing is plain (a declared vertex count, no data arrays, every simplex 2 to 16
  * distinct vertices, none listed twice or a face of another: the usual mesh) is read straight
  * into the live complex, with no `TpxComplex` built: the process's peak is the file's bytes
@@ -2061,7 +2071,8 @@ TpxStatus tpx_live_open(const char *path, uint32_t flags, struct TpxLive **out);
  *
  * On success `*out` receives a new live complex owned by the caller (free with
  * `tpx_live_free`). Errors: as `tpx_complex_from_file` and `tpx_live_open`; INVALID_ARGUMENT
- * for unknown flags. Cost: linear in the file plus the build.
+ * for unknown flags (only TPX_OPEN_VERIFY and TPX_OPEN_TRIANGULATE here). Cost: linear in the
+ * file plus the build.
  *
  * # Safety
  * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.

@@ -1611,10 +1611,12 @@ class Live {
       : l_(detail::get<TpxLive *>(tpx_live_from_complex, c.get())) {}
   /* The mesh of any input file (tpx_live_from_file): a plain mesh file (the usual case) read
    * straight into the live complex with no frozen complex built; a .tpx as open(); anything
-   * else normalised first. The same live complex as Live(Complex::from_file(path)). */
-  static Live from_file(const std::string &path, bool verify = false) {
+   * else normalised first. The same live complex as Live(Complex::from_file(path)). With
+   * `triangulate`, convex planar polygons are fanned into triangles (others refused). */
+  static Live from_file(const std::string &path, bool verify = false, bool triangulate = false) {
     return Live(detail::get<TpxLive *>(tpx_live_from_file, path.c_str(),
-                                       verify ? TPX_OPEN_VERIFY : 0u));
+                                       (verify ? TPX_OPEN_VERIFY : 0u) |
+                                           (triangulate ? TPX_OPEN_TRIANGULATE : 0u)));
   }
   /* An editable live complex from a .tpx file: the saved live complex if it holds one, else one
    * built from its saved complex. Arrays are copied out (editable): O(size). */
