@@ -35,6 +35,24 @@ std::vector<std::uint32_t> sorted(std::vector<std::uint32_t> v) {
   return v;
 }
 
+// Appends to `vs` the vertex ids (point - vStart) of point p: p itself when a vertex, else the
+// vertices of its transitive closure in closure order.
+void append_vertices(DM dm, PetscInt p, PetscInt vStart, PetscInt vEnd,
+                     std::vector<std::uint32_t> &vs) {
+  if (p >= vStart && p < vEnd) {
+    vs.push_back(static_cast<std::uint32_t>(p - vStart));
+    return;
+  }
+  PetscInt n = 0;
+  PetscInt *closure = nullptr;
+  TPX_PETSC(DMPlexGetTransitiveClosure(dm, p, PETSC_TRUE, &n, &closure));
+  for (PetscInt k = 0; k < n; ++k) {
+    const PetscInt q = closure[2 * k];
+    if (q >= vStart && q < vEnd) vs.push_back(static_cast<std::uint32_t>(q - vStart));
+  }
+  TPX_PETSC(DMPlexRestoreTransitiveClosure(dm, p, PETSC_TRUE, &n, &closure));
+}
+
 }  // namespace
 
 PetscInt overlap_needed(std::uint32_t p, std::uint32_t q) { return q < p ? 0 : 1; }
@@ -79,17 +97,8 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
     // have closures worth walking, except when interpolated (every point is a simplex).
     if (!top && !(p >= vStart && p < vEnd) && interp == DMPLEX_INTERPOLATED_NONE) continue;
     std::vector<std::uint32_t> &vs = point_simplex[static_cast<std::size_t>(p - pStart)];
-    if (p >= vStart && p < vEnd) {
-      vs.push_back(static_cast<std::uint32_t>(p - vStart));
-    } else {
-      PetscInt n = 0;
-      PetscInt *closure = nullptr;
-      TPX_PETSC(DMPlexGetTransitiveClosure(dm, p, PETSC_TRUE, &n, &closure));
-      for (PetscInt k = 0; k < n; ++k) {
-        const PetscInt q = closure[2 * k];
-        if (q >= vStart && q < vEnd) vs.push_back(static_cast<std::uint32_t>(q - vStart));
-      }
-      TPX_PETSC(DMPlexRestoreTransitiveClosure(dm, p, PETSC_TRUE, &n, &closure));
+    append_vertices(dm, p, vStart, vEnd, vs);
+    if (p < vStart || p >= vEnd) {
       PetscInt pdepth = 0;
       TPX_PETSC(DMPlexGetPointDepth(dm, p, &pdepth));
       DMPolytopeType ct;
@@ -303,16 +312,27 @@ const Complex &RankMesh::complex() const {
 }
 
 Complex &RankMesh::complex() {
-  if (!complex_) throw Error(Code::Refused, "rank " + std::to_string(rank_) + " holds no point: no complex");
-  return *complex_;
+  return const_cast<Complex &>(static_cast<const RankMesh &>(*this).complex());
 }
 
-PetscInt RankMesh::point_of_vertex(std::uint32_t v) const {
-  if (v >= vertex_point_.size()) {
-    throw Error(Code::InvalidArgument, "vertex " + std::to_string(v) + " out of range (" +
-                                           std::to_string(vertex_point_.size()) + " vertices)");
+namespace {
+
+// points[i], or InvalidArgument naming `what` i and the `count` there are ("listing 9 out of
+// range (4 listed)").
+PetscInt point_at(const std::vector<PetscInt> &points, std::size_t i, const char *what,
+                  const char *count) {
+  if (i >= points.size()) {
+    throw Error(Code::InvalidArgument, std::string(what) + " " + std::to_string(i) +
+                                           " out of range (" + std::to_string(points.size()) +
+                                           " " + count + ")");
   }
-  return vertex_point_[v];
+  return points[i];
+}
+
+}  // namespace
+
+PetscInt RankMesh::point_of_vertex(std::uint32_t v) const {
+  return point_at(vertex_point_, v, "vertex", "vertices");
 }
 
 std::uint32_t RankMesh::vertex_of_point(PetscInt p) const {
@@ -320,11 +340,7 @@ std::uint32_t RankMesh::vertex_of_point(PetscInt p) const {
 }
 
 PetscInt RankMesh::point_of_listing(std::size_t i) const {
-  if (i >= listed_point_.size()) {
-    throw Error(Code::InvalidArgument, "listing " + std::to_string(i) + " out of range (" +
-                                           std::to_string(listed_point_.size()) + " listed)");
-  }
-  return listed_point_[i];
+  return point_at(listed_point_, i, "listing", "listed");
 }
 
 std::size_t RankMesh::listing_of_point(PetscInt p) const {
@@ -492,17 +508,7 @@ DM to_dm(MPI_Comm comm, const Complex *complex, const ExportOptions &options, in
     std::map<std::vector<std::uint32_t>, PetscInt> point_of;
     for (PetscInt p = pStart; p < pEnd; ++p) {
       std::vector<std::uint32_t> vs;
-      if (p >= vStart && p < vEnd) {
-        vs.push_back(static_cast<std::uint32_t>(p - vStart));
-      } else {
-        PetscInt n = 0;
-        PetscInt *closure = nullptr;
-        TPX_PETSC(DMPlexGetTransitiveClosure(dm, p, PETSC_TRUE, &n, &closure));
-        for (PetscInt k = 0; k < n; ++k) {
-          if (closure[2 * k] >= vStart && closure[2 * k] < vEnd) vs.push_back(static_cast<std::uint32_t>(closure[2 * k] - vStart));
-        }
-        TPX_PETSC(DMPlexRestoreTransitiveClosure(dm, p, PETSC_TRUE, &n, &closure));
-      }
+      append_vertices(dm, p, vStart, vEnd, vs);
       point_of.emplace(sorted(vs), p);
     }
     const TpxInputStats st = complex->input_stats();

@@ -117,6 +117,12 @@
 #define TPX_VERTEX_AVERAGE 1
 
 /**
+ * `tpx_complex_from_file_flags`' flag: fan every convex planar polygon of a mesh file into
+ * triangles (the CLI's `--triangulate`).
+ */
+#define TPX_READ_TRIANGULATE 1
+
+/**
  * Answer order of the navigation functions: the structure's natural order.
  */
 #define TPX_ORDER_NATURAL 0
@@ -170,6 +176,13 @@
  * invariants and its agreement with the complex; reads the whole file and builds).
  */
 #define TPX_OPEN_VERIFY 1
+
+/**
+ * `tpx_live_from_file` flag: fan each convex planar polygon of a mesh file into triangles and
+ * refuse the other polygons with the reason, as `TPX_READ_TRIANGULATE` does for
+ * `tpx_complex_from_file_flags`.
+ */
+#define TPX_OPEN_TRIANGULATE 2
 
 /**
  * The format named by the output file's extension (`tpx_complex_write`).
@@ -961,6 +974,28 @@ TpxStatus tpx_complex_from_file(const char *path, struct TpxComplex **out);
 TpxStatus tpx_complex_from_file_budget(const char *path,
                                        uint64_t max_simplices,
                                        struct TpxComplex **out);
+
+/**
+ * `tpx_complex_from_file_budget` with read `flags`, 0 or `TPX_READ_TRIANGULATE`: faces of more
+ * than 3 vertices in OFF, OBJ and PLY, polygon and quad cells in legacy VTK and Gmsh quadrangles
+ * are fanned into
+ * triangles from their first vertex, each keeping the polygon's winding, line and listed
+ * attributes; a polygon that is not planar (beyond 1e-6 × its size), not convex, degenerate,
+ * repeats a vertex or has no coordinates is PARSE_ERROR naming file, line, polygon and why.
+ * Other formats and saved (`.tpx`) files read as without the flag.
+ *
+ * On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
+ * Errors: as `tpx_complex_from_file_budget`, plus INVALID_ARGUMENT for an unknown flag
+ * (nothing read). Cost: as it, plus O(k) for each polygon of k vertices and a copy of the
+ * listing when there are polygons.
+ *
+ * # Safety
+ * `path`, if non-NULL, must be a NUL-terminated string; `out` must be valid for writes.
+ */
+TpxStatus tpx_complex_from_file_flags(const char *path,
+                                      uint64_t max_simplices,
+                                      uint32_t flags,
+                                      struct TpxComplex **out);
 
 /**
  * Releases a complex. NULL is a no-op. Structures built from it stay valid (they own their
@@ -2022,7 +2057,10 @@ TpxStatus tpx_live_open(const char *path, uint32_t flags, struct TpxLive **out);
 /**
  * Reads any input file into a new editable live complex — the application's mesh — the format
  * chosen as `tpx_complex_from_file` chooses it (`.off` ... `.msh`, or a saved `.tpx`, opened as
- * `tpx_live_open` opens it; `flags`: `TPX_OPEN_VERIFY` for a saved file, else 0). A mesh file
+ * `tpx_live_open` opens it; `flags`: `TPX_OPEN_VERIFY` for a saved file, `TPX_OPEN_TRIANGULATE`
+ * to fan convex planar polygons, or 0). A plain OFF file (the header `OFF`, one vertex or face
+ * a line, edges and triangles of distinct ids) is streamed into the live complex's arrays: the
+ * peak is the live complex and a 1 MiB buffer. Another mesh file
  * whose listing is plain (a declared vertex count, no data arrays, every simplex 2 to 16
  * distinct vertices, none listed twice or a face of another: the usual mesh) is read straight
  * into the live complex, with no `TpxComplex` built: the process's peak is the file's bytes
@@ -2033,7 +2071,8 @@ TpxStatus tpx_live_open(const char *path, uint32_t flags, struct TpxLive **out);
  *
  * On success `*out` receives a new live complex owned by the caller (free with
  * `tpx_live_free`). Errors: as `tpx_complex_from_file` and `tpx_live_open`; INVALID_ARGUMENT
- * for unknown flags. Cost: linear in the file plus the build.
+ * for unknown flags (only TPX_OPEN_VERIFY and TPX_OPEN_TRIANGULATE here). Cost: linear in the
+ * file plus the build.
  *
  * # Safety
  * `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.

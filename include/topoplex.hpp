@@ -1346,6 +1346,84 @@ class MeshView {
     for_each_top_holding(s, n, [&](TopRef) { found = true; });
     return found;
   }
+  /* Whether the simplex s[0..n) (live distinct vertices of a simplex of the mesh) lies on the
+   * boundary, as tpx_simplex_test's 0 says: s, or a simplex of its star, is not a top and has
+   * exactly one coface one dimension up (a surface's boundary edges, their vertices and
+   * triangles; a dangling end of a wire). `scratch` is reused. O(Σ_τ k·d) over the simplices τ
+   * of the star, each τ's cofaces from its smallest star. */
+  bool is_boundary(const std::uint32_t *s, std::size_t n, std::vector<std::uint32_t> &scratch) const {
+    // The simplices of the star: s with every subset of a top's other vertices.
+    bool found = false;
+    for_each_top_holding(s, n, [&](TopRef t) {
+      if (found) return;
+      std::uint32_t rest[16];
+      std::size_t r = 0;
+      for (std::uint32_t w : vertices(t))
+        if (std::find(s, s + n, w) == s + n) rest[r++] = w;
+      for (std::uint32_t mask = 0; mask < (1u << r) && !found; ++mask) {
+        scratch.assign(s, s + n);
+        for (std::size_t i = 0; i < r; ++i)
+          if (mask >> i & 1) scratch.push_back(rest[i]);
+        found = one_coface_up(scratch);
+      }
+    });
+    return found;
+  }
+  /* Whether the simplex s[0..n) is manifold, as tpx_simplex_test's 1 says: its star is pure
+   * (every top through s has the same dimension) and its link (those tops without s) is a
+   * connected pseudo-manifold: for a link of points, one or two; else every facet of the link
+   * in one or two of its simplices, and the link connected through them. A top is manifold.
+   * `scratch` is reused (plus a union-find of k entries). O(k²·d³) over the tops through s (k
+   * of them): for the small stars of meshes. */
+  bool is_manifold(const std::uint32_t *s, std::size_t n, std::vector<std::uint32_t> &scratch) const {
+    scratch.clear();
+    std::size_t arity = 0;
+    bool pure = true;
+    for_each_top_holding(s, n, [&](TopRef t) {
+      const std::size_t k = t.dim() + 1 - n;
+      if (scratch.empty() && arity == 0) arity = k;
+      pure = pure && k == arity;
+      for (std::uint32_t w : vertices(t))
+        if (std::find(s, s + n, w) == s + n) scratch.push_back(w);
+    });
+    if (!pure) return false;
+    if (arity == 0 || scratch.empty()) return true;
+    const std::size_t m = scratch.size() / arity;
+    if (arity == 1) return m <= 2;
+    // Rows i, j share a facet when they have arity - 1 vertices in common; a facet of row i in
+    // more than one other row is in three rows or more.
+    const auto common = [&](std::size_t i, std::size_t j) {
+      std::size_t c = 0;
+      for (std::size_t a = 0; a < arity; ++a)
+        for (std::size_t b = 0; b < arity; ++b) c += scratch[i * arity + a] == scratch[j * arity + b];
+      return c;
+    };
+    std::vector<std::uint32_t> root(m);
+    for (std::size_t i = 0; i < m; ++i) root[i] = static_cast<std::uint32_t>(i);
+    const auto find = [&](std::uint32_t x) {
+      while (root[x] != x) x = root[x] = root[root[x]];
+      return x;
+    };
+    for (std::size_t i = 0; i < m; ++i) {
+      // For each facet of row i (without its entry a), how many other rows hold it.
+      for (std::size_t a = 0; a < arity; ++a) {
+        std::size_t holders = 0;
+        for (std::size_t j = 0; j < m; ++j) {
+          if (j == i || common(i, j) != arity - 1) continue;
+          bool has = true;
+          for (std::size_t b = 0; b < arity && has; ++b)
+            if (b != a) has = std::find(&scratch[j * arity], &scratch[j * arity] + arity, scratch[i * arity + b]) !=
+                              &scratch[j * arity] + arity;
+          if (!has) continue;
+          if (++holders > 1) return false;
+          root[find(static_cast<std::uint32_t>(i))] = find(static_cast<std::uint32_t>(j));
+        }
+      }
+    }
+    for (std::size_t i = 1; i < m; ++i)
+      if (find(static_cast<std::uint32_t>(i)) != find(0)) return false;
+    return true;
+  }
   /* R_{0,0}(v): the vertices sharing an edge with v, ascending, into `out` (reused). O(d·k_v +
    * m log m), m the candidates. */
   void neighbours(std::uint32_t v, std::vector<std::uint32_t> &out) const {
@@ -1502,6 +1580,22 @@ class MeshView {
   const TpxLiveArrays &arrays() const noexcept { return a_; }
 
  private:
+  /* Whether the simplex tau (distinct vertices) is not a top and has exactly one coface one
+   * dimension up: the tops through it add exactly one distinct vertex among them. */
+  bool one_coface_up(const std::vector<std::uint32_t> &tau) const {
+    bool top = false, two = false;
+    std::uint32_t first = 0xffffffffu;
+    for_each_top_holding(tau.data(), tau.size(), [&](TopRef t) {
+      if (t.dim() + 1 == tau.size()) top = true;
+      for (std::uint32_t w : vertices(t)) {
+        if (std::find(tau.begin(), tau.end(), w) != tau.end()) continue;
+        if (first == 0xffffffffu) first = w;
+        else if (w != first) two = true;
+      }
+    });
+    return !top && !two && first != 0xffffffffu;
+  }
+
   TpxLiveArrays a_{};
   TpxLiveAdjacency adj_{};
   bool has_adj_ = false;
@@ -1517,10 +1611,12 @@ class Live {
       : l_(detail::get<TpxLive *>(tpx_live_from_complex, c.get())) {}
   /* The mesh of any input file (tpx_live_from_file): a plain mesh file (the usual case) read
    * straight into the live complex with no frozen complex built; a .tpx as open(); anything
-   * else normalised first. The same live complex as Live(Complex::from_file(path)). */
-  static Live from_file(const std::string &path, bool verify = false) {
+   * else normalised first. The same live complex as Live(Complex::from_file(path)). With
+   * `triangulate`, convex planar polygons are fanned into triangles (others refused). */
+  static Live from_file(const std::string &path, bool verify = false, bool triangulate = false) {
     return Live(detail::get<TpxLive *>(tpx_live_from_file, path.c_str(),
-                                       verify ? TPX_OPEN_VERIFY : 0u));
+                                       (verify ? TPX_OPEN_VERIFY : 0u) |
+                                           (triangulate ? TPX_OPEN_TRIANGULATE : 0u)));
   }
   /* An editable live complex from a .tpx file: the saved live complex if it holds one, else one
    * built from its saved complex. Arrays are copied out (editable): O(size). */

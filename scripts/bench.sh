@@ -226,15 +226,21 @@ if [ -n "$bench_bin" ]; then
   done
 fi
 
+# `cargo bench --bench NAME` (criterion, --quick with --quick) into $results/LOG.log; a failure
+# shows the log's tail and is recorded.
+criterion_bench() {
+  local args=(--noplot)
+  if [ "$quick" = 1 ]; then args+=(--quick); fi
+  if ! (cd "$root" && CARGO_TARGET_DIR=$target cargo bench --bench "$1" -- "${args[@]}") \
+      >"$results/$2.log" 2>&1; then
+    tail -5 "$results/$2.log" >&2
+    failed+=("cargo bench --bench $1 (see $2.log)")
+  fi
+}
+
 echo "== cargo bench --bench structures (criterion)"
 if [ -f "$root/benches/structures.rs" ]; then
-  crit_args=(--noplot)
-  if [ "$quick" = 1 ]; then crit_args+=(--quick); fi
-  if ! (cd "$root" && CARGO_TARGET_DIR=$target cargo bench --bench structures -- "${crit_args[@]}") \
-      >"$results/criterion.log" 2>&1; then
-    tail -5 "$results/criterion.log" >&2
-    failed+=("cargo bench --bench structures (see criterion.log)")
-  fi
+  criterion_bench structures criterion
   echo "criterion output: $results/criterion.log, reports in $target/criterion"
   # The criterion bench's own tables (benches/structures_table.py, when that script exists).
   if [ -f "$root/benches/structures_table.py" ]; then
@@ -247,13 +253,7 @@ fi
 
 echo "== cargo bench --bench live (criterion: link-checked contractions, storage vs the IA)"
 if [ -f "$root/benches/live.rs" ]; then
-  live_args=(--noplot)
-  if [ "$quick" = 1 ]; then live_args+=(--quick); fi
-  if ! (cd "$root" && CARGO_TARGET_DIR=$target cargo bench --bench live -- "${live_args[@]}") \
-      >"$results/live.log" 2>&1; then
-    tail -5 "$results/live.log" >&2
-    failed+=("cargo bench --bench live (see live.log)")
-  fi
+  criterion_bench live live
   grep -E '^(storage|contract) |live/(link|contract) +time|thrpt' "$results/live.log" || true
 fi
 

@@ -41,6 +41,14 @@ struct Cli {
     /// file). Mesh inputs are always checked fully by reading them.
     #[arg(long, global = true)]
     verify: bool,
+    /// Fan every convex planar polygon of a mesh input into triangles from its first vertex
+    /// (winding and the polygon's labels and fields kept on each triangle): faces of more than
+    /// 3 vertices in OFF, OBJ and PLY, polygon and quad cells in legacy VTK, Gmsh quadrangles.
+    /// A polygon that is not planar (beyond 1e-6 × its size), not convex, degenerate, repeats a
+    /// vertex or has no coordinates is refused with the reason. Without it, polygons are
+    /// refused.
+    #[arg(long, global = true)]
+    triangulate: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -254,6 +262,9 @@ static BUDGET: Mutex<Option<u64>> = Mutex::new(None);
 /// `--verify` (an atomic for the same reason as [`BUDGET`]).
 static VERIFY: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
+/// `--triangulate` (an atomic for the same reason as [`BUDGET`]).
+static TRIANGULATE: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
 /// The `Err` of a write to a closed pipe (`topoplex relation ... | head -1`): [`main`] exits
 /// quietly with status 0, as ripgrep does (the reader wanted no more).
 pub const BROKEN_PIPE: &str = "writing output: broken pipe";
@@ -284,6 +295,7 @@ pub fn cli(args: impl IntoIterator<Item = std::ffi::OsString>) -> Result<(), Str
     };
     *BUDGET.lock().unwrap_or_else(|e| e.into_inner()) = cli.max_simplices;
     VERIFY.store(cli.verify, std::sync::atomic::Ordering::Relaxed);
+    TRIANGULATE.store(cli.triangulate, std::sync::atomic::Ordering::Relaxed);
     topoplex::parallel::threads_from_env()?;
     if let Some(n) = cli.threads {
         let n = topoplex::parallel::check_threads(n).map_err(|e| format!("--threads: {e}"))?;
@@ -466,13 +478,26 @@ fn print(text: &str) -> Result<(), String> {
 /// Reads and normalises `file` under the `--max-simplices` budget (a `.tpx` gives its saved
 /// complex).
 fn load(file: &Path) -> Result<Complex, String> {
+    if let Some(options) = triangulating(file) {
+        return Complex::from_path_options(file, budget(), options).map_err(|e| e.to_string());
+    }
     topoplex::store::open_complex_with(file, budget(), verifying()).map_err(|e| e.to_string())
 }
 
 /// The structure of `kind` for `file`: a saved one is mapped, not rebuilt.
 fn load_structure(file: &Path, kind: StructureKind) -> Result<Box<dyn Topology>, String> {
+    if triangulating(file).is_some() {
+        return topoplex::build(kind, &load(file)?).map_err(|e| e.to_string());
+    }
     topoplex::store::open_structure_with(file, kind, budget(), verifying())
         .map_err(|e| e.to_string())
+}
+
+/// The read options of `--triangulate` for a mesh input (a saved file holds a complex already).
+fn triangulating(file: &Path) -> Option<topoplex::io::ReadOptions> {
+    (TRIANGULATE.load(std::sync::atomic::Ordering::Relaxed)
+        && !topoplex::store::is_saved_path(file))
+    .then_some(topoplex::io::ReadOptions { triangulate: true })
 }
 
 fn verifying() -> bool {

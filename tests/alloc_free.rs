@@ -5,6 +5,8 @@
 //! may be kept between queries (this thread's answer buffers, the tables a structure builds on
 //! first use). Failed calls are not counted: an error's message is the one allocation allowed.
 
+mod common;
+
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::ptr::{null, null_mut};
@@ -78,28 +80,9 @@ impl Tally {
     }
 }
 
+/// A complex through the C ABI, without coordinates.
 fn complex(n: u32, simplices: &[&[u32]]) -> *mut TpxComplex {
-    let mut ids = Vec::new();
-    let mut offsets = vec![0usize];
-    for s in simplices {
-        ids.extend_from_slice(s);
-        offsets.push(ids.len());
-    }
-    let mut out = null_mut();
-    // SAFETY: arrays as documented.
-    let st = unsafe {
-        tpx_complex_from_arrays(
-            n,
-            ids.as_ptr(),
-            offsets.as_ptr(),
-            simplices.len(),
-            null(),
-            0,
-            &mut out,
-        )
-    };
-    assert_eq!(st, TpxStatus::Ok);
-    out
+    common::c_complex(n, simplices, None)
 }
 
 /// Every handle operation on every simplex of `s`, through the C ABI.

@@ -280,6 +280,23 @@ enum class Unit { Build, Walk };
 // Registers `fn` as `<op>/<lib>` with the unit the programs use (ms for load/build, us for walks).
 void add(const std::string& op, const std::string& lib, Unit unit, std::function<void(benchmark::State&)> fn);
 
+// Registers the walk `<op>/<lib>`: walk_fn(object) timed, the object made once per slot by
+// `make`; walk_fn returns the elements it visited (checked across libraries, and the rate's unit).
+template <class T, class Walk>
+void add_walk(const std::string& op, const std::string& lib, const std::function<std::unique_ptr<T>()>& make,
+              Walk walk_fn) {
+  add(op, lib, Unit::Walk, [=](benchmark::State& state) {
+    const T& m = slot().get<T>(lib, make);
+    uint64_t n = 0;
+    for (auto _ : state) {
+      n = walk_fn(m);
+      benchmark::DoNotOptimize(n);
+    }
+    check_count(state, op, lib, n);
+    set_elements(state, n);
+  });
+}
+
 // Topoplex's `load` and `build` benchmarks for one kind (same in every program).
 void add_tpx_load(const std::string& path, const Kind& k, uint64_t simplices);
 void add_tpx_build(const Soup& soup, const Kind& k, uint64_t simplices);

@@ -157,15 +157,8 @@ int main(int argc, char** argv) {
   };
   for (const char* op : {"cofaces_v", "cofaces_e"}) {
     const bool vertices = op[8] == 'v';
-    add(op, "gudhi", Unit::Walk, [=](benchmark::State& state) {
-      GudhiWalk& w = slot().get<GudhiWalk>("gudhi", gmake);
-      uint64_t n = 0;
-      for (auto _ : state) {
-        n = star_count(*w.st, vertices ? w.vertices : w.edges);
-        benchmark::DoNotOptimize(n);
-      }
-      check_count(state, op, "gudhi", n);
-      set_elements(state, n);
+    add_walk(op, "gudhi", gmake, [vertices](const GudhiWalk& w) {
+      return star_count(*w.st, vertices ? w.vertices : w.edges);
     });
   }
 

@@ -194,21 +194,6 @@ uint64_t om_ff_index(const OMesh& m) {
   return n;
 }
 
-template <class T>
-void add_walk(const std::string& op, const std::string& lib, const std::function<std::unique_ptr<T>()>& make,
-              uint64_t (*walk_fn)(const T&)) {
-  add(op, lib, Unit::Walk, [=](benchmark::State& state) {
-    const T& m = slot().get<T>(lib, make);
-    uint64_t n = 0;
-    for (auto _ : state) {
-      n = walk_fn(m);
-      benchmark::DoNotOptimize(n);
-    }
-    check_count(state, op, lib, n);
-    set_elements(state, n);
-  });
-}
-
 struct Built {
   StructurePtr s;
   std::vector<uint32_t> vertices, triangles;

@@ -317,18 +317,7 @@ int main(int argc, char** argv) {
     const std::function<std::unique_ptr<T3Walk>()> make = [] { return t3_walk_of(tets); };
     for (auto [op, fn] : {std::make_pair("star_cells", &t3_star_cells), std::make_pair("star_edges", &t3_star_edges),
                           std::make_pair("TT", &t3_tt)}) {
-      const std::string name = op;
-      auto walk_fn = fn;
-      add(name, "cgal_t3", Unit::Walk, [=](benchmark::State& state) {
-        const T3Walk& w = slot().get<T3Walk>("cgal_t3", make);
-        uint64_t n = 0;
-        for (auto _ : state) {
-          n = walk_fn(w);
-          benchmark::DoNotOptimize(n);
-        }
-        check_count(state, name, "cgal_t3", n);
-        set_elements(state, n);
-      });
+      add_walk(op, "cgal_t3", make, fn);
     }
   }
   for (const auto& k : kinds) {

@@ -50,12 +50,8 @@ Made make_alpha(const Env& env, const Spec& spec) {
                 "GUDHI Alpha_complex_3d (FAST) of %zu points, alpha^2 <= %.6g; maximal "
                 "simplices%s",
                 pts.size(), cut.threshold, cut.rich ? "" : " (no eligible cut)");
-  std::string params = buf;
-  Made made = write_simplices(env, "alpha-" + stem, vpts, std::move(cut.tops),
-                              "alpha complex of " + src_desc + "\n" + params);
-  made.source = src_desc;
-  made.params = params;
-  return made;
+  return write_complex(env, "alpha-" + stem, vpts, std::move(cut.tops), "alpha complex", src_desc,
+                       buf);
 }
 
 }  // namespace bench_data

@@ -31,7 +31,17 @@ fs::path tmp_path(const fs::path& final_path) {
   return final_path.parent_path() / (".tmp-" + final_path.filename().string());
 }
 
-void commit(const fs::path& tmp, const fs::path& final_path) { fs::rename(tmp, final_path); }
+TmpFile open_tmp(const fs::path& final_path) {
+  TmpFile t{final_path, tmp_path(final_path), nullptr};
+  t.f = std::fopen(t.tmp.c_str(), "w");
+  if (!t.f) throw std::runtime_error("cannot write " + t.tmp.string());
+  return t;
+}
+
+void commit(TmpFile& t) {
+  if (std::fclose(t.f) != 0) throw std::runtime_error("write failed: " + t.tmp.string());
+  fs::rename(t.tmp, t.final_path);
+}
 
 std::string with_commas(std::size_t n) {
   std::string s = std::to_string(n);
@@ -118,11 +128,9 @@ Made write_simplices(const Env& env, const std::string& stem, const std::vector<
   }
   made.top_by_dim = dims_string(by_dim);
 
-  fs::path final_path = env.out / made.file;
-  fs::path tmp = tmp_path(final_path);
+  TmpFile out = open_tmp(env.out / made.file);
   {
-    std::FILE* f = std::fopen(tmp.c_str(), "w");
-    if (!f) throw std::runtime_error("cannot write " + tmp.string());
+    std::FILE* f = out.f;
     std::size_t start = 0;
     while (start < header.size()) {
       std::size_t end = header.find('\n', start);
@@ -140,9 +148,18 @@ Made write_simplices(const Env& env, const std::string& stem, const std::vector<
       for (auto v : t) std::fprintf(f, " %u", v);
       std::fputc('\n', f);
     }
-    if (std::fclose(f) != 0) throw std::runtime_error("write failed: " + tmp.string());
   }
-  commit(tmp, final_path);
+  commit(out);
+  return made;
+}
+
+Made write_complex(const Env& env, const std::string& stem, const std::vector<Point>& points,
+                   std::vector<std::vector<std::uint32_t>> tops, const std::string& what,
+                   const std::string& source, const std::string& params) {
+  Made made =
+      write_simplices(env, stem, points, std::move(tops), what + " of " + source + "\n" + params);
+  made.source = source;
+  made.params = params;
   return made;
 }
 

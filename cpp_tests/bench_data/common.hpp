@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -51,13 +52,25 @@ fs::path find_points(const Env& env, const std::string& file);
 // Files appear atomically (an interrupted run leaves no truncated dataset behind): write into
 // tmp_path(final), then commit().
 fs::path tmp_path(const fs::path& final_path);
-void commit(const fs::path& tmp, const fs::path& final_path);
+struct TmpFile {
+  fs::path final_path, tmp;
+  std::FILE* f;
+};
+// tmp_path(final_path) opened for writing; throws when it cannot be.
+TmpFile open_tmp(const fs::path& final_path);
+// Closes the file (throws when the writes failed) and renames it to its final path.
+void commit(TmpFile& t);
 
 // Top simplices (any dimension, vertex ids into `points`) as a .simplices file with `header`
 // (lines without '#') as comments. Vertices no simplex uses are dropped and ids renumbered in
 // point order. Returns the counts.
 Made write_simplices(const Env& env, const std::string& stem, const std::vector<Point>& points,
                      std::vector<std::vector<std::uint32_t>> tops, const std::string& header);
+// The maximal simplices `tops` of a complex built on points from `source` (as write_simplices),
+// its header "<what> of <source>" and `params`, which Made records with `source`.
+Made write_complex(const Env& env, const std::string& stem, const std::vector<Point>& points,
+                   std::vector<std::vector<std::uint32_t>> tops, const std::string& what,
+                   const std::string& source, const std::string& params);
 
 std::string dims_string(const std::vector<std::size_t>& by_dim);
 std::string with_commas(std::size_t n);

@@ -78,12 +78,8 @@ Made make_rips(const Env& env, const Spec& spec) {
                 "GUDHI Rips (Simplex_tree expansion) of %zu points, edge length <= %.6g, "
                 "maximal dimension %d; maximal simplices%s",
                 pts.size(), cut.threshold, spec.level, cut.rich ? "" : " (no eligible cut)");
-  std::string params = buf;
-  Made made = write_simplices(env, "rips-" + stem, pts, std::move(cut.tops),
-                              "Vietoris-Rips complex of " + src_desc + "\n" + params);
-  made.source = src_desc;
-  made.params = params;
-  return made;
+  return write_complex(env, "rips-" + stem, pts, std::move(cut.tops), "Vietoris-Rips complex",
+                       src_desc, buf);
 }
 
 }  // namespace bench_data

@@ -51,10 +51,8 @@ Made make_surf(const Env& env, const Spec& spec) {
   made.top = mesh.number_of_faces();
   made.top_by_dim = "2:" + std::to_string(made.top);
 
-  fs::path final_path = env.out / made.file;
-  fs::path tmp = tmp_path(final_path);
-  std::FILE* f = std::fopen(tmp.c_str(), "w");
-  if (!f) throw std::runtime_error("cannot write " + tmp.string());
+  TmpFile out = open_tmp(env.out / made.file);
+  std::FILE* f = out.f;
   std::fprintf(f, "OFF\n# %s: %s, %s (CGAL Subdivision_method_3::Loop_subdivision)\n",
                made.file.c_str(), src.filename().c_str(), made.params.c_str());
   std::fprintf(f, "%zu %zu 0\n", made.vertices, made.top);
@@ -72,8 +70,7 @@ Made make_surf(const Env& env, const Spec& spec) {
       std::fprintf(f, " %zu", id[v.idx()]);
     std::fputc('\n', f);
   }
-  if (std::fclose(f) != 0) throw std::runtime_error("write failed: " + tmp.string());
-  commit(tmp, final_path);
+  commit(out);
   return made;
 }
 

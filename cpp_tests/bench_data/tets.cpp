@@ -84,10 +84,8 @@ Made make_tets(const Env& env, const Spec& spec) {
   made.params = buf;
   made.top_by_dim = "3:" + std::to_string(made.top);
 
-  fs::path final_path = env.out / made.file;
-  fs::path tmp = tmp_path(final_path);
-  std::FILE* f = std::fopen(tmp.c_str(), "w");
-  if (!f) throw std::runtime_error("cannot write " + tmp.string());
+  TmpFile out = open_tmp(env.out / made.file);
+  std::FILE* f = out.f;
   std::fprintf(f, "# %s: tetrahedralization of %s\n# %s\nMeshVersionFormatted 1\nDimension 3\n",
                made.file.c_str(), src.filename().c_str(), made.params.c_str());
   std::fprintf(f, "Vertices\n%zu\n", order.size());
@@ -100,8 +98,7 @@ Made make_tets(const Env& env, const Spec& spec) {
     std::fprintf(f, "%zu %zu %zu %zu 1\n", id[c->vertex(0)] + 1, id[c->vertex(1)] + 1,
                  id[c->vertex(2)] + 1, id[c->vertex(3)] + 1);
   std::fprintf(f, "End\n");
-  if (std::fclose(f) != 0) throw std::runtime_error("write failed: " + tmp.string());
-  commit(tmp, final_path);
+  commit(out);
   return made;
 }
 

@@ -138,6 +138,13 @@ void check(const topoplex::Live &live, std::mt19937 &rng) {
       EXPECT_EQ(m.tops_holding(s.data(), s.size(), p), k);
     }
     EXPECT_EQ(m.is_simplex(s.data(), s.size()), s.size() == 1 || !want.empty());
+    if (!want.empty()) {
+      // Boundary and manifold tests inline, as the library's handle functions answer them.
+      const topoplex::Simplex h = live.locate(s);
+      Ids scratch_ids;
+      EXPECT_EQ(m.is_boundary(s.data(), s.size(), scratch_ids), live.is_boundary(h)) << "boundary";
+      EXPECT_EQ(m.is_manifold(s.data(), s.size(), scratch_ids), live.is_manifold(h)) << "manifold";
+    }
   }
 
   // Adjacent tops: the same dimension, sharing all but one vertex; from the stars, and read

@@ -429,6 +429,9 @@ void serial_round_trip_keeps_simplices_winding_and_labels() {
     // Point <-> id maps both ways.
     for (std::size_t i = 0; i < rm.listing_count(); ++i) CHECK(rm.listing_of_point(rm.point_of_listing(i)) == i);
     for (std::uint32_t v = 0; v < rm.vertex_count(); ++v) CHECK(rm.point_of(std::vector<std::uint32_t>{v}) == rm.point_of_vertex(v));
+    // One past the end of either map is refused.
+    CHECK(code_of([&] { rm.point_of_listing(rm.listing_count()); }) == dx::Code::InvalidArgument);
+    CHECK(code_of([&] { rm.point_of_vertex(rm.vertex_count()); }) == dx::Code::InvalidArgument);
     // Back again: the re-imported complex exports to the same DM sizes.
     DM again = dx::to_dm(PETSC_COMM_SELF, &rm.complex(), dx::ExportOptions{k.interpolate, true});
     PetscInt a0, a1, b0, b1;

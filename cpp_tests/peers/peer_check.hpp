@@ -68,6 +68,13 @@ struct RelationGrid {
   size_t first;
   uint32_t dim;
   Relation& operator()(uint32_t p, uint32_t q) const { return rels[first + p * (dim + 1) + q]; }
+  // R_{p,0}, R_{p,1}, R_{p,2} of sigma at once (a surface peer): its vertices, edges, faces.
+  void add_rows(uint32_t p, const Ids& sigma, std::vector<Ids> verts, std::vector<Ids> edges,
+                std::vector<Ids> faces) const {
+    (*this)(p, 0).add(sigma, std::move(verts));
+    (*this)(p, 1).add(sigma, std::move(edges));
+    (*this)(p, 2).add(sigma, std::move(faces));
+  }
 };
 
 // Appends R_{p,q} for every p, q <= dim to `rels`, p major, each named "<peer> <what>": `what`

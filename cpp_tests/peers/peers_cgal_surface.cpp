@@ -62,42 +62,41 @@ TEST_P(SurfaceMeshPeer, EveryRelationOfEveryKindMatches) {
                                        "face(halfedge(e)), face(opposite)", "vertices_around_face",
                                        "halfedges_around_face", "faces_around_face"});
 
+  // A vertex's or a face's rows from the circulators around halfedge h (to its target, or
+  // around its face); null faces (the border) skipped.
+  const auto add_rows = [&](uint32_t p, const Ids& sigma, auto vs, auto hs, auto fs) {
+    std::vector<Ids> verts, edges, faces;
+    for (auto u : vs) verts.push_back({id(u)});
+    for (auto h : hs) edges.push_back(edge_ids(m, m.edge(h)));
+    for (auto g : fs)
+      if (g != Mesh::null_face()) faces.push_back(face_ids(m, g));
+    R.add_rows(p, sigma, verts, edges, faces);
+  };
   for (auto v : m.vertices()) {
     const Ids sigma{id(v)};
-    std::vector<Ids> verts, edges, faces;
-    if (!m.is_isolated(v)) {
-      for (auto u : CGAL::vertices_around_target(m.halfedge(v), m)) verts.push_back({id(u)});
-      for (auto h : CGAL::halfedges_around_target(m.halfedge(v), m)) edges.push_back(edge_ids(m, m.edge(h)));
-      for (auto f : CGAL::faces_around_target(m.halfedge(v), m))
-        if (f != Mesh::null_face()) faces.push_back(face_ids(m, f));
+    if (m.is_isolated(v)) {
+      R.add_rows(0, sigma, {}, {}, {});
+      continue;
     }
-    R(0, 0).add(sigma, verts);
-    R(0, 1).add(sigma, edges);
-    R(0, 2).add(sigma, faces);
+    const auto h = m.halfedge(v);
+    add_rows(0, sigma, CGAL::vertices_around_target(h, m), CGAL::halfedges_around_target(h, m),
+             CGAL::faces_around_target(h, m));
   }
   for (auto e : m.edges()) {
     const Ids sigma = edge_ids(m, e);
-    std::vector<Ids> verts{{sigma[0]}, {sigma[1]}}, edges, faces;
+    std::vector<Ids> edges, faces;
     for (int i = 0; i < 2; ++i) {
       auto h = m.halfedge(e, i);
       if (!m.is_border(h)) faces.push_back(face_ids(m, m.face(h)));
       for (auto h2 : CGAL::halfedges_around_target(h, m))
         if (m.edge(h2) != e) edges.push_back(edge_ids(m, m.edge(h2)));
     }
-    R(1, 0).add(sigma, verts);
-    R(1, 1).add(sigma, edges);
-    R(1, 2).add(sigma, faces);
+    R.add_rows(1, sigma, {{sigma[0]}, {sigma[1]}}, edges, faces);
   }
   for (auto f : m.faces()) {
-    const Ids sigma = face_ids(m, f);
-    std::vector<Ids> verts, edges, faces;
-    for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) verts.push_back({id(v)});
-    for (auto h : CGAL::halfedges_around_face(m.halfedge(f), m)) edges.push_back(edge_ids(m, m.edge(h)));
-    for (auto g : CGAL::faces_around_face(m.halfedge(f), m))
-      if (g != Mesh::null_face()) faces.push_back(face_ids(m, g));
-    R(2, 0).add(sigma, verts);
-    R(2, 1).add(sigma, edges);
-    R(2, 2).add(sigma, faces);
+    const auto h = m.halfedge(f);
+    add_rows(2, face_ids(m, f), CGAL::vertices_around_face(h, m), CGAL::halfedges_around_face(h, m),
+             CGAL::faces_around_face(h, m));
   }
 
   const auto report = peers::check_all_kinds(cx, rels);

@@ -54,49 +54,28 @@ TEST_P(OpenMeshPeer, EveryRelationOfEveryKindMatches) {
   std::vector<peers::Relation> rels;
   const auto R = peers::add_relations(
       rels, "OpenMesh", 2, {"VV", "VE", "VF", "EV", "EE via VE of both ends", "EF", "FV", "FE", "FF"});
-  auto& vv = R(0, 0);
-  auto& ve = R(0, 1);
-  auto& vf = R(0, 2);
-  auto& ev = R(1, 0);
-  auto& ee = R(1, 1);
-  auto& ef = R(1, 2);
-  auto& fv = R(2, 0);
-  auto& fe = R(2, 1);
-  auto& ff = R(2, 2);
-
-  for (auto v : m.vertices()) {
-    const Ids sigma{uint32_t(v.idx())};
+  // A vertex's or a face's rows from OpenMesh's circulators over its vertices, edges, faces.
+  const auto add_rows = [&](uint32_t p, const Ids& sigma, auto vs, auto es, auto fs) {
     std::vector<Ids> verts, edges, faces;
-    for (auto u : m.vv_range(v)) verts.push_back({uint32_t(u.idx())});
-    for (auto e : m.ve_range(v)) edges.push_back(edge_ids(m, e));
-    for (auto f : m.vf_range(v)) faces.push_back(face_ids(m, f));
-    vv.add(sigma, verts);
-    ve.add(sigma, edges);
-    vf.add(sigma, faces);
-  }
+    for (auto u : vs) verts.push_back({uint32_t(u.idx())});
+    for (auto e : es) edges.push_back(edge_ids(m, e));
+    for (auto g : fs) faces.push_back(face_ids(m, g));
+    R.add_rows(p, sigma, verts, edges, faces);
+  };
+  for (auto v : m.vertices())
+    add_rows(0, {uint32_t(v.idx())}, m.vv_range(v), m.ve_range(v), m.vf_range(v));
   for (auto e : m.edges()) {
     const Ids sigma = edge_ids(m, e);
-    std::vector<Ids> verts{{sigma[0]}, {sigma[1]}}, edges, faces;
+    std::vector<Ids> edges, faces;
     for (int i = 0; i < 2; ++i) {
       auto h = m.halfedge_handle(e, i);
       if (!m.is_boundary(h)) faces.push_back(face_ids(m, m.face_handle(h)));
       for (auto e2 : m.ve_range(m.to_vertex_handle(h)))
         if (e2 != e) edges.push_back(edge_ids(m, e2));
     }
-    ev.add(sigma, verts);
-    ee.add(sigma, edges);
-    ef.add(sigma, faces);
+    R.add_rows(1, sigma, {{sigma[0]}, {sigma[1]}}, edges, faces);
   }
-  for (auto f : m.faces()) {
-    const Ids sigma = face_ids(m, f);
-    std::vector<Ids> verts, edges, faces;
-    for (auto v : m.fv_range(f)) verts.push_back({uint32_t(v.idx())});
-    for (auto e : m.fe_range(f)) edges.push_back(edge_ids(m, e));
-    for (auto g : m.ff_range(f)) faces.push_back(face_ids(m, g));
-    fv.add(sigma, verts);
-    fe.add(sigma, edges);
-    ff.add(sigma, faces);
-  }
+  for (auto f : m.faces()) add_rows(2, face_ids(m, f), m.fv_range(f), m.fe_range(f), m.ff_range(f));
 
   const auto report = peers::check_all_kinds(cx, rels);
   EXPECT_FALSE(report.checked.empty());

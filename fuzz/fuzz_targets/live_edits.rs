@@ -9,11 +9,11 @@
 //! STALE_HANDLE because that simplex is gone; after the final compaction every older handle is
 //! STALE_GENERATION.
 use libfuzzer_sys::fuzz_target;
-use topoplex_ffi::*;
 use topoplex::live::{ContractMode, LiveComplex, VertexId};
 use topoplex::oracle::check_structure;
 use topoplex::testing::follows_edit;
 use topoplex::{Complex, Navigate, Order, Topology};
+use topoplex_ffi::*;
 
 /// The vertices of a C handle of the live complex, with the status.
 fn c_vertices(s: *const TpxStructure, h: &TpxSimplex) -> (TpxStatus, Vec<u32>) {
@@ -45,6 +45,22 @@ fn c_handles(s: *const TpxStructure, rust: &LiveComplex) -> Vec<(TpxSimplex, Vec
     .collect()
 }
 
+/// The length of the answer `call(buf, buf.len(), &mut len)` wrote into `buf`; None when `buf`
+/// is too small for it (the fuzzer's buffers are fixed), any other status a failure.
+fn filled(
+    buf: &mut [TpxSimplex],
+    call: impl FnOnce(*mut TpxSimplex, usize, *mut usize) -> TpxStatus,
+) -> Option<usize> {
+    let mut len = 0usize;
+    match call(buf.as_mut_ptr(), buf.len(), &mut len) {
+        TpxStatus::BufferTooSmall => None,
+        st => {
+            assert_eq!(st, TpxStatus::Ok);
+            Some(len)
+        }
+    }
+}
+
 /// Navigation through the C ABI equals the Rust API's, as vertex rows.
 fn c_navigation_matches(s: *const TpxStructure, rust: &LiveComplex) {
     let mut buf = vec![TpxSimplex::default(); 1 << 12];
@@ -54,22 +70,11 @@ fn c_navigation_matches(s: *const TpxStructure, rust: &LiveComplex) {
     for (h, row) in c_handles(s, rust) {
         let rh = rust.locate(&row).unwrap();
         for q in 0..=rust.dimension() {
-            let mut len = 0usize;
-            let st = unsafe {
-                tpx_related_handles(
-                    s,
-                    &h,
-                    q as u32,
-                    TPX_ORDER_NATURAL,
-                    buf.as_mut_ptr(),
-                    buf.len(),
-                    &mut len,
-                )
-            };
-            if st == TpxStatus::BufferTooSmall {
+            let Some(len) = filled(&mut buf, |out, cap, len| unsafe {
+                tpx_related_handles(s, &h, q as u32, TPX_ORDER_NATURAL, out, cap, len)
+            }) else {
                 continue;
-            }
-            assert_eq!(st, TpxStatus::Ok);
+            };
             rust.related(rh, q, Order::Natural, &mut rbuf).unwrap();
             let want: Vec<Vec<u32>> = rbuf
                 .iter()
@@ -109,8 +114,7 @@ fn c_batches_match(s: *const TpxStructure, rust: &LiveComplex) {
     let mut offsets = vec![0u32; hs.len() + 1];
     let (mut want, mut ends) = (Vec::new(), Vec::new());
     for q in 0..=rust.dimension() {
-        let mut len = 0usize;
-        let st = unsafe {
+        let Some(len) = filled(&mut buf, |out, cap, len| unsafe {
             tpx_related_handles_batch(
                 s,
                 hs.as_ptr(),
@@ -118,15 +122,13 @@ fn c_batches_match(s: *const TpxStructure, rust: &LiveComplex) {
                 q as u32,
                 TPX_ORDER_LEXICOGRAPHIC,
                 offsets.as_mut_ptr(),
-                buf.as_mut_ptr(),
-                buf.len(),
-                &mut len,
+                out,
+                cap,
+                len,
             )
-        };
-        if st == TpxStatus::BufferTooSmall {
+        }) else {
             continue;
-        }
-        assert_eq!(st, TpxStatus::Ok);
+        };
         want.clear();
         ends.clear();
         rust.related_handles_batch(&rh, q, Order::Lexicographic, &mut want, &mut ends)

@@ -140,6 +140,72 @@ inline SurfaceListing surface_listing(const Complex &c, const char *peer) {
   return out;
 }
 
+/* The arrays of a peer mesh's complex (3 coordinates per vertex), built face after face with
+ * storage reserved first: push a face's vertex ids onto `ids`, then end_face. */
+struct TriangleArrays {
+  std::vector<std::uint32_t> ids;
+  std::vector<std::size_t> offsets;
+  std::vector<double> xyz;
+
+  TriangleArrays(std::size_t nv, std::size_t nf) {
+    ids.reserve(3 * nf);
+    offsets.reserve(nf + 1);
+    offsets.push_back(0);
+    xyz.reserve(3 * nv);
+  }
+  /* Ends the face whose ids were pushed since the last; refused unless it has 3 vertices,
+   * named as `element` and its number ("OpenMesh face", 7). */
+  void end_face(const char *element, std::size_t number) {
+    const std::size_t n = ids.size() - offsets.back();
+    if (n != 3) {
+      throw Refused(std::string(element) + " " + std::to_string(number) + " has " +
+                    std::to_string(n) +
+                    " vertices: Topoplex holds simplices (triangulate the mesh first)");
+    }
+    offsets.push_back(ids.size());
+  }
+  Complex complex() const {
+    return Complex::from_arrays(std::uint32_t(xyz.size() / 3), ids, offsets, xyz, 3);
+  }
+};
+
+/* Adds the faces of `tris` (3 ids per face over vertex indices 0..) to a half-edge mesh of
+ * `peer` through add(m, ids), false when the mesh rejects the face; then m is cleared and the
+ * triangle refused, named by what(f). */
+template <class Mesh, class Add, class What>
+void add_triangles(Mesh &m, const char *peer, const std::vector<std::uint32_t> &tris, Add &&add,
+                   What &&what) {
+  for (std::size_t f = 0; 3 * f < tris.size(); ++f) {
+    if (!add(m, &tris[3 * f])) {
+      m.clear();
+      throw Refused(std::string(peer) + " refused triangle " + ids_text(&tris[3 * f], 3) + " (" +
+                    what(f) +
+                    "): an edge in a third triangle, a vertex whose fan is already closed, or a "
+                    "winding opposite to a neighbour's; topoplex/manifold_parts.hpp splits a "
+                    "complex into parts a half-edge mesh holds");
+    }
+  }
+}
+
+/* Hands every attribute of `c` to a surface mesh built from `s`: copy(a, on_vertices) copies
+ * it and says whether the mesh holds it; one it does not is left behind (reason `unheld`), and
+ * so are the values of listings that are no face of the mesh. */
+template <class Copy>
+void attributes_to_mesh(const Complex &c, const SurfaceListing &s, const char *unheld,
+                        std::vector<Dropped> *dropped, Copy &&copy) {
+  for (const AttributeInfo &a : c.attributes()) {
+    const bool vertices = a.location == Location::Vertices;
+    if (!copy(a, vertices)) {
+      drop(dropped, a.name, unheld);
+    } else if (!vertices && s.other_listings != 0) {
+      drop(dropped, a.name,
+           "its values on " + std::to_string(s.other_listings) +
+               " listed simplices that are no face of the mesh (edges or vertices listed "
+               "beside their triangles, repeated listings)");
+    }
+  }
+}
+
 }  // namespace adapt
 }  // namespace topoplex
 

@@ -135,16 +135,12 @@ bool fill_map(SM &m, const std::string &name, const AttributeView<T> &v,
 template <class SM, class What>
 void add_faces(SM &m, const std::vector<std::uint32_t> &tris, What what) {
   using V = typename SM::Vertex_index;
-  for (std::size_t f = 0; 3 * f < tris.size(); ++f) {
-    if (m.add_face(V(tris[3 * f]), V(tris[3 * f + 1]), V(tris[3 * f + 2])) == SM::null_face()) {
-      m.clear();
-      throw Refused("Surface_mesh refused triangle " + adapt::ids_text(&tris[3 * f], 3) + " (" +
-                    what(f) +
-                    "): an edge in a third triangle, a vertex whose fan is already closed, or a "
-                    "winding opposite to a neighbour's; topoplex/manifold_parts.hpp splits a complex "
-                    "into parts a half-edge mesh holds");
-    }
-  }
+  adapt::add_triangles(
+      m, "Surface_mesh", tris,
+      [](SM &mesh, const std::uint32_t *t) {
+        return mesh.add_face(V(t[0]), V(t[1]), V(t[2])) != SM::null_face();
+      },
+      what);
 }
 
 template <class HDS>
@@ -192,28 +188,17 @@ Complex to_complex(const CGAL::Surface_mesh<P> &mesh, std::vector<Dropped> *drop
   if (m.has_garbage()) {
     throw Refused("the Surface_mesh has removed elements: call collect_garbage() first");
   }
-  const std::size_t nv = m.number_of_vertices(), nf = m.number_of_faces();
-  std::vector<std::uint32_t> ids;
-  std::vector<std::size_t> offsets;
-  std::vector<double> xyz;
-  ids.reserve(3 * nf);
-  offsets.reserve(nf + 1);
-  xyz.reserve(3 * nv);
-  offsets.push_back(0);
+  adapt::TriangleArrays t(m.number_of_vertices(), m.number_of_faces());
   for (auto f : m.faces()) {
-    for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) ids.push_back(std::uint32_t(v));
-    if (ids.size() - offsets.back() != 3) {
-      throw Refused("Surface_mesh face " + std::to_string(std::size_t(f)) + " has " +
-                    std::to_string(ids.size() - offsets.back()) +
-                    " vertices: Topoplex holds simplices (triangulate the mesh first)");
-    }
-    offsets.push_back(ids.size());
+    for (auto v : CGAL::vertices_around_face(m.halfedge(f), m)) t.ids.push_back(std::uint32_t(v));
+    t.end_face("Surface_mesh face", std::size_t(f));
   }
   for (auto v : m.vertices()) {
     const P &p = m.point(v);
-    xyz.insert(xyz.end(), {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
+    t.xyz.insert(t.xyz.end(),
+                 {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
   }
-  Complex c = Complex::from_arrays(std::uint32_t(nv), ids, offsets, xyz, 3);
+  Complex c = t.complex();
   detail::maps_to_attributes<SM, typename SM::Vertex_index>(c, m, m.vertices(),
                                                             Location::Vertices, "vertex", dropped);
   detail::maps_to_attributes<SM, typename SM::Face_index>(c, m, m.faces(), Location::Listed,
@@ -240,33 +225,27 @@ void to_surface_mesh(const Complex &c, CGAL::Surface_mesh<P> &m,
                     [&](std::size_t f) { return "listed simplex " + std::to_string(s.listing[f]); });
   using VI = typename SM::Vertex_index;
   using FI = typename SM::Face_index;
-  for (const AttributeInfo &a : c.attributes()) {
-    const bool vertices = a.location == Location::Vertices;
-    bool ok = false;
-    adapt::with_values(c, a, [&](const auto &view) {
-      using T = typename std::decay<decltype(view[0])>::type;
-      const std::vector<std::size_t> *index = vertices ? nullptr : &s.listing;
-      const std::size_t n = vertices ? nv : nf;
-      if (a.components == 1) {
-        ok = vertices ? detail::fill_map<SM, VI, T>(m, a.name, view, index, n)
-                      : detail::fill_map<SM, FI, T>(m, a.name, view, index, n);
-      } else if (a.components == 3 && std::is_floating_point<T>::value) {
-        using V3 = detail::Vector_3<SM>;
-        ok = vertices ? detail::fill_map<SM, VI, V3>(m, a.name, view, index, n)
-                      : detail::fill_map<SM, FI, V3>(m, a.name, view, index, n);
-      }
-    });
-    if (!ok) {
-      adapt::drop(dropped, a.name,
-                  "no Surface_mesh map holds it (1 number or 3 reals per element; a map of that "
-                  "name and another type exists)");
-    } else if (!vertices && s.other_listings != 0) {
-      adapt::drop(dropped, a.name,
-                  "its values on " + std::to_string(s.other_listings) +
-                      " listed simplices that are no face of the mesh (edges or vertices listed "
-                      "beside their triangles, repeated listings)");
-    }
-  }
+  adapt::attributes_to_mesh(
+      c, s,
+      "no Surface_mesh map holds it (1 number or 3 reals per element; a map of that name and "
+      "another type exists)",
+      dropped, [&](const AttributeInfo &a, bool vertices) {
+        bool ok = false;
+        adapt::with_values(c, a, [&](const auto &view) {
+          using T = typename std::decay<decltype(view[0])>::type;
+          const std::vector<std::size_t> *index = vertices ? nullptr : &s.listing;
+          const std::size_t n = vertices ? nv : nf;
+          if (a.components == 1) {
+            ok = vertices ? detail::fill_map<SM, VI, T>(m, a.name, view, index, n)
+                          : detail::fill_map<SM, FI, T>(m, a.name, view, index, n);
+          } else if (a.components == 3 && std::is_floating_point<T>::value) {
+            using V3 = detail::Vector_3<SM>;
+            ok = vertices ? detail::fill_map<SM, VI, V3>(m, a.name, view, index, n)
+                          : detail::fill_map<SM, FI, V3>(m, a.name, view, index, n);
+          }
+        });
+        return ok;
+      });
 }
 
 template <class SM>
@@ -321,33 +300,23 @@ Complex polyhedron_to_complex(const Poly &poly) {
   const std::size_t nv = poly.size_of_vertices(), nf = poly.size_of_facets();
   std::unordered_map<VH, std::uint32_t, CGAL::Handle_hash_function> id;
   id.reserve(nv);
-  std::vector<double> xyz;
-  xyz.reserve(3 * nv);
+  adapt::TriangleArrays t(nv, nf);
   std::uint32_t next = 0;
   for (auto v = poly.vertices_begin(); v != poly.vertices_end(); ++v) {
     id.emplace(VH(v), next++);
     const auto &p = v->point();
-    xyz.insert(xyz.end(), {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
+    t.xyz.insert(t.xyz.end(),
+                 {CGAL::to_double(p.x()), CGAL::to_double(p.y()), CGAL::to_double(p.z())});
   }
-  std::vector<std::uint32_t> ids;
-  std::vector<std::size_t> offsets;
-  ids.reserve(3 * nf);
-  offsets.reserve(nf + 1);
-  offsets.push_back(0);
   std::size_t f_no = 0;
   for (auto f = poly.facets_begin(); f != poly.facets_end(); ++f, ++f_no) {
     auto h = f->facet_begin();
     do {
-      ids.push_back(id.at(VH(h->vertex())));
+      t.ids.push_back(id.at(VH(h->vertex())));
     } while (++h != f->facet_begin());
-    if (ids.size() - offsets.back() != 3) {
-      throw Refused("Polyhedron_3 facet " + std::to_string(f_no) + " has " +
-                    std::to_string(ids.size() - offsets.back()) +
-                    " vertices: Topoplex holds simplices (triangulate the mesh first)");
-    }
-    offsets.push_back(ids.size());
+    t.end_face("Polyhedron_3 facet", f_no);
   }
-  return Complex::from_arrays(std::uint32_t(nv), ids, offsets, xyz, 3);
+  return t.complex();
 }
 
 /* Fills `poly` (cleared first) with the complex through Polyhedron_incremental_builder_3:

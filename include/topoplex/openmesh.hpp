@@ -167,17 +167,13 @@ bool attribute_to_property(Mesh &m, const std::string &name, const AttributeView
 template <class Mesh, class What>
 void add_faces(Mesh &m, const std::vector<std::uint32_t> &tris, What what) {
   std::vector<typename Mesh::VertexHandle> fv(3);
-  for (std::size_t f = 0; 3 * f < tris.size(); ++f) {
-    for (int k = 0; k < 3; ++k) fv[k] = typename Mesh::VertexHandle(int(tris[3 * f + k]));
-    if (!m.add_face(fv).is_valid()) {
-      m.clear();
-      throw Refused("OpenMesh refused triangle " + adapt::ids_text(&tris[3 * f], 3) + " (" +
-                    what(f) +
-                    "): an edge in a third triangle, a vertex whose fan is already closed, or a "
-                    "winding opposite to a neighbour's; topoplex/manifold_parts.hpp splits a complex "
-                    "into parts a half-edge mesh holds");
-    }
-  }
+  adapt::add_triangles(
+      m, "OpenMesh", tris,
+      [&fv](Mesh &mesh, const std::uint32_t *t) {
+        for (int k = 0; k < 3; ++k) fv[k] = typename Mesh::VertexHandle(int(t[k]));
+        return mesh.add_face(fv).is_valid();
+      },
+      what);
 }
 
 }  // namespace detail
@@ -197,27 +193,16 @@ Complex to_complex(const Mesh &m, std::vector<Dropped> *dropped = nullptr) {
         throw Refused("OpenMesh face " + std::to_string(f.idx()) +
                       " is deleted: call garbage_collection() first");
   }
-  std::vector<std::uint32_t> ids;
-  std::vector<std::size_t> offsets;
-  std::vector<double> xyz;
-  ids.reserve(3 * nf);
-  offsets.reserve(nf + 1);
-  xyz.reserve(3 * nv);
-  offsets.push_back(0);
+  adapt::TriangleArrays t(nv, nf);
   for (auto f : m.all_faces()) {
-    for (auto v : m.fv_range(f)) ids.push_back(std::uint32_t(v.idx()));
-    if (ids.size() - offsets.back() != 3) {
-      throw Refused("OpenMesh face " + std::to_string(f.idx()) + " has " +
-                    std::to_string(ids.size() - offsets.back()) +
-                    " vertices: Topoplex holds simplices (triangulate the mesh first)");
-    }
-    offsets.push_back(ids.size());
+    for (auto v : m.fv_range(f)) t.ids.push_back(std::uint32_t(v.idx()));
+    t.end_face("OpenMesh face", std::size_t(f.idx()));
   }
   for (auto v : m.all_vertices()) {
     const auto &p = m.point(v);
-    for (int k = 0; k < 3; ++k) xyz.push_back(double(p[k]));
+    for (int k = 0; k < 3; ++k) t.xyz.push_back(double(p[k]));
   }
-  Complex c = Complex::from_arrays(std::uint32_t(nv), ids, offsets, xyz, 3);
+  Complex c = t.complex();
   detail::properties_to_attributes(c, m.vprops_begin(), m.vprops_end(), Location::Vertices,
                                    "vertex", dropped);
   detail::properties_to_attributes(c, m.fprops_begin(), m.fprops_end(), Location::Listed, "face",
@@ -245,28 +230,22 @@ void to_openmesh(const Complex &c, Mesh &m, std::vector<Dropped> *dropped = null
   detail::add_faces(m, s.triangles, [&](std::size_t f) {
     return "listed simplex " + std::to_string(s.listing[f]);
   });
-  for (const AttributeInfo &a : c.attributes()) {
-    const bool vertices = a.location == Location::Vertices;
-    if (a.name == "v:normals" && vertices) m.request_vertex_normals();
-    if (a.name == "f:normals" && !vertices) m.request_face_normals();
-    bool ok = false;
-    adapt::with_values(c, a, [&](const auto &view) {
-      ok = vertices ? detail::attribute_to_property(m, a.name, view, nullptr, nv,
-                                                    OpenMesh::VertexHandle())
-                    : detail::attribute_to_property(m, a.name, view, &s.listing, nf,
-                                                    OpenMesh::FaceHandle());
-    });
-    if (!ok) {
-      adapt::drop(dropped, a.name,
-                  "no OpenMesh property holds it (1 number, or 2 to 4 reals per element; a "
-                  "property of that name and another type exists)");
-    } else if (!vertices && s.other_listings != 0) {
-      adapt::drop(dropped, a.name,
-                  "its values on " + std::to_string(s.other_listings) +
-                      " listed simplices that are no face of the mesh (edges or vertices listed "
-                      "beside their triangles, repeated listings)");
-    }
-  }
+  adapt::attributes_to_mesh(
+      c, s,
+      "no OpenMesh property holds it (1 number, or 2 to 4 reals per element; a property of that "
+      "name and another type exists)",
+      dropped, [&](const AttributeInfo &a, bool vertices) {
+        if (a.name == "v:normals" && vertices) m.request_vertex_normals();
+        if (a.name == "f:normals" && !vertices) m.request_face_normals();
+        bool ok = false;
+        adapt::with_values(c, a, [&](const auto &view) {
+          ok = vertices ? detail::attribute_to_property(m, a.name, view, nullptr, nv,
+                                                        OpenMesh::VertexHandle())
+                        : detail::attribute_to_property(m, a.name, view, &s.listing, nf,
+                                                        OpenMesh::FaceHandle());
+        });
+        return ok;
+      });
 }
 
 template <class Mesh>

@@ -465,22 +465,11 @@ fn components(rows: &Rows) -> (usize, Vec<u32>) {
     (count, verts)
 }
 
-/// Sphere/ball test of a connected complex with vertices `verts`.
+/// Sphere/ball test of a connected complex with vertices `verts` (none: the empty sphere).
 fn shape(rows: &Rows, verts: &[u32], approximate: &mut bool, work: &mut Work) -> Option<Shape> {
-    Some(if verts.is_empty() {
-        Shape::Sphere
-    } else {
-        manifold_shape(rows, verts, approximate, work)?
-    })
-}
-
-/// [`shape`] of a non-empty connected complex.
-fn manifold_shape(
-    rows: &Rows,
-    verts: &[u32],
-    approximate: &mut bool,
-    work: &mut Work,
-) -> Option<Shape> {
+    if verts.is_empty() {
+        return Some(Shape::Sphere);
+    }
     let arity = rows.row(0).len();
     if rows.iter().any(|r| r.len() != arity) {
         return Some(Shape::Neither);
@@ -525,14 +514,7 @@ fn pseudo_manifold_shape(
     work.spend(rows.ids.len() * arity)?;
     let mut facets: Vec<u32> = Vec::with_capacity(rows.len() * arity * k);
     for r in rows.iter() {
-        for skip in 0..arity {
-            facets.extend(
-                r.iter()
-                    .enumerate()
-                    .filter(|&(i, _)| i != skip)
-                    .map(|(_, &x)| x),
-            );
-        }
+        topoplex::complex::push_facets(r, &mut facets);
     }
     let facets = counted_rows(k, &facets);
     if facets.iter().any(|&(_, c)| c > 2) {
@@ -685,89 +667,56 @@ mod tests {
         assert_eq!(got.unclassified_links, 0, "{name}");
     }
 
-    #[test]
-    fn builtin_example() {
+    /// One test per fixture, named after it: its census checked against the `Expected` tuple
+    /// worked out by hand (the comment above each row says how).
+    macro_rules! census_cases {
+        ($($fixture:ident: $name:literal, $want:expr;)*) => {
+            $(
+                #[test]
+                fn $fixture() {
+                    check($name, &fixtures::$fixture(), $want);
+                }
+            )*
+        };
+    }
+
+    census_cases! {
         // Components of lk(v): 2 at v2 (tet, triangle 2 7 8), v3 (tet, wire 3-4), v4 (two
         // wires), none at the isolated v9: C_v = 12. Non-manifold: v0, v1 (link: a triangle
         // with a hair), v2, v3; edge 0-1 (link: edge 2-3 and point 6, 2 clusters). v4 sits
         // inside the path 3-4-5 (link: two points), a manifold point.
-        check(
-            "builtin",
-            &fixtures::builtin_example(),
-            (2, 2, vec![1, 2, 2, 1], 2, 2, 5, vec![4, 1, 0, 0]),
-        );
-    }
-
-    #[test]
-    fn bowtie() {
+        builtin_example: "builtin", (2, 2, vec![1, 2, 2, 1], 2, 2, 5, vec![4, 1, 0, 0]);
         // v2's link is two disjoint edges.
-        check(
-            "bowtie",
-            &fixtures::bowtie(),
-            (0, 0, vec![0, 0, 2], 0, 1, 2, vec![1, 0, 0]),
-        );
-    }
-
-    #[test]
-    fn three_triangles_on_an_edge() {
+        bowtie: "bowtie", (0, 0, vec![0, 0, 2], 0, 1, 2, vec![1, 0, 0]);
         // lk(0-1) = three points: 3 clusters. lk(0), lk(1): a star with a degree-3 centre.
-        check(
-            "fan3",
-            &fixtures::three_triangles_on_an_edge(),
-            (0, 0, vec![0, 0, 3], 3, 0, 3, vec![2, 1, 0]),
-        );
-    }
-
-    #[test]
-    fn tetrahedron_with_dangling_triangle_and_wire() {
+        three_triangles_on_an_edge: "fan3", (0, 0, vec![0, 0, 3], 3, 0, 3, vec![2, 1, 0]);
         // lk(2-3): edge 0-1 and point 4. v2, v3: a triangle plus an edge; v4: an edge plus a
         // point (two components).
-        check(
-            "tet+triangle+wire",
-            &fixtures::tetrahedron_with_dangling_triangle_and_wire(),
-            (1, 1, vec![0, 1, 1, 1], 2, 1, 3, vec![3, 1, 0, 0]),
-        );
-    }
-
-    #[test]
-    fn pinched_pie() {
+        tetrahedron_with_dangling_triangle_and_wire: "tet+triangle+wire",
+            (1, 1, vec![0, 1, 1, 1], 2, 1, 3, vec![3, 1, 0, 0]);
         // lk(0) is one figure eight (connected: C_v counts 1) but not a circle; edge 0-1 is in
         // four triangles. The two fans are two IQM components.
-        check(
-            "pinched pie",
-            &fixtures::pinched_pie(),
-            (0, 0, vec![0, 0, 6], 4, 0, 2, vec![2, 1, 0]),
-        );
-    }
-
-    #[test]
-    fn strip_pinched_at_a_vertex() {
+        pinched_pie: "pinched pie", (0, 0, vec![0, 0, 6], 4, 0, 2, vec![2, 1, 0]);
         // lk(0): paths 1-2-3 and 4-5-6. Every edge is in one or two triangles. One IQM
         // component (0 is split inside it).
-        check(
-            "strip",
-            &fixtures::strip_pinched_at_a_vertex(),
-            (0, 0, vec![0, 0, 6], 0, 1, 1, vec![1, 0, 0]),
-        );
-    }
-
-    #[test]
-    fn four_iqm_components_two_clusters() {
+        strip_pinched_at_a_vertex: "strip", (0, 0, vec![0, 0, 6], 0, 1, 1, vec![1, 0, 0]);
         // lk(0): {123,124,134,125}, {678}, {9 10}: 3 components. Triangle 012 is in three
         // tetrahedra, so edges 01, 02, 12 have a degree-3 link vertex (one cluster each) and
         // v1, v2 have an edge in three link triangles; v3, v4 have two link triangles on an
         // edge (a disk).
-        check(
-            "fig5",
-            &fixtures::four_iqm_components_two_clusters(),
-            (0, 1, vec![0, 0, 1, 5], 3, 2, 4, vec![3, 3, 1, 0]),
-        );
+        four_iqm_components_two_clusters: "fig5", (0, 1, vec![0, 0, 1, 5], 3, 2, 4, vec![3, 3, 1, 0]);
     }
 
     fn shape_of(rows: &[&[u32]]) -> (Shape, bool) {
         let mut work = Work { left: u64::MAX };
         let a = analyse(&Rows::from(rows), &mut work).unwrap();
         (a.shape, a.approximate)
+    }
+
+    /// [`shape_of`] over owned rows.
+    fn shape_of_rows(rows: &[Vec<u32>]) -> (Shape, bool) {
+        let refs: Vec<&[u32]> = rows.iter().map(Vec::as_slice).collect();
+        shape_of(&refs)
     }
 
     /// Every edge of a closed surface is in exactly two triangles (so a wrong triangulation
@@ -818,9 +767,8 @@ mod tests {
         }
         assert_closed_surface(&octa);
         let rows = sorted(&octa);
-        let refs: Vec<&[u32]> = rows.iter().map(Vec::as_slice).collect();
-        assert_eq!(shape_of(&refs), (Sphere, false));
-        assert_eq!(shape_of(&refs[1..]), (Ball, false));
+        assert_eq!(shape_of_rows(&rows), (Sphere, false));
+        assert_eq!(shape_of_rows(&rows[1..]), (Ball, false));
         // Two triangles glued along an edge: a disk. Two glued at a vertex only: not a
         // manifold (the vertex's link is two disjoint edges).
         assert_eq!(shape_of(&[&[0, 1, 2], &[1, 2, 3]]), (Ball, false));
@@ -835,9 +783,7 @@ mod tests {
                 .map(|t| [t[0], t[1], t[2]])
                 .collect::<Vec<_>>(),
         );
-        let rows = sorted(&torus);
-        let refs: Vec<&[u32]> = rows.iter().map(Vec::as_slice).collect();
-        assert_eq!(shape_of(&refs), (Neither, false));
+        assert_eq!(shape_of_rows(&sorted(&torus)), (Neither, false));
         let rp2: Vec<[u32; 3]> = vec![
             [1, 2, 3],
             [1, 3, 4],
@@ -851,26 +797,24 @@ mod tests {
             [3, 5, 6],
         ];
         assert_closed_surface(&rp2);
-        let rows = sorted(&rp2);
-        let refs: Vec<&[u32]> = rows.iter().map(Vec::as_slice).collect();
-        assert_eq!(shape_of(&refs), (Neither, false));
+        assert_eq!(shape_of_rows(&sorted(&rp2)), (Neither, false));
         // Dimension 3: one tetrahedron is a ball, the boundary of the 4-simplex a sphere —
         // both exactly (a simplex and its boundary are recognised as such) ...
         assert_eq!(shape_of(&[&[0, 1, 2, 3]]), (Ball, false));
         let s3: Vec<Vec<u32>> = (0..5u32)
             .map(|skip| (0..5).filter(|&v| v != skip).collect())
             .collect();
-        let refs: Vec<&[u32]> = s3.iter().map(Vec::as_slice).collect();
-        assert_eq!(shape_of(&refs), (Sphere, false));
+        assert_eq!(shape_of_rows(&s3), (Sphere, false));
         // ... as are cones: two tetrahedra on a triangle are a ball, two on a vertex (a cone
         // over two disjoint triangles) are not a manifold ...
         assert_eq!(shape_of(&[&[0, 1, 2, 3], &[1, 2, 3, 4]]), (Ball, false));
         assert_eq!(shape_of(&[&[0, 1, 2, 3], &[3, 4, 5, 6]]), (Neither, false));
         // ... while the boundary of the 16-cell (vertices 2i and 2i+1 opposite) passes as a
         // 3-sphere by the necessary conditions only.
-        let rows = cross_polytope_boundary(3, 0);
-        let refs: Vec<&[u32]> = rows.iter().map(Vec::as_slice).collect();
-        assert_eq!(shape_of(&refs), (Sphere, true));
+        assert_eq!(
+            shape_of_rows(&cross_polytope_boundary(3, 0)),
+            (Sphere, true)
+        );
     }
 
     /// The 2^{k+1} facets of the boundary of the (k+1)-dimensional cross-polytope over

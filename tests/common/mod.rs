@@ -12,6 +12,34 @@ pub fn rel(s: &dyn topoplex::Topology, sigma: &[u32], q: usize) -> Vec<Vec<u32>>
     out.chunks(q + 1).map(<[u32]>::to_vec).collect()
 }
 
+/// A complex built through the C ABI (`tpx_complex_from_arrays`) over `n` vertices from
+/// `simplices`, with `coords` (3 per vertex) when given; the caller frees it. Panics on a
+/// refusal, with the library's message.
+pub fn c_complex(
+    n: u32,
+    simplices: &[&[u32]],
+    coords: Option<&[f64]>,
+) -> *mut topoplex_ffi::TpxComplex {
+    use topoplex_ffi::*;
+    let ids: Vec<u32> = simplices.concat();
+    let mut offsets = vec![0usize];
+    offsets.extend(simplices.iter().scan(0, |end, s| {
+        *end += s.len();
+        Some(*end)
+    }));
+    let (xyz, dim) = coords.map_or((std::ptr::null(), 0), |c| (c.as_ptr(), 3));
+    let mut out = std::ptr::null_mut();
+    // SAFETY: arrays of the stated lengths.
+    let st = unsafe {
+        let (ids, offsets) = (ids.as_ptr(), offsets.as_ptr());
+        tpx_complex_from_arrays(n, ids, offsets, simplices.len(), xyz, dim, &mut out)
+    };
+    // SAFETY: the message is never NULL and NUL-terminated.
+    let message = unsafe { std::ffi::CStr::from_ptr(tpx_last_error_message()) };
+    assert_eq!(st, TpxStatus::Ok, "{}", message.to_string_lossy());
+    out
+}
+
 /// A simplex as refusals name it: `[a b c]`.
 pub fn show(ids: &[u32]) -> String {
     let v: Vec<String> = ids.iter().map(|i| i.to_string()).collect();

@@ -23,6 +23,18 @@ fn simplices(r: &RawInput) -> Vec<Vec<u32>> {
         .collect()
 }
 
+/// The simplices of `rows` of at most three vertices (what OFF, OBJ and PLY list), in order,
+/// with its vertex count and coordinates.
+fn up_to_triangles(rows: &RawInput) -> RawInput {
+    let mut raw = RawInput::new();
+    raw.vertex_count = rows.vertex_count;
+    raw.coords = rows.coords.clone();
+    for s in simplices(rows).iter().filter(|s| s.len() <= 3) {
+        raw.push(s, 0);
+    }
+    raw
+}
+
 /// A listing of `n` vertices with coordinates: random simplices of 1 to 4 vertices (0-simplices
 /// only when `points`), grouped by size ascending when `grouped` (MEDIT's sections), faces of
 /// other listed simplices and repeats included.
@@ -208,14 +220,9 @@ proptest! {
     /// original's permuted the same way as the listing.
     #[test]
     fn ply_vertex_and_face_properties_of_every_type_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
-        let mut rows = random_listing(seed, n, count, false, false);
+        let rows = random_listing(seed, n, count, false, false);
         // PLY lists triangles and edges: keep those.
-        let mut raw = RawInput::new();
-        raw.vertex_count = rows.vertex_count;
-        raw.coords = rows.coords.take();
-        for s in simplices(&rows).iter().filter(|s| s.len() <= 3) {
-            raw.push(s, 0);
-        }
+        let mut raw = up_to_triangles(&rows);
         let mut rng = common::Rng((seed ^ 5) | 1);
         let m = raw.simplex_count();
         for (k, location) in [Location::Vertices, Location::Listed].into_iter().enumerate() {
@@ -326,12 +333,7 @@ proptest! {
     #[test]
     fn off_vertex_and_face_colours_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
         let rows = random_listing(seed, n, count, true, false);
-        let mut raw = RawInput::new();
-        raw.vertex_count = rows.vertex_count;
-        raw.coords = rows.coords.clone();
-        for s in simplices(&rows).iter().filter(|s| s.len() <= 3) {
-            raw.push(s, 0);
-        }
+        let mut raw = up_to_triangles(&rows);
         let m = raw.simplex_count();
         let mut rng = common::Rng((seed ^ 11) | 1);
         let specials = [f64::NAN, f64::INFINITY, -0.0, 5e-324, 255.0, 0.5];
@@ -384,12 +386,7 @@ proptest! {
     #[test]
     fn obj_groups_objects_materials_and_smoothing_round_trip(seed in any::<u64>(), n in 4u32..30, count in 1usize..40) {
         let rows = random_listing(seed, n, count, true, false);
-        let mut raw = RawInput::new();
-        raw.vertex_count = rows.vertex_count;
-        raw.coords = rows.coords.clone();
-        for s in simplices(&rows).iter().filter(|s| s.len() <= 3) {
-            raw.push(s, 0);
-        }
+        let mut raw = up_to_triangles(&rows);
         let m = raw.simplex_count();
         let mut rng = common::Rng((seed ^ 7) | 1);
         for (k, attr) in ["obj:object", "obj:group", "obj:material"].into_iter().enumerate() {

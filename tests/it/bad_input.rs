@@ -975,3 +975,186 @@ fn every_bad_input_gets_the_catalogued_error() {
     let table = format!("| class | file | what `Complex::from_path` says |\n|---|---|---|\n{rows}");
     common::check_bad_input_doc("readers", &table, "it bad_input::");
 }
+
+/// (class, file name, content) read with `--triangulate` (`ReadOptions::triangulate`): polygons
+/// that are fanned, and one of each reason a polygon is refused, in each format that keeps them.
+fn triangulate_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
+    let t = |s: &str| s.as_bytes().to_vec();
+    let off = |faces: &str| {
+        t(&format!(
+            "OFF\n5 1 0\n0 0 0\n2 0 0\n2 1 0\n1 2 0\n0 1 0\n{faces}\n"
+        ))
+    };
+    let ply = |points: &str, face: &str| {
+        t(&format!(
+            "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n\
+             property float z\nelement face 1\nproperty list uchar int vertex_indices\n\
+             property int region\nend_header\n{points}{face}\n"
+        ))
+    };
+    let vtk = |points: &str, cells: &str, types: &str| {
+        t(&format!(
+            "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 4 double\n\
+             {points}\nCELLS 1 {}\n{cells}\nCELL_TYPES 1\n{types}\n",
+            cells.split_whitespace().count()
+        ))
+    };
+    let square = "0 0 0\n1 0 0\n1 1 0\n0 1 0\n";
+    vec![
+        (
+            "convex pentagon (fanned)",
+            "pentagon.off",
+            off("5 0 1 2 3 4"),
+        ),
+        (
+            "convex quad (fanned)",
+            "quad.obj",
+            t("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n"),
+        ),
+        (
+            "convex quad (fanned)",
+            "quad.ply",
+            ply(square, "4 0 1 2 3 5"),
+        ),
+        (
+            "quad cell (fanned)",
+            "quad.vtk",
+            vtk(square, "4 0 1 2 3", "9"),
+        ),
+        (
+            "polygon cell (fanned)",
+            "polygon.vtk",
+            vtk(square, "4 0 1 2 3", "7"),
+        ),
+        (
+            "non-planar polygon",
+            "bent.obj",
+            t("v 0 0 0\nv 1 0 0\nv 1 1 0.01\nv 0 1 0\nf 1 2 3 4\n"),
+        ),
+        (
+            "non-planar polygon",
+            "bent.ply",
+            ply("0 0 0\n1 0 0\n1 1 0.5\n0 1 0\n", "4 0 1 2 3 5"),
+        ),
+        (
+            "non-planar polygon",
+            "bent.vtk",
+            vtk("0 0 0 1 0 0 1 1 1 0 1 0", "4 0 1 2 3", "9"),
+        ),
+        ("non-convex polygon", "arrow.off", off("4 0 1 3 2")),
+        (
+            "non-convex polygon",
+            "arrow.ply",
+            ply("0 0 0\n1 0 0\n0.2 0.2 0\n0 1 0\n", "4 0 1 2 3 5"),
+        ),
+        (
+            "star polygon (winds twice)",
+            "star.obj",
+            t(
+                "v 1 0 0\nv 0.309 0.951 0\nv -0.809 0.588 0\nv -0.809 -0.588 0\nv 0.309 -0.951 0\n\
+             f 1 3 5 2 4\n",
+            ),
+        ),
+        ("repeated vertex", "repeat.off", off("4 0 1 2 1")),
+        (
+            "repeated vertex",
+            "repeat.vtk",
+            vtk(square, "4 0 1 2 1", "7"),
+        ),
+        (
+            "collinear vertices (zero-area triangle)",
+            "collinear.off",
+            t("OFF\n4 1 0\n0 0 0\n1 0 0\n2 0 0\n1 1 0\n4 0 1 2 3\n"),
+        ),
+        (
+            "coincident vertices",
+            "coincident.obj",
+            t("v 0 0 0\nv 1 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3 4\n"),
+        ),
+        (
+            "zero area",
+            "flat.off",
+            t("OFF\n4 1 0\n0 0 0\n1 0 0\n2 0 0\n3 0 0\n4 0 1 2 3\n"),
+        ),
+        ("vertex without coordinates", "beyond.off", off("4 0 1 2 9")),
+        (
+            "coordinates of 4 components",
+            "four.off",
+            t("4OFF\n4 1 0\n0 0 0 0\n1 0 0 0\n1 1 0 0\n0 1 0 0\n4 0 1 2 3\n"),
+        ),
+        (
+            "quadrangle (fanned, tags kept)",
+            "quad.msh",
+            t(
+                "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n\
+               4 0 1 0\n$EndNodes\n$Elements\n1\n1 3 2 7 1 1 2 3 4\n$EndElements\n",
+            ),
+        ),
+        (
+            "non-convex quadrangle",
+            "arrow.msh",
+            t(
+                "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n\
+               3 0.2 0.2 0\n4 0 1 0\n$EndNodes\n$Elements\n1\n1 3 2 7 1 1 2 3 4\n\
+               $EndElements\n",
+            ),
+        ),
+        (
+            "polygon in a format not fanned (refused as without the flag)",
+            "quad.mesh",
+            t(
+                "MeshVersionFormatted 2\nDimension 3\nVertices\n4\n0 0 0 1\n1 0 0 1\n1 1 0 1\n\
+               0 1 0 1\nQuadrilaterals\n1\n1 2 3 4 0\n",
+            ),
+        ),
+    ]
+}
+
+#[test]
+fn every_polygon_read_with_triangulate_is_fanned_or_refused_with_the_reason() {
+    use topoplex::io::ReadOptions;
+    let dir: PathBuf =
+        std::env::temp_dir().join(format!("topoplex-bad-tri-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let options = ReadOptions { triangulate: true };
+    let mut rows = String::new();
+    for (class, name, content) in triangulate_cases() {
+        let path = dir.join(name);
+        std::fs::write(&path, &content).unwrap();
+        let got = match Complex::from_path_options(&path, Default::default(), options) {
+            Ok(c) => {
+                // Fanned: only triangles, as many as the polygon's vertices less 2, every
+                // polygon refused without the flag.
+                assert!(
+                    Complex::from_path(&path).is_err(),
+                    "{name} read without the flag"
+                );
+                let attributes: Vec<String> = c.attributes().iter().map(|a| a.describe()).collect();
+                format!(
+                    "accepted: {} triangles{}",
+                    c.top_counts()[2],
+                    if attributes.is_empty() {
+                        String::new()
+                    } else {
+                        format!(", {}", attributes.join(", "))
+                    }
+                )
+            }
+            Err(e) => {
+                let msg = e.to_string().replace(&format!("{}/", dir.display()), "");
+                assert!(msg.contains(name), "{name}: {msg}");
+                msg
+            }
+        };
+        rows.push_str(&format!(
+            "| {class} | `{name}` | {} |\n",
+            got.replace('|', "\\|")
+        ));
+    }
+    std::fs::remove_dir_all(&dir).ok();
+    let table = format!(
+        "| class | file | what `Complex::from_path_options` (`--triangulate`) says |\n\
+         |---|---|---|\n{rows}"
+    );
+    common::check_bad_input_doc("triangulate", &table, "bad_input");
+}

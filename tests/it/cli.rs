@@ -423,6 +423,116 @@ fn convert_round_f32_rounds_for_stl_and_refuses_what_does_not_fit() {
     assert!(!far_stl.exists());
 }
 
+/// `--triangulate` on every command that reads a mesh: a hexagon and a quad glued along an edge
+/// (OBJ, each face in its own `usemtl` group) are refused without it; with it `convert` writes
+/// the fans from each polygon's first vertex in order (winding kept, each triangle in its
+/// polygon's group), and `report`, `relation`, `save`, `simplify` and `decompose` take the
+/// same 6 triangles; a bent quad is refused on one line naming file, line and reason.
+#[test]
+fn triangulate_fans_polygons_on_every_command_and_refuses_a_bent_quad() {
+    let obj = temp_file(
+        "polygons.obj",
+        "v 0 0 0\nv 2 0 0\nv 3 1 0\nv 2 2 0\nv 0 2 0\nv -1 1 0\nv 3 3 0\nv 4 2 0\n\
+         usemtl hex\nf 1 2 3 4 5 6\nusemtl quad\nf 4 3 8 7\n",
+    );
+    let inp = obj.to_str().unwrap();
+    let dir = obj.with_extension("d");
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = |name: &str| dir.join(name).to_str().unwrap().to_string();
+    let o = run(&["convert", inp, &p("plain.off")]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("polygon with 6 vertices is not a simplex"));
+    let o = run(&["convert", inp, &p("fan.obj"), "--triangulate"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(p("fan.obj")).unwrap();
+    let faces: Vec<&str> = text
+        .lines()
+        .filter(|l| l.starts_with("f ") || l.starts_with("usemtl"))
+        .collect();
+    assert_eq!(
+        faces,
+        [
+            "usemtl hex",
+            "f 1 2 3",
+            "f 1 3 4",
+            "f 1 4 5",
+            "f 1 5 6",
+            "usemtl quad",
+            "f 4 3 8",
+            "f 4 8 7"
+        ]
+    );
+    // The flag goes before or after the command.
+    for args in [
+        vec!["--triangulate", "report", inp, "--csv"],
+        vec![
+            "relation",
+            inp,
+            "--structure",
+            "ig",
+            "--relation",
+            "2,0",
+            "--triangulate",
+        ],
+        vec!["save", inp, "--out", &p("s.tpx"), "--triangulate"],
+        vec![
+            "simplify",
+            inp,
+            "--out",
+            &p("s.obj"),
+            "--ratio",
+            "0.5",
+            "--triangulate",
+        ],
+        vec![
+            "decompose",
+            inp,
+            "--out",
+            &p("parts"),
+            "--format",
+            "obj",
+            "--triangulate",
+        ],
+    ] {
+        let o = run(&args);
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        let mut without = args.clone();
+        without.retain(|a| *a != "--triangulate");
+        let o = run(&without);
+        assert_eq!(o.status.code(), Some(1), "{without:?}");
+        assert!(
+            stderr(&o).contains("polygon with 6 vertices is not a simplex"),
+            "{}",
+            stderr(&o)
+        );
+    }
+    let o = run(&[
+        "relation",
+        inp,
+        "--structure",
+        "ig",
+        "--relation",
+        "2,0",
+        "--triangulate",
+    ]);
+    assert_eq!(stdout(&o).lines().count(), 6, "{}", stdout(&o));
+    let saved = topoplex::store::open_complex(Path::new(&p("s.tpx")), Default::default()).unwrap();
+    assert_eq!(saved.top_counts(), [0, 0, 6]);
+    let bent = temp_file(
+        "bent.obj",
+        "v 0 0 0\nv 1 0 0\nv 1 1 0.2\nv 0 1 0\nf 1 2 3 4\n",
+    );
+    let o = run(&["report", bent.to_str().unwrap(), "--triangulate"]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(
+        e.contains("bent.obj:5: cannot triangulate polygon #0")
+            && e.contains("not planar")
+            && e.lines().count() == 1,
+        "{e}"
+    );
+}
+
 #[test]
 fn decompose_writes_components_in_a_chosen_format() {
     let (out, _) = decompose_bowtie("bowtie-fmt.simplices", "bowtie-obj", &["--format", "obj"]);

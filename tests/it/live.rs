@@ -1987,3 +1987,55 @@ fn split_restores_the_contracted_pair_positions_and_keeps_other_moves() {
     );
     assert_eq!(live.coords(VertexId(3)).unwrap(), &[5.0, 5.0]);
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(24))]
+
+    /// The link condition, plain and on the complex coned over its boundary, against the
+    /// brute-force model on complexes where vertex 0 has a large star (a cone over 64 to 150
+    /// random triangles and edges on 120 vertices, beside random small simplices), so that the
+    /// test on an edge at 0 reads St(0) only where the common vertices are: every edge at 0,
+    /// both ways, gets the model's answer (and a named simplex in both links, not in Lk(ab)).
+    #[test]
+    fn link_condition_around_a_large_star_matches_the_model(
+        base in prop::collection::vec(prop::collection::btree_set(1u32..120, 2..=3), 64..150),
+        others in prop::collection::vec(prop::collection::btree_set(1u32..120, 2..=4), 0..20),
+    ) {
+        let mut simplices: Vec<Vec<u32>> = base
+            .iter()
+            .map(|f| std::iter::once(0).chain(f.iter().copied()).collect())
+            .collect();
+        simplices.extend(others.into_iter().map(|t| t.into_iter().collect::<Vec<u32>>()));
+        let refs: Vec<&[u32]> = simplices.iter().map(Vec::as_slice).collect();
+        let Ok(c) = Complex::from_simplices(120, &refs) else {
+            return Ok(());
+        };
+        let live = LiveComplex::from_complex(&c);
+        let m = Model::of(&live);
+        let coned = m.coned();
+        for b in 1..120 {
+            for (x, y) in [(0, b), (b, 0)] {
+                let plain = m.link_failure(x, y);
+                match (live.link_condition(VertexId(x), VertexId(y)), plain) {
+                    (Ok(()), None) => {}
+                    (Err(Refusal::NotAnEdge { .. }), Some(usize::MAX)) => {}
+                    (Err(Refusal::LinkCondition { dim, simplex, .. }), Some(d)) => {
+                        prop_assert_eq!(dim, d);
+                        let (la, lb, lab) = (m.link(&[x]), m.link(&[y]), m.link(&[x, y]));
+                        prop_assert!(
+                            la.contains(&simplex) && lb.contains(&simplex) && !lab.contains(&simplex)
+                        );
+                    }
+                    other => panic!("link condition of {x} {y}: {other:?}"),
+                }
+                let with_boundary = plain.or(coned.link_failure(x, y));
+                match (live.link_condition_with_boundary(VertexId(x), VertexId(y)), with_boundary) {
+                    (Ok(()), None) => {}
+                    (Err(Refusal::NotAnEdge { .. }), Some(usize::MAX)) => {}
+                    (Err(Refusal::LinkCondition { dim, .. }), Some(d)) => prop_assert_eq!(dim, d),
+                    other => panic!("coned link condition of {x} {y}: {other:?}"),
+                }
+            }
+        }
+    }
+}

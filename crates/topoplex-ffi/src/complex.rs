@@ -204,6 +204,51 @@ pub unsafe extern "C" fn tpx_complex_from_file_budget(
     })
 }
 
+/// `tpx_complex_from_file_flags`' flag: fan every convex planar polygon of a mesh file into
+/// triangles (the CLI's `--triangulate`).
+pub const TPX_READ_TRIANGULATE: u32 = 1;
+
+/// `tpx_complex_from_file_budget` with read `flags`, 0 or `TPX_READ_TRIANGULATE`: faces of more
+/// than 3 vertices in OFF, OBJ and PLY, polygon and quad cells in legacy VTK and Gmsh quadrangles
+/// are fanned into
+/// triangles from their first vertex, each keeping the polygon's winding, line and listed
+/// attributes; a polygon that is not planar (beyond 1e-6 × its size), not convex, degenerate,
+/// repeats a vertex or has no coordinates is PARSE_ERROR naming file, line, polygon and why.
+/// Other formats and saved (`.tpx`) files read as without the flag.
+///
+/// On success `*out` receives a new complex owned by the caller (free with `tpx_complex_free`).
+/// Errors: as `tpx_complex_from_file_budget`, plus INVALID_ARGUMENT for an unknown flag
+/// (nothing read). Cost: as it, plus O(k) for each polygon of k vertices and a copy of the
+/// listing when there are polygons.
+///
+/// # Safety
+/// `path`, if non-NULL, must be a NUL-terminated string; `out` must be valid for writes.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_complex_from_file_flags(
+    path: *const c_char,
+    max_simplices: u64,
+    flags: u32,
+    out: *mut *mut TpxComplex,
+) -> TpxStatus {
+    open_into(path, out, |path| {
+        if flags & !TPX_READ_TRIANGULATE != 0 {
+            return Err(Failure::new(
+                TpxStatus::InvalidArgument,
+                format!("unknown flags {flags:#x} (only TPX_READ_TRIANGULATE = 1)"),
+            ));
+        }
+        let budget = budget(max_simplices);
+        let complex = if flags & TPX_READ_TRIANGULATE != 0 && !topoplex::store::is_saved_path(path)
+        {
+            let options = topoplex::io::ReadOptions { triangulate: true };
+            Complex::from_path_options(path, budget, options).map_err(complex_failure)?
+        } else {
+            topoplex::store::open_complex(path, budget).map_err(open_failure)?
+        };
+        Ok(TpxComplex { complex })
+    })
+}
+
 /// Releases a complex. NULL is a no-op. Structures built from it stay valid (they own their
 /// data).
 ///

@@ -14,6 +14,11 @@ use topoplex::store::{Saved, StoreError, save};
 /// invariants and its agreement with the complex; reads the whole file and builds).
 pub const TPX_OPEN_VERIFY: u32 = 1;
 
+/// `tpx_live_from_file` flag: fan each convex planar polygon of a mesh file into triangles and
+/// refuse the other polygons with the reason, as `TPX_READ_TRIANGULATE` does for
+/// `tpx_complex_from_file_flags`.
+pub const TPX_OPEN_TRIANGULATE: u32 = 2;
+
 pub(crate) fn store_failure(e: StoreError) -> Failure {
     let status = match &e {
         StoreError::Io { .. } => TpxStatus::IoError,
@@ -184,7 +189,10 @@ pub unsafe extern "C" fn tpx_live_open(
 
 /// Reads any input file into a new editable live complex — the application's mesh — the format
 /// chosen as `tpx_complex_from_file` chooses it (`.off` ... `.msh`, or a saved `.tpx`, opened as
-/// `tpx_live_open` opens it; `flags`: `TPX_OPEN_VERIFY` for a saved file, else 0). A mesh file
+/// `tpx_live_open` opens it; `flags`: `TPX_OPEN_VERIFY` for a saved file, `TPX_OPEN_TRIANGULATE`
+/// to fan convex planar polygons, or 0). A plain OFF file (the header `OFF`, one vertex or face
+/// a line, edges and triangles of distinct ids) is streamed into the live complex's arrays: the
+/// peak is the live complex and a 1 MiB buffer. Another mesh file
 /// whose listing is plain (a declared vertex count, no data arrays, every simplex 2 to 16
 /// distinct vertices, none listed twice or a face of another: the usual mesh) is read straight
 /// into the live complex, with no `TpxComplex` built: the process's peak is the file's bytes
@@ -195,7 +203,8 @@ pub unsafe extern "C" fn tpx_live_open(
 ///
 /// On success `*out` receives a new live complex owned by the caller (free with
 /// `tpx_live_free`). Errors: as `tpx_complex_from_file` and `tpx_live_open`; INVALID_ARGUMENT
-/// for unknown flags. Cost: linear in the file plus the build.
+/// for unknown flags (only TPX_OPEN_VERIFY and TPX_OPEN_TRIANGULATE here). Cost: linear in the
+/// file plus the build.
 ///
 /// # Safety
 /// `path`, if non-NULL, must be NUL-terminated; `out` must be valid for writes.
@@ -206,9 +215,12 @@ pub unsafe extern "C" fn tpx_live_from_file(
     out: *mut *mut TpxLive,
 ) -> TpxStatus {
     open_into(path, out, |path| {
-        let verify = verify_flag(flags)?;
-        let live =
-            topoplex::store::open_live(path, verify).map_err(super::complex::open_failure)?;
+        let verify = verify_flag(flags & !TPX_OPEN_TRIANGULATE)?;
+        let options = topoplex::io::ReadOptions {
+            triangulate: flags & TPX_OPEN_TRIANGULATE != 0,
+        };
+        let live = topoplex::store::open_live_with(path, verify, options)
+            .map_err(super::complex::open_failure)?;
         Ok(TpxLive::new(live))
     })
 }

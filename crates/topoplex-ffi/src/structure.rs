@@ -8,7 +8,7 @@ use super::{
 use topoplex::complex::MAX_DIMENSION;
 use topoplex::family::build;
 use topoplex::relation::BuildError;
-use topoplex::relation::{QueryError, StructureKind, Topology, normalize_simplex, sort_rows};
+use topoplex::relation::{QueryError, StructureKind, Topology, normalize_simplex_into, sort_rows};
 
 use super::complex::TpxComplex;
 
@@ -347,8 +347,8 @@ pub unsafe extern "C" fn tpx_relation(
         let sigma = in_slice(simplex, simplex_len, "simplex")?;
         let topo = s.topo.as_ref();
         let mut sorted = [0u32; MAX_DIMENSION + 1];
-        let sorted =
-            sorted_simplex(sigma, topo.vertex_count(), &mut sorted).map_err(query_failure)?;
+        let sorted = normalize_simplex_into(sigma, topo.vertex_count(), &mut sorted)
+            .map_err(query_failure)?;
         let q = q as usize;
         if q > topo.dimension() {
             return Err(query_failure(QueryError::DimensionOutOfRange {
@@ -363,26 +363,6 @@ pub unsafe extern "C" fn tpx_relation(
             write_buffer(rows, buf, buf_len, out_len)
         })
     })
-}
-
-/// `sigma` sorted into `buf`, checked as `Topology::relation` checks it (same errors), without
-/// allocating on success: this runs once per query of a walk over a whole mesh.
-fn sorted_simplex<'a>(
-    sigma: &[u32],
-    n: u32,
-    buf: &'a mut [u32; MAX_DIMENSION + 1],
-) -> Result<&'a [u32], QueryError> {
-    let k = sigma.len();
-    if k == 0 || k > buf.len() || sigma.iter().any(|&v| v >= n) {
-        return Err(normalize_simplex(sigma, n).expect_err("an invalid simplex"));
-    }
-    let out = &mut buf[..k];
-    out.copy_from_slice(sigma);
-    out.sort_unstable();
-    if out.windows(2).any(|w| w[0] == w[1]) {
-        return Err(normalize_simplex(sigma, n).expect_err("a repeated vertex"));
-    }
-    Ok(out)
 }
 
 /// Sorts distinct rows of `arity` ids into ascending lexicographic order in place: a linear

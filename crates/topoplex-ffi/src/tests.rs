@@ -546,6 +546,50 @@ fn complex_errors_map_to_statuses_with_evidence() {
     }
 }
 
+/// `tpx_complex_from_file_flags` with `TPX_READ_TRIANGULATE`: a convex quad becomes two
+/// triangles (refused without the flag), a bent one is PARSE_ERROR naming the reason, and an
+/// unknown flag is INVALID_ARGUMENT with nothing returned.
+#[cfg(not(miri))]
+#[test]
+fn triangulate_flag_fans_a_quad_and_refuses_a_bent_one() {
+    use std::ffi::CString;
+    let dir = std::env::temp_dir().join(format!("tpx-ffi-tri-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let write = |name: &str, z: &str| {
+        let p = dir.join(name);
+        std::fs::write(
+            &p,
+            format!("OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 {z}\n0 1 0\n4 0 1 2 3\n"),
+        )
+        .unwrap();
+        CString::new(p.to_str().unwrap()).unwrap()
+    };
+    let (flat, bent) = (write("flat.off", "0"), write("bent.off", "0.5"));
+    let mut out = null_mut();
+    unsafe {
+        assert_eq!(
+            tpx_complex_from_file_flags(flat.as_ptr(), 0, 0, &mut out),
+            TpxStatus::ParseError
+        );
+        assert!(last_error().contains("not a simplex"), "{}", last_error());
+        let st = tpx_complex_from_file_flags(flat.as_ptr(), 0, TPX_READ_TRIANGULATE, &mut out);
+        assert_eq!(st, TpxStatus::Ok, "{}", last_error());
+        let mut n = 0usize;
+        assert_eq!(tpx_complex_top_count(out, 2, &mut n), TpxStatus::Ok);
+        assert_eq!(n, 2);
+        tpx_complex_free(out);
+        out = null_mut();
+        let st = tpx_complex_from_file_flags(bent.as_ptr(), 0, TPX_READ_TRIANGULATE, &mut out);
+        assert_eq!(st, TpxStatus::ParseError);
+        assert!(last_error().contains("not planar"), "{}", last_error());
+        assert!(out.is_null());
+        let st = tpx_complex_from_file_flags(flat.as_ptr(), 0, 2, &mut out);
+        assert_eq!(st, TpxStatus::InvalidArgument);
+        assert!(out.is_null());
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn kinds_and_query_errors_map_to_statuses() {
     let c = tet_triangle_wire();

@@ -9,6 +9,7 @@
 //! Python threads query one structure in parallel. Errors become the exceptions of
 //! `topoplex._errors` with the library's message.
 
+use std::borrow::Cow;
 use std::path::PathBuf;
 use std::sync::{Arc, OnceLock};
 
@@ -19,7 +20,7 @@ use numpy::{
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyType};
 use topoplex::complex::{Attribute, Attributes, Coords, Location, Values};
-use topoplex::live::{ContractMode, LiveComplex, UndoRecord};
+use topoplex::live::{ContractMode, LiveComplex, Refusal, UndoRecord};
 use topoplex::{Budget, Complex, Navigate, Order, StructureKind, Topology, VertexId};
 
 /// A failure on the Rust side, named by the Python exception class it becomes
@@ -501,6 +502,41 @@ impl PyStructure {
         }
     }
 
+    /// Applies `edit` to each row of a CSR (ids, offsets) of simplices of the live mesh, in
+    /// order, the GIL released; stops at the first refusal, naming its row (the rows before it
+    /// stay edited). Returns the number of rows.
+    fn edit_rows(
+        &mut self,
+        py: Python<'_>,
+        ids: PyReadonlyArray1<'_, u32>,
+        offsets: PyReadonlyArray1<'_, usize>,
+        edit: fn(&mut LiveComplex, &[u32]) -> Result<(), Refusal>,
+    ) -> PyResult<usize> {
+        let ids = ids.as_slice()?;
+        let offsets = offsets.as_slice()?;
+        check_csr(ids, offsets)?;
+        let l = self.live_mut()?;
+        py.detach(|| {
+            for (i, w) in offsets.windows(2).enumerate() {
+                edit(l, &ids[w[0]..w[1]]).map_err(|e| Fail::Refused(format!("row {i}: {e}")))?;
+            }
+            Ok::<_, Fail>(offsets.len().saturating_sub(1))
+        })
+        .map_err(PyErr::from)
+    }
+
+    /// The dense p-indices `simplices` a query names, or all of them ([`Self::all_indices`]).
+    fn selected<'a>(
+        &self,
+        p: usize,
+        simplices: &'a Option<PyReadonlyArray1<'_, u32>>,
+    ) -> PyResult<Cow<'a, [u32]>> {
+        Ok(match simplices {
+            Some(s) => Cow::Borrowed(s.as_slice()?),
+            None => Cow::Owned(self.all_indices(p)),
+        })
+    }
+
     fn check_dim(&self, p: usize, q: usize) -> Result<(), Fail> {
         let dim = self.topo().dimension();
         if p > dim || q > dim {
@@ -525,14 +561,6 @@ fn check_csr(ids: &[u32], offsets: &[usize]) -> Result<(), Fail> {
             "CSR offsets must start at 0, not decrease and end at len(ids) = {}",
             ids.len()
         )))
-    }
-}
-
-/// The selected indices, or all of them (`PyStructure::all_indices`).
-fn indices_or_all(sel: Option<&[u32]>, all: Vec<u32>) -> std::borrow::Cow<'_, [u32]> {
-    match sel {
-        Some(s) => std::borrow::Cow::Borrowed(s),
-        None => std::borrow::Cow::Owned(all),
     }
 }
 
@@ -635,18 +663,9 @@ impl PyStructure {
             o => return Err(Fail::Input(format!("order {o:?}: \"sorted\" or \"natural\"")).into()),
         };
         let nav = self.nav()?;
-        let sel = match &simplices {
-            Some(s) => Some(s.as_slice()?),
-            None => None,
-        };
-        let all = if sel.is_none() {
-            self.all_indices(p)
-        } else {
-            Vec::new()
-        };
+        let idx = self.selected(p, &simplices)?;
         let (offsets, ids) = py
             .detach(|| {
-                let idx = indices_or_all(sel, all);
                 let mut ids = Vec::new();
                 let mut ends = Vec::with_capacity(idx.len());
                 nav.related_batch(p, &idx, q, order, &mut ids, &mut ends)?;
@@ -670,18 +689,9 @@ impl PyStructure {
     ) -> PyResult<Bound<'py, PyAny>> {
         self.check_dim(p, q)?;
         let nav = self.nav()?;
-        let sel = match &simplices {
-            Some(s) => Some(s.as_slice()?),
-            None => None,
-        };
-        let all = if sel.is_none() {
-            self.all_indices(p)
-        } else {
-            Vec::new()
-        };
+        let idx = self.selected(p, &simplices)?;
         let out = py
             .detach(|| {
-                let idx = indices_or_all(sel, all);
                 let mut out = vec![0u32; idx.len()];
                 nav.degree_batch(p, &idx, q, &mut out)?;
                 Ok(out)
@@ -865,18 +875,7 @@ impl PyStructure {
         ids: PyReadonlyArray1<'_, u32>,
         offsets: PyReadonlyArray1<'_, usize>,
     ) -> PyResult<usize> {
-        let ids = ids.as_slice()?;
-        let offsets = offsets.as_slice()?;
-        check_csr(ids, offsets)?;
-        let l = self.live_mut()?;
-        py.detach(|| {
-            for (i, w) in offsets.windows(2).enumerate() {
-                l.insert_top(&ids[w[0]..w[1]])
-                    .map_err(|e| Fail::Refused(format!("row {i}: {e}")))?;
-            }
-            Ok::<_, Fail>(offsets.len().saturating_sub(1))
-        })
-        .map_err(PyErr::from)
+        self.edit_rows(py, ids, offsets, |l, row| l.insert_top(row).map(drop))
     }
 
     /// Removes top simplices given as a CSR (ids, offsets); returns the number removed.
@@ -886,18 +885,7 @@ impl PyStructure {
         ids: PyReadonlyArray1<'_, u32>,
         offsets: PyReadonlyArray1<'_, usize>,
     ) -> PyResult<usize> {
-        let ids = ids.as_slice()?;
-        let offsets = offsets.as_slice()?;
-        check_csr(ids, offsets)?;
-        let l = self.live_mut()?;
-        py.detach(|| {
-            for (i, w) in offsets.windows(2).enumerate() {
-                l.remove_top(&ids[w[0]..w[1]])
-                    .map_err(|e| Fail::Refused(format!("row {i}: {e}")))?;
-            }
-            Ok::<_, Fail>(offsets.len().saturating_sub(1))
-        })
-        .map_err(PyErr::from)
+        self.edit_rows(py, ids, offsets, LiveComplex::remove_top)
     }
 
     /// Adds a vertex (isolated) with coordinates `xyz`; returns its id.

@@ -157,6 +157,10 @@ pub enum ReadErrorKind {
     /// A negative vertex id.
     #[error("negative vertex id {0}")]
     NegativeId(i64),
+    /// A polygon that `--triangulate` (`crate::io::ReadOptions::triangulate`) cannot fan into
+    /// triangles: which one and why.
+    #[error("cannot triangulate {0}")]
+    Triangulation(String),
 }
 
 /// A reader error naming the file and the 1-based line (line 0: the file as a whole, shown as

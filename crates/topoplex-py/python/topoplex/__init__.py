@@ -36,7 +36,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
-from . import _core
+from . import _core, _errors
 from ._errors import (
     DomainError,
     EditRefused,
@@ -58,20 +58,14 @@ __all__ = [
     "simplify",
     "decompose",
     "structure_names",
-    "TopoplexError",
-    "InputError",
-    "DomainError",
-    "EditRefused",
-    "FileError",
-    "ReadError",
-    "WriteError",
-    "TopoplexMemoryError",
     "from_meshio",
     "to_meshio",
     "from_gudhi",
     "to_gudhi",
     "to_trimesh",
 ]
+# The exception classes, listed once beside their definitions.
+__all__ += _errors.__all__
 
 Undo = _core.Undo
 _U32_MAX = 2**32 - 1

@@ -117,6 +117,15 @@ impl<T: Field> Field for Option<T> {
     }
 }
 
+/// For a `check` of [`crate::persist_fields`] (and a structure's validation): dimension `d` is at
+/// most `max`, the highest its kind holds.
+pub(crate) fn dimension_at_most(d: usize, max: usize) -> Result<(), String> {
+    if d > max {
+        return Err(format!("dimension {d} above {max}"));
+    }
+    Ok(())
+}
+
 /// Implements [`Field`] (and, with `check`, [`super::Persist`]) for a struct by listing its
 /// fields in save order. `check` runs on the loaded value and names the first shape it breaks,
 /// so that what `load` returns can be queried without a failed index (see the store's docs).

@@ -16,6 +16,7 @@ use crate::relation::{BuildError, StructureKind};
 
 mod field;
 pub use field::Field;
+pub(crate) use field::dimension_at_most;
 
 /// First bytes of every `.tpx` file.
 pub const MAGIC: [u8; 8] = *b"\x89TPX\r\n\x1a\n";

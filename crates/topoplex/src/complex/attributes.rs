@@ -610,6 +610,17 @@ impl Attributes {
         }
     }
 
+    /// Replaces the listed attributes' elements by those at `listed` (old listing indices, in
+    /// the new order; an index may repeat), the vertex attributes left as they are. Cost: the
+    /// new listed arrays.
+    pub fn pick_listed(&mut self, listed: impl Iterator<Item = usize> + Clone) {
+        for a in &mut self.list {
+            if a.location == Location::Listed {
+                a.values = a.values.pick(listed.clone(), a.components);
+            }
+        }
+    }
+
     /// Whether both hold the same attributes (names, locations, components, types, and every
     /// number's bits) and label names, in any order.
     pub fn bits_eq(&self, other: &Attributes) -> bool {

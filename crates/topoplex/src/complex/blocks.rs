@@ -773,18 +773,7 @@ fn facets_without_first(tables: &[SimplexTable], q: usize, links: &mut [u32]) ->
             }
             let at = match &rest {
                 Some(keys) => gallop(&keys[..hi], lo, pack(&f[1..])),
-                None => {
-                    let (mut lo, mut hi) = (lo, hi);
-                    while lo < hi {
-                        let mid = (lo + hi) / 2;
-                        if below.get(mid) < f {
-                            lo = mid + 1;
-                        } else {
-                            hi = mid;
-                        }
-                    }
-                    lo
-                }
+                None => super::table::partition_point(lo..hi, |mid| below.get(mid) < f),
             };
             debug_assert_eq!(below.get(at), f, "the closure holds every facet");
             row[0] = at as u32;
@@ -812,18 +801,7 @@ mod tests {
                 _ => (1 + rnd(16) as u32, 1, 24),
             };
             let small = n / spread;
-            let simplices: Vec<Vec<u32>> = (0..rnd(count))
-                .map(|_| {
-                    let mut s: Vec<u32> = (0..1 + rnd(8))
-                        .map(|_| rnd(small as u64) as u32 * spread)
-                        .collect();
-                    s.sort_unstable();
-                    s.dedup();
-                    s
-                })
-                .collect();
-            let refs: Vec<&[u32]> = simplices.iter().map(Vec::as_slice).collect();
-            Complex::from_simplices(n, &refs).unwrap()
+            crate::complex::random_complex(&mut rnd, n, count, 8, (small as u64, spread))
         })
     }
 

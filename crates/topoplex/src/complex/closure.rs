@@ -275,25 +275,10 @@ mod tests {
 
     /// Random non-manifold complexes over few vertices (so faces are shared), dimension ≤ 6.
     fn random_complexes() -> impl Iterator<Item = Complex> {
-        let mut x = 0x2545_f491_4f6c_dd1du64;
-        let mut rnd = move |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x % m
-        };
+        let mut rnd = crate::complex::xorshift_below(0x2545_f491_4f6c_dd1d);
         (0..300).map(move |_| {
             let n = 1 + rnd(16) as u32;
-            let simplices: Vec<Vec<u32>> = (0..rnd(20))
-                .map(|_| {
-                    let mut s: Vec<u32> = (0..1 + rnd(7)).map(|_| rnd(n as u64) as u32).collect();
-                    s.sort_unstable();
-                    s.dedup();
-                    s
-                })
-                .collect();
-            let refs: Vec<&[u32]> = simplices.iter().map(Vec::as_slice).collect();
-            Complex::from_simplices(n, &refs).unwrap()
+            crate::complex::random_complex(&mut rnd, n, 20, 7, (n as u64, 1))
         })
     }
 

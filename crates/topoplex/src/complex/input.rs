@@ -33,6 +33,20 @@ pub struct RawInput {
     /// Named data on the vertices and on the simplices in the order pushed
     /// ([`super::attributes`]).
     pub attributes: Attributes,
+    /// Polygons kept for triangulation (`crate::io::ReadOptions::triangulate`): empty unless
+    /// a reader was asked to keep them.
+    pub(crate) polygons: Polygons,
+}
+
+/// A reader's polygons (faces or cells of more than three vertices, listed as they are, to be
+/// fanned into triangles before normalising): whether the reader keeps them rather than
+/// refusing them, and the listing indices of those kept, in increasing order.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct Polygons {
+    /// Keep polygons (set by the caller of the reader) instead of refusing them.
+    pub(crate) keep: bool,
+    /// Listing indices of the polygons kept.
+    pub(crate) at: Vec<usize>,
 }
 
 impl RawInput {
@@ -71,6 +85,22 @@ impl RawInput {
         alloc::try_reserve_exact(&mut self.lines, simplices)
             .map_err(no_room("the simplices' line numbers"))?;
         alloc::try_reserve_exact(&mut self.ids, ids).map_err(no_room("the simplices' vertex ids"))
+    }
+
+    /// Keeps (when asked to, see [`Polygons`]) the polygon `ids` read on `line` (more than three
+    /// vertices), listed as it is and recorded as a polygon; else `Err(refusal)`.
+    pub(crate) fn try_push_polygon(
+        &mut self,
+        ids: &[u32],
+        line: u32,
+        refusal: ReadErrorKind,
+    ) -> Result<(), ReadErrorKind> {
+        if !self.polygons.keep {
+            return Err(refusal);
+        }
+        let at = self.simplex_count();
+        alloc::try_push(&mut self.polygons.at, at).map_err(no_room("the polygons' indices"))?;
+        self.try_push(ids, line)
     }
 
     /// Number of simplices read.

@@ -221,15 +221,8 @@ impl Complex {
         let mut start = crate::parallel::try_filled(self.n_vertices as usize + 1, 0u32)?;
         crate::parallel::fill_rows(&mut start, CHUNK, |c, part| {
             let v0 = c * CHUNK;
-            let (mut row, mut hi) = (0, table.len());
-            while row < hi {
-                let mid = (row + hi) / 2;
-                if (table.get(mid)[0] as usize) < v0 {
-                    row = mid + 1;
-                } else {
-                    hi = mid;
-                }
-            }
+            let mut row =
+                table::partition_point(0..table.len(), |mid| (table.get(mid)[0] as usize) < v0);
             for (v, slot) in (v0..).zip(part.iter_mut()) {
                 while row < table.len() && (table.get(row)[0] as usize) < v {
                     row += 1;
@@ -354,15 +347,7 @@ fn find_top(t: &SimplexTable, start: &[u32], sorted: &[u32]) -> Option<usize> {
     }
     let v = sorted[0] as usize;
     let (lo, hi) = (start[v] as usize, start[v + 1] as usize);
-    let (mut a, mut b) = (lo, hi);
-    while a < b {
-        let mid = (a + b) / 2;
-        if t.get(mid) < sorted {
-            a = mid + 1;
-        } else {
-            b = mid;
-        }
-    }
+    let a = table::partition_point(lo..hi, |mid| t.get(mid) < sorted);
     (a < hi && t.get(a) == sorted).then_some(a)
 }
 

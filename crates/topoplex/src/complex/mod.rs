@@ -64,7 +64,7 @@ pub(crate) use blocks::Want;
 pub(crate) use input::PlainTables;
 pub use input::{Coords, RawInput};
 use listing::Listing;
-pub use table::{SimplexTable, is_subset, push_facets, sort_dedup_rows, write_facets};
+pub use table::{SimplexTable, is_subset, push_facet, push_facets, sort_dedup_rows, write_facets};
 
 /// Highest simplex dimension accepted. The closure of one 15-simplex has 65,535 simplices, which
 /// every incidence-based structure stores; beyond that the count doubles per dimension.
@@ -386,4 +386,28 @@ pub(crate) fn xorshift_below(seed: u64) -> impl FnMut(u64) -> u64 {
         x ^= x << 17;
         x % m
     }
+}
+
+/// A random complex over `n` vertices for the unit tests: `rnd(count)` simplices, each of 1 to
+/// `max_len` draws `rnd(choices) * spread` (ascending, repeats dropped).
+#[cfg(test)]
+pub(crate) fn random_complex(
+    rnd: &mut impl FnMut(u64) -> u64,
+    n: u32,
+    count: u64,
+    max_len: u64,
+    (choices, spread): (u64, u32),
+) -> Complex {
+    let simplices: Vec<Vec<u32>> = (0..rnd(count))
+        .map(|_| {
+            let mut s: Vec<u32> = (0..1 + rnd(max_len))
+                .map(|_| rnd(choices) as u32 * spread)
+                .collect();
+            s.sort_unstable();
+            s.dedup();
+            s
+        })
+        .collect();
+    let refs: Vec<&[u32]> = simplices.iter().map(Vec::as_slice).collect();
+    Complex::from_simplices(n, &refs).unwrap()
 }

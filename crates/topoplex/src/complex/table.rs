@@ -558,12 +558,21 @@ fn order_by_wide_key(
 /// facets come in descending lexicographic order.
 pub fn push_facets(simplex: &[u32], out: &mut Vec<u32>) {
     for skip in 0..simplex.len() {
-        for (j, &v) in simplex.iter().enumerate() {
-            if j != skip {
-                out.push(v);
-            }
-        }
+        push_facet(simplex, skip, out);
     }
+}
+
+/// Appends to `out` the facet of `simplex` that omits its vertex at position `skip`, the other
+/// ids in their order.
+///
+/// ```
+/// let mut out = vec![9];
+/// topoplex::complex::push_facet(&[4, 1, 7], 1, &mut out);
+/// assert_eq!(out, [9, 4, 7]);
+/// ```
+pub fn push_facet(simplex: &[u32], skip: usize, out: &mut Vec<u32>) {
+    out.extend_from_slice(&simplex[..skip]);
+    out.extend_from_slice(&simplex[skip + 1..]);
 }
 
 /// Writes the facets of `simplex` to `out` (|simplex| · (|simplex| − 1) ids) in the order of
@@ -576,6 +585,25 @@ pub fn write_facets(simplex: &[u32], out: &mut [u32]) {
     }
 }
 
+/// The first index of `range` at which `below` turns false (`below` holds on a prefix of the
+/// range and nowhere after it): a binary search, O(log len) calls.
+#[inline]
+pub(crate) fn partition_point(
+    range: std::ops::Range<usize>,
+    mut below: impl FnMut(usize) -> bool,
+) -> usize {
+    let (mut lo, mut hi) = (range.start, range.end);
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if below(mid) {
+            lo = mid + 1;
+        } else {
+            hi = mid;
+        }
+    }
+    lo
+}
+
 /// Whether ascending `small` is a subset of ascending `big`: O(|big|).
 pub fn is_subset(small: &[u32], big: &[u32]) -> bool {
     let mut it = big.iter();
@@ -585,6 +613,24 @@ pub fn is_subset(small: &[u32], big: &[u32]) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn partition_point_finds_where_a_prefix_ends_in_every_window() {
+        // Against the linear scan: every window lo..hi of 0..12 and every cut inside it.
+        for hi in 0..12 {
+            for lo in 0..=hi {
+                for cut in lo..=hi {
+                    let below = |i: usize| i < cut;
+                    let linear = (lo..hi).find(|&i| !below(i)).unwrap_or(hi);
+                    assert_eq!(
+                        partition_point(lo..hi, below),
+                        linear,
+                        "{lo}..{hi} cut {cut}"
+                    );
+                }
+            }
+        }
+    }
 
     #[test]
     fn rows_sort_as_vectors_of_numbers() {

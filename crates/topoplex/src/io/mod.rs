@@ -53,6 +53,7 @@ mod scan;
 pub(crate) use scan::Float;
 pub mod simplices;
 pub mod stl;
+pub mod triangulate;
 pub mod vtk;
 pub mod vtu;
 pub mod write;
@@ -74,15 +75,75 @@ impl Complex {
 
     /// Reads and normalises a file (format by extension) under `budget`.
     pub fn from_path_with(path: &Path, budget: Budget) -> Result<Complex, ComplexError> {
-        let raw = read_path(path)?;
+        Complex::from_path_options(path, budget, ReadOptions::default())
+    }
+
+    /// Reads (with `options`) and normalises a file (format by extension) under `budget`.
+    pub fn from_path_options(
+        path: &Path,
+        budget: Budget,
+        options: ReadOptions,
+    ) -> Result<Complex, ComplexError> {
+        let raw = read_path_with(path, options)?;
         Complex::from_input(raw, Some(path), budget)
     }
+}
+
+/// How to read a file beyond its format.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct ReadOptions {
+    /// Fan every convex planar polygon into triangles (CLI `--triangulate`): faces of more than
+    /// 3 vertices in OFF, OBJ and PLY, polygon (7) and quad (9) cells in legacy VTK, Gmsh
+    /// quadrangles; a polygon
+    /// that is not convex and planar is refused with the reason ([`triangulate`]). Without it
+    /// polygons are refused ([`ReadErrorKind::Polygon`]). Other formats read as without it.
+    pub triangulate: bool,
+}
+
+/// [`read_path`] with `options`.
+pub fn read_path_with(path: &Path, options: ReadOptions) -> Result<RawInput, ReadError> {
+    if !options.triangulate {
+        return read_path(path);
+    }
+    let err = |line, kind| ReadError {
+        path: path.to_path_buf(),
+        line,
+        kind,
+    };
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
+        .unwrap_or_default();
+    let raw = match ext.as_str() {
+        "off" | "obj" => {
+            let bytes = read_file(path).map_err(|k| err(0, k))?;
+            let text = utf8_text(&bytes).map_err(|(line, k)| err(line, k))?;
+            match ext.as_str() {
+                "off" => off::parse_keeping(text, true),
+                _ => obj::parse_keeping(text, true),
+            }
+        }
+        "ply" | "vtk" | "msh" => {
+            let bytes = read_file(path).map_err(|k| err(0, k))?;
+            match ext.as_str() {
+                "ply" => ply::parse_keeping(&bytes, true),
+                "vtk" => vtk::parse_keeping(&bytes, true),
+                _ => msh::parse_keeping(&bytes, true),
+            }
+        }
+        _ => return read_path(path),
+    };
+    raw.and_then(triangulate::fan_polygons)
+        .map_err(|(line, kind)| err(line, kind))
 }
 
 /// Reads a file, choosing the reader by extension.
 ///
 /// Only regular files are read (see [`read_file`]); the text must be UTF-8 (a leading
-/// byte-order mark is skipped). Peak memory: the file's bytes plus the reader's output.
+/// byte-order mark is skipped). Peak memory: the file's bytes plus the reader's output; a
+/// `.simplices` file of 32 MiB or more is read in blocks of about 8 MiB (twice: counted, then
+/// parsed into arrays of their exact size), so its peak is the output and one block.
 pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
     let err = |line, kind| ReadError {
         path: path.to_path_buf(),
@@ -101,6 +162,13 @@ pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
         "simplices" => simplices::parse,
         _ => return read_binary_capable(path, &ext),
     };
+    #[cfg(unix)]
+    if ext == "simplices"
+        && std::fs::metadata(path).is_ok_and(|m| m.is_file() && m.len() >= simplices::BLOCKS_FROM)
+        && let Some(raw) = simplices::read_in_blocks(path)
+    {
+        return Ok(raw);
+    }
     let bytes = read_file(path).map_err(|k| err(0, k))?;
     let text = utf8_text(&bytes).map_err(|(line, k)| err(line, k))?;
     parse(text).map_err(|(line, kind)| err(line, kind))

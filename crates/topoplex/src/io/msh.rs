@@ -297,9 +297,15 @@ impl<'a> Reader<'a> {
                     )
                 })?;
         }
-        self.raw
-            .try_push(&ids[..nodes.len()], line)
-            .map_err(|k| (line, k))?;
+        if t == 3 {
+            self.raw
+                .try_push_polygon(&ids, line, ReadErrorKind::Polygon(4))
+                .map_err(|k| (line, k))?;
+        } else {
+            self.raw
+                .try_push(&ids[..nodes.len()], line)
+                .map_err(|k| (line, k))?;
+        }
         self.elements.push(tag, line)?;
         let room = |b| (line, no_room("the element tags")(b));
         for k in 0..self.physical_width {
@@ -404,6 +410,10 @@ impl<'a> Reader<'a> {
     }
 
     fn simplex_len(&self, tag: i64, t: i64, line: u32) -> Res<usize> {
+        // A quadrangle (nodes in order around it) kept for --triangulate.
+        if t == 3 && self.raw.polygons.keep {
+            return Ok(4);
+        }
         simplex_len(t).map_err(|name| {
             (
                 line,
@@ -531,6 +541,12 @@ impl<'a> Reader<'a> {
 
 /// Parses a Gmsh MSH file, version 2.2 or 4.1, ASCII or binary.
 pub fn parse(bytes: &[u8]) -> Res<RawInput> {
+    parse_keeping(bytes, false)
+}
+
+/// [`parse`], keeping quadrangles (type 3) as polygons when `polygons` (for
+/// [`super::ReadOptions::triangulate`]).
+pub(crate) fn parse_keeping(bytes: &[u8], polygons: bool) -> Res<RawInput> {
     let mut inp = Input::new(bytes);
     let (kw, l) = inp.expect_token("$MeshFormat")?;
     if kw != "$MeshFormat" {
@@ -586,6 +602,7 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
         elements: data::ElementTags::default(),
         data: Vec::new(),
     };
+    r.raw.polygons.keep = polygons;
     r.end("$EndMeshFormat")?;
     let (mut seen_nodes, mut seen_elements) = (false, false);
     while let Some((kw, l)) = r.inp.token() {

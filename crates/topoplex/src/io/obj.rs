@@ -287,9 +287,17 @@ fn grouping_attributes(st: &mut State) {
 
 /// Reads an OBJ file's text.
 pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
+    parse_keeping(text, false)
+}
+
+/// [`parse`], keeping faces of more than 3 vertices as polygons when `polygons` (for
+/// [`super::ReadOptions::triangulate`]).
+pub(crate) fn parse_keeping(text: &str, polygons: bool) -> Result<RawInput, (u32, ReadErrorKind)> {
     let mut s = Scanner::with_continuation(text);
+    let mut raw = RawInput::new();
+    raw.polygons.keep = polygons;
     let mut st = State {
-        raw: RawInput::new(),
+        raw,
         data: Vec::new(),
         seen: 0,
         ids: Vec::new(),
@@ -344,9 +352,16 @@ fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), R
             }
             let mut refs = [""; 3];
             let mut k = 0;
+            // A polygon kept for --triangulate: every id, as read.
+            let keep = st.raw.polygons.keep;
+            st.ids.clear();
             while let Some((tok, _)) = s.token_in_line() {
                 if let Some(slot) = refs.get_mut(k) {
                     *slot = tok;
+                }
+                if keep {
+                    let id = vertex_index(tok, Form::Face, st.seen)?;
+                    table::try_push(&mut st.ids, id).map_err(no_room("a polygon's ids"))?;
                 }
                 k += 1;
             }
@@ -355,7 +370,11 @@ fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), R
                 1 => return Err(syntax("face with 1 vertex; use a `p` line for a point")),
                 2 => return Err(syntax("face with 2 vertices; use an `l` line for an edge")),
                 3 => {}
-                k => return Err(ReadErrorKind::Polygon(k)),
+                k => {
+                    return st
+                        .raw
+                        .try_push_polygon(&st.ids, line, ReadErrorKind::Polygon(k));
+                }
             }
             let mut ids = [0u32; 3];
             for (id, tok) in ids.iter_mut().zip(refs) {

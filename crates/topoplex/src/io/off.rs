@@ -86,6 +86,12 @@ impl Header {
 
 /// Reads an OFF file's text.
 pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
+    parse_keeping(text, false)
+}
+
+/// [`parse`], keeping faces of more than 3 vertices as polygons when `polygons` (for
+/// [`super::ReadOptions::triangulate`]).
+pub(crate) fn parse_keeping(text: &str, polygons: bool) -> Result<RawInput, (u32, ReadErrorKind)> {
     let mut t = Scanner::new(text);
     let h = header(&mut t)?;
     let dim = dimension(&mut t, h)?;
@@ -97,6 +103,7 @@ pub fn parse(text: &str) -> Result<RawInput, (u32, ReadErrorKind)> {
         None => vertices(&mut t, nv, &layout, counts_line)?,
     };
     let mut raw = RawInput::new();
+    raw.polygons.keep = polygons;
     raw.vertex_count = Some(nv);
     raw.coords = Some(Coords { dim, data });
     vertex_attributes(&mut raw, &layout, extra).map_err(|k| (counts_line, k))?;
@@ -526,18 +533,29 @@ fn face(
     vertex_line: u32,
     colours: &mut FaceColours,
 ) -> Res<()> {
+    let keep = |e| match e {
+        ReadErrorKind::Polygon(k) if raw.polygons.keep => Ok(k),
+        e => Err(e),
+    };
     let (k, face_line) = match t.digits(true) {
-        Some((k, l)) => (face_size_of(i128::from(k)).map_err(|e| (l, e))?, l),
+        Some((k, l)) => (
+            face_size_of(i128::from(k))
+                .or_else(keep)
+                .map_err(|e| (l, e))?,
+            l,
+        ),
         None => {
             let (tok, l) = next_or(t, || {
                 format!("face count {nf} declared but file ends after {f} faces")
             })?;
-            (face_size(tok).map_err(|e| (l, e))?, l)
+            (face_size(tok).or_else(keep).map_err(|e| (l, e))?, l)
         }
     };
-    let mut ids = [0u32; 3];
-    for (j, id) in ids.iter_mut().take(k).enumerate() {
-        *id = match t.digits(true) {
+    // A polygon kept for --triangulate grows as its ids are read (its count is not trusted).
+    let mut small = [0u32; 3];
+    let mut polygon = Vec::new();
+    for j in 0..k {
+        let id = match t.digits(true) {
             Some((v, l)) => scan::id_value(v, false).map_err(|e| (l, e))?,
             None => {
                 let (tok, l) = next_or(t, || {
@@ -549,6 +567,11 @@ fn face(
                 scan::id(tok, false).map_err(|e| (l, e))?
             }
         };
+        match small.get_mut(j) {
+            Some(slot) if k <= 3 => *slot = id,
+            _ => table::try_push(&mut polygon, id)
+                .map_err(|b| (face_line, no_room("a polygon's ids")(b)))?,
+        }
     }
     let line = t.line();
     let n = if face_line != vertex_line {
@@ -557,7 +580,12 @@ fn face(
         0
     };
     colours.keep(f, n, line)?;
-    raw.try_push(&ids[..k], face_line)
+    if k > 3 {
+        return raw
+            .try_push_polygon(&polygon, face_line, ReadErrorKind::Polygon(k))
+            .map_err(|e| (face_line, e));
+    }
+    raw.try_push(&small[..k], face_line)
         .map_err(|e| (face_line, e))
 }
 

@@ -128,6 +128,15 @@ fn crate_error(e: &ply_rs_bw::parser::ParseError) -> (u32, ReadErrorKind) {
 /// The header is read by the crate, the body (ASCII or binary) by our own reader (streaming,
 /// nothing kept per element but what the complex needs).
 pub fn parse(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
+    parse_keeping(bytes, false)
+}
+
+/// [`parse`], keeping faces of more than 3 vertices as polygons when `polygons` (for
+/// [`super::ReadOptions::triangulate`]).
+pub(crate) fn parse_keeping(
+    bytes: &[u8],
+    polygons: bool,
+) -> Result<RawInput, (u32, ReadErrorKind)> {
     let mut reader = ply_rs_bw::parser::Reader::new(bytes);
     let header = Parser::<DefaultElement>::new()
         .read_header(&mut reader)
@@ -140,7 +149,14 @@ pub fn parse(bytes: &[u8]) -> Result<RawInput, (u32, ReadErrorKind)> {
         Encoding::BinaryBigEndian => Some(true),
         Encoding::BinaryLittleEndian => Some(false),
     };
-    body::parse_body(&header, &bytes[..header_len], body, first_line, binary)
+    body::parse_body(
+        &header,
+        &bytes[..header_len],
+        body,
+        first_line,
+        binary,
+        polygons,
+    )
 }
 
 #[cfg(test)]

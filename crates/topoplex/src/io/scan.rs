@@ -319,13 +319,7 @@ pub(crate) enum RealError {
 #[inline]
 pub(crate) fn real(tok: &[u8]) -> Result<f64, RealError> {
     let x: f64 = fast_float2::parse(tok).map_err(|_| RealError::NotNumber)?;
-    if in_range(x, tok) {
-        Ok(x)
-    } else if x == 0.0 {
-        Err(RealError::Underflow)
-    } else {
-        Err(RealError::Overflow)
-    }
+    checked_range(x, tok)
 }
 
 /// The floating-point type a format declares for its numbers (PLY `float`/`double`, VTK
@@ -358,6 +352,13 @@ pub(crate) fn real_as(tok: &[u8], ty: Float) -> Result<f64, RealError> {
             f64::from(fast_float2::parse::<f32, _>(tok).map_err(|_| RealError::NotNumber)?)
         }
     };
+    checked_range(x, tok)
+}
+
+/// `x`, parsed from `tok`, when [`in_range`]; else why not: 0 from non-zero digits underflowed,
+/// anything else overflowed.
+#[inline]
+fn checked_range(x: f64, tok: &[u8]) -> Result<f64, RealError> {
     if in_range(x, tok) {
         Ok(x)
     } else if x == 0.0 {

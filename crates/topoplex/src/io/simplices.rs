@@ -189,6 +189,146 @@ fn parse_in_parallel(text: &str) -> Option<RawInput> {
     Some(raw)
 }
 
+/// Files from this size are read in blocks ([`read_in_blocks`]).
+pub(crate) const BLOCKS_FROM: u64 = 32 << 20;
+
+/// The size of a block of [`read_in_blocks`] (extended to the end of its last line).
+const BLOCK: usize = 8 << 20;
+
+/// One block of the file: where it starts and how long it is (whole lines), with its ranges of
+/// lines and their counts.
+struct Block {
+    at: u64,
+    len: usize,
+    ranges: Vec<((usize, usize), Counts)>,
+}
+
+/// Reads a large `.simplices` file as [`parse_in_parallel`] reads its text, without ever
+/// holding the whole text: a first pass reads the file in blocks of about 8 MiB of whole lines
+/// and counts each block's ranges of lines; the arrays are reserved at their exact size; a
+/// second pass reads the blocks again and parses each range into its place. The peak is the
+/// reader's output and one block, not the output and the file (the file's bytes were a fifth
+/// of the peak for lines of 4 bytes). `None` whenever anything is not plain — a line that the
+/// parallel reader does not read, a block that is not UTF-8 or holds no line end, a file that
+/// changed between the passes, memory that cannot be had — for the caller to read the file
+/// whole (and report the first error with its line). Cost: the file read twice.
+#[cfg(unix)]
+pub(crate) fn read_in_blocks(path: &std::path::Path) -> Option<RawInput> {
+    read_in_blocks_of(path, BLOCK)
+}
+
+/// [`read_in_blocks`] with blocks of about `block` bytes.
+#[cfg(unix)]
+fn read_in_blocks_of(path: &std::path::Path, block: usize) -> Option<RawInput> {
+    use std::os::unix::fs::FileExt;
+    let (file, meta) = super::open_regular(path).ok()?;
+    let size = meta.len();
+    let mut buf: Vec<u8> = Vec::new();
+    table::try_reserve_exact(&mut buf, block).ok()?;
+    // The block at `at`: up to BLOCK bytes, cut after its last line end (the file's end ends
+    // the last); `None` when a block holds no line end or is not UTF-8.
+    let read = |at: u64, len: Option<usize>, buf: &mut Vec<u8>| -> Option<usize> {
+        let want = len.unwrap_or_else(|| block.min((size - at) as usize));
+        buf.clear();
+        buf.resize(want, 0);
+        file.read_exact_at(buf, at).ok()?;
+        let end = if len.is_some() || at + want as u64 == size {
+            want
+        } else {
+            memchr::memrchr(b'\n', buf)? + 1
+        };
+        buf.truncate(end);
+        std::str::from_utf8(buf).ok()?;
+        Some(end)
+    };
+    // The first pass: blocks and their counts.
+    let mut blocks = Vec::new();
+    let mut at = 0u64;
+    while at < size {
+        let len = read(at, None, &mut buf)?;
+        let mut start = 0;
+        if at == 0 && buf.starts_with("\u{feff}".as_bytes()) {
+            start = 3;
+        }
+        let text = std::str::from_utf8(&buf[start..]).ok()?;
+        let cuts = chunked::line_ranges(text);
+        let ranges: Vec<(usize, usize)> = cuts.windows(2).map(|w| (w[0], w[1])).collect();
+        let counts = crate::parallel::map_chunks(ranges.len(), |r| count_range(text, ranges[r]));
+        let counts: Vec<Counts> = counts.into_iter().collect::<Option<_>>()?;
+        let ranges = ranges.into_iter().map(|(a, z)| (a + start, z + start));
+        blocks.push(Block {
+            at,
+            len,
+            ranges: ranges.zip(counts).collect(),
+        });
+        at += len as u64;
+    }
+    let all = || blocks.iter().flat_map(|b| b.ranges.iter().map(|(_, c)| c));
+    let dim = all().find_map(|c| c.dim);
+    if all().any(|c| c.dim.is_some() && c.dim != dim) {
+        return None;
+    }
+    let (simplices, ids, vertices) = all().fold((0usize, 0usize, 0usize), |t, c| {
+        (t.0 + c.simplices, t.1 + c.ids, t.2 + c.vertices)
+    });
+    if simplices + vertices == 0 || u32::try_from(vertices).is_err() {
+        return None;
+    }
+    let coords = vertices.checked_mul(dim.unwrap_or(0))?;
+    let mut raw = RawInput::new();
+    raw.try_reserve(simplices, ids).ok()?;
+    let mut data = Vec::new();
+    table::try_reserve_exact(&mut data, coords).ok()?;
+    chunked::extend_filled(&mut raw.ids, ids, 0);
+    chunked::extend_filled(&mut raw.offsets, simplices, 0);
+    chunked::extend_filled(&mut raw.lines, simplices, 0);
+    chunked::extend_filled(&mut data, coords, 0.0);
+    // The second pass: each block read again, its ranges parsed into their shares.
+    let (mut ids_left, mut offs_left) = (&mut raw.ids[..], &mut raw.offsets[1..]);
+    let (mut lines_left, mut data_left) = (&mut raw.lines[..], &mut data[..]);
+    let (mut line, mut id_base) = (1u32, 0usize);
+    for block in &blocks {
+        read(block.at, Some(block.len), &mut buf)?;
+        let text = std::str::from_utf8(&buf).ok()?;
+        let mut parts = Vec::with_capacity(block.ranges.len());
+        for &(range, c) in &block.ranges {
+            let (i, rest) = std::mem::take(&mut ids_left).split_at_mut(c.ids);
+            ids_left = rest;
+            let (o, rest) = std::mem::take(&mut offs_left).split_at_mut(c.simplices);
+            offs_left = rest;
+            let (l, rest) = std::mem::take(&mut lines_left).split_at_mut(c.simplices);
+            lines_left = rest;
+            let (d, rest) =
+                std::mem::take(&mut data_left).split_at_mut(c.vertices * dim.unwrap_or(0));
+            data_left = rest;
+            parts.push((range, line, id_base, i, o, l, d));
+            line = line.checked_add(u32::try_from(c.lines).ok()?)?;
+            id_base += c.ids;
+        }
+        let filled = crate::parallel::install(|| {
+            use rayon::prelude::*;
+            parts
+                .into_par_iter()
+                .all(|(range, line, id_base, i, o, l, d)| {
+                    fill_range(text, range, line, id_base, i, o, l, d).is_some()
+                })
+        });
+        if !filled {
+            return None;
+        }
+    }
+    // Nothing changed between the passes (a file that grew or shrank).
+    if file.metadata().ok()?.len() != size {
+        return None;
+    }
+    chunked::note_section();
+    if let Some(dim) = dim {
+        raw.vertex_count = Some(vertices as u32);
+        raw.coords = (dim > 0).then_some(Coords { dim, data });
+    }
+    Some(raw)
+}
+
 /// The first pass over one range: its counts, `None` when a line is not plain.
 fn count_range(text: &str, (a, z): (usize, usize)) -> Option<Counts> {
     let mut s = Scanner::at_line(&text[..z], a, 1);
@@ -380,6 +520,54 @@ mod tests {
     use super::*;
 
     reader_test_helpers!();
+
+    /// A file read in blocks of `block` bytes reads as its whole text parses (ids, offsets,
+    /// lines, vertex count, coordinates), or is left to the whole read (`None`).
+    fn blocks_read_as_the_text(name: &str, text: &str, block: usize) -> Option<RawInput> {
+        let path = std::env::temp_dir().join(format!("tpx-blocks-{}-{name}", std::process::id()));
+        std::fs::write(&path, text).unwrap();
+        let got = read_in_blocks_of(&path, block);
+        std::fs::remove_file(&path).ok();
+        if let Some(got) = &got {
+            let want = parse(text.strip_prefix('\u{feff}').unwrap_or(text)).unwrap();
+            assert_eq!(got, &want, "{name}");
+        }
+        got
+    }
+
+    #[test]
+    fn files_read_in_blocks_read_as_their_text() {
+        // Lines of every length and ending, comments, blank lines, vertices between simplices.
+        let mut text = String::from("\u{feff}# head\r\nv 0 0\nv 1 0\rv 0 1\r\n\n");
+        for i in 0..4000u32 {
+            match i % 5 {
+                0 => text.push_str(&format!("s {} {}\r\n", i % 3, i % 3 + 1)),
+                1 => text.push_str(&format!("s {}\n", i % 3)),
+                2 => text.push_str("v 2 2\n# a comment\n"),
+                3 => text.push_str(&format!("s 0 1 2 {}\r", 3 + i % 7)),
+                _ => text.push_str("\t s 1 2\t\n\n"),
+            }
+        }
+        text.push_str("s 0 1");
+        for block in [64, 1000, 4096, 1 << 20] {
+            let got = blocks_read_as_the_text("mixed.simplices", &text, block);
+            assert!(got.is_some(), "block {block}");
+        }
+        // Without vertices, and a file of one block.
+        let plain = "s 1 2 3\n".repeat(3000);
+        assert!(blocks_read_as_the_text("plain.simplices", &plain, 4096).is_some());
+        assert!(blocks_read_as_the_text("plain1.simplices", &plain, 1 << 20).is_some());
+        // Labels, errors and v lines of other widths are left to the whole read.
+        let labelled = "s 0 1 : 3\n".repeat(1000);
+        assert!(blocks_read_as_the_text("labels.simplices", &labelled, 512).is_none());
+        let bad = format!("{plain}s 0 x\n{plain}");
+        assert!(blocks_read_as_the_text("bad.simplices", &bad, 4096).is_none());
+        let widths = format!("v 0 0\n{plain}v 0 0 0\n");
+        assert!(blocks_read_as_the_text("widths.simplices", &widths, 4096).is_none());
+        // A line longer than a block.
+        let long = format!("s {}\n", "1 ".repeat(5000));
+        assert!(blocks_read_as_the_text("long.simplices", &long.repeat(3), 4096).is_none());
+    }
 
     #[test]
     fn labels_after_a_colon_are_an_i64_attribute() {

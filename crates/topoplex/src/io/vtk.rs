@@ -406,7 +406,19 @@ fn read_cells4(inp: &mut Input, a: usize, b: usize, line: u32, raw: &mut RawInpu
 
 /// The first cell of `raw` whose VTK type `t` (cell `i`) is no simplex or does not match its
 /// id count, as the error to report.
-fn check_type(raw: &RawInput, i: usize, t: f64, types_line: u32, cells_line: u32) -> Res<()> {
+/// With `polygons` (for [`super::ReadOptions::triangulate`]), a polygon (type 7, 3 ids or
+/// more) or quad (type 9, 4 ids) is kept: `Ok(true)`.
+fn check_type(
+    raw: &RawInput,
+    i: usize,
+    t: f64,
+    (types_line, cells_line): (u32, u32),
+    polygons: bool,
+) -> Res<bool> {
+    let have = raw.simplex(i).len();
+    if polygons && ((t == 7.0 && have >= 3) || (t == 9.0 && have == 4)) {
+        return Ok(true);
+    }
     let len = simplex_len(t as i64).map_err(|name| {
         (
             types_line,
@@ -415,7 +427,6 @@ fn check_type(raw: &RawInput, i: usize, t: f64, types_line: u32, cells_line: u32
             )),
         )
     })?;
-    let have = raw.simplex(i).len();
     if have != len {
         return Err((
             cells_line,
@@ -424,11 +435,17 @@ fn check_type(raw: &RawInput, i: usize, t: f64, types_line: u32, cells_line: u32
             )),
         ));
     }
-    Ok(())
+    Ok(false)
 }
 
 /// Parses a legacy VTK unstructured grid.
 pub fn parse(bytes: &[u8]) -> Res<RawInput> {
+    parse_keeping(bytes, false)
+}
+
+/// [`parse`], keeping polygon (7) and quad (9) cells as polygons when `polygons` (for
+/// [`super::ReadOptions::triangulate`]).
+pub(crate) fn parse_keeping(bytes: &[u8], polygons: bool) -> Res<RawInput> {
     let mut inp = Input::new(bytes);
     let first = inp.rest_of_line();
     let first = String::from_utf8_lossy(first);
@@ -480,12 +497,12 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
             )),
         ));
     }
-    read_sections(&mut inp, version5)
+    read_sections(&mut inp, version5, polygons)
 }
 
 /// The sections after the header, up to `CELL_TYPES`, checked against each other. Cell types
 /// are checked as they are read, not kept.
-fn read_sections(inp: &mut Input, version5: bool) -> Res<RawInput> {
+fn read_sections(inp: &mut Input, version5: bool, polygons: bool) -> Res<RawInput> {
     let mut points: Option<Vec<f64>> = None;
     let mut cells: Option<(RawInput, u32)> = None;
     let (m, types_line, bad_type) = loop {
@@ -514,10 +531,15 @@ fn read_sections(inp: &mut Input, version5: bool) -> Res<RawInput> {
                 let mut bad = None;
                 inp.each_number(m, "int", l, "cell types", |i, t| {
                     if bad.is_none()
-                        && let Some((raw, cells_line)) = &cells
+                        && let Some((raw, cells_line)) = &mut cells
                         && i < raw.simplex_count()
                     {
-                        bad = check_type(raw, i, t, l, *cells_line).err();
+                        match check_type(raw, i, t, (l, *cells_line), polygons) {
+                            Ok(true) => table::try_push(&mut raw.polygons.at, i)
+                                .map_err(|b| (l, no_room("the polygons' indices")(b)))?,
+                            Ok(false) => {}
+                            Err(e) => bad = Some(e),
+                        }
                     }
                     Ok(())
                 })?;

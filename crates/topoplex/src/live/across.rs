@@ -14,11 +14,12 @@
 //! # Storage and cost
 //! Nothing until asked ([`LiveComplex::adjacency`]); then 4 bytes per vertex of every top slot
 //! (`4 Σ_p (p+1)·slots_p`: 12 bytes a triangle, 16 a tetrahedron), reported by
-//! `Navigate::handle_bytes`. Built in one pass over the tops, on several threads when large:
-//! for each facet of each top, a scan of the smallest star of its vertices for the tops holding
-//! the others, O(Σ_t d²·k) (k the smallest star of a facet); whether a top holds a vertex is
-//! read from that vertex's star when it is short, so on a surface the pass touches the stars
-//! and not the other tops. Like the dense numbering
+//! `Navigate::handle_bytes`. Built on several threads when large. Up to tetrahedra, facet by
+//! facet: each facet is met once, at its smallest vertex, among the tops of that vertex's star,
+//! and the facets a vertex owns are matched by sorting, O(Σ_v k_v·d log(k_v·d)). Above, top by
+//! top: for each facet a scan of the smallest star of its vertices for the tops holding the
+//! others, O(Σ_t d²·k), reading whether a top holds a vertex from that vertex's star when it is
+//! short. Like the dense numbering
 //! (module `dense`) it belongs to one state: every topological edit drops it, setting
 //! coordinates keeps it, and a query builds it behind a `OnceLock` from `&self`.
 
@@ -103,15 +104,96 @@ impl LiveComplex {
             }
             let mut row =
                 crate::structures::common::try_vec(K, NONE, table.len(), "facet adjacency")?;
-            let fill = |(slot, out): (usize, &mut [u32])| self.fill_across(p, slot, out);
-            if crate::parallel::splits(table.len() / (p + 1)) {
-                crate::parallel::install(|| row.par_chunks_mut(p + 1).enumerate().for_each(fill));
+            if p <= 3 {
+                row = self.across_by_owners(p, row);
             } else {
-                row.chunks_mut(p + 1).enumerate().for_each(fill);
+                let fill = |(slot, out): (usize, &mut [u32])| self.fill_across(p, slot, out);
+                if crate::parallel::splits(table.len() / (p + 1)) {
+                    crate::parallel::install(|| {
+                        row.par_chunks_mut(p + 1).enumerate().for_each(fill)
+                    });
+                } else {
+                    row.chunks_mut(p + 1).enumerate().for_each(fill);
+                }
             }
             rows.push(row);
         }
         Ok(Across { rows })
+    }
+
+    /// Dimension p's entries (p ≤ 3; `row` all `NONE`) facet by facet rather than top by top:
+    /// each facet is met at its smallest vertex a, whose star holds every top through it; the
+    /// facets a owns are sorted by their other vertices and matched in runs (one top: none
+    /// across; two: each other; more: many). Each entry is written once, by its facet's owner,
+    /// so vertex ranges run on several threads; the row goes through atomics, converted in place.
+    /// O(Σ_v k_v·d log(k_v·d)) with no read of a top beyond the stars' own.
+    fn across_by_owners(&self, p: usize, row: Vec<u32>) -> Vec<u32> {
+        use rayon::prelude::*;
+        use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
+        let cells: Vec<AtomicU32> = row.into_iter().map(AtomicU32::new).collect();
+        let owned_by = |range: std::ops::Range<usize>| {
+            // (the facet's other vertices, packed; the top; its entry)
+            let mut facets: Vec<(u64, u32, usize)> = Vec::new();
+            for a in range {
+                if !self.alive[a] {
+                    continue;
+                }
+                facets.clear();
+                let a = a as u32;
+                for &u in self.star[a as usize].iter() {
+                    let (q, slot) = unpack(u);
+                    if q != p {
+                        continue;
+                    }
+                    let t = self.top_raw(u);
+                    let at = t
+                        .iter()
+                        .position(|&w| w == a)
+                        .expect("a top of a's star holds a");
+                    // The facets through a (opposite each other vertex i) that a owns: its
+                    // other vertices all above a.
+                    'facet: for i in (0..=p).filter(|&i| i != at) {
+                        let mut rest = [u32::MAX; 2];
+                        let mut k = 0;
+                        for (m, &w) in t.iter().enumerate() {
+                            if m == i || m == at {
+                                continue;
+                            }
+                            if w < a {
+                                continue 'facet;
+                            }
+                            rest[k] = w;
+                            k += 1;
+                        }
+                        if rest[0] > rest[1] {
+                            rest.swap(0, 1);
+                        }
+                        let key = (u64::from(rest[0]) << 32) | u64::from(rest[1]);
+                        facets.push((key, u, slot * (p + 1) + i));
+                    }
+                }
+                facets.sort_unstable();
+                for run in facets.chunk_by(|x, y| x.0 == y.0) {
+                    match run {
+                        [_] => {}
+                        [x, y] => {
+                            cells[x.2].store(y.1, Relaxed);
+                            cells[y.2].store(x.1, Relaxed);
+                        }
+                        _ => run
+                            .iter()
+                            .for_each(|x| cells[x.2].store(ACROSS_MANY, Relaxed)),
+                    }
+                }
+            }
+        };
+        let ranges = crate::parallel::ranges(self.alive.len());
+        if ranges.len() > 1 {
+            crate::parallel::install(|| ranges.into_par_iter().for_each(owned_by));
+        } else {
+            ranges.into_iter().for_each(owned_by);
+        }
+        cells.into_iter().map(AtomicU32::into_inner).collect()
     }
 
     /// The entries of top slot `slot` of dimension p into `out` (`p + 1`, all `NONE` on entry):

@@ -35,7 +35,7 @@ use crate::complex::{MAX_DIMENSION, SimplexTable};
 use crate::relation::Topology;
 use crate::relation::handle::{Order, RelationView, SimplexHandle};
 use crate::relation::{QueryError, handle::Navigate};
-use crate::structures::common::Scratch;
+use crate::structures::nav::Csr;
 
 /// The lazily built numbering of one state of the live complex (see the module doc); emptied by
 /// every edit.
@@ -55,13 +55,6 @@ impl Clone for DenseIndex {
     fn clone(&self) -> DenseIndex {
         DenseIndex::default()
     }
-}
-
-/// One lent relation: offsets (rows + 1) and answers, dense indices.
-#[derive(Debug)]
-struct Csr {
-    offsets: Vec<u32>,
-    ids: Vec<u32>,
 }
 
 impl DenseIndex {
@@ -140,31 +133,13 @@ impl LiveComplex {
     /// One walk over every index of dimension p (a removed vertex: an empty row), each answer
     /// as dense q-indices in natural (lexicographic) order; arrays grown fallibly.
     fn build_view(&self, p: usize, q: usize) -> Result<Csr, QueryError> {
-        let n = self.index_count(p);
-        let too_large = |bytes: u64| QueryError::TooLarge {
-            what: "relation view",
-            bytes,
-        };
-        let mut offsets: Vec<u32> = Vec::new();
-        offsets
-            .try_reserve_exact(n + 1)
-            .map_err(|_| too_large(4 * (n as u64 + 1)))?;
-        offsets.push(0);
-        let mut ids: Vec<u32> = Vec::new();
-        let mut buf = Scratch::<Vec<u32>>::take();
-        for i in 0..n as u32 {
-            buf.clear();
+        Csr::build(self.index_count(p), |i, buf| {
             if p > 0 || self.alive[i as usize] {
                 let h = Navigate::handle(self, p, i)?;
-                self.related_ids(h, q, Order::Natural, &mut buf)?;
+                self.related_ids(h, q, Order::Natural, buf)?;
             }
-            ids.try_reserve(buf.len())
-                .map_err(|_| too_large(4 * (ids.len() + buf.len()) as u64))?;
-            ids.extend_from_slice(&buf);
-            offsets.push(u32::try_from(ids.len()).map_err(|_| too_large(4 * ids.len() as u64))?);
-        }
-        ids.shrink_to_fit();
-        Ok(Csr { offsets, ids })
+            Ok(())
+        })
     }
 
     /// The dense index of the simplex with ascending ids `s` (a simplex of the complex).

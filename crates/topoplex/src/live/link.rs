@@ -29,6 +29,13 @@
 //! edge test {a, b} itself scans the smaller star. It runs after the plain test on the
 //! same masks, so it too allocates nothing once warm (past 64 common vertices it falls back to
 //! the lists).
+//!
+//! When St(a) is large (64 tops or more) and over 4 times St(b), the word test reads St(a) only
+//! where the common vertices are (`skewed_violation`): C from St(b), F_a's words and St(a)'s
+//! boundary facets from the common vertices' stars, at O(d·k_b + Σ_{w ∈ V(St b)}
+//! d·min(k_w, k_a) + d²·Σ_{w ∈ C} k_w·k_min) instead of O(d·k_a·log(d·k_a)); the one case it
+//! cannot decide (whether St(a) has a boundary facet away from C, when that matters) runs the
+//! whole test. The answers are the whole test's, simplex for simplex.
 
 use std::cell::RefCell;
 
@@ -92,17 +99,7 @@ impl LiveComplex {
         } else {
             (b, a)
         };
-        let n = self.star.len();
-        if s.stamp.len() < n {
-            s.stamp.resize(n, 0);
-            s.index.resize(n, 0);
-        }
-        if s.epoch >= u32::MAX - 2 {
-            s.stamp.iter_mut().for_each(|x| *x = 0);
-            s.epoch = 0;
-        }
-        s.epoch += 2;
-        let (tried, in_ab) = (s.epoch - 1, s.epoch);
+        let (tried, in_ab) = s.fresh_stamps(self.star.len());
         let star_b = || self.star[b as usize].iter().map(|&r| self.top_raw(r));
         for t in star_b().filter(|t| t.contains(&a)) {
             for &v in t {
@@ -135,8 +132,195 @@ impl LiveComplex {
         self.full_violation(a, b, coned, s)
     }
 
-    /// [`LiveComplex::first_violation`] without the 0-dimensional shortcut.
+    /// [`LiveComplex::first_violation`] without the 0-dimensional shortcut: from the smaller
+    /// star ([`LiveComplex::skewed_violation`]) when St(a) is large and St(b) much smaller and
+    /// that decides, else [`LiveComplex::whole_violation`].
     fn full_violation(&self, a: u32, b: u32, coned: bool, s: &mut Scratch) -> Option<Vec<u32>> {
+        let (ka, kb) = (self.star[a as usize].len(), self.star[b as usize].len());
+        if ka >= BIG_STAR
+            && ka > STAR_SKEW * kb
+            && let Some(found) = self.skewed_violation(a, b, coned, ka, s)
+        {
+            return found;
+        }
+        self.whole_violation(a, b, coned, s)
+    }
+
+    /// The word test with St(a) read only where it matters: the common vertices C found from
+    /// St(b) (each vertex of St(b) tested for an edge to a by [`LiveComplex::joined`]); F_a's
+    /// words from the tops of St(a) through a common vertex (found in the common vertices'
+    /// stars: a top of St(a) with no common vertex gives the empty word, which changes
+    /// nothing); F_ab's from St(b). Coned, the boundary facets of St(a) are found the same
+    /// way: a facet f ∋ a holding a common vertex w is open when no other top of St(w) holds
+    /// it (every top holding f holds w), one through b when no other top of St(b) holds it. A
+    /// boundary facet of St(a) with no common vertex (nor b) gives the word {ω} alone, which
+    /// this cannot see without scanning St(a); it changes the answer only when no word of F_a
+    /// holds ω, a word of F_b does and none of F_ab does (x ∩ y = {ω} uncovered), and then
+    /// `None` sends the caller to the whole test. Otherwise the answer is the whole test's:
+    /// the families are the same sets of words once [`maximal`] has kept their maximal ones.
+    /// Cost: O(d·k_b + Σ_{w ∈ V(St b)} d·min(k_w, k_a) + d²·Σ_{w ∈ C} k_w·k_min), with k_min
+    /// the smallest star among a facet's common vertices; `None` also when |C| > 64 or the
+    /// common vertices' stars add up to `most` tops or more (the caller passes St(a)'s size).
+    fn skewed_violation(
+        &self,
+        a: u32,
+        b: u32,
+        coned: bool,
+        most: usize,
+        s: &mut Scratch,
+    ) -> Option<Option<Vec<u32>>> {
+        let n = self.star.len();
+        if s.stamp.len() < n {
+            s.stamp.resize(n, 0);
+            s.index.resize(n, 0);
+        }
+        if s.epoch >= u32::MAX - 2 {
+            s.stamp.iter_mut().for_each(|x| *x = 0);
+            s.epoch = 0;
+        }
+        s.epoch += 2;
+        let (tried, common) = (s.epoch - 1, s.epoch);
+        s.common.clear();
+        // C in the order common_vertices numbers it: first appearance in St(b)'s tops.
+        let mut weight = 0;
+        for &r in self.star[b as usize].iter() {
+            for &v in self.top_raw(r) {
+                let st = s.stamp[v as usize];
+                if v == a || v == b || st == tried || st == common {
+                    continue;
+                }
+                if self.joined(a, v) {
+                    s.stamp[v as usize] = common;
+                    s.index[v as usize] = s.common.len() as u32;
+                    s.common.push(v);
+                    weight += self.star[v as usize].len();
+                } else {
+                    s.stamp[v as usize] = tried;
+                }
+            }
+        }
+        if s.common.len() + usize::from(coned) > 64 || weight >= most {
+            return None;
+        }
+        let found = s.common.len();
+        if coned {
+            s.index_omega = s.common.len() as u32;
+            s.common.push(OMEGA);
+        } else if s.common.is_empty() {
+            return Some(None);
+        }
+        s.ma.clear();
+        s.mb.clear();
+        s.mz.clear();
+        for &r in self.star[b as usize].iter() {
+            let t = self.top_raw(r);
+            let m = s.mask(t);
+            if t.contains(&a) {
+                s.mz.push(m);
+            } else {
+                s.mb.push(m);
+            }
+        }
+        for i in 0..found {
+            let w = s.common[i];
+            for &r in self.star[w as usize].iter() {
+                let t = self.top_raw(r);
+                if t.contains(&a) && !t.contains(&b) {
+                    let m = s.mask(t);
+                    s.ma.push(m);
+                }
+            }
+        }
+        maximal(&mut s.ma);
+        maximal(&mut s.mb);
+        let plain = words::first_violation(&s.common, &s.ma, &s.mb, &s.mz);
+        if plain.is_some() || !coned {
+            return Some(plain);
+        }
+        let omega = 1u64 << s.index_omega;
+        // At b: as boundary_cones.
+        let mut open = std::mem::take(&mut s.open);
+        self.star_boundary(b, &mut s.facets, &mut open);
+        for (&r, &open) in self.star[b as usize].iter().zip(&open) {
+            let t = self.top_raw(r);
+            let m = s.mask(t);
+            for (j, &x) in t.iter().enumerate() {
+                if open >> j & 1 == 1 && (x == a || !t.contains(&a)) {
+                    s.mb.push(s.without(m, x) | omega);
+                }
+            }
+        }
+        s.open = open;
+        // At a: the tops through b (from St(b)), then those through a common vertex.
+        for &r in self.star[b as usize].iter() {
+            let t = self.top_raw(r);
+            if t.contains(&a) {
+                self.cones_at_a(r, a, b, omega, s);
+            }
+        }
+        for i in 0..found {
+            let w = s.common[i];
+            for &r in self.star[w as usize].iter() {
+                let t = self.top_raw(r);
+                if t.contains(&a) && !t.contains(&b) {
+                    self.cones_at_a(r, a, b, omega, s);
+                }
+            }
+        }
+        maximal(&mut s.ma);
+        maximal(&mut s.mb);
+        let holds_omega = |words: &[u64]| words.iter().any(|&m| m & omega != 0);
+        if !holds_omega(&s.ma) && holds_omega(&s.mb) && !holds_omega(&s.mz) {
+            // Whether St(a) has a boundary facet away from C decides: the whole test.
+            return None;
+        }
+        Some(words::first_violation(&s.common, &s.ma, &s.mb, &s.mz))
+    }
+
+    /// The cones over the open facets f ∋ a of top `r` ∈ St(a) that hold b or a common vertex
+    /// (others are {ω} alone, see [`LiveComplex::skewed_violation`]), as words pushed as
+    /// [`LiveComplex::boundary_cones`] pushes them: to F_ab when f holds b, else to F_a.
+    fn cones_at_a(&self, r: u32, a: u32, b: u32, omega: u64, s: &mut Scratch) {
+        let t = self.top_raw(r);
+        let m = s.mask(t);
+        let through_b = t.contains(&b);
+        for (j, &x) in t.iter().enumerate() {
+            if x == a {
+                continue;
+            }
+            let word = s.without(m, x);
+            let holds_b = through_b && x != b;
+            // Every top holding f holds the vertex whose star is searched.
+            let witness = if holds_b {
+                Some(b)
+            } else {
+                t.iter()
+                    .enumerate()
+                    .filter(|&(k, &v)| k != j && s.stamp[v as usize] == s.epoch)
+                    .map(|(_, &v)| v)
+                    .min_by_key(|&v| self.star[v as usize].len())
+            };
+            let Some(w) = witness else {
+                continue;
+            };
+            let shared = self.star[w as usize].iter().any(|&o| {
+                let u = self.top_raw(o);
+                o != r
+                    && u.len() + 1 >= t.len()
+                    && t.iter().enumerate().all(|(k, v)| k == j || u.contains(v))
+            });
+            if !shared {
+                if holds_b {
+                    s.mz.push(word | omega);
+                } else {
+                    s.ma.push(word | omega);
+                }
+            }
+        }
+    }
+
+    /// [`LiveComplex::full_violation`] reading both stars whole.
+    fn whole_violation(&self, a: u32, b: u32, coned: bool, s: &mut Scratch) -> Option<Vec<u32>> {
         let fa = || self.star[a as usize].iter().map(|&r| self.top_raw(r));
         let fb = || self.star[b as usize].iter().map(|&r| self.top_raw(r));
         common_vertices(fa(), fb(), a, b, self.star.len(), s);
@@ -290,16 +474,8 @@ impl LiveComplex {
                 if other.len() <= t.len() {
                     continue;
                 }
-                // t \ {t[j]} ⊆ other iff t[j] is t's only vertex missing from other.
-                let (mut missing, mut at) = (0, 0);
-                for (j, x) in t.iter().enumerate() {
-                    if !other.contains(x) {
-                        missing += 1;
-                        at = j;
-                    }
-                }
-                if missing == 1 {
-                    open[i] &= !(1 << at);
+                if let Some(j) = facet_inside(t, other) {
+                    open[i] &= !(1 << j);
                 }
             }
         }
@@ -321,21 +497,30 @@ impl LiveComplex {
             if other.len() + 1 < t.len() {
                 continue;
             }
-            // t \ {t[j]} ⊆ other iff t[j] is t's only vertex missing from other.
-            let (mut missing, mut at) = (0, 0);
-            for (j, x) in t.iter().enumerate() {
-                if !other.contains(x) {
-                    missing += 1;
-                    at = j;
-                }
-            }
-            if missing == 1 {
-                shared |= 1 << at;
+            if let Some(j) = facet_inside(t, other) {
+                shared |= 1 << j;
             }
         }
         let all = (1u32 << t.len()) - 1;
         let own = t.iter().position(|&x| x == v).map_or(0, |j| 1 << j);
         all & !shared & !own
+    }
+}
+
+/// From this many tops in St(a), and more than [`STAR_SKEW`] times St(b)'s, the link test
+/// reads St(a) only where the common vertices are ([`LiveComplex::skewed_violation`]).
+const BIG_STAR: usize = 64;
+
+/// See [`BIG_STAR`].
+const STAR_SKEW: usize = 4;
+
+/// The position j such that the facet of `t` without its j-th vertex lies in `other`, if one
+/// does: that vertex is then the only one of `t` missing from `other`. O(|t|·|other|).
+fn facet_inside(t: &[u32], other: &[u32]) -> Option<usize> {
+    let mut missing = t.iter().enumerate().filter(|(_, x)| !other.contains(x));
+    match (missing.next(), missing.next()) {
+        (Some((j, _)), None) => Some(j),
+        _ => None,
     }
 }
 
@@ -376,6 +561,21 @@ struct Scratch {
 }
 
 impl Scratch {
+    /// Two stamps no vertex of 0..n carries yet, `(epoch - 1, epoch)` (the stamps sized to n,
+    /// cleared when the epoch would wrap).
+    fn fresh_stamps(&mut self, n: usize) -> (u32, u32) {
+        if self.stamp.len() < n {
+            self.stamp.resize(n, 0);
+            self.index.resize(n, 0);
+        }
+        if self.epoch >= u32::MAX - 2 {
+            self.stamp.iter_mut().for_each(|x| *x = 0);
+            self.epoch = 0;
+        }
+        self.epoch += 2;
+        (self.epoch - 1, self.epoch)
+    }
+
     /// The common vertices of `t` as a word.
     #[inline]
     fn mask(&self, t: &[u32]) -> u64 {
@@ -410,16 +610,7 @@ fn common_vertices<'a>(
     n: usize,
     s: &mut Scratch,
 ) {
-    if s.stamp.len() < n {
-        s.stamp.resize(n, 0);
-        s.index.resize(n, 0);
-    }
-    if s.epoch >= u32::MAX - 2 {
-        s.stamp.iter_mut().for_each(|x| *x = 0);
-        s.epoch = 0;
-    }
-    s.epoch += 2;
-    let (in_a, common) = (s.epoch - 1, s.epoch);
+    let (in_a, common) = s.fresh_stamps(n);
     for t in fa {
         for &v in t {
             s.stamp[v as usize] = in_a;
@@ -725,6 +916,104 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// On every ordered edge (a, b) of `simplices`, plain and coned: the test read from the
+    /// smaller star gives the whole test's answer (the same simplex) whenever it decides.
+    /// Returns how many it decided, plain and coned.
+    fn assert_skewed_agrees(n: u32, simplices: &[Vec<u32>]) -> (usize, usize) {
+        let refs: Vec<&[u32]> = simplices.iter().map(Vec::as_slice).collect();
+        let Ok(c) = Complex::from_simplices(n, &refs) else {
+            return (0, 0);
+        };
+        let live = LiveComplex::from_complex(&c);
+        let mut s = Scratch::default();
+        let mut decided = (0, 0);
+        for [a, b] in live.edges() {
+            for (a, b) in [(a, b), (b, a)] {
+                for coned in [false, true] {
+                    let whole = live.whole_violation(a, b, coned, &mut s);
+                    if let Some(skewed) = live.skewed_violation(a, b, coned, usize::MAX, &mut s) {
+                        assert_eq!(skewed, whole, "{a} {b} coned {coned}");
+                        if coned {
+                            decided.1 += 1;
+                        } else {
+                            decided.0 += 1;
+                        }
+                    }
+                }
+            }
+        }
+        decided
+    }
+
+    /// A cone from vertex 0 over `base` (triangles and edges on vertices 1..n), beside
+    /// `others`: vertex 0's star is as large as the base, the rest small, as simplify makes
+    /// them.
+    fn coned_over(base: &[Vec<u32>], others: &[Vec<u32>]) -> Vec<Vec<u32>> {
+        base.iter()
+            .map(|f| std::iter::once(0).chain(f.iter().copied()).collect())
+            .chain(others.iter().cloned())
+            .collect()
+    }
+
+    proptest! {
+        /// Random mixed complexes on 8 vertices: every ordered edge, plain and coned.
+        #[test]
+        fn skewed_link_test_matches_the_whole_test_on_random_complexes(
+            simplices in proptest::collection::vec(
+                proptest::collection::btree_set(0u32..8, 2..=4),
+                1..14,
+            )
+        ) {
+            let s: Vec<Vec<u32>> = simplices.into_iter().map(|t| t.into_iter().collect()).collect();
+            assert_skewed_agrees(8, &s);
+        }
+
+        /// Vertex 0 with a large star (a cone over up to 80 random triangles and edges on 30
+        /// vertices, so that it has boundary facets or none) beside random small simplices.
+        #[test]
+        fn skewed_link_test_matches_the_whole_test_around_a_large_star(
+            base in proptest::collection::vec(
+                proptest::collection::btree_set(1u32..30, 2..=3),
+                20..80,
+            ),
+            others in proptest::collection::vec(
+                proptest::collection::btree_set(1u32..30, 2..=4),
+                0..10,
+            ),
+        ) {
+            let set = |v: Vec<std::collections::BTreeSet<u32>>| -> Vec<Vec<u32>> {
+                v.into_iter().map(|t| t.into_iter().collect()).collect()
+            };
+            let all = coned_over(&set(base), &set(others));
+            assert_skewed_agrees(30, &all);
+        }
+    }
+
+    /// The skewed test decides (is not sent to the whole test) on a closed fan and an open one,
+    /// plain and coned, so the agreement above is not vacuous.
+    #[test]
+    fn skewed_link_test_decides_on_closed_and_open_fans() {
+        // The boundary of an octahedron on 1..=6, coned from 0 (a closed ball around 0), and
+        // the same with one triangle left out (0 on the boundary).
+        let octahedron: Vec<Vec<u32>> = [
+            [1, 2, 3],
+            [1, 3, 4],
+            [1, 4, 5],
+            [1, 5, 2],
+            [6, 2, 3],
+            [6, 3, 4],
+            [6, 4, 5],
+            [6, 5, 2],
+        ]
+        .iter()
+        .map(|t| t.to_vec())
+        .collect();
+        let (plain, coned) = assert_skewed_agrees(7, &coned_over(&octahedron, &[]));
+        assert!(plain > 0 && coned > 0, "{plain} {coned}");
+        let (plain, coned) = assert_skewed_agrees(7, &coned_over(&octahedron[1..], &[]));
+        assert!(plain > 0 && coned > 0, "{plain} {coned}");
     }
 
     proptest! {

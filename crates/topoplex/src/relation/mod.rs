@@ -414,6 +414,34 @@ pub(crate) fn per_dimension<const N: usize>(p: usize, d: usize, counts: [usize; 
     }
 }
 
+/// [`normalize_simplex`] into the caller's `buf`: `sigma` sorted and checked the same way (the
+/// same errors), without allocating unless it fails — for a query run once per simplex of a
+/// whole mesh.
+///
+/// ```
+/// use topoplex::complex::MAX_DIMENSION;
+/// let mut buf = [0u32; MAX_DIMENSION + 1];
+/// assert_eq!(topoplex::relation::normalize_simplex_into(&[7, 2, 5], 8, &mut buf).unwrap(), [2, 5, 7]);
+/// assert!(topoplex::relation::normalize_simplex_into(&[2, 2], 8, &mut buf).is_err());
+/// ```
+pub fn normalize_simplex_into<'a>(
+    sigma: &[u32],
+    n: u32,
+    buf: &'a mut [u32; MAX_DIMENSION + 1],
+) -> Result<&'a [u32], QueryError> {
+    let k = sigma.len();
+    if k == 0 || k > buf.len() || sigma.iter().any(|&v| v >= n) {
+        return Err(normalize_simplex(sigma, n).expect_err("an invalid simplex"));
+    }
+    let out = &mut buf[..k];
+    out.copy_from_slice(sigma);
+    out.sort_unstable();
+    if out.windows(2).any(|w| w[0] == w[1]) {
+        return Err(normalize_simplex(sigma, n).expect_err("a repeated vertex"));
+    }
+    Ok(out)
+}
+
 /// Sorts a copy of `sigma` and checks it: non-empty, within `MAX_DIMENSION`, no repeated vertex,
 /// every id below `n`.
 pub fn normalize_simplex(sigma: &[u32], n: u32) -> Result<Vec<u32>, QueryError> {

@@ -57,7 +57,7 @@ use std::collections::BinaryHeap;
 
 use std::path::Path;
 
-use crate::complex::Complex;
+use crate::complex::{Complex, push_facet};
 use crate::io::write::{Format, WriteError, WriteErrorKind};
 use crate::io::{Coords, RawInput};
 use crate::live::{ContractMode, LiveComplex, Refusal, VertexId};
@@ -646,13 +646,7 @@ fn init_quadrics(state: &mut State) {
         // Boundary facets: hull quadric with the owner's weight, to each facet vertex.
         for skip in 0..verts.len() {
             facet.clear();
-            facet.extend(
-                verts
-                    .iter()
-                    .enumerate()
-                    .filter(|&(i, _)| i != skip)
-                    .map(|(_, &v)| v),
-            );
+            push_facet(&verts, skip, &mut facet);
             if weight == 0.0 || !is_boundary_facet(state.live, &facet) {
                 continue;
             }

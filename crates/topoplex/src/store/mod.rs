@@ -158,6 +158,17 @@ pub fn open_complex_with(
 /// build (a plain-looking OFF file that turns out not to be, e.g. a top listed twice, is read
 /// twice).
 pub fn open_live(path: &Path, verify: bool) -> Result<LiveComplex, OpenError> {
+    open_live_with(path, verify, crate::io::ReadOptions::default())
+}
+
+/// [`open_live`] reading a mesh file with `options` (`triangulate`: convex planar polygons
+/// fanned into triangles, others refused with the reason; a polygon never streams, so such a
+/// file is read by its reader).
+pub fn open_live_with(
+    path: &Path,
+    verify: bool,
+    options: crate::io::ReadOptions,
+) -> Result<LiveComplex, OpenError> {
     if is_saved_path(path) {
         let saved = Saved::open_checked(path, verify)?;
         return Ok(LiveComplex::open_saved(&saved)?);
@@ -167,7 +178,7 @@ pub fn open_live(path: &Path, verify: bool) -> Result<LiveComplex, OpenError> {
     {
         return Ok(live?);
     }
-    let raw = crate::io::read_path(path).map_err(ComplexError::from)?;
+    let raw = crate::io::read_path_with(path, options).map_err(ComplexError::from)?;
     if let Some(live) = LiveComplex::from_plain_listing(&raw) {
         return Ok(live?);
     }
@@ -525,5 +536,25 @@ impl LiveComplex {
             path: saved.path().to_path_buf(),
             source,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::open_live_with;
+    use crate::io::ReadOptions;
+
+    /// A square as one quadrilateral in OFF: the mesh refuses it as read, and with triangulate
+    /// holds the two triangles of its fan from the first vertex, winding kept.
+    #[test]
+    fn a_quad_in_an_off_file_is_refused_or_fanned_into_the_mesh() {
+        let path =
+            std::env::temp_dir().join(format!("topoplex-store-quad-{}.off", std::process::id()));
+        std::fs::write(&path, "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n").unwrap();
+        assert!(open_live_with(&path, false, ReadOptions::default()).is_err());
+        let live = open_live_with(&path, false, ReadOptions { triangulate: true }).unwrap();
+        let tops: Vec<Vec<u32>> = live.tops().map(|(_, s)| s.to_vec()).collect();
+        assert_eq!(tops, [vec![0, 1, 2], vec![0, 2, 3]]);
+        let _ = std::fs::remove_file(&path);
     }
 }

@@ -7,7 +7,7 @@
 use rustc_hash::FxHashSet;
 
 use super::BuildError;
-use crate::complex::table::{self, headroom};
+use crate::complex::table::{self, headroom, partition_point};
 use crate::complex::{Complex, SimplexTable, sort_dedup_rows};
 pub(crate) use crate::error::show;
 use crate::relation::StructureKind;
@@ -131,6 +131,11 @@ pub(crate) fn try_closure_counts(
         .collect())
 }
 
+/// `Unsupported` for a complex outside `kind`'s domain, and why.
+pub(crate) fn unsupported(kind: StructureKind, reason: String) -> BuildError {
+    BuildError::Unsupported { kind, reason }
+}
+
 /// `TooLarge` for `bytes` that could not be had for `what`.
 pub(crate) fn too_large(kind: StructureKind, bytes: usize, what: &str) -> BuildError {
     BuildError::TooLarge {
@@ -223,24 +228,31 @@ pub(crate) fn faces_containing(top: &[u32], sigma: &[u32], q: usize, mut f: impl
 /// instead of hashing.
 const INLINE: usize = 64;
 
-/// Per-query set of ids (the papers' "visited" marks): an inline array scanned linearly while it
-/// holds at most [`INLINE`] ids, a hash set beyond (so large stars stay linear).
-pub(crate) struct IdSet {
-    /// Ids held inline; `len > INLINE` once they moved to `spill`.
+/// Up to [`INLINE`] ids held inline, then `S` on the heap: the storage of [`IdSet`] and
+/// [`IdStack`].
+pub(crate) struct InlineIds<S> {
+    /// Ids held inline (for a set, `len > INLINE` once they moved to `spill`).
     len: usize,
     inline: [u32; INLINE],
-    spill: FxHashSet<u32>,
+    spill: S,
 }
 
-impl Default for IdSet {
+impl<S: Default> Default for InlineIds<S> {
     fn default() -> Self {
-        IdSet {
+        InlineIds {
             len: 0,
             inline: [0; INLINE],
-            spill: FxHashSet::default(),
+            spill: S::default(),
         }
     }
 }
+
+/// Per-query set of ids (the papers' "visited" marks): an inline array scanned linearly while it
+/// holds at most [`INLINE`] ids, a hash set beyond (so large stars stay linear).
+pub(crate) type IdSet = InlineIds<FxHashSet<u32>>;
+
+/// Per-query stack of ids: inline up to [`INLINE`] entries, then on the heap.
+pub(crate) type IdStack = InlineIds<Vec<u32>>;
 
 impl IdSet {
     /// Adds `x`; false if it was there already.
@@ -273,23 +285,6 @@ impl IdSet {
     pub(crate) fn clear(&mut self) {
         self.len = 0;
         self.spill.clear();
-    }
-}
-
-/// Per-query stack of ids: inline up to [`INLINE`] entries, then on the heap.
-pub(crate) struct IdStack {
-    len: usize,
-    inline: [u32; INLINE],
-    spill: Vec<u32>,
-}
-
-impl Default for IdStack {
-    fn default() -> Self {
-        IdStack {
-            len: 0,
-            inline: [0; INLINE],
-            spill: Vec::new(),
-        }
     }
 }
 
@@ -418,18 +413,7 @@ pub(crate) fn facet_links(tables: &[crate::complex::SimplexTable], p: usize) -> 
                     let key = pack(&facet[..p]);
                     lo + keys[lo..hi].partition_point(|&x| x < key)
                 }
-                None => {
-                    let (mut lo, mut hi) = (lo, hi);
-                    while lo < hi {
-                        let mid = (lo + hi) / 2;
-                        if below.get(mid) < &facet[..p] {
-                            lo = mid + 1;
-                        } else {
-                            hi = mid;
-                        }
-                    }
-                    lo
-                }
+                None => partition_point(lo..hi, |mid| below.get(mid) < &facet[..p]),
             };
             debug_assert_eq!(below.get(k), &facet[..p], "closure contains every facet");
             *slot = k as u32;

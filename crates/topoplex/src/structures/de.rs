@@ -187,11 +187,6 @@ impl TriTopo for DirectedEdge {
         }
     }
 
-    fn find_tri(&self, t: &[u32]) -> Option<u32> {
-        let k = radial::partition(self.n_tris, |f| self.tri(f)[..] < *t);
-        (k < self.n_tris && self.tri(k)[..] == *t).then_some(k)
-    }
-
     fn find_edge(&self, a: u32, b: u32) -> Option<EdgeAt> {
         if let Some(s) = self.locator.find(self.n_tris, |t| self.tri(t), a, b) {
             return Some(EdgeAt::Slot(s));
@@ -331,9 +326,7 @@ crate::persist_fields!(DirectedEdge {
     comp_de,
     locator, nav
 } check |s| {
-    if s.dim > 2 {
-        return Err(format!("dimension {} above 2", s.dim));
-    }
+    crate::codec::dimension_at_most(s.dim, 2)?;
     if s.de_start.len() != s.de_end.len() || s.de_next.len() != s.de_start.len() {
         return Err("directed-edge arrays of different lengths".into());
     }

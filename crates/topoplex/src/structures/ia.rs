@@ -83,7 +83,7 @@ use std::sync::atomic::Ordering;
 
 use super::common::{PairParts, too_large, try_push, try_table, try_vec};
 use super::{BuildError, to_u32};
-use crate::complex::table::{id_bits, order_by_key};
+use crate::complex::table::{id_bits, order_by_key, partition_point};
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable, is_subset};
 use crate::relation::handle::SimplexHandle;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
@@ -95,10 +95,6 @@ pub const NONE: u32 = u32::MAX;
 // The shared walking helpers moved to `super::common`; re-exported here for code written
 // against their old home.
 pub(crate) use super::common::{IdSet, IdStack, RowSet, faces_containing, faces_of_tops, show};
-
-fn unsupported(reason: String) -> BuildError {
-    BuildError::Unsupported { kind: KIND, reason }
-}
 
 /// The Indexed data structure with Adjacencies (see the module documentation for what it stores and costs).
 #[derive(Debug, Clone)]
@@ -219,15 +215,7 @@ pub(crate) fn adjacency_by_vertex(
         let (v0, v1) = (c * 1024, ((c + 1) * 1024).min(n as usize));
         let mut bucket: Vec<([u32; 16], u32)> = Vec::new();
         // The first top whose first vertex is v0 or more.
-        let (mut t, mut hi) = (0, tops.len());
-        while t < hi {
-            let mid = (t + hi) / 2;
-            if (tops.get(mid)[0] as usize) < v0 {
-                t = mid + 1;
-            } else {
-                hi = mid;
-            }
-        }
+        let mut t = partition_point(0..tops.len(), |mid| (tops.get(mid)[0] as usize) < v0);
         for v in v0..v1 {
             bucket.clear();
             while t < tops.len() && tops.get(t)[0] as usize == v {
@@ -484,24 +472,30 @@ impl IndexedAdjacency {
                 } else {
                     format!("a top {p}-simplex (a face of no {}-simplex)", p + 1)
                 };
-                return Err(unsupported(format!(
-                    "{} is {what}, but IA encodes only regular complexes, whose top simplices \
+                return Err(super::common::unsupported(
+                    KIND,
+                    format!(
+                        "{} is {what}, but IA encodes only regular complexes, whose top simplices \
                      all have the complex's dimension {d}",
-                    show(s)
-                )));
+                        show(s)
+                    ),
+                ));
             }
         }
         let tops = try_table(KIND, complex.tops(d))?;
         to_u32(KIND, tops.len() * (d + 1), "adjacency entries")?;
         let adj = adjacency_by_vertex(KIND, &tops, d, n)?.map_err(|(facet, three)| {
             let three: Vec<String> = three.chunks(d + 1).map(show).collect();
-            unsupported(format!(
-                "{}-simplex {} is a face of more than two {d}-simplices ({}, ...), so the \
+            super::common::unsupported(
+                KIND,
+                format!(
+                    "{}-simplex {} is a face of more than two {d}-simplices ({}, ...), so the \
                  complex is not a pseudo-manifold",
-                d - 1,
-                show(&facet),
-                three.join(", ")
-            ))
+                    d - 1,
+                    show(&facet),
+                    three.join(", ")
+                ),
+            )
         })?;
         let (vstar_off, vstar) = vertex_components(&tops, &adj, d, n)?;
         let counts = face_counts(&tops, &adj, &vstar_off, &vstar, d, n);

@@ -114,10 +114,10 @@ use super::common::{IdSet, IdStack, Scratch, UnionFind, faces_containing, too_la
 use super::common::{
     try_closure_counts, try_copy, try_iota, try_order, try_push, try_vec, try_with_capacity,
 };
-use super::nav::{NavBase, NavIndex};
+use super::nav::NavIndex;
 use super::{BuildError, to_u32};
 use crate::complex::table::id_bits;
-use crate::complex::{Complex, SimplexTable, is_subset, sort_dedup_rows};
+use crate::complex::{Complex, SimplexTable, is_subset, push_facet, sort_dedup_rows};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Iqm;
@@ -192,12 +192,7 @@ fn facet_rows(rows: &[u32], arity: usize, sort_each: bool) -> Result<Vec<u32>, B
     for r in rows.chunks_exact(arity) {
         for skip in 0..arity {
             let start = out.len();
-            out.extend(
-                r.iter()
-                    .enumerate()
-                    .filter(|&(j, _)| j != skip)
-                    .map(|(_, &v)| v),
-            );
+            push_facet(r, skip, &mut out);
             if sort_each {
                 out[start..].sort_unstable();
             }
@@ -787,11 +782,7 @@ fn rows_of<'a>(flat: &'a [u32], lens: &'a [usize]) -> impl Iterator<Item = &'a [
     })
 }
 
-impl NavBase for Iqm {
-    fn nav(&self) -> &NavIndex {
-        &self.nav
-    }
-}
+super::nav::plain_nav_base!(Iqm);
 
 impl Topology for Iqm {
     crate::relation::topology_preamble! {
@@ -871,13 +862,7 @@ impl Topology for Iqm {
             for t in rows_of(&found, &lens) {
                 for skip in 0..=p {
                     facet.clear();
-                    facet.extend(
-                        sigma
-                            .iter()
-                            .enumerate()
-                            .filter(|&(j, _)| j != skip)
-                            .map(|(_, &v)| v),
-                    );
+                    push_facet(sigma, skip, &mut facet);
                     if is_subset(&facet, t) {
                         produced.clear();
                         push_cofaces(t, &facet, p, &mut produced);

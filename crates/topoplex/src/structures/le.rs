@@ -194,11 +194,6 @@ impl TriTopo for LoopEdgeUse {
 
     fn wire_neighbours(&self, _v: u32, _out: &mut Vec<u32>) {}
 
-    fn find_tri(&self, t: &[u32]) -> Option<u32> {
-        let k = radial::partition(self.n_tris, |f| self.tri(f)[..] < *t);
-        (k < self.n_tris && self.tri(k)[..] == *t).then_some(k)
-    }
-
     fn find_edge(&self, a: u32, b: u32) -> Option<EdgeAt> {
         let n1 = self.edge_eu.len() as u32;
         let e = radial::partition(n1, |e| self.edge_ends(e) < (a, b));

@@ -41,7 +41,7 @@ use crate::relation::handle::{
     HandleForm, Navigate, Order, RelationView, SimplexHandle, TopId, Vertices, append_in_order,
     batch_by_visit,
 };
-use crate::relation::{QueryError, StructureKind, Topology, normalize_simplex};
+use crate::relation::{QueryError, StructureKind, Topology, normalize_simplex_into};
 
 // Saved with its structure (`.tpx`): the windings are mapped back, the lazy tables rebuilt on use.
 impl crate::codec::Field for NavIndex {
@@ -93,11 +93,56 @@ pub struct NavIndex {
     views: OnceLock<Box<[OnceLock<Csr>]>>,
 }
 
+/// `NavBase` for a structure with a `nav: NavIndex` field and no fast path of its own: the
+/// generic walks answer every relation.
+macro_rules! plain_nav_base {
+    ($t:ty) => {
+        impl $crate::structures::nav::NavBase for $t {
+            fn nav(&self) -> &$crate::structures::nav::NavIndex {
+                &self.nav
+            }
+        }
+    };
+}
+pub(crate) use plain_nav_base;
+
 /// One relation index of [`Navigate::relation_view`]: offsets (n + 1) and answers.
 #[derive(Debug, Clone, Default)]
-struct Csr {
-    offsets: Vec<u32>,
-    ids: Vec<u32>,
+pub(crate) struct Csr {
+    pub(crate) offsets: Vec<u32>,
+    pub(crate) ids: Vec<u32>,
+}
+
+impl Csr {
+    /// The rows `row(i, buf)` writes into a cleared scratch buffer for i in 0..n, appended in
+    /// turn (the arrays grown fallibly, then trimmed): a relation view's index.
+    pub(crate) fn build(
+        n: usize,
+        mut row: impl FnMut(u32, &mut Vec<u32>) -> Result<(), QueryError>,
+    ) -> Result<Csr, QueryError> {
+        let too_large = |bytes: u64| QueryError::TooLarge {
+            what: "relation view",
+            bytes,
+        };
+        let mut offsets: Vec<u32> = Vec::new();
+        offsets
+            .try_reserve_exact(n + 1)
+            .map_err(|_| too_large(4 * (n as u64 + 1)))?;
+        offsets.push(0);
+        let mut ids: Vec<u32> = Vec::new();
+        let mut buf = Scratch::<Vec<u32>>::take();
+        for i in 0..n as u32 {
+            buf.clear();
+            row(i, &mut buf)?;
+            ids.try_reserve(buf.len())
+                .map_err(|_| too_large(4 * (ids.len() + buf.len()) as u64))?;
+            ids.extend_from_slice(&buf);
+            offsets.push(u32::try_from(ids.len()).map_err(|_| too_large(4 * ids.len() as u64))?);
+        }
+        // Shrinking in place: the amortised growth's slack is not kept for the structure's life.
+        ids.shrink_to_fit();
+        Ok(Csr { offsets, ids })
+    }
 }
 
 impl NavIndex {
@@ -289,46 +334,16 @@ fn check_indices<T: NavBase + ?Sized>(t: &T, p: usize, indices: &[u32]) -> Resul
 /// The index of R_{p,q} behind [`Navigate::relation_view`]: one walk over every p-simplex, each
 /// answer walked into a scratch buffer and appended (the arrays grown fallibly, then trimmed).
 fn build_view<T: NavBase>(t: &T, p: usize, q: usize) -> Result<Csr, QueryError> {
-    let n = t.count(p);
-    let too_large = |bytes: u64| QueryError::TooLarge {
-        what: "relation view",
-        bytes,
-    };
-    let mut offsets: Vec<u32> = Vec::new();
-    offsets
-        .try_reserve_exact(n + 1)
-        .map_err(|_| too_large(4 * (n as u64 + 1)))?;
-    offsets.push(0);
-    let mut ids: Vec<u32> = Vec::new();
-    let mut buf = Scratch::<Vec<u32>>::take();
-    for i in 0..n as u32 {
-        buf.clear();
-        t.related_ids(SimplexHandle::dense(p, i), q, Order::Natural, &mut buf)?;
-        ids.try_reserve(buf.len())
-            .map_err(|_| too_large(4 * (ids.len() + buf.len()) as u64))?;
-        ids.extend_from_slice(&buf);
-        offsets.push(u32::try_from(ids.len()).map_err(|_| too_large(4 * ids.len() as u64))?);
-    }
-    // Shrinking in place: the amortised growth's slack is not kept for the structure's life.
-    ids.shrink_to_fit();
-    Ok(Csr { offsets, ids })
+    Csr::build(t.count(p), |i, buf| {
+        t.related_ids(SimplexHandle::dense(p, i), q, Order::Natural, buf)
+    })
 }
 
 impl<T: NavBase> Navigate for T {
     fn locate(&self, sigma: &[u32]) -> Result<SimplexHandle, QueryError> {
         // Sorted on the stack: locating allocates nothing unless it fails.
-        let n = self.vertex_count();
-        let k = sigma.len();
         let mut buf = [0u32; MAX_DIMENSION + 1];
-        if k == 0 || k > buf.len() || sigma.iter().any(|&v| v >= n) {
-            return Err(normalize_simplex(sigma, n).expect_err("an invalid simplex"));
-        }
-        let s = &mut buf[..k];
-        s.copy_from_slice(sigma);
-        s.sort_unstable();
-        if s.windows(2).any(|w| w[0] == w[1]) {
-            return Err(normalize_simplex(sigma, n).expect_err("a repeated vertex"));
-        }
+        let s = normalize_simplex_into(sigma, self.vertex_count(), &mut buf)?;
         find(self, s).ok_or_else(|| QueryError::NotInComplex {
             simplex: s.to_vec(),
         })

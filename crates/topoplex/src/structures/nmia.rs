@@ -93,7 +93,7 @@ use super::common::{
     try_closure_counts, try_push, try_table, try_vec,
 };
 use super::ia::NONE;
-use super::nav::{NavBase, NavIndex};
+use super::nav::NavIndex;
 use super::radial::{cross, dot, sub};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key};
@@ -102,10 +102,6 @@ use crate::mapped::Arr;
 use crate::relation::{QueryError, Storage, StructureKind, Topology, per_dimension};
 
 const KIND: StructureKind = StructureKind::Nmia;
-
-fn unsupported(reason: String) -> BuildError {
-    BuildError::Unsupported { kind: KIND, reason }
-}
 
 /// The Non-Manifold IA structure (see the module documentation for what it stores and costs).
 #[derive(Debug, Clone)]
@@ -217,11 +213,14 @@ impl NonManifoldIa {
         let d = complex.dimension();
         for p in 4..=d {
             if let Some(s) = complex.tops(p).iter().next() {
-                return Err(unsupported(format!(
-                    "top {p}-simplex {} has dimension {p}; NMIA encodes complexes of dimension \
+                return Err(super::common::unsupported(
+                    KIND,
+                    format!(
+                        "top {p}-simplex {} has dimension {p}; NMIA encodes complexes of dimension \
                      at most 3",
-                    show(s)
-                )));
+                        show(s)
+                    ),
+                ));
             }
         }
         let n = complex.vertex_count();
@@ -239,12 +238,15 @@ impl NonManifoldIa {
         }
         let adj = tet_adjacency(&tets, n)?.map_err(|(f, three)| {
             let three: Vec<String> = three.chunks(4).map(show).collect();
-            unsupported(format!(
-                "triangle {} is a face of more than two tetrahedra ({}, ...); NMIA, as in the \
+            super::common::unsupported(
+                KIND,
+                format!(
+                    "triangle {} is a face of more than two tetrahedra ({}, ...); NMIA, as in the \
                  survey, assumes a complex embedded in E^3, where a triangle bounds at most two",
-                show(&f),
-                three.join(", ")
-            ))
+                    show(&f),
+                    three.join(", ")
+                ),
+            )
         })?;
         let nav = NavIndex::new(KIND, complex)?;
         let mut s = NonManifoldIa {
@@ -737,11 +739,7 @@ impl NonManifoldIa {
     }
 }
 
-impl NavBase for NonManifoldIa {
-    fn nav(&self) -> &NavIndex {
-        &self.nav
-    }
-}
+super::nav::plain_nav_base!(NonManifoldIa);
 
 impl Topology for NonManifoldIa {
     crate::relation::topology_preamble! {
@@ -887,9 +885,7 @@ impl Topology for NonManifoldIa {
     }
 
     fn validate(&self) -> Result<(), String> {
-        if self.d > 3 {
-            return Err(format!("dimension {} above 3", self.d));
-        }
+        crate::codec::dimension_at_most(self.d, 3)?;
         self.check_tables()?;
         self.check_adjacency()?;
         self.check_rings()?;
@@ -1052,9 +1048,7 @@ crate::persist_fields!(NonManifoldIa {
     vstar,
     counts, nav
 } check |s| {
-    if s.d > 3 {
-        return Err(format!("dimension {} above 3", s.d));
-    }
+    crate::codec::dimension_at_most(s.d, 3)?;
     if s.counts.len() != s.d + 1 || s.adj.len() != 4 * s.tets.len() || s.link_keys.len() != s.link_next.len() {
         return Err("arrays of the wrong length for the simplex counts".into());
     }

@@ -214,11 +214,6 @@ impl TriTopo for PartialEntities {
         }
     }
 
-    fn find_tri(&self, t: &[u32]) -> Option<u32> {
-        let k = radial::partition(self.n_tris, |f| self.tri(f)[..] < *t);
-        (k < self.n_tris && self.tri(k)[..] == *t).then_some(k)
-    }
-
     fn find_edge(&self, a: u32, b: u32) -> Option<EdgeAt> {
         let n1 = self.edge_pe.len() as u32;
         let e = radial::partition(n1, |e| self.edge_ends(e) < (a, b));
@@ -392,9 +387,7 @@ crate::persist_fields!(PartialEntities {
     vertex_off,
     vertex_pe, nav
 } check |s| {
-    if s.dim > 2 {
-        return Err(format!("dimension {} above 2", s.dim));
-    }
+    crate::codec::dimension_at_most(s.dim, 2)?;
     if s.face_pe.len() != s.n_tris as usize || s.vertex_off.len() != s.n as usize + 1 {
         return Err("arrays of the wrong length for the triangles and vertices".into());
     }

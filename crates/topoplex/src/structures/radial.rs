@@ -505,16 +505,7 @@ impl EdgeLocator {
 
 /// First index in `0..n` where `below` turns false (`below` must be monotone).
 pub(crate) fn partition(n: u32, below: impl Fn(u32) -> bool) -> u32 {
-    let (mut lo, mut hi) = (0u32, n);
-    while lo < hi {
-        let mid = lo + (hi - lo) / 2;
-        if below(mid) {
-            lo = mid + 1;
-        } else {
-            hi = mid;
-        }
-    }
-    lo
+    crate::complex::table::partition_point(0..n as usize, |i| below(i as u32)) as u32
 }
 
 /// Where a located edge lives.
@@ -554,7 +545,13 @@ pub trait TriTopo {
     fn star_corners(&self, v: u32, out: &mut Vec<u32>);
     /// Appends the other end of every wire edge at `v`: O(wire edges at v).
     fn wire_neighbours(&self, v: u32, out: &mut Vec<u32>);
-    fn find_tri(&self, t: &[u32]) -> Option<u32>;
+    /// The triangle with ascending vertices `t`; by default a binary search, for triangles
+    /// numbered in lexicographic order: O(log triangles).
+    fn find_tri(&self, t: &[u32]) -> Option<u32> {
+        let n = self.n_tris();
+        let k = partition(n, |f| self.tri(f)[..] < *t);
+        (k < n && self.tri(k)[..] == *t).then_some(k)
+    }
     /// Edge {a, b}, a < b.
     fn find_edge(&self, a: u32, b: u32) -> Option<EdgeAt>;
 }

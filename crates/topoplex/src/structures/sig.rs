@@ -144,6 +144,7 @@ use super::common::{too_large, try_closure_links};
 use super::ig::IncidenceGraph;
 use super::nav::{Fast, NavBase, NavIndex, Visit};
 use super::{BuildError, to_u32};
+use crate::complex::table::partition_point;
 use crate::complex::{Complex, SimplexTable};
 use crate::relation::handle::SimplexHandle;
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
@@ -785,14 +786,7 @@ impl Sig {
                 if z == n - 1 { n } else { z + 1 },
             );
         }
-        while lo < hi {
-            let mid = (lo + hi) / 2;
-            if cmp(mid) == Less {
-                lo = mid + 1;
-            } else {
-                hi = mid;
-            }
-        }
+        let lo = partition_point(lo..hi, |mid| cmp(mid) == Less);
         (lo < n && cmp(lo) == Equal).then_some(lo as u32)
     }
 

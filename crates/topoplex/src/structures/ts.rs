@@ -347,9 +347,7 @@ crate::persist_fields!(TriangleSegment {
     wire_nbr,
     locator, nav
 } check |s| {
-    if s.dim > 2 {
-        return Err(format!("dimension {} above 2", s.dim));
-    }
+    crate::codec::dimension_at_most(s.dim, 2)?;
     if s.next.len() != 3 * s.tris.len() || s.wire_off.len() != s.n as usize + 1 {
         return Err("arrays of the wrong length for the triangles and vertices".into());
     }

@@ -377,6 +377,7 @@ pub(super) fn parse_body(
     body: &[u8],
     first_line: usize,
     binary: Option<bool>,
+    polygons: bool,
 ) -> Res<RawInput> {
     let mut records = match binary {
         None => Records::Text(Lines {
@@ -390,6 +391,7 @@ pub(super) fn parse_body(
     };
     let mut kept = Kept::new(body.len(), binary.is_some());
     kept.declared = declarations(header_text);
+    kept.raw.polygons.keep = polygons;
     for (name, def) in &header.elements {
         let wanted = kept.prepare(name, def)?;
         kept.read_elements(&mut records, name, def, &wanted)?;
@@ -919,19 +921,24 @@ fn at0(k: ReadErrorKind) -> (u32, ReadErrorKind) {
 fn push_face(raw: &mut RawInput, list: &[f64], i: usize) -> Res<()> {
     let what = || format!("face #{i}");
     let mut ids = [0u32; 3];
+    // A polygon kept for --triangulate: every id.
+    let mut polygon = Vec::new();
+    let keep = raw.polygons.keep && list.len() > 3;
     for (k, &x) in list.iter().enumerate() {
         let v = id_of(x, "").map_err(|_| at0(id_of(x, &what()).unwrap_err()))?;
         if k < 3 {
             ids[k] = v;
         }
+        if keep {
+            table::try_push(&mut polygon, v).map_err(|b| at0(no_room("a polygon's ids")(b)))?;
+        }
     }
     match list.len() {
         0 => Err(at0(syntax(format!("face #{i} has no vertex")))),
         1..=3 => raw.try_push(&ids[..list.len()], 0).map_err(at0),
-        k => Err(at0(syntax(format!(
-            "face #{i}: {}",
-            ReadErrorKind::Polygon(k)
-        )))),
+        k => raw
+            .try_push_polygon(&polygon, 0, ReadErrorKind::Polygon(k))
+            .map_err(|e| at0(syntax(format!("face #{i}: {e}")))),
     }
 }
 
