@@ -312,6 +312,12 @@ int main(int argc, char** argv) {
   for (const auto& k : kinds) add_tpx_load(path, k, simplices);
   if (have_t3) add("build", "cgal_t3", Unit::Build, [=](benchmark::State& s) { peer_build(s, [] { return t3_of(tets); }); });
   for (const auto& k : kinds) add_tpx_build(soup, k, simplices);
+  // The mesh from the same arrays (tpx_complex_from_arrays + tpx_live_from_complex, the complex
+  // freed): its time and heap next to CGAL's, no coordinates kept (geometry_bytes 0; CGAL's
+  // points are in its geometry_bytes).
+  add("build", "tpx_mesh", Unit::Build, [=](benchmark::State& s) {
+    time_peer_build<MeshBuilt>(s, simplices, [] { return mesh_or_abort(soup); }, "mesh", 0);
+  });
 
   if (have_t3) {
     const std::function<std::unique_ptr<T3Walk>()> make = [] { return t3_walk_of(tets); };
