@@ -151,8 +151,9 @@ pub enum ReadErrorKind {
     /// The text does not follow the format.
     #[error("{0}")]
     Syntax(String),
-    /// A polygon of more than 3 vertices (only simplices are accepted).
-    #[error("polygon with {0} vertices is not a simplex")]
+    /// A polygon of more than 3 vertices (only simplices are accepted unless the reader is
+    /// asked to triangulate).
+    #[error("polygon with {0} vertices is not a simplex (--triangulate fans convex planar ones)")]
     Polygon(usize),
     /// A negative vertex id.
     #[error("negative vertex id {0}")]
