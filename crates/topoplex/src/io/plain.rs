@@ -30,6 +30,9 @@ use crate::complex::{Coords, MAX_DIMENSION, PlainTables};
 const PIECE: usize = 1 << 20;
 /// The longest line the buffer grows for.
 const LONGEST_LINE: usize = 64 << 20;
+/// Text within which a plain OFF's header and counts must stand (comments before them
+/// included); the buffer grows past it only for tests' tiny pieces.
+const HEADER_TEXT: usize = 64 << 10;
 /// The fewest bytes a vertex or face line takes (`0 0 0` and `2 0 1` with their line end): a
 /// declared count beyond what the file could hold is not reserved (the general reader says the
 /// file ends early).
@@ -128,12 +131,15 @@ impl Stream {
     }
 
     /// Reads `text`, whole lines (the file's last piece, `at_end`, may lack its line end).
-    /// False when the header is not whole in it yet (the caller gives more text).
+    /// False when the header is not whole in it yet and the text is short (the caller gives
+    /// more text).
     fn feed(&mut self, text: &str, at_end: bool) -> Step<bool> {
         let mut t = Scanner::new(text);
         if self.stage == Stage::Header {
             match self.header(&mut t) {
-                Err(NotPlain) if !at_end => return Ok(false),
+                // Only a short text may hold a header not yet whole: a piece's worth of text
+                // without one is not a plain OFF (and is not read to the end to find out).
+                Err(NotPlain) if !at_end && text.len() < HEADER_TEXT => return Ok(false),
                 header => header?,
             }
         }
