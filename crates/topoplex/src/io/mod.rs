@@ -105,16 +105,8 @@ pub fn read_path_with(path: &Path, options: ReadOptions) -> Result<RawInput, Rea
     if !options.triangulate {
         return read_path(path);
     }
-    let err = |line, kind| ReadError {
-        path: path.to_path_buf(),
-        line,
-        kind,
-    };
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(|e| e.to_ascii_lowercase())
-        .unwrap_or_default();
+    let err = error_at(path);
+    let ext = extension(path);
     let raw = match ext.as_str() {
         "off" | "obj" => {
             let bytes = read_file(path).map_err(|k| err(0, k))?;
@@ -145,16 +137,8 @@ pub fn read_path_with(path: &Path, options: ReadOptions) -> Result<RawInput, Rea
 /// `.simplices` file of 32 MiB or more is read in blocks of about 8 MiB (twice: counted, then
 /// parsed into arrays of their exact size), so its peak is the output and one block.
 pub fn read_path(path: &Path) -> Result<RawInput, ReadError> {
-    let err = |line, kind| ReadError {
-        path: path.to_path_buf(),
-        line,
-        kind,
-    };
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(|e| e.to_ascii_lowercase())
-        .unwrap_or_default();
+    let err = error_at(path);
+    let ext = extension(path);
     let parse: fn(&str) -> Result<RawInput, (u32, ReadErrorKind)> = match ext.as_str() {
         "off" => off::parse,
         "obj" => obj::parse,
@@ -331,16 +315,29 @@ fn utf8_text(bytes: &[u8]) -> Result<&str, (u32, ReadErrorKind)> {
     Ok(text.strip_prefix('\u{feff}').unwrap_or(text))
 }
 
+/// The path's extension in lower case ("" without one): what chooses the reader.
+pub(crate) fn extension(path: &Path) -> String {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
+        .unwrap_or_default()
+}
+
+/// A reader's (line, what) as the [`ReadError`] of `path`.
+fn error_at(path: &Path) -> impl Fn(u32, ReadErrorKind) -> ReadError + '_ {
+    move |line, kind| ReadError {
+        path: path.to_path_buf(),
+        line,
+        kind,
+    }
+}
+
 /// A reader of bytes: the simplices, or the line (0: unknown) and what is wrong.
 type ByteParser = fn(&[u8]) -> Result<RawInput, (u32, ReadErrorKind)>;
 
 /// The readers of formats with a binary variant, which parse bytes rather than text.
 fn read_binary_capable(path: &Path, ext: &str) -> Result<RawInput, ReadError> {
-    let err = |line, kind| ReadError {
-        path: path.to_path_buf(),
-        line,
-        kind,
-    };
+    let err = error_at(path);
     let parse: ByteParser = match ext {
         "ply" => ply::parse,
         "stl" => stl::parse,

@@ -41,8 +41,7 @@ const SHORTEST_ENTRY: usize = 6;
 /// A plain OFF file's tables (see the module doc), or `None` for the general read (also for
 /// a path whose extension is not `.off`, any case, as [`super::read_path`] chooses).
 pub(crate) fn read_off(path: &Path) -> Option<PlainTables> {
-    let off = path.extension()?.eq_ignore_ascii_case("off");
-    off.then(|| read_off_in_pieces(path, PIECE))?
+    (super::extension(path) == "off").then(|| read_off_in_pieces(path, PIECE))?
 }
 
 /// Why the stream stops: the file is not plain (or memory is short); the general read decides.
