@@ -846,6 +846,16 @@ mod tests {
     use crate::complex::Complex;
     use proptest::prelude::*;
 
+    /// `count` simplices of `sizes` distinct vertices of `vertices`, each ascending.
+    fn rows(
+        vertices: std::ops::Range<u32>,
+        sizes: std::ops::RangeInclusive<usize>,
+        count: std::ops::Range<usize>,
+    ) -> impl Strategy<Value = Vec<Vec<u32>>> {
+        proptest::collection::vec(proptest::collection::btree_set(vertices, sizes), count)
+            .prop_map(|v| v.into_iter().map(|t| t.into_iter().collect()).collect())
+    }
+
     /// The boundary positions of every top of every star, by hashing and by comparing every
     /// pair (the oracle), on `simplices` over `n` vertices.
     fn assert_star_boundaries_agree(n: u32, simplices: &[Vec<u32>]) {
@@ -968,32 +978,19 @@ mod tests {
         /// Random mixed complexes on 8 vertices: every ordered edge, plain and coned.
         #[test]
         fn skewed_link_test_matches_the_whole_test_on_random_complexes(
-            simplices in proptest::collection::vec(
-                proptest::collection::btree_set(0u32..8, 2..=4),
-                1..14,
-            )
+            simplices in rows(0u32..8, 2..=4, 1..14)
         ) {
-            let s: Vec<Vec<u32>> = simplices.into_iter().map(|t| t.into_iter().collect()).collect();
-            assert_skewed_agrees(8, &s);
+            assert_skewed_agrees(8, &simplices);
         }
 
         /// Vertex 0 with a large star (a cone over up to 80 random triangles and edges on 30
         /// vertices, so that it has boundary facets or none) beside random small simplices.
         #[test]
         fn skewed_link_test_matches_the_whole_test_around_a_large_star(
-            base in proptest::collection::vec(
-                proptest::collection::btree_set(1u32..30, 2..=3),
-                20..80,
-            ),
-            others in proptest::collection::vec(
-                proptest::collection::btree_set(1u32..30, 2..=4),
-                0..10,
-            ),
+            base in rows(1u32..30, 2..=3, 20..80),
+            others in rows(1u32..30, 2..=4, 0..10),
         ) {
-            let set = |v: Vec<std::collections::BTreeSet<u32>>| -> Vec<Vec<u32>> {
-                v.into_iter().map(|t| t.into_iter().collect()).collect()
-            };
-            let all = coned_over(&set(base), &set(others));
+            let all = coned_over(&base, &others);
             assert_skewed_agrees(30, &all);
         }
     }
@@ -1026,26 +1023,18 @@ mod tests {
     proptest! {
         #[test]
         fn vertex_shortcut_matches_the_full_link_test(
-            simplices in proptest::collection::vec(
-                proptest::collection::btree_set(0u32..8, 2..=4),
-                1..14,
-            )
+            simplices in rows(0u32..8, 2..=4, 1..14)
         ) {
-            let s: Vec<Vec<u32>> = simplices.into_iter().map(|t| t.into_iter().collect()).collect();
-            assert_vertex_shortcut_agrees(8, &s);
+            assert_vertex_shortcut_agrees(8, &simplices);
         }
 
         /// Random mixed-dimensional complexes (up to 3-simplices on 7 vertices, so facets are
         /// shared often, and larger tops hold smaller tops' facets).
         #[test]
         fn star_boundary_matches_comparing_every_pair(
-            simplices in proptest::collection::vec(
-                proptest::collection::btree_set(0u32..7, 2..=4),
-                1..14,
-            )
+            simplices in rows(0u32..7, 2..=4, 1..14)
         ) {
-            let s: Vec<Vec<u32>> = simplices.into_iter().map(|t| t.into_iter().collect()).collect();
-            assert_star_boundaries_agree(7, &s);
+            assert_star_boundaries_agree(7, &simplices);
         }
     }
 }
