@@ -122,71 +122,137 @@ struct Counts {
 /// from the first's, memory that cannot be had — for the serial reader to read the file (and
 /// report the first error, with its line and message).
 fn parse_in_parallel(text: &str) -> Option<RawInput> {
+    let ranges = counted_ranges(text)?;
+    let mut sized = Sized::of(ranges.iter().map(|(_, c)| c))?;
+    let mut fill = sized.filling();
+    fill.ranges(text, ranges.iter().map(|(r, c)| (*r, c)))?;
+    chunked::note_section();
+    Some(sized.into_raw())
+}
+
+/// The text's ranges of whole lines ([`chunked::line_ranges`]), each with its counts (on several
+/// threads); `None` when a range is not plain.
+fn counted_ranges(text: &str) -> Option<Vec<((usize, usize), Counts)>> {
     let cuts = chunked::line_ranges(text);
     let ranges: Vec<(usize, usize)> = cuts.windows(2).map(|w| (w[0], w[1])).collect();
     let counts = crate::parallel::map_chunks(ranges.len(), |r| count_range(text, ranges[r]));
     let counts: Vec<Counts> = counts.into_iter().collect::<Option<_>>()?;
-    let dims: Vec<usize> = counts.iter().filter_map(|c| c.dim).collect();
-    let dim = dims.first().copied();
-    if dims.iter().any(|&d| Some(d) != dim) {
-        return None;
+    Some(ranges.into_iter().zip(counts).collect())
+}
+
+/// The arrays a file's range counts size: the listing and the coordinates, reserved at their
+/// exact size and zero-filled for the ranges to be parsed into in place.
+struct Sized {
+    raw: RawInput,
+    data: Vec<f64>,
+    /// Coordinates per `v` line (`None`: no `v` line).
+    dim: Option<usize>,
+    vertices: usize,
+}
+
+impl Sized {
+    /// `None` when the ranges disagree on the coordinate count, hold nothing, more than 2^32
+    /// vertices, or memory cannot be had.
+    fn of<'c>(counts: impl IntoIterator<Item = &'c Counts> + Clone) -> Option<Sized> {
+        let all = || counts.clone().into_iter();
+        let dim = all().find_map(|c| c.dim);
+        if all().any(|c| c.dim.is_some() && c.dim != dim) {
+            return None;
+        }
+        let (simplices, ids, vertices) = all().fold((0usize, 0usize, 0usize), |t, c| {
+            (t.0 + c.simplices, t.1 + c.ids, t.2 + c.vertices)
+        });
+        if simplices + vertices == 0 || u32::try_from(vertices).is_err() {
+            return None;
+        }
+        let coords = vertices.checked_mul(dim.unwrap_or(0))?;
+        let mut raw = RawInput::new();
+        raw.try_reserve(simplices, ids).ok()?;
+        let mut data = Vec::new();
+        table::try_reserve_exact(&mut data, coords).ok()?;
+        chunked::extend_filled(&mut raw.ids, ids, 0);
+        chunked::extend_filled(&mut raw.offsets, simplices, 0);
+        chunked::extend_filled(&mut raw.lines, simplices, 0);
+        chunked::extend_filled(&mut data, coords, 0.0);
+        Some(Sized {
+            raw,
+            data,
+            dim,
+            vertices,
+        })
     }
-    let total = |f: fn(&Counts) -> usize| counts.iter().map(f).sum::<usize>();
-    let (simplices, ids, vertices) = (
-        total(|c| c.simplices),
-        total(|c| c.ids),
-        total(|c| c.vertices),
-    );
-    if simplices + vertices == 0 || u32::try_from(vertices).is_err() {
-        return None;
-    }
-    let coords = vertices.checked_mul(dim.unwrap_or(0))?;
-    let mut raw = RawInput::new();
-    raw.try_reserve(simplices, ids).ok()?;
-    let mut data = Vec::new();
-    table::try_reserve_exact(&mut data, coords).ok()?;
-    chunked::extend_filled(&mut raw.ids, ids, 0);
-    chunked::extend_filled(&mut raw.offsets, simplices, 0);
-    chunked::extend_filled(&mut raw.lines, simplices, 0);
-    chunked::extend_filled(&mut data, coords, 0.0);
-    // Each range's share of the arrays, and where its numbering starts.
-    let mut parts = Vec::with_capacity(ranges.len());
-    let (mut ids_left, mut offs_left) = (&mut raw.ids[..], &mut raw.offsets[1..]);
-    let (mut lines_left, mut data_left) = (&mut raw.lines[..], &mut data[..]);
-    let (mut line, mut id_base) = (1u32, 0usize);
-    for (&range, c) in ranges.iter().zip(&counts) {
-        let (i, rest) = std::mem::take(&mut ids_left).split_at_mut(c.ids);
-        ids_left = rest;
-        let (o, rest) = std::mem::take(&mut offs_left).split_at_mut(c.simplices);
-        offs_left = rest;
-        let (l, rest) = std::mem::take(&mut lines_left).split_at_mut(c.simplices);
-        lines_left = rest;
-        let (d, rest) = std::mem::take(&mut data_left).split_at_mut(c.vertices * dim.unwrap_or(0));
-        data_left = rest;
-        parts.push((range, line, id_base, i, o, l, d));
-        line = line.checked_add(u32::try_from(c.lines).ok()?)?;
-        id_base += c.ids;
-    }
-    let read = crate::parallel::install(|| {
-        use rayon::prelude::*;
-        parts
-            .into_par_iter()
-            .all(|(range, line, id_base, i, o, l, d)| {
-                fill_range(text, range, line, id_base, i, o, l, d).is_some()
-            })
-    });
-    if !read {
-        return None;
-    }
-    chunked::note_section();
-    match dim {
-        None => {}
-        Some(dim) => {
-            raw.vertex_count = Some(vertices as u32);
-            raw.coords = (dim > 0).then_some(Coords { dim, data });
+
+    /// The arrays' shares, handed out range by range from the start.
+    fn filling(&mut self) -> Filling<'_> {
+        Filling {
+            ids: &mut self.raw.ids[..],
+            offsets: &mut self.raw.offsets[1..],
+            lines: &mut self.raw.lines[..],
+            data: &mut self.data[..],
+            per_vertex: self.dim.unwrap_or(0),
+            line: 1,
+            id_base: 0,
         }
     }
-    Some(raw)
+
+    /// The filled listing, with its vertex count and coordinates when `v` lines gave them.
+    fn into_raw(self) -> RawInput {
+        let mut raw = self.raw;
+        if let Some(dim) = self.dim {
+            raw.vertex_count = Some(self.vertices as u32);
+            raw.coords = (dim > 0).then_some(Coords {
+                dim,
+                data: self.data,
+            });
+        }
+        raw
+    }
+}
+
+/// What is left of the arrays, and where the next range's numbering starts.
+struct Filling<'a> {
+    ids: &'a mut [u32],
+    offsets: &'a mut [usize],
+    lines: &'a mut [u32],
+    data: &'a mut [f64],
+    per_vertex: usize,
+    line: u32,
+    id_base: usize,
+}
+
+impl Filling<'_> {
+    /// Parses the next ranges of `text` (in file order, with their counts) into their shares,
+    /// on several threads. `None` when one is not plain.
+    fn ranges<'c>(
+        &mut self,
+        text: &str,
+        ranges: impl Iterator<Item = ((usize, usize), &'c Counts)>,
+    ) -> Option<()> {
+        fn take<'a, T>(left: &mut &'a mut [T], n: usize) -> &'a mut [T] {
+            let (part, rest) = std::mem::take(left).split_at_mut(n);
+            *left = rest;
+            part
+        }
+        let mut parts = Vec::new();
+        for (range, c) in ranges {
+            let i = take(&mut self.ids, c.ids);
+            let o = take(&mut self.offsets, c.simplices);
+            let l = take(&mut self.lines, c.simplices);
+            let d = take(&mut self.data, c.vertices * self.per_vertex);
+            parts.push((range, self.line, self.id_base, i, o, l, d));
+            self.line = self.line.checked_add(u32::try_from(c.lines).ok()?)?;
+            self.id_base += c.ids;
+        }
+        let filled = crate::parallel::install(|| {
+            use rayon::prelude::*;
+            parts
+                .into_par_iter()
+                .all(|(range, line, id_base, i, o, l, d)| {
+                    fill_range(text, range, line, id_base, i, o, l, d).is_some()
+                })
+        });
+        filled.then_some(())
+    }
 }
 
 /// Files from this size are read in blocks ([`read_in_blocks`]).
@@ -251,82 +317,30 @@ fn read_in_blocks_of(path: &std::path::Path, block: usize) -> Option<RawInput> {
             start = 3;
         }
         let text = std::str::from_utf8(&buf[start..]).ok()?;
-        let cuts = chunked::line_ranges(text);
-        let ranges: Vec<(usize, usize)> = cuts.windows(2).map(|w| (w[0], w[1])).collect();
-        let counts = crate::parallel::map_chunks(ranges.len(), |r| count_range(text, ranges[r]));
-        let counts: Vec<Counts> = counts.into_iter().collect::<Option<_>>()?;
-        let ranges = ranges.into_iter().map(|(a, z)| (a + start, z + start));
+        let ranges = counted_ranges(text)?.into_iter();
         blocks.push(Block {
             at,
             len,
-            ranges: ranges.zip(counts).collect(),
+            ranges: ranges
+                .map(|((a, z), c)| ((a + start, z + start), c))
+                .collect(),
         });
         at += len as u64;
     }
-    let all = || blocks.iter().flat_map(|b| b.ranges.iter().map(|(_, c)| c));
-    let dim = all().find_map(|c| c.dim);
-    if all().any(|c| c.dim.is_some() && c.dim != dim) {
-        return None;
-    }
-    let (simplices, ids, vertices) = all().fold((0usize, 0usize, 0usize), |t, c| {
-        (t.0 + c.simplices, t.1 + c.ids, t.2 + c.vertices)
-    });
-    if simplices + vertices == 0 || u32::try_from(vertices).is_err() {
-        return None;
-    }
-    let coords = vertices.checked_mul(dim.unwrap_or(0))?;
-    let mut raw = RawInput::new();
-    raw.try_reserve(simplices, ids).ok()?;
-    let mut data = Vec::new();
-    table::try_reserve_exact(&mut data, coords).ok()?;
-    chunked::extend_filled(&mut raw.ids, ids, 0);
-    chunked::extend_filled(&mut raw.offsets, simplices, 0);
-    chunked::extend_filled(&mut raw.lines, simplices, 0);
-    chunked::extend_filled(&mut data, coords, 0.0);
+    let mut sized = Sized::of(blocks.iter().flat_map(|b| b.ranges.iter().map(|(_, c)| c)))?;
     // The second pass: each block read again, its ranges parsed into their shares.
-    let (mut ids_left, mut offs_left) = (&mut raw.ids[..], &mut raw.offsets[1..]);
-    let (mut lines_left, mut data_left) = (&mut raw.lines[..], &mut data[..]);
-    let (mut line, mut id_base) = (1u32, 0usize);
+    let mut fill = sized.filling();
     for block in &blocks {
         read(block.at, Some(block.len), &mut buf)?;
         let text = std::str::from_utf8(&buf).ok()?;
-        let mut parts = Vec::with_capacity(block.ranges.len());
-        for &(range, c) in &block.ranges {
-            let (i, rest) = std::mem::take(&mut ids_left).split_at_mut(c.ids);
-            ids_left = rest;
-            let (o, rest) = std::mem::take(&mut offs_left).split_at_mut(c.simplices);
-            offs_left = rest;
-            let (l, rest) = std::mem::take(&mut lines_left).split_at_mut(c.simplices);
-            lines_left = rest;
-            let (d, rest) =
-                std::mem::take(&mut data_left).split_at_mut(c.vertices * dim.unwrap_or(0));
-            data_left = rest;
-            parts.push((range, line, id_base, i, o, l, d));
-            line = line.checked_add(u32::try_from(c.lines).ok()?)?;
-            id_base += c.ids;
-        }
-        let filled = crate::parallel::install(|| {
-            use rayon::prelude::*;
-            parts
-                .into_par_iter()
-                .all(|(range, line, id_base, i, o, l, d)| {
-                    fill_range(text, range, line, id_base, i, o, l, d).is_some()
-                })
-        });
-        if !filled {
-            return None;
-        }
+        fill.ranges(text, block.ranges.iter().map(|(r, c)| (*r, c)))?;
     }
     // Nothing changed between the passes (a file that grew or shrank).
     if file.metadata().ok()?.len() != size {
         return None;
     }
     chunked::note_section();
-    if let Some(dim) = dim {
-        raw.vertex_count = Some(vertices as u32);
-        raw.coords = (dim > 0).then_some(Coords { dim, data });
-    }
-    Some(raw)
+    Some(sized.into_raw())
 }
 
 /// The first pass over one range: its counts, `None` when a line is not plain.
