@@ -385,6 +385,13 @@ class Complex {
     return Complex(
         detail::get<TpxComplex *>(tpx_complex_from_file_budget, path.c_str(), max_simplices));
   }
+  /* The same, fanning each convex planar polygon into triangles (the CLI's --triangulate;
+   * tpx_complex_from_file_flags with TPX_READ_TRIANGULATE); other polygons are refused with
+   * the reason, naming file and line. */
+  static Complex from_file_triangulated(const std::string &path, std::uint64_t max_simplices = 0) {
+    return Complex(detail::get<TpxComplex *>(tpx_complex_from_file_flags, path.c_str(),
+                                             max_simplices, std::uint32_t(TPX_READ_TRIANGULATE)));
+  }
 
   /* The complex saved in a .tpx file (`topoplex save`, Complex::save), rebuilt from its saved
    * listing and validated like any input: O(size of the listing). */

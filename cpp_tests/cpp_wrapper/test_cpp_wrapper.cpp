@@ -565,3 +565,26 @@ TEST(Wrapper, AttributesAreTypedSpansAndSurviveWriteAndLive) {
 }
 
 }  // namespace
+
+// A square written as one quadrilateral: refused as read, naming the polygon; fanned from its
+// first vertex when asked, by the complex and by the mesh alike (winding kept).
+TEST(Wrapper, QuadIsRefusedOrFannedOnRequest) {
+  const std::string path = testing::TempDir() + "topoplex_quad.off";
+  {
+    std::ofstream f(path);
+    f << "OFF\n4 1 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n";
+  }
+  try {
+    Complex::from_file(path);
+    ADD_FAILURE() << "a quadrilateral was read as it is";
+  } catch (const topoplex::Error &e) {
+    EXPECT_NE(std::string(e.what()).find("polygon with 4 vertices"), std::string::npos) << e.what();
+  }
+  const Complex c = Complex::from_file_triangulated(path);
+  EXPECT_EQ(c.top_count(2), 2u);
+  topoplex::Live mesh = topoplex::Live::from_file(path, false, true);
+  std::vector<std::vector<std::uint32_t>> tops;
+  for (auto t : mesh.top_simplices(2)) tops.push_back(t.to_vector());
+  EXPECT_EQ(tops, (std::vector<std::vector<std::uint32_t>>{{0, 1, 2}, {0, 2, 3}}));
+  std::remove(path.c_str());
+}
