@@ -1259,6 +1259,34 @@ class TopSpan {
   std::size_t n_ = 0;
 };
 
+/* Scratch of MeshView's one-ring passes (for_each_neighbour, the for_each_edge taking it): one
+ * stamp per vertex slot (4 bytes each, grown on first use to the mesh's vertex_slots()), so a
+ * candidate is tested for "seen" in O(1) instead of sorting the candidates; for_each_edge adds a
+ * count per slot (4 bytes more). Keep one per thread and reuse it across queries and across
+ * edits (it grows when the mesh does); a NeighbourMarks is not shared between threads. */
+class NeighbourMarks {
+ public:
+  NeighbourMarks() = default;
+  /* The bytes held. */
+  std::size_t bytes() const noexcept {
+    return (stamp_.capacity() + count_.capacity() + order_.capacity()) * sizeof(std::uint32_t);
+  }
+
+ private:
+  friend class MeshView;
+  /* Starts a query over n vertex slots: a fresh round, so every stamp reads "unseen". */
+  std::uint32_t *begin(std::uint32_t n) {
+    if (stamp_.size() < n) stamp_.resize(n, 0);
+    if (++round_ == 0) {  // the counter wrapped: old stamps could read "seen"
+      std::fill(stamp_.begin(), stamp_.end(), 0u);
+      round_ = 1;
+    }
+    return stamp_.data();
+  }
+  std::vector<std::uint32_t> stamp_, count_, order_;
+  std::uint32_t round_ = 0;
+};
+
 /* The live complex's own arrays (tpx_live_arrays), navigated inline: no library call per
  * query, no index beyond what the live complex stores, no allocation except the caller's
  * reused output vectors. Take one with Live::mesh(); it is valid until the next edit of the
@@ -1431,6 +1459,23 @@ class MeshView {
       if (find(static_cast<std::uint32_t>(i)) != find(0)) return false;
     return true;
   }
+  /* R_{0,0}(v): calls f(w) once for every vertex w sharing an edge with v (any top through v
+   * holds it), in the order the star's tops first name them (no sorting; see neighbours() for
+   * ascending order). `marks` is this thread's scratch (see NeighbourMarks). O(d·k_v), no
+   * allocation once `marks` has grown to vertex_slots(). The one-ring for smoothing, valences
+   * and tetrahedral vertex stars. */
+  template <class F>
+  void for_each_neighbour(std::uint32_t v, NeighbourMarks &marks, F &&f) const {
+    std::uint32_t *seen = marks.begin(a_.vertex_slots);
+    const std::uint32_t r = marks.round_;
+    seen[v] = r;
+    for (TopRef t : star(v))
+      for (std::uint32_t w : vertices(t))
+        if (seen[w] != r) {
+          seen[w] = r;
+          f(w);
+        }
+  }
   /* R_{0,0}(v): the vertices sharing an edge with v, ascending, into `out` (reused). O(d·k_v +
    * m log m), m the candidates. */
   void neighbours(std::uint32_t v, std::vector<std::uint32_t> &out) const {
@@ -1555,6 +1600,34 @@ class MeshView {
         for (; i < scratch.size() && (scratch[i] >> 1) == b; ++i) m += scratch[i] & 1;
         f(a, b, m);
       }
+    }
+  }
+  /* The same pass with a NeighbourMarks instead of sorting: f(a, b, m) once for every edge
+   * {a, b} (a < b), a ascending, the b of one a in the order a's star first names them.
+   * O(Σ_v d·k_v), no allocation once `marks` has grown to vertex_slots(). */
+  template <class F>
+  void for_each_edge(std::uint32_t p, NeighbourMarks &marks, F &&f) const {
+    if (marks.count_.size() < a_.vertex_slots) marks.count_.resize(a_.vertex_slots);
+    std::uint32_t *count = marks.count_.data();
+    std::vector<std::uint32_t> &order = marks.order_;
+    for (std::uint32_t a = 0; a < a_.vertex_slots; ++a) {
+      if (!a_.alive[a]) continue;
+      std::uint32_t *seen = marks.begin(a_.vertex_slots);
+      const std::uint32_t r = marks.round_;
+      order.clear();
+      for (TopRef t : star(a)) {
+        const std::uint32_t of_p = t.dim() == p;
+        for (std::uint32_t w : vertices(t)) {
+          if (w <= a) continue;
+          if (seen[w] != r) {
+            seen[w] = r;
+            count[w] = 0;
+            order.push_back(w);
+          }
+          count[w] += of_p;
+        }
+      }
+      for (std::uint32_t b : order) f(a, b, std::size_t(count[b]));
     }
   }
   /* Whole-mesh pass: calls f(t, u) for every ordered pair of live top triangles sharing an

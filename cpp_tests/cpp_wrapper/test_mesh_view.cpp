@@ -84,6 +84,7 @@ void check(const topoplex::Live &live, std::mt19937 &rng) {
   ASSERT_EQ(from_view, all);
 
   Ids ring;
+  topoplex::NeighbourMarks marks;
   for (std::uint32_t v = 0; v < m.vertex_slots(); ++v) {
     ASSERT_EQ(m.is_vertex(v), bool(o.alive[v]));
     if (!o.alive[v]) continue;
@@ -102,6 +103,9 @@ void check(const topoplex::Live &live, std::mt19937 &rng) {
         if (w != v) expect.insert(w);
     m.neighbours(v, ring);
     EXPECT_EQ(ring, Ids(expect.begin(), expect.end())) << "one-ring of " << v;
+    Ids marked;  // each once, in no order
+    m.for_each_neighbour(v, marks, [&](std::uint32_t w) { marked.push_back(w); });
+    EXPECT_EQ(sorted(marked), ring) << "one-ring of " << v << " by marks";
     Ids by_call;
     for (auto r : live.relation({v}, 0)) by_call.push_back(r[0]);
     EXPECT_EQ(ring, by_call);
@@ -205,6 +209,15 @@ void check(const topoplex::Live &live, std::mt19937 &rng) {
         k += t.size() == 3;
       }
   EXPECT_EQ(edges, want_edges);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> marked_edges;
+  std::uint32_t last_a = 0;
+  m.for_each_edge(2, marks, [&](std::uint32_t a, std::uint32_t b, std::size_t k) {
+    EXPECT_LT(a, b);
+    EXPECT_LE(last_a, a) << "a ascending";
+    last_a = a;
+    EXPECT_TRUE(marked_edges.emplace(std::make_pair(a, b), k).second) << "edge twice (marks)";
+  });
+  EXPECT_EQ(marked_edges, want_edges);
   std::multiset<std::pair<Ids, Ids>> pairs, want_pairs;
   m.for_each_adjacent_triangle_pair(scratch, [&](TopRef t, TopRef u) {
     pairs.emplace(top_set(m, t), top_set(m, u));
