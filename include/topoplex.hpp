@@ -2010,6 +2010,13 @@ class Live {
   /* The mesh with its facet adjacency (tpx_live_adjacency: built on the first call after an
    * edit, O(Σ_t d²·k), 4 bytes per vertex of every top; then O(1)): FF and TT become
    * reads. Valid as mesh() is, until the next edit of the topology. */
+  /* Keeps the facet adjacency across edits (tpx_live_keep_adjacency): built now, then repaired
+   * by every edit around what it changed (each edit costs O(Σ_t d²·k) more over the tops at the
+   * vertices it touches) and rebuilt by compact(), so mesh_with_adjacency() is O(1) after any
+   * edit; keep = false goes back to building it on request. */
+  void keep_adjacency(bool keep = true) {
+    detail::check(tpx_live_keep_adjacency(l_.get(), keep ? 1u : 0u));
+  }
   MeshView mesh_with_adjacency() const {
     return MeshView(detail::get<TpxLiveArrays>(tpx_live_arrays, l_.get()),
                     detail::get<TpxLiveAdjacency>(tpx_live_adjacency, l_.get()));
