@@ -1504,12 +1504,23 @@ class MeshView {
     std::uint32_t *seen = marks.begin(a_.vertex_slots);
     const std::uint32_t r = marks.round_;
     seen[v] = r;
-    for (TopRef t : star(v))
-      for (std::uint32_t w : vertices(t))
-        if (seen[w] != r) {
-          seen[w] = r;
-          f(w);
-        }
+    const auto visit = [&](std::uint32_t w) {
+      if (seen[w] != r) {
+        seen[w] = r;
+        f(w);
+      }
+    };
+    for (TopRef t : star(v)) {
+      const std::uint32_t p = t.dim();
+      const std::uint32_t *q = a_.tops[p] + std::size_t(t.slot()) * (p + 1);
+      if (p == 2) {  // a surface's case, unrolled
+        visit(q[0]);
+        visit(q[1]);
+        visit(q[2]);
+      } else {
+        for (std::uint32_t i = 0; i <= p; ++i) visit(q[i]);
+      }
+    }
   }
   /* R_{0,0}(v): the vertices sharing an edge with v, ascending, into `out` (reused). O(d·k_v +
    * m log m), m the candidates. */
