@@ -1704,16 +1704,24 @@ class MeshView {
       std::uint32_t *seen = marks.begin(a_.vertex_slots);
       const std::uint32_t r = marks.round_;
       order.clear();
+      const auto visit = [&](std::uint32_t w, std::uint32_t of_p) {
+        if (w <= a) return;
+        if (seen[w] != r) {
+          seen[w] = r;
+          count[w] = 0;
+          order.push_back(w);
+        }
+        count[w] += of_p;
+      };
       for (TopRef t : star(a)) {
-        const std::uint32_t of_p = t.dim() == p;
-        for (std::uint32_t w : vertices(t)) {
-          if (w <= a) continue;
-          if (seen[w] != r) {
-            seen[w] = r;
-            count[w] = 0;
-            order.push_back(w);
-          }
-          count[w] += of_p;
+        const std::uint32_t q = t.dim(), of_p = q == p;
+        const std::uint32_t *s = a_.tops[q] + std::size_t(t.slot()) * (q + 1);
+        if (q == 2) {  // a surface's case, unrolled
+          visit(s[0], of_p);
+          visit(s[1], of_p);
+          visit(s[2], of_p);
+        } else {
+          for (std::uint32_t i = 0; i <= q; ++i) visit(s[i], of_p);
         }
       }
       for (std::uint32_t b : order) f(a, b, std::size_t(count[b]));
