@@ -297,6 +297,8 @@ class SurfaceGraph {
                     " coordinates per vertex; CGAL's points need 3");
     }
     m_ = live.mesh_with_adjacency();
+    tri_ = m_.arrays().tops[2];
+    xyz_ = m_.arrays().coords;
     for (std::uint32_t p = 1; p < 16; ++p) {
       if (p == 2) continue;
       for (std::uint32_t s = 0; s < m_.slots(p); ++s)
@@ -430,7 +432,7 @@ class SurfaceGraph {
   }
   GraphHalfedge next(GraphHalfedge h) const noexcept {
     const std::uint32_t i = h.idx();
-    if (i < 3 * nf_) return GraphHalfedge(i % 3 == 2 ? i - 2 : i + 1);
+    if (i < 3 * nf_) return GraphHalfedge(interior_next(i));
     return GraphHalfedge(3 * nf_ + border_next_[i - 3 * nf_]);
   }
   GraphHalfedge prev(GraphHalfedge h) const noexcept {
@@ -481,7 +483,7 @@ class SurfaceGraph {
     const std::uint32_t h = vertex_halfedge_[v.idx()];
     return m_.star(v.idx()).size() + (h != kNull && h >= 3 * nf_);
   }
-  const double *coords(GraphVertex v) const noexcept { return m_.coords(v.idx()); }
+  const double *coords(GraphVertex v) const noexcept { return xyz_ + 3 * std::size_t(v.idx()); }
 
  private:
   friend class GraphEdgeIterator;
@@ -492,15 +494,16 @@ class SurfaceGraph {
   static std::uint32_t local(const SimplexView &a, std::uint32_t v) noexcept {
     return a[0] == v ? 0 : a[1] == v ? 1 : 2;
   }
-  std::uint32_t interior_source(std::uint32_t h) const noexcept {
-    return m_.vertices(TopRef(2, h / 3))[h % 3];
-  }
-  std::uint32_t interior_target(std::uint32_t h) const noexcept {
-    return m_.vertices(TopRef(2, h / 3))[(h + 1) % 3];
-  }
+  // The triangle table holds slot f's vertices at 3f, 3f + 1, 3f + 2: halfedge 3f + i starts
+  // at entry 3f + i and ends at the next entry of its triangle.
+  static std::uint32_t interior_next(std::uint32_t h) noexcept { return h % 3 == 2 ? h - 2 : h + 1; }
+  std::uint32_t interior_source(std::uint32_t h) const noexcept { return tri_[h]; }
+  std::uint32_t interior_target(std::uint32_t h) const noexcept { return tri_[interior_next(h)]; }
 
   Live *live_ = nullptr;
   MeshView m_{};
+  const std::uint32_t *tri_ = nullptr;  // the live mesh's triangle table (tops[2])
+  const double *xyz_ = nullptr;         // its coordinates, 3 per vertex slot
   std::uint32_t nv_ = 0, nf_ = 0, nb_ = 0;
   std::vector<std::uint32_t> vertex_halfedge_;  // a halfedge with target v (border if any)
   std::vector<std::uint32_t> border_;           // border k's interior opposite, ascending
