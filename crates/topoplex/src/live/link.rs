@@ -429,6 +429,10 @@ impl LiveComplex {
         let star = &self.star[v as usize];
         open.clear();
         facets.clear();
+        if self.triangle_fan_boundary(v, open) {
+            return;
+        }
+        open.clear();
         let (mut shortest, mut longest) = (usize::MAX, 0);
         for (i, &r) in star.iter().enumerate() {
             let t = self.top_raw(r);
@@ -488,6 +492,46 @@ impl LiveComplex {
         }
     }
 
+    /// [`LiveComplex::star_boundary`] for a star of at most [`SMALL_FAN`] triangles and nothing
+    /// else (a surface's vertex): the facet through v opposite a triangle's vertex y is the
+    /// edge vx, shared exactly when another triangle of the star has x among its two other
+    /// vertices, so pairs of triangles compare their two link vertices (O(k²), no hashing, no
+    /// sort). Returns false, having written some of `open`, when the star is not such a fan.
+    fn triangle_fan_boundary(&self, v: u32, open: &mut Vec<u32>) -> bool {
+        let star = &self.star[v as usize];
+        if star.len() > SMALL_FAN {
+            return false;
+        }
+        // Per triangle its two other vertices x, y and their positions.
+        let mut link = [[0u32; 2]; SMALL_FAN];
+        let mut at = [[0u8; 2]; SMALL_FAN];
+        for (i, &r) in star.iter().enumerate() {
+            if super::unpack(r).0 != 2 {
+                return false;
+            }
+            let t = self.top_raw(r);
+            let own = t.iter().position(|&x| x == v).expect("v is in its star");
+            let (i1, i2) = ((own + 1) % 3, (own + 2) % 3);
+            link[i] = [t[i1], t[i2]];
+            at[i] = [i1 as u8, i2 as u8];
+            open.push(1 << i1 | 1 << i2);
+        }
+        // Edge v·link[i][s] is the facet opposite link[i][1 - s], at bit at[i][1 - s].
+        for i in 0..star.len() {
+            for j in i + 1..star.len() {
+                for s in 0..2 {
+                    for u in 0..2 {
+                        if link[i][s] == link[j][u] {
+                            open[i] &= !(1 << at[i][1 - s]);
+                            open[j] &= !(1 << at[j][1 - u]);
+                        }
+                    }
+                }
+            }
+        }
+        true
+    }
+
     /// The positions j of top `raw` ∈ St(v) whose facet t \ {t[j]} (j not v's position) is on
     /// the boundary: held by no other top of St(v) (every top holding it holds v). As bits.
     /// Every pair of tops compared, O(d²·k) a top: the oracle [`LiveComplex::star_boundary`]
@@ -513,6 +557,10 @@ impl LiveComplex {
         all & !shared & !own
     }
 }
+
+/// Up to this many triangles a vertex's star is a fan whose boundary edges are found by
+/// comparing pairs ([`LiveComplex::triangle_fan_boundary`]).
+const SMALL_FAN: usize = 24;
 
 /// From this many tops in St(a), and more than [`STAR_SKEW`] times St(b)'s, the link test
 /// reads St(a) only where the common vertices are ([`LiveComplex::skewed_violation`]).
@@ -1035,6 +1083,15 @@ mod tests {
             simplices in rows(0u32..7, 2..=4, 1..14)
         ) {
             assert_star_boundaries_agree(7, &simplices);
+        }
+
+        /// Random triangle soups (stars of triangles only, so the fan comparison answers;
+        /// up to 30 triangles on 9 vertices, so some stars exceed it and are hashed).
+        #[test]
+        fn star_boundary_of_triangle_soups_matches_comparing_every_pair(
+            simplices in rows(0u32..9, 3..=3, 1..30)
+        ) {
+            assert_star_boundaries_agree(9, &simplices);
         }
     }
 }
