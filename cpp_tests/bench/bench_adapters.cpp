@@ -308,8 +308,9 @@ void tets(const std::string &given) {
   reg("from_tpx/cgal_c3t3", [=](benchmark::State &s) {
     for (auto _ : s) {
       C3t3 out;
+      std::vector<topoplex::Dropped> dropped;  // the file's other labels (medit:ref)
       try {
-        topoplex::cgal::complex_to_c3t3(*cx, out);
+        topoplex::cgal::complex_to_c3t3(*cx, out, &dropped);
       } catch (const std::exception &e) {
         return fail(s, e.what());
       }
