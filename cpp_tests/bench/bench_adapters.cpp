@@ -18,7 +18,8 @@
 //   relax/<lib>          PMP::tangential_relaxation, 1 iteration (points reset between
 //                        iterations, untimed); on the graph it writes through Live::set_coords
 // Tetrahedral ops (TETS.mesh given):
-//   read/cgal_t3, read/tpx    CGAL::IO::read_MEDIT into a Mesh_3 triangulation; Complex::from_file
+//   read/cgal_t3, read/tpx_tets  CGAL::IO::read_MEDIT into a Mesh_3 triangulation;
+//                             Complex::from_file
 //   to_tpx/cgal_t3            cgal::triangulation_to_complex (finite cells)
 //   to_tpx/cgal_c3t3          cgal::c3t3_to_complex (cells and facets with their labels)
 //   to_tpx_file/cgal_t3       CGAL::IO::write_MEDIT + Complex::from_file
@@ -281,7 +282,7 @@ void tets(const std::string &given) {
     }
     items(s);
   });
-  reg("read/tpx", [=](benchmark::State &s) {
+  reg("read/tpx_tets", [=](benchmark::State &s) {
     for (auto _ : s) benchmark::DoNotOptimize(topoplex::Complex::from_file(path).get());
     items(s);
   });
