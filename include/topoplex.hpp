@@ -1504,12 +1504,23 @@ class MeshView {
     std::uint32_t *seen = marks.begin(a_.vertex_slots);
     const std::uint32_t r = marks.round_;
     seen[v] = r;
-    for (TopRef t : star(v))
-      for (std::uint32_t w : vertices(t))
-        if (seen[w] != r) {
-          seen[w] = r;
-          f(w);
-        }
+    const auto visit = [&](std::uint32_t w) {
+      if (seen[w] != r) {
+        seen[w] = r;
+        f(w);
+      }
+    };
+    for (TopRef t : star(v)) {
+      const std::uint32_t p = t.dim();
+      const std::uint32_t *q = a_.tops[p] + std::size_t(t.slot()) * (p + 1);
+      if (p == 2) {  // a surface's case, unrolled
+        visit(q[0]);
+        visit(q[1]);
+        visit(q[2]);
+      } else {
+        for (std::uint32_t i = 0; i <= p; ++i) visit(q[i]);
+      }
+    }
   }
   /* R_{0,0}(v): the vertices sharing an edge with v, ascending, into `out` (reused). O(d·k_v +
    * m log m), m the candidates. */
@@ -1693,16 +1704,24 @@ class MeshView {
       std::uint32_t *seen = marks.begin(a_.vertex_slots);
       const std::uint32_t r = marks.round_;
       order.clear();
+      const auto visit = [&](std::uint32_t w, std::uint32_t of_p) {
+        if (w <= a) return;
+        if (seen[w] != r) {
+          seen[w] = r;
+          count[w] = 0;
+          order.push_back(w);
+        }
+        count[w] += of_p;
+      };
       for (TopRef t : star(a)) {
-        const std::uint32_t of_p = t.dim() == p;
-        for (std::uint32_t w : vertices(t)) {
-          if (w <= a) continue;
-          if (seen[w] != r) {
-            seen[w] = r;
-            count[w] = 0;
-            order.push_back(w);
-          }
-          count[w] += of_p;
+        const std::uint32_t q = t.dim(), of_p = q == p;
+        const std::uint32_t *s = a_.tops[q] + std::size_t(t.slot()) * (q + 1);
+        if (q == 2) {  // a surface's case, unrolled
+          visit(s[0], of_p);
+          visit(s[1], of_p);
+          visit(s[2], of_p);
+        } else {
+          for (std::uint32_t i = 0; i <= q; ++i) visit(s[i], of_p);
         }
       }
       for (std::uint32_t b : order) f(a, b, std::size_t(count[b]));
@@ -2010,6 +2029,13 @@ class Live {
   /* The mesh with its facet adjacency (tpx_live_adjacency: built on the first call after an
    * edit, O(Σ_t d²·k), 4 bytes per vertex of every top; then O(1)): FF and TT become
    * reads. Valid as mesh() is, until the next edit of the topology. */
+  /* Keeps the facet adjacency across edits (tpx_live_keep_adjacency): built now, then repaired
+   * by every edit around what it changed (each edit costs O(Σ_t d²·k) more over the tops at the
+   * vertices it touches) and rebuilt by compact(), so mesh_with_adjacency() is O(1) after any
+   * edit; keep = false goes back to building it on request. */
+  void keep_adjacency(bool keep = true) {
+    detail::check(tpx_live_keep_adjacency(l_.get(), keep ? 1u : 0u));
+  }
   MeshView mesh_with_adjacency() const {
     return MeshView(detail::get<TpxLiveArrays>(tpx_live_arrays, l_.get()),
                     detail::get<TpxLiveAdjacency>(tpx_live_adjacency, l_.get()));

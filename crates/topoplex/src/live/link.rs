@@ -176,6 +176,40 @@ impl LiveComplex {
         most: usize,
         s: &mut Scratch,
     ) -> Option<Option<Vec<u32>>> {
+        let found = self.skewed_common(a, b, coned, most, s)?;
+        if coned {
+            s.index_omega = s.common.len() as u32;
+            s.common.push(OMEGA);
+        } else if s.common.is_empty() {
+            return Some(None);
+        }
+        self.skewed_families(a, b, found, s);
+        let plain = words::first_violation(&s.common, &s.ma, &s.mb, &s.mz);
+        if plain.is_some() || !coned {
+            return Some(plain);
+        }
+        let omega = 1u64 << s.index_omega;
+        self.skewed_cones(a, b, found, omega, s);
+        let holds_omega = |words: &[u64]| words.iter().any(|&m| m & omega != 0);
+        if !holds_omega(&s.ma) && holds_omega(&s.mb) && !holds_omega(&s.mz) {
+            // Whether St(a) has a boundary facet away from C decides: the whole test.
+            return None;
+        }
+        Some(words::first_violation(&s.common, &s.ma, &s.mb, &s.mz))
+    }
+
+    /// Step 1 of [`LiveComplex::skewed_violation`]: the common vertices C into `s.common`, in
+    /// order of first appearance in St(b)'s tops (as `common_vertices` numbers them), each
+    /// vertex of St(b) tried once through the stamps. Returns |C|, or `None` (the whole test
+    /// decides) when |C| + ω exceeds 64 or C's stars add up to `most` tops or more.
+    fn skewed_common(
+        &self,
+        a: u32,
+        b: u32,
+        coned: bool,
+        most: usize,
+        s: &mut Scratch,
+    ) -> Option<usize> {
         let n = self.star.len();
         if s.stamp.len() < n {
             s.stamp.resize(n, 0);
@@ -188,7 +222,6 @@ impl LiveComplex {
         s.epoch += 2;
         let (tried, common) = (s.epoch - 1, s.epoch);
         s.common.clear();
-        // C in the order common_vertices numbers it: first appearance in St(b)'s tops.
         let mut weight = 0;
         for &r in self.star[b as usize].iter() {
             for &v in self.top_raw(r) {
@@ -209,13 +242,13 @@ impl LiveComplex {
         if s.common.len() + usize::from(coned) > 64 || weight >= most {
             return None;
         }
-        let found = s.common.len();
-        if coned {
-            s.index_omega = s.common.len() as u32;
-            s.common.push(OMEGA);
-        } else if s.common.is_empty() {
-            return Some(None);
-        }
+        Some(s.common.len())
+    }
+
+    /// Step 2: the plain families as masks over C, their maximal words kept: F_ab and F_b from
+    /// St(b) (tops with and without a), F_a from the stars of the `found` common vertices
+    /// (tops through a but not b).
+    fn skewed_families(&self, a: u32, b: u32, found: usize, s: &mut Scratch) {
         s.ma.clear();
         s.mb.clear();
         s.mz.clear();
@@ -240,12 +273,12 @@ impl LiveComplex {
         }
         maximal(&mut s.ma);
         maximal(&mut s.mb);
-        let plain = words::first_violation(&s.common, &s.ma, &s.mb, &s.mz);
-        if plain.is_some() || !coned {
-            return Some(plain);
-        }
-        let omega = 1u64 << s.index_omega;
-        // At b: as boundary_cones.
+    }
+
+    /// Step 3, coned: the cones over the boundary facets at b (as `boundary_cones`) and at a
+    /// (those through b, from St(b), then those through a common vertex), added to the
+    /// families, maximal words kept.
+    fn skewed_cones(&self, a: u32, b: u32, found: usize, omega: u64, s: &mut Scratch) {
         let mut open = std::mem::take(&mut s.open);
         self.star_boundary(b, &mut s.facets, &mut open);
         for (&r, &open) in self.star[b as usize].iter().zip(&open) {
@@ -258,7 +291,6 @@ impl LiveComplex {
             }
         }
         s.open = open;
-        // At a: the tops through b (from St(b)), then those through a common vertex.
         for &r in self.star[b as usize].iter() {
             let t = self.top_raw(r);
             if t.contains(&a) {
@@ -276,12 +308,6 @@ impl LiveComplex {
         }
         maximal(&mut s.ma);
         maximal(&mut s.mb);
-        let holds_omega = |words: &[u64]| words.iter().any(|&m| m & omega != 0);
-        if !holds_omega(&s.ma) && holds_omega(&s.mb) && !holds_omega(&s.mz) {
-            // Whether St(a) has a boundary facet away from C decides: the whole test.
-            return None;
-        }
-        Some(words::first_violation(&s.common, &s.ma, &s.mb, &s.mz))
     }
 
     /// The cones over the open facets f ∋ a of top `r` ∈ St(a) that hold b or a common vertex
