@@ -12,7 +12,7 @@
  *
  * Models: VertexListGraph, EdgeListGraph, HalfedgeListGraph, FaceListGraph (and the BGL
  * IncidenceGraph / BidirectionalGraph that CGAL's iterators give), with the internal property
- * maps boost::vertex_point (CGAL::Epick::Point_3 by value; writable: put moves the vertex with
+ * maps boost::vertex_point (CGAL::Epick::Point_3 read in place; writable: put moves the vertex with
  * tpx_live_set_coords, O(1), which keeps every lent view valid), boost::vertex_index,
  * boost::halfedge_index, boost::face_index (the identity on the dense ids below), and vector
  * backed dynamic property maps (CGAL::dynamic_*_property_t) for CGAL's scratch data. Not
@@ -79,6 +79,7 @@
 #include <memory>
 #include <ostream>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -224,17 +225,25 @@ struct graph_traits<const topoplex::cgal::SurfaceGraph>
 namespace topoplex {
 namespace cgal {
 
-/* boost::vertex_point: the vertex's coordinates as a CGAL::Epick point (by value); put moves the
- * vertex in the live mesh (tpx_live_set_coords: finite numbers, O(1)). */
+/* boost::vertex_point: the vertex's coordinates as a CGAL::Epick point, read in place (a
+ * reference into the live mesh's coordinate array, as Surface_mesh's map hands out references
+ * into its point array: it sees later moves of the vertex and lasts while the array does);
+ * put moves the vertex in the live mesh (tpx_live_set_coords: finite numbers, O(1)).
+ *
+ * Reading 3 doubles as a Point_3: Epick's Point_3 is 3 doubles and nothing else (checked
+ * below: size, alignment, trivially copyable, standard layout), an implicit-lifetime type, and
+ * the array is heap memory written only by the library (never through this map), so the point
+ * is read where it lies. A map returning the point by value measured 2x slower in
+ * compute_face_normals on a cache-resident mesh (docs/adapters.md). */
 class SurfaceGraphPointMap {
  public:
   using key_type = GraphVertex;
   using value_type = CGAL::Epick::Point_3;
-  using reference = value_type;
+  using reference = const value_type &;
   using category = boost::read_write_property_map_tag;
   SurfaceGraphPointMap() = default;
   explicit SurfaceGraphPointMap(const SurfaceGraph *g) noexcept : g_(g) {}
-  inline friend value_type get(const SurfaceGraphPointMap &m, key_type v);
+  inline friend const value_type &get(const SurfaceGraphPointMap &m, key_type v);
   inline friend void put(const SurfaceGraphPointMap &m, key_type v, const value_type &p);
 
  private:
@@ -523,9 +532,13 @@ void GraphEdgeIterator::increment() noexcept {
   settle();
 }
 
-inline SurfaceGraphPointMap::value_type get(const SurfaceGraphPointMap &m, GraphVertex v) {
-  const double *x = m.g_->coords(v);
-  return SurfaceGraphPointMap::value_type(x[0], x[1], x[2]);
+static_assert(sizeof(CGAL::Epick::Point_3) == 3 * sizeof(double) &&
+                  alignof(CGAL::Epick::Point_3) == alignof(double) &&
+                  std::is_trivially_copyable<CGAL::Epick::Point_3>::value &&
+                  std::is_standard_layout<CGAL::Epick::Point_3>::value,
+              "SurfaceGraphPointMap reads 3 doubles as an Epick Point_3");
+inline const SurfaceGraphPointMap::value_type &get(const SurfaceGraphPointMap &m, GraphVertex v) {
+  return *reinterpret_cast<const SurfaceGraphPointMap::value_type *>(m.g_->coords(v));
 }
 inline void put(const SurfaceGraphPointMap &m, GraphVertex v,
                 const SurfaceGraphPointMap::value_type &p) {
@@ -606,8 +619,8 @@ adjacent_vertices(GraphVertex v, const SurfaceGraph &g) {
 inline SurfaceGraphPointMap get(boost::vertex_point_t, const SurfaceGraph &g) {
   return SurfaceGraphPointMap(&g);
 }
-inline SurfaceGraphPointMap::value_type get(boost::vertex_point_t, const SurfaceGraph &g,
-                                            GraphVertex v) {
+inline const SurfaceGraphPointMap::value_type &get(boost::vertex_point_t, const SurfaceGraph &g,
+                                                   GraphVertex v) {
   return get(SurfaceGraphPointMap(&g), v);
 }
 inline void put(boost::vertex_point_t, const SurfaceGraph &g, GraphVertex v,
