@@ -306,6 +306,20 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   return out;
 }
 
+std::size_t RankMesh::bytes() const noexcept {
+  std::size_t b = vertex_point_.capacity() * sizeof(PetscInt) + listed_point_.capacity() * sizeof(PetscInt) +
+                  point_listing_.capacity() * sizeof(std::size_t) + point_owner_.capacity() * sizeof(int) +
+                  global_vertex_.capacity() * sizeof(PetscInt) +
+                  point_simplex_.capacity() * sizeof(std::vector<std::uint32_t>);
+  for (const auto &vs : point_simplex_) b += vs.capacity() * sizeof(std::uint32_t);
+  // A node: the next pointer, the key and value, the cached hash; each key's own array.
+  b += simplex_point_.bucket_count() * sizeof(void *);
+  for (const auto &kv : simplex_point_) {
+    b += sizeof(void *) + sizeof(kv) + sizeof(std::size_t) + kv.first.capacity() * sizeof(std::uint32_t);
+  }
+  return b;
+}
+
 const Complex &RankMesh::complex() const {
   if (!complex_) throw Error(Code::Refused, "rank " + std::to_string(rank_) + " holds no point: no complex");
   return *complex_;

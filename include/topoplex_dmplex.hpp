@@ -105,6 +105,10 @@ class RankMesh {
   PetscInt overlap() const noexcept { return overlap_; }
   bool interpolated() const noexcept { return interpolated_; }
 
+  /* Heap bytes of the maps above (everything but the complex): their arrays' capacities and,
+   * for the hash from simplex to point, its buckets and nodes as libstdc++ lays them out. O(points). */
+  std::size_t bytes() const noexcept;
+
   /* ---- point <-> Topoplex ids (O(1) each; point_of: a hash lookup) ---- */
   std::uint32_t vertex_count() const noexcept { return static_cast<std::uint32_t>(vertex_point_.size()); }
   PetscInt point_of_vertex(std::uint32_t v) const;
