@@ -35,11 +35,13 @@
 #include <petscdmplex.h>
 #include <petscsf.h>
 
+#include <atomic>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 namespace topoplex {
@@ -84,9 +86,9 @@ struct ImportOptions {
 
 /* One rank's part of a DMPlex as a Topoplex complex, with the maps between DM points and
  * Topoplex ids and each simplex's owner. Memory: the complex, plus per local point an owner
- * (4 B), a listing index (8 B) and its vertex list (a std::vector), per vertex its point and global
- * number (16 B), and a hash from each simplex that is a point to the point (every point when the
- * DM is interpolated): more than the complex itself for an interpolated DM (docs/dmplex.md). */
+ * (4 B), a listing index (4 B), an offset (8 B) and its vertex ids (4 B each) in flat arrays,
+ * per vertex its point and global number (8 B), and once point_of or owner is first called, a
+ * table from sorted vertex ids to points (8 to 16 B per point with vertices): see bytes(). */
 class RankMesh {
  public:
   /* Collective on the DM's communicator (global vertex numbering). Cost: O(points x closure)
@@ -105,8 +107,8 @@ class RankMesh {
   PetscInt overlap() const noexcept { return overlap_; }
   bool interpolated() const noexcept { return interpolated_; }
 
-  /* Heap bytes of the maps above (everything but the complex): their arrays' capacities and,
-   * for the hash from simplex to point, its buckets and nodes as libstdc++ lays them out. O(points). */
+  /* Heap bytes of the maps (everything but the complex): their arrays' capacities, the point
+   * table's once built. O(1). */
   std::size_t bytes() const noexcept;
 
   /* ---- point <-> Topoplex ids (O(1) each; point_of: a hash lookup) ---- */
@@ -118,7 +120,8 @@ class RankMesh {
   PetscInt point_of_listing(std::size_t i) const;
   std::size_t listing_of_point(PetscInt p) const; /* NO_LISTING when p is not listed */
   /* The point whose closure's vertices are `simplex` (vertex ids, any order): NO_POINT for a
-   * simplex that is no point (faces of a non-interpolated DM) or not in the complex. */
+   * simplex that is no point (faces of a non-interpolated DM) or not in the complex. The first
+   * call builds the table from vertex ids to points (O(points)); then a hash probe. */
   PetscInt point_of(std::vector<std::uint32_t> simplex) const;
   /* The vertices of point p's closure, in Topoplex winding for tops. */
   std::vector<std::uint32_t> simplex_of_point(PetscInt p) const;
@@ -147,22 +150,34 @@ class RankMesh {
 
  private:
   RankMesh() = default;
-  struct KeyHash {
-    std::size_t operator()(const std::vector<std::uint32_t> &k) const noexcept;
+  /* The table from sorted vertex ids to points, built by the first point_of / owner (once, under
+   * std::call_once, so concurrent queries stay safe). */
+  struct PointTable {
+    std::once_flag once;
+    std::atomic<bool> built{false};
+    /* Open addressing (linear probing, a power of two at least twice the entries): the point -
+     * p_start of every point with vertices, at the hash of its sorted vertices; -1 empty. */
+    std::vector<PetscInt> slots;
   };
+  const std::vector<PetscInt> &point_slots() const;
+  /* Slot of `sorted` (ascending vertex ids) in `slots`: its point's slot, or an empty one. */
+  std::size_t slot_of(const std::vector<PetscInt> &slots, const std::uint32_t *sorted, std::size_t n) const noexcept;
   std::optional<Complex> complex_;
   int rank_ = 0, size_ = 1;
   PetscInt overlap_ = 0;
   bool vertex_adjacency_ = true; /* the DM's basic adjacency is PETSc's default (FEM) */
   bool interpolated_ = false;
   PetscInt p_start_ = 0, p_end_ = 0, v_start_ = 0, v_end_ = 0;
-  std::vector<PetscInt> vertex_point_;   /* v -> point */
-  std::vector<PetscInt> listed_point_;   /* listing -> point */
-  std::vector<std::size_t> point_listing_; /* point - p_start -> listing */
-  std::vector<int> point_owner_;         /* point - p_start -> owner rank */
-  std::vector<PetscInt> global_vertex_;  /* v -> global number */
-  std::vector<std::vector<std::uint32_t>> point_simplex_; /* point - p_start -> vertices */
-  std::unordered_map<std::vector<std::uint32_t>, PetscInt, KeyHash> simplex_point_;
+  std::vector<PetscInt> vertex_point_;      /* v -> point */
+  std::vector<PetscInt> listed_point_;      /* listing -> point */
+  std::vector<std::uint32_t> point_listing_; /* point - p_start -> listing (UINT32_MAX: none) */
+  std::vector<int> point_owner_;            /* point - p_start -> owner rank */
+  std::vector<PetscInt> global_vertex_;     /* v -> global number */
+  /* Point p's vertices: simplex_ids_[simplex_offsets_[p - p_start] .. [p - p_start + 1]]
+   * (closure order, tops in Topoplex winding; empty for faces of a non-interpolated DM). */
+  std::vector<std::uint64_t> simplex_offsets_;
+  std::vector<std::uint32_t> simplex_ids_;
+  std::unique_ptr<PointTable> table_ = std::make_unique<PointTable>();
 };
 
 struct ExportOptions {

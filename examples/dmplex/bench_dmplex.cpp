@@ -26,9 +26,10 @@
 //  (b) conversion: RankMesh::from_dm (interpolated DM -> complex and maps) and the IA's build,
 //      in tetrahedra per second on the rank (wall time; oversubscribed ranks share cores).
 //  (c) every owned vertex's star: DMPlexGetTransitiveClosure(useCone = PETSC_FALSE) over the
-//      owned vertices' points against Topoplex's R_{0,3} (tpx_related) and full star (tpx_star)
-//      on the rank's IA; the counts are checked vertex by vertex (closure size = star + the
-//      vertex itself; cells in the closure = |R_{0,3}|) and a mismatch fails the run.
+//      owned vertices' points against Topoplex on the rank's IA: R_{0,3} (tpx_related), the full
+//      star as R_{0,1} + R_{0,2} + R_{0,3} (three tpx_related), and tpx_star; the counts are
+//      checked vertex by vertex (closure size = star + the vertex itself; cells in the closure =
+//      |R_{0,3}|) and a mismatch fails the run.
 //  (d), (e) the phases' times and each rank's peak resident set (VmHWM).
 // Rank 0 prints one line per rank and part, "@a|...", "@b|...", ..., which the script gathers into
 // markdown tables.
@@ -182,7 +183,7 @@ DM topology_dm(const std::vector<PetscInt> &cells, PetscInt ncells, PetscInt nve
 enum Field {
   Tets, Points, Vertices, OwnedVertices, DmTopoPetsc, DmTopoHeap, DmTopoPoints, DmHeld, CoordBytes,
   FromDm, IaBuild, IaBytes, ComplexHeap, MapsBytes, FromDmHeap, IaHeap,
-  DmLoop, R03Loop, StarLoop, StarSum, CellSum, Mismatch, Create, Distribute, HwmBytes, NFields
+  DmLoop, R03Loop, StarLoop, RelLoop, StarSum, CellSum, Mismatch, Create, Distribute, HwmBytes, NFields
 };
 
 }  // namespace
@@ -339,13 +340,33 @@ int main(int argc, char **argv) {
     }
     f[StarLoop] = now() - t;
 
+    // Topoplex: the star as its three co-boundary relations R_{0,1}, R_{0,2}, R_{0,3}.
+    std::vector<std::uint32_t> tp_rel(no);
+    t = now();
+    for (std::size_t i = 0; i < no; ++i) {
+      const TpxSimplex h{owned[i], 0, ia.stamp()};
+      std::size_t total = 0;
+      for (std::uint32_t q = 1; q <= 3; ++q) {
+        std::size_t len = 0;
+        TpxStatus s = tpx_related(ia.get(), &h, q, TPX_ORDER_NATURAL, ids.data(), ids.size(), &len);
+        if (s == TPX_STATUS_BUFFER_TOO_SMALL) {
+          ids.resize(len);
+          s = tpx_related(ia.get(), &h, q, TPX_ORDER_NATURAL, ids.data(), ids.size(), &len);
+        }
+        if (s != TPX_STATUS_OK) fail(rank, "tpx_related");
+        total += len;
+      }
+      tp_rel[i] = static_cast<std::uint32_t>(total);
+    }
+    f[RelLoop] = now() - t;
+
     for (std::size_t i = 0; i < no; ++i) {
       f[StarSum] += dm_size[i];
       f[CellSum] += dm_cells[i];
-      if (dm_cells[i] != tp_cells[i] || dm_size[i] != tp_star[i] + 1) {
+      if (dm_cells[i] != tp_cells[i] || dm_size[i] != tp_star[i] + 1 || dm_size[i] != tp_rel[i] + 1) {
         if (f[Mismatch] == 0) {
-          std::fprintf(stderr, "rank %d: vertex %u (point %d): DMPlex star %u points, %u cells; Topoplex star %u + 1, R03 %u\n",
-                       rank, owned[i], static_cast<int>(owned_points[i]), dm_size[i], dm_cells[i], tp_star[i], tp_cells[i]);
+          std::fprintf(stderr, "rank %d: vertex %u (point %d): DMPlex star %u points, %u cells; Topoplex star %u + 1, R01+R02+R03 %u + 1, R03 %u\n",
+                       rank, owned[i], static_cast<int>(owned_points[i]), dm_size[i], dm_cells[i], tp_star[i], tp_rel[i], tp_cells[i]);
         }
         ++f[Mismatch];
       }
@@ -393,9 +414,9 @@ int main(int argc, char **argv) {
       std::printf("@b| %s | %d | %d | %.0f | %.3f | %.3f | %.2f | %.2f |\n", run.c_str(), size, r, a[Tets], a[FromDm], a[IaBuild],
                   a[Tets] / a[FromDm] / 1e6, a[Tets] / (a[FromDm] + a[IaBuild]) / 1e6);
       // (c) stars
-      std::printf("@c| %s | %d | %d | %.0f | %.4f | %.4f | %.4f | %.1f | %.1f | %.0f | %.0f | %s |\n", run.c_str(), size, r,
-                  a[OwnedVertices], a[DmLoop], a[R03Loop], a[StarLoop], a[DmLoop] / a[R03Loop], a[DmLoop] / a[StarLoop],
-                  a[StarSum], a[CellSum], a[Mismatch] == 0 ? "yes" : "NO");
+      std::printf("@c| %s | %d | %d | %.0f | %.4f | %.4f | %.4f | %.4f | %.1f | %.1f | %.1f | %.0f | %.0f | %s |\n", run.c_str(),
+                  size, r, a[OwnedVertices], a[DmLoop], a[R03Loop], a[RelLoop], a[StarLoop], a[DmLoop] / a[R03Loop],
+                  a[DmLoop] / a[RelLoop], a[DmLoop] / a[StarLoop], a[StarSum], a[CellSum], a[Mismatch] == 0 ? "yes" : "NO");
       // (d)/(e) phases and peak
       std::printf("@d| %s | %d%s | %d | %.0f | %.0f | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.0f |\n", run.c_str(), size,
                   over ? " (over)" : "", r, a[Points], a[Tets], a[Create], a[Distribute], a[FromDm], a[IaBuild], a[DmLoop],
