@@ -182,6 +182,90 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   std::vector<PetscInt> tops;
   std::vector<std::uint32_t> ids;
   std::vector<std::size_t> offsets{0};
+  // Fast path for a fully interpolated simplicial DM (every point of depth d has d + 1 cone
+  // points, all of depth d - 1): the points are filled stratum by stratum, each from its cone and
+  // the vertices already found for its faces, in PETSc's closure order (a breadth-first walk with
+  // each cone arranged by the orientation it is reached with): an edge is its cone; a triangle
+  // reached with orientation o lists its first arranged edge's vertices (swapped when that edge's
+  // composed orientation is not 0), then the vertex its second arranged edge adds; a tetrahedron
+  // lists its first face's vertices as that triangle reached with its cone orientation, then the
+  // vertex of its second face that is missing. False (nothing filled) when the DM is not such a DM.
+  auto fast_fill = [&]() -> bool {
+    if (!fast_closure) return false;
+    std::vector<char> is_top(npoints);
+    for (PetscInt p = pStart; p < pEnd; ++p) {
+      const std::size_t ip = static_cast<std::size_t>(p - pStart);
+      PetscInt support = 0, nc = 0;
+      TPX_PETSC(DMPlexGetSupportSize(dm, p, &support));
+      TPX_PETSC(DMPlexGetConeSize(dm, p, &nc));
+      const PetscInt d = depth_of(p);
+      if ((d == 0 && nc != 0) || (d > 0 && nc != d + 1)) return false;
+      is_top[ip] = support == 0;
+      simplex_offsets[ip + 1] = static_cast<std::uint64_t>(d + 1);
+    }
+    for (std::size_t ip = 0; ip < npoints; ++ip) simplex_offsets[ip + 1] += simplex_offsets[ip];
+    simplex_ids.assign(simplex_offsets[npoints], 0);
+    auto stored = [&](PetscInt q) { return &simplex_ids[simplex_offsets[static_cast<std::size_t>(q - pStart)]]; };
+    auto in_stratum = [&](PetscInt q, PetscInt d) {
+      return q >= stratum_start[static_cast<std::size_t>(d)] && q < stratum_end[static_cast<std::size_t>(d)];
+    };
+    // Triangle q reached with orientation o: its three vertices into out; false if malformed.
+    auto triangle = [&](PetscInt q, PetscInt o, std::uint32_t *out) -> bool {
+      const PetscInt *cone = nullptr, *ornt = nullptr;
+      TPX_PETSC(DMPlexGetCone(dm, q, &cone));
+      TPX_PETSC(DMPlexGetConeOrientation(dm, q, &ornt));
+      const PetscInt *arr = DMPolytopeTypeGetArrangment(DM_POLYTOPE_TRIANGLE, o);
+      const PetscInt e0 = cone[arr[0]], e1 = cone[arr[2]];
+      if (!in_stratum(e0, 1) || !in_stratum(e1, 1)) return false;
+      const PetscInt co = DMPolytopeTypeComposeOrientation(DM_POLYTOPE_SEGMENT, arr[1], ornt[arr[0]]);
+      const std::uint32_t *a = stored(e0), *b = stored(e1);
+      out[0] = co == 0 ? a[0] : a[1];
+      out[1] = co == 0 ? a[1] : a[0];
+      out[2] = b[0] == a[0] || b[0] == a[1] ? b[1] : b[0];
+      return true;
+    };
+    for (PetscInt d = 0; d <= depth; ++d) {
+      for (PetscInt p = stratum_start[static_cast<std::size_t>(d)]; p < stratum_end[static_cast<std::size_t>(d)]; ++p) {
+        std::uint32_t *out = stored(p);
+        if (d == 0) {
+          out[0] = static_cast<std::uint32_t>(p - vStart);
+          continue;
+        }
+        const PetscInt *cone = nullptr, *ornt = nullptr;
+        TPX_PETSC(DMPlexGetCone(dm, p, &cone));
+        for (PetscInt k = 0; k <= d; ++k) {
+          if (!in_stratum(cone[k], d - 1)) return false;
+        }
+        if (d == 1) {
+          out[0] = static_cast<std::uint32_t>(cone[0] - vStart);
+          out[1] = static_cast<std::uint32_t>(cone[1] - vStart);
+        } else if (d == 2) {
+          if (!triangle(p, 0, out)) return false;
+        } else {
+          TPX_PETSC(DMPlexGetConeOrientation(dm, p, &ornt));
+          if (!triangle(cone[0], ornt[0], out)) return false;
+          const std::uint32_t *g = stored(cone[1]);
+          for (int k = 0; k < 3; ++k) {
+            if (g[k] != out[0] && g[k] != out[1] && g[k] != out[2]) out[3] = g[k];
+          }
+        }
+      }
+    }
+    for (PetscInt p = pStart; p < pEnd; ++p) {
+      const std::size_t ip = static_cast<std::size_t>(p - pStart);
+      if (!is_top[ip]) continue;
+      std::uint32_t *v = &simplex_ids[simplex_offsets[ip]];
+      const std::size_t nv = simplex_offsets[ip + 1] - simplex_offsets[ip];
+      if (nv == 4) std::swap(v[0], v[1]);  // petsc_winding
+      tops.push_back(p);
+      ids.insert(ids.end(), v, v + nv);
+      offsets.push_back(ids.size());
+    }
+    return true;
+  };
+  if (!fast_fill()) {
+  simplex_ids.clear();
+  std::fill(simplex_offsets.begin(), simplex_offsets.end(), 0);
   for (PetscInt p = pStart; p < pEnd; ++p) {
     const std::size_t ip = static_cast<std::size_t>(p - pStart);
     PetscInt support = 0;
@@ -242,6 +326,7 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
     }
     simplex_offsets[ip + 1] = simplex_ids.size();
   }
+  }  // general walk
 
   // Labels: integer values per point; points with a value that are not listed yet (faces of an
   // interpolated DM) are listed after the tops.
