@@ -1,7 +1,8 @@
 // Issue 29's benchmarks of the DMPlex bridge (a benchmark, not a test: scripts/bench_dmplex.sh
 // runs it and assembles the tables; docs/dmplex.md "Benchmarks").
 //
-//   mpiexec -n 2 ./bench_dmplex -simplices 1e7 [-per_rank] [-self_dm 0] [-label TEXT] [-malloc_debug]
+//   mpiexec -n 2 ./bench_dmplex -simplices 1e7 [-per_rank] [-self_dm 0] [-interpolate_late 0]
+//       [-label TEXT] [-malloc_view -malloc_view_threshold 1e15]
 //
 // The grid: a box of nx x ny x nz cubes, each cut into 6 tetrahedra around its main diagonal
 // (Freudenthal / Kuhn), sized so that it holds about `-simplices` simplices counting every
@@ -16,15 +17,17 @@
 //  (a) DMPlex topology memory: the rank's cells (its distributed DM's cells, overlap included)
 //      rebuilt as an interpolated DMPlex on PETSC_COMM_SELF (cones, cone orientations, supports,
 //      their sections, the depth and celltype labels: no coordinates, no SF), measured as the
-//      growth of PetscMallocGetCurrentUsage (needs -malloc_debug, which turns PETSc's counting
-//      allocator on) and of glibc's heap in use (mallinfo2) across the build, the scratch
+//      growth of PetscMallocGetCurrentUsage (needs PETSc's counting allocator: -malloc_view
+//      -malloc_view_threshold 1e15 turns it on without logging; -malloc_debug also does but
+//      checks the heap on every call, far too slow here) and of glibc's heap in use (mallinfo2) across the build, the scratch
 //      cell-vertex DM destroyed; and the distributed DM as held at the end (what its DMDestroy
 //      frees: topology, point SF, labels, vertex numbering, coordinate section) minus its
 //      coordinate values (8 B x 3 per local vertex in the local vector and per owned vertex in
 //      the global one). Against it: the IA's own bytes (tpx_structure_storage), the complex's
 //      heap less its coordinates, and the bridge's RankMesh maps (RankMesh::bytes()).
 //  (b) conversion: RankMesh::from_dm (interpolated DM -> complex and maps) and the IA's build,
-//      in tetrahedra per second on the rank (wall time; oversubscribed ranks share cores).
+//      in tetrahedra per second on the rank (wall time; oversubscribed ranks share cores), and
+//      the core's share: Complex::from_arrays alone on the same tops (timed apart).
 //  (c) every owned vertex's star: DMPlexGetTransitiveClosure(useCone = PETSC_FALSE) over the
 //      owned vertices' points against Topoplex on the rank's IA: R_{0,3} (tpx_related), the full
 //      star as R_{0,1} + R_{0,2} + R_{0,3} (three tpx_related), and tpx_star; the counts are
@@ -43,6 +46,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -79,6 +83,12 @@ double status_bytes(const char *field) {
     }
   }
   return 0;
+}
+
+double cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
 double load_average() {
@@ -182,8 +192,9 @@ DM topology_dm(const std::vector<PetscInt> &cells, PetscInt ncells, PetscInt nve
 // Per-rank results, gathered on rank 0.
 enum Field {
   Tets, Points, Vertices, OwnedVertices, DmTopoPetsc, DmTopoHeap, DmTopoPoints, DmHeld, CoordBytes,
-  FromDm, IaBuild, IaBytes, ComplexHeap, MapsBytes, FromDmHeap, IaHeap,
-  DmLoop, R03Loop, StarLoop, RelLoop, StarSum, CellSum, Mismatch, Create, Distribute, HwmBytes, NFields
+  FromDm, FromArrays, IaBuild, IaBytes, ComplexHeap, MapsBytes, FromDmHeap, IaHeap,
+  DmLoop, R03Loop, StarLoop, RelLoop, StarSum, CellSum, Mismatch, Create, Distribute, HwmBytes,
+  FromDmCpu, DmLoopCpu, R03LoopCpu, HwmCreate, HwmDistribute, HwmSelf, HwmConvert, NFields
 };
 
 }  // namespace
@@ -194,11 +205,14 @@ int main(int argc, char **argv) {
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   PetscReal target = 1e6;
-  PetscBool per_rank = PETSC_FALSE, self_dm = PETSC_TRUE;
+  PetscBool per_rank = PETSC_FALSE, self_dm = PETSC_TRUE, late = PETSC_TRUE, interpolate = PETSC_TRUE;
   char label[64] = "";
   PetscCall(PetscOptionsGetReal(nullptr, nullptr, "-simplices", &target, nullptr));
   PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-per_rank", &per_rank, nullptr));
   PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-self_dm", &self_dm, nullptr));
+  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-interpolate_late", &late, nullptr));
+  PetscCall(PetscOptionsGetBool(nullptr, nullptr, "-interpolate", &interpolate, nullptr));
+  if (!interpolate) late = PETSC_TRUE;  // cell-vertex throughout
   PetscCall(PetscOptionsGetString(nullptr, nullptr, "-label", label, sizeof label, nullptr));
   const double load = load_average();
 
@@ -216,10 +230,11 @@ int main(int argc, char **argv) {
     slab_cells(box, rank, size, cells, xyz, nowned);
     const PetscInt nvglobal = static_cast<PetscInt>(box.vertices());
     PetscCall(DMPlexCreateFromCellListParallelPetsc(PETSC_COMM_WORLD, 3, static_cast<PetscInt>(cells.size() / 4), nowned,
-                                                    nvglobal, 4, PETSC_TRUE, cells.data(), 3, xyz.data(), nullptr,
+                                                    nvglobal, 4, late ? PETSC_FALSE : PETSC_TRUE, cells.data(), 3, xyz.data(), nullptr,
                                                     nullptr, &dm));
   }
   f[Create] = now() - t;
+  f[HwmCreate] = status_bytes("VmHWM");
   t = now();
   {
     PetscPartitioner part;
@@ -232,8 +247,16 @@ int main(int argc, char **argv) {
       PetscCall(DMDestroy(&dm));
       dm = dist;
     }
+    if (late && interpolate) {
+      DM idm = nullptr;
+      PetscCall(DMPlexInterpolate(dm, &idm));
+      PetscCall(DMPlexCopyCoordinates(dm, idm));
+      PetscCall(DMDestroy(&dm));
+      dm = idm;
+    }
   }
   f[Distribute] = now() - t;
+  f[HwmDistribute] = status_bytes("VmHWM");
 
   PetscInt pStart, pEnd, cStart, cEnd, vStart, vEnd;
   PetscCall(DMPlexGetChart(dm, &pStart, &pEnd));
@@ -265,6 +288,7 @@ int main(int argc, char **argv) {
     f[DmTopoPoints] = double(b - a);
     PetscCall(DMDestroy(&topo));
   }
+  f[HwmSelf] = status_bytes("VmHWM");
 
   // (b) conversion and the IA.
   std::vector<std::uint32_t> owned;
@@ -272,18 +296,39 @@ int main(int argc, char **argv) {
   try {
     double h0 = heap_bytes();
     t = now();
+    double c0 = cpu_now();
     dx::RankMesh rm = dx::RankMesh::from_dm(dm);
     f[FromDm] = now() - t;
+    f[FromDmCpu] = cpu_now() - c0;
     f[FromDmHeap] = heap_bytes() - h0;
     f[MapsBytes] = double(rm.bytes());
     f[CoordBytes] = 24.0 * f[Vertices];
     f[ComplexHeap] = f[FromDmHeap] - f[MapsBytes] - f[CoordBytes];
+    // The core's share of the conversion: Complex::from_arrays alone on the same tops.
+    {
+      const tp::Complex &c = rm.complex();
+      std::vector<std::uint32_t> tids;
+      std::vector<std::size_t> toffs{0};
+      tids.reserve(4 * static_cast<std::size_t>(f[Tets]));
+      for (std::uint32_t d = 0; d <= c.dimension(); ++d) {
+        for (std::uint32_t i = 0; i < c.top_count(d); ++i) {
+          const tp::SimplexView sv = c.top_oriented(d, i);
+          tids.insert(tids.end(), sv.begin(), sv.end());
+          toffs.push_back(tids.size());
+        }
+      }
+      const std::vector<double> xyz = c.coords();
+      t = now();
+      const tp::Complex again = tp::Complex::from_arrays(c.vertex_count(), tids, toffs, xyz, c.coord_dim());
+      f[FromArrays] = now() - t;
+    }
     h0 = heap_bytes();
     t = now();
     const tp::Structure ia(rm.complex(), tp::Kind::IA);
     f[IaBuild] = now() - t;
     f[IaHeap] = heap_bytes() - h0;
     f[IaBytes] = double(ia.storage().bytes);
+    f[HwmConvert] = status_bytes("VmHWM");
 
     for (std::uint32_t v = 0; v < rm.vertex_count(); ++v) {
       if (rm.vertex_owned(v)) {
@@ -297,20 +342,23 @@ int main(int argc, char **argv) {
     // (c) DMPlex: the star of each owned vertex as a transitive closure with useCone = false.
     std::vector<std::uint32_t> dm_size(no), dm_cells(no), tp_cells(no), tp_star(no);
     t = now();
+    c0 = cpu_now();
     for (std::size_t i = 0; i < no; ++i) {
       PetscInt ns = 0, *st = nullptr;
       PetscCall(DMPlexGetTransitiveClosure(dm, owned_points[i], PETSC_FALSE, &ns, &st));
       std::uint32_t nc = 0;
       for (PetscInt k = 0; k < ns; ++k) nc += st[2 * k] >= cStart && st[2 * k] < cEnd;
-      dm_size[i] = static_cast<std::uint32_t>(ns);
+      dm_size[i] = static_cast<std::uint32_t>(ns);  // interpolated: the star; else the vertex and its cells
       PetscCall(DMPlexRestoreTransitiveClosure(dm, owned_points[i], PETSC_FALSE, &ns, &st));
       dm_cells[i] = nc;
     }
     f[DmLoop] = now() - t;
+    f[DmLoopCpu] = cpu_now() - c0;
 
     // Topoplex: R_{0,3} into a reused buffer.
     std::vector<std::uint32_t> ids(64);
     t = now();
+    c0 = cpu_now();
     for (std::size_t i = 0; i < no; ++i) {
       const TpxSimplex h{owned[i], 0, ia.stamp()};
       std::size_t len = 0;
@@ -323,6 +371,7 @@ int main(int argc, char **argv) {
       tp_cells[i] = static_cast<std::uint32_t>(len);
     }
     f[R03Loop] = now() - t;
+    f[R03LoopCpu] = cpu_now() - c0;
 
     // Topoplex: the full star (every simplex containing the vertex, the vertex left out).
     std::vector<TpxSimplex> star(256);
@@ -363,7 +412,9 @@ int main(int argc, char **argv) {
     for (std::size_t i = 0; i < no; ++i) {
       f[StarSum] += dm_size[i];
       f[CellSum] += dm_cells[i];
-      if (dm_cells[i] != tp_cells[i] || dm_size[i] != tp_star[i] + 1 || dm_size[i] != tp_rel[i] + 1) {
+      const bool equal = interpolate ? dm_cells[i] == tp_cells[i] && dm_size[i] == tp_star[i] + 1 && dm_size[i] == tp_rel[i] + 1
+                                     : dm_cells[i] == tp_cells[i] && dm_size[i] == dm_cells[i] + 1 && tp_star[i] == tp_rel[i];
+      if (!equal) {
         if (f[Mismatch] == 0) {
           std::fprintf(stderr, "rank %d: vertex %u (point %d): DMPlex star %u points, %u cells; Topoplex star %u + 1, R01+R02+R03 %u + 1, R03 %u\n",
                        rank, owned[i], static_cast<int>(owned_points[i]), dm_size[i], dm_cells[i], tp_star[i], tp_rel[i], tp_cells[i]);
@@ -396,33 +447,40 @@ int main(int argc, char **argv) {
     const bool over = size > static_cast<int>(sysconf(_SC_NPROCESSORS_ONLN));
     double hwm_max = 0;
     auto mb = [](double b) { return b / 1048576.0; };
-    std::printf("# grid %dx%dx%d cubes: %.4g simplices (%.4g tetrahedra), %d ranks%s, load %.2f\n",
+    std::printf("# %s: grid %dx%dx%d cubes: %.4g simplices (%.4g tetrahedra), %d ranks%s, %s DM, load %.2f\n", run.c_str(),
                 static_cast<int>(box.nx), static_cast<int>(box.ny), static_cast<int>(box.nz), box.simplices(), box.tets(),
-                size, over ? " (oversubscribed)" : "", load);
+                size, over ? " (oversubscribed)" : "", interpolate ? "interpolated" : "cell-vertex", load);
     for (int r = 0; r < size; ++r) {
       const double *a = &all[static_cast<std::size_t>(r) * NFields];
       mismatches += a[Mismatch];
       hwm_max = std::max(hwm_max, a[HwmBytes]);
       const double topo = a[DmTopoPetsc] > 0 ? a[DmTopoPetsc] : a[DmTopoHeap];
-      // (a) memory
-      std::printf("@a| %s | %d | %d | %.0f | %.0f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.3f | %.3f | %.3f |\n",
-                  run.c_str(), size, r, a[Tets], a[Points], mb(a[DmTopoPetsc]), mb(a[DmTopoHeap]), a[Tets] > 0 ? topo / a[Tets] : 0.0,
-                  mb(a[DmHeld]), mb(a[IaBytes]), mb(a[ComplexHeap]), mb(a[MapsBytes]), topo > 0 ? a[IaBytes] / topo : 0.0,
-                  topo > 0 ? (a[IaBytes] + a[ComplexHeap]) / topo : 0.0,
-                  topo > 0 ? (a[IaBytes] + a[ComplexHeap] + a[MapsBytes]) / topo : 0.0);
+      // (a) memory ("n/a": the topology was not rebuilt, -self_dm 0)
+      char ratios[128] = "n/a | n/a | n/a";
+      if (topo > 0) {
+        std::snprintf(ratios, sizeof ratios, "%.3f | %.3f | %.3f", a[IaBytes] / topo, (a[IaBytes] + a[ComplexHeap]) / topo,
+                      (a[IaBytes] + a[ComplexHeap] + a[MapsBytes]) / topo);
+      }
+      std::printf("@a| %s | %d | %d | %.0f | %.0f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %s |\n", run.c_str(), size, r,
+                  a[Tets], a[Points], mb(a[DmTopoPetsc]), mb(a[DmTopoHeap]), a[Tets] > 0 ? topo / a[Tets] : 0.0, mb(a[DmHeld]),
+                  mb(a[IaBytes]), mb(a[ComplexHeap]), mb(a[MapsBytes]), ratios);
       // (b) conversion
-      std::printf("@b| %s | %d | %d | %.0f | %.3f | %.3f | %.2f | %.2f |\n", run.c_str(), size, r, a[Tets], a[FromDm], a[IaBuild],
-                  a[Tets] / a[FromDm] / 1e6, a[Tets] / (a[FromDm] + a[IaBuild]) / 1e6);
+      std::printf("@b| %s | %d | %d | %.0f | %.3f | %.3f | %.3f | %.3f | %.2f | %.2f | %.2f |\n", run.c_str(), size, r, a[Tets],
+                  a[FromDm], a[FromDmCpu], a[FromArrays], a[IaBuild], a[Tets] / a[FromDm] / 1e6, a[Tets] / a[FromDmCpu] / 1e6,
+                  a[Tets] / (a[FromDm] + a[IaBuild]) / 1e6);
       // (c) stars
-      std::printf("@c| %s | %d | %d | %.0f | %.4f | %.4f | %.4f | %.4f | %.1f | %.1f | %.1f | %.0f | %.0f | %s |\n", run.c_str(),
-                  size, r, a[OwnedVertices], a[DmLoop], a[R03Loop], a[RelLoop], a[StarLoop], a[DmLoop] / a[R03Loop],
-                  a[DmLoop] / a[RelLoop], a[DmLoop] / a[StarLoop], a[StarSum], a[CellSum], a[Mismatch] == 0 ? "yes" : "NO");
+      std::printf("@c| %s | %d | %d | %.0f | %.4f | %.4f | %.4f | %.4f | %.1f | %.1f | %.1f | %.1f | %.0f | %.0f | %s |\n",
+                  run.c_str(), size, r, a[OwnedVertices], a[DmLoop], a[R03Loop], a[RelLoop], a[StarLoop], a[DmLoop] / a[R03Loop],
+                  a[DmLoopCpu] / a[R03LoopCpu], a[DmLoop] / a[RelLoop], a[DmLoop] / a[StarLoop], a[StarSum], a[CellSum],
+                  a[Mismatch] == 0 ? "yes" : "NO");
       // (d)/(e) phases and peak
       std::printf("@d| %s | %d%s | %d | %.0f | %.0f | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.0f |\n", run.c_str(), size,
                   over ? " (over)" : "", r, a[Points], a[Tets], a[Create], a[Distribute], a[FromDm], a[IaBuild], a[DmLoop],
                   a[R03Loop], mb(a[HwmBytes]));
+      std::printf("@e| %s | %d | %d | %.0f | %.0f | %.0f | %.0f | %.0f | %.0f |\n", run.c_str(), size, r, a[Tets],
+                  mb(a[HwmCreate]), mb(a[HwmDistribute]), mb(a[HwmSelf]), mb(a[HwmConvert]), mb(a[HwmBytes]));
     }
-    std::printf("@e| %s | %d | %.4g | %.0f | load %.2f |\n", run.c_str(), size, box.simplices(), mb(hwm_max), load);
+    std::printf("@s| %s | %d | %.4g | %.0f | %.0f | %.2f |\n", run.c_str(), size, box.simplices(), box.tets(), mb(hwm_max), load);
   }
   MPI_Bcast(&mismatches, 1, MPI_DOUBLE, 0, PETSC_COMM_WORLD);
   PetscCall(PetscFinalize());
