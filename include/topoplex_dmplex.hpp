@@ -91,9 +91,12 @@ struct ImportOptions {
  * table from sorted vertex ids to points (8 to 16 B per point with vertices): see bytes(). */
 class RankMesh {
  public:
-  /* Collective on the DM's communicator (global vertex numbering). Cost: O(points x closure)
-   * for the walk, plus Complex::from_arrays on the tops. Throws Error NotSimplicial naming the
-   * first non-simplicial cell, Refused for a point in two strata of one label. */
+  /* Collective on the DM's communicator (global vertex numbering). Cost: O(points): a fully
+   * interpolated simplicial DM is read stratum by stratum (each point's vertices from its cone,
+   * its cone orientations and its faces' vertices: a few PETSc calls per point); any other DM
+   * walks each top's and each vertex-bearing point's transitive closure (depth-1 points: the
+   * cone). Plus Complex::from_arrays on the tops. Throws Error NotSimplicial naming the first
+   * non-simplicial cell, Refused for a point in two strata of one label. */
   static RankMesh from_dm(DM dm, const ImportOptions &options = {});
 
   /* A rank with no point (a serial DM's other ranks, a tiny mesh on many ranks) has no complex:
