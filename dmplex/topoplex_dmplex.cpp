@@ -86,7 +86,7 @@ std::size_t RankMesh::slot_of(const std::vector<PetscInt> &slots, const std::uin
   std::uint32_t other[4] = {0, 0, 0, 0};
   while (slots[i] >= 0) {
     const std::size_t ip = static_cast<std::size_t>(slots[i]);
-    const std::uint64_t a = simplex_offsets_[ip], b = simplex_offsets_[ip + 1];
+    const auto [a, b] = layout_.range(ip, p_start_);
     if (b - a == n) {
       sorted_key(&simplex_ids_[a], n, other);
       if (std::equal(key, key + n, other)) return i;
@@ -176,7 +176,7 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   };
   const bool fast_closure = interp == DMPLEX_INTERPOLATED_FULL && depth <= 3;
   std::vector<std::uint32_t> vs;
-  std::vector<std::uint64_t> simplex_offsets(npoints + 1, 0);
+  Layout layout;
   std::vector<std::uint32_t> simplex_ids;
   simplex_ids.reserve(3 * npoints);
   std::vector<PetscInt> tops;
@@ -201,11 +201,34 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
       const PetscInt d = depth_of(p);
       if ((d == 0 && nc != 0) || (d > 0 && nc != d + 1)) return false;
       is_top[ip] = support == 0;
-      simplex_offsets[ip + 1] = static_cast<std::uint64_t>(d + 1);
     }
-    for (std::size_t ip = 0; ip < npoints; ++ip) simplex_offsets[ip + 1] += simplex_offsets[ip];
-    simplex_ids.assign(simplex_offsets[npoints], 0);
-    auto stored = [&](PetscInt q) { return &simplex_ids[simplex_offsets[static_cast<std::size_t>(q - pStart)]]; };
+    // The strata in chart order, each a contiguous range of points with d + 1 vertices.
+    std::vector<Layout::Stratum> strata;
+    for (PetscInt d = 0; d <= depth; ++d) {
+      const std::size_t k = static_cast<std::size_t>(d);
+      if (stratum_end[k] > stratum_start[k]) {
+        strata.push_back({stratum_start[k], stratum_end[k], 0, static_cast<std::uint64_t>(d + 1)});
+      }
+    }
+    std::sort(strata.begin(), strata.end(),
+              [](const Layout::Stratum &a, const Layout::Stratum &b) { return a.start < b.start; });
+    std::uint64_t total = 0;
+    PetscInt next = pStart;
+    for (Layout::Stratum &st : strata) {
+      if (st.start != next) return false;
+      st.base = total;
+      total += static_cast<std::uint64_t>(st.end - st.start) * st.width;
+      next = st.end;
+    }
+    if (next != pEnd) return false;
+    std::vector<std::uint64_t> base_of(static_cast<std::size_t>(depth) + 1, 0);
+    for (const Layout::Stratum &st : strata) base_of[st.width - 1] = st.base;
+    simplex_ids.assign(total, 0);
+    // Point q of depth dq's vertices.
+    auto stored_at = [&](PetscInt q, PetscInt dq) {
+      const std::size_t k = static_cast<std::size_t>(dq);
+      return &simplex_ids[base_of[k] + static_cast<std::uint64_t>(q - stratum_start[k]) * static_cast<std::uint64_t>(dq + 1)];
+    };
     auto in_stratum = [&](PetscInt q, PetscInt d) {
       return q >= stratum_start[static_cast<std::size_t>(d)] && q < stratum_end[static_cast<std::size_t>(d)];
     };
@@ -218,7 +241,7 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
       const PetscInt e0 = cone[arr[0]], e1 = cone[arr[2]];
       if (!in_stratum(e0, 1) || !in_stratum(e1, 1)) return false;
       const PetscInt co = DMPolytopeTypeComposeOrientation(DM_POLYTOPE_SEGMENT, arr[1], ornt[arr[0]]);
-      const std::uint32_t *a = stored(e0), *b = stored(e1);
+      const std::uint32_t *a = stored_at(e0, 1), *b = stored_at(e1, 1);
       out[0] = co == 0 ? a[0] : a[1];
       out[1] = co == 0 ? a[1] : a[0];
       out[2] = b[0] == a[0] || b[0] == a[1] ? b[1] : b[0];
@@ -226,7 +249,7 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
     };
     for (PetscInt d = 0; d <= depth; ++d) {
       for (PetscInt p = stratum_start[static_cast<std::size_t>(d)]; p < stratum_end[static_cast<std::size_t>(d)]; ++p) {
-        std::uint32_t *out = stored(p);
+        std::uint32_t *out = stored_at(p, d);
         if (d == 0) {
           out[0] = static_cast<std::uint32_t>(p - vStart);
           continue;
@@ -244,18 +267,20 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
         } else {
           TPX_PETSC(DMPlexGetConeOrientation(dm, p, &ornt));
           if (!triangle(cone[0], ornt[0], out)) return false;
-          const std::uint32_t *g = stored(cone[1]);
+          const std::uint32_t *g = stored_at(cone[1], 2);
           for (int k = 0; k < 3; ++k) {
             if (g[k] != out[0] && g[k] != out[1] && g[k] != out[2]) out[3] = g[k];
           }
         }
       }
     }
+    layout.strata = std::move(strata);
     for (PetscInt p = pStart; p < pEnd; ++p) {
       const std::size_t ip = static_cast<std::size_t>(p - pStart);
       if (!is_top[ip]) continue;
-      std::uint32_t *v = &simplex_ids[simplex_offsets[ip]];
-      const std::size_t nv = simplex_offsets[ip + 1] - simplex_offsets[ip];
+      const auto [a, b] = layout.range(ip, pStart);
+      std::uint32_t *v = &simplex_ids[a];
+      const std::size_t nv = b - a;
       if (nv == 4) std::swap(v[0], v[1]);  // petsc_winding
       tops.push_back(p);
       ids.insert(ids.end(), v, v + nv);
@@ -265,7 +290,9 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   };
   if (!fast_fill()) {
   simplex_ids.clear();
-  std::fill(simplex_offsets.begin(), simplex_offsets.end(), 0);
+  layout.strata.clear();
+  layout.offsets.assign(npoints + 1, 0);
+  std::vector<std::uint64_t> &simplex_offsets = layout.offsets;
   for (PetscInt p = pStart; p < pEnd; ++p) {
     const std::size_t ip = static_cast<std::size_t>(p - pStart);
     PetscInt support = 0;
@@ -388,7 +415,7 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
       const PetscInt p = pv.first;
       const std::size_t ip = static_cast<std::size_t>(p - pStart);
       if ((p >= vStart && p < vEnd) || point_listing[ip] != UINT32_MAX) continue;
-      const std::uint64_t a = simplex_offsets[ip], b = simplex_offsets[ip + 1];
+      const auto [a, b] = layout.range(ip, pStart);
       if (a == b) continue;  // not a simplex here (non-interpolated face)
       point_listing[ip] = static_cast<std::uint32_t>(listed_point.size());
       listed_point.push_back(p);
@@ -499,7 +526,7 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   }
   TPX_PETSC(ISRestoreIndices(numbering, &gn));
 
-  out.simplex_offsets_ = std::move(simplex_offsets);
+  out.layout_ = std::move(layout);
   out.simplex_ids_ = std::move(simplex_ids);
   return out;
 }
@@ -508,15 +535,19 @@ const std::vector<PetscInt> &RankMesh::point_slots() const {
   PointTable &t = *table_;
   std::call_once(t.once, [&] {
     // The first point of a vertex set wins.
-    const std::size_t npoints = simplex_offsets_.size() - 1;
+    const std::size_t npoints = static_cast<std::size_t>(p_end_ - p_start_);
     std::size_t entries = 0;
-    for (std::size_t ip = 0; ip < npoints; ++ip) entries += simplex_offsets_[ip + 1] != simplex_offsets_[ip];
+    for (std::size_t ip = 0; ip < npoints; ++ip) {
+      const auto [a, b] = layout_.range(ip, p_start_);
+      entries += a != b;
+    }
     std::size_t cap = 16;
     while (cap < 2 * entries) cap *= 2;
     t.slots.assign(cap, -1);
     std::uint32_t key[4] = {0, 0, 0, 0};
     for (std::size_t ip = 0; ip < npoints; ++ip) {
-      const std::uint64_t a = simplex_offsets_[ip], n = simplex_offsets_[ip + 1] - a;
+      const auto [a, b] = layout_.range(ip, p_start_);
+      const std::uint64_t n = b - a;
       if (n == 0 || !sorted_key(&simplex_ids_[a], n, key)) continue;
       const std::size_t slot = slot_of(t.slots, key, n);
       if (t.slots[slot] < 0) t.slots[slot] = static_cast<PetscInt>(ip);
@@ -529,7 +560,8 @@ const std::vector<PetscInt> &RankMesh::point_slots() const {
 std::size_t RankMesh::bytes() const noexcept {
   return vertex_point_.capacity() * sizeof(PetscInt) + listed_point_.capacity() * sizeof(PetscInt) +
          point_listing_.capacity() * sizeof(std::uint32_t) + point_owner_.capacity() * sizeof(int) +
-         global_vertex_.capacity() * sizeof(PetscInt) + simplex_offsets_.capacity() * sizeof(std::uint64_t) +
+         global_vertex_.capacity() * sizeof(PetscInt) + layout_.offsets.capacity() * sizeof(std::uint64_t) +
+         layout_.strata.capacity() * sizeof(Layout::Stratum) +
          simplex_ids_.capacity() * sizeof(std::uint32_t) +
          (table_ && table_->built.load(std::memory_order_acquire) ? table_->slots.capacity() * sizeof(PetscInt) : 0);
 }
@@ -591,7 +623,7 @@ std::vector<std::uint32_t> RankMesh::simplex_of_point(PetscInt p) const {
                                            std::to_string(p_start_) + ", " + std::to_string(p_end_) + ")");
   }
   const std::size_t ip = static_cast<std::size_t>(p - p_start_);
-  const std::uint64_t a = simplex_offsets_[ip], b = simplex_offsets_[ip + 1];
+  const auto [a, b] = layout_.range(ip, p_start_);
   if (a == b) {
     throw Error(Code::InvalidArgument, "point " + std::to_string(p) +
                                            " is a face of a non-interpolated DM: no vertices kept");

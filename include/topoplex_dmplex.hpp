@@ -176,9 +176,30 @@ class RankMesh {
   std::vector<std::uint32_t> point_listing_; /* point - p_start -> listing (UINT32_MAX: none) */
   std::vector<int> point_owner_;            /* point - p_start -> owner rank */
   std::vector<PetscInt> global_vertex_;     /* v -> global number */
-  /* Point p's vertices: simplex_ids_[simplex_offsets_[p - p_start] .. [p - p_start + 1]]
-   * (closure order, tops in Topoplex winding; empty for faces of a non-interpolated DM). */
-  std::vector<std::uint64_t> simplex_offsets_;
+  /* Where point p's vertices are in simplex_ids_ (closure order, tops in Topoplex winding; none
+   * for faces of a non-interpolated DM). A fully interpolated simplicial DM, whose strata are
+   * contiguous ranges of points with depth + 1 vertices each: at base + (p - start) x width of
+   * p's stratum, no per-point offset; any other DM: offsets[p - p_start] .. [p - p_start + 1]. */
+  struct Layout {
+    struct Stratum {
+      PetscInt start, end;
+      std::uint64_t base, width;
+    };
+    std::vector<Stratum> strata; /* by start, covering the chart; empty: offsets */
+    std::vector<std::uint64_t> offsets;
+    std::pair<std::uint64_t, std::uint64_t> range(std::size_t ip, PetscInt p_start) const noexcept {
+      if (strata.empty()) return {offsets[ip], offsets[ip + 1]};
+      const PetscInt p = p_start + static_cast<PetscInt>(ip);
+      for (const Stratum &st : strata) {
+        if (p < st.end) {
+          const std::uint64_t a = st.base + static_cast<std::uint64_t>(p - st.start) * st.width;
+          return {a, a + st.width};
+        }
+      }
+      return {0, 0};
+    }
+  };
+  Layout layout_;
   std::vector<std::uint32_t> simplex_ids_;
   std::unique_ptr<PointTable> table_ = std::make_unique<PointTable>();
 };
