@@ -86,9 +86,10 @@ struct ImportOptions {
 
 /* One rank's part of a DMPlex as a Topoplex complex, with the maps between DM points and
  * Topoplex ids and each simplex's owner. Memory: the complex, plus per local point an owner
- * (4 B), a listing index (4 B), an offset (8 B) and its vertex ids (4 B each) in flat arrays,
- * per vertex its point and global number (8 B), and once point_of or owner is first called, a
- * table from sorted vertex ids to points (8 to 16 B per point with vertices): see bytes(). */
+ * (4 B), a listing index (4 B) and its vertex ids (4 B each) in flat arrays (plus an 8 B offset
+ * unless the DM is fully interpolated and simplicial), per vertex its point and global number
+ * (8 B), and once point_of or owner is first called, a table from sorted vertex ids to points
+ * (8 to 16 B per point with vertices): see bytes(). */
 class RankMesh {
  public:
   /* Collective on the DM's communicator (global vertex numbering). Cost: O(points): a fully
