@@ -116,8 +116,10 @@ rows b
 header "(c) every owned vertex's star: Topoplex (IA) against DMPlexGetTransitiveClosure(useCone = PETSC_FALSE)"
 echo "Counts equal: closure size = |star| + 1 and cells in the closure = |R_{0,3}|, vertex by vertex (a cell-vertex DM's closure holds the vertex and its cells only: there the cells are compared, and tpx_star with R01+R02+R03). Aim: >= 5x."
 echo
-echo "| run | ranks | rank | owned vertices | DMPlex s | R03 s | R01+R02+R03 s | tpx_star s | R03 speed-up | R03 speed-up (CPU) | R01..R03 speed-up | tpx_star speed-up | closure points | cells | equal |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "Views: R_{0,1}, R_{0,2}, R_{0,3} lent as CSR by Structure::view (the IA stores none: their indices are built once, 'views build s', holding 'views MiB'), the stars then read inline."
+echo
+echo "| run | ranks | rank | owned vertices | DMPlex s | R03 s | R01+R02+R03 s | tpx_star s | views build s | views star s | views MiB | R03 speed-up | R03 speed-up (CPU) | R01..R03 speed-up | tpx_star speed-up | views star speed-up | closure points | cells | equal |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 rows c
 
 header "(d) phases per rank (weak scaling: the 'weak' runs, $WEAK simplices per rank)"
