@@ -498,8 +498,9 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
     if (any_listed) out.complex_->set_attribute(lv.name, Location::Listed, 1, at_listed);
   }
 
-  // Owners from the point SF: leaves are ghosts owned by their root's rank.
-  out.point_owner_.assign(npoints, rank);
+  // Owners from the point SF: leaves are ghosts owned by their root's rank; every other point is
+  // this rank's. Only the ghosts are kept, sorted by point.
+  std::vector<std::pair<PetscInt, int>> ghosts;
   PetscSF sf;
   TPX_PETSC(DMGetPointSF(dm, &sf));
   PetscInt nroots = -1, nleaves = 0;
@@ -509,8 +510,16 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   if (nroots >= 0) {
     for (PetscInt i = 0; i < nleaves; ++i) {
       const PetscInt p = ilocal ? ilocal[i] : i;
-      if (p >= pStart && p < pEnd) out.point_owner_[static_cast<std::size_t>(p - pStart)] = static_cast<int>(iremote[i].rank);
+      if (p >= pStart && p < pEnd) ghosts.emplace_back(p, static_cast<int>(iremote[i].rank));
     }
+  }
+  std::sort(ghosts.begin(), ghosts.end());
+  out.ghost_point_.reserve(ghosts.size());
+  out.ghost_owner_.reserve(ghosts.size());
+  for (const auto &g : ghosts) {
+    if (!out.ghost_point_.empty() && out.ghost_point_.back() == g.first) continue;
+    out.ghost_point_.push_back(g.first);
+    out.ghost_owner_.push_back(g.second);
   }
 
   // Global vertex numbers (collective).
@@ -559,7 +568,7 @@ const std::vector<PetscInt> &RankMesh::point_slots() const {
 
 std::size_t RankMesh::bytes() const noexcept {
   return vertex_point_.capacity() * sizeof(PetscInt) + listed_point_.capacity() * sizeof(PetscInt) +
-         point_listing_.capacity() * sizeof(std::uint32_t) + point_owner_.capacity() * sizeof(int) +
+         point_listing_.capacity() * sizeof(std::uint32_t) + ghost_point_.capacity() * sizeof(PetscInt) + ghost_owner_.capacity() * sizeof(int) +
          global_vertex_.capacity() * sizeof(PetscInt) + layout_.offsets.capacity() * sizeof(std::uint64_t) +
          layout_.strata.capacity() * sizeof(Layout::Stratum) +
          simplex_ids_.capacity() * sizeof(std::uint32_t) +
@@ -637,7 +646,8 @@ int RankMesh::point_owner(PetscInt p) const {
     throw Error(Code::InvalidArgument, "point " + std::to_string(p) + " outside the chart [" +
                                            std::to_string(p_start_) + ", " + std::to_string(p_end_) + ")");
   }
-  return point_owner_[static_cast<std::size_t>(p - p_start_)];
+  const auto it = std::lower_bound(ghost_point_.begin(), ghost_point_.end(), p);
+  return it != ghost_point_.end() && *it == p ? ghost_owner_[static_cast<std::size_t>(it - ghost_point_.begin())] : rank_;
 }
 
 int RankMesh::owner(const StructureView &s, const std::vector<std::uint32_t> &simplex) const {

@@ -86,7 +86,7 @@ struct ImportOptions {
 
 /* One rank's part of a DMPlex as a Topoplex complex, with the maps between DM points and
  * Topoplex ids and each simplex's owner. Memory: the complex, plus per local point an owner
- * (4 B), a listing index (4 B) and its vertex ids (4 B each) in flat arrays (plus an 8 B offset
+ * only for ghosts (12 B each), a listing index (4 B) and its vertex ids (4 B each) in flat arrays (plus an 8 B offset
  * unless the DM is fully interpolated and simplicial), per vertex its point and global number
  * (8 B), and once point_of or owner is first called, a table from sorted vertex ids to points
  * (8 to 16 B per point with vertices): see bytes(). */
@@ -130,7 +130,7 @@ class RankMesh {
   /* The vertices of point p's closure, in Topoplex winding for tops. */
   std::vector<std::uint32_t> simplex_of_point(PetscInt p) const;
 
-  /* ---- ownership ---- */
+  /* ---- ownership (point_owner: O(log ghosts), a search among the point SF's leaves) ---- */
   int point_owner(PetscInt p) const;
   int vertex_owner(std::uint32_t v) const { return point_owner(point_of_vertex(v)); }
   bool vertex_owned(std::uint32_t v) const { return vertex_owner(v) == rank_; }
@@ -175,7 +175,8 @@ class RankMesh {
   std::vector<PetscInt> vertex_point_;      /* v -> point */
   std::vector<PetscInt> listed_point_;      /* listing -> point */
   std::vector<std::uint32_t> point_listing_; /* point - p_start -> listing (UINT32_MAX: none) */
-  std::vector<int> point_owner_;            /* point - p_start -> owner rank */
+  std::vector<PetscInt> ghost_point_;       /* the point SF's leaves here, ascending */
+  std::vector<int> ghost_owner_;            /* their owners (root ranks); other points: rank_ */
   std::vector<PetscInt> global_vertex_;     /* v -> global number */
   /* Where point p's vertices are in simplex_ids_ (closure order, tops in Topoplex winding; none
    * for faces of a non-interpolated DM). A fully interpolated simplicial DM, whose strata are
