@@ -474,7 +474,12 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   out.vertex_point_.resize(static_cast<std::size_t>(vEnd - vStart));
   for (PetscInt v = vStart; v < vEnd; ++v) out.vertex_point_[static_cast<std::size_t>(v - vStart)] = v;
   out.listed_point_ = std::move(listed_point);
-  out.point_listing_ = std::move(point_listing);
+  out.top_listings_ = tops.size();
+  // The listings after the tops (labelled faces), by point, for listing_of_point.
+  for (std::size_t i = out.top_listings_; i < out.listed_point_.size(); ++i) {
+    out.extra_listing_.emplace_back(out.listed_point_[i], static_cast<std::uint32_t>(i));
+  }
+  std::sort(out.extra_listing_.begin(), out.extra_listing_.end());
 
   // Attributes from the labels.
   const std::size_t nlisted = out.listed_point_.size();
@@ -488,7 +493,7 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
         at_vertices[static_cast<std::size_t>(p - vStart)] = value;
         any_vertex = true;
       }
-      const std::uint32_t i = out.point_listing_[static_cast<std::size_t>(p - pStart)];
+      const std::uint32_t i = point_listing[static_cast<std::size_t>(p - pStart)];
       if (i != UINT32_MAX) {
         at_listed[i] = value;
         any_listed = true;
@@ -568,7 +573,7 @@ const std::vector<PetscInt> &RankMesh::point_slots() const {
 
 std::size_t RankMesh::bytes() const noexcept {
   return vertex_point_.capacity() * sizeof(PetscInt) + listed_point_.capacity() * sizeof(PetscInt) +
-         point_listing_.capacity() * sizeof(std::uint32_t) + ghost_point_.capacity() * sizeof(PetscInt) + ghost_owner_.capacity() * sizeof(int) +
+         extra_listing_.capacity() * sizeof(std::pair<PetscInt, std::uint32_t>) + ghost_point_.capacity() * sizeof(PetscInt) + ghost_owner_.capacity() * sizeof(int) +
          global_vertex_.capacity() * sizeof(PetscInt) + layout_.offsets.capacity() * sizeof(std::uint64_t) +
          layout_.strata.capacity() * sizeof(Layout::Stratum) +
          simplex_ids_.capacity() * sizeof(std::uint32_t) +
@@ -614,8 +619,12 @@ PetscInt RankMesh::point_of_listing(std::size_t i) const {
 
 std::size_t RankMesh::listing_of_point(PetscInt p) const {
   if (p < p_start_ || p >= p_end_) return NO_LISTING;
-  const std::uint32_t i = point_listing_[static_cast<std::size_t>(p - p_start_)];
-  return i == UINT32_MAX ? NO_LISTING : i;
+  // Tops: the first top_listings_ listings, in ascending point order.
+  const auto tops_end = listed_point_.begin() + static_cast<std::ptrdiff_t>(top_listings_);
+  const auto it = std::lower_bound(listed_point_.begin(), tops_end, p);
+  if (it != tops_end && *it == p) return static_cast<std::size_t>(it - listed_point_.begin());
+  const auto e = std::lower_bound(extra_listing_.begin(), extra_listing_.end(), std::make_pair(p, std::uint32_t(0)));
+  return e != extra_listing_.end() && e->first == p ? e->second : NO_LISTING;
 }
 
 PetscInt RankMesh::point_of(std::vector<std::uint32_t> simplex) const {

@@ -42,6 +42,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace topoplex {
@@ -85,11 +86,11 @@ struct ImportOptions {
 };
 
 /* One rank's part of a DMPlex as a Topoplex complex, with the maps between DM points and
- * Topoplex ids and each simplex's owner. Memory: the complex, plus per local point an owner
- * only for ghosts (12 B each), a listing index (4 B) and its vertex ids (4 B each) in flat arrays (plus an 8 B offset
- * unless the DM is fully interpolated and simplicial), per vertex its point and global number
- * (8 B), and once point_of or owner is first called, a table from sorted vertex ids to points
- * (8 to 16 B per point with vertices): see bytes(). */
+ * Topoplex ids and each simplex's owner. Memory: the complex, plus per local point its vertex
+ * ids (4 B each) in flat arrays (plus an 8 B offset unless the DM is fully interpolated and
+ * simplicial), per listing its point (4 B), per ghost point its owner (8 B), per vertex its
+ * point and global number (8 B), and once point_of or owner is first called, a table from
+ * sorted vertex ids to points (8 to 16 B per point with vertices): see bytes(). */
 class RankMesh {
  public:
   /* Collective on the DM's communicator (global vertex numbering). Cost: O(points): a fully
@@ -122,7 +123,7 @@ class RankMesh {
   /* Listing i of the complex (tops in point order, then labelled non-top points) and back. */
   std::size_t listing_count() const noexcept { return listed_point_.size(); }
   PetscInt point_of_listing(std::size_t i) const;
-  std::size_t listing_of_point(PetscInt p) const; /* NO_LISTING when p is not listed */
+  std::size_t listing_of_point(PetscInt p) const; /* NO_LISTING when p is not listed; O(log listed) */
   /* The point whose closure's vertices are `simplex` (vertex ids, any order): NO_POINT for a
    * simplex that is no point (faces of a non-interpolated DM) or not in the complex. The first
    * call builds the table from vertex ids to points (O(points)); then a hash probe. */
@@ -174,7 +175,8 @@ class RankMesh {
   PetscInt p_start_ = 0, p_end_ = 0, v_start_ = 0, v_end_ = 0;
   std::vector<PetscInt> vertex_point_;      /* v -> point */
   std::vector<PetscInt> listed_point_;      /* listing -> point */
-  std::vector<std::uint32_t> point_listing_; /* point - p_start -> listing (UINT32_MAX: none) */
+  std::size_t top_listings_ = 0;            /* listings 0 .. top_listings_: the tops, ascending points */
+  std::vector<std::pair<PetscInt, std::uint32_t>> extra_listing_; /* (point, listing) of the others, by point */
   std::vector<PetscInt> ghost_point_;       /* the point SF's leaves here, ascending */
   std::vector<int> ghost_owner_;            /* their owners (root ranks); other points: rank_ */
   std::vector<PetscInt> global_vertex_;     /* v -> global number */
