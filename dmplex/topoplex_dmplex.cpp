@@ -192,16 +192,6 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   // vertex of its second face that is missing. False (nothing filled) when the DM is not such a DM.
   auto fast_fill = [&]() -> bool {
     if (!fast_closure) return false;
-    std::vector<char> is_top(npoints);
-    for (PetscInt p = pStart; p < pEnd; ++p) {
-      const std::size_t ip = static_cast<std::size_t>(p - pStart);
-      PetscInt support = 0, nc = 0;
-      TPX_PETSC(DMPlexGetSupportSize(dm, p, &support));
-      TPX_PETSC(DMPlexGetConeSize(dm, p, &nc));
-      const PetscInt d = depth_of(p);
-      if ((d == 0 && nc != 0) || (d > 0 && nc != d + 1)) return false;
-      is_top[ip] = support == 0;
-    }
     // The strata in chart order, each a contiguous range of points with d + 1 vertices.
     std::vector<Layout::Stratum> strata;
     for (PetscInt d = 0; d <= depth; ++d) {
@@ -221,6 +211,18 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
       next = st.end;
     }
     if (next != pEnd) return false;
+    // Every point's cone size must be a simplex's (vertices none); tops have no support.
+    std::vector<char> is_top(npoints);
+    for (const Layout::Stratum &st : strata) {
+      const PetscInt want = static_cast<PetscInt>(st.width) == 1 ? 0 : static_cast<PetscInt>(st.width);
+      for (PetscInt p = st.start; p < st.end; ++p) {
+        PetscInt support = 0, nc = 0;
+        TPX_PETSC(DMPlexGetSupportSize(dm, p, &support));
+        TPX_PETSC(DMPlexGetConeSize(dm, p, &nc));
+        if (nc != want) return false;
+        is_top[static_cast<std::size_t>(p - pStart)] = support == 0;
+      }
+    }
     std::vector<std::uint64_t> base_of(static_cast<std::size_t>(depth) + 1, 0);
     for (const Layout::Stratum &st : strata) base_of[st.width - 1] = st.base;
     simplex_ids.assign(total, 0);
@@ -274,18 +276,18 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
         }
       }
     }
-    layout.strata = std::move(strata);
-    for (PetscInt p = pStart; p < pEnd; ++p) {
-      const std::size_t ip = static_cast<std::size_t>(p - pStart);
-      if (!is_top[ip]) continue;
-      const auto [a, b] = layout.range(ip, pStart);
-      std::uint32_t *v = &simplex_ids[a];
-      const std::size_t nv = b - a;
-      if (nv == 4) std::swap(v[0], v[1]);  // petsc_winding
-      tops.push_back(p);
-      ids.insert(ids.end(), v, v + nv);
-      offsets.push_back(ids.size());
+    // The tops, in ascending points (the strata are sorted by their first point).
+    for (const Layout::Stratum &st : strata) {
+      for (PetscInt p = st.start; p < st.end; ++p) {
+        if (!is_top[static_cast<std::size_t>(p - pStart)]) continue;
+        std::uint32_t *v = &simplex_ids[st.base + static_cast<std::uint64_t>(p - st.start) * st.width];
+        if (st.width == 4) std::swap(v[0], v[1]);  // petsc_winding
+        tops.push_back(p);
+        ids.insert(ids.end(), v, v + st.width);
+        offsets.push_back(ids.size());
+      }
     }
+    layout.strata = std::move(strata);
     return true;
   };
   if (!fast_fill()) {
