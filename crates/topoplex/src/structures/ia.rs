@@ -41,7 +41,10 @@
 //! - R_{0,d}: walk the star of v from its component references through R_{d,d} across facets
 //!   containing v: O(d·n_v) — optimal (survey §3: the extension exists for this).
 //! - R_{0,q}, 0 < q < d: the same walk, then the q-faces through v of each d-simplex, dedup:
-//!   O(C(d, q)·n_v), linear in the output up to a factor depending on d only — optimal.
+//!   O(C(d, q)·n_v), linear in the output up to a factor depending on d only — optimal. As
+//!   dense indices (handles, `related_ids`): one walk; edges deduplicated by their other vertex,
+//!   (d−1)-faces given by the d-simplex of smaller id on their two sides (no dedup), each answer
+//!   then found among the lazy table's rows sharing its first vertex (see `super::nav`).
 //! - R_{0,0}: the walk, the other vertices of each d-simplex, dedup: O(d·n_v) — optimal.
 //! - R_{p,q}, 0 < p < q: walk the whole star of v and keep the d-simplices containing σ (the star
 //!   of σ need not be (d−1)-connected through faces containing σ — a pinched edge — so walking
@@ -571,6 +574,60 @@ impl IndexedAdjacency {
         true
     }
 
+    /// R_{0,q} of vertex `v`, 0 < q < d, as dense q-indices (rows of the lazy q-table), each
+    /// once, from one walk of the star of `v`: edges named by their other vertex and
+    /// deduplicated by it (first met first); for q = d − 1 > 1 a face through v is given by the
+    /// d-simplex on its side with the smaller id (a (d−1)-face lies in at most two
+    /// d-simplices, both in the star of v: no set needed), in walk order; other q through a row
+    /// set. Each answer is found among the table's rows that share its first vertex.
+    /// O(C(d, q)·n_v) plus a short search per answer.
+    fn vertex_cofaces(&self, v: u32, q: usize, mut found: impl FnMut(u32)) {
+        let (d, w) = (self.d, self.d + 1);
+        let table = self.lazy_table(q);
+        let mut id =
+            |row: &[u32]| found(table.find(row).expect("a face of a d-simplex is a simplex"));
+        let mut seen = IdSet::default();
+        if q == 1 {
+            let mut others = IdSet::default();
+            self.walk_star(v, &mut seen, |_, t| {
+                for &x in t.iter().filter(|&&x| x != v) {
+                    if others.insert(x) {
+                        id(&[x.min(v), x.max(v)]);
+                    }
+                }
+                true
+            });
+        } else if q + 1 == d {
+            let mut row = [0u32; MAX_DIMENSION + 1];
+            self.walk_star(v, &mut seen, |t, verts| {
+                for (i, &x) in verts.iter().enumerate() {
+                    let u = self.adj[t as usize * w + i];
+                    if x != v && (u == NONE || u > t) {
+                        let mut k = 0;
+                        for (j, &y) in verts.iter().enumerate() {
+                            if j != i {
+                                row[k] = y;
+                                k += 1;
+                            }
+                        }
+                        id(&row[..d]);
+                    }
+                }
+                true
+            });
+        } else {
+            let mut set = RowSet::default();
+            self.walk_star(v, &mut seen, |_, t| {
+                faces_containing(t, &[v], q, |f| {
+                    if set.insert(f) {
+                        id(f);
+                    }
+                });
+                true
+            });
+        }
+    }
+
     /// Whether some d-simplex contains σ (ascending, p > 0), by walking the star of σ's first
     /// vertex.
     fn in_some_top(&self, sigma: &[u32]) -> bool {
@@ -591,12 +648,14 @@ impl NavBase for IndexedAdjacency {
     // The same walks with no call per answer (R_{d,d}, R_{0,d}; d ≥ 1), same order as
     // `fast_visit`.
     fn has_fast(&self, p: usize, q: usize) -> bool {
-        self.d > 0 && q == self.d && (p == self.d || p == 0)
+        self.d > 0 && ((q == self.d && p == self.d) || (p == 0 && q >= 1))
     }
 
-    fn fast_into(&self, p: usize, i: u32, _q: usize, ids: &mut Vec<u32>) {
+    fn fast_into(&self, p: usize, i: u32, q: usize, ids: &mut Vec<u32>) {
         if p == self.d {
             ids.extend(self.neighbours(i).iter().filter(|&&u| u != NONE));
+        } else if q < self.d {
+            self.vertex_cofaces(i, q, |x| ids.push(x));
         } else {
             let mut seen = IdSet::default();
             self.walk_star(i, &mut seen, |t, _| {
@@ -640,6 +699,7 @@ impl NavBase for IndexedAdjacency {
                     true
                 });
             }
+            (0, q) => self.vertex_cofaces(sigma[0], q, |x| visit(SimplexHandle::dense(q, x))),
             _ => return None,
         }
         Some(Ok(()))

@@ -10,18 +10,22 @@
 //!   to number them; top d-simplices are the d-simplices, so need no table;
 //! - lazily, per dimension p the structure does not store, the lexicographic table of the
 //!   p-simplices (built from [`Topology::simplices`] on the first request that needs it:
-//!   O(n_p log n_p) time, (p + 1)·n_p integers);
+//!   O(n_p log n_p) time, (p + 1)·n_p integers) with, per vertex, its first row among the rows
+//!   that start with it (n_0 + 1 integers: a row is then searched among the rows sharing its
+//!   first vertex, not in the whole table);
 //! - lazily, per relation R_{p,q} a caller asks to be lent ([`Navigate::relation_view`]) and the
 //!   structure does not store as a CSR, its index: `n_p + 1` offsets and every answer, 4 bytes
 //!   each, built by one walk over every p-simplex on the first request.
 //!
 //! # Cost of each operation (on top of the structure's own relation cost)
-//! - `locate`: validation, then binary search in the p-table: O(p log n_p); vertices O(1).
+//! - `locate`: validation, then binary search in the p-table: O(p log n_p) in a stored table,
+//!   O(p log r) in a lazy one (r rows share the simplex's first vertex); vertices O(1).
 //! - `vertices_of`: O(p) (a table row). `top`, `top_id`: O(1) for d-simplices, O(p log t_p)
 //!   below d (t_p top p-simplices).
 //! - `visit`: a structure's fast walk when it has one (answers are handles directly); otherwise
 //!   the structure's vertex-id relation into a per-thread scratch buffer, then each answer row
-//!   located in its table, O(q log n_q) per answer. No allocation once the scratch is warm.
+//!   located in its table, O(q log n_q) per answer (O(q log r) in a lazy table, as `locate`).
+//!   No allocation once the scratch is warm.
 //! - `related_ids`, `related_batch`: where the structure has a loop for (p, q)
 //!   ([`NavBase::fast_into`]: TS, PE, LE, DE for VV, VF, FF; the IG for R_{p,p±1} and R_{0,0};
 //!   the IA for R_{d,d} and R_{0,d}) the answers are appended with no call per answer and the
@@ -88,9 +92,61 @@ pub struct NavIndex {
     /// Top p-simplices for p < d, lexicographic.
     low_tops: Vec<SimplexTable>,
     /// Lexicographic p-tables of the dimensions the structure does not store.
-    lazy: [OnceLock<SimplexTable>; MAX_DIMENSION + 1],
+    lazy: [OnceLock<LazyTable>; MAX_DIMENSION + 1],
     /// Relation indexes built for [`Navigate::relation_view`], slot `p (d + 1) + q`.
     views: OnceLock<Box<[OnceLock<Csr>]>>,
+}
+
+/// A lazily built lexicographic p-table and, per vertex v, the first row starting with v
+/// (`first[v] .. first[v + 1]` are the rows whose smallest vertex is v).
+#[derive(Debug, Clone, Default)]
+#[doc(hidden)]
+pub struct LazyTable {
+    table: SimplexTable,
+    first: Vec<u32>,
+}
+
+impl LazyTable {
+    /// The table of `rows` (ascending, distinct rows of p + 1 ids below `n`) and its per-vertex
+    /// starts: O(rows + n).
+    fn new(p: usize, n: u32, rows: Vec<u32>) -> LazyTable {
+        let table = SimplexTable::from_sorted_unique(p + 1, rows);
+        // Rows are ascending: the last one has the largest first vertex.
+        let n = table
+            .len()
+            .checked_sub(1)
+            .map_or(n, |r| n.max(table.get(r)[0] + 1));
+        let mut first = vec![0u32; n as usize + 1];
+        for row in table.iter() {
+            first[row[0] as usize + 1] += 1;
+        }
+        for v in 0..n as usize {
+            first[v + 1] += first[v];
+        }
+        LazyTable { table, first }
+    }
+
+    /// Row index of `s` (ascending ids), searched among the rows sharing its first vertex.
+    pub(crate) fn find(&self, s: &[u32]) -> Option<u32> {
+        let v = s[0] as usize;
+        if s.len() != self.table.arity() || v + 1 >= self.first.len() {
+            return None;
+        }
+        let (mut lo, mut hi) = (self.first[v] as usize, self.first[v + 1] as usize);
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            match self.table.get(mid)[1..].cmp(&s[1..]) {
+                std::cmp::Ordering::Less => lo = mid + 1,
+                std::cmp::Ordering::Greater => hi = mid,
+                std::cmp::Ordering::Equal => return Some(mid as u32),
+            }
+        }
+        None
+    }
+
+    fn heap_bytes(&self) -> usize {
+        self.table.heap_bytes() + 4 * self.first.capacity()
+    }
 }
 
 /// `NavBase` for a structure with a `nav: NavIndex` field and no fast path of its own: the
@@ -204,7 +260,7 @@ impl NavIndex {
                 .lazy
                 .iter()
                 .filter_map(OnceLock::get)
-                .map(SimplexTable::heap_bytes)
+                .map(LazyTable::heap_bytes)
                 .sum::<usize>()
             + self.views.get().map_or(0, |v| {
                 v.len() * std::mem::size_of::<OnceLock<Csr>>()
@@ -288,10 +344,16 @@ pub trait NavBase: Topology {
         if let Some(t) = self.stored_table(p) {
             return t;
         }
+        &self.lazy_table(p).table
+    }
+
+    /// The lazy p-table (p ≥ 1, not stored), built on first use.
+    #[doc(hidden)]
+    fn lazy_table(&self, p: usize) -> &LazyTable {
         self.nav().lazy[p].get_or_init(|| {
             let mut rows = Vec::new();
             self.simplices(p, &mut rows);
-            SimplexTable::from_sorted_unique(p + 1, rows)
+            LazyTable::new(p, self.vertex_count(), rows)
         })
     }
 }
@@ -312,7 +374,11 @@ fn find<T: NavBase + ?Sized>(t: &T, s: &[u32]) -> Option<SimplexHandle> {
     if p > t.dimension() {
         return None;
     }
-    t.table(p).find(s).map(|i| SimplexHandle::dense(p, i))
+    match t.stored_table(p) {
+        Some(table) => table.find(s),
+        None => t.lazy_table(p).find(s),
+    }
+    .map(|i| SimplexHandle::dense(p, i))
 }
 
 fn invalid(h: SimplexHandle, reason: &'static str) -> QueryError {
