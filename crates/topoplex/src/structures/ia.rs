@@ -44,7 +44,8 @@
 //!   O(C(d, q)·n_v), linear in the output up to a factor depending on d only — optimal. As
 //!   dense indices (handles, `related_ids`): one walk; edges deduplicated by their other vertex,
 //!   (d−1)-faces given by the d-simplex of smaller id on their two sides (no dedup), each answer
-//!   then found among the lazy table's rows sharing its first vertex (see `super::nav`).
+//!   then found among the lazy table's rows sharing its first vertex (see `super::nav`); the
+//!   star of a vertex (every dimension) from one walk.
 //! - R_{0,0}: the walk, the other vertices of each d-simplex, dedup: O(d·n_v) — optimal.
 //! - R_{p,q}, 0 < p < q: walk the whole star of v and keep the d-simplices containing σ (the star
 //!   of σ need not be (d−1)-connected through faces containing σ — a pinched edge — so walking
@@ -84,11 +85,11 @@ use crate::mapped::Arr;
 use rustc_hash::FxHashSet;
 use std::sync::atomic::Ordering;
 
-use super::common::{PairParts, too_large, try_push, try_table, try_vec};
+use super::common::{PairParts, Scratch, too_large, try_push, try_table, try_vec};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key, partition_point};
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable, is_subset};
-use crate::relation::handle::SimplexHandle;
+use crate::relation::handle::{Order, SimplexHandle};
 use crate::relation::{QueryError, Storage, StructureKind, Topology};
 
 const KIND: StructureKind = StructureKind::Ia;
@@ -581,25 +582,35 @@ impl IndexedAdjacency {
     /// d-simplices, both in the star of v: no set needed), in walk order; other q through a row
     /// set. Each answer is found among the table's rows that share its first vertex.
     /// O(C(d, q)·n_v) plus a short search per answer.
-    fn vertex_cofaces(&self, v: u32, q: usize, mut found: impl FnMut(u32)) {
+    fn vertex_cofaces(&self, v: u32, q: usize, found: impl FnMut(u32)) {
+        let mut star = Scratch::<Vec<u32>>::take();
+        star.clear();
+        self.walk_star(v, &mut IdSet::default(), |t, _| {
+            star.push(t);
+            true
+        });
+        self.cofaces_in(v, &star, q, found);
+    }
+
+    /// [`Self::vertex_cofaces`] over the d-simplices `star` of `v`, in walk order.
+    fn cofaces_in(&self, v: u32, star: &[u32], q: usize, mut found: impl FnMut(u32)) {
         let (d, w) = (self.d, self.d + 1);
         let table = self.lazy_table(q);
         let mut id =
             |row: &[u32]| found(table.find(row).expect("a face of a d-simplex is a simplex"));
-        let mut seen = IdSet::default();
+        let tops = star.iter().map(|&t| (t, self.tops.get(t as usize)));
         if q == 1 {
             let mut others = IdSet::default();
-            self.walk_star(v, &mut seen, |_, t| {
+            for (_, t) in tops {
                 for &x in t.iter().filter(|&&x| x != v) {
                     if others.insert(x) {
                         id(&[x.min(v), x.max(v)]);
                     }
                 }
-                true
-            });
+            }
         } else if q + 1 == d {
             let mut row = [0u32; MAX_DIMENSION + 1];
-            self.walk_star(v, &mut seen, |t, verts| {
+            for (t, verts) in tops {
                 for (i, &x) in verts.iter().enumerate() {
                     let u = self.adj[t as usize * w + i];
                     if x != v && (u == NONE || u > t) {
@@ -613,18 +624,16 @@ impl IndexedAdjacency {
                         id(&row[..d]);
                     }
                 }
-                true
-            });
+            }
         } else {
             let mut set = RowSet::default();
-            self.walk_star(v, &mut seen, |_, t| {
+            for (_, t) in tops {
                 faces_containing(t, &[v], q, |f| {
                     if set.insert(f) {
                         id(f);
                     }
                 });
-                true
-            });
+            }
         }
     }
 
@@ -649,6 +658,35 @@ impl NavBase for IndexedAdjacency {
     // `fast_visit`.
     fn has_fast(&self, p: usize, q: usize) -> bool {
         self.d > 0 && ((q == self.d && p == self.d) || (p == 0 && q >= 1))
+    }
+
+    // One walk of the star of v, then its q-faces through v for q = 1 .. d − 1 from the
+    // d-simplices met (the same answers and order as one walk per dimension).
+    fn fast_star(&self, v: u32, order: Order, out: &mut Vec<SimplexHandle>) -> bool {
+        let d = self.d;
+        if d == 0 {
+            return false;
+        }
+        let mut star = Scratch::<Vec<u32>>::take();
+        star.clear();
+        self.walk_star(v, &mut IdSet::default(), |t, _| {
+            star.push(t);
+            true
+        });
+        let sort = |out: &mut Vec<SimplexHandle>, start: usize| {
+            if order == Order::Lexicographic {
+                out[start..].sort_unstable();
+            }
+        };
+        for q in 1..d {
+            let start = out.len();
+            self.cofaces_in(v, &star, q, |x| out.push(SimplexHandle::dense(q, x)));
+            sort(out, start);
+        }
+        let start = out.len();
+        out.extend(star.iter().map(|&t| SimplexHandle::dense(d, t)));
+        sort(out, start);
+        true
     }
 
     fn fast_into(&self, p: usize, i: u32, q: usize, ids: &mut Vec<u32>) {

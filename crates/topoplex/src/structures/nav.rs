@@ -317,6 +317,13 @@ pub trait NavBase: Topology {
         None
     }
 
+    /// The star of vertex `v` (checked) into `out`: dimensions ascending, each in `order`,
+    /// the same answers and order as one [`NavBase::fast_visit`] per dimension, from one walk.
+    /// `false` (nothing written) when the structure has no such walk.
+    fn fast_star(&self, _v: u32, _order: Order, _out: &mut Vec<SimplexHandle>) -> bool {
+        false
+    }
+
     /// Whether [`NavBase::fast_into`] answers R_{p,q} (p, q ≤ d).
     fn has_fast(&self, _p: usize, _q: usize) -> bool {
         false
@@ -591,6 +598,23 @@ impl<T: NavBase> Navigate for T {
         }
         let c = slot.get().expect("set above");
         Ok(Some(RelationView::new(&c.offsets, &c.ids, true)))
+    }
+
+    fn star(
+        &self,
+        h: SimplexHandle,
+        order: Order,
+        out: &mut Vec<SimplexHandle>,
+    ) -> Result<(), QueryError> {
+        out.clear();
+        self.check(h)?;
+        if h.dim() == 0 && self.fast_star(h.index(), order, out) {
+            return Ok(());
+        }
+        for q in h.dim() + 1..=self.dimension() {
+            append_in_order(out, order, |out| self.visit(h, q, &mut |x| out.push(x)))?;
+        }
+        Ok(())
     }
 
     fn visit(
