@@ -379,6 +379,18 @@ impl LiveData {
         Some(x.values.row(v, x.components))
     }
 
+    /// Sets the row of vertex attribute `name` for vertex slot `v` from `f64`s; false when
+    /// there is no such attribute or the row has the wrong length.
+    pub(super) fn set_vertex_row(&mut self, name: &str, v: usize, row: &[f64]) -> bool {
+        match self.vertex.iter_mut().find(|x| x.name == name) {
+            Some(x) if x.components == row.len() => {
+                x.values.set_row_f64(v, row);
+                true
+            }
+            _ => false,
+        }
+    }
+
     /// The policy for vertex attributes at a contraction.
     pub(super) fn set_policy(&mut self, policy: VertexPolicy) {
         self.policy = policy;
@@ -463,6 +475,19 @@ impl LiveComplex {
     ) -> Result<Option<Values>, super::Refusal> {
         self.check_vertex(v.0)?;
         Ok(self.data.vertex_row(name, v.index()))
+    }
+
+    /// Sets the row of vertex attribute `name` for live vertex `v` (numbers as `f64`, rounded
+    /// to the attribute's type, as [`LiveComplex::set_top_values`]); false when there is no
+    /// such attribute or `row` has the wrong number of components. O(attributes).
+    pub fn set_vertex_values(
+        &mut self,
+        name: &str,
+        v: super::VertexId,
+        row: &[f64],
+    ) -> Result<bool, super::Refusal> {
+        self.check_vertex(v.0)?;
+        Ok(self.data.set_vertex_row(name, v.index(), row))
     }
 
     /// The index of listed attribute `name` when it holds integer labels (for
