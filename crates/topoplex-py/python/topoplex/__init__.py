@@ -147,19 +147,33 @@ def _csr(simplices: Any, name: str = "simplices") -> Tuple[np.ndarray, np.ndarra
             blocks = [np.asarray(b) for b in simplices]
             blocks = [b.reshape(1, -1) if b.ndim == 1 and b.size else b for b in blocks]
     ids_parts: List[np.ndarray] = []
-    sizes: List[np.ndarray] = []
+    shapes: List[Tuple[int, int]] = []
     for b in blocks:
         if b.ndim == 1 and b.size == 0:
             continue
         if b.ndim != 2:
             raise InputError(f"{name}: each block must be an (n, k) array, got shape {b.shape}")
+        if b.shape[1] == 0 and b.shape[0] > 0:
+            raise InputError(f"{name}: a block of {b.shape[0]} simplices with no vertex")
         ids_parts.append(_ids(b, name).reshape(-1))
-        sizes.append(np.full(b.shape[0], b.shape[1], dtype=np.uintp))
+        shapes.append(b.shape)
     if not ids_parts:
         return np.zeros(0, np.uint32), np.zeros(1, np.uintp)
     ids = ids_parts[0] if len(ids_parts) == 1 else np.concatenate(ids_parts)
-    offsets = np.zeros(sum(s.size for s in sizes) + 1, dtype=np.uintp)
-    np.cumsum(np.concatenate(sizes), out=offsets[1:])
+    # The offsets of each block are an arithmetic run (one array, no temporaries for a single
+    # block: what the Rust caller of Complex::from_arrays holds beside its ids).
+    if len(shapes) == 1:
+        m, k = shapes[0]
+        offsets = np.arange(0, m * k + 1, k, dtype=np.uintp) if k else np.zeros(1, np.uintp)
+    else:
+        offsets = np.empty(sum(m for m, _ in shapes) + 1, dtype=np.uintp)
+        offsets[0] = 0
+        row = start = 0
+        for m, k in shapes:
+            if m:
+                offsets[row + 1 : row + m + 1] = np.arange(start + k, start + m * k + 1, k, dtype=np.uintp)
+            row += m
+            start += m * k
     return np.ascontiguousarray(ids), offsets
 
 
