@@ -105,6 +105,24 @@ fn open_fail(e: topoplex::store::OpenError) -> Fail {
     }
 }
 
+/// A saved file that cannot be opened or is malformed is a `ReadError`; memory it asks for that
+/// cannot be had (a mapping, a copy, a build) is a `TopoplexMemoryError`.
+fn store_fail(e: topoplex::store::StoreError) -> Fail {
+    use topoplex::ComplexError as C;
+    use topoplex::store::StoreError as S;
+    match &e {
+        S::Complex {
+            source: C::TooLarge { .. } | C::OutOfMemory { .. },
+            ..
+        }
+        | S::Build {
+            source: topoplex::BuildError::TooLarge { .. },
+            ..
+        } => Fail::Memory(e.to_string()),
+        _ => Fail::Read(e.to_string()),
+    }
+}
+
 fn kind_of(name: &str) -> Result<StructureKind, Fail> {
     StructureKind::from_name(name).ok_or_else(|| {
         let names: Vec<&str> = StructureKind::NAMED.iter().map(|k| k.name()).collect();
@@ -220,7 +238,7 @@ fn open_saved(py: Python<'_>, path: &std::path::Path) -> PyResult<(Saved, Option
         .map_err(|e| Fail::Read(format!("{}: {e}", path.display())))?;
     let saved = py
         .detach(|| Saved::open_file(path, &file))
-        .map_err(|e| Fail::Read(e.to_string()))?;
+        .map_err(store_fail)?;
     #[cfg(unix)]
     let map = {
         use std::os::fd::AsRawFd;
@@ -245,9 +263,7 @@ fn saved_complex(
     saved: &Saved,
     map: Option<Py<PyAny>>,
 ) -> PyResult<(Complex, Option<Arc<Lent>>)> {
-    let (c, spans) = py
-        .detach(|| saved.complex_spans())
-        .map_err(|e| Fail::Read(e.to_string()))?;
+    let (c, spans) = py.detach(|| saved.complex_spans()).map_err(store_fail)?;
     Ok((c, map.map(|map| Arc::new(Lent { map, spans }))))
 }
 
@@ -1491,7 +1507,7 @@ fn stats_dict<'py>(py: Python<'py>, s: &topoplex::simplify::Stats) -> PyResult<B
 #[pyo3(signature = (path, kind=None))]
 fn _open(py: Python<'_>, path: PathBuf, kind: Option<&str>) -> PyResult<Py<PyAny>> {
     let kind = kind.map(kind_of).transpose()?;
-    let read = |e: topoplex::store::StoreError| Fail::Read(e.to_string());
+    let read = store_fail;
     let (saved, map) = open_saved(py, &path)?;
     let (complex, lent) = saved_complex(py, &saved, map)?;
     let structure = py.detach(|| {
