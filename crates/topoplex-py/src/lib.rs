@@ -1317,6 +1317,15 @@ impl PyStructure {
         vec2(py, out, p + 1)
     }
 
+    /// Keeps the facet adjacency across edits (built now, then repaired by each edit), or,
+    /// with `keep=False`, builds it on request and drops it at each edit (the default).
+    #[pyo3(signature = (keep=true))]
+    fn keep_adjacency(&mut self, py: Python<'_>, keep: bool) -> PyResult<()> {
+        let l = self.live_mut()?;
+        py.detach(|| l.keep_adjacency(keep)).map_err(build_fail)?;
+        Ok(())
+    }
+
     /// Simplifies the live mesh in place to about `ratio` of its top simplices (quadric
     /// decimation); returns the statistics.
     #[pyo3(signature = (ratio, preserve_topology=false, keep_regions=None))]

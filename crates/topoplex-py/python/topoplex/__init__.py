@@ -571,6 +571,13 @@ class Structure:
         """
         return self._s._adjacency(p)
 
+    def keep_adjacency(self, keep: bool = True) -> None:
+        """Keeps :meth:`adjacency`'s index across edits (built now, then repaired by each
+        insert, removal, contraction and split around what it changed: O(1) to ask for after
+        an edit, each edit a little dearer), or with ``keep=False`` goes back to building it
+        on request and dropping it at each edit (the default)."""
+        self._s.keep_adjacency(keep)
+
     def vertex_values(self, name: str, vertices: Any = None) -> np.ndarray:
         """The rows of vertex attribute ``name`` (in its own dtype; shape (n,) for one
         component, else (n, components)) for the live vertices ``vertices`` (ids; default:
