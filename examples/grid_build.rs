@@ -1,6 +1,7 @@
 //! The Rust side of scripts/bench_py.py's build benchmark: makes the triangles of a K×K grid of
 //! squares (2K² triangles, the same rows in the same order as the script's numpy array) in
-//! memory, then times `Complex::from_arrays` and, with a KIND, the structure's build on it, and
+//! memory, then times `Complex::from_uniform` (`from_arrays` without offsets: one array of
+//! rows of 3, as a numpy (n, 3) array lies) and, with a KIND, the structure's build on it, and
 //! reports the peak resident memory of those calls: VmHWM read after resetting it
 //! (`/proc/self/clear_refs`) once the input is made, so the input's making is not counted
 //! but the input itself is. Linux only for the memory (0 elsewhere). A measuring tool, not a
@@ -43,16 +44,15 @@ fn main() {
             ids.extend_from_slice(&[a, a + 1, a + w + 1, a, a + w + 1, a + w]);
         }
     }
-    let offsets: Vec<usize> = (0..=ids.len() / 3).map(|t| 3 * t).collect();
     // The peak from here on: the input is resident, its making forgotten.
     let _ = std::fs::write("/proc/self/clear_refs", "5");
     let before = status_bytes("VmRSS:");
     let t = Instant::now();
-    let c = topoplex::Complex::from_arrays(w * w, &ids, &offsets, None).expect("complex");
+    let c = topoplex::Complex::from_uniform(w * w, 3, &ids, None).expect("complex");
     let complex_s = t.elapsed().as_secs_f64();
     let mut line = format!(
         "triangles {} rss_before_bytes {before} complex_s {complex_s:.4}",
-        offsets.len() - 1
+        ids.len() / 3
     );
     if let Some(kind) = kind {
         let t = Instant::now();

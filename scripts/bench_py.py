@@ -2,7 +2,8 @@
 """The Python package's benchmarks (issue 28), side by side; a measuring script, not a test.
 
   build    Complex.from_arrays of a 10^7-triangle numpy array (a 2236×2236 grid of squares)
-           against the Rust call doing the same on the same rows in memory (examples/grid_build.rs):
+           against the Rust call doing the same on the same rows in memory (Complex::from_uniform,
+           examples/grid_build.rs):
            time and peak resident memory of the call, each side in fresh processes (best time,
            median peak of --runs); the peak is VmHWM after resetting it once the input is made,
            so the input is counted on both sides and its making on neither.
@@ -113,7 +114,7 @@ def bench_build(a, out):
         out.append(f"build: skipped, no Rust side at {rust} (cargo build --release --example grid_build)")
         return
     sides = {
-        "Rust Complex::from_arrays": [rust, str(k)],
+        "Rust Complex::from_uniform": [rust, str(k)],
         "Python Complex.from_arrays": [sys.executable, os.path.abspath(__file__), "--child-build", str(k)],
     }
     got = {}
@@ -121,7 +122,7 @@ def bench_build(a, out):
         rows = [parse(subprocess.run(cmd, check=True, capture_output=True, text=True).stdout)
                 for _ in range(a.runs)]
         got[name] = rows
-    out.append(f"### build: {int(got['Rust Complex::from_arrays'][0]['triangles']):,} triangles "
+    out.append(f"### build: {int(got['Rust Complex::from_uniform'][0]['triangles']):,} triangles "
                f"(a {k}×{k} grid), {a.runs} fresh processes per side\n")
     out.append("| side | best time | median peak RSS of the call (input included) | RSS before |")
     out.append("|---|---|---|---|")
@@ -130,14 +131,13 @@ def bench_build(a, out):
         peak = statistics.median(r["peak_bytes"] for r in rows)
         before = statistics.median(r["rss_before_bytes"] for r in rows)
         out.append(f"| {name} | {t:.3f} s | {mib(peak)} | {mib(before)} |")
-    r, p = got["Rust Complex::from_arrays"], got["Python Complex.from_arrays"]
+    r, p = got["Rust Complex::from_uniform"], got["Python Complex.from_arrays"]
     tr, tp = min(x["complex_s"] for x in r), min(x["complex_s"] for x in p)
-    # Each side's peak less its process's own baseline (the RSS before the call less the input:
-    # the interpreter, numpy and the module on Python's side): the input and what the call
-    # adds. The Rust input is the ids and the offsets Complex::from_arrays takes (8 bytes a
-    # row), the Python input the (n, 3) uint32 array alone (the binding makes the offsets).
+    # Each side's peak less its process's own baseline (the RSS before the call less the input,
+    # the same 12 bytes a triangle on both sides: what remains is the interpreter, numpy and the
+    # module on Python's side): the input and what the call adds.
     n = r[0]["triangles"]
-    inputs = {"r": 12 * n + 8 * (n + 1), "p": 12 * n}
+    inputs = {"r": 12 * n, "p": 12 * n}
     nr = statistics.median(x["peak_bytes"] - (x["rss_before_bytes"] - inputs["r"]) for x in r)
     np_ = statistics.median(x["peak_bytes"] - (x["rss_before_bytes"] - inputs["p"]) for x in p)
     out.append(f"\nPython / Rust: time {tp / tr:.3f}× (aim ≤ 1.05×); peak net of each process's own "

@@ -367,6 +367,31 @@ impl PyComplex {
         Ok(PyComplex::wrap(c))
     }
 
+    /// Builds from one block of simplices of `arity` vertices each: simplex i is
+    /// `ids[i*arity:(i+1)*arity]` (an (n, arity) array, flat), without offsets.
+    #[staticmethod]
+    #[pyo3(signature = (n_vertices, arity, ids, points=None))]
+    fn _from_uniform(
+        py: Python<'_>,
+        n_vertices: u32,
+        arity: usize,
+        ids: PyReadonlyArray1<'_, u32>,
+        points: Option<PyReadonlyArray2<'_, f64>>,
+    ) -> PyResult<PyComplex> {
+        let ids = ids.as_slice()?;
+        let coords = match &points {
+            Some(p) => Some(Coords {
+                dim: p.shape()[1],
+                data: p.as_slice()?.to_vec(),
+            }),
+            None => None,
+        };
+        let c = py
+            .detach(|| Complex::from_uniform(n_vertices, arity, ids, coords))
+            .map_err(complex_fail)?;
+        Ok(PyComplex::wrap(c))
+    }
+
     /// Reads a mesh file (by extension) or a saved `.tpx` file (its arrays then lent as
     /// read-only views into the file).
     #[staticmethod]

@@ -226,7 +226,9 @@ class Complex:
         """A complex from its simplices: one (n, k) integer array (n simplices of k vertices),
         a list of such arrays (one per size, or in any grouping), or a CSR pair
         ``(offsets, ids)``. ``points``: optional (n_vertices, dim) coordinates. The vertex
-        count is ``len(points)``, else ``n_vertices``, else the largest id + 1.
+        count is ``len(points)``, else ``n_vertices``, else the largest id + 1. One (n, k)
+        uint32 array is read in place as it lies (no offsets are made: the cost and memory of
+        the Rust call on the same array); other forms go through a CSR.
 
         >>> import numpy as np, topoplex
         >>> tris = np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32)
@@ -235,7 +237,13 @@ class Complex:
         >>> c.census()["simplices"], c.points.shape
         ([4, 5, 2], (4, 3))
         """
-        ids, offsets = _csr(simplices)
+        # One (n, k) numpy array is passed as it lies (no offsets: the Rust call the same
+        # array would make); anything else as a CSR.
+        uniform = isinstance(simplices, np.ndarray) and simplices.ndim == 2 and simplices.shape[1] > 0
+        if uniform:
+            ids, offsets = _ids(simplices, "simplices").reshape(-1), None
+        else:
+            ids, offsets = _csr(simplices)
         pts = None if points is None else _points(points)
         if pts is not None:
             n = pts.shape[0]
@@ -245,6 +253,8 @@ class Complex:
             n = int(ids.max()) + 1 if ids.size else 0
         if n < 0 or n > _U32_MAX:
             raise InputError(f"vertex count {n} does not fit in 32 bits")
+        if offsets is None:
+            return Complex(_core.Complex._from_uniform(n, simplices.shape[1], ids, pts))
         return Complex(_core.Complex._from_csr(n, ids, offsets, pts))
 
     @property
