@@ -323,6 +323,7 @@ fn cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
 /// Malformed data sections (issue 26): counts, types and values an attribute cannot hold, and
 /// data no reader keeps yet, each refused naming the line and the array.
 fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
+    let t = |s: &str| s.as_bytes().to_vec();
     let tri = "POINTS 3 double\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n";
     let vtk = |body: &str| {
         format!("# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n{tri}{body}")
@@ -501,6 +502,21 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             "data in the wrong place",
             "data-before.vtk",
             vtk("SCALARS region int 1\nLOOKUP_TABLE default\n1\n"),
+        ),
+        (
+            "partial data (refused: nothing holds \"no value\")",
+            "colour-partial.obj",
+            t("v 0 0 0 1 0 0\nv 1 0 0\np 1 2\n"),
+        ),
+        (
+            "data not held (refused, never skipped)",
+            "vt-unreferenced.obj",
+            t("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1 2 3\n"),
+        ),
+        (
+            "unknown node or element in data",
+            "vn-index.obj",
+            t("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n"),
         ),
         (
             "data not held (refused, never skipped)",
@@ -1098,6 +1114,12 @@ fn triangulate_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
                3 0.2 0.2 0\n4 0 1 0\n$EndNodes\n$Elements\n1\n1 3 2 7 1 1 2 3 4\n\
                $EndElements\n",
             ),
+        ),
+        (
+            "per-corner data on a polygon",
+            "flat-quad.obj",
+            t("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nvn 0 0 -1\n\
+               f 1//1 2//1 3//1 4//1\nf 1//2 4//2 3//2\n"),
         ),
         (
             "polygon in a format not fanned (refused as without the flag)",
