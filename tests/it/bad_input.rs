@@ -528,6 +528,23 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             ),
         ),
         (
+            "data not held (refused, never skipped)",
+            "fielddata.vtu",
+            vtu_with_field_data(),
+        ),
+        (
+            "data not held (refused, never skipped)",
+            "raw-appended.vtu",
+            t(
+                "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\">\n\
+               <UnstructuredGrid>\n<Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">\n<Points>\n\
+               <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" \
+               offset=\"0\"/>\n</Points>\n</Piece>\n</UnstructuredGrid>\n\
+               <AppendedData encoding=\"raw\">\n_\u{18}\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\n\
+               </AppendedData>\n</VTKFile>\n",
+            ),
+        ),
+        (
             "data too wide",
             "data-components.vtu",
             vtu(
@@ -564,6 +581,17 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             ),
         ),
     ]
+}
+
+/// A `.vtu` triangle with a `<FieldData>` array (a time value on the whole mesh).
+fn vtu_with_field_data() -> Vec<u8> {
+    let one = String::from_utf8(vtu(1, "", "")).unwrap();
+    one.replace(
+        "<UnstructuredGrid>\n",
+        "<UnstructuredGrid>\n<FieldData>\n<DataArray type=\"Float64\" Name=\"TIME\" \
+         NumberOfTuples=\"1\" format=\"ascii\">2.5</DataArray>\n</FieldData>\n",
+    )
+    .into_bytes()
 }
 
 /// A `.vtu` of `pieces` pieces, each a triangle; the first with `point` and `cell` data arrays.

@@ -618,9 +618,14 @@ mod tests {
     }
 
     fn field(r: &RawInput, name: &str, location: Location) -> (usize, Vec<u64>) {
-        let a = r.attributes.get(name, location).unwrap_or_else(|| panic!("no {name}"));
+        let a = r
+            .attributes
+            .get(name, location)
+            .unwrap_or_else(|| panic!("no {name}"));
         match &a.values {
-            crate::complex::Values::F64(v) => (a.components, v.iter().map(|x| x.to_bits()).collect()),
+            crate::complex::Values::F64(v) => {
+                (a.components, v.iter().map(|x| x.to_bits()).collect())
+            }
             v => panic!("{v:?}"),
         }
     }
@@ -655,8 +660,10 @@ mod tests {
     #[test]
     fn texture_and_normal_references_one_per_vertex_make_vertex_fields() {
         // vt statements in another order than the vertices, one vertex (4) in no element.
-        let r = ok("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nvt 0.5 0.25\nvt 1 0\nvt 0 1\n\
-                    vn 0 0 1\nf 1/2/1 2/1/1 3/3/1\nl 2/1 1/-2\n");
+        let r = ok(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nvt 0.5 0.25\nvt 1 0\nvt 0 1\n\
+                    vn 0 0 1\nf 1/2/1 2/1/1 3/3/1\nl 2/1 1/-2\n",
+        );
         let nan = f64::NAN;
         assert_eq!(
             field(&r, data::TEXTURE, Location::Vertices),
@@ -664,7 +671,10 @@ mod tests {
         );
         assert_eq!(
             field(&r, data::NORMAL, Location::Vertices),
-            (3, bits(&[0., 0., 1., 0., 0., 1., 0., 0., 1., nan, nan, nan]))
+            (
+                3,
+                bits(&[0., 0., 1., 0., 0., 1., 0., 0., 1., nan, nan, nan])
+            )
         );
         // A `vt` of 3 numbers widens the field; the others' `w` is 0.
         let r = ok("v 0 0 0\nv 1 0 0\nvt 1\nvt 2 3 4\nl 1/1 2/2\n");
@@ -707,9 +717,21 @@ mod tests {
             5,
             "relative vn index -2 reaches before the first `vn` (1 read so far)",
         );
-        err("v 0 0 0\nvn 0 0\n", 2, "2 numbers where `vn i j k` has them");
-        err("v 0 0 0\nvt 0 0 0 0\n", 2, "4 numbers where `vt u [v [w]]` has them");
-        err("v 0 0 0\nvt x\n", 2, "non-numeric token 'x' where a texture coordinate");
+        err(
+            "v 0 0 0\nvn 0 0\n",
+            2,
+            "2 numbers where `vn i j k` has them",
+        );
+        err(
+            "v 0 0 0\nvt 0 0 0 0\n",
+            2,
+            "4 numbers where `vt u [v [w]]` has them",
+        );
+        err(
+            "v 0 0 0\nvt x\n",
+            2,
+            "non-numeric token 'x' where a texture coordinate",
+        );
     }
 
     #[test]
@@ -721,16 +743,21 @@ mod tests {
             other => panic!("{other:?}"),
         }
         // One normal per vertex: fanned polygons keep it as a vertex field.
-        let r = parse_keeping("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n\
-                              f 1//1 2//1 3//1 4//1\n", true)
+        let r = parse_keeping(
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n\
+                              f 1//1 2//1 3//1 4//1\n",
+            true,
+        )
         .unwrap();
         assert_eq!(field(&r, data::NORMAL, Location::Vertices).0, 3);
     }
 
     #[test]
     fn negative_indices_are_relative() {
-        let r = ok("vt 0 0\nvn 0 0 1\nvn 0 1 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 0 0 1\n\
-                    f -1/-1 -2//-2 1\n");
+        let r = ok(
+            "vt 0 0\nvn 0 0 1\nvn 0 1 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 0 0 1\n\
+                    f -1/-1 -2//-2 1\n",
+        );
         assert_eq!(simplices(&r), [[0, 1, 2], [3, 2, 0]]);
     }
 

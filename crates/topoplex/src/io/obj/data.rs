@@ -73,7 +73,14 @@ impl Side {
         let mut row = [0.0; 3];
         let mut n = 0;
         while let Some((tok, _)) = s.token_in_line() {
-            let x = parse_f64(tok, if normal { "a normal" } else { "a texture coordinate" })?;
+            let x = parse_f64(
+                tok,
+                if normal {
+                    "a normal"
+                } else {
+                    "a texture coordinate"
+                },
+            )?;
             if let Some(slot) = row.get_mut(n) {
                 *slot = x;
             }
@@ -153,7 +160,8 @@ impl Side {
                 ));
             }
             let values = (0..n).flat_map(|i| row(i).iter().copied()).collect();
-            raw.attributes.insert(field(name, Location::Vertices, w, values));
+            raw.attributes
+                .insert(field(name, Location::Vertices, w, values));
             return Ok(());
         }
         if let Some(c) = self.corners.iter().find(|c| c.index >= n as u64) {
@@ -188,9 +196,12 @@ impl Side {
             let all = &self.values;
             let values = at
                 .iter()
-                .flat_map(|&i| (0..w).map(move |k| if i == NONE { f64::NAN } else { all[i * 3 + k] }))
+                .flat_map(|&i| {
+                    (0..w).map(move |k| if i == NONE { f64::NAN } else { all[i * 3 + k] })
+                })
                 .collect();
-            raw.attributes.insert(field(name, Location::Vertices, w, values));
+            raw.attributes
+                .insert(field(name, Location::Vertices, w, values));
             return Ok(());
         }
         if let Some(c) = self
@@ -212,7 +223,8 @@ impl Side {
             let start = (c.listed * 3 + c.corner) * w;
             values[start..start + w].copy_from_slice(row(c.index as usize));
         }
-        raw.attributes.insert(field(name, Location::Listed, 3 * w, values));
+        raw.attributes
+            .insert(field(name, Location::Listed, 3 * w, values));
         Ok(())
     }
 }
@@ -236,7 +248,12 @@ pub(super) struct Colors {
 impl Colors {
     /// Records the colour of a `v` statement on `line` (`numbers`: the statement's count of
     /// numbers, `tail` those after x y z).
-    pub(super) fn push(&mut self, numbers: usize, tail: &[f64], line: u32) -> Result<(), ReadErrorKind> {
+    pub(super) fn push(
+        &mut self,
+        numbers: usize,
+        tail: &[f64],
+        line: u32,
+    ) -> Result<(), ReadErrorKind> {
         let w = match numbers {
             6 | 7 => numbers - 3,
             _ => 0,
@@ -254,13 +271,15 @@ impl Colors {
                 has(first)
             )));
         }
-        table::try_extend(&mut self.values, &tail[..w]).map_err(super::no_room("the vertex colours"))
+        table::try_extend(&mut self.values, &tail[..w])
+            .map_err(super::no_room("the vertex colours"))
     }
 
     /// The `obj:color` attribute, when the `v` lines have colours.
     pub(super) fn finish(self, raw: &mut RawInput) {
         if let Some((w @ 3.., _)) = self.width {
-            raw.attributes.insert(field(COLOR, Location::Vertices, w, self.values));
+            raw.attributes
+                .insert(field(COLOR, Location::Vertices, w, self.values));
         }
     }
 }

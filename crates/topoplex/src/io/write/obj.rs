@@ -64,7 +64,11 @@ fn side<'a>(raw: &'a RawInput, k: usize) -> Result<Side<'a>, String> {
                 return Err(format!(
                     "attribute {}: vertex {x} has a value but no {} lists it, so no reference                      would tie it back",
                     a.describe(),
-                    if k == 0 { "triangle or edge" } else { "triangle" }
+                    if k == 0 {
+                        "triangle or edge"
+                    } else {
+                        "triangle"
+                    }
                 ));
             }
             Ok(Side::Vertices(v, a.components))
@@ -103,7 +107,9 @@ fn write_side(raw: &RawInput, side: Side<'_>, k: usize, out: &mut super::Out) {
     };
     match side {
         Side::None => {}
-        Side::Vertices(v, w) => (0..v.len() / w.max(1)).for_each(|x| line(out, &v[x * w..(x + 1) * w])),
+        Side::Vertices(v, w) => {
+            (0..v.len() / w.max(1)).for_each(|x| line(out, &v[x * w..(x + 1) * w]))
+        }
         Side::Corners(v, w) => {
             for i in 0..raw.simplex_count() {
                 for c in 0..raw.simplex(i).len().min(3) {
