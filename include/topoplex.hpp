@@ -19,8 +19,10 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <iterator>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -1764,9 +1766,31 @@ class Live {
     detail::fill(out, tpx_live_vertex_values, l_.get(), name.c_str(), v);
     return out;
   }
-  /* What later contractions do to the survivor's vertex values. */
+  /* What later contractions do to the survivor's vertex values (replaces a merge). */
   void set_vertex_policy(VertexPolicy policy) {
     detail::check(tpx_live_set_vertex_policy(l_.get(), static_cast<std::uint32_t>(policy)));
+    merge_.reset();
+  }
+  /* Sets the values of vertex attribute `name` on live vertex v (as many numbers as its
+   * components; rounded to its type, labels exact integers). Throws TPX_STATUS_NO_SUCH_ATTRIBUTE,
+   * TPX_STATUS_INVALID_ARGUMENT, TPX_STATUS_DEAD_VERTEX; nothing changes then. */
+  void set_vertex_values(const std::string &name, std::uint32_t v,
+                         const std::vector<double> &values) {
+    detail::check(
+        tpx_live_set_vertex_values(l_.get(), name.c_str(), v, values.data(), values.size()));
+  }
+  /* The caller's merge at a contraction {a, b} -> a: merge(name, a, b, row_a, row_b, components)
+   * once per vertex attribute before the contraction, changing a's row in place (rounded to the
+   * attribute's type); the split restores it. Held by this Live (moves with it) until
+   * set_vertex_policy or another merge. It must not throw: an exception cannot cross the C ABI,
+   * so one escaping it ends the program (std::terminate). */
+  using VertexMerge = std::function<void(const std::string &name, std::uint32_t a,
+                                         std::uint32_t b, double *row_a, const double *row_b,
+                                         std::size_t components)>;
+  void set_vertex_merge(VertexMerge merge) {
+    auto held = std::make_unique<VertexMerge>(std::move(merge));
+    detail::check(tpx_live_set_vertex_merge(l_.get(), &Live::call_merge, held.get()));
+    merge_ = std::move(held);
   }
 
   /* ---- handles: the same navigation as Structure (see tpx_live_structure) ----
@@ -1959,7 +1983,13 @@ class Live {
   }
 
   explicit Live(TpxLive *l) noexcept : l_(l) {}
+  static void call_merge(void *user, const char *name, std::uint32_t a, std::uint32_t b,
+                         double *row_a, const double *row_b, std::size_t components) noexcept {
+    (*static_cast<VertexMerge *>(user))(name, a, b, row_a, row_b, components);
+  }
   detail::Owned<TpxLive, tpx_live_free> l_;
+  /* The merge set_vertex_merge handed to the C ABI (its address stays put when Live moves). */
+  std::unique_ptr<VertexMerge> merge_;
 };
 static_assert(detail::move_only<Live>, "Live: a move-only owner");
 

@@ -564,6 +564,47 @@ TEST(Wrapper, AttributesAreTypedSpansAndSurviveWriteAndLive) {
   EXPECT_EQ(c.attributes().size(), 1u);
 }
 
+/* A std::function merge at contractions: called per vertex attribute with a, b and both rows,
+ * a's row left as it makes it (checked against the rows before), the split restores it; it
+ * moves with the Live; set_vertex_values sets one vertex's row; the policy replaces the merge. */
+TEST(Wrapper, LiveVertexMergeIsACallersFunctionAndSplitRestores) {
+  Complex c = fixture();
+  std::vector<double> velocity;
+  for (int i = 0; i < 12; ++i) velocity.push_back(0.5 * i - 1.0);
+  c.set_attribute("velocity", topoplex::Location::Vertices, 2, velocity);
+  c.set_attribute("material", topoplex::Location::Vertices, 1,
+                  std::vector<std::int32_t>{10, 11, 12, 13, 14, 15});
+  std::vector<std::string> seen;
+  topoplex::Live first(c);
+  first.set_vertex_merge([&seen](const std::string &name, std::uint32_t a, std::uint32_t b,
+                                 double *row_a, const double *row_b, std::size_t k) {
+    seen.push_back(name + " " + std::to_string(a) + "<-" + std::to_string(b));
+    for (std::size_t i = 0; i < k; ++i) {
+      row_a[i] = name == "material" ? std::max(row_a[i], row_b[i]) : row_a[i] - row_b[i];
+    }
+  });
+  topoplex::Live live = std::move(first);  // the merge moves with it
+  {
+    const topoplex::Undo u = live.contract(4, 5, topoplex::ContractMode::Free);
+    EXPECT_EQ(seen, (std::vector<std::string>{"velocity 4<-5", "material 4<-5"}));
+    EXPECT_EQ(live.vertex_values("velocity", 4),
+              (std::vector<double>{velocity[8] - velocity[10], velocity[9] - velocity[11]}));
+    EXPECT_EQ(live.vertex_values("material", 4), std::vector<double>{15.0});
+    live.split(u);
+  }
+  EXPECT_EQ(live.vertex_values("velocity", 4), (std::vector<double>{velocity[8], velocity[9]}));
+  live.set_vertex_values("velocity", 1, {3.0, 4.0});
+  EXPECT_EQ(live.vertex_values("velocity", 1), (std::vector<double>{3.0, 4.0}));
+  EXPECT_EQ(status_of([&] { live.set_vertex_values("velocity", 1, {3.0}); }),
+            TPX_STATUS_INVALID_ARGUMENT);
+  EXPECT_EQ(status_of([&] { live.set_vertex_values("material", 1, {0.5}); }),
+            TPX_STATUS_INVALID_ARGUMENT);
+  live.set_vertex_policy(topoplex::VertexPolicy::Survivor);
+  live.contract(4, 5, topoplex::ContractMode::Free);
+  EXPECT_EQ(seen.size(), 2u);
+  EXPECT_EQ(live.vertex_values("velocity", 4), (std::vector<double>{velocity[8], velocity[9]}));
+}
+
 }  // namespace
 
 // A square written as one quadrilateral: refused as read, naming the polygon; fanned from its
