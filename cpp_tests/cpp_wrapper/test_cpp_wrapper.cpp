@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -603,6 +604,87 @@ TEST(Wrapper, LiveVertexMergeIsACallersFunctionAndSplitRestores) {
   live.contract(4, 5, topoplex::ContractMode::Free);
   EXPECT_EQ(seen.size(), 2u);
   EXPECT_EQ(live.vertex_values("velocity", 4), (std::vector<double>{velocity[8], velocity[9]}));
+}
+
+/* The live tops of every dimension as (sorted vertices, packed id). */
+std::vector<std::pair<Ids, std::uint32_t>> live_tops(const topoplex::Live &live) {
+  std::vector<std::pair<Ids, std::uint32_t>> out;
+  for (std::uint32_t p = 1; p <= 3; ++p) {
+    const auto rows = live.top_simplices(p);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      Ids s(rows[i].begin(), rows[i].end());
+      const std::uint32_t id = live.top_id(live.locate(s));
+      std::sort(s.begin(), s.end());
+      out.emplace_back(s, id);
+    }
+  }
+  return out;
+}
+
+/* User properties per vertex and per top, against a brute force keyed by the original vertex
+ * ids: values follow their slots through a contraction, its split, a removal and an
+ * insertion, and compact() moves them with the renumbering it returns; a new top reads the
+ * initial value; names and types are checked. */
+TEST(Wrapper, UserPropertiesFollowTheirSlotsThroughEditsAndCompact) {
+  topoplex::Live live(fixture());
+  auto name = live.add_vertex_property<std::string>("name", "none");
+  auto weight = live.add_top_property<double>("weight", -1.0);
+  std::map<Ids, double> want;  // by original vertex ids
+  for (std::uint32_t v = 0; v < 6; ++v) live.property(name, v) = "v" + std::to_string(v);
+  for (const auto &t : live_tops(live)) {
+    double w = 0.5;
+    for (std::uint32_t v : t.first) w += 1.5 * v;
+    live.property(weight, t.second) = w;
+    want[t.first] = w;
+  }
+  EXPECT_THROW(live.add_vertex_property<int>("name"), std::invalid_argument);
+  EXPECT_THROW(live.vertex_property<int>("name"), std::invalid_argument);
+  EXPECT_THROW(live.top_property<double>("absent"), std::invalid_argument);
+  EXPECT_EQ(live.property(live.vertex_property<std::string>("name"), 3), "v3");
+  {
+    const topoplex::Undo u = live.contract(2, 3, topoplex::ContractMode::Free);
+    EXPECT_EQ(live.property(name, 2), "v2");  // the survivor's, untouched
+    live.split(u);
+  }
+  for (const auto &t : live_tops(live)) EXPECT_EQ(live.property(weight, t.second), want.at(t.first));
+  // 4 into 5: the triangle [2 3 4] becomes [2 3 5] in its slot, the edge goes, vertex 4 dies.
+  live.contract(5, 4, topoplex::ContractMode::Free);
+  want[Ids{2, 3, 5}] = want.at(Ids{2, 3, 4});
+  want.erase(Ids{2, 3, 4});
+  want.erase(Ids{4, 5});
+  for (const auto &t : live_tops(live)) EXPECT_EQ(live.property(weight, t.second), want.at(t.first));
+  // A new triangle after a removed one: compact() moves it down a slot.
+  live.insert_top({0, 1, 5});
+  live.remove_top({2, 3, 5});
+  want.erase(Ids{2, 3, 5});
+  const std::vector<std::uint32_t> map = live.compact();
+  EXPECT_EQ(map[4], UINT32_MAX);
+  EXPECT_EQ(map[5], 4u);
+  std::vector<std::uint32_t> old(live.vertex_slots(), UINT32_MAX);
+  for (std::uint32_t v = 0; v < map.size(); ++v) {
+    if (map[v] != UINT32_MAX) old[map[v]] = v;
+  }
+  for (std::uint32_t w = 0; w < live.vertex_slots(); ++w) {
+    EXPECT_EQ(live.property(name, w), "v" + std::to_string(old[w])) << w;
+  }
+  std::size_t inserted = 0;
+  for (const auto &t : live_tops(live)) {
+    Ids orig;
+    for (std::uint32_t v : t.first) orig.push_back(old[v]);
+    std::sort(orig.begin(), orig.end());
+    const auto it = want.find(orig);
+    if (it == want.end()) {
+      EXPECT_EQ(orig, (Ids{0, 1, 5}));
+      EXPECT_EQ(live.property(weight, t.second), -1.0);
+      ++inserted;
+    } else {
+      EXPECT_EQ(live.property(weight, t.second), it->second);
+    }
+  }
+  EXPECT_EQ(inserted, 1u);
+  EXPECT_TRUE(live.remove_property("weight"));
+  EXPECT_FALSE(live.remove_property("weight"));
+  EXPECT_THROW(live.property(weight, 1u << 28), std::invalid_argument);
 }
 
 }  // namespace
