@@ -1262,6 +1262,69 @@ class TopSpan {
   std::size_t n_ = 0;
 };
 
+/* Groups of tops in cyclic order, written by MeshView::fans_around and MeshView::around_edge
+ * (the inline forms of tpx_cyclic on the mesh); reuse one per thread to avoid allocation. */
+class TopFans {
+ public:
+  std::size_t size() const noexcept { return closed_.size(); }
+  /* Group k's tops in cyclic order. */
+  TopSpan operator[](std::size_t k) const noexcept {
+    return TopSpan(items_.data() + offsets_[k], offsets_[k + 1] - offsets_[k]);
+  }
+  /* The group closes (its last top is joined to its first). */
+  bool closed(std::size_t k) const noexcept { return closed_[k] != 0; }
+  /* The group is consistently oriented and listed counter-clockwise by the input winding. */
+  bool oriented(std::size_t k) const noexcept { return oriented_[k] != 0; }
+
+ private:
+  friend class MeshView;
+  /* One top around the vertex or edge with its two sides: the link vertices through which it
+   * can join its neighbours in the group (prev before next in the winding for a triangle). */
+  struct Piece {
+    std::uint32_t top, prev, next;
+  };
+  void clear() {
+    items_.clear();
+    offsets_.assign(1, 0);
+    closed_.clear();
+    oriented_.clear();
+    pieces_.clear();
+  }
+  std::vector<std::uint32_t> items_, offsets_{0};
+  std::vector<std::uint8_t> closed_, oriented_, seen_;
+  std::vector<Piece> pieces_;
+  std::vector<std::uint64_t> sides_;  // side vertex << 32 | piece
+  std::vector<std::uint32_t> chain_;
+};
+
+/* Scratch of MeshView's one-ring passes (for_each_neighbour, the for_each_edge taking it): one
+ * stamp per vertex slot (4 bytes each, grown on first use to the mesh's vertex_slots()), so a
+ * candidate is tested for "seen" in O(1) instead of sorting the candidates; for_each_edge adds a
+ * count per slot (4 bytes more). Keep one per thread and reuse it across queries and across
+ * edits (it grows when the mesh does); a NeighbourMarks is not shared between threads. */
+class NeighbourMarks {
+ public:
+  NeighbourMarks() = default;
+  /* The bytes held. */
+  std::size_t bytes() const noexcept {
+    return (stamp_.capacity() + count_.capacity() + order_.capacity()) * sizeof(std::uint32_t);
+  }
+
+ private:
+  friend class MeshView;
+  /* Starts a query over n vertex slots: a fresh round, so every stamp reads "unseen". */
+  std::uint32_t *begin(std::uint32_t n) {
+    if (stamp_.size() < n) stamp_.resize(n, 0);
+    if (++round_ == 0) {  // the counter wrapped: old stamps could read "seen"
+      std::fill(stamp_.begin(), stamp_.end(), 0u);
+      round_ = 1;
+    }
+    return stamp_.data();
+  }
+  std::vector<std::uint32_t> stamp_, count_, order_;
+  std::uint32_t round_ = 0;
+};
+
 /* The live complex's own arrays (tpx_live_arrays), navigated inline: no library call per
  * query, no index beyond what the live complex stores, no allocation except the caller's
  * reused output vectors. Take one with Live::mesh(); it is valid until the next edit of the
@@ -1434,6 +1497,34 @@ class MeshView {
       if (find(static_cast<std::uint32_t>(i)) != find(0)) return false;
     return true;
   }
+  /* R_{0,0}(v): calls f(w) once for every vertex w sharing an edge with v (any top through v
+   * holds it), in the order the star's tops first name them (no sorting; see neighbours() for
+   * ascending order). `marks` is this thread's scratch (see NeighbourMarks). O(d·k_v), no
+   * allocation once `marks` has grown to vertex_slots(). The one-ring for smoothing, valences
+   * and tetrahedral vertex stars. */
+  template <class F>
+  void for_each_neighbour(std::uint32_t v, NeighbourMarks &marks, F &&f) const {
+    std::uint32_t *seen = marks.begin(a_.vertex_slots);
+    const std::uint32_t r = marks.round_;
+    seen[v] = r;
+    const auto visit = [&](std::uint32_t w) {
+      if (seen[w] != r) {
+        seen[w] = r;
+        f(w);
+      }
+    };
+    for (TopRef t : star(v)) {
+      const std::uint32_t p = t.dim();
+      const std::uint32_t *q = a_.tops[p] + std::size_t(t.slot()) * (p + 1);
+      if (p == 2) {  // a surface's case, unrolled
+        visit(q[0]);
+        visit(q[1]);
+        visit(q[2]);
+      } else {
+        for (std::uint32_t i = 0; i <= p; ++i) visit(q[i]);
+      }
+    }
+  }
   /* R_{0,0}(v): the vertices sharing an edge with v, ascending, into `out` (reused). O(d·k_v +
    * m log m), m the candidates. */
   void neighbours(std::uint32_t v, std::vector<std::uint32_t> &out) const {
@@ -1539,6 +1630,49 @@ class MeshView {
     out.clear();
     for_each_adjacent_top(t, [&](TopRef u) { out.push_back(u); });
   }
+  /* The manifold fans of top triangles around vertex v into `out` (reused), as tpx_cyclic with
+   * q = 0 gives them on a complex of dimension <= 2: the triangles joined through the edges vx
+   * that exactly two of them hold, each group from one end (or, closed, from its lowest top),
+   * counter-clockwise by the input winding where the group is oriented; groups by ascending
+   * lowest top. In a mixed complex only the top triangles at v take part (a tetrahedron's
+   * triangles are not tops). O(k_v log k_v), no allocation once `out` is warm. */
+  void fans_around(std::uint32_t v, TopFans &out) const {
+    out.clear();
+    for (TopRef t : star(v)) {
+      if (t.dim() != 2) continue;
+      const SimplexView w = vertices(t);
+      const std::uint32_t at = w[0] == v ? 0 : w[1] == v ? 1 : 2;
+      out.pieces_.push_back({t.raw(), w[(at + 1) % 3], w[(at + 2) % 3]});
+    }
+    chains(out, true);
+  }
+  /* The tops of dimension q (2 or 3) through the edge {a, b} into `out` (reused), as tpx_cyclic
+   * with q gives them on a complex of dimension q: tetrahedra (q = 3) joined through the
+   * triangles abx that exactly two of them hold, in radial order, unoriented; triangles
+   * (q = 2) as one group in star order, closed when there are two or more (a 2-complex has no
+   * radial order without geometry). Only tops take part. O(k log k) over the smaller star. */
+  void around_edge(std::uint32_t a, std::uint32_t b, std::uint32_t q, TopFans &out) const {
+    out.clear();
+    const std::uint32_t e[2] = {a, b};
+    for_each_top_holding(e, 2, [&](TopRef t) {
+      if (t.dim() != q) return;
+      std::uint32_t side[2] = {0, 0}, k = 0;
+      for (std::uint32_t w : vertices(t))
+        if (w != a && w != b && k < 2) side[k++] = w;
+      out.pieces_.push_back({t.raw(), side[0], side[1]});
+    });
+    if (q == 3) {
+      chains(out, false);
+      return;
+    }
+    if (out.pieces_.empty()) return;
+    std::sort(out.pieces_.begin(), out.pieces_.end(),
+              [](const TopFans::Piece &x, const TopFans::Piece &y) { return x.top < y.top; });
+    for (const TopFans::Piece &p : out.pieces_) out.items_.push_back(p.top);
+    out.offsets_.push_back(static_cast<std::uint32_t>(out.items_.size()));
+    out.closed_.push_back(out.pieces_.size() >= 2);
+    out.oriented_.push_back(0);
+  }
   /* Whole-mesh pass: calls f(a, b, m) once for every edge {a, b} (a < b) with m the number of
    * live top p-simplices holding it (p >= 1; edges held only by tops of other dimensions get
    * m = 0). With p = 2 on a triangle mesh: m == 1 on the boundary, m > 2 at a non-manifold
@@ -1558,6 +1692,42 @@ class MeshView {
         for (; i < scratch.size() && (scratch[i] >> 1) == b; ++i) m += scratch[i] & 1;
         f(a, b, m);
       }
+    }
+  }
+  /* The same pass with a NeighbourMarks instead of sorting: f(a, b, m) once for every edge
+   * {a, b} (a < b), a ascending, the b of one a in the order a's star first names them.
+   * O(Σ_v d·k_v), no allocation once `marks` has grown to vertex_slots(). */
+  template <class F>
+  void for_each_edge(std::uint32_t p, NeighbourMarks &marks, F &&f) const {
+    if (marks.count_.size() < a_.vertex_slots) marks.count_.resize(a_.vertex_slots);
+    std::uint32_t *count = marks.count_.data();
+    std::vector<std::uint32_t> &order = marks.order_;
+    for (std::uint32_t a = 0; a < a_.vertex_slots; ++a) {
+      if (!a_.alive[a]) continue;
+      std::uint32_t *seen = marks.begin(a_.vertex_slots);
+      const std::uint32_t r = marks.round_;
+      order.clear();
+      const auto visit = [&](std::uint32_t w, std::uint32_t of_p) {
+        if (w <= a) return;
+        if (seen[w] != r) {
+          seen[w] = r;
+          count[w] = 0;
+          order.push_back(w);
+        }
+        count[w] += of_p;
+      };
+      for (TopRef t : star(a)) {
+        const std::uint32_t q = t.dim(), of_p = q == p;
+        const std::uint32_t *s = a_.tops[q] + std::size_t(t.slot()) * (q + 1);
+        if (q == 2) {  // a surface's case, unrolled
+          visit(s[0], of_p);
+          visit(s[1], of_p);
+          visit(s[2], of_p);
+        } else {
+          for (std::uint32_t i = 0; i <= q; ++i) visit(s[i], of_p);
+        }
+      }
+      for (std::uint32_t b : order) f(a, b, std::size_t(count[b]));
     }
   }
   /* Whole-mesh pass: calls f(t, u) for every ordered pair of live top triangles sharing an
@@ -1590,6 +1760,82 @@ class MeshView {
   const TpxLiveArrays &arrays() const noexcept { return a_; }
 
  private:
+  /* Groups out.pieces_ into chains joined through sides held by exactly two pieces (pieces
+   * sorted by top first), each walked from an end, a cycle rotated to its lowest top; with
+   * `wound`, a chain whose pieces follow the winding (each next side the following prev side)
+   * is listed that way and marked oriented. The inline form of the library's cyclic walk. */
+  static void chains(TopFans &out, bool wound) {
+    using Piece = TopFans::Piece;
+    std::vector<Piece> &pc = out.pieces_;
+    std::sort(pc.begin(), pc.end(), [](const Piece &x, const Piece &y) { return x.top < y.top; });
+    const std::size_t n = pc.size();
+    out.sides_.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      out.sides_.push_back(std::uint64_t(pc[i].prev) << 32 | i);
+      out.sides_.push_back(std::uint64_t(pc[i].next) << 32 | i);
+    }
+    std::sort(out.sides_.begin(), out.sides_.end());
+    const std::vector<std::uint64_t> &sides = out.sides_;
+    constexpr std::size_t none = static_cast<std::size_t>(-1);
+    // The other piece holding side x when exactly two do, else none.
+    const auto joined = [&](std::size_t i, std::uint32_t x) -> std::size_t {
+      const auto lo = std::lower_bound(sides.begin(), sides.end(), std::uint64_t(x) << 32);
+      const auto hi = std::lower_bound(lo, sides.end(), (std::uint64_t(x) + 1) << 32);
+      if (hi - lo != 2) return none;
+      const std::size_t p = static_cast<std::uint32_t>(*lo), r = static_cast<std::uint32_t>(*(lo + 1));
+      return p == i ? r : p;
+    };
+    // From `cur`, entered through side `came`, the side it leaves by and the piece there.
+    const auto step = [&](std::size_t cur, std::uint32_t came, std::uint32_t &side) {
+      side = pc[cur].prev == came ? pc[cur].next : pc[cur].prev;
+      return joined(cur, side);
+    };
+    out.seen_.assign(n, 0);
+    std::vector<std::uint32_t> &chain = out.chain_;
+    for (std::size_t start = 0; start < n; ++start) {
+      if (out.seen_[start]) continue;
+      // Back to an end of the chain (or around a cycle to `start`).
+      std::size_t first = start;
+      std::uint32_t came = pc[start].next, side = 0;
+      for (std::size_t j; (j = step(first, came, side)) != none && j != start;) {
+        came = side;
+        first = j;
+      }
+      chain.assign(1, static_cast<std::uint32_t>(first));
+      out.seen_[first] = 1;
+      std::size_t cur = first;
+      came = joined(first, pc[first].prev) == none ? pc[first].prev : pc[first].next;
+      for (std::size_t j; (j = step(cur, came, side)) != none && !out.seen_[j];) {
+        out.seen_[j] = 1;
+        chain.push_back(static_cast<std::uint32_t>(j));
+        cur = j;
+        came = side;
+      }
+      const bool closed = chain.size() >= 3 && joined(chain[0], pc[chain[0]].prev) != none &&
+                          joined(chain[0], pc[chain[0]].next) != none;
+      if (closed) std::rotate(chain.begin(), std::min_element(chain.begin(), chain.end()), chain.end());
+      bool oriented = false;
+      if (wound) {
+        const auto forward = [&] {
+          const std::size_t m = chain.size(), steps = closed ? m : m - 1;
+          for (std::size_t i = 0; i < steps; ++i)
+            if (pc[chain[i]].next != pc[chain[(i + 1) % m]].prev) return false;
+          return true;
+        };
+        const auto reverse = [&] { std::reverse(chain.begin() + (closed ? 1 : 0), chain.end()); };
+        oriented = forward();
+        if (!oriented) {
+          reverse();
+          oriented = forward();
+          if (!oriented) reverse();
+        }
+      }
+      for (std::uint32_t i : chain) out.items_.push_back(pc[i].top);
+      out.offsets_.push_back(static_cast<std::uint32_t>(out.items_.size()));
+      out.closed_.push_back(closed);
+      out.oriented_.push_back(oriented);
+    }
+  }
   /* Whether the simplex tau (distinct vertices) is not a top and has exactly one coface one
    * dimension up: the tops through it add exactly one distinct vertex among them. */
   bool one_coface_up(const std::vector<std::uint32_t> &tau) const {
@@ -1902,6 +2148,13 @@ class Live {
   /* The mesh with its facet adjacency (tpx_live_adjacency: built on the first call after an
    * edit, O(Σ_t d²·k), 4 bytes per vertex of every top; then O(1)): FF and TT become
    * reads. Valid as mesh() is, until the next edit of the topology. */
+  /* Keeps the facet adjacency across edits (tpx_live_keep_adjacency): built now, then repaired
+   * by every edit around what it changed (each edit costs O(Σ_t d²·k) more over the tops at the
+   * vertices it touches) and rebuilt by compact(), so mesh_with_adjacency() is O(1) after any
+   * edit; keep = false goes back to building it on request. */
+  void keep_adjacency(bool keep = true) {
+    detail::check(tpx_live_keep_adjacency(l_.get(), keep ? 1u : 0u));
+  }
   MeshView mesh_with_adjacency() const {
     return MeshView(detail::get<TpxLiveArrays>(tpx_live_arrays, l_.get()),
                     detail::get<TpxLiveAdjacency>(tpx_live_adjacency, l_.get()));

@@ -150,17 +150,20 @@ Result run_topoplex(const char *in, const char *out) {
   t0 = Clock::now();
   const std::size_t dim = live.coord_dim(), slots = live.vertex_slots();
   std::vector<double> next(slots * dim);
-  std::vector<std::uint32_t> ring;
+  topoplex::NeighbourMarks marks;
+  std::vector<double> ring_sum(dim);
   for (int round = 0; round < 10; ++round) {
     const topoplex::MeshView m = live.mesh();  // coordinates read from the mesh itself
     for (std::uint32_t v = 0; v < slots; ++v) {
       if (!m.is_vertex(v)) continue;
-      m.neighbours(v, ring);
-      for (std::size_t k = 0; k < dim; ++k) {
-        double s = 0;
-        for (std::uint32_t w : ring) s += m.coords(w)[k];
-        next[v * dim + k] = ring.empty() ? m.coords(v)[k] : s / double(ring.size());
-      }
+      std::fill(ring_sum.begin(), ring_sum.end(), 0.0);
+      std::size_t n = 0;
+      m.for_each_neighbour(v, marks, [&](std::uint32_t w) {
+        const double* c = m.coords(w);
+        for (std::size_t k = 0; k < dim; ++k) ring_sum[k] += c[k];
+        ++n;
+      });
+      for (std::size_t k = 0; k < dim; ++k) next[v * dim + k] = n == 0 ? m.coords(v)[k] : ring_sum[k] / double(n);
     }
     live.set_all_coords(next.data(), next.size());  // in place: m stays valid
   }
@@ -169,8 +172,7 @@ Result run_topoplex(const char *in, const char *out) {
   t0 = Clock::now();
   const topoplex::MeshView m = live.mesh();
   std::vector<std::uint32_t> degree(slots);
-  std::vector<std::uint64_t> scratch;
-  m.for_each_edge(2, scratch, [&](std::uint32_t a, std::uint32_t b, std::size_t k) {
+  m.for_each_edge(2, marks, [&](std::uint32_t a, std::uint32_t b, std::size_t k) {
     ++degree[a];
     ++degree[b];
     r.boundary += k == 1;

@@ -368,15 +368,15 @@ int main(int argc, char** argv) {
     });
     add("VV", lib, Unit::Walk, [=](benchmark::State& state) {
       const topoplex::MeshView m(slot().get<MeshBuilt>(lib, make).arrays);
-      std::vector<uint32_t> ring;
+      topoplex::NeighbourMarks marks;
       uint64_t count = 0, sum = 0;
       for (auto _ : state) {
         count = 0;
-        for (uint32_t v = 0; v < m.vertex_slots(); ++v) {
-          m.neighbours(v, ring);
-          for (uint32_t w : ring) sum += w;
-          count += ring.size();
-        }
+        for (uint32_t v = 0; v < m.vertex_slots(); ++v)
+          m.for_each_neighbour(v, marks, [&](uint32_t w) {
+            sum += w;
+            ++count;
+          });
         benchmark::DoNotOptimize(sum);
       }
       check_count(state, "VV", lib, count);

@@ -378,13 +378,13 @@ int main(int argc, char** argv) {
       return n;
     });
     op("star_edges", [](const topoplex::MeshView& m, uint64_t& sum) {
-      std::vector<uint32_t> ring;
+      topoplex::NeighbourMarks marks;
       uint64_t n = 0;
-      for (uint32_t v = 0; v < m.vertex_slots(); ++v) {
-        m.neighbours(v, ring);
-        for (uint32_t w : ring) sum += w;
-        n += ring.size();
-      }
+      for (uint32_t v = 0; v < m.vertex_slots(); ++v)
+        m.for_each_neighbour(v, marks, [&](uint32_t w) {
+          sum += w;
+          ++n;
+        });
       return n;
     });
     const auto tt = [](const topoplex::MeshView& m, uint64_t& sum) {

@@ -16,6 +16,7 @@
 #include <random>
 #include <set>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -84,6 +85,7 @@ void check(const topoplex::Live &live, std::mt19937 &rng) {
   ASSERT_EQ(from_view, all);
 
   Ids ring;
+  topoplex::NeighbourMarks marks;
   for (std::uint32_t v = 0; v < m.vertex_slots(); ++v) {
     ASSERT_EQ(m.is_vertex(v), bool(o.alive[v]));
     if (!o.alive[v]) continue;
@@ -102,6 +104,9 @@ void check(const topoplex::Live &live, std::mt19937 &rng) {
         if (w != v) expect.insert(w);
     m.neighbours(v, ring);
     EXPECT_EQ(ring, Ids(expect.begin(), expect.end())) << "one-ring of " << v;
+    Ids marked;  // each once, in no order
+    m.for_each_neighbour(v, marks, [&](std::uint32_t w) { marked.push_back(w); });
+    EXPECT_EQ(sorted(marked), ring) << "one-ring of " << v << " by marks";
     Ids by_call;
     for (auto r : live.relation({v}, 0)) by_call.push_back(r[0]);
     EXPECT_EQ(ring, by_call);
@@ -205,6 +210,15 @@ void check(const topoplex::Live &live, std::mt19937 &rng) {
         k += t.size() == 3;
       }
   EXPECT_EQ(edges, want_edges);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> marked_edges;
+  std::uint32_t last_a = 0;
+  m.for_each_edge(2, marks, [&](std::uint32_t a, std::uint32_t b, std::size_t k) {
+    EXPECT_LT(a, b);
+    EXPECT_LE(last_a, a) << "a ascending";
+    last_a = a;
+    EXPECT_TRUE(marked_edges.emplace(std::make_pair(a, b), k).second) << "edge twice (marks)";
+  });
+  EXPECT_EQ(marked_edges, want_edges);
   std::multiset<std::pair<Ids, Ids>> pairs, want_pairs;
   m.for_each_adjacent_triangle_pair(scratch, [&](TopRef t, TopRef u) {
     pairs.emplace(top_set(m, t), top_set(m, u));
@@ -243,11 +257,128 @@ topoplex::Complex random_complex(std::mt19937 &rng, std::uint32_t n, std::uint32
   return topoplex::Complex::from_arrays(n, ids, offsets, xyz, 3);
 }
 
+// Cyclic groups in a numbering-free form: each group its tops' sorted vertex sets in order, a
+// cycle rotated to its least set, an unoriented group read in its lesser direction; groups
+// sorted. Oriented groups keep their direction: both sides must list them counter-clockwise.
+struct Group {
+  std::vector<Ids> items;
+  bool closed, oriented;
+  bool operator<(const Group &o) const {
+    return std::tie(items, closed, oriented) < std::tie(o.items, o.closed, o.oriented);
+  }
+  bool operator==(const Group &o) const {
+    return items == o.items && closed == o.closed && oriented == o.oriented;
+  }
+};
+Group canonical(std::vector<Ids> items, bool closed, bool oriented) {
+  if (closed) std::rotate(items.begin(), std::min_element(items.begin(), items.end()), items.end());
+  if (!oriented) {
+    std::vector<Ids> back = items;
+    std::reverse(back.begin() + (closed ? 1 : 0), back.end());
+    items = std::min(items, back);
+  }
+  return {items, closed, oriented};
+}
+std::vector<Group> groups_of(const MeshView &m, const topoplex::TopFans &f) {
+  std::vector<Group> out;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    std::vector<Ids> items;
+    for (TopRef t : f[k]) items.push_back(top_set(m, t));
+    out.push_back(canonical(items, f.closed(k), f.oriented(k)));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+std::vector<Group> groups_of(const topoplex::Live &live, const topoplex::HandleFans &f) {
+  std::vector<Group> out;
+  for (std::size_t k = 0; k < f.size(); ++k) {
+    std::vector<Ids> items;
+    for (std::size_t i = 0; i < f[k].size(); ++i) items.push_back(live.vertices(f[k][i]));
+    out.push_back(canonical(items, f.closed(k), f.oriented(k)));
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// MeshView's inline fans and radial groups equal the library's (Live::fans_around,
+// Live::around_edge, tpx_cyclic) on random non-manifold 2- and 3-complexes, with random
+// windings, before and after contractions and removals; the fans of a closed disc are one
+// oriented cycle.
+TEST(MeshView, FansAndRadialGroupsEqualTheLibrarysOnRandomComplexes) {
+  std::mt19937 rng(20261203);
+  std::size_t fans = 0, oriented = 0, radial = 0;
+  for (int round = 0; round < 80; ++round) {
+    const std::uint32_t n = 6 + rng() % 7, dim = 2 + round % 2;
+    topoplex::Live live(random_complex(rng, n, dim));
+    topoplex::TopFans mine;
+    topoplex::HandleFans theirs;
+    for (int edit = 0; edit < 6; ++edit) {
+      const MeshView m = live.mesh();
+      const Oracle o(live);
+      for (std::uint32_t v = 0; v < o.alive.size(); ++v) {
+        if (!o.alive[v]) continue;
+        if (live.dimension() <= 2) {
+          m.fans_around(v, mine);
+          live.fans_around(live.locate({v}), theirs);
+          ASSERT_EQ(groups_of(m, mine), groups_of(live, theirs)) << "fans at " << v;
+          fans += mine.size();
+          for (std::size_t k = 0; k < mine.size(); ++k) oriented += mine.oriented(k) && mine[k].size() > 1;
+        }
+        if (live.dimension() == 3)
+          for (std::uint32_t w = v + 1; w < o.alive.size(); ++w) {
+            if (!o.alive[w] || o.holding({v, w}).empty()) continue;
+            m.around_edge(v, w, 3, mine);
+            live.around_edge(live.locate({v, w}), 3, theirs);
+            ASSERT_EQ(groups_of(m, mine), groups_of(live, theirs)) << "around " << v << "," << w;
+            radial += mine.size();
+          }
+      }
+      if (o.tops.empty()) break;
+      const Ids &t = o.tops[rng() % o.tops.size()];
+      try {
+        if (rng() % 3 == 0) live.remove_top(t);
+        else live.contract(t[0], t[1], topoplex::ContractMode::Free);
+      } catch (const topoplex::Error &) {
+      }
+    }
+  }
+  EXPECT_GT(fans, 500u);
+  EXPECT_GT(oriented, 20u);
+  EXPECT_GT(radial, 500u);
+}
+
+TEST(MeshView, ClosedDiscIsOneOrientedCycle) {
+  // Vertex 0 in the middle of six triangles wound counter-clockwise.
+  std::vector<std::uint32_t> ids;
+  std::vector<std::size_t> offsets{0};
+  for (std::uint32_t i = 1; i <= 6; ++i) {
+    ids.insert(ids.end(), {0, i, i % 6 + 1});
+    offsets.push_back(ids.size());
+  }
+  topoplex::Live live(topoplex::Complex::from_arrays(7, ids, offsets, {}, 0));
+  const MeshView m = live.mesh();
+  topoplex::TopFans f;
+  m.fans_around(0, f);
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_TRUE(f.closed(0));
+  EXPECT_TRUE(f.oriented(0));
+  ASSERT_EQ(f[0].size(), 6u);
+  for (std::size_t i = 0; i < 6; ++i) {  // each triangle's last vertex is the next one's second
+    const auto a = m.vertices(f[0][i]), b = m.vertices(f[0][(i + 1) % 6]);
+    EXPECT_EQ(a[2], b[1]);
+  }
+  m.fans_around(1, f);  // a boundary vertex: one open fan of two triangles
+  ASSERT_EQ(f.size(), 1u);
+  EXPECT_FALSE(f.closed(0));
+  EXPECT_EQ(f[0].size(), 2u);
+}
+
 TEST(MeshView, RandomNonManifoldComplexesBeforeAndAfterEdits) {
   std::mt19937 rng(20261202);
   for (int round = 0; round < 60; ++round) {
     const std::uint32_t n = 6 + rng() % 8;
     topoplex::Live live(random_complex(rng, n, 2 + round % 5));  // dimensions 2..6
+    if (round % 2) live.keep_adjacency();  // check() then reads the repaired facet adjacency
     ASSERT_NO_FATAL_FAILURE(check(live, rng));
     for (int edit = 0; edit < 12; ++edit) {
       const Oracle o(live);

@@ -28,18 +28,19 @@ int main(int argc, char **argv) {
 
     // Smoothing: each vertex moves to the mean of its one-ring, read from the mesh's own
     // coordinates; the new ones go back into the mesh after each round.
-    std::vector<double> next(std::size_t(slots) * dim);
-    std::vector<std::uint32_t> ring;  // reused: no allocation once warm
+    std::vector<double> next(std::size_t(slots) * dim), ring_sum(dim);
+    topoplex::NeighbourMarks marks;  // one-ring scratch, reused: no allocation once warm
     for (int round = 0; round < 10; ++round) {
       const topoplex::MeshView m = mesh.mesh();
       for (std::uint32_t v = 0; v < slots; ++v) {
         if (!m.is_vertex(v)) continue;
-        m.neighbours(v, ring);
-        for (std::size_t k = 0; k < dim; ++k) {
-          double sum = 0;
-          for (std::uint32_t w : ring) sum += m.coords(w)[k];
-          next[v * dim + k] = ring.empty() ? m.coords(v)[k] : sum / ring.size();
-        }
+        std::fill(ring_sum.begin(), ring_sum.end(), 0.0);
+        std::size_t n = 0;
+        m.for_each_neighbour(v, marks, [&](std::uint32_t w) {
+          for (std::size_t k = 0; k < dim; ++k) ring_sum[k] += m.coords(w)[k];
+          ++n;
+        });
+        for (std::size_t k = 0; k < dim; ++k) next[v * dim + k] = n == 0 ? m.coords(v)[k] : ring_sum[k] / n;
       }
       mesh.set_all_coords(next.data(), next.size());  // in place: m stays valid
     }
@@ -48,9 +49,8 @@ int main(int argc, char **argv) {
     // number of triangles through it.
     const topoplex::MeshView m = mesh.mesh();
     std::vector<std::uint32_t> valence_of(slots);
-    std::vector<std::uint64_t> scratch;
     std::size_t boundary = 0, nonmanifold = 0;
-    m.for_each_edge(2, scratch, [&](std::uint32_t a, std::uint32_t b, std::size_t triangles) {
+    m.for_each_edge(2, marks, [&](std::uint32_t a, std::uint32_t b, std::size_t triangles) {
       ++valence_of[a];
       ++valence_of[b];
       boundary += triangles == 1;

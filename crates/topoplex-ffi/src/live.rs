@@ -471,7 +471,7 @@ pub struct TpxLiveAdjacency {
 
 /// Lends the tops across each facet of every top into `*out` (a caller-owned struct filled in):
 /// an index built on the first call after an edit, kept with the live complex until its next
-/// edit of the topology, so that FF (faces across a triangle's edges), TT (tetrahedra across a
+/// edit of the topology (or repaired by each edit after `tpx_live_keep_adjacency`), so that FF (faces across a triangle's edges), TT (tetrahedra across a
 /// tetrahedron's triangles) and the same in any dimension are one read each (see
 /// `TpxLiveAdjacency`; C++ `topoplex::MeshView` uses it when given). Errors: NULL_ARGUMENT,
 /// TOO_LARGE (its memory cannot be had); `*out` written only on success. Cost: the first call
@@ -499,6 +499,26 @@ pub unsafe extern "C" fn tpx_live_adjacency(
             bytes: a.bytes,
         };
         Ok(())
+    })
+}
+
+/// Keeps the facet adjacency across edits (`keep` ≠ 0: built now if it is not, then repaired
+/// by every insert, removal, contraction and split, rebuilt by `tpx_live_compact`), or goes back
+/// to building it on request and dropping it at each edit (`keep` = 0). Kept,
+/// `tpx_live_adjacency` is O(1) after any edit (its pointers still change with the edit: take
+/// it again); each edit costs more, O(Σ_t d²·k) over the tops t in the stars of the vertices it
+/// touches (for a contraction of ab, the vertices of St(a) ∪ St(b)). 4 bytes per vertex of every
+/// top slot. Errors: NULL_ARGUMENT, TOO_LARGE (nothing kept). Cost: the first call the index's
+/// build, as `tpx_live_adjacency`.
+///
+/// # Safety
+/// Non-NULL pointers must be valid.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_keep_adjacency(l: *mut TpxLive, keep: u32) -> TpxStatus {
+    guard(|| {
+        let live = live_mut(l)?;
+        live.keep_adjacency(keep != 0)
+            .map_err(crate::structure::build_failure)
     })
 }
 

@@ -2201,6 +2201,28 @@ fn the_facet_adjacency_is_lent_and_follows_edits() {
     assert_eq!(unsafe { tpx_live_adjacency(l, &mut adj) }, TpxStatus::Ok);
     let t012 = live_top_id(l, &[0, 1, 2]);
     assert_eq!(row(&adj, (t012 & 0x0fff_ffff) as usize)[1], TPX_ACROSS_NONE);
+    // Kept across edits: inserting 0 2 6 puts a triangle across 0 1 2's edge 0 2 again, read
+    // from the repaired index; NULL refused; keep = 0 returns to building on request.
+    assert_eq!(
+        unsafe { tpx_live_keep_adjacency(null_mut(), 1) },
+        TpxStatus::NullArgument
+    );
+    assert_eq!(unsafe { tpx_live_keep_adjacency(l, 1) }, TpxStatus::Ok);
+    let mut v = 0;
+    assert_eq!(
+        unsafe { tpx_live_add_vertex(l, [0.0f64; 0].as_ptr(), 0, &mut v) },
+        TpxStatus::Ok
+    );
+    assert_eq!(
+        unsafe { tpx_live_insert_top(l, [0, 2, v].as_ptr(), 3) },
+        TpxStatus::Ok
+    );
+    assert!(unsafe { &*l }.live().keeps_adjacency());
+    assert_eq!(unsafe { tpx_live_adjacency(l, &mut adj) }, TpxStatus::Ok);
+    let t02v = live_top_id(l, &[0, 2, v]);
+    assert_eq!(row(&adj, (t012 & 0x0fff_ffff) as usize)[1], t02v);
+    assert_eq!(unsafe { tpx_live_keep_adjacency(l, 0) }, TpxStatus::Ok);
+    assert!(!unsafe { &*l }.live().keeps_adjacency());
     unsafe {
         tpx_live_free(l);
         tpx_complex_free(c);

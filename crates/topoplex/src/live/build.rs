@@ -49,6 +49,7 @@ impl Parts {
             images: Vec::new(),
             data: super::data::LiveData::default(),
             dense: Default::default(),
+            kept_across: None,
         })
     }
 }

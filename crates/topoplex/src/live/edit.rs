@@ -153,6 +153,7 @@ impl LiveComplex {
                 simplex: sigma.to_vec(),
             });
         }
+        let kept = self.across_before(sigma.iter().copied());
         let mut absorbed: Vec<u32> = Vec::new();
         for &v in sigma {
             for &raw in &self.star[v as usize] {
@@ -166,6 +167,7 @@ impl LiveComplex {
             self.detach(p, slot as u32);
         }
         let slot = self.push_top(sigma);
+        self.across_after(kept);
         Ok(self.handle(pack(sigma.len() - 1, slot)))
     }
 
@@ -177,8 +179,10 @@ impl LiveComplex {
         self.renumbered();
         let k = self.check_simplex(sigma)?;
         if let Some(raw) = self.find_top(k.as_slice()) {
+            let kept = self.across_before(k.as_slice().iter().copied());
             let (p, slot) = unpack(raw);
             let s = self.detach(p, slot as u32);
+            self.across_after(kept);
             self.retire_vanished_records(&s);
             return Ok(());
         }
@@ -214,10 +218,23 @@ impl LiveComplex {
     pub fn remove_top_id(&mut self, t: TopId) -> Result<(), Refusal> {
         self.renumbered();
         self.check_top(t)?;
+        let kept = self.across_before(self.top_raw(t.raw).to_vec());
         let (p, slot) = unpack(t.raw);
         let s = self.detach(p, slot as u32);
+        self.across_after(kept);
         self.retire_vanished_records(&s);
         Ok(())
+    }
+
+    /// The vertices of the tops through any of `vs`, with `vs` (what an edit at them touches).
+    fn star_vertices(&self, vs: &[u32]) -> Vec<u32> {
+        let mut out = vs.to_vec();
+        for &v in vs {
+            for &raw in &self.star[v as usize] {
+                out.extend_from_slice(self.top_raw(raw));
+            }
+        }
+        out
     }
 
     /// After a removal of `s`: the listed faces' records through its vertices whose simplex went
@@ -278,6 +295,7 @@ impl LiveComplex {
         if let Some(xyz) = new_position {
             self.check_coords_of(a.0, xyz)?;
         }
+        let kept = self.across_before(self.star_vertices(&[a.0, b.0]));
         let k = self.coord_dim;
         let mut undo = UndoRecord {
             a,
@@ -300,6 +318,7 @@ impl LiveComplex {
         if let Some(xyz) = new_position {
             self.coords[a.index() * k..(a.index() + 1) * k].copy_from_slice(xyz);
         }
+        self.across_after(kept);
         Ok(undo)
     }
 
@@ -423,6 +442,14 @@ impl LiveComplex {
     pub fn split(&mut self, undo: &UndoRecord) -> Result<(), Refusal> {
         self.renumbered();
         self.check_undo(undo)?;
+        // The restored tops hold b or were St(a)'s; the created ones are St(a)'s now.
+        let restored = undo.removed.iter().flat_map(|(_, s)| s.iter().copied());
+        let touched: Vec<u32> = self
+            .star_vertices(&[undo.a.0])
+            .into_iter()
+            .chain(restored)
+            .collect();
+        let kept = self.across_before(touched);
         for &raw in &undo.inserted.raw {
             let (p, slot) = unpack(raw);
             self.detach(p, slot as u32);
@@ -443,6 +470,7 @@ impl LiveComplex {
         if let Some(d) = &undo.data {
             self.data.split(undo.a.0, d);
         }
+        self.across_after(kept);
         Ok(())
     }
 
@@ -549,6 +577,7 @@ impl LiveComplex {
         self.coords = coords;
         self.alive = vec![true; n as usize];
         self.epoch = self.epoch.wrapping_add(1);
+        self.across_compacted();
         maps
     }
 }

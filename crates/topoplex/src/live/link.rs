@@ -176,6 +176,40 @@ impl LiveComplex {
         most: usize,
         s: &mut Scratch,
     ) -> Option<Option<Vec<u32>>> {
+        let found = self.skewed_common(a, b, coned, most, s)?;
+        if coned {
+            s.index_omega = s.common.len() as u32;
+            s.common.push(OMEGA);
+        } else if s.common.is_empty() {
+            return Some(None);
+        }
+        self.skewed_families(a, b, found, s);
+        let plain = words::first_violation(&s.common, &s.ma, &s.mb, &s.mz);
+        if plain.is_some() || !coned {
+            return Some(plain);
+        }
+        let omega = 1u64 << s.index_omega;
+        self.skewed_cones(a, b, found, omega, s);
+        let holds_omega = |words: &[u64]| words.iter().any(|&m| m & omega != 0);
+        if !holds_omega(&s.ma) && holds_omega(&s.mb) && !holds_omega(&s.mz) {
+            // Whether St(a) has a boundary facet away from C decides: the whole test.
+            return None;
+        }
+        Some(words::first_violation(&s.common, &s.ma, &s.mb, &s.mz))
+    }
+
+    /// Step 1 of [`LiveComplex::skewed_violation`]: the common vertices C into `s.common`, in
+    /// order of first appearance in St(b)'s tops (as `common_vertices` numbers them), each
+    /// vertex of St(b) tried once through the stamps. Returns |C|, or `None` (the whole test
+    /// decides) when |C| + ω exceeds 64 or C's stars add up to `most` tops or more.
+    fn skewed_common(
+        &self,
+        a: u32,
+        b: u32,
+        coned: bool,
+        most: usize,
+        s: &mut Scratch,
+    ) -> Option<usize> {
         let n = self.star.len();
         if s.stamp.len() < n {
             s.stamp.resize(n, 0);
@@ -188,7 +222,6 @@ impl LiveComplex {
         s.epoch += 2;
         let (tried, common) = (s.epoch - 1, s.epoch);
         s.common.clear();
-        // C in the order common_vertices numbers it: first appearance in St(b)'s tops.
         let mut weight = 0;
         for &r in self.star[b as usize].iter() {
             for &v in self.top_raw(r) {
@@ -209,13 +242,13 @@ impl LiveComplex {
         if s.common.len() + usize::from(coned) > 64 || weight >= most {
             return None;
         }
-        let found = s.common.len();
-        if coned {
-            s.index_omega = s.common.len() as u32;
-            s.common.push(OMEGA);
-        } else if s.common.is_empty() {
-            return Some(None);
-        }
+        Some(s.common.len())
+    }
+
+    /// Step 2: the plain families as masks over C, their maximal words kept: F_ab and F_b from
+    /// St(b) (tops with and without a), F_a from the stars of the `found` common vertices
+    /// (tops through a but not b).
+    fn skewed_families(&self, a: u32, b: u32, found: usize, s: &mut Scratch) {
         s.ma.clear();
         s.mb.clear();
         s.mz.clear();
@@ -240,12 +273,12 @@ impl LiveComplex {
         }
         maximal(&mut s.ma);
         maximal(&mut s.mb);
-        let plain = words::first_violation(&s.common, &s.ma, &s.mb, &s.mz);
-        if plain.is_some() || !coned {
-            return Some(plain);
-        }
-        let omega = 1u64 << s.index_omega;
-        // At b: as boundary_cones.
+    }
+
+    /// Step 3, coned: the cones over the boundary facets at b (as `boundary_cones`) and at a
+    /// (those through b, from St(b), then those through a common vertex), added to the
+    /// families, maximal words kept.
+    fn skewed_cones(&self, a: u32, b: u32, found: usize, omega: u64, s: &mut Scratch) {
         let mut open = std::mem::take(&mut s.open);
         self.star_boundary(b, &mut s.facets, &mut open);
         for (&r, &open) in self.star[b as usize].iter().zip(&open) {
@@ -258,7 +291,6 @@ impl LiveComplex {
             }
         }
         s.open = open;
-        // At a: the tops through b (from St(b)), then those through a common vertex.
         for &r in self.star[b as usize].iter() {
             let t = self.top_raw(r);
             if t.contains(&a) {
@@ -276,12 +308,6 @@ impl LiveComplex {
         }
         maximal(&mut s.ma);
         maximal(&mut s.mb);
-        let holds_omega = |words: &[u64]| words.iter().any(|&m| m & omega != 0);
-        if !holds_omega(&s.ma) && holds_omega(&s.mb) && !holds_omega(&s.mz) {
-            // Whether St(a) has a boundary facet away from C decides: the whole test.
-            return None;
-        }
-        Some(words::first_violation(&s.common, &s.ma, &s.mb, &s.mz))
     }
 
     /// The cones over the open facets f ∋ a of top `r` ∈ St(a) that hold b or a common vertex
@@ -429,6 +455,10 @@ impl LiveComplex {
         let star = &self.star[v as usize];
         open.clear();
         facets.clear();
+        if self.triangle_fan_boundary(v, open) {
+            return;
+        }
+        open.clear();
         let (mut shortest, mut longest) = (usize::MAX, 0);
         for (i, &r) in star.iter().enumerate() {
             let t = self.top_raw(r);
@@ -488,6 +518,46 @@ impl LiveComplex {
         }
     }
 
+    /// [`LiveComplex::star_boundary`] for a star of at most [`SMALL_FAN`] triangles and nothing
+    /// else (a surface's vertex): the facet through v opposite a triangle's vertex y is the
+    /// edge vx, shared exactly when another triangle of the star has x among its two other
+    /// vertices, so pairs of triangles compare their two link vertices (O(k²), no hashing, no
+    /// sort). Returns false, having written some of `open`, when the star is not such a fan.
+    fn triangle_fan_boundary(&self, v: u32, open: &mut Vec<u32>) -> bool {
+        let star = &self.star[v as usize];
+        if star.len() > SMALL_FAN {
+            return false;
+        }
+        // Per triangle its two other vertices x, y and their positions.
+        let mut link = [[0u32; 2]; SMALL_FAN];
+        let mut at = [[0u8; 2]; SMALL_FAN];
+        for (i, &r) in star.iter().enumerate() {
+            if super::unpack(r).0 != 2 {
+                return false;
+            }
+            let t = self.top_raw(r);
+            let own = t.iter().position(|&x| x == v).expect("v is in its star");
+            let (i1, i2) = ((own + 1) % 3, (own + 2) % 3);
+            link[i] = [t[i1], t[i2]];
+            at[i] = [i1 as u8, i2 as u8];
+            open.push(1 << i1 | 1 << i2);
+        }
+        // Edge v·link[i][s] is the facet opposite link[i][1 - s], at bit at[i][1 - s].
+        for i in 0..star.len() {
+            for j in i + 1..star.len() {
+                for s in 0..2 {
+                    for u in 0..2 {
+                        if link[i][s] == link[j][u] {
+                            open[i] &= !(1 << at[i][1 - s]);
+                            open[j] &= !(1 << at[j][1 - u]);
+                        }
+                    }
+                }
+            }
+        }
+        true
+    }
+
     /// The positions j of top `raw` ∈ St(v) whose facet t \ {t[j]} (j not v's position) is on
     /// the boundary: held by no other top of St(v) (every top holding it holds v). As bits.
     /// Every pair of tops compared, O(d²·k) a top: the oracle [`LiveComplex::star_boundary`]
@@ -513,6 +583,10 @@ impl LiveComplex {
         all & !shared & !own
     }
 }
+
+/// Up to this many triangles a vertex's star is a fan whose boundary edges are found by
+/// comparing pairs ([`LiveComplex::triangle_fan_boundary`]).
+const SMALL_FAN: usize = 24;
 
 /// From this many tops in St(a), and more than [`STAR_SKEW`] times St(b)'s, the link test
 /// reads St(a) only where the common vertices are ([`LiveComplex::skewed_violation`]).
@@ -1035,6 +1109,15 @@ mod tests {
             simplices in rows(0u32..7, 2..=4, 1..14)
         ) {
             assert_star_boundaries_agree(7, &simplices);
+        }
+
+        /// Random triangle soups (stars of triangles only, so the fan comparison answers;
+        /// up to 30 triangles on 9 vertices, so some stars exceed it and are hashed).
+        #[test]
+        fn star_boundary_of_triangle_soups_matches_comparing_every_pair(
+            simplices in rows(0u32..9, 3..=3, 1..30)
+        ) {
+            assert_star_boundaries_agree(9, &simplices);
         }
     }
 }

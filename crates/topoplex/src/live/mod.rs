@@ -298,6 +298,8 @@ pub struct LiveComplex {
     /// Dense indices above vertices and lent views, built on first use, dropped by each edit
     /// (`dense` module).
     dense: dense::DenseIndex,
+    /// The facet adjacency when the caller keeps it across edits (`across` module), else None.
+    kept_across: Option<across::Across>,
 }
 
 /// The arrays of a [`LiveComplex`] as stored ([`LiveComplex::arrays`]): what every navigation
