@@ -23,7 +23,11 @@ fn main() {
         eprintln!("usage: read_attributes FILE [REPS]");
         std::process::exit(1);
     };
-    let reps: usize = args.get(1).and_then(|r| r.parse().ok()).unwrap_or(20).max(1);
+    let reps: usize = args
+        .get(1)
+        .and_then(|r| r.parse().ok())
+        .unwrap_or(20)
+        .max(1);
     let path = std::path::Path::new(file);
     let size = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
     let base = peak_bytes();

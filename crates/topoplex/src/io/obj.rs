@@ -728,6 +728,11 @@ mod tests {
             "4 numbers where `vt u [v [w]]` has them",
         );
         err(
+            "v 0 0 0\nv 1 0 0\nvt 0\nl 1/1 2/99999999999999999999999\n",
+            4,
+            "vt index 4294967296 refers to no `vt` statement (1 in the file)",
+        );
+        err(
             "v 0 0 0\nvt x\n",
             2,
             "non-numeric token 'x' where a texture coordinate",

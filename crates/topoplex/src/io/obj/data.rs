@@ -17,7 +17,7 @@
 //!   `v` statements (meshio's convention), and otherwise refused: the data would belong to
 //!   nothing. A reference to a statement that does not exist is an error naming its line.
 //!
-//! Cost: 24 bytes per `i/t/n` reference while reading (none on plain `f i j k` lines), 24 per
+//! Cost: 16 bytes per `t` or `n` of an `i/t/n` reference while reading (none on plain `f i j k` lines), 24 per
 //! `vt`/`vn` statement, then the attribute's own values.
 
 use super::super::{RawInput, ReadErrorKind, parse_f64, syntax};
@@ -36,13 +36,15 @@ const NONE: usize = usize::MAX;
 /// One element vertex's reference to a `vt` or `vn` statement.
 struct Corner {
     /// The listed simplex.
-    listed: usize,
-    /// Which of its vertices.
-    corner: usize,
+    listed: u32,
     /// The vertex id (0-based).
     vertex: u32,
-    /// The statement (0-based; a positive index is checked when the file has been read).
-    index: u64,
+    /// The statement (0-based; a positive index is checked when the file has been read, one
+    /// beyond 32 bits kept as `u32::MAX`, which no file reaches).
+    index: u32,
+    /// Which of the simplex's vertices (a polygon's beyond 255 saturate: polygons are never
+    /// kept per corner).
+    corner: u8,
 }
 
 /// The `vt` or the `vn` statements and the references to them.
@@ -112,9 +114,9 @@ impl Side {
         kind: &str,
     ) -> Result<(), ReadErrorKind> {
         let index = if index > 0 {
-            index as u64 - 1
+            u32::try_from(index - 1).unwrap_or(u32::MAX)
         } else {
-            u64::try_from(self.count() as i64 + index).map_err(|_| {
+            u32::try_from(self.count() as i64 + index).map_err(|_| {
                 syntax(format!(
                     "relative {kind} index {index} reaches before the first `{kind}` ({} read so \
                      far)",
@@ -125,10 +127,11 @@ impl Side {
         table::try_push(
             &mut self.corners,
             Corner {
-                listed,
-                corner,
+                listed: u32::try_from(listed)
+                    .map_err(|_| syntax("more than 2^32 elements before a `vt`/`vn` reference"))?,
                 vertex,
                 index,
+                corner: u8::try_from(corner).unwrap_or(u8::MAX),
             },
         )
         .map_err(super::no_room("the `vt`/`vn` references"))
@@ -164,12 +167,12 @@ impl Side {
                 .insert(field(name, Location::Vertices, w, values));
             return Ok(());
         }
-        if let Some(c) = self.corners.iter().find(|c| c.index >= n as u64) {
+        if let Some(c) = self.corners.iter().find(|c| c.index as usize >= n) {
             return Err((
-                raw.lines[c.listed],
+                raw.lines[c.listed as usize],
                 syntax(format!(
                     "{kind} index {} refers to no `{kind}` statement ({n} in the file)",
-                    c.index + 1
+                    u64::from(c.index) + 1
                 )),
             ));
         }
@@ -207,10 +210,10 @@ impl Side {
         if let Some(c) = self
             .corners
             .iter()
-            .find(|c| raw.polygons.at.binary_search(&c.listed).is_ok())
+            .find(|c| raw.polygons.at.binary_search(&(c.listed as usize)).is_ok())
         {
             return Err((
-                raw.lines[c.listed],
+                raw.lines[c.listed as usize],
                 syntax(format!(
                     "a polygon with `{kind}` references, in a file whose `{kind}` values differ \
                      between the corners of one vertex: the per-corner values ({name} on the \
@@ -220,7 +223,7 @@ impl Side {
         }
         let mut values = vec![f64::NAN; raw.simplex_count() * 3 * w];
         for c in &self.corners {
-            let start = (c.listed * 3 + c.corner) * w;
+            let start = (c.listed as usize * 3 + usize::from(c.corner)) * w;
             values[start..start + w].copy_from_slice(row(c.index as usize));
         }
         raw.attributes
