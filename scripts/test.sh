@@ -32,7 +32,7 @@ if ! python3 -c "import meshio, gmsh" 2>/dev/null; then
     PATH="$(cd "$venv/bin" && pwd):$PATH"
     export PATH
   else
-    echo "no venv for meshio and gmsh: tests/it/interop.rs and gmsh_real.rs will skip"
+    echo "no venv for meshio and gmsh: the tests use python3 as it is (skipping what it lacks)"
   fi
 fi
 
