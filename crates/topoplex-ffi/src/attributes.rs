@@ -10,7 +10,7 @@ use std::ffi::{CStr, c_char, c_void};
 
 use super::complex::TpxComplex;
 use super::live::TpxLive;
-use super::{Failure, TpxStatus, guard, handle, in_slice, out_ptr, try_copy, write_buffer};
+use super::{Failure, TpxStatus, guard, handle, in_slice, on, out_ptr, try_copy, write_buffer};
 use topoplex::complex::attributes::MAX_COMPONENTS;
 use topoplex::complex::{Attribute, Location, ValueType, Values};
 use topoplex::live::{LiveComplex, TopId, VertexPolicy};
@@ -145,8 +145,7 @@ pub unsafe extern "C" fn tpx_complex_attribute_info(
     i: usize,
     out: *mut TpxAttributeInfo,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
+    on(c, "c", |c| {
         let out = out_ptr(out, "out")?;
         let a = nth(c, i)?;
         *out = TpxAttributeInfo {
@@ -174,8 +173,7 @@ pub unsafe extern "C" fn tpx_complex_attribute_find(
     location: u32,
     out: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
+    on(c, "c", |c| {
         let name = name_arg(name, "name")?;
         let location = location_arg(location)?;
         let out = out_ptr(out, "out")?;
@@ -206,8 +204,7 @@ pub unsafe extern "C" fn tpx_complex_attribute_data(
     out: *mut *const c_void,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
+    on(c, "c", |c| {
         let out = out_ptr(out, "out")?;
         let out_len = out_ptr(out_len, "out_len")?;
         let a = nth(c, i)?;
@@ -394,8 +391,7 @@ pub unsafe extern "C" fn tpx_complex_listed_index(
     len: usize,
     out: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
+    on(c, "c", |c| {
         let ids = in_slice(ids, len, "ids")?;
         let out = out_ptr(out, "out")?;
         let n = c.complex.vertex_count();
@@ -432,8 +428,7 @@ pub unsafe extern "C" fn tpx_complex_label_name(
     out: *mut *const c_char,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
+    on(c, "c", |c| {
         let attribute = name_arg(attribute, "attribute")?;
         let out = out_ptr(out, "out")?;
         let out_len = out_ptr(out_len, "out_len")?;

@@ -41,7 +41,7 @@
 
 use super::scan::{self, Scanner};
 use super::{
-    Coords, IntError, RawInput, ReadErrorKind, echo, no_room, parse_f64, parse_integer, syntax,
+    Coords, RawInput, ReadErrorKind, echo, integer_token, no_room, parse_f64, parse_integer, syntax,
 };
 use crate::complex::{Attribute, LabelName, Location, table};
 
@@ -138,22 +138,10 @@ fn vertex_index_slow(tok: &str, form: Form, seen: u32) -> Result<u32, ReadErrorK
             echo(i)
         ))
     };
-    let v = match parse_integer(i) {
-        Ok(v) => v,
-        Err(IntError::NotNumber) => {
-            return Err(syntax(format!(
-                "non-numeric token '{}' where a vertex index was expected",
-                echo(i)
-            )));
-        }
-        Err(IntError::NotInteger) => {
-            return Err(syntax(format!(
-                "vertex index '{}' is not an integer",
-                echo(i)
-            )));
-        }
-        Err(IntError::OutOfRange) if i.starts_with('-') => return Err(before_first()),
-        Err(IntError::OutOfRange) => {
+    let v = match integer_token(i, "a", "vertex index")? {
+        Some(v) => v,
+        None if i.starts_with('-') => return Err(before_first()),
+        None => {
             return Err(syntax(format!(
                 "vertex index {} does not fit in 32 bits",
                 echo(i)
