@@ -57,12 +57,43 @@ void append_vertices(DM dm, PetscInt p, PetscInt vStart, PetscInt vEnd,
 
 PetscInt overlap_needed(std::uint32_t p, std::uint32_t q) { return q < p ? 0 : 1; }
 
-std::size_t RankMesh::KeyHash::operator()(const std::vector<std::uint32_t> &k) const noexcept {
-  std::uint64_t h = 0x9e3779b97f4a7c15ull ^ k.size();
-  for (std::uint32_t x : k) {
-    h ^= x + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+namespace {
+
+std::uint64_t key_hash(const std::uint32_t *k, std::size_t n) noexcept {
+  std::uint64_t h = 0x9e3779b97f4a7c15ull ^ n;
+  for (std::size_t i = 0; i < n; ++i) {
+    h ^= k[i] + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
   }
-  return static_cast<std::size_t>(h);
+  h ^= h >> 33;
+  h *= 0xff51afd7ed558ccdull;
+  h ^= h >> 33;
+  return h;
+}
+
+// Up to 4 vertex ids (a simplex of the bridge), sorted into `out`; false for more.
+bool sorted_key(const std::uint32_t *vs, std::size_t n, std::uint32_t *out) noexcept {
+  if (n > 4) return false;
+  std::copy(vs, vs + n, out);
+  std::sort(out, out + n);
+  return true;
+}
+
+}  // namespace
+
+std::size_t RankMesh::slot_of(const std::vector<PetscInt> &slots, const std::uint32_t *key, std::size_t n) const noexcept {
+  const std::size_t mask = slots.size() - 1;
+  std::size_t i = static_cast<std::size_t>(key_hash(key, n)) & mask;
+  std::uint32_t other[4] = {0, 0, 0, 0};
+  while (slots[i] >= 0) {
+    const std::size_t ip = static_cast<std::size_t>(slots[i]);
+    const auto [a, b] = layout_.range(ip, p_start_);
+    if (b - a == n) {
+      sorted_key(&simplex_ids_[a], n, other);
+      if (std::equal(key, key + n, other)) return i;
+    }
+    i = (i + 1) & mask;
+  }
+  return i;
 }
 
 RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
@@ -84,50 +115,247 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   TPX_PETSC(DMGetBasicAdjacency(dm, &use_cone, &use_closure));
   const std::size_t npoints = static_cast<std::size_t>(pEnd - pStart);
 
-  // Every point's simplex (closure vertices in closure order); tops in Topoplex winding.
-  std::vector<std::vector<std::uint32_t>> point_simplex(npoints);
+  // Every point's simplex (closure vertices in closure order; tops in Topoplex winding) in one
+  // flat array. A point's depth comes from the strata (contiguous in a stratified DM); a depth-1
+  // point's closure vertices are its cone, deeper points walk their transitive closure.
+  std::vector<PetscInt> stratum_start(static_cast<std::size_t>(depth) + 1), stratum_end(stratum_start.size());
+  for (PetscInt d = 0; d <= depth; ++d) {
+    TPX_PETSC(DMPlexGetDepthStratum(dm, d, &stratum_start[static_cast<std::size_t>(d)],
+                                    &stratum_end[static_cast<std::size_t>(d)]));
+  }
+  auto depth_of = [&](PetscInt p) -> PetscInt {
+    for (std::size_t d = 0; d < stratum_start.size(); ++d) {
+      if (p >= stratum_start[d] && p < stratum_end[d]) return static_cast<PetscInt>(d);
+    }
+    PetscInt pd = 0;  // not stratified by ranges: ask PETSc
+    TPX_PETSC(DMPlexGetPointDepth(dm, p, &pd));
+    return pd;
+  };
+  // The closure's vertices of an interpolated simplex point from cones and cone orientations, in
+  // the order DMPlexGetTransitiveClosure lists them (a breadth-first walk, each cone arranged by
+  // the orientation its point is reached with), without PETSc's per-point cell-type lookups.
+  // False when a cone on the way has not the size or depth of a simplex's (the caller then walks
+  // PETSc's closure and judges the cell).
+  const DMPolytopeType simplex_type[4] = {DM_POLYTOPE_POINT, DM_POLYTOPE_SEGMENT, DM_POLYTOPE_TRIANGLE,
+                                          DM_POLYTOPE_TETRAHEDRON};
+  auto simplex_closure = [&](PetscInt p, PetscInt pdepth, std::vector<std::uint32_t> &out) -> bool {
+    if (pdepth > 3) return false;
+    PetscInt pts[15], oris[15], deps[15];
+    int n = 1, head = 0;
+    pts[0] = p;
+    oris[0] = 0;
+    deps[0] = pdepth;
+    while (head < n) {
+      const PetscInt q = pts[head], o = oris[head], dq = deps[head];
+      ++head;
+      if (dq == 0) continue;
+      PetscInt nc = 0;
+      const PetscInt *cone = nullptr, *ornt = nullptr;
+      TPX_PETSC(DMPlexGetConeSize(dm, q, &nc));
+      if (nc != dq + 1) return false;
+      TPX_PETSC(DMPlexGetCone(dm, q, &cone));
+      TPX_PETSC(DMPlexGetConeOrientation(dm, q, &ornt));
+      const PetscInt *arr = DMPolytopeTypeGetArrangment(simplex_type[dq], o);
+      const std::size_t lower = static_cast<std::size_t>(dq - 1);
+      for (PetscInt t = 0; t < nc; ++t) {
+        const PetscInt i = arr[2 * t];
+        const PetscInt cp = cone[i];
+        if (cp < stratum_start[lower] || cp >= stratum_end[lower]) return false;
+        if (std::find(pts, pts + n, cp) != pts + n) continue;
+        if (n == 15) return false;
+        pts[n] = cp;
+        oris[n] = dq > 1 ? DMPolytopeTypeComposeOrientation(simplex_type[dq - 1], arr[2 * t + 1], ornt[i]) : 0;
+        deps[n] = dq - 1;
+        ++n;
+      }
+    }
+    for (int k = 0; k < n; ++k) {
+      if (deps[k] == 0) out.push_back(static_cast<std::uint32_t>(pts[k] - vStart));
+    }
+    return true;
+  };
+  const bool fast_closure = interp == DMPLEX_INTERPOLATED_FULL && depth <= 3;
+  std::vector<std::uint32_t> vs;
+  Layout layout;
+  std::vector<std::uint32_t> simplex_ids;
+  simplex_ids.reserve(3 * npoints);
   std::vector<PetscInt> tops;
   std::vector<std::uint32_t> ids;
   std::vector<std::size_t> offsets{0};
+  // Fast path for a fully interpolated simplicial DM (every point of depth d has d + 1 cone
+  // points, all of depth d - 1): the points are filled stratum by stratum, each from its cone and
+  // the vertices already found for its faces, in PETSc's closure order (a breadth-first walk with
+  // each cone arranged by the orientation it is reached with): an edge is its cone; a triangle
+  // reached with orientation o lists its first arranged edge's vertices (swapped when that edge's
+  // composed orientation is not 0), then the vertex its second arranged edge adds; a tetrahedron
+  // lists its first face's vertices as that triangle reached with its cone orientation, then the
+  // vertex of its second face that is missing. False (nothing filled) when the DM is not such a DM.
+  auto fast_fill = [&]() -> bool {
+    if (!fast_closure) return false;
+    // The strata in chart order, each a contiguous range of points with d + 1 vertices.
+    std::vector<Layout::Stratum> strata;
+    for (PetscInt d = 0; d <= depth; ++d) {
+      const std::size_t k = static_cast<std::size_t>(d);
+      if (stratum_end[k] > stratum_start[k]) {
+        strata.push_back({stratum_start[k], stratum_end[k], 0, static_cast<std::uint64_t>(d + 1)});
+      }
+    }
+    std::sort(strata.begin(), strata.end(),
+              [](const Layout::Stratum &a, const Layout::Stratum &b) { return a.start < b.start; });
+    std::uint64_t total = 0;
+    PetscInt next = pStart;
+    for (Layout::Stratum &st : strata) {
+      if (st.start != next) return false;
+      st.base = total;
+      total += static_cast<std::uint64_t>(st.end - st.start) * st.width;
+      next = st.end;
+    }
+    if (next != pEnd) return false;
+    // Every point's cone size must be a simplex's (vertices none); tops have no support.
+    std::vector<char> is_top(npoints);
+    for (const Layout::Stratum &st : strata) {
+      const PetscInt want = static_cast<PetscInt>(st.width) == 1 ? 0 : static_cast<PetscInt>(st.width);
+      for (PetscInt p = st.start; p < st.end; ++p) {
+        PetscInt support = 0, nc = 0;
+        TPX_PETSC(DMPlexGetSupportSize(dm, p, &support));
+        TPX_PETSC(DMPlexGetConeSize(dm, p, &nc));
+        if (nc != want) return false;
+        is_top[static_cast<std::size_t>(p - pStart)] = support == 0;
+      }
+    }
+    std::vector<std::uint64_t> base_of(static_cast<std::size_t>(depth) + 1, 0);
+    for (const Layout::Stratum &st : strata) base_of[st.width - 1] = st.base;
+    simplex_ids.assign(total, 0);
+    // Point q of depth dq's vertices.
+    auto stored_at = [&](PetscInt q, PetscInt dq) {
+      const std::size_t k = static_cast<std::size_t>(dq);
+      return &simplex_ids[base_of[k] + static_cast<std::uint64_t>(q - stratum_start[k]) * static_cast<std::uint64_t>(dq + 1)];
+    };
+    auto in_stratum = [&](PetscInt q, PetscInt d) {
+      return q >= stratum_start[static_cast<std::size_t>(d)] && q < stratum_end[static_cast<std::size_t>(d)];
+    };
+    // Triangle q reached with orientation o: its three vertices into out; false if malformed.
+    auto triangle = [&](PetscInt q, PetscInt o, std::uint32_t *out) -> bool {
+      const PetscInt *cone = nullptr, *ornt = nullptr;
+      TPX_PETSC(DMPlexGetCone(dm, q, &cone));
+      TPX_PETSC(DMPlexGetConeOrientation(dm, q, &ornt));
+      const PetscInt *arr = DMPolytopeTypeGetArrangment(DM_POLYTOPE_TRIANGLE, o);
+      const PetscInt e0 = cone[arr[0]], e1 = cone[arr[2]];
+      if (!in_stratum(e0, 1) || !in_stratum(e1, 1)) return false;
+      const PetscInt co = DMPolytopeTypeComposeOrientation(DM_POLYTOPE_SEGMENT, arr[1], ornt[arr[0]]);
+      const std::uint32_t *a = stored_at(e0, 1), *b = stored_at(e1, 1);
+      out[0] = co == 0 ? a[0] : a[1];
+      out[1] = co == 0 ? a[1] : a[0];
+      out[2] = b[0] == a[0] || b[0] == a[1] ? b[1] : b[0];
+      return true;
+    };
+    for (PetscInt d = 0; d <= depth; ++d) {
+      for (PetscInt p = stratum_start[static_cast<std::size_t>(d)]; p < stratum_end[static_cast<std::size_t>(d)]; ++p) {
+        std::uint32_t *out = stored_at(p, d);
+        if (d == 0) {
+          out[0] = static_cast<std::uint32_t>(p - vStart);
+          continue;
+        }
+        const PetscInt *cone = nullptr, *ornt = nullptr;
+        TPX_PETSC(DMPlexGetCone(dm, p, &cone));
+        for (PetscInt k = 0; k <= d; ++k) {
+          if (!in_stratum(cone[k], d - 1)) return false;
+        }
+        if (d == 1) {
+          out[0] = static_cast<std::uint32_t>(cone[0] - vStart);
+          out[1] = static_cast<std::uint32_t>(cone[1] - vStart);
+        } else if (d == 2) {
+          if (!triangle(p, 0, out)) return false;
+        } else {
+          TPX_PETSC(DMPlexGetConeOrientation(dm, p, &ornt));
+          if (!triangle(cone[0], ornt[0], out)) return false;
+          const std::uint32_t *g = stored_at(cone[1], 2);
+          for (int k = 0; k < 3; ++k) {
+            if (g[k] != out[0] && g[k] != out[1] && g[k] != out[2]) out[3] = g[k];
+          }
+        }
+      }
+    }
+    // The tops, in ascending points (the strata are sorted by their first point).
+    for (const Layout::Stratum &st : strata) {
+      for (PetscInt p = st.start; p < st.end; ++p) {
+        if (!is_top[static_cast<std::size_t>(p - pStart)]) continue;
+        std::uint32_t *v = &simplex_ids[st.base + static_cast<std::uint64_t>(p - st.start) * st.width];
+        if (st.width == 4) std::swap(v[0], v[1]);  // petsc_winding
+        tops.push_back(p);
+        ids.insert(ids.end(), v, v + st.width);
+        offsets.push_back(ids.size());
+      }
+    }
+    layout.strata = std::move(strata);
+    return true;
+  };
+  if (!fast_fill()) {
+  simplex_ids.clear();
+  layout.strata.clear();
+  layout.offsets.assign(npoints + 1, 0);
+  std::vector<std::uint64_t> &simplex_offsets = layout.offsets;
   for (PetscInt p = pStart; p < pEnd; ++p) {
+    const std::size_t ip = static_cast<std::size_t>(p - pStart);
     PetscInt support = 0;
     TPX_PETSC(DMPlexGetSupportSize(dm, p, &support));
     const bool top = support == 0;
+    const bool vertex = p >= vStart && p < vEnd;
     // Vertices of a non-interpolated DM's non-top points do not exist: only tops and vertices
     // have closures worth walking, except when interpolated (every point is a simplex).
-    if (!top && !(p >= vStart && p < vEnd) && interp == DMPLEX_INTERPOLATED_NONE) continue;
-    std::vector<std::uint32_t> &vs = point_simplex[static_cast<std::size_t>(p - pStart)];
-    append_vertices(dm, p, vStart, vEnd, vs);
-    if (p < vStart || p >= vEnd) {
-      PetscInt pdepth = 0;
-      TPX_PETSC(DMPlexGetPointDepth(dm, p, &pdepth));
-      DMPolytopeType ct;
-      TPX_PETSC(DMPlexGetCellType(dm, p, &ct));
-      // Interpolated points: a simplex has depth + 1 vertices. Depth-1 points of a
-      // non-interpolated DM: the cell type tells a tetrahedron from a quadrilateral.
-      bool simplex = false;
-      if (pdepth >= 2) {
-        simplex = vs.size() == static_cast<std::size_t>(pdepth) + 1;
+    if (top || vertex || interp != DMPLEX_INTERPOLATED_NONE) {
+      const std::size_t first = simplex_ids.size();
+      if (vertex) {
+        simplex_ids.push_back(static_cast<std::uint32_t>(p - vStart));
       } else {
-        simplex = (ct == DM_POLYTOPE_SEGMENT && vs.size() == 2) ||
-                  (ct == DM_POLYTOPE_TRIANGLE && vs.size() == 3) ||
-                  (ct == DM_POLYTOPE_TETRAHEDRON && vs.size() == 4);
+        const PetscInt pdepth = depth_of(p);
+        if (pdepth == 1) {
+          PetscInt nc = 0;
+          const PetscInt *cone = nullptr;
+          TPX_PETSC(DMPlexGetConeSize(dm, p, &nc));
+          TPX_PETSC(DMPlexGetCone(dm, p, &cone));
+          for (PetscInt k = 0; k < nc; ++k) {
+            if (cone[k] >= vStart && cone[k] < vEnd) simplex_ids.push_back(static_cast<std::uint32_t>(cone[k] - vStart));
+          }
+        } else {
+          vs.clear();
+          if (!fast_closure || !simplex_closure(p, pdepth, vs)) {
+            vs.clear();
+            append_vertices(dm, p, vStart, vEnd, vs);
+          }
+          simplex_ids.insert(simplex_ids.end(), vs.begin(), vs.end());
+        }
+        const std::size_t nv = simplex_ids.size() - first;
+        // Interpolated points: a simplex has depth + 1 vertices. Depth-1 points of a
+        // non-interpolated DM: the cell type tells a tetrahedron from a quadrilateral.
+        bool simplex = false;
+        DMPolytopeType ct = DM_POLYTOPE_UNKNOWN;
+        if (pdepth >= 2 || (pdepth == 1 && nv == 2 && interp != DMPLEX_INTERPOLATED_NONE)) {
+          simplex = nv == static_cast<std::size_t>(pdepth) + 1;
+        } else {
+          TPX_PETSC(DMPlexGetCellType(dm, p, &ct));
+          simplex = (ct == DM_POLYTOPE_SEGMENT && nv == 2) || (ct == DM_POLYTOPE_TRIANGLE && nv == 3) ||
+                    (ct == DM_POLYTOPE_TETRAHEDRON && nv == 4);
+        }
+        if (!simplex) {
+          if (ct == DM_POLYTOPE_UNKNOWN) TPX_PETSC(DMPlexGetCellType(dm, p, &ct));
+          std::ostringstream m;
+          m << "DMPlex point " << p << " (rank " << rank << ") is a " << DMPolytopeTypes[ct] << " with " << nv
+            << " vertices at depth " << pdepth
+            << ": Topoplex holds simplicial complexes only (points, segments, triangles, tetrahedra)";
+          throw Error(Code::NotSimplicial, m.str());
+        }
+        if (top && nv == 4) std::swap(simplex_ids[first], simplex_ids[first + 1]);  // petsc_winding
       }
-      if (!simplex) {
-        std::ostringstream m;
-        m << "DMPlex point " << p << " (rank " << rank << ") is a " << DMPolytopeTypes[ct] << " with "
-          << vs.size() << " vertices at depth " << pdepth
-          << ": Topoplex holds simplicial complexes only (points, segments, triangles, tetrahedra)";
-        throw Error(Code::NotSimplicial, m.str());
+      if (top) {
+        tops.push_back(p);
+        ids.insert(ids.end(), simplex_ids.begin() + static_cast<std::ptrdiff_t>(first), simplex_ids.end());
+        offsets.push_back(ids.size());
       }
-      if (top) petsc_winding(vs);
     }
-    if (top) {
-      tops.push_back(p);
-      ids.insert(ids.end(), vs.begin(), vs.end());
-      offsets.push_back(ids.size());
-    }
+    simplex_offsets[ip + 1] = simplex_ids.size();
   }
+  }  // general walk
 
   // Labels: integer values per point; points with a value that are not listed yet (faces of an
   // interpolated DM) are listed after the tops.
@@ -181,18 +409,19 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
       if (!lv.point_value.empty()) labels.push_back(std::move(lv));
     }
   }
-  std::vector<std::size_t> point_listing(npoints, NO_LISTING);
+  std::vector<std::uint32_t> point_listing(npoints, UINT32_MAX);
   std::vector<PetscInt> listed_point = tops;
-  for (std::size_t i = 0; i < tops.size(); ++i) point_listing[static_cast<std::size_t>(tops[i] - pStart)] = i;
+  for (std::size_t i = 0; i < tops.size(); ++i) point_listing[static_cast<std::size_t>(tops[i] - pStart)] = static_cast<std::uint32_t>(i);
   for (const LabelValues &lv : labels) {
     for (const auto &pv : lv.point_value) {
       const PetscInt p = pv.first;
       const std::size_t ip = static_cast<std::size_t>(p - pStart);
-      if ((p >= vStart && p < vEnd) || point_listing[ip] != NO_LISTING) continue;
-      if (point_simplex[ip].empty()) continue;  // not a simplex here (non-interpolated face)
-      point_listing[ip] = listed_point.size();
+      if ((p >= vStart && p < vEnd) || point_listing[ip] != UINT32_MAX) continue;
+      const auto [a, b] = layout.range(ip, pStart);
+      if (a == b) continue;  // not a simplex here (non-interpolated face)
+      point_listing[ip] = static_cast<std::uint32_t>(listed_point.size());
       listed_point.push_back(p);
-      ids.insert(ids.end(), point_simplex[ip].begin(), point_simplex[ip].end());
+      ids.insert(ids.end(), simplex_ids.begin() + static_cast<std::ptrdiff_t>(a), simplex_ids.begin() + static_cast<std::ptrdiff_t>(b));
       offsets.push_back(ids.size());
     }
   }
@@ -247,7 +476,12 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   out.vertex_point_.resize(static_cast<std::size_t>(vEnd - vStart));
   for (PetscInt v = vStart; v < vEnd; ++v) out.vertex_point_[static_cast<std::size_t>(v - vStart)] = v;
   out.listed_point_ = std::move(listed_point);
-  out.point_listing_ = std::move(point_listing);
+  out.top_listings_ = tops.size();
+  // The listings after the tops (labelled faces), by point, for listing_of_point.
+  for (std::size_t i = out.top_listings_; i < out.listed_point_.size(); ++i) {
+    out.extra_listing_.emplace_back(out.listed_point_[i], static_cast<std::uint32_t>(i));
+  }
+  std::sort(out.extra_listing_.begin(), out.extra_listing_.end());
 
   // Attributes from the labels.
   const std::size_t nlisted = out.listed_point_.size();
@@ -261,8 +495,8 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
         at_vertices[static_cast<std::size_t>(p - vStart)] = value;
         any_vertex = true;
       }
-      const std::size_t i = out.point_listing_[static_cast<std::size_t>(p - pStart)];
-      if (i != NO_LISTING) {
+      const std::uint32_t i = point_listing[static_cast<std::size_t>(p - pStart)];
+      if (i != UINT32_MAX) {
         at_listed[i] = value;
         any_listed = true;
       }
@@ -271,8 +505,9 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
     if (any_listed) out.complex_->set_attribute(lv.name, Location::Listed, 1, at_listed);
   }
 
-  // Owners from the point SF: leaves are ghosts owned by their root's rank.
-  out.point_owner_.assign(npoints, rank);
+  // Owners from the point SF: leaves are ghosts owned by their root's rank; every other point is
+  // this rank's. Only the ghosts are kept, sorted by point.
+  std::vector<std::pair<PetscInt, int>> ghosts;
   PetscSF sf;
   TPX_PETSC(DMGetPointSF(dm, &sf));
   PetscInt nroots = -1, nleaves = 0;
@@ -282,8 +517,16 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   if (nroots >= 0) {
     for (PetscInt i = 0; i < nleaves; ++i) {
       const PetscInt p = ilocal ? ilocal[i] : i;
-      if (p >= pStart && p < pEnd) out.point_owner_[static_cast<std::size_t>(p - pStart)] = static_cast<int>(iremote[i].rank);
+      if (p >= pStart && p < pEnd) ghosts.emplace_back(p, static_cast<int>(iremote[i].rank));
     }
+  }
+  std::sort(ghosts.begin(), ghosts.end());
+  out.ghost_point_.reserve(ghosts.size());
+  out.ghost_owner_.reserve(ghosts.size());
+  for (const auto &g : ghosts) {
+    if (!out.ghost_point_.empty() && out.ghost_point_.back() == g.first) continue;
+    out.ghost_point_.push_back(g.first);
+    out.ghost_owner_.push_back(g.second);
   }
 
   // Global vertex numbers (collective).
@@ -299,11 +542,44 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   }
   TPX_PETSC(ISRestoreIndices(numbering, &gn));
 
-  for (std::size_t ip = 0; ip < npoints; ++ip) {
-    if (!point_simplex[ip].empty()) out.simplex_point_.emplace(sorted(point_simplex[ip]), pStart + static_cast<PetscInt>(ip));
-  }
-  out.point_simplex_ = std::move(point_simplex);
+  out.layout_ = std::move(layout);
+  out.simplex_ids_ = std::move(simplex_ids);
   return out;
+}
+
+const std::vector<PetscInt> &RankMesh::point_slots() const {
+  PointTable &t = *table_;
+  std::call_once(t.once, [&] {
+    // The first point of a vertex set wins.
+    const std::size_t npoints = static_cast<std::size_t>(p_end_ - p_start_);
+    std::size_t entries = 0;
+    for (std::size_t ip = 0; ip < npoints; ++ip) {
+      const auto [a, b] = layout_.range(ip, p_start_);
+      entries += a != b;
+    }
+    std::size_t cap = 16;
+    while (cap < 2 * entries) cap *= 2;
+    t.slots.assign(cap, -1);
+    std::uint32_t key[4] = {0, 0, 0, 0};
+    for (std::size_t ip = 0; ip < npoints; ++ip) {
+      const auto [a, b] = layout_.range(ip, p_start_);
+      const std::uint64_t n = b - a;
+      if (n == 0 || !sorted_key(&simplex_ids_[a], n, key)) continue;
+      const std::size_t slot = slot_of(t.slots, key, n);
+      if (t.slots[slot] < 0) t.slots[slot] = static_cast<PetscInt>(ip);
+    }
+    t.built.store(true, std::memory_order_release);
+  });
+  return t.slots;
+}
+
+std::size_t RankMesh::bytes() const noexcept {
+  return vertex_point_.capacity() * sizeof(PetscInt) + listed_point_.capacity() * sizeof(PetscInt) +
+         extra_listing_.capacity() * sizeof(std::pair<PetscInt, std::uint32_t>) + ghost_point_.capacity() * sizeof(PetscInt) + ghost_owner_.capacity() * sizeof(int) +
+         global_vertex_.capacity() * sizeof(PetscInt) + layout_.offsets.capacity() * sizeof(std::uint64_t) +
+         layout_.strata.capacity() * sizeof(Layout::Stratum) +
+         simplex_ids_.capacity() * sizeof(std::uint32_t) +
+         (table_ && table_->built.load(std::memory_order_acquire) ? table_->slots.capacity() * sizeof(PetscInt) : 0);
 }
 
 const Complex &RankMesh::complex() const {
@@ -344,13 +620,21 @@ PetscInt RankMesh::point_of_listing(std::size_t i) const {
 }
 
 std::size_t RankMesh::listing_of_point(PetscInt p) const {
-  return p >= p_start_ && p < p_end_ ? point_listing_[static_cast<std::size_t>(p - p_start_)] : NO_LISTING;
+  if (p < p_start_ || p >= p_end_) return NO_LISTING;
+  // Tops: the first top_listings_ listings, in ascending point order.
+  const auto tops_end = listed_point_.begin() + static_cast<std::ptrdiff_t>(top_listings_);
+  const auto it = std::lower_bound(listed_point_.begin(), tops_end, p);
+  if (it != tops_end && *it == p) return static_cast<std::size_t>(it - listed_point_.begin());
+  const auto e = std::lower_bound(extra_listing_.begin(), extra_listing_.end(), std::make_pair(p, std::uint32_t(0)));
+  return e != extra_listing_.end() && e->first == p ? e->second : NO_LISTING;
 }
 
 PetscInt RankMesh::point_of(std::vector<std::uint32_t> simplex) const {
-  std::sort(simplex.begin(), simplex.end());
-  const auto it = simplex_point_.find(simplex);
-  return it == simplex_point_.end() ? NO_POINT : it->second;
+  std::uint32_t key[4] = {0, 0, 0, 0};
+  if (simplex.empty() || !sorted_key(simplex.data(), simplex.size(), key)) return NO_POINT;
+  const std::vector<PetscInt> &slots = point_slots();
+  const PetscInt ip = slots[slot_of(slots, key, simplex.size())];
+  return ip < 0 ? NO_POINT : p_start_ + ip;
 }
 
 std::vector<std::uint32_t> RankMesh::simplex_of_point(PetscInt p) const {
@@ -358,12 +642,14 @@ std::vector<std::uint32_t> RankMesh::simplex_of_point(PetscInt p) const {
     throw Error(Code::InvalidArgument, "point " + std::to_string(p) + " outside the chart [" +
                                            std::to_string(p_start_) + ", " + std::to_string(p_end_) + ")");
   }
-  const auto &vs = point_simplex_[static_cast<std::size_t>(p - p_start_)];
-  if (vs.empty()) {
+  const std::size_t ip = static_cast<std::size_t>(p - p_start_);
+  const auto [a, b] = layout_.range(ip, p_start_);
+  if (a == b) {
     throw Error(Code::InvalidArgument, "point " + std::to_string(p) +
                                            " is a face of a non-interpolated DM: no vertices kept");
   }
-  return vs;
+  return std::vector<std::uint32_t>(simplex_ids_.begin() + static_cast<std::ptrdiff_t>(a),
+                                    simplex_ids_.begin() + static_cast<std::ptrdiff_t>(b));
 }
 
 int RankMesh::point_owner(PetscInt p) const {
@@ -371,7 +657,8 @@ int RankMesh::point_owner(PetscInt p) const {
     throw Error(Code::InvalidArgument, "point " + std::to_string(p) + " outside the chart [" +
                                            std::to_string(p_start_) + ", " + std::to_string(p_end_) + ")");
   }
-  return point_owner_[static_cast<std::size_t>(p - p_start_)];
+  const auto it = std::lower_bound(ghost_point_.begin(), ghost_point_.end(), p);
+  return it != ghost_point_.end() && *it == p ? ghost_owner_[static_cast<std::size_t>(it - ghost_point_.begin())] : rank_;
 }
 
 int RankMesh::owner(const StructureView &s, const std::vector<std::uint32_t> &simplex) const {

@@ -35,11 +35,14 @@
 #include <petscdmplex.h>
 #include <petscsf.h>
 
+#include <atomic>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <unordered_map>
+#include <utility>
 #include <vector>
 
 namespace topoplex {
@@ -83,15 +86,19 @@ struct ImportOptions {
 };
 
 /* One rank's part of a DMPlex as a Topoplex complex, with the maps between DM points and
- * Topoplex ids and each simplex's owner. Memory: the complex, plus per local point an owner
- * (4 B), a listing index (8 B) and its vertex list (a std::vector), per vertex its point and global
- * number (16 B), and a hash from each simplex that is a point to the point (every point when the
- * DM is interpolated): more than the complex itself for an interpolated DM (docs/dmplex.md). */
+ * Topoplex ids and each simplex's owner. Memory: the complex, plus per local point its vertex
+ * ids (4 B each) in flat arrays (plus an 8 B offset unless the DM is fully interpolated and
+ * simplicial), per listing its point (4 B), per ghost point its owner (8 B), per vertex its
+ * point and global number (8 B), and once point_of or owner is first called, a table from
+ * sorted vertex ids to points (8 to 16 B per point with vertices): see bytes(). */
 class RankMesh {
  public:
-  /* Collective on the DM's communicator (global vertex numbering). Cost: O(points x closure)
-   * for the walk, plus Complex::from_arrays on the tops. Throws Error NotSimplicial naming the
-   * first non-simplicial cell, Refused for a point in two strata of one label. */
+  /* Collective on the DM's communicator (global vertex numbering). Cost: O(points): a fully
+   * interpolated simplicial DM is read stratum by stratum (each point's vertices from its cone,
+   * its cone orientations and its faces' vertices: a few PETSc calls per point); any other DM
+   * walks each top's and each vertex-bearing point's transitive closure (depth-1 points: the
+   * cone). Plus Complex::from_arrays on the tops. Throws Error NotSimplicial naming the first
+   * non-simplicial cell, Refused for a point in two strata of one label. */
   static RankMesh from_dm(DM dm, const ImportOptions &options = {});
 
   /* A rank with no point (a serial DM's other ranks, a tiny mesh on many ranks) has no complex:
@@ -105,6 +112,10 @@ class RankMesh {
   PetscInt overlap() const noexcept { return overlap_; }
   bool interpolated() const noexcept { return interpolated_; }
 
+  /* Heap bytes of the maps (everything but the complex): their arrays' capacities, the point
+   * table's once built. O(1). */
+  std::size_t bytes() const noexcept;
+
   /* ---- point <-> Topoplex ids (O(1) each; point_of: a hash lookup) ---- */
   std::uint32_t vertex_count() const noexcept { return static_cast<std::uint32_t>(vertex_point_.size()); }
   PetscInt point_of_vertex(std::uint32_t v) const;
@@ -112,14 +123,15 @@ class RankMesh {
   /* Listing i of the complex (tops in point order, then labelled non-top points) and back. */
   std::size_t listing_count() const noexcept { return listed_point_.size(); }
   PetscInt point_of_listing(std::size_t i) const;
-  std::size_t listing_of_point(PetscInt p) const; /* NO_LISTING when p is not listed */
+  std::size_t listing_of_point(PetscInt p) const; /* NO_LISTING when p is not listed; O(log listed) */
   /* The point whose closure's vertices are `simplex` (vertex ids, any order): NO_POINT for a
-   * simplex that is no point (faces of a non-interpolated DM) or not in the complex. */
+   * simplex that is no point (faces of a non-interpolated DM) or not in the complex. The first
+   * call builds the table from vertex ids to points (O(points)); then a hash probe. */
   PetscInt point_of(std::vector<std::uint32_t> simplex) const;
   /* The vertices of point p's closure, in Topoplex winding for tops. */
   std::vector<std::uint32_t> simplex_of_point(PetscInt p) const;
 
-  /* ---- ownership ---- */
+  /* ---- ownership (point_owner: O(log ghosts), a search among the point SF's leaves) ---- */
   int point_owner(PetscInt p) const;
   int vertex_owner(std::uint32_t v) const { return point_owner(point_of_vertex(v)); }
   bool vertex_owned(std::uint32_t v) const { return vertex_owner(v) == rank_; }
@@ -143,22 +155,57 @@ class RankMesh {
 
  private:
   RankMesh() = default;
-  struct KeyHash {
-    std::size_t operator()(const std::vector<std::uint32_t> &k) const noexcept;
+  /* The table from sorted vertex ids to points, built by the first point_of / owner (once, under
+   * std::call_once, so concurrent queries stay safe). */
+  struct PointTable {
+    std::once_flag once;
+    std::atomic<bool> built{false};
+    /* Open addressing (linear probing, a power of two at least twice the entries): the point -
+     * p_start of every point with vertices, at the hash of its sorted vertices; -1 empty. */
+    std::vector<PetscInt> slots;
   };
+  const std::vector<PetscInt> &point_slots() const;
+  /* Slot of `sorted` (ascending vertex ids) in `slots`: its point's slot, or an empty one. */
+  std::size_t slot_of(const std::vector<PetscInt> &slots, const std::uint32_t *sorted, std::size_t n) const noexcept;
   std::optional<Complex> complex_;
   int rank_ = 0, size_ = 1;
   PetscInt overlap_ = 0;
   bool vertex_adjacency_ = true; /* the DM's basic adjacency is PETSc's default (FEM) */
   bool interpolated_ = false;
   PetscInt p_start_ = 0, p_end_ = 0, v_start_ = 0, v_end_ = 0;
-  std::vector<PetscInt> vertex_point_;   /* v -> point */
-  std::vector<PetscInt> listed_point_;   /* listing -> point */
-  std::vector<std::size_t> point_listing_; /* point - p_start -> listing */
-  std::vector<int> point_owner_;         /* point - p_start -> owner rank */
-  std::vector<PetscInt> global_vertex_;  /* v -> global number */
-  std::vector<std::vector<std::uint32_t>> point_simplex_; /* point - p_start -> vertices */
-  std::unordered_map<std::vector<std::uint32_t>, PetscInt, KeyHash> simplex_point_;
+  std::vector<PetscInt> vertex_point_;      /* v -> point */
+  std::vector<PetscInt> listed_point_;      /* listing -> point */
+  std::size_t top_listings_ = 0;            /* listings 0 .. top_listings_: the tops, ascending points */
+  std::vector<std::pair<PetscInt, std::uint32_t>> extra_listing_; /* (point, listing) of the others, by point */
+  std::vector<PetscInt> ghost_point_;       /* the point SF's leaves here, ascending */
+  std::vector<int> ghost_owner_;            /* their owners (root ranks); other points: rank_ */
+  std::vector<PetscInt> global_vertex_;     /* v -> global number */
+  /* Where point p's vertices are in simplex_ids_ (closure order, tops in Topoplex winding; none
+   * for faces of a non-interpolated DM). A fully interpolated simplicial DM, whose strata are
+   * contiguous ranges of points with depth + 1 vertices each: at base + (p - start) x width of
+   * p's stratum, no per-point offset; any other DM: offsets[p - p_start] .. [p - p_start + 1]. */
+  struct Layout {
+    struct Stratum {
+      PetscInt start, end;
+      std::uint64_t base, width;
+    };
+    std::vector<Stratum> strata; /* by start, covering the chart; empty: offsets */
+    std::vector<std::uint64_t> offsets;
+    std::pair<std::uint64_t, std::uint64_t> range(std::size_t ip, PetscInt p_start) const noexcept {
+      if (strata.empty()) return {offsets[ip], offsets[ip + 1]};
+      const PetscInt p = p_start + static_cast<PetscInt>(ip);
+      for (const Stratum &st : strata) {
+        if (p < st.end) {
+          const std::uint64_t a = st.base + static_cast<std::uint64_t>(p - st.start) * st.width;
+          return {a, a + st.width};
+        }
+      }
+      return {0, 0};
+    }
+  };
+  Layout layout_;
+  std::vector<std::uint32_t> simplex_ids_;
+  std::unique_ptr<PointTable> table_ = std::make_unique<PointTable>();
 };
 
 struct ExportOptions {

@@ -164,13 +164,14 @@ if [ -n "$bench_bin" ]; then
   for f in $(datasets 'surf-*.off'); do run topoplex_bench_surface surface "$f"; done
   for f in $(datasets 'tet-*.mesh'); do run topoplex_bench_tets tets "$f"; done
   # Issue 25: the whole application (load, smoothing, stats, face neighbours, write) on
-  # OpenMesh and on the mesh, one process per run, peak RSS per process; the surfaces and the
+  # OpenMesh and on the mesh (also keeping its facet adjacency from load on: --kept), one process
+  # per run, peak RSS per process; the surfaces and the
   # non-manifold meshes of ../shared/data when present. RESULTS/app.md.
   if [ -x "$bench_bin/topoplex_bench_app" ]; then
     echo "-- app"
     shared=$root/../shared/data
     python3 "$root/scripts/bench_app.py" "$bench_bin/topoplex_bench_app" \
-      --runs "$([ "$quick" = 1 ] && echo 2 || echo 5)" $(datasets 'surf-*.off') \
+      --runs "$([ "$quick" = 1 ] && echo 2 || echo 5)" --kept $(datasets 'surf-*.off') \
       $(ls "$shared"/nonmanifold/*.obj 2>/dev/null) | tee "$results/app.md" \
       || failed+=("bench_app.py")
   fi

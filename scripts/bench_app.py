@@ -10,7 +10,11 @@ the smoothed coordinates' sum to 1e-6 relative: OpenMesh's OFF reader parses sin
 floats even into double points) must agree, else the input is marked: OpenMesh drops the faces
 of a non-manifold input when it reads it, and only Topoplex's figures are shown then.
 
-usage: scripts/bench_app.py BIN [--runs N] INPUT.off...
+With --kept, a third program runs alternated with the two: Topoplex's mesh keeping its facet
+adjacency from load on (`topoplex-kept`: the index is built in `load`, as OpenMesh builds its
+halfedges while loading, and `ff` reads it), printed as a second row per input.
+
+usage: scripts/bench_app.py BIN [--runs N] [--kept] INPUT.off...
 """
 import argparse
 import os
@@ -36,7 +40,9 @@ def main():
     ap.add_argument("binary")
     ap.add_argument("inputs", nargs="+")
     ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--kept", action="store_true")
     a = ap.parse_args()
+    libs = ["openmesh", "topoplex"] + (["topoplex-kept"] if a.kept else [])
     load = os.getloadavg()
     print(f"load average at start: {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}; "
           f"{a.runs} runs per library and input, alternated; medians")
@@ -55,50 +61,55 @@ def main():
             with open(copy, "w") as f:
                 f.writelines(lines)
             path = copy
-        res = {"openmesh": [], "topoplex": []}
+        res = {lib: [] for lib in libs}
         err = {}
         for _ in range(a.runs):
-            for lib in ("openmesh", "topoplex"):
+            for lib in libs:
                 kv, e = run(a.binary, lib, path, os.path.join(tmp, f"{lib}.off"))
                 if kv is None:
                     err[lib] = e
                 else:
                     res[lib].append(kv)
-        name = os.path.basename(path)
-        if not res["topoplex"]:
-            print(f"| {name} | | " + " | " * len(PHASES) + f" | Topoplex failed: {err.get('topoplex')} |")
-            continue
-        t, o = res["topoplex"], res["openmesh"]
-
-        def med(rows, key):
-            return statistics.median(float(r[key]) for r in rows if key in r)
-
-        same = bool(o) and all(t[0][k] == o[0][k] for k in EXACT) and abs(
-            float(t[0]["coord_sum"]) - float(o[0]["coord_sum"])
-        ) <= 1e-6 * max(1.0, abs(float(o[0]["coord_sum"])))
-        cells = []
-        for ph in PHASES:
-            key = ph + "_ms"
-            tm = med(t, key)
-            if same:
-                om = med(o, key)
-                cells.append(f"{tm / om:.2f} ({tm:.1f} / {om:.1f} ms)")
-            else:
-                cells.append(f"{tm:.1f} ms")
-        trss = med(t, "peak_rss_kib") / 1024
-        if same:
-            orss = med(o, "peak_rss_kib") / 1024
-            cells.append(f"{trss / orss:.2f} ({trss:.0f} / {orss:.0f} MiB)")
-            note = ""
-        else:
-            cells.append(f"{trss:.0f} MiB")
-            note = ("OpenMesh cannot read it" if not o else
-                    "OpenMesh's answers differ (it drops non-manifold faces): Topoplex alone")
-        print(f"| {name} | {t[0]['faces']} | " + " | ".join(cells) + f" | {note} |")
-        sys.stdout.flush()
+        for lib in libs[1:]:
+            name = os.path.basename(path) + (" (adjacency kept)" if lib == "topoplex-kept" else "")
+            row(name, res[lib], res["openmesh"], err.get(lib))
     load = os.getloadavg()
     print()
     print(f"load average at end: {load[0]:.2f} {load[1]:.2f} {load[2]:.2f}")
+
+
+def row(name, t, o, failure):
+    """One input's row: Topoplex's runs `t` against OpenMesh's `o`."""
+    if not t:
+        print(f"| {name} | | " + " | " * len(PHASES) + f" | Topoplex failed: {failure} |")
+        return
+
+    def med(rows, key):
+        return statistics.median(float(r[key]) for r in rows if key in r)
+
+    same = bool(o) and all(t[0][k] == o[0][k] for k in EXACT) and abs(
+        float(t[0]["coord_sum"]) - float(o[0]["coord_sum"])
+    ) <= 1e-6 * max(1.0, abs(float(o[0]["coord_sum"])))
+    cells = []
+    for ph in PHASES:
+        key = ph + "_ms"
+        tm = med(t, key)
+        if same:
+            om = med(o, key)
+            cells.append(f"{tm / om:.2f} ({tm:.1f} / {om:.1f} ms)")
+        else:
+            cells.append(f"{tm:.1f} ms")
+    trss = med(t, "peak_rss_kib") / 1024
+    if same:
+        orss = med(o, "peak_rss_kib") / 1024
+        cells.append(f"{trss / orss:.2f} ({trss:.0f} / {orss:.0f} MiB)")
+        note = ""
+    else:
+        cells.append(f"{trss:.0f} MiB")
+        note = ("OpenMesh cannot read it" if not o else
+                "OpenMesh's answers differ (it drops non-manifold faces): Topoplex alone")
+    print(f"| {name} | {t[0]['faces']} | " + " | ".join(cells) + f" | {note} |")
+    sys.stdout.flush()
 
 
 if __name__ == "__main__":

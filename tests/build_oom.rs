@@ -99,6 +99,15 @@ fn set_address_space_limit(bytes: u64) {
 /// between arrays, which no reservation can prevent. Those aborts are told apart and allowed.
 const SMALL: usize = 256 << 10;
 
+/// The start of each test: in a child process (`CHILD` set), the child's run, which never
+/// returns; in the parent, whether address-space limits can be tried here (Linux, not Miri).
+fn limits_can_be_tried() -> bool {
+    if let Ok(spec) = std::env::var(CHILD) {
+        child(&spec);
+    }
+    cfg!(target_os = "linux") && !cfg!(miri)
+}
+
 /// The child: builds `kind` (`name@threads`) under each margin from the `start`-th, printing
 /// `MB:too-large` or `MB:built` per try on stdout (an abort cuts the list short); other errors
 /// fail. With 2 threads the pool is started inside the limit: at the smallest margins its
@@ -179,10 +188,7 @@ fn tries(me: &std::path::Path, test: &str, kind: &str) -> Result<Vec<String>, St
 
 #[test]
 fn every_build_under_an_address_space_limit_says_too_large() {
-    if let Ok(spec) = std::env::var(CHILD) {
-        child(&spec);
-    }
-    if !cfg!(target_os = "linux") || cfg!(miri) {
+    if !limits_can_be_tried() {
         return;
     }
     let me = std::env::current_exe().unwrap();
@@ -371,10 +377,7 @@ fn grid_files(dir: &std::path::Path, k: u32) -> Vec<(String, std::path::PathBuf)
 /// crates' arrays behind vtkio probed first, `.tpx` copies and mapping).
 #[test]
 fn every_reader_under_an_address_space_limit_says_too_large() {
-    if let Ok(spec) = std::env::var(CHILD) {
-        child(&spec);
-    }
-    if !cfg!(target_os = "linux") || cfg!(miri) {
+    if !limits_can_be_tried() {
         return;
     }
     let dir = std::env::temp_dir().join(format!("topoplex-read-oom-{}", std::process::id()));

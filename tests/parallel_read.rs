@@ -218,12 +218,40 @@ fn summary(c: &topoplex::Complex) -> (Vec<Vec<u32>>, Vec<Vec<u32>>, String) {
     (tops, listing, format!("{:?}", c.stats()))
 }
 
+/// `cases` inputs that `draw` makes (from the generator seeded `seed`, and the case number),
+/// each read as from `path` serially without splitting, then with 2 and 3 threads split at
+/// every 2 rows: the same complex or the same first error each time. Returns how many inputs
+/// were refused.
+fn the_same_on_every_thread_count(
+    seed: u64,
+    cases: usize,
+    path: Option<&std::path::Path>,
+    mut draw: impl FnMut(&mut Rng, usize) -> RawInput,
+) -> usize {
+    let _one_at_a_time = GLOBALS.lock().unwrap_or_else(|e| e.into_inner());
+    let mut rng = Rng(seed);
+    let mut refused = 0;
+    for case in 0..cases {
+        let raw = draw(&mut rng, case);
+        let build = || topoplex::Complex::from_raw(&raw, path).map(|c| summary(&c));
+        set_split_threshold(usize::MAX);
+        set_threads(1);
+        let serial = build();
+        set_split_threshold(2);
+        for t in [2, 3] {
+            set_threads(t);
+            assert_eq!(build(), serial, "{t} threads, case {case}");
+        }
+        set_threads(1);
+        refused += usize::from(serial.is_err());
+    }
+    refused
+}
+
 #[test]
 fn complexes_are_checked_and_sorted_the_same_on_every_thread_count() {
-    let _one_at_a_time = GLOBALS.lock().unwrap_or_else(|e| e.into_inner());
-    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
-    let mut refused = 0;
-    for case in 0..300 {
+    let path = Some(std::path::Path::new("r.simplices"));
+    let refused = the_same_on_every_thread_count(0x2545_f491_4f6c_dd1d, 300, path, |rng, case| {
         let n = 2 + rng.below(12) as u32;
         let mut raw = RawInput::new();
         raw.vertex_count = Some(n);
@@ -245,19 +273,8 @@ fn complexes_are_checked_and_sorted_the_same_on_every_thread_count() {
             }
             raw.push(&s, i as u32 + 1);
         }
-        let build = || topoplex::Complex::from_raw(&raw, Some(std::path::Path::new("r.simplices")));
-        set_split_threshold(usize::MAX);
-        set_threads(1);
-        let serial = build().map(|c| summary(&c));
-        set_split_threshold(2);
-        for t in [2, 3] {
-            set_threads(t);
-            let got = build().map(|c| summary(&c));
-            assert_eq!(got, serial, "{t} threads, case {case}");
-        }
-        set_threads(1);
-        refused += usize::from(serial.is_err());
-    }
+        raw
+    });
     assert!(refused > 30, "only {refused} of 300 inputs refused");
 }
 
@@ -317,10 +334,7 @@ fn large_inputs_deduplicated_by_blocks_are_normalised_the_same_on_every_thread_c
 /// thread count, every range edge landing somewhere (threshold 2).
 #[test]
 fn ascending_listings_are_normalised_the_same_on_every_thread_count() {
-    let _one_at_a_time = GLOBALS.lock().unwrap_or_else(|e| e.into_inner());
-    let mut rng = Rng(0x0dd_ba11_5eed_1234);
-    let mut refused = 0;
-    for case in 0..200 {
+    let refused = the_same_on_every_thread_count(0x0dd_ba11_5eed_1234, 200, None, |rng, case| {
         let n = 3 + rng.below(30) as u32;
         let mut listed: Vec<Vec<u32>> = (0..rng.below(80))
             .map(|_| {
@@ -353,17 +367,7 @@ fn ascending_listings_are_normalised_the_same_on_every_thread_count() {
         for (i, s) in listed.iter().enumerate() {
             raw.push(s, i as u32 + 1);
         }
-        let build = || topoplex::Complex::from_raw(&raw, None).map(|c| summary(&c));
-        set_split_threshold(usize::MAX);
-        set_threads(1);
-        let serial = build();
-        set_split_threshold(2);
-        for t in [2, 3] {
-            set_threads(t);
-            assert_eq!(build(), serial, "{t} threads, case {case}");
-        }
-        set_threads(1);
-        refused += usize::from(serial.is_err());
-    }
+        raw
+    });
     assert!(refused > 30, "only {refused} of 200 inputs refused");
 }

@@ -461,6 +461,77 @@ void interpolated_closure_order_is_the_cell_list_order() {
   PetscCallAbort(PETSC_COMM_SELF, DMDestroy(&interp));
 }
 
+// Every point's vertices as from_dm keeps them (walked from cones and orientations) against
+// PETSc's own DMPlexGetTransitiveClosure order (tetrahedra tops with vertices 0 and 1 swapped back:
+// the bridge's winding), on serial and distributed DMs (distribution reorients cones).
+std::size_t check_closure_orders(DM dm, const char *name) {
+  const dx::RankMesh rm = dx::RankMesh::from_dm(dm);
+  PetscInt pStart, pEnd, vStart, vEnd;
+  PetscCallAbort(PETSC_COMM_SELF, DMPlexGetChart(dm, &pStart, &pEnd));
+  PetscCallAbort(PETSC_COMM_SELF, DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  std::size_t checked = 0;
+  for (PetscInt p = pStart; p < pEnd; ++p) {
+    PetscInt n = 0, *cl = nullptr, support = 0;
+    Simplex petsc;
+    PetscCallAbort(PETSC_COMM_SELF, DMPlexGetTransitiveClosure(dm, p, PETSC_TRUE, &n, &cl));
+    for (PetscInt k = 0; k < n; ++k)
+      if (cl[2 * k] >= vStart && cl[2 * k] < vEnd) petsc.push_back(static_cast<std::uint32_t>(cl[2 * k] - vStart));
+    PetscCallAbort(PETSC_COMM_SELF, DMPlexRestoreTransitiveClosure(dm, p, PETSC_TRUE, &n, &cl));
+    PetscCallAbort(PETSC_COMM_SELF, DMPlexGetSupportSize(dm, p, &support));
+    if (support == 0 && petsc.size() == 4) std::swap(petsc[0], petsc[1]);
+    const Simplex ours = rm.simplex_of_point(p);
+    CHECK_MSG(ours == petsc, name << ": point " << p << " has vertices in another order than PETSc's closure");
+    ++checked;
+  }
+  return checked;
+}
+
+void vertices_of_every_point_follow_petscs_closure_order() {
+  struct Case {
+    const char *name;
+    tp::Complex c;
+    bool distributed; /* dangling simplices do not distribute (see distribute) */
+  };
+  std::vector<Case> cases;
+  cases.push_back({"freudenthal 3", freudenthal(3), true});
+  cases.push_back({"triangles 6", triangles(6), true});
+  cases.push_back({"non-manifold triangles", nonmanifold_triangles(), false});
+  std::size_t checked = 0;
+  for (const Case &k : cases) {
+    DM serial = dx::to_dm(PETSC_COMM_WORLD, g_rank == 0 ? &k.c : nullptr, dx::ExportOptions{true, false});
+    checked += check_closure_orders(serial, k.name);  // collective: the points are on rank 0
+    if (k.distributed) {
+      DM dist = dx::distribute(serial, 1);
+      checked += check_closure_orders(dist, k.name);
+      PetscCallAbort(PETSC_COMM_WORLD, DMDestroy(&dist));
+    }
+    PetscCallAbort(PETSC_COMM_WORLD, DMDestroy(&serial));
+  }
+  // PETSc's Gmsh reader, interpolated by PETSc and distributed (optional real data).
+  std::string path = std::string(TOPOPLEX_DMPLEX_SHARED_DATA_DIR) + "/labelled/gmsh_t2.msh";
+  if (const char *env = std::getenv("TOPOPLEX_DATA_DIR")) path = std::string(env) + "/labelled/gmsh_t2.msh";
+  int present = std::ifstream(path).good() ? 1 : 0;
+  MPI_Bcast(&present, 1, MPI_INT, 0, PETSC_COMM_WORLD);
+  if (present) {
+    // Read cell-vertex (its labelled faces are no facets PETSc's interpolating reader finds),
+    // then interpolated by PETSc.
+    DM plain, read, dist = nullptr;
+    PetscCallAbort(PETSC_COMM_WORLD, DMPlexCreateFromFile(PETSC_COMM_WORLD, path.c_str(), "read", PETSC_FALSE, &plain));
+    PetscCallAbort(PETSC_COMM_WORLD, DMPlexInterpolate(plain, &read));
+    PetscCallAbort(PETSC_COMM_WORLD, DMDestroy(&plain));
+    PetscCallAbort(PETSC_COMM_WORLD, DMPlexDistribute(read, 1, nullptr, &dist));
+    checked += check_closure_orders(dist ? dist : read, "gmsh_t2");
+    if (dist) PetscCallAbort(PETSC_COMM_WORLD, DMDestroy(&dist));
+    PetscCallAbort(PETSC_COMM_WORLD, DMDestroy(&read));
+  } else if (g_rank == 0) {
+    std::printf("    skipped: %s absent\n", path.c_str());
+  }
+  unsigned long n = checked, sum = 0;
+  MPI_Allreduce(&n, &sum, 1, MPI_UNSIGNED_LONG, MPI_SUM, PETSC_COMM_WORLD);
+  CHECK(sum > 0);
+  if (g_rank == 0) std::printf("    %lu points' vertex orders checked\n", sum);
+}
+
 void owned_relations_equal_serial_answers_with_overlap_1() {
   struct Case {
     const char *name;
@@ -679,6 +750,7 @@ int main(int argc, char **argv) {
       {"tetrahedra_exported_have_positive_petsc_jacobians", tetrahedra_exported_have_positive_petsc_jacobians},
       {"serial_round_trip_keeps_simplices_winding_and_labels", serial_round_trip_keeps_simplices_winding_and_labels},
       {"interpolated_closure_order_is_the_cell_list_order", interpolated_closure_order_is_the_cell_list_order},
+      {"vertices_of_every_point_follow_petscs_closure_order", vertices_of_every_point_follow_petscs_closure_order},
       {"owned_relations_equal_serial_answers_with_overlap_1", owned_relations_equal_serial_answers_with_overlap_1},
       {"overlap_0_cuts_stars_and_is_refused", overlap_0_cuts_stars_and_is_refused},
       {"face_adjacency_overlap_is_refused", face_adjacency_overlap_is_refused},

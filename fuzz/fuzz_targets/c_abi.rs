@@ -4,9 +4,9 @@
 //! dimensions and buffer sizes, relation tables, decompositions, frees in any order. Nothing may
 //! panic (TPX_STATUS_PANIC fails the run), and every successful answer must equal the Rust API's.
 use libfuzzer_sys::fuzz_target;
-use std::ptr::{null, null_mut};
-use topoplex_ffi::*;
+use std::ptr::null_mut;
 use topoplex::relation::sort_rows;
+use topoplex_ffi::*;
 
 struct Bytes<'a>(&'a [u8]);
 
@@ -24,24 +24,7 @@ fuzz_target!(|data: &[u8]| {
     let mut b = Bytes(data);
     let (n, list) = topoplex_fuzz_support::decode(&data[..data.len().min(64)]);
     b.0 = &data[data.len().min(64)..];
-    let mut ids = Vec::new();
-    let mut offsets = vec![0usize];
-    for s in &list {
-        ids.extend_from_slice(s);
-        offsets.push(ids.len());
-    }
-    let mut complex = null_mut();
-    let st = unsafe {
-        tpx_complex_from_arrays(
-            n,
-            ids.as_ptr(),
-            offsets.as_ptr(),
-            list.len(),
-            null(),
-            0,
-            &mut complex,
-        )
-    };
+    let (st, mut complex) = topoplex_fuzz_support::c_complex(n, &list);
     assert_ne!(st, TpxStatus::Panic);
     if st != TpxStatus::Ok {
         assert!(complex.is_null());

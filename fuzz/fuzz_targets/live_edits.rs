@@ -152,25 +152,10 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let mut rust = LiveComplex::from_complex(&c);
-    let ids: Vec<u32> = list.iter().flatten().copied().collect();
-    let mut offsets = vec![0usize];
-    offsets.extend(list.iter().scan(0, |o, s| {
-        *o += s.len();
-        Some(*o)
-    }));
-    let mut tc: *mut TpxComplex = std::ptr::null_mut();
+    let (st, tc) = topoplex_fuzz_support::c_complex(n, &list);
+    assert_eq!(st, TpxStatus::Ok);
     let mut live: *mut TpxLive = std::ptr::null_mut();
     unsafe {
-        let st = tpx_complex_from_arrays(
-            n,
-            ids.as_ptr(),
-            offsets.as_ptr(),
-            list.len(),
-            std::ptr::null(),
-            0,
-            &mut tc,
-        );
-        assert_eq!(st, TpxStatus::Ok);
         assert_eq!(tpx_live_from_complex(tc, &mut live), TpxStatus::Ok);
         tpx_complex_free(tc);
     }

@@ -32,7 +32,11 @@ fuzz_target!(|data: &[u8]| {
             let wide = u64::from(value).wrapping_mul(0x0101_0101_0101_0101) >> (mode >> 3);
             bytes[place..place + 8].copy_from_slice(&wide.to_ne_bytes());
         } else {
-            bytes[place] = if mode & 1 != 0 { value } else { bytes[place] ^ value };
+            bytes[place] = if mode & 1 != 0 {
+                value
+            } else {
+                bytes[place] ^ value
+            };
         }
         resealing |= mode & 4 != 0;
         ops = &ops[6..];
@@ -48,7 +52,9 @@ fuzz_target!(|data: &[u8]| {
         Ok(Some(s)) => s,
         _ => return,
     };
-    let got = caught_quietly(AssertUnwindSafe(|| topoplex::testing::answers(s.as_ref(), complex)));
+    let got = caught_quietly(AssertUnwindSafe(|| {
+        topoplex::testing::answers(s.as_ref(), complex)
+    }));
     if got.as_ref().is_ok_and(|got| got == want) {
         return;
     }

@@ -4,6 +4,7 @@ use topoplex::io::RawInput;
 use topoplex::oracle::check_structure;
 use topoplex::{BuildError, build};
 use topoplex::{Complex, StructureKind};
+use topoplex_ffi::{TpxComplex, TpxStatus, tpx_complex_from_arrays};
 
 /// Whatever a reader accepted either normalises or is refused with an error; a small complex
 /// then builds every structure, and each answers like the oracle.
@@ -45,6 +46,25 @@ pub fn check_complex(c: &Complex) {
             Err(e) => panic!("{kind}: unexpected build error {e}"),
         }
     }
+}
+
+/// The complex of `list` over `n` vertices made through the C ABI as a C caller makes it
+/// (`tpx_complex_from_arrays`, no coordinates): the status, and the handle (NULL unless OK),
+/// which the caller frees.
+pub fn c_complex(n: u32, list: &[Vec<u32>]) -> (TpxStatus, *mut TpxComplex) {
+    let ids: Vec<u32> = list.concat();
+    let mut offsets = vec![0usize];
+    offsets.extend(list.iter().scan(0, |end, s| {
+        *end += s.len();
+        Some(*end)
+    }));
+    let mut out = std::ptr::null_mut();
+    // SAFETY: `ids` and `offsets` hold what `list.len()` and the offsets say.
+    let st = unsafe {
+        let (ids, offsets) = (ids.as_ptr(), offsets.as_ptr());
+        tpx_complex_from_arrays(n, ids, offsets, list.len(), std::ptr::null(), 0, &mut out)
+    };
+    (st, out)
 }
 
 /// Decodes bytes into a vertex count and a list of simplices: byte 0 picks n in 1..=12, then

@@ -54,6 +54,106 @@ pub fn refusal_of<T>(built: Result<T, topoplex::BuildError>) -> String {
     }
 }
 
+/// A structure built and validated, panicking with the error of either.
+pub fn validated<S: topoplex::Topology, E: std::fmt::Debug>(built: Result<S, E>) -> S {
+    let s = built.unwrap();
+    s.validate().unwrap();
+    s
+}
+
+/// A structure that refuses some complexes, checked on `c`: refused naming `expected` (the
+/// offending simplex the brute force found), or, when there is none, accepted, valid, storing
+/// what `check_storage` counts and matching the oracle.
+pub fn refused_or_matches<S: topoplex::Topology>(
+    c: &Complex,
+    expected: Option<Vec<u32>>,
+    build: fn(&Complex) -> Result<S, topoplex::BuildError>,
+    check_storage: fn(&S, &Complex),
+) -> Result<(), TestCaseError> {
+    match expected {
+        Some(bad) => {
+            let r = refusal_of(build(c));
+            prop_assert!(
+                r.contains(&show(&bad)),
+                "reason {} should name {:?}",
+                r,
+                bad
+            );
+        }
+        None => {
+            let s = validated(build(c));
+            check_storage(&s, c);
+            prop_assert_eq!(topoplex::oracle::check_structure(&s, c), Ok(()));
+        }
+    }
+    Ok(())
+}
+
+/// Builds every kind; returns the ones that encode `c`, validated. A kind that is not
+/// implemented yet or refuses the complex is skipped; any other failure panics.
+pub fn buildable(c: &Complex, what: &str) -> Vec<Box<dyn topoplex::Topology>> {
+    let mut out = Vec::new();
+    for kind in topoplex::StructureKind::ALL {
+        match topoplex::build(kind, c) {
+            Ok(s) => {
+                s.validate()
+                    .unwrap_or_else(|e| panic!("{what}: {kind}: validate: {e}"));
+                assert_eq!(s.kind(), kind);
+                out.push(s);
+            }
+            Err(topoplex::BuildError::NotImplemented { .. })
+            | Err(topoplex::BuildError::Unsupported { .. }) => {}
+            Err(e) => panic!("{what}: {kind}: {e}"),
+        }
+    }
+    out
+}
+
+/// The root of `i` in the union-find forest `parent` (`parent[r] == r` at a root), the path
+/// compressed on the way: a brute force's connected components.
+pub fn root(parent: &mut [usize], i: usize) -> usize {
+    if parent[i] == i {
+        i
+    } else {
+        let r = root(parent, parent[i]);
+        parent[i] = r;
+        r
+    }
+}
+
+/// The one 15-simplex over vertices 0..16, and its vertices.
+pub fn fifteen_simplex() -> (Complex, Vec<u32>) {
+    let top: Vec<u32> = (0..16).collect();
+    (Complex::from_simplices(16, &[&top]).unwrap(), top)
+}
+
+/// What every structure answers on [`fifteen_simplex`]: C(16, 8) 7-faces, the 15-simplex as a
+/// vertex's star, eight 14-faces around a 7-face; `out` holds the last answer.
+pub fn check_fifteen_simplex(s: &dyn topoplex::Topology, top: &[u32], out: &mut Vec<u32>) {
+    assert_eq!(s.count(7), 12870);
+    s.relation(&[3], 15, out).unwrap();
+    assert_eq!(out.as_slice(), top);
+    s.relation(&[0, 1, 2, 3, 4, 5, 6, 7], 14, out).unwrap();
+    assert_eq!(out.len() / 15, 8);
+}
+
+/// The refusal of a query on a simplex that is not in [`topoplex::fixtures::bowtie`] (the
+/// edge 0-3), which names it and leaves `out` empty.
+pub fn check_bowtie_refusal(s: &dyn topoplex::Topology, out: &mut Vec<u32>) {
+    out.push(99);
+    let e = s.relation(&[0, 3], 2, out).unwrap_err();
+    assert_eq!(e.to_string(), "simplex [0 3] is not in the complex");
+    assert!(out.is_empty());
+}
+
+/// The `topoplex` binary run with `args`, its output collected.
+pub fn run(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_topoplex"))
+        .args(args)
+        .output()
+        .expect("binary runs")
+}
+
 /// A small xorshift generator (no dependency, reproducible): one seed draws a whole fixture.
 pub struct Rng(pub u64);
 
@@ -113,6 +213,15 @@ pub fn complex_of(n: u32, simplices: &[Vec<u32>]) -> Complex {
     Complex::from_simplices(n, &refs).expect("generated input is valid")
 }
 
+/// The complex of a [`random_input`] (its strategy, shrinking as it does).
+pub fn random_complex(
+    max_dim: usize,
+    max_vertices: u32,
+    max_simplices: usize,
+) -> impl Strategy<Value = Complex> {
+    random_input(max_dim, max_vertices, max_simplices).prop_map(|(n, list)| complex_of(n, &list))
+}
+
 /// `../shared/data` relative to the crate (or `$TOPOPLEX_SHARED_DATA` when set, for a checkout
 /// elsewhere), if present.
 pub fn shared_data() -> Option<PathBuf> {
@@ -140,6 +249,14 @@ pub fn shared_files() -> Vec<PathBuf> {
     }
     files.sort();
     files
+}
+
+/// Every file of [`shared_files`] that reads as a complex, with its complex, read one at a time
+/// as the iterator advances (the documented error cases, like quad meshes, are skipped).
+pub fn shared_complexes() -> impl Iterator<Item = (PathBuf, Complex)> {
+    shared_files()
+        .into_iter()
+        .filter_map(|p| Complex::from_path(&p).ok().map(|c| (p, c)))
 }
 
 /// A scratch directory under the temp dir (named by the process, `tag` and the thread, so

@@ -1,19 +1,12 @@
 //! The `topoplex` binary as a user runs it: output formats, exit codes, one-line errors, and
 //! `relation --structure X` equal to `--structure ig` line by line.
 
-use crate::common;
+use crate::common::{self, run};
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use topoplex::StructureKind;
-
-fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_topoplex"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
 
 fn stdout(o: &Output) -> String {
     String::from_utf8(o.stdout.clone()).unwrap()
@@ -21,6 +14,13 @@ fn stdout(o: &Output) -> String {
 
 fn stderr(o: &Output) -> String {
     String::from_utf8(o.stderr.clone()).unwrap()
+}
+
+/// Runs `args`, which must fail with exit 1 and a message containing `what`.
+fn refused(args: &[&str], what: &str) {
+    let o = run(args);
+    assert_eq!(o.status.code(), Some(1), "{args:?}");
+    assert!(stderr(&o).contains(what), "{args:?}: {}", stderr(&o));
 }
 
 fn temp_file(name: &str, text: &str) -> PathBuf {
@@ -220,10 +220,7 @@ fn iastar_dumps_what_the_ig_dumps_on_a_mixed_complex() {
 
 #[test]
 fn every_structure_dumps_what_the_ig_dumps_on_real_data() {
-    for path in common::shared_files() {
-        let Ok(c) = topoplex::Complex::from_path(&path) else {
-            continue;
-        };
+    for (path, c) in common::shared_complexes() {
         // The dump of every P,Q through every structure is a lot of process output: keep to the
         // files of moderate size (the library-level comparison covers the rest).
         if c.closure().iter().map(|t| t.len()).sum::<usize>() > 40_000 {
@@ -354,25 +351,18 @@ fn convert_keeps_order_winding_and_coordinates() {
 fn convert_refuses_what_the_format_cannot_hold() {
     let f = temp_file("tet.simplices", "s 0 1 2 3\n");
     let out = f.with_file_name("tet-refused.off");
-    let o = run(&["convert", f.to_str().unwrap(), out.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(
-        stderr(&o).contains("the off format cannot hold this complex: simplex #0 [0 1 2 3]"),
-        "{}",
-        stderr(&o)
+    refused(
+        &["convert", f.to_str().unwrap(), out.to_str().unwrap()],
+        "the off format cannot hold this complex: simplex #0 [0 1 2 3]",
     );
     assert!(!out.exists());
-    let o = run(&["convert", f.to_str().unwrap(), "x.unknown"]);
-    assert!(
-        stderr(&o).contains("unknown output extension"),
-        "{}",
-        stderr(&o)
+    refused(
+        &["convert", f.to_str().unwrap(), "x.unknown"],
+        "unknown output extension",
     );
-    let o = run(&["convert", f.to_str().unwrap(), "x.off", "--format", "dxf"]);
-    assert!(
-        stderr(&o).contains("unknown format `dxf`"),
-        "{}",
-        stderr(&o)
+    refused(
+        &["convert", f.to_str().unwrap(), "x.off", "--format", "dxf"],
+        "unknown format `dxf`",
     );
 }
 
@@ -386,12 +376,9 @@ fn convert_round_f32_rounds_for_stl_and_refuses_what_does_not_fit() {
         "OFF\n3 1 0\n0.1 0 0\n1 0.3 0\n0 1 0.7\n3 0 1 2\n",
     );
     let stl = off.with_extension("stl");
-    let o = run(&["convert", off.to_str().unwrap(), stl.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(
-        stderr(&o).contains("not exactly a 32-bit float"),
-        "{}",
-        stderr(&o)
+    refused(
+        &["convert", off.to_str().unwrap(), stl.to_str().unwrap()],
+        "not exactly a 32-bit float",
     );
     let o = run(&[
         "convert",
@@ -439,9 +426,10 @@ fn triangulate_fans_polygons_on_every_command_and_refuses_a_bent_quad() {
     let dir = obj.with_extension("d");
     std::fs::create_dir_all(&dir).unwrap();
     let p = |name: &str| dir.join(name).to_str().unwrap().to_string();
-    let o = run(&["convert", inp, &p("plain.off")]);
-    assert_eq!(o.status.code(), Some(1));
-    assert!(stderr(&o).contains("polygon with 6 vertices is not a simplex"));
+    refused(
+        &["convert", inp, &p("plain.off")],
+        "polygon with 6 vertices is not a simplex",
+    );
     let o = run(&["convert", inp, &p("fan.obj"), "--triangulate"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(p("fan.obj")).unwrap();
@@ -498,13 +486,7 @@ fn triangulate_fans_polygons_on_every_command_and_refuses_a_bent_quad() {
         assert!(o.status.success(), "{args:?}: {}", stderr(&o));
         let mut without = args.clone();
         without.retain(|a| *a != "--triangulate");
-        let o = run(&without);
-        assert_eq!(o.status.code(), Some(1), "{without:?}");
-        assert!(
-            stderr(&o).contains("polygon with 6 vertices is not a simplex"),
-            "{}",
-            stderr(&o)
-        );
+        refused(&without, "polygon with 6 vertices is not a simplex");
     }
     let o = run(&[
         "relation",
@@ -573,11 +555,9 @@ fn convert_census_marks_singularities_for_paraview() {
         text.contains("SCALARS non_manifold_vertex int 1\nLOOKUP_TABLE default\n0 0 1 0 0\n"),
         "{text}"
     );
-    let o = run(&["convert", f.to_str().unwrap(), "x.off", "--census"]);
-    assert!(
-        stderr(&o).contains("--census writes legacy VTK"),
-        "{}",
-        stderr(&o)
+    refused(
+        &["convert", f.to_str().unwrap(), "x.off", "--census"],
+        "--census writes legacy VTK",
     );
 }
 

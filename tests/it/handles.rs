@@ -13,27 +13,9 @@ use std::collections::BTreeSet;
 use proptest::prelude::*;
 use topoplex::handle::HandleForm;
 use topoplex::oracle::Oracle;
-use topoplex::{BuildError, build};
 use topoplex::{
-    Complex, Fans, Navigate, Order, QueryError, SimplexHandle, StructureKind, TopId, Topology,
-    VertexId, fixtures,
+    Complex, Fans, Navigate, Order, QueryError, SimplexHandle, TopId, Topology, VertexId, fixtures,
 };
-
-fn buildable(c: &Complex) -> Vec<Box<dyn Topology>> {
-    let mut out = Vec::new();
-    for kind in StructureKind::ALL {
-        match build(kind, c) {
-            Ok(s) => {
-                s.validate()
-                    .unwrap_or_else(|e| panic!("{kind}: validate: {e}"));
-                out.push(s);
-            }
-            Err(BuildError::Unsupported { .. }) => {}
-            Err(e) => panic!("{kind}: {e}"),
-        }
-    }
-    out
-}
 
 fn nav(s: &dyn Topology) -> &dyn Navigate {
     s.as_navigate().expect("every structure navigates")
@@ -327,7 +309,7 @@ fn check_bad_handles(n: &dyn Navigate) {
 }
 
 fn check_all(c: &Complex, what: &str, deep: bool) {
-    for s in buildable(c) {
+    for s in common::buildable(c, what) {
         check_handles(s.as_ref(), c, deep).unwrap_or_else(|e| panic!("{what}: {e}"));
         let n = nav(s.as_ref());
         check_bad_handles(n);
@@ -359,7 +341,7 @@ fn every_handle_operation_matches_the_oracle_on_every_fixture() {
 #[test]
 fn a_wound_open_fan_comes_counter_clockwise() {
     let c = Complex::from_simplices(5, &[&[0, 1, 2], &[2, 3, 0], &[4, 1, 0]]).unwrap();
-    for s in buildable(&c) {
+    for s in common::buildable(&c, "a wound open fan") {
         let n = nav(s.as_ref());
         let mut fans = Fans::default();
         n.fans_around(n.vertex(VertexId(0)).unwrap(), &mut fans)
@@ -380,18 +362,18 @@ fn a_wound_open_fan_comes_counter_clockwise() {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
     #[test]
-    fn every_handle_operation_matches_the_oracle_on_random_complexes((n, list) in common::random_input(6, 8, 7)) {
-        check_all(&common::complex_of(n, &list), "random", true);
+    fn every_handle_operation_matches_the_oracle_on_random_complexes(c in common::random_complex(6, 8, 7)) {
+        check_all(&c, "random", true);
     }
 
     #[test]
-    fn fans_match_brute_force_on_random_surfaces((n, list) in common::random_input(2, 10, 14)) {
-        check_all(&common::complex_of(n, &list), "random 2-complex", false);
+    fn fans_match_brute_force_on_random_surfaces(c in common::random_complex(2, 10, 14)) {
+        check_all(&c, "random 2-complex", false);
     }
 
     #[test]
-    fn edge_clusters_match_brute_force_on_random_3_complexes((n, list) in common::random_input(3, 8, 10)) {
-        check_all(&common::complex_of(n, &list), "random 3-complex", false);
+    fn edge_clusters_match_brute_force_on_random_3_complexes(c in common::random_complex(3, 8, 10)) {
+        check_all(&c, "random 3-complex", false);
     }
 }
 
@@ -399,12 +381,9 @@ proptest! {
 /// each dimension (every 97th), and fans / edge clusters on the small files.
 #[test]
 fn real_data_handles_agree_with_the_relation_api() {
-    for path in common::shared_files() {
-        let Ok(c) = Complex::from_path(&path) else {
-            continue;
-        };
+    for (path, c) in common::shared_complexes() {
         let what = path.display().to_string();
-        for s in buildable(&c) {
+        for s in common::buildable(&c, &what) {
             let n = nav(s.as_ref());
             let (mut buf, mut rel, mut all) = (Vec::new(), Vec::new(), Vec::new());
             for p in 0..=s.dimension() {

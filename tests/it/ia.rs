@@ -3,7 +3,7 @@
 //! random arbitrary complexes, and the IG on the real data when present.
 
 use crate::common;
-use common::{Rng, rel, show};
+use common::{Rng, rel};
 
 use std::collections::{BTreeMap, BTreeSet};
 
@@ -15,9 +15,7 @@ use topoplex::structures::ig::IncidenceGraph;
 use topoplex::{Complex, Topology, fixtures};
 
 fn ia(c: &Complex) -> IndexedAdjacency {
-    let s = IndexedAdjacency::build(c).unwrap();
-    s.validate().unwrap();
-    s
+    common::validated(IndexedAdjacency::build(c))
 }
 
 fn refusal(c: &Complex) -> String {
@@ -31,25 +29,18 @@ fn star_components_brute(tops: &[Vec<u32>], n: u32) -> u64 {
     for v in 0..n {
         let at: Vec<&Vec<u32>> = tops.iter().filter(|t| t.contains(&v)).collect();
         let mut comp: Vec<usize> = (0..at.len()).collect();
-        fn root(c: &mut Vec<usize>, i: usize) -> usize {
-            if c[i] == i {
-                i
-            } else {
-                let r = root(c, c[i]);
-                c[i] = r;
-                r
-            }
-        }
         for i in 0..at.len() {
             for j in i + 1..at.len() {
                 let shared = at[i].iter().filter(|x| at[j].contains(x)).count();
                 if shared + 1 == at[i].len() {
-                    let (a, b) = (root(&mut comp, i), root(&mut comp, j));
+                    let (a, b) = (common::root(&mut comp, i), common::root(&mut comp, j));
                     comp[a] = b;
                 }
             }
         }
-        total += (0..at.len()).filter(|&i| root(&mut comp, i) == i).count() as u64;
+        total += (0..at.len())
+            .filter(|&i| common::root(&mut comp, i) == i)
+            .count() as u64;
     }
     total
 }
@@ -313,28 +304,14 @@ proptest! {
     }
 
     #[test]
-    fn random_complexes_are_refused_correctly_or_match((n, list) in common::random_input(6, 8, 7)) {
-        let c = common::complex_of(n, &list);
-        match expected_refusal(&c) {
-            Some(bad) => {
-                let r = refusal(&c);
-                prop_assert!(r.contains(&show(&bad)), "reason {} should name {:?}", r, bad);
-            }
-            None => {
-                let s = ia(&c);
-                check_storage(&s, &c);
-                prop_assert_eq!(check_structure(&s, &c), Ok(()));
-            }
-        }
+    fn random_complexes_are_refused_correctly_or_match(c in common::random_complex(6, 8, 7)) {
+        common::refused_or_matches(&c, expected_refusal(&c), IndexedAdjacency::build, check_storage)?;
     }
 }
 
 #[test]
 fn real_data_matches_the_incidence_graph() {
-    for path in common::shared_files() {
-        let Ok(c) = Complex::from_path(&path) else {
-            continue;
-        };
+    for (path, c) in common::shared_complexes() {
         // Build, validation and comparison walk every star in debug builds: keep to the
         // files of moderate size (the big ones are for benchmarks).
         let tops = c.tops(c.dimension()).len();

@@ -8,7 +8,7 @@ use std::collections::{BTreeMap, BTreeSet};
 
 use proptest::prelude::*;
 use topoplex::live::link::OMEGA;
-use topoplex::live::{ContractMode, LiveComplex, Refusal, VertexId};
+use topoplex::live::{ContractMode, LiveComplex, Refusal, UndoRecord, VertexId};
 use topoplex::oracle::{Oracle, check_structure};
 use topoplex::testing::follows_edit;
 use topoplex::{Complex, Fans, Navigate, Order, QueryError, SimplexHandle, Topology};
@@ -235,6 +235,39 @@ fn with_coords(n: u32, list: &[Vec<u32>]) -> Complex {
     .unwrap()
 }
 
+/// The topology-preserving contraction of vertex `b` into `a`, `a` keeping its position.
+fn preserving(live: &mut LiveComplex, a: u32, b: u32) -> Result<UndoRecord, Refusal> {
+    live.contract(
+        VertexId(a),
+        VertexId(b),
+        ContractMode::PreserveTopology,
+        None,
+    )
+}
+
+/// A [`common::random_input`] complex with [`with_coords`]'s coordinates (its strategy,
+/// shrinking as it does).
+fn placed(
+    max_dim: usize,
+    max_vertices: u32,
+    max_simplices: usize,
+) -> impl Strategy<Value = Complex> {
+    common::random_input(max_dim, max_vertices, max_simplices)
+        .prop_map(|(n, list)| with_coords(n, &list))
+}
+
+/// Up to four edits for [`shrink_and_check`]: (contract or remove, which, which).
+fn shrinks() -> impl Strategy<Value = Vec<(bool, prop::sample::Index, prop::sample::Index)>> {
+    proptest::collection::vec(
+        (
+            any::<bool>(),
+            any::<prop::sample::Index>(),
+            any::<prop::sample::Index>(),
+        ),
+        0..5,
+    )
+}
+
 /// ```text
 ///   0           3        a bowtie: triangles 012 and 234 pinched at 2,
 ///   | \       / |        plus the wire edge 4-5 and the isolated vertex 6
@@ -282,14 +315,7 @@ fn strip_contraction_moves_a_top_in_place_and_keeps_its_id() {
     let mut live = LiveComplex::from_complex(&c);
     let before = live.clone();
     let moved = live.tops().find(|(_, s)| s == &[2, 3, 4]).unwrap().0;
-    let undo = live
-        .contract(
-            VertexId(1),
-            VertexId(3),
-            ContractMode::PreserveTopology,
-            None,
-        )
-        .unwrap();
+    let undo = preserving(&mut live, 1, 3).unwrap();
     live.validate().unwrap();
     assert_eq!(live.top_vertices(moved).unwrap(), &[2, 1, 4]);
     assert!(undo.inserted_tops().any(|t| t == moved));
@@ -325,14 +351,7 @@ fn strip_face_handles_outlive_their_removed_top_while_the_face_lives() {
         matches!(live.vertices_of(x), Err(QueryError::StaleHandle { .. }))
             && matches!(live.degree(x, 0), Err(QueryError::StaleHandle { .. }))
     };
-    let undo = live
-        .contract(
-            VertexId(1),
-            VertexId(3),
-            ContractMode::PreserveTopology,
-            None,
-        )
-        .unwrap();
+    let undo = preserving(&mut live, 1, 3).unwrap();
     live.validate().unwrap();
     assert_eq!(names(&live, e23), Ok(vec![1, 2]));
     assert_eq!(names(&live, e12), Ok(vec![1, 2]));
@@ -371,12 +390,7 @@ fn bowtie_contraction_across_the_pinch_is_refused_unless_free() {
     let mut live = bowtie();
     // 0 and 3 are not adjacent.
     assert_eq!(
-        live.contract(
-            VertexId(0),
-            VertexId(3),
-            ContractMode::PreserveTopology,
-            None
-        ),
+        preserving(&mut live, 0, 3),
         Err(Refusal::NotAnEdge { a: 0, b: 3 })
     );
     // Edge 2-3: Lk(2) ∋ 4, Lk(3) ∋ 4, Lk(23) = {4}: holds. Edge 2-4 likewise. But contracting
@@ -404,14 +418,7 @@ fn bowtie_contraction_across_the_pinch_is_refused_unless_free() {
 fn hollow_triangle_edge_fails_the_link_condition_in_dimension_0() {
     let c = Complex::from_simplices(4, &[&[0, 1], &[0, 2], &[1, 2, 3]]).unwrap();
     let mut live = LiveComplex::from_complex(&c);
-    let refusal = live
-        .contract(
-            VertexId(1),
-            VertexId(2),
-            ContractMode::PreserveTopology,
-            None,
-        )
-        .unwrap_err();
+    let refusal = preserving(&mut live, 1, 2).unwrap_err();
     assert_eq!(
         refusal,
         Refusal::LinkCondition {
@@ -467,14 +474,7 @@ fn bad_requests_are_refused_and_change_nothing() {
     ));
     assert_same_state(&live, &before);
     // Stale handles and undo records after compact().
-    let undo = live
-        .contract(
-            VertexId(4),
-            VertexId(5),
-            ContractMode::PreserveTopology,
-            None,
-        )
-        .unwrap();
+    let undo = preserving(&mut live, 4, 5).unwrap();
     let t = live.tops().next().unwrap().0;
     let maps = live.compact();
     assert_eq!(maps.vertices, vec![0, 1, 2, 3, 4, u32::MAX, 5]);
@@ -963,18 +963,18 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 32, ..ProptestConfig::default() })]
     #[test]
     fn fans_match_brute_force_after_edits_of_random_surfaces(
-        (n, list) in common::random_input(2, 10, 14),
-        ops in proptest::collection::vec((any::<bool>(), any::<prop::sample::Index>(), any::<prop::sample::Index>()), 0..5),
+        c in placed(2, 10, 14),
+        ops in shrinks(),
     ) {
-        shrink_and_check(&with_coords(n, &list), &ops);
+        shrink_and_check(&c, &ops);
     }
 
     #[test]
     fn edge_clusters_match_brute_force_after_edits_of_random_3_complexes(
-        (n, list) in common::random_input(3, 8, 10),
-        ops in proptest::collection::vec((any::<bool>(), any::<prop::sample::Index>(), any::<prop::sample::Index>()), 0..5),
+        c in placed(3, 8, 10),
+        ops in shrinks(),
     ) {
-        shrink_and_check(&with_coords(n, &list), &ops);
+        shrink_and_check(&c, &ops);
     }
 }
 
@@ -982,10 +982,9 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 40, ..ProptestConfig::default() })]
     #[test]
     fn handles_match_the_oracle_after_every_edit_and_never_name_another_simplex(
-        (n, list) in common::random_input(6, 8, 7),
+        c in placed(6, 8, 7),
         ops in proptest::collection::vec(op(), 1..10),
     ) {
-        let c = with_coords(n, &list);
         let mut live = LiveComplex::from_complex(&c);
         let mut m = Model::of(&live);
         let mut undos = Vec::new();
@@ -1031,10 +1030,9 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
     #[test]
     fn random_edit_sequences_match_the_model_the_oracle_and_a_rebuild(
-        (n, list) in common::random_input(6, 9, 8),
+        c in placed(6, 9, 8),
         ops in proptest::collection::vec(op(), 1..14),
     ) {
-        let c = with_coords(n, &list);
         let mut live = LiveComplex::from_complex(&c);
         let mut m = Model::of(&live);
         assert_matches_model(&live, &m);
@@ -1056,8 +1054,7 @@ proptest! {
     }
 
     #[test]
-    fn freshly_built_live_complexes_match_the_oracle((n, list) in common::random_input(6, 9, 8)) {
-        let c = common::complex_of(n, &list);
+    fn freshly_built_live_complexes_match_the_oracle(c in common::random_complex(6, 9, 8)) {
         let live = LiveComplex::from_complex(&c);
         prop_assert_eq!(live.validate(), Ok(()));
         prop_assert_eq!(check_structure(&live, &c), Ok(()));
@@ -1069,26 +1066,12 @@ proptest! {
 #[test]
 fn readme_example_contracts_edges_on_a_non_manifold_mesh_through_the_c_abi() {
     use topoplex_ffi::*;
-    let ids = [1u32, 2, 3, 1, 2, 4, 1, 2, 5, 0, 1, 0, 2];
-    let offsets = [0usize, 3, 6, 9, 11, 13];
-    let (mut c, mut l, mut u) = (
-        std::ptr::null_mut(),
-        std::ptr::null_mut(),
-        std::ptr::null_mut(),
-    );
+    let tops: [&[u32]; 5] = [&[1, 2, 3], &[1, 2, 4], &[1, 2, 5], &[0, 1], &[0, 2]];
+    let c = common::c_complex(6, &tops, None);
+    let (mut l, mut u) = (std::ptr::null_mut(), std::ptr::null_mut());
     let mut count = 0usize;
-    // SAFETY: arrays of the stated lengths; handles from this library, freed once.
+    // SAFETY: handles from this library, freed once.
     unsafe {
-        let st = tpx_complex_from_arrays(
-            6,
-            ids.as_ptr(),
-            offsets.as_ptr(),
-            5,
-            std::ptr::null(),
-            0,
-            &mut c,
-        );
-        assert_eq!(st, TpxStatus::Ok);
         assert_eq!(tpx_live_from_complex(c, &mut l), TpxStatus::Ok);
         // Contractions without a new position.
         let contract = move |a, b, mode, u: *mut *mut TpxUndo| {
@@ -1853,11 +1836,11 @@ proptest! {
     /// topology); and the navigation still equals the oracle after all of it.
     #[test]
     fn coordinates_set_per_vertex_and_whole_follow_edits_and_navigation_matches_the_oracle(
-        (n, list) in common::random_input(6, 8, 7),
+        c in placed(6, 8, 7),
         ops in proptest::collection::vec(coord_op(), 1..12),
     ) {
-        let c = with_coords(n, &list);
         let mut live = LiveComplex::from_complex(&c);
+        let n = c.vertex_count();
         let mut want: Vec<Option<[f64; 2]>> =
             (0..n).map(|v| Some([v as f64, (v * v) as f64])).collect();
         // Undo records with the coordinates of a and b before their contraction.

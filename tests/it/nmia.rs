@@ -3,7 +3,7 @@
 //! storage count on random mixed 3-complexes, and the IG on the real data when present.
 
 use crate::common;
-use common::{rel, show};
+use common::rel;
 
 use proptest::prelude::*;
 use topoplex::complex::is_subset;
@@ -15,9 +15,7 @@ use topoplex::structures::nmia::NonManifoldIa;
 use topoplex::{Complex, Topology, fixtures};
 
 fn nmia(c: &Complex) -> NonManifoldIa {
-    let s = NonManifoldIa::build(c).unwrap();
-    s.validate().unwrap();
-    s
+    common::validated(NonManifoldIa::build(c))
 }
 
 /// Connected components of the link of `s`, by union-find over the link vertices.
@@ -37,25 +35,16 @@ fn link_components(tops: &[Vec<u32>], s: &[u32]) -> usize {
     verts.sort_unstable();
     verts.dedup();
     let mut parent: Vec<usize> = (0..verts.len()).collect();
-    fn root(p: &mut Vec<usize>, i: usize) -> usize {
-        if p[i] == i {
-            i
-        } else {
-            let r = root(p, p[i]);
-            p[i] = r;
-            r
-        }
-    }
     for l in &link {
         let a = verts.binary_search(&l[0]).unwrap();
         for w in &l[1..] {
             let b = verts.binary_search(w).unwrap();
-            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+            let (ra, rb) = (common::root(&mut parent, a), common::root(&mut parent, b));
             parent[ra] = rb;
         }
     }
     (0..verts.len())
-        .filter(|&i| root(&mut parent, i) == i)
+        .filter(|&i| common::root(&mut parent, i) == i)
         .count()
 }
 
@@ -351,19 +340,8 @@ fn expected_refusal(c: &Complex) -> Option<Vec<u32>> {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
     #[test]
-    fn random_mixed_complexes_match_the_oracle((n, list) in common::random_input(3, 9, 9)) {
-        let c = common::complex_of(n, &list);
-        match expected_refusal(&c) {
-            Some(bad) => {
-                let r = refusal(&c);
-                prop_assert!(r.contains(&show(&bad)), "reason {} should name {:?}", r, bad);
-            }
-            None => {
-                let s = nmia(&c);
-                check_storage(&s, &c);
-                prop_assert_eq!(check_structure(&s, &c), Ok(()));
-            }
-        }
+    fn random_mixed_complexes_match_the_oracle(c in common::random_complex(3, 9, 9)) {
+        common::refused_or_matches(&c, expected_refusal(&c), NonManifoldIa::build, check_storage)?;
     }
 }
 
@@ -387,10 +365,7 @@ fn octahedron_costs_what_the_extended_ia_costs() {
 
 #[test]
 fn real_data_matches_the_incidence_graph() {
-    for path in common::shared_files() {
-        let Ok(c) = Complex::from_path(&path) else {
-            continue;
-        };
+    for (path, c) in common::shared_complexes() {
         if c.dimension() > 3 {
             assert!(NonManifoldIa::build(&c).is_err());
             continue;

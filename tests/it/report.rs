@@ -2,22 +2,15 @@
 //! and the command's output formats (Markdown, JSON, CSV, SVG) on drawn fixtures, several files
 //! at once, and a missing file. No timing is checked.
 
-use crate::common;
+use crate::common::{self, run};
 
 use std::path::PathBuf;
-use std::process::{Command, Output};
+use std::process::Output;
 
 use proptest::prelude::*;
 use topoplex::{Complex, StructureKind, fixtures};
 use topoplex_cli::report::Census;
 use topoplex_cli::report::render::CSV_COLUMNS;
-
-fn run(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_topoplex"))
-        .args(args)
-        .output()
-        .expect("binary runs")
-}
 
 fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
@@ -74,8 +67,7 @@ proptest! {
     /// The TS stores 6 n_2 + C_e + C_v integers (§5.1), with C_e and C_v as the census counts
     /// them.
     #[test]
-    fn census_matches_the_ts_storage_formula((n, list) in common::random_input(2, 9, 10)) {
-        let c = common::complex_of(n, &list);
+    fn census_matches_the_ts_storage_formula(c in common::random_complex(2, 9, 10)) {
         let census = Census::of(&c);
         if let Ok(ts) = topoplex::build(StructureKind::Ts, &c) {
             let n2 = census.simplices.get(2).copied().unwrap_or(0) as u64;
@@ -86,8 +78,7 @@ proptest! {
     /// The NMIA stores 8 n_3 + 3 n_2^t + 2 n_1^t + C_e + C_v (§4.1); its C_e also counts the two
     /// clusters of an edge between exactly two dangling faces.
     #[test]
-    fn census_matches_the_nmia_storage_formula((n, list) in common::random_input(3, 9, 10)) {
-        let c = common::complex_of(n, &list);
+    fn census_matches_the_nmia_storage_formula(c in common::random_complex(3, 9, 10)) {
         let census = Census::of(&c);
         if let Ok(nmia) = topoplex::build(StructureKind::Nmia, &c) {
             let top = |p: usize| census.top_simplices.get(p).copied().unwrap_or(0) as u64;

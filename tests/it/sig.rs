@@ -2,7 +2,7 @@
 //! storage against the paper's formulas with clusters counted by the oracle, both builds equal,
 //! the oracle on random non-manifold complexes, and the IG on the real data when present.
 
-use crate::common;
+use crate::common::{self, rel};
 
 use proptest::prelude::*;
 use topoplex::oracle::{Oracle, check_structure, compare_structures};
@@ -12,11 +12,9 @@ use topoplex::{Complex, Topology, fixtures};
 
 /// Both builds, validated, checked equal; returns the direct one.
 fn sig(c: &Complex) -> Sig {
-    let s = Sig::build(c).unwrap();
-    s.validate().unwrap();
+    let s = common::validated(Sig::build(c));
     let ig = IncidenceGraph::build(c).unwrap();
-    let t = Sig::from_ig(&ig).unwrap();
-    t.validate().unwrap();
+    let t = common::validated(Sig::from_ig(&ig));
     assert!(s == t, "Sig::build and Sig::from_ig differ");
     s
 }
@@ -31,13 +29,6 @@ fn cstar(s: &Sig, sigma: &[u32], g: usize) -> Vec<Vec<u32>> {
     let mut rows: Vec<Vec<u32>> = flat.chunks(g + 1).map(<[u32]>::to_vec).collect();
     rows.sort();
     rows
-}
-
-fn rel(s: &Sig, sigma: &[u32], q: usize) -> Vec<Vec<u32>> {
-    let mut out = Vec::new();
-    s.relation(sigma, q, &mut out).unwrap();
-    topoplex::relation::sort_rows(&mut out, q + 1);
-    out.chunks(q + 1).map(<[u32]>::to_vec).collect()
 }
 
 /// Figure 2(a) style: vertex 0 with tetrahedra, dangling triangles and wire edges.
@@ -327,15 +318,10 @@ fn a_single_vertex_and_isolated_vertices() {
 
 #[test]
 fn fifteen_simplex_closure() {
-    let top: Vec<u32> = (0..16).collect();
-    let c = Complex::from_simplices(16, &[&top]).unwrap();
+    let (c, top) = common::fifteen_simplex();
     let s = Sig::build(&c).unwrap();
-    assert_eq!(s.count(7), 12870);
     let mut out = Vec::new();
-    s.relation(&[3], 15, &mut out).unwrap();
-    assert_eq!(out, top);
-    s.relation(&[0, 1, 2, 3, 4, 5, 6, 7], 14, &mut out).unwrap();
-    assert_eq!(out.len() / 15, 8);
+    common::check_fifteen_simplex(&s, &top, &mut out);
     s.relation(&[0, 1, 2, 3, 4, 5, 6, 7], 3, &mut out).unwrap();
     assert_eq!(out.len() / 4, 70);
     s.relation(&[0, 1, 2, 3, 4, 5, 6, 7], 7, &mut out).unwrap();
@@ -371,8 +357,7 @@ fn check_clusters(s: &Sig, c: &Complex) -> Result<(), String> {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
     #[test]
-    fn random_complexes_match_the_oracle((n, list) in common::random_input(6, 9, 8)) {
-        let c = common::complex_of(n, &list);
+    fn random_complexes_match_the_oracle(c in common::random_complex(6, 9, 8)) {
         let s = sig(&c);
         prop_assert_eq!(check_structure(&s, &c), Ok(()));
         prop_assert_eq!(check_clusters(&s, &c), Ok(()));
@@ -382,10 +367,8 @@ proptest! {
     /// Lookup by vertex ids (read through the boundary, no vertex table): every ascending vertex
     /// set of up to five vertices is found exactly when it is a simplex.
     #[test]
-    fn vertex_sets_are_found_exactly_when_they_are_simplices((n, list) in common::random_input(4, 9, 10)) {
-        let c = common::complex_of(n, &list);
-        let s = Sig::build(&c).unwrap();
-        let o = Oracle::new(&c);
+    fn vertex_sets_are_found_exactly_when_they_are_simplices(c in common::random_complex(4, 9, 10)) {
+        let (s, o, n) = (Sig::build(&c).unwrap(), Oracle::new(&c), c.vertex_count());
         for mask in 1u32..(1 << n) {
             if mask.count_ones() > 5 {
                 continue;
@@ -396,8 +379,7 @@ proptest! {
     }
 
     #[test]
-    fn both_builds_agree_on_larger_random_complexes((n, list) in common::random_input(5, 16, 40)) {
-        let c = common::complex_of(n, &list);
+    fn both_builds_agree_on_larger_random_complexes(c in common::random_complex(5, 16, 40)) {
         sig(&c);
     }
 }
@@ -421,10 +403,7 @@ fn large_real_data_matches_the_incidence_graph() {
 }
 
 fn real_data(large: bool) {
-    for path in common::shared_files() {
-        let Ok(c) = Complex::from_path(&path) else {
-            continue;
-        };
+    for (path, c) in common::shared_complexes() {
         if large != (c.top_counts().iter().sum::<usize>() > LARGE_TOPS) {
             continue;
         }
@@ -433,9 +412,7 @@ fn real_data(large: bool) {
         let s = if !large {
             sig(&c)
         } else {
-            let s = Sig::build(&c).unwrap();
-            s.validate().unwrap();
-            s
+            common::validated(Sig::build(&c))
         };
         if total <= FULL_COMPARE || path.to_string_lossy().contains("highdim") {
             compare_structures(&s, &ig).unwrap_or_else(|e| panic!("{}: {e}", path.display()));

@@ -80,13 +80,13 @@ fn every_structure_of_every_fixture_reopens_with_the_same_relations() {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 40, ..ProptestConfig::default() })]
     #[test]
-    fn random_complexes_reopen_with_the_same_relations((n, list) in common::random_input(5, 9, 8)) {
-        round_trip(&common::complex_of(n, &list), "random");
+    fn random_complexes_reopen_with_the_same_relations(c in common::random_complex(5, 9, 8)) {
+        round_trip(&c, "random");
     }
 
     #[test]
-    fn random_surfaces_reopen_with_the_same_relations((n, list) in common::random_input(2, 12, 14)) {
-        round_trip(&common::complex_of(n, &list), "random-2");
+    fn random_surfaces_reopen_with_the_same_relations(c in common::random_complex(2, 12, 14)) {
+        round_trip(&c, "random-2");
     }
 }
 

@@ -8,32 +8,12 @@ use std::sync::Arc;
 
 use proptest::prelude::*;
 use topoplex::oracle::{check_structure, compare_structures};
-use topoplex::{BuildError, build};
 use topoplex::{Complex, StructureKind, Topology, fixtures};
-
-/// Builds every kind; returns the ones that encode `c`, validated. A kind that is not
-/// implemented yet or refuses the complex is skipped; any other failure panics.
-fn buildable(c: &Complex, what: &str) -> Vec<Box<dyn Topology>> {
-    let mut out = Vec::new();
-    for kind in StructureKind::ALL {
-        match build(kind, c) {
-            Ok(s) => {
-                s.validate()
-                    .unwrap_or_else(|e| panic!("{what}: {kind}: validate: {e}"));
-                assert_eq!(s.kind(), kind);
-                out.push(s);
-            }
-            Err(BuildError::NotImplemented { .. }) | Err(BuildError::Unsupported { .. }) => {}
-            Err(e) => panic!("{what}: {kind}: {e}"),
-        }
-    }
-    out
-}
 
 #[test]
 fn every_structure_matches_the_oracle_on_every_fixture() {
     for (name, c) in fixtures::all() {
-        for s in buildable(&c, name) {
+        for s in common::buildable(&c, name) {
             check_structure(s.as_ref(), &c).unwrap_or_else(|e| panic!("{name}: {e}"));
         }
     }
@@ -42,17 +22,15 @@ fn every_structure_matches_the_oracle_on_every_fixture() {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
     #[test]
-    fn every_structure_matches_the_oracle_on_random_complexes((n, list) in common::random_input(6, 9, 8)) {
-        let c = common::complex_of(n, &list);
-        for s in buildable(&c, "random") {
+    fn every_structure_matches_the_oracle_on_random_complexes(c in common::random_complex(6, 9, 8)) {
+        for s in common::buildable(&c, "random") {
             prop_assert_eq!(check_structure(s.as_ref(), &c), Ok(()));
         }
     }
 
     #[test]
-    fn every_structure_matches_the_oracle_on_random_surfaces((n, list) in common::random_input(2, 12, 14)) {
-        let c = common::complex_of(n, &list);
-        for s in buildable(&c, "random 2-complex") {
+    fn every_structure_matches_the_oracle_on_random_surfaces(c in common::random_complex(2, 12, 14)) {
+        for s in common::buildable(&c, "random 2-complex") {
             prop_assert_eq!(check_structure(s.as_ref(), &c), Ok(()));
         }
     }
@@ -87,15 +65,13 @@ fn eight_threads_query_one_structure_and_agree_with_serial_answers() {
         .into_iter()
         .map(|(n, c)| (n.to_string(), c))
         .collect();
-    for path in common::shared_files() {
-        if let Ok(c) = Complex::from_path(&path)
-            && c.closure().iter().map(|t| t.len()).sum::<usize>() < 60_000
-        {
+    for (path, c) in common::shared_complexes() {
+        if c.closure().iter().map(|t| t.len()).sum::<usize>() < 60_000 {
             complexes.push((path.display().to_string(), c));
         }
     }
     for (name, c) in complexes {
-        for s in buildable(&c, &name) {
+        for s in common::buildable(&c, &name) {
             let s: Arc<dyn Topology> = Arc::from(s);
             let serial = all_answers(s.as_ref(), 1, 0);
             // Thread t answers every 8th query starting at t, all at the same time.
@@ -121,12 +97,9 @@ fn eight_threads_query_one_structure_and_agree_with_serial_answers() {
 
 #[test]
 fn real_data_every_structure_agrees_with_the_ig() {
-    for path in common::shared_files() {
-        let Ok(c) = Complex::from_path(&path) else {
-            continue;
-        };
+    for (path, c) in common::shared_complexes() {
         let what = path.display().to_string();
-        let all = buildable(&c, &what);
+        let all = common::buildable(&c, &what);
         let ig = all
             .iter()
             .find(|s| s.kind() == StructureKind::Ig)
@@ -170,7 +143,7 @@ fn worst_case_stars_build_and_answer() {
     ];
     let mut out = Vec::new();
     for (what, c, sigma, q, expected) in cases {
-        for s in buildable(&c, what) {
+        for s in common::buildable(&c, what) {
             s.relation(&sigma, q, &mut out).unwrap();
             assert_eq!(out.len() / (q + 1), expected, "{what}: {}", s.kind());
         }

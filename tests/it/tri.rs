@@ -488,8 +488,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 200, ..ProptestConfig::default() })]
 
     #[test]
-    fn random_two_complexes_match_the_oracle((n, list) in common::random_input(2, 8, 10)) {
-        let c = common::complex_of(n, &list);
+    fn random_two_complexes_match_the_oracle(c in common::random_complex(2, 8, 10)) {
         check_all(&c)?;
         check_storage(&c);
     }
@@ -537,10 +536,7 @@ proptest! {
 
 /// Files of dimension ≤ 2 under ../shared/data, with their complexes.
 fn real_two_complexes() -> Vec<(std::path::PathBuf, Complex)> {
-    common::shared_files()
-        .into_iter()
-        .filter_map(|p| Complex::from_path(&p).ok().map(|c| (p, c)))
-        .collect()
+    common::shared_complexes().collect()
 }
 
 #[test]

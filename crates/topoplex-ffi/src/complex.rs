@@ -3,8 +3,8 @@
 use std::ffi::c_char;
 
 use super::{
-    Failure, TpxStatus, free_box, get_into, guard, handle, in_slice, open_into, out_ptr, set_boxed,
-    try_copy, write_buffer,
+    Failure, TpxStatus, free_box, get_into, guard, handle, in_slice, on, open_into, out_ptr,
+    set_boxed, try_copy, write_buffer,
 };
 use topoplex::complex::{Budget, Complex, ComplexError};
 use topoplex::io::{Coords, ReadErrorKind};
@@ -353,8 +353,7 @@ pub unsafe extern "C" fn tpx_complex_coords(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
+    on(c, "c", |c| {
         let out_len = out_ptr(out_len, "out_len")?;
         let data = c.complex.coords().map_or(&[][..], |x| &x.data[..]);
         write_buffer(data, buf, buf_len, out_len)
@@ -381,8 +380,7 @@ pub unsafe extern "C" fn tpx_complex_top_simplices(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
+    on(c, "c", |c| {
         let out_len = out_ptr(out_len, "out_len")?;
         let d = c.complex.dimension();
         if p as usize > d {

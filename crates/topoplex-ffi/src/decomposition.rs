@@ -3,7 +3,7 @@
 
 use super::complex::TpxComplex;
 use super::structure::build_failure;
-use super::{Failure, TpxStatus, build_into, free_box, get_into, guard, handle, out_ptr};
+use super::{Failure, TpxStatus, build_into, free_box, get_into, on, out_ptr};
 use topoplex::structures::iqm::{Decomposition, Iqm};
 
 /// The standard decomposition of a complex into initial quasi-manifold components (opaque).
@@ -78,8 +78,7 @@ pub unsafe extern "C" fn tpx_decomposition_component(
     original_ids: *mut *const u32,
     original_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let d = handle(d, "d")?;
+    on(d, "d", |d| {
         let (dimension, tops, tops_len) = (
             out_ptr(dimension, "dimension")?,
             out_ptr(tops, "tops")?,
@@ -124,8 +123,7 @@ pub unsafe extern "C" fn tpx_decomposition_split_vertices(
     copies: *mut *const u32,
     copies_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let d = handle(d, "d")?;
+    on(d, "d", |d| {
         let outs = (
             out_ptr(vertices, "vertices")?,
             out_ptr(vertices_len, "vertices_len")?,
@@ -155,8 +153,7 @@ pub unsafe extern "C" fn tpx_decomposition_copies(
     copy_component: *mut *const u32,
     len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let d = handle(d, "d")?;
+    on(d, "d", |d| {
         let (cv, cc, len) = (
             out_ptr(copy_vertex, "copy_vertex")?,
             out_ptr(copy_component, "copy_component")?,

@@ -27,7 +27,7 @@ use std::sync::atomic::{AtomicU32, Ordering as AtomicOrdering};
 use super::direct::{self, guard_fast};
 use super::structure::{TpxStructure, query_failure};
 use super::{
-    Failure, TpxStatus, guard, handle, in_slice, out_ptr, with_answer, with_kept, write_buffer,
+    Failure, TpxStatus, guard, handle, in_slice, on, out_ptr, with_answer, with_kept, write_buffer,
 };
 use topoplex::complex::MAX_DIMENSION;
 use topoplex::relation::handle::{Fans, Navigate, Order, SimplexHandle, TopId};
@@ -181,8 +181,7 @@ pub unsafe extern "C" fn tpx_locate(
     simplex_len: usize,
     out: *mut TpxSimplex,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let out = out_ptr(out, "out")?;
         let sigma = in_slice(simplex, simplex_len, "simplex")?;
         let h = nav(s)?.locate(sigma).map_err(query_failure)?;
@@ -205,8 +204,7 @@ pub unsafe extern "C" fn tpx_handle(
     index: u32,
     out: *mut TpxSimplex,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let out = out_ptr(out, "out")?;
         let h = nav(s)?
             .handle(p.min(255) as usize, index)
@@ -233,8 +231,7 @@ pub unsafe extern "C" fn tpx_simplex_index(
     h: *const TpxSimplex,
     out: *mut u32,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let h = handle(h, "h")?;
         let out = out_ptr(out, "out")?;
         let n = nav(s)?;
@@ -256,8 +253,7 @@ pub unsafe extern "C" fn tpx_simplex_vertices(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let h = handle(h, "h")?;
         let out_len = out_ptr(out_len, "out_len")?;
         let n = nav(s)?;
@@ -274,8 +270,7 @@ pub unsafe extern "C" fn tpx_simplex_vertices(
 /// Non-NULL pointers must be valid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_top_total(s: *const TpxStructure, out: *mut u32) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let out = out_ptr(out, "out")?;
         *out = nav(s)?.top_total();
         Ok(())
@@ -294,8 +289,7 @@ pub unsafe extern "C" fn tpx_top(
     top: u32,
     out: *mut TpxSimplex,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let out = out_ptr(out, "out")?;
         let h = nav(s)?.top(TopId(top)).map_err(query_failure)?;
         *out = wrap(s, h);
@@ -314,8 +308,7 @@ pub unsafe extern "C" fn tpx_top_id(
     h: *const TpxSimplex,
     out: *mut u32,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let h = handle(h, "h")?;
         let out = out_ptr(out, "out")?;
         let n = nav(s)?;
@@ -339,8 +332,7 @@ pub unsafe extern "C" fn tpx_top_as_given(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let out_len = out_ptr(out_len, "out_len")?;
         let v = nav(s)?.top_as_given(TopId(top)).map_err(query_failure)?;
         write_buffer(&v, buf, buf_len, out_len)
@@ -499,8 +491,7 @@ fn answer_into<U: Written>(
     out_len: *mut usize,
     answer: impl FnOnce(&dyn Navigate, SimplexHandle, &mut Vec<U::Kept>) -> Result<(), Failure>,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let h = handle(h, "h")?;
         let out_len = out_ptr(out_len, "out_len")?;
         let n = nav(s)?;
@@ -591,8 +582,7 @@ fn batch_into<U: Written, I>(
         &mut Vec<usize>,
     ) -> Result<(), Failure>,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let out_len = out_ptr(out_len, "out_len")?;
         let inputs = in_slice(inputs, count, what)?;
         if offsets.is_null() {
@@ -638,8 +628,7 @@ pub unsafe extern "C" fn tpx_degree(
     q: u32,
     out: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let h = handle(h, "h")?;
         let out = out_ptr(out, "out")?;
         let n = nav(s)?;
@@ -669,8 +658,7 @@ pub unsafe extern "C" fn tpx_degree_batch(
     q: u32,
     degrees: *mut u32,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let indices = in_slice(indices, count, "indices")?;
         if degrees.is_null() && count > 0 {
             return Err(Failure::null("degrees"));
@@ -745,8 +733,7 @@ pub unsafe extern "C" fn tpx_relation_view(
     q: u32,
     out: *mut TpxRelationView,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let out = out_ptr(out, "out")?;
         let n = nav(s)?;
         let v = n
@@ -809,8 +796,7 @@ pub unsafe extern "C" fn tpx_simplex_test(
     what: u32,
     out: *mut u32,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let h = handle(h, "h")?;
         let out = out_ptr(out, "out")?;
         let n = nav(s)?;
@@ -892,7 +878,7 @@ fn cyclic_into<U: Written>(
         out_items,
         out_groups,
     };
-    guard(|| cyclic_checked(handle(s, "s")?, h, q, o))
+    on(s, "s", |s| cyclic_checked(s, h, q, o))
 }
 
 /// [`cyclic_into`] once `s` is checked.

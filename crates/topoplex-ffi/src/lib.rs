@@ -275,6 +275,16 @@ pub(crate) fn guard_value<T>(fallback: T, body: impl FnOnce() -> T) -> T {
     catch_unwind(AssertUnwindSafe(body)).unwrap_or(fallback)
 }
 
+/// The prelude of every function on a handle, written once: the panic boundary ([`guard`]) and
+/// the NULL check of the handle `h` (named `what` in the message), then `body` on it.
+pub(crate) fn on<H>(
+    h: *const H,
+    what: &str,
+    body: impl FnOnce(&H) -> Result<(), Failure>,
+) -> TpxStatus {
+    guard(|| body(handle(h, what)?))
+}
+
 /// `Some(&mut *p)` for a non-NULL out-pointer. The caller guarantees that a non-NULL `p` is
 /// valid for writes.
 pub(crate) fn out_ptr<'a, T>(p: *mut T, what: &str) -> Result<&'a mut T, Failure> {
@@ -290,8 +300,7 @@ pub(crate) fn get_into<H, T>(
     out: *mut T,
     get: impl FnOnce(&H) -> T,
 ) -> TpxStatus {
-    guard(|| {
-        let h = handle(h, what)?;
+    on(h, what, |h| {
         *out_ptr(out, "out")? = get(h);
         Ok(())
     })
@@ -367,8 +376,7 @@ pub(crate) fn build_into<I, O: Boxed>(
     out: *mut *mut O,
     make: impl FnOnce(&I) -> Result<O, Failure>,
 ) -> TpxStatus {
-    guard(|| {
-        let input = handle(input, what)?;
+    on(input, what, |input| {
         let out = out_ptr(out, "out")?;
         set_boxed(out, make(input)?);
         Ok(())

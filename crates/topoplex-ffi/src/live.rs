@@ -11,7 +11,8 @@ use super::complex::TpxComplex;
 use super::structure::{TpxStructure, sort_rows_in_place};
 use super::write_buffer;
 use super::{
-    Failure, TpxStatus, build_into, free_box, get_into, guard, handle, in_slice, out_ptr, set_boxed,
+    Failure, TpxStatus, build_into, free_box, get_into, guard, handle, in_slice, on, out_ptr,
+    set_boxed,
 };
 use topoplex::live::{ContractMode, LiveComplex, Refusal, UndoRecord, VertexId};
 use topoplex::relation::{QueryError, Topology};
@@ -188,8 +189,7 @@ pub unsafe extern "C" fn tpx_live_top_simplices(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
+    on(l, "l", |l| {
         let out_len = out_ptr(out_len, "out_len")?;
         let rows: Vec<u32> = l
             .live()
@@ -219,8 +219,7 @@ pub unsafe extern "C" fn tpx_live_relation(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
+    on(l, "l", |l| {
         let out_len = out_ptr(out_len, "out_len")?;
         let sigma = in_slice(simplex, simplex_len, "simplex")?;
         let mut rows = Vec::new();
@@ -252,8 +251,7 @@ pub unsafe extern "C" fn tpx_live_coords(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
+    on(l, "l", |l| {
         let out_len = out_ptr(out_len, "out_len")?;
         let xyz = l.live().coords(VertexId(v)).map_err(refusal)?;
         write_buffer(xyz, buf, buf_len, out_len)
@@ -329,8 +327,7 @@ pub unsafe extern "C" fn tpx_live_all_coords(
     out: *mut *const f64,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
+    on(l, "l", |l| {
         let out = out_ptr(out, "out")?;
         let out_len = out_ptr(out_len, "out_len")?;
         let all = l.live().all_coords();
@@ -359,8 +356,7 @@ pub unsafe extern "C" fn tpx_live_top_vertices(
     out: *mut *const u32,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
+    on(l, "l", |l| {
         let out = out_ptr(out, "out")?;
         let out_len = out_ptr(out_len, "out_len")?;
         let row = l
@@ -425,8 +421,7 @@ pub struct TpxLiveArrays {
 /// Non-NULL pointers must be valid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_live_arrays(l: *const TpxLive, out: *mut TpxLiveArrays) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
+    on(l, "l", |l| {
         let out = out_ptr(out, "out")?;
         let a = l.live().arrays();
         *out = TpxLiveArrays {
@@ -486,8 +481,7 @@ pub unsafe extern "C" fn tpx_live_adjacency(
     l: *const TpxLive,
     out: *mut TpxLiveAdjacency,
 ) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
+    on(l, "l", |l| {
         let out = out_ptr(out, "out")?;
         let a = l
             .live()
@@ -679,8 +673,7 @@ pub unsafe extern "C" fn tpx_live_contract(
 /// Non-NULL pointers must be valid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_live_split(l: *mut TpxLive, u: *const TpxUndo) -> TpxStatus {
-    guard(|| {
-        let u = handle(u, "u")?;
+    on(u, "u", |u| {
         let live = live_mut(l)?;
         live.split(&u.undo).map_err(refusal)
     })
@@ -750,8 +743,7 @@ pub unsafe extern "C" fn tpx_live_to_complex(
 /// Non-NULL pointers must be valid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_live_validate(l: *const TpxLive) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
+    on(l, "l", |l| {
         l.live()
             .validate()
             .map_err(|e| Failure::new(TpxStatus::Panic, format!("invalid live complex: {e}")))
@@ -789,8 +781,7 @@ pub unsafe extern "C" fn tpx_live_structure(
     l: *const TpxLive,
     out: *mut *const TpxStructure,
 ) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
+    on(l, "l", |l| {
         let out = out_ptr(out, "out")?;
         *out = &l.view;
         Ok(())

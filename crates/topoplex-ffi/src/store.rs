@@ -6,7 +6,7 @@ use std::path::Path;
 use super::complex::{TpxComplex, complex_failure};
 use super::live::TpxLive;
 use super::structure::{TpxStructure, build_failure, kind_from_u32};
-use super::{Failure, TpxStatus, guard, handle, open_into, path_arg};
+use super::{Failure, TpxStatus, guard, on, open_into, path_arg};
 use topoplex::store::{Saved, StoreError, save};
 
 /// `tpx_structure_open`, `tpx_live_open` and `tpx_complex_open_flags` flag: check the whole
@@ -70,8 +70,7 @@ pub unsafe extern "C" fn tpx_save(
     s: *const TpxStructure,
     path: *const c_char,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
+    on(c, "c", |c| {
         let path = path_arg(path, "path")?;
         // SAFETY: a non-NULL `s` is a live handle (documented contract).
         let s = unsafe { s.as_ref() };
@@ -158,8 +157,7 @@ pub unsafe extern "C" fn tpx_complex_open_flags(
 /// Non-NULL pointers must be valid (a live handle; a NUL-terminated path).
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_live_save(l: *const TpxLive, path: *const c_char) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
+    on(l, "l", |l| {
         let path = path_arg(path, "path")?;
         l.live().save(path).map_err(store_failure)
     })

@@ -1,8 +1,8 @@
 //! `TpxStructure` (one of the family behind the relation API) and `TpxRelationTable`.
 
 use super::{
-    Failure, TpxStatus, build_into, free_box, get_into, guard, guard_value, handle, in_slice,
-    out_ptr, write_buffer,
+    Failure, TpxStatus, build_into, free_box, get_into, guard, guard_value, in_slice, on, out_ptr,
+    write_buffer,
 };
 
 use topoplex::complex::MAX_DIMENSION;
@@ -213,8 +213,7 @@ pub unsafe extern "C" fn tpx_structure_free(s: *mut TpxStructure) {
 /// Non-NULL pointers must be valid.
 #[unsafe(no_mangle)]
 pub unsafe extern "C" fn tpx_structure_kind(s: *const TpxStructure, out: *mut u32) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let out = out_ptr(out, "out")?;
         let kind = s.topo.kind();
         *out = kind.abi();
@@ -270,8 +269,7 @@ pub unsafe extern "C" fn tpx_structure_storage(
     s: *const TpxStructure,
     out: *mut TpxStorage,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let out = out_ptr(out, "out")?;
         let st = s.topo.storage();
         *out = TpxStorage {
@@ -301,8 +299,7 @@ pub unsafe extern "C" fn tpx_structure_simplices(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let out_len = out_ptr(out_len, "out_len")?;
         let p = dimension_arg(s.topo.as_ref(), p, "p")?;
         let mut rows = Vec::new();
@@ -341,8 +338,7 @@ pub unsafe extern "C" fn tpx_relation(
     buf_len: usize,
     out_len: *mut usize,
 ) -> TpxStatus {
-    guard(|| {
-        let s = handle(s, "s")?;
+    on(s, "s", |s| {
         let out_len = out_ptr(out_len, "out_len")?;
         let sigma = in_slice(simplex, simplex_len, "simplex")?;
         let topo = s.topo.as_ref();

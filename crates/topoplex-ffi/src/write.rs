@@ -1,10 +1,11 @@
 //! Writing a `TpxComplex` or a `TpxLive` to a file (`tpx_complex_write`, `tpx_live_write`).
 
 use std::ffi::c_char;
+use std::path::Path;
 
 use super::complex::TpxComplex;
 use super::live::TpxLive;
-use super::{Failure, TpxStatus, guard, handle, path_arg};
+use super::{Failure, TpxStatus, on, path_arg};
 use topoplex::io::write::{Format, WriteError, WriteErrorKind, write_complex};
 
 /// The format named by the output file's extension (`tpx_complex_write`).
@@ -79,11 +80,24 @@ pub unsafe extern "C" fn tpx_complex_write(
     path: *const c_char,
     format: u32,
 ) -> TpxStatus {
-    guard(|| {
-        let c = handle(c, "c")?;
+    write_into(c, "c", path, format, |c, p, f| {
+        write_complex(&c.complex, p, f)
+    })
+}
+
+/// The one body of `tpx_complex_write` and `tpx_live_write`: the handle `h` (named `what`),
+/// `path` and `format` checked in that order, then `write` writes the file.
+fn write_into<H>(
+    h: *const H,
+    what: &str,
+    path: *const c_char,
+    format: u32,
+    write: impl FnOnce(&H, &Path, Option<Format>) -> Result<(), WriteError>,
+) -> TpxStatus {
+    on(h, what, |h| {
         let path = path_arg(path, "path")?;
         let format = format_from_u32(format)?;
-        write_complex(&c.complex, path, format).map_err(write_failure)
+        write(h, path, format).map_err(write_failure)
     })
 }
 
@@ -111,10 +125,5 @@ pub unsafe extern "C" fn tpx_live_write(
     path: *const c_char,
     format: u32,
 ) -> TpxStatus {
-    guard(|| {
-        let l = handle(l, "l")?;
-        let path = path_arg(path, "path")?;
-        let format = format_from_u32(format)?;
-        l.live().write(path, format).map_err(write_failure)
-    })
+    write_into(l, "l", path, format, |l, p, f| l.live().write(p, f))
 }

@@ -434,27 +434,39 @@ pub(crate) fn parse_integer(tok: &str) -> Result<i128, IntError> {
     scan::integer(tok.as_bytes())
 }
 
+/// A token's integer value, or the error every reader gives for a token that is not an
+/// integer, `what` named with its article `the` ("a", "the"): "non-numeric token 'x' where a
+/// vertex id was expected", "vertex id '1.5' is not an integer". `Ok(None)`: an integer too
+/// large even for `i128`, which each caller words by its sign.
+#[inline]
+pub(crate) fn integer_token(
+    tok: &str,
+    the: &str,
+    what: &str,
+) -> Result<Option<i128>, ReadErrorKind> {
+    match parse_integer(tok) {
+        Ok(v) => Ok(Some(v)),
+        Err(IntError::OutOfRange) => Ok(None),
+        Err(IntError::NotInteger) => {
+            Err(syntax(format!("{what} '{}' is not an integer", echo(tok))))
+        }
+        Err(IntError::NotNumber) => Err(syntax(format!(
+            "non-numeric token '{}' where {the} {what} was expected",
+            echo(tok)
+        ))),
+    }
+}
+
 /// Parses a vertex id: 0-based, or 1-based when `one_based` (then converted to 0-based).
 /// Negative values are [`ReadErrorKind::NegativeId`] with the value as written.
 pub(crate) fn parse_id(tok: &str, one_based: bool) -> Result<u32, ReadErrorKind> {
     let e = || echo(tok);
-    let v = match parse_integer(tok) {
-        Ok(v) => v,
-        Err(IntError::NotNumber) => {
-            return Err(syntax(format!(
-                "non-numeric token '{}' where a vertex id was expected",
-                e()
-            )));
-        }
-        Err(IntError::NotInteger) => {
-            return Err(syntax(format!("vertex id '{}' is not an integer", e())));
-        }
-        Err(IntError::OutOfRange) if tok.starts_with('-') => {
+    let v = match integer_token(tok, "a", "vertex id")? {
+        Some(v) => v,
+        None if tok.starts_with('-') => {
             return Err(syntax(format!("negative vertex id {}", e())));
         }
-        Err(IntError::OutOfRange) => {
-            return Err(syntax(format!("vertex id {} does not fit in 32 bits", e())));
-        }
+        None => return Err(syntax(format!("vertex id {} does not fit in 32 bits", e()))),
     };
     if v < 0 {
         return Err(match i64::try_from(v) {
@@ -478,21 +490,11 @@ pub(crate) fn parse_id(tok: &str, one_based: bool) -> Result<u32, ReadErrorKind>
 /// Parses a count declared in the file (`what` names it, e.g. "vertex count"): a non-negative
 /// integer that fits in 32 bits.
 pub(crate) fn parse_count(tok: &str, what: &str) -> Result<u32, ReadErrorKind> {
-    let e = || echo(tok);
-    match parse_integer(tok) {
-        Ok(v) if v < 0 => Err(syntax(format!("{what} {} is negative", e()))),
-        Ok(v) => {
-            u32::try_from(v).map_err(|_| syntax(format!("{what} {} does not fit in 32 bits", e())))
-        }
-        Err(IntError::OutOfRange) if tok.starts_with('-') => {
-            Err(syntax(format!("{what} {} is negative", e())))
-        }
-        Err(IntError::OutOfRange) => Err(syntax(format!("{what} {} does not fit in 32 bits", e()))),
-        Err(IntError::NotInteger) => Err(syntax(format!("{what} '{}' is not an integer", e()))),
-        Err(IntError::NotNumber) => Err(syntax(format!(
-            "non-numeric token '{}' where the {what} was expected",
-            e()
-        ))),
+    let too_large = || syntax(format!("{what} {} does not fit in 32 bits", echo(tok)));
+    match integer_token(tok, "the", what)? {
+        Some(v) if v >= 0 => u32::try_from(v).map_err(|_| too_large()),
+        None if !tok.starts_with('-') => Err(too_large()),
+        _ => Err(syntax(format!("{what} {} is negative", echo(tok)))),
     }
 }
 
@@ -513,16 +515,7 @@ pub(crate) fn parse_real(tok: &str, what: &str, ty: Float) -> Result<f64, ReadEr
 /// Checks that a token is an integer (`what` names it, e.g. "reference number"); its value is
 /// not used.
 pub(crate) fn check_integer(tok: &str, what: &str) -> Result<(), ReadErrorKind> {
-    match parse_integer(tok) {
-        Ok(_) | Err(IntError::OutOfRange) => Ok(()),
-        Err(IntError::NotInteger) => {
-            Err(syntax(format!("{what} '{}' is not an integer", echo(tok))))
-        }
-        Err(IntError::NotNumber) => Err(syntax(format!(
-            "non-numeric token '{}' where a {what} was expected",
-            echo(tok)
-        ))),
-    }
+    integer_token(tok, "a", what).map(|_| ())
 }
 
 #[cfg(test)]

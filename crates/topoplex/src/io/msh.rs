@@ -548,6 +548,29 @@ pub fn parse(bytes: &[u8]) -> Res<RawInput> {
 /// [`super::ReadOptions::triangulate`]).
 pub(crate) fn parse_keeping(bytes: &[u8], polygons: bool) -> Res<RawInput> {
     let mut inp = Input::new(bytes);
+    let v4 = mesh_format(&mut inp)?;
+    let mut r = Reader {
+        inp,
+        v4,
+        tags: FxHashMap::default(),
+        coords: Vec::new(),
+        raw: RawInput::new(),
+        physical: Vec::new(),
+        geometrical: Vec::new(),
+        physical_width: 1,
+        entities: FxHashMap::default(),
+        elements: data::ElementTags::default(),
+        data: Vec::new(),
+    };
+    r.raw.polygons.keep = polygons;
+    r.end("$EndMeshFormat")?;
+    r.sections()?;
+    r.finish()
+}
+
+/// The `$MeshFormat` header up to its end keyword: the version (true for 4.1, false for 2.x),
+/// the file type (ASCII or binary, with the endianness check) and the data size.
+fn mesh_format(inp: &mut Input) -> Res<bool> {
     let (kw, l) = inp.expect_token("$MeshFormat")?;
     if kw != "$MeshFormat" {
         return Err((l, syntax(format!("expected $MeshFormat, found '{kw}'"))));
@@ -589,85 +612,89 @@ pub(crate) fn parse_keeping(bytes: &[u8], polygons: bool) -> Res<RawInput> {
             ));
         }
     }
-    let mut r = Reader {
-        inp,
-        v4,
-        tags: FxHashMap::default(),
-        coords: Vec::new(),
-        raw: RawInput::new(),
-        physical: Vec::new(),
-        geometrical: Vec::new(),
-        physical_width: 1,
-        entities: FxHashMap::default(),
-        elements: data::ElementTags::default(),
-        data: Vec::new(),
-    };
-    r.raw.polygons.keep = polygons;
-    r.end("$EndMeshFormat")?;
-    let (mut seen_nodes, mut seen_elements) = (false, false);
-    while let Some((kw, l)) = r.inp.token() {
-        match kw {
-            "$Nodes" if seen_nodes => return Err((l, syntax("a second $Nodes section"))),
-            "$Nodes" => {
-                r.nodes(l)?;
-                seen_nodes = true;
+    Ok(v4)
+}
+
+impl Reader<'_> {
+    /// Every section after the header, in file order: nodes and elements once each (nodes
+    /// first), names, entities and data sections; per-element-node data refused; unknown
+    /// sections skipped to their end keyword.
+    fn sections(&mut self) -> Res<()> {
+        let r = self;
+        let (mut seen_nodes, mut seen_elements) = (false, false);
+        while let Some((kw, l)) = r.inp.token() {
+            match kw {
+                "$Nodes" if seen_nodes => return Err((l, syntax("a second $Nodes section"))),
+                "$Nodes" => {
+                    r.nodes(l)?;
+                    seen_nodes = true;
+                }
+                "$Elements" if !seen_nodes => {
+                    return Err((l, syntax("$Elements before $Nodes")));
+                }
+                "$Elements" => {
+                    r.elements(l)?;
+                    seen_elements = true;
+                }
+                "$PhysicalNames" => r.physical_names(l)?,
+                "$Entities" => r.entities(l)?,
+                "$NodeData" if !seen_nodes => {
+                    return Err((l, syntax("$NodeData before $Nodes")));
+                }
+                "$NodeData" => r.data_section(true, l, seen_elements)?,
+                "$ElementData" => r.data_section(false, l, seen_elements)?,
+                "$ElementNodeData" => {
+                    return Err((
+                        l,
+                        syntax(format!(
+                            "{kw}: Gmsh per-element-node data is not read (no attribute holds \
+                             it), and reading the mesh without it would drop it; remove the \
+                             section to read the mesh alone"
+                        )),
+                    ));
+                }
+                k if k.starts_with('$') && !k.starts_with("$End") && k.len() > 1 => {
+                    let k = k.to_string();
+                    r.skip(&k, l)?;
+                }
+                k => return Err((l, syntax(format!("unexpected '{k}' between sections")))),
             }
-            "$Elements" if !seen_nodes => {
-                return Err((l, syntax("$Elements before $Nodes")));
-            }
-            "$Elements" => {
-                r.elements(l)?;
-                seen_elements = true;
-            }
-            "$PhysicalNames" => r.physical_names(l)?,
-            "$Entities" => r.entities(l)?,
-            "$NodeData" if !seen_nodes => return Err((l, syntax("$NodeData before $Nodes"))),
-            "$NodeData" => r.data_section(true, l, seen_elements)?,
-            "$ElementData" => r.data_section(false, l, seen_elements)?,
-            "$ElementNodeData" => {
-                return Err((
-                    l,
-                    syntax(format!(
-                        "{kw}: Gmsh per-element-node data is not read (no attribute holds it), \
-                         and reading the mesh without it would drop it; remove the section to \
-                         read the mesh alone"
-                    )),
-                ));
-            }
-            k if k.starts_with('$') && !k.starts_with("$End") && k.len() > 1 => {
-                let k = k.to_string();
-                r.skip(&k, l)?;
-            }
-            k => return Err((l, syntax(format!("unexpected '{k}' between sections")))),
         }
+        Ok(())
     }
-    let n = u32::try_from(r.tags.len()).map_err(|_| (0, syntax("more than 2^32 nodes")))?;
-    r.raw.vertex_count = Some(n);
-    r.raw.coords = Some(Coords {
-        dim: 3,
-        data: r.coords,
-    });
-    // Kept unless equal to what the writer writes without them (physical 0, elementary 1),
-    // so that nothing is lost either way.
-    let mut raw = r.raw;
-    let (physical, geometrical) = (r.physical, r.geometrical);
-    if physical.iter().any(|&p| p != 0) || !raw.attributes.label_names().is_empty() {
-        raw.attributes.insert(Attribute {
-            name: PHYSICAL.into(),
-            location: Location::Listed,
-            components: r.physical_width,
-            values: Values::I32(physical),
+
+    /// The input once every section is read: the nodes' count and coordinates, the physical
+    /// and elementary tags as attributes (kept unless equal to what the writer writes without
+    /// them, physical 0 and elementary 1, so that nothing is lost either way) and the data
+    /// sections'.
+    fn finish(self) -> Res<RawInput> {
+        let r = self;
+        let n = u32::try_from(r.tags.len()).map_err(|_| (0, syntax("more than 2^32 nodes")))?;
+        let mut raw = r.raw;
+        raw.vertex_count = Some(n);
+        raw.coords = Some(Coords {
+            dim: 3,
+            data: r.coords,
         });
+        let (physical, geometrical) = (r.physical, r.geometrical);
+        if physical.iter().any(|&p| p != 0) || !raw.attributes.label_names().is_empty() {
+            raw.attributes.insert(Attribute {
+                name: PHYSICAL.into(),
+                location: Location::Listed,
+                components: r.physical_width,
+                values: Values::I32(physical),
+            });
+        }
+        if geometrical.iter().any(|&g| g != 1) {
+            raw.attributes.insert(Attribute::labels(
+                GEOMETRICAL,
+                Location::Listed,
+                geometrical,
+            ));
+        }
+        data::attributes(r.data, &mut raw.attributes);
+        Ok(raw)
     }
-    if geometrical.iter().any(|&g| g != 1) {
-        raw.attributes.insert(Attribute::labels(
-            GEOMETRICAL,
-            Location::Listed,
-            geometrical,
-        ));
-    }
-    data::attributes(r.data, &mut raw.attributes);
-    Ok(raw)
 }
 
 /// Writes `raw` as MSH 2.2 or 4.1, ASCII or binary (little-endian).

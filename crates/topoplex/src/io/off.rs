@@ -42,8 +42,8 @@
 use super::chunked;
 use super::scan::{self, Scanner};
 use super::{
-    Coords, IntError, RawInput, ReadErrorKind, capped_len, echo, no_room, parse_count, parse_f64,
-    parse_integer, syntax, try_with_capacity,
+    Coords, RawInput, ReadErrorKind, capped_len, echo, integer_token, no_room, parse_count,
+    parse_f64, syntax, try_with_capacity,
 };
 use crate::complex::attributes::MAX_COMPONENTS;
 use crate::complex::{Attribute, Location, Values, table};
@@ -200,22 +200,10 @@ pub(super) fn counts(t: &mut Scanner<'_>) -> Res<(u32, u32)> {
         return Ok((nv, nf));
     };
     let e = || echo(tok);
-    match parse_integer(tok) {
-        Ok(v) if v >= 0 => Ok((nv, nf)),
-        Err(IntError::OutOfRange) if !tok.starts_with('-') => Ok((nv, nf)),
-        Ok(_) | Err(IntError::OutOfRange) => {
-            Err((l, syntax(format!("edge count {} is negative", e()))))
-        }
-        Err(IntError::NotInteger) => {
-            Err((l, syntax(format!("edge count '{}' is not an integer", e()))))
-        }
-        Err(IntError::NotNumber) => Err((
-            l,
-            syntax(format!(
-                "non-numeric token '{}' where the edge count was expected",
-                e()
-            )),
-        )),
+    match integer_token(tok, "the", "edge count").map_err(|k| (l, k))? {
+        Some(v) if v >= 0 => Ok((nv, nf)),
+        None if !tok.starts_with('-') => Ok((nv, nf)),
+        _ => Err((l, syntax(format!("edge count {} is negative", e())))),
     }
 }
 
@@ -591,26 +579,13 @@ fn face(
 
 /// A face's vertex count: 1, 2 or 3.
 fn face_size(tok: &str) -> Result<usize, ReadErrorKind> {
-    let e = || echo(tok);
-    let k = match parse_integer(tok) {
-        Ok(k) => k,
-        Err(IntError::NotNumber) => {
-            return Err(syntax(format!(
-                "non-numeric token '{}' where a face vertex count was expected",
-                e()
-            )));
-        }
-        Err(IntError::NotInteger) => {
-            return Err(syntax(format!(
-                "face vertex count '{}' is not an integer",
-                e()
-            )));
-        }
-        Err(IntError::OutOfRange) => {
-            return Err(syntax(format!("face vertex count {} is out of range", e())));
-        }
-    };
-    face_size_of(k)
+    match integer_token(tok, "a", "face vertex count")? {
+        Some(k) => face_size_of(k),
+        None => Err(syntax(format!(
+            "face vertex count {} is out of range",
+            echo(tok)
+        ))),
+    }
 }
 
 /// A face's vertex count from its value.

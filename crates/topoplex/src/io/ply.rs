@@ -323,98 +323,139 @@ pub(crate) fn write(raw: &RawInput, binary: bool, out: &mut Vec<u8>) -> Result<(
             i / c.dim
         ));
     }
-    let mut ply = Ply::<DefaultElement>::new();
-    ply.header.encoding = if binary {
-        Encoding::BinaryLittleEndian
-    } else {
-        Encoding::Ascii
-    };
-    ply.header.comments.push("written by topoplex".to_string());
-    let double = PropertyType::Scalar(ScalarType::Double);
-    let int = PropertyType::Scalar(ScalarType::Int);
-    let n = vertex_count(raw);
-    let rows = |len: usize| (0..raw.simplex_count()).filter(move |&i| raw.simplex(i).len() == len);
-    let id = |v: u32| i32::try_from(v).map_err(|_| format!("vertex id {v} does not fit PLY's int"));
-
-    let coords = raw.coords.as_ref();
-    let mut vertices = Vec::with_capacity(n);
-    for v in 0..n {
-        let mut e = DefaultElement::new();
-        for (k, key) in ["x", "y", "z"].into_iter().enumerate() {
-            let x = coords
-                .filter(|c| k < c.dim)
-                .map_or(0.0, |c| c.data[v * c.dim + k]);
-            e.insert(key.to_string(), Property::Double(x));
-        }
-        vertices.push(e);
-    }
-    let mut faces = Vec::new();
-    for i in rows(3) {
-        let mut e = DefaultElement::new();
-        let ids = raw
-            .simplex(i)
-            .iter()
-            .map(|&v| id(v))
-            .collect::<Result<_, _>>()?;
-        e.insert("vertex_indices".to_string(), Property::ListInt(ids));
-        faces.push(e);
-    }
-    let mut edges = Vec::new();
-    for i in rows(2) {
-        let mut e = DefaultElement::new();
-        e.insert("vertex1".to_string(), Property::Int(id(raw.simplex(i)[0])?));
-        e.insert("vertex2".to_string(), Property::Int(id(raw.simplex(i)[1])?));
-        edges.push(e);
-    }
+    let mut elements = Elements::of(raw)?;
     let (vertex_data, listed_data) = data(raw, binary)?;
-    for a in &vertex_data {
-        for (v, e) in vertices.iter_mut().enumerate() {
-            e.insert(a.name.clone(), property(&a.values, v));
-        }
-    }
-    for a in &listed_data {
-        for (i, e) in rows(3).zip(faces.iter_mut()) {
-            e.insert(a.name.clone(), property(&a.values, i));
-        }
-        for (i, e) in rows(2).zip(edges.iter_mut()) {
-            e.insert(a.name.clone(), property(&a.values, i));
-        }
-    }
-    let declared = |base: Vec<(&'static str, PropertyType)>, data: &[&Attribute]| {
-        let mut props: Vec<(String, PropertyType)> =
-            base.into_iter().map(|(k, t)| (k.to_string(), t)).collect();
-        props.extend(
-            data.iter()
-                .map(|a| (a.name.clone(), scalar_type(&a.values))),
-        );
-        props
-    };
-    let xyz = vec![("x", double.clone()), ("y", double.clone()), ("z", double)];
-    ply.header
-        .elements
-        .add(element("vertex", n, &declared(xyz, &vertex_data)));
-    ply.payload.insert("vertex".to_string(), vertices);
-    // Listed data on no face or edge: an empty `face` element still declares it.
-    if !faces.is_empty() || (edges.is_empty() && !listed_data.is_empty()) {
-        let list = PropertyType::List(ScalarType::UChar, ScalarType::Int);
-        let props = declared(vec![("vertex_indices", list)], &listed_data);
-        ply.header
-            .elements
-            .add(element("face", faces.len(), &props));
-        ply.payload.insert("face".to_string(), faces);
-    }
-    if !edges.is_empty() {
-        let ends = vec![("vertex1", int.clone()), ("vertex2", int)];
-        let props = declared(ends, &listed_data);
-        ply.header
-            .elements
-            .add(element("edge", edges.len(), &props));
-        ply.payload.insert("edge".to_string(), edges);
-    }
+    elements.add_data(raw, &vertex_data, &listed_data);
+    let mut ply = elements.into_ply(binary, &vertex_data, &listed_data);
     Writer::new()
         .write_ply(out, &mut ply)
         .map_err(|e| format!("PLY writer: {e}"))?;
     Ok(())
+}
+
+/// The listed simplices of `len` vertices, by listing index.
+fn rows_of(raw: &RawInput, len: usize) -> impl Iterator<Item = usize> + '_ {
+    (0..raw.simplex_count()).filter(move |&i| raw.simplex(i).len() == len)
+}
+
+/// The three PLY elements a complex writes: a vertex per vertex id (x, y, z; 0 where there are
+/// fewer coordinates), a face per listed triangle, an edge per listed edge.
+struct Elements {
+    vertices: Vec<DefaultElement>,
+    faces: Vec<DefaultElement>,
+    edges: Vec<DefaultElement>,
+}
+
+impl Elements {
+    fn of(raw: &RawInput) -> Result<Elements, String> {
+        let id =
+            |v: u32| i32::try_from(v).map_err(|_| format!("vertex id {v} does not fit PLY's int"));
+        let coords = raw.coords.as_ref();
+        let n = vertex_count(raw);
+        let mut vertices = Vec::with_capacity(n);
+        for v in 0..n {
+            let mut e = DefaultElement::new();
+            for (k, key) in ["x", "y", "z"].into_iter().enumerate() {
+                let x = coords
+                    .filter(|c| k < c.dim)
+                    .map_or(0.0, |c| c.data[v * c.dim + k]);
+                e.insert(key.to_string(), Property::Double(x));
+            }
+            vertices.push(e);
+        }
+        let mut faces = Vec::new();
+        for i in rows_of(raw, 3) {
+            let mut e = DefaultElement::new();
+            let ids = raw
+                .simplex(i)
+                .iter()
+                .map(|&v| id(v))
+                .collect::<Result<_, _>>()?;
+            e.insert("vertex_indices".to_string(), Property::ListInt(ids));
+            faces.push(e);
+        }
+        let mut edges = Vec::new();
+        for i in rows_of(raw, 2) {
+            let mut e = DefaultElement::new();
+            e.insert("vertex1".to_string(), Property::Int(id(raw.simplex(i)[0])?));
+            e.insert("vertex2".to_string(), Property::Int(id(raw.simplex(i)[1])?));
+            edges.push(e);
+        }
+        Ok(Elements {
+            vertices,
+            faces,
+            edges,
+        })
+    }
+
+    /// Each attribute as a property of every vertex, or of every face and edge (by listing
+    /// index).
+    fn add_data(&mut self, raw: &RawInput, vertex_data: &[&Attribute], listed_data: &[&Attribute]) {
+        for a in vertex_data {
+            for (v, e) in self.vertices.iter_mut().enumerate() {
+                e.insert(a.name.clone(), property(&a.values, v));
+            }
+        }
+        for a in listed_data {
+            for (i, e) in rows_of(raw, 3).zip(self.faces.iter_mut()) {
+                e.insert(a.name.clone(), property(&a.values, i));
+            }
+            for (i, e) in rows_of(raw, 2).zip(self.edges.iter_mut()) {
+                e.insert(a.name.clone(), property(&a.values, i));
+            }
+        }
+    }
+
+    /// The header declaring each element with its properties, and the payload.
+    fn into_ply(
+        self,
+        binary: bool,
+        vertex_data: &[&Attribute],
+        listed_data: &[&Attribute],
+    ) -> Ply<DefaultElement> {
+        let mut ply = Ply::<DefaultElement>::new();
+        ply.header.encoding = if binary {
+            Encoding::BinaryLittleEndian
+        } else {
+            Encoding::Ascii
+        };
+        ply.header.comments.push("written by topoplex".to_string());
+        let double = PropertyType::Scalar(ScalarType::Double);
+        let int = PropertyType::Scalar(ScalarType::Int);
+        let declared = |base: Vec<(&'static str, PropertyType)>, data: &[&Attribute]| {
+            let mut props: Vec<(String, PropertyType)> =
+                base.into_iter().map(|(k, t)| (k.to_string(), t)).collect();
+            props.extend(
+                data.iter()
+                    .map(|a| (a.name.clone(), scalar_type(&a.values))),
+            );
+            props
+        };
+        let xyz = vec![("x", double.clone()), ("y", double.clone()), ("z", double)];
+        let n = self.vertices.len();
+        ply.header
+            .elements
+            .add(element("vertex", n, &declared(xyz, vertex_data)));
+        ply.payload.insert("vertex".to_string(), self.vertices);
+        // Listed data on no face or edge: an empty `face` element still declares it.
+        if !self.faces.is_empty() || (self.edges.is_empty() && !listed_data.is_empty()) {
+            let list = PropertyType::List(ScalarType::UChar, ScalarType::Int);
+            let props = declared(vec![("vertex_indices", list)], listed_data);
+            ply.header
+                .elements
+                .add(element("face", self.faces.len(), &props));
+            ply.payload.insert("face".to_string(), self.faces);
+        }
+        if !self.edges.is_empty() {
+            let ends = vec![("vertex1", int.clone()), ("vertex2", int)];
+            let props = declared(ends, listed_data);
+            ply.header
+                .elements
+                .add(element("edge", self.edges.len(), &props));
+            ply.payload.insert("edge".to_string(), self.edges);
+        }
+        ply
+    }
 }
 
 #[cfg(test)]

@@ -220,66 +220,80 @@ fn ascii(bytes: &[u8]) -> Res<RawInput> {
                     )),
                 ));
             }
-            keyword(&mut inp, "normal")?;
-            for _ in 0..3 {
-                number(&mut inp, "a normal component")?;
-            }
-            keyword(&mut inp, "outer")?;
-            keyword(&mut inp, "loop")?;
-            let mut corners = [[0f32; 3]; 3];
-            for (k, c) in corners.iter_mut().enumerate() {
-                let (tok, l) = inp.expect_token("'vertex'")?;
-                if !tok.eq_ignore_ascii_case("vertex") {
-                    return Err((
-                        l,
-                        syntax(format!(
-                            "expected 'vertex' (corner {} of 3 of a facet), found '{}'",
-                            k + 1,
-                            echo(tok)
-                        )),
-                    ));
-                }
-                for x in c.iter_mut() {
-                    *x = number(&mut inp, "a vertex coordinate")?;
-                }
-            }
-            let (tok, l) = inp.expect_token("'endloop'")?;
-            if tok.eq_ignore_ascii_case("vertex") {
-                return Err((
-                    l,
-                    syntax("a facet with more than 3 vertices (STL facets are triangles)"),
-                ));
-            }
-            if !tok.eq_ignore_ascii_case("endloop") {
-                return Err((
-                    l,
-                    syntax(format!("expected 'endloop', found '{}'", echo(tok))),
-                ));
-            }
-            keyword(&mut inp, "endfacet")?;
+            let corners = facet_corners(&mut inp)?;
             w.facet(corners, facet_line).map_err(|k| (facet_line, k))?;
         }
     }
     let mut raw = w.into_raw();
     if solids >= 2 {
-        let m = raw.simplex_count();
-        let mut labels = try_with_capacity(m, "the solid labels").map_err(|k| (0, k))?;
-        for (k, &(start, label)) in starts.iter().enumerate() {
-            let end = starts.get(k + 1).map_or(m, |s| s.0);
-            labels.extend(std::iter::repeat_n(label, end - start));
-        }
-        raw.attributes
-            .insert(Attribute::labels(SOLID, Location::Listed, labels));
-        for (label, name) in names.into_iter().enumerate() {
-            raw.attributes.add_label_name(LabelName {
-                attribute: SOLID.to_string(),
-                dimension: None,
-                label: label as i64,
-                name,
-            });
-        }
+        solid_labels(&mut raw, &starts, names)?;
     }
     Ok(raw)
+}
+
+/// A facet after its `facet` keyword, through `endfacet`: the normal (read, checked, not
+/// kept) and the three corners of its loop.
+fn facet_corners(inp: &mut Input) -> Res<[[f32; 3]; 3]> {
+    keyword(inp, "normal")?;
+    for _ in 0..3 {
+        number(inp, "a normal component")?;
+    }
+    keyword(inp, "outer")?;
+    keyword(inp, "loop")?;
+    let mut corners = [[0f32; 3]; 3];
+    for (k, c) in corners.iter_mut().enumerate() {
+        let (tok, l) = inp.expect_token("'vertex'")?;
+        if !tok.eq_ignore_ascii_case("vertex") {
+            return Err((
+                l,
+                syntax(format!(
+                    "expected 'vertex' (corner {} of 3 of a facet), found '{}'",
+                    k + 1,
+                    echo(tok)
+                )),
+            ));
+        }
+        for x in c.iter_mut() {
+            *x = number(inp, "a vertex coordinate")?;
+        }
+    }
+    let (tok, l) = inp.expect_token("'endloop'")?;
+    if tok.eq_ignore_ascii_case("vertex") {
+        return Err((
+            l,
+            syntax("a facet with more than 3 vertices (STL facets are triangles)"),
+        ));
+    }
+    if !tok.eq_ignore_ascii_case("endloop") {
+        return Err((
+            l,
+            syntax(format!("expected 'endloop', found '{}'", echo(tok))),
+        ));
+    }
+    keyword(inp, "endfacet")?;
+    Ok(corners)
+}
+
+/// Two solids or more: each facet labelled with its solid's name (the distinct names in order,
+/// as label names), the solids starting at the listing indices of `starts`.
+fn solid_labels(raw: &mut RawInput, starts: &[(usize, i32)], names: Vec<String>) -> Res<()> {
+    let m = raw.simplex_count();
+    let mut labels = try_with_capacity(m, "the solid labels").map_err(|k| (0, k))?;
+    for (k, &(start, label)) in starts.iter().enumerate() {
+        let end = starts.get(k + 1).map_or(m, |s| s.0);
+        labels.extend(std::iter::repeat_n(label, end - start));
+    }
+    raw.attributes
+        .insert(Attribute::labels(SOLID, Location::Listed, labels));
+    for (label, name) in names.into_iter().enumerate() {
+        raw.attributes.add_label_name(LabelName {
+            attribute: SOLID.to_string(),
+            dimension: None,
+            label: label as i64,
+            name,
+        });
+    }
+    Ok(())
 }
 
 /// The label of each triangle's solid in an ASCII file of several solids (the index of the

@@ -431,24 +431,6 @@ impl Navigate for LiveComplex {
         failed.map_or(Ok(()), Err)
     }
 
-    /// One `related_ids` per index.
-    fn related_batch(
-        &self,
-        p: usize,
-        indices: &[u32],
-        q: usize,
-        order: Order,
-        ids: &mut Vec<u32>,
-        ends: &mut Vec<usize>,
-    ) -> Result<(), QueryError> {
-        for &i in indices {
-            let h = Navigate::handle(self, p, i)?;
-            self.related_ids(h, q, order, ids)?;
-            ends.push(ids.len());
-        }
-        Ok(())
-    }
-
     /// Built on first use, valid until the next edit (`dense` module).
     fn relation_view(&self, p: usize, q: usize) -> Result<Option<RelationView<'_>>, QueryError> {
         let d = Topology::dimension(self);

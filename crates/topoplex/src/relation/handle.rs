@@ -559,9 +559,9 @@ pub trait Navigate: Topology {
     /// answer's dense q-indices are appended to `ids` (in `order`) and the end of that answer in
     /// `ids` to `ends`. `InvalidHandle` for an index out of range (or p above the dimension),
     /// `DimensionOutOfRange` as [`Navigate::visit`]; on error `ids` and `ends` hold a prefix.
-    /// Default: one [`Navigate::visit`] per index; a structure may answer in a loop with no call
-    /// per answer (TS, PE, LE, DE for VV, VF and FF; the IG for R_{0,0} and R_{p,p±1}). No
-    /// allocation beyond `ids` and `ends`.
+    /// Default: one [`Navigate::related_ids`] per index; a structure may answer in a loop with
+    /// no call per answer (TS, PE, LE, DE for VV, VF and FF; the IG for R_{0,0} and R_{p,p±1}).
+    /// No allocation beyond `ids` and `ends`.
     fn related_batch(
         &self,
         p: usize,
@@ -571,7 +571,7 @@ pub trait Navigate: Topology {
         ids: &mut Vec<u32>,
         ends: &mut Vec<usize>,
     ) -> Result<(), QueryError> {
-        batch_by_visit(self, p, indices, q, order, ids, ends)
+        batch_by_ids(self, p, indices, q, order, ids, ends)
     }
 
     /// R_{p,q} of many handles at once, of any dimensions (mixed), as one CSR of handles: for
@@ -819,8 +819,8 @@ pub(crate) fn append_in_order<T: Ord, E>(
     Ok(())
 }
 
-/// [`Navigate::related_batch`] by one [`Navigate::visit`] per index.
-pub(crate) fn batch_by_visit<N: Navigate + ?Sized>(
+/// [`Navigate::related_batch`] by one [`Navigate::related_ids`] per index.
+pub(crate) fn batch_by_ids<N: Navigate + ?Sized>(
     n: &N,
     p: usize,
     indices: &[u32],
@@ -830,10 +830,7 @@ pub(crate) fn batch_by_visit<N: Navigate + ?Sized>(
     ends: &mut Vec<usize>,
 ) -> Result<(), QueryError> {
     for &i in indices {
-        let h = n.handle(p, i)?;
-        append_in_order(ids, order, |ids| {
-            n.visit(h, q, &mut |x| ids.push(x.index()))
-        })?;
+        n.related_ids(n.handle(p, i)?, q, order, ids)?;
         ends.push(ids.len());
     }
     Ok(())

@@ -39,7 +39,7 @@ use crate::complex::{Complex, MAX_DIMENSION, SimplexTable};
 use crate::mapped::Arr;
 use crate::relation::handle::{
     HandleForm, Navigate, Order, RelationView, SimplexHandle, TopId, Vertices, append_in_order,
-    batch_by_visit,
+    batch_by_ids,
 };
 use crate::relation::{QueryError, StructureKind, Topology, normalize_simplex_into};
 
@@ -433,7 +433,7 @@ impl<T: NavBase> Navigate for T {
         // Out-of-range dimensions take the checked path, which reports them.
         let d = self.dimension();
         if p > d || q > d || !self.has_fast(p, q) {
-            return batch_by_visit(self, p, indices, q, order, ids, ends);
+            return batch_by_ids(self, p, indices, q, order, ids, ends);
         }
         check_indices(self, p, indices)?;
         for &i in indices {

@@ -126,57 +126,8 @@ impl Reader<'_> {
         if binary {
             self.inp.rest_of_line();
         }
-        let total = want
-            .checked_mul(components)
-            .ok_or((line, syntax("data too large")))?;
-        let room = |b| (line, no_room("an attribute's values")(b));
-        // `total` is bounded by the mesh already read.
-        let mut values: Vec<f64> = Vec::new();
-        table::try_reserve_exact(&mut values, total).map_err(room)?;
-        values.resize(total, f64::NAN);
-        let mut seen = vec![false; want];
-        let tag_what = format!("a {} tag of {what}", &entities[..entities.len() - 1]);
-        for _ in 0..count {
-            let (tag, l) = self.int(4, &tag_what, line)?;
-            let i = if nodes {
-                u64::try_from(tag)
-                    .ok()
-                    .and_then(|t| self.tags.get(&t).copied())
-                    .map(|i| i as usize)
-                    .ok_or(false)
-            } else {
-                self.elements.index(tag)
-            }
-            .map_err(|twice| {
-                let why = if twice {
-                    "listed twice in $Elements"
-                } else if nodes {
-                    "which $Nodes does not list"
-                } else {
-                    "which $Elements does not list"
-                };
-                (
-                    l,
-                    syntax(format!(
-                        "{what}: {} {tag}, {why}",
-                        &entities[..entities.len() - 1]
-                    )),
-                )
-            })?;
-            if std::mem::replace(&mut seen[i], true) {
-                return Err((
-                    l,
-                    syntax(format!(
-                        "{what}: {} {tag} has two values (so another has none: partial data \
-                         cannot be held)",
-                        &entities[..entities.len() - 1]
-                    )),
-                ));
-            }
-            for x in &mut values[i * components..(i + 1) * components] {
-                *x = self.value(l, &what)?;
-            }
-        }
+        let entity = &entities[..entities.len() - 1];
+        let values = self.data_values(nodes, want, components, &what, entity, line)?;
         self.end(&format!("$End{}", &kw[1..]))?;
         if self
             .data
@@ -200,7 +151,66 @@ impl Reader<'_> {
                 values,
             },
         )
-        .map_err(room)
+        .map_err(|b| (line, no_room("an attribute's values")(b)))
+    }
+
+    /// The `want` entries of a data section (one per node or element, in any order), each a
+    /// tag and `components` values, into a table by vertex id or listing index; a tag the mesh
+    /// does not list or a second entry of one tag refused naming it.
+    fn data_values(
+        &mut self,
+        nodes: bool,
+        want: usize,
+        components: usize,
+        what: &str,
+        entity: &str,
+        line: u32,
+    ) -> Res<Vec<f64>> {
+        let total = want
+            .checked_mul(components)
+            .ok_or((line, syntax("data too large")))?;
+        let room = |b| (line, no_room("an attribute's values")(b));
+        // `total` is bounded by the mesh already read.
+        let mut values: Vec<f64> = Vec::new();
+        table::try_reserve_exact(&mut values, total).map_err(room)?;
+        values.resize(total, f64::NAN);
+        let mut seen = vec![false; want];
+        let tag_what = format!("a {entity} tag of {what}");
+        for _ in 0..want {
+            let (tag, l) = self.int(4, &tag_what, line)?;
+            let i = if nodes {
+                u64::try_from(tag)
+                    .ok()
+                    .and_then(|t| self.tags.get(&t).copied())
+                    .map(|i| i as usize)
+                    .ok_or(false)
+            } else {
+                self.elements.index(tag)
+            }
+            .map_err(|twice| {
+                let why = if twice {
+                    "listed twice in $Elements"
+                } else if nodes {
+                    "which $Nodes does not list"
+                } else {
+                    "which $Elements does not list"
+                };
+                (l, syntax(format!("{what}: {entity} {tag}, {why}")))
+            })?;
+            if std::mem::replace(&mut seen[i], true) {
+                return Err((
+                    l,
+                    syntax(format!(
+                        "{what}: {entity} {tag} has two values (so another has none: partial \
+                         data cannot be held)"
+                    )),
+                ));
+            }
+            for x in &mut values[i * components..(i + 1) * components] {
+                *x = self.value(l, what)?;
+            }
+        }
+        Ok(values)
     }
 
     /// The tags of a data section (ASCII in every file): name, time step, components, count.
