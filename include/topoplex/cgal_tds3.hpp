@@ -39,12 +39,9 @@
 #include "adapter.hpp"
 
 #include <CGAL/Handle_hash_function.h>
-#include <CGAL/version.h>
-#if CGAL_VERSION_NR < CGAL_VERSION_NUMBER(5, 6, 0)
-#include <CGAL/Mesh_3/tet_soup_to_c3t3.h>
 #include <CGAL/enum.h>
+/* complex_to_c3t3 is declared (it was only with CGAL < 5.6 while it used CGAL's Mesh_3 loader). */
 #define TOPOPLEX_HAVE_COMPLEX_TO_C3T3 1
-#endif
 
 #include <algorithm>
 #include <array>
@@ -166,6 +163,123 @@ Complex c3t3_to_complex(const C3T3 &c3t3, bool all_cells = false) {
   return out;
 }
 
+namespace detail {
+
+/* Builds tr (a Mesh_3 triangulation) from positively oriented cells (4 vertex ids and the
+ * subdomain) through the TDS's public calls: the infinite vertex, the points' vertices in order,
+ * the cells in order, each cell's neighbour across each facet from the facets' sorted ids, an
+ * infinite cell (infinite vertex first, wound against the finite cell) over each facet in one
+ * cell, and those joined across their edges around the infinite vertex. `border` gives facets
+ * their surface patch (on both sides; a triple that is no facet is passed over). False (tr left
+ * to be cleared) when a triangle is in three cells, a boundary edge not in exactly two boundary
+ * facets, or the TDS's own is_valid() fails (not a ball, a vertex in no cell). O(C log C). */
+template <class Tr, class SPI>
+bool build_tds(Tr &tr, const std::vector<typename Tr::Point> &points,
+               const std::vector<std::array<int, 5>> &cells,
+               std::vector<std::pair<std::array<std::uint32_t, 3>, SPI>> &border) {
+  using VH = typename Tr::Vertex_handle;
+  using CH = typename Tr::Cell_handle;
+  using Key = std::array<std::uint32_t, 4>;  // 3 sorted ids, then 4 * cell + facet
+  auto &tds = tr.tds();
+  tds.clear();  // not tr.clear(): that would make a new triangulation of dimension -1
+  const VH infinite = tds.create_vertex();
+  tr.set_infinite_vertex(infinite);
+  infinite->set_dimension(-1);
+  std::vector<VH> vh(points.size());
+  for (std::size_t v = 0; v < points.size(); ++v) {
+    vh[v] = tds.create_vertex();
+    vh[v]->set_point(points[v]);
+    vh[v]->set_dimension(-1);
+  }
+  const std::size_t nc = cells.size();
+  std::vector<CH> ch(nc);
+  std::vector<Key> facets;
+  facets.reserve(4 * nc);
+  for (std::size_t k = 0; k < nc; ++k) {
+    const auto &t = cells[k];
+    ch[k] = tds.create_cell(vh[t[0]], vh[t[1]], vh[t[2]], vh[t[3]]);
+    ch[k]->set_subdomain_index(t[4]);
+    for (int j = 0; j < 4; ++j) {
+      const VH v = vh[t[j]];
+      v->set_dimension(3);
+      if (v->cell() == CH()) v->set_cell(ch[k]);
+      Key f{std::uint32_t(t[(j + 1) % 4]), std::uint32_t(t[(j + 2) % 4]),
+            std::uint32_t(t[(j + 3) % 4]), std::uint32_t(4 * k + j)};
+      std::sort(f.begin(), f.begin() + 3);
+      facets.push_back(f);
+    }
+  }
+  std::sort(facets.begin(), facets.end());
+  const auto same = [](const Key &a, const Key &b) {
+    return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+  };
+  // Patches first (on the finite side; the infinite cells copy theirs below).
+  std::sort(border.begin(), border.end(),
+            [](const auto &a, const auto &b) { return a.first < b.first; });
+  std::size_t b = 0;
+  std::vector<std::size_t> open;  // indices into facets of the boundary facets
+  std::vector<std::array<std::uint32_t, 3>> edges;  // 2 sorted ids, 4 * infinite cell + index
+  for (std::size_t i = 0; i < facets.size();) {
+    std::size_t e = i + 1;
+    while (e < facets.size() && same(facets[e], facets[i])) ++e;
+    if (e - i > 2) return false;
+    const std::array<std::uint32_t, 3> ids{facets[i][0], facets[i][1], facets[i][2]};
+    while (b < border.size() && border[b].first < ids) ++b;
+    for (std::size_t x = i; x < e; ++x) {
+      if (b < border.size() && border[b].first == ids)
+        ch[facets[x][3] / 4]->set_surface_patch_index(int(facets[x][3] % 4), border[b].second);
+    }
+    if (e - i == 2) {
+      const CH c0 = ch[facets[i][3] / 4], c1 = ch[facets[i + 1][3] / 4];
+      c0->set_neighbor(int(facets[i][3] % 4), c1);
+      c1->set_neighbor(int(facets[i + 1][3] % 4), c0);
+    } else {
+      open.push_back(i);
+    }
+    i = e;
+  }
+  // An infinite cell over each boundary facet (c, j): c's vertices with vertex j made the
+  // infinite one, moved to the front (j transpositions), and for even j vertices 1 and 2
+  // swapped: an odd permutation of c, so the shared facet is wound against c's.
+  std::vector<CH> inf_cells;
+  inf_cells.reserve(open.size());
+  edges.reserve(3 * open.size());
+  for (std::size_t i : open) {
+    const std::size_t k = facets[i][3] / 4;
+    const int j = int(facets[i][3] % 4);
+    std::array<int, 3> w;
+    for (int x = 0, y = 0; x < 4; ++x)
+      if (x != j) w[y++] = cells[k][x];
+    if (j % 2 == 0) std::swap(w[0], w[1]);
+    const CH n = tds.create_cell(infinite, vh[w[0]], vh[w[1]], vh[w[2]]);
+    n->set_neighbor(0, ch[k]);
+    ch[k]->set_neighbor(j, n);
+    n->set_surface_patch_index(0, ch[k]->surface_patch_index(j));
+    if (infinite->cell() == CH()) infinite->set_cell(n);
+    const std::uint32_t m = std::uint32_t(inf_cells.size());
+    inf_cells.push_back(n);
+    for (int x = 1; x <= 3; ++x) {  // the facet opposite vertex x: the infinite vertex and an edge
+      std::uint32_t a = std::uint32_t(w[x % 3]), c = std::uint32_t(w[(x + 1) % 3]);
+      if (c < a) std::swap(a, c);
+      edges.push_back({a, c, 4 * m + std::uint32_t(x)});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size(); i += 2) {
+    const auto pair = [&](std::size_t x, std::size_t y) {
+      return y < edges.size() && edges[x][0] == edges[y][0] && edges[x][1] == edges[y][1];
+    };
+    if (!pair(i, i + 1) || pair(i, i + 2)) return false;
+    const CH c0 = inf_cells[edges[i][2] / 4], c1 = inf_cells[edges[i + 1][2] / 4];
+    c0->set_neighbor(int(edges[i][2] % 4), c1);
+    c1->set_neighbor(int(edges[i + 1][2] % 4), c0);
+  }
+  tds.set_dimension(nc == 0 ? -1 : 3);
+  return tds.is_valid();
+}
+
+}  // namespace detail
+
 #ifdef TOPOPLEX_HAVE_COMPLEX_TO_C3T3
 /* Fills `out` (cleared first) with the complex's tetrahedra and labels (header comment).
  * Returns the number of tetrahedra given to CGAL with their first two vertices swapped. */
@@ -212,7 +326,7 @@ std::size_t complex_to_c3t3(const Complex &c, C3T3 &out, std::vector<Dropped> *d
                  : AttributeView<std::int32_t>();
   std::vector<std::array<int, 5>> cells;
   cells.reserve(c.top_count(3));
-  std::map<std::array<int, 3>, SPI> border;
+  std::vector<std::pair<std::array<std::uint32_t, 3>, SPI>> border;  // sorted ids, patch
   std::vector<bool> seen;
   std::size_t swapped = 0;
   adapt::for_each_listed(c, [&](std::size_t i, const std::uint32_t *ids, std::size_t n,
@@ -241,20 +355,19 @@ std::size_t complex_to_c3t3(const Complex &c, C3T3 &out, std::vector<Dropped> *d
                       " components; this C3T3's Surface_patch_index takes " +
                       (std::is_integral<SPI>::value ? "1" : "2"));
       }
-      std::array<int, 3> f{int(ids[0]), int(ids[1]), int(ids[2])};
-      std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
-      border.emplace(f, value);
+      std::array<std::uint32_t, 3> f{ids[0], ids[1], ids[2]};
+      std::sort(f.begin(), f.end());
+      border.emplace_back(f, value);
     }
   });
   if (points.empty() || cells.empty()) {
     throw Refused("a C3T3 needs at least one tetrahedron");
   }
-  std::vector<typename Tr::Vertex_handle> handles;
-  if (!CGAL::build_triangulation<Tr, false>(out.triangulation(), points, cells, border, handles)) {
+  if (!detail::build_tds(out.triangulation(), points, cells, border)) {
     out.clear();
-    throw Refused("CGAL could not build a triangulation from the tetrahedra: they must fill a "
-                  "ball, each triangle in at most two of them (c3t3_to_complex(c3t3, true) gives "
-                  "such a complex)");
+    throw Refused("CGAL's triangulation cannot hold the tetrahedra: they must fill a ball, each "
+                  "triangle in at most two of them, every vertex in one (c3t3_to_complex(c3t3, "
+                  "true) gives such a complex)");
   }
   out.rescan_after_load_of_triangulation();
   return swapped;
