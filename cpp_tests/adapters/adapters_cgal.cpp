@@ -343,6 +343,23 @@ TEST(TriangulationAdapter, C3t3CellsAndFacetsComeWithSubdomainAndPatchLabels) {
       6, {0, 1, 2, 3, 0, 2, 1, 4, 0, 1, 2, 5}, {0, 4, 8, 12}, corners, 3);
   EXPECT_THROW(cg::complex_to_c3t3(three, one), topoplex::Refused);
   EXPECT_EQ(one.number_of_cells_in_complex(), 0u);
+  // Two tetrahedra on the same side of their shared triangle (overlapping), and two sharing
+  // nothing but a vertex (no ball): refused, as the TDS's is_valid() would find them.
+  const topoplex::Complex overlapping = topoplex::Complex::from_arrays(
+      5, {0, 1, 2, 3, 0, 1, 2, 4}, {0, 4, 8},
+      std::vector<double>(corners.begin(), corners.begin() + 15), 3);
+  EXPECT_THROW(cg::complex_to_c3t3(overlapping, one), topoplex::Refused);
+  const topoplex::Complex pinched = topoplex::Complex::from_arrays(
+      7, {0, 1, 2, 3, 0, 4, 5, 6}, {0, 4, 8},
+      {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1}, 3);
+  EXPECT_THROW(cg::complex_to_c3t3(pinched, one), topoplex::Refused);
+  EXPECT_EQ(one.number_of_cells_in_complex(), 0u);
+  // And the two tetrahedra side by side across it are taken.
+  const topoplex::Complex two = topoplex::Complex::from_arrays(
+      5, {0, 1, 2, 3, 0, 2, 1, 4}, {0, 4, 8}, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0.2, 0.2, -1}, 3);
+  EXPECT_EQ(cg::complex_to_c3t3(two, one), 0u);
+  EXPECT_EQ(one.number_of_cells_in_complex(), 2u);
+  EXPECT_TRUE(one.triangulation().tds().is_valid());
   EXPECT_THROW(cg::complex_to_c3t3(topoplex::Complex::from_simplices(3, {{0, 1, 2}}), one),
                topoplex::Refused);
   EXPECT_THROW(cg::complex_to_c3t3(topoplex::Complex::from_simplices(4, {{0, 1, 2, 3}}), one),

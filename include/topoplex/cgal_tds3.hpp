@@ -17,17 +17,22 @@
  * Surface_patch_index, 2 for a pair; 0 on the cells). Feature edges and corners (edges and
  * vertices in complex) are not listed.
  *
- * Back (CGAL 5.5, whose Mesh_3 loader CGAL/Mesh_3/tet_soup_to_c3t3.h this uses; later CGAL
- * versions moved it, and complex_to_c3t3 is then not declared): complex_to_c3t3 fills a C3T3
- * from the listed tetrahedra (vertex order kept; a negatively oriented one has its first two
- * vertices swapped, as CGAL requires positive cells, counted in the return value) with
- * "c3t3:subdomain" as their subdomain (1 without it) and the listed triangles' "c3t3:patch" as
- * the surface patch of the facets they name, then rescans the complex. The tetrahedra must fill
- * a ball (every Triangulation_3 covers its convex hull: c3t3_to_complex(c3t3, true) gives such
- * a complex): otherwise, or with a flat tetrahedron, a triangle in three tetrahedra, a complex
- * that is not 3-dimensional or lacks 3 coordinates, it is refused (topoplex::Refused) and the
- * C3T3 cleared. Other attributes are refused unless left behind into a Dropped list. Cost:
- * CGAL's loader, O(C log C) with hash maps of facets.
+ * Back: complex_to_c3t3 fills a C3T3 from the listed tetrahedra (vertex order kept; a
+ * negatively oriented one has its first two vertices swapped, as CGAL requires positive cells,
+ * counted in the return value) with "c3t3:subdomain" as their subdomain (1 without it) and the
+ * listed triangles' "c3t3:patch" as the surface patch of the facets they name, then rescans the
+ * complex. It builds the triangulation through the TDS's public calls (detail::build_tds: the
+ * vertices and cells in order, neighbours from the facets' sorted ids, an infinite cell over
+ * each boundary facet, joined around the infinite vertex), the same triangulation CGAL 5.5's
+ * tetrahedron-soup loader (Mesh_3/tet_soup_to_c3t3.h, which read_MEDIT uses) builds, cell for
+ * cell; so it needs no CGAL version's loader (tested with CGAL 5.5). The tetrahedra must fill a
+ * ball (every Triangulation_3 covers its convex hull: c3t3_to_complex(c3t3, true) gives such a
+ * complex): otherwise (Euler's relation fails, a triangle in three tetrahedra, two on the same
+ * side of their shared triangle, a vertex in none), or with a flat tetrahedron, a complex that
+ * is not 3-dimensional or lacks 3 coordinates, it is refused (topoplex::Refused) and the C3T3
+ * cleared. Other attributes are refused unless left behind into a Dropped list. Cost:
+ * O(C log C) (sorts of the 4C facets and the boundary edges) plus O(C·degree) for counting
+ * edges; no hash map, no walk of CGAL's is_valid().
  *
  * Refused: nothing beyond the triangulation's own dimension: a triangulation of dimension
  * below 3 gives its vertices only (no cells). Cost: one pass over the vertices (a hash map of
@@ -172,7 +177,9 @@ namespace detail {
  * cell, and those joined across their edges around the infinite vertex. `border` gives facets
  * their surface patch (on both sides; a triple that is no facet is passed over). False (tr left
  * to be cleared) when a triangle is in three cells, a boundary edge not in exactly two boundary
- * facets, or the TDS's own is_valid() fails (not a ball, a vertex in no cell). O(C log C). */
+ * facets, a facet wound alike in its two cells, a vertex in no cell, or Euler's relation fails
+ * (the cells fill no ball): what the TDS's is_valid() would find, without its O(C) walks
+ * around every edge. O(C log C) for the sorts, O(C·degree) for the edges. */
 template <class Tr, class SPI>
 bool build_tds(Tr &tr, const std::vector<typename Tr::Point> &points,
                const std::vector<std::array<int, 5>> &cells,
@@ -275,7 +282,54 @@ bool build_tds(Tr &tr, const std::vector<typename Tr::Point> &points,
     c1->set_neighbor(int(edges[i + 1][2] % 4), c0);
   }
   tds.set_dimension(nc == 0 ? -1 : 3);
-  return tds.is_valid();
+  // The checks of the TDS's is_valid() that the input can fail, in O(C) and O(C·degree):
+  // every vertex in a cell; each facet shared by two cells wound against itself in them;
+  // Euler's relation V - E + F - C = 0 with the infinite vertex (F = 2C: the 3-sphere's).
+  for (const VH &v : vh)
+    if (v->cell() == CH()) return false;
+  for (std::size_t i = 0; i + 1 < facets.size(); ++i) {
+    if (!same(facets[i], facets[i + 1])) continue;
+    const auto &c0 = cells[facets[i][3] / 4], &c1 = cells[facets[i + 1][3] / 4];
+    const int j0 = int(facets[i][3] % 4), j1 = int(facets[i + 1][3] % 4);
+    // c0 as (its vertex j0, then its others in order) is a permutation of parity j0; c1 as
+    // (its vertex j1, then c0's others in c0's order) must have the other parity.
+    int at[4], y = 1, inversions = 0;
+    at[0] = j1;
+    for (int x = 0; x < 4; ++x) {
+      if (x == j0) continue;
+      int k = 0;
+      while (c1[k] != c0[x]) ++k;
+      at[y++] = k;
+    }
+    for (int p = 0; p < 4; ++p)
+      for (int q = p + 1; q < 4; ++q) inversions += at[p] > at[q];
+    if ((inversions + j0) % 2 == 0) return false;
+  }
+  std::vector<std::uint32_t> first(points.size() + 1, 0), star(4 * nc);
+  for (const auto &t : cells)
+    for (int j = 0; j < 4; ++j) ++first[std::size_t(t[j]) + 1];
+  for (std::size_t v = 0; v < points.size(); ++v) first[v + 1] += first[v];
+  {
+    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+    for (std::size_t k = 0; k < nc; ++k)
+      for (int j = 0; j < 4; ++j) star[fill[std::size_t(cells[k][j])]++] = std::uint32_t(k);
+  }
+  std::vector<bool> on_boundary(points.size(), false);
+  for (std::size_t i : open)
+    for (int x = 0; x < 3; ++x) on_boundary[facets[i][x]] = true;
+  std::size_t edge_count = 0;
+  std::vector<int> ends;
+  for (std::size_t v = 0; v < points.size(); ++v) {
+    ends.clear();
+    for (std::uint32_t i = first[v]; i < first[v + 1]; ++i)
+      for (int j = 0; j < 4; ++j)
+        if (cells[star[i]][j] > int(v)) ends.push_back(cells[star[i]][j]);
+    std::sort(ends.begin(), ends.end());
+    edge_count += std::size_t(std::unique(ends.begin(), ends.end()) - ends.begin());
+    edge_count += on_boundary[v];  // its edge to the infinite vertex
+  }
+  const std::size_t all_cells = nc + inf_cells.size();
+  return points.size() + 1 + all_cells == edge_count;
 }
 
 }  // namespace detail
