@@ -315,8 +315,8 @@ std::vector<std::uint32_t> triangles_of(const Mesh &m) {
 // Plain meshes in several face orders: an open grid with an isolated vertex (boundary and
 // interior vertices), the grid's faces in other orders (a vertex's fan met in pieces, so
 // add_face relinks boundary loops), two closed tetrahedron surfaces, a grid with a square hole,
-// and the shared data's surfaces; then what is left to add_face: a bowtie, a triangle twice, a winding
-// against its neighbour's, two closed fans at one vertex, a repeated vertex.
+// and the shared data's surfaces; then what is left to add_face: a bowtie, a triangle twice, a
+// winding against its neighbour's, two closed fans at one vertex, a repeated vertex.
 TEST(OpenMeshAdapter, DirectBuildIsHalfedgeForHalfedgeWhatAddFaceBuilds) {
   const Mesh grid = grid_mesh(7);
   std::vector<std::uint32_t> g = triangles_of(grid);
