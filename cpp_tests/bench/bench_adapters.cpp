@@ -30,7 +30,10 @@
 // inputs are first copied there without their comment lines (uncommented() below).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/File_medit.h>
+#include <CGAL/version.h>
+#if CGAL_VERSION_NR < CGAL_VERSION_NUMBER(5, 6, 0)
 #include <CGAL/Mesh_3/tet_soup_to_c3t3.h>  // read_MEDIT's loader (CGAL 5.5 declares it there)
+#endif
 #include <CGAL/Labeled_mesh_domain_3.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_triangulation_3.h>
