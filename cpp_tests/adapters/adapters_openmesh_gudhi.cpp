@@ -227,7 +227,13 @@ TEST(OpenMeshAdapter, RealSurfacesGoToOpenMeshAndBackUnchanged) {
     if (path.empty()) continue;
     ++ran;
     const topoplex::Complex c = topoplex::Complex::from_file(path);
-    const Mesh m = om::to_openmesh<Mesh>(c);
+    // tet.obj's flat-shaded normals are per corner (obj:vn, 9 numbers a face), which no
+    // OpenMesh face property holds: left behind by name, and nothing else.
+    std::vector<topoplex::Dropped> dropped;
+    const Mesh m = om::to_openmesh<Mesh>(c, &dropped);
+    for (const auto &d : dropped) EXPECT_EQ(d.name, "obj:vn") << name << ": " << d.why;
+    EXPECT_EQ(dropped.size(), std::string(name).find("tet.obj") != std::string::npos ? 1u : 0u)
+        << name;
     ASSERT_EQ(m.n_vertices(), c.vertex_count()) << name;
     ASSERT_EQ(m.n_faces(), c.top_count(2)) << name;
     const topoplex::Complex back = om::to_complex(m);

@@ -18,8 +18,12 @@
 //! CELLS m+1 c                    version 5: OFFSETS <type> (m+1 ints), CONNECTIVITY <type> (c ints)
 //! CELL_TYPES m                   m ints
 //! ```
-//! * `METADATA` blocks (up to a blank line) are skipped; anything after `CELL_TYPES` (point and
-//!   cell data, fields) is ignored.
+//! * `METADATA` blocks (up to a blank line) are skipped; a `FIELD` before `CELL_TYPES` (data on
+//!   the whole dataset, which attributes cannot hold) is refused. After `CELL_TYPES`,
+//!   `POINT_DATA`/`CELL_DATA` arrays are attributes ([`read_data`]). A NaN is read from `nan`,
+//!   `-nan` or `NaN` (any case) as a NaN; ASCII text holds neither a NaN's sign nor its payload,
+//!   so an ASCII file gives the one quiet NaN where the writer had any NaN (every other number
+//!   reads back bit for bit), while BINARY keeps every bit.
 //! * Cell types 1 (vertex), 3 (line), 5 (triangle) and 10 (tetrahedron) are simplices; any other
 //!   type (quad, polygon, hexahedron, wedge, quadratic cells...) is refused naming the cell's
 //!   index and line, and so is a cell whose id count does not match its type.
