@@ -2,7 +2,7 @@
 //!
 //! * `v x y z` declares a vertex; a homogeneous `w` (4 numbers) may follow and is ignored (a
 //!   weight only free-form geometry uses, which is refused), or a vertex colour `r g b` (6
-//!   numbers) or `r g b a` (7), kept as the `obj:color` vertex field ([`data`]). Fewer than 3
+//!   numbers) or `r g b a` (7), kept as the `obj:color` vertex field (module `data`). Fewer than 3
 //!   numbers, or 5, or more than 7, are errors. Coordinates have dimension 3. Numbers are parsed as `f64`; `nan`, `inf` and
 //!   `infinity` are accepted, since topology does not use coordinates, but a finite number that
 //!   would become infinite or 0 (`1e309`, `1e-400`) is an error.
@@ -16,7 +16,7 @@
 //!   before the first vertex is an error. Texture and normal indices (`i/t/n`) tie the `vt` and
 //!   `vn` statements to the vertices: the `obj:vt` and `obj:vn` fields, on the vertices when
 //!   each vertex is given one value and per corner on the listed simplices otherwise
-//!   ([`data`]: nothing of them is dropped).
+//!   (module `data`: nothing of them is dropped).
 //! * Free-form elements `curv curv2 surf` are refused (an error naming the statement): they are
 //!   geometry a simplicial complex cannot hold, and dropping them would read the file as less
 //!   than it is.

@@ -20,7 +20,7 @@
 //! ```
 //! * `METADATA` blocks (up to a blank line) are skipped; a `FIELD` before `CELL_TYPES` (data on
 //!   the whole dataset, which attributes cannot hold) is refused. After `CELL_TYPES`,
-//!   `POINT_DATA`/`CELL_DATA` arrays are attributes ([`read_data`]). A NaN is read from `nan`,
+//!   `POINT_DATA`/`CELL_DATA` arrays are attributes (`read_data`). A NaN is read from `nan`,
 //!   `-nan` or `NaN` (any case) as a NaN; ASCII text holds neither a NaN's sign nor its payload,
 //!   so an ASCII file gives the one quiet NaN where the writer had any NaN (every other number
 //!   reads back bit for bit), while BINARY keeps every bit.
