@@ -353,96 +353,9 @@ fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), R
     let line = s.line();
     match keyword {
         "v" => vertex(s, st),
-        "f" => {
-            if let Some(ids) = plain_triangle(s) {
-                return st.raw.try_push(&ids, line);
-            }
-            let mut refs = [""; 3];
-            let mut k = 0;
-            // A polygon kept for --triangulate: every id, as read.
-            let keep = st.raw.polygons.keep;
-            st.ids.clear();
-            st.refs.clear();
-            while let Some((tok, _)) = s.token_in_line() {
-                if let Some(slot) = refs.get_mut(k) {
-                    *slot = tok;
-                }
-                if keep {
-                    let id = vertex_index(tok, Form::Face, st.seen)?;
-                    table::try_push(&mut st.ids, id).map_err(no_room("a polygon's ids"))?;
-                    table::try_push(&mut st.refs, corner_refs(tok))
-                        .map_err(no_room("a polygon's ids"))?;
-                }
-                k += 1;
-            }
-            match k {
-                0 => return Err(syntax("face with no vertices")),
-                1 => return Err(syntax("face with 1 vertex; use a `p` line for a point")),
-                2 => return Err(syntax("face with 2 vertices; use an `l` line for an edge")),
-                3 => {}
-                k => {
-                    let listed = st.raw.simplex_count();
-                    st.raw
-                        .try_push_polygon(&st.ids, line, ReadErrorKind::Polygon(k))?;
-                    let refs = std::mem::take(&mut st.refs);
-                    let ids = std::mem::take(&mut st.ids);
-                    let done = record_refs(st, listed, &ids, &refs);
-                    (st.refs, st.ids) = (refs, ids);
-                    return done;
-                }
-            }
-            let mut ids = [0u32; 3];
-            for (id, tok) in ids.iter_mut().zip(refs) {
-                *id = vertex_index(tok, Form::Face, st.seen)?;
-            }
-            let listed = st.raw.simplex_count();
-            st.raw.try_push(&ids, line)?;
-            if refs.iter().any(|t| t.contains('/')) {
-                record_refs(st, listed, &ids, &refs.map(corner_refs))?;
-            }
-            Ok(())
-        }
-        "l" => {
-            st.ids.clear();
-            st.refs.clear();
-            while let Some((tok, _)) = s.token_in_line() {
-                let id = vertex_index(tok, Form::Line, st.seen)?;
-                table::try_push(&mut st.ids, id).map_err(no_room("a line element's ids"))?;
-                table::try_push(&mut st.refs, corner_refs(tok))
-                    .map_err(no_room("a line element's ids"))?;
-            }
-            if st.ids.len() < 2 {
-                return Err(syntax(format!(
-                    "line element with {} vertices; an `l` line needs at least 2",
-                    st.ids.len()
-                )));
-            }
-            let (ids, refs) = (std::mem::take(&mut st.ids), std::mem::take(&mut st.refs));
-            let mut done = Ok(());
-            for (pair, r) in ids.windows(2).zip(refs.windows(2)) {
-                let listed = st.raw.simplex_count();
-                done = st.raw.try_push(pair, line);
-                if done.is_ok() && r.iter().any(|r| r.0.is_some()) {
-                    done = record_refs(st, listed, pair, r);
-                }
-                if done.is_err() {
-                    break;
-                }
-            }
-            (st.ids, st.refs) = (ids, refs);
-            done
-        }
-        "p" => {
-            let before = st.raw.simplex_count();
-            while let Some((tok, _)) = s.token_in_line() {
-                let id = vertex_index(tok, Form::Point, st.seen)?;
-                st.raw.try_push(&[id], line)?;
-            }
-            if st.raw.simplex_count() == before {
-                return Err(syntax("point element with no vertices"));
-            }
-            Ok(())
-        }
+        "f" => face(s, st, line),
+        "l" => line_element(s, st, line),
+        "p" => points(s, st, line),
         "vt" => st.texture.statement(s, false, line),
         "vn" => st.normal.statement(s, true, line),
         k if let Some(g) = LABELS.iter().position(|l| l.0 == k) => grouping(s, g, st),
@@ -456,6 +369,101 @@ fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), R
         }
         k => Err(syntax(format!("unknown OBJ statement '{}'", echo(k)))),
     }
+}
+
+/// An `f` statement after its keyword: a triangle (its `vt`/`vn` references recorded), or a
+/// polygon kept for --triangulate (else refused).
+fn face(s: &mut Scanner<'_>, st: &mut State, line: u32) -> Result<(), ReadErrorKind> {
+    if let Some(ids) = plain_triangle(s) {
+        return st.raw.try_push(&ids, line);
+    }
+    let mut refs = [""; 3];
+    let mut k = 0;
+    // A polygon kept for --triangulate: every id, as read.
+    let keep = st.raw.polygons.keep;
+    st.ids.clear();
+    st.refs.clear();
+    while let Some((tok, _)) = s.token_in_line() {
+        if let Some(slot) = refs.get_mut(k) {
+            *slot = tok;
+        }
+        if keep {
+            let id = vertex_index(tok, Form::Face, st.seen)?;
+            table::try_push(&mut st.ids, id).map_err(no_room("a polygon's ids"))?;
+            table::try_push(&mut st.refs, corner_refs(tok)).map_err(no_room("a polygon's ids"))?;
+        }
+        k += 1;
+    }
+    match k {
+        0 => return Err(syntax("face with no vertices")),
+        1 => return Err(syntax("face with 1 vertex; use a `p` line for a point")),
+        2 => return Err(syntax("face with 2 vertices; use an `l` line for an edge")),
+        3 => {}
+        k => {
+            let listed = st.raw.simplex_count();
+            st.raw
+                .try_push_polygon(&st.ids, line, ReadErrorKind::Polygon(k))?;
+            let refs = std::mem::take(&mut st.refs);
+            let ids = std::mem::take(&mut st.ids);
+            let done = record_refs(st, listed, &ids, &refs);
+            (st.refs, st.ids) = (refs, ids);
+            return done;
+        }
+    }
+    let mut ids = [0u32; 3];
+    for (id, tok) in ids.iter_mut().zip(refs) {
+        *id = vertex_index(tok, Form::Face, st.seen)?;
+    }
+    let listed = st.raw.simplex_count();
+    st.raw.try_push(&ids, line)?;
+    if refs.iter().any(|t| t.contains('/')) {
+        record_refs(st, listed, &ids, &refs.map(corner_refs))?;
+    }
+    Ok(())
+}
+
+/// An `l` statement after its keyword: each consecutive pair of its vertices an edge.
+fn line_element(s: &mut Scanner<'_>, st: &mut State, line: u32) -> Result<(), ReadErrorKind> {
+    st.ids.clear();
+    st.refs.clear();
+    while let Some((tok, _)) = s.token_in_line() {
+        let id = vertex_index(tok, Form::Line, st.seen)?;
+        table::try_push(&mut st.ids, id).map_err(no_room("a line element's ids"))?;
+        table::try_push(&mut st.refs, corner_refs(tok)).map_err(no_room("a line element's ids"))?;
+    }
+    if st.ids.len() < 2 {
+        return Err(syntax(format!(
+            "line element with {} vertices; an `l` line needs at least 2",
+            st.ids.len()
+        )));
+    }
+    let (ids, refs) = (std::mem::take(&mut st.ids), std::mem::take(&mut st.refs));
+    let mut done = Ok(());
+    for (pair, r) in ids.windows(2).zip(refs.windows(2)) {
+        let listed = st.raw.simplex_count();
+        done = st.raw.try_push(pair, line);
+        if done.is_ok() && r.iter().any(|r| r.0.is_some()) {
+            done = record_refs(st, listed, pair, r);
+        }
+        if done.is_err() {
+            break;
+        }
+    }
+    (st.ids, st.refs) = (ids, refs);
+    done
+}
+
+/// A `p` statement after its keyword: each vertex a point.
+fn points(s: &mut Scanner<'_>, st: &mut State, line: u32) -> Result<(), ReadErrorKind> {
+    let before = st.raw.simplex_count();
+    while let Some((tok, _)) = s.token_in_line() {
+        let id = vertex_index(tok, Form::Point, st.seen)?;
+        st.raw.try_push(&[id], line)?;
+    }
+    if st.raw.simplex_count() == before {
+        return Err(syntax("point element with no vertices"));
+    }
+    Ok(())
 }
 
 /// The texture and normal indices of an element vertex `i`, `i/t`, `i//n` or `i/t/n` that

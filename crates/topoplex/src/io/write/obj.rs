@@ -198,14 +198,10 @@ pub(super) fn write(raw: &RawInput, out: &mut super::Out) -> Result<(), String> 
     )?;
     check_coord_dim(raw, 3)?;
     let groups = groupings(raw)?;
-    let color = match raw.attributes.get(COLOR, Location::Vertices) {
-        Some(a) => match &a.values {
-            Values::F64(v) => Some((v.as_slice(), a.components)),
-            _ => None,
-        },
-        None => None,
-    };
     let sides = [side(raw, 0)?, side(raw, 1)?];
+    write_vertices(raw, out);
+    write_side(raw, sides[0], 0, out);
+    write_side(raw, sides[1], 1, out);
     // The next `vt`/`vn` statement a per-corner value refers to (1-based).
     let mut next = [1u64; 2];
     let mut current: Vec<i32> = groups
@@ -213,6 +209,24 @@ pub(super) fn write(raw: &RawInput, out: &mut super::Out) -> Result<(), String> 
         // Smoothing is written at the first simplex, so that the attribute comes back.
         .map(|g| if g.0 == 3 { i32::MIN } else { -1 })
         .collect();
+    for i in 0..raw.simplex_count() {
+        write_group_changes(raw, &groups, &mut current, i, out);
+        write_element(raw, i, &sides, &mut next, out);
+        out.spill();
+    }
+    write_unused_names(raw, &groups, out);
+    Ok(())
+}
+
+/// A `v` statement per vertex id, with its `obj:color` numbers when the complex has them.
+fn write_vertices(raw: &RawInput, out: &mut super::Out) {
+    let color = match raw.attributes.get(COLOR, Location::Vertices) {
+        Some(a) => match &a.values {
+            Values::F64(v) => Some((v.as_slice(), a.components)),
+            _ => None,
+        },
+        None => None,
+    };
     let coords = raw.coords.as_ref();
     for v in 0..vertex_count(raw) {
         out.extend_from_slice(b"v ");
@@ -226,70 +240,91 @@ pub(super) fn write(raw: &RawInput, out: &mut super::Out) -> Result<(), String> 
         out.push(b'\n');
         out.spill();
     }
-    write_side(raw, sides[0], 0, out);
-    write_side(raw, sides[1], 1, out);
-    for i in 0..raw.simplex_count() {
-        for (g, (k, attr, labels)) in groups.iter().enumerate() {
-            let label = labels[i];
-            if label == current[g] {
-                continue;
-            }
-            current[g] = label;
-            out.extend_from_slice(LABELS[*k].0.as_bytes());
-            out.push(b' ');
-            match (*k, label) {
-                (3, 0) => out.extend_from_slice(b"off"),
-                (3, n) => out.extend_from_slice(n.to_string().as_bytes()),
-                _ => {
-                    let name = raw.attributes.label_name(attr, 0, i64::from(label));
-                    out.extend_from_slice(name.unwrap_or_default().as_bytes());
-                }
-            }
-            out.push(b'\n');
+}
+
+/// Before listed simplex i: a `g`/`o`/`usemtl`/`s` statement for each grouping whose label
+/// changes there (`current` holds each grouping's label in force).
+fn write_group_changes(
+    raw: &RawInput,
+    groups: &[Grouping<'_>],
+    current: &mut [i32],
+    i: usize,
+    out: &mut super::Out,
+) {
+    for (g, (k, attr, labels)) in groups.iter().enumerate() {
+        let label = labels[i];
+        if label == current[g] {
+            continue;
         }
-        let s = raw.simplex(i);
-        out.push(match s.len() {
-            1 => b'p',
-            2 => b'l',
-            _ => b'f',
-        });
+        current[g] = label;
+        out.extend_from_slice(LABELS[*k].0.as_bytes());
         out.push(b' ');
-        if s.len() == 1 || sides.iter().all(|s| matches!(s, Side::None)) {
-            push_ids(out, s, 1);
-        } else {
-            for (c, &x) in s.iter().enumerate() {
-                if c > 0 {
-                    out.push(b' ');
-                }
-                push_ids(out, &[x], 1);
-                // The references of this corner: `/t`, `//n`, `/t/n` or none.
-                let mut refs = [None; 2];
-                for (k, side) in sides.iter().enumerate() {
-                    if k == 1 && s.len() != 3 {
-                        continue;
-                    }
-                    refs[k] = match *side {
-                        Side::None => None,
-                        Side::Vertices(..) => Some(u64::from(x) + 1),
-                        Side::Corners(v, w) => valued(v, i * 3 + c, w).map(|_| {
-                            next[k] += 1;
-                            next[k] - 1
-                        }),
-                    };
-                }
-                match refs {
-                    [None, None] => {}
-                    [Some(t), None] => out.extend_from_slice(format!("/{t}").as_bytes()),
-                    [None, Some(n)] => out.extend_from_slice(format!("//{n}").as_bytes()),
-                    [Some(t), Some(n)] => out.extend_from_slice(format!("/{t}/{n}").as_bytes()),
-                }
+        match (*k, label) {
+            (3, 0) => out.extend_from_slice(b"off"),
+            (3, n) => out.extend_from_slice(n.to_string().as_bytes()),
+            _ => {
+                let name = raw.attributes.label_name(attr, 0, i64::from(label));
+                out.extend_from_slice(name.unwrap_or_default().as_bytes());
             }
         }
         out.push(b'\n');
-        out.spill();
     }
-    // Names no simplex used (and smoothing on an empty listing) last, so that they come back.
-    for (k, attr, labels) in &groups {
+}
+
+/// Listed simplex i as a `p`, `l` or `f` statement, each corner with its `vt`/`vn` references
+/// (`next` numbers the per-corner statements written so far).
+fn write_element(
+    raw: &RawInput,
+    i: usize,
+    sides: &[Side<'_>; 2],
+    next: &mut [u64; 2],
+    out: &mut super::Out,
+) {
+    let s = raw.simplex(i);
+    out.push(match s.len() {
+        1 => b'p',
+        2 => b'l',
+        _ => b'f',
+    });
+    out.push(b' ');
+    if s.len() == 1 || sides.iter().all(|s| matches!(s, Side::None)) {
+        push_ids(out, s, 1);
+    } else {
+        for (c, &x) in s.iter().enumerate() {
+            if c > 0 {
+                out.push(b' ');
+            }
+            push_ids(out, &[x], 1);
+            // The references of this corner: `/t`, `//n`, `/t/n` or none.
+            let mut refs = [None; 2];
+            for (k, side) in sides.iter().enumerate() {
+                if k == 1 && s.len() != 3 {
+                    continue;
+                }
+                refs[k] = match *side {
+                    Side::None => None,
+                    Side::Vertices(..) => Some(u64::from(x) + 1),
+                    Side::Corners(v, w) => valued(v, i * 3 + c, w).map(|_| {
+                        next[k] += 1;
+                        next[k] - 1
+                    }),
+                };
+            }
+            match refs {
+                [None, None] => {}
+                [Some(t), None] => out.extend_from_slice(format!("/{t}").as_bytes()),
+                [None, Some(n)] => out.extend_from_slice(format!("//{n}").as_bytes()),
+                [Some(t), Some(n)] => out.extend_from_slice(format!("/{t}/{n}").as_bytes()),
+            }
+        }
+    }
+    out.push(b'\n');
+}
+
+/// After the elements: the label names no simplex used (and smoothing on an empty listing), so
+/// that they come back.
+fn write_unused_names(raw: &RawInput, groups: &[Grouping<'_>], out: &mut super::Out) {
+    for (k, attr, labels) in groups {
         if *k == 3 {
             if labels.is_empty() {
                 out.extend_from_slice(b"s off\n");
@@ -310,5 +345,4 @@ pub(super) fn write(raw: &RawInput, out: &mut super::Out) -> Result<(), String> 
             out.push(b'\n');
         }
     }
-    Ok(())
 }
