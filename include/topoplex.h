@@ -515,6 +515,21 @@ typedef struct TpxAttributeInfo {
 } TpxAttributeInfo;
 
 /**
+ * A caller's merge of vertex values at a contraction {a, b} -> a
+ * (`tpx_live_set_vertex_merge`): called with the caller's `user` pointer, the attribute's name
+ * (NUL-terminated UTF-8, valid during the call), a and b, a's row (`components` doubles, to
+ * change in place: what it leaves there is rounded to the attribute's type, integers
+ * truncated) and b's row (read only).
+ */
+typedef void (*TpxVertexMerge)(void *user,
+                               const char *name,
+                               uint32_t a,
+                               uint32_t b,
+                               double *row_a,
+                               const double *row_b,
+                               size_t components);
+
+/**
  * What normalising the input absorbed (`TpxComplex`'s input statistics).
  */
 typedef struct TpxInputStats {
@@ -842,7 +857,7 @@ TpxStatus tpx_complex_label_name(const struct TpxComplex *c,
  * `*out_len` = the attribute's components. A top made by an edit has labels 0 and reals NaN
  * until set; a contraction's survivors keep theirs. Errors: NULL_ARGUMENT, INVALID_HANDLE /
  * STALE_GENERATION (no live top there), NO_SUCH_ATTRIBUTE (no listed attribute of that
- * name), BUFFER_TOO_SMALL (`*out_len` = components). O(star of the top's first vertex).
+ * name), BUFFER_TOO_SMALL (`*out_len` = components). O(components).
  *
  * # Safety
  * Non-NULL pointers must be valid; `buf` has room for `buf_len` doubles.
@@ -860,7 +875,7 @@ TpxStatus tpx_live_top_values(const struct TpxLive *l,
  * integers within the type for a label attribute). Errors (nothing changes): NULL_ARGUMENT,
  * INVALID_HANDLE / STALE_GENERATION, NO_SUCH_ATTRIBUTE, INVALID_ARGUMENT (`len` is not the
  * components; for labels, a number with a fraction, NaN, infinite or out of the type's range). Needs exclusive access
- * to `l`. O(star of the top's first vertex + components).
+ * to `l`. O(components).
  *
  * # Safety
  * Non-NULL pointers must be valid; `data` holds `len` doubles.
@@ -897,6 +912,39 @@ TpxStatus tpx_live_vertex_values(const struct TpxLive *l,
  * Non-NULL pointers must be valid.
  */
 TpxStatus tpx_live_set_vertex_policy(struct TpxLive *l, uint32_t policy);
+
+/**
+ * Sets the values of vertex attribute `name` on live vertex `v` to `data[0 .. len]` (`len` =
+ * its components; doubles rounded to `float` for a `TPX_VALUE_F32` attribute, and exact
+ * integers within the type for a label attribute). Errors (nothing changes): NULL_ARGUMENT,
+ * DEAD_VERTEX, NO_SUCH_ATTRIBUTE, INVALID_ARGUMENT (`len` is not the components; for labels,
+ * a number with a fraction, NaN, infinite or out of the type's range). Needs exclusive access
+ * to `l`. O(attributes + components).
+ *
+ * # Safety
+ * Non-NULL pointers must be valid; `data` holds `len` doubles.
+ */
+TpxStatus tpx_live_set_vertex_values(struct TpxLive *l,
+                                     const char *name,
+                                     uint32_t v,
+                                     const double *data,
+                                     size_t len);
+
+/**
+ * Later contractions {a, b} -> a merge a's vertex values by `merge`, called once per vertex
+ * attribute before the contraction changes the complex, with `user` as given; the split
+ * restores a's values as they were. Replaces the `TPX_VERTEX_*` policy until
+ * `tpx_live_set_vertex_policy` is called again. `merge` and `user` must stay valid while the
+ * live complex may contract (until the policy is set again or the live complex is freed); the
+ * callback runs on the thread that calls `tpx_live_contract`, must not call back into this live
+ * complex and must not unwind (a C++ exception thrown through it is undefined behaviour).
+ * Errors: NULL_ARGUMENT (`l` or `merge` NULL). Needs exclusive access to `l`. O(1); each
+ * contraction then costs one call and 2 x components doubles copied per vertex attribute.
+ *
+ * # Safety
+ * `l` is a valid live complex; `merge` is a valid function; see above for `user`.
+ */
+TpxStatus tpx_live_set_vertex_merge(struct TpxLive *l, TpxVertexMerge merge, void *user);
 
 /**
  * Builds a complex from simplices given as arrays: simplex `i` is

@@ -19,11 +19,14 @@
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <iterator>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <typeinfo>
 #include <utility>
 #include <vector>
 
@@ -1970,10 +1973,16 @@ class Live {
   }
   /* Undoes a contraction (vertex split). */
   void split(const Undo &u) { detail::check(tpx_live_split(l_.get(), u.get())); }
-  /* Drops removed vertices and slots; returns old -> new vertex ids (UINT32_MAX: removed). */
+  /* Drops removed vertices and slots; returns old -> new vertex ids (UINT32_MAX: removed).
+   * User properties (add_vertex_property) follow their slots. */
   std::vector<std::uint32_t> compact() {
+    std::vector<std::vector<std::uint32_t>> tops;
+    if (!props_.empty()) tops = top_slot_maps();
     std::vector<std::uint32_t> map(vertex_slots());
     detail::fill(map, tpx_live_compact, l_.get());
+    for (auto &q : props_) {
+      if (q) q->remap(map, tops);
+    }
     return map;
   }
   /* Writes the live complex as to_complex().write(path, format) would (the same bytes),
@@ -2010,9 +2019,119 @@ class Live {
     detail::fill(out, tpx_live_vertex_values, l_.get(), name.c_str(), v);
     return out;
   }
-  /* What later contractions do to the survivor's vertex values. */
+  /* What later contractions do to the survivor's vertex values (replaces a merge). */
   void set_vertex_policy(VertexPolicy policy) {
     detail::check(tpx_live_set_vertex_policy(l_.get(), static_cast<std::uint32_t>(policy)));
+    merge_.reset();
+  }
+  /* Sets the values of vertex attribute `name` on live vertex v (as many numbers as its
+   * components; rounded to its type, labels exact integers). Throws TPX_STATUS_NO_SUCH_ATTRIBUTE,
+   * TPX_STATUS_INVALID_ARGUMENT, TPX_STATUS_DEAD_VERTEX; nothing changes then. */
+  void set_vertex_values(const std::string &name, std::uint32_t v,
+                         const std::vector<double> &values) {
+    detail::check(
+        tpx_live_set_vertex_values(l_.get(), name.c_str(), v, values.data(), values.size()));
+  }
+  /* The caller's merge at a contraction {a, b} -> a: merge(name, a, b, row_a, row_b, components)
+   * once per vertex attribute before the contraction, changing a's row in place (rounded to the
+   * attribute's type); the split restores it. Held by this Live (moves with it) until
+   * set_vertex_policy or another merge. It must not throw: an exception cannot cross the C ABI,
+   * so one escaping it ends the program (std::terminate). */
+  using VertexMerge = std::function<void(const std::string &name, std::uint32_t a,
+                                         std::uint32_t b, double *row_a, const double *row_b,
+                                         std::size_t components)>;
+  void set_vertex_merge(VertexMerge merge) {
+    auto held = std::make_unique<VertexMerge>(std::move(merge));
+    detail::check(tpx_live_set_vertex_merge(l_.get(), &Live::call_merge, held.get()));
+    merge_ = std::move(held);
+  }
+
+  /* ---- user properties per element (OpenMesh's add_property), kept by this Live ----
+   * A property holds one T per vertex slot (add_vertex_property) or per top slot of each
+   * dimension >= 1 (add_top_property, a top named by its packed id p << 28 | slot, as
+   * top_id() gives it), in C++ only: the C ABI, to_complex(), writers and save() do not see
+   * them (use attributes for data that travels with files). Storage: one std::vector<T> per
+   * property (one per dimension for tops), grown to a slot on first write; access O(1) (a
+   * slot never written reads the initial value). Across edits a value belongs to its slot:
+   * - a contraction {a, b} -> a leaves a's value as it is (set it yourself for another rule)
+   *   and b's in b's removed slot; a top the contraction rewrites in place keeps its slot and
+   *   value; a top it makes one dimension lower is a new top (the initial value); the split
+   *   writes nothing, so every value is as it was;
+   * - a removed vertex or top keeps its value in its tombstoned slot (a split or nothing may
+   *   need it); a new vertex or top gets a new slot, with the initial value;
+   * - compact() moves each live slot's value to the slot's new number and drops the removed
+   *   ones, with the same renumbering the live complex makes (O(slots) per property).
+   * T is any copyable type but bool (std::vector<bool> has no T&: use std::uint8_t). */
+  template <class T>
+  class VertexProperty {
+    friend class Live;
+    std::size_t index_ = SIZE_MAX;
+    explicit VertexProperty(std::size_t i) noexcept : index_(i) {}
+
+   public:
+    VertexProperty() = default;
+  };
+  template <class T>
+  class TopProperty {
+    friend class Live;
+    std::size_t index_ = SIZE_MAX;
+    explicit TopProperty(std::size_t i) noexcept : index_(i) {}
+
+   public:
+    TopProperty() = default;
+  };
+  /* A new property `name` (unique among this Live's vertex properties; std::invalid_argument
+   * otherwise), every slot reading `init`. */
+  template <class T>
+  VertexProperty<T> add_vertex_property(const std::string &name, const T &init = T()) {
+    return VertexProperty<T>(add_property<T>(name, true, init));
+  }
+  template <class T>
+  TopProperty<T> add_top_property(const std::string &name, const T &init = T()) {
+    return TopProperty<T>(add_property<T>(name, false, init));
+  }
+  /* The existing property `name` of type T (std::invalid_argument when absent or of another
+   * type). */
+  template <class T>
+  VertexProperty<T> vertex_property(const std::string &name) const {
+    return VertexProperty<T>(find_property<T>(name, true));
+  }
+  template <class T>
+  TopProperty<T> top_property(const std::string &name) const {
+    return TopProperty<T>(find_property<T>(name, false));
+  }
+  /* Vertex v's value (the slot grown to on write). */
+  template <class T>
+  T &property(VertexProperty<T> h, std::uint32_t v) {
+    return grow(store<T>(h.index_).vertices, v, store<T>(h.index_).init);
+  }
+  template <class T>
+  const T &property(VertexProperty<T> h, std::uint32_t v) const {
+    const auto &s = store<T>(h.index_);
+    return v < s.vertices.size() ? s.vertices[v] : s.init;
+  }
+  /* Top `top`'s value (packed id p << 28 | slot, p >= 1). */
+  template <class T>
+  T &property(TopProperty<T> h, std::uint32_t top) {
+    auto &s = store<T>(h.index_);
+    return grow(s.tops[top >> 28], top & ((1u << 28) - 1), s.init);
+  }
+  template <class T>
+  const T &property(TopProperty<T> h, std::uint32_t top) const {
+    const auto &s = store<T>(h.index_);
+    const auto &rows = s.tops[top >> 28];
+    const std::uint32_t slot = top & ((1u << 28) - 1);
+    return slot < rows.size() ? rows[slot] : s.init;
+  }
+  /* Removes property `name` (vertex or top); false when there is none. */
+  bool remove_property(const std::string &name) {
+    for (auto it = props_.begin(); it != props_.end(); ++it) {
+      if (*it && (*it)->name == name) {
+        it->reset();  // handles of the others keep their index
+        return true;
+      }
+    }
+    return false;
   }
 
   /* ---- handles: the same navigation as Structure (see tpx_live_structure) ----
@@ -2212,7 +2331,103 @@ class Live {
   }
 
   explicit Live(TpxLive *l) noexcept : l_(l) {}
+  /* A user property's values (see add_vertex_property). */
+  struct PropertyBase {
+    std::string name;
+    bool on_vertices = true;
+    virtual ~PropertyBase() = default;
+    virtual const std::type_info &type() const noexcept = 0;
+    /* Moves each kept slot's value to its new number: map[old] = new or UINT32_MAX. */
+    virtual void remap(const std::vector<std::uint32_t> &vertex_map,
+                       const std::vector<std::vector<std::uint32_t>> &top_maps) = 0;
+  };
+  template <class T>
+  struct PropertyStore final : PropertyBase {
+    static_assert(!std::is_same<T, bool>::value, "a bool property: use std::uint8_t");
+    T init;
+    std::vector<T> vertices;
+    std::vector<std::vector<T>> tops = std::vector<std::vector<T>>(16);
+    explicit PropertyStore(const T &i) : init(i) {}
+    const std::type_info &type() const noexcept override { return typeid(T); }
+    void remap(const std::vector<std::uint32_t> &vertex_map,
+               const std::vector<std::vector<std::uint32_t>> &top_maps) override {
+      auto apply = [this](std::vector<T> &rows, const std::vector<std::uint32_t> &map) {
+        std::size_t kept = 0;
+        for (std::uint32_t m : map) kept += m != UINT32_MAX;
+        std::vector<T> out(kept, init);
+        for (std::size_t i = 0; i < rows.size() && i < map.size(); ++i) {
+          if (map[i] != UINT32_MAX) out[map[i]] = std::move(rows[i]);
+        }
+        rows = std::move(out);
+      };
+      if (on_vertices) {
+        apply(vertices, vertex_map);
+      } else {
+        for (std::size_t p = 1; p < tops.size(); ++p) apply(tops[p], top_maps[p]);
+      }
+    }
+  };
+  template <class T>
+  std::size_t add_property(const std::string &name, bool on_vertices, const T &init) {
+    for (const auto &q : props_) {
+      if (q && q->name == name && q->on_vertices == on_vertices) {
+        throw std::invalid_argument("a " + std::string(on_vertices ? "vertex" : "top") +
+                                    " property '" + name + "' exists");
+      }
+    }
+    auto s = std::make_unique<PropertyStore<T>>(init);
+    s->name = name;
+    s->on_vertices = on_vertices;
+    props_.push_back(std::move(s));
+    return props_.size() - 1;
+  }
+  template <class T>
+  std::size_t find_property(const std::string &name, bool on_vertices) const {
+    for (std::size_t i = 0; i < props_.size(); ++i) {
+      const auto &q = props_[i];
+      if (q && q->name == name && q->on_vertices == on_vertices) {
+        if (q->type() != typeid(T)) {
+          throw std::invalid_argument("property '" + name + "' holds another type");
+        }
+        return i;
+      }
+    }
+    throw std::invalid_argument("no " + std::string(on_vertices ? "vertex" : "top") +
+                                " property '" + name + "'");
+  }
+  template <class T>
+  PropertyStore<T> &store(std::size_t i) const {
+    if (i >= props_.size() || !props_[i]) throw std::invalid_argument("a removed property");
+    return static_cast<PropertyStore<T> &>(*props_[i]);
+  }
+  template <class T>
+  static T &grow(std::vector<T> &rows, std::uint32_t slot, const T &init) {
+    if (slot >= rows.size()) rows.resize(std::size_t(slot) + 1, init);
+    return rows[slot];
+  }
+  /* Before compact(): per dimension, old top slot -> new slot (UINT32_MAX: removed), as the
+   * live complex renumbers them (live slots densely, in ascending order). */
+  std::vector<std::vector<std::uint32_t>> top_slot_maps() const {
+    const TpxLiveArrays a = detail::get<TpxLiveArrays>(tpx_live_arrays, l_.get());
+    std::vector<std::vector<std::uint32_t>> maps(16);
+    for (std::size_t p = 1; p < 16; ++p) {
+      const std::size_t slots = a.top_lens[p] / (p + 1);
+      std::uint32_t next = 0;
+      maps[p].resize(slots, UINT32_MAX);
+      for (std::size_t s = 0; s < slots; ++s) {
+        if ((a.tops[p][s * (p + 1)] & 0x80000000u) == 0) maps[p][s] = next++;
+      }
+    }
+    return maps;
+  }
+  std::vector<std::unique_ptr<PropertyBase>> props_;
+  static void call_merge(void *user, const char *name, std::uint32_t a, std::uint32_t b,
+                         double *row_a, const double *row_b, std::size_t components) noexcept {
+    (*static_cast<VertexMerge *>(user))(name, a, b, row_a, row_b, components);
+  }
   detail::Owned<TpxLive, tpx_live_free> l_;
+  /* The merge set_vertex_merge handed to the C ABI (its address stays put when Live moves). */
+  std::unique_ptr<VertexMerge> merge_;
 };
 static_assert(detail::move_only<Live>, "Live: a move-only owner");
 

@@ -14,7 +14,9 @@
 #      tables (benches/structures_table.py) into RESULTS/criterion.md; then `cargo bench --bench
 #      live` (the live complex: link-checked contractions per second, storage vs the IA) into
 #      RESULTS/live.log;
-#   5. scripts/bench_table.py: one Markdown table of Topoplex / peer ratios and the aims of
+#   5. the Python package beside the Rust call, GUDHI and trimesh (scripts/bench_py.sh, its
+#      table into RESULTS/python.md);
+#   6. scripts/bench_table.py: one Markdown table of Topoplex / peer ratios and the aims of
 #      issue 9 part 3, and the simplification table of issue 14, printed and written to
 #      RESULTS/table.md.
 #
@@ -47,7 +49,7 @@ results=""
 for arg in "$@"; do
   case "$arg" in
     --quick) quick=1 ;;
-    -h|--help) sed -n "2,28p" "$0"; exit 0 ;;
+    -h|--help) sed -n "2,30p" "$0"; exit 0 ;;
     -*) echo "unknown option $arg" >&2; exit 2 ;;
     *) results=$arg ;;
   esac
@@ -257,6 +259,11 @@ if [ -f "$root/benches/live.rs" ]; then
   criterion_bench live live
   grep -E '^(storage|contract) |live/(link|contract) +time|thrpt' "$results/live.log" || true
 fi
+
+echo "== the Python package (scripts/bench_py.sh: release builds, then scripts/bench_py.py)"
+if [ "$quick" = 1 ]; then py_args=(--quick); else py_args=(); fi
+TOPOPLEX_BENCH_DATA="$data" "$root/scripts/bench_py.sh" "$results/python.md" "${py_args[@]}" \
+  || failed+=("scripts/bench_py.sh")
 
 echo "== table"
 python3 "$root/scripts/bench_table.py" "$results" --datasets "$data/datasets.tsv" \

@@ -4,7 +4,8 @@
 # extension built with `maturin develop` in the `ci` profile into the workspace's target
 # directory (so the core library compiled by `cargo build --profile ci --workspace` is reused:
 # only pyo3 and the binding recompile, for maturin's PYO3_BUILD_EXTENSION_MODULE), then pytest
-# over the tests and the docstring examples of the package and of the README's Python section.
+# over the tests and the docstring examples of the package and of the README's Python section,
+# and mypy's stubtest: the stubs (python/topoplex/__init__.pyi) against the built module.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 target=${CARGO_TARGET_DIR:-target}
@@ -17,9 +18,9 @@ if [ ! -x "$venv/bin/python3" ]; then
   python3 -m venv "$venv" || skip "python3 -m venv failed (install python3-venv)"
 fi
 py="$venv/bin/python3"
-if ! "$py" -c "import maturin, numpy, pytest, hypothesis, gudhi, meshio, trimesh, scipy" 2>/dev/null; then
+if ! "$py" -c "import maturin, numpy, pytest, hypothesis, gudhi, meshio, trimesh, scipy, mypy" 2>/dev/null; then
   "$py" -m pip install --quiet --disable-pip-version-check \
-    'maturin>=1.9.4,<2' numpy pytest hypothesis gudhi meshio trimesh scipy ||
+    'maturin>=1.9.4,<2' numpy pytest hypothesis gudhi meshio trimesh scipy 'mypy>=1.18' ||
     skip "the test dependencies could not be installed from PyPI"
 fi
 # maturin's and pip's chatter goes to a log, shown only when the build fails.
@@ -33,3 +34,8 @@ cd crates/topoplex-py
 # -p no:cacheprovider: no .pytest_cache in the source tree.
 "$py" -m pytest -q -p no:cacheprovider --doctest-modules python/topoplex tests
 "$py" -m doctest ../../README.md && echo "README Python examples: passed"
+# Every name, signature and class of the stubs against the module as built (the peers' missing
+# type information is ignored: pyproject.toml's [tool.mypy]); run from the venv, where mypy
+# leaves its cache, not in the source tree.
+config=$(pwd)/pyproject.toml
+(cd "$venv" && "$py" -m mypy.stubtest --mypy-config-file "$config" topoplex)

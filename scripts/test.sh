@@ -13,18 +13,26 @@ scripts/install-deps.sh cmake ninja-build pkg-config valgrind libopenmesh-dev li
 # PETSc 3.18 + OpenMPI for the optional DMPlex bridge (Topoplex::dmplex) and its MPI tests
 # (cpp_tests/dmplex, run by scripts/cpp-tests.sh in the uninstrumented pass); ~25 s to install.
 scripts/install-deps.sh libpetsc-real-dev openmpi-bin
-# Python meshio: the independent reader and writer of tests/it/interop.rs (skipped without it).
-# Never installed into the user's Python: when the system's python3 lacks it, into a venv of
-# the suite's own under the target directory, put first on PATH for the tests.
-if ! python3 -c "import meshio" 2>/dev/null; then
+# Python meshio and gmsh: meshio is the independent reader and writer of tests/it/interop.rs;
+# gmsh (the PyPI wheel: Gmsh's own Python API) meshes the labelled geometry of
+# tests/it/gmsh_real.rs. Each test is skipped without its module. Never installed into the
+# user's Python: when the system's python3 lacks one, they go into a venv of the suite's own
+# under the target directory, put first on PATH for the tests. The gmsh wheel links X11 and
+# OpenGL libraries even when nothing is displayed: those Debian packages first.
+scripts/install-deps.sh libglu1-mesa libgl1 libopengl0 libxcursor1 libxft2 libxinerama1 \
+  libxrender1 libfontconfig1 libgomp1
+if ! python3 -c "import meshio, gmsh" 2>/dev/null; then
   venv=${CARGO_TARGET_DIR:-target}/test-venv
-  if { [ -x "$venv/bin/python3" ] || python3 -m venv "$venv"; } &&
-     { "$venv/bin/python3" -c "import meshio" 2>/dev/null ||
-       "$venv/bin/python3" -m pip install --quiet meshio; }; then
+  if [ -x "$venv/bin/python3" ] || python3 -m venv "$venv"; then
+    for module in meshio gmsh; do
+      "$venv/bin/python3" -c "import $module" 2>/dev/null ||
+        "$venv/bin/python3" -m pip install --quiet "$module" ||
+        echo "$module not installed: the tests that use it will skip their checks"
+    done
     PATH="$(cd "$venv/bin" && pwd):$PATH"
     export PATH
   else
-    echo "meshio not installed: tests/it/interop.rs will skip its checks"
+    echo "no venv for meshio and gmsh: the tests use python3 as it is (skipping what it lacks)"
   fi
 fi
 

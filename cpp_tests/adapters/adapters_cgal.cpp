@@ -8,6 +8,10 @@
 #include <CGAL/Labeled_mesh_domain_3.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_triangulation_3.h>
+#include <CGAL/version.h>
+#if CGAL_VERSION_NR < CGAL_VERSION_NUMBER(5, 6, 0)
+#include <CGAL/Mesh_3/tet_soup_to_c3t3.h>  // the oracle of the direct C3T3 build
+#endif
 #include <CGAL/Polygon_mesh_processing/compute_normal.h>
 #include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -17,6 +21,7 @@
 #include <topoplex/cgal_tds3.hpp>
 
 #include <fstream>
+#include <map>
 
 #include "fixtures.hpp"
 
@@ -338,12 +343,161 @@ TEST(TriangulationAdapter, C3t3CellsAndFacetsComeWithSubdomainAndPatchLabels) {
       6, {0, 1, 2, 3, 0, 2, 1, 4, 0, 1, 2, 5}, {0, 4, 8, 12}, corners, 3);
   EXPECT_THROW(cg::complex_to_c3t3(three, one), topoplex::Refused);
   EXPECT_EQ(one.number_of_cells_in_complex(), 0u);
+  // Two tetrahedra on the same side of their shared triangle (overlapping), and two sharing
+  // nothing but a vertex (no ball): refused, as the TDS's is_valid() would find them.
+  const topoplex::Complex overlapping = topoplex::Complex::from_arrays(
+      5, {0, 1, 2, 3, 0, 1, 2, 4}, {0, 4, 8},
+      std::vector<double>(corners.begin(), corners.begin() + 15), 3);
+  EXPECT_THROW(cg::complex_to_c3t3(overlapping, one), topoplex::Refused);
+  const topoplex::Complex pinched = topoplex::Complex::from_arrays(
+      7, {0, 1, 2, 3, 0, 4, 5, 6}, {0, 4, 8},
+      {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1}, 3);
+  EXPECT_THROW(cg::complex_to_c3t3(pinched, one), topoplex::Refused);
+  EXPECT_EQ(one.number_of_cells_in_complex(), 0u);
+  // And the two tetrahedra side by side across it are taken.
+  const topoplex::Complex two = topoplex::Complex::from_arrays(
+      5, {0, 1, 2, 3, 0, 2, 1, 4}, {0, 4, 8}, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0.2, 0.2, -1}, 3);
+  EXPECT_EQ(cg::complex_to_c3t3(two, one), 0u);
+  EXPECT_EQ(one.number_of_cells_in_complex(), 2u);
+  EXPECT_TRUE(one.triangulation().tds().is_valid());
   EXPECT_THROW(cg::complex_to_c3t3(topoplex::Complex::from_simplices(3, {{0, 1, 2}}), one),
                topoplex::Refused);
   EXPECT_THROW(cg::complex_to_c3t3(topoplex::Complex::from_simplices(4, {{0, 1, 2, 3}}), one),
                topoplex::Refused);
 #endif
 }
+
+#if CGAL_VERSION_NR < CGAL_VERSION_NUMBER(5, 6, 0)
+// complex_to_c3t3 builds the triangulation itself; CGAL 5.5's tetrahedron-soup loader
+// (CGAL::build_triangulation) is the oracle: on the shared data's tetrahedral meshes, and on a
+// C3T3 of random points with its complement's cells in subdomain 0, the same finite vertices in
+// order, the same cells in order with their subdomains and neighbours (as cell numbers, the
+// infinite ones by their finite facet), the same facets' surface patches on both sides, the same
+// number of cells; both pass Triangulation_3::is_valid and the TDS's is_valid.
+TEST(TriangulationAdapter, C3t3BuiltDirectlyIsWhatCgalsSoupLoaderBuilds) {
+  using Domain = CGAL::Labeled_mesh_domain_3<K, int, int>;
+  using MTr = CGAL::Mesh_triangulation_3<Domain>::type;
+  using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<MTr>;
+  using CH = MTr::Cell_handle;
+  // Cell numbers: finite cells in iteration order; an infinite cell named by its finite facet.
+  const auto describe = [](const MTr &tr) {
+    std::map<CH, long> number;
+    long next = 0;
+    for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c) number[c] = next++;
+    std::map<MTr::Vertex_handle, int> vid;
+    int v = 0;
+    for (auto x = tr.finite_vertices_begin(); x != tr.finite_vertices_end(); ++x) vid[x] = v++;
+    const auto name = [&](CH c) {
+      if (!tr.is_infinite(c)) return std::vector<long>{number.at(c)};
+      std::vector<long> f;
+      for (int k = 0; k < 4; ++k)
+        if (!tr.is_infinite(c->vertex(k))) f.push_back(vid.at(c->vertex(k)));
+      std::sort(f.begin(), f.end());
+      return f;
+    };
+    std::vector<std::vector<long>> out;
+    for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c) {
+      std::vector<long> row{c->subdomain_index()};
+      for (int k = 0; k < 4; ++k) row.push_back(vid.at(c->vertex(k)));
+      for (int k = 0; k < 4; ++k) {
+        const std::vector<long> n = name(c->neighbor(k));
+        row.push_back(-1);
+        row.insert(row.end(), n.begin(), n.end());
+        row.push_back(c->surface_patch_index(k));
+        row.push_back(c->neighbor(k)->surface_patch_index(c->neighbor(k)->index(c)));
+      }
+      out.push_back(row);
+    }
+    out.push_back({long(tr.number_of_cells()), long(tr.number_of_vertices())});
+    return out;
+  };
+  // The checks of Triangulation_3::is_valid (the TDS's, every finite cell positive); the
+  // Regular_triangulation_3 it is also asks for the regular (Delaunay) property, which a mesh
+  // read from a file need not have (asked of the random points only).
+  const auto compare = [&](const topoplex::Complex &c, const std::string &what) {
+    std::vector<topoplex::Dropped> dropped;
+    C3t3 direct;
+    cg::complex_to_c3t3(c, direct, &dropped);
+    const MTr &dt = direct.triangulation();
+    EXPECT_TRUE(dt.tds().is_valid(false, 1)) << what;
+    EXPECT_EQ(dt.dimension(), 3) << what;
+    std::size_t negative = 0;
+    for (auto x = dt.finite_cells_begin(); x != dt.finite_cells_end(); ++x)
+      negative += CGAL::orientation(dt.point(x, 0).point(), dt.point(x, 1).point(),
+                                    dt.point(x, 2).point(), dt.point(x, 3).point()) != CGAL::POSITIVE;
+    EXPECT_EQ(negative, 0u) << what;
+    if (what == "random points") {
+      EXPECT_TRUE(dt.is_valid()) << what;
+    }
+    // The oracle's input: the same tetrahedra turned positive, subdomains and patches.
+    const std::vector<double> xyz = c.coords();
+    std::vector<MTr::Point> points;
+    for (std::size_t v = 0; v < c.vertex_count(); ++v)
+      points.emplace_back(K::Point_3(xyz[3 * v], xyz[3 * v + 1], xyz[3 * v + 2]));
+    bool sub = false, patch = false;
+    for (const auto &a : c.attributes()) {
+      sub = sub || a.name == "c3t3:subdomain";
+      patch = patch || a.name == "c3t3:patch";
+    }
+    std::vector<std::array<int, 5>> cells;
+    std::map<std::array<int, 3>, int> border;
+    const auto listed = fixtures::listing(c);
+    for (std::size_t i = 0; i < listed.size(); ++i) {
+      const auto &t = listed[i];
+      if (t.size() == 4) {
+        std::array<int, 5> x{int(t[0]), int(t[1]), int(t[2]), int(t[3]),
+                             sub ? c.attribute<std::int32_t>("c3t3:subdomain",
+                                                             topoplex::Location::Listed)[i]
+                                 : 1};
+        if (CGAL::orientation(points[x[0]].point(), points[x[1]].point(), points[x[2]].point(),
+                              points[x[3]].point()) == CGAL::NEGATIVE)
+          std::swap(x[0], x[1]);
+        cells.push_back(x);
+      } else if (t.size() == 3 && patch) {
+        std::array<int, 3> f{int(t[0]), int(t[1]), int(t[2])};
+        std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
+        border[f] = c.attribute<std::int32_t>("c3t3:patch", topoplex::Location::Listed)[i];
+      }
+    }
+    C3t3 oracle;
+    std::vector<MTr::Vertex_handle> handles;
+    ASSERT_TRUE((CGAL::build_triangulation<MTr, false>(oracle.triangulation(), points, cells,
+                                                       border, handles)))
+        << what;
+    oracle.rescan_after_load_of_triangulation();
+    EXPECT_EQ(describe(direct.triangulation()), describe(oracle.triangulation())) << what;
+    EXPECT_EQ(direct.number_of_cells_in_complex(), oracle.number_of_cells_in_complex()) << what;
+    EXPECT_EQ(direct.number_of_facets_in_complex(), oracle.number_of_facets_in_complex()) << what;
+    EXPECT_EQ(cg::c3t3_to_complex(direct, true).coords(), c.coords()) << what;
+  };
+  // Random points: every finite cell, subdomain 0 on a slab, patches between subdomains.
+  C3t3 made;
+  MTr &tr = made.triangulation();
+  std::uint64_t s = 23;
+  for (int i = 0; i < 150; ++i)
+    tr.insert(MTr::Weighted_point(
+        MTr::Bare_point(fixtures::unit(s), fixtures::unit(s), fixtures::unit(s)), 0));
+  for (auto c = tr.finite_cells_begin(); c != tr.finite_cells_end(); ++c) {
+    const double x = tr.point(c, 0).x() + tr.point(c, 1).x() + tr.point(c, 2).x();
+    if (x < 1.2 || x > 1.8) made.add_to_complex(c, x < 1.2 ? 1 : 2);
+  }
+  for (auto f = tr.finite_facets_begin(); f != tr.finite_facets_end(); ++f) {
+    const CH a = f->first, b = a->neighbor(f->second);
+    const int la = tr.is_infinite(a) ? 0 : a->subdomain_index();
+    const int lb = tr.is_infinite(b) ? 0 : b->subdomain_index();
+    if (la != lb) made.add_to_complex(*f, 3 + la + lb);
+  }
+  compare(cg::c3t3_to_complex(made, true), "random points");
+  int ran = 0;
+  for (const char *name : {"tetrahedral/slug.mesh", "tetrahedral/hand.mesh"}) {
+    const std::string path = fixtures::shared(name);
+    if (path.empty()) continue;
+    ++ran;
+    compare(topoplex::Complex::from_file(path), name);
+  }
+  if (ran == 0) GTEST_SKIP() << "shared data folder absent (the random points ran)";
+}
+#endif
 
 // The surface parts of the non-manifold fixture and of the real non-manifold meshes as
 // Surface_mesh: CGAL PMP face normals, face areas and connected components per part, brought

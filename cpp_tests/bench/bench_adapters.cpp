@@ -23,13 +23,17 @@
 //   to_tpx/cgal_t3            cgal::triangulation_to_complex (finite cells)
 //   to_tpx/cgal_c3t3          cgal::c3t3_to_complex (cells and facets with their labels)
 //   to_tpx_file/cgal_t3       CGAL::IO::write_MEDIT + Complex::from_file
-//   from_tpx/cgal_c3t3        cgal::complex_to_c3t3 (CGAL 5.5's tetrahedron-soup loader)
+//   from_tpx/cgal_c3t3        cgal::complex_to_c3t3 (its own build of the TDS)
 //   from_tpx_file/cgal_t3     Complex::write .mesh + CGAL::IO::read_MEDIT
 // Every benchmark measures the process's CPU time (Topoplex's reader and adjacency may use the
 // library's threads) beside the wall time. Scratch files go to $TMPDIR (default /tmp); the
 // inputs are first copied there without their comment lines (uncommented() below).
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/IO/File_medit.h>
+#include <CGAL/version.h>
+#if CGAL_VERSION_NR < CGAL_VERSION_NUMBER(5, 6, 0)
+#include <CGAL/Mesh_3/tet_soup_to_c3t3.h>  // read_MEDIT's loader (CGAL 5.5 declares it there)
+#endif
 #include <CGAL/Labeled_mesh_domain_3.h>
 #include <CGAL/Mesh_complex_3_in_triangulation_3.h>
 #include <CGAL/Mesh_triangulation_3.h>

@@ -850,6 +850,87 @@ static void check_same_attributes(const TpxComplex *a, const TpxComplex *b, int 
   }
 }
 
+/* What a caller's merge saw: its calls, the last attribute's name, a and b. */
+typedef struct {
+  int calls;
+  char last_name[32];
+  uint32_t a, b;
+} MergeLog;
+
+/* Labels ("material"): the larger; reals: 1/4 of a's plus 3/4 of b's. */
+static void merge_max_and_mix(void *user, const char *name, uint32_t a, uint32_t b, double *row_a,
+                              const double *row_b, size_t components) {
+  MergeLog *log = (MergeLog *)user;
+  size_t k;
+  log->calls++;
+  strncpy(log->last_name, name, sizeof log->last_name - 1);
+  log->a = a;
+  log->b = b;
+  for (k = 0; k < components; ++k) {
+    if (strcmp(name, "material") == 0) {
+      row_a[k] = row_a[k] > row_b[k] ? row_a[k] : row_b[k];
+    } else {
+      row_a[k] = 0.25 * row_a[k] + 0.75 * row_b[k];
+    }
+  }
+}
+
+/* A caller's merge of vertex values at a contraction (a C function and user data), against the
+ * values before; the split restores them; one vertex's values set by handle, bad rows refused;
+ * the policy set again replaces the merge. */
+static void test_live_vertex_merge(void) {
+  TpxComplex *c = fixture();
+  TpxLive *l = NULL;
+  TpxUndo *undo = NULL;
+  double velocity[12], got[9], a_before[2], b_before[2];
+  const int32_t material[6] = {10, 11, 12, 13, 14, 15};
+  const double set[2] = {1.5, -2.0}, fraction = 2.5;
+  size_t len = 0, k;
+  MergeLog log;
+  memset(&log, 0, sizeof log);
+  for (k = 0; k < 12; ++k) velocity[k] = (double)k * 0.5 - 1.0;
+  CHECK_STATUS(tpx_complex_set_attribute(c, "velocity", TPX_LOCATION_VERTICES, TPX_VALUE_F64, 2, velocity, 12),
+               TPX_STATUS_OK);
+  CHECK_STATUS(tpx_complex_set_attribute(c, "material", TPX_LOCATION_VERTICES, TPX_VALUE_I32, 1, material, 6),
+               TPX_STATUS_OK);
+  CHECK_STATUS(tpx_live_from_complex(c, &l), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_live_set_vertex_merge(l, NULL, &log), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_live_set_vertex_merge(NULL, merge_max_and_mix, &log), TPX_STATUS_NULL_ARGUMENT);
+  CHECK_STATUS(tpx_live_set_vertex_merge(l, merge_max_and_mix, &log), TPX_STATUS_OK);
+  memcpy(a_before, &velocity[8], sizeof a_before);
+  memcpy(b_before, &velocity[10], sizeof b_before);
+  CHECK_STATUS(tpx_live_contract(l, 4, 5, TPX_CONTRACT_FREE, NULL, 0, &undo), TPX_STATUS_OK);
+  CHECK(log.calls == 2 && log.a == 4 && log.b == 5 && strcmp(log.last_name, "material") == 0);
+  CHECK_STATUS(tpx_live_vertex_values(l, "velocity", 4, got, 9, &len), TPX_STATUS_OK);
+  CHECK(len == 2 && got[0] == 0.25 * a_before[0] + 0.75 * b_before[0] &&
+        got[1] == 0.25 * a_before[1] + 0.75 * b_before[1]);
+  CHECK_STATUS(tpx_live_vertex_values(l, "material", 4, got, 9, &len), TPX_STATUS_OK);
+  CHECK(len == 1 && got[0] == 15.0);
+  CHECK_STATUS(tpx_live_split(l, undo), TPX_STATUS_OK);
+  tpx_undo_free(undo);
+  CHECK_STATUS(tpx_live_vertex_values(l, "velocity", 4, got, 9, &len), TPX_STATUS_OK);
+  CHECK(len == 2 && got[0] == a_before[0] && got[1] == a_before[1]);
+  CHECK_STATUS(tpx_live_vertex_values(l, "material", 4, got, 9, &len), TPX_STATUS_OK);
+  CHECK(got[0] == 14.0);
+  /* One vertex's row by handle. */
+  CHECK_STATUS(tpx_live_set_vertex_values(l, "velocity", 2, set, 2), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_live_vertex_values(l, "velocity", 2, got, 9, &len), TPX_STATUS_OK);
+  CHECK(len == 2 && got[0] == 1.5 && got[1] == -2.0);
+  CHECK_STATUS(tpx_live_set_vertex_values(l, "velocity", 2, set, 1), TPX_STATUS_INVALID_ARGUMENT);
+  CHECK_STATUS(tpx_live_set_vertex_values(l, "material", 2, &fraction, 1), TPX_STATUS_INVALID_ARGUMENT);
+  CHECK_STATUS(tpx_live_set_vertex_values(l, "absent", 2, set, 2), TPX_STATUS_NO_SUCH_ATTRIBUTE);
+  CHECK_STATUS(tpx_live_set_vertex_values(l, "velocity", 99, set, 2), TPX_STATUS_DEAD_VERTEX);
+  CHECK_STATUS(tpx_live_set_vertex_values(l, NULL, 2, set, 2), TPX_STATUS_NULL_ARGUMENT);
+  /* The survivor policy replaces the merge: no call, a keeps its own. */
+  CHECK_STATUS(tpx_live_set_vertex_policy(l, TPX_VERTEX_SURVIVOR), TPX_STATUS_OK);
+  CHECK_STATUS(tpx_live_contract(l, 4, 5, TPX_CONTRACT_FREE, NULL, 0, NULL), TPX_STATUS_OK);
+  CHECK(log.calls == 2);
+  CHECK_STATUS(tpx_live_vertex_values(l, "velocity", 4, got, 9, &len), TPX_STATUS_OK);
+  CHECK(got[0] == a_before[0] && got[1] == a_before[1]);
+  tpx_live_free(l);
+  tpx_complex_free(c);
+}
+
 static void test_attributes(void) {
   TpxComplex *c = fixture();
   TpxComplex *back = NULL;
@@ -955,6 +1036,7 @@ int main(void) {
   test_iastar_structure();
   test_coordinates_and_windings();
   test_attributes();
+  test_live_vertex_merge();
   printf("%d passed, %d failed\n", g_passed, g_failed);
   return g_failed == 0 ? 0 : 1;
 }

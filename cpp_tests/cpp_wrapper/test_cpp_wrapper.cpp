@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -562,6 +563,128 @@ TEST(Wrapper, AttributesAreTypedSpansAndSurviveWriteAndLive) {
   EXPECT_EQ(frozen.attribute<std::int32_t>("ref", topoplex::Location::Listed)[frozen.listed_index({2, 3, 4})], -7);
   c.remove_attribute("ref");
   EXPECT_EQ(c.attributes().size(), 1u);
+}
+
+/* A std::function merge at contractions: called per vertex attribute with a, b and both rows,
+ * a's row left as it makes it (checked against the rows before), the split restores it; it
+ * moves with the Live; set_vertex_values sets one vertex's row; the policy replaces the merge. */
+TEST(Wrapper, LiveVertexMergeIsACallersFunctionAndSplitRestores) {
+  Complex c = fixture();
+  std::vector<double> velocity;
+  for (int i = 0; i < 12; ++i) velocity.push_back(0.5 * i - 1.0);
+  c.set_attribute("velocity", topoplex::Location::Vertices, 2, velocity);
+  c.set_attribute("material", topoplex::Location::Vertices, 1,
+                  std::vector<std::int32_t>{10, 11, 12, 13, 14, 15});
+  std::vector<std::string> seen;
+  topoplex::Live first(c);
+  first.set_vertex_merge([&seen](const std::string &name, std::uint32_t a, std::uint32_t b,
+                                 double *row_a, const double *row_b, std::size_t k) {
+    seen.push_back(name + " " + std::to_string(a) + "<-" + std::to_string(b));
+    for (std::size_t i = 0; i < k; ++i) {
+      row_a[i] = name == "material" ? std::max(row_a[i], row_b[i]) : row_a[i] - row_b[i];
+    }
+  });
+  topoplex::Live live = std::move(first);  // the merge moves with it
+  {
+    const topoplex::Undo u = live.contract(4, 5, topoplex::ContractMode::Free);
+    EXPECT_EQ(seen, (std::vector<std::string>{"velocity 4<-5", "material 4<-5"}));
+    EXPECT_EQ(live.vertex_values("velocity", 4),
+              (std::vector<double>{velocity[8] - velocity[10], velocity[9] - velocity[11]}));
+    EXPECT_EQ(live.vertex_values("material", 4), std::vector<double>{15.0});
+    live.split(u);
+  }
+  EXPECT_EQ(live.vertex_values("velocity", 4), (std::vector<double>{velocity[8], velocity[9]}));
+  live.set_vertex_values("velocity", 1, {3.0, 4.0});
+  EXPECT_EQ(live.vertex_values("velocity", 1), (std::vector<double>{3.0, 4.0}));
+  EXPECT_EQ(status_of([&] { live.set_vertex_values("velocity", 1, {3.0}); }),
+            TPX_STATUS_INVALID_ARGUMENT);
+  EXPECT_EQ(status_of([&] { live.set_vertex_values("material", 1, {0.5}); }),
+            TPX_STATUS_INVALID_ARGUMENT);
+  live.set_vertex_policy(topoplex::VertexPolicy::Survivor);
+  live.contract(4, 5, topoplex::ContractMode::Free);
+  EXPECT_EQ(seen.size(), 2u);
+  EXPECT_EQ(live.vertex_values("velocity", 4), (std::vector<double>{velocity[8], velocity[9]}));
+}
+
+/* The live tops of every dimension as (sorted vertices, packed id). */
+std::vector<std::pair<Ids, std::uint32_t>> live_tops(const topoplex::Live &live) {
+  std::vector<std::pair<Ids, std::uint32_t>> out;
+  for (std::uint32_t p = 1; p <= 3; ++p) {
+    const auto rows = live.top_simplices(p);
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      Ids s(rows[i].begin(), rows[i].end());
+      const std::uint32_t id = live.top_id(live.locate(s));
+      std::sort(s.begin(), s.end());
+      out.emplace_back(s, id);
+    }
+  }
+  return out;
+}
+
+/* User properties per vertex and per top, against a brute force keyed by the original vertex
+ * ids: values follow their slots through a contraction, its split, a removal and an
+ * insertion, and compact() moves them with the renumbering it returns; a new top reads the
+ * initial value; names and types are checked. */
+TEST(Wrapper, UserPropertiesFollowTheirSlotsThroughEditsAndCompact) {
+  topoplex::Live live(fixture());
+  auto name = live.add_vertex_property<std::string>("name", "none");
+  auto weight = live.add_top_property<double>("weight", -1.0);
+  std::map<Ids, double> want;  // by original vertex ids
+  for (std::uint32_t v = 0; v < 6; ++v) live.property(name, v) = "v" + std::to_string(v);
+  for (const auto &t : live_tops(live)) {
+    double w = 0.5;
+    for (std::uint32_t v : t.first) w += 1.5 * v;
+    live.property(weight, t.second) = w;
+    want[t.first] = w;
+  }
+  EXPECT_THROW(live.add_vertex_property<int>("name"), std::invalid_argument);
+  EXPECT_THROW(live.vertex_property<int>("name"), std::invalid_argument);
+  EXPECT_THROW(live.top_property<double>("absent"), std::invalid_argument);
+  EXPECT_EQ(live.property(live.vertex_property<std::string>("name"), 3), "v3");
+  {
+    const topoplex::Undo u = live.contract(2, 3, topoplex::ContractMode::Free);
+    EXPECT_EQ(live.property(name, 2), "v2");  // the survivor's, untouched
+    live.split(u);
+  }
+  for (const auto &t : live_tops(live)) EXPECT_EQ(live.property(weight, t.second), want.at(t.first));
+  // 4 into 5: the triangle [2 3 4] becomes [2 3 5] in its slot, the edge goes, vertex 4 dies.
+  live.contract(5, 4, topoplex::ContractMode::Free);
+  want[Ids{2, 3, 5}] = want.at(Ids{2, 3, 4});
+  want.erase(Ids{2, 3, 4});
+  want.erase(Ids{4, 5});
+  for (const auto &t : live_tops(live)) EXPECT_EQ(live.property(weight, t.second), want.at(t.first));
+  // A new triangle after a removed one: compact() moves it down a slot.
+  live.insert_top({0, 1, 5});
+  live.remove_top({2, 3, 5});
+  want.erase(Ids{2, 3, 5});
+  const std::vector<std::uint32_t> map = live.compact();
+  EXPECT_EQ(map[4], UINT32_MAX);
+  EXPECT_EQ(map[5], 4u);
+  std::vector<std::uint32_t> old(live.vertex_slots(), UINT32_MAX);
+  for (std::uint32_t v = 0; v < map.size(); ++v) {
+    if (map[v] != UINT32_MAX) old[map[v]] = v;
+  }
+  for (std::uint32_t w = 0; w < live.vertex_slots(); ++w) {
+    EXPECT_EQ(live.property(name, w), "v" + std::to_string(old[w])) << w;
+  }
+  std::size_t inserted = 0;
+  for (const auto &t : live_tops(live)) {
+    Ids orig;
+    for (std::uint32_t v : t.first) orig.push_back(old[v]);
+    std::sort(orig.begin(), orig.end());
+    const auto it = want.find(orig);
+    if (it == want.end()) {
+      EXPECT_EQ(orig, (Ids{0, 1, 5}));
+      EXPECT_EQ(live.property(weight, t.second), -1.0);
+      ++inserted;
+    } else {
+      EXPECT_EQ(live.property(weight, t.second), it->second);
+    }
+  }
+  EXPECT_EQ(inserted, 1u);
+  EXPECT_TRUE(live.remove_property("weight"));
+  EXPECT_FALSE(live.remove_property("weight"));
+  EXPECT_THROW(live.property(weight, 1u << 28), std::invalid_argument);
 }
 
 }  // namespace

@@ -17,17 +17,22 @@
  * Surface_patch_index, 2 for a pair; 0 on the cells). Feature edges and corners (edges and
  * vertices in complex) are not listed.
  *
- * Back (CGAL 5.5, whose Mesh_3 loader CGAL/Mesh_3/tet_soup_to_c3t3.h this uses; later CGAL
- * versions moved it, and complex_to_c3t3 is then not declared): complex_to_c3t3 fills a C3T3
- * from the listed tetrahedra (vertex order kept; a negatively oriented one has its first two
- * vertices swapped, as CGAL requires positive cells, counted in the return value) with
- * "c3t3:subdomain" as their subdomain (1 without it) and the listed triangles' "c3t3:patch" as
- * the surface patch of the facets they name, then rescans the complex. The tetrahedra must fill
- * a ball (every Triangulation_3 covers its convex hull: c3t3_to_complex(c3t3, true) gives such
- * a complex): otherwise, or with a flat tetrahedron, a triangle in three tetrahedra, a complex
- * that is not 3-dimensional or lacks 3 coordinates, it is refused (topoplex::Refused) and the
- * C3T3 cleared. Other attributes are refused unless left behind into a Dropped list. Cost:
- * CGAL's loader, O(C log C) with hash maps of facets.
+ * Back: complex_to_c3t3 fills a C3T3 from the listed tetrahedra (vertex order kept; a
+ * negatively oriented one has its first two vertices swapped, as CGAL requires positive cells,
+ * counted in the return value) with "c3t3:subdomain" as their subdomain (1 without it) and the
+ * listed triangles' "c3t3:patch" as the surface patch of the facets they name, then rescans the
+ * complex. It builds the triangulation through the TDS's public calls (detail::build_tds: the
+ * vertices and cells in order, neighbours from the facets' sorted ids, an infinite cell over
+ * each boundary facet, joined around the infinite vertex), the same triangulation CGAL 5.5's
+ * tetrahedron-soup loader (Mesh_3/tet_soup_to_c3t3.h, which read_MEDIT uses) builds, cell for
+ * cell; so it needs no CGAL version's loader (tested with CGAL 5.5). The tetrahedra must fill a
+ * ball (every Triangulation_3 covers its convex hull: c3t3_to_complex(c3t3, true) gives such a
+ * complex): otherwise (Euler's relation fails, a triangle in three tetrahedra, two on the same
+ * side of their shared triangle, a vertex in none), or with a flat tetrahedron, a complex that
+ * is not 3-dimensional or lacks 3 coordinates, it is refused (topoplex::Refused) and the C3T3
+ * cleared. Other attributes are refused unless left behind into a Dropped list. Cost:
+ * O(C log C) (sorts of the 4C facets and the boundary edges) plus O(C·degree) for counting
+ * edges; no hash map, no walk of CGAL's is_valid().
  *
  * Refused: nothing beyond the triangulation's own dimension: a triangulation of dimension
  * below 3 gives its vertices only (no cells). Cost: one pass over the vertices (a hash map of
@@ -39,12 +44,9 @@
 #include "adapter.hpp"
 
 #include <CGAL/Handle_hash_function.h>
-#include <CGAL/version.h>
-#if CGAL_VERSION_NR < CGAL_VERSION_NUMBER(5, 6, 0)
-#include <CGAL/Mesh_3/tet_soup_to_c3t3.h>
 #include <CGAL/enum.h>
+/* complex_to_c3t3 is declared (it was only with CGAL < 5.6 while it used CGAL's Mesh_3 loader). */
 #define TOPOPLEX_HAVE_COMPLEX_TO_C3T3 1
-#endif
 
 #include <algorithm>
 #include <array>
@@ -166,6 +168,172 @@ Complex c3t3_to_complex(const C3T3 &c3t3, bool all_cells = false) {
   return out;
 }
 
+namespace detail {
+
+/* Builds tr (a Mesh_3 triangulation) from positively oriented cells (4 vertex ids and the
+ * subdomain) through the TDS's public calls: the infinite vertex, the points' vertices in order,
+ * the cells in order, each cell's neighbour across each facet from the facets' sorted ids, an
+ * infinite cell (infinite vertex first, wound against the finite cell) over each facet in one
+ * cell, and those joined across their edges around the infinite vertex. `border` gives facets
+ * their surface patch (on both sides; a triple that is no facet is passed over). False (tr left
+ * to be cleared) when a triangle is in three cells, a boundary edge not in exactly two boundary
+ * facets, a facet wound alike in its two cells, a vertex in no cell, or Euler's relation fails
+ * (the cells fill no ball): what the TDS's is_valid() would find, without its O(C) walks
+ * around every edge. O(C log C) for the sorts, O(C·degree) for the edges. */
+template <class Tr, class SPI>
+bool build_tds(Tr &tr, const std::vector<typename Tr::Point> &points,
+               const std::vector<std::array<int, 5>> &cells,
+               std::vector<std::pair<std::array<std::uint32_t, 3>, SPI>> &border) {
+  using VH = typename Tr::Vertex_handle;
+  using CH = typename Tr::Cell_handle;
+  using Key = std::array<std::uint32_t, 4>;  // 3 sorted ids, then 4 * cell + facet
+  auto &tds = tr.tds();
+  tds.clear();  // not tr.clear(): that would make a new triangulation of dimension -1
+  const VH infinite = tds.create_vertex();
+  tr.set_infinite_vertex(infinite);
+  infinite->set_dimension(-1);
+  std::vector<VH> vh(points.size());
+  for (std::size_t v = 0; v < points.size(); ++v) {
+    vh[v] = tds.create_vertex();
+    vh[v]->set_point(points[v]);
+    vh[v]->set_dimension(-1);
+  }
+  const std::size_t nc = cells.size();
+  std::vector<CH> ch(nc);
+  std::vector<Key> facets;
+  facets.reserve(4 * nc);
+  for (std::size_t k = 0; k < nc; ++k) {
+    const auto &t = cells[k];
+    ch[k] = tds.create_cell(vh[t[0]], vh[t[1]], vh[t[2]], vh[t[3]]);
+    ch[k]->set_subdomain_index(t[4]);
+    for (int j = 0; j < 4; ++j) {
+      const VH v = vh[t[j]];
+      v->set_dimension(3);
+      if (v->cell() == CH()) v->set_cell(ch[k]);
+      Key f{std::uint32_t(t[(j + 1) % 4]), std::uint32_t(t[(j + 2) % 4]),
+            std::uint32_t(t[(j + 3) % 4]), std::uint32_t(4 * k + j)};
+      std::sort(f.begin(), f.begin() + 3);
+      facets.push_back(f);
+    }
+  }
+  std::sort(facets.begin(), facets.end());
+  const auto same = [](const Key &a, const Key &b) {
+    return a[0] == b[0] && a[1] == b[1] && a[2] == b[2];
+  };
+  // Patches first (on the finite side; the infinite cells copy theirs below).
+  std::sort(border.begin(), border.end(),
+            [](const auto &a, const auto &b) { return a.first < b.first; });
+  std::size_t b = 0;
+  std::vector<std::size_t> open;  // indices into facets of the boundary facets
+  std::vector<std::array<std::uint32_t, 3>> edges;  // 2 sorted ids, 4 * infinite cell + index
+  for (std::size_t i = 0; i < facets.size();) {
+    std::size_t e = i + 1;
+    while (e < facets.size() && same(facets[e], facets[i])) ++e;
+    if (e - i > 2) return false;
+    const std::array<std::uint32_t, 3> ids{facets[i][0], facets[i][1], facets[i][2]};
+    while (b < border.size() && border[b].first < ids) ++b;
+    for (std::size_t x = i; x < e; ++x) {
+      if (b < border.size() && border[b].first == ids)
+        ch[facets[x][3] / 4]->set_surface_patch_index(int(facets[x][3] % 4), border[b].second);
+    }
+    if (e - i == 2) {
+      const CH c0 = ch[facets[i][3] / 4], c1 = ch[facets[i + 1][3] / 4];
+      c0->set_neighbor(int(facets[i][3] % 4), c1);
+      c1->set_neighbor(int(facets[i + 1][3] % 4), c0);
+    } else {
+      open.push_back(i);
+    }
+    i = e;
+  }
+  // An infinite cell over each boundary facet (c, j): c's vertices with vertex j made the
+  // infinite one, moved to the front (j transpositions), and for even j vertices 1 and 2
+  // swapped: an odd permutation of c, so the shared facet is wound against c's.
+  std::vector<CH> inf_cells;
+  inf_cells.reserve(open.size());
+  edges.reserve(3 * open.size());
+  for (std::size_t i : open) {
+    const std::size_t k = facets[i][3] / 4;
+    const int j = int(facets[i][3] % 4);
+    std::array<int, 3> w;
+    for (int x = 0, y = 0; x < 4; ++x)
+      if (x != j) w[y++] = cells[k][x];
+    if (j % 2 == 0) std::swap(w[0], w[1]);
+    const CH n = tds.create_cell(infinite, vh[w[0]], vh[w[1]], vh[w[2]]);
+    n->set_neighbor(0, ch[k]);
+    ch[k]->set_neighbor(j, n);
+    n->set_surface_patch_index(0, ch[k]->surface_patch_index(j));
+    if (infinite->cell() == CH()) infinite->set_cell(n);
+    const std::uint32_t m = std::uint32_t(inf_cells.size());
+    inf_cells.push_back(n);
+    for (int x = 1; x <= 3; ++x) {  // the facet opposite vertex x: the infinite vertex and an edge
+      std::uint32_t a = std::uint32_t(w[x % 3]), c = std::uint32_t(w[(x + 1) % 3]);
+      if (c < a) std::swap(a, c);
+      edges.push_back({a, c, 4 * m + std::uint32_t(x)});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size(); i += 2) {
+    const auto pair = [&](std::size_t x, std::size_t y) {
+      return y < edges.size() && edges[x][0] == edges[y][0] && edges[x][1] == edges[y][1];
+    };
+    if (!pair(i, i + 1) || pair(i, i + 2)) return false;
+    const CH c0 = inf_cells[edges[i][2] / 4], c1 = inf_cells[edges[i + 1][2] / 4];
+    c0->set_neighbor(int(edges[i][2] % 4), c1);
+    c1->set_neighbor(int(edges[i + 1][2] % 4), c0);
+  }
+  tds.set_dimension(nc == 0 ? -1 : 3);
+  // The checks of the TDS's is_valid() that the input can fail, in O(C) and O(C·degree):
+  // every vertex in a cell; each facet shared by two cells wound against itself in them;
+  // Euler's relation V - E + F - C = 0 with the infinite vertex (F = 2C: the 3-sphere's).
+  for (const VH &v : vh)
+    if (v->cell() == CH()) return false;
+  for (std::size_t i = 0; i + 1 < facets.size(); ++i) {
+    if (!same(facets[i], facets[i + 1])) continue;
+    const auto &c0 = cells[facets[i][3] / 4], &c1 = cells[facets[i + 1][3] / 4];
+    const int j0 = int(facets[i][3] % 4), j1 = int(facets[i + 1][3] % 4);
+    // c0 as (its vertex j0, then its others in order) is a permutation of parity j0; c1 as
+    // (its vertex j1, then c0's others in c0's order) must have the other parity.
+    int at[4], y = 1, inversions = 0;
+    at[0] = j1;
+    for (int x = 0; x < 4; ++x) {
+      if (x == j0) continue;
+      int k = 0;
+      while (c1[k] != c0[x]) ++k;
+      at[y++] = k;
+    }
+    for (int p = 0; p < 4; ++p)
+      for (int q = p + 1; q < 4; ++q) inversions += at[p] > at[q];
+    if ((inversions + j0) % 2 == 0) return false;
+  }
+  std::vector<std::uint32_t> first(points.size() + 1, 0), star(4 * nc);
+  for (const auto &t : cells)
+    for (int j = 0; j < 4; ++j) ++first[std::size_t(t[j]) + 1];
+  for (std::size_t v = 0; v < points.size(); ++v) first[v + 1] += first[v];
+  {
+    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+    for (std::size_t k = 0; k < nc; ++k)
+      for (int j = 0; j < 4; ++j) star[fill[std::size_t(cells[k][j])]++] = std::uint32_t(k);
+  }
+  std::vector<bool> on_boundary(points.size(), false);
+  for (std::size_t i : open)
+    for (int x = 0; x < 3; ++x) on_boundary[facets[i][x]] = true;
+  std::size_t edge_count = 0;
+  std::vector<int> ends;
+  for (std::size_t v = 0; v < points.size(); ++v) {
+    ends.clear();
+    for (std::uint32_t i = first[v]; i < first[v + 1]; ++i)
+      for (int j = 0; j < 4; ++j)
+        if (cells[star[i]][j] > int(v)) ends.push_back(cells[star[i]][j]);
+    std::sort(ends.begin(), ends.end());
+    edge_count += std::size_t(std::unique(ends.begin(), ends.end()) - ends.begin());
+    edge_count += on_boundary[v];  // its edge to the infinite vertex
+  }
+  const std::size_t all_cells = nc + inf_cells.size();
+  return points.size() + 1 + all_cells == edge_count;
+}
+
+}  // namespace detail
+
 #ifdef TOPOPLEX_HAVE_COMPLEX_TO_C3T3
 /* Fills `out` (cleared first) with the complex's tetrahedra and labels (header comment).
  * Returns the number of tetrahedra given to CGAL with their first two vertices swapped. */
@@ -212,7 +380,7 @@ std::size_t complex_to_c3t3(const Complex &c, C3T3 &out, std::vector<Dropped> *d
                  : AttributeView<std::int32_t>();
   std::vector<std::array<int, 5>> cells;
   cells.reserve(c.top_count(3));
-  std::map<std::array<int, 3>, SPI> border;
+  std::vector<std::pair<std::array<std::uint32_t, 3>, SPI>> border;  // sorted ids, patch
   std::vector<bool> seen;
   std::size_t swapped = 0;
   adapt::for_each_listed(c, [&](std::size_t i, const std::uint32_t *ids, std::size_t n,
@@ -241,20 +409,19 @@ std::size_t complex_to_c3t3(const Complex &c, C3T3 &out, std::vector<Dropped> *d
                       " components; this C3T3's Surface_patch_index takes " +
                       (std::is_integral<SPI>::value ? "1" : "2"));
       }
-      std::array<int, 3> f{int(ids[0]), int(ids[1]), int(ids[2])};
-      std::rotate(f.begin(), std::min_element(f.begin(), f.end()), f.end());
-      border.emplace(f, value);
+      std::array<std::uint32_t, 3> f{ids[0], ids[1], ids[2]};
+      std::sort(f.begin(), f.end());
+      border.emplace_back(f, value);
     }
   });
   if (points.empty() || cells.empty()) {
     throw Refused("a C3T3 needs at least one tetrahedron");
   }
-  std::vector<typename Tr::Vertex_handle> handles;
-  if (!CGAL::build_triangulation<Tr, false>(out.triangulation(), points, cells, border, handles)) {
+  if (!detail::build_tds(out.triangulation(), points, cells, border)) {
     out.clear();
-    throw Refused("CGAL could not build a triangulation from the tetrahedra: they must fill a "
-                  "ball, each triangle in at most two of them (c3t3_to_complex(c3t3, true) gives "
-                  "such a complex)");
+    throw Refused("CGAL's triangulation cannot hold the tetrahedra: they must fill a ball, each "
+                  "triangle in at most two of them, every vertex in one (c3t3_to_complex(c3t3, "
+                  "true) gives such a complex)");
   }
   out.rescan_after_load_of_triangulation();
   return swapped;

@@ -25,9 +25,16 @@
  * property of another type, an edge, halfedge or mesh property, listed values on listings that
  * are no face (edges listed beside their triangles, repeats). Label names are not carried.
  *
+ * Towards OpenMesh, a mesh whose every vertex is plain (one fan of triangles, closed or with one
+ * boundary edge in and one out; each directed edge in one triangle) is written straight into the
+ * mesh's arrays (detail::build_plain: the same edges, halfedges and links add_face, called
+ * triangle by triangle, makes); any other goes through add_face, with its acceptances and
+ * refusals.
+ *
  * Cost: one pass over the vertices and one over the faces each way, arrays reserved first
- * (O(V + F) time; the complex's arrays plus one copy of the ids and coordinates while building),
- * plus O(V + F) per carried property. For non-manifold complexes see manifold_parts.hpp and
+ * (O(V + F) time; the complex's arrays plus one copy of the ids and coordinates while building,
+ * and towards OpenMesh 5 ids per face corner and 4 per vertex of scratch), plus O(V + F) per
+ * carried property. For non-manifold complexes see manifold_parts.hpp and
  * part_to_openmesh below.
  */
 #ifndef TOPOPLEX_OPENMESH_HPP
@@ -162,10 +169,10 @@ bool attribute_to_property(Mesh &m, const std::string &name, const AttributeView
   return false;
 }
 
-/* Adds the faces of `tris` (3 ids per face over vertex handles 0..) to m; on a rejected face,
- * clears m and throws naming it (`what(f)` describes face f for the message). */
+/* Adds the faces of `tris` (3 ids per face over vertex handles 0..) to m through add_face, one
+ * by one; on a rejected face, clears m and throws naming it (`what(f)` describes it). */
 template <class Mesh, class What>
-void add_faces(Mesh &m, const std::vector<std::uint32_t> &tris, What what) {
+void add_faces_one_by_one(Mesh &m, const std::vector<std::uint32_t> &tris, What what) {
   std::vector<typename Mesh::VertexHandle> fv(3);
   adapt::add_triangles(
       m, "OpenMesh", tris,
@@ -174,6 +181,136 @@ void add_faces(Mesh &m, const std::vector<std::uint32_t> &tris, What what) {
         return mesh.add_face(fv).is_valid();
       },
       what);
+}
+
+/* Writes the half-edge connectivity of `tris` (3 ids per face over the nv vertices m holds, and
+ * nothing else yet) straight into m's arrays through ArrayKernel's public resize and setters,
+ * exactly as OpenMesh's add_face, face after face, would leave it: face f is triangle f with its
+ * halfedge from its third vertex to its first (so the face circulator gives the listed order);
+ * edge e is the e-th edge met in face order, its halfedge 0 in the direction of the face that
+ * met it first; a boundary halfedge's next is the boundary halfedge leaving its target vertex; a
+ * boundary vertex's halfedge is its outgoing boundary halfedge (an interior vertex's: its first
+ * face's outgoing halfedge, where add_face may leave another outgoing one).
+ * Done only when every vertex is plain, which add_face takes without a question: triangles of
+ * three distinct vertices, each directed edge in one triangle, each vertex's triangles one fan
+ * (closed, or open with one boundary edge in and one out). Else false, m untouched, and the
+ * caller adds the faces one by one (add_face accepts a bowtie and refuses what it refuses).
+ * O(V + F) time (and the squared degree at each vertex), 5 ids per face halfedge and 4 per
+ * vertex of scratch, no allocation per face. */
+template <class Mesh>
+bool build_plain(Mesh &m, const std::vector<std::uint32_t> &tris) {
+  using VH = typename Mesh::VertexHandle;
+  using HH = typename Mesh::HalfedgeHandle;
+  using FH = typename Mesh::FaceHandle;
+  constexpr std::uint32_t none = UINT32_MAX;
+  const std::size_t nv = m.n_vertices(), nh = tris.size(), nf = nh / 3;
+  if (m.n_edges() != 0 || m.n_faces() != 0 || nh >= std::size_t(INT32_MAX) / 2) return false;
+  // Face halfedge h = 3f + k runs from tris[h] to tris[next(h)].
+  const auto next = [](std::size_t h) { return h - h % 3 + (h % 3 + 1) % 3; };
+  const auto prev = [](std::size_t h) { return h - h % 3 + (h % 3 + 2) % 3; };
+  for (std::size_t f = 0; f < nf; ++f) {
+    const std::uint32_t *t = &tris[3 * f];
+    if (t[0] >= nv || t[1] >= nv || t[2] >= nv || t[0] == t[1] || t[1] == t[2] || t[0] == t[2])
+      return false;
+  }
+  // The face halfedges leaving each vertex, in face order (counting sort), with their targets
+  // and their triangles' third vertices beside them (the searches below read ranges only).
+  std::vector<std::uint32_t> first(nv + 1, 0), out(nh), to(nh), third(nh);
+  for (std::size_t h = 0; h < nh; ++h) ++first[tris[h] + 1];
+  for (std::size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
+  {
+    std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+    for (std::size_t h = 0; h < nh; ++h) {
+      const std::uint32_t i = fill[tris[h]]++;
+      out[i] = std::uint32_t(h);
+      to[i] = tris[next(h)];
+      third[i] = tris[prev(h)];
+    }
+  }
+  // Each face halfedge's opposite face halfedge (none on the boundary), paired from the end of
+  // lower id; a directed edge twice is for add_face to refuse.
+  std::vector<std::uint32_t> opp(nh, none);
+  for (std::uint32_t a = 0; a < nv; ++a) {
+    for (std::uint32_t i = first[a]; i < first[a + 1]; ++i) {
+      const std::uint32_t b = to[i];
+      for (std::uint32_t j = i + 1; j < first[a + 1]; ++j)
+        if (to[j] == b) return false;
+      if (b < a) continue;
+      for (std::uint32_t j = first[b]; j < first[b + 1]; ++j) {
+        if (to[j] == a) {
+          opp[out[i]] = out[j];
+          opp[out[j]] = out[i];
+          break;
+        }
+      }
+    }
+  }
+  // At each vertex: its one boundary face halfedge in and out (or none), and its triangles one
+  // fan, walked from the boundary one out (or the first): from the halfedge to b in triangle
+  // (v, b, c) on to the one to c, within v's range.
+  std::vector<std::uint32_t> bin(nv, none), bout(nv, none);
+  for (std::size_t h = 0; h < nh; ++h) {
+    if (opp[h] != none) continue;
+    std::uint32_t &i = bin[tris[next(h)]], &o = bout[tris[h]];
+    if (i != none || o != none) return false;
+    i = o = std::uint32_t(h);
+  }
+  for (std::size_t v = 0; v < nv; ++v) {
+    const std::uint32_t degree = first[v + 1] - first[v];
+    if (degree == 0) continue;
+    if ((bin[v] == none) != (bout[v] == none)) return false;
+    std::uint32_t start = first[v];
+    while (bout[v] != none && out[start] != bout[v]) ++start;
+    std::uint32_t i = start, seen = 1;
+    while (seen <= degree) {
+      std::uint32_t j = first[v];
+      while (j < first[v + 1] && to[j] != third[i]) ++j;
+      if (j == first[v + 1] || j == start) break;
+      i = j;
+      ++seen;
+    }
+    if (seen != degree) return false;
+  }
+  // OpenMesh halfedge of each face halfedge: edges numbered as add_face creates them.
+  std::vector<std::uint32_t> he(nh);
+  std::size_t ne = 0;
+  for (std::size_t h = 0; h < nh; ++h) {
+    if (opp[h] != none && opp[h] < h) continue;
+    he[h] = std::uint32_t(2 * ne);
+    if (opp[h] != none) he[opp[h]] = std::uint32_t(2 * ne + 1);
+    ++ne;
+  }
+  m.resize(nv, ne, nf);
+  for (std::size_t f = 0; f < nf; ++f) {
+    const FH fh{int(f)};
+    for (std::size_t h = 3 * f; h < 3 * f + 3; ++h) {
+      const HH hh{int(he[h])};
+      m.set_vertex_handle(hh, VH(int(tris[next(h)])));
+      m.set_face_handle(hh, fh);
+      m.set_next_halfedge_handle(hh, HH(int(he[next(h)])));
+      if (opp[h] == none) {  // its boundary twin, to the boundary halfedge leaving tris[h]
+        const HH b{int(he[h] ^ 1u)};
+        m.set_vertex_handle(b, VH(int(tris[h])));
+        m.set_next_halfedge_handle(b, HH(int(he[bin[tris[h]]] ^ 1u)));
+      }
+    }
+    m.set_halfedge_handle(fh, HH(int(he[3 * f + 2])));
+  }
+  for (std::size_t v = 0; v < nv; ++v) {
+    if (first[v + 1] == first[v]) continue;
+    const std::uint32_t h = bin[v] != none ? he[bin[v]] ^ 1u : he[out[first[v]]];
+    m.set_halfedge_handle(VH(int(v)), HH(int(h)));
+  }
+  return true;
+}
+
+/* Adds the faces of `tris` (3 ids per face over vertex handles 0.., which m holds, and nothing
+ * else yet) to m: at once when every vertex is plain (build_plain), else through add_face; on a
+ * rejected face, clears m and throws naming it (`what(f)` describes face f for the message). */
+template <class Mesh, class What>
+void add_faces(Mesh &m, const std::vector<std::uint32_t> &tris, What what) {
+  if (build_plain(m, tris)) return;
+  add_faces_one_by_one(m, tris, what);
 }
 
 }  // namespace detail

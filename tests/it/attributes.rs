@@ -575,6 +575,266 @@ fn obj_labels_keep_their_names_and_unwritable_ones_are_refused() {
     assert!(e.contains("simplex #1 has label -2"), "{e}");
 }
 
+/// A random real for OBJ data: a few decimals, negative or not.
+fn real(rng: &mut common::Rng) -> f64 {
+    (rng.below(2001) as f64 - 1000.0) / 64.0
+}
+
+/// OBJ's vertex data on a random listing of points, edges and triangles: colours (3 or 4
+/// numbers), `obj:vt` and `obj:vn` as vertex fields (NaN on the vertices no element can refer
+/// them from) or per corner (values differing at a vertex), written and read back bit for bit.
+#[test]
+fn obj_colours_textures_and_normals_round_trip_per_vertex_and_per_corner() {
+    let dir = Scratch::new("obj-data");
+    let mut per_corner = 0;
+    for seed in 1..=60u64 {
+        let mut rng = common::Rng((seed * 0x9e37_79b9) | 1);
+        let n = 4 + rng.below(12) as u32;
+        let mut raw = up_to_triangles(&random_listing(seed, n, 1 + rng.below(12), true, false));
+        let m = raw.simplex_count();
+        let nv = n as usize;
+        let w = 3 + rng.below(2);
+        let colours: Vec<f64> = (0..nv * w).map(|_| rng.below(256) as f64 / 255.0).collect();
+        raw.attributes.insert(Attribute {
+            name: "obj:color".into(),
+            location: Location::Vertices,
+            components: w,
+            values: Values::F64(colours),
+        });
+        for (name, width, takes) in [
+            ("obj:vt", 1 + rng.below(3), &[2usize, 3][..]),
+            ("obj:vn", 3, &[3][..]),
+        ] {
+            let takes = |i: usize| takes.contains(&raw.simplex(i).len());
+            if rng.below(2) == 0 {
+                // A vertex field: a value wherever an element can refer to it.
+                let referred: Vec<bool> = (0..nv)
+                    .map(|v| (0..m).any(|i| takes(i) && raw.simplex(i).contains(&(v as u32))))
+                    .collect();
+                let values = (0..nv * width)
+                    .map(|k| {
+                        if referred[k / width] {
+                            real(&mut rng)
+                        } else {
+                            f64::NAN
+                        }
+                    })
+                    .collect();
+                raw.attributes.insert(Attribute {
+                    name: name.into(),
+                    location: Location::Vertices,
+                    components: width,
+                    values: Values::F64(values),
+                });
+            } else {
+                // Per corner, kept only where a vertex is at two valued corners (else it reads
+                // back, rightly, as a vertex field).
+                let mut values = vec![f64::NAN; m * 3 * width];
+                let mut seen = std::collections::HashSet::new();
+                let mut twice = false;
+                for i in (0..m).filter(|&i| takes(i)) {
+                    for (c, &v) in raw.simplex(i).iter().enumerate() {
+                        twice |= !seen.insert(v);
+                        for k in 0..width {
+                            values[(i * 3 + c) * width + k] = real(&mut rng);
+                        }
+                    }
+                }
+                if twice {
+                    per_corner += 1;
+                    raw.attributes.insert(Attribute {
+                        name: name.into(),
+                        location: Location::Listed,
+                        components: 3 * width,
+                        values: Values::F64(values),
+                    });
+                }
+            }
+        }
+        round_trip(&raw, Format::Obj, &dir.0).unwrap_or_else(|e| panic!("seed {seed}: {e}"));
+    }
+    assert!(per_corner > 10, "{per_corner}");
+}
+
+/// What OBJ cannot tie back is refused: a vertex value on a vertex no element refers to, a
+/// normal at an edge's corner, a point's corner value.
+#[test]
+fn obj_refuses_vertex_data_no_reference_would_tie_back() {
+    let mut raw = RawInput::new();
+    raw.vertex_count = Some(4);
+    raw.push(&[0, 1, 2], 0);
+    raw.push(&[2, 3], 0);
+    raw.push(&[3], 0);
+    let dir = Scratch::new("obj-refused");
+    let path = dir.0.join("r.obj");
+    let refused = |a: Attribute, says: &str| {
+        let mut r = raw.clone();
+        r.attributes.insert(a);
+        let e = write_raw(&r, &path, Some(Format::Obj))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(says), "{e}");
+        assert!(!path.exists());
+    };
+    let f64s = |name: &str, location, components, values: Vec<f64>| Attribute {
+        name: name.into(),
+        location,
+        components,
+        values: Values::F64(values),
+    };
+    refused(
+        f64s("obj:vn", Location::Vertices, 3, vec![1.0; 12]),
+        "vertex 3 has a value but no triangle lists it",
+    );
+    let mut corners = vec![f64::NAN; 27];
+    corners[9..12].copy_from_slice(&[0., 0., 1.]);
+    refused(
+        f64s("obj:vn", Location::Listed, 9, corners),
+        "simplex #1 [2 3] has a value at corner 0",
+    );
+    let mut corners = vec![f64::NAN; 9];
+    corners[6] = 0.5;
+    refused(
+        f64s("obj:vt", Location::Listed, 3, corners),
+        "simplex #2 [3] has a value at corner 0",
+    );
+    // An edge refers to its texture coordinates: vertex 3 is tied back through [2 3].
+    let mut r = raw.clone();
+    r.attributes
+        .insert(f64s("obj:vt", Location::Vertices, 1, vec![0., 1., 2., 3.]));
+    round_trip(&r, Format::Obj, &dir.0).unwrap();
+}
+
+/// Blender's flat-shaded tetrahedron (`../shared/data/nonmanifold/tet.obj`, `f a//n`): each
+/// face's normal at its three corners, per corner since every vertex gets three normals; written
+/// and read back bit for bit; the OFF writer refuses it by name.
+#[test]
+fn obj_flat_normals_of_real_data_are_kept_per_corner() {
+    let Some(path) = common::shared_data().map(|d| d.join("nonmanifold/tet.obj")) else {
+        eprintln!("../shared/data is absent: skipping tet.obj");
+        return;
+    };
+    let raw = read_path(&path).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let normals: Vec<Vec<f64>> = text
+        .lines()
+        .filter_map(|l| l.strip_prefix("vn "))
+        .map(|l| l.split_whitespace().map(|x| x.parse().unwrap()).collect())
+        .collect();
+    let a = raw.attributes.get("obj:vn", Location::Listed).unwrap();
+    assert_eq!(a.components, 9);
+    // Face f refers to normal f at every corner (the file's own `f a//f` lines).
+    assert_eq!(raw.simplex_count(), normals.len());
+    for (f, normal) in normals.iter().enumerate() {
+        let e = a.element(f).unwrap();
+        for c in 0..3 {
+            assert_eq!(e[c * 3..c * 3 + 3], normal[..], "face {f} corner {c}");
+        }
+    }
+    let dir = Scratch::new("obj-tet");
+    round_trip(&raw, Format::Obj, &dir.0).unwrap();
+    // The grouping labels, which OFF does not hold either, aside: the normals are refused.
+    let mut normals_only = raw.clone();
+    normals_only.attributes.remove_label_names();
+    for name in ["obj:object", "obj:group", "obj:material", "obj:smoothing"] {
+        normals_only.attributes.remove(name);
+    }
+    let e = write_raw(&normals_only, &dir.0.join("t.off"), Some(Format::Off))
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("'obj:vn'") && e.contains("write .obj"), "{e}");
+}
+
+/// NaNs in data: the text formats hold a NaN but neither its sign nor its payload (it reads
+/// back as a NaN, every other number bit for bit); binary legacy VTK, VTU and binary MSH keep
+/// every bit. Hand-written `nan`, `-nan`, `NaN` and infinities read as such.
+#[test]
+fn nan_values_read_back_as_nan_in_text_and_bit_for_bit_in_binary() {
+    let mut raw = RawInput::new();
+    raw.vertex_count = Some(3);
+    raw.coords = Some(Coords {
+        dim: 3,
+        data: vec![0., 0., 0., 1., 0., 0., 0., 1., 0.],
+    });
+    raw.push(&[0, 1, 2], 0);
+    let nans64 = [
+        f64::NAN,
+        -f64::NAN,
+        f64::from_bits(0x7ff0_0000_0000_0001), // signalling, payload 1
+    ];
+    let nans32 = [f32::NAN, -f32::NAN, f32::from_bits(0x7fc0_1234)];
+    raw.attributes.insert(Attribute {
+        name: "w".into(),
+        location: Location::Vertices,
+        components: 1,
+        values: Values::F64(nans64.to_vec()),
+    });
+    raw.attributes.insert(Attribute {
+        name: "v".into(),
+        location: Location::Vertices,
+        components: 1,
+        values: Values::F32(nans32.to_vec()),
+    });
+    raw.attributes.insert(Attribute {
+        name: "c".into(),
+        location: Location::Listed,
+        components: 3,
+        values: Values::F64(vec![f64::NAN, 1.5, -f64::NAN]),
+    });
+    let dir = Scratch::new("nan");
+    for f in [Format::VtkBinary, Format::Vtu] {
+        round_trip(&raw, f, &dir.0).unwrap();
+    }
+    let mut only64 = raw.clone();
+    only64.attributes.remove("v");
+    for f in [Format::MshBinary, Format::Msh2Binary] {
+        round_trip(&only64, f, &dir.0).unwrap();
+    }
+    // Text: NaN stays NaN, the rest bit for bit.
+    let nan_or_same = |a: &Values, b: &Values| {
+        a.len() == b.len()
+            && (0..a.len()).all(|i| {
+                let (x, y) = (a.real(i).unwrap(), b.real(i).unwrap());
+                if x.is_nan() {
+                    y.is_nan()
+                } else {
+                    x.to_bits() == y.to_bits()
+                }
+            })
+    };
+    for (f, r) in [
+        (Format::Vtk, &raw),
+        (Format::Msh, &only64),
+        (Format::Msh2, &only64),
+    ] {
+        let path = dir.0.join(format!("t.{}", f.extension()));
+        write_raw(r, &path, Some(f)).unwrap();
+        let back = read_path(&path).unwrap();
+        for a in r.attributes.iter() {
+            let b = back.attributes.get(&a.name, a.location).unwrap();
+            assert_eq!(b.values.value_type(), a.values.value_type(), "{}", a.name);
+            assert!(
+                nan_or_same(&a.values, &b.values),
+                "{}: {a:?} read back as {b:?}",
+                f.name()
+            );
+        }
+    }
+    let path = dir.0.join("hand.vtk");
+    std::fs::write(
+        &path,
+        "# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\nPOINTS 5 double\n\
+         0 0 0 1 0 0 0 1 0 1 1 0 2 2 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n\
+         POINT_DATA 5\nSCALARS s double 1\nLOOKUP_TABLE default\nnan -nan NaN inf -inf\n",
+    )
+    .unwrap();
+    let back = read_path(&path).unwrap();
+    let s = &back.attributes.get("s", Location::Vertices).unwrap().values;
+    assert!((0..3).all(|i| s.real(i).unwrap().is_nan()), "{s:?}");
+    assert_eq!(s.real(3), Some(f64::INFINITY));
+    assert_eq!(s.real(4), Some(f64::NEG_INFINITY));
+}
+
 /// The same data as an ASCII `.vtu` written by hand (our streaming reader) and as the base64
 /// `.vtu` our writer makes of it (the vtkio path) reads alike, bit for bit; a name no VTU holds
 /// (a control character) is refused by the writer.
@@ -1220,4 +1480,169 @@ fn saved_files_keep_attributes_and_the_live_complex_its_data() {
             "seed {seed}: the live complex's data"
         );
     }
+}
+
+/// A caller's merge at contractions, against a brute force: on random complexes with a 2-vector
+/// field and a label on the vertices, each contraction {a, b} → a calls the merge once per
+/// vertex attribute with (name, a, b) and a's and b's rows as they were, leaves a's row as the
+/// merge made it (rounded to the type) and b's as it was; a split restores a's row bit for bit.
+/// `set_vertex_values` sets one vertex's row and refuses a wrong width or a dead vertex.
+#[test]
+fn a_callers_vertex_merge_at_contractions_matches_a_brute_force_and_splits_restore() {
+    use std::sync::{Arc, Mutex};
+    use topoplex::Topology;
+    use topoplex::live::{ContractMode, LiveComplex, VertexId};
+    let mut contracted = 0;
+    for seed in 1..=40u64 {
+        let mut rng = common::Rng((seed * 0x2545_f491) | 1);
+        let n = 5 + rng.below(6) as u32;
+        let count = 3 + rng.below(6);
+        let mut c = common::complex_of(n, &some_simplices(&mut rng, n, count, 4));
+        let mut at = Attributes::new();
+        at.insert(Attribute {
+            name: "velocity".into(),
+            location: Location::Vertices,
+            components: 2,
+            values: Values::F64((0..2 * n).map(|i| f64::from(i) * 0.75 - 3.0).collect()),
+        });
+        at.insert(Attribute {
+            name: "material".into(),
+            location: Location::Vertices,
+            components: 1,
+            values: Values::I32((0..n as i32).map(|v| 10 + v % 3).collect()),
+        });
+        c.set_attributes(at).unwrap();
+        let mut live = LiveComplex::try_from_complex(&c).unwrap();
+        let calls: Arc<Mutex<Vec<(String, u32, u32)>>> = Arc::default();
+        let log = Arc::clone(&calls);
+        // Reals: a weighted sum; labels: the larger.
+        live.set_vertex_merge(move |name, a, b, row_a, row_b| {
+            log.lock().unwrap().push((name.to_string(), a, b));
+            for (x, &y) in row_a.iter_mut().zip(row_b) {
+                *x = if name == "material" {
+                    x.max(y)
+                } else {
+                    0.25 * *x + 0.75 * y
+                };
+            }
+        });
+        let row = |live: &LiveComplex, name: &str, v: u32| {
+            let r = live.vertex_values(name, VertexId(v)).unwrap().unwrap();
+            (0..r.len())
+                .map(|i| r.real(i).unwrap())
+                .collect::<Vec<f64>>()
+        };
+        for _ in 0..6 {
+            let verts: Vec<u32> = live.vertices().map(|v| v.0).collect();
+            if verts.len() < 2 {
+                break;
+            }
+            let a = verts[rng.below(verts.len())];
+            let b = verts[rng.below(verts.len())];
+            let before: Vec<(Vec<f64>, Vec<f64>)> = ["velocity", "material"]
+                .iter()
+                .map(|name| (row(&live, name, a), row(&live, name, b)))
+                .collect();
+            calls.lock().unwrap().clear();
+            let Ok(undo) = live.contract(VertexId(a), VertexId(b), ContractMode::Free, None) else {
+                continue;
+            };
+            contracted += 1;
+            assert_eq!(
+                *calls.lock().unwrap(),
+                [
+                    ("velocity".to_string(), a, b),
+                    ("material".to_string(), a, b)
+                ]
+            );
+            let (va, vb) = &before[0];
+            let want: Vec<f64> = va
+                .iter()
+                .zip(vb)
+                .map(|(x, y)| 0.25 * x + 0.75 * y)
+                .collect();
+            assert_eq!(row(&live, "velocity", a), want, "seed {seed}");
+            assert_eq!(
+                row(&live, "material", a),
+                [before[1].0[0].max(before[1].1[0])]
+            );
+            if rng.below(2) == 0 {
+                live.split(&undo).unwrap();
+                assert_eq!(row(&live, "velocity", a), before[0].0);
+                assert_eq!(row(&live, "material", a), before[1].0);
+                assert_eq!(row(&live, "velocity", b), before[0].1);
+            }
+            live.validate().unwrap();
+        }
+        // One vertex's row, set and read back; wrong widths and dead vertices refused.
+        let v = live.vertices().next().unwrap();
+        assert_eq!(
+            live.set_vertex_values("velocity", v, &[1.5, -2.0]),
+            Ok(true)
+        );
+        assert_eq!(row(&live, "velocity", v.0), [1.5, -2.0]);
+        assert_eq!(live.set_vertex_values("velocity", v, &[1.5]), Ok(false));
+        assert_eq!(live.set_vertex_values("absent", v, &[1.5]), Ok(false));
+        assert!(
+            live.set_vertex_values("velocity", VertexId(n + 7), &[0., 0.])
+                .is_err()
+        );
+    }
+    assert!(contracted > 40, "{contracted}");
+}
+
+/// `LiveComplex::top_of_packed` (packed id → top handle, O(1)) against every live top the complex
+/// lists, through removals and compaction: each packed id gives back its top; the packed id of
+/// a removed top, of dimension 0 or past the tables is refused.
+#[test]
+fn packed_top_ids_convert_to_every_live_top_and_refuse_dead_ones() {
+    use topoplex::live::LiveComplex;
+    let pack = |t: topoplex::live::TopId| ((t.dim() as u32) << 28) | t.slot();
+    for seed in 1..=30u64 {
+        let mut rng = common::Rng(seed | 1);
+        let n = 6 + rng.below(7) as u32;
+        let count = 2 + rng.below(9);
+        let c = common::complex_of(n, &some_simplices(&mut rng, n, count, 5));
+        let mut live = LiveComplex::try_from_complex(&c).unwrap();
+        for round in 0..3 {
+            let tops: Vec<(topoplex::live::TopId, Vec<u32>)> =
+                live.tops().map(|(t, s)| (t, s.to_vec())).collect();
+            for (t, s) in &tops {
+                let got = live.top_of_packed(pack(*t)).unwrap();
+                assert_eq!(got, *t);
+                assert_eq!(live.top_vertices(got).unwrap(), &s[..]);
+            }
+            assert!(live.top_of_packed(3).is_err(), "a 0-simplex");
+            assert!(live.top_of_packed(u32::MAX).is_err());
+            if tops.is_empty() {
+                break;
+            }
+            let (t, s) = &tops[rng.below(tops.len())];
+            live.remove_top(s).unwrap();
+            assert!(
+                live.top_of_packed(pack(*t)).is_err(),
+                "removed top {s:?} still converts"
+            );
+            if round == 1 {
+                live.compact();
+            }
+        }
+    }
+}
+
+/// `count` random simplices of 2 to `max_len` distinct vertices below `n` (`n` ≥ `max_len`).
+fn some_simplices(rng: &mut common::Rng, n: u32, count: usize, max_len: usize) -> Vec<Vec<u32>> {
+    (0..count)
+        .map(|_| {
+            let k = 2 + rng.below(max_len - 1);
+            let mut s: Vec<u32> = Vec::new();
+            while s.len() < k {
+                let v = rng.below(n as usize) as u32;
+                if !s.contains(&v) {
+                    s.push(v);
+                }
+            }
+            s
+        })
+        .collect()
 }

@@ -323,6 +323,7 @@ fn cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
 /// Malformed data sections (issue 26): counts, types and values an attribute cannot hold, and
 /// data no reader keeps yet, each refused naming the line and the array.
 fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
+    let t = |s: &str| s.as_bytes().to_vec();
     let tri = "POINTS 3 double\n0 0 0 1 0 0 0 1 0\nCELLS 1 4\n3 0 1 2\nCELL_TYPES 1\n5\n";
     let vtk = |body: &str| {
         format!("# vtk DataFile Version 4.2\nt\nASCII\nDATASET UNSTRUCTURED_GRID\n{tri}{body}")
@@ -503,12 +504,44 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             vtk("SCALARS region int 1\nLOOKUP_TABLE default\n1\n"),
         ),
         (
+            "partial data (refused: nothing holds \"no value\")",
+            "colour-partial.obj",
+            t("v 0 0 0 1 0 0\nv 1 0 0\np 1 2\n"),
+        ),
+        (
+            "data not held (refused, never skipped)",
+            "vt-unreferenced.obj",
+            t("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1 2 3\n"),
+        ),
+        (
+            "unknown node or element in data",
+            "vn-index.obj",
+            t("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n"),
+        ),
+        (
             "data not held (refused, never skipped)",
             "data-string.vtu",
             vtu(
                 1,
                 "<DataArray type=\"String\" Name=\"names\" format=\"ascii\">a b c</DataArray>\n",
                 "",
+            ),
+        ),
+        (
+            "data not held (refused, never skipped)",
+            "fielddata.vtu",
+            vtu_with_field_data(),
+        ),
+        (
+            "data not held (refused, never skipped)",
+            "raw-appended.vtu",
+            t(
+                "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"1.0\">\n\
+               <UnstructuredGrid>\n<Piece NumberOfPoints=\"1\" NumberOfCells=\"0\">\n<Points>\n\
+               <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" \
+               offset=\"0\"/>\n</Points>\n</Piece>\n</UnstructuredGrid>\n\
+               <AppendedData encoding=\"raw\">\n_\u{18}\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\0\n\
+               </AppendedData>\n</VTKFile>\n",
             ),
         ),
         (
@@ -548,6 +581,17 @@ fn data_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
             ),
         ),
     ]
+}
+
+/// A `.vtu` triangle with a `<FieldData>` array (a time value on the whole mesh).
+fn vtu_with_field_data() -> Vec<u8> {
+    let one = String::from_utf8(vtu(1, "", "")).unwrap();
+    one.replace(
+        "<UnstructuredGrid>\n",
+        "<UnstructuredGrid>\n<FieldData>\n<DataArray type=\"Float64\" Name=\"TIME\" \
+         NumberOfTuples=\"1\" format=\"ascii\">2.5</DataArray>\n</FieldData>\n",
+    )
+    .into_bytes()
 }
 
 /// A `.vtu` of `pieces` pieces, each a triangle; the first with `point` and `cell` data arrays.
@@ -1098,6 +1142,12 @@ fn triangulate_cases() -> Vec<(&'static str, &'static str, Vec<u8>)> {
                3 0.2 0.2 0\n4 0 1 0\n$EndNodes\n$Elements\n1\n1 3 2 7 1 1 2 3 4\n\
                $EndElements\n",
             ),
+        ),
+        (
+            "per-corner data on a polygon",
+            "flat-quad.obj",
+            t("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nvn 0 0 -1\n\
+               f 1//1 2//1 3//1 4//1\nf 1//2 4//2 3//2\n"),
         ),
         (
             "polygon in a format not fanned (refused as without the flag)",

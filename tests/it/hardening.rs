@@ -227,7 +227,7 @@ fn cases(dir: &Path) -> Vec<(&'static str, &'static str, String)> {
     );
     row(
         "9 silent overwrites",
-        "`convert mesh.obj mesh.obj` (the normals would be lost)",
+        "`convert mesh.obj mesh.obj` (the input would be truncated while read)",
         run_outcome(dir, &["convert", "mesh.obj", "mesh.obj"]),
     );
     assert!(

@@ -19,6 +19,7 @@ mod bad_input;
 mod cli;
 mod complex;
 mod formats;
+mod gmsh_real;
 mod handles;
 mod hardening;
 mod ia;

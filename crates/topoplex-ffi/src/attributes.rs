@@ -451,24 +451,49 @@ pub unsafe extern "C" fn tpx_complex_label_name(
 }
 
 /// The live top with packed id `top` (the handle API's numbering, as `tpx_live_top_vertices`
-/// takes), as the live complex's own top handle: found in the star of its first vertex.
+/// takes), as the live complex's own top handle. O(1).
 fn live_top(live: &LiveComplex, top: u32) -> Result<TopId, Failure> {
-    let row = live
-        .top_as_given_slice(topoplex::relation::handle::TopId(top))
+    // The handle API's check first, for its statuses (INVALID_HANDLE, STALE_GENERATION).
+    live.top_as_given_slice(topoplex::relation::handle::TopId(top))
         .map_err(super::structure::query_failure)?;
-    let (p, slot) = ((top >> 28) as usize, top & ((1 << 28) - 1));
-    live.vertex_star(VertexId(row[0]))
-        .map_err(super::live::refusal)?
-        .find(|t| t.dim() == p && t.slot() == slot)
-        .ok_or_else(|| {
-            Failure::new(
-                TpxStatus::InvalidHandle,
-                format!(
-                    "top id {top:#x} is not in the star of its vertex {}",
-                    row[0]
-                ),
-            )
-        })
+    live.top_of_packed(top).map_err(super::live::refusal)
+}
+
+/// Checks `data` as a row of attribute `name` whose row is now `row`: as many numbers as its
+/// components, and for labels each an integer within the type.
+fn check_row(name: &str, row: &Values, data: &[f64]) -> Result<(), Failure> {
+    let len = data.len();
+    if row.len() != len {
+        return Err(Failure::new(
+            TpxStatus::InvalidArgument,
+            format!(
+                "attribute '{}' has {} components, {len} numbers given",
+                topoplex::error::echo(name),
+                row.len()
+            ),
+        ));
+    }
+    let range = match row.value_type() {
+        ValueType::I32 => Some((f64::from(i32::MIN), f64::from(i32::MAX))),
+        ValueType::I64 => Some((-(2f64.powi(63)), 2f64.powi(63) - 1024.0)),
+        _ => None,
+    };
+    if let Some((lo, hi)) = range
+        && let Some(k) = data
+            .iter()
+            .position(|&y| y.fract() != 0.0 || !(lo..=hi).contains(&y))
+    {
+        return Err(Failure::new(
+            TpxStatus::InvalidArgument,
+            format!(
+                "attribute '{}' holds {} labels: number {k} ({}) is not one",
+                topoplex::error::echo(name),
+                row.value_type().name(),
+                data[k]
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// The numbers of `row` as doubles (exact but for `int64_t` beyond 2^53).
@@ -482,7 +507,7 @@ fn row_f64(row: &Values) -> Vec<f64> {
 /// `*out_len` = the attribute's components. A top made by an edit has labels 0 and reals NaN
 /// until set; a contraction's survivors keep theirs. Errors: NULL_ARGUMENT, INVALID_HANDLE /
 /// STALE_GENERATION (no live top there), NO_SUCH_ATTRIBUTE (no listed attribute of that
-/// name), BUFFER_TOO_SMALL (`*out_len` = components). O(star of the top's first vertex).
+/// name), BUFFER_TOO_SMALL (`*out_len` = components). O(components).
 ///
 /// # Safety
 /// Non-NULL pointers must be valid; `buf` has room for `buf_len` doubles.
@@ -513,7 +538,7 @@ pub unsafe extern "C" fn tpx_live_top_values(
 /// integers within the type for a label attribute). Errors (nothing changes): NULL_ARGUMENT,
 /// INVALID_HANDLE / STALE_GENERATION, NO_SUCH_ATTRIBUTE, INVALID_ARGUMENT (`len` is not the
 /// components; for labels, a number with a fraction, NaN, infinite or out of the type's range). Needs exclusive access
-/// to `l`. O(star of the top's first vertex + components).
+/// to `l`. O(components).
 ///
 /// # Safety
 /// Non-NULL pointers must be valid; `data` holds `len` doubles.
@@ -534,36 +559,7 @@ pub unsafe extern "C" fn tpx_live_set_top_values(
             .top_values(name, t)
             .map_err(super::live::refusal)?
             .ok_or_else(|| no_such(name, "on the listed simplices"))?;
-        if row.len() != len {
-            return Err(Failure::new(
-                TpxStatus::InvalidArgument,
-                format!(
-                    "attribute '{}' has {} components, {len} numbers given",
-                    topoplex::error::echo(name),
-                    row.len()
-                ),
-            ));
-        }
-        let range = match row.value_type() {
-            ValueType::I32 => Some((f64::from(i32::MIN), f64::from(i32::MAX))),
-            ValueType::I64 => Some((-(2f64.powi(63)), 2f64.powi(63) - 1024.0)),
-            _ => None,
-        };
-        if let Some((lo, hi)) = range
-            && let Some(k) = data
-                .iter()
-                .position(|&y| y.fract() != 0.0 || !(lo..=hi).contains(&y))
-        {
-            return Err(Failure::new(
-                TpxStatus::InvalidArgument,
-                format!(
-                    "attribute '{}' holds {} labels: number {k} ({}) is not one",
-                    topoplex::error::echo(name),
-                    row.value_type().name(),
-                    data[k]
-                ),
-            ));
-        }
+        check_row(name, &row, data)?;
         live.set_top_values(name, t, data)
             .map_err(super::live::refusal)?;
         Ok(())
@@ -620,6 +616,111 @@ pub unsafe extern "C" fn tpx_live_set_vertex_policy(l: *mut TpxLive, policy: u32
             }
         };
         live.set_vertex_policy(policy);
+        Ok(())
+    })
+}
+
+/// Sets the values of vertex attribute `name` on live vertex `v` to `data[0 .. len]` (`len` =
+/// its components; doubles rounded to `float` for a `TPX_VALUE_F32` attribute, and exact
+/// integers within the type for a label attribute). Errors (nothing changes): NULL_ARGUMENT,
+/// DEAD_VERTEX, NO_SUCH_ATTRIBUTE, INVALID_ARGUMENT (`len` is not the components; for labels,
+/// a number with a fraction, NaN, infinite or out of the type's range). Needs exclusive access
+/// to `l`. O(attributes + components).
+///
+/// # Safety
+/// Non-NULL pointers must be valid; `data` holds `len` doubles.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_set_vertex_values(
+    l: *mut TpxLive,
+    name: *const c_char,
+    v: u32,
+    data: *const f64,
+    len: usize,
+) -> TpxStatus {
+    guard(|| {
+        let live = out_ptr(l, "l")?.live_mut();
+        let name = name_arg(name, "name")?;
+        let data = in_slice(data, len, "data")?;
+        let row = live
+            .vertex_values(name, VertexId(v))
+            .map_err(super::live::refusal)?
+            .ok_or_else(|| no_such(name, "on the vertices"))?;
+        check_row(name, &row, data)?;
+        live.set_vertex_values(name, VertexId(v), data)
+            .map_err(super::live::refusal)?;
+        Ok(())
+    })
+}
+
+/// A caller's merge of vertex values at a contraction {a, b} -> a
+/// (`tpx_live_set_vertex_merge`): called with the caller's `user` pointer, the attribute's name
+/// (NUL-terminated UTF-8, valid during the call), a and b, a's row (`components` doubles, to
+/// change in place: what it leaves there is rounded to the attribute's type, integers
+/// truncated) and b's row (read only).
+pub type TpxVertexMerge = Option<
+    unsafe extern "C" fn(
+        user: *mut c_void,
+        name: *const c_char,
+        a: u32,
+        b: u32,
+        row_a: *mut f64,
+        row_b: *const f64,
+        components: usize,
+    ),
+>;
+
+/// The caller's `user` pointer, handed back to its callback as given.
+struct User(*mut c_void);
+// SAFETY: the pointer is only handed back to the caller's callback, which the caller made safe
+// to call from whatever thread edits the live complex (the contract of
+// `tpx_live_set_vertex_merge`).
+unsafe impl Send for User {}
+// SAFETY: as above; Topoplex never dereferences it.
+unsafe impl Sync for User {}
+
+/// Later contractions {a, b} -> a merge a's vertex values by `merge`, called once per vertex
+/// attribute before the contraction changes the complex, with `user` as given; the split
+/// restores a's values as they were. Replaces the `TPX_VERTEX_*` policy until
+/// `tpx_live_set_vertex_policy` is called again. `merge` and `user` must stay valid while the
+/// live complex may contract (until the policy is set again or the live complex is freed); the
+/// callback runs on the thread that calls `tpx_live_contract`, must not call back into this live
+/// complex and must not unwind (a C++ exception thrown through it is undefined behaviour).
+/// Errors: NULL_ARGUMENT (`l` or `merge` NULL). Needs exclusive access to `l`. O(1); each
+/// contraction then costs one call and 2 x components doubles copied per vertex attribute.
+///
+/// # Safety
+/// `l` is a valid live complex; `merge` is a valid function; see above for `user`.
+#[unsafe(no_mangle)]
+pub unsafe extern "C" fn tpx_live_set_vertex_merge(
+    l: *mut TpxLive,
+    merge: TpxVertexMerge,
+    user: *mut c_void,
+) -> TpxStatus {
+    guard(|| {
+        let live = out_ptr(l, "l")?.live_mut();
+        let Some(merge) = merge else {
+            return Err(Failure::new(TpxStatus::NullArgument, "merge is NULL"));
+        };
+        let user = User(user);
+        live.set_vertex_merge(move |name, a, b, row_a, row_b| {
+            let user = &user;
+            // A name with a NUL byte reaches the callback cut at it.
+            let cut = name.split('\0').next().unwrap_or_default();
+            let name = std::ffi::CString::new(cut).unwrap_or_default();
+            // SAFETY: the caller promised a valid function and pointer (see above); the rows
+            // are `components` doubles each, live for the call.
+            unsafe {
+                merge(
+                    user.0,
+                    name.as_ptr(),
+                    a,
+                    b,
+                    row_a.as_mut_ptr(),
+                    row_b.as_ptr(),
+                    row_a.len(),
+                )
+            };
+        });
         Ok(())
     })
 }

@@ -20,7 +20,10 @@ use numpy::{
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList, PyType};
 use topoplex::complex::{Attribute, Attributes, Coords, Location, Values};
-use topoplex::live::{ContractMode, LiveComplex, Refusal, UndoRecord};
+use topoplex::live::{
+    ACROSS_MANY, ACROSS_NONE, ContractMode, LiveComplex, Refusal, TopId, UndoRecord,
+};
+use topoplex::store::{ComplexSpans, Saved, Span};
 use topoplex::{Budget, Complex, Navigate, Order, StructureKind, Topology, VertexId};
 
 /// A failure on the Rust side, named by the Python exception class it becomes
@@ -39,6 +42,8 @@ enum Fail {
     Write(String),
     /// Too large for memory or for 32-bit ids (`TopoplexMemoryError`).
     Memory(String),
+    /// No attribute of that name (`KeyError`).
+    Key(String),
 }
 
 impl From<Fail> for PyErr {
@@ -50,6 +55,7 @@ impl From<Fail> for PyErr {
             Fail::Read(m) => ("ReadError", m),
             Fail::Write(m) => ("WriteError", m),
             Fail::Memory(m) => ("TopoplexMemoryError", m),
+            Fail::Key(m) => return pyo3::exceptions::PyKeyError::new_err(m),
         };
         Python::attach(|py| {
             match py
@@ -99,6 +105,24 @@ fn open_fail(e: topoplex::store::OpenError) -> Fail {
     }
 }
 
+/// A saved file that cannot be opened or is malformed is a `ReadError`; memory it asks for that
+/// cannot be had (a mapping, a copy, a build) is a `TopoplexMemoryError`.
+fn store_fail(e: topoplex::store::StoreError) -> Fail {
+    use topoplex::ComplexError as C;
+    use topoplex::store::StoreError as S;
+    match &e {
+        S::Complex {
+            source: C::TooLarge { .. } | C::OutOfMemory { .. },
+            ..
+        }
+        | S::Build {
+            source: topoplex::BuildError::TooLarge { .. },
+            ..
+        } => Fail::Memory(e.to_string()),
+        _ => Fail::Read(e.to_string()),
+    }
+}
+
 fn kind_of(name: &str) -> Result<StructureKind, Fail> {
     StructureKind::from_name(name).ok_or_else(|| {
         let names: Vec<&str> = StructureKind::NAMED.iter().map(|k| k.name()).collect();
@@ -125,18 +149,26 @@ fn vec2<T: numpy::Element>(py: Python<'_>, v: Vec<T>, cols: usize) -> PyResult<B
 /// An immutable simplicial complex: the closure of the simplices given, with optional vertex
 /// coordinates and attributes. Made by `topoplex.read`, `topoplex.open` or
 /// `Complex.from_arrays`.
-#[pyclass(module = "topoplex._core", name = "Complex", frozen)]
+#[pyclass(module = "topoplex._core", name = "Complex", frozen, weakref)]
 struct PyComplex {
     inner: Arc<Complex>,
     /// The incidence graph, built on the first call that needs every simplex.
     ig: OnceLock<Result<Box<dyn Topology>, String>>,
+    /// For a complex opened from a saved file: the file mapped for Python, where its arrays
+    /// are viewed rather than copied.
+    lent: Option<Arc<Lent>>,
 }
 
 impl PyComplex {
     fn wrap(c: Complex) -> PyComplex {
+        PyComplex::with_lent(Arc::new(c), None)
+    }
+
+    fn with_lent(inner: Arc<Complex>, lent: Option<Arc<Lent>>) -> PyComplex {
         PyComplex {
-            inner: Arc::new(c),
+            inner,
             ig: OnceLock::new(),
+            lent,
         }
     }
 
@@ -153,6 +185,97 @@ impl PyComplex {
     }
 }
 
+/// A saved file mapped read-only by Python's `mmap` (a buffer numpy views without copying),
+/// and where the arrays of its complex lie in it. Safe Rust only (the C ABI crate and the
+/// core's `sys` are the only places for `unsafe`): numpy gets the bytes through the buffer
+/// protocol of Python's own map, each view's `.base` chain (a memoryview of the map) keeping
+/// the map alive however long the view outlives the complex; the map is read-only, so every
+/// view is (`writeable` False, and cannot be set True).
+struct Lent {
+    map: Py<PyAny>,
+    spans: ComplexSpans,
+}
+
+impl Lent {
+    /// `count` elements of numpy type `dtype` at the span, viewed as `cols` columns when
+    /// `cols > 1`.
+    fn view<'py>(
+        &self,
+        py: Python<'py>,
+        span: Span,
+        dtype: &str,
+        cols: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let np = py.import("numpy")?;
+        let a = if span.count == 0 {
+            // An empty section may sit at the file's very end, where frombuffer refuses the
+            // offset; there is nothing to view anyway.
+            let a = np.call_method1("empty", (0, dtype))?;
+            let kw = PyDict::new(py);
+            kw.set_item("write", false)?;
+            a.call_method("setflags", (), Some(&kw))?;
+            a
+        } else {
+            let kw = PyDict::new(py);
+            kw.set_item("dtype", dtype)?;
+            kw.set_item("count", span.count)?;
+            kw.set_item("offset", span.offset)?;
+            np.call_method("frombuffer", (self.map.bind(py),), Some(&kw))?
+        };
+        if cols > 1 {
+            a.call_method1("reshape", (-1, cols))
+        } else {
+            Ok(a)
+        }
+    }
+}
+
+/// Opens a saved file for the binding: the core's [`Saved`] and, on Unix, the same open file
+/// mapped again by Python's `mmap` (read-only), so the complex's arrays can be lent as views;
+/// both maps are of one file whatever is renamed over `path` meanwhile.
+fn open_saved(py: Python<'_>, path: &std::path::Path) -> PyResult<(Saved, Option<Py<PyAny>>)> {
+    let (file, _) = topoplex::io::open_regular(path)
+        .map_err(|e| Fail::Read(format!("{}: {e}", path.display())))?;
+    let saved = py
+        .detach(|| Saved::open_file(path, &file))
+        .map_err(store_fail)?;
+    #[cfg(unix)]
+    let map = {
+        use std::os::fd::AsRawFd;
+        let mmap = py.import("mmap")?;
+        let kw = PyDict::new(py);
+        kw.set_item("access", mmap.getattr("ACCESS_READ")?)?;
+        // Python's mmap duplicates the descriptor; ours is closed when `file` drops.
+        Some(
+            mmap.getattr("mmap")?
+                .call((file.as_raw_fd(), 0), Some(&kw))?
+                .unbind(),
+        )
+    };
+    #[cfg(not(unix))]
+    let map = None;
+    Ok((saved, map))
+}
+
+/// The complex of an opened file, with its arrays lent from `map` when there is one.
+fn saved_complex(
+    py: Python<'_>,
+    saved: &Saved,
+    map: Option<Py<PyAny>>,
+) -> PyResult<(Complex, Option<Arc<Lent>>)> {
+    let (c, spans) = py.detach(|| saved.complex_spans()).map_err(store_fail)?;
+    Ok((c, map.map(|map| Arc::new(Lent { map, spans }))))
+}
+
+fn dtype_of(v: &Values) -> &'static str {
+    match v {
+        Values::I32(_) => "int32",
+        Values::I64(_) => "int64",
+        Values::F32(_) => "float32",
+        Values::F64(_) => "float64",
+    }
+}
+
 fn location_name(l: Location) -> &'static str {
     match l {
         Location::Vertices => "vertices",
@@ -160,11 +283,28 @@ fn location_name(l: Location) -> &'static str {
     }
 }
 
-/// The attributes as a dict: name → (location, array of shape (n,) or (n, components)).
-fn attributes_dict<'py>(py: Python<'py>, attrs: &Attributes) -> PyResult<Bound<'py, PyDict>> {
+/// The attributes as a dict: name → (location, array of shape (n,) or (n, components)); views
+/// into the saved file when `lent`, else copies.
+fn attributes_dict<'py>(
+    py: Python<'py>,
+    attrs: &Attributes,
+    lent: Option<&Lent>,
+) -> PyResult<Bound<'py, PyDict>> {
     let d = PyDict::new(py);
     for a in attrs.iter() {
         let c = a.components;
+        let span = lent.and_then(|l| {
+            l.spans
+                .attributes
+                .iter()
+                .find(|(n, _)| *n == a.name)
+                .map(|(_, s)| (l, *s))
+        });
+        if let Some((l, span)) = span {
+            let arr = l.view(py, span, dtype_of(&a.values), c)?;
+            d.set_item(&a.name, (location_name(a.location), arr))?;
+            continue;
+        }
         let arr = match &a.values {
             Values::I32(v) => vec2(py, v.clone(), c)?,
             Values::I64(v) => vec2(py, v.clone(), c)?,
@@ -181,9 +321,20 @@ fn attributes_dict<'py>(py: Python<'py>, attrs: &Attributes) -> PyResult<Bound<'
     Ok(d)
 }
 
-fn coords_array<'py>(py: Python<'py>, c: Option<&Coords>) -> PyResult<Option<Bound<'py, PyAny>>> {
-    match c {
-        Some(c) if c.dim > 0 => Ok(Some(vec2(py, c.data.clone(), c.dim)?)),
+/// The coordinates as an (n, dim) float64 array: a view into the saved file when `lent`, else
+/// a copy.
+fn coords_array<'py>(
+    py: Python<'py>,
+    c: Option<&Coords>,
+    lent: Option<&Lent>,
+) -> PyResult<Option<Bound<'py, PyAny>>> {
+    match (c, lent.and_then(|l| l.spans.coords.map(|s| (l, s)))) {
+        (Some(c), Some((l, span))) if c.dim > 0 => {
+            // A 1-column view keeps its 2-D shape, as the copy does.
+            let a = l.view(py, span, "float64", 1)?;
+            Ok(Some(a.call_method1("reshape", (-1, c.dim))?))
+        }
+        (Some(c), _) if c.dim > 0 => Ok(Some(vec2(py, c.data.clone(), c.dim)?)),
         _ => Ok(None),
     }
 }
@@ -216,9 +367,40 @@ impl PyComplex {
         Ok(PyComplex::wrap(c))
     }
 
-    /// Reads a mesh file (by extension) or a saved `.tpx` file.
+    /// Builds from one block of simplices of `arity` vertices each: simplex i is
+    /// `ids[i*arity:(i+1)*arity]` (an (n, arity) array, flat), without offsets.
+    #[staticmethod]
+    #[pyo3(signature = (n_vertices, arity, ids, points=None))]
+    fn _from_uniform(
+        py: Python<'_>,
+        n_vertices: u32,
+        arity: usize,
+        ids: PyReadonlyArray1<'_, u32>,
+        points: Option<PyReadonlyArray2<'_, f64>>,
+    ) -> PyResult<PyComplex> {
+        let ids = ids.as_slice()?;
+        let coords = match &points {
+            Some(p) => Some(Coords {
+                dim: p.shape()[1],
+                data: p.as_slice()?.to_vec(),
+            }),
+            None => None,
+        };
+        let c = py
+            .detach(|| Complex::from_uniform(n_vertices, arity, ids, coords))
+            .map_err(complex_fail)?;
+        Ok(PyComplex::wrap(c))
+    }
+
+    /// Reads a mesh file (by extension) or a saved `.tpx` file (its arrays then lent as
+    /// read-only views into the file).
     #[staticmethod]
     fn _read(py: Python<'_>, path: PathBuf) -> PyResult<PyComplex> {
+        if topoplex::store::is_saved_path(&path) {
+            let (saved, map) = open_saved(py, &path)?;
+            let (c, lent) = saved_complex(py, &saved, map)?;
+            return Ok(PyComplex::with_lent(Arc::new(c), lent));
+        }
         let c = py
             .detach(|| topoplex::store::open_complex(&path, Budget::default()))
             .map_err(open_fail)?;
@@ -240,13 +422,20 @@ impl PyComplex {
     /// Vertex coordinates as a float64 array of shape (n, k), or None.
     #[getter]
     fn points<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        coords_array(py, self.inner.coords())
+        coords_array(py, self.inner.coords(), self.lent.as_deref())
     }
 
     /// Attributes as a dict: name → (location, array); location is "vertices" or "listed".
     #[getter]
     fn attributes<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        attributes_dict(py, self.inner.attributes())
+        attributes_dict(py, self.inner.attributes(), self.lent.as_deref())
+    }
+
+    /// Whether the arrays (`points`, `attributes`, `listed()`) are read-only views into a
+    /// saved file rather than copies.
+    #[getter]
+    fn mapped(&self) -> bool {
+        self.lent.is_some()
     }
 
     /// Number of p-simplices.
@@ -309,6 +498,7 @@ impl PyComplex {
         Ok(PyStructure {
             inner: Inner::Fixed(s),
             complex: Some(self.inner.clone()),
+            lent: self.lent.clone(),
         })
     }
 
@@ -320,6 +510,7 @@ impl PyComplex {
         Ok(PyStructure {
             inner: Inner::Live(Box::new(l)),
             complex: None,
+            lent: None,
         })
     }
 
@@ -381,6 +572,12 @@ impl PyComplex {
     /// The simplices as listed (input order, each with its vertex order as given, repeats and
     /// faces included): a CSR pair `(offsets, ids)`. Attributes on "listed" are per row.
     fn listed<'py>(&self, py: Python<'py>) -> PyResult<(Bound<'py, PyAny>, Bound<'py, PyAny>)> {
+        if let Some(l) = &self.lent {
+            // The saved offsets are u64 from 0 to the ids' length: the same bytes as int64.
+            let offsets = l.view(py, l.spans.listed_offsets, "int64", 1)?;
+            let ids = l.view(py, l.spans.listed_ids, "uint32", 1)?;
+            return Ok((offsets, ids));
+        }
         let c = &self.inner;
         let n = c.input_count();
         let mut offsets = Vec::with_capacity(n + 1);
@@ -456,6 +653,8 @@ struct PyStructure {
     inner: Inner,
     /// The complex it was built on (None for the live mesh, whose complex changes).
     complex: Option<Arc<Complex>>,
+    /// The complex's arrays in the saved file it was opened from, if any.
+    lent: Option<Arc<Lent>>,
 }
 
 impl PyStructure {
@@ -814,10 +1013,7 @@ impl PyStructure {
     /// renumbered densely as `compact()` would).
     fn to_complex(&self, py: Python<'_>) -> PyComplex {
         match (&self.inner, &self.complex) {
-            (_, Some(c)) => PyComplex {
-                inner: c.clone(),
-                ig: OnceLock::new(),
-            },
+            (_, Some(c)) => PyComplex::with_lent(c.clone(), self.lent.clone()),
             (Inner::Live(l), None) => PyComplex::wrap(py.detach(|| l.to_complex())),
             (Inner::Fixed(_), None) => unreachable!("a built structure keeps its complex"),
         }
@@ -837,7 +1033,11 @@ impl PyStructure {
                 }
                 Ok(Some(vec2(py, l.all_coords().to_vec(), k)?))
             }
-            Inner::Fixed(_) => coords_array(py, self.complex.as_ref().and_then(|c| c.coords())),
+            Inner::Fixed(_) => coords_array(
+                py,
+                self.complex.as_ref().and_then(|c| c.coords()),
+                self.lent.as_deref(),
+            ),
         }
     }
 
@@ -986,6 +1186,171 @@ impl PyStructure {
         Ok(out)
     }
 
+    /// The rows of vertex attribute `name` for the live vertices `vertices` (ids), as one
+    /// array of the attribute's type, (n, components) (None for no vertex); KeyError without
+    /// such an attribute.
+    fn _vertex_values<'py>(
+        &self,
+        py: Python<'py>,
+        name: &str,
+        vertices: PyReadonlyArray1<'_, u32>,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let l = self.live_ref()?;
+        let vs = vertices.as_slice()?;
+        let rows = py.detach(|| {
+            vs.iter()
+                .map(|&v| {
+                    l.vertex_values(name, VertexId(v))
+                        .map_err(|e| Fail::Input(e.to_string()))
+                })
+                .collect::<Result<Vec<_>, Fail>>()
+        })?;
+        rows_array(py, name, rows)
+    }
+
+    /// Sets the rows of vertex attribute `name` of the live vertices `vertices` to the rows of
+    /// `values` (float64, (n, components)); labels must be whole numbers of their type.
+    /// Checks everything first: on an error nothing changes.
+    fn _set_vertex_values(
+        &mut self,
+        py: Python<'_>,
+        name: &str,
+        vertices: PyReadonlyArray1<'_, u32>,
+        values: PyReadonlyArray2<'_, f64>,
+    ) -> PyResult<()> {
+        let vs = vertices.as_slice()?;
+        let (data, c) = (values.as_slice()?, values.shape()[1]);
+        let l = self.live_mut()?;
+        py.detach(|| {
+            check_rows(vs.len(), data, c)?;
+            for (i, &v) in vs.iter().enumerate() {
+                l.vertex_values(name, VertexId(v))
+                    .map_err(|e| Fail::Input(format!("row {i}: {e}")))?;
+            }
+            if let Some(&v) = vs.first() {
+                let row = l
+                    .vertex_values(name, VertexId(v))
+                    .map_err(|e| Fail::Input(e.to_string()))?
+                    .ok_or_else(|| no_attribute(name, "vertices"))?;
+                check_values(name, &row, data, c)?;
+            }
+            for (&v, row) in vs.iter().zip(data.chunks_exact(c.max(1))) {
+                l.set_vertex_values(name, VertexId(v), row)
+                    .map_err(|e| Fail::Input(e.to_string()))?;
+            }
+            Ok::<_, Fail>(())
+        })?;
+        Ok(())
+    }
+
+    /// The rows of listed attribute `name` for the live top p-simplices `rows` (row indices of
+    /// `live_tops()[p]`), as `_vertex_values`.
+    fn _top_values<'py>(
+        &self,
+        py: Python<'py>,
+        name: &str,
+        p: usize,
+        rows: PyReadonlyArray1<'_, u32>,
+    ) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let l = self.live_ref()?;
+        let rows = rows.as_slice()?;
+        let got = py.detach(|| {
+            let tops = live_top_ids(l, p);
+            rows.iter()
+                .map(|&r| {
+                    let t = top_at(&tops, p, r)?;
+                    l.top_values(name, t)
+                        .map_err(|e| Fail::Input(e.to_string()))
+                })
+                .collect::<Result<Vec<_>, Fail>>()
+        })?;
+        rows_array(py, name, got)
+    }
+
+    /// Sets the rows of listed attribute `name` of the live top p-simplices `rows` (row
+    /// indices of `live_tops()[p]`) to the rows of `values`, as `_set_vertex_values`.
+    fn _set_top_values(
+        &mut self,
+        py: Python<'_>,
+        name: &str,
+        p: usize,
+        rows: PyReadonlyArray1<'_, u32>,
+        values: PyReadonlyArray2<'_, f64>,
+    ) -> PyResult<()> {
+        let rows = rows.as_slice()?;
+        let (data, c) = (values.as_slice()?, values.shape()[1]);
+        let l = self.live_mut()?;
+        py.detach(|| {
+            check_rows(rows.len(), data, c)?;
+            let tops = live_top_ids(l, p);
+            let ts = rows
+                .iter()
+                .map(|&r| top_at(&tops, p, r))
+                .collect::<Result<Vec<_>, Fail>>()?;
+            if let Some(&t) = ts.first() {
+                let row = l
+                    .top_values(name, t)
+                    .map_err(|e| Fail::Input(e.to_string()))?
+                    .ok_or_else(|| no_attribute(name, "listed simplices"))?;
+                check_values(name, &row, data, c)?;
+            }
+            for (&t, row) in ts.iter().zip(data.chunks_exact(c.max(1))) {
+                l.set_top_values(name, t, row)
+                    .map_err(|e| Fail::Input(e.to_string()))?;
+            }
+            Ok::<_, Fail>(())
+        })?;
+        Ok(())
+    }
+
+    /// The tops across each facet of every live top p-simplex: a uint32 (n, p+1) array, row i
+    /// for row i of `live_tops()[p]`, entry j for its facet opposite its j-th vertex (as
+    /// listed there): the row of the one other top p-simplex through that facet,
+    /// `ACROSS_NONE` when there is none (of dimension p), `ACROSS_MANY` when several.
+    fn _adjacency<'py>(&self, py: Python<'py>, p: usize) -> PyResult<Bound<'py, PyAny>> {
+        let l = self.live_ref()?;
+        if p == 0 || p > l.dimension() {
+            return Err(Fail::Input(format!(
+                "adjacency: p = {p} must be in 1..={}",
+                l.dimension()
+            ))
+            .into());
+        }
+        let out = py.detach(|| {
+            let adj = l.adjacency().map_err(build_fail)?;
+            let entries = adj.rows[p];
+            let w = p + 1;
+            // Slot → row of live_tops()[p] (tombstoned slots skipped).
+            let mut row_of = vec![ACROSS_NONE; entries.len() / w];
+            let mut live = Vec::new();
+            for (t, _) in l.tops().filter(|(t, _)| t.dim() == p) {
+                row_of[t.slot() as usize] = live.len() as u32;
+                live.push(t.slot() as usize);
+            }
+            let mut out = Vec::with_capacity(live.len() * w);
+            for &slot in &live {
+                for &e in &entries[slot * w..(slot + 1) * w] {
+                    out.push(match e {
+                        ACROSS_NONE | ACROSS_MANY => e,
+                        // A packed top id of dimension p: its slot in the low 28 bits.
+                        e => row_of[(e & ((1 << 28) - 1)) as usize],
+                    });
+                }
+            }
+            Ok::<_, Fail>(out)
+        })?;
+        vec2(py, out, p + 1)
+    }
+
+    /// Keeps the facet adjacency across edits (built now, then repaired by each edit), or,
+    /// with `keep=False`, builds it on request and drops it at each edit (the default).
+    #[pyo3(signature = (keep=true))]
+    fn keep_adjacency(&mut self, py: Python<'_>, keep: bool) -> PyResult<()> {
+        let l = self.live_mut()?;
+        py.detach(|| l.keep_adjacency(keep)).map_err(build_fail)?;
+        Ok(())
+    }
+
     /// Simplifies the live mesh in place to about `ratio` of its top simplices (quadric
     /// decimation); returns the statistics.
     #[pyo3(signature = (ratio, preserve_topology=false, keep_regions=None))]
@@ -1023,6 +1388,102 @@ impl PyStructure {
         let counts: Vec<usize> = (0..=t.dimension()).map(|p| t.count(p)).collect();
         format!("<topoplex.Structure {}: simplices {:?}>", t.kind(), counts)
     }
+}
+
+/// The live tops of dimension p, in the order of `live_tops()[p]` (slot order).
+fn live_top_ids(l: &LiveComplex, p: usize) -> Vec<TopId> {
+    l.tops()
+        .filter(|(t, _)| t.dim() == p)
+        .map(|(t, _)| t)
+        .collect()
+}
+
+fn top_at(tops: &[TopId], p: usize, r: u32) -> Result<TopId, Fail> {
+    tops.get(r as usize).copied().ok_or_else(|| {
+        Fail::Input(format!(
+            "top row {r}: the live mesh has {} top {p}-simplices",
+            tops.len()
+        ))
+    })
+}
+
+fn no_attribute(name: &str, on: &str) -> Fail {
+    Fail::Key(format!(
+        "no attribute {} on the {on}",
+        topoplex::error::echo(name)
+    ))
+}
+
+/// `n` rows of `c` numbers in `data`.
+fn check_rows(n: usize, data: &[f64], c: usize) -> Result<(), Fail> {
+    if data.len() != n * c {
+        return Err(Fail::Input(format!(
+            "values: {} rows of {c} for {n} simplices",
+            data.len() / c.max(1)
+        )));
+    }
+    Ok(())
+}
+
+/// `data` (rows of `c`) fits attribute `name`, whose row `like` is: `c` is its components, and
+/// for labels every number is a whole number of the type.
+fn check_values(name: &str, like: &Values, data: &[f64], c: usize) -> Result<(), Fail> {
+    if like.len() != c {
+        return Err(Fail::Input(format!(
+            "attribute {} has {} components, rows of {c} given",
+            topoplex::error::echo(name),
+            like.len()
+        )));
+    }
+    let range = match like {
+        Values::I32(_) => Some((f64::from(i32::MIN), f64::from(i32::MAX))),
+        // 2^63 - 1024: the largest f64 below 2^63.
+        Values::I64(_) => Some((-(2f64.powi(63)), 2f64.powi(63) - 1024.0)),
+        _ => None,
+    };
+    if let Some((lo, hi)) = range
+        && let Some(k) = data
+            .iter()
+            .position(|&y| y.fract() != 0.0 || !(lo..=hi).contains(&y))
+    {
+        return Err(Fail::Input(format!(
+            "attribute {} holds {} labels: value {} (row {}) is not one",
+            topoplex::error::echo(name),
+            dtype_of(like),
+            data[k],
+            k / c.max(1)
+        )));
+    }
+    Ok(())
+}
+
+/// Rows of one attribute (each `Some`, or KeyError naming it) as one array, (n,) for one
+/// component, else (n, components); None for no row.
+fn rows_array<'py>(
+    py: Python<'py>,
+    name: &str,
+    rows: Vec<Option<Values>>,
+) -> PyResult<Option<Bound<'py, PyAny>>> {
+    let mut it = rows.into_iter();
+    let Some(first) = it.next() else {
+        return Ok(None);
+    };
+    let mut all = first.ok_or_else(|| no_attribute(name, "simplices given"))?;
+    let c = all.len();
+    for r in it {
+        all.append(&r.ok_or_else(|| no_attribute(name, "simplices given"))?);
+    }
+    let arr = match all {
+        Values::I32(v) => vec2(py, v, c)?,
+        Values::I64(v) => vec2(py, v, c)?,
+        Values::F32(v) => vec2(py, v, c)?,
+        Values::F64(v) => vec2(py, v, c)?,
+    };
+    Ok(Some(if c == 1 {
+        arr.call_method1("reshape", (-1,))?
+    } else {
+        arr
+    }))
 }
 
 fn parity(given: &[u32]) -> i8 {
@@ -1080,10 +1541,10 @@ fn stats_dict<'py>(py: Python<'py>, s: &topoplex::simplify::Stats) -> PyResult<B
 #[pyo3(signature = (path, kind=None))]
 fn _open(py: Python<'_>, path: PathBuf, kind: Option<&str>) -> PyResult<Py<PyAny>> {
     let kind = kind.map(kind_of).transpose()?;
-    let read = |e: topoplex::store::StoreError| Fail::Read(e.to_string());
-    let (complex, structure) = py.detach(|| {
-        let saved = topoplex::store::Saved::open(&path).map_err(read)?;
-        let complex = saved.complex().map_err(read)?;
+    let read = store_fail;
+    let (saved, map) = open_saved(py, &path)?;
+    let (complex, lent) = saved_complex(py, &saved, map)?;
+    let structure = py.detach(|| {
         let s = match kind {
             Some(StructureKind::IaStar) => Some(Inner::Live(Box::new(
                 LiveComplex::open_saved(&saved).map_err(read)?,
@@ -1097,17 +1558,28 @@ fn _open(py: Python<'_>, path: PathBuf, kind: Option<&str>) -> PyResult<Py<PyAny
                 None => None,
             },
         };
-        Ok::<_, Fail>((complex, s))
+        Ok::<_, Fail>(s)
     })?;
     Ok(match structure {
-        Some(inner) => {
-            let complex = match inner {
-                Inner::Live(_) => None,
-                Inner::Fixed(_) => Some(Arc::new(complex)),
-            };
-            Py::new(py, PyStructure { inner, complex })?.into_any()
-        }
-        None => Py::new(py, PyComplex::wrap(complex))?.into_any(),
+        Some(Inner::Live(l)) => Py::new(
+            py,
+            PyStructure {
+                inner: Inner::Live(l),
+                complex: None,
+                lent: None,
+            },
+        )?
+        .into_any(),
+        Some(inner) => Py::new(
+            py,
+            PyStructure {
+                inner,
+                complex: Some(Arc::new(complex)),
+                lent,
+            },
+        )?
+        .into_any(),
+        None => Py::new(py, PyComplex::with_lent(Arc::new(complex), lent))?.into_any(),
     })
 }
 
@@ -1174,5 +1646,7 @@ fn _core(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(_simplify, m)?)?;
     m.add_function(wrap_pyfunction!(_decompose, m)?)?;
     m.add_function(wrap_pyfunction!(structure_names, m)?)?;
+    m.add("ACROSS_NONE", ACROSS_NONE)?;
+    m.add("ACROSS_MANY", ACROSS_MANY)?;
     Ok(())
 }

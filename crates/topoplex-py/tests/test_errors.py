@@ -32,6 +32,8 @@ def test_bad_arrays_are_refused_with_a_message():
         topoplex.Complex.from_arrays(np.array([[0, 1, 7]]), n_vertices=3)
     with pytest.raises(topoplex.InputError, match="CSR"):
         topoplex.Complex.from_arrays((np.array([0, 5]), np.array([0, 1, 2])))
+    with pytest.raises(topoplex.InputError, match="no vertex"):
+        topoplex.Complex.from_arrays([np.array([[0, 1]]), np.zeros((2, 0), dtype=np.int64)])
 
 
 def test_non_contiguous_and_other_dtypes_are_copied_once_and_give_the_same_complex():

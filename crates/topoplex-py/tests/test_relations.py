@@ -89,6 +89,28 @@ def test_the_three_input_forms_give_the_same_complex():
     assert a.census() == b.census() and a.census()["simplices"] == [5, 6, 2]
 
 
+@given(st.integers(1, 5), st.integers(2, 9), st.data())
+def test_one_array_passed_as_it_lies_gives_what_its_csr_gives(k, n, data):
+    # One (m, k) array goes to the Rust call without offsets; the same rows as a CSR pair go
+    # with them: the same complex (listing, simplices, census), or the same refusal.
+    rows = data.draw(st.lists(st.lists(st.integers(0, n), min_size=k, max_size=k), max_size=8))
+    arr = np.array(rows, dtype=np.int64).reshape(-1, k)
+    csr = (np.arange(0, arr.size + 1, k, dtype=np.int64), arr.reshape(-1))
+    try:
+        want = topoplex.Complex.from_arrays(csr, n_vertices=n)
+    except topoplex.InputError as e:
+        with pytest.raises(topoplex.InputError) as got:
+            topoplex.Complex.from_arrays(arr, n_vertices=n)
+        assert str(got.value) == str(e)
+        return
+    got = topoplex.Complex.from_arrays(arr, n_vertices=n)
+    assert got.census() == want.census()
+    for a, b in zip(got.listed(), want.listed()):
+        assert a.tolist() == b.tolist()
+    for p in range(want.dimension + 1):
+        assert got.simplices(p).tolist() == want.simplices(p).tolist()
+
+
 def test_radial_order_around_a_non_manifold_edge_lists_its_three_triangles():
     c = topoplex.Complex.from_arrays(np.array([[0, 1, 2], [0, 1, 3], [0, 1, 4]]))
     for kind in ("ts", "pe", "de"):

@@ -24,9 +24,12 @@ Relations come back as CSR pairs ``(offsets, ids)`` of numpy arrays.
 
 Arrays in: C-contiguous arrays of the right dtype (uint32 ids, float64 points) are read in
 place; anything else is converted once (``np.ascontiguousarray``). Answers (simplices,
-relations, degrees, remaps) are Rust vectors moved into numpy, never copied; ``points`` and
-``attributes`` are copied once out of the complex that owns them. Long calls release the GIL. Errors are
-:class:`TopoplexError` subclasses (also ``ValueError``, ``OSError`` or ``MemoryError``).
+relations, degrees, remaps) are Rust vectors moved into numpy, never copied; ``points``,
+``attributes`` and ``listed()`` are copied once out of the complex that owns them, except for a
+complex opened from a saved ``.tpx`` file (:func:`open`, :func:`read`), whose are read-only
+views into the file (mapped; ``writeable`` is False, and each view keeps the map alive).
+Long calls release the GIL. Errors are :class:`TopoplexError` subclasses (also ``ValueError``,
+``OSError`` or ``MemoryError``).
 """
 
 from __future__ import annotations
@@ -49,6 +52,8 @@ from ._errors import (
 )
 
 __all__ = [
+    "ACROSS_NONE",
+    "ACROSS_MANY",
     "Complex",
     "Structure",
     "Undo",
@@ -69,6 +74,10 @@ __all__ += _errors.__all__
 
 Undo = _core.Undo
 _U32_MAX = 2**32 - 1
+#: :meth:`Structure.adjacency`: no other top of the same dimension across the facet.
+ACROSS_NONE: int = _core.ACROSS_NONE
+#: :meth:`Structure.adjacency`: two or more (a non-manifold facet).
+ACROSS_MANY: int = _core.ACROSS_MANY
 
 
 def structure_names() -> List[str]:
@@ -138,20 +147,53 @@ def _csr(simplices: Any, name: str = "simplices") -> Tuple[np.ndarray, np.ndarra
             blocks = [np.asarray(b) for b in simplices]
             blocks = [b.reshape(1, -1) if b.ndim == 1 and b.size else b for b in blocks]
     ids_parts: List[np.ndarray] = []
-    sizes: List[np.ndarray] = []
+    shapes: List[Tuple[int, int]] = []
     for b in blocks:
         if b.ndim == 1 and b.size == 0:
             continue
         if b.ndim != 2:
             raise InputError(f"{name}: each block must be an (n, k) array, got shape {b.shape}")
+        if b.shape[1] == 0 and b.shape[0] > 0:
+            raise InputError(f"{name}: a block of {b.shape[0]} simplices with no vertex")
         ids_parts.append(_ids(b, name).reshape(-1))
-        sizes.append(np.full(b.shape[0], b.shape[1], dtype=np.uintp))
+        shapes.append(b.shape)
     if not ids_parts:
         return np.zeros(0, np.uint32), np.zeros(1, np.uintp)
     ids = ids_parts[0] if len(ids_parts) == 1 else np.concatenate(ids_parts)
-    offsets = np.zeros(sum(s.size for s in sizes) + 1, dtype=np.uintp)
-    np.cumsum(np.concatenate(sizes), out=offsets[1:])
+    # The offsets of each block are an arithmetic run (one array, no temporaries for a single
+    # block: what the Rust caller of Complex::from_arrays holds beside its ids).
+    if len(shapes) == 1:
+        m, k = shapes[0]
+        offsets = np.arange(0, m * k + 1, k, dtype=np.uintp) if k else np.zeros(1, np.uintp)
+    else:
+        offsets = np.empty(sum(m for m, _ in shapes) + 1, dtype=np.uintp)
+        offsets[0] = 0
+        row = start = 0
+        for m, k in shapes:
+            if m:
+                offsets[row + 1 : row + m + 1] = np.arange(start + k, start + m * k + 1, k, dtype=np.uintp)
+            row += m
+            start += m * k
     return np.ascontiguousarray(ids), offsets
+
+
+def _values(values: Any, n: int) -> np.ndarray:
+    """Attribute rows as a C-contiguous float64 (n, components) array; integers beyond 2**53
+    (which float64 would round) refused."""
+    arr = np.asarray(values)
+    if arr.dtype.kind not in "fiub":
+        raise InputError(f"values: a real array is needed, got dtype {arr.dtype}")
+    if arr.dtype.kind in "iu" and arr.size and int(np.abs(arr).max()) > 2**53:
+        raise InputError("values: labels beyond 2**53 cannot be set exactly")
+    if arr.ndim == 0 or (arr.ndim == 1 and n != 1):
+        arr = arr.reshape(-1, 1)
+    elif arr.ndim == 1:
+        arr = arr.reshape(1, -1)
+    if arr.ndim != 2:
+        raise InputError(f"values: shape (n,) or (n, components) needed, got {arr.shape}")
+    if arr.shape[0] != n:
+        raise InputError(f"values: {arr.shape[0]} rows for {n} simplices")
+    return np.ascontiguousarray(arr, dtype=np.float64)
 
 
 def _index_array(simplices: Any) -> Optional[np.ndarray]:
@@ -184,7 +226,9 @@ class Complex:
         """A complex from its simplices: one (n, k) integer array (n simplices of k vertices),
         a list of such arrays (one per size, or in any grouping), or a CSR pair
         ``(offsets, ids)``. ``points``: optional (n_vertices, dim) coordinates. The vertex
-        count is ``len(points)``, else ``n_vertices``, else the largest id + 1.
+        count is ``len(points)``, else ``n_vertices``, else the largest id + 1. One (n, k)
+        uint32 array is read in place as it lies (no offsets are made: the cost and memory of
+        the Rust call on the same array); other forms go through a CSR.
 
         >>> import numpy as np, topoplex
         >>> tris = np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32)
@@ -193,7 +237,13 @@ class Complex:
         >>> c.census()["simplices"], c.points.shape
         ([4, 5, 2], (4, 3))
         """
-        ids, offsets = _csr(simplices)
+        # One (n, k) numpy array is passed as it lies (no offsets: the Rust call the same
+        # array would make); anything else as a CSR.
+        uniform = isinstance(simplices, np.ndarray) and simplices.ndim == 2 and simplices.shape[1] > 0
+        if uniform:
+            ids, offsets = _ids(simplices, "simplices").reshape(-1), None
+        else:
+            ids, offsets = _csr(simplices)
         pts = None if points is None else _points(points)
         if pts is not None:
             n = pts.shape[0]
@@ -203,6 +253,8 @@ class Complex:
             n = int(ids.max()) + 1 if ids.size else 0
         if n < 0 or n > _U32_MAX:
             raise InputError(f"vertex count {n} does not fit in 32 bits")
+        if offsets is None:
+            return Complex(_core.Complex._from_uniform(n, simplices.shape[1], ids, pts))
         return Complex(_core.Complex._from_csr(n, ids, offsets, pts))
 
     @property
@@ -217,8 +269,25 @@ class Complex:
 
     @property
     def points(self) -> Optional[np.ndarray]:
-        """Vertex coordinates, float64 (n, k), or None."""
+        """Vertex coordinates, float64 (n, k), or None (a read-only view into the file for a
+        complex opened from a ``.tpx`` file, see :attr:`mapped`)."""
         return self._c.points
+
+    @property
+    def mapped(self) -> bool:
+        """Whether :attr:`points`, :attr:`attributes` and :meth:`listed` are read-only views
+        into a saved file (a complex from :func:`open` or :func:`read` of a ``.tpx``) rather
+        than copies.
+
+        >>> import os, tempfile, numpy as np, topoplex
+        >>> c = topoplex.Complex.from_arrays([[0, 1, 2]], points=np.eye(3))
+        >>> path = os.path.join(tempfile.mkdtemp(), "tri.tpx")
+        >>> topoplex.save(c, path)
+        >>> o = topoplex.open(path)
+        >>> o.mapped, o.points.flags.writeable, np.shares_memory(o.points, o.points)
+        (True, False, True)
+        """
+        return self._c.mapped
 
     @property
     def attributes(self) -> Dict[str, Tuple[str, np.ndarray]]:
@@ -494,6 +563,91 @@ class Structure:
         """The live mesh's top simplices of dimension >= 1 as given (winding): item p is an
         (n, p+1) array (item 0 is empty: an isolated vertex is a vertex with an empty star)."""
         return list(self._s._live_tops())
+
+    def adjacency(self, p: int) -> np.ndarray:
+        """The tops across each facet of the live mesh's top p-simplices (p >= 1): a uint32
+        (n, p+1) array whose row i is for row i of ``live_tops()[p]`` and entry j for its facet
+        opposite its j-th vertex (as listed there): the row of the one other top p-simplex
+        through that facet, :data:`ACROSS_NONE` when none is (a boundary facet, or one only
+        tops of other dimensions share), :data:`ACROSS_MANY` when two or more are (a
+        non-manifold facet, which trimesh's ``face_adjacency`` drops). Built on the first call
+        after an edit (the GIL released), then copied out: an edit would move the index.
+
+        >>> import topoplex
+        >>> m = topoplex.Complex.from_arrays([[0, 1, 2], [1, 2, 3], [1, 2, 4], [2, 3, 5]]).live()
+        >>> adj = m.adjacency(2)
+        >>> m.live_tops()[2][1].tolist(), adj[1].tolist()   # [2 3]: row 3; [1 3]: none; [1 2]: many
+        ([1, 2, 3], [3, 4294967295, 4294967294])
+        """
+        return self._s._adjacency(p)
+
+    def keep_adjacency(self, keep: bool = True) -> None:
+        """Keeps :meth:`adjacency`'s index across edits (built now, then repaired by each
+        insert, removal, contraction and split around what it changed: O(1) to ask for after
+        an edit, each edit a little dearer), or with ``keep=False`` goes back to building it
+        on request and dropping it at each edit (the default)."""
+        self._s.keep_adjacency(keep)
+
+    def vertex_values(self, name: str, vertices: Any = None) -> np.ndarray:
+        """The rows of vertex attribute ``name`` (in its own dtype; shape (n,) for one
+        component, else (n, components)) for the live vertices ``vertices`` (ids; default:
+        every live vertex, ascending, as ``simplices(0)`` lists them). KeyError without such an
+        attribute, :class:`InputError` for a removed or unknown vertex."""
+        ids = self._vertex_ids(vertices)
+        got = self._s._vertex_values(name, ids)
+        return got if got is not None else self._empty_values(name)
+
+    def set_vertex_values(self, name: str, values: Any, vertices: Any = None) -> None:
+        """Sets the rows of vertex attribute ``name`` of the live vertices ``vertices``
+        (default: every live vertex, ascending) to ``values`` (one row each; shape (n,) or
+        (n, components)); reals are rounded to the attribute's type, labels must be whole
+        numbers within it (exact up to 2**53). Everything is checked first: on an error
+        nothing changes.
+
+        >>> import numpy as np, topoplex
+        >>> c = topoplex.Complex.from_arrays([[0, 1, 2]]).with_attribute("t", "vertices", np.zeros(3))
+        >>> m = c.live()
+        >>> m.set_vertex_values("t", [5.0], vertices=[1])
+        >>> m.vertex_values("t").tolist()
+        [0.0, 5.0, 0.0]
+        """
+        ids = self._vertex_ids(vertices)
+        self._s._set_vertex_values(name, ids, _values(values, ids.size))
+
+    def top_values(self, name: str, p: int, rows: Any = None) -> np.ndarray:
+        """The rows of listed attribute ``name`` for the live top p-simplices ``rows`` (row
+        indices of ``live_tops()[p]``; default all of them), as :meth:`vertex_values`."""
+        idx = self._top_rows(p, rows)
+        got = self._s._top_values(name, p, idx)
+        return got if got is not None else self._empty_values(name)
+
+    def set_top_values(self, name: str, p: int, values: Any, rows: Any = None) -> None:
+        """Sets the rows of listed attribute ``name`` of the live top p-simplices ``rows``
+        (row indices of ``live_tops()[p]``; default all of them) to ``values``, as
+        :meth:`set_vertex_values`. A top made by an edit has unset numbers (labels 0, reals
+        NaN) until set; :attr:`attributes` carries the rows into :meth:`to_complex`."""
+        idx = self._top_rows(p, rows)
+        self._s._set_top_values(name, p, idx, _values(values, idx.size))
+
+    def _vertex_ids(self, vertices: Any) -> np.ndarray:
+        if vertices is None:
+            return np.ascontiguousarray(self.simplices(0).reshape(-1))
+        return _ids(np.asarray(vertices).reshape(-1), "vertices")
+
+    def _top_rows(self, p: int, rows: Any) -> np.ndarray:
+        if rows is None:
+            tops = self.live_tops()
+            n = tops[p].shape[0] if 0 <= p < len(tops) else 0
+            return np.arange(n, dtype=np.uint32)
+        return _ids(np.asarray(rows).reshape(-1), "rows")
+
+    def _empty_values(self, name: str) -> np.ndarray:
+        """No row asked for: an empty array of the attribute's dtype and row shape."""
+        got = self.attributes.get(name)
+        if got is None:
+            raise KeyError(name)
+        a = got[1]
+        return np.empty((0,) + a.shape[1:], dtype=a.dtype)
 
     def simplify(
         self, ratio: float, preserve_topology: bool = False, keep_regions: Optional[str] = None

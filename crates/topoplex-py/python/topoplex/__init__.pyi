@@ -5,6 +5,7 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import numpy.typing as npt
+from typing_extensions import final
 
 from ._errors import (
     DomainError as DomainError,
@@ -17,15 +18,47 @@ from ._errors import (
     WriteError as WriteError,
 )
 
+__all__ = [
+    "ACROSS_NONE",
+    "ACROSS_MANY",
+    "Complex",
+    "Structure",
+    "Undo",
+    "read",
+    "open",
+    "save",
+    "simplify",
+    "decompose",
+    "structure_names",
+    "from_meshio",
+    "to_meshio",
+    "from_gudhi",
+    "to_gudhi",
+    "to_trimesh",
+    "TopoplexError",
+    "InputError",
+    "DomainError",
+    "EditRefused",
+    "FileError",
+    "ReadError",
+    "WriteError",
+    "TopoplexMemoryError",
+]
+
+ACROSS_NONE: int
+ACROSS_MANY: int
+
 _Path = Union[str, os.PathLike[str]]
 _Csr = Tuple[npt.NDArray[np.int64], npt.NDArray[np.uint32]]
 _Simplices = Union[npt.ArrayLike, List[npt.ArrayLike], Tuple[npt.ArrayLike, npt.ArrayLike]]
 
+@final
 class Undo:
     @property
     def edge(self) -> Tuple[int, int]: ...
 
 class Complex:
+    def __init__(self, core: Any) -> None: ...
     @staticmethod
     def from_arrays(
         simplices: _Simplices, points: Optional[npt.ArrayLike] = ..., n_vertices: Optional[int] = ...
@@ -36,6 +69,8 @@ class Complex:
     def dimension(self) -> int: ...
     @property
     def points(self) -> Optional[npt.NDArray[np.float64]]: ...
+    @property
+    def mapped(self) -> bool: ...
     @property
     def attributes(self) -> Dict[str, Tuple[str, np.ndarray]]: ...
     def with_attribute(self, name: str, location: str, values: npt.ArrayLike) -> Complex: ...
@@ -54,6 +89,7 @@ class Complex:
     def to_trimesh(self) -> Any: ...
 
 class Structure:
+    def __init__(self, core: Any) -> None: ...
     @property
     def kind(self) -> str: ...
     @property
@@ -92,6 +128,16 @@ class Structure:
     def split(self, undo: Undo) -> None: ...
     def compact(self) -> Dict[str, Any]: ...
     def live_tops(self) -> List[npt.NDArray[np.uint32]]: ...
+    def adjacency(self, p: int) -> npt.NDArray[np.uint32]: ...
+    def keep_adjacency(self, keep: bool = ...) -> None: ...
+    def vertex_values(self, name: str, vertices: Optional[npt.ArrayLike] = ...) -> np.ndarray: ...
+    def set_vertex_values(
+        self, name: str, values: npt.ArrayLike, vertices: Optional[npt.ArrayLike] = ...
+    ) -> None: ...
+    def top_values(self, name: str, p: int, rows: Optional[npt.ArrayLike] = ...) -> np.ndarray: ...
+    def set_top_values(
+        self, name: str, p: int, values: npt.ArrayLike, rows: Optional[npt.ArrayLike] = ...
+    ) -> None: ...
     def simplify(
         self, ratio: float, preserve_topology: bool = ..., keep_regions: Optional[str] = ...
     ) -> Dict[str, int]: ...

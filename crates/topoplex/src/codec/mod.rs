@@ -343,6 +343,11 @@ impl Reader<'_> {
     /// [`Reader::out_of_memory`]; refused if one does not fit).
     pub fn usizes(&mut self) -> Result<Vec<usize>, StoreError> {
         let wide = self.u64s()?;
+        self.usizes_of(&wide)
+    }
+
+    /// A section of 64-bit integers ([`Reader::u64s`]) copied as `usize`, as [`Reader::usizes`].
+    pub fn usizes_of(&self, wide: &Arr<u64>) -> Result<Vec<usize>, StoreError> {
         let mut out = Vec::new();
         crate::alloc::try_reserve_exact(&mut out, wide.len())
             .map_err(|bytes| self.out_of_memory("a copy of a saved array", bytes))?;

@@ -152,6 +152,41 @@ impl Complex {
         )
     }
 
+    /// Builds from one array of simplices of `arity` vertices each (simplex `i` is
+    /// `ids[i * arity..(i + 1) * arity]`, as a numpy `(n, arity)` array lies in memory) under
+    /// the default [`Budget`]: [`Complex::from_arrays`] without the offsets, which the listing
+    /// keeps as a formula anyway (8 bytes a simplex neither made nor read). A length that is
+    /// not a multiple of `arity` leaves a shorter last simplex; `arity` 0 with ids is an empty
+    /// simplex (refused). Cost: that of `from_arrays`.
+    pub fn from_uniform(
+        n_vertices: u32,
+        arity: usize,
+        ids: &[u32],
+        coords: Option<Coords>,
+    ) -> Result<Complex, ComplexError> {
+        let input_size = ids.len() as u64
+            + if coords.is_some() {
+                u64::from(n_vertices)
+            } else {
+                0
+            };
+        let len = ids.len();
+        let count = match arity {
+            0 => usize::from(len > 0),
+            a => len.div_ceil(a),
+        };
+        Complex::build(
+            n_vertices,
+            coords,
+            count,
+            |i| &ids[(i * arity).min(len)..((i + 1) * arity).min(len)],
+            array_origin,
+            None,
+            (Budget::default(), input_size),
+            ListingSource::Uniform(ids),
+        )
+    }
+
     /// Builds from a list of simplices (tests, fixtures).
     pub fn from_simplices(n_vertices: u32, simplices: &[&[u32]]) -> Result<Complex, ComplexError> {
         Complex::build(
@@ -348,6 +383,9 @@ enum ListingSource<'a> {
     /// Arrays in which simplex `i` is `ids[offsets[i]..offsets[i + 1]]`: the simplices are one
     /// run of `ids`, copied whole on several threads.
     Arrays(&'a [u32], &'a [usize]),
+    /// One run of `ids` in simplices of one length ([`Complex::from_uniform`]), copied whole on
+    /// several threads when they are (else simplex by simplex).
+    Uniform(&'a [u32]),
 }
 
 /// The listing of simplices `0..count` (all checked: 1 to `MAX_DIMENSION + 1` ids each, so
@@ -375,6 +413,10 @@ fn copy_listing<'a>(
                 offsets = crate::parallel::try_map_collect(count + 1, |i| o[i] - base)
                     .map_err(|_| (count + 1) * 8)?;
             }
+        }
+        ListingSource::Uniform(ids) if count > 0 && !varied => {
+            listing.ids = crate::parallel::try_map_collect(ids.len(), |k| ids[k])
+                .map_err(|_| id_count * 4)?;
         }
         _ => {
             if varied {
@@ -861,6 +903,55 @@ impl HubStars {
 mod tests {
     use super::*;
     use crate::complex::{MAX_DIMENSION, is_subset};
+
+    /// `from_uniform` gives the complex `from_arrays` gives with the offsets of that arity:
+    /// the same tops, listing (each simplex as given) and statistics, on random rows of 1 to 4
+    /// vertices (repeats, faces and bad rows included: the same error then); a short last row
+    /// is a simplex of its own, arity 0 an empty simplex.
+    #[test]
+    fn from_uniform_equals_from_arrays_with_uniform_offsets() {
+        let mut rnd = crate::complex::xorshift_below(0x0f0f_1234_5678_9abc);
+        for _ in 0..300 {
+            let arity = 1 + rnd(4) as usize;
+            let n = 2 + rnd(8) as u32;
+            let rows = rnd(9) as usize;
+            let ids: Vec<u32> = (0..rows * arity)
+                .map(|_| rnd(u64::from(n) + 1) as u32)
+                .collect();
+            let offsets: Vec<usize> = (0..=rows).map(|i| i * arity).collect();
+            let want = Complex::from_arrays(n, &ids, &offsets, None);
+            let got = Complex::from_uniform(n, arity, &ids, None);
+            match (want, got) {
+                (Ok(w), Ok(g)) => {
+                    assert_eq!(w.top_counts(), g.top_counts());
+                    for p in 0..=w.dimension() {
+                        let (a, b) = (w.tops(p), g.tops(p));
+                        assert!((0..a.len()).all(|i| a.get(i) == b.get(i)));
+                    }
+                    assert_eq!(w.input_count(), g.input_count());
+                    for i in 0..w.input_count() {
+                        assert_eq!(w.input_simplex(i), g.input_simplex(i));
+                    }
+                    assert_eq!(w.stats(), g.stats());
+                }
+                (Err(w), Err(g)) => assert_eq!(w.to_string(), g.to_string()),
+                (w, g) => panic!("from_arrays {w:?} but from_uniform {g:?}"),
+            }
+        }
+        let short = Complex::from_uniform(5, 3, &[0, 1, 2, 3, 4], None).unwrap();
+        assert_eq!(short.input_count(), 2);
+        assert_eq!(short.input_simplex(1), &[3, 4]);
+        assert!(matches!(
+            Complex::from_uniform(5, 0, &[0], None),
+            Err(ComplexError::EmptySimplex { .. })
+        ));
+        assert_eq!(
+            Complex::from_uniform(5, 0, &[], None)
+                .unwrap()
+                .vertex_count(),
+            5
+        );
+    }
 
     /// Normalises a listing by definition: rows sorted, repeats counted, a row that is a
     /// proper subset of another counted as a face, unused vertices isolated.

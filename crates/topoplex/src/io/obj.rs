@@ -1,8 +1,9 @@
 //! Reader for Wavefront OBJ files (`.obj`), geometry statements only.
 //!
-//! * `v x y z` declares a vertex; a homogeneous `w` (4 numbers) or a vertex colour `r g b`
-//!   (6 numbers, or 7) may follow and is ignored. Fewer than 3 numbers, or 5, or more than 7,
-//!   are errors. Coordinates have dimension 3. Numbers are parsed as `f64`; `nan`, `inf` and
+//! * `v x y z` declares a vertex; a homogeneous `w` (4 numbers) may follow and is ignored (a
+//!   weight only free-form geometry uses, which is refused), or a vertex colour `r g b` (6
+//!   numbers) or `r g b a` (7), kept as the `obj:color` vertex field (module `data`). Fewer than 3
+//!   numbers, or 5, or more than 7, are errors. Coordinates have dimension 3. Numbers are parsed as `f64`; `nan`, `inf` and
 //!   `infinity` are accepted, since topology does not use coordinates, but a finite number that
 //!   would become infinite or 0 (`1e309`, `1e-400`) is an error.
 //! * `f` with vertices written `i`, `i/t`, `i//n` or `i/t/n` is a triangle; more than 3
@@ -12,8 +13,10 @@
 //! * Indices are 1-based; 0 is an error. Positive indices may refer to vertices defined later in
 //!   the file, so they are recorded (0-based) without a range check, which the complex model does.
 //!   Negative indices are relative to the vertices read so far (-1 is the last one); reaching
-//!   before the first vertex is an error. Texture and normal indices are checked to be non-zero
-//!   integers and ignored.
+//!   before the first vertex is an error. Texture and normal indices (`i/t/n`) tie the `vt` and
+//!   `vn` statements to the vertices: the `obj:vt` and `obj:vn` fields, on the vertices when
+//!   each vertex is given one value and per corner on the listed simplices otherwise
+//!   (module `data`: nothing of them is dropped).
 //! * Free-form elements `curv curv2 surf` are refused (an error naming the statement): they are
 //!   geometry a simplicial complex cannot hold, and dropping them would read the file as less
 //!   than it is.
@@ -25,7 +28,7 @@
 //!   -1 before the kind's first statement; `s N` / `s off` → `obj:smoothing`, the number (`off`
 //!   0, which is also the value before any `s`). An attribute exists only when its statement
 //!   occurs. A nameless `o` or `usemtl`, or an `s` that is not `off` or a number, is an error.
-//! * Ignored statements: `vt vn vp mtllib cstype deg bmat step parm trim hole scrv
+//! * Ignored statements: `vp mtllib cstype deg bmat step parm trim hole scrv
 //!   sp end con mg bevel c_interp d_interp lod maplib usemap shadow_obj trace_obj ctech stech`
 //!   (their arguments are not checked). Any other keyword is an error.
 //! * `#` starts a comment; a line ending in `\` (blanks and a comment may follow it) continues
@@ -42,13 +45,13 @@ use super::{
 };
 use crate::complex::{Attribute, LabelName, Location, table};
 
-/// Statements that carry nothing a simplicial complex keeps (texture and normal vertices,
-/// grouping, materials, display attributes, and the free-form attribute and body statements,
+pub(crate) mod data;
+
+/// Statements that carry nothing a simplicial complex keeps (parameter-space vertices of
+/// free-form geometry, material libraries, display attributes, and the free-form attribute and body statements,
 /// which mean nothing without a `curv`, `curv2` or `surf` element). Their arguments are not
 /// checked.
 const IGNORED: &[&str] = &[
-    "vt",
-    "vn",
     "vp",
     "mtllib",
     "cstype",
@@ -173,6 +176,14 @@ struct State {
     changes: Vec<(usize, usize, i32)>,
     /// The names of each of the first three of [`LABELS`], in order of first appearance.
     names: [Vec<String>; 3],
+    /// `vt` statements and the references to them.
+    texture: data::Side,
+    /// `vn` statements and the references to them.
+    normal: data::Side,
+    /// Vertex colours.
+    colors: data::Colors,
+    /// Scratch for the texture and normal indices of one element's vertices.
+    refs: Vec<(Option<i64>, Option<i64>)>,
 }
 
 /// The label attributes of OBJ's grouping statements, in the order the writer writes them:
@@ -291,6 +302,10 @@ pub(crate) fn parse_keeping(text: &str, polygons: bool) -> Result<RawInput, (u32
         ids: Vec::new(),
         changes: Vec::new(),
         names: Default::default(),
+        texture: data::Side::default(),
+        normal: data::Side::default(),
+        colors: data::Colors::default(),
+        refs: Vec::new(),
     };
     let mut statements = 0usize;
     loop {
@@ -321,6 +336,10 @@ pub(crate) fn parse_keeping(text: &str, polygons: bool) -> Result<RawInput, (u32
     }
     grouping_attributes(&mut st);
     let mut raw = st.raw;
+    let n = st.seen as usize;
+    st.colors.finish(&mut raw);
+    st.texture.finish(data::TEXTURE, "vt", &mut raw, n)?;
+    st.normal.finish(data::NORMAL, "vn", &mut raw, n)?;
     raw.vertex_count = Some(st.seen);
     raw.coords = Some(Coords {
         dim: 3,
@@ -334,70 +353,11 @@ fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), R
     let line = s.line();
     match keyword {
         "v" => vertex(s, st),
-        "f" => {
-            if let Some(ids) = plain_triangle(s) {
-                return st.raw.try_push(&ids, line);
-            }
-            let mut refs = [""; 3];
-            let mut k = 0;
-            // A polygon kept for --triangulate: every id, as read.
-            let keep = st.raw.polygons.keep;
-            st.ids.clear();
-            while let Some((tok, _)) = s.token_in_line() {
-                if let Some(slot) = refs.get_mut(k) {
-                    *slot = tok;
-                }
-                if keep {
-                    let id = vertex_index(tok, Form::Face, st.seen)?;
-                    table::try_push(&mut st.ids, id).map_err(no_room("a polygon's ids"))?;
-                }
-                k += 1;
-            }
-            match k {
-                0 => return Err(syntax("face with no vertices")),
-                1 => return Err(syntax("face with 1 vertex; use a `p` line for a point")),
-                2 => return Err(syntax("face with 2 vertices; use an `l` line for an edge")),
-                3 => {}
-                k => {
-                    return st
-                        .raw
-                        .try_push_polygon(&st.ids, line, ReadErrorKind::Polygon(k));
-                }
-            }
-            let mut ids = [0u32; 3];
-            for (id, tok) in ids.iter_mut().zip(refs) {
-                *id = vertex_index(tok, Form::Face, st.seen)?;
-            }
-            st.raw.try_push(&ids, line)
-        }
-        "l" => {
-            st.ids.clear();
-            while let Some((tok, _)) = s.token_in_line() {
-                let id = vertex_index(tok, Form::Line, st.seen)?;
-                table::try_push(&mut st.ids, id).map_err(no_room("a line element's ids"))?;
-            }
-            if st.ids.len() < 2 {
-                return Err(syntax(format!(
-                    "line element with {} vertices; an `l` line needs at least 2",
-                    st.ids.len()
-                )));
-            }
-            for pair in st.ids.windows(2) {
-                st.raw.try_push(pair, line)?;
-            }
-            Ok(())
-        }
-        "p" => {
-            let before = st.raw.simplex_count();
-            while let Some((tok, _)) = s.token_in_line() {
-                let id = vertex_index(tok, Form::Point, st.seen)?;
-                st.raw.try_push(&[id], line)?;
-            }
-            if st.raw.simplex_count() == before {
-                return Err(syntax("point element with no vertices"));
-            }
-            Ok(())
-        }
+        "f" => face(s, st, line),
+        "l" => line_element(s, st, line),
+        "p" => points(s, st, line),
+        "vt" => st.texture.statement(s, false, line),
+        "vn" => st.normal.statement(s, true, line),
         k if let Some(g) = LABELS.iter().position(|l| l.0 == k) => grouping(s, g, st),
         k if FREE_FORM.contains(&k) => Err(syntax(format!(
             "free-form element '{k}' (a curve or surface) is not supported: only v, f, l and p \
@@ -409,6 +369,133 @@ fn statement(s: &mut Scanner<'_>, keyword: &str, st: &mut State) -> Result<(), R
         }
         k => Err(syntax(format!("unknown OBJ statement '{}'", echo(k)))),
     }
+}
+
+/// An `f` statement after its keyword: a triangle (its `vt`/`vn` references recorded), or a
+/// polygon kept for --triangulate (else refused).
+fn face(s: &mut Scanner<'_>, st: &mut State, line: u32) -> Result<(), ReadErrorKind> {
+    if let Some(ids) = plain_triangle(s) {
+        return st.raw.try_push(&ids, line);
+    }
+    let mut refs = [""; 3];
+    let mut k = 0;
+    // A polygon kept for --triangulate: every id, as read.
+    let keep = st.raw.polygons.keep;
+    st.ids.clear();
+    st.refs.clear();
+    while let Some((tok, _)) = s.token_in_line() {
+        if let Some(slot) = refs.get_mut(k) {
+            *slot = tok;
+        }
+        if keep {
+            let id = vertex_index(tok, Form::Face, st.seen)?;
+            table::try_push(&mut st.ids, id).map_err(no_room("a polygon's ids"))?;
+            table::try_push(&mut st.refs, corner_refs(tok)).map_err(no_room("a polygon's ids"))?;
+        }
+        k += 1;
+    }
+    match k {
+        0 => return Err(syntax("face with no vertices")),
+        1 => return Err(syntax("face with 1 vertex; use a `p` line for a point")),
+        2 => return Err(syntax("face with 2 vertices; use an `l` line for an edge")),
+        3 => {}
+        k => {
+            let listed = st.raw.simplex_count();
+            st.raw
+                .try_push_polygon(&st.ids, line, ReadErrorKind::Polygon(k))?;
+            let refs = std::mem::take(&mut st.refs);
+            let ids = std::mem::take(&mut st.ids);
+            let done = record_refs(st, listed, &ids, &refs);
+            (st.refs, st.ids) = (refs, ids);
+            return done;
+        }
+    }
+    let mut ids = [0u32; 3];
+    for (id, tok) in ids.iter_mut().zip(refs) {
+        *id = vertex_index(tok, Form::Face, st.seen)?;
+    }
+    let listed = st.raw.simplex_count();
+    st.raw.try_push(&ids, line)?;
+    if refs.iter().any(|t| t.contains('/')) {
+        record_refs(st, listed, &ids, &refs.map(corner_refs))?;
+    }
+    Ok(())
+}
+
+/// An `l` statement after its keyword: each consecutive pair of its vertices an edge.
+fn line_element(s: &mut Scanner<'_>, st: &mut State, line: u32) -> Result<(), ReadErrorKind> {
+    st.ids.clear();
+    st.refs.clear();
+    while let Some((tok, _)) = s.token_in_line() {
+        let id = vertex_index(tok, Form::Line, st.seen)?;
+        table::try_push(&mut st.ids, id).map_err(no_room("a line element's ids"))?;
+        table::try_push(&mut st.refs, corner_refs(tok)).map_err(no_room("a line element's ids"))?;
+    }
+    if st.ids.len() < 2 {
+        return Err(syntax(format!(
+            "line element with {} vertices; an `l` line needs at least 2",
+            st.ids.len()
+        )));
+    }
+    let (ids, refs) = (std::mem::take(&mut st.ids), std::mem::take(&mut st.refs));
+    let mut done = Ok(());
+    for (pair, r) in ids.windows(2).zip(refs.windows(2)) {
+        let listed = st.raw.simplex_count();
+        done = st.raw.try_push(pair, line);
+        if done.is_ok() && r.iter().any(|r| r.0.is_some()) {
+            done = record_refs(st, listed, pair, r);
+        }
+        if done.is_err() {
+            break;
+        }
+    }
+    (st.ids, st.refs) = (ids, refs);
+    done
+}
+
+/// A `p` statement after its keyword: each vertex a point.
+fn points(s: &mut Scanner<'_>, st: &mut State, line: u32) -> Result<(), ReadErrorKind> {
+    let before = st.raw.simplex_count();
+    while let Some((tok, _)) = s.token_in_line() {
+        let id = vertex_index(tok, Form::Point, st.seen)?;
+        st.raw.try_push(&[id], line)?;
+    }
+    if st.raw.simplex_count() == before {
+        return Err(syntax("point element with no vertices"));
+    }
+    Ok(())
+}
+
+/// The texture and normal indices of an element vertex `i`, `i/t`, `i//n` or `i/t/n` that
+/// [`vertex_index`] accepted.
+fn corner_refs(tok: &str) -> (Option<i64>, Option<i64>) {
+    let mut parts = tok.split('/').skip(1);
+    let index = |p: Option<&str>| {
+        p.filter(|p| !p.is_empty())
+            .and_then(|p| parse_integer(p).ok())
+            // Beyond 64 bits: out of range, which `data::Side` reports.
+            .map(|v| i64::try_from(v).unwrap_or(if v > 0 { i64::MAX } else { i64::MIN }))
+    };
+    let t = index(parts.next());
+    (t, index(parts.next()))
+}
+
+/// Records the texture and normal references of the corners of listed simplex `listed`.
+fn record_refs(
+    st: &mut State,
+    listed: usize,
+    ids: &[u32],
+    refs: &[(Option<i64>, Option<i64>)],
+) -> Result<(), ReadErrorKind> {
+    for (corner, (&v, &(t, n))) in ids.iter().zip(refs).enumerate() {
+        if let Some(t) = t {
+            st.texture.refer(listed, corner, v, t, "vt")?;
+        }
+        if let Some(n) = n {
+            st.normal.refer(listed, corner, v, n, "vn")?;
+        }
+    }
+    Ok(())
 }
 
 /// Fast path: `f i j k` with three plain positive indices and nothing else, read as scanned.
@@ -434,9 +521,11 @@ fn plain_triangle(s: &mut Scanner<'_>) -> Option<[u32; 3]> {
     None
 }
 
-/// `v x y z [w | r g b [a]]`: keeps x y z.
+/// `v x y z [w | r g b [a]]`: keeps x y z and the colour.
 fn vertex(s: &mut Scanner<'_>, st: &mut State) -> Result<(), ReadErrorKind> {
+    let line = s.line();
     let mut xyz = [0.0; 3];
+    let mut tail = [0.0; 4];
     let mut n = 0;
     loop {
         let x = match s.real(false) {
@@ -448,6 +537,8 @@ fn vertex(s: &mut Scanner<'_>, st: &mut State) -> Result<(), ReadErrorKind> {
         };
         if let Some(slot) = xyz.get_mut(n) {
             *slot = x;
+        } else if let Some(slot) = tail.get_mut(n - 3) {
+            *slot = x;
         }
         n += 1;
     }
@@ -456,6 +547,7 @@ fn vertex(s: &mut Scanner<'_>, st: &mut State) -> Result<(), ReadErrorKind> {
             return Err(syntax(format!("expected 3 vertex coordinates, found {n}")));
         }
         3 | 4 | 6 | 7 => {
+            st.colors.push(n, &tail, line)?;
             table::try_extend(&mut st.data, &xyz).map_err(no_room("the vertex coordinates"))?
         }
         _ => {
@@ -481,7 +573,7 @@ mod tests {
     #[test]
     fn triangles_in_all_forms() {
         let text = "# cube corner\nmtllib a.mtl\no thing\nv 0 0 0\nv 1 0 0\nv 0 1 0 1.0\n\
-                    v 0 0 1 0.5 0.5 0.5\nvt 0 0\nvn 0 0 1\ng group\ns off\nusemtl red\n\
+                    v 0 0 1\nvt 0 0\nvn 0 0 1\ng group\ns off\nusemtl red\n\
                     f 1 2 3\nf 1/1 2/1 4/1\nf 1//1 3//1 4//1\nf 2/1/1 3/1/1 4/1/1\n";
         let r = ok(text);
         assert_eq!(r.vertex_count, Some(4));
@@ -521,9 +613,152 @@ mod tests {
         err("v 0 0 0\nusemtl\n", 2, "`usemtl` statement with no name");
     }
 
+    fn field(r: &RawInput, name: &str, location: Location) -> (usize, Vec<u64>) {
+        let a = r
+            .attributes
+            .get(name, location)
+            .unwrap_or_else(|| panic!("no {name}"));
+        match &a.values {
+            crate::complex::Values::F64(v) => {
+                (a.components, v.iter().map(|x| x.to_bits()).collect())
+            }
+            v => panic!("{v:?}"),
+        }
+    }
+
+    fn bits(xs: &[f64]) -> Vec<u64> {
+        xs.iter().map(|x| x.to_bits()).collect()
+    }
+
+    #[test]
+    fn vertex_colours_are_a_vertex_field_on_every_v_line_or_none() {
+        let r = ok("v 0 0 0 1 0 0\nv 1 0 0 0 1 0\nv 0 1 0 0 0 0.5\nf 1 2 3\n");
+        assert_eq!(
+            field(&r, data::COLOR, Location::Vertices),
+            (3, bits(&[1., 0., 0., 0., 1., 0., 0., 0., 0.5]))
+        );
+        let r = ok("v 0 0 0 1 0 0 1\nv 1 0 0 0 1 0 0.5\n");
+        assert_eq!(field(&r, data::COLOR, Location::Vertices).0, 4);
+        // A homogeneous weight is no colour.
+        assert!(ok("v 0 0 0 1\nv 1 0 0\n").attributes.is_empty());
+        err(
+            "v 0 0 0 1 0 0\nv 1 0 0\n",
+            2,
+            "`v` statement with no colour, where the first (line 1) has a colour of 3 numbers",
+        );
+        err(
+            "v 0 0 0\n\nv 1 0 0 1 1 1 1\n",
+            3,
+            "`v` statement with a colour of 4 numbers, where the first (line 1) has no colour",
+        );
+    }
+
+    #[test]
+    fn texture_and_normal_references_one_per_vertex_make_vertex_fields() {
+        // vt statements in another order than the vertices, one vertex (4) in no element.
+        let r = ok(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 5 5\nvt 0.5 0.25\nvt 1 0\nvt 0 1\n\
+                    vn 0 0 1\nf 1/2/1 2/1/1 3/3/1\nl 2/1 1/-2\n",
+        );
+        let nan = f64::NAN;
+        assert_eq!(
+            field(&r, data::TEXTURE, Location::Vertices),
+            (2, bits(&[1., 0., 0.5, 0.25, 0., 1., nan, nan]))
+        );
+        assert_eq!(
+            field(&r, data::NORMAL, Location::Vertices),
+            (
+                3,
+                bits(&[0., 0., 1., 0., 0., 1., 0., 0., 1., nan, nan, nan])
+            )
+        );
+        // A `vt` of 3 numbers widens the field; the others' `w` is 0.
+        let r = ok("v 0 0 0\nv 1 0 0\nvt 1\nvt 2 3 4\nl 1/1 2/2\n");
+        assert_eq!(
+            field(&r, data::TEXTURE, Location::Vertices),
+            (3, bits(&[1., 0., 0., 2., 3., 4.]))
+        );
+    }
+
+    #[test]
+    fn values_that_differ_at_one_vertex_are_kept_per_corner() {
+        // Flat shading: vertex 1 gets two normals.
+        let r = ok("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nvn 0 0 -1\nvn 1 1 1\n\
+                    f 1//1 3//1 2//1\nf 1//2 2//2 4//2\nl 1 2\np 3\n");
+        let nan = [f64::NAN; 3];
+        let (a, b) = ([0., 0., -1.], [1., 1., 1.]);
+        let want: Vec<f64> = [a, a, a, b, b, b, nan, nan, nan, nan, nan, nan].concat();
+        assert_eq!(field(&r, data::NORMAL, Location::Listed), (9, bits(&want)));
+        assert!(r.attributes.get(data::NORMAL, Location::Vertices).is_none());
+    }
+
+    #[test]
+    fn unreferenced_or_missing_texture_and_normal_statements_are_errors_or_one_per_vertex() {
+        // As many as the vertices, no reference: one per vertex (meshio's reading).
+        let r = ok("v 0 0 0\nv 1 0 0\nvn 0 0 1\nvn 0 1 0\nl 1 2\n");
+        assert_eq!(field(&r, data::NORMAL, Location::Vertices).0, 3);
+        err(
+            "v 0 0 0\nv 1 0 0\n\nvt 0 0\nl 1 2\n",
+            4,
+            "1 `vt` statements that no element refers to (`i/t/n`) and that are not one per \
+             vertex (2 `v`)",
+        );
+        err(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\nf 1/1 2/2 3/1\n",
+            6,
+            "vt index 2 refers to no `vt` statement (1 in the file)",
+        );
+        err(
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//-2 2//1 3//1\n",
+            5,
+            "relative vn index -2 reaches before the first `vn` (1 read so far)",
+        );
+        err(
+            "v 0 0 0\nvn 0 0\n",
+            2,
+            "2 numbers where `vn i j k` has them",
+        );
+        err(
+            "v 0 0 0\nvt 0 0 0 0\n",
+            2,
+            "4 numbers where `vt u [v [w]]` has them",
+        );
+        err(
+            "v 0 0 0\nv 1 0 0\nvt 0\nl 1/1 2/99999999999999999999999\n",
+            4,
+            "vt index 4294967296 refers to no `vt` statement (1 in the file)",
+        );
+        err(
+            "v 0 0 0\nvt x\n",
+            2,
+            "non-numeric token 'x' where a texture coordinate",
+        );
+    }
+
+    #[test]
+    fn per_corner_values_on_a_polygon_to_fan_are_refused() {
+        let text = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nvn 0 0 -1\n\
+                    f 1//1 2//1 3//1 4//1\nf 1//2 4//2 3//2\n";
+        match parse_keeping(text, true) {
+            Err((7, k)) => assert!(k.to_string().contains("not carried through --triangulate")),
+            other => panic!("{other:?}"),
+        }
+        // One normal per vertex: fanned polygons keep it as a vertex field.
+        let r = parse_keeping(
+            "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\n\
+                              f 1//1 2//1 3//1 4//1\n",
+            true,
+        )
+        .unwrap();
+        assert_eq!(field(&r, data::NORMAL, Location::Vertices).0, 3);
+    }
+
     #[test]
     fn negative_indices_are_relative() {
-        let r = ok("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 0 0 1\nf -1/-1 -2//-2 1\n");
+        let r = ok(
+            "vt 0 0\nvn 0 0 1\nvn 0 1 0\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nv 0 0 1\n\
+                    f -1/-1 -2//-2 1\n",
+        );
         assert_eq!(simplices(&r), [[0, 1, 2], [3, 2, 0]]);
     }
 
@@ -536,7 +771,7 @@ mod tests {
 
     #[test]
     fn lines_and_points() {
-        let r = ok("v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3 1\nl 1/1 -1/2\np 1 2\np -1\n");
+        let r = ok("v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2 3 1\nl 1/1 -1/2\np 1 2\np -1\nvt 0\nvt 1\n");
         assert_eq!(
             simplices(&r),
             [
@@ -562,7 +797,7 @@ mod tests {
 
     #[test]
     fn nan_coordinates_and_unchecked_ignored_statements() {
-        let r = ok("v nan inf 0\nvt whatever\ncstype bspline\nend\n");
+        let r = ok("v nan inf 0\nvp whatever\ncstype bspline\nend\n");
         assert!(r.coords.clone().unwrap().data[0].is_nan());
     }
 

@@ -18,8 +18,12 @@
 //! CELLS m+1 c                    version 5: OFFSETS <type> (m+1 ints), CONNECTIVITY <type> (c ints)
 //! CELL_TYPES m                   m ints
 //! ```
-//! * `METADATA` blocks (up to a blank line) are skipped; anything after `CELL_TYPES` (point and
-//!   cell data, fields) is ignored.
+//! * `METADATA` blocks (up to a blank line) are skipped; a `FIELD` before `CELL_TYPES` (data on
+//!   the whole dataset, which attributes cannot hold) is refused. After `CELL_TYPES`,
+//!   `POINT_DATA`/`CELL_DATA` arrays are attributes (`read_data`). A NaN is read from `nan`,
+//!   `-nan` or `NaN` (any case) as a NaN; ASCII text holds neither a NaN's sign nor its payload,
+//!   so an ASCII file gives the one quiet NaN where the writer had any NaN (every other number
+//!   reads back bit for bit), while BINARY keeps every bit.
 //! * Cell types 1 (vertex), 3 (line), 5 (triangle) and 10 (tetrahedron) are simplices; any other
 //!   type (quad, polygon, hexahedron, wedge, quadratic cells...) is refused naming the cell's
 //!   index and line, and so is a cell whose id count does not match its type.
@@ -650,106 +654,32 @@ fn data_arrays(
     location: Location,
     count: usize,
 ) -> Res<Vec<Attribute>> {
-    let one =
-        |inp: &mut Input, name: &str, ty: &str, components: usize, what: &str| -> Res<Attribute> {
-            if !(1..=MAX_COMPONENTS).contains(&components) {
-                return Err((
-                    l,
-                    syntax(format!(
-                        "array '{}' has {components} components; 1 to {MAX_COMPONENTS} are held",
-                        echo(name)
-                    )),
-                ));
-            }
-            let total = count
-                .checked_mul(components)
-                .ok_or((l, syntax("array too large")))?;
-            let values = inp.values(total, ty, l, &format!("values of {what} '{}'", echo(name)))?;
-            Ok(Attribute {
-                name: name.to_string(),
-                location,
-                components,
-                values,
-            })
-        };
+    let d = DataSection { l, location, count };
     let (name, _) = inp.expect_token(&format!("the name after {kw}"))?;
     let name = name.to_string();
     Ok(match upper {
         "SCALARS" => {
-            let (ty, _) = inp.expect_token("the SCALARS data type")?;
-            let ty = ty.to_string();
-            // An optional component count, then the LOOKUP_TABLE line.
-            let rest = String::from_utf8_lossy(inp.rest_of_line())
-                .trim()
-                .to_string();
-            let components = if rest.is_empty() {
-                1
-            } else {
-                rest.parse::<usize>().map_err(|_| {
-                    (
-                        l,
-                        syntax(format!(
-                            "SCALARS '{}': '{}' is not a component count",
-                            echo(&name),
-                            echo(&rest)
-                        )),
-                    )
-                })?
-            };
-            let (lt, ll) = inp.expect_token("LOOKUP_TABLE")?;
-            if !lt.eq_ignore_ascii_case("LOOKUP_TABLE") {
-                return Err((
-                    ll,
-                    syntax(format!(
-                        "expected LOOKUP_TABLE after SCALARS '{}', found '{}'",
-                        echo(&name),
-                        echo(lt)
-                    )),
-                ));
-            }
-            inp.expect_token("the lookup table's name")?;
-            vec![one(inp, &name, &ty, components, "SCALARS")?]
+            let (ty, components) = d.scalars_header(inp, &name)?;
+            vec![d.array(inp, &name, &ty, components, "SCALARS")?]
         }
         "VECTORS" | "NORMALS" | "TENSORS" => {
             let (ty, _) = inp.expect_token(&format!("the {kw} data type"))?;
             let ty = ty.to_string();
             let k = if upper == "TENSORS" { 9 } else { 3 };
-            vec![one(inp, &name, &ty, k, kw)?]
+            vec![d.array(inp, &name, &ty, k, kw)?]
         }
         "TEXTURE_COORDINATES" => {
             let k = inp.count("TEXTURE_COORDINATES")?;
             let (ty, _) = inp.expect_token("the TEXTURE_COORDINATES data type")?;
             let ty = ty.to_string();
-            vec![one(inp, &name, &ty, k, kw)?]
+            vec![d.array(inp, &name, &ty, k, kw)?]
         }
         "COLOR_SCALARS" => {
             let k = inp.count("COLOR_SCALARS")?;
             let ty = if inp.binary { "unsigned_char" } else { "float" };
-            vec![one(inp, &name, ty, k, kw)?]
+            vec![d.array(inp, &name, ty, k, kw)?]
         }
-        "FIELD" => {
-            let arrays = inp.count("FIELD")?;
-            let mut out = Vec::new();
-            for _ in 0..arrays {
-                let (array, al) = inp.expect_token("a FIELD array's name")?;
-                let array = array.to_string();
-                let k = inp.count("the array's component count")?;
-                let tuples = inp.count("the array's tuple count")?;
-                let (ty, _) = inp.expect_token("the array's data type")?;
-                let ty = ty.to_string();
-                if tuples != count {
-                    return Err((
-                        al,
-                        syntax(format!(
-                            "FIELD array '{}' has {tuples} tuples for {count} elements",
-                            echo(&array)
-                        )),
-                    ));
-                }
-                out.push(one(inp, &array, &ty, k, "FIELD array")?);
-            }
-            out
-        }
+        "FIELD" => d.field_arrays(inp)?,
         _ => {
             return Err((
                 l,
@@ -761,6 +691,113 @@ fn data_arrays(
             ));
         }
     })
+}
+
+/// One POINT_DATA or CELL_DATA array's context: its keyword's line, where its elements are and
+/// how many.
+struct DataSection {
+    l: u32,
+    location: Location,
+    count: usize,
+}
+
+impl DataSection {
+    /// An array of `components` numbers of VTK type `ty` per element, `name`d.
+    fn array(
+        &self,
+        inp: &mut Input,
+        name: &str,
+        ty: &str,
+        components: usize,
+        what: &str,
+    ) -> Res<Attribute> {
+        let l = self.l;
+        if !(1..=MAX_COMPONENTS).contains(&components) {
+            return Err((
+                l,
+                syntax(format!(
+                    "array '{}' has {components} components; 1 to {MAX_COMPONENTS} are held",
+                    echo(name)
+                )),
+            ));
+        }
+        let total = self
+            .count
+            .checked_mul(components)
+            .ok_or((l, syntax("array too large")))?;
+        let values = inp.values(total, ty, l, &format!("values of {what} '{}'", echo(name)))?;
+        Ok(Attribute {
+            name: name.to_string(),
+            location: self.location,
+            components,
+            values,
+        })
+    }
+
+    /// A SCALARS array's header after its name: the data type, an optional component count
+    /// (1 when absent) and the LOOKUP_TABLE line.
+    fn scalars_header(&self, inp: &mut Input, name: &str) -> Res<(String, usize)> {
+        let l = self.l;
+        let (ty, _) = inp.expect_token("the SCALARS data type")?;
+        let ty = ty.to_string();
+        let rest = String::from_utf8_lossy(inp.rest_of_line())
+            .trim()
+            .to_string();
+        let components = if rest.is_empty() {
+            1
+        } else {
+            rest.parse::<usize>().map_err(|_| {
+                (
+                    l,
+                    syntax(format!(
+                        "SCALARS '{}': '{}' is not a component count",
+                        echo(name),
+                        echo(&rest)
+                    )),
+                )
+            })?
+        };
+        let (lt, ll) = inp.expect_token("LOOKUP_TABLE")?;
+        if !lt.eq_ignore_ascii_case("LOOKUP_TABLE") {
+            return Err((
+                ll,
+                syntax(format!(
+                    "expected LOOKUP_TABLE after SCALARS '{}', found '{}'",
+                    echo(name),
+                    echo(lt)
+                )),
+            ));
+        }
+        inp.expect_token("the lookup table's name")?;
+        Ok((ty, components))
+    }
+
+    /// A FIELD's arrays (after its name): each with its name, components, tuples (one per
+    /// element) and data type.
+    fn field_arrays(&self, inp: &mut Input) -> Res<Vec<Attribute>> {
+        let arrays = inp.count("FIELD")?;
+        let mut out = Vec::new();
+        for _ in 0..arrays {
+            let (array, al) = inp.expect_token("a FIELD array's name")?;
+            let array = array.to_string();
+            let k = inp.count("the array's component count")?;
+            let tuples = inp.count("the array's tuple count")?;
+            let (ty, _) = inp.expect_token("the array's data type")?;
+            let ty = ty.to_string();
+            if tuples != self.count {
+                return Err((
+                    al,
+                    syntax(format!(
+                        "FIELD array '{}' has {tuples} tuples for {} elements",
+                        echo(&array),
+                        self.count
+                    )),
+                ));
+            }
+            out.push(self.array(inp, &array, &ty, k, "FIELD array")?);
+        }
+        Ok(out)
+    }
 }
 
 impl Input<'_> {

@@ -15,7 +15,10 @@
 //! cell data on the listed simplices, each type exactly (`vtu/data.rs`); a `String` or other
 //! non-numeric array is refused naming the array and its line (checked before vtkio reads the
 //! file, since it would take one for `Float64`). Pieces concatenate their data; every piece
-//! must carry the same arrays.
+//! must carry the same arrays. `<FieldData>` arrays (data on the whole mesh, which attributes
+//! cannot hold) are refused naming the array and its line, never skipped; so is appended data
+//! not encoded in base64 (`encoding="raw"`: vtkio 0.7.0-rc2 declares no feature that decodes
+//! it), naming the line of `<AppendedData>`.
 //! Pieces stored in other files (parallel formats) are not read. vtkio panics on some malformed
 //! binary arrays; the panic is caught and reported as an error (one line: the panic hook stays
 //! silent for it, [`crate::error::caught_quietly`]). vtkio's own arrays are allocated

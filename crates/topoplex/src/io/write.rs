@@ -147,7 +147,8 @@ impl Format {
     /// control character (an XML attribute value; tabs and newlines would read back as blanks),
     /// PLY any 1-component attribute as a property of its type (see `ply::holds`), OBJ its
     /// grouping labels (`obj:object`, `obj:group`, `obj:material`, `obj:smoothing`, `i32` on
-    /// the listed simplices; names checked when written), OFF `off:normal`, `off:color`,
+    /// the listed simplices; names checked when written) and vertex data (`obj:color`, `obj:vt`,
+    /// `obj:vn`, see `obj::data::holds`), OFF `off:normal`, `off:color`,
     /// `off:texture` (`f64`) on the vertices and `off:color` (`f64`, 1, 3 or 4 components) on
     /// the listed simplices, `.simplices` `simplices:label` (`i64` on the listed simplices), ASCII STL `stl:solid` (`i32` on the listed triangles, named).
     pub fn holds(self, a: &Attribute) -> bool {
@@ -189,6 +190,7 @@ impl Format {
                     && a.components == 1
                     && matches!(a.values, Values::I32(_))
                     && super::obj::LABELS.iter().any(|l| l.1 == a.name)
+                    || super::obj::data::holds(a)
             }
             _ => false,
         }

@@ -3,8 +3,9 @@
 //!
 //! - **Vertex attributes**: a row per vertex slot. A new vertex gets unset numbers (0 for
 //!   labels, NaN for reals). A contraction {a, b} → a leaves a's row as the
-//!   [`VertexPolicy`] says (a's own, or the mean of a's and b's for reals) and b's row in b's
-//!   slot; the split restores a's row exactly.
+//!   [`VertexPolicy`] says (a's own, or the mean of a's and b's for reals), or as the caller's
+//!   [`VertexMerge`] callback makes it, and b's row in b's slot; the split restores a's row
+//!   exactly.
 //! - **Top attributes** (the listed attributes of the complex's top simplices): a row per top
 //!   slot of each dimension. A top rewritten in place by a contraction keeps its slot, hence its
 //!   row; a top that a contraction makes one dimension lower (an image through both a and b that
@@ -39,6 +40,24 @@ pub enum VertexPolicy {
     Average,
 }
 
+/// A caller's rule for a's vertex data at a contraction {a, b} → a
+/// ([`LiveComplex::set_vertex_merge`]): called once per vertex attribute with its name, a and
+/// b, a's row (to change in place) and b's row, as `f64`s (labels exact up to 2^53; what it
+/// leaves in a's row is rounded to the attribute's type, integers truncated). Called before the
+/// contraction changes the complex; it must not panic (a panic unwinds out of the edit, with
+/// a's row half merged).
+pub type VertexMerge = dyn Fn(&str, u32, u32, &mut [f64], &[f64]) + Send + Sync;
+
+/// The caller's merge, shared by clones of the live complex.
+#[derive(Clone)]
+struct Merge(std::sync::Arc<VertexMerge>);
+
+impl std::fmt::Debug for Merge {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str("VertexMerge(callback)")
+    }
+}
+
 /// One listed attribute on the top slots: a row per slot, per dimension.
 #[derive(Debug, Clone)]
 struct TopAttribute {
@@ -69,6 +88,8 @@ pub struct LiveData {
     records: Records,
     names: Vec<LabelName>,
     policy: VertexPolicy,
+    /// The caller's merge, which takes the place of `policy` when set.
+    merge: Option<Merge>,
 }
 
 /// What a contraction changed in the data, for the split.
@@ -192,7 +213,16 @@ impl LiveData {
                 .collect(),
             records: Vec::new(),
         };
-        if self.policy == VertexPolicy::Average {
+        if let Some(Merge(f)) = &self.merge {
+            for x in &mut self.vertex {
+                let c = x.components;
+                let real = |i: usize| x.values.real(i).unwrap_or(f64::NAN);
+                let mut row_a: Vec<f64> = (ai * c..(ai + 1) * c).map(real).collect();
+                let row_b: Vec<f64> = (bi * c..(bi + 1) * c).map(real).collect();
+                f(&x.name, a, b, &mut row_a, &row_b);
+                x.values.set_row_f64(ai, &row_a);
+            }
+        } else if self.policy == VertexPolicy::Average {
             for x in &mut self.vertex {
                 x.values.merge_rows(ai, bi, x.components);
             }
@@ -379,9 +409,22 @@ impl LiveData {
         Some(x.values.row(v, x.components))
     }
 
-    /// The policy for vertex attributes at a contraction.
+    /// Sets the row of vertex attribute `name` for vertex slot `v` from `f64`s; false when there
+    /// is no such attribute or the row has the wrong length.
+    pub(super) fn set_vertex_row(&mut self, name: &str, v: usize, row: &[f64]) -> bool {
+        match self.vertex.iter_mut().find(|x| x.name == name) {
+            Some(x) if x.components == row.len() => {
+                x.values.set_row_f64(v, row);
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// The policy for vertex attributes at a contraction (the caller's merge unset).
     pub(super) fn set_policy(&mut self, policy: VertexPolicy) {
         self.policy = policy;
+        self.merge = None;
     }
 
     /// Checks the rows against the slots: one row per vertex slot and per top slot, one id list
@@ -427,9 +470,35 @@ impl LiveComplex {
         self.data.is_empty()
     }
 
-    /// What contractions do to vertex attributes (default: the survivor keeps its own).
+    /// What contractions do to vertex attributes (default: the survivor keeps its own); unsets
+    /// a merge set by [`LiveComplex::set_vertex_merge`].
     pub fn set_vertex_policy(&mut self, policy: VertexPolicy) {
         self.data.set_policy(policy);
+    }
+
+    /// What contractions {a, b} → a do to a's vertex attributes, by the caller's rule (see
+    /// [`VertexMerge`]): `merge(name, a, b, row_a, row_b)` per vertex attribute, before the
+    /// contraction; the split restores a's row as it was. Replaces the [`VertexPolicy`] until
+    /// [`LiveComplex::set_vertex_policy`] is called. Costs one call and 2 × components numbers
+    /// copied per vertex attribute per contraction.
+    pub fn set_vertex_merge(
+        &mut self,
+        merge: impl Fn(&str, u32, u32, &mut [f64], &[f64]) + Send + Sync + 'static,
+    ) {
+        self.data.merge = Some(Merge(std::sync::Arc::new(merge)));
+    }
+
+    /// Sets the row of vertex attribute `name` for live vertex `v` (numbers as `f64`, rounded
+    /// to the attribute's type, integers truncated); false when there is no such attribute or
+    /// `row` has the wrong number of components. O(attributes + components).
+    pub fn set_vertex_values(
+        &mut self,
+        name: &str,
+        v: super::VertexId,
+        row: &[f64],
+    ) -> Result<bool, super::Refusal> {
+        self.check_vertex(v.0)?;
+        Ok(self.data.set_vertex_row(name, v.index(), row))
     }
 
     /// The row of listed attribute `name` for live top `t` (its label: the first number).

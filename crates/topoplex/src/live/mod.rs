@@ -140,7 +140,7 @@ mod store;
 use stars::Stars;
 
 pub use across::{ACROSS_MANY, ACROSS_NONE, Adjacency};
-pub use data::VertexPolicy;
+pub use data::{VertexMerge, VertexPolicy};
 pub use edit::{CompactMaps, ContractMode, UndoRecord};
 
 /// "No vertex" marker.
@@ -745,6 +745,25 @@ impl LiveComplex {
     pub fn top_vertices(&self, t: TopId) -> Result<&[u32], Refusal> {
         self.check_top(t)?;
         Ok(self.top_raw(t.raw))
+    }
+
+    /// The live top whose packed id is `packed` (dimension << 28 | slot: the numbering of the
+    /// handle API, [`crate::relation::handle::TopId`], and of the C ABI's live tops), as a
+    /// handle of the current compaction epoch. Errors: [`Refusal::StaleHandle`] when no live
+    /// top of dimension ≥ 1 has that slot. O(1).
+    pub fn top_of_packed(&self, packed: u32) -> Result<TopId, Refusal> {
+        let t = TopId {
+            raw: packed,
+            epoch: self.epoch,
+        };
+        if t.dim() >= self.tops.len() {
+            return Err(Refusal::StaleHandle(format!(
+                "top id {packed:#x} names dimension {}",
+                t.dim()
+            )));
+        }
+        self.check_top(t)?;
+        Ok(t)
     }
 
     fn check_top(&self, t: TopId) -> Result<(), Refusal> {

@@ -393,23 +393,35 @@ impl Regions {
 
     /// The (dimension, label) pairs of the live tops and listed faces through `v` (through both
     /// `v` and `with` when given), sorted, each once, into `out`.
+    /// Read from the live complex's own arrays (no handle checks): this runs for every
+    /// candidate edge that passes the link test. A vertex meets few distinct pairs, so each is
+    /// added once by a scan rather than sorted out of a list of every top.
     fn labels(&self, live: &LiveComplex, v: u32, with: Option<u32>, out: &mut Vec<(usize, i64)>) {
         out.clear();
         let through = |s: &[u32]| with.is_none_or(|w| s.contains(&w));
-        if let Ok(star) = live.vertex_star(VertexId(v)) {
-            for t in star {
-                if live.top_vertices(t).is_ok_and(through) {
-                    out.push((t.dim(), live.slot_label(self.attr, t.dim(), t.slot())));
-                }
+        let mut add = |pair: (usize, i64)| {
+            if !out.contains(&pair) {
+                out.push(pair);
+            }
+        };
+        let a = live.arrays();
+        let at = 3 * v as usize;
+        // A slot past the table (never a candidate's) reads as an empty star.
+        let block = a.star_blocks.get(at..at + 3).unwrap_or(&[0, 0, 0]);
+        let (start, len) = (block[0] as usize, block[1] as usize);
+        for &raw in &a.star_words[start..start + len] {
+            let (p, slot) = ((raw >> 28) as usize, raw & 0x0fff_ffff);
+            let w = p + 1;
+            if through(&a.tops[p][slot as usize * w..(slot as usize + 1) * w]) {
+                add((p, live.slot_label(self.attr, p, slot)));
             }
         }
         for (s, label) in live.record_labels_at(self.attr, v) {
             if through(s) {
-                out.push((s.len() - 1, label));
+                add((s.len() - 1, label));
             }
         }
         out.sort_unstable();
-        out.dedup();
     }
 
     /// Whether `gone` may move onto `keep` without touching a region interface, and if so
@@ -770,6 +782,15 @@ fn contract_loop(state: &mut State, progress: &mut dyn FnMut(usize, usize)) {
     progress(total - state.tops.saturating_sub(target), total);
 }
 
+/// A candidate {a, b} refused by the link test: counted and parked until its neighbourhood
+/// changes. Returns false (nothing contracted).
+fn park(state: &mut State, entry: Entry, a: u32, b: u32) -> bool {
+    state.stats.refused += 1;
+    let touched = state.touched(a, b);
+    state.parked.push((entry, touched));
+    false
+}
+
 /// Contracts {a, b} into the vertex with the larger star, at the minimiser; false if refused
 /// (then the entry is parked).
 fn contract_edge(state: &mut State, entry: Entry) -> bool {
@@ -783,6 +804,21 @@ fn contract_edge(state: &mut State, entry: Entry) -> bool {
     };
     let (mut keep, mut gone) = if star(a) >= star(b) { (a, b) } else { (b, a) };
     let mut stay = false;
+    if state.regions.is_some() {
+        // The link test first (it is symmetric in the edge's ends and refuses most candidates,
+        // while the regions' labels cost a walk of both stars): the regions are asked only
+        // about edges that may contract.
+        match state
+            .live
+            .can_contract(VertexId(keep), VertexId(gone), state.mode)
+        {
+            Ok(()) => {}
+            Err(Refusal::LinkCondition { .. } | Refusal::NotAnEdge { .. }) => {
+                return park(state, entry, a, b);
+            }
+            Err(e) => panic!("checking live edge {{{keep}, {gone}}}: {e}"),
+        }
+    }
     if let Some(regions) = &state.regions {
         let mut labels = std::mem::take(&mut state.scratch.labels);
         let way = match regions.allow(state.live, keep, gone, &mut labels) {
@@ -815,10 +851,7 @@ fn contract_edge(state: &mut State, entry: Entry) -> bool {
     let undo = match result {
         Ok(undo) => undo,
         Err(Refusal::LinkCondition { .. } | Refusal::NotAnEdge { .. }) => {
-            state.stats.refused += 1;
-            let touched = state.touched(a, b);
-            state.parked.push((entry, touched));
-            return false;
+            return park(state, entry, a, b);
         }
         Err(e) => panic!("contracting live edge {{{keep}, {gone}}}: {e}"),
     };

@@ -64,6 +64,43 @@ pub use crate::codec::{Field, MAGIC, Persist, StoreError, VERSION, Writer};
 pub(crate) use crate::codec::{HEADER_LEN, Reader, Sections, check_head};
 pub use crate::mapped::{Arr, Backing};
 
+/// One array of an opened file: `count` elements from byte `offset` of its bytes (aligned to
+/// the element, inside the file: checked on open).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Span {
+    /// Byte offset of the first element.
+    pub offset: usize,
+    /// Number of elements.
+    pub count: usize,
+}
+
+impl Span {
+    fn of<T: bytemuck::Pod>(a: &Arr<T>) -> Span {
+        match a {
+            Arr::Mapped { start, len, .. } => Span {
+                offset: *start,
+                count: *len,
+            },
+            // A reader's arrays are all views of the opened bytes.
+            Arr::Owned(_) => unreachable!("a saved section is a view"),
+        }
+    }
+}
+
+/// Where the saved complex's arrays lie in the opened bytes ([`Saved::complex_spans`]): each
+/// the array the complex holds, element for element.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct ComplexSpans {
+    /// The coordinates (`f64`, vertex-major, `coords().dim` per vertex); `None` without any.
+    pub coords: Option<Span>,
+    /// The listing's vertex ids (`u32`), as `Complex::input_simplex` gives them in turn.
+    pub listed_ids: Span,
+    /// The listing's offsets (`u64`, one more than the listed simplices, from 0).
+    pub listed_offsets: Span,
+    /// Each attribute's values by name (the element type is the attribute's), saved order.
+    pub attributes: Vec<(String, Span)>,
+}
+
 /// An opened `.tpx` file: checked header and section table over mapped bytes.
 pub struct Saved {
     sections: Sections,
@@ -239,9 +276,21 @@ impl Saved {
         };
         // Only a regular file: a pipe would hang the open, a directory or device mislead it.
         let (file, _) = crate::io::open_regular(path).map_err(io_err)?;
+        Saved::open_file(path, &file)
+    }
+
+    /// [`Saved::open`] of a file already opened (by [`crate::io::open_regular`]; `path` names
+    /// it in errors), for a caller that maps the same file again to view its arrays in place
+    /// ([`Saved::complex_spans`]): both maps are then of one file, whatever is renamed over
+    /// `path` meanwhile. Cost: as [`Saved::open`].
+    pub fn open_file(path: &Path, file: &File) -> Result<Saved, StoreError> {
+        let io_err = |e: io::Error| StoreError::Io {
+            path: path.to_path_buf(),
+            message: e.to_string(),
+        };
         // A mapping counts against an address-space limit: one that does not fit is memory
         // the file asks for (TooLarge), not an I/O error.
-        let map = crate::sys::map_file(&file).map_err(|e| match e.kind() {
+        let map = crate::sys::map_file(file).map_err(|e| match e.kind() {
             io::ErrorKind::OutOfMemory => StoreError::Complex {
                 path: path.to_path_buf(),
                 source: ComplexError::OutOfMemory {
@@ -320,13 +369,21 @@ impl Saved {
     /// The saved complex, rebuilt from its saved listing (so validated like any input): the
     /// same complex, numbering and statistics as the one saved. Cost: a normalisation.
     pub fn complex(&self) -> Result<Complex, StoreError> {
+        Ok(self.complex_spans()?.0)
+    }
+
+    /// [`Saved::complex`], and where the arrays it copied lie in the opened bytes (in the file,
+    /// for [`Saved::open`]), checked against them on open: a caller that maps the file itself
+    /// views them there instead of copying (the Python binding's read-only numpy arrays).
+    pub fn complex_spans(&self) -> Result<(Complex, ComplexSpans), StoreError> {
         let mut r = self.reader(1);
-        let mut c = persist::load_complex(&mut r)?;
-        persist::load_attributes(&mut r, &mut c, self.structure_first)?;
+        let mut spans = ComplexSpans::default();
+        let mut c = persist::load_complex(&mut r, &mut spans)?;
+        persist::load_attributes(&mut r, &mut c, self.structure_first, &mut spans)?;
         if r.next != self.structure_first {
             return Err(r.corrupt("the complex's sections do not end where the structure's begin"));
         }
-        Ok(c)
+        Ok((c, spans))
     }
 
     /// The saved structure, its arrays viewing the mapped file; `None` for a file holding only

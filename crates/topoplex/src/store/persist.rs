@@ -2,7 +2,7 @@
 
 use std::path::PathBuf;
 
-use super::{Reader, StoreError, Writer, coords_of};
+use super::{ComplexSpans, Reader, Span, StoreError, Writer, coords_of};
 use crate::complex::Complex;
 use crate::complex::Coords;
 use crate::complex::{Attribute, Attributes, LabelName, Location, Values};
@@ -67,6 +67,7 @@ pub(super) fn load_attributes(
     r: &mut Reader,
     c: &mut Complex,
     end: usize,
+    spans: &mut ComplexSpans,
 ) -> Result<(), StoreError> {
     if r.next >= end {
         return Ok(());
@@ -91,18 +92,22 @@ pub(super) fn load_attributes(
         let values = match ty {
             0 => {
                 let a = r.arr::<i32>()?;
+                spans.attributes.push((name.clone(), Span::of(&a)));
                 Values::I32(r.copy(&a)?)
             }
             1 => {
                 let a = r.arr::<i64>()?;
+                spans.attributes.push((name.clone(), Span::of(&a)));
                 Values::I64(r.copy(&a)?)
             }
             2 => {
                 let a = r.arr::<f32>()?;
+                spans.attributes.push((name.clone(), Span::of(&a)));
                 Values::F32(r.copy(&a)?)
             }
             _ => {
                 let a = r.arr::<f64>()?;
+                spans.attributes.push((name.clone(), Span::of(&a)));
                 Values::F64(r.copy(&a)?)
             }
         };
@@ -134,7 +139,10 @@ pub(super) fn load_attributes(
         .map_err(|e| r.corrupt(format!("attributes: {e}")))
 }
 
-pub(super) fn load_complex(r: &mut Reader) -> Result<Complex, StoreError> {
+pub(super) fn load_complex(
+    r: &mut Reader,
+    spans: &mut ComplexSpans,
+) -> Result<Complex, StoreError> {
     let n = r.u32("vertex count")?;
     let dim = r.bounded(64, "coordinate dimension")? as usize;
     let data = r.arr::<f64>()?;
@@ -145,7 +153,10 @@ pub(super) fn load_complex(r: &mut Reader) -> Result<Complex, StoreError> {
         )));
     }
     let ids = r.u32s()?;
-    let offsets = r.usizes()?;
+    spans.listed_ids = Span::of(&ids);
+    let wide = r.u64s()?;
+    spans.listed_offsets = Span::of(&wide);
+    let offsets = r.usizes_of(&wide)?;
     // from_arrays slices by these offsets: they must run from 0 to the ids' end, ascending.
     let monotone = offsets.windows(2).all(|w| w[0] <= w[1]);
     if offsets.first() != Some(&0) || offsets.last() != Some(&ids.len()) || !monotone {
@@ -154,6 +165,7 @@ pub(super) fn load_complex(r: &mut Reader) -> Result<Complex, StoreError> {
     let source = r.u8s()?;
     let source =
         (!source.is_empty()).then(|| PathBuf::from(String::from_utf8_lossy(&source).into_owned()));
+    spans.coords = (dim > 0).then(|| Span::of(&data));
     let coords = match dim {
         0 => None,
         _ => Some(Coords {
@@ -173,6 +185,84 @@ pub(super) fn load_complex(r: &mut Reader) -> Result<Complex, StoreError> {
 #[cfg(test)]
 mod tests {
     use crate::codec::head_checksum;
+    use crate::complex::{Attribute, Attributes, Complex, Coords, Location, Values};
+
+    /// The spans of `Saved::complex_spans` name, in the file's own bytes, the very arrays the
+    /// opened complex holds: coordinates, the listing's ids and offsets, and each attribute.
+    #[test]
+    fn complex_spans_point_at_the_complex_arrays_in_the_file() {
+        let listing: &[&[u32]] = &[&[2, 0, 1], &[1, 2, 3], &[3, 4], &[1, 2]];
+        let mut ids = Vec::new();
+        let mut offsets = vec![0usize];
+        for s in listing {
+            ids.extend_from_slice(s);
+            offsets.push(ids.len());
+        }
+        let coords: Vec<f64> = (0..15).map(|i| f64::from(i) * 0.5 - 3.0).collect();
+        let mut c = Complex::from_arrays(
+            5,
+            &ids,
+            &offsets,
+            Some(Coords {
+                dim: 3,
+                data: coords.clone(),
+            }),
+        )
+        .unwrap();
+        let mut attrs = Attributes::default();
+        let heat: Vec<f32> = (0..10).map(|i| i as f32 * 1.5).collect();
+        let label: Vec<i64> = vec![7, -1, 9, 11];
+        attrs.insert(Attribute {
+            name: "heat".into(),
+            location: Location::Vertices,
+            components: 2,
+            values: Values::F32(heat.clone()),
+        });
+        attrs.insert(Attribute {
+            name: "label".into(),
+            location: Location::Listed,
+            components: 1,
+            values: Values::I64(label.clone()),
+        });
+        c.set_attributes(attrs).unwrap();
+        let dir = std::env::temp_dir().join(format!("topoplex-spans-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("spans.tpx");
+        super::super::save(&path, &c, None).unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        let (file, _) = crate::io::open_regular(&path).unwrap();
+        let saved = super::super::Saved::open_file(&path, &file).unwrap();
+        let (back, spans) = saved.complex_spans().unwrap();
+        fn at<T: bytemuck::Pod>(bytes: &[u8], s: super::Span) -> Vec<T> {
+            let b = &bytes[s.offset..s.offset + s.count * size_of::<T>()];
+            b.chunks_exact(size_of::<T>())
+                .map(bytemuck::pod_read_unaligned)
+                .collect()
+        }
+        assert_eq!(at::<f64>(&bytes, spans.coords.unwrap()), coords);
+        assert_eq!(back.coords().unwrap().data, coords);
+        assert_eq!(at::<u32>(&bytes, spans.listed_ids), ids);
+        let wide: Vec<u64> = offsets.iter().map(|&o| o as u64).collect();
+        assert_eq!(at::<u64>(&bytes, spans.listed_offsets), wide);
+        assert_eq!(back.input_count(), listing.len());
+        for (i, s) in listing.iter().enumerate() {
+            assert_eq!(back.input_simplex(i), *s);
+        }
+        let names: Vec<&str> = spans.attributes.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(names, ["heat", "label"]);
+        assert_eq!(at::<f32>(&bytes, spans.attributes[0].1), heat);
+        assert_eq!(at::<i64>(&bytes, spans.attributes[1].1), label);
+        // A complex without coordinates or attributes has no span for them.
+        let bare = crate::fixtures::builtin_example();
+        super::super::save(&path, &bare, None).unwrap();
+        let (_, spans) = super::super::Saved::open(&path)
+            .unwrap()
+            .complex_spans()
+            .unwrap();
+        assert_eq!(spans.coords, None);
+        assert!(spans.attributes.is_empty());
+        std::fs::remove_dir_all(&dir).ok();
+    }
 
     /// A file of version 1 (the same layout as a version-2 file of a complex without
     /// attributes, the version field 1) still opens, and gives the same complex.

@@ -214,7 +214,13 @@ impl State<'_> {
             b"Cells" => self.section = "Cells",
             b"PointData" => self.section = "PointData",
             b"CellData" => self.section = "CellData",
+            b"FieldData" => self.section = "FieldData",
             b"DataArray" => {
+                if self.section == "FieldData" {
+                    let name = attr("Name").unwrap_or_default();
+                    let msg = data::field_data(&String::from_utf8_lossy(&name));
+                    return Err(Stop::Err(self.line_at(pos), syntax(msg)));
+                }
                 // A data array's declaration is checked here whatever its format: vtkio would
                 // read a String array as Float64.
                 let declared = self.data_array(e, pos)?;
@@ -380,7 +386,7 @@ impl State<'_> {
                     }
                 }
             }
-            b"Points" | b"Cells" | b"PointData" | b"CellData" => self.section = "",
+            b"Points" | b"Cells" | b"PointData" | b"CellData" | b"FieldData" => self.section = "",
             b"Piece" => {
                 if let Some(piece) = self.piece.take() {
                     // A missing array is reported at the piece's tag, as the vtkio path does.

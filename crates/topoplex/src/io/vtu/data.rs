@@ -437,6 +437,7 @@ pub(super) fn scan(bytes: &[u8]) -> Result<Lines, (u32, ReadErrorKind)> {
     let mut lines = Lines::default();
     let (mut counted, mut line) = (0usize, 1u32);
     let mut at: Option<Location> = None;
+    let mut field = false;
     let mut line_at = |pos: usize| {
         let pos = pos.min(bytes.len());
         if pos > counted {
@@ -455,17 +456,37 @@ pub(super) fn scan(bytes: &[u8]) -> Result<Lines, (u32, ReadErrorKind)> {
                 if matches!(e.local_name().as_ref(), b"PointData" | b"CellData") {
                     at = None;
                 }
+                field &= e.local_name().as_ref() != b"FieldData";
                 continue;
             }
             Ok(Event::Eof) | Err(_) => break,
             Ok(_) => continue,
         };
         match e.local_name().as_ref() {
-            b"AppendedData" => break,
+            b"AppendedData" => {
+                let encoding = e.try_get_attribute("encoding").ok().flatten();
+                if encoding.is_some_and(|a| a.value.as_ref() != b"base64") {
+                    return Err((
+                        line_at(pos),
+                        syntax(
+                            "<AppendedData> not base64-encoded (encoding=\"raw\"): not read \
+                             (the VTU decoder here takes base64 only); write it with base64 \
+                             appended data (VTK: SetEncodeAppendedData(1)), inline binary or ASCII",
+                        ),
+                    ));
+                }
+                break;
+            }
+            b"FieldData" if !empty => field = true,
             b"Piece" => lines.pieces.push(line_at(pos)),
             b"PointData" if !empty => at = Some(Location::Vertices),
             b"CellData" if !empty => at = Some(Location::Listed),
             b"DataArray" => {
+                if field {
+                    let name = e.try_get_attribute("Name").ok().flatten();
+                    let name = name.map(|a| String::from_utf8_lossy(&a.value).into_owned());
+                    return Err((line_at(pos), syntax(field_data(&name.unwrap_or_default()))));
+                }
                 if let Some(location) = at {
                     let l = line_at(pos);
                     let (name, _, _) = declaration(&e, location).map_err(|m| (l, syntax(m)))?;
@@ -477,6 +498,18 @@ pub(super) fn scan(bytes: &[u8]) -> Result<Lines, (u32, ReadErrorKind)> {
         }
     }
     Ok(lines)
+}
+
+/// The refusal of a `<FieldData>` array `name`: data on the whole mesh, which the model has no
+/// place for (attributes are on the vertices and the listed simplices), refused rather than
+/// dropped.
+pub(super) fn field_data(name: &str) -> String {
+    format!(
+        "<FieldData> array '{}': data on the whole mesh, which Topoplex's attributes (on the \
+         vertices and the listed simplices) cannot hold; refused rather than dropped (remove it, \
+         or move it to PointData or CellData)",
+        crate::error::echo(name)
+    )
 }
 
 /// [`declared`] on a `DataArray` tag's attributes (its `Name` unescaped).
