@@ -126,9 +126,13 @@ impl LiveComplex {
     /// Before an edit that adds, removes or rewrites tops whose vertices are among `touched`:
     /// when the adjacency is kept, those vertices and the tops now in their stars (each entry
     /// that can change belongs to a top sharing a facet with a changed top, so to such a star).
-    pub(super) fn across_before(&self, touched: impl IntoIterator<Item = u32>) -> Option<Touched> {
+    /// `touched` is called only then (a complex that does not keep the index pays nothing).
+    pub(super) fn across_before<I: IntoIterator<Item = u32>>(
+        &self,
+        touched: impl FnOnce() -> I,
+    ) -> Option<Touched> {
         self.kept_across.as_ref()?;
-        let mut vertices: Vec<u32> = touched.into_iter().collect();
+        let mut vertices: Vec<u32> = touched().into_iter().collect();
         vertices.sort_unstable();
         vertices.dedup();
         let tops = self.tops_at(&vertices);

@@ -153,7 +153,7 @@ impl LiveComplex {
                 simplex: sigma.to_vec(),
             });
         }
-        let kept = self.across_before(sigma.iter().copied());
+        let kept = self.across_before(|| sigma.iter().copied());
         let mut absorbed: Vec<u32> = Vec::new();
         for &v in sigma {
             for &raw in &self.star[v as usize] {
@@ -179,7 +179,7 @@ impl LiveComplex {
         self.renumbered();
         let k = self.check_simplex(sigma)?;
         if let Some(raw) = self.find_top(k.as_slice()) {
-            let kept = self.across_before(k.as_slice().iter().copied());
+            let kept = self.across_before(|| k.as_slice().to_vec());
             let (p, slot) = unpack(raw);
             let s = self.detach(p, slot as u32);
             self.across_after(kept);
@@ -218,7 +218,7 @@ impl LiveComplex {
     pub fn remove_top_id(&mut self, t: TopId) -> Result<(), Refusal> {
         self.renumbered();
         self.check_top(t)?;
-        let kept = self.across_before(self.top_raw(t.raw).to_vec());
+        let kept = self.across_before(|| self.top_raw(t.raw).to_vec());
         let (p, slot) = unpack(t.raw);
         let s = self.detach(p, slot as u32);
         self.across_after(kept);
@@ -295,7 +295,7 @@ impl LiveComplex {
         if let Some(xyz) = new_position {
             self.check_coords_of(a.0, xyz)?;
         }
-        let kept = self.across_before(self.star_vertices(&[a.0, b.0]));
+        let kept = self.across_before(|| self.star_vertices(&[a.0, b.0]));
         let k = self.coord_dim;
         let mut undo = UndoRecord {
             a,
@@ -443,13 +443,10 @@ impl LiveComplex {
         self.renumbered();
         self.check_undo(undo)?;
         // The restored tops hold b or were St(a)'s; the created ones are St(a)'s now.
-        let restored = undo.removed.iter().flat_map(|(_, s)| s.iter().copied());
-        let touched: Vec<u32> = self
-            .star_vertices(&[undo.a.0])
-            .into_iter()
-            .chain(restored)
-            .collect();
-        let kept = self.across_before(touched);
+        let kept = self.across_before(|| {
+            let restored = undo.removed.iter().flat_map(|(_, s)| s.iter().copied());
+            self.star_vertices(&[undo.a.0]).into_iter().chain(restored)
+        });
         for &raw in &undo.inserted.raw {
             let (p, slot) = unpack(raw);
             self.detach(p, slot as u32);
