@@ -17,6 +17,7 @@
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polyhedron_3.h>
 #include <CGAL/Surface_mesh.h>
+#include <CGAL/Triangulation_3.h>
 #include <topoplex/cgal.hpp>
 #include <topoplex/cgal_tds3.hpp>
 
@@ -229,6 +230,55 @@ TEST(TriangulationAdapter, DelaunayCellsBecomeListedTetrahedraInOrder) {
     EXPECT_EQ(st.relation(tri, 3).size(), on_hull ? 1u : 2u);
   }
   EXPECT_GT(hull, 0u);
+}
+
+// Back into a plain Triangulation_3 (complex_to_triangulation): a Delaunay triangulation's
+// complex comes back with the same vertices in order and the same cells in listing order
+// (triangulation_to_complex gives the complex again, coordinates bit for bit), a valid TDS and a
+// valid Delaunay triangulation (its cells are Delaunay's), every finite cell positive; a
+// negatively wound tetrahedron is turned and counted; a pinched pair and a complex with an
+// attribute are refused (the attribute taken when left behind), the triangulation left empty.
+TEST(TriangulationAdapter, ComplexBackToAPlainTriangulationKeepsVerticesAndCells) {
+  using DT = CGAL::Delaunay_triangulation_3<K>;
+  std::vector<K::Point_3> pts;
+  std::uint64_t s = 11;
+  for (int i = 0; i < 80; ++i)
+    pts.emplace_back(fixtures::unit(s), fixtures::unit(s), fixtures::unit(s));
+  const DT dt(pts.begin(), pts.end());
+  const topoplex::Complex c = cg::triangulation_to_complex(dt);
+  DT back;
+  EXPECT_EQ(cg::complex_to_triangulation(c, back), 0u);
+  EXPECT_TRUE(back.tds().is_valid());
+  EXPECT_TRUE(back.is_valid());
+  EXPECT_EQ(back.number_of_vertices(), dt.number_of_vertices());
+  EXPECT_EQ(back.number_of_finite_cells(), dt.number_of_finite_cells());
+  const topoplex::Complex again = cg::triangulation_to_complex(back);
+  EXPECT_EQ(again.coords(), c.coords());
+  EXPECT_EQ(fixtures::listing(again), fixtures::listing(c));
+  for (auto cell = back.finite_cells_begin(); cell != back.finite_cells_end(); ++cell)
+    EXPECT_EQ(CGAL::orientation(cell->vertex(0)->point(), cell->vertex(1)->point(),
+                                cell->vertex(2)->point(), cell->vertex(3)->point()),
+              CGAL::POSITIVE);
+  using T3 = CGAL::Triangulation_3<K>;
+  T3 one;
+  const topoplex::Complex negative = topoplex::Complex::from_arrays(
+      4, {0, 2, 1, 3}, {0, 4}, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}, 3);
+  EXPECT_EQ(cg::complex_to_triangulation(negative, one), 1u);
+  EXPECT_EQ(one.number_of_finite_cells(), 1u);
+  EXPECT_TRUE(one.is_valid());
+  const topoplex::Complex pinched = topoplex::Complex::from_arrays(
+      7, {0, 1, 2, 3, 0, 4, 5, 6}, {0, 4, 8},
+      {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1}, 3);
+  EXPECT_THROW(cg::complex_to_triangulation(pinched, one), topoplex::Refused);
+  EXPECT_EQ(one.number_of_vertices(), 0u);
+  topoplex::Complex labelled = topoplex::Complex::from_arrays(
+      4, {0, 2, 1, 3}, {0, 4}, {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1}, 3);
+  labelled.set_attribute("region", topoplex::Location::Listed, 1, std::vector<std::int32_t>{7});
+  EXPECT_THROW(cg::complex_to_triangulation(labelled, one), topoplex::Refused);
+  std::vector<topoplex::Dropped> dropped;
+  EXPECT_EQ(cg::complex_to_triangulation(labelled, one, &dropped), 1u);
+  ASSERT_EQ(dropped.size(), 1u);
+  EXPECT_EQ(dropped[0].name, "region");
 }
 
 // A Mesh_complex_3_in_triangulation_3 labelled by hand (two subdomains split at x = 0.5, the

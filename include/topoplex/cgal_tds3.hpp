@@ -4,6 +4,8 @@
  *
  *   topoplex::Complex c = topoplex::cgal::triangulation_to_complex(tr);   // finite cells
  *   topoplex::Complex m = topoplex::cgal::c3t3_to_complex(c3t3);          // the mesh, labelled
+ *   topoplex::cgal::complex_to_triangulation(c, tr);                      // and back (plain T3)
+ *   topoplex::cgal::complex_to_c3t3(m, c3t3);                             // and back (C3T3)
  *
  * Kept: vertex i is the i-th finite vertex of the triangulation's vertex range; the listed
  * tetrahedra are the finite cells (triangulation_to_complex) or the cells in the complex
@@ -53,6 +55,7 @@
 #include <map>
 
 #include <cstdint>
+#include <string>
 #include <type_traits>
 #include <unordered_map>
 #include <utility>
@@ -101,6 +104,32 @@ bool patch_from(const std::int32_t *x, std::size_t k, SPI &out) {
   }
   return true;
 }
+
+/* Whether cell type C carries Mesh_3's subdomain and surface patch indices (a C3T3's cells do,
+ * a plain Triangulation_3's do not): build_tds sets them only then. */
+template <class C, class = void>
+struct has_mesh_indices : std::false_type {};
+template <class C>
+struct has_mesh_indices<C, std::void_t<typename C::Subdomain_index, typename C::Surface_patch_index>>
+    : std::true_type {};
+
+/* Whether vertex type V carries Mesh_3's dimension in the complex (set to -1 before the build,
+ * 3 once in a cell, as CGAL's loader does): a plain Triangulation_3's vertices do not. */
+template <class V, class = void>
+struct has_vertex_dimension : std::false_type {};
+template <class V>
+struct has_vertex_dimension<V, std::void_t<decltype(std::declval<V &>().set_dimension(0))>>
+    : std::true_type {};
+
+/* The surface patch index type of cell type C, int for a cell without one. */
+template <class C, bool = has_mesh_indices<C>::value>
+struct patch_index {
+  using type = int;
+};
+template <class C>
+struct patch_index<C, true> {
+  using type = typename C::Surface_patch_index;
+};
 
 }  // namespace detail
 
@@ -191,12 +220,13 @@ bool build_tds(Tr &tr, const std::vector<typename Tr::Point> &points,
   tds.clear();  // not tr.clear(): that would make a new triangulation of dimension -1
   const VH infinite = tds.create_vertex();
   tr.set_infinite_vertex(infinite);
-  infinite->set_dimension(-1);
+  constexpr bool vdim = has_vertex_dimension<typename Tr::Vertex>::value;
+  if constexpr (vdim) infinite->set_dimension(-1);
   std::vector<VH> vh(points.size());
   for (std::size_t v = 0; v < points.size(); ++v) {
     vh[v] = tds.create_vertex();
     vh[v]->set_point(points[v]);
-    vh[v]->set_dimension(-1);
+    if constexpr (vdim) vh[v]->set_dimension(-1);
   }
   const std::size_t nc = cells.size();
   std::vector<CH> ch(nc);
@@ -205,10 +235,10 @@ bool build_tds(Tr &tr, const std::vector<typename Tr::Point> &points,
   for (std::size_t k = 0; k < nc; ++k) {
     const auto &t = cells[k];
     ch[k] = tds.create_cell(vh[t[0]], vh[t[1]], vh[t[2]], vh[t[3]]);
-    ch[k]->set_subdomain_index(t[4]);
+    if constexpr (has_mesh_indices<typename Tr::Cell>::value) ch[k]->set_subdomain_index(t[4]);
     for (int j = 0; j < 4; ++j) {
       const VH v = vh[t[j]];
-      v->set_dimension(3);
+      if constexpr (vdim) v->set_dimension(3);
       if (v->cell() == CH()) v->set_cell(ch[k]);
       Key f{std::uint32_t(t[(j + 1) % 4]), std::uint32_t(t[(j + 2) % 4]),
             std::uint32_t(t[(j + 3) % 4]), std::uint32_t(4 * k + j)};
@@ -232,9 +262,11 @@ bool build_tds(Tr &tr, const std::vector<typename Tr::Point> &points,
     if (e - i > 2) return false;
     const std::array<std::uint32_t, 3> ids{facets[i][0], facets[i][1], facets[i][2]};
     while (b < border.size() && border[b].first < ids) ++b;
-    for (std::size_t x = i; x < e; ++x) {
-      if (b < border.size() && border[b].first == ids)
-        ch[facets[x][3] / 4]->set_surface_patch_index(int(facets[x][3] % 4), border[b].second);
+    if constexpr (has_mesh_indices<typename Tr::Cell>::value) {
+      for (std::size_t x = i; x < e; ++x) {
+        if (b < border.size() && border[b].first == ids)
+          ch[facets[x][3] / 4]->set_surface_patch_index(int(facets[x][3] % 4), border[b].second);
+      }
     }
     if (e - i == 2) {
       const CH c0 = ch[facets[i][3] / 4], c1 = ch[facets[i + 1][3] / 4];
@@ -261,7 +293,8 @@ bool build_tds(Tr &tr, const std::vector<typename Tr::Point> &points,
     const CH n = tds.create_cell(infinite, vh[w[0]], vh[w[1]], vh[w[2]]);
     n->set_neighbor(0, ch[k]);
     ch[k]->set_neighbor(j, n);
-    n->set_surface_patch_index(0, ch[k]->surface_patch_index(j));
+    if constexpr (has_mesh_indices<typename Tr::Cell>::value)
+      n->set_surface_patch_index(0, ch[k]->surface_patch_index(j));
     if (infinite->cell() == CH()) infinite->set_cell(n);
     const std::uint32_t m = std::uint32_t(inf_cells.size());
     inf_cells.push_back(n);
@@ -335,36 +368,42 @@ bool build_tds(Tr &tr, const std::vector<typename Tr::Point> &points,
 }  // namespace detail
 
 #ifdef TOPOPLEX_HAVE_COMPLEX_TO_C3T3
-/* Fills `out` (cleared first) with the complex's tetrahedra and labels (header comment).
- * Returns the number of tetrahedra given to CGAL with their first two vertices swapped. */
-template <class C3T3>
-std::size_t complex_to_c3t3(const Complex &c, C3T3 &out, std::vector<Dropped> *dropped = nullptr) {
-  using Tr = typename C3T3::Triangulation;
-  using SPI = typename Tr::Cell::Surface_patch_index;
+namespace detail {
+
+/* The one body of complex_to_c3t3 and complex_to_triangulation: the listed tetrahedra (a
+ * negatively oriented one with its first two vertices swapped, counted in the return value)
+ * into `tr` through build_tds; with `Labels` (a C3T3's triangulation) "c3t3:subdomain" and
+ * "c3t3:patch" as its cells' indices, without them every attribute left behind or refused.
+ * `what` names the target in refusals; `tr` is left cleared on a refusal. */
+template <bool Labels, class Tr>
+std::size_t complex_to_tds(const Complex &c, Tr &tr, std::vector<Dropped> *dropped,
+                           const std::string &what) {
+  using SPI = typename patch_index<typename Tr::Cell>::type;
   using P3 = typename Tr::Geom_traits::Point_3;
-  out.clear();
   if (c.dimension() != 3) {
-    throw Refused("a C3T3 holds a tetrahedral mesh; the complex has dimension " +
+    throw Refused(what + " holds a tetrahedral mesh; the complex has dimension " +
                   std::to_string(c.dimension()));
   }
   if (c.coord_dim() != 3) {
-    throw Refused("a C3T3 needs 3 coordinates per vertex; the complex has " +
+    throw Refused(what + " needs 3 coordinates per vertex; the complex has " +
                   std::to_string(c.coord_dim()));
   }
   bool have_sub = false, have_patch = false;
   std::size_t patch_k = 0;
   for (const AttributeInfo &a : c.attributes()) {
-    if (a.name == "c3t3:subdomain" && a.location == Location::Listed && a.type == ValueType::I32 &&
-        a.components == 1) {
+    if (Labels && a.name == "c3t3:subdomain" && a.location == Location::Listed &&
+        a.type == ValueType::I32 && a.components == 1) {
       have_sub = true;
-    } else if (a.name == "c3t3:patch" && a.location == Location::Listed &&
+    } else if (Labels && a.name == "c3t3:patch" && a.location == Location::Listed &&
                a.type == ValueType::I32) {
       have_patch = true;
       patch_k = a.components;
     } else {
       adapt::drop(dropped, a.name,
-                  "a C3T3 holds the cells' subdomain (\"c3t3:subdomain\", i32) and the facets' "
-                  "surface patch (\"c3t3:patch\", i32) only");
+                  Labels ? "a C3T3 holds the cells' subdomain (\"c3t3:subdomain\", i32) and the "
+                           "facets' surface patch (\"c3t3:patch\", i32) only"
+                         : "a Triangulation_3 holds no values (complex_to_c3t3 keeps "
+                           "\"c3t3:subdomain\" and \"c3t3:patch\")");
     }
   }
   const std::vector<double> xyz = c.coords();
@@ -395,7 +434,7 @@ std::size_t complex_to_c3t3(const Complex &c, C3T3 &out, std::vector<Dropped> *d
       const auto o = CGAL::orientation(pt(t[0]), pt(t[1]), pt(t[2]), pt(t[3]));
       if (o == CGAL::COPLANAR) {
         throw Refused("tetrahedron " + adapt::ids_text(ids, 4) + " (listed simplex " +
-                      std::to_string(i) + ") is flat: a C3T3 cell must have volume");
+                      std::to_string(i) + ") is flat: " + what + "'s cell must have volume");
       }
       if (o == CGAL::NEGATIVE) {
         std::swap(t[0], t[1]);
@@ -404,7 +443,7 @@ std::size_t complex_to_c3t3(const Complex &c, C3T3 &out, std::vector<Dropped> *d
       cells.push_back(t);
     } else if (n == 3 && have_patch) {
       SPI value;
-      if (!detail::patch_from(patch.element(i), patch_k, value)) {
+      if (!patch_from(patch.element(i), patch_k, value)) {
         throw Refused("\"c3t3:patch\" has " + std::to_string(patch_k) +
                       " components; this C3T3's Surface_patch_index takes " +
                       (std::is_integral<SPI>::value ? "1" : "2"));
@@ -415,16 +454,50 @@ std::size_t complex_to_c3t3(const Complex &c, C3T3 &out, std::vector<Dropped> *d
     }
   });
   if (points.empty() || cells.empty()) {
-    throw Refused("a C3T3 needs at least one tetrahedron");
+    throw Refused(what + " needs at least one tetrahedron");
   }
-  if (!detail::build_tds(out.triangulation(), points, cells, border)) {
-    out.clear();
+  if (!build_tds(tr, points, cells, border)) {
+    tr.clear();
     throw Refused("CGAL's triangulation cannot hold the tetrahedra: they must fill a ball, each "
                   "triangle in at most two of them, every vertex in one (c3t3_to_complex(c3t3, "
                   "true) gives such a complex)");
   }
+  return swapped;
+}
+
+}  // namespace detail
+
+/* Fills `out` (cleared first) with the complex's tetrahedra and labels (header comment).
+ * Returns the number of tetrahedra given to CGAL with their first two vertices swapped. */
+template <class C3T3>
+std::size_t complex_to_c3t3(const Complex &c, C3T3 &out, std::vector<Dropped> *dropped = nullptr) {
+  out.clear();
+  std::size_t swapped = 0;
+  try {
+    swapped = detail::complex_to_tds<true>(c, out.triangulation(), dropped, "a C3T3");
+  } catch (...) {
+    out.clear();
+    throw;
+  }
   out.rescan_after_load_of_triangulation();
   return swapped;
+}
+
+/* Fills the plain Triangulation_3 `out` (any vertex and cell base without Mesh_3's indices;
+ * cleared first) with the complex's listed tetrahedra, built as complex_to_c3t3 builds a C3T3's
+ * (header comment): vertex i is the i-th finite vertex and the finite cells come in listing order
+ * (triangulation_to_complex(out) gives the complex back), a negatively oriented tetrahedron with
+ * its first two vertices swapped (counted in the return value). Refused as complex_to_c3t3, and
+ * every attribute unless left behind into `dropped` (a Triangulation_3 holds no values). The
+ * cells are not made Delaunay: `out` holds the complex's own tetrahedra, so Delaunay-specific
+ * calls (insert, is_valid's empty-sphere test) assume what the complex gives. Cost as
+ * complex_to_c3t3. */
+template <class Tr>
+std::size_t complex_to_triangulation(const Complex &c, Tr &out, std::vector<Dropped> *dropped = nullptr) {
+  static_assert(!detail::has_mesh_indices<typename Tr::Cell>::value,
+                "a Mesh_3 triangulation: use complex_to_c3t3, which sets its cells' indices");
+  out.clear();
+  return detail::complex_to_tds<false>(c, out, dropped, "a Triangulation_3");
 }
 #endif
 
