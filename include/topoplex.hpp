@@ -1649,8 +1649,9 @@ class MeshView {
   /* The tops of dimension q (2 or 3) through the edge {a, b} into `out` (reused), as tpx_cyclic
    * with q gives them on a complex of dimension q: tetrahedra (q = 3) joined through the
    * triangles abx that exactly two of them hold, in radial order, unoriented; triangles
-   * (q = 2) as one group in star order, closed when there are two or more (a 2-complex has no
-   * radial order without geometry). Only tops take part. O(k log k) over the smaller star. */
+   * (q = 2) as one group ascending, closed when there are two or more (a 2-complex has no
+   * radial order without geometry; empty when none holds the edge). Only tops take part.
+   * O(k log k) over the smaller star. */
   void around_edge(std::uint32_t a, std::uint32_t b, std::uint32_t q, TopFans &out) const {
     out.clear();
     const std::uint32_t e[2] = {a, b};
@@ -1665,7 +1666,7 @@ class MeshView {
       chains(out, false);
       return;
     }
-    if (out.pieces_.empty()) return;
+    // One group, as tpx_cyclic gives it (empty for an edge no top triangle holds).
     std::sort(out.pieces_.begin(), out.pieces_.end(),
               [](const TopFans::Piece &x, const TopFans::Piece &y) { return x.top < y.top; });
     for (const TopFans::Piece &p : out.pieces_) out.items_.push_back(p.top);

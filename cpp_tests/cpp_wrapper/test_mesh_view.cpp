@@ -279,6 +279,10 @@ Group canonical(std::vector<Ids> items, bool closed, bool oriented) {
   }
   return {items, closed, oriented};
 }
+std::vector<Ids> sorted_rows(std::vector<Ids> rows) {
+  std::sort(rows.begin(), rows.end());
+  return rows;
+}
 std::vector<Group> groups_of(const MeshView &m, const topoplex::TopFans &f) {
   std::vector<Group> out;
   for (std::size_t k = 0; k < f.size(); ++k) {
@@ -323,6 +327,18 @@ TEST(MeshView, FansAndRadialGroupsEqualTheLibrarysOnRandomComplexes) {
           ASSERT_EQ(groups_of(m, mine), groups_of(live, theirs)) << "fans at " << v;
           fans += mine.size();
           for (std::size_t k = 0; k < mine.size(); ++k) oriented += mine.oriented(k) && mine[k].size() > 1;
+          for (std::uint32_t w = v + 1; w < o.alive.size() && live.dimension() == 2; ++w) {
+            if (!o.alive[w] || o.holding({v, w}).empty()) continue;
+            m.around_edge(v, w, 2, mine);  // the triangles at an edge: one group, no order
+            live.around_edge(live.locate({v, w}), 2, theirs);
+            ASSERT_EQ(mine.size(), 1u) << "triangles around " << v << "," << w;
+            ASSERT_EQ(theirs.size(), 1u);
+            EXPECT_EQ(mine.closed(0), theirs.closed(0));
+            std::vector<Ids> a, b;
+            for (TopRef t : mine[0]) a.push_back(top_set(m, t));
+            for (std::size_t i = 0; i < theirs[0].size(); ++i) b.push_back(live.vertices(theirs[0][i]));
+            EXPECT_EQ(sorted_rows(a), sorted_rows(b)) << "triangles around " << v << "," << w;
+          }
         }
         if (live.dimension() == 3)
           for (std::uint32_t w = v + 1; w < o.alive.size(); ++w) {
