@@ -693,10 +693,20 @@ pub trait Navigate: Topology {
     ) -> Result<(), QueryError> {
         out.clear();
         self.check(h)?;
+        if h.dim() == 0 && self.vertex_star(h.index(), order, out) {
+            return Ok(());
+        }
         for q in h.dim() + 1..=self.dimension() {
             append_in_order(out, order, |out| self.visit(h, q, &mut |x| out.push(x)))?;
         }
         Ok(())
+    }
+
+    /// [`Navigate::star`] of vertex `v` (checked) from one walk of the structure's own, when it
+    /// has one: the same answers and order as one walk per dimension. `false` (nothing
+    /// written) sends `star` to the walk per dimension, the default.
+    fn vertex_star(&self, _v: u32, _order: Order, _out: &mut Vec<SimplexHandle>) -> bool {
+        false
     }
 
     /// The link of h: for every τ in the star of h, the face τ ∖ h; dimension ascending, each

@@ -600,21 +600,8 @@ impl<T: NavBase> Navigate for T {
         Ok(Some(RelationView::new(&c.offsets, &c.ids, true)))
     }
 
-    fn star(
-        &self,
-        h: SimplexHandle,
-        order: Order,
-        out: &mut Vec<SimplexHandle>,
-    ) -> Result<(), QueryError> {
-        out.clear();
-        self.check(h)?;
-        if h.dim() == 0 && self.fast_star(h.index(), order, out) {
-            return Ok(());
-        }
-        for q in h.dim() + 1..=self.dimension() {
-            append_in_order(out, order, |out| self.visit(h, q, &mut |x| out.push(x)))?;
-        }
-        Ok(())
+    fn vertex_star(&self, v: u32, order: Order, out: &mut Vec<SimplexHandle>) -> bool {
+        self.fast_star(v, order, out)
     }
 
     fn visit(
