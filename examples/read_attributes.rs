@@ -6,16 +6,9 @@
 //!
 //! Usage: `cargo run --release --example read_attributes -- FILE [REPS]`
 
-fn peak_bytes() -> u64 {
-    let s = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    let kib = s
-        .lines()
-        .find(|l| l.starts_with("VmHWM:"))
-        .and_then(|l| l.split_whitespace().nth(1))
-        .and_then(|n| n.parse::<u64>().ok())
-        .unwrap_or(0);
-    kib * 1024
-}
+#[path = "support/peak.rs"]
+mod peak;
+use peak::peak_bytes;
 
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
