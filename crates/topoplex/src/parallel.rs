@@ -39,7 +39,12 @@ pub fn set_split_threshold(n: usize) {
 /// the split threshold, and the pool is running (a pool that cannot start, e.g. under a memory
 /// limit, leaves the step serial: the same bytes, see the module doc).
 pub(crate) fn splits(n: usize) -> bool {
-    threads() > 1 && n >= SPLIT_AT.load(Ordering::Relaxed) && pool(threads()).is_some()
+    threads() > 1 && n >= split_threshold() && pool(threads()).is_some()
+}
+
+/// The number of items from which a step splits ([`MIN_PARALLEL`] unless a test lowered it).
+fn split_threshold() -> usize {
+    SPLIT_AT.load(Ordering::Relaxed)
 }
 
 /// `0..n` cut into consecutive ranges for a parallel step: one range when the step runs
@@ -377,6 +382,20 @@ pub(crate) fn try_copied<T: Copy + Send + Sync>(items: &[T]) -> Result<Vec<T>, u
     Ok(out)
 }
 
+/// `f(item)` for each of `items` (pieces of work the caller cut, e.g. one per range of
+/// [`ranges`]), results in order: on [`threads`] threads when there are several pieces, on the
+/// calling thread when there is one (so a small input never wakes the pool).
+pub(crate) fn map_items<I: Send, T: Send>(
+    items: Vec<I>,
+    f: impl Fn(I) -> T + Sync + Send,
+) -> Vec<T> {
+    use rayon::prelude::*;
+    if items.len() < 2 {
+        return items.into_iter().map(f).collect();
+    }
+    install(|| items.into_par_iter().map(f).collect())
+}
+
 /// `f(c)` for each of `chunks` chunks of work the caller sized, in chunk order: on
 /// [`threads`] threads whenever there are several chunks.
 pub(crate) fn map_chunks<T: Send>(chunks: usize, f: impl Fn(usize) -> T + Sync + Send) -> Vec<T> {
@@ -605,12 +624,21 @@ fn offsets_by_range(off: &mut [u32], counts: &mut [Vec<u32>]) {
 /// Whether `bytes` more can be allocated now: reserved and released at once (address space,
 /// not pages), so a step whose peak is known but whose buffers are made infallibly (a sort's
 /// keys and scratch) fails with `Err(bytes)` before it starts rather than aborting half way.
-/// With several threads the pool is started first (or found not to start), so that its
-/// threads' stacks, taken when the step splits, are not taken after the probe passed.
+/// For a step that may split, [`headroom_for`].
 pub fn headroom(bytes: usize) -> Result<(), usize> {
-    start_pool();
     let mut probe: Vec<u8> = Vec::new();
     probe.try_reserve_exact(bytes).map_err(|_| bytes)
+}
+
+/// [`headroom`] for a step over `items` items: when it will split (see [`splits`]), the pool
+/// is started first (or found not to start), so that its threads' stacks are not taken after
+/// the probe passed. A step too small to split never starts the pool: two threads' stacks and
+/// malloc arenas would cost a small input more memory than they save time.
+pub(crate) fn headroom_for(items: usize, bytes: usize) -> Result<(), usize> {
+    if threads() > 1 && items >= split_threshold() {
+        start_pool();
+    }
+    headroom(bytes)
 }
 
 /// Appends `n` copies of `x` to `v` on several threads (the pages are touched in parallel);
@@ -619,8 +647,12 @@ pub(crate) fn extend_filled<T: Copy + Send + Sync>(v: &mut Vec<T>, n: usize, x: 
     if v.capacity() - v.len() < n {
         return false;
     }
-    use rayon::prelude::*;
-    crate::parallel::install(|| v.par_extend(rayon::iter::repeat_n(x, n)));
+    if splits(n) {
+        use rayon::prelude::*;
+        install(|| v.par_extend(rayon::iter::repeat_n(x, n)));
+    } else {
+        v.extend(std::iter::repeat_n(x, n));
+    }
     true
 }
 
@@ -634,8 +666,12 @@ pub(crate) fn extend_with<T: Send>(
     if v.capacity() - v.len() < n {
         return false;
     }
-    use rayon::prelude::*;
-    crate::parallel::install(|| v.par_extend((0..n).into_par_iter().map(f)));
+    if splits(n) {
+        use rayon::prelude::*;
+        install(|| v.par_extend((0..n).into_par_iter().map(f)));
+    } else {
+        v.extend((0..n).map(f));
+    }
     true
 }
 

@@ -32,7 +32,7 @@
 //! scratch.
 
 use super::closure::TopAt;
-use super::table::{headroom, id_bits};
+use super::table::id_bits;
 use super::{Complex, SimplexTable};
 
 /// What [`Complex::closure_by_blocks`] makes.
@@ -273,7 +273,7 @@ impl Complex {
                 .map(|p| self.tops[p].len().saturating_mul((p + 1) << p))
                 .fold(0, usize::saturating_add);
             let per = if want == Want::Links { 24 } else { 12 };
-            headroom(ids.saturating_mul(per))?;
+            crate::parallel::headroom_for(ids, ids.saturating_mul(per))?;
         }
         let (off, at) = self.tops_at_vertices()?;
         let parts = crate::parallel::ranges_by_weight(&off);
@@ -700,7 +700,7 @@ fn append_parts(mut bufs: Vec<Vec<u32>>, shifts: &[u32]) -> Result<Vec<u32>, usi
     let total: usize = bufs.iter().map(Vec::len).sum();
     // Probed, then had zeroed from the allocator: fresh pages, faulted in by the thread that
     // copies into them rather than cleared by this one.
-    headroom(total.saturating_mul(4))?;
+    crate::parallel::headroom_for(total, total.saturating_mul(4))?;
     let mut all = vec![0u32; total];
     let mut pieces = Vec::with_capacity(bufs.len());
     let mut rest = all.as_mut_slice();
@@ -745,7 +745,7 @@ fn facets_without_first(tables: &[SimplexTable], q: usize, links: &mut [u32]) ->
     let pack = |r: &[u32]| r.iter().fold(0u64, |k, &v| k << bits | u64::from(v));
     // The rows past their first id, as words when q − 1 ids fit (a compare of words).
     let rest = if (q - 1) as u32 * bits <= 64 {
-        headroom(below.len() * 8)?;
+        crate::parallel::headroom_for(below.len(), below.len() * 8)?;
         Some(crate::parallel::map_collect(below.len(), |i| {
             pack(&below.get(i)[1..])
         }))

@@ -65,7 +65,7 @@ impl Complex {
                     .saturating_mul(4)
             })
             .fold(0, usize::saturating_add);
-        table::headroom(bound.saturating_mul(3))?;
+        crate::parallel::headroom_for(bound / 4, bound.saturating_mul(3))?;
         let (off, at) = self.tops_at_vertices()?;
         let parts = crate::parallel::ranges_by_weight(&off);
         let buckets = crate::parallel::map_chunks(parts.len(), |c| {

@@ -119,7 +119,10 @@ impl Complex {
         if self.listing.maps.get().is_none() {
             let tops: usize = self.tops.iter().map(SimplexTable::len).sum();
             let starts = (self.n_vertices as usize + 1) * 4 * self.tops.len();
-            table::headroom(self.input_count() * 8 + tops * 4 + starts)?;
+            crate::parallel::headroom_for(
+                self.input_count(),
+                self.input_count() * 8 + tops * 4 + starts,
+            )?;
             // Another thread may have built them meanwhile: then ours is dropped.
             let _ = self.listing.maps.set(self.build_listing_maps()?);
         }

@@ -587,7 +587,6 @@ fn rows_in_place<'a>(
     simplex: &(impl Fn(usize) -> &'a [u32] + Sync),
     by_dim: &mut [Rows],
 ) -> Result<(), Stop> {
-    use rayon::prelude::*;
     let ranges: Vec<_> = crate::parallel::ranges(range.len())
         .into_iter()
         .map(|r| (range.start + r.start)..(range.start + r.end))
@@ -624,26 +623,22 @@ fn rows_in_place<'a>(
             .collect();
         parts.push((mine, r.clone()));
     }
-    let refused: Vec<Option<(usize, Invalid)>> = crate::parallel::install(|| {
-        parts
-            .into_par_iter()
-            .map(|(mut slices, r)| {
-                let mut at = [0usize; MAX_DIMENSION + 1];
-                let mut buf = [0u32; MAX_DIMENSION + 1];
-                for i in r {
-                    match sorted_row(simplex(i), n, &mut buf) {
-                        Ok(row) => {
-                            let p = row.len() - 1;
-                            slices[p][at[p]..at[p] + row.len()].copy_from_slice(row);
-                            at[p] += row.len();
-                        }
-                        Err(why) => return Some((i, why)),
+    let refused: Vec<Option<(usize, Invalid)>> =
+        crate::parallel::map_items(parts, |(mut slices, r)| {
+            let mut at = [0usize; MAX_DIMENSION + 1];
+            let mut buf = [0u32; MAX_DIMENSION + 1];
+            for i in r {
+                match sorted_row(simplex(i), n, &mut buf) {
+                    Ok(row) => {
+                        let p = row.len() - 1;
+                        slices[p][at[p]..at[p] + row.len()].copy_from_slice(row);
+                        at[p] += row.len();
                     }
+                    Err(why) => return Some((i, why)),
                 }
-                None
-            })
-            .collect()
-    });
+            }
+            None
+        });
     match refused.into_iter().flatten().next() {
         Some((i, why)) => Err(Stop::Refused(i, why)),
         None => Ok(()),

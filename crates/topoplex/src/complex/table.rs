@@ -77,7 +77,8 @@ impl SimplexTable {
             return Ok((SimplexTable::from_sorted_unique(arity, ids), 0));
         }
         let rows = ids.len() / arity.max(1);
-        headroom(
+        crate::parallel::headroom_for(
+            rows,
             rows.saturating_mul(16)
                 .saturating_add(ids.len().saturating_mul(4)),
         )?;

@@ -84,7 +84,7 @@ impl Persist for LiveComplex {
         let bytes = (n as usize)
             .saturating_mul(4 + 1 + size_of::<Vec<u32>>())
             .saturating_add(ids.saturating_mul(8));
-        crate::complex::table::headroom(bytes)
+        crate::parallel::headroom_for(ids, bytes)
             .map_err(|bytes| r.out_of_memory("the live complex's tables", bytes))?;
         let coords = r.copy(&coords)?;
         let live = LiveComplex::from_tables(n, coord_dim, coords, &tables);

@@ -7,7 +7,7 @@
 use rustc_hash::FxHashSet;
 
 use super::BuildError;
-use crate::complex::table::{self, headroom, partition_point};
+use crate::complex::table::{self, partition_point};
 use crate::complex::{Complex, SimplexTable, sort_dedup_rows};
 pub(crate) use crate::error::show;
 use crate::relation::StructureKind;
@@ -152,7 +152,8 @@ pub(crate) fn try_order(
     key_bits: u32,
     key: impl Fn(u32) -> u64 + Sync + Send,
 ) -> Result<Option<Vec<u32>>, BuildError> {
-    headroom(n.saturating_mul(20)).map_err(|bytes| too_large(kind, bytes, "a sort"))?;
+    crate::parallel::headroom_for(n, n.saturating_mul(20))
+        .map_err(|bytes| too_large(kind, bytes, "a sort"))?;
     // Reserved fallibly too: the probe cannot see what other threads take after it.
     table::try_order_by_key(n, key_bits, key).map_err(|bytes| too_large(kind, bytes, "a sort"))
 }

@@ -271,7 +271,7 @@ impl NonManifoldIa {
         // The rings' peak: each edge incidence (12 bytes) in a doubling array and its sorted
         // copy, and the sort (20 bytes): under 64 bytes an incidence.
         let incidences = 6 * s.tets.len() + 3 * s.faces.len();
-        crate::complex::table::headroom(incidences.saturating_mul(64))
+        crate::parallel::headroom_for(incidences, incidences.saturating_mul(64))
             .map_err(|bytes| super::common::too_large(KIND, bytes, "the edge rings"))?;
         let (keys, next) = s.rings(coords);
         s.link_keys = keys.into();

@@ -351,7 +351,7 @@ pub(crate) fn components_headroom(
         .saturating_mul(8)
         .saturating_add(tris.saturating_mul(72))
         .saturating_add(wires.saturating_mul(16));
-    crate::complex::table::headroom(bytes)
+    crate::parallel::headroom_for(tris, bytes)
         .map_err(|bytes| super::common::too_large(kind, bytes, "the star components"))
 }
 
