@@ -140,6 +140,29 @@ Result run_openmesh(const char *in, const char *out) {
   return r;
 }
 
+// One round of Laplacian smoothing into `next`: every live vertex to the mean of its one-ring.
+// D coordinates a vertex, known when compiling (D = 0: m.coord_dim() at run time).
+template <std::size_t D>
+void smooth_round(const topoplex::MeshView &m, topoplex::NeighbourMarks &marks, std::vector<double> &next) {
+  const std::size_t dim = D ? D : m.coord_dim();
+  // The ring's sum: in registers when D is known, else in a buffer as long as a point.
+  std::array<double, D ? D : 1> fixed{};
+  std::vector<double> dynamic(D ? 0 : dim);
+  double *sum = D ? fixed.data() : dynamic.data();
+  for (std::uint32_t v = 0; v < m.vertex_slots(); ++v) {
+    if (!m.is_vertex(v)) continue;
+    for (std::size_t k = 0; k < dim; ++k) sum[k] = 0.0;
+    std::size_t n = 0;
+    m.for_each_neighbour(v, marks, [&](std::uint32_t w) {
+      const double *c = m.coords(w);
+      for (std::size_t k = 0; k < dim; ++k) sum[k] += c[k];
+      ++n;
+    });
+    const double *own = m.coords(v);
+    for (std::size_t k = 0; k < dim; ++k) next[v * dim + k] = n == 0 ? own[k] : sum[k] / double(n);
+  }
+}
+
 // `kept`: the mesh keeps its facet adjacency from load on (Live::keep_adjacency, as OpenMesh
 // builds its halfedges while loading), so its build counts in `load` and `ff` only reads it.
 Result run_topoplex(const char *in, const char *out, bool kept) {
@@ -155,20 +178,12 @@ Result run_topoplex(const char *in, const char *out, bool kept) {
   const std::size_t dim = live.coord_dim(), slots = live.vertex_slots();
   std::vector<double> next(slots * dim);
   topoplex::NeighbourMarks marks;
-  std::vector<double> ring_sum(dim);
   for (int round = 0; round < 10; ++round) {
     const topoplex::MeshView m = live.mesh();  // coordinates read from the mesh itself
-    for (std::uint32_t v = 0; v < slots; ++v) {
-      if (!m.is_vertex(v)) continue;
-      std::fill(ring_sum.begin(), ring_sum.end(), 0.0);
-      std::size_t n = 0;
-      m.for_each_neighbour(v, marks, [&](std::uint32_t w) {
-        const double* c = m.coords(w);
-        for (std::size_t k = 0; k < dim; ++k) ring_sum[k] += c[k];
-        ++n;
-      });
-      for (std::size_t k = 0; k < dim; ++k) next[v * dim + k] = n == 0 ? m.coords(v)[k] : ring_sum[k] / double(n);
-    }
+    if (dim == 3)
+      smooth_round<3>(m, marks, next);  // points of three numbers, as OpenMesh's Vec3d
+    else
+      smooth_round<0>(m, marks, next);
     live.set_all_coords(next.data(), next.size());  // in place: m stays valid
   }
   r.ms["smooth"] = ms_since(t0);
