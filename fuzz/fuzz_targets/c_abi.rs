@@ -125,7 +125,7 @@ fn handle_calls(s: *const TpxStructure, topo: &dyn topoplex::Topology, b: &mut B
                 h = TpxSimplex {
                     index: u32::from(b.next()) * 3,
                     meta: u32::from(b.next() % 20) | u32::from(b.next() % 3) << 8,
-                    owner: if b.next() % 2 == 0 {
+                    owner: if b.next().is_multiple_of(2) {
                         stamp
                     } else {
                         u32::from(b.next())
@@ -230,7 +230,7 @@ fn batch_call(
     let cap = usize::from(b.next() % 96);
     let mut buf = vec![TpxSimplex::default(); cap];
     let mut offsets = vec![u32::MAX; asked.len() + 1];
-    let offsets_ptr = if b.next() % 16 == 0 {
+    let offsets_ptr = if b.next().is_multiple_of(16) {
         null_mut()
     } else {
         offsets.as_mut_ptr()

@@ -12,10 +12,10 @@ use std::sync::OnceLock;
 use libfuzzer_sys::fuzz_target;
 use topoplex::error::caught_quietly;
 use topoplex::store::{Saved, reseal};
-use topoplex_fuzz_support::saved_seeds;
+use topoplex_fuzz_support::{SavedSeed, saved_seeds};
 
 fuzz_target!(|data: &[u8]| {
-    static SEEDS: OnceLock<Vec<(topoplex::Complex, Vec<u8>, Vec<String>)>> = OnceLock::new();
+    static SEEDS: OnceLock<Vec<SavedSeed>> = OnceLock::new();
     let seeds = SEEDS.get_or_init(saved_seeds);
     let Some((&pick, mut ops)) = data.split_first() else {
         return;

@@ -5,9 +5,9 @@
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
-    if let Ok(text) = std::str::from_utf8(data) {
-        if let Ok(raw) = topoplex::io::obj::parse(text) {
-            topoplex_fuzz_support::check_raw(&raw);
-        }
+    if let Ok(text) = std::str::from_utf8(data)
+        && let Ok(raw) = topoplex::io::obj::parse(text)
+    {
+        topoplex_fuzz_support::check_raw(&raw);
     }
 });

@@ -90,10 +90,14 @@ pub fn decode(data: &[u8]) -> (u32, Vec<Vec<u32>>) {
     (n, list)
 }
 
+/// One seed of the `.tpx` mutation target: the complex, its saved file's bytes and the
+/// unaltered file's answers.
+pub type SavedSeed = (Complex, Vec<u8>, Vec<String>);
+
 /// The valid saved files the `.tpx` mutation target alters: every structure that accepts a
 /// tetrahedron with a dangling triangle and a wire, or three triangles on an edge, saved with
 /// its complex, with the complex and the unaltered file's answers.
-pub fn saved_seeds() -> Vec<(Complex, Vec<u8>, Vec<String>)> {
+pub fn saved_seeds() -> Vec<SavedSeed> {
     let dir = std::env::temp_dir().join(format!("topoplex-fuzz-saved-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let mut seeds = Vec::new();
