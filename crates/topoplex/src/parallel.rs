@@ -14,7 +14,9 @@
 //! corner components).
 //!
 //! The thread count is [`set_threads`] (the CLI's `--threads`, the C ABI's `tpx_set_threads`),
-//! else the `TOPOPLEX_THREADS` environment variable, else every core.
+//! else the `TOPOPLEX_THREADS` environment variable, else every core. The pool starts with the
+//! first step large enough to split (2^16 items): reading and building a small
+//! input stays on the calling thread, so it pays no thread stacks or per-thread malloc arenas.
 
 use std::sync::atomic::{AtomicU32, AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
@@ -624,7 +626,7 @@ fn offsets_by_range(off: &mut [u32], counts: &mut [Vec<u32>]) {
 /// Whether `bytes` more can be allocated now: reserved and released at once (address space,
 /// not pages), so a step whose peak is known but whose buffers are made infallibly (a sort's
 /// keys and scratch) fails with `Err(bytes)` before it starts rather than aborting half way.
-/// For a step that may split, [`headroom_for`].
+/// For a step that may split, the crate uses `headroom_for`, which starts the pool first.
 pub fn headroom(bytes: usize) -> Result<(), usize> {
     let mut probe: Vec<u8> = Vec::new();
     probe.try_reserve_exact(bytes).map_err(|_| bytes)
