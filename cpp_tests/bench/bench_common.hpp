@@ -245,6 +245,21 @@ std::vector<uint32_t> simplices_of(const TpxStructure* s, uint32_t p);
 // 0 .. n-1 as vertex rows.
 std::vector<uint32_t> vertex_rows(uint32_t n);
 
+// A built structure and the vertex rows its walks from every vertex go through; a program's
+// own `Built` derives from it to keep more rows beside them.
+struct BuiltWalk {
+  StructurePtr s;
+  std::vector<uint32_t> vertices;
+};
+// Kind `kind` of `soup` (build_or_abort) with the rows of its vertices, as a `B`.
+template <class B>
+std::unique_ptr<B> build_walk(const Soup& soup, uint32_t kind) {
+  auto b = std::make_unique<B>();
+  b->s = build_or_abort(soup, kind);
+  b->vertices = vertex_rows(soup.n_vertices);
+  return b;
+}
+
 // ---------------------------------------------------------------------------------------------
 // One heavy object alive at a time: the walks of a library share the object its first walk
 // built, and switching library frees it first, so memory stays bounded on big inputs whatever
