@@ -705,7 +705,8 @@ mod tests {
     #[test]
     fn data_that_cannot_be_held_is_refused_naming_the_array_and_line() {
         // (the paths that must refuse it, point data, cell data, line, what the refusal says)
-        let cases: [(fn(&str) -> (u32, String), String, String, u32, &str); 5] = [
+        type Refuse = fn(&str) -> (u32, String);
+        let cases: [(Refuse, String, String, u32, &str); 5] = [
             // A String array, in either path (vtkio would read it as Float64).
             (
                 refused_alike,
