@@ -35,6 +35,7 @@
 #include <utility>
 #include <vector>
 
+#include "../c_ptr.hpp"
 #include "topoplex.h"
 
 namespace tpxbench {
@@ -93,18 +94,9 @@ std::string tpx_message();
 // Aborts the program with the library's message if `st` is not OK (setup code only).
 void tpx_check(TpxStatus st, const char* what);
 
-struct ComplexDeleter {
-  void operator()(TpxComplex* c) const { tpx_complex_free(c); }
-};
-struct StructureDeleter {
-  void operator()(TpxStructure* s) const { tpx_structure_free(s); }
-};
-struct LiveDeleter {
-  void operator()(TpxLive* l) const { tpx_live_free(l); }
-};
-using ComplexPtr = std::unique_ptr<TpxComplex, ComplexDeleter>;
-using StructurePtr = std::unique_ptr<TpxStructure, StructureDeleter>;
-using LivePtr = std::unique_ptr<TpxLive, LiveDeleter>;
+using ComplexPtr = topoplex_tests::CPtr<TpxComplex, tpx_complex_free>;
+using StructurePtr = topoplex_tests::CPtr<TpxStructure, tpx_structure_free>;
+using LivePtr = topoplex_tests::CPtr<TpxLive, tpx_live_free>;
 
 ComplexPtr load_complex(const std::string& path);
 
