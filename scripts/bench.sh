@@ -44,26 +44,16 @@ set -euo pipefail
 case " $* " in
   *" --large "*) exec "$(dirname "$0")/bench_large.sh" "$@" ;;
 esac
+. "$(dirname "$0")/bench_common.sh"
 quick=0
-results=""
-for arg in "$@"; do
-  case "$arg" in
+bench_option() {
+  case "$1" in
     --quick) quick=1 ;;
-    -h|--help) sed -n "2,30p" "$0"; exit 0 ;;
-    -*) echo "unknown option $arg" >&2; exit 2 ;;
-    *) results=$arg ;;
+    *) return 1 ;;
   esac
-done
-
-root=$(cd "$(dirname "$0")/.." && pwd)
-target=${CARGO_TARGET_DIR:-$root/target}
-mkdir -p "$target"
-target=$(cd "$target" && pwd)
-data=${TOPOPLEX_BENCH_DATA:-$target/bench-data}
-results=${results:-$target/bench-results/$(date -u +%Y%m%dT%H%M%SZ)}
-mkdir -p "$data" "$results"
-data=$(cd "$data" && pwd)
-results=$(cd "$results" && pwd)
+}
+bench_args 30 "$@"
+bench_dirs "" ""
 # Build directories and the install prefix live in the target dir so that a second run
 # recompiles nothing that did not change (the CGAL/GUDHI programs take minutes to compile).
 prefix=$target/bench-prefix

@@ -9,23 +9,17 @@
 # usage: scripts/bench_large.sh [--huge] [RESULTS_DIR]
 set -euo pipefail
 
+. "$(dirname "$0")/bench_common.sh"
 huge=0
-results=""
-for arg in "$@"; do
-  case "$arg" in
+bench_option() {
+  case "$1" in
     --large) ;;
     --huge) huge=1 ;;
-    -h|--help) sed -n "2,10p" "$0"; exit 0 ;;
-    -*) echo "unknown option $arg" >&2; exit 2 ;;
-    *) results=$arg ;;
+    *) return 1 ;;
   esac
-done
-
-root=$(cd "$(dirname "$0")/.." && pwd)
-target=${CARGO_TARGET_DIR:-$root/target}
-data=${TOPOPLEX_BENCH_DATA:-$target/bench-data}/large
-results=${results:-$target/bench-results/large-$(date -u +%Y%m%dT%H%M%SZ)}
-mkdir -p "$data" "$results"
+}
+bench_args 10 "$@"
+bench_dirs /large large-
 
 nice -n 10 cargo build --release --example scale --manifest-path "$root/Cargo.toml"
 scale=$target/release/examples/scale

@@ -110,12 +110,9 @@ TEST(SurfaceMeshAdapter, MeshToComplexAndBackKeepsOrderWindingPointsAndMaps) {
 // Listed values go to the face made from their listing; those of listings that make no face
 // are refused, or left behind by name.
 TEST(SurfaceMeshAdapter, ListedValuesFollowTheirListingAndTheRestAreNamed) {
-  const topoplex::Complex c = fixtures::listed_beside();
-  EXPECT_THROW(cg::to_surface_mesh<SM>(c), topoplex::Refused);
-  std::vector<topoplex::Dropped> dropped;
-  const SM m = cg::to_surface_mesh<SM>(c, &dropped);
-  ASSERT_EQ(dropped.size(), 1u);
-  EXPECT_EQ(dropped[0].name, "label");
+  const SM m = fixtures::listed_beside_through([](const topoplex::Complex &c, std::vector<topoplex::Dropped> *d) {
+    return cg::to_surface_mesh<SM>(c, d);
+  });
   ASSERT_EQ(m.number_of_faces(), 2u);
   EXPECT_EQ(face_ids(m, FI(1)), (std::vector<std::uint32_t>{1, 3, 2}));
   const auto label = m.property_map<FI, std::int32_t>("label");
@@ -123,8 +120,9 @@ TEST(SurfaceMeshAdapter, ListedValuesFollowTheirListingAndTheRestAreNamed) {
   EXPECT_EQ(label.first[FI(0)], 10);
   EXPECT_EQ(label.first[FI(1)], 12);
   // A Polyhedron_3 holds no attribute at all.
+  const topoplex::Complex c = fixtures::listed_beside();
   EXPECT_THROW(cg::to_polyhedron<Poly>(c), topoplex::Refused);
-  dropped.clear();
+  std::vector<topoplex::Dropped> dropped;
   EXPECT_EQ(cg::to_polyhedron<Poly>(c, &dropped).size_of_facets(), 2u);
   ASSERT_EQ(dropped.size(), 1u);
 }
@@ -142,11 +140,9 @@ TEST(SurfaceMeshAdapter, GarbageAndUnheldMapsAreRefused) {
 }
 
 TEST(SurfaceMeshAdapter, RealSurfacesGoBothWaysUnchanged) {
-  int ran = 0;
-  for (const char *name : {"surfaces/elephant.off", "surfaces/fandisk.off"}) {
-    const std::string path = fixtures::shared(name);
-    if (path.empty()) continue;
-    ++ran;
+  const int ran = fixtures::for_each_shared(
+      {"surfaces/elephant.off", "surfaces/fandisk.off"},
+      [&](const char *name, const std::string &path) {
     const topoplex::Complex c = topoplex::Complex::from_file(path);
     const SM m = cg::to_surface_mesh<SM>(c);
     const topoplex::Complex back = cg::to_complex(m);
@@ -162,24 +158,16 @@ TEST(SurfaceMeshAdapter, RealSurfacesGoBothWaysUnchanged) {
     const topoplex::Complex from_p = cg::polyhedron_to_complex(P);
     EXPECT_EQ(fixtures::listing(from_p), fixtures::listing(c)) << name;
     EXPECT_EQ(from_p.coords(), c.coords()) << name;
-  }
+  });
   if (ran == 0) GTEST_SKIP() << "shared data folder absent";
 }
 
 TEST(SurfaceMeshAdapter, NonManifoldInputIsRefusedByBothMeshes) {
   const topoplex::Complex fan = topoplex::Complex::from_simplices(5, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
-  try {
-    cg::to_surface_mesh<SM>(fan);
-    FAIL() << "three triangles on one edge went into a Surface_mesh";
-  } catch (const topoplex::Refused &e) {
-    EXPECT_NE(std::string(e.what()).find("{0, 1, 4}"), std::string::npos) << e.what();
-  }
-  try {
-    cg::to_polyhedron<Poly>(fan);
-    FAIL() << "three triangles on one edge went into a Polyhedron_3";
-  } catch (const topoplex::Refused &e) {
-    EXPECT_NE(std::string(e.what()).find("{0, 1, 4}"), std::string::npos) << e.what();
-  }
+  fixtures::expect_refused_naming([&] { cg::to_surface_mesh<SM>(fan); }, "{0, 1, 4}",
+                                  "three triangles on one edge went into a Surface_mesh");
+  fixtures::expect_refused_naming([&] { cg::to_polyhedron<Poly>(fan); }, "{0, 1, 4}",
+                                  "three triangles on one edge went into a Polyhedron_3");
   // A vertex closed by one fan refuses a face of another (the pinched tetrahedra of the
   // fixture, without its wire edge and fin).
   const fixtures::NonManifold nm;
@@ -195,22 +183,36 @@ TEST(SurfaceMeshAdapter, NonManifoldInputIsRefusedByBothMeshes) {
   EXPECT_EQ(fixtures::listing(cg::to_complex(b)), fixtures::listing(bowtie));
 }
 
-TEST(TriangulationAdapter, DelaunayCellsBecomeListedTetrahedraInOrder) {
-  using DT = CGAL::Delaunay_triangulation_3<K>;
+using DT = CGAL::Delaunay_triangulation_3<K>;
+
+// The finite vertices of triangulation `tr` numbered in its order, and their coordinates: what
+// its complex must list.
+template <class Tr>
+std::pair<std::map<typename Tr::Vertex_handle, std::uint32_t>, std::vector<double>>
+finite_vertices(const Tr &tr) {
+  std::map<typename Tr::Vertex_handle, std::uint32_t> id;
+  std::vector<double> xyz;
+  for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v) {
+    id.emplace(v, std::uint32_t(id.size()));
+    xyz.insert(xyz.end(), {v->point().x(), v->point().y(), v->point().z()});
+  }
+  return {id, xyz};
+}
+
+// The Delaunay triangulation of `n` pseudo-random points of the unit cube (seed `seed`).
+DT random_delaunay(std::uint64_t seed, int n) {
   std::vector<K::Point_3> pts;
-  std::uint64_t s = 9;
-  for (int i = 0; i < 60; ++i)
-    pts.emplace_back(fixtures::unit(s), fixtures::unit(s), fixtures::unit(s));
-  const DT dt(pts.begin(), pts.end());
+  for (int i = 0; i < n; ++i)
+    pts.emplace_back(fixtures::unit(seed), fixtures::unit(seed), fixtures::unit(seed));
+  return DT(pts.begin(), pts.end());
+}
+
+TEST(TriangulationAdapter, DelaunayCellsBecomeListedTetrahedraInOrder) {
+  const DT dt = random_delaunay(9, 60);
   const topoplex::Complex c = cg::triangulation_to_complex(dt);
   ASSERT_EQ(c.vertex_count(), dt.number_of_vertices());
   ASSERT_EQ(c.top_count(3), dt.number_of_finite_cells());
-  std::map<DT::Vertex_handle, std::uint32_t> id;
-  std::vector<double> want_xyz;
-  for (auto v = dt.finite_vertices_begin(); v != dt.finite_vertices_end(); ++v) {
-    id.emplace(v, std::uint32_t(id.size()));
-    want_xyz.insert(want_xyz.end(), {v->point().x(), v->point().y(), v->point().z()});
-  }
+  const auto [id, want_xyz] = finite_vertices(dt);
   EXPECT_EQ(c.coords(), want_xyz);
   const auto listed = fixtures::listing(c);
   std::size_t i = 0;
@@ -239,12 +241,7 @@ TEST(TriangulationAdapter, DelaunayCellsBecomeListedTetrahedraInOrder) {
 // negatively wound tetrahedron is turned and counted; a pinched pair and a complex with an
 // attribute are refused (the attribute taken when left behind), the triangulation left empty.
 TEST(TriangulationAdapter, ComplexBackToAPlainTriangulationKeepsVerticesAndCells) {
-  using DT = CGAL::Delaunay_triangulation_3<K>;
-  std::vector<K::Point_3> pts;
-  std::uint64_t s = 11;
-  for (int i = 0; i < 80; ++i)
-    pts.emplace_back(fixtures::unit(s), fixtures::unit(s), fixtures::unit(s));
-  const DT dt(pts.begin(), pts.end());
+  const DT dt = random_delaunay(11, 80);
   const topoplex::Complex c = cg::triangulation_to_complex(dt);
   DT back;
   EXPECT_EQ(cg::complex_to_triangulation(c, back), 0u);
@@ -311,12 +308,7 @@ TEST(TriangulationAdapter, C3t3CellsAndFacetsComeWithSubdomainAndPatchLabels) {
   ASSERT_GT(c3t3.number_of_facets_in_complex(), 0u);
 
   const topoplex::Complex c = cg::c3t3_to_complex(c3t3);
-  std::map<MTr::Vertex_handle, std::uint32_t> id;
-  std::vector<double> xyz;
-  for (auto v = tr.finite_vertices_begin(); v != tr.finite_vertices_end(); ++v) {
-    id.emplace(v, std::uint32_t(id.size()));
-    xyz.insert(xyz.end(), {v->point().x(), v->point().y(), v->point().z()});
-  }
+  const auto [id, xyz] = finite_vertices(tr);
   EXPECT_EQ(c.coords(), xyz);
   const auto listed = fixtures::listing(c);
   ASSERT_EQ(listed.size(), c3t3.number_of_cells_in_complex() + c3t3.number_of_facets_in_complex());
@@ -538,13 +530,11 @@ TEST(TriangulationAdapter, C3t3BuiltDirectlyIsWhatCgalsSoupLoaderBuilds) {
     if (la != lb) made.add_to_complex(*f, 3 + la + lb);
   }
   compare(cg::c3t3_to_complex(made, true), "random points");
-  int ran = 0;
-  for (const char *name : {"tetrahedral/slug.mesh", "tetrahedral/hand.mesh"}) {
-    const std::string path = fixtures::shared(name);
-    if (path.empty()) continue;
-    ++ran;
+  const int ran = fixtures::for_each_shared(
+      {"tetrahedral/slug.mesh", "tetrahedral/hand.mesh"},
+      [&](const char *name, const std::string &path) {
     compare(topoplex::Complex::from_file(path), name);
-  }
+  });
   if (ran == 0) GTEST_SKIP() << "shared data folder absent (the random points ran)";
 }
 #endif

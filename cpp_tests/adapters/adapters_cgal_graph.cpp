@@ -68,15 +68,7 @@ struct Surface {
     for (const auto &t : tris) f << "3 " << t[0] << ' ' << t[1] << ' ' << t[2] << '\n';
     return path;
   }
-  topoplex::Live live() const {
-    std::vector<std::uint32_t> ids;
-    std::vector<std::size_t> off{0};
-    for (const auto &t : tris) {
-      ids.insert(ids.end(), t.begin(), t.end());
-      off.push_back(ids.size());
-    }
-    return topoplex::Live(topoplex::Complex::from_arrays(n(), ids, off, xyz, 3));
-  }
+  topoplex::Live live() const { return topoplex::Live(fixtures::complex_of(n(), tris, xyz)); }
 };
 
 // An nx × ny grid of quads, each split in two, heights perturbed (a disc: one boundary loop).
@@ -390,13 +382,7 @@ topoplex::Live live_of(std::uint32_t n, const std::vector<std::vector<std::uint3
     xyz.push_back(0.5 * i * i);
     xyz.push_back(i % 3);
   }
-  std::vector<std::uint32_t> ids;
-  std::vector<std::size_t> off{0};
-  for (const auto &s : simplices) {
-    ids.insert(ids.end(), s.begin(), s.end());
-    off.push_back(ids.size());
-  }
-  return topoplex::Live(topoplex::Complex::from_arrays(n, ids, off, xyz, 3));
+  return topoplex::Live(fixtures::complex_of(n, simplices, xyz));
 }
 
 std::string refusal(topoplex::Live &live) {
@@ -452,15 +438,13 @@ TEST(CgalGraphTraits, NonManifoldMeshesAreRefusedNamingTheSimplex) {
     EXPECT_TRUE(CGAL::is_valid_polygon_mesh(g));
   }
   {  // the shared non-manifold meshes are all refused
-    int ran = 0;
-    for (const char *f : {"nonmanifold/fan3.obj", "nonmanifold/hourglass_ico.obj",
-                          "nonmanifold/truck.obj", "nonmanifold/triple_vierbein.obj"}) {
-      const std::string p = fixtures::shared(f);
-      if (p.empty()) continue;
-      ++ran;
-      topoplex::Live l = topoplex::Live::from_file(p);
-      EXPECT_FALSE(refusal(l).empty()) << f;
-    }
+    const int ran = fixtures::for_each_shared(
+        {"nonmanifold/fan3.obj", "nonmanifold/hourglass_ico.obj", "nonmanifold/truck.obj",
+         "nonmanifold/triple_vierbein.obj"},
+        [](const char *f, const std::string &p) {
+          topoplex::Live l = topoplex::Live::from_file(p);
+          EXPECT_FALSE(refusal(l).empty()) << f;
+        });
     if (ran == 0) std::cout << "shared non-manifold meshes absent: skipped that part\n";
   }
 }

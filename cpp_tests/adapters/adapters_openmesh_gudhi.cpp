@@ -165,12 +165,9 @@ TEST(OpenMeshAdapter, PropertyOfAnUnheldTypeIsRefusedOrLeftBehindByName) {
 // face (an edge listed beside its triangles, a repeated triangle) are refused, or left behind
 // by name.
 TEST(OpenMeshAdapter, ListedValuesFollowTheirListingAndTheRestAreNamed) {
-  const topoplex::Complex c = fixtures::listed_beside();
-  EXPECT_THROW(om::to_openmesh<Mesh>(c), topoplex::Refused);
-  std::vector<topoplex::Dropped> dropped;
-  const Mesh m = om::to_openmesh<Mesh>(c, &dropped);
-  ASSERT_EQ(dropped.size(), 1u);
-  EXPECT_EQ(dropped[0].name, "label");
+  const Mesh m = fixtures::listed_beside_through([](const topoplex::Complex &c, std::vector<topoplex::Dropped> *d) {
+    return om::to_openmesh<Mesh>(c, d);
+  });
   ASSERT_EQ(m.n_faces(), 2u);
   EXPECT_EQ(face_ids(m, Mesh::FaceHandle(0)), (std::vector<std::uint32_t>{0, 1, 2}));
   EXPECT_EQ(face_ids(m, Mesh::FaceHandle(1)), (std::vector<std::uint32_t>{1, 3, 2}));
@@ -212,20 +209,14 @@ TEST(OpenMeshAdapter, PolyMeshTrianglesGoBothWaysAndAQuadIsRefused) {
   std::vector<Poly::VertexHandle> q;
   for (int i = 0; i < 4; ++i) q.push_back(quad.add_vertex(Poly::Point(i % 2, i / 2, 0)));
   quad.add_face(q[0], q[1], q[3], q[2]);
-  try {
-    om::to_complex(quad);
-    FAIL() << "a quad went into a complex";
-  } catch (const topoplex::Refused &e) {
-    EXPECT_NE(std::string(e.what()).find("face 0 has 4 vertices"), std::string::npos) << e.what();
-  }
+  fixtures::expect_refused_naming([&] { om::to_complex(quad); }, "face 0 has 4 vertices",
+                                  "a quad went into a complex");
 }
 
 TEST(OpenMeshAdapter, RealSurfacesGoToOpenMeshAndBackUnchanged) {
-  int ran = 0;
-  for (const char *name : {"surfaces/elephant.off", "surfaces/fandisk.off", "nonmanifold/tet.obj"}) {
-    const std::string path = fixtures::shared(name);
-    if (path.empty()) continue;
-    ++ran;
+  const int ran = fixtures::for_each_shared(
+      {"surfaces/elephant.off", "surfaces/fandisk.off", "nonmanifold/tet.obj"},
+      [&](const char *name, const std::string &path) {
     const topoplex::Complex c = topoplex::Complex::from_file(path);
     // tet.obj's flat-shaded normals are per corner (obj:vn, 9 numbers a face), which no
     // OpenMesh face property holds: left behind by name, and nothing else.
@@ -245,7 +236,7 @@ TEST(OpenMeshAdapter, RealSurfacesGoToOpenMeshAndBackUnchanged) {
         OpenMesh::IO::read_mesh(read, path)) {
       expect_same_mesh(read, om::to_openmesh<Mesh>(om::to_complex(read)));
     }
-  }
+  });
   if (ran == 0) GTEST_SKIP() << "shared data folder absent";
 }
 
@@ -380,19 +371,11 @@ TEST(OpenMeshAdapter, DirectBuildIsHalfedgeForHalfedgeWhatAddFaceBuilds) {
 TEST(OpenMeshAdapter, NonManifoldInputIsRefusedNamingTheTriangle) {
   const fixtures::NonManifold nm;
   // The wire edge comes first in nothing; drop it: then the third triangle on {0, 1} is refused.
-  try {
-    om::to_openmesh<Mesh>(nm.complex());
-    FAIL() << "a complex with a wire edge went into OpenMesh";
-  } catch (const topoplex::Refused &e) {
-    EXPECT_NE(std::string(e.what()).find("wire edge {7, 8}"), std::string::npos) << e.what();
-  }
+  fixtures::expect_refused_naming([&] { om::to_openmesh<Mesh>(nm.complex()); }, "wire edge {7, 8}",
+                                  "a complex with a wire edge went into OpenMesh");
   const topoplex::Complex fan = topoplex::Complex::from_simplices(5, {{0, 1, 2}, {1, 0, 3}, {0, 1, 4}});
-  try {
-    om::to_openmesh<Mesh>(fan);
-    FAIL() << "three triangles on one edge went into OpenMesh";
-  } catch (const topoplex::Refused &e) {
-    EXPECT_NE(std::string(e.what()).find("{0, 1, 4}"), std::string::npos) << e.what();
-  }
+  fixtures::expect_refused_naming([&] { om::to_openmesh<Mesh>(fan); }, "{0, 1, 4}",
+                                  "three triangles on one edge went into OpenMesh");
   const topoplex::Complex tet = topoplex::Complex::from_simplices(4, {{0, 1, 2, 3}});
   EXPECT_THROW(om::to_openmesh<Mesh>(tet), topoplex::Refused);
 }
@@ -500,12 +483,10 @@ TEST(OpenMeshParts, GridCutAlongAChosenLineGivesTheTwoSides) {
 // Real non-manifold meshes: every part goes into OpenMesh (or is refused by name when it cannot
 // be oriented); the IQM and cut partitions agree.
 TEST(OpenMeshParts, RealNonManifoldMeshesSplitIntoPartsOpenMeshHolds) {
-  int ran = 0;
-  for (const char *name : {"nonmanifold/truck.obj", "nonmanifold/hourglass_ico.obj",
-                           "nonmanifold/triple_vierbein.obj", "nonmanifold/fan3.obj"}) {
-    const std::string path = fixtures::shared(name);
-    if (path.empty()) continue;
-    ++ran;
+  const int ran = fixtures::for_each_shared(
+      {"nonmanifold/truck.obj", "nonmanifold/hourglass_ico.obj", "nonmanifold/triple_vierbein.obj",
+       "nonmanifold/fan3.obj"},
+      [](const char *name, const std::string &path) {
     const topoplex::Complex c = topoplex::Complex::from_file(path);
     const topoplex::SurfaceParts iqm = topoplex::SurfaceParts::iqm(c);
     const auto partition = fixtures::check_parts(c, iqm);
@@ -523,7 +504,7 @@ TEST(OpenMeshParts, RealNonManifoldMeshesSplitIntoPartsOpenMeshHolds) {
       ++held;
     }
     EXPECT_GT(held, 0u) << name;
-  }
+  });
   if (ran == 0) GTEST_SKIP() << "shared data folder absent";
 }
 

@@ -10,11 +10,13 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
 #include <map>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "../complex_of.hpp"
 #include "../find_data.hpp"
 
 namespace fixtures {
@@ -27,6 +29,32 @@ inline std::string shared(const std::string &relative) {
                                         relative);
 }
 
+// Calls `run(name, path)` for each named file of the shared real-data folder that is present;
+// returns how many ran (0: the folder is absent, which the caller says or skips on).
+template <class Run>
+int for_each_shared(std::initializer_list<const char *> names, Run run) {
+  int ran = 0;
+  for (const char *name : names) {
+    const std::string path = shared(name);
+    if (path.empty()) continue;
+    ++ran;
+    run(name, path);
+  }
+  return ran;
+}
+
+// Runs `convert`, which must throw topoplex::Refused with a message naming `needle`; `what`
+// says what went through if it did not.
+template <class Convert>
+void expect_refused_naming(Convert convert, const std::string &needle, const std::string &what) {
+  try {
+    convert();
+    ADD_FAILURE() << what;
+  } catch (const topoplex::Refused &e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
 // A deterministic pseudo-random double in [0, 1) (splitmix64).
 inline double unit(std::uint64_t &s) {
   std::uint64_t z = (s += 0x9e3779b97f4a7c15ull);
@@ -34,6 +62,8 @@ inline double unit(std::uint64_t &s) {
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
   return double((z ^ (z >> 31)) >> 11) * 0x1.0p-53;
 }
+
+using topoplex_tests::complex_of;
 
 // The non-manifold fixture: a closed tetrahedron surface A (0 1 2 3) with a fin triangle on its
 // edge {0, 1} (that edge is in three triangles), a second closed tetrahedron surface B
@@ -56,15 +86,7 @@ struct NonManifold {
     for (auto &p : base)
       for (double x : p) xyz.push_back(x + 0.05 * unit(s));
   }
-  topoplex::Complex complex() const {
-    std::vector<std::uint32_t> ids;
-    std::vector<std::size_t> off{0};
-    for (const auto &s : simplices) {
-      ids.insert(ids.end(), s.begin(), s.end());
-      off.push_back(ids.size());
-    }
-    return topoplex::Complex::from_arrays(10, ids, off, xyz, 3);
-  }
+  topoplex::Complex complex() const { return complex_of(10, simplices, xyz); }
 };
 
 // Two triangles listed with an edge of theirs between them and one repeated, each listing with
@@ -77,6 +99,20 @@ inline topoplex::Complex listed_beside() {
   c.set_attribute<std::int32_t>("label", topoplex::Location::Listed, 1,
                                 std::vector<std::int32_t>{10, 11, 12, 13});
   return c;
+}
+
+// listed_beside() through an adapter, `to_mesh(c, dropped)`: refused when nothing may be left
+// behind (dropped null), else the mesh, with "label" named as left behind (listings that make
+// no face hold values of it).
+template <class ToMesh>
+auto listed_beside_through(ToMesh to_mesh) {
+  const topoplex::Complex c = listed_beside();
+  EXPECT_THROW(to_mesh(c, nullptr), topoplex::Refused);
+  std::vector<topoplex::Dropped> dropped;
+  auto m = to_mesh(c, &dropped);
+  EXPECT_EQ(dropped.size(), 1u);
+  for (const auto &d : dropped) EXPECT_EQ(d.name, "label");
+  return m;
 }
 
 inline Tri sorted(Tri t) {

@@ -35,6 +35,7 @@
 #include <utility>
 #include <vector>
 
+#include "../c_ptr.hpp"
 #include "topoplex.h"
 
 namespace tpxbench {
@@ -93,18 +94,9 @@ std::string tpx_message();
 // Aborts the program with the library's message if `st` is not OK (setup code only).
 void tpx_check(TpxStatus st, const char* what);
 
-struct ComplexDeleter {
-  void operator()(TpxComplex* c) const { tpx_complex_free(c); }
-};
-struct StructureDeleter {
-  void operator()(TpxStructure* s) const { tpx_structure_free(s); }
-};
-struct LiveDeleter {
-  void operator()(TpxLive* l) const { tpx_live_free(l); }
-};
-using ComplexPtr = std::unique_ptr<TpxComplex, ComplexDeleter>;
-using StructurePtr = std::unique_ptr<TpxStructure, StructureDeleter>;
-using LivePtr = std::unique_ptr<TpxLive, LiveDeleter>;
+using ComplexPtr = topoplex_tests::CPtr<TpxComplex, tpx_complex_free>;
+using StructurePtr = topoplex_tests::CPtr<TpxStructure, tpx_structure_free>;
+using LivePtr = topoplex_tests::CPtr<TpxLive, tpx_live_free>;
 
 ComplexPtr load_complex(const std::string& path);
 
@@ -244,6 +236,21 @@ void add_view_walk(const std::string& op, const std::string& lib, std::function<
 std::vector<uint32_t> simplices_of(const TpxStructure* s, uint32_t p);
 // 0 .. n-1 as vertex rows.
 std::vector<uint32_t> vertex_rows(uint32_t n);
+
+// A built structure and the vertex rows its walks from every vertex go through; a program's
+// own `Built` derives from it to keep more rows beside them.
+struct BuiltWalk {
+  StructurePtr s;
+  std::vector<uint32_t> vertices;
+};
+// Kind `kind` of `soup` (build_or_abort) with the rows of its vertices, as a `B`.
+template <class B>
+std::unique_ptr<B> build_walk(const Soup& soup, uint32_t kind) {
+  auto b = std::make_unique<B>();
+  b->s = build_or_abort(soup, kind);
+  b->vertices = vertex_rows(soup.n_vertices);
+  return b;
+}
 
 // ---------------------------------------------------------------------------------------------
 // One heavy object alive at a time: the walks of a library share the object its first walk

@@ -165,23 +165,52 @@ uint64_t sm_ff(const SMesh& m) {
 // the boundary edges (one triangle) and the non-manifold edges (three or more) as index lists;
 // `FF_index`: every face's neighbour faces as indices, summed. Each returns a checksum of what
 // every library must agree on (counts, not indices: the libraries number faces differently).
-uint64_t stats_checksum(const std::vector<uint32_t>& hist, size_t boundary, size_t nonmanifold) {
-  uint64_t c = 1000003ull * boundary + 7919ull * nonmanifold;
-  for (size_t k = 0; k < hist.size(); ++k) c += uint64_t(hist[k]) * (k + 1) * (k + 7);
-  return c;
-}
-uint64_t om_stats(const OMesh& m) {
-  std::vector<uint32_t> hist(64, 0);
-  std::vector<uint32_t> boundary, nonmanifold;  // OpenMesh holds no non-manifold edge
-  for (auto v : m.vertices()) {
-    const size_t k = m.valence(v);
+struct Stats {
+  std::vector<uint32_t> hist = std::vector<uint32_t>(64, 0), boundary, nonmanifold;
+
+  // Empties the results, keeping their memory for the next pass.
+  void clear() {
+    std::fill(hist.begin(), hist.end(), 0);
+    boundary.clear();
+    nonmanifold.clear();
+  }
+  // A vertex of valence `k` into the histogram.
+  void valence(size_t k) {
     if (k >= hist.size()) hist.resize(k + 1, 0);
     ++hist[k];
   }
+  // Edge `e`, in `n` triangles: boundary with one, non-manifold with three or more.
+  void edge(uint32_t e, size_t n) {
+    if (n == 1) boundary.push_back(e);
+    if (n > 2) nonmanifold.push_back(e);
+  }
+  uint64_t checksum() const {
+    uint64_t c = 1000003ull * boundary.size() + 7919ull * nonmanifold.size();
+    for (size_t k = 0; k < hist.size(); ++k) c += uint64_t(hist[k]) * (k + 1) * (k + 7);
+    return c;
+  }
+};
+// Times `pass(st)`, one whole stats pass into a cleared `st`, and checks its checksum for `lib`.
+template <class Pass>
+void time_stats(benchmark::State& state, const std::string& lib, uint64_t elements, Pass pass) {
+  Stats st;
+  uint64_t sum = 0;
+  for (auto _ : state) {
+    st.clear();
+    pass(st);
+    sum = st.checksum();
+    benchmark::DoNotOptimize(sum);
+  }
+  check_count(state, "stats", lib, sum);
+  set_elements(state, elements);
+}
+uint64_t om_stats(const OMesh& m) {
+  Stats st;  // OpenMesh holds no non-manifold edge
+  for (auto v : m.vertices()) st.valence(m.valence(v));
   for (auto e : m.edges())
-    if (m.is_boundary(e)) boundary.push_back(uint32_t(e.idx()));
-  benchmark::DoNotOptimize(boundary.data());
-  return stats_checksum(hist, boundary.size(), nonmanifold.size());
+    if (m.is_boundary(e)) st.boundary.push_back(uint32_t(e.idx()));
+  benchmark::DoNotOptimize(st.boundary.data());
+  return st.checksum();
 }
 uint64_t om_ff_index(const OMesh& m) {
   uint64_t n = 0, sum = 0;
@@ -194,9 +223,8 @@ uint64_t om_ff_index(const OMesh& m) {
   return n;
 }
 
-struct Built {
-  StructurePtr s;
-  std::vector<uint32_t> vertices, triangles;
+struct Built : BuiltWalk {
+  std::vector<uint32_t> triangles;
 };
 
 }  // namespace
@@ -254,19 +282,18 @@ int main(int argc, char** argv) {
   const OMake om_load = [path] { return openmesh_load(path); };
   const SMake sm_load = [path] { return cgal_load(path); };
 
-  if (have_om)
-    add("load", "openmesh", Unit::Build,
-        [=](benchmark::State& s) { time_peer_build<OMesh>(s, simplices, om_load, "mesh", om_geometry); });
-  if (have_sm)
-    add("load", "cgal_sm", Unit::Build,
-        [=](benchmark::State& s) { time_peer_build<SMesh>(s, simplices, sm_load, "mesh", sm_geometry); });
+  // `op` (load or build) for the peers present, each making its mesh with its own maker.
+  const auto add_peer_builds = [&](const char* op, const OMake& om_make, const SMake& sm_make) {
+    if (have_om)
+      add(op, "openmesh", Unit::Build,
+          [=](benchmark::State& s) { time_peer_build<OMesh>(s, simplices, om_make, "mesh", om_geometry); });
+    if (have_sm)
+      add(op, "cgal_sm", Unit::Build,
+          [=](benchmark::State& s) { time_peer_build<SMesh>(s, simplices, sm_make, "mesh", sm_geometry); });
+  };
+  add_peer_builds("load", om_load, sm_load);
   for (const auto& k : kinds) add_tpx_load(path, k, simplices);
-  if (have_om)
-    add("build", "openmesh", Unit::Build,
-        [=](benchmark::State& s) { time_peer_build<OMesh>(s, simplices, om_build, "mesh", om_geometry); });
-  if (have_sm)
-    add("build", "cgal_sm", Unit::Build,
-        [=](benchmark::State& s) { time_peer_build<SMesh>(s, simplices, sm_build, "mesh", sm_geometry); });
+  add_peer_builds("build", om_build, sm_build);
   for (const auto& k : kinds) add_tpx_build(soup, k, simplices);
 
   // Walks, library by library so that each builds its structure once (Slot).
@@ -297,9 +324,7 @@ int main(int argc, char** argv) {
   for (const auto& k : kinds) {
     const std::string lib = "tpx_" + k.name;
     const std::function<std::unique_ptr<Built>()> make = [k] {
-      auto b = std::make_unique<Built>();
-      b->s = build_or_abort(soup, k.id);
-      b->vertices = vertex_rows(soup.n_vertices);
+      auto b = build_walk<Built>(soup, k.id);
       b->triangles = simplices_of(b->s.get(), 2);
       return b;
     };
@@ -422,31 +447,20 @@ int main(int argc, char** argv) {
       size_t nv = 0, ne = 0;
       tpx_check(tpx_structure_count(b.s.get(), 0, &nv), "tpx_structure_count");
       tpx_check(tpx_structure_count(b.s.get(), 1, &ne), "tpx_structure_count");
-      std::vector<uint32_t> hist(64, 0), boundary, nonmanifold;
-      uint64_t sum = 0;
-      for (auto _ : state) {
-        std::fill(hist.begin(), hist.end(), 0);
-        boundary.clear();
-        nonmanifold.clear();
+      time_stats(state, lib, nv + ne, [&](Stats& st) {
         TpxSimplex h;
         size_t deg = 0;
         for (uint32_t i = 0; i < nv; ++i) {
           if (tpx_handle(b.s.get(), 0, i, &h) != TPX_STATUS_OK || tpx_degree(b.s.get(), &h, 0, &deg) != TPX_STATUS_OK)
             fail(state, "tpx_degree failed: " + tpx_message());
-          if (deg >= hist.size()) hist.resize(deg + 1, 0);
-          ++hist[deg];
+          st.valence(deg);
         }
         for (uint32_t i = 0; i < ne; ++i) {
           if (tpx_handle(b.s.get(), 1, i, &h) != TPX_STATUS_OK || tpx_degree(b.s.get(), &h, 2, &deg) != TPX_STATUS_OK)
             fail(state, "tpx_degree failed: " + tpx_message());
-          if (deg == 1) boundary.push_back(i);
-          if (deg > 2) nonmanifold.push_back(i);
+          st.edge(i, deg);
         }
-        sum = stats_checksum(hist, boundary.size(), nonmanifold.size());
-        benchmark::DoNotOptimize(sum);
-      }
-      check_count(state, "stats", lib, sum);
-      set_elements(state, nv + ne);
+      });
     });
     add("stats_batch", lib, Unit::Walk, [=](benchmark::State& state) {
       const Built& b = slot().get<Built>(lib + "_whole", make);
@@ -456,30 +470,15 @@ int main(int argc, char** argv) {
       std::vector<uint32_t> vi(nv), ei(ne), deg(std::max(nv, ne));
       for (uint32_t i = 0; i < nv; ++i) vi[i] = i;
       for (uint32_t i = 0; i < ne; ++i) ei[i] = i;
-      std::vector<uint32_t> hist(64, 0), boundary, nonmanifold;
-      uint64_t sum = 0;
-      for (auto _ : state) {
-        std::fill(hist.begin(), hist.end(), 0);
-        boundary.clear();
-        nonmanifold.clear();
+      time_stats(state, lib, nv + ne, [&](Stats& st) {
         // Counts only (tpx_degree_batch): valences R_{0,0}, then triangles per edge R_{1,2}.
         if (tpx_degree_batch(b.s.get(), 0, vi.data(), nv, 0, deg.data()) != TPX_STATUS_OK)
           fail(state, "tpx_degree_batch failed: " + tpx_message());
-        for (size_t i = 0; i < nv; ++i) {
-          if (deg[i] >= hist.size()) hist.resize(deg[i] + 1, 0);
-          ++hist[deg[i]];
-        }
+        for (size_t i = 0; i < nv; ++i) st.valence(deg[i]);
         if (tpx_degree_batch(b.s.get(), 1, ei.data(), ne, 2, deg.data()) != TPX_STATUS_OK)
           fail(state, "tpx_degree_batch failed: " + tpx_message());
-        for (uint32_t i = 0; i < ne; ++i) {
-          if (deg[i] == 1) boundary.push_back(i);
-          if (deg[i] > 2) nonmanifold.push_back(i);
-        }
-        sum = stats_checksum(hist, boundary.size(), nonmanifold.size());
-        benchmark::DoNotOptimize(sum);
-      }
-      check_count(state, "stats", lib, sum);
-      set_elements(state, nv + ne);
+        for (uint32_t i = 0; i < ne; ++i) st.edge(i, deg[i]);
+      });
     });
     // FF_index as one tpx_related_batch into the caller's CSR, then the same pass over it: the
     // index is built inside the timed loop (what a whole-mesh pass pays for it).

@@ -217,15 +217,22 @@ std::unique_ptr<T3Walk> t3_walk_of(const Tets& t) {
   return w;
 }
 
-uint64_t t3_star_cells(const T3Walk& w) {
-  std::vector<Ch> cells;
+// What CGAL lists around every vertex (`list(v, out)`: cells or edges), counted through one
+// reused buffer.
+template <class Item, class List>
+uint64_t t3_star(const T3Walk& w, List list) {
+  std::vector<Item> items;
   uint64_t n = 0;
   for (Vh v : w.vertices) {
-    cells.clear();
-    w.tr->finite_incident_cells(v, std::back_inserter(cells));
-    n += cells.size();
+    items.clear();
+    list(v, std::back_inserter(items));
+    n += items.size();
   }
   return n;
+}
+
+uint64_t t3_star_cells(const T3Walk& w) {
+  return t3_star<Ch>(w, [&](Vh v, auto out) { w.tr->finite_incident_cells(v, out); });
 }
 
 uint64_t t3_tt(const T3Walk& w) {
@@ -236,20 +243,10 @@ uint64_t t3_tt(const T3Walk& w) {
 }
 
 uint64_t t3_star_edges(const T3Walk& w) {
-  std::vector<T3::Edge> edges;
-  uint64_t n = 0;
-  for (Vh v : w.vertices) {
-    edges.clear();
-    w.tr->finite_incident_edges(v, std::back_inserter(edges));
-    n += edges.size();
-  }
-  return n;
+  return t3_star<T3::Edge>(w, [&](Vh v, auto out) { w.tr->finite_incident_edges(v, out); });
 }
 
-struct Built {
-  StructurePtr s;
-  std::vector<uint32_t> vertices;
-};
+struct Built : BuiltWalk {};
 
 }  // namespace
 
@@ -328,12 +325,7 @@ int main(int argc, char** argv) {
   }
   for (const auto& k : kinds) {
     const std::string lib = "tpx_" + k.name;
-    const std::function<std::unique_ptr<Built>()> make = [k] {
-      auto b = std::make_unique<Built>();
-      b->s = build_or_abort(soup, k.id);
-      b->vertices = vertex_rows(soup.n_vertices);
-      return b;
-    };
+    const std::function<std::unique_ptr<Built>()> make = [k] { return build_walk<Built>(soup, k.id); };
     for (auto [op, q] : {std::make_pair("star_cells", 3u), std::make_pair("star_edges", 1u)}) {
       const std::string name = op;
       const std::vector<uint32_t> qs{q};

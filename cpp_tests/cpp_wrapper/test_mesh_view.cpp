@@ -20,6 +20,8 @@
 #include <utility>
 #include <vector>
 
+#include "../complex_of.hpp"
+
 namespace {
 
 using Ids = std::vector<std::uint32_t>;
@@ -248,13 +250,7 @@ topoplex::Complex random_complex(std::mt19937 &rng, std::uint32_t n, std::uint32
   simplices.push_back({n - 1});
   std::vector<double> xyz(3 * n);
   for (double &x : xyz) x = double(rng() % 1000) / 10;
-  std::vector<std::uint32_t> ids;
-  std::vector<std::size_t> offsets{0};
-  for (const auto &s : simplices) {
-    ids.insert(ids.end(), s.begin(), s.end());
-    offsets.push_back(ids.size());
-  }
-  return topoplex::Complex::from_arrays(n, ids, offsets, xyz, 3);
+  return topoplex_tests::complex_of(n, simplices, xyz);
 }
 
 // Cyclic groups in a numbering-free form: each group its tops' sorted vertex sets in order, a

@@ -41,20 +41,15 @@
 #include <utility>
 #include <vector>
 
+#include "../c_ptr.hpp"
 #include "../find_data.hpp"
 
 namespace {
 
 using Tri = std::array<uint32_t, 3>;
 
-struct ComplexDeleter {
-  void operator()(TpxComplex* c) const { tpx_complex_free(c); }
-};
-struct DecompositionDeleter {
-  void operator()(TpxDecomposition* d) const { tpx_decomposition_free(d); }
-};
-using ComplexPtr = std::unique_ptr<TpxComplex, ComplexDeleter>;
-using DecompositionPtr = std::unique_ptr<TpxDecomposition, DecompositionDeleter>;
+using ComplexPtr = topoplex_tests::CPtr<TpxComplex, tpx_complex_free>;
+using DecompositionPtr = topoplex_tests::CPtr<TpxDecomposition, tpx_decomposition_free>;
 
 // A triangle complex as read here, independently of Topoplex's readers: 3 coordinates per
 // vertex and the distinct triangles, each ascending, in lexicographic order.

@@ -190,6 +190,21 @@ DM topology_dm(const std::vector<PetscInt> &cells, PetscInt ncells, PetscInt nve
   std::abort();
 }
 
+// One query of the handle API into `buf` (`query(data, capacity, &len)`), `buf` grown to the
+// length asked for and the query made again when it was too small; aborts naming `what` on any
+// other failure. Returns the answer's length.
+template <class T, class Query>
+std::size_t query_grown(int rank, const char *what, std::vector<T> &buf, Query query) {
+  std::size_t len = 0;
+  TpxStatus s = query(buf.data(), buf.size(), &len);
+  if (s == TPX_STATUS_BUFFER_TOO_SMALL) {
+    buf.resize(len);
+    s = query(buf.data(), buf.size(), &len);
+  }
+  if (s != TPX_STATUS_OK) fail(rank, what);
+  return len;
+}
+
 // Per-rank results, gathered on rank 0.
 enum Field {
   Tets, Points, Vertices, OwnedVertices, DmTopoPetsc, DmTopoHeap, DmTopoPoints, DmHeld, CoordBytes,
@@ -362,13 +377,10 @@ int main(int argc, char **argv) {
     c0 = cpu_now();
     for (std::size_t i = 0; i < no; ++i) {
       const TpxSimplex h{owned[i], 0, ia.stamp()};
-      std::size_t len = 0;
-      TpxStatus s = tpx_related(ia.get(), &h, 3, TPX_ORDER_NATURAL, ids.data(), ids.size(), &len);
-      if (s == TPX_STATUS_BUFFER_TOO_SMALL) {
-        ids.resize(len);
-        s = tpx_related(ia.get(), &h, 3, TPX_ORDER_NATURAL, ids.data(), ids.size(), &len);
-      }
-      if (s != TPX_STATUS_OK) fail(rank, "tpx_related");
+      const std::size_t len =
+          query_grown(rank, "tpx_related", ids, [&](std::uint32_t *buf, std::size_t cap, std::size_t *n) {
+            return tpx_related(ia.get(), &h, 3, TPX_ORDER_NATURAL, buf, cap, n);
+          });
       tp_cells[i] = static_cast<std::uint32_t>(len);
     }
     f[R03Loop] = now() - t;
@@ -379,13 +391,10 @@ int main(int argc, char **argv) {
     t = now();
     for (std::size_t i = 0; i < no; ++i) {
       const TpxSimplex h{owned[i], 0, ia.stamp()};
-      std::size_t len = 0;
-      TpxStatus s = tpx_star(ia.get(), &h, 0, TPX_ORDER_NATURAL, star.data(), star.size(), &len);
-      if (s == TPX_STATUS_BUFFER_TOO_SMALL) {
-        star.resize(len);
-        s = tpx_star(ia.get(), &h, 0, TPX_ORDER_NATURAL, star.data(), star.size(), &len);
-      }
-      if (s != TPX_STATUS_OK) fail(rank, "tpx_star");
+      const std::size_t len =
+          query_grown(rank, "tpx_star", star, [&](TpxSimplex *buf, std::size_t cap, std::size_t *n) {
+            return tpx_star(ia.get(), &h, 0, TPX_ORDER_NATURAL, buf, cap, n);
+          });
       tp_star[i] = static_cast<std::uint32_t>(len);
     }
     f[StarLoop] = now() - t;
@@ -397,14 +406,10 @@ int main(int argc, char **argv) {
       const TpxSimplex h{owned[i], 0, ia.stamp()};
       std::size_t total = 0;
       for (std::uint32_t q = 1; q <= 3; ++q) {
-        std::size_t len = 0;
-        TpxStatus s = tpx_related(ia.get(), &h, q, TPX_ORDER_NATURAL, ids.data(), ids.size(), &len);
-        if (s == TPX_STATUS_BUFFER_TOO_SMALL) {
-          ids.resize(len);
-          s = tpx_related(ia.get(), &h, q, TPX_ORDER_NATURAL, ids.data(), ids.size(), &len);
-        }
-        if (s != TPX_STATUS_OK) fail(rank, "tpx_related");
-        total += len;
+        total +=
+            query_grown(rank, "tpx_related", ids, [&](std::uint32_t *buf, std::size_t cap, std::size_t *n) {
+              return tpx_related(ia.get(), &h, q, TPX_ORDER_NATURAL, buf, cap, n);
+            });
       }
       tp_rel[i] = static_cast<std::uint32_t>(total);
     }

@@ -13,7 +13,7 @@ use super::live::TpxLive;
 use super::{Failure, TpxStatus, guard, handle, in_slice, on, out_ptr, try_copy, write_buffer};
 use topoplex::complex::attributes::MAX_COMPONENTS;
 use topoplex::complex::{Attribute, Location, ValueType, Values};
-use topoplex::live::{LiveComplex, TopId, VertexPolicy};
+use topoplex::live::{LiveComplex, Refusal, TopId, VertexPolicy};
 use topoplex::relation::handle::VertexId;
 
 /// Attribute location: one element per vertex id `0 .. n`.
@@ -459,6 +459,54 @@ fn live_top(live: &LiveComplex, top: u32) -> Result<TopId, Failure> {
     live.top_of_packed(top).map_err(super::live::refusal)
 }
 
+/// How the rows of one kind of live element (tops or vertices) are read and written, and where
+/// their attributes live (for NO_SUCH_ATTRIBUTE).
+#[derive(Clone, Copy)]
+struct LiveRows<K> {
+    get: fn(&LiveComplex, &str, K) -> Result<Option<Values>, Refusal>,
+    set: fn(&mut LiveComplex, &str, K, &[f64]) -> Result<bool, Refusal>,
+    on: &'static str,
+}
+
+const TOP_ROWS: LiveRows<TopId> = LiveRows {
+    get: LiveComplex::top_values,
+    set: LiveComplex::set_top_values,
+    on: "on the listed simplices",
+};
+
+const VERTEX_ROWS: LiveRows<VertexId> = LiveRows {
+    get: LiveComplex::vertex_values,
+    set: LiveComplex::set_vertex_values,
+    on: "on the vertices",
+};
+
+/// Attribute `name`'s row on live element `at`, or NO_SUCH_ATTRIBUTE.
+fn live_row<K>(
+    live: &LiveComplex,
+    name: &str,
+    at: K,
+    rows: LiveRows<K>,
+) -> Result<Values, Failure> {
+    (rows.get)(live, name, at)
+        .map_err(super::live::refusal)?
+        .ok_or_else(|| no_such(name, rows.on))
+}
+
+/// Sets attribute `name`'s row on live element `at` to `data`, once `data` is checked to fit it
+/// (nothing changes otherwise).
+fn set_live_row<K: Copy>(
+    live: &mut LiveComplex,
+    name: &str,
+    at: K,
+    data: &[f64],
+    rows: LiveRows<K>,
+) -> Result<(), Failure> {
+    let row = live_row(live, name, at, rows)?;
+    check_row(name, &row, data)?;
+    (rows.set)(live, name, at, data).map_err(super::live::refusal)?;
+    Ok(())
+}
+
 /// Checks `data` as a row of attribute `name` whose row is now `row`: as many numbers as its
 /// components, and for labels each an integer within the type.
 fn check_row(name: &str, row: &Values, data: &[f64]) -> Result<(), Failure> {
@@ -525,10 +573,7 @@ pub unsafe extern "C" fn tpx_live_top_values(
         let name = name_arg(name, "name")?;
         let out_len = out_ptr(out_len, "out_len")?;
         let t = live_top(live, top)?;
-        let row = live
-            .top_values(name, t)
-            .map_err(super::live::refusal)?
-            .ok_or_else(|| no_such(name, "on the listed simplices"))?;
+        let row = live_row(live, name, t, TOP_ROWS)?;
         write_buffer(&row_f64(&row), buf, buf_len, out_len)
     })
 }
@@ -555,14 +600,7 @@ pub unsafe extern "C" fn tpx_live_set_top_values(
         let name = name_arg(name, "name")?;
         let data = in_slice(data, len, "data")?;
         let t = live_top(live, top)?;
-        let row = live
-            .top_values(name, t)
-            .map_err(super::live::refusal)?
-            .ok_or_else(|| no_such(name, "on the listed simplices"))?;
-        check_row(name, &row, data)?;
-        live.set_top_values(name, t, data)
-            .map_err(super::live::refusal)?;
-        Ok(())
+        set_live_row(live, name, t, data, TOP_ROWS)
     })
 }
 
@@ -586,10 +624,7 @@ pub unsafe extern "C" fn tpx_live_vertex_values(
         let live = handle(l, "l")?.live();
         let name = name_arg(name, "name")?;
         let out_len = out_ptr(out_len, "out_len")?;
-        let row = live
-            .vertex_values(name, VertexId(v))
-            .map_err(super::live::refusal)?
-            .ok_or_else(|| no_such(name, "on the vertices"))?;
+        let row = live_row(live, name, VertexId(v), VERTEX_ROWS)?;
         write_buffer(&row_f64(&row), buf, buf_len, out_len)
     })
 }
@@ -641,14 +676,7 @@ pub unsafe extern "C" fn tpx_live_set_vertex_values(
         let live = out_ptr(l, "l")?.live_mut();
         let name = name_arg(name, "name")?;
         let data = in_slice(data, len, "data")?;
-        let row = live
-            .vertex_values(name, VertexId(v))
-            .map_err(super::live::refusal)?
-            .ok_or_else(|| no_such(name, "on the vertices"))?;
-        check_row(name, &row, data)?;
-        live.set_vertex_values(name, VertexId(v), data)
-            .map_err(super::live::refusal)?;
-        Ok(())
+        set_live_row(live, name, VertexId(v), data, VERTEX_ROWS)
     })
 }
 

@@ -339,6 +339,18 @@ fn coords_array<'py>(
     }
 }
 
+/// The coordinates an (n, k) points array gives, copied (k numbers a vertex).
+fn coords_of(points: Option<&PyReadonlyArray2<'_, f64>>) -> PyResult<Option<Coords>> {
+    points
+        .map(|p| {
+            Ok(Coords {
+                dim: p.shape()[1],
+                data: p.as_slice()?.to_vec(),
+            })
+        })
+        .transpose()
+}
+
 #[pymethods]
 impl PyComplex {
     /// Builds from a CSR of simplices: simplex i is `ids[offsets[i]:offsets[i+1]]`.
@@ -354,13 +366,7 @@ impl PyComplex {
         let ids = ids.as_slice()?;
         let offsets = offsets.as_slice()?;
         check_csr(ids, offsets)?;
-        let coords = match &points {
-            Some(p) => Some(Coords {
-                dim: p.shape()[1],
-                data: p.as_slice()?.to_vec(),
-            }),
-            None => None,
-        };
+        let coords = coords_of(points.as_ref())?;
         let c = py
             .detach(|| Complex::from_arrays(n_vertices, ids, offsets, coords))
             .map_err(complex_fail)?;
@@ -379,13 +385,7 @@ impl PyComplex {
         points: Option<PyReadonlyArray2<'_, f64>>,
     ) -> PyResult<PyComplex> {
         let ids = ids.as_slice()?;
-        let coords = match &points {
-            Some(p) => Some(Coords {
-                dim: p.shape()[1],
-                data: p.as_slice()?.to_vec(),
-            }),
-            None => None,
-        };
+        let coords = coords_of(points.as_ref())?;
         let c = py
             .detach(|| Complex::from_uniform(n_vertices, arity, ids, coords))
             .map_err(complex_fail)?;
@@ -1227,18 +1227,15 @@ impl PyStructure {
                 l.vertex_values(name, VertexId(v))
                     .map_err(|e| Fail::Input(format!("row {i}: {e}")))?;
             }
-            if let Some(&v) = vs.first() {
-                let row = l
-                    .vertex_values(name, VertexId(v))
-                    .map_err(|e| Fail::Input(e.to_string()))?
-                    .ok_or_else(|| no_attribute(name, "vertices"))?;
-                check_values(name, &row, data, c)?;
-            }
-            for (&v, row) in vs.iter().zip(data.chunks_exact(c.max(1))) {
-                l.set_vertex_values(name, VertexId(v), row)
-                    .map_err(|e| Fail::Input(e.to_string()))?;
-            }
-            Ok::<_, Fail>(())
+            let vs: Vec<VertexId> = vs.iter().map(|&v| VertexId(v)).collect();
+            set_rows(
+                l,
+                (name, "vertices"),
+                &vs,
+                (data, c),
+                LiveComplex::vertex_values,
+                LiveComplex::set_vertex_values,
+            )
         })?;
         Ok(())
     }
@@ -1287,18 +1284,14 @@ impl PyStructure {
                 .iter()
                 .map(|&r| top_at(&tops, p, r))
                 .collect::<Result<Vec<_>, Fail>>()?;
-            if let Some(&t) = ts.first() {
-                let row = l
-                    .top_values(name, t)
-                    .map_err(|e| Fail::Input(e.to_string()))?
-                    .ok_or_else(|| no_attribute(name, "listed simplices"))?;
-                check_values(name, &row, data, c)?;
-            }
-            for (&t, row) in ts.iter().zip(data.chunks_exact(c.max(1))) {
-                l.set_top_values(name, t, row)
-                    .map_err(|e| Fail::Input(e.to_string()))?;
-            }
-            Ok::<_, Fail>(())
+            set_rows(
+                l,
+                (name, "listed simplices"),
+                &ts,
+                (data, c),
+                LiveComplex::top_values,
+                LiveComplex::set_top_values,
+            )
         })?;
         Ok(())
     }
@@ -1421,6 +1414,29 @@ fn check_rows(n: usize, data: &[f64], c: usize) -> Result<(), Fail> {
             "values: {} rows of {c} for {n} simplices",
             data.len() / c.max(1)
         )));
+    }
+    Ok(())
+}
+
+/// Sets attribute `name`'s rows of the live elements `keys` (vertices or tops, `on` naming
+/// them for the KeyError) to the rows of `data`, `c` numbers each, once the first element's row
+/// (`get`) has shown that the rows fit the attribute.
+fn set_rows<K: Copy>(
+    l: &mut LiveComplex,
+    (name, on): (&str, &str),
+    keys: &[K],
+    (data, c): (&[f64], usize),
+    get: fn(&LiveComplex, &str, K) -> Result<Option<Values>, Refusal>,
+    set: fn(&mut LiveComplex, &str, K, &[f64]) -> Result<bool, Refusal>,
+) -> Result<(), Fail> {
+    if let Some(&k) = keys.first() {
+        let row = get(l, name, k)
+            .map_err(|e| Fail::Input(e.to_string()))?
+            .ok_or_else(|| no_attribute(name, on))?;
+        check_values(name, &row, data, c)?;
+    }
+    for (&k, row) in keys.iter().zip(data.chunks_exact(c.max(1))) {
+        set(l, name, k, row).map_err(|e| Fail::Input(e.to_string()))?;
     }
     Ok(())
 }

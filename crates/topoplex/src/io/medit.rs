@@ -706,9 +706,7 @@ mod tests {
     }
 
     #[test]
-    fn empty_file_and_header_errors() {
-        err("", 1, "file is empty");
-        err("# c\n\n", 2, "file is empty");
+    fn header_errors() {
         err(
             "Dimension 3\n",
             1,

@@ -523,6 +523,30 @@ mod tests {
     use super::*;
     use std::path::PathBuf;
 
+    /// The text readers refuse a file without a statement on its last line, blank and
+    /// comment lines counted.
+    #[test]
+    fn text_readers_refuse_an_empty_file_on_its_last_line() {
+        type Parse = fn(&str) -> Result<RawInput, (u32, ReadErrorKind)>;
+        let readers: [(&str, Parse); 4] = [
+            ("medit", medit::parse),
+            ("off", off::parse),
+            ("obj", obj::parse),
+            ("simplices", simplices::parse),
+        ];
+        for (name, parse) in readers {
+            for (text, line) in [("", 1), ("# c\n\n", 2), ("# nothing\n\n\n", 3)] {
+                match parse(text) {
+                    Ok(r) => panic!("{name}: {text:?} read as {r:?}"),
+                    Err((l, k)) => {
+                        assert_eq!(l, line, "{name}: {text:?}: {k}");
+                        assert!(k.to_string().contains("file is empty"), "{name}: {k}");
+                    }
+                }
+            }
+        }
+    }
+
     /// A file under the temp dir, removed on drop.
     pub(super) struct TempFile(pub(super) PathBuf);
 

@@ -42,7 +42,7 @@
 use rustc_hash::FxHashMap;
 
 use super::bytes::Input;
-use super::write::{check_coord_dim, check_max_len, push_f64, vertex_count};
+use super::write::{check_fits, push_f64, vertex_count};
 use super::{Coords, RawInput, ReadErrorKind, echo, no_room, parse_integer, syntax};
 use super::{Float, parse_real};
 use crate::complex::{Attribute, LabelName, Location, Values, table};
@@ -325,6 +325,17 @@ impl<'a> Reader<'a> {
         })
     }
 
+    /// The rest of line `l`, trimmed, as a string in double quotes: what the quotes hold, or a
+    /// refusal saying what was `expected` and what was found.
+    fn quoted(&mut self, l: u32, expected: impl FnOnce() -> String) -> Res<String> {
+        let text = String::from_utf8_lossy(self.inp.rest_of_line());
+        let text = text.trim();
+        match text.strip_prefix('"').and_then(|t| t.strip_suffix('"')) {
+            Some(inside) => Ok(inside.to_string()),
+            None => Err((l, syntax(format!("{}, found '{}'", expected(), echo(text))))),
+        }
+    }
+
     /// `$PhysicalNames`: a count, then lines `dimension tag "name"`.
     fn physical_names(&mut self, line: u32) -> Res<()> {
         let binary = std::mem::replace(&mut self.inp.binary, false);
@@ -338,27 +349,14 @@ impl<'a> Reader<'a> {
                     syntax(format!("physical group dimension {dim} is not 0 to 3")),
                 )
             })?;
-            let rest = self.inp.rest_of_line();
-            let text = String::from_utf8_lossy(rest);
-            let text = text.trim();
-            let name = text
-                .strip_prefix('"')
-                .and_then(|t| t.strip_suffix('"'))
-                .ok_or_else(|| {
-                    (
-                        l,
-                        syntax(format!(
-                            "physical group ({dim}, {tag}): expected its name in double quotes, \
-                             found '{}'",
-                            echo(text)
-                        )),
-                    )
-                })?;
+            let name = self.quoted(l, || {
+                format!("physical group ({dim}, {tag}): expected its name in double quotes")
+            })?;
             self.raw.attributes.add_label_name(LabelName {
                 attribute: PHYSICAL.into(),
                 dimension: Some(dimension),
                 label: tag,
-                name: name.to_string(),
+                name,
             });
         }
         self.inp.binary = binary;
@@ -704,12 +702,11 @@ pub(crate) fn write(
     binary: bool,
     out: &mut Vec<u8>,
 ) -> Result<(), String> {
-    check_max_len(
+    check_fits(
         raw,
         4,
         "points, edges, triangles and tetrahedra (use .simplices)",
     )?;
-    check_coord_dim(raw, 3)?;
     let n = vertex_count(raw);
     let m = raw.simplex_count();
     if !v4 && (n > i32::MAX as usize || m > i32::MAX as usize) {

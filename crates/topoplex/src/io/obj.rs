@@ -809,12 +809,6 @@ mod tests {
     }
 
     #[test]
-    fn empty_file() {
-        err("", 1, "file is empty");
-        err("# nothing\n\n", 2, "file is empty");
-    }
-
-    #[test]
     fn vertex_errors() {
         err(
             "v 0 0 0\nv 1 2\n",

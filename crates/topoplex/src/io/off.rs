@@ -940,12 +940,6 @@ mod tests {
     }
 
     #[test]
-    fn empty_file() {
-        err("", 1, "file is empty");
-        err("# only a comment\n\n", 2, "file is empty");
-    }
-
-    #[test]
     fn wrong_header() {
         err("PLY\n3 1 0\n", 1, "expected an OFF header");
         err("# c\noff\n", 2, "found 'off'");

@@ -51,7 +51,7 @@ use ply_rs_bw::ply::{
 };
 use ply_rs_bw::writer::Writer;
 
-use super::write::{check_coord_dim, check_max_len, vertex_count};
+use super::write::{check_fits, vertex_count};
 use super::{RawInput, ReadErrorKind, echo, syntax};
 use crate::complex::{Attribute, Location, Values};
 
@@ -307,12 +307,11 @@ fn data(raw: &RawInput, binary: bool) -> Result<(Vec<&Attribute>, Vec<&Attribute
 /// Writes `raw` as PLY, ASCII or binary little-endian, with its attributes as properties:
 /// vertex ones on `vertex`, listed ones on `face` and `edge` (each value with its simplex).
 pub(crate) fn write(raw: &RawInput, binary: bool, out: &mut Vec<u8>) -> Result<(), String> {
-    check_max_len(
+    check_fits(
         raw,
         3,
         "vertices, edges and triangles (use .msh, .vtk or .simplices)",
     )?;
-    check_coord_dim(raw, 3)?;
     if !binary
         && let Some(c) = &raw.coords
         && let Some(i) = c.data.iter().position(|x| !x.is_finite())

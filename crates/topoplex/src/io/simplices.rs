@@ -658,12 +658,6 @@ mod tests {
     }
 
     #[test]
-    fn empty_file() {
-        err("", 1, "file is empty");
-        err("# nothing\n\n\n", 3, "file is empty");
-    }
-
-    #[test]
     fn errors() {
         err(
             "v 0 0\nv 1 0 0\n",

@@ -39,7 +39,7 @@
 //! ([`write_with_fields`]). ASCII numbers are the shortest decimals that read back bit for bit.
 
 use super::bytes::Input;
-use super::write::{check_coord_dim, check_max_len, push_f64, push_ids, vertex_count};
+use super::write::{check_fits, push_f64, push_ids, vertex_count};
 use super::{
     Coords, IntError, RawInput, ReadErrorKind, echo, no_room, parse_integer, syntax,
     try_with_capacity,
@@ -928,12 +928,11 @@ pub fn write_with_fields(
     cell_fields: &[Field],
     out: &mut Vec<u8>,
 ) -> Result<(), String> {
-    check_max_len(
+    check_fits(
         raw,
         4,
         "vertices, edges, triangles and tetrahedra (use .simplices)",
     )?;
-    check_coord_dim(raw, 3)?;
     if let Some(&v) = raw.ids.iter().find(|&&v| v > i32::MAX as u32) {
         return Err(format!("vertex id {v} does not fit VTK's int"));
     }
@@ -992,18 +991,10 @@ fn push_attribute(out: &mut Vec<u8>, binary: bool, a: &Attribute) {
         s(out);
     };
     match (&a.values, binary) {
-        (Values::I32(v), true) => v
-            .iter()
-            .for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
-        (Values::I64(v), true) => v
-            .iter()
-            .for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
-        (Values::F32(v), true) => v
-            .iter()
-            .for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
-        (Values::F64(v), true) => v
-            .iter()
-            .for_each(|x| out.extend_from_slice(&x.to_be_bytes())),
+        (Values::I32(v), true) => push_be(out, v, |x| x.to_be_bytes()),
+        (Values::I64(v), true) => push_be(out, v, |x| x.to_be_bytes()),
+        (Values::F32(v), true) => push_be(out, v, |x| x.to_be_bytes()),
+        (Values::F64(v), true) => push_be(out, v, |x| x.to_be_bytes()),
         (Values::I32(v), false) => {
             for (i, x) in v.iter().enumerate() {
                 ascii(i, &|o| o.extend_from_slice(x.to_string().as_bytes()));
@@ -1031,6 +1022,13 @@ fn push_attribute(out: &mut Vec<u8>, binary: bool, a: &Attribute) {
         }
     }
     out.push(b'\n');
+}
+
+/// Each of `v` as its big-endian bytes (`be`), as legacy VTK's binary wants.
+fn push_be<T, const N: usize>(out: &mut Vec<u8>, v: &[T], be: impl Fn(&T) -> [u8; N]) {
+    for x in v {
+        out.extend_from_slice(&be(x));
+    }
 }
 
 /// The coordinates of the `n` points, 3 a point (0 where `raw` has fewer).
@@ -1132,30 +1130,37 @@ mod tests {
     /// wins over a type error.
     #[test]
     fn streamed_cells_report_errors_in_the_order_the_whole_block_did() {
-        let pts = "POINTS 3 double\n0 0 0 1 0 0 0 1 0\n";
-        let (l, m) = message(&format!(
-            "{pts}CELLS 2 6\n2 0 -1\n2 0 x\nCELL_TYPES 2\n3 3\n"
-        ));
-        assert_eq!(l, 9);
-        assert!(m.contains("'x' is not a int"), "{m}");
-        let (l, m) = message(&format!(
-            "{pts}CELLS 2 5\n2 0 1\n3 0 -1\nCELL_TYPES 2\n3 5\n"
-        ));
-        assert_eq!(l, 7);
-        assert!(m.contains("ends inside cell #1"), "{m}");
-        let (_, m) = message(&format!(
-            "{pts}CELLS 2 6\n2 0 -1\n2 0 1\nCELL_TYPES 2\n9 3\n"
-        ));
-        assert!(m.contains("-1"), "{m}");
-        let (l, m) = message(&format!(
-            "{pts}CELLS 2 6\n2 0 1\n2 0 1\nCELL_TYPES 2\n3 9\n"
-        ));
-        assert_eq!(l, 10);
-        assert!(m.contains("cell #1 has VTK type 9 (quad)"), "{m}");
-        let (_, m) = message(&format!(
-            "{pts}CELLS 2 6\n2 0 1\n2 0 1\nCELL_TYPES 3\n3 9 3\n"
-        ));
-        assert!(m.contains("3 cell types for 2 cells"), "{m}");
+        // (the sections after the points, the line reported where it matters, what it says)
+        let cases = [
+            (
+                "CELLS 2 6\n2 0 -1\n2 0 x\nCELL_TYPES 2\n3 3\n",
+                Some(9),
+                "'x' is not a int",
+            ),
+            (
+                "CELLS 2 5\n2 0 1\n3 0 -1\nCELL_TYPES 2\n3 5\n",
+                Some(7),
+                "ends inside cell #1",
+            ),
+            ("CELLS 2 6\n2 0 -1\n2 0 1\nCELL_TYPES 2\n9 3\n", None, "-1"),
+            (
+                "CELLS 2 6\n2 0 1\n2 0 1\nCELL_TYPES 2\n3 9\n",
+                Some(10),
+                "cell #1 has VTK type 9 (quad)",
+            ),
+            (
+                "CELLS 2 6\n2 0 1\n2 0 1\nCELL_TYPES 3\n3 9 3\n",
+                None,
+                "3 cell types for 2 cells",
+            ),
+        ];
+        for (cells, line, want) in cases {
+            let (l, m) = message(&format!("POINTS 3 double\n0 0 0 1 0 0 0 1 0\n{cells}"));
+            if let Some(line) = line {
+                assert_eq!(l, line, "{m}");
+            }
+            assert!(m.contains(want), "{m}");
+        }
     }
 
     /// A repeated CELLS section replaces the first, as before.

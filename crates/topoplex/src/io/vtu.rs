@@ -40,7 +40,7 @@ use vtkio::model::{
 mod ascii;
 mod data;
 
-use super::write::{check_coord_dim, check_max_len, vertex_count};
+use super::write::{check_fits, vertex_count};
 use super::{Coords, RawInput, ReadErrorKind, echo, no_room, syntax};
 use crate::complex::table::{self, headroom};
 use crate::complex::{Location, Values};
@@ -275,12 +275,11 @@ fn parse_vtkio(bytes: &[u8]) -> Res<RawInput> {
 
 /// Writes `raw` as a `.vtu` file.
 pub(crate) fn write(raw: &RawInput, out: &mut Vec<u8>) -> Result<(), String> {
-    check_max_len(
+    check_fits(
         raw,
         4,
         "vertices, edges, triangles and tetrahedra (use .simplices)",
     )?;
-    check_coord_dim(raw, 3)?;
     let n = vertex_count(raw);
     let coords = raw.coords.as_ref();
     let points: Vec<f64> = (0..n)
@@ -705,38 +704,52 @@ mod tests {
 
     #[test]
     fn data_that_cannot_be_held_is_refused_naming_the_array_and_line() {
-        // A String array, in either path (vtkio would read it as Float64).
-        let (line, m) = refused_alike(&with_data(
-            &data_array("String", "names", 1, "a b c d\n"),
-            "",
-        ));
-        assert_eq!(line, 28);
-        assert!(
-            m.contains("point data array 'names' has type 'String'"),
-            "{m}"
-        );
-        let (line, m) = refused_alike(&with_data("", &data_array("Float64", "w", 10, "0\n")));
-        assert_eq!(line, 30);
-        assert!(
-            m.contains("cell data array 'w' has NumberOfComponents=\"10\"; 1 to 9"),
-            "{m}"
-        );
-        // Our path: values of the wrong type or out of range, wrong counts, on their lines.
-        let (line, m) = refused(&with_data(
-            &data_array("UInt64", "big", 1, "0\n1\n9223372036854775808 3\n"),
-            "",
-        ));
-        assert_eq!(line, 31);
-        assert!(m.contains("above 2^63"), "{m}");
-        let (line, m) = refused(&with_data(&data_array("Int8", "s", 1, "1 2 128 4\n"), ""));
-        assert_eq!(line, 29);
-        assert!(
-            m.contains("'128' does not fit Int8 among the values of point data array 's'"),
-            "{m}"
-        );
-        let (line, m) = refused(&with_data("", &data_array("Int32", "r", 1, "1 2.5\n")));
-        assert_eq!(line, 31);
-        assert!(m.contains("'2.5' is not of type Int32"), "{m}");
+        // (the paths that must refuse it, point data, cell data, line, what the refusal says)
+        type Refuse = fn(&str) -> (u32, String);
+        let cases: [(Refuse, String, String, u32, &str); 5] = [
+            // A String array, in either path (vtkio would read it as Float64).
+            (
+                refused_alike,
+                data_array("String", "names", 1, "a b c d\n"),
+                String::new(),
+                28,
+                "point data array 'names' has type 'String'",
+            ),
+            (
+                refused_alike,
+                String::new(),
+                data_array("Float64", "w", 10, "0\n"),
+                30,
+                "cell data array 'w' has NumberOfComponents=\"10\"; 1 to 9",
+            ),
+            // Our path: values of the wrong type or out of range, wrong counts, on their lines.
+            (
+                refused,
+                data_array("UInt64", "big", 1, "0\n1\n9223372036854775808 3\n"),
+                String::new(),
+                31,
+                "above 2^63",
+            ),
+            (
+                refused,
+                data_array("Int8", "s", 1, "1 2 128 4\n"),
+                String::new(),
+                29,
+                "'128' does not fit Int8 among the values of point data array 's'",
+            ),
+            (
+                refused,
+                String::new(),
+                data_array("Int32", "r", 1, "1 2.5\n"),
+                31,
+                "'2.5' is not of type Int32",
+            ),
+        ];
+        for (refuse, points, cells, want_line, want) in cases {
+            let (line, m) = refuse(&with_data(&points, &cells));
+            assert_eq!(line, want_line, "{m}");
+            assert!(m.contains(want), "{m}");
+        }
         let (_, m) = refused(&with_data("", &data_array("Int32", "r", 2, "1 2 3\n")));
         assert_eq!(
             m,
@@ -753,38 +766,30 @@ mod tests {
     /// lacks, is refused naming it.
     #[test]
     fn pieces_concatenate_their_data_and_must_carry_the_same_arrays() {
+        // `first` with the piece of `second` appended after its own.
+        let appended = |first: &str, second: &str| {
+            let piece = &second
+                [second.find("<Piece").unwrap()..second.find("</UnstructuredGrid>").unwrap()];
+            first.replacen(
+                "</UnstructuredGrid>",
+                &format!("{piece}</UnstructuredGrid>"),
+                1,
+            )
+        };
         let one = with_data(&data_array("Int32", "p", 1, "1 2 3 4\n"), "");
-        let piece = &one[one.find("<Piece").unwrap()..one.find("</UnstructuredGrid>").unwrap()];
-        let two = one.replacen(
-            "</UnstructuredGrid>",
-            &format!("{piece}</UnstructuredGrid>"),
-            1,
-        );
-        let raw = both(&two);
+        let raw = both(&appended(&one, &one));
         assert_eq!(
             raw.attributes.get("p", Location::Vertices).unwrap().values,
             Values::I32(vec![1, 2, 3, 4, 1, 2, 3, 4])
         );
         let other = with_data(&data_array("Int32", "q", 1, "1 2 3 4\n"), "");
-        let piece =
-            &other[other.find("<Piece").unwrap()..other.find("</UnstructuredGrid>").unwrap()];
-        let mixed = one.replacen(
-            "</UnstructuredGrid>",
-            &format!("{piece}</UnstructuredGrid>"),
-            1,
-        );
-        let (_, m) = refused_alike(&mixed);
+        let (_, m) = refused_alike(&appended(&one, &other));
         assert!(
             m.contains("piece 1 has point data array 'q', which piece 0 lacks"),
             "{m}"
         );
         let bare = triangle_and_edge("0 1 2\n1 3\n", "3\n5\n", "5\n3\n");
-        let piece = &bare[bare.find("<Piece").unwrap()..bare.find("</UnstructuredGrid>").unwrap()];
-        let lacking = one.replacen(
-            "</UnstructuredGrid>",
-            &format!("{piece}</UnstructuredGrid>"),
-            1,
-        );
+        let lacking = appended(&one, &bare);
         let (_, m) = refused_alike(&lacking);
         assert!(
             m.contains("piece 1 lacks point data array 'p', which piece 0 has"),

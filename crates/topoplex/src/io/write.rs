@@ -578,6 +578,13 @@ pub(crate) fn check_max_len(raw: &RawInput, max_len: usize, holds: &str) -> Resu
     }
 }
 
+/// What a format of points in space refuses: a simplex of more than `max_len` vertices (the
+/// refusal naming what it `holds`) or coordinates of more than three numbers per vertex.
+pub(crate) fn check_fits(raw: &RawInput, max_len: usize, holds: &str) -> Result<(), String> {
+    check_max_len(raw, max_len, holds)?;
+    check_coord_dim(raw, 3)
+}
+
 /// Refuses coordinates of more than `max` numbers per vertex.
 pub(crate) fn check_coord_dim(raw: &RawInput, max: usize) -> Result<(), String> {
     match &raw.coords {

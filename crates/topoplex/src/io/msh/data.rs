@@ -220,21 +220,10 @@ impl Reader<'_> {
         for _ in 0..n {
             self.inp.skip_space();
             let l = self.inp.line;
-            let text = String::from_utf8_lossy(self.inp.rest_of_line());
-            let text = text.trim();
-            let tag = text
-                .strip_prefix('"')
-                .and_then(|t| t.strip_suffix('"'))
-                .ok_or_else(|| {
-                    (
-                        l,
-                        syntax(format!(
-                            "{kw}: expected a string tag in double quotes, found '{}'",
-                            echo(text)
-                        )),
-                    )
-                })?;
-            name.get_or_insert_with(|| tag.to_string());
+            let tag = self.quoted(l, || {
+                format!("{kw}: expected a string tag in double quotes")
+            })?;
+            name.get_or_insert(tag);
         }
         let name = name.filter(|n| !n.is_empty()).ok_or_else(|| {
             (

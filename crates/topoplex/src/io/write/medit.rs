@@ -5,17 +5,16 @@
 //! Listed 0-simplices are left to the vertex count (MEDIT has no point element): one with a
 //! nonzero reference cannot be held.
 
-use super::{RawInput, check_coord_dim, check_max_len, push_ids, push_point, vertex_count};
+use super::{RawInput, check_fits, push_ids, push_point, vertex_count};
 use crate::complex::Location;
 use crate::io::medit::REF;
 
 pub(super) fn write(raw: &RawInput, out: &mut super::Out) -> Result<(), String> {
-    check_max_len(
+    check_fits(
         raw,
         4,
         "edges, triangles and tetrahedra (use .msh, .vtk or .simplices)",
     )?;
-    check_coord_dim(raw, 3)?;
     let coords = raw.coords.as_ref();
     let width = if coords.is_some_and(|c| c.dim == 2) {
         2

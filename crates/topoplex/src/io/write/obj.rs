@@ -11,7 +11,7 @@
 //! vertex or corner (a vertex field's value on a vertex no triangle, or for `obj:vt` no edge,
 //! lists; a corner value on a point, or a normal on an edge) is refused.
 
-use super::{RawInput, check_coord_dim, check_max_len, push_ids, push_point, vertex_count};
+use super::{RawInput, check_fits, push_ids, push_point, vertex_count};
 use crate::complex::{Location, Values};
 use crate::error::echo;
 use crate::io::obj::LABELS;
@@ -191,12 +191,11 @@ fn groupings(raw: &RawInput) -> Result<Vec<Grouping<'_>>, String> {
 }
 
 pub(super) fn write(raw: &RawInput, out: &mut super::Out) -> Result<(), String> {
-    check_max_len(
+    check_fits(
         raw,
         3,
         "points, edges and triangles (use .mesh, .msh, .vtk or .simplices)",
     )?;
-    check_coord_dim(raw, 3)?;
     let groups = groupings(raw)?;
     let sides = [side(raw, 0)?, side(raw, 1)?];
     write_vertices(raw, out);
