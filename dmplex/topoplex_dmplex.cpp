@@ -370,6 +370,18 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   // tells a tetrahedron from a quadrilateral.
   auto cell_vertex_fill = [&]() -> bool {
     if (interp == DMPLEX_INTERPOLATED_FULL || !fixed_width(true)) return false;
+    // A cone of 2, 3 or 4 vertices is a segment, triangle or tetrahedron unless the DM has cells
+    // of the other types with those vertex counts (point and segment tensor prisms,
+    // quadrilaterals): counted once in the cell-type label, so that a simplicial DM needs no
+    // per-cell lookup.
+    DMLabel types = nullptr;
+    TPX_PETSC(DMPlexGetCellTypeLabel(dm, &types));
+    PetscInt others = 0;
+    for (DMPolytopeType t : {DM_POLYTOPE_POINT_PRISM_TENSOR, DM_POLYTOPE_SEG_PRISM_TENSOR, DM_POLYTOPE_QUADRILATERAL}) {
+      PetscInt n = 0;
+      TPX_PETSC(DMLabelGetStratumSize(types, static_cast<PetscInt>(t), &n));
+      others += n;
+    }
     mark_supported();
     for (const Block &bl : blocks) {
       PetscInt at = bl.cone0;
@@ -384,8 +396,8 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
         }
         PetscInt nc = 0;
         TPX_PETSC(PetscSectionGetDof(raw.section, p, &nc));
-        DMPolytopeType ct = DM_POLYTOPE_UNKNOWN;
-        TPX_PETSC(DMPlexGetCellType(dm, p, &ct));
+        DMPolytopeType ct = nc == 2 ? DM_POLYTOPE_SEGMENT : nc == 3 ? DM_POLYTOPE_TRIANGLE : DM_POLYTOPE_TETRAHEDRON;
+        if (others > 0 || nc < 2 || nc > 4) TPX_PETSC(DMPlexGetCellType(dm, p, &ct));
         if (!((ct == DM_POLYTOPE_SEGMENT && nc == 2) || (ct == DM_POLYTOPE_TRIANGLE && nc == 3) ||
               (ct == DM_POLYTOPE_TETRAHEDRON && nc == 4))) {
           std::ostringstream m;

@@ -7,6 +7,7 @@
  *   DM dm = ...;                                   // distributed or not, interpolated or not
  *   auto rank = topoplex::dmplex::RankMesh::from_dm(dm);         // collective on dm's comm
  *   topoplex::Structure ia(rank.complex(), topoplex::Kind::IA);   // any structure, or Live
+ *   rank.take_complex();            // optional: the IA holds the tops; the maps keep working
  *   for (auto v : ...) if (rank.vertex_owned(v)) ... ia.relation({v}, 3) ...
  *
  *   DM serial = topoplex::dmplex::to_dm(PETSC_COMM_WORLD, &complex);  // complex on rank 0

@@ -301,6 +301,9 @@ int main(int argc, char **argv) {
   std::vector<std::uint32_t> owned;
   std::vector<PetscInt> owned_points;
   try {
+    // from_dm is collective (the vertex numbering): start the ranks together, so that no rank's
+    // conversion time holds its wait for a slower rank's part (a).
+    MPI_Barrier(PETSC_COMM_WORLD);
     double h0 = heap_bytes();
     t = now();
     double c0 = cpu_now();
