@@ -89,7 +89,9 @@ struct ImportOptions {
  * other point is answered on demand from the DM's cones and supports. For that the RankMesh
  * holds a reference to the DM (and to its point SF and vertex numbering), released by its
  * destructor: do not change the DM's topology while a RankMesh of it lives, and destroy the
- * RankMesh before PetscFinalize. Memory besides the complex: bytes(). The complex can be moved
+ * RankMesh before PetscFinalize. point_of, simplex_of_point and owner call PETSc's getters
+ * (DMPlexGetCone, DMPlexGetSupport, ...): call them from one thread at a time unless PETSc was
+ * built thread-safe. Memory besides the complex: bytes(). The complex can be moved
  * out (take_complex) once a structure is built on it; the maps keep working. */
 class RankMesh {
  public:
