@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <map>
 #include <sstream>
+#include <utility>
 
 namespace topoplex {
 namespace dmplex {
@@ -59,86 +60,111 @@ PetscInt overlap_needed(std::uint32_t p, std::uint32_t q) { return q < p ? 0 : 1
 
 namespace {
 
-std::uint64_t key_hash(const std::uint32_t *k, std::size_t n) noexcept {
-  std::uint64_t h = 0x9e3779b97f4a7c15ull ^ n;
-  for (std::size_t i = 0; i < n; ++i) {
-    h ^= k[i] + 0x9e3779b97f4a7c15ull + (h << 6) + (h >> 2);
+// The triangle and segment arrangements PETSc's closure applies to a cone reached with
+// orientation o (DMPolytopeTypeGetArrangment), read once into tables for the tight loops.
+struct Arrangements {
+  // Triangle reached with o (-3 .. 2): its first and second arranged edges (cone indices) and
+  // the first edge's arranged orientation.
+  PetscInt tri_first[6], tri_second[6], tri_first_o[6];
+  Arrangements() {
+    for (PetscInt o = -3; o < 3; ++o) {
+      const PetscInt *arr = DMPolytopeTypeGetArrangment(DM_POLYTOPE_TRIANGLE, o);
+      tri_first[o + 3] = arr[0];
+      tri_first_o[o + 3] = arr[1];
+      tri_second[o + 3] = arr[2];
+    }
   }
-  h ^= h >> 33;
-  h *= 0xff51afd7ed558ccdull;
-  h ^= h >> 33;
-  return h;
-}
+};
 
-// Up to 4 vertex ids (a simplex of the bridge), sorted into `out`; false for more.
-bool sorted_key(const std::uint32_t *vs, std::size_t n, std::uint32_t *out) noexcept {
-  if (n > 4) return false;
-  std::copy(vs, vs + n, out);
-  std::sort(out, out + n);
-  return true;
-}
+// PETSc's raw cone arrays of a DM and the cone section's offsets.
+struct Cones {
+  PetscSection section = nullptr;
+  PetscInt *cone = nullptr, *ornt = nullptr;
+  explicit Cones(DM dm) {
+    TPX_PETSC(DMPlexGetConeSection(dm, &section));
+    TPX_PETSC(DMPlexGetCones(dm, &cone));
+    TPX_PETSC(DMPlexGetConeOrientations(dm, &ornt));
+  }
+};
 
 }  // namespace
 
-std::size_t RankMesh::slot_of(const std::vector<PetscInt> &slots, const std::uint32_t *key, std::size_t n) const noexcept {
-  const std::size_t mask = slots.size() - 1;
-  std::size_t i = static_cast<std::size_t>(key_hash(key, n)) & mask;
-  std::uint32_t other[4] = {0, 0, 0, 0};
-  while (slots[i] >= 0) {
-    const std::size_t ip = static_cast<std::size_t>(slots[i]);
-    const auto [a, b] = layout_.range(ip, p_start_);
-    if (b - a == n) {
-      sorted_key(&simplex_ids_[a], n, other);
-      if (std::equal(key, key + n, other)) return i;
-    }
-    i = (i + 1) & mask;
-  }
-  return i;
+RankMesh::RankMesh(RankMesh &&o) noexcept { *this = std::move(o); }
+
+RankMesh &RankMesh::operator=(RankMesh &&o) noexcept {
+  if (this == &o) return *this;
+  release();
+  complex_ = std::move(o.complex_);
+  o.complex_.reset();
+  dm_ = std::exchange(o.dm_, nullptr);
+  sf_ = std::exchange(o.sf_, nullptr);
+  numbering_ = std::exchange(o.numbering_, nullptr);
+  global_ = std::exchange(o.global_, nullptr);
+  rank_ = o.rank_;
+  size_ = o.size_;
+  overlap_ = o.overlap_;
+  vertex_adjacency_ = o.vertex_adjacency_;
+  interpolated_ = o.interpolated_;
+  p_start_ = o.p_start_;
+  p_end_ = o.p_end_;
+  v_start_ = o.v_start_;
+  v_end_ = o.v_end_;
+  strata_ = std::move(o.strata_);
+  top_run_point_ = std::move(o.top_run_point_);
+  top_run_listing_ = std::move(o.top_run_listing_);
+  top_listings_ = o.top_listings_;
+  extra_point_ = std::move(o.extra_point_);
+  extra_listing_ = std::move(o.extra_listing_);
+  leaf_ = std::exchange(o.leaf_, nullptr);
+  remote_ = std::exchange(o.remote_, nullptr);
+  nleaves_ = std::exchange(o.nleaves_, 0);
+  ghost_point_ = std::move(o.ghost_point_);
+  ghost_owner_ = std::move(o.ghost_owner_);
+  return *this;
 }
 
-RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
-  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
-  int rank = 0, size = 1;
-  MPI_Comm_rank(comm, &rank);
-  MPI_Comm_size(comm, &size);
+RankMesh::~RankMesh() { release(); }
 
-  PetscInt pStart, pEnd, vStart, vEnd, depth;
-  TPX_PETSC(DMPlexGetChart(dm, &pStart, &pEnd));
-  TPX_PETSC(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
-  TPX_PETSC(DMPlexGetDepth(dm, &depth));
-  DMPlexInterpolatedFlag interp;
-  TPX_PETSC(DMPlexIsInterpolated(dm, &interp));
-  PetscInt overlap = 0;
-  TPX_PETSC(DMPlexGetOverlap(dm, &overlap));
-  // The adjacency the overlap was grown with (DMPlexDistribute copies it to the parallel DM).
-  PetscBool use_cone = PETSC_FALSE, use_closure = PETSC_TRUE;
-  TPX_PETSC(DMGetBasicAdjacency(dm, &use_cone, &use_closure));
-  const std::size_t npoints = static_cast<std::size_t>(pEnd - pStart);
+// Drops the references from_dm took (errors ignored: a destructor cannot report them).
+void RankMesh::release() noexcept {
+  if (numbering_ && global_) ISRestoreIndices(numbering_, &global_);
+  numbering_ = nullptr;
+  global_ = nullptr;
+  if (sf_) PetscSFDestroy(&sf_);
+  if (dm_) DMDestroy(&dm_);
+}
 
-  // Every point's simplex (closure vertices in closure order; tops in Topoplex winding) in one
-  // flat array. A point's depth comes from the strata (contiguous in a stratified DM); a depth-1
-  // point's closure vertices are its cone, deeper points walk their transitive closure.
-  std::vector<PetscInt> stratum_start(static_cast<std::size_t>(depth) + 1), stratum_end(stratum_start.size());
-  for (PetscInt d = 0; d <= depth; ++d) {
-    TPX_PETSC(DMPlexGetDepthStratum(dm, d, &stratum_start[static_cast<std::size_t>(d)],
-                                    &stratum_end[static_cast<std::size_t>(d)]));
+PetscInt RankMesh::depth_of(PetscInt p) const {
+  for (std::size_t d = 0; d < strata_.size(); ++d) {
+    if (p >= strata_[d].first && p < strata_[d].second) return static_cast<PetscInt>(d);
   }
-  auto depth_of = [&](PetscInt p) -> PetscInt {
-    for (std::size_t d = 0; d < stratum_start.size(); ++d) {
-      if (p >= stratum_start[d] && p < stratum_end[d]) return static_cast<PetscInt>(d);
+  PetscInt pd = 0;  // not stratified by ranges: ask PETSc
+  TPX_PETSC(DMPlexGetPointDepth(dm_, p, &pd));
+  return pd;
+}
+
+void RankMesh::closure_vertices(PetscInt p, std::vector<std::uint32_t> &out) const {
+  if (p >= v_start_ && p < v_end_) {
+    out.push_back(static_cast<std::uint32_t>(p - v_start_));
+    return;
+  }
+  const PetscInt pdepth = depth_of(p);
+  if (pdepth == 1) {  // an edge, or a cell of a cell-vertex DM: its cone
+    PetscInt nc = 0;
+    const PetscInt *cone = nullptr;
+    TPX_PETSC(DMPlexGetConeSize(dm_, p, &nc));
+    TPX_PETSC(DMPlexGetCone(dm_, p, &cone));
+    for (PetscInt k = 0; k < nc; ++k) {
+      if (cone[k] >= v_start_ && cone[k] < v_end_) out.push_back(static_cast<std::uint32_t>(cone[k] - v_start_));
     }
-    PetscInt pd = 0;  // not stratified by ranges: ask PETSc
-    TPX_PETSC(DMPlexGetPointDepth(dm, p, &pd));
-    return pd;
-  };
-  // The closure's vertices of an interpolated simplex point from cones and cone orientations, in
-  // the order DMPlexGetTransitiveClosure lists them (a breadth-first walk, each cone arranged by
-  // the orientation its point is reached with), without PETSc's per-point cell-type lookups.
-  // False when a cone on the way has not the size or depth of a simplex's (the caller then walks
-  // PETSc's closure and judges the cell).
+    return;
+  }
+  // An interpolated simplex: a breadth-first walk down the cones, each cone arranged by the
+  // orientation its point is reached with (PETSc's closure order, without its cell-type
+  // lookups); PETSc's own closure when a cone on the way has not a simplex's size or depth.
   const DMPolytopeType simplex_type[4] = {DM_POLYTOPE_POINT, DM_POLYTOPE_SEGMENT, DM_POLYTOPE_TRIANGLE,
                                           DM_POLYTOPE_TETRAHEDRON};
-  auto simplex_closure = [&](PetscInt p, PetscInt pdepth, std::vector<std::uint32_t> &out) -> bool {
+  auto walk = [&]() -> bool {
     if (pdepth > 3) return false;
     PetscInt pts[15], oris[15], deps[15];
     int n = 1, head = 0;
@@ -151,16 +177,15 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
       if (dq == 0) continue;
       PetscInt nc = 0;
       const PetscInt *cone = nullptr, *ornt = nullptr;
-      TPX_PETSC(DMPlexGetConeSize(dm, q, &nc));
+      TPX_PETSC(DMPlexGetConeSize(dm_, q, &nc));
       if (nc != dq + 1) return false;
-      TPX_PETSC(DMPlexGetCone(dm, q, &cone));
-      TPX_PETSC(DMPlexGetConeOrientation(dm, q, &ornt));
+      TPX_PETSC(DMPlexGetCone(dm_, q, &cone));
+      TPX_PETSC(DMPlexGetConeOrientation(dm_, q, &ornt));
       const PetscInt *arr = DMPolytopeTypeGetArrangment(simplex_type[dq], o);
-      const std::size_t lower = static_cast<std::size_t>(dq - 1);
       for (PetscInt t = 0; t < nc; ++t) {
         const PetscInt i = arr[2 * t];
         const PetscInt cp = cone[i];
-        if (cp < stratum_start[lower] || cp >= stratum_end[lower]) return false;
+        if (depth_of(cp) != dq - 1) return false;
         if (std::find(pts, pts + n, cp) != pts + n) continue;
         if (n == 15) return false;
         pts[n] = cp;
@@ -170,164 +195,249 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
       }
     }
     for (int k = 0; k < n; ++k) {
-      if (deps[k] == 0) out.push_back(static_cast<std::uint32_t>(pts[k] - vStart));
+      if (deps[k] == 0) out.push_back(static_cast<std::uint32_t>(pts[k] - v_start_));
     }
     return true;
   };
-  const bool fast_closure = interp == DMPLEX_INTERPOLATED_FULL && depth <= 3;
-  std::vector<std::uint32_t> vs;
-  Layout layout;
-  std::vector<std::uint32_t> simplex_ids;
-  simplex_ids.reserve(3 * npoints);
+  const std::size_t first = out.size();
+  if (!walk()) {
+    out.resize(first);
+    append_vertices(dm_, p, v_start_, v_end_, out);
+  }
+}
+
+RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
+  MPI_Comm comm = PetscObjectComm(reinterpret_cast<PetscObject>(dm));
+  RankMesh out;
+  MPI_Comm_rank(comm, &out.rank_);
+  MPI_Comm_size(comm, &out.size_);
+  const int rank = out.rank_;
+  TPX_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(dm)));
+  out.dm_ = dm;
+
+  PetscInt pStart, pEnd, vStart, vEnd, depth;
+  TPX_PETSC(DMPlexGetChart(dm, &pStart, &pEnd));
+  TPX_PETSC(DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
+  TPX_PETSC(DMPlexGetDepth(dm, &depth));
+  DMPlexInterpolatedFlag interp;
+  TPX_PETSC(DMPlexIsInterpolated(dm, &interp));
+  TPX_PETSC(DMPlexGetOverlap(dm, &out.overlap_));
+  // The adjacency the overlap was grown with (DMPlexDistribute copies it to the parallel DM).
+  PetscBool use_cone = PETSC_FALSE, use_closure = PETSC_TRUE;
+  TPX_PETSC(DMGetBasicAdjacency(dm, &use_cone, &use_closure));
+  out.vertex_adjacency_ = !use_cone && use_closure;
+  out.interpolated_ = interp == DMPLEX_INTERPOLATED_FULL;
+  out.p_start_ = pStart;
+  out.p_end_ = pEnd;
+  out.v_start_ = vStart;
+  out.v_end_ = vEnd;
+  const std::size_t npoints = static_cast<std::size_t>(pEnd - pStart);
+  for (PetscInt d = 0; d <= depth; ++d) {
+    PetscInt a = 0, b = 0;
+    TPX_PETSC(DMPlexGetDepthStratum(dm, d, &a, &b));
+    out.strata_.emplace_back(a, b);
+  }
+
+  // The tops (points with no support, ascending) and their vertices (closure order, Topoplex
+  // winding), flat.
   std::vector<PetscInt> tops;
   std::vector<std::uint32_t> ids;
   std::vector<std::size_t> offsets{0};
-  // Fast path for a fully interpolated simplicial DM (every point of depth d has d + 1 cone
-  // points, all of depth d - 1): the points are filled stratum by stratum, each from its cone and
-  // the vertices already found for its faces, in PETSc's closure order (a breadth-first walk with
-  // each cone arranged by the orientation it is reached with): an edge is its cone; a triangle
-  // reached with orientation o lists its first arranged edge's vertices (swapped when that edge's
-  // composed orientation is not 0), then the vertex its second arranged edge adds; a tetrahedron
-  // lists its first face's vertices as that triangle reached with its cone orientation, then the
-  // vertex of its second face that is missing. False (nothing filled) when the DM is not such a DM.
-  auto fast_fill = [&]() -> bool {
-    if (!fast_closure) return false;
-    // The strata in chart order, each a contiguous range of points with d + 1 vertices.
-    std::vector<Layout::Stratum> strata;
+  const Cones raw(dm);
+  auto offset_of = [&](PetscInt p) {
+    PetscInt off = 0;
+    TPX_PETSC(PetscSectionGetOffset(raw.section, p, &off));
+    return off;
+  };
+  // The strata as ranges in chart order with d + 1 cone points per point of depth d >= 1 (PETSc
+  // lays the cones out in chart order: each stratum's cones are one block at a fixed width,
+  // checked at both ends of the block and by its size); false otherwise.
+  struct Block {
+    PetscInt start, end, depth, cone0;
+  };
+  std::vector<Block> blocks;
+  auto fixed_width = [&](bool cell_vertex) -> bool {
+    if (depth > 3 || (cell_vertex && depth != 1)) return false;
     for (PetscInt d = 0; d <= depth; ++d) {
-      const std::size_t k = static_cast<std::size_t>(d);
-      if (stratum_end[k] > stratum_start[k]) {
-        strata.push_back({stratum_start[k], stratum_end[k], 0, static_cast<std::uint64_t>(d + 1)});
+      const auto [a, b] = out.strata_[static_cast<std::size_t>(d)];
+      if (b > a) blocks.push_back({a, b, d, 0});
+    }
+    std::sort(blocks.begin(), blocks.end(), [](const Block &x, const Block &y) { return x.start < y.start; });
+    PetscInt next = pStart, storage = 0;
+    TPX_PETSC(PetscSectionGetStorageSize(raw.section, &storage));
+    PetscInt off = 0;
+    for (Block &bl : blocks) {
+      if (bl.start != next) return false;
+      next = bl.end;
+      if (bl.depth == 0 || cell_vertex) {  // vertices: no cone; cells: cones vary (checked later)
+        PetscInt nc0 = 0, nc1 = 0;
+        TPX_PETSC(PetscSectionGetDof(raw.section, bl.start, &nc0));
+        TPX_PETSC(PetscSectionGetDof(raw.section, bl.end - 1, &nc1));
+        if (bl.depth == 0 && (nc0 != 0 || nc1 != 0)) return false;
+        bl.cone0 = offset_of(bl.start);
+        if (bl.depth > 0) off = offset_of(bl.end - 1) + nc1;
+        continue;
       }
+      const PetscInt w = bl.depth + 1;
+      PetscInt nc = 0;
+      TPX_PETSC(PetscSectionGetDof(raw.section, bl.end - 1, &nc));
+      bl.cone0 = offset_of(bl.start);
+      if (nc != w || bl.cone0 != off || offset_of(bl.end - 1) != off + (bl.end - 1 - bl.start) * w) return false;
+      off += (bl.end - bl.start) * w;
     }
-    std::sort(strata.begin(), strata.end(),
-              [](const Layout::Stratum &a, const Layout::Stratum &b) { return a.start < b.start; });
-    std::uint64_t total = 0;
-    PetscInt next = pStart;
-    for (Layout::Stratum &st : strata) {
-      if (st.start != next) return false;
-      st.base = total;
-      total += static_cast<std::uint64_t>(st.end - st.start) * st.width;
-      next = st.end;
+    return next == pEnd && off == storage;
+  };
+  // Which points some cone names (the others have no support: tops), from the raw cones.
+  std::vector<unsigned char> supported;
+  auto mark_supported = [&]() {
+    supported.assign(npoints, 0);
+    PetscInt storage = 0;
+    TPX_PETSC(PetscSectionGetStorageSize(raw.section, &storage));
+    for (PetscInt k = 0; k < storage; ++k) {
+      const PetscInt c = raw.cone[k];
+      if (c >= pStart && c < pEnd) supported[static_cast<std::size_t>(c - pStart)] = 1;
     }
-    if (next != pEnd) return false;
-    // Every point's cone size must be a simplex's (vertices none); tops have no support.
-    std::vector<char> is_top(npoints);
-    for (const Layout::Stratum &st : strata) {
-      const PetscInt want = static_cast<PetscInt>(st.width) == 1 ? 0 : static_cast<PetscInt>(st.width);
-      for (PetscInt p = st.start; p < st.end; ++p) {
-        PetscInt support = 0, nc = 0;
-        TPX_PETSC(DMPlexGetSupportSize(dm, p, &support));
-        TPX_PETSC(DMPlexGetConeSize(dm, p, &nc));
-        if (nc != want) return false;
-        is_top[static_cast<std::size_t>(p - pStart)] = support == 0;
-      }
-    }
-    std::vector<std::uint64_t> base_of(static_cast<std::size_t>(depth) + 1, 0);
-    for (const Layout::Stratum &st : strata) base_of[st.width - 1] = st.base;
-    simplex_ids.assign(total, 0);
-    // Point q of depth dq's vertices.
-    auto stored_at = [&](PetscInt q, PetscInt dq) {
-      const std::size_t k = static_cast<std::size_t>(dq);
-      return &simplex_ids[base_of[k] + static_cast<std::uint64_t>(q - stratum_start[k]) * static_cast<std::uint64_t>(dq + 1)];
+  };
+  const Arrangements arr;
+  auto in_range = [](PetscInt q, const std::pair<PetscInt, PetscInt> &r) { return q >= r.first && q < r.second; };
+  // Fast path 1: a fully interpolated simplicial DM. A top's vertices in PETSc's closure order:
+  // an edge is its cone; a triangle reached with orientation o lists its first arranged edge's
+  // vertices (swapped when that edge's composed orientation is not 0), then the vertex its
+  // second arranged edge adds; a tetrahedron lists its first face's vertices as that triangle
+  // reached with its cone orientation, then the vertex of its second face's first two edges that
+  // is missing.
+  auto interpolated_fill = [&]() -> bool {
+    if (interp != DMPLEX_INTERPOLATED_FULL || !fixed_width(false)) return false;
+    const auto &S = out.strata_;
+    // Point q of depth d's cone: cone[at[d] + (d + 1) q] (the block's first cone less its start).
+    PetscInt at[4] = {0, 0, 0, 0};
+    for (const Block &bl : blocks) at[bl.depth] = bl.cone0 - (bl.depth + 1) * bl.start;
+    const PetscInt *C = raw.cone, *O = raw.ornt;
+    auto edge = [&](PetscInt e, PetscInt *v) -> bool {
+      if (!in_range(e, S[1])) return false;
+      const PetscInt *c = C + at[1] + 2 * e;
+      v[0] = c[0];
+      v[1] = c[1];
+      return in_range(v[0], S[0]) && in_range(v[1], S[0]);
     };
-    auto in_stratum = [&](PetscInt q, PetscInt d) {
-      return q >= stratum_start[static_cast<std::size_t>(d)] && q < stratum_end[static_cast<std::size_t>(d)];
-    };
-    // Triangle q reached with orientation o: its three vertices into out; false if malformed.
-    auto triangle = [&](PetscInt q, PetscInt o, std::uint32_t *out) -> bool {
-      const PetscInt *cone = nullptr, *ornt = nullptr;
-      TPX_PETSC(DMPlexGetCone(dm, q, &cone));
-      TPX_PETSC(DMPlexGetConeOrientation(dm, q, &ornt));
-      const PetscInt *arr = DMPolytopeTypeGetArrangment(DM_POLYTOPE_TRIANGLE, o);
-      const PetscInt e0 = cone[arr[0]], e1 = cone[arr[2]];
-      if (!in_stratum(e0, 1) || !in_stratum(e1, 1)) return false;
-      const PetscInt co = DMPolytopeTypeComposeOrientation(DM_POLYTOPE_SEGMENT, arr[1], ornt[arr[0]]);
-      const std::uint32_t *a = stored_at(e0, 1), *b = stored_at(e1, 1);
-      out[0] = co == 0 ? a[0] : a[1];
-      out[1] = co == 0 ? a[1] : a[0];
-      out[2] = b[0] == a[0] || b[0] == a[1] ? b[1] : b[0];
+    auto triangle = [&](PetscInt f, PetscInt o, PetscInt *v) -> bool {
+      if (!in_range(f, S[2]) || o < -3 || o > 2) return false;
+      const PetscInt k = at[2] + 3 * f;
+      const PetscInt i0 = arr.tri_first[o + 3], i1 = arr.tri_second[o + 3];
+      PetscInt a[2], b[2];
+      if (!edge(C[k + i0], a) || !edge(C[k + i1], b)) return false;
+      const PetscInt co = DMPolytopeTypeComposeOrientation(DM_POLYTOPE_SEGMENT, arr.tri_first_o[o + 3], O[k + i0]);
+      v[0] = co == 0 ? a[0] : a[1];
+      v[1] = co == 0 ? a[1] : a[0];
+      v[2] = b[0] == a[0] || b[0] == a[1] ? b[1] : b[0];
       return true;
     };
-    for (PetscInt d = 0; d <= depth; ++d) {
-      for (PetscInt p = stratum_start[static_cast<std::size_t>(d)]; p < stratum_end[static_cast<std::size_t>(d)]; ++p) {
-        std::uint32_t *out = stored_at(p, d);
-        if (d == 0) {
-          out[0] = static_cast<std::uint32_t>(p - vStart);
-          continue;
-        }
-        const PetscInt *cone = nullptr, *ornt = nullptr;
-        TPX_PETSC(DMPlexGetCone(dm, p, &cone));
-        for (PetscInt k = 0; k <= d; ++k) {
-          if (!in_stratum(cone[k], d - 1)) return false;
-        }
-        if (d == 1) {
-          out[0] = static_cast<std::uint32_t>(cone[0] - vStart);
-          out[1] = static_cast<std::uint32_t>(cone[1] - vStart);
-        } else if (d == 2) {
-          if (!triangle(p, 0, out)) return false;
-        } else {
-          TPX_PETSC(DMPlexGetConeOrientation(dm, p, &ornt));
-          if (!triangle(cone[0], ornt[0], out)) return false;
-          const std::uint32_t *g = stored_at(cone[1], 2);
-          for (int k = 0; k < 3; ++k) {
-            if (g[k] != out[0] && g[k] != out[1] && g[k] != out[2]) out[3] = g[k];
-          }
+    auto tetrahedron = [&](PetscInt t, PetscInt *v) -> bool {
+      const PetscInt k = at[3] + 4 * t;
+      if (!triangle(C[k], O[k], v)) return false;
+      const PetscInt f1 = C[k + 1];
+      if (!in_range(f1, S[2])) return false;
+      PetscInt e[4];
+      if (!edge(C[at[2] + 3 * f1], e) || !edge(C[at[2] + 3 * f1 + 1], e + 2)) return false;
+      for (PetscInt x : e) {
+        if (x != v[0] && x != v[1] && x != v[2]) {
+          v[3] = x;
+          return true;
         }
       }
-    }
-    // The tops, in ascending points (the strata are sorted by their first point).
-    for (const Layout::Stratum &st : strata) {
-      for (PetscInt p = st.start; p < st.end; ++p) {
-        if (!is_top[static_cast<std::size_t>(p - pStart)]) continue;
-        std::uint32_t *v = &simplex_ids[st.base + static_cast<std::uint64_t>(p - st.start) * st.width];
-        if (st.width == 4) std::swap(v[0], v[1]);  // petsc_winding
+      return false;
+    };
+    mark_supported();
+    tops.reserve(static_cast<std::size_t>(S[static_cast<std::size_t>(depth)].second - S[static_cast<std::size_t>(depth)].first));
+    ids.reserve(tops.capacity() * static_cast<std::size_t>(depth + 1));
+    offsets.reserve(tops.capacity() + 1);
+    for (const Block &bl : blocks) {
+      const std::size_t w = static_cast<std::size_t>(bl.depth) + 1;
+      for (PetscInt p = bl.start; p < bl.end; ++p) {
+        if (supported[static_cast<std::size_t>(p - pStart)]) continue;
+        PetscInt v[4] = {p, 0, 0, 0};
+        const bool ok = bl.depth == 0 ? true : bl.depth == 1 ? edge(p, v) : bl.depth == 2 ? triangle(p, 0, v) : tetrahedron(p, v);
+        if (!ok) return false;
+        if (w == 4) std::swap(v[0], v[1]);  // petsc_winding
         tops.push_back(p);
-        ids.insert(ids.end(), v, v + st.width);
+        for (std::size_t k = 0; k < w; ++k) ids.push_back(static_cast<std::uint32_t>(v[k] - vStart));
         offsets.push_back(ids.size());
       }
     }
-    layout.strata = std::move(strata);
     return true;
   };
-  if (!fast_fill()) {
-  simplex_ids.clear();
-  layout.strata.clear();
-  layout.offsets.assign(npoints + 1, 0);
-  std::vector<std::uint64_t> &simplex_offsets = layout.offsets;
-  for (PetscInt p = pStart; p < pEnd; ++p) {
-    const std::size_t ip = static_cast<std::size_t>(p - pStart);
-    PetscInt support = 0;
-    TPX_PETSC(DMPlexGetSupportSize(dm, p, &support));
-    const bool top = support == 0;
-    const bool vertex = p >= vStart && p < vEnd;
-    // Vertices of a non-interpolated DM's non-top points do not exist: only tops and vertices
-    // have closures worth walking, except when interpolated (every point is a simplex).
-    if (top || vertex || interp != DMPLEX_INTERPOLATED_NONE) {
-      const std::size_t first = simplex_ids.size();
-      if (vertex) {
-        simplex_ids.push_back(static_cast<std::uint32_t>(p - vStart));
-      } else {
-        const PetscInt pdepth = depth_of(p);
-        if (pdepth == 1) {
-          PetscInt nc = 0;
-          const PetscInt *cone = nullptr;
-          TPX_PETSC(DMPlexGetConeSize(dm, p, &nc));
-          TPX_PETSC(DMPlexGetCone(dm, p, &cone));
-          for (PetscInt k = 0; k < nc; ++k) {
-            if (cone[k] >= vStart && cone[k] < vEnd) simplex_ids.push_back(static_cast<std::uint32_t>(cone[k] - vStart));
+  // Fast path 2: a cell-vertex DM (depth 1): each cell's cone is its vertices; its cell type
+  // tells a tetrahedron from a quadrilateral.
+  auto cell_vertex_fill = [&]() -> bool {
+    if (interp == DMPLEX_INTERPOLATED_FULL || !fixed_width(true)) return false;
+    // A cone of 2, 3 or 4 vertices is a segment, triangle or tetrahedron unless the DM has cells
+    // of the other types with those vertex counts (point and segment tensor prisms,
+    // quadrilaterals): counted once in the cell-type label, so that a simplicial DM needs no
+    // per-cell lookup.
+    DMLabel types = nullptr;
+    TPX_PETSC(DMPlexGetCellTypeLabel(dm, &types));
+    PetscInt others = 0;
+    for (DMPolytopeType t : {DM_POLYTOPE_POINT_PRISM_TENSOR, DM_POLYTOPE_SEG_PRISM_TENSOR, DM_POLYTOPE_QUADRILATERAL}) {
+      PetscInt n = 0;
+      TPX_PETSC(DMLabelGetStratumSize(types, static_cast<PetscInt>(t), &n));
+      others += n;
+    }
+    mark_supported();
+    for (const Block &bl : blocks) {
+      PetscInt at = bl.cone0;
+      for (PetscInt p = bl.start; p < bl.end; ++p) {
+        if (bl.depth == 0) {
+          if (!supported[static_cast<std::size_t>(p - pStart)]) {
+            tops.push_back(p);
+            ids.push_back(static_cast<std::uint32_t>(p - vStart));
+            offsets.push_back(ids.size());
           }
-        } else {
-          vs.clear();
-          if (!fast_closure || !simplex_closure(p, pdepth, vs)) {
-            vs.clear();
-            append_vertices(dm, p, vStart, vEnd, vs);
-          }
-          simplex_ids.insert(simplex_ids.end(), vs.begin(), vs.end());
+          continue;
         }
-        const std::size_t nv = simplex_ids.size() - first;
-        // Interpolated points: a simplex has depth + 1 vertices. Depth-1 points of a
-        // non-interpolated DM: the cell type tells a tetrahedron from a quadrilateral.
+        PetscInt nc = 0;
+        TPX_PETSC(PetscSectionGetDof(raw.section, p, &nc));
+        DMPolytopeType ct = nc == 2 ? DM_POLYTOPE_SEGMENT : nc == 3 ? DM_POLYTOPE_TRIANGLE : DM_POLYTOPE_TETRAHEDRON;
+        if (others > 0 || nc < 2 || nc > 4) TPX_PETSC(DMPlexGetCellType(dm, p, &ct));
+        if (!((ct == DM_POLYTOPE_SEGMENT && nc == 2) || (ct == DM_POLYTOPE_TRIANGLE && nc == 3) ||
+              (ct == DM_POLYTOPE_TETRAHEDRON && nc == 4))) {
+          std::ostringstream m;
+          m << "DMPlex point " << p << " (rank " << rank << ") is a " << DMPolytopeTypes[ct] << " with " << nc
+            << " vertices at depth 1: Topoplex holds simplicial complexes only (points, segments, triangles, tetrahedra)";
+          throw Error(Code::NotSimplicial, m.str());
+        }
+        const std::size_t first = ids.size();
+        for (PetscInt k = 0; k < nc; ++k) {
+          const PetscInt c = raw.cone[at + k];
+          if (!in_range(c, out.strata_[0])) return false;
+          ids.push_back(static_cast<std::uint32_t>(c - vStart));
+        }
+        at += nc;
+        if (!supported[static_cast<std::size_t>(p - pStart)]) {
+          if (nc == 4) std::swap(ids[first], ids[first + 1]);  // petsc_winding
+          tops.push_back(p);
+          offsets.push_back(ids.size());
+        } else {
+          ids.resize(first);
+        }
+      }
+    }
+    return true;
+  };
+  // Any other DM: each top's transitive closure, judged simplicial by its vertex count and cell
+  // type.
+  auto general_fill = [&]() {
+    tops.clear();
+    ids.clear();
+    offsets.assign(1, 0);
+    for (PetscInt p = pStart; p < pEnd; ++p) {
+      PetscInt support = 0;
+      TPX_PETSC(DMPlexGetSupportSize(dm, p, &support));
+      if (support != 0) continue;
+      const std::size_t first = ids.size();
+      const PetscInt pdepth = p >= vStart && p < vEnd ? 0 : out.depth_of(p);
+      out.closure_vertices(p, ids);
+      const std::size_t nv = ids.size() - first;
+      if (pdepth > 0) {
         bool simplex = false;
         DMPolytopeType ct = DM_POLYTOPE_UNKNOWN;
         if (pdepth >= 2 || (pdepth == 1 && nv == 2 && interp != DMPLEX_INTERPOLATED_NONE)) {
@@ -345,17 +455,29 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
             << ": Topoplex holds simplicial complexes only (points, segments, triangles, tetrahedra)";
           throw Error(Code::NotSimplicial, m.str());
         }
-        if (top && nv == 4) std::swap(simplex_ids[first], simplex_ids[first + 1]);  // petsc_winding
+        if (nv == 4) std::swap(ids[first], ids[first + 1]);  // petsc_winding
       }
-      if (top) {
-        tops.push_back(p);
-        ids.insert(ids.end(), simplex_ids.begin() + static_cast<std::ptrdiff_t>(first), simplex_ids.end());
-        offsets.push_back(ids.size());
-      }
+      tops.push_back(p);
+      offsets.push_back(ids.size());
     }
-    simplex_offsets[ip + 1] = simplex_ids.size();
+  };
+  if (!interpolated_fill()) {
+    blocks.clear();
+    tops.clear();
+    ids.clear();
+    offsets.assign(1, 0);
+    if (!cell_vertex_fill()) general_fill();
   }
-  }  // general walk
+  std::vector<unsigned char>().swap(supported);
+  // The tops as runs of consecutive points.
+  for (std::size_t i = 0; i < tops.size(); ++i) {
+    if (i == 0 || tops[i] != tops[i - 1] + 1) {
+      out.top_run_point_.push_back(tops[i]);
+      out.top_run_listing_.push_back(static_cast<std::uint32_t>(i));
+    }
+  }
+  out.top_run_listing_.push_back(static_cast<std::uint32_t>(tops.size()));
+  out.top_listings_ = tops.size();
 
   // Labels: integer values per point; points with a value that are not listed yet (faces of an
   // interpolated DM) are listed after the tops.
@@ -409,19 +531,20 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
       if (!lv.point_value.empty()) labels.push_back(std::move(lv));
     }
   }
-  std::vector<std::uint32_t> point_listing(npoints, UINT32_MAX);
-  std::vector<PetscInt> listed_point = tops;
-  for (std::size_t i = 0; i < tops.size(); ++i) point_listing[static_cast<std::size_t>(tops[i] - pStart)] = static_cast<std::uint32_t>(i);
+  std::vector<std::uint32_t> vs;
   for (const LabelValues &lv : labels) {
     for (const auto &pv : lv.point_value) {
       const PetscInt p = pv.first;
-      const std::size_t ip = static_cast<std::size_t>(p - pStart);
-      if ((p >= vStart && p < vEnd) || point_listing[ip] != UINT32_MAX) continue;
-      const auto [a, b] = layout.range(ip, pStart);
-      if (a == b) continue;  // not a simplex here (non-interpolated face)
-      point_listing[ip] = static_cast<std::uint32_t>(listed_point.size());
-      listed_point.push_back(p);
-      ids.insert(ids.end(), simplex_ids.begin() + static_cast<std::ptrdiff_t>(a), simplex_ids.begin() + static_cast<std::ptrdiff_t>(b));
+      if ((p >= vStart && p < vEnd) || out.listing_of_point(p) != NO_LISTING) continue;
+      if (interp == DMPLEX_INTERPOLATED_NONE) continue;  // a face is no point here
+      vs.clear();
+      out.closure_vertices(p, vs);
+      const std::uint32_t listing = static_cast<std::uint32_t>(out.listing_count());
+      out.extra_point_.push_back(p);
+      out.extra_listing_.insert(std::upper_bound(out.extra_listing_.begin(), out.extra_listing_.end(),
+                                                 std::make_pair(p, listing)),
+                                std::make_pair(p, listing));
+      ids.insert(ids.end(), vs.begin(), vs.end());
       offsets.push_back(ids.size());
     }
   }
@@ -460,33 +583,16 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
     }
   }
 
-  RankMesh out;
   if (vEnd > vStart) {
     out.complex_.emplace(Complex::from_arrays(static_cast<std::uint32_t>(vEnd - vStart), ids, offsets, coords, cdim));
   }
-  out.rank_ = rank;
-  out.size_ = size;
-  out.overlap_ = overlap;
-  out.vertex_adjacency_ = !use_cone && use_closure;
-  out.interpolated_ = interp == DMPLEX_INTERPOLATED_FULL;
-  out.p_start_ = pStart;
-  out.p_end_ = pEnd;
-  out.v_start_ = vStart;
-  out.v_end_ = vEnd;
-  out.vertex_point_.resize(static_cast<std::size_t>(vEnd - vStart));
-  for (PetscInt v = vStart; v < vEnd; ++v) out.vertex_point_[static_cast<std::size_t>(v - vStart)] = v;
-  out.listed_point_ = std::move(listed_point);
-  out.top_listings_ = tops.size();
-  // The listings after the tops (labelled faces), by point, for listing_of_point.
-  for (std::size_t i = out.top_listings_; i < out.listed_point_.size(); ++i) {
-    out.extra_listing_.emplace_back(out.listed_point_[i], static_cast<std::uint32_t>(i));
-  }
-  std::sort(out.extra_listing_.begin(), out.extra_listing_.end());
+  std::vector<std::uint32_t>().swap(ids);
+  std::vector<std::size_t>().swap(offsets);
 
   // Attributes from the labels.
-  const std::size_t nlisted = out.listed_point_.size();
+  const std::size_t nlisted = out.listing_count();
   for (const LabelValues &lv : labels) {
-    std::vector<std::int32_t> at_vertices(out.vertex_point_.size(), -1), at_listed(nlisted, -1);
+    std::vector<std::int32_t> at_vertices(static_cast<std::size_t>(vEnd - vStart), -1), at_listed(nlisted, -1);
     bool any_vertex = false, any_listed = false;
     for (const auto &pv : lv.point_value) {
       const PetscInt p = pv.first;
@@ -495,8 +601,8 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
         at_vertices[static_cast<std::size_t>(p - vStart)] = value;
         any_vertex = true;
       }
-      const std::uint32_t i = point_listing[static_cast<std::size_t>(p - pStart)];
-      if (i != UINT32_MAX) {
+      const std::size_t i = out.listing_of_point(p);
+      if (i != NO_LISTING) {
         at_listed[i] = value;
         any_listed = true;
       }
@@ -506,84 +612,59 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   }
 
   // Owners from the point SF: leaves are ghosts owned by their root's rank; every other point is
-  // this rank's. Only the ghosts are kept, sorted by point.
-  std::vector<std::pair<PetscInt, int>> ghosts;
+  // this rank's. The SF's own arrays when its leaves are ascending (referenced), else a sorted
+  // copy of the ghosts.
   PetscSF sf;
   TPX_PETSC(DMGetPointSF(dm, &sf));
   PetscInt nroots = -1, nleaves = 0;
   const PetscInt *ilocal = nullptr;
   const PetscSFNode *iremote = nullptr;
   TPX_PETSC(PetscSFGetGraph(sf, &nroots, &nleaves, &ilocal, &iremote));
-  if (nroots >= 0) {
-    for (PetscInt i = 0; i < nleaves; ++i) {
-      const PetscInt p = ilocal ? ilocal[i] : i;
-      if (p >= pStart && p < pEnd) ghosts.emplace_back(p, static_cast<int>(iremote[i].rank));
+  if (nroots >= 0 && nleaves > 0) {
+    bool ascending = ilocal != nullptr;
+    for (PetscInt i = 1; ascending && i < nleaves; ++i) ascending = ilocal[i - 1] < ilocal[i];
+    if (ascending) {
+      TPX_PETSC(PetscObjectReference(reinterpret_cast<PetscObject>(sf)));
+      out.sf_ = sf;
+      out.leaf_ = ilocal;
+      out.remote_ = iremote;
+      out.nleaves_ = nleaves;
+    } else {
+      std::vector<std::pair<PetscInt, int>> ghosts;
+      for (PetscInt i = 0; i < nleaves; ++i) {
+        const PetscInt p = ilocal ? ilocal[i] : i;
+        if (p >= pStart && p < pEnd) ghosts.emplace_back(p, static_cast<int>(iremote[i].rank));
+      }
+      std::sort(ghosts.begin(), ghosts.end());
+      for (const auto &g : ghosts) {
+        if (!out.ghost_point_.empty() && out.ghost_point_.back() == g.first) continue;
+        out.ghost_point_.push_back(g.first);
+        out.ghost_owner_.push_back(g.second);
+      }
     }
   }
-  std::sort(ghosts.begin(), ghosts.end());
-  out.ghost_point_.reserve(ghosts.size());
-  out.ghost_owner_.reserve(ghosts.size());
-  for (const auto &g : ghosts) {
-    if (!out.ghost_point_.empty() && out.ghost_point_.back() == g.first) continue;
-    out.ghost_point_.push_back(g.first);
-    out.ghost_owner_.push_back(g.second);
-  }
 
-  // Global vertex numbers (collective).
-  IS numbering;
-  TPX_PETSC(DMPlexGetVertexNumbering(dm, &numbering));
-  const PetscInt *gn = nullptr;
+  // Global vertex numbers (collective): PETSc's numbering, kept by the DM.
+  TPX_PETSC(DMPlexGetVertexNumbering(dm, &out.numbering_));
   PetscInt ngn = 0;
-  TPX_PETSC(ISGetLocalSize(numbering, &ngn));
-  TPX_PETSC(ISGetIndices(numbering, &gn));
-  out.global_vertex_.resize(out.vertex_point_.size());
-  for (std::size_t v = 0; v < out.global_vertex_.size() && static_cast<PetscInt>(v) < ngn; ++v) {
-    out.global_vertex_[v] = gn[v] < 0 ? -(gn[v] + 1) : gn[v];
-  }
-  TPX_PETSC(ISRestoreIndices(numbering, &gn));
-
-  out.layout_ = std::move(layout);
-  out.simplex_ids_ = std::move(simplex_ids);
+  TPX_PETSC(ISGetLocalSize(out.numbering_, &ngn));
+  if (ngn < vEnd - vStart) throw Error(Code::Petsc, "DMPlexGetVertexNumbering numbers fewer points than the DM's vertices");
+  TPX_PETSC(ISGetIndices(out.numbering_, &out.global_));
   return out;
 }
 
-const std::vector<PetscInt> &RankMesh::point_slots() const {
-  PointTable &t = *table_;
-  std::call_once(t.once, [&] {
-    // The first point of a vertex set wins.
-    const std::size_t npoints = static_cast<std::size_t>(p_end_ - p_start_);
-    std::size_t entries = 0;
-    for (std::size_t ip = 0; ip < npoints; ++ip) {
-      const auto [a, b] = layout_.range(ip, p_start_);
-      entries += a != b;
-    }
-    std::size_t cap = 16;
-    while (cap < 2 * entries) cap *= 2;
-    t.slots.assign(cap, -1);
-    std::uint32_t key[4] = {0, 0, 0, 0};
-    for (std::size_t ip = 0; ip < npoints; ++ip) {
-      const auto [a, b] = layout_.range(ip, p_start_);
-      const std::uint64_t n = b - a;
-      if (n == 0 || !sorted_key(&simplex_ids_[a], n, key)) continue;
-      const std::size_t slot = slot_of(t.slots, key, n);
-      if (t.slots[slot] < 0) t.slots[slot] = static_cast<PetscInt>(ip);
-    }
-    t.built.store(true, std::memory_order_release);
-  });
-  return t.slots;
-}
-
 std::size_t RankMesh::bytes() const noexcept {
-  return vertex_point_.capacity() * sizeof(PetscInt) + listed_point_.capacity() * sizeof(PetscInt) +
-         extra_listing_.capacity() * sizeof(std::pair<PetscInt, std::uint32_t>) + ghost_point_.capacity() * sizeof(PetscInt) + ghost_owner_.capacity() * sizeof(int) +
-         global_vertex_.capacity() * sizeof(PetscInt) + layout_.offsets.capacity() * sizeof(std::uint64_t) +
-         layout_.strata.capacity() * sizeof(Layout::Stratum) +
-         simplex_ids_.capacity() * sizeof(std::uint32_t) +
-         (table_ && table_->built.load(std::memory_order_acquire) ? table_->slots.capacity() * sizeof(PetscInt) : 0);
+  return top_run_point_.capacity() * sizeof(PetscInt) + top_run_listing_.capacity() * sizeof(std::uint32_t) +
+         extra_point_.capacity() * sizeof(PetscInt) +
+         extra_listing_.capacity() * sizeof(std::pair<PetscInt, std::uint32_t>) +
+         ghost_point_.capacity() * sizeof(PetscInt) + ghost_owner_.capacity() * sizeof(int) +
+         strata_.capacity() * sizeof(std::pair<PetscInt, PetscInt>) +
+         (global_ ? static_cast<std::size_t>(v_end_ - v_start_) * sizeof(PetscInt) : 0);
 }
 
 const Complex &RankMesh::complex() const {
-  if (!complex_) throw Error(Code::Refused, "rank " + std::to_string(rank_) + " holds no point: no complex");
+  if (empty()) throw Error(Code::Refused, "rank " + std::to_string(rank_) + " holds no point: no complex");
+  if (!complex_) throw Error(Code::Refused, "rank " + std::to_string(rank_) + ": the complex was taken (take_complex)");
   return *complex_;
 }
 
@@ -591,24 +672,18 @@ Complex &RankMesh::complex() {
   return const_cast<Complex &>(static_cast<const RankMesh &>(*this).complex());
 }
 
-namespace {
-
-// points[i], or InvalidArgument naming `what` i and the `count` there are ("listing 9 out of
-// range (4 listed)").
-PetscInt point_at(const std::vector<PetscInt> &points, std::size_t i, const char *what,
-                  const char *count) {
-  if (i >= points.size()) {
-    throw Error(Code::InvalidArgument, std::string(what) + " " + std::to_string(i) +
-                                           " out of range (" + std::to_string(points.size()) +
-                                           " " + count + ")");
-  }
-  return points[i];
+Complex RankMesh::take_complex() {
+  Complex c = std::move(complex());
+  complex_.reset();
+  return c;
 }
 
-}  // namespace
-
 PetscInt RankMesh::point_of_vertex(std::uint32_t v) const {
-  return point_at(vertex_point_, v, "vertex", "vertices");
+  if (v >= vertex_count()) {
+    throw Error(Code::InvalidArgument, "vertex " + std::to_string(v) + " out of range (" +
+                                           std::to_string(vertex_count()) + " vertices)");
+  }
+  return v_start_ + static_cast<PetscInt>(v);
 }
 
 std::uint32_t RankMesh::vertex_of_point(PetscInt p) const {
@@ -616,25 +691,62 @@ std::uint32_t RankMesh::vertex_of_point(PetscInt p) const {
 }
 
 PetscInt RankMesh::point_of_listing(std::size_t i) const {
-  return point_at(listed_point_, i, "listing", "listed");
+  if (i >= listing_count()) {
+    throw Error(Code::InvalidArgument, "listing " + std::to_string(i) + " out of range (" +
+                                           std::to_string(listing_count()) + " listed)");
+  }
+  if (i >= top_listings_) return extra_point_[i - top_listings_];
+  // The run holding listing i: the last run starting at or before it.
+  const auto it = std::upper_bound(top_run_listing_.begin(), top_run_listing_.end(), static_cast<std::uint32_t>(i));
+  const std::size_t k = static_cast<std::size_t>(it - top_run_listing_.begin()) - 1;
+  return top_run_point_[k] + static_cast<PetscInt>(i - top_run_listing_[k]);
 }
 
 std::size_t RankMesh::listing_of_point(PetscInt p) const {
   if (p < p_start_ || p >= p_end_) return NO_LISTING;
-  // Tops: the first top_listings_ listings, in ascending point order.
-  const auto tops_end = listed_point_.begin() + static_cast<std::ptrdiff_t>(top_listings_);
-  const auto it = std::lower_bound(listed_point_.begin(), tops_end, p);
-  if (it != tops_end && *it == p) return static_cast<std::size_t>(it - listed_point_.begin());
+  // Tops: the run starting at or before p, if p is inside it.
+  const auto it = std::upper_bound(top_run_point_.begin(), top_run_point_.end(), p);
+  if (it != top_run_point_.begin()) {
+    const std::size_t k = static_cast<std::size_t>(it - top_run_point_.begin()) - 1;
+    const PetscInt len = static_cast<PetscInt>(top_run_listing_[k + 1] - top_run_listing_[k]);
+    if (p - top_run_point_[k] < len) return top_run_listing_[k] + static_cast<std::size_t>(p - top_run_point_[k]);
+  }
   const auto e = std::lower_bound(extra_listing_.begin(), extra_listing_.end(), std::make_pair(p, std::uint32_t(0)));
   return e != extra_listing_.end() && e->first == p ? e->second : NO_LISTING;
 }
 
 PetscInt RankMesh::point_of(std::vector<std::uint32_t> simplex) const {
-  std::uint32_t key[4] = {0, 0, 0, 0};
-  if (simplex.empty() || !sorted_key(simplex.data(), simplex.size(), key)) return NO_POINT;
-  const std::vector<PetscInt> &slots = point_slots();
-  const PetscInt ip = slots[slot_of(slots, key, simplex.size())];
-  return ip < 0 ? NO_POINT : p_start_ + ip;
+  if (simplex.empty() || simplex.size() > 4) return NO_POINT;
+  std::sort(simplex.begin(), simplex.end());
+  if (simplex.back() >= vertex_count()) return NO_POINT;
+  const PetscInt v0 = v_start_ + static_cast<PetscInt>(simplex[0]);
+  if (simplex.size() == 1) return v0;
+  // Up from the first vertex: supports whose closure vertices all lie in `simplex`, until one
+  // has them all (each step adds a vertex in an interpolated DM; a cell-vertex DM reaches its
+  // cells in one).
+  PetscInt stack[64], seen[64];
+  int nstack = 0, nseen = 0;
+  stack[nstack++] = v0;
+  std::vector<std::uint32_t> vs;
+  while (nstack > 0) {
+    const PetscInt q = stack[--nstack];
+    PetscInt ns = 0;
+    const PetscInt *support = nullptr;
+    TPX_PETSC(DMPlexGetSupportSize(dm_, q, &ns));
+    TPX_PETSC(DMPlexGetSupport(dm_, q, &support));
+    for (PetscInt k = 0; k < ns; ++k) {
+      const PetscInt s = support[k];
+      if (std::find(seen, seen + nseen, s) != seen + nseen) continue;
+      if (nseen < 64) seen[nseen++] = s;
+      vs.clear();
+      closure_vertices(s, vs);
+      std::sort(vs.begin(), vs.end());
+      if (!std::includes(simplex.begin(), simplex.end(), vs.begin(), vs.end())) continue;
+      if (vs.size() == simplex.size()) return s;
+      if (nstack < 64) stack[nstack++] = s;
+    }
+  }
+  return NO_POINT;
 }
 
 std::vector<std::uint32_t> RankMesh::simplex_of_point(PetscInt p) const {
@@ -642,20 +754,20 @@ std::vector<std::uint32_t> RankMesh::simplex_of_point(PetscInt p) const {
     throw Error(Code::InvalidArgument, "point " + std::to_string(p) + " outside the chart [" +
                                            std::to_string(p_start_) + ", " + std::to_string(p_end_) + ")");
   }
-  const std::size_t ip = static_cast<std::size_t>(p - p_start_);
-  const auto [a, b] = layout_.range(ip, p_start_);
-  if (a == b) {
-    throw Error(Code::InvalidArgument, "point " + std::to_string(p) +
-                                           " is a face of a non-interpolated DM: no vertices kept");
-  }
-  return std::vector<std::uint32_t>(simplex_ids_.begin() + static_cast<std::ptrdiff_t>(a),
-                                    simplex_ids_.begin() + static_cast<std::ptrdiff_t>(b));
+  std::vector<std::uint32_t> vs;
+  closure_vertices(p, vs);
+  if (vs.size() == 4 && listing_of_point(p) < top_listings_) std::swap(vs[0], vs[1]);  // petsc_winding
+  return vs;
 }
 
 int RankMesh::point_owner(PetscInt p) const {
   if (p < p_start_ || p >= p_end_) {
     throw Error(Code::InvalidArgument, "point " + std::to_string(p) + " outside the chart [" +
                                            std::to_string(p_start_) + ", " + std::to_string(p_end_) + ")");
+  }
+  if (leaf_) {
+    const PetscInt *it = std::lower_bound(leaf_, leaf_ + nleaves_, p);
+    return it != leaf_ + nleaves_ && *it == p ? static_cast<int>(remote_[it - leaf_].rank) : rank_;
   }
   const auto it = std::lower_bound(ghost_point_.begin(), ghost_point_.end(), p);
   return it != ghost_point_.end() && *it == p ? ghost_owner_[static_cast<std::size_t>(it - ghost_point_.begin())] : rank_;
@@ -684,8 +796,9 @@ int RankMesh::owner(const StructureView &s, const std::vector<std::uint32_t> &si
 }
 
 PetscInt RankMesh::global_vertex(std::uint32_t v) const {
-  if (v >= global_vertex_.size()) throw Error(Code::InvalidArgument, "vertex " + std::to_string(v) + " out of range");
-  return global_vertex_[v];
+  if (v >= vertex_count()) throw Error(Code::InvalidArgument, "vertex " + std::to_string(v) + " out of range");
+  const PetscInt g = global_[v];
+  return g < 0 ? -(g + 1) : g;  // PETSc marks vertices owned elsewhere -(g + 1)
 }
 
 Rows RankMesh::owned_relation(const StructureView &s, const std::vector<std::uint32_t> &simplex,

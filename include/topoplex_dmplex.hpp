@@ -7,6 +7,7 @@
  *   DM dm = ...;                                   // distributed or not, interpolated or not
  *   auto rank = topoplex::dmplex::RankMesh::from_dm(dm);         // collective on dm's comm
  *   topoplex::Structure ia(rank.complex(), topoplex::Kind::IA);   // any structure, or Live
+ *   rank.take_complex();            // optional: the IA holds the tops; the maps keep working
  *   for (auto v : ...) if (rank.vertex_owned(v)) ... ia.relation({v}, 3) ...
  *
  *   DM serial = topoplex::dmplex::to_dm(PETSC_COMM_WORLD, &complex);  // complex on rank 0
@@ -35,10 +36,7 @@
 #include <petscdmplex.h>
 #include <petscsf.h>
 
-#include <atomic>
 #include <cstdint>
-#include <memory>
-#include <mutex>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -86,49 +84,69 @@ struct ImportOptions {
 };
 
 /* One rank's part of a DMPlex as a Topoplex complex, with the maps between DM points and
- * Topoplex ids and each simplex's owner. Memory: the complex, plus per local point its vertex
- * ids (4 B each) in flat arrays (plus an 8 B offset unless the DM is fully interpolated and
- * simplicial), per listing its point (4 B), per ghost point its owner (8 B), per vertex its
- * point and global number (8 B), and once point_of or owner is first called, a table from
- * sorted vertex ids to points (8 to 16 B per point with vertices): see bytes(). */
+ * Topoplex ids and each simplex's owner. The maps copy next to nothing: vertex v is point
+ * vStart + v and the tops are kept as runs of consecutive points, so both ways are offsets; any
+ * other point is answered on demand from the DM's cones and supports. For that the RankMesh
+ * holds a reference to the DM (and to its point SF and vertex numbering), released by its
+ * destructor: do not change the DM's topology while a RankMesh of it lives, and destroy the
+ * RankMesh before PetscFinalize. point_of, simplex_of_point and owner call PETSc's getters
+ * (DMPlexGetCone, DMPlexGetSupport, ...): call them from one thread at a time unless PETSc was
+ * built thread-safe. Memory besides the complex: bytes(). The complex can be moved
+ * out (take_complex) once a structure is built on it; the maps keep working. */
 class RankMesh {
  public:
   /* Collective on the DM's communicator (global vertex numbering). Cost: O(points): a fully
-   * interpolated simplicial DM is read stratum by stratum (each point's vertices from its cone,
-   * its cone orientations and its faces' vertices: a few PETSc calls per point); any other DM
-   * walks each top's and each vertex-bearing point's transitive closure (depth-1 points: the
-   * cone). Plus Complex::from_arrays on the tops. Throws Error NotSimplicial naming the first
-   * non-simplicial cell, Refused for a point in two strata of one label. */
+   * interpolated simplicial DM (contiguous strata, d + 1 cone points at depth d) is read from
+   * PETSc's raw cone and orientation arrays (each top's vertices from its cone, its first face's
+   * edges and its second face's: no per-point PETSc call); a cell-vertex DM from its raw cones
+   * and cell types; any other DM walks each top's transitive closure. Plus Complex::from_arrays
+   * on the tops. Throws Error NotSimplicial naming the first non-simplicial cell, Refused for a
+   * point in two strata of one label. */
   static RankMesh from_dm(DM dm, const ImportOptions &options = {});
+
+  RankMesh(RankMesh &&) noexcept;
+  RankMesh &operator=(RankMesh &&) noexcept;
+  RankMesh(const RankMesh &) = delete;
+  RankMesh &operator=(const RankMesh &) = delete;
+  ~RankMesh();
 
   /* A rank with no point (a serial DM's other ranks, a tiny mesh on many ranks) has no complex:
    * Topoplex complexes have at least one vertex. complex() then throws Refused. */
-  bool empty() const noexcept { return !complex_.has_value(); }
+  bool empty() const noexcept { return v_end_ == v_start_; }
   const Complex &complex() const;
   Complex &complex();
+  /* Moves the complex out (e.g. once a structure is built on it, to keep only the structure):
+   * afterwards complex() throws Refused; every map and owner query keeps working. */
+  Complex take_complex();
 
   int rank() const noexcept { return rank_; }
   int size() const noexcept { return size_; }
   PetscInt overlap() const noexcept { return overlap_; }
   bool interpolated() const noexcept { return interpolated_; }
 
-  /* Heap bytes of the maps (everything but the complex): their arrays' capacities, the point
-   * table's once built. O(1). */
+  /* Heap bytes the maps keep (everything but the complex): the top runs, the labelled listings,
+   * a sorted copy of the ghost points when the point SF's leaves are not sorted, and the global
+   * vertex numbers (4 or 8 B per vertex: PETSc's vertex numbering, made by from_dm and held in
+   * the DM; counted here as the bridge's). O(1). */
   std::size_t bytes() const noexcept;
 
-  /* ---- point <-> Topoplex ids (O(1) each; point_of: a hash lookup) ---- */
-  std::uint32_t vertex_count() const noexcept { return static_cast<std::uint32_t>(vertex_point_.size()); }
-  PetscInt point_of_vertex(std::uint32_t v) const;
-  std::uint32_t vertex_of_point(PetscInt p) const; /* NO_VERTEX when p is not a vertex */
-  /* Listing i of the complex (tops in point order, then labelled non-top points) and back. */
-  std::size_t listing_count() const noexcept { return listed_point_.size(); }
+  /* ---- point <-> Topoplex ids ---- */
+  std::uint32_t vertex_count() const noexcept { return static_cast<std::uint32_t>(v_end_ - v_start_); }
+  PetscInt point_of_vertex(std::uint32_t v) const; /* O(1) */
+  std::uint32_t vertex_of_point(PetscInt p) const; /* NO_VERTEX when p is not a vertex; O(1) */
+  /* Listing i of the complex (tops in point order, then labelled non-top points) and back:
+   * O(log runs) (one run for a mesh whose tops are its cells), O(log labelled) for the others. */
+  std::size_t listing_count() const noexcept { return top_listings_ + extra_point_.size(); }
   PetscInt point_of_listing(std::size_t i) const;
-  std::size_t listing_of_point(PetscInt p) const; /* NO_LISTING when p is not listed; O(log listed) */
+  std::size_t listing_of_point(PetscInt p) const; /* NO_LISTING when p is not listed */
   /* The point whose closure's vertices are `simplex` (vertex ids, any order): NO_POINT for a
-   * simplex that is no point (faces of a non-interpolated DM) or not in the complex. The first
-   * call builds the table from vertex ids to points (O(points)); then a hash probe. */
+   * simplex that is no point (faces of a non-interpolated DM) or not in the complex. On demand:
+   * up from the first vertex's point through supports whose closure vertices lie in `simplex`,
+   * O(star of the vertex x closure of each candidate) (PETSc's DMPlexGetSupport and cones). */
   PetscInt point_of(std::vector<std::uint32_t> simplex) const;
-  /* The vertices of point p's closure, in Topoplex winding for tops. */
+  /* The vertices of point p's closure in closure order (read from cones and cone orientations,
+   * as PETSc's DMPlexGetTransitiveClosure lists them), in Topoplex winding for tops. On demand:
+   * O(closure). */
   std::vector<std::uint32_t> simplex_of_point(PetscInt p) const;
 
   /* ---- ownership (point_owner: O(log ghosts), a search among the point SF's leaves) ---- */
@@ -155,57 +173,36 @@ class RankMesh {
 
  private:
   RankMesh() = default;
-  /* The table from sorted vertex ids to points, built by the first point_of / owner (once, under
-   * std::call_once, so concurrent queries stay safe). */
-  struct PointTable {
-    std::once_flag once;
-    std::atomic<bool> built{false};
-    /* Open addressing (linear probing, a power of two at least twice the entries): the point -
-     * p_start of every point with vertices, at the hash of its sorted vertices; -1 empty. */
-    std::vector<PetscInt> slots;
-  };
-  const std::vector<PetscInt> &point_slots() const;
-  /* Slot of `sorted` (ascending vertex ids) in `slots`: its point's slot, or an empty one. */
-  std::size_t slot_of(const std::vector<PetscInt> &slots, const std::uint32_t *sorted, std::size_t n) const noexcept;
+  void release() noexcept;
+  /* Depth of point p (from the strata when they are ranges, else PETSc's). */
+  PetscInt depth_of(PetscInt p) const;
+  /* Appends p's closure vertices (ids) in closure order, PETSc's winding. */
+  void closure_vertices(PetscInt p, std::vector<std::uint32_t> &out) const;
   std::optional<Complex> complex_;
+  DM dm_ = nullptr;                 /* referenced */
+  PetscSF sf_ = nullptr;            /* the point SF, referenced when its leaves are used in place */
+  IS numbering_ = nullptr;          /* the DM's vertex numbering (held by the DM) */
+  const PetscInt *global_ = nullptr; /* its indices */
   int rank_ = 0, size_ = 1;
   PetscInt overlap_ = 0;
   bool vertex_adjacency_ = true; /* the DM's basic adjacency is PETSc's default (FEM) */
   bool interpolated_ = false;
   PetscInt p_start_ = 0, p_end_ = 0, v_start_ = 0, v_end_ = 0;
-  std::vector<PetscInt> vertex_point_;      /* v -> point */
-  std::vector<PetscInt> listed_point_;      /* listing -> point */
-  std::size_t top_listings_ = 0;            /* listings 0 .. top_listings_: the tops, ascending points */
-  std::vector<std::pair<PetscInt, std::uint32_t>> extra_listing_; /* (point, listing) of the others, by point */
-  std::vector<PetscInt> ghost_point_;       /* the point SF's leaves here, ascending */
-  std::vector<int> ghost_owner_;            /* their owners (root ranks); other points: rank_ */
-  std::vector<PetscInt> global_vertex_;     /* v -> global number */
-  /* Where point p's vertices are in simplex_ids_ (closure order, tops in Topoplex winding; none
-   * for faces of a non-interpolated DM). A fully interpolated simplicial DM, whose strata are
-   * contiguous ranges of points with depth + 1 vertices each: at base + (p - start) x width of
-   * p's stratum, no per-point offset; any other DM: offsets[p - p_start] .. [p - p_start + 1]. */
-  struct Layout {
-    struct Stratum {
-      PetscInt start, end;
-      std::uint64_t base, width;
-    };
-    std::vector<Stratum> strata; /* by start, covering the chart; empty: offsets */
-    std::vector<std::uint64_t> offsets;
-    std::pair<std::uint64_t, std::uint64_t> range(std::size_t ip, PetscInt p_start) const noexcept {
-      if (strata.empty()) return {offsets[ip], offsets[ip + 1]};
-      const PetscInt p = p_start + static_cast<PetscInt>(ip);
-      for (const Stratum &st : strata) {
-        if (p < st.end) {
-          const std::uint64_t a = st.base + static_cast<std::uint64_t>(p - st.start) * st.width;
-          return {a, a + st.width};
-        }
-      }
-      return {0, 0};
-    }
-  };
-  Layout layout_;
-  std::vector<std::uint32_t> simplex_ids_;
-  std::unique_ptr<PointTable> table_ = std::make_unique<PointTable>();
+  std::vector<std::pair<PetscInt, PetscInt>> strata_; /* [start, end) of depth 0, 1, ... */
+  /* The tops, ascending points, as runs of consecutive points: run k covers listings
+   * top_run_listing_[k] .. top_run_listing_[k + 1] from point top_run_point_[k]. */
+  std::vector<PetscInt> top_run_point_;
+  std::vector<std::uint32_t> top_run_listing_;
+  std::size_t top_listings_ = 0;
+  std::vector<PetscInt> extra_point_;                              /* listing top_listings_ + i -> point */
+  std::vector<std::pair<PetscInt, std::uint32_t>> extra_listing_;  /* (point, listing) of those, by point */
+  /* Ghost points (the point SF's leaves here, ascending) and their owners: the SF's own arrays
+   * when its leaves are sorted, else the copies below. */
+  const PetscInt *leaf_ = nullptr;
+  const PetscSFNode *remote_ = nullptr;
+  PetscInt nleaves_ = 0;
+  std::vector<PetscInt> ghost_point_;
+  std::vector<int> ghost_owner_;
 };
 
 struct ExportOptions {

@@ -100,10 +100,10 @@ echo
 grep -h '^#' "${outs[@]}" | sed 's/^# /- /'
 
 header "(a) per-rank topology memory: DMPlex against Topoplex"
-echo "DMPlex: the rank's cells (overlap included) rebuilt as an interpolated DMPlex on PETSC_COMM_SELF (cones, orientations, supports, their sections, depth and celltype labels; no coordinates, no SF): growth of PetscMallocGetCurrentUsage and of the heap (mallinfo2). Held: what DMDestroy of the distributed DM frees, less its coordinate values. Topoplex: the IA's own bytes (tpx_structure_storage), the complex's heap less its coordinates, the RankMesh maps (RankMesh::bytes()). Ratios against the PETSc counter ("n/a": not rebuilt, the big run). Aim: Topoplex <= 0.2."
+echo "DMPlex: the rank's cells (overlap included) rebuilt as an interpolated DMPlex on PETSC_COMM_SELF (cones, orientations, supports, their sections, depth and celltype labels; no coordinates, no SF): growth of PetscMallocGetCurrentUsage and of the heap (mallinfo2). Held: what DMDestroy of the distributed DM frees, less its coordinate values. Topoplex (coordinates left out on both sides): the IA's own arrays (tpx_structure_storage) and the IA as held (heap growth of its build: its arrays and its handle bookkeeping, the tops' windings), the complex's heap less its coordinates (moved out and dropped once the IA is built: the IA holds the tops), the RankMesh maps (RankMesh::bytes(): top runs, ghost copies if any, the global vertex numbering), and the edge and triangle tables the first query naming an edge or triangle by dense id builds (part (c)). Ratios against the PETSc counter ("n/a": not rebuilt, the big run). Aim: Topoplex kept (IA held + maps) <= 0.2."
 echo
-echo "| run | ranks | rank | tets | points | DMPlex MiB (PETSc) | DMPlex MiB (heap) | DMPlex B/tet | DM held − coords MiB | IA MiB | complex MiB | maps MiB | IA / DMPlex | IA+complex / DMPlex | IA+complex+maps / DMPlex |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| run | ranks | rank | tets | points | DMPlex MiB (PETSc) | DMPlex MiB (heap) | DMPlex B/tet | DM held − coords MiB | IA MiB | IA held MiB | complex MiB (dropped) | maps MiB | edge+triangle tables MiB | IA / DMPlex | kept: IA held + maps / DMPlex | + tables / DMPlex | + complex if kept / DMPlex |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 rows a
 
 header "(b) conversion: RankMesh::from_dm (interpolated DM -> complex and maps) and the IA"
@@ -116,10 +116,12 @@ rows b
 header "(c) every owned vertex's star: Topoplex (IA) against DMPlexGetTransitiveClosure(useCone = PETSC_FALSE)"
 echo "Counts equal: closure size = |star| + 1 and cells in the closure = |R_{0,3}|, vertex by vertex (a cell-vertex DM's closure holds the vertex and its cells only: there the cells are compared, and tpx_star with R01+R02+R03). Aim: >= 5x."
 echo
+echo "Tables: the edge and triangle tables (dense ids of edges and triangles; the IA stores neither) are built by one query before the timed loops ('tables build s', their memory in part (a))."
+echo
 echo "Views: R_{0,1}, R_{0,2}, R_{0,3} lent as CSR by Structure::view (the IA stores none: their indices are built once, 'views build s', holding 'views MiB'), the stars then read inline."
 echo
-echo "| run | ranks | rank | owned vertices | DMPlex s | R03 s | R01+R02+R03 s | tpx_star s | views build s | views star s | views MiB | R03 speed-up | R03 speed-up (CPU) | R01..R03 speed-up | tpx_star speed-up | views star speed-up | closure points | cells | equal |"
-echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+echo "| run | ranks | rank | owned vertices | DMPlex s | R03 s | R01+R02+R03 s | tpx_star s | tables build s | views build s | views star s | views MiB | R03 speed-up | R03 speed-up (CPU) | R01..R03 speed-up | R01..R03 speed-up (CPU) | tpx_star speed-up | tpx_star speed-up (CPU) | views star speed-up | closure points | cells | equal |"
+echo "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
 rows c
 
 header "(d) phases per rank (weak scaling: the 'weak' runs, $WEAK simplices per rank)"

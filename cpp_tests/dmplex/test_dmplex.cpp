@@ -432,6 +432,27 @@ void serial_round_trip_keeps_simplices_winding_and_labels() {
     // One past the end of either map is refused.
     CHECK(code_of([&] { rm.point_of_listing(rm.listing_count()); }) == dx::Code::InvalidArgument);
     CHECK(code_of([&] { rm.point_of_vertex(rm.vertex_count()); }) == dx::Code::InvalidArgument);
+    // Every simplex with a point (all of them when interpolated, else the tops and vertices)
+    // finds it on demand, and the point's closure vertices are the simplex.
+    {
+      const tp::Structure ig(rm.complex(), tp::Kind::IG);
+      std::size_t found = 0;
+      for (std::uint32_t p = 0; p <= ig.dimension(); ++p) {
+        for (auto r : ig.simplices(p)) {
+          const Simplex sx(r.begin(), r.end());
+          const PetscInt pt = rm.point_of(sx);
+          if (pt == dx::NO_POINT) {
+            CHECK_MSG(!rm.interpolated() && p > 0, k.name << ": a simplex of an interpolated DM has no point");
+            continue;
+          }
+          Simplex back = rm.simplex_of_point(pt);
+          std::sort(back.begin(), back.end());
+          CHECK_MSG(back == sx, k.name << ": point_of then simplex_of_point is not the simplex");
+          ++found;
+        }
+      }
+      CHECK_MSG(found >= rm.listing_count(), k.name);
+    }
     // Back again: the re-imported complex exports to the same DM sizes.
     DM again = dx::to_dm(PETSC_COMM_SELF, &rm.complex(), dx::ExportOptions{k.interpolate, true});
     PetscInt a0, a1, b0, b1;
@@ -465,7 +486,7 @@ void interpolated_closure_order_is_the_cell_list_order() {
 // PETSc's own DMPlexGetTransitiveClosure order (tetrahedra tops with vertices 0 and 1 swapped back:
 // the bridge's winding), on serial and distributed DMs (distribution reorients cones).
 std::size_t check_closure_orders(DM dm, const char *name) {
-  const dx::RankMesh rm = dx::RankMesh::from_dm(dm);
+  dx::RankMesh rm = dx::RankMesh::from_dm(dm);
   PetscInt pStart, pEnd, vStart, vEnd;
   PetscCallAbort(PETSC_COMM_SELF, DMPlexGetChart(dm, &pStart, &pEnd));
   PetscCallAbort(PETSC_COMM_SELF, DMPlexGetDepthStratum(dm, 0, &vStart, &vEnd));
@@ -482,6 +503,21 @@ std::size_t check_closure_orders(DM dm, const char *name) {
     const Simplex ours = rm.simplex_of_point(p);
     CHECK_MSG(ours == petsc, name << ": point " << p << " has vertices in another order than PETSc's closure");
     ++checked;
+  }
+  // The complex's tops as from_dm read them (PETSc's raw cone arrays on its fast paths) are
+  // those points' closure vertices in the bridge's winding; then the complex moved out leaves
+  // the maps working.
+  if (!rm.empty()) {
+    for (std::size_t i = 0; i < rm.listing_count(); ++i) {
+      std::uint32_t top = 0;
+      CHECK_MSG(rm.complex().input_simplex(i, top) == rm.simplex_of_point(rm.point_of_listing(i)),
+                name << ": top " << i << " read otherwise than its point's closure");
+    }
+    const std::size_t listed = rm.listing_count();
+    const tp::Complex taken = rm.take_complex();
+    CHECK(code_of([&] { rm.complex(); }) == dx::Code::Refused);
+    CHECK(taken.input_stats().input_simplices == listed && rm.listing_count() == listed);
+    for (std::size_t i = 0; i < listed; ++i) CHECK(rm.listing_of_point(rm.point_of_listing(i)) == i);
   }
   return checked;
 }

@@ -23,8 +23,13 @@
 //      cell-vertex DM destroyed; and the distributed DM as held at the end (what its DMDestroy
 //      frees: topology, point SF, labels, vertex numbering, coordinate section) minus its
 //      coordinate values (8 B x 3 per local vertex in the local vector and per owned vertex in
-//      the global one). Against it: the IA's own bytes (tpx_structure_storage), the complex's
-//      heap less its coordinates, and the bridge's RankMesh maps (RankMesh::bytes()).
+//      the global one). Against it, every byte Topoplex keeps but coordinates (which DMPlex's
+//      topology leaves out too): the IA as held (the heap its build grows: its arrays and its
+//      handle bookkeeping; its own arrays, tpx_structure_storage, shown apart), the bridge's
+//      RankMesh maps (RankMesh::bytes()), and the edge and triangle tables the first query
+//      naming an edge or triangle by dense id builds (timed and sized before part (c)); the
+//      complex's heap less its coordinates is shown but not kept: the IA holds the tops, so the
+//      complex is moved out of the RankMesh (take_complex) and dropped once the IA is built.
 //  (b) conversion: RankMesh::from_dm (interpolated DM -> complex and maps) and the IA's build,
 //      in tetrahedra per second on the rank (wall time; oversubscribed ranks share cores), and
 //      the core's share: Complex::from_arrays alone on the same tops (timed apart).
@@ -210,7 +215,8 @@ enum Field {
   Tets, Points, Vertices, OwnedVertices, DmTopoPetsc, DmTopoHeap, DmTopoPoints, DmHeld, CoordBytes,
   FromDm, FromArrays, IaBuild, IaBytes, ComplexHeap, MapsBytes, FromDmHeap, IaHeap,
   DmLoop, R03Loop, StarLoop, RelLoop, StarSum, CellSum, Mismatch, Create, Distribute, HwmBytes,
-  FromDmCpu, DmLoopCpu, R03LoopCpu, ViewBuild, ViewLoop, ViewBytes, Checksum, HwmCreate, HwmDistribute, HwmSelf, HwmConvert, NFields
+  FromDmCpu, DmLoopCpu, R03LoopCpu, ViewBuild, ViewLoop, ViewBytes, Checksum, HwmCreate, HwmDistribute, HwmSelf, HwmConvert,
+  TablesBuild, TablesHeap, RelLoopCpu, StarLoopCpu, NFields
 };
 
 }  // namespace
@@ -310,6 +316,9 @@ int main(int argc, char **argv) {
   std::vector<std::uint32_t> owned;
   std::vector<PetscInt> owned_points;
   try {
+    // from_dm is collective (the vertex numbering): start the ranks together, so that no rank's
+    // conversion time holds its wait for a slower rank's part (a).
+    MPI_Barrier(PETSC_COMM_WORLD);
     double h0 = heap_bytes();
     t = now();
     double c0 = cpu_now();
@@ -342,8 +351,11 @@ int main(int argc, char **argv) {
     t = now();
     const tp::Structure ia(rm.complex(), tp::Kind::IA);
     f[IaBuild] = now() - t;
-    f[IaHeap] = heap_bytes() - h0;
+    f[IaHeap] = heap_bytes() - h0;  // the IA as held: its arrays and its handle bookkeeping
     f[IaBytes] = double(ia.storage().bytes);
+    // The IA holds the tops' vertices and adjacency: the complex is moved out and dropped (the
+    // maps answer without it), so what Topoplex keeps is the IA as held and the maps.
+    { const tp::Complex dropped = rm.take_complex(); }
     f[HwmConvert] = status_bytes("VmHWM");
 
     for (std::uint32_t v = 0; v < rm.vertex_count(); ++v) {
@@ -371,8 +383,23 @@ int main(int argc, char **argv) {
     f[DmLoop] = now() - t;
     f[DmLoopCpu] = cpu_now() - c0;
 
-    // Topoplex: R_{0,3} into a reused buffer.
+    // The lexicographic edge and triangle tables that dense ids of edges and triangles need (the
+    // IA stores neither): built by the first query naming one, here timed and sized apart.
     std::vector<std::uint32_t> ids(64);
+    h0 = heap_bytes();
+    t = now();
+    if (no > 0) {
+      const TpxSimplex h{owned[0], 0, ia.stamp()};
+      std::size_t len = 0;
+      for (std::uint32_t q = 1; q <= 2; ++q) {
+        ids.resize(4096);
+        if (tpx_related(ia.get(), &h, q, TPX_ORDER_NATURAL, ids.data(), ids.size(), &len) != TPX_STATUS_OK) fail(rank, "tpx_related");
+      }
+    }
+    f[TablesBuild] = now() - t;
+    f[TablesHeap] = heap_bytes() - h0;
+
+    // Topoplex: R_{0,3} into a reused buffer.
     t = now();
     c0 = cpu_now();
     for (std::size_t i = 0; i < no; ++i) {
@@ -389,6 +416,7 @@ int main(int argc, char **argv) {
     // Topoplex: the full star (every simplex containing the vertex, the vertex left out).
     std::vector<TpxSimplex> star(256);
     t = now();
+    c0 = cpu_now();
     for (std::size_t i = 0; i < no; ++i) {
       const TpxSimplex h{owned[i], 0, ia.stamp()};
       const std::size_t len =
@@ -398,10 +426,12 @@ int main(int argc, char **argv) {
       tp_star[i] = static_cast<std::uint32_t>(len);
     }
     f[StarLoop] = now() - t;
+    f[StarLoopCpu] = cpu_now() - c0;
 
     // Topoplex: the star as its three co-boundary relations R_{0,1}, R_{0,2}, R_{0,3}.
     std::vector<std::uint32_t> tp_rel(no);
     t = now();
+    c0 = cpu_now();
     for (std::size_t i = 0; i < no; ++i) {
       const TpxSimplex h{owned[i], 0, ia.stamp()};
       std::size_t total = 0;
@@ -414,6 +444,7 @@ int main(int argc, char **argv) {
       tp_rel[i] = static_cast<std::uint32_t>(total);
     }
     f[RelLoop] = now() - t;
+    f[RelLoopCpu] = cpu_now() - c0;
 
     // Topoplex: the star through lent CSR views of R_{0,1}, R_{0,2}, R_{0,3} (Structure::view:
     // the IA stores none of them, so the first view of each builds an index once, timed and
@@ -486,23 +517,24 @@ int main(int argc, char **argv) {
       hwm_max = std::max(hwm_max, a[HwmBytes]);
       const double topo = a[DmTopoPetsc] > 0 ? a[DmTopoPetsc] : a[DmTopoHeap];
       // (a) memory ("n/a": the topology was not rebuilt, -self_dm 0)
-      char ratios[128] = "n/a | n/a | n/a";
+      char ratios[160] = "n/a | n/a | n/a | n/a";
       if (topo > 0) {
-        std::snprintf(ratios, sizeof ratios, "%.3f | %.3f | %.3f", a[IaBytes] / topo, (a[IaBytes] + a[ComplexHeap]) / topo,
-                      (a[IaBytes] + a[ComplexHeap] + a[MapsBytes]) / topo);
+        std::snprintf(ratios, sizeof ratios, "%.3f | %.3f | %.3f | %.3f", a[IaBytes] / topo, (a[IaHeap] + a[MapsBytes]) / topo,
+                      (a[IaHeap] + a[MapsBytes] + a[TablesHeap]) / topo, (a[IaHeap] + a[ComplexHeap] + a[MapsBytes]) / topo);
       }
-      std::printf("@a| %s | %d | %d | %.0f | %.0f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %s |\n", run.c_str(), size, r,
+      std::printf("@a| %s | %d | %d | %.0f | %.0f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.2f | %.1f | %s |\n", run.c_str(), size, r,
                   a[Tets], a[Points], mb(a[DmTopoPetsc]), mb(a[DmTopoHeap]), a[Tets] > 0 ? topo / a[Tets] : 0.0, mb(a[DmHeld]),
-                  mb(a[IaBytes]), mb(a[ComplexHeap]), mb(a[MapsBytes]), ratios);
+                  mb(a[IaBytes]), mb(a[IaHeap]), mb(a[ComplexHeap]), mb(a[MapsBytes]), mb(a[TablesHeap]), ratios);
       // (b) conversion
       std::printf("@b| %s | %d | %d | %.0f | %.3f | %.3f | %.3f | %.3f | %.2f | %.2f | %.2f |\n", run.c_str(), size, r, a[Tets],
                   a[FromDm], a[FromDmCpu], a[FromArrays], a[IaBuild], a[Tets] / a[FromDm] / 1e6, a[Tets] / a[FromDmCpu] / 1e6,
                   a[Tets] / (a[FromDm] + a[IaBuild]) / 1e6);
       // (c) stars
-      std::printf("@c| %s | %d | %d | %.0f | %.4f | %.4f | %.4f | %.4f | %.3f | %.4f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.0f | %.0f | %s |\n",
-                  run.c_str(), size, r, a[OwnedVertices], a[DmLoop], a[R03Loop], a[RelLoop], a[StarLoop], a[ViewBuild], a[ViewLoop],
-                  mb(a[ViewBytes]), a[DmLoop] / a[R03Loop], a[DmLoopCpu] / a[R03LoopCpu], a[DmLoop] / a[RelLoop],
-                  a[DmLoop] / a[StarLoop], a[DmLoop] / a[ViewLoop], a[StarSum], a[CellSum], a[Mismatch] == 0 ? "yes" : "NO");
+      std::printf("@c| %s | %d | %d | %.0f | %.4f | %.4f | %.4f | %.4f | %.4f | %.3f | %.4f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.1f | %.0f | %.0f | %s |\n",
+                  run.c_str(), size, r, a[OwnedVertices], a[DmLoop], a[R03Loop], a[RelLoop], a[StarLoop], a[TablesBuild], a[ViewBuild],
+                  a[ViewLoop], mb(a[ViewBytes]), a[DmLoop] / a[R03Loop], a[DmLoopCpu] / a[R03LoopCpu], a[DmLoop] / a[RelLoop],
+                  a[DmLoopCpu] / a[RelLoopCpu], a[DmLoop] / a[StarLoop], a[DmLoopCpu] / a[StarLoopCpu], a[DmLoop] / a[ViewLoop],
+                  a[StarSum], a[CellSum], a[Mismatch] == 0 ? "yes" : "NO");
       // (d)/(e) phases and peak
       std::printf("@d| %s | %d%s | %d | %.0f | %.0f | %.2f | %.2f | %.2f | %.2f | %.3f | %.3f | %.0f |\n", run.c_str(), size,
                   over ? " (over)" : "", r, a[Points], a[Tets], a[Create], a[Distribute], a[FromDm], a[IaBuild], a[DmLoop],

@@ -42,10 +42,11 @@
 //!   containing v: O(d·n_v) — optimal (survey §3: the extension exists for this).
 //! - R_{0,q}, 0 < q < d: the same walk, then the q-faces through v of each d-simplex, dedup:
 //!   O(C(d, q)·n_v), linear in the output up to a factor depending on d only — optimal. As
-//!   dense indices (handles, `related_ids`): one walk; edges deduplicated by their other vertex,
-//!   (d−1)-faces given by the d-simplex of smaller id on their two sides (no dedup), each answer
-//!   then found among the lazy table's rows sharing its first vertex (see `super::nav`); the
-//!   star of a vertex (every dimension) from one walk.
+//!   dense indices (handles, `related_ids`): the faces whose smallest vertex is v are the lazy
+//!   table's rows starting with v (a range, no search); the others from one walk, edges
+//!   deduplicated by their other vertex, (d−1)-faces given by the d-simplex of smaller id on
+//!   their two sides (no dedup), each found among the lazy table's rows sharing its first vertex
+//!   (see `super::nav`); the star of a vertex (every dimension) from one walk.
 //! - R_{0,0}: the walk, the other vertices of each d-simplex, dedup: O(d·n_v) — optimal.
 //! - R_{p,q}, 0 < p < q: walk the whole star of v and keep the d-simplices containing σ (the star
 //!   of σ need not be (d−1)-connected through faces containing σ — a pinched edge — so walking
@@ -592,28 +593,38 @@ impl IndexedAdjacency {
         self.cofaces_in(v, &star, q, found);
     }
 
-    /// [`Self::vertex_cofaces`] over the d-simplices `star` of `v`, in walk order.
+    /// [`Self::vertex_cofaces`] over the d-simplices `star` of `v`. The q-faces whose smallest
+    /// vertex is v are the lazy table's rows starting with v, all of them in the star (every
+    /// face of the IA's complex lies in a d-simplex): that range comes first, with no search;
+    /// then the faces whose smallest vertex is below v, in walk order, each searched among the
+    /// rows of that vertex.
     fn cofaces_in(&self, v: u32, star: &[u32], q: usize, mut found: impl FnMut(u32)) {
         let (d, w) = (self.d, self.d + 1);
         let table = self.lazy_table(q);
+        table.starting_with(v).for_each(&mut found);
         let mut id =
             |row: &[u32]| found(table.find(row).expect("a face of a d-simplex is a simplex"));
         let tops = star.iter().map(|&t| (t, self.tops.get(t as usize)));
         if q == 1 {
-            let mut others = IdSet::default();
+            let mut lower = IdSet::default();
             for (_, t) in tops {
-                for &x in t.iter().filter(|&&x| x != v) {
-                    if others.insert(x) {
-                        id(&[x.min(v), x.max(v)]);
+                for &x in t.iter().filter(|&&x| x < v) {
+                    if lower.insert(x) {
+                        id(&[x, v]);
                     }
                 }
             }
         } else if q + 1 == d {
             let mut row = [0u32; MAX_DIMENSION + 1];
             for (t, verts) in tops {
+                // Rows are ascending: a face through v starts below v unless it drops
+                // vertex 0 while v is vertex 1, or v is vertex 0.
+                if verts[0] == v {
+                    continue;
+                }
                 for (i, &x) in verts.iter().enumerate() {
                     let u = self.adj[t as usize * w + i];
-                    if x != v && (u == NONE || u > t) {
+                    if x != v && (u == NONE || u > t) && (i != 0 || verts[1] != v) {
                         let mut k = 0;
                         for (j, &y) in verts.iter().enumerate() {
                             if j != i {
@@ -629,7 +640,7 @@ impl IndexedAdjacency {
             let mut set = RowSet::default();
             for (_, t) in tops {
                 faces_containing(t, &[v], q, |f| {
-                    if set.insert(f) {
+                    if f[0] != v && set.insert(f) {
                         id(f);
                     }
                 });

@@ -144,6 +144,15 @@ impl LazyTable {
         None
     }
 
+    /// The rows whose smallest vertex is `v` (empty past the last such vertex): O(1).
+    pub(crate) fn starting_with(&self, v: u32) -> std::ops::Range<u32> {
+        let v = v as usize;
+        if v + 1 >= self.first.len() {
+            return 0..0;
+        }
+        self.first[v]..self.first[v + 1]
+    }
+
     fn heap_bytes(&self) -> usize {
         self.table.heap_bytes() + 4 * self.first.capacity()
     }
