@@ -51,69 +51,96 @@ fn output_size(s: &Sig, queries: &[Vec<u32>], q: usize) -> u64 {
         .sum()
 }
 
+/// What each sampled simplex is asked: a relation `R_{p,q}`, or only whether it is there.
+#[derive(Clone, Copy)]
+enum Ask {
+    /// Baseline: finding the sampled simplices by their vertex ids (searches by prefix), which
+    /// every relation query pays once; throughput counts one element per query.
+    Locate,
+    /// `R_{p,q}` of each; throughput counts its output simplices.
+    Relation(usize),
+}
+
 fn run(
     c: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
     name: &str,
     size: u64,
     s: &Sig,
     queries: &[Vec<u32>],
-    q: usize,
+    ask: Ask,
 ) {
-    c.throughput(Throughput::Elements(output_size(s, queries, q)));
+    let elements = match ask {
+        Ask::Locate => queries.len() as u64,
+        Ask::Relation(q) => output_size(s, queries, q),
+    };
+    c.throughput(Throughput::Elements(elements));
     let mut out = Vec::new();
     c.bench_with_input(BenchmarkId::new(name, size), queries, |b, queries| {
         b.iter(|| {
             let mut total = 0;
             for sigma in queries {
-                s.relation(sigma, q, &mut out).unwrap();
-                total += out.len();
+                total += match ask {
+                    Ask::Locate => usize::from(s.contains(sigma)),
+                    Ask::Relation(q) => {
+                        s.relation(sigma, q, &mut out).unwrap();
+                        out.len()
+                    }
+                };
             }
             total
         })
     });
 }
 
-/// Baseline: finding the sampled simplices by their vertex ids (searches by prefix), which every
-/// query above pays once; throughput counts one element per query.
-fn locate(
-    c: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
-    name: &str,
-    size: u64,
+/// One grid's benchmarks: locating sampled edges, then each relation `R_{p,q}` of `pq` from
+/// sampled p-simplices, named `"{shape} R{p},{q}"`; the complex's size is its simplex count.
+fn grid(
+    g: &mut criterion::BenchmarkGroup<'_, criterion::measurement::WallTime>,
+    shape: &str,
     s: &Sig,
-    queries: &[Vec<u32>],
+    pq: &[(usize, usize)],
 ) {
-    c.throughput(Throughput::Elements(queries.len() as u64));
-    c.bench_with_input(BenchmarkId::new(name, size), queries, |b, queries| {
-        b.iter(|| queries.iter().filter(|q| s.contains(q)).count())
-    });
+    let d = s.dimension();
+    let n: u64 = (0..=d).map(|p| s.count(p) as u64).sum();
+    let samples: Vec<Vec<Vec<u32>>> = (0..=d).map(|p| sample(s, p)).collect();
+    run(
+        g,
+        &format!("{shape} locate edge"),
+        n,
+        s,
+        &samples[1],
+        Ask::Locate,
+    );
+    for &(p, q) in pq {
+        run(
+            g,
+            &format!("{shape} R{p},{q}"),
+            n,
+            s,
+            &samples[p],
+            Ask::Relation(q),
+        );
+    }
 }
 
 fn grids(cr: &mut Criterion) {
     let mut g = cr.benchmark_group("sig_grid");
+    let tri = [(0, 2), (0, 0), (1, 2), (2, 2), (2, 0)];
+    let tet = [(0, 3), (0, 1), (1, 3), (1, 2), (2, 2), (3, 3), (3, 1)];
     // Side lengths for ~10^4, 10^5, 10^6 simplices.
-    for k in [41u32, 129, 408] {
-        let s = Sig::build(&triangle_grid(k)).unwrap();
-        let n: u64 = (0..=2).map(|p| s.count(p) as u64).sum();
-        let (v, e, t) = (sample(&s, 0), sample(&s, 1), sample(&s, 2));
-        locate(&mut g, "tri locate edge", n, &s, &e);
-        run(&mut g, "tri R0,2", n, &s, &v, 2);
-        run(&mut g, "tri R0,0", n, &s, &v, 0);
-        run(&mut g, "tri R1,2", n, &s, &e, 2);
-        run(&mut g, "tri R2,2", n, &s, &t, 2);
-        run(&mut g, "tri R2,0", n, &s, &t, 0);
-    }
-    for k in [7u32, 15, 34] {
-        let s = Sig::build(&tetrahedral_grid(k)).unwrap();
-        let n: u64 = (0..=3).map(|p| s.count(p) as u64).sum();
-        let (v, e, f, t) = (sample(&s, 0), sample(&s, 1), sample(&s, 2), sample(&s, 3));
-        locate(&mut g, "tet locate edge", n, &s, &e);
-        run(&mut g, "tet R0,3", n, &s, &v, 3);
-        run(&mut g, "tet R0,1", n, &s, &v, 1);
-        run(&mut g, "tet R1,3", n, &s, &e, 3);
-        run(&mut g, "tet R1,2", n, &s, &e, 2);
-        run(&mut g, "tet R2,2", n, &s, &f, 2);
-        run(&mut g, "tet R3,3", n, &s, &t, 3);
-        run(&mut g, "tet R3,1", n, &s, &t, 1);
+    let grids = [
+        (
+            "tri",
+            triangle_grid as fn(u32) -> Complex,
+            [41, 129, 408],
+            &tri[..],
+        ),
+        ("tet", tetrahedral_grid, [7, 15, 34], &tet[..]),
+    ];
+    for (shape, build, sides, pq) in grids {
+        for k in sides {
+            grid(&mut g, shape, &Sig::build(&build(k)).unwrap(), pq);
+        }
     }
     g.finish();
 }
@@ -122,14 +149,21 @@ fn fans(cr: &mut Criterion) {
     let mut g = cr.benchmark_group("sig_fan");
     for k in [10u32, 100, 1_000, 10_000, 100_000] {
         let k64 = k as u64;
-        let s = Sig::build(&vertex_fan(k)).unwrap();
-        run(&mut g, "vertex fan R0,2(hub)", k64, &s, &[vec![0]], 2);
-        run(&mut g, "vertex fan R0,1(hub)", k64, &s, &[vec![0]], 1);
-        run(&mut g, "vertex fan R0,0(hub)", k64, &s, &[vec![0]], 0);
-        let s = Sig::build(&edge_fan(k)).unwrap();
-        run(&mut g, "edge fan R1,2(spine)", k64, &s, &[vec![0, 1]], 2);
-        run(&mut g, "edge fan R0,2(end)", k64, &s, &[vec![0]], 2);
-        run(&mut g, "edge fan R2,2(page)", k64, &s, &[vec![0, 1, 2]], 2);
+        let (hub, book) = (
+            Sig::build(&vertex_fan(k)).unwrap(),
+            Sig::build(&edge_fan(k)).unwrap(),
+        );
+        let asks: [(&str, &Sig, &[u32], usize); 6] = [
+            ("vertex fan R0,2(hub)", &hub, &[0], 2),
+            ("vertex fan R0,1(hub)", &hub, &[0], 1),
+            ("vertex fan R0,0(hub)", &hub, &[0], 0),
+            ("edge fan R1,2(spine)", &book, &[0, 1], 2),
+            ("edge fan R0,2(end)", &book, &[0], 2),
+            ("edge fan R2,2(page)", &book, &[0, 1, 2], 2),
+        ];
+        for (name, s, sigma, q) in asks {
+            run(&mut g, name, k64, s, &[sigma.to_vec()], Ask::Relation(q));
+        }
     }
     g.finish();
 }

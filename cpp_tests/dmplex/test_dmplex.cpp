@@ -360,6 +360,14 @@ DistributedReport check_distributed(const tp::Complex &c, bool interpolate, Pets
 // ---------------------------------------------------------------------------------------------
 // The tests.
 
+// A named complex exported to a DMPlex with or without its intermediate faces (the round trip's
+// and the distributed relations' cases).
+struct InterpolationCase {
+  const char *name;
+  tp::Complex c;
+  bool interpolate;
+};
+
 void tetrahedra_exported_have_positive_petsc_jacobians() {
   for (bool interpolate : {false, true}) {
     const tp::Complex c = freudenthal(2);
@@ -377,12 +385,7 @@ void tetrahedra_exported_have_positive_petsc_jacobians() {
 }
 
 void serial_round_trip_keeps_simplices_winding_and_labels() {
-  struct Case {
-    const char *name;
-    tp::Complex c;
-    bool interpolate;
-  };
-  std::vector<Case> cases;
+  std::vector<InterpolationCase> cases;
   cases.push_back({"tets non-interpolated", freudenthal(2), false});
   cases.push_back({"tets interpolated", freudenthal(2), true});
   cases.push_back({"triangles non-interpolated", triangles(3), false});
@@ -415,7 +418,7 @@ void serial_round_trip_keeps_simplices_winding_and_labels() {
     cases.push_back({"tets from a .tpx", tp::Complex::open(path), true});
     std::remove(path);
   }
-  for (const Case &k : cases) {
+  for (const InterpolationCase &k : cases) {
     DM dm = dx::to_dm(PETSC_COMM_SELF, &k.c, dx::ExportOptions{k.interpolate, true});
     const dx::RankMesh rm = dx::RankMesh::from_dm(dm);
     CHECK_MSG(rm.interpolated() == (k.interpolate && k.c.dimension() > 1), k.name);
@@ -569,18 +572,13 @@ void vertices_of_every_point_follow_petscs_closure_order() {
 }
 
 void owned_relations_equal_serial_answers_with_overlap_1() {
-  struct Case {
-    const char *name;
-    tp::Complex c;
-    bool interpolate;
-  };
-  std::vector<Case> cases;
+  std::vector<InterpolationCase> cases;
   cases.push_back({"freudenthal 3 interpolated", freudenthal(3), true});
   cases.push_back({"freudenthal 3 cell-vertex", freudenthal(3), false});
   cases.push_back({"triangles 6 interpolated", triangles(6), true});
   cases.push_back({"non-manifold triangles interpolated", nonmanifold_triangles(), true});
   cases.push_back({"non-manifold triangles cell-vertex", nonmanifold_triangles(), false});
-  for (const Case &k : cases) {
+  for (const InterpolationCase &k : cases) {
     const DistributedReport r = check_distributed(k.c, k.interpolate, 1, true);
     unsigned long local[2] = {r.owned_checked, r.ghosts}, sum[2];
     MPI_Allreduce(local, sum, 2, MPI_UNSIGNED_LONG, MPI_SUM, PETSC_COMM_WORLD);

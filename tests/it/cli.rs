@@ -16,6 +16,13 @@ fn stderr(o: &Output) -> String {
     String::from_utf8(o.stderr.clone()).unwrap()
 }
 
+/// Runs `args`, which must succeed; its output.
+fn succeeded(args: &[&str]) -> Output {
+    let o = run(args);
+    assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+    o
+}
+
 /// Runs `args`, which must fail with exit 1 and a message containing `what`.
 fn refused(args: &[&str], what: &str) {
     let o = run(args);
@@ -33,8 +40,7 @@ fn temp_file(name: &str, text: &str) -> PathBuf {
 
 #[test]
 fn report_on_the_builtin_example() {
-    let o = run(&["report"]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    let o = succeeded(&["report"]);
     let text = stdout(&o);
     assert!(text.contains("dimension: 3"), "{text}");
     assert!(
@@ -82,7 +88,7 @@ fn report_counts_absorbed_input() {
 fn relation_dump_format_is_exact() {
     // Two triangles on edge 0 10, plus vertex ids that sort differently as text and as numbers.
     let f = temp_file("two.simplices", "s 0 10 11\ns 0 9 10\n");
-    let o = run(&[
+    let o = succeeded(&[
         "relation",
         f.to_str().unwrap(),
         "--structure",
@@ -90,7 +96,6 @@ fn relation_dump_format_is_exact() {
         "--relation",
         "1,2",
     ]);
-    assert!(o.status.success(), "{}", stderr(&o));
     let expected = "0 9;0 9 10\n0 10;0 9 10;0 10 11\n0 11;0 10 11\n9 10;0 9 10\n10 11;0 10 11\n";
     // Vertices 1..8 are isolated and have no edges, so only edges appear.
     assert_eq!(stdout(&o), expected);
@@ -276,8 +281,7 @@ fn decompose_bowtie(file: &str, out: &str, options: &[&str]) -> (PathBuf, Output
         out.to_str().unwrap(),
     ];
     args.extend_from_slice(options);
-    let o = run(&args);
-    assert!(o.status.success(), "{}", stderr(&o));
+    let o = succeeded(&args);
     (out, o)
 }
 
@@ -325,22 +329,20 @@ fn convert_keeps_order_winding_and_coordinates() {
         "v 0 0.1 0\nv 1 0 0\nv 0.3 1 0\nv 2 1 1e-300\nv 5 5 5\ns 1 0 2\ns 2 3\n",
     );
     let out = f.with_file_name("converted.off");
-    let o = run(&["convert", f.to_str().unwrap(), out.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    succeeded(&["convert", f.to_str().unwrap(), out.to_str().unwrap()]);
     assert_eq!(
         std::fs::read_to_string(&out).unwrap(),
         "OFF\n5 2 0\n0 0.1 0\n1 0 0\n0.3 1 0\n2 1 1e-300\n5 5 5\n3 1 0 2\n2 2 3\n"
     );
     // Back to .simplices: the same text as the input.
     let back = f.with_file_name("back.txt");
-    let o = run(&[
+    succeeded(&[
         "convert",
         out.to_str().unwrap(),
         back.to_str().unwrap(),
         "--format",
         "simplices",
     ]);
-    assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(
         std::fs::read_to_string(&back).unwrap(),
         std::fs::read_to_string(&f).unwrap()
@@ -380,13 +382,12 @@ fn convert_round_f32_rounds_for_stl_and_refuses_what_does_not_fit() {
         &["convert", off.to_str().unwrap(), stl.to_str().unwrap()],
         "not exactly a 32-bit float",
     );
-    let o = run(&[
+    succeeded(&[
         "convert",
         off.to_str().unwrap(),
         stl.to_str().unwrap(),
         "--round-f32",
     ]);
-    assert!(o.status.success(), "{}", stderr(&o));
     let back = topoplex::Complex::from_path(&stl).unwrap();
     let want: Vec<f64> = [0.1, 0.0, 0.0, 1.0, 0.3, 0.0, 0.0, 1.0, 0.7]
         .iter()
@@ -430,8 +431,7 @@ fn triangulate_fans_polygons_on_every_command_and_refuses_a_bent_quad() {
         &["convert", inp, &p("plain.off")],
         "polygon with 6 vertices is not a simplex",
     );
-    let o = run(&["convert", inp, &p("fan.obj"), "--triangulate"]);
-    assert!(o.status.success(), "{}", stderr(&o));
+    succeeded(&["convert", inp, &p("fan.obj"), "--triangulate"]);
     let text = std::fs::read_to_string(p("fan.obj")).unwrap();
     let faces: Vec<&str> = text
         .lines()
@@ -482,8 +482,7 @@ fn triangulate_fans_polygons_on_every_command_and_refuses_a_bent_quad() {
             "--triangulate",
         ],
     ] {
-        let o = run(&args);
-        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        succeeded(&args);
         let mut without = args.clone();
         without.retain(|a| *a != "--triangulate");
         refused(&without, "polygon with 6 vertices is not a simplex");
@@ -543,13 +542,12 @@ fn convert_census_marks_singularities_for_paraview() {
     //   1       4
     let f = temp_file("bowtie-census.simplices", "s 0 1 2\ns 2 3 4\n");
     let out = f.with_file_name("bowtie-census.vtk");
-    let o = run(&[
+    succeeded(&[
         "convert",
         f.to_str().unwrap(),
         out.to_str().unwrap(),
         "--census",
     ]);
-    assert!(o.status.success(), "{}", stderr(&o));
     let text = std::fs::read_to_string(&out).unwrap();
     assert!(
         text.contains("SCALARS non_manifold_vertex int 1\nLOOKUP_TABLE default\n0 0 1 0 0\n"),
@@ -667,8 +665,7 @@ fn thread_counts_outside_the_bound_are_refused() {
         assert_eq!(o.status.code(), Some(1), "{threads:?} {env:?}: {e}");
         assert!(e.contains(needle) && e.lines().count() == 1, "{e}");
     }
-    let o = run(&[&args[..], &["--threads", "256"]].concat());
-    assert!(o.status.success(), "{}", stderr(&o));
+    succeeded(&[&args[..], &["--threads", "256"]].concat());
 }
 
 /// A `.tpx` name on a named pipe or a directory is refused at once by every command that opens

@@ -1,9 +1,8 @@
 //! A byte cursor for readers of formats that mix text and binary blocks (VTK, Gmsh): tokens
 //! with their 1-based lines, whole lines, and raw bytes.
 
-use super::{ReadErrorKind, parse_integer, syntax};
-
-type Res<T> = Result<T, (u32, ReadErrorKind)>;
+use super::{parse_integer, syntax};
+use crate::io::Res;
 
 /// A byte cursor that tracks lines.
 pub(crate) struct Input<'a> {

@@ -42,6 +42,7 @@ use super::{
 };
 use crate::complex::table;
 use crate::complex::{Attribute, Location};
+use crate::io::Res;
 
 /// The attribute name of MEDIT references (meshio's).
 pub const REF: &str = "medit:ref";
@@ -60,8 +61,6 @@ enum Item {
     /// Other real number, ignored.
     Real,
 }
-
-type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
 struct Reader<'a> {
     t: Scanner<'a>,

@@ -353,6 +353,28 @@ fn read_binary_capable(path: &Path, ext: &str) -> Result<RawInput, ReadError> {
 // ---------------------------------------------------------------------------------------------
 // Helpers shared by the readers.
 
+/// A reader's result: an error carries the line it names.
+pub(crate) type Res<T> = Result<T, (u32, ReadErrorKind)>;
+
+/// A format's type codes of the four simplices (vertex, edge, triangle, tetrahedron), one
+/// table that both the writer (size to code) and the reader (code to size) use.
+pub(crate) struct SimplexCodes(pub(crate) [i64; 4]);
+
+impl SimplexCodes {
+    /// The code of a simplex of `len` vertices: the tetrahedron's for any size outside 1..=3.
+    pub(crate) fn of_len(&self, len: usize) -> i64 {
+        match len {
+            1..=3 => self.0[len - 1],
+            _ => self.0[3],
+        }
+    }
+
+    /// The vertex count of the simplex whose code is `code`, if it is one of the four.
+    pub(crate) fn len_of(&self, code: i64) -> Option<usize> {
+        self.0.iter().position(|&c| c == code).map(|i| i + 1)
+    }
+}
+
 /// Shorthand for a syntax error.
 pub(crate) fn syntax(msg: impl Into<String>) -> ReadErrorKind {
     ReadErrorKind::Syntax(msg.into())

@@ -46,34 +46,27 @@ use super::write::{check_fits, push_f64, vertex_count};
 use super::{Coords, RawInput, ReadErrorKind, echo, no_room, parse_integer, syntax};
 use super::{Float, parse_real};
 use crate::complex::{Attribute, LabelName, Location, Values, table};
+use crate::io::{Res, SimplexCodes};
 
 mod data;
 pub(crate) use data::holds as holds_data;
 
-type Res<T> = Result<T, (u32, ReadErrorKind)>;
+/// Gmsh's element types of the four simplices.
+const ELEMENT_TYPES: SimplexCodes = SimplexCodes([15, 1, 2, 4]);
 
 /// Gmsh's element type of a simplex with `len` vertices.
 fn element_type(len: usize) -> i32 {
-    match len {
-        1 => 15,
-        2 => 1,
-        3 => 2,
-        _ => 4,
-    }
+    ELEMENT_TYPES.of_len(len) as i32
 }
 
 /// The vertex count of a simplex element type, or the type's name for refusals.
 fn simplex_len(t: i64) -> Result<usize, String> {
-    Ok(match t {
-        15 => 1,
-        1 => 2,
-        2 => 3,
-        4 => 4,
-        3 => return Err("quadrangle".into()),
-        5 => return Err("hexahedron".into()),
-        6 => return Err("prism".into()),
-        7 => return Err("pyramid".into()),
-        _ => return Err(format!("type {t}")),
+    ELEMENT_TYPES.len_of(t).ok_or_else(|| match t {
+        3 => "quadrangle".into(),
+        5 => "hexahedron".into(),
+        6 => "prism".into(),
+        7 => "pyramid".into(),
+        _ => format!("type {t}"),
     })
 }
 

@@ -47,6 +47,7 @@ use super::{
 };
 use crate::complex::attributes::MAX_COMPONENTS;
 use crate::complex::{Attribute, Location, Values, table};
+use crate::io::Res;
 
 /// The prefixes of an OFF header keyword.
 #[derive(Debug, Default, Clone, Copy)]
@@ -136,8 +137,6 @@ pub(crate) fn parse_keeping(text: &str, polygons: bool) -> Result<RawInput, (u32
     }
     Ok(raw)
 }
-
-pub(super) type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
 /// The next token, or an "ends early" error with the given message.
 fn next_or<'a>(t: &mut Scanner<'a>, msg: impl FnOnce() -> String) -> Res<(&'a str, u32)> {
@@ -802,56 +801,69 @@ mod tests {
         assert_eq!(r.simplex_count(), 0);
     }
 
+    /// The header's prefixes decide how many numbers a vertex line has and which of them are
+    /// coordinates: C (colour) and N (normal) columns are skipped, 4 adds one coordinate, n
+    /// reads the dimension, 4n adds a homogeneous one; each case's coordinates and faces.
     #[test]
-    fn coff() {
-        let r = ok("COFF\n3 1 0\n0 0 0 1 0 0 1\n1 0 0 0 1 0 1\n0 1 0 0 0 1 0.5\n3 0 1 2\n");
-        assert_eq!(
-            r.coords.clone().unwrap().data,
-            [0., 0., 0., 1., 0., 0., 0., 1., 0.]
+    fn header_prefixes_decide_which_numbers_are_coordinates() {
+        // (case, text, coordinates per vertex, coordinates, faces)
+        type Case = (
+            &'static str,
+            &'static str,
+            usize,
+            &'static [f64],
+            &'static [&'static [u32]],
         );
-        assert_eq!(simplices(&r), [[0, 1, 2]]);
-    }
-
-    #[test]
-    fn noff() {
-        let r = ok("NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n");
-        assert_eq!(
-            r.coords.clone().unwrap().data,
-            [0., 0., 0., 1., 0., 0., 0., 1., 0.]
-        );
-    }
-
-    #[test]
-    fn four_off() {
-        let r = ok("4OFF\n2 1 0\n0 0 0 1\n1 2 3 1\n2 0 1\n");
-        let c = r.coords.clone().unwrap();
-        assert_eq!(c.dim, 4);
-        assert_eq!(c.data, [0., 0., 0., 1., 1., 2., 3., 1.]);
-        assert_eq!(simplices(&r), [[0, 1]]);
-    }
-
-    #[test]
-    fn n_off_dim_5() {
-        let r = ok("nOFF\n5\n2 1 0\n1 2 3 4 5\n6 7 8 9 10\n2 1 0\n");
-        let c = r.coords.clone().unwrap();
-        assert_eq!(c.dim, 5);
-        assert_eq!(c.data, [1., 2., 3., 4., 5., 6., 7., 8., 9., 10.]);
-        assert_eq!(simplices(&r), [[1, 0]]);
-    }
-
-    #[test]
-    fn four_n_off_has_homogeneous_component() {
-        let r = ok("4nOFF 2\n1 0 0\n1 2 1\n");
-        let c = r.coords.clone().unwrap();
-        assert_eq!(c.dim, 3);
-        assert_eq!(c.data, [1., 2., 1.]);
-    }
-
-    #[test]
-    fn n_off_normals_have_vertex_dimension() {
-        // 2 coordinates, 2 normal components.
-        let r = ok("NnOFF 2\n2 1 0\n0 0 0 1\n1 0 0 1\n2 0 1\n");
-        assert_eq!(r.coords.clone().unwrap().data, [0., 0., 1., 0.]);
+        let cases: [Case; 6] = [
+            (
+                "COFF",
+                "COFF\n3 1 0\n0 0 0 1 0 0 1\n1 0 0 0 1 0 1\n0 1 0 0 0 1 0.5\n3 0 1 2\n",
+                3,
+                &[0., 0., 0., 1., 0., 0., 0., 1., 0.],
+                &[&[0, 1, 2]],
+            ),
+            (
+                "NOFF",
+                "NOFF\n3 1 0\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n",
+                3,
+                &[0., 0., 0., 1., 0., 0., 0., 1., 0.],
+                &[&[0, 1, 2]],
+            ),
+            (
+                "4OFF",
+                "4OFF\n2 1 0\n0 0 0 1\n1 2 3 1\n2 0 1\n",
+                4,
+                &[0., 0., 0., 1., 1., 2., 3., 1.],
+                &[&[0, 1]],
+            ),
+            (
+                "nOFF of dimension 5",
+                "nOFF\n5\n2 1 0\n1 2 3 4 5\n6 7 8 9 10\n2 1 0\n",
+                5,
+                &[1., 2., 3., 4., 5., 6., 7., 8., 9., 10.],
+                &[&[1, 0]],
+            ),
+            (
+                "4nOFF: a homogeneous component",
+                "4nOFF 2\n1 0 0\n1 2 1\n",
+                3,
+                &[1., 2., 1.],
+                &[],
+            ),
+            (
+                "NnOFF: normals of the vertex dimension (2 coordinates, 2 normal components)",
+                "NnOFF 2\n2 1 0\n0 0 0 1\n1 0 0 1\n2 0 1\n",
+                2,
+                &[0., 0., 1., 0.],
+                &[&[0, 1]],
+            ),
+        ];
+        for (case, text, dim, data, faces) in cases {
+            let r = parse(text).unwrap_or_else(|e| panic!("{case}: {e:?}"));
+            let c = r.coords.as_ref().unwrap();
+            assert_eq!((c.dim, &c.data[..]), (dim, data), "{case}");
+            assert_eq!(simplices(&r), faces, "{case}");
+        }
     }
 
     #[test]

@@ -49,8 +49,7 @@ use super::{
 };
 use crate::complex::table;
 use crate::complex::{Attribute, LabelName, Location};
-
-type Res<T> = Result<T, (u32, ReadErrorKind)>;
+use crate::io::Res;
 
 /// Corners welded as they come: each distinct corner (by its bits) gets the next id.
 struct Welder {

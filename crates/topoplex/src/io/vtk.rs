@@ -47,38 +47,31 @@ use super::{
 use super::{Float, parse_real};
 use crate::complex::attributes::MAX_COMPONENTS;
 use crate::complex::{Attribute, Location, Values, table};
+use crate::io::{Res, SimplexCodes};
 
-type Res<T> = Result<T, (u32, ReadErrorKind)>;
+/// VTK's cell types of the four simplices.
+const CELL_TYPES: SimplexCodes = SimplexCodes([1, 3, 5, 10]);
 
 /// VTK's cell type of a simplex with `len` vertices.
 fn cell_type(len: usize) -> u8 {
-    match len {
-        1 => 1,
-        2 => 3,
-        3 => 5,
-        _ => 10,
-    }
+    CELL_TYPES.of_len(len) as u8
 }
 
 /// The number of vertices of a simplex cell type, or the type's name for refusals.
 fn simplex_len(t: i64) -> Result<usize, &'static str> {
-    Ok(match t {
-        1 => 1,
-        3 => 2,
-        5 => 3,
-        10 => 4,
-        2 => return Err("poly-vertex"),
-        4 => return Err("poly-line"),
-        6 => return Err("triangle strip"),
-        7 => return Err("polygon"),
-        8 => return Err("pixel"),
-        9 => return Err("quad"),
-        11 => return Err("voxel"),
-        12 => return Err("hexahedron"),
-        13 => return Err("wedge"),
-        14 => return Err("pyramid"),
-        21..=37 => return Err("quadratic or higher-order cell"),
-        _ => return Err("unknown type"),
+    CELL_TYPES.len_of(t).ok_or(match t {
+        2 => "poly-vertex",
+        4 => "poly-line",
+        6 => "triangle strip",
+        7 => "polygon",
+        8 => "pixel",
+        9 => "quad",
+        11 => "voxel",
+        12 => "hexahedron",
+        13 => "wedge",
+        14 => "pyramid",
+        21..=37 => "quadratic or higher-order cell",
+        _ => "unknown type",
     })
 }
 

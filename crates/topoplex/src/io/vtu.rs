@@ -45,6 +45,7 @@ use super::{Coords, RawInput, ReadErrorKind, echo, no_room, syntax};
 use crate::complex::table::{self, headroom};
 use crate::complex::{Location, Values};
 use crate::error::caught_quietly;
+use crate::io::Res;
 
 /// vtkio's parse peak per byte of file, probed before it starts: 5.9 measured on ASCII data
 /// arrays of short lines (it holds the file, each array's text as a string and the typed
@@ -52,8 +53,6 @@ use crate::error::caught_quietly;
 /// ASCII and binary arrays still comes here), 2.9 on base64 binary ones (scripts/read-peak.sh,
 /// docs/benchmarks.md "Reading").
 const VTKIO_PEAK_PER_BYTE: usize = 6;
-
-type Res<T> = Result<T, (u32, ReadErrorKind)>;
 
 fn err(msg: impl Into<String>) -> (u32, ReadErrorKind) {
     (0, syntax(msg))

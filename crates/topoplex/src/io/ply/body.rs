@@ -14,8 +14,7 @@ use super::super::{
 use super::id;
 use crate::complex::table;
 use crate::complex::{Attribute, Location, ValueType, Values};
-
-type Res<T> = Result<T, (u32, ReadErrorKind)>;
+use crate::io::Res;
 
 /// Whether `t` is a number as the crate's data-line grammar has it.
 fn is_number(t: &[u8]) -> bool {

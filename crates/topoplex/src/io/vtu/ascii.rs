@@ -17,8 +17,7 @@ use super::super::{Float, parse_real};
 use super::super::{check_integer, parse_count, parse_f64, parse_id};
 use super::data::{self, Data};
 use crate::complex::{Location, table};
-
-type Res<T> = Result<T, (u32, ReadErrorKind)>;
+use crate::io::Res;
 
 /// What [`parse`] did with a file.
 pub(super) enum Taken {
