@@ -643,7 +643,8 @@ pub(crate) fn headroom_for(items: usize, bytes: usize) -> Result<(), usize> {
     headroom(bytes)
 }
 
-/// Appends `n` copies of `x` to `v` on several threads (the pages are touched in parallel);
+/// Appends `n` copies of `x` to `v`, on several threads when `n` reaches the split threshold
+/// (the pages are then touched in parallel);
 /// the capacity must be reserved already (checked: false, nothing appended, when it is not).
 pub(crate) fn extend_filled<T: Copy + Send + Sync>(v: &mut Vec<T>, n: usize, x: T) -> bool {
     if v.capacity() - v.len() < n {
@@ -658,8 +659,9 @@ pub(crate) fn extend_filled<T: Copy + Send + Sync>(v: &mut Vec<T>, n: usize, x: 
     true
 }
 
-/// Appends `f(i)` for `i` in `0..n` to `v` on several threads; the capacity must be reserved
-/// already (checked: false, nothing appended, when it is not).
+/// Appends `f(i)` for `i` in `0..n` to `v`, on several threads when `n` reaches the split
+/// threshold; the capacity must be reserved already (checked: false, nothing appended, when it
+/// is not).
 pub(crate) fn extend_with<T: Send>(
     v: &mut Vec<T>,
     n: usize,
