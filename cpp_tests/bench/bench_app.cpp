@@ -10,7 +10,8 @@
 //   load     read the file into the application's mesh (Topoplex: Live::from_file, which reads
 //            a plain mesh file straight into the live complex)
 //   smooth   10 rounds of Laplacian smoothing: every vertex to the mean of its one-ring, the new
-//            positions written back into the mesh after each round
+//            positions written back into the mesh after each round (Topoplex: the one-rings
+//            by MeshView::for_each_ring, the pass over every vertex's ring)
 //   stats    valence histogram, boundary and non-manifold edge counts
 //   ff       every face's neighbour faces, summed into per-face data (one pass over all faces:
 //            OpenMesh's ff_range per face; Topoplex: the facet adjacency built on request,
@@ -140,8 +141,9 @@ Result run_openmesh(const char *in, const char *out) {
   return r;
 }
 
-// One round of Laplacian smoothing into `next`: every live vertex to the mean of its one-ring.
-// D coordinates a vertex, known when compiling (D = 0: m.coord_dim() at run time).
+// One round of Laplacian smoothing into `next`: every live vertex to the mean of its one-ring
+// (MeshView::for_each_ring, the whole-mesh pass over one-rings). D coordinates a vertex, known
+// when compiling (D = 0: m.coord_dim() at run time).
 template <std::size_t D>
 void smooth_round(const topoplex::MeshView &m, topoplex::NeighbourMarks &marks, std::vector<double> &next) {
   const std::size_t dim = D ? D : m.coord_dim();
@@ -149,18 +151,16 @@ void smooth_round(const topoplex::MeshView &m, topoplex::NeighbourMarks &marks, 
   std::array<double, D ? D : 1> fixed{};
   std::vector<double> dynamic(D ? 0 : dim);
   double *sum = D ? fixed.data() : dynamic.data();
-  for (std::uint32_t v = 0; v < m.vertex_slots(); ++v) {
-    if (!m.is_vertex(v)) continue;
+  m.for_each_ring(marks, [&](std::uint32_t v, topoplex::SimplexView ring) {
     for (std::size_t k = 0; k < dim; ++k) sum[k] = 0.0;
-    std::size_t n = 0;
-    m.for_each_neighbour(v, marks, [&](std::uint32_t w) {
+    for (std::uint32_t w : ring) {
       const double *c = m.coords(w);
       for (std::size_t k = 0; k < dim; ++k) sum[k] += c[k];
-      ++n;
-    });
+    }
     const double *own = m.coords(v);
+    const std::size_t n = ring.size();
     for (std::size_t k = 0; k < dim; ++k) next[v * dim + k] = n == 0 ? own[k] : sum[k] / double(n);
-  }
+  });
 }
 
 // `kept`: the mesh keeps its facet adjacency from load on (Live::keep_adjacency, as OpenMesh

@@ -88,6 +88,18 @@ void check(const topoplex::Live &live, std::mt19937 &rng) {
 
   Ids ring;
   topoplex::NeighbourMarks marks;
+  // The batch one-ring pass: every live vertex once, ascending, its ring as the oracle's.
+  std::vector<std::uint32_t> ring_of;
+  std::vector<Ids> rings(m.vertex_slots());
+  m.for_each_ring(marks, [&](std::uint32_t v, topoplex::SimplexView r) {
+    ring_of.push_back(v);
+    rings[v] = sorted(r.to_vector());
+    EXPECT_EQ(rings[v].size(), r.size()) << "a neighbour named twice in the ring of " << v;
+  });
+  Ids live_slots;
+  for (std::uint32_t v = 0; v < m.vertex_slots(); ++v)
+    if (o.alive[v]) live_slots.push_back(v);
+  EXPECT_EQ(ring_of, live_slots) << "for_each_ring visits every live vertex once, ascending";
   for (std::uint32_t v = 0; v < m.vertex_slots(); ++v) {
     ASSERT_EQ(m.is_vertex(v), bool(o.alive[v]));
     if (!o.alive[v]) continue;
@@ -109,6 +121,7 @@ void check(const topoplex::Live &live, std::mt19937 &rng) {
     Ids marked;  // each once, in no order
     m.for_each_neighbour(v, marks, [&](std::uint32_t w) { marked.push_back(w); });
     EXPECT_EQ(sorted(marked), ring) << "one-ring of " << v << " by marks";
+    EXPECT_EQ(rings[v], ring) << "one-ring of " << v << " by for_each_ring";
     Ids by_call;
     for (auto r : live.relation({v}, 0)) by_call.push_back(r[0]);
     EXPECT_EQ(ring, by_call);

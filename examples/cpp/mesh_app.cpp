@@ -27,21 +27,19 @@ int main(int argc, char **argv) {
     const std::uint32_t slots = mesh.vertex_slots();
 
     // Smoothing: each vertex moves to the mean of its one-ring, read from the mesh's own
-    // coordinates; the new ones go back into the mesh after each round.
+    // coordinates; the new ones go back into the mesh after each round. for_each_ring is the
+    // pass over every vertex's one-ring (for one vertex: m.for_each_neighbour(v, marks, f)).
     std::vector<double> next(std::size_t(slots) * dim), ring_sum(dim);
     topoplex::NeighbourMarks marks;  // one-ring scratch, reused: no allocation once warm
     for (int round = 0; round < 10; ++round) {
       const topoplex::MeshView m = mesh.mesh();
-      for (std::uint32_t v = 0; v < slots; ++v) {
-        if (!m.is_vertex(v)) continue;
+      m.for_each_ring(marks, [&](std::uint32_t v, topoplex::SimplexView ring) {
         std::fill(ring_sum.begin(), ring_sum.end(), 0.0);
-        std::size_t n = 0;
-        m.for_each_neighbour(v, marks, [&](std::uint32_t w) {
+        for (std::uint32_t w : ring)
           for (std::size_t k = 0; k < dim; ++k) ring_sum[k] += m.coords(w)[k];
-          ++n;
-        });
-        for (std::size_t k = 0; k < dim; ++k) next[v * dim + k] = n == 0 ? m.coords(v)[k] : ring_sum[k] / n;
-      }
+        for (std::size_t k = 0; k < dim; ++k)
+          next[v * dim + k] = ring.size() == 0 ? m.coords(v)[k] : ring_sum[k] / ring.size();
+      });
       mesh.set_all_coords(next.data(), next.size());  // in place: m stays valid
     }
 
