@@ -1530,8 +1530,9 @@ class MeshView {
    * (a SimplexView of ids; empty for an isolated vertex). The batch form of for_each_neighbour
    * for passes over every vertex (smoothing, valences, vertex normals): it reads ahead of the
    * vertex it is at (the rows of later vertices' tops, then their vertices' stamps and
-   * coordinates), so on meshes larger than the caches it runs faster than a loop calling
-   * for_each_neighbour per vertex. f may read the mesh and write coordinates through
+   * coordinates) on meshes larger than the caches (from 2^17 vertex slots), where it runs
+   * faster than a loop calling for_each_neighbour per vertex, and costs what that loop costs
+   * below. f may read the mesh and write coordinates through
    * Live::set_coords (in place: the view stays valid), not edit the topology. O(Σ_v d·k_v),
    * no allocation once `marks` has grown to vertex_slots() and the largest ring. */
   template <class F>
@@ -1539,15 +1540,21 @@ class MeshView {
     std::vector<std::uint32_t> &ring = marks.order_;
     std::uint32_t *seen = marks.begin(a_.vertex_slots);  // grown once: the pointer holds
     const double *coords = a_.coord_dim ? a_.coords : nullptr;
+    const bool ahead = a_.vertex_slots >= kReadAheadFrom;
     for (std::uint32_t v = 0; v < a_.vertex_slots; ++v) {
-      read_ahead(v, [&](std::uint32_t w) {
+      if (ahead) read_ahead(v, [&](std::uint32_t w) {
         prefetch(seen + w);
         if (coords) prefetch(coords + std::size_t(w) * a_.coord_dim);
       });
       if (!a_.alive[v]) continue;
-      ring.clear();
-      for_each_neighbour(v, marks, [&](std::uint32_t w) { ring.push_back(w); });
-      f(v, SimplexView(ring.data(), ring.size()));
+      // Room for every candidate first, so that the ring is written without a check per id.
+      std::size_t room = 0;
+      for (TopRef t : star(v)) room += t.dim();
+      if (ring.size() < room) ring.resize(room);
+      std::uint32_t *out = ring.data();
+      std::uint32_t n = 0;
+      for_each_neighbour(v, marks, [&](std::uint32_t w) { out[n++] = w; });
+      f(v, SimplexView(out, n));
     }
   }
   /* R_{0,0}(v): the vertices sharing an edge with v, ascending, into `out` (reused). O(d·k_v +
@@ -1730,8 +1737,9 @@ class MeshView {
     std::uint32_t *count = marks.count_.data();
     std::vector<std::uint32_t> &order = marks.order_;
     std::uint32_t *seen = marks.begin(a_.vertex_slots);  // grown once: the pointer holds
+    const bool ahead = a_.vertex_slots >= kReadAheadFrom;
     for (std::uint32_t a = 0; a < a_.vertex_slots; ++a) {
-      read_ahead(a, [&](std::uint32_t w) {
+      if (ahead) read_ahead(a, [&](std::uint32_t w) {
         prefetch(seen + w);
         prefetch(count + w);
       });
@@ -1889,8 +1897,11 @@ class MeshView {
    * then, once those rows have arrived, what the rows of slot v + kRingAhead name (stamps,
    * counts, coordinates). A star's rows and its vertices' data are scattered reads; without
    * the hints the loop waits for them one vertex at a time (on a 1.2M-triangle mesh these
-   * passes ran 1.4–2x faster with them; docs/benchmarks.md, "The mesh"). */
-  static constexpr std::uint32_t kRowsAhead = 8, kRingAhead = 4;
+   * passes ran 1.4–2x faster with them; docs/benchmarks.md, "The mesh"). Only from
+   * kReadAheadFrom vertex slots (a mesh's arrays then outgrow the caches, about 90 bytes a
+   * vertex for a triangle mesh): below it every read hits the cache and reading the stars a
+   * second time only costs (up to 2x on 6.5k vertices). */
+  static constexpr std::uint32_t kRowsAhead = 8, kRingAhead = 4, kReadAheadFrom = 1u << 17;
   static void prefetch(const void *p) noexcept {
     // An asm statement where it can be one: GCC 12's mod/ref analysis counts __builtin_prefetch
     // as no effect at all, takes read_ahead for a pure call and deletes it whole. A prefetch
