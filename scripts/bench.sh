@@ -102,7 +102,8 @@ else
   # cpp_tests/bench is a subdirectory of cpp_tests (it uses the parent's Topoplex package and
   # CGAL sample data); configure the parent and build only the three programs.
   nice -n 10 cmake -S "$root/cpp_tests" -B "$build/cpp_tests" -G Ninja \
-    -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release -DTOPOPLEX_SANITIZE=OFF >/dev/null
+    -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release -DTOPOPLEX_SANITIZE=OFF \
+    -DTOPOPLEX_BENCH_OPT=-O2 >/dev/null
   built=()
   for p in "${programs[@]}"; do
     if nice -n 10 cmake --build "$build/cpp_tests" --target "$p"; then

@@ -50,16 +50,18 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # at a time, one core) run while the instrumented configuration builds on the others: the two
 # share nothing but the installed prefix, which neither writes. Each check runs as before; only
 # the order of the log changes (the uninstrumented pass's log is printed once it is done).
-# The peer cross-checks (cpp_tests/peers, cpp_tests/decompose: CGAL, GUDHI, OpenMesh; no -Werror,
-# so their compilation checks nothing the sanitizer pass's does not) are built and run in the
-# sanitizer pass only: the same assertions under ASan and UBSan, their CGAL-heavy sources compiled
-# once. Everything else is built in both passes; the adapters and examples (-Werror) must compile
-# cleanly without the sanitizer flags too.
+# The peer cross-checks and the adapters' tests (cpp_tests/peers, decompose, adapters: CGAL, GUDHI,
+# OpenMesh) are built and run in the sanitizer pass only: the same assertions under ASan and
+# UBSan, their CGAL-heavy sources compiled once (both passes compile without optimisation, so
+# -Werror sees the same code either way). Everything else is built in both passes. The
+# benchmark programs (uninstrumented pass only) run once each as smoke tests: built with -O0,
+# which halves their compile time; scripts/bench.sh builds them with -O2 for timing.
 for sanitize in OFF ON; do
   peers=ON
   [ "$sanitize" = ON ] || peers=OFF
   cmake -S "$root/cpp_tests" -B "$work/tests-$sanitize" -G Ninja \
-    -DCMAKE_PREFIX_PATH="$prefix" -DTOPOPLEX_SANITIZE="$sanitize" -DTOPOPLEX_PEERS="$peers"
+    -DCMAKE_PREFIX_PATH="$prefix" -DTOPOPLEX_SANITIZE="$sanitize" -DTOPOPLEX_PEERS="$peers" \
+    -DTOPOPLEX_BENCH_OPT=-O0
 done
 
 echo "== cpp_tests (TOPOPLEX_SANITIZE=OFF): build"
@@ -95,4 +97,6 @@ if [ "$passed" != 0 ]; then
 fi
 [ "$built" = 0 ] || exit "$built"
 echo "== cpp_tests (TOPOPLEX_SANITIZE=ON): ctest"
-ctest --test-dir "$work/tests-ON" --output-on-failure
+# Nothing else runs by now: one test per core (outputs have distinct names; fixtures order the
+# tests that read another's output).
+ctest --test-dir "$work/tests-ON" --output-on-failure -j "$(nproc)"
