@@ -210,17 +210,7 @@ impl LiveComplex {
         most: usize,
         s: &mut Scratch,
     ) -> Option<usize> {
-        let n = self.star.len();
-        if s.stamp.len() < n {
-            s.stamp.resize(n, 0);
-            s.index.resize(n, 0);
-        }
-        if s.epoch >= u32::MAX - 2 {
-            s.stamp.iter_mut().for_each(|x| *x = 0);
-            s.epoch = 0;
-        }
-        s.epoch += 2;
-        let (tried, common) = (s.epoch - 1, s.epoch);
+        let (tried, common) = s.fresh_stamps(self.star.len());
         s.common.clear();
         let mut weight = 0;
         for &r in self.star[b as usize].iter() {
@@ -262,13 +252,9 @@ impl LiveComplex {
             }
         }
         for i in 0..found {
-            let w = s.common[i];
-            for &r in self.star[w as usize].iter() {
-                let t = self.top_raw(r);
-                if t.contains(&a) && !t.contains(&b) {
-                    let m = s.mask(t);
-                    s.ma.push(m);
-                }
+            for r in self.tops_at_a_only(s.common[i], a, b) {
+                let m = s.mask(self.top_raw(r));
+                s.ma.push(m);
             }
         }
         maximal(&mut s.ma);
@@ -279,18 +265,7 @@ impl LiveComplex {
     /// (those through b, from St(b), then those through a common vertex), added to the
     /// families, maximal words kept.
     fn skewed_cones(&self, a: u32, b: u32, found: usize, omega: u64, s: &mut Scratch) {
-        let mut open = std::mem::take(&mut s.open);
-        self.star_boundary(b, &mut s.facets, &mut open);
-        for (&r, &open) in self.star[b as usize].iter().zip(&open) {
-            let t = self.top_raw(r);
-            let m = s.mask(t);
-            for (j, &x) in t.iter().enumerate() {
-                if open >> j & 1 == 1 && (x == a || !t.contains(&a)) {
-                    s.mb.push(s.without(m, x) | omega);
-                }
-            }
-        }
-        s.open = open;
+        self.cones_at_b(a, b, omega, s);
         for &r in self.star[b as usize].iter() {
             let t = self.top_raw(r);
             if t.contains(&a) {
@@ -298,16 +273,21 @@ impl LiveComplex {
             }
         }
         for i in 0..found {
-            let w = s.common[i];
-            for &r in self.star[w as usize].iter() {
-                let t = self.top_raw(r);
-                if t.contains(&a) && !t.contains(&b) {
-                    self.cones_at_a(r, a, b, omega, s);
-                }
+            for r in self.tops_at_a_only(s.common[i], a, b) {
+                self.cones_at_a(r, a, b, omega, s);
             }
         }
         maximal(&mut s.ma);
         maximal(&mut s.mb);
+    }
+
+    /// The tops of St(w) through a but not b (St(a)'s tops away from b, found from a common
+    /// vertex w).
+    fn tops_at_a_only(&self, w: u32, a: u32, b: u32) -> impl Iterator<Item = u32> + '_ {
+        self.star[w as usize].iter().copied().filter(move |&r| {
+            let t = self.top_raw(r);
+            t.contains(&a) && !t.contains(&b)
+        })
     }
 
     /// The cones over the open facets f ∋ a of top `r` ∈ St(a) that hold b or a common vertex
@@ -425,6 +405,14 @@ impl LiveComplex {
                 }
             }
         }
+        s.open = open;
+        self.cones_at_b(a, b, omega, s);
+    }
+
+    /// The cones ω ∗ (f \ {b}) over the boundary facets f at b that do not hold a, as words
+    /// added to F_b.
+    fn cones_at_b(&self, a: u32, b: u32, omega: u64, s: &mut Scratch) {
+        let mut open = std::mem::take(&mut s.open);
         self.star_boundary(b, &mut s.facets, &mut open);
         for (&r, &open) in self.star[b as usize].iter().zip(&open) {
             let t = self.top_raw(r);
