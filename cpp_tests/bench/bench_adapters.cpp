@@ -100,113 +100,6 @@ std::string uncommented(const std::string &given, const std::string &ext) {
   return path;
 }
 
-// One peer's mesh type as the benchmarks below use it: its name in benchmark names, its own
-// reader and writer (17 digits), the size a benchmark reads back so that nothing is optimised
-// away, and the adapters to and from Topoplex.
-struct OpenMeshPeer {
-  using Mesh = OM;
-  static constexpr const char *name = "openmesh";
-  static bool read(const std::string &path, Mesh &m) { return OpenMesh::IO::read_mesh(m, path); }
-  static bool write(const Mesh &m, const std::string &path) {
-    OpenMesh::IO::Options o;
-    return OpenMesh::IO::write_mesh(m, path, o, 17);
-  }
-  static std::size_t size(const Mesh &m) { return m.n_faces(); }
-  static topoplex::Complex to_tpx(const Mesh &m) { return topoplex::openmesh::to_complex(m); }
-  static Mesh from_tpx(const topoplex::Complex &c) { return topoplex::openmesh::to_openmesh<Mesh>(c); }
-};
-
-struct SurfaceMeshPeer {
-  using Mesh = SM;
-  static constexpr const char *name = "cgal_sm";
-  static bool read(const std::string &path, Mesh &m) { return CGAL::IO::read_polygon_mesh(path, m); }
-  static bool write(const Mesh &m, const std::string &path) {
-    return CGAL::IO::write_polygon_mesh(path, m, CGAL::parameters::stream_precision(17));
-  }
-  static std::size_t size(const Mesh &m) { return m.num_faces(); }
-  static topoplex::Complex to_tpx(const Mesh &m) { return topoplex::cgal::to_complex(m); }
-  static Mesh from_tpx(const topoplex::Complex &c) { return topoplex::cgal::to_surface_mesh<Mesh>(c); }
-};
-
-// A Mesh_3 triangulation: read and written as MEDIT (no adapter from Topoplex; that is the
-// C3t3's, complex_to_c3t3).
-struct TriangulationPeer {
-  using Mesh = MTr;
-  static constexpr const char *name = "cgal_t3";
-  static bool read(const std::string &path, Mesh &t) {
-    std::ifstream in(path);
-    return CGAL::IO::read_MEDIT(in, t);
-  }
-  static bool write(const Mesh &t, const std::string &path) {
-    std::ofstream out(path);
-    out.precision(17);
-    CGAL::IO::write_MEDIT(out, t);
-    return bool(out);
-  }
-  static std::size_t size(const Mesh &t) { return t.number_of_vertices(); }
-  static topoplex::Complex to_tpx(const Mesh &t) { return topoplex::cgal::triangulation_to_complex(t); }
-};
-
-// read/<peer>: the file at `path` by the peer's own reader. `items` sets the counters.
-template <class P, class Items>
-void read_op(const std::string &path, const Items &items) {
-  reg(std::string("read/") + P::name, [=](benchmark::State &s) {
-    for (auto _ : s) {
-      typename P::Mesh m;
-      if (!P::read(path, m)) return fail(s, std::string(P::name) + " cannot read " + path);
-      benchmark::DoNotOptimize(P::size(m));
-    }
-    items(s);
-  });
-}
-
-// to_tpx/<peer>: the peer's mesh `*m` (alive as long as the benchmarks) -> Complex in memory.
-template <class P, class Items>
-void to_tpx_op(const typename P::Mesh *m, const Items &items) {
-  reg(std::string("to_tpx/") + P::name, [=](benchmark::State &s) {
-    for (auto _ : s) benchmark::DoNotOptimize(P::to_tpx(*m).get());
-    items(s);
-  });
-}
-
-// from_tpx/<peer>: the Complex `*cx` -> the peer's mesh in memory.
-template <class P, class Items>
-void from_tpx_op(const topoplex::Complex *cx, const Items &items) {
-  reg(std::string("from_tpx/") + P::name, [=](benchmark::State &s) {
-    for (auto _ : s) {
-      typename P::Mesh m = P::from_tpx(*cx);
-      benchmark::DoNotOptimize(P::size(m));
-    }
-    items(s);
-  });
-}
-
-// to_tpx_file/<peer>: `*m` written to the scratch file `file` by the peer, read by Topoplex.
-template <class P, class Items>
-void to_tpx_file_op(const typename P::Mesh *m, const std::string &file, const Items &items) {
-  reg(std::string("to_tpx_file/") + P::name, [=](benchmark::State &s) {
-    for (auto _ : s) {
-      if (!P::write(*m, file)) return fail(s, std::string(P::name) + " cannot write " + file);
-      benchmark::DoNotOptimize(topoplex::Complex::from_file(file).get());
-    }
-    items(s);
-  });
-}
-
-// from_tpx_file/<peer>: `*cx` written to the scratch file `file` by Topoplex, read by the peer.
-template <class P, class Items>
-void from_tpx_file_op(const topoplex::Complex *cx, const std::string &file, const Items &items) {
-  reg(std::string("from_tpx_file/") + P::name, [=](benchmark::State &s) {
-    for (auto _ : s) {
-      cx->write(file);
-      typename P::Mesh m;
-      if (!P::read(file, m)) return fail(s, std::string(P::name) + " cannot read " + file);
-      benchmark::DoNotOptimize(P::size(m));
-    }
-    items(s);
-  });
-}
-
 void surface(const std::string &given) {
   static const std::string path = uncommented(given, "_input.off");
   // The inputs every op starts from, made once.
@@ -215,9 +108,9 @@ void surface(const std::string &given) {
   static std::unique_ptr<topoplex::Complex> cx;
   static std::unique_ptr<topoplex::Live> live;
   static std::unique_ptr<Graph> graph;
-  if (!OpenMeshPeer::read(path, om) || om.n_faces() == 0)
+  if (!OpenMesh::IO::read_mesh(om, path) || om.n_faces() == 0)
     throw std::runtime_error("OpenMesh cannot read " + path);
-  if (!SurfaceMeshPeer::read(path, sm)) throw std::runtime_error("CGAL cannot read " + path);
+  if (!CGAL::IO::read_polygon_mesh(path, sm)) throw std::runtime_error("CGAL cannot read " + path);
   cx = std::make_unique<topoplex::Complex>(topoplex::Complex::from_file(path));
   live = std::make_unique<topoplex::Live>(*cx);
   graph = std::make_unique<Graph>(*live);
@@ -228,22 +121,84 @@ void surface(const std::string &given) {
     s.SetItemsProcessed(int64_t(s.iterations() * faces));
   };
 
-  read_op<OpenMeshPeer>(path, items);
-  read_op<SurfaceMeshPeer>(path, items);
+  reg("read/openmesh", [=](benchmark::State &s) {
+    for (auto _ : s) {
+      OM m;
+      if (!OpenMesh::IO::read_mesh(m, path)) return fail(s, "read_mesh failed");
+      benchmark::DoNotOptimize(m.n_faces());
+    }
+    items(s);
+  });
+  reg("read/cgal_sm", [=](benchmark::State &s) {
+    for (auto _ : s) {
+      SM m;
+      if (!CGAL::IO::read_polygon_mesh(path, m)) return fail(s, "read_polygon_mesh failed");
+      benchmark::DoNotOptimize(m.num_faces());
+    }
+    items(s);
+  });
   reg("read/tpx", [=](benchmark::State &s) {
     for (auto _ : s) benchmark::DoNotOptimize(topoplex::Complex::from_file(path).get());
     items(s);
   });
 
-  to_tpx_op<OpenMeshPeer>(&om, items);
-  from_tpx_op<OpenMeshPeer>(cx.get(), items);
-  to_tpx_file_op<OpenMeshPeer>(&om, off, items);
-  from_tpx_file_op<OpenMeshPeer>(cx.get(), off, items);
+  reg("to_tpx/openmesh", [=](benchmark::State &s) {
+    for (auto _ : s) benchmark::DoNotOptimize(topoplex::openmesh::to_complex(om).get());
+    items(s);
+  });
+  reg("from_tpx/openmesh", [=](benchmark::State &s) {
+    for (auto _ : s) {
+      OM m = topoplex::openmesh::to_openmesh<OM>(*cx);
+      benchmark::DoNotOptimize(m.n_faces());
+    }
+    items(s);
+  });
+  reg("to_tpx_file/openmesh", [=](benchmark::State &s) {
+    for (auto _ : s) {
+      OpenMesh::IO::Options o;
+      if (!OpenMesh::IO::write_mesh(om, off, o, 17)) return fail(s, "write_mesh failed");
+      benchmark::DoNotOptimize(topoplex::Complex::from_file(off).get());
+    }
+    items(s);
+  });
+  reg("from_tpx_file/openmesh", [=](benchmark::State &s) {
+    for (auto _ : s) {
+      cx->write(off);
+      OM m;
+      if (!OpenMesh::IO::read_mesh(m, off)) return fail(s, "read_mesh failed");
+      benchmark::DoNotOptimize(m.n_faces());
+    }
+    items(s);
+  });
 
-  to_tpx_op<SurfaceMeshPeer>(&sm, items);
-  from_tpx_op<SurfaceMeshPeer>(cx.get(), items);
-  to_tpx_file_op<SurfaceMeshPeer>(&sm, off, items);
-  from_tpx_file_op<SurfaceMeshPeer>(cx.get(), off, items);
+  reg("to_tpx/cgal_sm", [=](benchmark::State &s) {
+    for (auto _ : s) benchmark::DoNotOptimize(topoplex::cgal::to_complex(sm).get());
+    items(s);
+  });
+  reg("from_tpx/cgal_sm", [=](benchmark::State &s) {
+    for (auto _ : s) {
+      SM m = topoplex::cgal::to_surface_mesh<SM>(*cx);
+      benchmark::DoNotOptimize(m.num_faces());
+    }
+    items(s);
+  });
+  reg("to_tpx_file/cgal_sm", [=](benchmark::State &s) {
+    for (auto _ : s) {
+      if (!CGAL::IO::write_polygon_mesh(off, sm, CGAL::parameters::stream_precision(17)))
+        return fail(s, "write_polygon_mesh failed");
+      benchmark::DoNotOptimize(topoplex::Complex::from_file(off).get());
+    }
+    items(s);
+  });
+  reg("from_tpx_file/cgal_sm", [=](benchmark::State &s) {
+    for (auto _ : s) {
+      cx->write(off);
+      SM m;
+      if (!CGAL::IO::read_polygon_mesh(off, m)) return fail(s, "read_polygon_mesh failed");
+      benchmark::DoNotOptimize(m.num_faces());
+    }
+    items(s);
+  });
 
   reg("graph/tpx", [=](benchmark::State &s) {
     for (auto _ : s) {
@@ -309,7 +264,10 @@ void tets(const std::string &given) {
   static C3t3 c3t3;
   static std::unique_ptr<topoplex::Complex> cx;
   static const std::string path = uncommented(given, "_input.mesh");
-  if (!TriangulationPeer::read(path, tr)) throw std::runtime_error("CGAL cannot read " + path);
+  {
+    std::ifstream in(path);
+    if (!CGAL::IO::read_MEDIT(in, tr)) throw std::runtime_error("CGAL cannot read " + path);
+  }
   c3t3.triangulation() = tr;
   c3t3.rescan_after_load_of_triangulation();
   cx = std::make_unique<topoplex::Complex>(topoplex::Complex::from_file(path));
@@ -319,17 +277,38 @@ void tets(const std::string &given) {
     s.counters["cells"] = cells;
     s.SetItemsProcessed(int64_t(s.iterations() * cells));
   };
-  read_op<TriangulationPeer>(path, items);
+  reg("read/cgal_t3", [=](benchmark::State &s) {
+    for (auto _ : s) {
+      MTr t;
+      std::ifstream in(path);
+      if (!CGAL::IO::read_MEDIT(in, t)) return fail(s, "read_MEDIT failed");
+      benchmark::DoNotOptimize(t.number_of_vertices());
+    }
+    items(s);
+  });
   reg("read/tpx_tets", [=](benchmark::State &s) {
     for (auto _ : s) benchmark::DoNotOptimize(topoplex::Complex::from_file(path).get());
     items(s);
   });
-  to_tpx_op<TriangulationPeer>(&tr, items);
+  reg("to_tpx/cgal_t3", [=](benchmark::State &s) {
+    for (auto _ : s) benchmark::DoNotOptimize(topoplex::cgal::triangulation_to_complex(tr).get());
+    items(s);
+  });
   reg("to_tpx/cgal_c3t3", [=](benchmark::State &s) {
     for (auto _ : s) benchmark::DoNotOptimize(topoplex::cgal::c3t3_to_complex(c3t3).get());
     items(s);
   });
-  to_tpx_file_op<TriangulationPeer>(&tr, mesh, items);
+  reg("to_tpx_file/cgal_t3", [=](benchmark::State &s) {
+    for (auto _ : s) {
+      {
+        std::ofstream out(mesh);
+        out.precision(17);
+        CGAL::IO::write_MEDIT(out, tr);
+      }
+      benchmark::DoNotOptimize(topoplex::Complex::from_file(mesh).get());
+    }
+    items(s);
+  });
 #ifdef TOPOPLEX_HAVE_COMPLEX_TO_C3T3
   reg("from_tpx/cgal_c3t3", [=](benchmark::State &s) {
     for (auto _ : s) {
@@ -345,7 +324,16 @@ void tets(const std::string &given) {
     items(s);
   });
 #endif
-  from_tpx_file_op<TriangulationPeer>(cx.get(), mesh, items);
+  reg("from_tpx_file/cgal_t3", [=](benchmark::State &s) {
+    for (auto _ : s) {
+      cx->write(mesh);
+      MTr t;
+      std::ifstream in(mesh);
+      if (!CGAL::IO::read_MEDIT(in, t)) return fail(s, "read_MEDIT failed");
+      benchmark::DoNotOptimize(t.number_of_vertices());
+    }
+    items(s);
+  });
 }
 
 }  // namespace
