@@ -71,6 +71,15 @@ void for_each_listed(const Complex &c, F &&f) {
   }
 }
 
+/* The by-value form of an adapter that fills a caller's object: an `M` default-built, filled
+ * by `fill`, returned. */
+template <class M, class Fill>
+M filled(Fill &&fill) {
+  M m;
+  fill(m);
+  return m;
+}
+
 /* Calls f(view) with the attribute's AttributeView of its stored type. */
 template <class F>
 void with_values(const Complex &c, const AttributeInfo &a, F &&f) {

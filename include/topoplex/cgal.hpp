@@ -250,9 +250,7 @@ void to_surface_mesh(const Complex &c, CGAL::Surface_mesh<P> &m,
 
 template <class SM>
 SM to_surface_mesh(const Complex &c, std::vector<Dropped> *dropped = nullptr) {
-  SM m;
-  to_surface_mesh(c, m, dropped);
-  return m;
+  return adapt::filled<SM>([&](SM &m) { to_surface_mesh(c, m, dropped); });
 }
 
 /* Part `p` (manifold_parts.hpp) as a Surface_mesh: local vertex i at its original vertex's
@@ -267,16 +265,12 @@ void part_to_surface_mesh(const SurfacePart &p, const std::vector<double> &xyz,
             typename SM::size_type(p.vertex_count() + p.face_count() + 2),
             typename SM::size_type(p.face_count()));
   for (std::uint32_t o : p.original_vertex) m.add_vertex(P(xyz[3 * o], xyz[3 * o + 1], xyz[3 * o + 2]));
-  detail::add_faces(m, p.triangles, [&](std::size_t f) {
-    return "face " + std::to_string(f) + " of surface part " + std::to_string(p.index);
-  });
+  detail::add_faces(m, p.triangles, [&](std::size_t f) { return p.face_name(f); });
 }
 
 template <class SM>
 SM part_to_surface_mesh(const SurfacePart &p, const std::vector<double> &xyz) {
-  SM m;
-  part_to_surface_mesh(p, xyz, m);
-  return m;
+  return adapt::filled<SM>([&](SM &m) { part_to_surface_mesh(p, xyz, m); });
 }
 
 /* The vertex coordinates, 3 per vertex of the vertex range (for SurfaceParts::gather_coords). */
@@ -344,9 +338,7 @@ void to_polyhedron(const Complex &c, Poly &poly, std::vector<Dropped> *dropped =
 
 template <class Poly>
 Poly to_polyhedron(const Complex &c, std::vector<Dropped> *dropped = nullptr) {
-  Poly p;
-  to_polyhedron(c, p, dropped);
-  return p;
+  return adapt::filled<Poly>([&](Poly &p) { to_polyhedron(c, p, dropped); });
 }
 
 }  // namespace cgal

@@ -664,6 +664,14 @@ SurfaceGraphVectorMap<GraphFace, T> get(const CGAL::dynamic_face_property_t<T> &
   return SurfaceGraphVectorMap<GraphFace, T>(g.face_count());
 }
 
+/* boost::property_map's answer for property `Tag`: the map `get` above hands out for it (read
+ * and written alike). */
+template <class Tag>
+struct PropertyMapOf {
+  using type = decltype(get(std::declval<Tag>(), std::declval<const SurfaceGraph &>()));
+  using const_type = type;
+};
+
 }  // namespace cgal
 }  // namespace topoplex
 
@@ -681,45 +689,29 @@ struct hash<topoplex::cgal::GraphEdge> {
 namespace boost {
 
 template <>
-struct property_map<topoplex::cgal::SurfaceGraph, boost::vertex_point_t> {
-  using type = topoplex::cgal::SurfaceGraphPointMap;
-  using const_type = type;
-};
+struct property_map<topoplex::cgal::SurfaceGraph, boost::vertex_point_t>
+    : topoplex::cgal::PropertyMapOf<boost::vertex_point_t> {};
 template <>
-struct property_map<topoplex::cgal::SurfaceGraph, boost::vertex_index_t> {
-  using type = topoplex::cgal::SurfaceGraphIndexMap<topoplex::cgal::GraphVertex>;
-  using const_type = type;
-};
+struct property_map<topoplex::cgal::SurfaceGraph, boost::vertex_index_t>
+    : topoplex::cgal::PropertyMapOf<boost::vertex_index_t> {};
 template <>
-struct property_map<topoplex::cgal::SurfaceGraph, boost::halfedge_index_t> {
-  using type = topoplex::cgal::SurfaceGraphIndexMap<topoplex::cgal::GraphHalfedge>;
-  using const_type = type;
-};
+struct property_map<topoplex::cgal::SurfaceGraph, boost::halfedge_index_t>
+    : topoplex::cgal::PropertyMapOf<boost::halfedge_index_t> {};
 template <>
-struct property_map<topoplex::cgal::SurfaceGraph, boost::face_index_t> {
-  using type = topoplex::cgal::SurfaceGraphIndexMap<topoplex::cgal::GraphFace>;
-  using const_type = type;
-};
+struct property_map<topoplex::cgal::SurfaceGraph, boost::face_index_t>
+    : topoplex::cgal::PropertyMapOf<boost::face_index_t> {};
 template <class T>
-struct property_map<topoplex::cgal::SurfaceGraph, CGAL::dynamic_vertex_property_t<T>> {
-  using type = topoplex::cgal::SurfaceGraphVectorMap<topoplex::cgal::GraphVertex, T>;
-  using const_type = type;
-};
+struct property_map<topoplex::cgal::SurfaceGraph, CGAL::dynamic_vertex_property_t<T>>
+    : topoplex::cgal::PropertyMapOf<CGAL::dynamic_vertex_property_t<T>> {};
 template <class T>
-struct property_map<topoplex::cgal::SurfaceGraph, CGAL::dynamic_halfedge_property_t<T>> {
-  using type = topoplex::cgal::SurfaceGraphVectorMap<topoplex::cgal::GraphHalfedge, T>;
-  using const_type = type;
-};
+struct property_map<topoplex::cgal::SurfaceGraph, CGAL::dynamic_halfedge_property_t<T>>
+    : topoplex::cgal::PropertyMapOf<CGAL::dynamic_halfedge_property_t<T>> {};
 template <class T>
-struct property_map<topoplex::cgal::SurfaceGraph, CGAL::dynamic_edge_property_t<T>> {
-  using type = topoplex::cgal::SurfaceGraphVectorMap<topoplex::cgal::GraphEdge, T>;
-  using const_type = type;
-};
+struct property_map<topoplex::cgal::SurfaceGraph, CGAL::dynamic_edge_property_t<T>>
+    : topoplex::cgal::PropertyMapOf<CGAL::dynamic_edge_property_t<T>> {};
 template <class T>
-struct property_map<topoplex::cgal::SurfaceGraph, CGAL::dynamic_face_property_t<T>> {
-  using type = topoplex::cgal::SurfaceGraphVectorMap<topoplex::cgal::GraphFace, T>;
-  using const_type = type;
-};
+struct property_map<topoplex::cgal::SurfaceGraph, CGAL::dynamic_face_property_t<T>>
+    : topoplex::cgal::PropertyMapOf<CGAL::dynamic_face_property_t<T>> {};
 
 }  // namespace boost
 

@@ -141,9 +141,7 @@ void to_simplex_tree(const Complex &c, ST &st, std::vector<Dropped> *dropped = n
 
 template <class ST>
 ST to_simplex_tree(const Complex &c, std::vector<Dropped> *dropped = nullptr) {
-  ST st;
-  to_simplex_tree(c, st, dropped);
-  return st;
+  return adapt::filled<ST>([&](ST &st) { to_simplex_tree(c, st, dropped); });
 }
 
 }  // namespace gudhi

@@ -48,6 +48,10 @@ struct SurfacePart {
   std::string problem; /* empty when a half-edge mesh holds the part */
   std::size_t face_count() const noexcept { return original_triangle.size(); }
   std::size_t vertex_count() const noexcept { return original_vertex.size(); }
+  /* Face f as the adapters' messages name it. */
+  std::string face_name(std::size_t f) const {
+    return "face " + std::to_string(f) + " of surface part " + std::to_string(index);
+  }
 };
 
 class SurfaceParts {

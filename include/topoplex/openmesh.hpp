@@ -387,9 +387,7 @@ void to_openmesh(const Complex &c, Mesh &m, std::vector<Dropped> *dropped = null
 
 template <class Mesh>
 Mesh to_openmesh(const Complex &c, std::vector<Dropped> *dropped = nullptr) {
-  Mesh m;
-  to_openmesh(c, m, dropped);
-  return m;
+  return adapt::filled<Mesh>([&](Mesh &m) { to_openmesh(c, m, dropped); });
 }
 
 /* ---- manifold parts (manifold_parts.hpp) as OpenMesh meshes ---- */
@@ -408,16 +406,12 @@ void part_to_openmesh(const SurfacePart &p, const std::vector<double> &xyz, Mesh
     m.add_vertex(typename Mesh::Point(Scalar(xyz[3 * o]), Scalar(xyz[3 * o + 1]),
                                       Scalar(xyz[3 * o + 2])));
   }
-  detail::add_faces(m, p.triangles, [&](std::size_t f) {
-    return "face " + std::to_string(f) + " of surface part " + std::to_string(p.index);
-  });
+  detail::add_faces(m, p.triangles, [&](std::size_t f) { return p.face_name(f); });
 }
 
 template <class Mesh>
 Mesh part_to_openmesh(const SurfacePart &p, const std::vector<double> &xyz) {
-  Mesh m;
-  part_to_openmesh(p, xyz, m);
-  return m;
+  return adapt::filled<Mesh>([&](Mesh &m) { part_to_openmesh(p, xyz, m); });
 }
 
 /* The mesh's vertex coordinates, 3 per vertex (to give back with SurfaceParts::gather). */

@@ -27,7 +27,8 @@ use std::sync::atomic::{AtomicU32, Ordering as AtomicOrdering};
 use super::direct::{self, guard_fast};
 use super::structure::{TpxStructure, query_failure};
 use super::{
-    Failure, TpxStatus, guard, handle, in_slice, on, out_ptr, with_answer, with_kept, write_buffer,
+    Failure, TpxStatus, check_room, guard, handle, in_slice, on, out_ptr, with_answer, with_kept,
+    write_buffer,
 };
 use topoplex::complex::MAX_DIMENSION;
 use topoplex::relation::handle::{Fans, Navigate, Order, SimplexHandle, TopId};
@@ -430,7 +431,7 @@ impl Written for TpxSimplex {
     const NAME: &'static str = "handles";
     const DENSE: bool = false;
     const WALK: Walk<SimplexHandle> = |n, h, q, order, v| n.related(h, q, order, v);
-    const WRITE: Write<SimplexHandle, TpxSimplex> = write_handles;
+    const WRITE: Write<SimplexHandle, TpxSimplex> = write_items;
 
     fn sink(out: &mut [TpxSimplex], q: u32, owner: u32) -> impl direct::Sink + '_ {
         direct::Handles { out, q, owner }
@@ -498,32 +499,11 @@ fn answer_into<U: Written>(
         let sh = unwrap_owned(s, n, h)?;
         with_kept(U::KEPT, |v| {
             v.clear();
-            let r = answer(n, sh, v).and_then(|()| {
-                if buf.is_null() && buf_len > 0 {
-                    return Err(Failure::null("buf"));
-                }
-                if v.len() > buf_len {
-                    return too_small(v.len(), buf_len, out_len);
-                }
-                for (i, x) in v.iter().enumerate() {
-                    // SAFETY: `buf` has room for `buf_len >= v.len()` items (documented contract).
-                    unsafe { *buf.add(i) = U::item(s, x) };
-                }
-                *out_len = v.len();
-                Ok(())
-            });
+            let r = answer(n, sh, v).and_then(|()| write_items(s, v, buf, buf_len, out_len));
             super::trim_kept(v);
             r
         })
     })
-}
-
-fn too_small(need: usize, have: usize, out_len: &mut usize) -> Result<(), Failure> {
-    *out_len = need;
-    Err(Failure::new(
-        TpxStatus::BufferTooSmall,
-        format!("buffer holds {have} entries, the answer needs {need}"),
-    ))
 }
 
 /// R_{p,q} for many p-simplices at once, in CSR form: for the dense p-indices
@@ -1037,27 +1017,21 @@ fn at_position(f: Failure, k: usize) -> Failure {
     Failure::new(f.status, format!("batch entry {k}: {}", f.message))
 }
 
-/// Writes `hs` as `TpxSimplex` into `buf` (BUFFER_TOO_SMALL with the needed length otherwise).
-fn write_handles(
+/// Writes the kept answer `v` as [`Written::item`]s into `buf` (NULL_ARGUMENT and
+/// BUFFER_TOO_SMALL as `write_buffer`'s, counting "entries").
+fn write_items<U: Written>(
     s: &TpxStructure,
-    hs: &[SimplexHandle],
-    buf: *mut TpxSimplex,
+    v: &[U::Kept],
+    buf: *mut U,
     buf_len: usize,
     out_len: &mut usize,
 ) -> Result<(), Failure> {
-    // As `write_buffer`: NULL_ARGUMENT for a NULL buffer with a non-zero length, whatever the
-    // answer's size.
-    if buf.is_null() && buf_len > 0 {
-        return Err(Failure::null("buf"));
+    check_room(buf, buf_len, v.len(), "entries", out_len)?;
+    for (i, x) in v.iter().enumerate() {
+        // SAFETY: `buf` has room for `buf_len >= v.len()` items (documented contract).
+        unsafe { *buf.add(i) = U::item(s, x) };
     }
-    if hs.len() > buf_len {
-        return too_small(hs.len(), buf_len, out_len);
-    }
-    for (i, &x) in hs.iter().enumerate() {
-        // SAFETY: `buf` has room for `buf_len >= hs.len()` handles.
-        unsafe { *buf.add(i) = wrap(s, x) };
-    }
-    *out_len = hs.len();
+    *out_len = v.len();
     Ok(())
 }
 

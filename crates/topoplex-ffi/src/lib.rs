@@ -479,29 +479,38 @@ pub(crate) fn write_buffer<T: Copy>(
     buf_len: usize,
     out_len: &mut usize,
 ) -> Result<(), Failure> {
-    // The header promises NULL_ARGUMENT for a NULL buffer with a non-zero length, whatever the
-    // answer's size (an empty answer must not hide the caller's bug).
-    if buf.is_null() && buf_len > 0 {
-        return Err(Failure::null("buf"));
-    }
-    if data.len() > buf_len {
-        *out_len = data.len();
-        let what = std::any::type_name::<T>();
-        return Err(Failure::new(
-            TpxStatus::BufferTooSmall,
-            format!(
-                "buffer holds {buf_len} {}, the answer needs {}",
-                c_type_name(what),
-                data.len()
-            ),
-        ));
-    }
+    let unit = c_type_name(std::any::type_name::<T>());
+    check_room(buf, buf_len, data.len(), unit, out_len)?;
     if !data.is_empty() {
         // SAFETY: `buf` is valid for `buf_len >= data.len()` writes (documented contract) and
         // cannot overlap `data`, which this library owns.
         unsafe { std::ptr::copy_nonoverlapping(data.as_ptr(), buf, data.len()) };
     }
     *out_len = data.len();
+    Ok(())
+}
+
+/// The checks before an answer of `need` items (`unit` in messages) is written to the caller's
+/// `buf` of `buf_len`: NULL_ARGUMENT for a NULL buffer with a non-zero length, whatever the
+/// answer's size (the header promises it: an empty answer must not hide the caller's bug),
+/// then BUFFER_TOO_SMALL with `*out_len` = `need`.
+pub(crate) fn check_room<T>(
+    buf: *mut T,
+    buf_len: usize,
+    need: usize,
+    unit: &str,
+    out_len: &mut usize,
+) -> Result<(), Failure> {
+    if buf.is_null() && buf_len > 0 {
+        return Err(Failure::null("buf"));
+    }
+    if need > buf_len {
+        *out_len = need;
+        return Err(Failure::new(
+            TpxStatus::BufferTooSmall,
+            format!("buffer holds {buf_len} {unit}, the answer needs {need}"),
+        ));
+    }
     Ok(())
 }
 

@@ -119,11 +119,8 @@ pub unsafe extern "C" fn tpx_complex_open(
     path: *const c_char,
     out: *mut *mut TpxComplex,
 ) -> TpxStatus {
-    open_into(path, out, |path| {
-        let saved = Saved::open(path).map_err(store_failure)?;
-        let complex = saved.complex().map_err(store_failure)?;
-        Ok(TpxComplex { complex })
-    })
+    // SAFETY: the same contract, passed on.
+    unsafe { tpx_complex_open_flags(path, 0, out) }
 }
 
 /// `tpx_complex_open` with `flags`: with `TPX_OPEN_VERIFY`, the whole file is checked first

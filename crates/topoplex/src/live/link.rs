@@ -177,14 +177,11 @@ impl LiveComplex {
         s: &mut Scratch,
     ) -> Option<Option<Vec<u32>>> {
         let found = self.skewed_common(a, b, coned, most, s)?;
-        if coned {
-            s.index_omega = s.common.len() as u32;
-            s.common.push(OMEGA);
-        } else if s.common.is_empty() {
+        if !s.cone(coned) {
             return Some(None);
         }
         self.skewed_families(a, b, found, s);
-        let plain = words::first_violation(&s.common, &s.ma, &s.mb, &s.mz);
+        let plain = s.first_violation();
         if plain.is_some() || !coned {
             return Some(plain);
         }
@@ -195,7 +192,7 @@ impl LiveComplex {
             // Whether St(a) has a boundary facet away from C decides: the whole test.
             return None;
         }
-        Some(words::first_violation(&s.common, &s.ma, &s.mb, &s.mz))
+        Some(s.first_violation())
     }
 
     /// Step 1 of [`LiveComplex::skewed_violation`]: the common vertices C into `s.common`, in
@@ -210,17 +207,7 @@ impl LiveComplex {
         most: usize,
         s: &mut Scratch,
     ) -> Option<usize> {
-        let n = self.star.len();
-        if s.stamp.len() < n {
-            s.stamp.resize(n, 0);
-            s.index.resize(n, 0);
-        }
-        if s.epoch >= u32::MAX - 2 {
-            s.stamp.iter_mut().for_each(|x| *x = 0);
-            s.epoch = 0;
-        }
-        s.epoch += 2;
-        let (tried, common) = (s.epoch - 1, s.epoch);
+        let (tried, common) = s.fresh_stamps(self.star.len());
         s.common.clear();
         let mut weight = 0;
         for &r in self.star[b as usize].iter() {
@@ -245,7 +232,7 @@ impl LiveComplex {
         Some(s.common.len())
     }
 
-    /// Step 2: the plain families as masks over C, their maximal words kept: F_ab and F_b from
+    /// Step 2: the plain families as masks over C: F_ab and F_b from
     /// St(b) (tops with and without a), F_a from the stars of the `found` common vertices
     /// (tops through a but not b).
     fn skewed_families(&self, a: u32, b: u32, found: usize, s: &mut Scratch) {
@@ -262,35 +249,18 @@ impl LiveComplex {
             }
         }
         for i in 0..found {
-            let w = s.common[i];
-            for &r in self.star[w as usize].iter() {
-                let t = self.top_raw(r);
-                if t.contains(&a) && !t.contains(&b) {
-                    let m = s.mask(t);
-                    s.ma.push(m);
-                }
+            for r in self.tops_at_a_only(s.common[i], a, b) {
+                let m = s.mask(self.top_raw(r));
+                s.ma.push(m);
             }
         }
-        maximal(&mut s.ma);
-        maximal(&mut s.mb);
     }
 
     /// Step 3, coned: the cones over the boundary facets at b (as `boundary_cones`) and at a
     /// (those through b, from St(b), then those through a common vertex), added to the
-    /// families, maximal words kept.
+    /// families.
     fn skewed_cones(&self, a: u32, b: u32, found: usize, omega: u64, s: &mut Scratch) {
-        let mut open = std::mem::take(&mut s.open);
-        self.star_boundary(b, &mut s.facets, &mut open);
-        for (&r, &open) in self.star[b as usize].iter().zip(&open) {
-            let t = self.top_raw(r);
-            let m = s.mask(t);
-            for (j, &x) in t.iter().enumerate() {
-                if open >> j & 1 == 1 && (x == a || !t.contains(&a)) {
-                    s.mb.push(s.without(m, x) | omega);
-                }
-            }
-        }
-        s.open = open;
+        self.cones_at_b(a, b, omega, s);
         for &r in self.star[b as usize].iter() {
             let t = self.top_raw(r);
             if t.contains(&a) {
@@ -298,16 +268,19 @@ impl LiveComplex {
             }
         }
         for i in 0..found {
-            let w = s.common[i];
-            for &r in self.star[w as usize].iter() {
-                let t = self.top_raw(r);
-                if t.contains(&a) && !t.contains(&b) {
-                    self.cones_at_a(r, a, b, omega, s);
-                }
+            for r in self.tops_at_a_only(s.common[i], a, b) {
+                self.cones_at_a(r, a, b, omega, s);
             }
         }
-        maximal(&mut s.ma);
-        maximal(&mut s.mb);
+    }
+
+    /// The tops of St(w) through a but not b (St(a)'s tops away from b, found from a common
+    /// vertex w).
+    fn tops_at_a_only(&self, w: u32, a: u32, b: u32) -> impl Iterator<Item = u32> + '_ {
+        self.star[w as usize].iter().copied().filter(move |&r| {
+            let t = self.top_raw(r);
+            t.contains(&a) && !t.contains(&b)
+        })
     }
 
     /// The cones over the open facets f ∋ a of top `r` ∈ St(a) that hold b or a common vertex
@@ -357,11 +330,7 @@ impl LiveComplex {
         let fa = || self.star[a as usize].iter().map(|&r| self.top_raw(r));
         let fb = || self.star[b as usize].iter().map(|&r| self.top_raw(r));
         common_vertices(fa(), fb(), a, b, self.star.len(), s);
-        if coned {
-            // ω gets the next bit; a superset of the common vertices changes no x ∩ y.
-            s.index_omega = s.common.len() as u32;
-            s.common.push(OMEGA);
-        } else if s.common.is_empty() {
+        if !s.cone(coned) {
             return None;
         }
         if s.common.len() > 64 {
@@ -393,46 +362,57 @@ impl LiveComplex {
             let m = s.mask(t);
             s.mb.push(m);
         }
-        maximal(&mut s.ma);
-        maximal(&mut s.mb);
-        let plain = words::first_violation(&s.common, &s.ma, &s.mb, &s.mz);
+        let plain = s.first_violation();
         if plain.is_some() || !coned {
             return plain;
         }
         self.boundary_cones(a, b, s);
-        maximal(&mut s.ma);
-        maximal(&mut s.mb);
-        words::first_violation(&s.common, &s.ma, &s.mb, &s.mz)
+        s.first_violation()
     }
 
     /// The cones ω ∗ (f \ {a, b}) over the boundary facets f at a and at b, as words added to
     /// the families: at a, to F_ab when b ∈ f, else to F_a; at b, to F_b when a ∉ f.
     fn boundary_cones(&self, a: u32, b: u32, s: &mut Scratch) {
         let omega = 1u64 << s.index_omega;
+        self.facet_cones(a, omega, s, |s, t, x, w| {
+            if x != b && t.contains(&b) {
+                s.mz.push(w);
+            } else {
+                s.ma.push(w);
+            }
+        });
+        self.cones_at_b(a, b, omega, s);
+    }
+
+    /// The cones ω ∗ (f \ {b}) over the boundary facets f at b that do not hold a, as words
+    /// added to F_b.
+    fn cones_at_b(&self, a: u32, b: u32, omega: u64, s: &mut Scratch) {
+        self.facet_cones(b, omega, s, |s, t, x, w| {
+            // f = t \ {x} must not hold a.
+            if x == a || !t.contains(&a) {
+                s.mb.push(w);
+            }
+        });
+    }
+
+    /// For each boundary facet f = t \ {x} at v (t a top of St(v); the facets of
+    /// [`LiveComplex::star_boundary`]), `add(s, t, x, word)` with the word of the cone ω ∗ f.
+    fn facet_cones(
+        &self,
+        v: u32,
+        omega: u64,
+        s: &mut Scratch,
+        add: impl Fn(&mut Scratch, &[u32], u32, u64),
+    ) {
         let mut open = std::mem::take(&mut s.open);
-        self.star_boundary(a, &mut s.facets, &mut open);
-        for (&r, &open) in self.star[a as usize].iter().zip(&open) {
+        self.star_boundary(v, &mut s.facets, &mut open);
+        for (&r, &open) in self.star[v as usize].iter().zip(&open) {
             let t = self.top_raw(r);
             let m = s.mask(t);
             for (j, &x) in t.iter().enumerate() {
                 if open >> j & 1 == 1 {
                     let w = s.without(m, x) | omega;
-                    if x != b && t.contains(&b) {
-                        s.mz.push(w);
-                    } else {
-                        s.ma.push(w);
-                    }
-                }
-            }
-        }
-        self.star_boundary(b, &mut s.facets, &mut open);
-        for (&r, &open) in self.star[b as usize].iter().zip(&open) {
-            let t = self.top_raw(r);
-            let m = s.mask(t);
-            for (j, &x) in t.iter().enumerate() {
-                // f = t \ {x} must not hold a.
-                if open >> j & 1 == 1 && (x == a || !t.contains(&a)) {
-                    s.mb.push(s.without(m, x) | omega);
+                    add(s, t, x, w);
                 }
             }
         }
@@ -655,6 +635,24 @@ impl Scratch {
         }
         self.epoch += 2;
         (self.epoch - 1, self.epoch)
+    }
+
+    /// With `coned`, ω as the common vertex after the others (its own bit; a superset of the
+    /// common vertices changes no x ∩ y). False when nothing is left to test: not coned and no
+    /// common vertex.
+    fn cone(&mut self, coned: bool) -> bool {
+        if coned {
+            self.index_omega = self.common.len() as u32;
+            self.common.push(OMEGA);
+        }
+        coned || !self.common.is_empty()
+    }
+
+    /// The word test on the families as they now stand, their maximal words kept first.
+    fn first_violation(&mut self) -> Option<Vec<u32>> {
+        maximal(&mut self.ma);
+        maximal(&mut self.mb);
+        words::first_violation(&self.common, &self.ma, &self.mb, &self.mz)
     }
 
     /// The common vertices of `t` as a word.

@@ -507,6 +507,12 @@ impl Navigate for LiveComplex {
         false
     }
 
+    /// Its walks answer in lexicographic order, and τ ↦ τ ∖ σ keeps that order within a
+    /// dimension, so its stars and links come in order too: both orders cost the same.
+    fn visits_lexicographic(&self) -> bool {
+        true
+    }
+
     fn visit(
         &self,
         h: SimplexHandle,
@@ -548,72 +554,6 @@ impl Navigate for LiveComplex {
                 });
             }
         });
-        Ok(())
-    }
-
-    /// Answers come lexicographic already: both orders cost the same.
-    fn related(
-        &self,
-        h: SimplexHandle,
-        q: usize,
-        _order: Order,
-        out: &mut Vec<SimplexHandle>,
-    ) -> Result<(), QueryError> {
-        out.clear();
-        self.visit(h, q, &mut |x| out.push(x))
-    }
-
-    /// Answers come lexicographic already: both orders cost the same.
-    fn related_handles_batch(
-        &self,
-        hs: &[SimplexHandle],
-        q: usize,
-        _order: Order,
-        out: &mut Vec<SimplexHandle>,
-        ends: &mut Vec<usize>,
-    ) -> Result<(), QueryError> {
-        for &h in hs {
-            self.visit(h, q, &mut |x| out.push(x))?;
-            ends.push(out.len());
-        }
-        Ok(())
-    }
-
-    fn star(
-        &self,
-        h: SimplexHandle,
-        _order: Order,
-        out: &mut Vec<SimplexHandle>,
-    ) -> Result<(), QueryError> {
-        out.clear();
-        Navigate::check(self, h)?;
-        for q in h.dim() + 1..=Topology::dimension(self) {
-            self.visit(h, q, &mut |x| out.push(x))?;
-        }
-        Ok(())
-    }
-
-    /// τ ↦ τ ∖ σ keeps lexicographic order within a dimension, so the link comes in order too.
-    fn link(
-        &self,
-        h: SimplexHandle,
-        _order: Order,
-        out: &mut Vec<SimplexHandle>,
-    ) -> Result<(), QueryError> {
-        let sigma = self.handle_vertices(h)?;
-        let mut star = Vec::new();
-        self.star(h, Order::Natural, &mut star)?;
-        out.clear();
-        let mut rest = [0u32; MAX_DIMENSION + 1];
-        for tau in star {
-            let t = self.handle_vertices(tau)?;
-            let mut k = 0;
-            for &v in t.iter().filter(|v| !sigma.contains(v)) {
-                rest[k] = v;
-                k += 1;
-            }
-            out.push(self.locate(&rest[..k])?);
-        }
         Ok(())
     }
 }

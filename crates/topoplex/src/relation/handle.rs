@@ -510,6 +510,13 @@ pub trait Navigate: Topology {
         true
     }
 
+    /// Whether [`Navigate::visit`] gives each answer in lexicographic order already (the live
+    /// complex's walks do), so that the defaults asked for [`Order::Lexicographic`] sort
+    /// nothing. False for the nine.
+    fn visits_lexicographic(&self) -> bool {
+        false
+    }
+
     /// The dense index of `h`: its rank among the simplices of its dimension in ascending
     /// lexicographic order (a vertex: its id), the index [`Navigate::handle`] takes back and
     /// `related_ids`, `related_batch`, `degree_batch` and [`Navigate::relation_view`] use.
@@ -552,6 +559,7 @@ pub trait Navigate: Topology {
         out: &mut Vec<SimplexHandle>,
     ) -> Result<(), QueryError> {
         out.clear();
+        let order = to_sort(self, order);
         append_in_order(out, order, |out| self.visit(h, q, &mut |x| out.push(x)))
     }
 
@@ -589,6 +597,7 @@ pub trait Navigate: Topology {
         out: &mut Vec<SimplexHandle>,
         ends: &mut Vec<usize>,
     ) -> Result<(), QueryError> {
+        let order = to_sort(self, order);
         for &h in hs {
             append_in_order(out, order, |out| self.visit(h, q, &mut |x| out.push(x)))?;
             ends.push(out.len());
@@ -696,6 +705,7 @@ pub trait Navigate: Topology {
         if h.dim() == 0 && self.vertex_star(h.index(), order, out) {
             return Ok(());
         }
+        let order = to_sort(self, order);
         for q in h.dim() + 1..=self.dimension() {
             append_in_order(out, order, |out| self.visit(h, q, &mut |x| out.push(x)))?;
         }
@@ -730,7 +740,7 @@ pub trait Navigate: Topology {
         }
         // Simplices of the star map to distinct link simplices (τ ↦ τ ∖ σ is injective on
         // the star), already grouped by dimension.
-        if order == Order::Lexicographic {
+        if to_sort(self, order) == Order::Lexicographic {
             out.sort_unstable();
         }
         Ok(())
@@ -827,6 +837,16 @@ pub(crate) fn append_in_order<T: Ord, E>(
         out[start..].sort_unstable();
     }
     Ok(())
+}
+
+/// The order [`Navigate::visit`]'s answers still have to be sorted into for `order`: none
+/// ([`Order::Natural`]) where they come lexicographic already.
+fn to_sort<N: Navigate + ?Sized>(n: &N, order: Order) -> Order {
+    if n.visits_lexicographic() {
+        Order::Natural
+    } else {
+        order
+    }
 }
 
 /// [`Navigate::related_batch`] by one [`Navigate::related_ids`] per index.
