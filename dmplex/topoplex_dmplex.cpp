@@ -182,6 +182,49 @@ bool read_tops(const SimplexCones r, PetscInt start, PetscInt end, int d, const 
   return true;
 }
 
+// The tops among the cells [start, end) of a cell-vertex DM (depth 1), written as read_tops does:
+// each cell's cone is its vertices, laid out from cone[0] in chart order (fixed_width checked the
+// block's ends); a cone of 2, 3 or 4 vertices is a simplex unless `others` (cells of the DM with
+// other types of those sizes) asks the cell type. A plain function for the same reason as
+// read_tops. False when a cone names a point that is not a vertex; throws NotSimplicial naming
+// the first other cell.
+bool read_cell_vertex_tops(DM dm, PetscSection section, const PetscInt *cone, PetscInt start, PetscInt end,
+                           const unsigned char *supported, PetscInt vStart, PetscInt vEnd, bool others, int rank,
+                           PetscInt *&tops, std::uint32_t *&ids, std::size_t *&ends, std::size_t base) {
+  PetscInt *t = tops;
+  std::uint32_t *w = ids;
+  std::size_t *e = ends;
+  const std::uint32_t *first = w;
+  for (PetscInt p = start; p < end; ++p) {
+    PetscInt nc = 0;
+    TPX_PETSC(PetscSectionGetDof(section, p, &nc));
+    DMPolytopeType ct = nc == 2 ? DM_POLYTOPE_SEGMENT : nc == 3 ? DM_POLYTOPE_TRIANGLE : DM_POLYTOPE_TETRAHEDRON;
+    if (others || nc < 2 || nc > 4) TPX_PETSC(DMPlexGetCellType(dm, p, &ct));
+    if (!((ct == DM_POLYTOPE_SEGMENT && nc == 2) || (ct == DM_POLYTOPE_TRIANGLE && nc == 3) ||
+          (ct == DM_POLYTOPE_TETRAHEDRON && nc == 4))) {
+      std::ostringstream m;
+      m << "DMPlex point " << p << " (rank " << rank << ") is a " << DMPolytopeTypes[ct] << " with " << nc
+        << " vertices at depth 1: Topoplex holds simplicial complexes only (points, segments, triangles, tetrahedra)";
+      throw Error(Code::NotSimplicial, m.str());
+    }
+    const PetscInt *c = cone;
+    cone += nc;
+    if (supported[p - start]) continue;
+    for (PetscInt k = 0; k < nc; ++k) {
+      if (c[k] < vStart || c[k] >= vEnd) return false;
+      w[k] = static_cast<std::uint32_t>(c[k] - vStart);
+    }
+    if (nc == 4) std::swap(w[0], w[1]);  // petsc_winding
+    w += nc;
+    *t++ = p;
+    *e++ = base + static_cast<std::size_t>(w - first);
+  }
+  tops = t;
+  ids = w;
+  ends = e;
+  return true;
+}
+
 }  // namespace
 
 RankMesh::RankMesh(RankMesh &&o) noexcept { *this = std::move(o); }
@@ -395,7 +438,6 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
     mark_named(raw.cone, raw.storage, pStart, pEnd, supported.data());
   };
   const Arrangements arr;
-  auto in_range = [](PetscInt q, const std::pair<PetscInt, PetscInt> &r) { return q >= r.first && q < r.second; };
   // Fast path 1: a fully interpolated simplicial DM (SimplexCones), read block by block into
   // arrays sized first from the marks.
   auto interpolated_fill = [&]() -> bool {
@@ -449,44 +491,36 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
       others += n;
     }
     mark_supported();
+    // Sized from the marks: each top holds at most 4 ids (1 for a vertex), trimmed after.
+    std::size_t ntops = 0;
     for (const Block &bl : blocks) {
-      PetscInt at = bl.cone0;
-      for (PetscInt p = bl.start; p < bl.end; ++p) {
-        if (bl.depth == 0) {
-          if (!supported[static_cast<std::size_t>(p - pStart)]) {
-            tops.push_back(p);
-            ids.push_back(static_cast<std::uint32_t>(p - vStart));
-            offsets.push_back(ids.size());
-          }
-          continue;
+      ntops += static_cast<std::size_t>(
+          std::count(supported.begin() + (bl.start - pStart), supported.begin() + (bl.end - pStart), 0));
+    }
+    tops.resize(ntops);
+    ids.resize(4 * ntops);
+    offsets.resize(ntops + 1);
+    PetscInt *t = tops.data();
+    std::uint32_t *w = ids.data();
+    std::size_t *e = offsets.data() + 1;
+    for (const Block &bl : blocks) {
+      const unsigned char *marks = supported.data() + (bl.start - pStart);
+      if (bl.depth == 0) {  // isolated vertices
+        for (PetscInt p = bl.start; p < bl.end; ++p) {
+          if (marks[p - bl.start]) continue;
+          *w++ = static_cast<std::uint32_t>(p - vStart);
+          *t++ = p;
+          *e++ = static_cast<std::size_t>(w - ids.data());
         }
-        PetscInt nc = 0;
-        TPX_PETSC(PetscSectionGetDof(raw.section, p, &nc));
-        DMPolytopeType ct = nc == 2 ? DM_POLYTOPE_SEGMENT : nc == 3 ? DM_POLYTOPE_TRIANGLE : DM_POLYTOPE_TETRAHEDRON;
-        if (others > 0 || nc < 2 || nc > 4) TPX_PETSC(DMPlexGetCellType(dm, p, &ct));
-        if (!((ct == DM_POLYTOPE_SEGMENT && nc == 2) || (ct == DM_POLYTOPE_TRIANGLE && nc == 3) ||
-              (ct == DM_POLYTOPE_TETRAHEDRON && nc == 4))) {
-          std::ostringstream m;
-          m << "DMPlex point " << p << " (rank " << rank << ") is a " << DMPolytopeTypes[ct] << " with " << nc
-            << " vertices at depth 1: Topoplex holds simplicial complexes only (points, segments, triangles, tetrahedra)";
-          throw Error(Code::NotSimplicial, m.str());
-        }
-        const std::size_t first = ids.size();
-        for (PetscInt k = 0; k < nc; ++k) {
-          const PetscInt c = raw.cone[at + k];
-          if (!in_range(c, out.strata_[0])) return false;
-          ids.push_back(static_cast<std::uint32_t>(c - vStart));
-        }
-        at += nc;
-        if (!supported[static_cast<std::size_t>(p - pStart)]) {
-          if (nc == 4) std::swap(ids[first], ids[first + 1]);  // petsc_winding
-          tops.push_back(p);
-          offsets.push_back(ids.size());
-        } else {
-          ids.resize(first);
-        }
+        continue;
+      }
+      const std::size_t base = static_cast<std::size_t>(w - ids.data());
+      if (!read_cell_vertex_tops(dm, raw.section, raw.cone + bl.cone0, bl.start, bl.end, marks, vStart, vEnd, others > 0,
+                                 rank, t, w, e, base)) {
+        return false;
       }
     }
+    ids.resize(static_cast<std::size_t>(w - ids.data()));
     return true;
   };
   // Any other DM: each top's transitive closure, judged simplicial by its vertex count and cell
