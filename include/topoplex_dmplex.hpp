@@ -87,7 +87,7 @@ struct ImportOptions {
  * Topoplex ids and each simplex's owner. The maps copy next to nothing: vertex v is point
  * vStart + v and the tops are kept as runs of consecutive points, so both ways are offsets; any
  * other point is answered on demand from the DM's cones and supports. For that the RankMesh
- * holds a reference to the DM (and to its point SF and vertex numbering), released by its
+ * holds a reference to the DM (and to its point SF), released by its
  * destructor: do not change the DM's topology while a RankMesh of it lives, and destroy the
  * RankMesh before PetscFinalize. point_of, simplex_of_point and owner call PETSc's getters
  * (DMPlexGetCone, DMPlexGetSupport, ...): call them from one thread at a time unless PETSc was
