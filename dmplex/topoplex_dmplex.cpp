@@ -366,6 +366,13 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   out.p_end_ = pEnd;
   out.v_start_ = vStart;
   out.v_end_ = vEnd;
+  // The point SF: its leaves are the ghosts (for the numbering and the owners below).
+  PetscSF sf;
+  TPX_PETSC(DMGetPointSF(dm, &sf));
+  PetscInt nroots = -1, nleaves = 0;
+  const PetscInt *ilocal = nullptr;
+  const PetscSFNode *iremote = nullptr;
+  TPX_PETSC(PetscSFGetGraph(sf, &nroots, &nleaves, &ilocal, &iremote));
   // Global vertex numbers, by DMPlexGetVertexNumbering's rule: a rank's owned vertices (those
   // that are no leaf of the point SF) in point order after the owned vertices of the ranks
   // before it, a ghost its owner's number as -(g + 1). Made here from the point SF's vertex
@@ -375,12 +382,6 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   // alone, and ranks that enter together wait least (the local work after it differs between
   // ranks: a rank whose tops need a sort).
   {
-    PetscSF point_sf;
-    TPX_PETSC(DMGetPointSF(dm, &point_sf));
-    PetscInt nroots = -1, nleaves = 0;
-    const PetscInt *ilocal = nullptr;
-    const PetscSFNode *iremote = nullptr;
-    TPX_PETSC(PetscSFGetGraph(point_sf, &nroots, &nleaves, &ilocal, &iremote));
     std::vector<PetscInt> leaf_points;
     std::vector<PetscSFNode> leaf_roots;
     out.global_.assign(static_cast<std::size_t>(vEnd - vStart), 0);
@@ -752,12 +753,6 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   // Owners from the point SF: leaves are ghosts owned by their root's rank; every other point is
   // this rank's. The SF's own arrays when its leaves are ascending (referenced), else a sorted
   // copy of the ghosts.
-  PetscSF sf;
-  TPX_PETSC(DMGetPointSF(dm, &sf));
-  PetscInt nroots = -1, nleaves = 0;
-  const PetscInt *ilocal = nullptr;
-  const PetscSFNode *iremote = nullptr;
-  TPX_PETSC(PetscSFGetGraph(sf, &nroots, &nleaves, &ilocal, &iremote));
   if (nroots >= 0 && nleaves > 0) {
     bool ascending = ilocal != nullptr;
     for (PetscInt i = 1; ascending && i < nleaves; ++i) ascending = ilocal[i - 1] < ilocal[i];
