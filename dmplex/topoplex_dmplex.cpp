@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <utility>
 
@@ -80,12 +81,150 @@ struct Arrangements {
 struct Cones {
   PetscSection section = nullptr;
   PetscInt *cone = nullptr, *ornt = nullptr;
+  PetscInt storage = 0;  // the cone arrays' length (PetscSectionGetStorageSize sums every dof: once)
   explicit Cones(DM dm) {
     TPX_PETSC(DMPlexGetConeSection(dm, &section));
     TPX_PETSC(DMPlexGetCones(dm, &cone));
     TPX_PETSC(DMPlexGetConeOrientations(dm, &ornt));
+    TPX_PETSC(PetscSectionGetStorageSize(section, &storage));
   }
 };
+
+// Sets supported[c - pStart] for every point c of [pStart, pEnd) that cone[0 .. n) names. Plain
+// values, not a lambda's captures by reference: a byte store may alias anything, so there every
+// store reloaded the bounds and pointers (three times slower).
+void mark_named(const PetscInt *cone, PetscInt n, PetscInt pStart, PetscInt pEnd, unsigned char *supported) {
+  const PetscInt span = pEnd - pStart;
+  for (PetscInt k = 0; k < n; ++k) {
+    const PetscInt c = cone[k] - pStart;
+    if (c >= 0 && c < span) supported[c] = 1;
+  }
+}
+
+// The raw arrays of a fully interpolated simplicial DM whose strata are fixed-width blocks of
+// cones, and how to read a simplex's vertices from them in PETSc's closure order: an edge is its
+// cone; a triangle reached with orientation o lists its first arranged edge's vertices (swapped
+// when that edge's composed orientation is not 0), then the vertex its second arranged edge adds;
+// a tetrahedron lists its first face's vertices as that triangle reached with its cone
+// orientation, then the vertex of its second face's first two edges that is missing. Each read
+// checks that the points it meets lie in the strata it expects (false otherwise).
+struct SimplexCones {
+  const PetscInt *C = nullptr, *O = nullptr;
+  PetscInt at[4] = {0, 0, 0, 0};  // point q of depth d's cone: C[at[d] + (d + 1) q]
+  PetscInt lo[4] = {0, 0, 0, 0}, hi[4] = {0, 0, 0, 0};  // stratum d: [lo[d], hi[d])
+  Arrangements arr;
+
+  bool in(PetscInt q, int d) const { return q >= lo[d] && q < hi[d]; }
+  bool edge(PetscInt e, PetscInt *v) const {
+    if (!in(e, 1)) return false;
+    const PetscInt *c = C + at[1] + 2 * e;
+    v[0] = c[0];
+    v[1] = c[1];
+    return in(v[0], 0) && in(v[1], 0);
+  }
+  bool triangle(PetscInt f, PetscInt o, PetscInt *v) const {
+    if (!in(f, 2) || o < -3 || o > 2) return false;
+    const PetscInt k = at[2] + 3 * f;
+    const PetscInt i0 = arr.tri_first[o + 3], i1 = arr.tri_second[o + 3];
+    PetscInt a[2], b[2];
+    if (!edge(C[k + i0], a) || !edge(C[k + i1], b)) return false;
+    const PetscInt co = DMPolytopeTypeComposeOrientation(DM_POLYTOPE_SEGMENT, arr.tri_first_o[o + 3], O[k + i0]);
+    v[0] = co == 0 ? a[0] : a[1];
+    v[1] = co == 0 ? a[1] : a[0];
+    v[2] = b[0] == a[0] || b[0] == a[1] ? b[1] : b[0];
+    return true;
+  }
+  bool tetrahedron(PetscInt t, PetscInt *v) const {
+    const PetscInt k = at[3] + 4 * t;
+    if (!triangle(C[k], O[k], v)) return false;
+    const PetscInt f1 = C[k + 1];
+    if (!in(f1, 2)) return false;
+    // The second face shares one edge with the first: its first edge that is not shared holds
+    // the missing vertex (the first edge is shared one time in three).
+    for (int i = 0; i < 2; ++i) {
+      PetscInt e[2];
+      if (!edge(C[at[2] + 3 * f1 + i], e)) return false;
+      for (PetscInt x : e) {
+        if (x != v[0] && x != v[1] && x != v[2]) {
+          v[3] = x;
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+};
+
+// Writes the tops among the points [start, end) of depth d (those whose `supported` byte, indexed
+// from start, is 0): point to *tops, vertex ids (Topoplex winding) to *ids, each top's end to
+// *ends (counting from `base` ids), advancing the three. `r` by value and the outputs as local
+// pointers: a store of an id may alias a PetscInt, and the reader's fields must stay in registers.
+// False when a point is not read as a simplex (the caller takes the general path).
+bool read_tops(const SimplexCones r, PetscInt start, PetscInt end, int d, const unsigned char *supported,
+               PetscInt vStart, PetscInt *&tops, std::uint32_t *&ids, std::size_t *&ends, std::size_t base) {
+  PetscInt *t = tops;
+  std::uint32_t *w = ids;
+  std::size_t *e = ends;
+  const std::uint32_t *first = w;
+  for (PetscInt p = start; p < end; ++p) {
+    if (supported[p - start]) continue;
+    PetscInt v[4] = {p, 0, 0, 0};
+    const bool ok = d == 0 ? true : d == 1 ? r.edge(p, v) : d == 2 ? r.triangle(p, 0, v) : r.tetrahedron(p, v);
+    if (!ok) return false;
+    if (d == 3) std::swap(v[0], v[1]);  // petsc_winding
+    for (int k = 0; k <= d; ++k) w[k] = static_cast<std::uint32_t>(v[k] - vStart);
+    w += d + 1;
+    *t++ = p;
+    *e++ = base + static_cast<std::size_t>(w - first);
+  }
+  tops = t;
+  ids = w;
+  ends = e;
+  return true;
+}
+
+// The tops among the cells [start, end) of a cell-vertex DM (depth 1), written as read_tops does:
+// each cell's cone is its vertices, laid out from cone[0] in chart order (fixed_width checked the
+// block's ends); a cone of 2, 3 or 4 vertices is a simplex unless `others` (cells of the DM with
+// other types of those sizes) asks the cell type. A plain function for the same reason as
+// read_tops. False when a cone names a point that is not a vertex; throws NotSimplicial naming
+// the first other cell.
+bool read_cell_vertex_tops(DM dm, PetscSection section, const PetscInt *cone, PetscInt start, PetscInt end,
+                           const unsigned char *supported, PetscInt vStart, PetscInt vEnd, bool others, int rank,
+                           PetscInt *&tops, std::uint32_t *&ids, std::size_t *&ends, std::size_t base) {
+  PetscInt *t = tops;
+  std::uint32_t *w = ids;
+  std::size_t *e = ends;
+  const std::uint32_t *first = w;
+  for (PetscInt p = start; p < end; ++p) {
+    PetscInt nc = 0;
+    TPX_PETSC(PetscSectionGetDof(section, p, &nc));
+    DMPolytopeType ct = nc == 2 ? DM_POLYTOPE_SEGMENT : nc == 3 ? DM_POLYTOPE_TRIANGLE : DM_POLYTOPE_TETRAHEDRON;
+    if (others || nc < 2 || nc > 4) TPX_PETSC(DMPlexGetCellType(dm, p, &ct));
+    if (!((ct == DM_POLYTOPE_SEGMENT && nc == 2) || (ct == DM_POLYTOPE_TRIANGLE && nc == 3) ||
+          (ct == DM_POLYTOPE_TETRAHEDRON && nc == 4))) {
+      std::ostringstream m;
+      m << "DMPlex point " << p << " (rank " << rank << ") is a " << DMPolytopeTypes[ct] << " with " << nc
+        << " vertices at depth 1: Topoplex holds simplicial complexes only (points, segments, triangles, tetrahedra)";
+      throw Error(Code::NotSimplicial, m.str());
+    }
+    const PetscInt *c = cone;
+    cone += nc;
+    if (supported[p - start]) continue;
+    for (PetscInt k = 0; k < nc; ++k) {
+      if (c[k] < vStart || c[k] >= vEnd) return false;
+      w[k] = static_cast<std::uint32_t>(c[k] - vStart);
+    }
+    if (nc == 4) std::swap(w[0], w[1]);  // petsc_winding
+    w += nc;
+    *t++ = p;
+    *e++ = base + static_cast<std::size_t>(w - first);
+  }
+  tops = t;
+  ids = w;
+  ends = e;
+  return true;
+}
 
 }  // namespace
 
@@ -98,8 +237,7 @@ RankMesh &RankMesh::operator=(RankMesh &&o) noexcept {
   o.complex_.reset();
   dm_ = std::exchange(o.dm_, nullptr);
   sf_ = std::exchange(o.sf_, nullptr);
-  numbering_ = std::exchange(o.numbering_, nullptr);
-  global_ = std::exchange(o.global_, nullptr);
+  global_ = std::move(o.global_);
   rank_ = o.rank_;
   size_ = o.size_;
   overlap_ = o.overlap_;
@@ -127,9 +265,6 @@ RankMesh::~RankMesh() { release(); }
 
 // Drops the references from_dm took (errors ignored: a destructor cannot report them).
 void RankMesh::release() noexcept {
-  if (numbering_ && global_) ISRestoreIndices(numbering_, &global_);
-  numbering_ = nullptr;
-  global_ = nullptr;
   if (sf_) PetscSFDestroy(&sf_);
   if (dm_) DMDestroy(&dm_);
 }
@@ -231,6 +366,56 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   out.p_end_ = pEnd;
   out.v_start_ = vStart;
   out.v_end_ = vEnd;
+  // The point SF: its leaves are the ghosts (for the numbering and the owners below).
+  PetscSF sf;
+  TPX_PETSC(DMGetPointSF(dm, &sf));
+  PetscInt nroots = -1, nleaves = 0;
+  const PetscInt *ilocal = nullptr;
+  const PetscSFNode *iremote = nullptr;
+  TPX_PETSC(PetscSFGetGraph(sf, &nroots, &nleaves, &ilocal, &iremote));
+  // Global vertex numbers, by DMPlexGetVertexNumbering's rule: a rank's owned vertices (those
+  // that are no leaf of the point SF) in point order after the owned vertices of the ranks
+  // before it, a ghost its owner's number as -(g + 1). Made here from the point SF's vertex
+  // leaves alone, one exclusive scan and one broadcast over those leaves: PETSc's own goes
+  // through a global section over the whole chart (16 ms for 200k vertices among 5M points).
+  // Collective, so first: every rank reaches it before any check below can throw on one rank
+  // alone, and ranks that enter together wait least (the local work after it differs between
+  // ranks: a rank whose tops need a sort).
+  {
+    std::vector<PetscInt> leaf_points;
+    std::vector<PetscSFNode> leaf_roots;
+    out.global_.assign(static_cast<std::size_t>(vEnd - vStart), 0);
+    for (PetscInt i = 0; nroots >= 0 && i < nleaves; ++i) {
+      const PetscInt p = ilocal ? ilocal[i] : i;
+      if (p < vStart || p >= vEnd) continue;
+      leaf_points.push_back(p);
+      leaf_roots.push_back(iremote[i]);
+      out.global_[static_cast<std::size_t>(p - vStart)] = -1;  // a ghost, numbered below
+    }
+    const PetscInt owned = static_cast<PetscInt>(std::count(out.global_.begin(), out.global_.end(), 0));
+    PetscInt next = 0;
+    MPI_Exscan(&owned, &next, 1, MPIU_INT, MPI_SUM, comm);
+    if (rank == 0) next = 0;  // MPI_Exscan leaves rank 0's result undefined
+    for (PetscInt &g : out.global_) {
+      if (g == 0) g = next++;
+    }
+    if (out.size_ > 1) {
+      // Root and leaf data indexed by point; only vertex points are read or written, so the
+      // chart-sized arrays are never touched (nor paged in) elsewhere.
+      const PetscInt nchart = std::max(pEnd, nroots);
+      std::unique_ptr<PetscInt[]> root(new PetscInt[static_cast<std::size_t>(nchart)]),
+          leaf(new PetscInt[static_cast<std::size_t>(nchart)]);
+      for (PetscInt v = vStart; v < vEnd; ++v) root[v] = out.global_[static_cast<std::size_t>(v - vStart)];
+      PetscSF vertex_sf;
+      TPX_PETSC(PetscSFCreate(comm, &vertex_sf));
+      TPX_PETSC(PetscSFSetGraph(vertex_sf, nchart, static_cast<PetscInt>(leaf_points.size()), leaf_points.data(),
+                                PETSC_COPY_VALUES, leaf_roots.data(), PETSC_COPY_VALUES));
+      TPX_PETSC(PetscSFBcastBegin(vertex_sf, MPIU_INT, root.get(), leaf.get(), MPI_REPLACE));
+      TPX_PETSC(PetscSFBcastEnd(vertex_sf, MPIU_INT, root.get(), leaf.get(), MPI_REPLACE));
+      TPX_PETSC(PetscSFDestroy(&vertex_sf));
+      for (PetscInt p : leaf_points) out.global_[static_cast<std::size_t>(p - vStart)] = -(leaf[p] + 1);
+    }
+  }
   const std::size_t npoints = static_cast<std::size_t>(pEnd - pStart);
   for (PetscInt d = 0; d <= depth; ++d) {
     PetscInt a = 0, b = 0;
@@ -263,9 +448,7 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
       if (b > a) blocks.push_back({a, b, d, 0});
     }
     std::sort(blocks.begin(), blocks.end(), [](const Block &x, const Block &y) { return x.start < y.start; });
-    PetscInt next = pStart, storage = 0;
-    TPX_PETSC(PetscSectionGetStorageSize(raw.section, &storage));
-    PetscInt off = 0;
+    PetscInt next = pStart, off = 0;
     for (Block &bl : blocks) {
       if (bl.start != next) return false;
       next = bl.end;
@@ -285,83 +468,47 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
       if (nc != w || bl.cone0 != off || offset_of(bl.end - 1) != off + (bl.end - 1 - bl.start) * w) return false;
       off += (bl.end - bl.start) * w;
     }
-    return next == pEnd && off == storage;
+    return next == pEnd && off == raw.storage;
   };
   // Which points some cone names (the others have no support: tops), from the raw cones.
   std::vector<unsigned char> supported;
   auto mark_supported = [&]() {
     supported.assign(npoints, 0);
-    PetscInt storage = 0;
-    TPX_PETSC(PetscSectionGetStorageSize(raw.section, &storage));
-    for (PetscInt k = 0; k < storage; ++k) {
-      const PetscInt c = raw.cone[k];
-      if (c >= pStart && c < pEnd) supported[static_cast<std::size_t>(c - pStart)] = 1;
-    }
+    mark_named(raw.cone, raw.storage, pStart, pEnd, supported.data());
   };
   const Arrangements arr;
-  auto in_range = [](PetscInt q, const std::pair<PetscInt, PetscInt> &r) { return q >= r.first && q < r.second; };
-  // Fast path 1: a fully interpolated simplicial DM. A top's vertices in PETSc's closure order:
-  // an edge is its cone; a triangle reached with orientation o lists its first arranged edge's
-  // vertices (swapped when that edge's composed orientation is not 0), then the vertex its
-  // second arranged edge adds; a tetrahedron lists its first face's vertices as that triangle
-  // reached with its cone orientation, then the vertex of its second face's first two edges that
-  // is missing.
+  // Fast path 1: a fully interpolated simplicial DM (SimplexCones), read block by block into
+  // arrays sized first from the marks.
   auto interpolated_fill = [&]() -> bool {
     if (interp != DMPLEX_INTERPOLATED_FULL || !fixed_width(false)) return false;
-    const auto &S = out.strata_;
-    // Point q of depth d's cone: cone[at[d] + (d + 1) q] (the block's first cone less its start).
-    PetscInt at[4] = {0, 0, 0, 0};
-    for (const Block &bl : blocks) at[bl.depth] = bl.cone0 - (bl.depth + 1) * bl.start;
-    const PetscInt *C = raw.cone, *O = raw.ornt;
-    auto edge = [&](PetscInt e, PetscInt *v) -> bool {
-      if (!in_range(e, S[1])) return false;
-      const PetscInt *c = C + at[1] + 2 * e;
-      v[0] = c[0];
-      v[1] = c[1];
-      return in_range(v[0], S[0]) && in_range(v[1], S[0]);
-    };
-    auto triangle = [&](PetscInt f, PetscInt o, PetscInt *v) -> bool {
-      if (!in_range(f, S[2]) || o < -3 || o > 2) return false;
-      const PetscInt k = at[2] + 3 * f;
-      const PetscInt i0 = arr.tri_first[o + 3], i1 = arr.tri_second[o + 3];
-      PetscInt a[2], b[2];
-      if (!edge(C[k + i0], a) || !edge(C[k + i1], b)) return false;
-      const PetscInt co = DMPolytopeTypeComposeOrientation(DM_POLYTOPE_SEGMENT, arr.tri_first_o[o + 3], O[k + i0]);
-      v[0] = co == 0 ? a[0] : a[1];
-      v[1] = co == 0 ? a[1] : a[0];
-      v[2] = b[0] == a[0] || b[0] == a[1] ? b[1] : b[0];
-      return true;
-    };
-    auto tetrahedron = [&](PetscInt t, PetscInt *v) -> bool {
-      const PetscInt k = at[3] + 4 * t;
-      if (!triangle(C[k], O[k], v)) return false;
-      const PetscInt f1 = C[k + 1];
-      if (!in_range(f1, S[2])) return false;
-      PetscInt e[4];
-      if (!edge(C[at[2] + 3 * f1], e) || !edge(C[at[2] + 3 * f1 + 1], e + 2)) return false;
-      for (PetscInt x : e) {
-        if (x != v[0] && x != v[1] && x != v[2]) {
-          v[3] = x;
-          return true;
-        }
-      }
-      return false;
-    };
+    SimplexCones r;
+    r.C = raw.cone;
+    r.O = raw.ornt;
+    r.arr = arr;
+    for (std::size_t d = 0; d < out.strata_.size(); ++d) {
+      r.lo[d] = out.strata_[d].first;
+      r.hi[d] = out.strata_[d].second;
+    }
+    for (const Block &bl : blocks) r.at[bl.depth] = bl.cone0 - (bl.depth + 1) * bl.start;
     mark_supported();
-    tops.reserve(static_cast<std::size_t>(S[static_cast<std::size_t>(depth)].second - S[static_cast<std::size_t>(depth)].first));
-    ids.reserve(tops.capacity() * static_cast<std::size_t>(depth + 1));
-    offsets.reserve(tops.capacity() + 1);
+    std::size_t ntops = 0, nids = 0;
     for (const Block &bl : blocks) {
-      const std::size_t w = static_cast<std::size_t>(bl.depth) + 1;
-      for (PetscInt p = bl.start; p < bl.end; ++p) {
-        if (supported[static_cast<std::size_t>(p - pStart)]) continue;
-        PetscInt v[4] = {p, 0, 0, 0};
-        const bool ok = bl.depth == 0 ? true : bl.depth == 1 ? edge(p, v) : bl.depth == 2 ? triangle(p, 0, v) : tetrahedron(p, v);
-        if (!ok) return false;
-        if (w == 4) std::swap(v[0], v[1]);  // petsc_winding
-        tops.push_back(p);
-        for (std::size_t k = 0; k < w; ++k) ids.push_back(static_cast<std::uint32_t>(v[k] - vStart));
-        offsets.push_back(ids.size());
+      const auto from = supported.begin() + (bl.start - pStart), to = supported.begin() + (bl.end - pStart);
+      const std::size_t n = static_cast<std::size_t>(std::count(from, to, 0));
+      ntops += n;
+      nids += n * static_cast<std::size_t>(bl.depth + 1);
+    }
+    tops.resize(ntops);
+    ids.resize(nids);
+    offsets.resize(ntops + 1);
+    PetscInt *t = tops.data();
+    std::uint32_t *w = ids.data();
+    std::size_t *e = offsets.data() + 1;
+    for (const Block &bl : blocks) {
+      const std::size_t base = static_cast<std::size_t>(w - ids.data());
+      if (!read_tops(r, bl.start, bl.end, static_cast<int>(bl.depth), supported.data() + (bl.start - pStart), vStart, t, w,
+                     e, base)) {
+        return false;
       }
     }
     return true;
@@ -383,44 +530,36 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
       others += n;
     }
     mark_supported();
+    // Sized from the marks: each top holds at most 4 ids (1 for a vertex), trimmed after.
+    std::size_t ntops = 0;
     for (const Block &bl : blocks) {
-      PetscInt at = bl.cone0;
-      for (PetscInt p = bl.start; p < bl.end; ++p) {
-        if (bl.depth == 0) {
-          if (!supported[static_cast<std::size_t>(p - pStart)]) {
-            tops.push_back(p);
-            ids.push_back(static_cast<std::uint32_t>(p - vStart));
-            offsets.push_back(ids.size());
-          }
-          continue;
+      ntops += static_cast<std::size_t>(
+          std::count(supported.begin() + (bl.start - pStart), supported.begin() + (bl.end - pStart), 0));
+    }
+    tops.resize(ntops);
+    ids.resize(4 * ntops);
+    offsets.resize(ntops + 1);
+    PetscInt *t = tops.data();
+    std::uint32_t *w = ids.data();
+    std::size_t *e = offsets.data() + 1;
+    for (const Block &bl : blocks) {
+      const unsigned char *marks = supported.data() + (bl.start - pStart);
+      if (bl.depth == 0) {  // isolated vertices
+        for (PetscInt p = bl.start; p < bl.end; ++p) {
+          if (marks[p - bl.start]) continue;
+          *w++ = static_cast<std::uint32_t>(p - vStart);
+          *t++ = p;
+          *e++ = static_cast<std::size_t>(w - ids.data());
         }
-        PetscInt nc = 0;
-        TPX_PETSC(PetscSectionGetDof(raw.section, p, &nc));
-        DMPolytopeType ct = nc == 2 ? DM_POLYTOPE_SEGMENT : nc == 3 ? DM_POLYTOPE_TRIANGLE : DM_POLYTOPE_TETRAHEDRON;
-        if (others > 0 || nc < 2 || nc > 4) TPX_PETSC(DMPlexGetCellType(dm, p, &ct));
-        if (!((ct == DM_POLYTOPE_SEGMENT && nc == 2) || (ct == DM_POLYTOPE_TRIANGLE && nc == 3) ||
-              (ct == DM_POLYTOPE_TETRAHEDRON && nc == 4))) {
-          std::ostringstream m;
-          m << "DMPlex point " << p << " (rank " << rank << ") is a " << DMPolytopeTypes[ct] << " with " << nc
-            << " vertices at depth 1: Topoplex holds simplicial complexes only (points, segments, triangles, tetrahedra)";
-          throw Error(Code::NotSimplicial, m.str());
-        }
-        const std::size_t first = ids.size();
-        for (PetscInt k = 0; k < nc; ++k) {
-          const PetscInt c = raw.cone[at + k];
-          if (!in_range(c, out.strata_[0])) return false;
-          ids.push_back(static_cast<std::uint32_t>(c - vStart));
-        }
-        at += nc;
-        if (!supported[static_cast<std::size_t>(p - pStart)]) {
-          if (nc == 4) std::swap(ids[first], ids[first + 1]);  // petsc_winding
-          tops.push_back(p);
-          offsets.push_back(ids.size());
-        } else {
-          ids.resize(first);
-        }
+        continue;
+      }
+      const std::size_t base = static_cast<std::size_t>(w - ids.data());
+      if (!read_cell_vertex_tops(dm, raw.section, raw.cone + bl.cone0, bl.start, bl.end, marks, vStart, vEnd, others > 0,
+                                 rank, t, w, e, base)) {
+        return false;
       }
     }
+    ids.resize(static_cast<std::size_t>(w - ids.data()));
     return true;
   };
   // Any other DM: each top's transitive closure, judged simplicial by its vertex count and cell
@@ -614,12 +753,6 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
   // Owners from the point SF: leaves are ghosts owned by their root's rank; every other point is
   // this rank's. The SF's own arrays when its leaves are ascending (referenced), else a sorted
   // copy of the ghosts.
-  PetscSF sf;
-  TPX_PETSC(DMGetPointSF(dm, &sf));
-  PetscInt nroots = -1, nleaves = 0;
-  const PetscInt *ilocal = nullptr;
-  const PetscSFNode *iremote = nullptr;
-  TPX_PETSC(PetscSFGetGraph(sf, &nroots, &nleaves, &ilocal, &iremote));
   if (nroots >= 0 && nleaves > 0) {
     bool ascending = ilocal != nullptr;
     for (PetscInt i = 1; ascending && i < nleaves; ++i) ascending = ilocal[i - 1] < ilocal[i];
@@ -644,12 +777,6 @@ RankMesh RankMesh::from_dm(DM dm, const ImportOptions &options) {
     }
   }
 
-  // Global vertex numbers (collective): PETSc's numbering, kept by the DM.
-  TPX_PETSC(DMPlexGetVertexNumbering(dm, &out.numbering_));
-  PetscInt ngn = 0;
-  TPX_PETSC(ISGetLocalSize(out.numbering_, &ngn));
-  if (ngn < vEnd - vStart) throw Error(Code::Petsc, "DMPlexGetVertexNumbering numbers fewer points than the DM's vertices");
-  TPX_PETSC(ISGetIndices(out.numbering_, &out.global_));
   return out;
 }
 
@@ -659,7 +786,7 @@ std::size_t RankMesh::bytes() const noexcept {
          extra_listing_.capacity() * sizeof(std::pair<PetscInt, std::uint32_t>) +
          ghost_point_.capacity() * sizeof(PetscInt) + ghost_owner_.capacity() * sizeof(int) +
          strata_.capacity() * sizeof(std::pair<PetscInt, PetscInt>) +
-         (global_ ? static_cast<std::size_t>(v_end_ - v_start_) * sizeof(PetscInt) : 0);
+         global_.capacity() * sizeof(PetscInt);
 }
 
 const Complex &RankMesh::complex() const {

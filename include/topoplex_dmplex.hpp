@@ -87,7 +87,7 @@ struct ImportOptions {
  * Topoplex ids and each simplex's owner. The maps copy next to nothing: vertex v is point
  * vStart + v and the tops are kept as runs of consecutive points, so both ways are offsets; any
  * other point is answered on demand from the DM's cones and supports. For that the RankMesh
- * holds a reference to the DM (and to its point SF and vertex numbering), released by its
+ * holds a reference to the DM (and to its point SF), released by its
  * destructor: do not change the DM's topology while a RankMesh of it lives, and destroy the
  * RankMesh before PetscFinalize. point_of, simplex_of_point and owner call PETSc's getters
  * (DMPlexGetCone, DMPlexGetSupport, ...): call them from one thread at a time unless PETSc was
@@ -126,8 +126,7 @@ class RankMesh {
 
   /* Heap bytes the maps keep (everything but the complex): the top runs, the labelled listings,
    * a sorted copy of the ghost points when the point SF's leaves are not sorted, and the global
-   * vertex numbers (4 or 8 B per vertex: PETSc's vertex numbering, made by from_dm and held in
-   * the DM; counted here as the bridge's). O(1). */
+   * vertex numbers (4 or 8 B per vertex). O(1). */
   std::size_t bytes() const noexcept;
 
   /* ---- point <-> Topoplex ids ---- */
@@ -160,7 +159,8 @@ class RankMesh {
   bool owned(const StructureView &s, const std::vector<std::uint32_t> &simplex) const {
     return owner(s, simplex) == rank_;
   }
-  /* Global vertex number (DMPlexGetVertexNumbering, the same on every rank holding the vertex). */
+  /* Global vertex number: DMPlexGetVertexNumbering's (each rank's owned vertices in point order
+   * after the ranks before it), the same on every rank holding the vertex. O(1). */
   PetscInt global_vertex(std::uint32_t v) const;
 
   /* R_{p,q} of an owned p-simplex through `s`: throws Ghost for a ghost simplex and
@@ -181,8 +181,7 @@ class RankMesh {
   std::optional<Complex> complex_;
   DM dm_ = nullptr;                 /* referenced */
   PetscSF sf_ = nullptr;            /* the point SF, referenced when its leaves are used in place */
-  IS numbering_ = nullptr;          /* the DM's vertex numbering (held by the DM) */
-  const PetscInt *global_ = nullptr; /* its indices */
+  std::vector<PetscInt> global_; /* global vertex numbers, PETSc's: ghosts as -(g + 1) */
   int rank_ = 0, size_ = 1;
   PetscInt overlap_ = 0;
   bool vertex_adjacency_ = true; /* the DM's basic adjacency is PETSc's default (FEM) */

@@ -298,6 +298,15 @@ DistributedReport check_distributed(const tp::Complex &c, bool interpolate, Pets
     for (std::size_t k = 0; k < cd; ++k) CHECK(lxyz[v * cd + k] == gxyz[to_global[v] * cd + k]);
     CHECK(rm.vertex_of_point(rm.point_of_vertex(v)) == v);
   }
+  // Global vertex numbers (from_dm makes them from the point SF's vertex leaves) are PETSc's own.
+  {
+    IS numbering = nullptr;
+    const PetscInt *gn = nullptr;
+    PetscCallAbort(PETSC_COMM_WORLD, DMPlexGetVertexNumbering(local, &numbering));
+    PetscCallAbort(PETSC_COMM_WORLD, ISGetIndices(numbering, &gn));
+    for (std::uint32_t v = 0; v < rm.vertex_count(); ++v) CHECK(rm.global_vertex(v) == (gn[v] < 0 ? -(gn[v] + 1) : gn[v]));
+    PetscCallAbort(PETSC_COMM_WORLD, ISRestoreIndices(numbering, &gn));
+  }
   auto g = [&](std::uint32_t v) { return to_global[v]; };
 
   DistributedReport rep;

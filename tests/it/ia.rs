@@ -331,3 +331,44 @@ fn real_data_matches_the_incidence_graph() {
         }
     }
 }
+
+/// The tetrahedra around one edge [0, apex]: vertex 0 starts over a hundred triangles, so a ring
+/// vertex (0 is its lower neighbour) finds its triangles through 0 by searching them one by one
+/// rather than scanning 0's rows; the apex meets both ways. Every vertex's star (both orders)
+/// and each R_{0,q} equal the oracle's, the edges and triangles in ascending dense order.
+#[test]
+fn stars_beside_a_hub_vertex_with_many_faces_match_the_oracle() {
+    use topoplex::{Navigate, Order};
+    let k = 80u32;
+    let apex = k + 1;
+    let tets: Vec<Vec<u32>> = (1..k).map(|i| vec![0, i, i + 1, apex]).collect();
+    let refs: Vec<&[u32]> = tets.iter().map(Vec::as_slice).collect();
+    let c = Complex::from_simplices(apex + 1, &refs).unwrap();
+    let s = ia(&c);
+    let n: &dyn Navigate = s.as_navigate().unwrap();
+    let o = Oracle::new(&c);
+    let mut buf = Vec::new();
+    for v in 0..=apex {
+        let h = n.handle(0, v).unwrap();
+        let mut want: Vec<Vec<u32>> = (1..=3).flat_map(|q| o.relation(&[v], q)).collect();
+        want.sort();
+        for order in [Order::Natural, Order::Lexicographic] {
+            n.star(h, order, &mut buf).unwrap();
+            let mut got: Vec<Vec<u32>> = buf
+                .iter()
+                .map(|&x| n.vertices_of(x).unwrap().to_vec())
+                .collect();
+            got.sort();
+            assert_eq!(got, want, "star of {v} ({order:?})");
+        }
+        for q in 1..=2 {
+            n.related(h, q, Order::Natural, &mut buf).unwrap();
+            let ids: Vec<u32> = buf.iter().map(|x| x.index()).collect();
+            assert!(
+                ids.is_sorted_by(|a, b| a < b),
+                "R_{{0,{q}}} of {v}: {ids:?}"
+            );
+            assert_eq!(ids.len(), o.relation(&[v], q).len(), "R_{{0,{q}}} of {v}");
+        }
+    }
+}

@@ -577,12 +577,7 @@ impl IndexedAdjacency {
     }
 
     /// R_{0,q} of vertex `v`, 0 < q < d, as dense q-indices (rows of the lazy q-table), each
-    /// once, from one walk of the star of `v`: edges named by their other vertex and
-    /// deduplicated by it (first met first); for q = d − 1 > 1 a face through v is given by the
-    /// d-simplex on its side with the smaller id (a (d−1)-face lies in at most two
-    /// d-simplices, both in the star of v: no set needed), in walk order; other q through a row
-    /// set. Each answer is found among the table's rows that share its first vertex.
-    /// O(C(d, q)·n_v) plus a short search per answer.
+    /// once and ascending, from one walk of the star of `v` ([`Self::cofaces_in`]).
     fn vertex_cofaces(&self, v: u32, q: usize, found: impl FnMut(u32)) {
         let mut star = Scratch::<Vec<u32>>::take();
         star.clear();
@@ -590,63 +585,86 @@ impl IndexedAdjacency {
             star.push(t);
             true
         });
-        self.cofaces_in(v, &star, q, found);
+        let mut lower = Scratch::<Vec<u32>>::take();
+        self.lower_neighbours(v, &star, &mut lower);
+        self.cofaces_in(v, &star, &lower, q, found);
     }
 
-    /// [`Self::vertex_cofaces`] over the d-simplices `star` of `v`. The q-faces whose smallest
-    /// vertex is v are the lazy table's rows starting with v, all of them in the star (every
-    /// face of the IA's complex lies in a d-simplex): that range comes first, with no search;
-    /// then the faces whose smallest vertex is below v, in walk order, each searched among the
-    /// rows of that vertex.
-    fn cofaces_in(&self, v: u32, star: &[u32], q: usize, mut found: impl FnMut(u32)) {
-        let (d, w) = (self.d, self.d + 1);
-        let table = self.lazy_table(q);
-        table.starting_with(v).for_each(&mut found);
-        let mut id =
-            |row: &[u32]| found(table.find(row).expect("a face of a d-simplex is a simplex"));
-        let tops = star.iter().map(|&t| (t, self.tops.get(t as usize)));
-        if q == 1 {
-            let mut lower = IdSet::default();
-            for (_, t) in tops {
-                for &x in t.iter().filter(|&&x| x < v) {
-                    if lower.insert(x) {
-                        id(&[x, v]);
-                    }
+    /// The vertices below `v` of the d-simplices `star` of `v`, ascending, each once: the
+    /// smallest vertices of the faces through v that do not start with v.
+    fn lower_neighbours(&self, v: u32, star: &[u32], lower: &mut Vec<u32>) {
+        lower.clear();
+        for &t in star {
+            for &x in self.tops.get(t as usize) {
+                // A mesh vertex has a few lower neighbours: a scan beats sorting the repeats.
+                if x < v && !lower.contains(&x) {
+                    lower.push(x);
                 }
-            }
-        } else if q + 1 == d {
-            let mut row = [0u32; MAX_DIMENSION + 1];
-            for (t, verts) in tops {
-                // Rows are ascending: a face through v starts below v unless it drops
-                // vertex 0 while v is vertex 1, or v is vertex 0.
-                if verts[0] == v {
-                    continue;
-                }
-                for (i, &x) in verts.iter().enumerate() {
-                    let u = self.adj[t as usize * w + i];
-                    if x != v && (u == NONE || u > t) && (i != 0 || verts[1] != v) {
-                        let mut k = 0;
-                        for (j, &y) in verts.iter().enumerate() {
-                            if j != i {
-                                row[k] = y;
-                                k += 1;
-                            }
-                        }
-                        id(&row[..d]);
-                    }
-                }
-            }
-        } else {
-            let mut set = RowSet::default();
-            for (_, t) in tops {
-                faces_containing(t, &[v], q, |f| {
-                    if f[0] != v && set.insert(f) {
-                        id(f);
-                    }
-                });
             }
         }
+        lower.sort_unstable();
     }
+
+    /// R_{0,q} of `v` from the d-simplices `star` of `v` and its `lower` neighbours
+    /// ([`Self::lower_neighbours`]), each face once, in ascending row order. A q-face through v
+    /// is a row of the lazy table starting with its smallest vertex: with v (that range comes
+    /// last, every row of it through v: each face of the IA's complex lies in a d-simplex), or
+    /// with some x in `lower`, and then it is one of x's rows whose second vertex is at most v
+    /// (rows are ascending). Edges [x, v] are searched among x's rows. For q ≥ 2, when x has
+    /// few rows ([`Self::SCAN_ROWS`]: a mesh vertex has a dozen) they are scanned in order for
+    /// v up to second vertex v; else (a hub x) the faces through x and v of the d-simplices in
+    /// the star are searched one by one. No face is searched twice, no set is kept for the
+    /// scans, and the cost is O(C(d, q)·n_v·log) at worst.
+    fn cofaces_in(
+        &self,
+        v: u32,
+        star: &[u32],
+        lower: &[u32],
+        q: usize,
+        mut found: impl FnMut(u32),
+    ) {
+        let table = self.lazy_table(q);
+        let search = |row: &[u32]| table.find(row).expect("a face of a d-simplex is a simplex");
+        for &x in lower {
+            if q == 1 {
+                found(search(&[x, v]));
+                continue;
+            }
+            let rows = table.starting_with(x);
+            if rows.len() <= Self::SCAN_ROWS as usize {
+                // In order, up to the first row whose second vertex is above v.
+                for r in rows {
+                    let row = table.row(r);
+                    if row[1] > v {
+                        break;
+                    }
+                    if row[1..].contains(&v) {
+                        found(r);
+                    }
+                }
+                continue;
+            }
+            let mut ids = Scratch::<Vec<u32>>::take();
+            ids.clear();
+            let mut set = RowSet::default();
+            for &t in star {
+                let verts = self.tops.get(t as usize);
+                if verts.contains(&x) {
+                    faces_containing(verts, &[x, v], q, |f| {
+                        if f[0] == x && set.insert(f) {
+                            ids.push(search(f));
+                        }
+                    });
+                }
+            }
+            ids.sort_unstable();
+            ids.iter().for_each(|&r| found(r));
+        }
+        table.starting_with(v).for_each(&mut found);
+    }
+
+    /// Rows of a lower neighbour scanned for a vertex's cofaces before searching them instead.
+    const SCAN_ROWS: u32 = 64;
 
     /// Whether some d-simplex contains σ (ascending, p > 0), by walking the star of σ's first
     /// vertex.
@@ -684,6 +702,8 @@ impl NavBase for IndexedAdjacency {
             star.push(t);
             true
         });
+        let mut lower = Scratch::<Vec<u32>>::take();
+        self.lower_neighbours(v, &star, &mut lower);
         let sort = |out: &mut Vec<SimplexHandle>, start: usize| {
             if order == Order::Lexicographic {
                 out[start..].sort_unstable();
@@ -691,7 +711,9 @@ impl NavBase for IndexedAdjacency {
         };
         for q in 1..d {
             let start = out.len();
-            self.cofaces_in(v, &star, q, |x| out.push(SimplexHandle::dense(q, x)));
+            self.cofaces_in(v, &star, &lower, q, |x| {
+                out.push(SimplexHandle::dense(q, x))
+            });
             sort(out, start);
         }
         let start = out.len();

@@ -144,6 +144,12 @@ impl LazyTable {
         None
     }
 
+    /// Row `r`'s ids.
+    #[inline]
+    pub(crate) fn row(&self, r: u32) -> &[u32] {
+        self.table.get(r as usize)
+    }
+
     /// The rows whose smallest vertex is `v` (empty past the last such vertex): O(1).
     pub(crate) fn starting_with(&self, v: u32) -> std::ops::Range<u32> {
         let v = v as usize;
