@@ -1548,10 +1548,14 @@ class MeshView {
         if (coords) prefetch(coords + std::size_t(w) * a_.coord_dim);
       });
       if (!a_.alive[v]) continue;
-      // Room for every candidate first, so that the ring is written without a check per id.
-      std::size_t room = 0;
-      for (TopRef t : star(v)) room += t.dim();
-      if (ring.size() < room) ring.resize(room);
+      // Room for every candidate first, so that the ring is written without a check per id: a
+      // top names at most 15 others, so only a star of more than size/15 tops is counted.
+      const TopSpan st = star(v);
+      if (ring.size() < 15 * st.size()) {
+        std::size_t room = 0;
+        for (TopRef t : st) room += t.dim();
+        if (ring.size() < room) ring.resize(std::max<std::size_t>(room, 1024));
+      }
       std::uint32_t *out = ring.data();
       std::uint32_t n = 0;
       for_each_neighbour(v, marks, [&](std::uint32_t w) { out[n++] = w; });
