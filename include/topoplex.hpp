@@ -1532,8 +1532,8 @@ class MeshView {
    * vertex it is at (the rows of later vertices' tops, then their vertices' stamps and
    * coordinates) on meshes larger than the caches (from 2^17 vertex slots), where it runs
    * 1.4-2x faster than a loop calling for_each_neighbour per vertex; on smaller meshes, whose
-   * arrays the caches hold, writing out each ring costs 15-20% more than that loop doing its
-   * work in the callback (docs/benchmarks.md, "The mesh"). f may read the mesh and write coordinates through
+   * arrays the caches hold, it costs what that loop costs to a tenth (writing out each ring;
+   * docs/benchmarks.md, "The mesh"). f may read the mesh and write coordinates through
    * Live::set_coords (in place: the view stays valid), not edit the topology. O(Σ_v d·k_v),
    * no allocation once `marks` has grown to vertex_slots() and the largest ring. */
   template <class F>
