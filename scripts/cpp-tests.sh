@@ -55,7 +55,7 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # UBSan, their CGAL-heavy sources compiled once (both passes compile without optimisation, so
 # -Werror sees the same code either way). Everything else is built in both passes. The
 # benchmark programs (uninstrumented pass only) run once each as smoke tests: built with -O0,
-# which halves their compile time; scripts/bench.sh builds them with -O2 for timing.
+# which shortens their compilation; scripts/bench.sh builds them with -O2 for timing.
 for sanitize in OFF ON; do
   peers=ON
   [ "$sanitize" = ON ] || peers=OFF
