@@ -704,21 +704,17 @@ impl NavBase for IndexedAdjacency {
         });
         let mut lower = Scratch::<Vec<u32>>::take();
         self.lower_neighbours(v, &star, &mut lower);
-        let sort = |out: &mut Vec<SimplexHandle>, start: usize| {
-            if order == Order::Lexicographic {
-                out[start..].sort_unstable();
-            }
-        };
+        // The q-faces come ascending (`cofaces_in`): lexicographic in either order.
         for q in 1..d {
-            let start = out.len();
             self.cofaces_in(v, &star, &lower, q, |x| {
                 out.push(SimplexHandle::dense(q, x))
             });
-            sort(out, start);
         }
         let start = out.len();
         out.extend(star.iter().map(|&t| SimplexHandle::dense(d, t)));
-        sort(out, start);
+        if order == Order::Lexicographic {
+            out[start..].sort_unstable();
+        }
         true
     }
 

@@ -128,11 +128,11 @@ impl LazyTable {
 
     /// Row index of `s` (ascending ids), searched among the rows sharing its first vertex.
     pub(crate) fn find(&self, s: &[u32]) -> Option<u32> {
-        let v = s[0] as usize;
-        if s.len() != self.table.arity() || v + 1 >= self.first.len() {
+        if s.len() != self.table.arity() {
             return None;
         }
-        let (mut lo, mut hi) = (self.first[v] as usize, self.first[v + 1] as usize);
+        let rows = self.starting_with(s[0]);
+        let (mut lo, mut hi) = (rows.start as usize, rows.end as usize);
         while lo < hi {
             let mid = (lo + hi) / 2;
             match self.table.get(mid)[1..].cmp(&s[1..]) {
