@@ -25,3 +25,10 @@ inline std::string find_data_file(const char* env_var, const char* fallback, con
 }
 
 }  // namespace topoplex_tests
+
+// Declares `var` as the path of data file `relative` (find_data_file's search), or skips the
+// current test, naming the file and the variable that points elsewhere.
+#define TOPOPLEX_REQUIRE_DATA_FILE(var, env_var, fallback, relative)                         \
+  const std::string var = ::topoplex_tests::find_data_file(env_var, fallback, relative); \
+  if (var.empty())                                                                        \
+  GTEST_SKIP() << "data file " << (relative) << " not found (set " env_var ")"

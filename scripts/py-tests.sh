@@ -5,7 +5,7 @@
 # directory (so the core library compiled by `cargo build --profile ci --workspace` is reused:
 # only pyo3 and the binding recompile, for maturin's PYO3_BUILD_EXTENSION_MODULE), then pytest
 # over the tests and the docstring examples of the package and of the README's Python section,
-# and mypy's stubtest: the stubs (python/topoplex/__init__.pyi) against the built module.
+# and mypy over the package: every function annotated, every body checked against its annotations.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 target=${CARGO_TARGET_DIR:-target}
@@ -34,8 +34,9 @@ cd crates/topoplex-py
 # -p no:cacheprovider: no .pytest_cache in the source tree.
 "$py" -m pytest -q -p no:cacheprovider --doctest-modules python/topoplex tests
 "$py" -m doctest ../../README.md && echo "README Python examples: passed"
-# Every name, signature and class of the stubs against the module as built (the peers' missing
-# type information is ignored: pyproject.toml's [tool.mypy]); run from the venv, where mypy
-# leaves its cache, not in the source tree.
+# The package's annotations are its only type declarations (no stubs beside them): mypy checks
+# each body against them under pyproject.toml's [tool.mypy] (the extension module and the
+# optional peers have no type information). Run from the venv, where mypy leaves its cache,
+# not in the source tree.
 config=$(pwd)/pyproject.toml
-(cd "$venv" && "$py" -m mypy.stubtest --mypy-config-file "$config" topoplex)
+(cd "$venv" && "$py" -m mypy --config-file "$config" -p topoplex)

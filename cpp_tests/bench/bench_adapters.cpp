@@ -100,6 +100,50 @@ std::string uncommented(const std::string &given, const std::string &ext) {
   return path;
 }
 
+// read/<lib>, to_tpx/<lib>, from_tpx/<lib>, to_tpx_file/<lib> and from_tpx_file/<lib> for a
+// surface peer whose mesh type is M: `read(m, path)` and `write(m, path)` its own file I/O
+// (false on failure), `to(m)` and `from(cx)` the in-memory adapters; `m` and `cx` the inputs
+// made once, `off` the scratch file of the round trips.
+template <class M, class Items, class Read, class Write, class To, class From>
+void peer_surface(const std::string &lib, const std::string &path, const std::string &off, const M &m,
+                  const topoplex::Complex &cx, Items items, Read read, Write write, To to, From from) {
+  reg("read/" + lib, [=](benchmark::State &s) {
+    for (auto _ : s) {
+      M got;
+      if (!read(got, path)) return fail(s, lib + " cannot read " + path);
+      benchmark::DoNotOptimize(got);
+    }
+    items(s);
+  });
+  reg("to_tpx/" + lib, [=, &m](benchmark::State &s) {
+    for (auto _ : s) benchmark::DoNotOptimize(to(m).get());
+    items(s);
+  });
+  reg("from_tpx/" + lib, [=, &cx](benchmark::State &s) {
+    for (auto _ : s) {
+      M got = from(cx);
+      benchmark::DoNotOptimize(got);
+    }
+    items(s);
+  });
+  reg("to_tpx_file/" + lib, [=, &m](benchmark::State &s) {
+    for (auto _ : s) {
+      if (!write(m, off)) return fail(s, lib + " cannot write " + off);
+      benchmark::DoNotOptimize(topoplex::Complex::from_file(off).get());
+    }
+    items(s);
+  });
+  reg("from_tpx_file/" + lib, [=, &cx](benchmark::State &s) {
+    for (auto _ : s) {
+      cx.write(off);
+      M got;
+      if (!read(got, off)) return fail(s, lib + " cannot read " + off);
+      benchmark::DoNotOptimize(got);
+    }
+    items(s);
+  });
+}
+
 void surface(const std::string &given) {
   static const std::string path = uncommented(given, "_input.off");
   // The inputs every op starts from, made once.
@@ -121,82 +165,23 @@ void surface(const std::string &given) {
     s.SetItemsProcessed(int64_t(s.iterations() * faces));
   };
 
-  reg("read/openmesh", [=](benchmark::State &s) {
-    for (auto _ : s) {
-      OM m;
-      if (!OpenMesh::IO::read_mesh(m, path)) return fail(s, "read_mesh failed");
-      benchmark::DoNotOptimize(m.n_faces());
-    }
-    items(s);
-  });
-  reg("read/cgal_sm", [=](benchmark::State &s) {
-    for (auto _ : s) {
-      SM m;
-      if (!CGAL::IO::read_polygon_mesh(path, m)) return fail(s, "read_polygon_mesh failed");
-      benchmark::DoNotOptimize(m.num_faces());
-    }
-    items(s);
-  });
+  const auto om_read = [](OM &m, const std::string &p) { return OpenMesh::IO::read_mesh(m, p); };
+  const auto om_write = [](const OM &m, const std::string &p) {
+    OpenMesh::IO::Options o;
+    return OpenMesh::IO::write_mesh(m, p, o, 17);
+  };
+  const auto om_to = [](const OM &m) { return topoplex::openmesh::to_complex(m); };
+  const auto om_from = [](const topoplex::Complex &c) { return topoplex::openmesh::to_openmesh<OM>(c); };
+  peer_surface("openmesh", path, off, om, *cx, items, om_read, om_write, om_to, om_from);
+  const auto sm_read = [](SM &m, const std::string &p) { return CGAL::IO::read_polygon_mesh(p, m); };
+  const auto sm_write = [](const SM &m, const std::string &p) {
+    return CGAL::IO::write_polygon_mesh(p, m, CGAL::parameters::stream_precision(17));
+  };
+  const auto sm_to = [](const SM &m) { return topoplex::cgal::to_complex(m); };
+  const auto sm_from = [](const topoplex::Complex &c) { return topoplex::cgal::to_surface_mesh<SM>(c); };
+  peer_surface("cgal_sm", path, off, sm, *cx, items, sm_read, sm_write, sm_to, sm_from);
   reg("read/tpx", [=](benchmark::State &s) {
     for (auto _ : s) benchmark::DoNotOptimize(topoplex::Complex::from_file(path).get());
-    items(s);
-  });
-
-  reg("to_tpx/openmesh", [=](benchmark::State &s) {
-    for (auto _ : s) benchmark::DoNotOptimize(topoplex::openmesh::to_complex(om).get());
-    items(s);
-  });
-  reg("from_tpx/openmesh", [=](benchmark::State &s) {
-    for (auto _ : s) {
-      OM m = topoplex::openmesh::to_openmesh<OM>(*cx);
-      benchmark::DoNotOptimize(m.n_faces());
-    }
-    items(s);
-  });
-  reg("to_tpx_file/openmesh", [=](benchmark::State &s) {
-    for (auto _ : s) {
-      OpenMesh::IO::Options o;
-      if (!OpenMesh::IO::write_mesh(om, off, o, 17)) return fail(s, "write_mesh failed");
-      benchmark::DoNotOptimize(topoplex::Complex::from_file(off).get());
-    }
-    items(s);
-  });
-  reg("from_tpx_file/openmesh", [=](benchmark::State &s) {
-    for (auto _ : s) {
-      cx->write(off);
-      OM m;
-      if (!OpenMesh::IO::read_mesh(m, off)) return fail(s, "read_mesh failed");
-      benchmark::DoNotOptimize(m.n_faces());
-    }
-    items(s);
-  });
-
-  reg("to_tpx/cgal_sm", [=](benchmark::State &s) {
-    for (auto _ : s) benchmark::DoNotOptimize(topoplex::cgal::to_complex(sm).get());
-    items(s);
-  });
-  reg("from_tpx/cgal_sm", [=](benchmark::State &s) {
-    for (auto _ : s) {
-      SM m = topoplex::cgal::to_surface_mesh<SM>(*cx);
-      benchmark::DoNotOptimize(m.num_faces());
-    }
-    items(s);
-  });
-  reg("to_tpx_file/cgal_sm", [=](benchmark::State &s) {
-    for (auto _ : s) {
-      if (!CGAL::IO::write_polygon_mesh(off, sm, CGAL::parameters::stream_precision(17)))
-        return fail(s, "write_polygon_mesh failed");
-      benchmark::DoNotOptimize(topoplex::Complex::from_file(off).get());
-    }
-    items(s);
-  });
-  reg("from_tpx_file/cgal_sm", [=](benchmark::State &s) {
-    for (auto _ : s) {
-      cx->write(off);
-      SM m;
-      if (!CGAL::IO::read_polygon_mesh(off, m)) return fail(s, "read_polygon_mesh failed");
-      benchmark::DoNotOptimize(m.num_faces());
-    }
     items(s);
   });
 

@@ -468,10 +468,8 @@ struct ObjCase {
 class SharedObj : public ::testing::TestWithParam<ObjCase> {};
 
 TEST_P(SharedObj, ComponentsLoadIntoHalfedgeMeshesAndGlueBack) {
-  const std::string relative = std::string("nonmanifold/") + GetParam().file;
-  const std::string path =
-      topoplex_tests::find_data_file("TOPOPLEX_SHARED_DATA", TOPOPLEX_DECOMPOSE_SHARED_DATA_DIR, relative);
-  if (path.empty()) GTEST_SKIP() << "shared data file " << relative << " not found";
+  TOPOPLEX_REQUIRE_DATA_FILE(path, "TOPOPLEX_SHARED_DATA", TOPOPLEX_DECOMPOSE_SHARED_DATA_DIR,
+                             std::string("nonmanifold/") + GetParam().file);
   Input in;
   in.name = GetParam().file;
   std::string error;
@@ -556,10 +554,9 @@ struct AlphaCase {
 class AlphaComplex : public ::testing::TestWithParam<AlphaCase> {};
 
 TEST_P(AlphaComplex, ComponentsLoadIntoHalfedgeMeshesAndGlueBack) {
-  const std::string relative = std::string("points_3/") + GetParam().file;
-  const std::string path =
-      topoplex_tests::find_data_file("TOPOPLEX_CGAL_DATA", TOPOPLEX_DECOMPOSE_CGAL_DATA_DIR, relative);
-  if (path.empty()) GTEST_SKIP() << "sample data file " << relative << " not found (install libcgal-demo)";
+  // The CGAL data directory comes with Debian's libcgal-demo.
+  TOPOPLEX_REQUIRE_DATA_FILE(path, "TOPOPLEX_CGAL_DATA", TOPOPLEX_DECOMPOSE_CGAL_DATA_DIR,
+                             std::string("points_3/") + GetParam().file);
 
   std::vector<std::pair<K::Point_3, uint32_t>> points;
   {

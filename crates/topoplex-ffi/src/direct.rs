@@ -217,7 +217,10 @@ fn radial<T: TriTopo + NavBase>(
     q: usize,
     out: &mut impl Sink,
 ) -> Option<usize> {
-    radial_ff(t, p, i, q, out).or_else(|| looped(t, p, i, q, out))
+    let ff = p == 2 && q == 2 && t.dimension() >= 2 && i < t.n_tris();
+    ff.then(|| radial_ff(t, i, out))
+        .flatten()
+        .or_else(|| looped(t, p, i, q, out))
 }
 
 /// The structure's own loop for R_{p,q} (`NavBase::fast_into`, where it has one) into this
@@ -289,18 +292,9 @@ fn ig(g: &IncidenceGraph, p: usize, i: u32, q: usize, out: &mut impl Sink) -> Op
     }
 }
 
-/// R_{2,2} of triangle `i`: the triangles around its three edges, in radial order (the order
-/// of the structure's own walk).
-fn radial_ff<T: TriTopo + Topology>(
-    t: &T,
-    p: usize,
-    i: u32,
-    q: usize,
-    out: &mut impl Sink,
-) -> Option<usize> {
-    if p != 2 || q != 2 || t.dimension() < 2 || i >= t.n_tris() {
-        return None;
-    }
+/// R_{2,2} of triangle `i` (a triangle of `t`): the triangles around its three edges, in
+/// radial order (the order of the structure's own walk); `None` past 48 of them.
+fn radial_ff<T: TriTopo>(t: &T, i: u32, out: &mut impl Sink) -> Option<usize> {
     // Counted first, so that a buffer too short is left as it was.
     let mut tmp = [0u32; 48];
     let mut k = 0;

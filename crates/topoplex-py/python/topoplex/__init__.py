@@ -35,11 +35,13 @@ Long calls release the GIL. Errors are :class:`TopoplexError` subclasses (also `
 from __future__ import annotations
 
 import os
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union
+from typing import TYPE_CHECKING, Any, Dict, List, Optional, Sequence, Tuple, Union
 
 import numpy as np
+import numpy.typing as npt
 
-from . import _core, _errors
+from . import _core  # type: ignore[attr-defined]  # the compiled extension: no type information
+from . import _errors
 from ._errors import (
     DomainError,
     EditRefused,
@@ -72,7 +74,24 @@ __all__ = [
 # The exception classes, listed once beside their definitions.
 __all__ += _errors.__all__
 
-Undo = _core.Undo
+if TYPE_CHECKING:
+    from typing import final
+
+    @final
+    class Undo:
+        """What :meth:`Structure.contract` returns for one contraction: give it to
+        :meth:`Structure.split` to undo that contraction."""
+
+        @property
+        def edge(self) -> Tuple[int, int]: ...
+
+else:
+    Undo = _core.Undo
+_Path = Union[str, "os.PathLike[str]"]
+#: A relation's answers as CSR: ``ids[offsets[k]:offsets[k + 1]]`` belong to the k-th simplex.
+_Csr = Tuple[npt.NDArray[np.int64], npt.NDArray[np.uint32]]
+#: Simplices as one (n, k) array, a list of such arrays, or a CSR pair ``(offsets, ids)``.
+_Simplices = Union[npt.ArrayLike, List[npt.ArrayLike], Tuple[npt.ArrayLike, npt.ArrayLike]]
 _U32_MAX = 2**32 - 1
 #: :meth:`Structure.adjacency`: no other top of the same dimension across the facet.
 ACROSS_NONE: int = _core.ACROSS_NONE
@@ -219,8 +238,8 @@ class Complex:
 
     @staticmethod
     def from_arrays(
-        simplices: Any,
-        points: Any = None,
+        simplices: _Simplices,
+        points: Optional[npt.ArrayLike] = None,
         n_vertices: Optional[int] = None,
     ) -> "Complex":
         """A complex from its simplices: one (n, k) integer array (n simplices of k vertices),
@@ -239,8 +258,9 @@ class Complex:
         """
         # One (n, k) numpy array is passed as it lies (no offsets: the Rust call the same
         # array would make); anything else as a CSR.
-        uniform = isinstance(simplices, np.ndarray) and simplices.ndim == 2 and simplices.shape[1] > 0
-        if uniform:
+        width: Optional[int] = None
+        if isinstance(simplices, np.ndarray) and simplices.ndim == 2 and simplices.shape[1] > 0:
+            width = int(simplices.shape[1])
             ids, offsets = _ids(simplices, "simplices").reshape(-1), None
         else:
             ids, offsets = _csr(simplices)
@@ -253,8 +273,8 @@ class Complex:
             n = int(ids.max()) + 1 if ids.size else 0
         if n < 0 or n > _U32_MAX:
             raise InputError(f"vertex count {n} does not fit in 32 bits")
-        if offsets is None:
-            return Complex(_core.Complex._from_uniform(n, simplices.shape[1], ids, pts))
+        if width is not None:
+            return Complex(_core.Complex._from_uniform(n, width, ids, pts))
         return Complex(_core.Complex._from_csr(n, ids, offsets, pts))
 
     @property
@@ -268,7 +288,7 @@ class Complex:
         return self._c.dimension
 
     @property
-    def points(self) -> Optional[np.ndarray]:
+    def points(self) -> Optional[npt.NDArray[np.float64]]:
         """Vertex coordinates, float64 (n, k), or None (a read-only view into the file for a
         complex opened from a ``.tpx`` file, see :attr:`mapped`)."""
         return self._c.points
@@ -295,7 +315,7 @@ class Complex:
         or ``"listed"`` (one row per simplex as listed, see :meth:`listed`)."""
         return dict(self._c.attributes)
 
-    def with_attribute(self, name: str, location: str, values: Any) -> "Complex":
+    def with_attribute(self, name: str, location: str, values: npt.ArrayLike) -> "Complex":
         """A copy with attribute ``name`` set to ``values`` (int32, int64, float32 or float64;
         shape (n,) or (n, components)) on ``"vertices"`` or ``"listed"`` simplices."""
         arr = np.ascontiguousarray(values)
@@ -311,16 +331,16 @@ class Complex:
         """Number of p-simplices."""
         return self._c.count(p)
 
-    def simplices(self, p: int) -> np.ndarray:
+    def simplices(self, p: int) -> npt.NDArray[np.uint32]:
         """Every p-simplex as an (n_p, p+1) uint32 array of ascending ids, in ascending
         lexicographic order: row i is the p-simplex of dense index i."""
         return self._c.simplices(p)
 
-    def tops(self, p: int) -> np.ndarray:
+    def tops(self, p: int) -> npt.NDArray[np.uint32]:
         """The top p-simplices (faces of no other simplex) as rows of ascending ids."""
         return self._c.tops(p)
 
-    def listed(self) -> Tuple[np.ndarray, np.ndarray]:
+    def listed(self) -> _Csr:
         """The simplices as listed (input order and winding): a CSR pair (offsets, ids)."""
         return self._c.listed()
 
@@ -337,7 +357,7 @@ class Complex:
         """The live, editable mesh (``iastar``) of this complex."""
         return Structure(self._c.live())
 
-    def write(self, path: Union[str, os.PathLike], format: Optional[str] = None) -> None:
+    def write(self, path: _Path, format: Optional[str] = None) -> None:
         """Writes the complex (simplices as listed, with winding and data); format by the
         extension (off obj mesh simplices ply stl vtk vtu msh) or by ``format``."""
         self._c.write(os.fspath(path), format)
@@ -407,13 +427,13 @@ class Structure:
         """Number of p-simplices."""
         return self._s.count(p)
 
-    def simplices(self, p: int) -> np.ndarray:
+    def simplices(self, p: int) -> npt.NDArray[np.uint32]:
         """Every p-simplex, (n_p, p+1) uint32, ascending ids, row i = dense index i."""
         return self._s.simplices(p)
 
     def relation(
-        self, p: int, q: int, simplices: Any = None, order: str = "sorted"
-    ) -> Tuple[np.ndarray, np.ndarray]:
+        self, p: int, q: int, simplices: Optional[npt.ArrayLike] = None, order: str = "sorted"
+    ) -> _Csr:
         """R_{p,q} as CSR ``(offsets, ids)``: the q-simplices related to each p-simplex (or
         to the dense p-indices ``simplices``): boundary q < p, co-boundary q > p, adjacency
         q = p. ``offsets`` is int64 of length n+1, ``ids`` uint32 dense q-indices, ascending
@@ -427,11 +447,11 @@ class Structure:
         """
         return self._s._relation(p, q, _index_array(simplices), order)
 
-    def degree(self, p: int, q: int, simplices: Any = None) -> np.ndarray:
+    def degree(self, p: int, q: int, simplices: Optional[npt.ArrayLike] = None) -> npt.NDArray[np.uint32]:
         """|R_{p,q}| per p-simplex (or per dense index in ``simplices``), uint32."""
         return self._s._degree(p, q, _index_array(simplices))
 
-    def locate(self, vertices: Any) -> Union[int, np.ndarray]:
+    def locate(self, vertices: npt.ArrayLike) -> Union[int, npt.NDArray[np.int64]]:
         """Dense index of the simplex with these vertex ids (any order); a 2-D array of rows
         gives an int64 array, -1 for rows that are not simplices of the complex. A single
         simplex not in the complex raises :class:`InputError`."""
@@ -444,15 +464,15 @@ class Structure:
             raise InputError(f"vertices: 1-D or 2-D array needed, got shape {arr.shape}")
         return self._s._locate(_ids(arr, "vertices"), True)
 
-    def winding(self, p: int) -> np.ndarray:
+    def winding(self, p: int) -> npt.NDArray[np.int8]:
         """±1 per p-simplex: the parity of a top simplex's vertex order as given; +1 else."""
         return self._s.winding(p)
 
-    def fans(self, v: int) -> List[np.ndarray]:
+    def fans(self, v: int) -> List[npt.NDArray[np.uint32]]:
         """The fans of top simplices around vertex ``v``, each in cyclic order."""
         return list(self._s.fans(v))
 
-    def radial(self, a: int, b: int, q: int = 2) -> List[np.ndarray]:
+    def radial(self, a: int, b: int, q: int = 2) -> List[npt.NDArray[np.uint32]]:
         """The q-simplices around edge (a, b) in radial order, per cycle."""
         return list(self._s.radial(a, b, q))
 
@@ -503,11 +523,11 @@ class Structure:
     # ---- the live mesh ----
 
     @property
-    def points(self) -> Optional[np.ndarray]:
+    def points(self) -> Optional[npt.NDArray[np.float64]]:
         """Coordinates (the live mesh: per vertex slot, a copy), or None."""
         return self._s.points
 
-    def set_points(self, points: Any, vertices: Any = None) -> None:
+    def set_points(self, points: npt.ArrayLike, vertices: Optional[npt.ArrayLike] = None) -> None:
         """Sets every vertex's coordinates ((slots, k) array), or those of ``vertices`` (one
         row of ``points`` each)."""
         pts = _points(points)
@@ -519,19 +539,19 @@ class Structure:
                 raise InputError(f"set_points: {pts.shape[0]} rows of points for {ids.size} vertices")
             self._s._set_point_rows(ids, pts)
 
-    def insert(self, simplices: Any) -> int:
+    def insert(self, simplices: _Simplices) -> int:
         """Inserts top simplices (an (n, k) array, a list of them, or a CSR pair), in order;
         returns how many. :class:`EditRefused` names the first refused row (earlier rows stay
         inserted)."""
         ids, offsets = _csr(simplices)
         return self._s._insert(ids, offsets)
 
-    def remove(self, simplices: Any) -> int:
+    def remove(self, simplices: _Simplices) -> int:
         """Removes top simplices (as :meth:`insert` takes them); returns how many."""
         ids, offsets = _csr(simplices)
         return self._s._remove(ids, offsets)
 
-    def add_vertex(self, xyz: Any = ()) -> int:
+    def add_vertex(self, xyz: npt.ArrayLike = ()) -> int:
         """Adds an isolated vertex with coordinates ``xyz``; returns its id."""
         return self._s._add_vertex(np.ascontiguousarray(xyz, dtype=np.float64).reshape(-1))
 
@@ -540,7 +560,9 @@ class Structure:
         manifold = link condition with the boundary, free)."""
         return self._s.can_contract(a, b, mode)
 
-    def contract(self, pairs: Any, mode: str = "topology", positions: Any = None) -> List[Any]:
+    def contract(
+        self, pairs: npt.ArrayLike, mode: str = "topology", positions: Optional[npt.ArrayLike] = None
+    ) -> List[Undo]:
         """Contracts each (a, b) of ``pairs`` (b into a, a moved to the row of ``positions``
         when given) in order; returns the :class:`Undo` records for :meth:`split`."""
         arr = _ids(np.asarray(pairs).reshape(-1, 2), "pairs")
@@ -549,7 +571,7 @@ class Structure:
             raise InputError(f"positions: {pos.shape[0]} rows for {arr.shape[0]} pairs")
         return list(self._s._contract(arr, mode, pos))
 
-    def split(self, undo: Any) -> None:
+    def split(self, undo: Undo) -> None:
         """Undoes a contraction (in reverse order of contractions touching the same simplices)."""
         self._s.split(undo)
 
@@ -559,12 +581,12 @@ class Structure:
         v, tops = self._s._compact()
         return {"vertices": v, "tops": list(tops)}
 
-    def live_tops(self) -> List[np.ndarray]:
+    def live_tops(self) -> List[npt.NDArray[np.uint32]]:
         """The live mesh's top simplices of dimension >= 1 as given (winding): item p is an
         (n, p+1) array (item 0 is empty: an isolated vertex is a vertex with an empty star)."""
         return list(self._s._live_tops())
 
-    def adjacency(self, p: int) -> np.ndarray:
+    def adjacency(self, p: int) -> npt.NDArray[np.uint32]:
         """The tops across each facet of the live mesh's top p-simplices (p >= 1): a uint32
         (n, p+1) array whose row i is for row i of ``live_tops()[p]`` and entry j for its facet
         opposite its j-th vertex (as listed there): the row of the one other top p-simplex
@@ -588,7 +610,7 @@ class Structure:
         on request and dropping it at each edit (the default)."""
         self._s.keep_adjacency(keep)
 
-    def vertex_values(self, name: str, vertices: Any = None) -> np.ndarray:
+    def vertex_values(self, name: str, vertices: Optional[npt.ArrayLike] = None) -> np.ndarray:
         """The rows of vertex attribute ``name`` (in its own dtype; shape (n,) for one
         component, else (n, components)) for the live vertices ``vertices`` (ids; default:
         every live vertex, ascending, as ``simplices(0)`` lists them). KeyError without such an
@@ -597,7 +619,9 @@ class Structure:
         got = self._s._vertex_values(name, ids)
         return got if got is not None else self._empty_values(name)
 
-    def set_vertex_values(self, name: str, values: Any, vertices: Any = None) -> None:
+    def set_vertex_values(
+        self, name: str, values: npt.ArrayLike, vertices: Optional[npt.ArrayLike] = None
+    ) -> None:
         """Sets the rows of vertex attribute ``name`` of the live vertices ``vertices``
         (default: every live vertex, ascending) to ``values`` (one row each; shape (n,) or
         (n, components)); reals are rounded to the attribute's type, labels must be whole
@@ -614,14 +638,16 @@ class Structure:
         ids = self._vertex_ids(vertices)
         self._s._set_vertex_values(name, ids, _values(values, ids.size))
 
-    def top_values(self, name: str, p: int, rows: Any = None) -> np.ndarray:
+    def top_values(self, name: str, p: int, rows: Optional[npt.ArrayLike] = None) -> np.ndarray:
         """The rows of listed attribute ``name`` for the live top p-simplices ``rows`` (row
         indices of ``live_tops()[p]``; default all of them), as :meth:`vertex_values`."""
         idx = self._top_rows(p, rows)
         got = self._s._top_values(name, p, idx)
         return got if got is not None else self._empty_values(name)
 
-    def set_top_values(self, name: str, p: int, values: Any, rows: Any = None) -> None:
+    def set_top_values(
+        self, name: str, p: int, values: npt.ArrayLike, rows: Optional[npt.ArrayLike] = None
+    ) -> None:
         """Sets the rows of listed attribute ``name`` of the live top p-simplices ``rows``
         (row indices of ``live_tops()[p]``; default all of them) to ``values``, as
         :meth:`set_vertex_values`. A top made by an edit has unset numbers (labels 0, reals
@@ -659,13 +685,13 @@ class Structure:
         return repr(self._s)
 
 
-def read(path: Union[str, os.PathLike]) -> Complex:
+def read(path: _Path) -> Complex:
     """Reads a mesh file (OFF, OBJ, MEDIT, .simplices, PLY, STL, VTK, VTU, Gmsh by extension)
     or a saved ``.tpx`` file. :class:`ReadError` names the file and line."""
     return Complex(_core.Complex._read(os.fspath(path)))
 
 
-def open(path: Union[str, os.PathLike], kind: Optional[str] = None) -> Union[Complex, Structure]:
+def open(path: _Path, kind: Optional[str] = None) -> Union[Complex, Structure]:
     """Opens a saved ``.tpx`` file: the structure ``kind`` (mapped when the file holds that
     kind, else built), or with ``kind=None`` the saved structure, or the complex when the file
     holds none."""
@@ -675,7 +701,7 @@ def open(path: Union[str, os.PathLike], kind: Optional[str] = None) -> Union[Com
 
 def save(
     obj: Union[Complex, Structure],
-    path: Union[str, os.PathLike],
+    path: _Path,
     structure: Optional[str] = None,
 ) -> None:
     """Saves a complex (with the structure named ``structure`` built on it, if given) or a
@@ -707,7 +733,7 @@ def simplify(
 
 
 def decompose(
-    complex: Complex, out: Union[str, os.PathLike], format: Optional[str] = None
+    complex: Complex, out: _Path, format: Optional[str] = None
 ) -> List[str]:
     """Cuts the complex into its IQM components (standard decomposition) and writes each, and
     ``gluing.json``, into the directory ``out``; returns the paths written."""

@@ -3,11 +3,14 @@ package is imported when a converter is called, so topoplex needs none of them."
 
 from __future__ import annotations
 
-from typing import Any, Dict, List
+from typing import TYPE_CHECKING, Any, Dict, List, Optional
 
 import numpy as np
 
 from ._errors import InputError
+
+if TYPE_CHECKING:
+    from . import Complex
 
 # meshio's cell types for simplices, by vertex count.
 _MESHIO_TYPES = {1: "vertex", 2: "line", 3: "triangle", 4: "tetra"}
@@ -31,7 +34,7 @@ def _blocks(offsets: np.ndarray, ids: np.ndarray) -> List[tuple]:
     return out
 
 
-def to_meshio(complex: Any) -> Any:
+def to_meshio(complex: Complex) -> Any:
     """A ``meshio.Mesh``: one cell block per run of listed simplices of one size (vertex,
     line, triangle, tetra; input order and winding kept), points (zeros in 3-D when the
     complex has none), attributes as ``point_data`` and ``cell_data``. Simplices of
@@ -58,7 +61,7 @@ def to_meshio(complex: Any) -> Any:
     return meshio.Mesh(pts, cells, point_data=point_data, cell_data=cell_data)
 
 
-def from_meshio(mesh: Any) -> Any:
+def from_meshio(mesh: Any) -> Complex:
     """A :class:`topoplex.Complex` from a ``meshio.Mesh``: every simplex block (vertex, line,
     triangle, tetra) in order, its points, ``point_data`` on the vertices and ``cell_data``
     on the listed simplices (integer and real arrays kept in their type; 64-bit integers as
@@ -94,7 +97,7 @@ def _attribute_values(values: Any) -> np.ndarray:
     return np.ascontiguousarray(a)
 
 
-def to_gudhi(complex: Any) -> Any:
+def to_gudhi(complex: Complex) -> Any:
     """A ``gudhi.SimplexTree`` holding the complex (its top simplices inserted, filtration 0)."""
     import gudhi
 
@@ -105,7 +108,7 @@ def to_gudhi(complex: Any) -> Any:
     return st
 
 
-def from_gudhi(st: Any, n_vertices: Any = None) -> Any:
+def from_gudhi(st: Any, n_vertices: Optional[int] = None) -> Complex:
     """A :class:`topoplex.Complex` from a ``gudhi.SimplexTree``: all its simplices (faces are
     absorbed into their cofaces; the filtration values are not kept). Vertex ids must be
     non-negative 32-bit integers."""
@@ -118,7 +121,7 @@ def from_gudhi(st: Any, n_vertices: Any = None) -> Any:
     return Complex.from_arrays(blocks, n_vertices=n_vertices)
 
 
-def to_trimesh(complex: Any, process: bool = False) -> Any:
+def to_trimesh(complex: Complex, process: bool = False) -> Any:
     """A ``trimesh.Trimesh`` of the triangles as listed (input order and winding), vertices
     from ``points`` (padded to 3-D). Listed edges, vertices and tetrahedra are not carried;
     ``process=False`` keeps the vertex ids as they are."""

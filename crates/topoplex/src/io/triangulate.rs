@@ -448,31 +448,23 @@ mod tests {
         fan_polygons(listing(points)).unwrap_err().1.to_string()
     }
 
+    /// A polygon in the plane z = 0 from its (x, y) corners.
+    fn planar(xy: &[(f64, f64)]) -> Vec<[f64; 3]> {
+        xy.iter().map(|&(x, y)| [x, y, 0.0]).collect()
+    }
+
+    const UNIT_SQUARE: [(f64, f64); 4] = [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)];
+
     #[test]
     fn degenerate_polygons_are_refused_with_the_reason() {
-        let sq = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-        ];
+        let sq = planar(&UNIT_SQUARE);
         assert!(fan_polygons(listing(&sq)).is_ok());
         let mut coincide = sq;
         coincide[2] = coincide[1];
         assert!(refusal(&coincide).contains("vertices 1 and 2 are at the same point"));
-        let collinear = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [2.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-        ];
+        let collinear = planar(&[(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (1.0, 1.0)]);
         assert!(refusal(&collinear).contains("vertices 0, 1 and 2 are collinear"));
-        let flat = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [2.0, 0.0, 0.0],
-            [3.0, 0.0, 0.0],
-        ];
+        let flat = planar(&[(0.0, 0.0), (1.0, 0.0), (2.0, 0.0), (3.0, 0.0)]);
         assert!(refusal(&flat).contains("area is zero"));
         // A pentagram: every turn the same way, but it winds twice.
         let star: Vec<[f64; 3]> = (0..5)
@@ -486,12 +478,7 @@ mod tests {
 
     #[test]
     fn repeated_vertices_and_missing_coordinates_are_refused() {
-        let sq = [
-            [0.0, 0.0, 0.0],
-            [1.0, 0.0, 0.0],
-            [1.0, 1.0, 0.0],
-            [0.0, 1.0, 0.0],
-        ];
+        let sq = planar(&UNIT_SQUARE);
         let mut raw = listing(&sq);
         raw.ids[2 + 3] = 1;
         let e = fan_polygons(raw).unwrap_err().1.to_string();

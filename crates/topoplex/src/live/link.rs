@@ -176,7 +176,10 @@ impl LiveComplex {
         most: usize,
         s: &mut Scratch,
     ) -> Option<Option<Vec<u32>>> {
-        let found = self.skewed_common(a, b, coned, most, s)?;
+        let found = self.skewed_common(a, b, most, s)?;
+        if found + usize::from(coned) > 64 {
+            return None; // words of more than 64 bits: the whole test (by lists) decides
+        }
         if !s.cone(coned) {
             return Some(None);
         }
@@ -198,15 +201,8 @@ impl LiveComplex {
     /// Step 1 of [`LiveComplex::skewed_violation`]: the common vertices C into `s.common`, in
     /// order of first appearance in St(b)'s tops (as `common_vertices` numbers them), each
     /// vertex of St(b) tried once through the stamps. Returns |C|, or `None` (the whole test
-    /// decides) when |C| + ω exceeds 64 or C's stars add up to `most` tops or more.
-    fn skewed_common(
-        &self,
-        a: u32,
-        b: u32,
-        coned: bool,
-        most: usize,
-        s: &mut Scratch,
-    ) -> Option<usize> {
+    /// decides) when C's stars add up to `most` tops or more.
+    fn skewed_common(&self, a: u32, b: u32, most: usize, s: &mut Scratch) -> Option<usize> {
         let (tried, common) = s.fresh_stamps(self.star.len());
         s.common.clear();
         let mut weight = 0;
@@ -226,10 +222,7 @@ impl LiveComplex {
                 }
             }
         }
-        if s.common.len() + usize::from(coned) > 64 || weight >= most {
-            return None;
-        }
-        Some(s.common.len())
+        (weight < most).then_some(s.common.len())
     }
 
     /// Step 2: the plain families as masks over C: F_ab and F_b from

@@ -46,6 +46,33 @@ pub(crate) fn try_with_capacity<T>(
     Ok(v)
 }
 
+/// One vertex's star references checked as IA and NMIA keep them (`what` names them in the
+/// errors): each a top simplex holding `v` (`holds(r)`), no walk from one (`walk(r, each)`,
+/// `each` called for every top it reaches) reaching another. Returns the tops the walks reached.
+pub(crate) fn check_star_refs(
+    v: u32,
+    refs: &[u32],
+    what: &str,
+    holds: impl Fn(u32) -> bool,
+    mut walk: impl FnMut(u32, &mut dyn FnMut(u32)),
+) -> Result<usize, String> {
+    let mut reached = 0;
+    for &r in refs {
+        if !holds(r) {
+            return Err(format!("{what} {r} of vertex {v} does not contain it"));
+        }
+        let mut clash = false;
+        walk(r, &mut |t| {
+            reached += 1;
+            clash |= t != r && refs.contains(&t);
+        });
+        if clash {
+            return Err(format!("two {what}s of vertex {v} are in one component"));
+        }
+    }
+    Ok(reached)
+}
+
 /// `v.reserve_exact(extra)`, or `TooLarge` when the memory cannot be had.
 pub(crate) fn try_reserve<T>(
     kind: StructureKind,
@@ -311,6 +338,50 @@ impl IdStack {
         self.len -= 1;
         Some(self.inline[self.len])
     }
+}
+
+/// The frontier of a walk over top simplices ([`walk_tops`]): what is reached, once.
+pub(crate) struct Frontier<'s> {
+    seen: &'s mut IdSet,
+    stack: IdStack,
+}
+
+impl Frontier<'_> {
+    /// Queues top `u` unless the walk has seen it.
+    #[inline]
+    pub(crate) fn reach(&mut self, u: u32) {
+        if self.seen.insert(u) {
+            self.stack.push(u);
+        }
+    }
+}
+
+/// The depth-first walk of IA and NMIA over top simplices: from each of `starts`, every top
+/// `expand(t, verts(t), frontier)` reaches, each once (`seen` must hold none of them);
+/// `visit(t, verts(t))` for each, stopping (and returning false) when it returns false.
+#[inline]
+pub(crate) fn walk_tops<'a>(
+    starts: &[u32],
+    seen: &mut IdSet,
+    verts: impl Fn(u32) -> &'a [u32],
+    mut visit: impl FnMut(u32, &[u32]) -> bool,
+    mut expand: impl FnMut(u32, &[u32], &mut Frontier),
+) -> bool {
+    let mut frontier = Frontier {
+        seen,
+        stack: IdStack::default(),
+    };
+    for &r in starts {
+        frontier.reach(r);
+        while let Some(t) = frontier.stack.pop() {
+            let vs = verts(t);
+            if !visit(t, vs) {
+                return false;
+            }
+            expand(t, vs, &mut frontier);
+        }
+    }
+    true
 }
 
 /// Per-query set of rows already emitted: rows of up to four ids as one u128 key, kept inline

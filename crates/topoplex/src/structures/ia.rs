@@ -86,7 +86,9 @@ use crate::mapped::Arr;
 use rustc_hash::FxHashSet;
 use std::sync::atomic::Ordering;
 
-use super::common::{PairParts, Scratch, too_large, try_push, try_table, try_vec};
+use super::common::{
+    PairParts, Scratch, check_star_refs, too_large, try_push, try_table, try_vec, walk_tops,
+};
 use super::{BuildError, to_u32};
 use crate::complex::table::{id_bits, order_by_key, partition_point};
 use crate::complex::{Complex, MAX_DIMENSION, SimplexTable, is_subset};
@@ -99,7 +101,7 @@ pub const NONE: u32 = u32::MAX;
 
 // The shared walking helpers moved to `super::common`; re-exported here for code written
 // against their old home.
-pub(crate) use super::common::{IdSet, IdStack, RowSet, faces_containing, faces_of_tops, show};
+pub(crate) use super::common::{IdSet, RowSet, faces_containing, faces_of_tops, show};
 
 /// The Indexed data structure with Adjacencies (see the module documentation for what it stores and costs).
 #[derive(Debug, Clone)]
@@ -552,33 +554,29 @@ impl IndexedAdjacency {
         v: u32,
         starts: &[u32],
         seen: &mut IdSet,
-        mut visit: impl FnMut(u32, &[u32]) -> bool,
+        visit: impl FnMut(u32, &[u32]) -> bool,
     ) -> bool {
         let w = self.d + 1;
-        let mut stack = IdStack::default();
-        for &r in starts {
-            if seen.insert(r) {
-                stack.push(r);
-            }
-            while let Some(t) = stack.pop() {
-                let verts = self.tops.get(t as usize);
-                if !visit(t, verts) {
-                    return false;
-                }
-                for (i, &x) in verts.iter().enumerate() {
-                    let u = self.adj[t as usize * w + i];
-                    if x != v && u != NONE && seen.insert(u) {
-                        stack.push(u);
-                    }
+        let verts = |t: u32| self.tops.get(t as usize);
+        walk_tops(starts, seen, verts, visit, |t, vs, frontier| {
+            for (i, &x) in vs.iter().enumerate() {
+                let u = self.adj[t as usize * w + i];
+                if x != v && u != NONE {
+                    frontier.reach(u);
                 }
             }
-        }
-        true
+        })
     }
 
     /// R_{0,q} of vertex `v`, 0 < q < d, as dense q-indices (rows of the lazy q-table), each
     /// once and ascending, from one walk of the star of `v` ([`Self::cofaces_in`]).
     fn vertex_cofaces(&self, v: u32, q: usize, found: impl FnMut(u32)) {
+        self.with_star(v, |star, lower| self.cofaces_in(v, star, lower, q, found));
+    }
+
+    /// `then` of the d-simplices of the star of `v` (walk order) and of their vertices below
+    /// `v` ([`Self::lower_neighbours`]), both in this thread's scratch vectors.
+    fn with_star<R>(&self, v: u32, then: impl FnOnce(&[u32], &[u32]) -> R) -> R {
         let mut star = Scratch::<Vec<u32>>::take();
         star.clear();
         self.walk_star(v, &mut IdSet::default(), |t, _| {
@@ -587,7 +585,7 @@ impl IndexedAdjacency {
         });
         let mut lower = Scratch::<Vec<u32>>::take();
         self.lower_neighbours(v, &star, &mut lower);
-        self.cofaces_in(v, &star, &lower, q, found);
+        then(&star, &lower)
     }
 
     /// The vertices below `v` of the d-simplices `star` of `v`, ascending, each once: the
@@ -696,25 +694,17 @@ impl NavBase for IndexedAdjacency {
         if d == 0 {
             return false;
         }
-        let mut star = Scratch::<Vec<u32>>::take();
-        star.clear();
-        self.walk_star(v, &mut IdSet::default(), |t, _| {
-            star.push(t);
-            true
+        self.with_star(v, |star, lower| {
+            // The q-faces come ascending (`cofaces_in`): lexicographic in either order.
+            for q in 1..d {
+                self.cofaces_in(v, star, lower, q, |x| out.push(SimplexHandle::dense(q, x)));
+            }
+            let start = out.len();
+            out.extend(star.iter().map(|&t| SimplexHandle::dense(d, t)));
+            if order == Order::Lexicographic {
+                out[start..].sort_unstable();
+            }
         });
-        let mut lower = Scratch::<Vec<u32>>::take();
-        self.lower_neighbours(v, &star, &mut lower);
-        // The q-faces come ascending (`cofaces_in`): lexicographic in either order.
-        for q in 1..d {
-            self.cofaces_in(v, &star, &lower, q, |x| {
-                out.push(SimplexHandle::dense(q, x))
-            });
-        }
-        let start = out.len();
-        out.extend(star.iter().map(|&t| SimplexHandle::dense(d, t)));
-        if order == Order::Lexicographic {
-            out[start..].sort_unstable();
-        }
         true
     }
 
@@ -996,26 +986,14 @@ impl Topology for IndexedAdjacency {
             if refs.is_empty() {
                 return Err(format!("vertex {v} has no star reference"));
             }
-            for &r in refs {
-                if r as usize >= self.tops.len() || !self.tops.get(r as usize).contains(&v) {
-                    return Err(format!(
-                        "star reference {r} of vertex {v} does not contain it"
-                    ));
-                }
-                let mut component = 0usize;
-                let mut clash = false;
+            let holds =
+                |r: u32| (r as usize) < self.tops.len() && self.tops.get(r as usize).contains(&v);
+            reached += check_star_refs(v, refs, "star reference", holds, |r, each| {
                 self.walk_from(v, &[r], &mut IdSet::default(), |t, _| {
-                    component += 1;
-                    clash |= t != r && refs.contains(&t);
+                    each(t);
                     true
                 });
-                if clash {
-                    return Err(format!(
-                        "two star references of vertex {v} are in one component"
-                    ));
-                }
-                reached += component;
-            }
+            })?;
         }
         if reached != self.tops.len() * w {
             return Err(format!(

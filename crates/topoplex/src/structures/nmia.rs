@@ -89,8 +89,8 @@
 //! Queries keep no state in the structure: every walk has its own set of visited simplices.
 
 use super::common::{
-    IdSet, IdStack, PairParts, RowSet, faces_containing, faces_of_tops, show, too_large,
-    try_closure_counts, try_push, try_table, try_vec,
+    IdSet, IdStack, PairParts, RowSet, check_star_refs, faces_containing, faces_of_tops, show,
+    too_large, try_closure_counts, try_push, try_table, try_vec, walk_tops,
 };
 use super::ia::NONE;
 use super::nav::NavIndex;
@@ -546,49 +546,37 @@ impl NonManifoldIa {
 
     /// Walks the top simplices containing `v` from `starts` (which contain `v`), through R_{3,3}
     /// across triangles containing `v` and the rings of edges containing `v`. Stops when `visit`
-    /// returns false, and then returns false. `seen` must hold no top simplex at `v`.
-    fn walk_vertex(
-        &self,
-        v: u32,
-        starts: &[u32],
-        seen: &mut IdSet,
-        mut visit: impl FnMut(u32, &[u32]) -> bool,
-    ) -> bool {
+    /// returns false, and then returns false.
+    fn walk_vertex(&self, v: u32, starts: &[u32], visit: impl FnMut(u32, &[u32]) -> bool) -> bool {
         let n3 = self.tets.len() as u32;
-        let mut stack = IdStack::default();
-        for &r in starts {
-            if seen.insert(r) {
-                stack.push(r);
-            }
-            while let Some(u) = stack.pop() {
-                let vs = self.verts(u);
-                if !visit(u, vs) {
-                    return false;
-                }
+        let seen = &mut IdSet::default();
+        walk_tops(
+            starts,
+            seen,
+            |u| self.verts(u),
+            visit,
+            |u, vs, frontier| {
                 if u < n3 {
                     for (i, &x) in vs.iter().enumerate() {
                         let t = self.adj[u as usize * 4 + i];
-                        if x != v && t != NONE && seen.insert(t) {
-                            stack.push(t);
+                        if x != v && t != NONE {
+                            frontier.reach(t);
                         }
                     }
                 }
                 if vs.len() >= 3 && !self.link_keys.is_empty() {
                     for &x in vs.iter().filter(|&&x| x != v) {
-                        if let Some(t) = self.succeeding(u, v, x)
-                            && seen.insert(t)
-                        {
-                            stack.push(t);
+                        if let Some(t) = self.succeeding(u, v, x) {
+                            frontier.reach(t);
                         }
                     }
                 }
-            }
-        }
-        true
+            },
+        )
     }
 
     fn walk_star(&self, v: u32, visit: impl FnMut(u32, &[u32]) -> bool) -> bool {
-        self.walk_vertex(v, self.vertex_clusters(v), &mut IdSet::default(), visit)
+        self.walk_vertex(v, self.vertex_clusters(v), visit)
     }
 
     /// Walks the top simplices containing edge `{a, b}` (a < b) from `start`, which contains it.
@@ -676,7 +664,7 @@ impl NonManifoldIa {
                     continue;
                 }
                 try_push(KIND, &mut pairs, (v, u), "star components")?;
-                self.walk_vertex(v, &[u], &mut IdSet::default(), |t, vs| {
+                self.walk_vertex(v, &[u], |t, vs| {
                     visited[self.slot_base(t) + vs.iter().position(|&x| x == v).unwrap()] = true;
                     true
                 });
@@ -1007,22 +995,13 @@ impl NonManifoldIa {
         let mut reached = 0usize;
         for v in 0..self.n {
             let refs = self.vertex_clusters(v);
-            for &r in refs {
-                if r >= self.n_tops() || !self.verts(r).contains(&v) {
-                    return Err(format!("R_{{0,clusters}} of {v} lists {r}, not at {v}"));
-                }
-                let mut clash = false;
-                self.walk_vertex(v, &[r], &mut IdSet::default(), |t, _| {
-                    reached += 1;
-                    clash |= t != r && refs.contains(&t);
+            let holds = |r: u32| r < self.n_tops() && self.verts(r).contains(&v);
+            reached += check_star_refs(v, refs, "R_{0,clusters} reference", holds, |r, each| {
+                self.walk_vertex(v, &[r], |t, _| {
+                    each(t);
                     true
                 });
-                if clash {
-                    return Err(format!(
-                        "two R_{{0,clusters}} references of {v} are connected"
-                    ));
-                }
-            }
+            })?;
         }
         let incidences = 4 * self.tets.len() + 3 * self.faces.len() + 2 * self.wires.len();
         if reached != incidences {
