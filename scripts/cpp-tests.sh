@@ -11,7 +11,9 @@
 #      of step 2 and valgrind run.
 # When PETSc and MPI are installed, step 1 also installs the DMPlex bridge and step 2 runs its MPI
 # tests (cpp_tests/dmplex, mpiexec -n 1, 2, 4); step 3 leaves them out (MPI under ASan is noise).
-# Needs cmake, ninja-build, libgtest-dev, pkg-config and a C/C++ compiler (Debian packages).
+# Needs cmake, ninja-build, libgtest-dev, pkg-config and a C/C++ compiler (Debian packages:
+# installed below when missing, so that the script also runs alone; scripts/test.sh installs
+# them and the optional peers first).
 # Cargo's target dir is $CARGO_TARGET_DIR or the repository's target/, so dependencies built by
 # other cargo runs are reused.
 #
@@ -19,6 +21,7 @@
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
+"$root/scripts/install-deps.sh" cmake ninja-build pkg-config libgtest-dev g++
 work=$(mktemp -d "${TMPDIR:-/tmp}/topoplex-cpp-tests.XXXXXX")
 prefix=${1:-$work/prefix}
 mkdir -p "$prefix"

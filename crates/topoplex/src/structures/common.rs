@@ -1,8 +1,10 @@
 //! Helpers several structures share: per-query scratch sets and stacks for walks ([`IdSet`],
-//! [`IdStack`], [`RowSet`]), face enumeration ([`faces_containing`], [`faces_of_tops`]), the
-//! union–find, per-thread pooled scratch buffers ([`Scratch`]), the boundary links of a closure
-//! ([`facet_links`]), [`show`] for messages, and the fallible allocations of input-sized arrays
-//! ([`try_vec`], [`try_with_capacity`], [`try_iota`], [`try_reserve`]).
+//! [`IdStack`], [`RowSet`]), IA's and NMIA's walk over top simplices and the check of their
+//! star references ([`walk_tops`], [`check_star_refs`]), face enumeration
+//! ([`faces_containing`], [`faces_of_tops`]), the union–find, per-thread pooled scratch buffers
+//! ([`Scratch`]), the boundary links of a closure ([`facet_links`]), [`show`] for messages, and
+//! the fallible allocations of input-sized arrays ([`try_vec`], [`try_with_capacity`],
+//! [`try_iota`], [`try_reserve`]).
 
 use rustc_hash::FxHashSet;
 
