@@ -29,7 +29,7 @@ prefix=$(cd "$prefix" && pwd)
 cleanup() { rm -rf "$work"; }
 trap cleanup EXIT
 
-echo "== build and install Topoplex into $prefix"
+echo "== build and install Topoplex into $prefix [${SECONDS}s]"
 cmake -S "$root" -B "$work/build" -G Ninja \
   -DTOPOPLEX_CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$root/target}" \
   -DTOPOPLEX_CARGO_PROFILE="${TOPOPLEX_CARGO_PROFILE:-release}" \
@@ -67,16 +67,16 @@ for sanitize in OFF ON; do
     -DTOPOPLEX_BENCH_OPT=-O0
 done
 
-echo "== cpp_tests (TOPOPLEX_SANITIZE=OFF): build"
+echo "== cpp_tests (TOPOPLEX_SANITIZE=OFF): build [${SECONDS}s]"
 cmake --build "$work/tests-OFF"
 
 uninstrumented_checks() {
   local build="$work/tests-OFF"
-  echo "== cpp_tests (TOPOPLEX_SANITIZE=OFF): ctest"
+  echo "== cpp_tests (TOPOPLEX_SANITIZE=OFF): ctest [${SECONDS}s]"
   ctest --test-dir "$build" --output-on-failure || return 1
   # valgrind memcheck on the uninstrumented build: zero errors, zero definite/indirect leaks.
   # In a directory of its own: test_c_api writes its files into the working directory.
-  echo "== valgrind memcheck"
+  echo "== valgrind memcheck [${SECONDS}s]"
   mkdir -p "$work/valgrind"
   for t in c_api/test_c_api_shared c_api/test_threads; do
     (cd "$work/valgrind" && valgrind -q --error-exitcode=1 --leak-check=full \
@@ -88,7 +88,7 @@ uninstrumented_checks() {
 uninstrumented_checks >"$work/uninstrumented.log" 2>&1 &
 checks=$!
 
-echo "== cpp_tests (TOPOPLEX_SANITIZE=ON): build (the uninstrumented tests run meanwhile)"
+echo "== cpp_tests (TOPOPLEX_SANITIZE=ON): build (the uninstrumented tests run meanwhile) [${SECONDS}s]"
 built=0
 cmake --build "$work/tests-ON" || built=$?
 passed=0
@@ -99,7 +99,7 @@ if [ "$passed" != 0 ]; then
   exit 1
 fi
 [ "$built" = 0 ] || exit "$built"
-echo "== cpp_tests (TOPOPLEX_SANITIZE=ON): ctest"
+echo "== cpp_tests (TOPOPLEX_SANITIZE=ON): ctest [${SECONDS}s]"
 # Nothing else runs by now: one test per core (outputs have distinct names; fixtures order the
 # tests that read another's output).
 ctest --test-dir "$work/tests-ON" --output-on-failure -j "$(nproc)"

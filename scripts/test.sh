@@ -47,10 +47,13 @@ stage "cargo test (the workspace: core, C ABI, CLI; unit, property, layering, re
 # The C library first: the C ABI crate's header test holds libtopoplex_ffi.so's exported symbols
 # to include/topoplex.h (cargo test links the tests against the rlib only).
 # Every target but the criterion benches (clippy above checks them; built optimised they only
-# cost time). The stages below take this build's binary and C library as they are: a build of
-# one package unifies dependency features differently (the Python binding's macros turn on
-# more of syn) and would compile the core again.
-cargo build --profile ci --workspace
+# cost time), in one build: the stages below take its binary and C library as they are. The
+# test targets are in this build, not only in `cargo test`'s, because the dev-dependencies
+# change the features of shared dependencies (serde, rayon, syn): a build without them and a
+# test build after it compiled the core, the CLI and a dozen dependencies twice (about 3 of the
+# stage's 16 minutes on two slow cores). A build of one package would differ again (the Python
+# binding's macros turn on more of syn).
+cargo build --profile ci --workspace --lib --bins --tests --examples
 # The root package's integration tests are one binary (tests/it/, one link of the core) plus the
 # few that need a process of their own (tests/*.rs: global allocator, RLIMIT_AS, RSS, thread count).
 cargo test --profile ci --workspace --lib --bins --tests --examples
