@@ -10,9 +10,10 @@ the smoothed coordinates' sum to 1e-6 relative: OpenMesh's OFF reader parses sin
 floats even into double points) must agree, else the input is marked: OpenMesh drops the faces
 of a non-manifold input when it reads it, and only Topoplex's figures are shown then.
 
-With --kept, a third program runs alternated with the two: Topoplex's mesh keeping its facet
-adjacency from load on (`topoplex-kept`: the index is built in `load`, as OpenMesh builds its
-halfedges while loading, and `ff` reads it), printed as a second row per input.
+With --kept, a third program runs alternated with the two: Topoplex's indexed mesh
+(`topoplex-kept`: both indices built in `load`, as OpenMesh builds its halfedges while loading:
+the facet adjacency, kept from then on and read by `ff`, and the one-rings, read by the
+smoothing and the stats), printed as a second row per input.
 
 usage: scripts/bench_app.py BIN [--runs N] [--kept] INPUT.off...
 """
@@ -71,7 +72,7 @@ def main():
                 else:
                     res[lib].append(kv)
         for lib in libs[1:]:
-            name = os.path.basename(path) + (" (adjacency kept)" if lib == "topoplex-kept" else "")
+            name = os.path.basename(path) + (" (indexed: adjacency kept, rings)" if lib == "topoplex-kept" else "")
             row(name, res[lib], res["openmesh"], err.get(lib))
     load = os.getloadavg()
     print()

@@ -234,6 +234,37 @@ void check(const topoplex::Live &live, std::mt19937 &rng) {
     EXPECT_TRUE(marked_edges.emplace(std::make_pair(a, b), k).second) << "edge twice (marks)";
   });
   EXPECT_EQ(marked_edges, want_edges);
+
+  // The stored rings (Live::mesh_with_rings, and with both indices): each ring as the pass
+  // over the star gives it, in the same order; each edge's count of tops as the oracle's; the
+  // whole-mesh passes reading them give the same calls in the same order as without them.
+  const MeshView wr = live.mesh_with_rings(), both = live.mesh_with(true, true);
+  ASSERT_TRUE(wr.has_rings() && !wr.has_adjacency() && both.has_rings() && both.has_adjacency());
+  for (std::uint32_t v = 0; v < m.vertex_slots(); ++v) {
+    Ids by_star;
+    if (o.alive[v]) m.for_each_neighbour(v, marks, [&](std::uint32_t w) { by_star.push_back(w); });
+    EXPECT_EQ(wr.ring(v).to_vector(), by_star) << "stored ring of " << v;
+    EXPECT_EQ(both.ring(v).to_vector(), by_star) << "stored ring of " << v << " (both indices)";
+    Ids by_rings;
+    wr.for_each_neighbour(v, marks, [&](std::uint32_t w) { by_rings.push_back(w); });
+    EXPECT_EQ(by_rings, by_star);
+    const topoplex::SimplexView tops = wr.ring_tops(v);
+    ASSERT_EQ(tops.size(), by_star.size());
+    for (std::size_t i = 0; i < by_star.size(); ++i)
+      EXPECT_EQ(tops[i], o.holding({v, by_star[i]}).size()) << "tops at edge " << v << "-" << by_star[i];
+  }
+  using Call = std::tuple<std::uint32_t, std::uint32_t, std::size_t>;
+  std::vector<std::pair<std::uint32_t, Ids>> ring_calls, stored_ring_calls;
+  m.for_each_ring(marks, [&](std::uint32_t v, topoplex::SimplexView r) { ring_calls.emplace_back(v, r.to_vector()); });
+  wr.for_each_ring(marks, [&](std::uint32_t v, topoplex::SimplexView r) { stored_ring_calls.emplace_back(v, r.to_vector()); });
+  EXPECT_EQ(stored_ring_calls, ring_calls);
+  for (std::uint32_t p = 1; p <= 6; ++p) {
+    std::vector<Call> calls, stored_calls;
+    m.for_each_edge(p, marks, [&](std::uint32_t a, std::uint32_t b, std::size_t k) { calls.emplace_back(a, b, k); });
+    wr.for_each_edge(p, marks, [&](std::uint32_t a, std::uint32_t b, std::size_t k) { stored_calls.emplace_back(a, b, k); });
+    EXPECT_EQ(stored_calls, calls) << "for_each_edge(" << p << ") with the rings";
+  }
+
   std::multiset<std::pair<Ids, Ids>> pairs, want_pairs;
   m.for_each_adjacent_triangle_pair(scratch, [&](TopRef t, TopRef u) {
     pairs.emplace(top_set(m, t), top_set(m, u));
@@ -372,15 +403,19 @@ TEST(MeshView, FansAndRadialGroupsEqualTheLibrarysOnRandomComplexes) {
   EXPECT_GT(radial, 500u);
 }
 
-TEST(MeshView, ClosedDiscIsOneOrientedCycle) {
-  // Vertex 0 in the middle of six triangles wound counter-clockwise.
+// Vertex 0 in the middle of six triangles wound counter-clockwise.
+topoplex::Live disc() {
   std::vector<std::uint32_t> ids;
   std::vector<std::size_t> offsets{0};
   for (std::uint32_t i = 1; i <= 6; ++i) {
     ids.insert(ids.end(), {0, i, i % 6 + 1});
     offsets.push_back(ids.size());
   }
-  topoplex::Live live(topoplex::Complex::from_arrays(7, ids, offsets, {}, 0));
+  return topoplex::Live(topoplex::Complex::from_arrays(7, ids, offsets, {}, 0));
+}
+
+TEST(MeshView, ClosedDiscIsOneOrientedCycle) {
+  topoplex::Live live = disc();
   const MeshView m = live.mesh();
   topoplex::TopFans f;
   m.fans_around(0, f);
@@ -396,6 +431,26 @@ TEST(MeshView, ClosedDiscIsOneOrientedCycle) {
   ASSERT_EQ(f.size(), 1u);
   EXPECT_FALSE(f.closed(0));
   EXPECT_EQ(f[0].size(), 2u);
+}
+
+// A pure triangle mesh, so the rings' counts are triangle counts and for_each_edge(2) reads
+// them: the disc's six spokes are held by two triangles each, its rim edges by one.
+TEST(MeshView, DiscRingsHoldTwoTrianglesAtSpokesAndOneAtTheRim) {
+  topoplex::Live live = disc();
+  const MeshView m = live.mesh_with_rings();
+  EXPECT_EQ(sorted(m.ring(0).to_vector()), (Ids{1, 2, 3, 4, 5, 6}));
+  for (std::uint32_t k : m.ring_tops(0)) EXPECT_EQ(k, 2u);
+  EXPECT_EQ(sorted(m.ring(1).to_vector()), (Ids{0, 2, 6}));
+  std::size_t spokes = 0, rim = 0;
+  topoplex::NeighbourMarks marks;
+  m.for_each_edge(2, marks, [&](std::uint32_t a, std::uint32_t, std::size_t k) {
+    (a == 0 ? spokes : rim) += 1;
+    EXPECT_EQ(k, a == 0 ? 2u : 1u);
+  });
+  EXPECT_EQ(spokes, 6u);
+  EXPECT_EQ(rim, 6u);
+  std::mt19937 rng(7);
+  ASSERT_NO_FATAL_FAILURE(check(live, rng));
 }
 
 TEST(MeshView, RandomNonManifoldComplexesBeforeAndAfterEdits) {

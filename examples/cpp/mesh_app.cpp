@@ -3,8 +3,10 @@
 // and non-manifold edges, every face's neighbouring faces summed into per-face data, then write
 // the mesh back with its input winding and order. Non-manifold input is taken as it is.
 //
-// Every pass reads the mesh's own arrays inline (topoplex::MeshView: no library call per query,
-// no index beyond what the mesh stores); the smoothed coordinates go back into the mesh after
+// Every pass reads the mesh's own arrays inline (topoplex::MeshView: no library call per query),
+// with two indices the mesh builds on request and reports: the one-rings stored for the passes
+// repeated over them (52 bytes a vertex) and the facet adjacency for face neighbours (12 bytes
+// a triangle); without them the same calls answer from the stars alone. The smoothed coordinates go back into the mesh after
 // each round (Live::set_all_coords, in place) and the library's writer writes it (Live::write):
 // top simplices in input order and winding, coordinates bit for bit, format from the name.
 //
@@ -28,11 +30,13 @@ int main(int argc, char **argv) {
 
     // Smoothing: each vertex moves to the mean of its one-ring, read from the mesh's own
     // coordinates; the new ones go back into the mesh after each round. for_each_ring is the
-    // pass over every vertex's one-ring (for one vertex: m.for_each_neighbour(v, marks, f)).
+    // pass over every vertex's one-ring (for one vertex: m.for_each_neighbour(v, marks, f)),
+    // here reading the rings the mesh stores on request: built in the first round, kept while
+    // only coordinates change (mesh.mesh() alone answers the same from the stars).
     std::vector<double> next(std::size_t(slots) * dim), ring_sum(dim);
     topoplex::NeighbourMarks marks;  // one-ring scratch, reused: no allocation once warm
     for (int round = 0; round < 10; ++round) {
-      const topoplex::MeshView m = mesh.mesh();
+      const topoplex::MeshView m = mesh.mesh_with_rings();
       m.for_each_ring(marks, [&](std::uint32_t v, topoplex::SimplexView ring) {
         std::fill(ring_sum.begin(), ring_sum.end(), 0.0);
         for (std::uint32_t w : ring)
@@ -44,8 +48,8 @@ int main(int argc, char **argv) {
     }
 
     // Valence histogram; boundary and non-manifold edges: one pass over every edge with the
-    // number of triangles through it.
-    const topoplex::MeshView m = mesh.mesh();
+    // number of triangles through it (read from the same rings on a mesh of triangles only).
+    const topoplex::MeshView m = mesh.mesh_with_rings();
     std::vector<std::uint32_t> valence_of(slots);
     std::size_t boundary = 0, nonmanifold = 0;
     m.for_each_edge(2, marks, [&](std::uint32_t a, std::uint32_t b, std::size_t triangles) {

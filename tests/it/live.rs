@@ -176,6 +176,46 @@ fn assert_matches_model(live: &LiveComplex, m: &Model) {
             .collect();
         assert_eq!(out, want, "{p}-simplices");
     }
+    assert_rings_match_the_model(live, m);
+}
+
+/// `LiveComplex::rings` against the model's tops: each live vertex's row holds every vertex
+/// sharing a top with it, once, beside the number of tops holding that edge; a removed vertex's
+/// row is empty; `top_dims` names the tops' dimensions.
+fn assert_rings_match_the_model(live: &LiveComplex, m: &Model) {
+    let rings = live.rings().unwrap();
+    let tops = m.tops();
+    assert_eq!(rings.offsets.len(), live.vertex_slots() as usize + 1);
+    assert_eq!(rings.neighbours.len(), rings.held.len());
+    assert_eq!(
+        rings.offsets.last().copied(),
+        Some(rings.neighbours.len() as u32)
+    );
+    let dims = tops.iter().fold(0u16, |d, t| d | 1 << (t.len() - 1));
+    assert_eq!(rings.top_dims, dims);
+    for v in 0..live.vertex_slots() {
+        let mut want: BTreeMap<u32, u32> = BTreeMap::new();
+        if m.verts.contains(&v) {
+            for t in tops.iter().filter(|t| t.contains(&v)) {
+                for &w in t.iter().filter(|&&w| w != v) {
+                    *want.entry(w).or_default() += 1;
+                }
+            }
+        }
+        let mut got: Vec<(u32, u32)> = rings
+            .ring(v)
+            .iter()
+            .copied()
+            .zip(rings.edge_tops(v).iter().copied())
+            .collect();
+        got.sort_unstable();
+        assert_eq!(
+            got,
+            want.into_iter().collect::<Vec<_>>(),
+            "ring of vertex {v}"
+        );
+    }
+    assert!(rings.ring(live.vertex_slots()).is_empty());
 }
 
 /// A compacted copy answers every relation like the oracle on its own `to_complex()`, and a
@@ -1852,10 +1892,13 @@ proptest! {
                 CoordOp::Set(i, x, y) => {
                     let v = alive[i.index(alive.len())];
                     live.relation_view(0, 0).unwrap();
+                    let ring = live.rings().unwrap().neighbours.as_ptr();
                     let bytes = Navigate::handle_bytes(&live);
                     live.set_coords(VertexId(v), &[*x, *y]).unwrap();
                     want[v as usize] = Some([*x, *y]);
                     prop_assert_eq!(Navigate::handle_bytes(&live), bytes);
+                    // The rings are kept, not rebuilt.
+                    prop_assert_eq!(live.rings().unwrap().neighbours.as_ptr(), ring);
                 }
                 CoordOp::SetAll(seed) => {
                     let data: Vec<f64> = (0..2 * want.len()).map(|k| seed + k as f64).collect();

@@ -2229,3 +2229,66 @@ fn the_facet_adjacency_is_lent_and_follows_edits() {
         tpx_complex_free(c);
     }
 }
+
+/// The same book of three triangles on the edge 0-1 with 0 2 5 beside it: the lent rings name
+/// each vertex's neighbours with the tops at each edge (three at the non-manifold edge 0-1);
+/// NULL arguments are refused with the output untouched; after a contraction the next call
+/// describes the new state.
+#[test]
+fn the_rings_are_lent_and_follow_edits() {
+    let c = complex(6, &[&[0, 1, 2], &[0, 1, 3], &[0, 1, 4], &[0, 2, 5]]);
+    let mut l = null_mut();
+    assert_eq!(unsafe { tpx_live_from_complex(c, &mut l) }, TpxStatus::Ok);
+    let mut r = TpxLiveRings {
+        offsets: null(),
+        neighbours: null(),
+        held: null(),
+        vertex_slots: 7,
+        top_dims: 7,
+        entries: 7,
+        bytes: 7,
+    };
+    assert_eq!(
+        unsafe { tpx_live_rings(null(), &mut r) },
+        TpxStatus::NullArgument
+    );
+    assert_eq!(
+        unsafe { tpx_live_rings(l, null_mut()) },
+        TpxStatus::NullArgument
+    );
+    assert_eq!(
+        (r.vertex_slots, r.entries, r.bytes),
+        (7, 7, 7),
+        "output written on a refusal"
+    );
+    // Vertex v's (neighbour, tops at the edge) pairs, sorted.
+    let ring = |r: &TpxLiveRings, v: usize| -> Vec<(u32, u32)> {
+        let off = unsafe { std::slice::from_raw_parts(r.offsets, r.vertex_slots as usize + 1) };
+        let (b, e) = (off[v] as usize, off[v + 1] as usize);
+        let ids = unsafe { std::slice::from_raw_parts(r.neighbours, r.entries) };
+        let held = unsafe { std::slice::from_raw_parts(r.held, r.entries) };
+        let mut out: Vec<(u32, u32)> = ids[b..e]
+            .iter()
+            .copied()
+            .zip(held[b..e].iter().copied())
+            .collect();
+        out.sort_unstable();
+        out
+    };
+    assert_eq!(unsafe { tpx_live_rings(l, &mut r) }, TpxStatus::Ok);
+    assert_eq!((r.vertex_slots, r.top_dims, r.entries), (6, 1 << 2, 18));
+    assert_eq!(r.bytes, 4 * 7 + 8 * 18);
+    assert_eq!(ring(&r, 0), [(1, 3), (2, 2), (3, 1), (4, 1), (5, 1)]);
+    assert_eq!(ring(&r, 1), [(0, 3), (2, 1), (3, 1), (4, 1)]);
+    assert_eq!(ring(&r, 5), [(0, 1), (2, 1)]);
+    // Contracting 5 into 2: 5's row is empty, 0-2 is held by one triangle again.
+    let st = unsafe { tpx_live_contract(l, 2, 5, TPX_CONTRACT_FREE, null(), 0, null_mut()) };
+    assert_eq!(st, TpxStatus::Ok);
+    assert_eq!(unsafe { tpx_live_rings(l, &mut r) }, TpxStatus::Ok);
+    assert_eq!(ring(&r, 5), []);
+    assert_eq!(ring(&r, 0), [(1, 3), (2, 1), (3, 1), (4, 1)]);
+    unsafe {
+        tpx_live_free(l);
+        tpx_complex_free(c);
+    }
+}

@@ -1335,6 +1335,27 @@ impl PyStructure {
         vec2(py, out, p + 1)
     }
 
+    /// Every vertex's one-ring, copied out: (offsets int64 of vertex_slots + 1, neighbours
+    /// uint32, tops at each edge uint32), rows by vertex slot in the order the star first
+    /// names them (`LiveComplex::rings`).
+    #[allow(clippy::type_complexity)]
+    fn _rings<'py>(
+        &self,
+        py: Python<'py>,
+    ) -> PyResult<(
+        Bound<'py, PyArray1<i64>>,
+        Bound<'py, PyArray1<u32>>,
+        Bound<'py, PyArray1<u32>>,
+    )> {
+        let l = self.live_ref()?;
+        let (offsets, ids, held) = py.detach(|| {
+            let r = l.rings().map_err(build_fail)?;
+            let offsets: Vec<i64> = r.offsets.iter().map(|&o| i64::from(o)).collect();
+            Ok::<_, Fail>((offsets, r.neighbours.to_vec(), r.held.to_vec()))
+        })?;
+        Ok((vec1(py, offsets), vec1(py, ids), vec1(py, held)))
+    }
+
     /// Keeps the facet adjacency across edits (built now, then repaired by each edit), or,
     /// with `keep=False`, builds it on request and drops it at each edit (the default).
     #[pyo3(signature = (keep=true))]

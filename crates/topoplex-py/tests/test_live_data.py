@@ -156,6 +156,36 @@ def test_facet_adjacency_equals_brute_force_on_random_non_manifold_complexes(dra
             break
 
 
+@given(complexes(max_vertices=7, max_dim=4), st.data())
+def test_rings_equal_brute_force_on_random_non_manifold_complexes(drawn, data):
+    tops, n = drawn
+    live = topoplex.Complex.from_arrays(blocks_of(tops), n_vertices=n).live()
+    for step in range(3):
+        rows = [t for block in live.live_tops() for t in block.tolist()]
+        off, ids, held = live.rings()
+        assert off.dtype == np.int64 and ids.dtype == np.uint32 and held.dtype == np.uint32
+        assert len(off) == n + 1 and off[-1] == len(ids) == len(held)
+        for v in range(n):
+            want = {}
+            for t in rows:
+                if v in t:
+                    for w in t:
+                        if w != v:
+                            want[w] = want.get(w, 0) + 1
+            got = list(zip(ids[off[v]:off[v + 1]].tolist(), held[off[v]:off[v + 1]].tolist()))
+            assert sorted(got) == sorted(want.items()), f"ring of {v}"
+        # An edit drops the rings; the next call answers for the new state.
+        k = min(3, n)
+        extra = data.draw(st.lists(st.integers(0, n - 1), min_size=k, max_size=k, unique=True))
+        try:
+            live.insert([extra])
+        except topoplex.EditRefused:
+            first = [t for t in live.live_tops() if t.shape[0]]
+            live.remove([first[-1][0]])
+        if live.dimension == 0:
+            break
+
+
 def test_adjacency_of_three_triangles_on_an_edge_is_many_and_of_a_strip_one():
     # Three triangles on edge [0 1] (non-manifold), and a fourth sharing [1 2] with the first.
     live = topoplex.Complex.from_arrays([[0, 1, 2], [0, 1, 3], [0, 1, 4], [1, 2, 5]]).live()

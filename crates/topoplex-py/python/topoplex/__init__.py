@@ -603,6 +603,22 @@ class Structure:
         """
         return self._s._adjacency(p)
 
+    def rings(self) -> Tuple[npt.NDArray[np.int64], npt.NDArray[np.uint32], npt.NDArray[np.uint32]]:
+        """Every vertex's one-ring as CSR ``(offsets, neighbours, tops)``: row v (a vertex
+        slot, empty for a removed or isolated vertex) holds the vertices sharing an edge with
+        v, each once, in the order v's star first names them, and ``tops`` beside each the
+        number of top simplices holding that edge (on a triangle mesh: 1 on the boundary, 2
+        inside, more at a non-manifold edge). Built on the first call after an edit of the
+        topology (the GIL released; moving vertices keeps it), then copied out.
+
+        >>> import topoplex
+        >>> m = topoplex.Complex.from_arrays([[0, 1, 2], [0, 1, 3], [0, 1, 4]]).live()
+        >>> off, ids, tops = m.rings()
+        >>> sorted(zip(ids[off[0]:off[1]].tolist(), tops[off[0]:off[1]].tolist()))
+        [(1, 3), (2, 1), (3, 1), (4, 1)]
+        """
+        return self._s._rings()
+
     def keep_adjacency(self, keep: bool = True) -> None:
         """Keeps :meth:`adjacency`'s index across edits (built now, then repaired by each
         insert, removal, contraction and split around what it changed: O(1) to ask for after

@@ -48,6 +48,8 @@ pub(super) struct DenseIndex {
     views: OnceLock<Box<[OnceLock<Csr>]>>,
     /// The tops across each facet (module `across`), when asked.
     across: OnceLock<super::across::Across>,
+    /// Every vertex's one-ring (module `rings`), when asked.
+    rings: OnceLock<super::rings::RingIndex>,
 }
 
 /// A clone starts with no tables: they are caches, rebuilt on use.
@@ -63,9 +65,16 @@ impl DenseIndex {
         &self.across
     }
 
-    /// Heap bytes of the tables, views and facet adjacency built so far.
+    /// The one-rings' place (module `rings`).
+    pub(super) fn rings(&self) -> &OnceLock<super::rings::RingIndex> {
+        &self.rings
+    }
+
+    /// Heap bytes of the tables, views, facet adjacency and rings built so far.
     pub(super) fn bytes(&self) -> u64 {
-        self.bytes_of_numbering() + self.across.get().map_or(0, |a| a.bytes())
+        self.bytes_of_numbering()
+            + self.across.get().map_or(0, |a| a.bytes())
+            + self.rings.get().map_or(0, |r| r.bytes())
     }
 
     fn bytes_of_numbering(&self) -> u64 {

@@ -39,6 +39,13 @@
 //! 32 bytes per tetrahedron (+ 2 spare) + ~13 per vertex; on a triangle mesh 24 bytes per
 //! triangle (+ 1.5 spare) + ~13 per vertex.
 //!
+//! Two indices are built only on request, reported by `Navigate::handle_bytes`, and belong to
+//! one state of the topology (setting coordinates keeps them): the tops across each facet
+//! ([`LiveComplex::adjacency`], module `across`: 4 bytes per vertex of every top, kept across
+//! edits on request) and every vertex's one-ring with the tops at each edge
+//! ([`LiveComplex::rings`], module `rings`: 4 bytes per vertex slot and 8 per ring entry,
+//! dropped by each edit).
+//!
 //! # Cost of each relation
 //! k_v = |St*(v)|; σ a p-simplex, v its vertex with the smallest star; d ≤ 15 so subsets of a
 //! simplex count as constant factors.
@@ -134,6 +141,7 @@ mod dense;
 mod edit;
 pub mod link;
 mod nav;
+mod rings;
 mod stars;
 mod store;
 
@@ -142,6 +150,7 @@ use stars::Stars;
 pub use across::{ACROSS_MANY, ACROSS_NONE, Adjacency};
 pub use data::{VertexMerge, VertexPolicy};
 pub use edit::{CompactMaps, ContractMode, UndoRecord};
+pub use rings::Rings;
 
 /// "No vertex" marker.
 const NONE: u32 = u32::MAX;
@@ -681,7 +690,17 @@ impl LiveComplex {
                 dim: self.coords.len(),
             });
         }
-        if let Some(i) = data.iter().position(|x| !x.is_finite()) {
+        // Finite unless the exponent bits are all ones: tested a block at a time without a
+        // branch per number (a pass of smoothing sets every coordinate), the culprit found only
+        // when a block holds one.
+        const EXPONENT: u64 = 0x7ff0_0000_0000_0000;
+        let finite = |c: &[f64]| {
+            !c.iter()
+                .fold(false, |bad, x| bad | (x.to_bits() & EXPONENT == EXPONENT))
+        };
+        if !data.chunks(256).all(finite)
+            && let Some(i) = data.iter().position(|x| !x.is_finite())
+        {
             let k = self.coord_dim.max(1);
             return Err(Refusal::NonFiniteCoordinate {
                 vertex: (i / k) as u32,
