@@ -1565,8 +1565,9 @@ class MeshView {
    * docs/benchmarks.md, "The mesh"). f may read the mesh and write coordinates through
    * Live::set_coords (in place: the view stays valid), not edit the topology. O(Σ_v d·k_v),
    * no allocation once `marks` has grown to vertex_slots() and the largest ring. With
-   * has_rings(): each stored ring in turn, O(Σ_v |ring(v)|), `marks` untouched (2.5-4x faster
-   * than the pass over the stars on the benchmark's surfaces; docs/benchmarks.md, "The mesh"). */
+   * has_rings(): each stored ring in turn, O(Σ_v |ring(v)|), `marks` untouched (10 smoothing
+   * rounds 1.5-2.3x faster than over the stars, once the rings are built; docs/benchmarks.md,
+   * "The mesh"). */
   template <class F>
   void for_each_ring(NeighbourMarks &marks, F &&f) const {
     if (has_rings_) {
