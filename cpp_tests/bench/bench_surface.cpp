@@ -20,7 +20,8 @@
 //   <op>_view   VF/VV/FF/FF_index read inline from a lent relation view (bench_common.hpp)
 //   tpx_mesh     VF/VV/FF on the mesh (the live complex) read inline through MeshView, per
 //          element, nothing prebuilt; `tpx_mesh_adj`: FF read from the mesh's facet adjacency
-//          (tpx_live_adjacency, built before the timing; its bytes in `index_bytes`)
+//          (tpx_live_adjacency, built before the timing; its bytes in `index_bytes`);
+//          `tpx_mesh_rings`: VV read from the mesh's stored one-rings (tpx_live_rings, likewise)
 // The peers' heap includes their vertex coordinates (OpenMesh 3 floats, CGAL 3 doubles per
 // vertex; counter `geometry_bytes`), Topoplex's structures hold none.
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -406,6 +407,31 @@ int main(int argc, char** argv) {
       }
       check_count(state, "VV", lib, count);
       set_elements(state, count);
+    });
+    // VV read from the mesh's stored one-rings (tpx_live_rings, built before the timing, its
+    // bytes in `index_bytes`): an index, so not what the per-call aims compare.
+    add("VV", "tpx_mesh_rings", Unit::Walk, [=](benchmark::State& state) {
+      const MeshBuilt& b = slot().get<MeshBuilt>(lib, make);
+      TpxLiveRings rings{};
+      if (tpx_live_rings(b.live.get(), &rings) != TPX_STATUS_OK) {
+        state.SkipWithError("tpx_live_rings failed");
+        return;
+      }
+      const topoplex::MeshView m(b.arrays, nullptr, &rings);
+      topoplex::NeighbourMarks marks;
+      uint64_t count = 0, sum = 0;
+      for (auto _ : state) {
+        count = 0;
+        for (uint32_t v = 0; v < m.vertex_slots(); ++v)
+          m.for_each_neighbour(v, marks, [&](uint32_t w) {
+            sum += w;
+            ++count;
+          });
+        benchmark::DoNotOptimize(sum);
+      }
+      check_count(state, "VV", "tpx_mesh_rings", count);
+      set_elements(state, count);
+      state.counters["index_bytes"] = double(rings.bytes);
     });
     for (const bool with_adj : {false, true}) {
       const std::string name = with_adj ? "tpx_mesh_adj" : lib;
