@@ -155,7 +155,7 @@ if [ -n "$bench_bin" ]; then
   for f in $(datasets 'surf-*.off'); do run topoplex_bench_surface surface "$f"; done
   for f in $(datasets 'tet-*.mesh'); do run topoplex_bench_tets tets "$f"; done
   # Issue 25: the whole application (load, smoothing, stats, face neighbours, write) on
-  # OpenMesh and on the mesh (also keeping its facet adjacency from load on: --kept), one process
+  # OpenMesh and on the mesh (also indexed: facet adjacency and one-rings built in load, --kept), one process
   # per run, peak RSS per process; the surfaces and the
   # non-manifold meshes of ../shared/data when present. RESULTS/app.md.
   if [ -x "$bench_bin/topoplex_bench_app" ]; then

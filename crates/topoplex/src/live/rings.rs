@@ -80,6 +80,22 @@ impl LiveComplex {
     /// after an edit and kept until the next one (setting coordinates keeps it).
     /// [`BuildError::TooLarge`] when its memory cannot be had or the rings hold 2^32 entries or
     /// more. Cost: the first call O(Σ_v d·k_v), the others O(1).
+    ///
+    /// ```
+    /// use topoplex::Complex;
+    /// use topoplex::live::LiveComplex;
+    /// // Three triangles on the edge 0-1 (a non-manifold edge) and one more on 0-2.
+    /// let tops: [&[u32]; 4] = [&[0, 1, 2], &[0, 1, 3], &[0, 1, 4], &[0, 2, 5]];
+    /// let live = LiveComplex::from_complex(&Complex::from_simplices(6, &tops).unwrap());
+    /// let rings = live.rings().unwrap();
+    /// // Vertex 0's neighbours, each with the number of triangles at that edge.
+    /// let mut at_0: Vec<(u32, u32)> = rings.ring(0).iter().copied()
+    ///     .zip(rings.edge_tops(0).iter().copied())
+    ///     .collect();
+    /// at_0.sort_unstable();
+    /// assert_eq!(at_0, [(1, 3), (2, 2), (3, 1), (4, 1), (5, 1)]);
+    /// assert_eq!(rings.top_dims, 1 << 2); // triangles only: the counts are triangle counts
+    /// ```
     pub fn rings(&self) -> Result<Rings<'_>, BuildError> {
         let lock = self.dense.rings();
         if lock.get().is_none() {
