@@ -1,16 +1,17 @@
-// CGAL tetrahedral meshes as peers: a Delaunay Triangulation_3 of a real point set (its finite
-// cells) and a Mesh_3 tetrahedralization of a real surface (the C3T3's cells in the complex).
-// The triangulation's incidence queries answer all 16 relations R_{p,q}, p, q <= 3 (vertex
-// stars, adjacent vertices, the cell and facet circulators around edges, cell neighbours); on the
-// Mesh_3 complex GUDHI's Simplex_tree answers them as well.
+// CGAL tetrahedral complexes as peers: the finite cells of a Delaunay Triangulation_3 of a real
+// point set, and the cells of a Delaunay triangulation of a real surface's vertices whose
+// centroids lie inside that surface (a subset of the triangulation's cells, as a Mesh_3 C3T3's
+// cells in the complex are). The triangulation's incidence queries answer all 16 relations
+// R_{p,q}, p, q <= 3 (vertex stars, adjacent vertices, the cell and facet circulators around
+// edges, cell neighbours); on the subset GUDHI's Simplex_tree answers them as well. (The subset
+// was a Mesh_3 tetrahedralization until 2026-12: its mesher took four minutes of the sanitized
+// build to compile, for the same checks on the same kind of complex; adapters_cgal still builds
+// a C3T3.)
 #include <CGAL/Delaunay_triangulation_3.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Mesh_complex_3_in_triangulation_3.h>
-#include <CGAL/Mesh_criteria_3.h>
-#include <CGAL/Mesh_triangulation_3.h>
-#include <CGAL/Polyhedral_mesh_domain_3.h>
 #include <CGAL/Polyhedron_3.h>
-#include <CGAL/make_mesh_3.h>
+#include <CGAL/Side_of_triangle_mesh.h>
+#include <CGAL/centroid.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -50,44 +51,39 @@ TEST(CgalDelaunay3Peer, FiniteCellsOfKittenPointsMatchEveryKind) {
   EXPECT_FALSE(report.checked.empty());
 }
 
-TEST(CgalMesh3Peer, ElephantTetrahedralizationMatchesEveryKind) {
+TEST(CgalDelaunay3Peer, ElephantInteriorCellsMatchEveryKind) {
   PEERS_REQUIRE_DATA(path, "meshes/elephant.off");
   using Polyhedron = CGAL::Polyhedron_3<K>;
-  using Domain = CGAL::Polyhedral_mesh_domain_3<Polyhedron, K>;
-  using Tr = CGAL::Mesh_triangulation_3<Domain, CGAL::Default, CGAL::Sequential_tag>::type;
-  using C3t3 = CGAL::Mesh_complex_3_in_triangulation_3<Tr>;
-  using Criteria = CGAL::Mesh_criteria_3<Tr>;
-  namespace params = CGAL::parameters;
-
+  using Dt = CGAL::Delaunay_triangulation_3<K>;
   Polyhedron polyhedron;
   std::ifstream in(path);
   ASSERT_TRUE(in >> polyhedron) << path;
   ASSERT_TRUE(polyhedron.is_closed());
-  const Domain domain(polyhedron);
-  // Coarse on purpose: a few thousand cells keep the test fast; quality does not matter here.
-  const Criteria criteria(params::facet_angle = 25, params::facet_size = 0.15, params::facet_distance = 0.01,
-                          params::cell_radius_edge_ratio = 3);
-  const C3t3 c3t3 = CGAL::make_mesh_3<C3t3>(domain, criteria, params::no_perturb(), params::no_exude());
-  const Tr& tr = c3t3.triangulation();
-  ASSERT_GT(c3t3.number_of_cells_in_complex(), 0u);
-
-  auto in_complex = [&](Tr::Cell_handle c) { return c3t3.is_in_complex(c); };
-  peers::CellsAndFaces<Tr, decltype(in_complex)> member{tr, in_complex};
+  // Every third vertex of the surface: a few thousand cells inside, as many as the kitten's
+  // triangulation has in all (the checks under the sanitizers cost about 10 ms a cell).
+  std::vector<K::Point_3> points;
+  std::size_t i = 0;
+  for (auto p = polyhedron.points_begin(); p != polyhedron.points_end(); ++p, ++i)
+    if (i % 3 == 0) points.push_back(*p);
+  const Dt dt(points.begin(), points.end());
+  const CGAL::Side_of_triangle_mesh<Polyhedron, K> side(polyhedron);
+  auto in_complex = [&](Dt::Cell_handle c) {
+    if (dt.is_infinite(c)) return false;
+    return side(CGAL::centroid(dt.tetrahedron(c))) == CGAL::ON_BOUNDED_SIDE;
+  };
+  peers::CellsAndFaces<Dt, decltype(in_complex)> member{dt, in_complex};
   peers::PeerComplex cx;
-  cx.name = "Mesh_3 C3T3 of elephant.off";
+  cx.name = "Delaunay_3 cells inside elephant.off";
   std::vector<peers::Relation> rels;
-  peers::t3_peer(tr, member, [&](Tr::Vertex_handle v) { return tr.point(v).point(); }, "Mesh_3 cells in complex",
+  peers::t3_peer(dt, member, [](Dt::Vertex_handle v) { return v->point(); }, "cells inside",
                  /*with_all_faces=*/false, cx, rels);
-  ASSERT_EQ(cx.simplex_count(), size_t(c3t3.number_of_cells_in_complex()));
 #ifdef TOPOPLEX_PEERS_HAVE_GUDHI
-  // GUDHI answers too, over the same cells.
   peers::Stree st;
   for (size_t i = 0; i < cx.simplex_count(); ++i)
     st.insert_simplex_and_subfaces(std::vector<int>(cx.ids.begin() + cx.offsets[i], cx.ids.begin() + cx.offsets[i + 1]));
   EXPECT_EQ(peers::gudhi_relations(st, rels), cx.expected_tops);
 #endif
-  std::cout << "[peers] Mesh_3: " << cx.n_vertices << " vertices, " << cx.simplex_count() << " cells" << std::endl;
-
+  std::cout << "[peers] inside: " << cx.n_vertices << " vertices, " << cx.simplex_count() << " cells" << std::endl;
   const auto report = peers::check_all_kinds(cx, rels);
   EXPECT_FALSE(report.checked.empty());
 }
