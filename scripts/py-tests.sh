@@ -1,11 +1,20 @@
 #!/usr/bin/env bash
 # The Python package's tests (crates/topoplex-py): a venv of the suite's own under the target
 # directory (never the user's Python), the test dependencies from PyPI when missing, the
-# extension built with `maturin develop` in the `ci` profile into the workspace's target
-# directory (so the core library compiled by `cargo build --profile ci --workspace` is reused:
-# only pyo3 and the binding recompile, for maturin's PYO3_BUILD_EXTENSION_MODULE), then pytest
-# over the tests and the docstring examples of the package and of the README's Python section,
-# and mypy over the package: every function annotated, every body checked against its annotations.
+# extension module installed in development mode (the package's sources on the venv's path, the
+# module beside them, as `maturin develop` does), then pytest over the tests and the docstring
+# examples of the package and of the README's Python section, and mypy over the package: every
+# function annotated, every body checked against its annotations.
+#
+# The module is built with `maturin develop --profile ci` into the workspace's target directory,
+# or, when TOPOPLEX_PY_PREBUILT names one, taken as built: scripts/test.sh passes the cdylib of
+# its `cargo build --profile ci --workspace`, built with PYO3_BUILD_EXTENSION_MODULE=1 as maturin
+# builds it. maturin builds one package, so cargo unifies the dependencies' features differently
+# from the workspace build (the test targets' dev-dependencies turn on more of serde, syn and
+# either) and compiles the core and a dozen dependencies a second time: two of CI's minutes.
+#
+# usage: scripts/py-tests.sh            build (or take TOPOPLEX_PY_PREBUILT), install, test
+#        scripts/py-tests.sh --deps     only the venv and the test dependencies
 set -euo pipefail
 cd "$(dirname "$0")/.."
 target=${CARGO_TARGET_DIR:-target}
@@ -23,11 +32,28 @@ if ! "$py" -c "import maturin, numpy, pytest, hypothesis, gudhi, meshio, trimesh
     'maturin>=1.9.4,<2' numpy pytest hypothesis gudhi meshio trimesh scipy 'mypy>=1.18' ||
     skip "the test dependencies could not be installed from PyPI"
 fi
-# maturin's and pip's chatter goes to a log, shown only when the build fails.
-log="$venv/maturin.log"
-if ! VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" \
-  maturin develop --profile ci -m crates/topoplex-py/Cargo.toml >"$log" 2>&1; then
-  cat "$log"
+[ "${1:-}" = --deps ] && exit 0
+package=crates/topoplex-py/python
+if [ -n "${TOPOPLEX_PY_PREBUILT:-}" ]; then
+  # What `maturin develop` leaves for a package with python-source (pyproject.toml): the module
+  # beside the package's sources (ignored by git), and the sources' directory on the venv's path.
+  cp "$TOPOPLEX_PY_PREBUILT" "$package/topoplex/_core.abi3.so"
+  site=$("$py" -c 'import sysconfig; print(sysconfig.get_path("purelib"))')
+  (cd "$package" && pwd) >"$site/topoplex.pth"
+  echo "extension module: $TOPOPLEX_PY_PREBUILT (prebuilt)"
+else
+  # maturin's and pip's chatter goes to a log, shown only when the build fails.
+  log="$venv/maturin.log"
+  if ! VIRTUAL_ENV="$venv" PATH="$venv/bin:$PATH" \
+    maturin develop --profile ci -m crates/topoplex-py/Cargo.toml >"$log" 2>&1; then
+    cat "$log"
+    exit 1
+  fi
+fi
+# Whichever way it came, the module must be an extension module: no libpython of its own (the
+# manylinux rule, and a second interpreter's symbols in the process otherwise).
+if readelf -d "$package/topoplex/_core.abi3.so" 2>/dev/null | grep -q 'NEEDED.*libpython'; then
+  echo "$package/topoplex/_core.abi3.so links libpython: build it with PYO3_BUILD_EXTENSION_MODULE=1" >&2
   exit 1
 fi
 cd crates/topoplex-py

@@ -1,42 +1,57 @@
 #!/usr/bin/env bash
 # The whole test suite, as CI runs it (.ci/run calls exactly this). Installs what it needs on a
-# fresh Debian machine, then: lint gates (fmt, clippy, rustdoc, missing_docs), Rust tests (unit,
-# property, real data when ../shared/data exists), CLI smoke checks, the CMake package install
-# and the C/C++ cross-checks (plain and under AddressSanitizer + UndefinedBehaviorSanitizer).
+# fresh Debian machine (while the Rust workspace builds), then: lint gates (fmt, clippy, rustdoc,
+# missing_docs), Rust tests (unit, property, real data when ../shared/data exists), Miri and the
+# fuzz smoke, CLI smoke checks, the Python package, the CMake package install and the C/C++
+# cross-checks (plain and under AddressSanitizer + UndefinedBehaviorSanitizer).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # Each stage says when it starts, so a slow stage shows in the log (CI has 30 minutes for all).
 stage() { echo "== $* [${SECONDS}s]"; }
 
-scripts/install-deps.sh cmake ninja-build pkg-config valgrind libopenmesh-dev libcgal-dev \
-  libgudhi-dev libgtest-dev libcgal-demo libbenchmark-dev
-# PETSc 3.18 + OpenMPI for the optional DMPlex bridge (Topoplex::dmplex) and its MPI tests
-# (cpp_tests/dmplex, run by scripts/cpp-tests.sh in the uninstrumented pass); ~25 s to install.
-scripts/install-deps.sh libpetsc-real-dev openmpi-bin
-# Python meshio and gmsh: meshio is the independent reader and writer of tests/it/interop.rs;
-# gmsh (the PyPI wheel: Gmsh's own Python API) meshes the labelled geometry of
-# tests/it/gmsh_real.rs. Each test is skipped without its module. Never installed into the
-# user's Python: when the system's python3 lacks one, they go into a venv of the suite's own
-# under the target directory, put first on PATH for the tests. The gmsh wheel links X11 and
-# OpenGL libraries even when nothing is displayed: those Debian packages first.
-scripts/install-deps.sh libglu1-mesa libgl1 libopengl0 libxcursor1 libxft2 libxinerama1 \
-  libxrender1 libfontconfig1 libgomp1
-if ! python3 -c "import meshio, gmsh" 2>/dev/null; then
-  venv=${CARGO_TARGET_DIR:-target}/test-venv
-  if [ -x "$venv/bin/python3" ] || python3 -m venv "$venv"; then
-    for module in meshio gmsh; do
-      "$venv/bin/python3" -c "import $module" 2>/dev/null ||
-        "$venv/bin/python3" -m pip install --quiet "$module" ||
-        echo "$module not installed: the tests that use it will skip their checks"
-    done
-    PATH="$(cd "$venv/bin" && pwd):$PATH"
-    export PATH
-  else
-    echo "no venv for meshio and gmsh: the tests use python3 as it is (skipping what it lacks)"
-  fi
-fi
+# The Python extension is built as an extension module in every cargo build below (no libpython
+# linked, as maturin builds it), so the Python stage imports the cdylib of the workspace build
+# instead of compiling the core again (scripts/py-tests.sh says why that compile would differ).
+export PYO3_BUILD_EXTENSION_MODULE=1
 
-stage "lint gates: formatting, clippy, docs (missing_docs is denied on the public API)"
+# What the suite installs comes from the network and dpkg, mostly waiting: it runs while the lint
+# gates and the workspace build below use the cores, and its log is printed before the first
+# stage that needs it (the tests). Nothing of it is needed to build the Rust workspace.
+install_all() {
+  scripts/install-deps.sh cmake ninja-build pkg-config valgrind libopenmesh-dev libcgal-dev \
+    libgudhi-dev libgtest-dev libcgal-demo libbenchmark-dev
+  # PETSc 3.18 + OpenMPI for the optional DMPlex bridge (Topoplex::dmplex) and its MPI tests
+  # (cpp_tests/dmplex, run by scripts/cpp-tests.sh in the uninstrumented pass).
+  scripts/install-deps.sh libpetsc-real-dev openmpi-bin
+  # Python meshio and gmsh: meshio is the independent reader and writer of tests/it/interop.rs;
+  # gmsh (the PyPI wheel: Gmsh's own Python API) meshes the labelled geometry of
+  # tests/it/gmsh_real.rs. Each test is skipped without its module. Never installed into the
+  # user's Python: when the system's python3 lacks one, they go into a venv of the suite's own
+  # under the target directory, put first on PATH for the tests. The gmsh wheel links X11 and
+  # OpenGL libraries even when nothing is displayed: those Debian packages first.
+  scripts/install-deps.sh libglu1-mesa libgl1 libopengl0 libxcursor1 libxft2 libxinerama1 \
+    libxrender1 libfontconfig1 libgomp1
+  if ! python3 -c "import meshio, gmsh" 2>/dev/null; then
+    if [ -x "$test_venv/bin/python3" ] || python3 -m venv "$test_venv"; then
+      for module in meshio gmsh; do
+        "$test_venv/bin/python3" -c "import $module" 2>/dev/null ||
+          "$test_venv/bin/python3" -m pip install --quiet "$module" ||
+          echo "$module not installed: the tests that use it will skip their checks"
+      done
+    else
+      echo "no venv for meshio and gmsh: the tests use python3 as it is (skipping what it lacks)"
+    fi
+  fi
+  # The Python stage's own venv and test dependencies (scripts/py-tests.sh).
+  scripts/py-tests.sh --deps
+}
+test_venv=${CARGO_TARGET_DIR:-target}/test-venv
+mkdir -p "${CARGO_TARGET_DIR:-target}"
+install_log=$(mktemp "${TMPDIR:-/tmp}/topoplex-install.XXXXXX")
+install_all >"$install_log" 2>&1 &
+installing=$!
+
+stage "lint gates: formatting, clippy, docs (missing_docs is denied on the public API; the installs run meanwhile)"
 # Each crate's lib.rs has #![warn(missing_docs)]; -D warnings turns it (and every clippy lint)
 # into an error here, as rustls-ffi's and petgraph's CI do.
 cargo fmt --all --check
@@ -54,6 +69,16 @@ stage "cargo test (the workspace: core, C ABI, CLI; unit, property, layering, re
 # stage's 16 minutes on two slow cores). A build of one package would differ again (the Python
 # binding's macros turn on more of syn).
 cargo build --profile ci --workspace --lib --bins --tests --examples
+installed=0
+wait "$installing" || installed=$?
+stage "installs (Debian packages, Python venvs), run during the stages above"
+cat "$install_log"
+rm -f "$install_log"
+[ "$installed" = 0 ] || { echo "installing the suite's dependencies failed (status $installed)" >&2; exit "$installed"; }
+if [ -x "$test_venv/bin/python3" ] && ! python3 -c "import meshio, gmsh" 2>/dev/null; then
+  PATH="$(cd "$test_venv/bin" && pwd):$PATH"
+  export PATH
+fi
 # The root package's integration tests are one binary (tests/it/, one link of the core) plus the
 # few that need a process of their own (tests/*.rs: global allocator, RLIMIT_AS, RSS, thread count).
 cargo test --profile ci --workspace --lib --bins --tests --examples
@@ -109,9 +134,10 @@ cli=${CARGO_TARGET_DIR:-target}/ci/topoplex
 "$cli" report --json | python3 -c 'import json,sys; d=json.load(sys.stdin); assert d["dimension"] == 3 and "ig" in d["structures"]'
 
 stage "Python"
-# The package `topoplex` (crates/topoplex-py): its venv under the target directory, maturin,
-# pytest + hypothesis against the oracle and GUDHI, meshio/trimesh/scipy round trips.
-scripts/py-tests.sh
+# The package `topoplex` (crates/topoplex-py): its venv under the target directory, the extension
+# module the workspace build made, pytest + hypothesis against the oracle and GUDHI,
+# meshio/trimesh/scipy round trips.
+TOPOPLEX_PY_PREBUILT=${CARGO_TARGET_DIR:-target}/ci/lib_core.so scripts/py-tests.sh
 
 if [ -x scripts/cpp-tests.sh ]; then
   stage "C/C++ package and cross-checks"
