@@ -31,22 +31,31 @@ install_all() {
   # OpenGL libraries even when nothing is displayed: those Debian packages first.
   scripts/install-deps.sh libglu1-mesa libgl1 libopengl0 libxcursor1 libxft2 libxinerama1 \
     libxrender1 libfontconfig1 libgomp1
-  if ! python3 -c "import meshio, gmsh" 2>/dev/null; then
-    if [ -x "$test_venv/bin/python3" ] || python3 -m venv "$test_venv"; then
-      for module in meshio gmsh; do
-        "$test_venv/bin/python3" -c "import $module" 2>/dev/null ||
-          "$test_venv/bin/python3" -m pip install --quiet "$module" ||
-          echo "$module not installed: the tests that use it will skip their checks"
-      done
-    else
-      echo "no venv for meshio and gmsh: the tests use python3 as it is (skipping what it lacks)"
-    fi
+  if [ -n "$test_venv_used" ]; then
+    for module in meshio gmsh; do
+      "$test_venv/bin/python3" -c "import $module" 2>/dev/null ||
+        "$test_venv/bin/python3" -m pip install --quiet "$module" ||
+        echo "$module not installed: the tests that use it will skip their checks"
+    done
   fi
   # The Python stage's own venv and test dependencies (scripts/py-tests.sh).
   scripts/py-tests.sh --deps
 }
 test_venv=${CARGO_TARGET_DIR:-target}/test-venv
 mkdir -p "${CARGO_TARGET_DIR:-target}"
+# The venv is made and put first on PATH now, before any cargo build: PyO3's build script finds
+# its Python on PATH and reruns when PATH changes, so a PATH changed between the workspace build
+# and the tests would rebuild PyO3 and the extension.
+test_venv_used=
+if ! python3 -c "import meshio, gmsh" 2>/dev/null; then
+  if [ -x "$test_venv/bin/python3" ] || python3 -m venv "$test_venv"; then
+    test_venv_used=1
+    PATH="$(cd "$test_venv/bin" && pwd):$PATH"
+    export PATH
+  else
+    echo "no venv for meshio and gmsh: the tests use python3 as it is (skipping what it lacks)"
+  fi
+fi
 install_log=$(mktemp "${TMPDIR:-/tmp}/topoplex-install.XXXXXX")
 install_all >"$install_log" 2>&1 &
 installing=$!
@@ -75,13 +84,10 @@ stage "installs (Debian packages, Python venvs), run during the stages above"
 cat "$install_log"
 rm -f "$install_log"
 [ "$installed" = 0 ] || { echo "installing the suite's dependencies failed (status $installed)" >&2; exit "$installed"; }
-if [ -x "$test_venv/bin/python3" ] && ! python3 -c "import meshio, gmsh" 2>/dev/null; then
-  PATH="$(cd "$test_venv/bin" && pwd):$PATH"
-  export PATH
-fi
 # The root package's integration tests are one binary (tests/it/, one link of the core) plus the
 # few that need a process of their own (tests/*.rs: global allocator, RLIMIT_AS, RSS, thread count).
-cargo test --profile ci --workspace --lib --bins --tests --examples
+# Not --examples: they hold no tests, and in test mode they would compile a second time.
+cargo test --profile ci --workspace --lib --bins --tests
 cargo test --profile ci --workspace --doc
 
 stage "Miri on the FFI layer's unit tests, the fuzz smoke beside it"
