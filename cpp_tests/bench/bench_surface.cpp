@@ -205,6 +205,23 @@ void time_stats(benchmark::State& state, const std::string& lib, uint64_t elemen
   check_count(state, "stats", lib, sum);
   set_elements(state, elements);
 }
+// Times every vertex's one-ring through `m`'s for_each_neighbour (from the stars, or the stored
+// rings when `m` has them) and checks the neighbour count for `lib`.
+void time_neighbours(benchmark::State& state, const topoplex::MeshView& m, const std::string& lib) {
+  topoplex::NeighbourMarks marks;
+  uint64_t count = 0, sum = 0;
+  for (auto _ : state) {
+    count = 0;
+    for (uint32_t v = 0; v < m.vertex_slots(); ++v)
+      m.for_each_neighbour(v, marks, [&](uint32_t w) {
+        sum += w;
+        ++count;
+      });
+    benchmark::DoNotOptimize(sum);
+  }
+  check_count(state, "VV", lib, count);
+  set_elements(state, count);
+}
 uint64_t om_stats(const OMesh& m) {
   Stats st;  // OpenMesh holds no non-manifold edge
   for (auto v : m.vertices()) st.valence(m.valence(v));
@@ -394,19 +411,7 @@ int main(int argc, char** argv) {
     });
     add("VV", lib, Unit::Walk, [=](benchmark::State& state) {
       const topoplex::MeshView m(slot().get<MeshBuilt>(lib, make).arrays);
-      topoplex::NeighbourMarks marks;
-      uint64_t count = 0, sum = 0;
-      for (auto _ : state) {
-        count = 0;
-        for (uint32_t v = 0; v < m.vertex_slots(); ++v)
-          m.for_each_neighbour(v, marks, [&](uint32_t w) {
-            sum += w;
-            ++count;
-          });
-        benchmark::DoNotOptimize(sum);
-      }
-      check_count(state, "VV", lib, count);
-      set_elements(state, count);
+      time_neighbours(state, m, lib);
     });
     // VV read from the mesh's stored one-rings (tpx_live_rings, built before the timing, its
     // bytes in `index_bytes`): an index, so not what the per-call aims compare.
@@ -418,19 +423,7 @@ int main(int argc, char** argv) {
         return;
       }
       const topoplex::MeshView m(b.arrays, nullptr, &rings);
-      topoplex::NeighbourMarks marks;
-      uint64_t count = 0, sum = 0;
-      for (auto _ : state) {
-        count = 0;
-        for (uint32_t v = 0; v < m.vertex_slots(); ++v)
-          m.for_each_neighbour(v, marks, [&](uint32_t w) {
-            sum += w;
-            ++count;
-          });
-        benchmark::DoNotOptimize(sum);
-      }
-      check_count(state, "VV", "tpx_mesh_rings", count);
-      set_elements(state, count);
+      time_neighbours(state, m, "tpx_mesh_rings");
       state.counters["index_bytes"] = double(rings.bytes);
     });
     for (const bool with_adj : {false, true}) {
