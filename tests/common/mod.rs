@@ -259,6 +259,34 @@ pub fn shared_complexes() -> impl Iterator<Item = (PathBuf, Complex)> {
         .filter_map(|p| Complex::from_path(&p).ok().map(|c| (p, c)))
 }
 
+/// Calls `f(path, complex)` for every complex of [`shared_complexes`] in a file of at most
+/// `max_bytes` (`u64::MAX`: every file), the files shared out to
+/// as many threads as the machine has cores (at most 4), each file read in the thread that
+/// checks it. For the real-data sweeps that walk every relation of every structure: on two
+/// cores the test harness's other thread has long finished while one such sweep still runs
+/// alone. A panic in `f` fails the test (the scope re-raises it).
+pub fn for_each_shared_complex(max_bytes: u64, f: impl Fn(&std::path::Path, Complex) + Sync) {
+    let files = shared_files();
+    let next = std::sync::atomic::AtomicUsize::new(0);
+    let threads = std::thread::available_parallelism().map_or(1, |n| n.get().min(4));
+    std::thread::scope(|scope| {
+        for _ in 0..threads {
+            scope.spawn(|| {
+                loop {
+                    let i = next.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+                    let Some(path) = files.get(i) else { break };
+                    if std::fs::metadata(path).map_or(true, |m| m.len() > max_bytes) {
+                        continue;
+                    }
+                    if let Ok(c) = Complex::from_path(path) {
+                        f(path, c);
+                    }
+                }
+            });
+        }
+    });
+}
+
 /// A scratch directory under the temp dir (named by the process, `tag` and the thread, so
 /// parallel tests do not meet), removed on drop.
 pub struct Scratch(pub PathBuf);

@@ -94,15 +94,9 @@ proptest! {
 fn real_data_reopens_with_the_same_relations() {
     // Files up to 300 kB: every relation of every structure is compared, and the larger files
     // are already checked against the IG by tests/it/structures.rs (the suite's time budget).
-    for path in common::shared_files() {
-        if std::fs::metadata(&path).map_or(true, |m| m.len() > 300_000) {
-            continue;
-        }
-        let Ok(c) = Complex::from_path(&path) else {
-            continue;
-        };
-        round_trip(&c, &path.display().to_string());
-    }
+    common::for_each_shared_complex(300_000, |path, c| {
+        round_trip(&c, &path.display().to_string())
+    });
 }
 
 /// A tetrahedron glued to a triangle at an edge, saved with its IA.
