@@ -82,6 +82,9 @@ Result run_openmesh(const char *in, const char *out) {
   auto t0 = Clock::now();
   OMesh mesh;
   if (!OpenMesh::IO::read_mesh(mesh, in)) throw std::runtime_error("OpenMesh cannot read it");
+  // OpenMesh 9.0's OFF reader reads no face after a comment line and still reports success
+  // (scripts/bench_app.py hands both libraries a copy without comments).
+  if (mesh.n_faces() == 0) throw std::runtime_error("OpenMesh read no face (a comment line in the OFF?)");
   r.ms["load"] = ms_since(t0);
   r.load_peak_kib = peak_rss_kib();
   r.kept_kib = status_kib("VmRSS:");
