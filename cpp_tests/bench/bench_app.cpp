@@ -1,6 +1,6 @@
 // topoplex_bench_app LIB INPUT [OUTPUT]: the small mesh application of issue 25, written once
 // on OpenMesh and once on Topoplex's live mesh as each library's guide recommends, so that a
-// driver (scripts/bench_app.sh) can time the two side by side, phase by phase, each in its own
+// driver (scripts/bench_app.py) can time the two side by side, phase by phase, each in its own
 // process (so that each process's peak RSS is that application's alone).
 //
 // LIB: `openmesh` (TriMesh with double coordinates, faces and vertices in file order),
