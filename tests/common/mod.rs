@@ -260,11 +260,11 @@ pub fn shared_complexes() -> impl Iterator<Item = (PathBuf, Complex)> {
 }
 
 /// Calls `f(path, complex)` for every complex of [`shared_complexes`] in a file of at most
-/// `max_bytes` (`u64::MAX`: every file), the files shared out to
-/// as many threads as the machine has cores (at most 4), each file read in the thread that
-/// checks it. For the real-data sweeps that walk every relation of every structure: on two
-/// cores the test harness's other thread has long finished while one such sweep still runs
-/// alone. A panic in `f` fails the test (the scope re-raises it).
+/// `max_bytes` (`u64::MAX`: every file), the files shared out to as many threads as the machine
+/// has cores (at most 4), each file read in the thread that checks it. For the real-data sweeps
+/// that walk every relation of every structure: on two cores the test harness's other thread had
+/// long finished while one such sweep still ran alone. A panic in `f` fails the test (the scope
+/// re-raises it once every thread is done).
 pub fn for_each_shared_complex(max_bytes: u64, f: impl Fn(&std::path::Path, Complex) + Sync) {
     let files = shared_files();
     let next = std::sync::atomic::AtomicUsize::new(0);
