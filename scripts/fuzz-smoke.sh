@@ -22,6 +22,7 @@ RUSTFLAGS="-Cpasses=sancov-module -Cllvm-args=-sanitizer-coverage-level=4 \
 -Cllvm-args=-sanitizer-coverage-inline-8bit-counters -Cllvm-args=-sanitizer-coverage-pc-table \
 -Cllvm-args=-sanitizer-coverage-trace-compares --cfg fuzzing -Cdebug-assertions -Coverflow-checks" \
   cargo build --release --locked --target "$target" --bins
+echo "== fuzz targets built, ${SECONDS}s after the smoke run started"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 # Each target is one single-threaded process: FUZZ_JOBS (default: the number of cores) run at once.
@@ -44,6 +45,7 @@ for src in fuzz_targets/*.rs; do
   run "$t" &
 done
 wait
+echo "== every target run, ${SECONDS}s after the smoke run started"
 for t in "${targets[@]}"; do
   echo "== fuzz $t (${secs}s)"
   if [ ! -f "$work/$t.status" ]; then

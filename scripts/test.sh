@@ -119,6 +119,7 @@ scripts/fuzz-smoke.sh 3 >"$fuzz_log" 2>&1 &
 fuzz=$!
 miri_status=0
 miri || miri_status=$?
+echo "Miri done [${SECONDS}s]"
 fuzz_status=0
 wait "$fuzz" || fuzz_status=$?
 stage "fuzz smoke (differential: readers, every structure vs the oracle, altered saved files)"
